@@ -1,0 +1,11 @@
+// commands.h — the subcommands of the `pdd` tool; each registers itself on the CLI11 app.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace pdd::compare {
+
+// `pdd solve --engine reference|fast --input FILE [--output FILE] [--formulation full|reduced]`
+void add_solve_command(CLI::App& app, int& exit_code);
+
+}  // namespace pdd::compare

@@ -1,0 +1,20 @@
+// engines.h — running an engine over the entries of a fixture file, in input order.
+//
+// Malformed entries become error records without reaching an engine; every other pair is
+// computed even when some are rejected (SPEC §1). The reference engine runs pairs in
+// parallel with TBB (GMP and CGAL's exact types are thread-safe per object).
+#pragma once
+
+#include <vector>
+
+#include "pdd/compare/fixture_io.h"
+#include "pdd/pair_result.h"
+#include "pdd/reference/solve_pair.h"
+
+namespace pdd::compare {
+
+std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+                                                  const reference::SolveOptions& options,
+                                                  bool show_progress);
+
+}  // namespace pdd::compare

@@ -1,0 +1,39 @@
+// candidate_table.h — every quantity of SPEC §4–§5 evaluated on every candidate direction.
+//
+// Input : an exact pair and its candidates (candidate_directions), a QP formulation.
+// Output: one row per candidate, in canonical order: the oriented depth (as its exact signed
+//         square), eq. 11's overlap, and the per-direction QP optima of the three cases
+//         (static is nullopt where the case-1 QP is infeasible). solve_pair takes minima over
+//         these rows; audits and the paper experiment read them directly.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/direction_qp.h"
+
+namespace pdd::reference {
+
+struct CandidateRow {
+  CandidateDirection direction;
+  Rational depth_signed_square;  // sign(delta) delta^2, SPEC §4
+  std::optional<DirectionOptimum> static_case;  // paper case 1
+  DirectionOptimum deformable;                  // paper case 2
+  DirectionOptimum relaxed;                     // case 2, inequalities only
+};
+
+// Which case QPs to solve; the geometry columns are always filled.
+struct CandidateTableOptions {
+  QpFormulation formulation = QpFormulation::Full;
+  bool solve_qps = true;
+};
+
+std::vector<CandidateRow> candidate_table(const ExactPair& pair,
+                                          const std::vector<CandidateDirection>& candidates,
+                                          const CandidateTableOptions& options);
+
+// Candidate indices sorted by oriented depth ascending, stable in canonical order (case 3).
+std::vector<std::size_t> depth_order(const std::vector<CandidateRow>& rows);
+
+}  // namespace pdd::reference

@@ -1,0 +1,45 @@
+// direction_qp.h — PD_d^2 along one candidate direction: the QP of paper Secs. IV-B and V
+// (objective eq. 3, constraints eq. 10), solved exactly by CGAL's QP solver (SPEC §5).
+//
+// Input : an exact pair, one oriented candidate n with its constrained/free vertex sets, the
+//         case and the formulation.
+// Output: nullopt when the QP is infeasible (case 1 only); otherwise the exact optimum
+//         sigma_A + sigma_B and the deformed positions q1_A, q1_B attaining it.
+//
+// Constraints (p_s a point of the separating plane, x the deformed vertex):
+//   n.(x - p_s) = 0   for x in C_A and C_B        (Relaxed: <= 0 for C_A, >= 0 for C_B)
+//   n.(x - p_s) <= 0  for x in F_A,   n.(x - p_s) >= 0 for x in F_B
+// Cases: Static    q1_A = q0_A (paper case 1), B deforms;
+//        Deformable both deform (paper case 2);
+//        Relaxed   case 2 with every constraint an inequality.
+// Formulations:
+//   Full     the paper's variables: q1_A (12, not in Static), q1_B (12), p_s (3); minimise
+//            20 (sigma_A + sigma_B) as a quadratic in q1 (SPEC §2 closed form).
+//   Reduced  SPEC §5: orthogonal displacement components never help, so with mu_i = n.d_i
+//            (the displacement along n, scaled by |n|^2's unit) and C = n.p_s the problem is
+//            minimise sum_T mu_T^T (I + J) mu_T / (20 n.n)  s.t.  n.x_i + mu_i - C {=,<=,>=} 0.
+//            Deformed positions are x_i + (mu_i / n.n) n. The two formulations agree exactly
+//            (tested on every fixture family).
+#pragma once
+
+#include <optional>
+
+#include "pdd/reference/candidate_directions.h"
+
+namespace pdd::reference {
+
+enum class PddCase { Static, Deformable, Relaxed };
+enum class QpFormulation { Full, Reduced };
+
+const char* to_string(QpFormulation f);
+
+struct DirectionOptimum {
+  Rational value;    // sigma_A + sigma_B at the optimum (PD_d^2 along this direction)
+  ExactTet q1_A;     // deformed A (the rest pose in Static)
+  ExactTet q1_B;     // deformed B
+};
+
+std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const CandidateDirection& dir,
+                                             PddCase pdd_case, QpFormulation formulation);
+
+}  // namespace pdd::reference

@@ -1,0 +1,152 @@
+#include "pdd/reference/direction_qp.h"
+
+#include <CGAL/QP_functions.h>
+#include <CGAL/QP_models.h>
+
+#include <stdexcept>
+
+namespace pdd::reference {
+namespace {
+
+using Program = CGAL::Quadratic_program<QpNumber>;
+using Solution = CGAL::Quadratic_program_solution<QpNumber>;
+
+Rational to_rational(const CGAL::Quotient<QpNumber>& q) {
+  return reference::to_rational(q.numerator()) / reference::to_rational(q.denominator());
+}
+
+// The relation of vertex i of a tetrahedron to the plane, per eq. 10 and the variant.
+CGAL::Comparison_result relation(bool constrained, bool is_A, PddCase c) {
+  if (constrained && c != PddCase::Relaxed) return CGAL::EQUAL;
+  return is_A ? CGAL::SMALLER : CGAL::LARGER;  // A on n.x <= c, B on n.x >= c
+}
+
+Program free_program() { return Program(CGAL::EQUAL, false, 0, false, 0); }  // unbounded vars
+
+Solution solve(const Program& qp) {
+  Solution s = CGAL::solve_quadratic_program(qp, QpNumber());
+  if (!s.is_optimal() && !s.is_infeasible())
+    throw std::logic_error("direction_qp: QP neither optimal nor infeasible (unbounded?)");
+  return s;
+}
+
+// ---------------------------------------------------------------- full formulation
+// Objective 20 sigma = sum_k (x_k - x0_k)^T M (x_k - x0_k), M = I + J (4x4), per coordinate k.
+// CGAL minimises x^T D x + c^T x + c0 and takes 2D: 2D = 2M, c = -2 M x0, c0 = x0^T M x0.
+void add_full_objective(Program& qp, int offset, const ExactTet& rest, QpNumber& c0) {
+  for (int k = 0; k < 3; ++k) {
+    QpNumber column_sum = 0;
+    for (int i = 0; i < 4; ++i) column_sum = column_sum + to_qp_number(rest[i][k]);
+    for (int i = 0; i < 4; ++i) {
+      const QpNumber x0 = to_qp_number(rest[i][k]);
+      for (int j = 0; j <= i; ++j)
+        qp.set_d(offset + 3 * i + k, offset + 3 * j + k, QpNumber(i == j ? 4 : 2));
+      qp.set_c(offset + 3 * i + k, QpNumber(-2) * (x0 + column_sum));
+      c0 = c0 + x0 * x0;
+    }
+    c0 = c0 + column_sum * column_sum;
+  }
+}
+
+// Row: n.x_i - n.p_s (rel) 0 for a moving vertex; -n.p_s (rel) -n.x_i for a fixed one.
+void add_full_row(Program& qp, int row, int vertex_offset, int ps_offset, const Vector& n,
+                  const Point& rest, CGAL::Comparison_result rel) {
+  QpNumber rhs = 0;
+  for (int k = 0; k < 3; ++k) {
+    const QpNumber nk = to_qp_number(n[k]);
+    qp.set_a(ps_offset + k, row, -nk);
+    if (vertex_offset >= 0) qp.set_a(vertex_offset + k, row, nk);
+    else rhs = rhs - nk * to_qp_number(rest[k]);
+  }
+  qp.set_b(row, rhs);
+  qp.set_r(row, rel);
+}
+
+std::optional<DirectionOptimum> full_qp(const ExactPair& p, const CandidateDirection& dir,
+                                        PddCase c) {
+  const bool a_moves = (c != PddCase::Static);
+  const int off_A = a_moves ? 0 : -1, off_B = a_moves ? 12 : 0, off_ps = off_B + 12;
+  Program qp = free_program();
+  QpNumber c0 = 0;
+  if (a_moves) add_full_objective(qp, off_A, p.A, c0);
+  add_full_objective(qp, off_B, p.B, c0);
+  qp.set_c0(c0);
+  for (int i = 0; i < 4; ++i) {
+    add_full_row(qp, i, a_moves ? off_A + 3 * i : -1, off_ps, dir.n, p.A[i],
+                 relation(dir.constrained_A[i], true, c));
+    add_full_row(qp, 4 + i, off_B + 3 * i, off_ps, dir.n, p.B[i],
+                 relation(dir.constrained_B[i], false, c));
+  }
+  const Solution s = solve(qp);
+  if (s.is_infeasible()) return std::nullopt;
+
+  DirectionOptimum out{to_rational(s.objective_value()) / 20, p.A, p.B};
+  std::vector<Rational> x;
+  for (auto it = s.variable_values_begin(); it != s.variable_values_end(); ++it)
+    x.push_back(to_rational(*it));
+  x.resize(off_ps + 3);  // trailing variables absent from every row/objective read as 0
+  for (int i = 0; i < 4; ++i) {
+    if (a_moves) out.q1_A[i] = Point(x[off_A + 3 * i], x[off_A + 3 * i + 1], x[off_A + 3 * i + 2]);
+    out.q1_B[i] = Point(x[off_B + 3 * i], x[off_B + 3 * i + 1], x[off_B + 3 * i + 2]);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- reduced formulation
+// Variables mu_A (4, not in Static), mu_B (4), C; objective sum_T mu_T^T (I + J) mu_T,
+// i.e. 2D = 2 (I + J) per moving tetrahedron; the optimum is that over 20 n.n.
+void add_reduced_objective(Program& qp, int offset) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j <= i; ++j) qp.set_d(offset + i, offset + j, QpNumber(i == j ? 4 : 2));
+}
+
+// Row: mu_i - C (rel) -n.x_i for a moving vertex; -C (rel) -n.x_i for a fixed one.
+void add_reduced_row(Program& qp, int row, int mu, int c_var, const Rational& a,
+                     CGAL::Comparison_result rel) {
+  if (mu >= 0) qp.set_a(mu, row, QpNumber(1));
+  qp.set_a(c_var, row, QpNumber(-1));
+  qp.set_b(row, -to_qp_number(a));
+  qp.set_r(row, rel);
+}
+
+std::optional<DirectionOptimum> reduced_qp(const ExactPair& p, const CandidateDirection& dir,
+                                           PddCase c) {
+  const bool a_moves = (c != PddCase::Static);
+  const int off_A = a_moves ? 0 : -1, off_B = a_moves ? 4 : 0, c_var = off_B + 4;
+  Program qp = free_program();
+  if (a_moves) add_reduced_objective(qp, off_A);
+  add_reduced_objective(qp, off_B);
+  const Vector& n = dir.n;
+  for (int i = 0; i < 4; ++i) {
+    add_reduced_row(qp, i, a_moves ? off_A + i : -1, c_var, n * (p.A[i] - CGAL::ORIGIN),
+                    relation(dir.constrained_A[i], true, c));
+    add_reduced_row(qp, 4 + i, off_B + i, c_var, n * (p.B[i] - CGAL::ORIGIN),
+                    relation(dir.constrained_B[i], false, c));
+  }
+  const Solution s = solve(qp);
+  if (s.is_infeasible()) return std::nullopt;
+
+  const Rational nn = n.squared_length();
+  DirectionOptimum out{to_rational(s.objective_value()) / (20 * nn), p.A, p.B};
+  std::vector<Rational> mu;
+  for (auto it = s.variable_values_begin(); it != s.variable_values_end(); ++it)
+    mu.push_back(to_rational(*it));
+  mu.resize(c_var + 1);
+  for (int i = 0; i < 4; ++i) {
+    if (a_moves) out.q1_A[i] = p.A[i] + (mu[off_A + i] / nn) * n;
+    out.q1_B[i] = p.B[i] + (mu[off_B + i] / nn) * n;
+  }
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(QpFormulation f) { return f == QpFormulation::Full ? "full" : "reduced"; }
+
+std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const CandidateDirection& dir,
+                                             PddCase pdd_case, QpFormulation formulation) {
+  return formulation == QpFormulation::Full ? full_qp(pair, dir, pdd_case)
+                                            : reduced_qp(pair, dir, pdd_case);
+}
+
+}  // namespace pdd::reference

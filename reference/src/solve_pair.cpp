@@ -1,0 +1,85 @@
+#include "pdd/reference/solve_pair.h"
+
+#include <stdexcept>
+
+#include "pdd/reference/candidate_table.h"
+#include "pdd/reference/eq11.h"
+#include "pdd/reference/minkowski_pd.h"
+#include "pdd/reference/validate_pair.h"
+
+namespace pdd::reference {
+namespace {
+
+Positions<Rational> to_positions(const ExactTet& tet) {
+  Positions<Rational> out;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) out[i][k] = tet[i][k];
+  return out;
+}
+
+// Running minimum that keeps the first index attaining it (canonical order among ties).
+struct FirstMinimum {
+  std::optional<std::size_t> index;
+  Rational value;
+  void offer(std::size_t k, const Rational& v) {
+    if (!index || v < value) index = k, value = v;
+  }
+};
+
+// Rigid direction: the first candidate whose oriented depth equals PD (SPEC §4).
+std::size_t rigid_direction(const std::vector<CandidateRow>& rows, const Rational& pd2) {
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    if (rows[k].depth_signed_square == pd2) return k;
+  throw std::logic_error("no candidate direction attains the Minkowski PD");
+}
+
+void fill_intersecting(const ExactPair& exact, const std::vector<CandidateDirection>& dirs,
+                       const std::vector<CandidateRow>& rows, const MinkowskiPd& mink,
+                       ExactResult& out) {
+  out.rigid_pd2 = mink.pd2;
+  out.rigid_dir = rows[rigid_direction(rows, mink.pd2)].direction.label;
+  out.eq11_pd2 = eq11(exact, dirs).e11_squared;
+
+  FirstMinimum st, def, rel;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (rows[k].static_case) st.offer(k, rows[k].static_case->value);
+    def.offer(k, rows[k].deformable.value);
+    rel.offer(k, rows[k].relaxed.value);
+  }
+  out.pdd2_static = st.value, out.pdd2_static_dir = rows[*st.index].direction.label;
+  out.pdd2 = def.value, out.pdd2_dir = rows[*def.index].direction.label;
+  out.pdd2_relaxed = rel.value, out.pdd2_relaxed_dir = rows[*rel.index].direction.label;
+  out.q1_A = to_positions(rows[*def.index].deformable.q1_A);
+  out.q1_B = to_positions(rows[*def.index].deformable.q1_B);
+
+  const std::vector<std::size_t> order = depth_order(rows);  // case 3
+  FirstMinimum accel6;
+  for (std::size_t r = 0; r < order.size() && r < 6; ++r)
+    accel6.offer(order[r], rows[order[r]].deformable.value);
+  out.pdd2_accel1 = rows[order.front()].deformable.value;
+  out.pdd2_accel6 = accel6.value;
+}
+
+}  // namespace
+
+ExactResult solve_pair(const TetPair& pair, const SolveOptions& options) {
+  ExactResult out;
+  out.name = pair.name;
+  if (auto why = validate_pair(pair)) {
+    out.error = *why;
+    return out;
+  }
+  const ExactPair exact = to_exact(pair);
+  out.q1_A = to_positions(exact.A);
+  out.q1_B = to_positions(exact.B);
+  const MinkowskiPd mink = minkowski_pd(exact);
+  out.intersecting = mink.intersecting;
+  if (!mink.intersecting) return out;  // SPEC §6: every value 0, labels null, rest pose
+
+  const auto candidates = candidate_directions(exact);
+  const auto rows = candidate_table(exact, candidates, {options.formulation, true});
+  fill_intersecting(exact, candidates, rows, mink, out);
+  return out;
+}
+
+}  // namespace pdd::reference
