@@ -10,6 +10,7 @@
 
 #include <array>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <tuple>
 
@@ -75,5 +76,7 @@ struct DirectionLabel {
     return std::nullopt;
   }
 };
+
+inline std::ostream& operator<<(std::ostream& os, const DirectionLabel& l) { return os << l.str(); }
 
 }  // namespace pdd

@@ -1,6 +1,9 @@
 #include "pdd/compare/fixture_io.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -8,6 +11,49 @@ namespace pdd::compare {
 namespace {
 
 using nlohmann::json;
+
+// JSON numbers beyond the double range (1e999) make nlohmann reject the whole document. SPEC
+// §1 wants such a pair rejected alone, as non-finite, so before parsing every number token
+// outside strings that overflows is rewritten as the string kOverflowMarker + token, which
+// read_tet turns back into +-infinity for the engines' validation to reject.
+const std::string kOverflowMarker = "pdd:overflow:";
+
+std::string mark_overflowing_numbers(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) out += text[++i];
+      else if (c == '"') in_string = false;
+      ++i;
+    } else if (c == '"') {
+      in_string = true;
+      out += c, ++i;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      const std::size_t end = text.find_first_not_of("+-0123456789.eE", i);
+      const std::string token = text.substr(i, end == std::string::npos ? end : end - i);
+      const double v = std::strtod(token.c_str(), nullptr);
+      out += std::isfinite(v) ? token : "\"" + kOverflowMarker + token + "\"";
+      i += token.size();
+    } else {
+      out += c, ++i;
+    }
+  }
+  return out;
+}
+
+// A coordinate: a JSON number, or an overflowing number marked above (-> +-infinity).
+std::optional<double> coordinate(const json& v) {
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string() && v.get<std::string>().rfind(kOverflowMarker, 0) == 0)
+    return v.get<std::string>()[kOverflowMarker.size()] == '-'
+               ? -std::numeric_limits<double>::infinity()
+               : std::numeric_limits<double>::infinity();
+  return std::nullopt;
+}
 
 // One tetrahedron: exactly 4 vertices of exactly 3 numbers.
 std::optional<std::string> read_tet(const json& entry, const char* key, TetVertices& out) {
@@ -21,10 +67,11 @@ std::optional<std::string> read_tet(const json& entry, const char* key, TetVerti
       return std::string("field '") + key + "' vertex " + std::to_string(i) +
              " must be an array of 3 numbers";
     for (int k = 0; k < 3; ++k) {
-      if (!v[k].is_number())
+      const std::optional<double> x = coordinate(v[k]);
+      if (!x)
         return std::string("field '") + key + "' vertex " + std::to_string(i) + " coordinate " +
                "xyz"[k] + " is not a number";
-      out[i][k] = v[k].get<double>();
+      out[i][k] = *x;
     }
   }
   return std::nullopt;
@@ -70,8 +117,8 @@ FixtureFile parse_fixture_text(const std::string& text) {
   }
   json doc;
   try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+    doc = json::parse(mark_overflowing_numbers(text));
+  } catch (const json::exception& e) {
     f.error = std::string("malformed JSON: ") + e.what();
     return f;
   }

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# setup.sh — install what is missing (Debian 12 packages only), then configure and build pdd
+# in Release into build/. Safe to run again: installs nothing that is already there and
+# rebuilds only what changed. Used by both README commands and by CI.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev      # exact engine: CGAL kernels, hull, QP solver; GMP
+  libeigen3-dev                           # fast engine
+  libtbb-dev                              # parallel batches
+  nlohmann-json3-dev libcli11-dev         # JSON fixtures and output; command-line parsing
+  libboost-test-dev                       # unit tests
+  libbenchmark-dev                        # pdd bench
+  libfcl-dev libccd-dev                   # rigid-PD peers in pdd bench
+  gnuplot-nox                             # pictures of pdd paper
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$(nproc)"
