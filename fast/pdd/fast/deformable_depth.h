@@ -1,0 +1,66 @@
+// deformable_depth.h — deformable penetration depth PD_d² over all candidates (SPEC §5).
+//
+// Input:  a CandidateSet of an intersecting pair (candidate_directions.h).
+// Output: Choice{value = PD_d², index = argmin candidate, first in canonical order among ties}:
+//   pdd2_static   case 1, A static (paper Sec. IV); undecidable EE directions are infeasible and
+//                 skipped (SPEC §5).
+//   pdd2          case 2, both deform (paper Sec. V, eq. 10).
+//   pdd2_relaxed  case 2 with every constraint an inequality.
+//   pdd2_accel    case 3 (paper Sec. VI): the case-2 optimum over the first k candidates in
+//                 ascending delta order (stable in canonical order; tie_tolerance.h).
+// Per direction the QP is solved in closed form by direction_qp.h: value = F / (20 n.n).
+//
+// Exact pruning (lower bounds, proven here). Dropping constraints can only lower a minimum, so
+// every variant's optimum along n is >= that of the relaxed problem restricted to the highest
+// vertex a of A and the lowest vertex b of B, D = a − b > 0. One tetrahedron whose single vertex
+// must move by x (others free) costs (1/20) min{t1² + 3 t² + (t1 + 3t)² : t1 >= x}: the free
+// optimum t = −S = −t1/4 gives (5/4) t1²/20 = x²/16 (n-scaled: x²/(16 n.n)).
+//   case 2 / relaxed:  split D = x + y between the two tets: min (x² + y²)/16 = D²/32
+//                      ==> value(n) >= D²/(32 n.n) = delta²/32.
+//   case 1:            A static, the plane is at or above a, so B's vertex moves by >= D
+//                      ==> value(n) >= D²/(16 n.n) = delta²/16.
+// A candidate is skipped when its bound exceeds the best value found so far by more than the tie
+// tolerance, so it can neither be the minimum nor tie with it. Starting from a good direction
+// (the rigid one, `hint`) makes most bounds bite.
+#pragma once
+
+#include "pdd/fast/candidate_directions.h"
+#include "pdd/fast/direction_qp.h"
+#include "pdd/fast/rigid_depth.h"
+#include "pdd/pair_result.h"
+
+namespace pdd::fast {
+
+inline constexpr double kDeformableBoundCoeff = 1.0 / 32.0;  // case 2 and relaxed, see above
+inline constexpr double kStaticBoundCoeff = 1.0 / 16.0;      // case 1, see above
+inline constexpr int kAccelMax = kMaxCandidates;
+
+// Side views of one candidate: A below the plane, B above (SPEC §3 constrained/free sets).
+SideProblem side_problem(const double h[4], std::uint8_t constrained);
+
+// PD_d² along one candidate; +inf when infeasible (case 1 on an undecidable EE direction).
+double static_value(const Candidate& c);
+double deformable_value(const Candidate& c);
+double relaxed_value(const Candidate& c);
+
+// `hint`: index evaluated first to seed the pruning (e.g. rigid_pd2(set).index), or −1.
+Choice pdd2_static(const CandidateSet& set, int hint = -1);
+Choice pdd2(const CandidateSet& set, int hint = -1);
+Choice pdd2_relaxed(const CandidateSet& set, int hint = -1);
+Choice pdd2_accel(const CandidateSet& set, int k);
+
+// The first k candidate indices in ascending delta order, stable in canonical order (ties by
+// tie_tolerance.h). Writes min(k, set.count) indices to `out`; returns that count.
+int accel_order(const CandidateSet& set, int k, int* out);
+
+// Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
+void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                        Positions<double>& qA, Positions<double>& qB);
+
+// Convenience over raw tetrahedra (candidate set on the stack); value 0 when not intersecting.
+Choice pdd2_static(const TetVertices& A, const TetVertices& B);
+Choice pdd2(const TetVertices& A, const TetVertices& B);
+Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B);
+Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
+
+}  // namespace pdd::fast

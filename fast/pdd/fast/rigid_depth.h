@@ -1,0 +1,31 @@
+// rigid_depth.h — rigid penetration depth and the paper's eq. 11 value (SPEC §4).
+//
+// Input:  a CandidateSet (candidate_directions.h) of an intersecting pair.
+// Output: rigid_pd2   PD² = (min_n delta(n))², delta(n) = D(n)/|n|, D = max_i n.s_i − min_j n.r_j,
+//                     computed as min D²/(n.n) (D > 0 for every candidate of an intersecting pair);
+//                     index = first candidate in canonical order attaining it (tie_tolerance.h).
+//         eq11_pd2    E11² = (min_n overlap(n)/|n|)², overlap = L_n(A) + L_n(B) − L_n(A ∪ B),
+//                     L_n the width of the projection (paper eq. 11); 0 if some overlap <= 0.
+// Both return 0 (index −1) for a non-intersecting set. Hot path: no allocation, no strings.
+#pragma once
+
+#include "pdd/fast/candidate_directions.h"
+
+namespace pdd::fast {
+
+struct Choice {
+  double value = 0.0;  // squared depth
+  int index = -1;      // index into CandidateSet::c, −1 when none
+};
+
+// delta(n)² of one candidate.
+inline double delta2(const Candidate& c) { return c.depth * c.depth / c.nn; }
+
+Choice rigid_pd2(const CandidateSet& set);
+double eq11_pd2(const CandidateSet& set);
+
+// Convenience over raw tetrahedra (builds the candidate set on the stack); value 0 when the
+// pair does not intersect or is invalid.
+Choice rigid_pd2(const TetVertices& A, const TetVertices& B);
+
+}  // namespace pdd::fast
