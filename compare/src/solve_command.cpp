@@ -2,6 +2,9 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
+
+#include <tbb/global_control.h>
 
 #include "pdd/compare/commands.h"
 #include "pdd/compare/engines.h"
@@ -16,6 +19,7 @@ struct SolveArgs {
   std::string output;
   std::string formulation = "full";
   bool quiet = false;
+  int threads = 0;  // 0: all cores
 };
 
 // Exit codes shared by every subcommand: 0 all good, 1 some pair rejected, 2 nothing read.
@@ -57,6 +61,8 @@ int run_solve(const SolveArgs& args) {
                                                       : reference::QpFormulation::Full;
   std::cerr << "pdd solve: " << file.entries.size() << " pairs, reference engine, "
             << reference::to_string(options.formulation) << " QP formulation\n";
+  std::optional<tbb::global_control> limit;
+  if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
   const auto results = run_reference(file.entries, options, !args.quiet);
   NumberWriter<reference::Rational> exact = [](const reference::Rational& q) {
     return Json(reference::to_string(q));
@@ -79,6 +85,9 @@ void add_solve_command(CLI::App& app, int& exit_code) {
                   "Reference QP formulation: 'full' (the paper's 27 variables) or 'reduced' "
                   "(SPEC §5 scalar form, same exact values, faster)")
       ->check(CLI::IsMember({"full", "reduced"}))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
   cmd->callback([args, &exit_code] { exit_code = run_solve(*args); });
