@@ -1,0 +1,81 @@
+// fast_batch_test — solve_batch equals solve_pair pair by pair (same code per pair, no shared
+// state, so bitwise equal), in input order, with invalid pairs reported in place.
+#define BOOST_TEST_MODULE fast_batch
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <limits>
+
+#include "fast_test_util.h"
+#include "pdd/fast/solve_pair.h"
+
+using namespace pdd;
+using namespace pdd::fast;
+using namespace pdd::fast::test;
+
+namespace {
+const TetVertices kGood = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+const TetVertices kFlat = {{{0, 0, 0.1}, {1, 0, 0.1}, {0, 1, 0.1}, {0.3, 0.3, 0.1}}};
+
+TetVertices with(TetVertices T, int i, int k, double x) {
+  T[i][k] = x;
+  return T;
+}
+
+bool same(const PairResult<double>& a, const PairResult<double>& b) {
+  return a.name == b.name && a.error == b.error && a.intersecting == b.intersecting &&
+         a.rigid_pd2 == b.rigid_pd2 && a.eq11_pd2 == b.eq11_pd2 &&
+         a.pdd2_static == b.pdd2_static && a.pdd2 == b.pdd2 && a.pdd2_relaxed == b.pdd2_relaxed &&
+         a.pdd2_accel1 == b.pdd2_accel1 && a.pdd2_accel6 == b.pdd2_accel6 &&
+         a.rigid_dir == b.rigid_dir && a.pdd2_static_dir == b.pdd2_static_dir &&
+         a.pdd2_dir == b.pdd2_dir && a.pdd2_relaxed_dir == b.pdd2_relaxed_dir &&
+         a.q1_A == b.q1_A && a.q1_B == b.q1_B;
+}
+
+struct Bad {
+  TetPair pair;
+  const char* must_contain[2];
+};
+
+std::vector<Bad> bad_pairs() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  return {
+      {tet_pair(with(kGood, 2, 1, nan), kGood, "nan-A"), {"tetrahedron A", "vertex 2"}},
+      {tet_pair(kGood, with(kGood, 3, 0, inf), "inf-B"), {"tetrahedron B", "vertex 3"}},
+      {tet_pair(with(kGood, 0, 2, -inf), kGood, "minf-A"), {"tetrahedron A", "non-finite"}},
+      {tet_pair(kFlat, kGood, "flat-A"), {"tetrahedron A", "zero volume"}},
+      {tet_pair(kGood, kFlat, "flat-B"), {"tetrahedron B", "zero volume"}},
+      {tet_pair(kGood, {{kGood[0], kGood[0], kGood[1], kGood[2]}}, "repeated-B"),
+       {"tetrahedron B", "zero volume"}},
+  };
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(each_bad_input_kind) {
+  for (const Bad& b : bad_pairs()) {
+    const PairResult<double> r = solve_pair(b.pair);
+    BOOST_TEST_CONTEXT(b.pair.name) {
+      BOOST_REQUIRE(r.error);
+      for (const char* s : b.must_contain)
+        BOOST_TEST(r.error->find(s) != std::string::npos, *r.error);
+      BOOST_TEST(!r.intersecting);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(batch_equals_single) {
+  std::vector<TetPair> pairs = random_pairs(400, 31, false);  // mixed: ~half intersect
+  int k = 0;
+  for (const Bad& b : bad_pairs()) pairs.insert(pairs.begin() + 37 * ++k, b.pair);
+  const auto batch = solve_batch(pairs);
+  BOOST_REQUIRE(batch.size() == pairs.size());
+  int intersecting = 0, errors = 0;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    BOOST_TEST(same(batch[i], solve_pair(pairs[i])), "pair " << i);
+    intersecting += batch[i].intersecting;
+    errors += bool(batch[i].error);
+  }
+  BOOST_TEST(errors == int(bad_pairs().size()));
+  BOOST_TEST(intersecting > 50);
+  BOOST_TEST(solve_batch({}).empty());
+}

@@ -1,0 +1,123 @@
+// fast_candidates_test — the candidate set of SPEC §3 against exact (GMP) decisions.
+#define BOOST_TEST_MODULE fast_candidates
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+
+#include "fast_test_util.h"
+#include "pdd/fast/candidate_directions.h"
+#include "pdd/fast/exact_predicates.h"
+
+using namespace pdd;
+using namespace pdd::fast;
+using namespace pdd::fast::test;
+
+namespace {
+
+// Expected EE labels of edge pair (a, b) from the exact classification.
+int expected_ee_count(const EdgePairClass& c) {
+  if (c.kind == EdgePairKind::Colinear) return 0;
+  return c.side == EdgePairSide::Undecidable ? 2 : 1;
+}
+
+// Walks the set in order and checks every label against the exact classification; returns
+// the number of candidates accounted for.
+void check_against_exact(const TetPair& p, const CandidateSet& set, bool check_depths) {
+  int idx = 0;
+  for (int i = 0; i < 4; ++i) BOOST_TEST(set.c[idx++].label.str() == "FV:" + std::to_string(i));
+  for (int j = 0; j < 4; ++j) BOOST_TEST(set.c[idx++].label.str() == "VF:" + std::to_string(j));
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const EdgePairClass c = classify_edge_pair_exact(p.A, p.B, a, b);
+      const int m = expected_ee_count(c);
+      if (m == 1) BOOST_TEST(set.c[idx].label == DirectionLabel::ee(a, b));
+      if (m == 2) {
+        BOOST_TEST(set.c[idx].label == DirectionLabel::ee(a, b, EdgeOrientation::Plus));
+        BOOST_TEST(set.c[idx + 1].label == DirectionLabel::ee(a, b, EdgeOrientation::Minus));
+      }
+      idx += m;
+    }
+  BOOST_TEST(idx == set.count);
+  if (!check_depths) return;
+  for (int k = 0; k < set.count; ++k)
+    BOOST_TEST(depth_sign_exact(p.A, p.B, set.c[k].label) == (set.c[k].depth > 0 ? 1 : -1));
+}
+
+}  // namespace
+
+// Random intersecting pairs: labels, order, count = 44 + undecidable − colinear, and the sign
+// of every depth D against the exact engine's arithmetic.
+BOOST_AUTO_TEST_CASE(random_pairs_match_exact_decisions) {
+  int undecidable = 0;
+  for (const TetPair& p : random_pairs(40, 3, true)) {
+    CandidateSet set;
+    BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
+    BOOST_TEST(set.intersecting);
+    check_against_exact(p, set, true);
+    undecidable += set.count - 44;
+  }
+  BOOST_TEST(undecidable > 0);  // the random set exercises the ':+'/':-' branch
+}
+
+// Crafted: A = unit corner tet; B has edge r0r1 on A's edge line s0s1 (the x axis: colinear,
+// EE:0:0 has no direction) and edge r2r3 parallel to A's edge s2s3 (direction (0,−1,1)).
+// Parallel normal (SPEC §3): e = s3 − s2 = (0,−1,1), w = r2 − s2 = (1/4,−3/4,1/4),
+// n = (e.e) w − (w.e) e = 2w − e = (1/2,−1/2,−1/2); g for s0: n.(s0 − s2) = 1/2, for s1: 1
+// (both >= 0: flip), so EE:5:5 uses n = (−1/2, 1/2, 1/2).
+BOOST_AUTO_TEST_CASE(parallel_and_colinear_edges) {
+  const TetPair p = tet_pair({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+                              {{{-0.5, 0, 0}, {0.5, 0, 0}, {0.25, 0.25, 0.25}, {0.25, -0.25, 0.75}}});
+  CandidateSet set;
+  BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
+  BOOST_TEST(set.intersecting);
+  check_against_exact(p, set, true);
+  bool found55 = false;
+  for (int k = 0; k < set.count; ++k) {
+    BOOST_TEST(!(set.c[k].label.kind == ContactKind::EE && set.c[k].label.a == 0 &&
+                 set.c[k].label.b == 0));
+    if (set.c[k].label == DirectionLabel::ee(5, 5)) {
+      found55 = true;
+      const double* n = set.c[k].n;
+      BOOST_TEST(n[0] == -0.5);
+      BOOST_TEST(n[1] == 0.5);
+      BOOST_TEST(n[2] == 0.5);
+    }
+  }
+  BOOST_TEST(found55);
+}
+
+// Exact zeros: A's free vertex s3 lies in the plane of an EE direction (g = 0 exactly), and
+// faces with decimal coordinates whose floating-point orientation is a rounding residue
+// (A and B share a face: the fast set must equal the exact decisions everywhere).
+BOOST_AUTO_TEST_CASE(exact_zero_decisions) {
+  const TetVertices A = {{{0.1, 0.2, 0.3}, {1.7, 0.4, 0.9}, {0.3, 1.9, 0.7}, {0.9, 0.8, 2.1}}};
+  TetVertices B = A;
+  for (int k = 0; k < 3; ++k) B[3][k] = (A[0][k] + A[1][k] + A[2][k]) / 3 * 0.9 + A[3][k] * 0.1;
+  const TetPair p = tet_pair(A, B);
+  CandidateSet set;
+  BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
+  BOOST_TEST(set.intersecting);
+  check_against_exact(p, set, true);
+  // g = 0: A = unit corner, B's edge r0r1 along z through (0.25, 0.25): for A's edge s0s1 the
+  // normal eB × eA is along y, and A's free s3 = (0,0,1) has g = 0 exactly.
+  const TetPair q = tet_pair({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+                              {{{0.25, 0.25, -1}, {0.25, 0.25, 1}, {0.5, -0.5, 0}, {-0.5, 0.5, 0.1}}});
+  BOOST_TEST((build_candidates(q.A, q.B, set) == BuildStatus::Ok));
+  if (set.intersecting) check_against_exact(q, set, true);
+}
+
+// Orientation / validity: exactly coplanar (decided exactly) vs. one ulp off the plane.
+BOOST_AUTO_TEST_CASE(degenerate_and_nearly_degenerate) {
+  const TetVertices good = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  const TetVertices flat = {{{0, 0, 0.1}, {1, 0, 0.1}, {0, 1, 0.1}, {0.3, 0.3, 0.1}}};
+  TetVertices almost = flat;
+  almost[3][2] = std::nextafter(0.1, 1.0);
+  // decimal coplanar: s3 = s0 + (s1 − s0) + (s2 − s0) computed exactly (dyadic values)
+  const TetVertices dyadic_flat = {{{0.5, 0.25, 0.75}, {1.5, 0.75, 1.0}, {0.75, 1.25, 0.5},
+                                    {1.75, 1.75, 0.75}}};
+  CandidateSet set;
+  BOOST_TEST((build_candidates(flat, good, set) == BuildStatus::DegenerateA));
+  BOOST_TEST((build_candidates(good, flat, set) == BuildStatus::DegenerateB));
+  BOOST_TEST((build_candidates(dyadic_flat, good, set) == BuildStatus::DegenerateA));
+  BOOST_TEST((build_candidates(almost, good, set) == BuildStatus::Ok));
+  BOOST_TEST(orientation_sign_exact(almost) != 0);
+}
