@@ -34,4 +34,11 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
   return out;
 }
 
+Json exact_record(const reference::ExactResult& r) {
+  static const NumberWriter<reference::Rational> exact = [](const reference::Rational& q) {
+    return Json(reference::to_string(q));
+  };
+  return result_json(r, exact);
+}
+
 }  // namespace pdd::compare

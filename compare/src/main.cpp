@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 0;
   pdd::compare::add_solve_command(app, exit_code);
+  pdd::compare::add_generate_command(app, exit_code);
+  pdd::compare::add_golden_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

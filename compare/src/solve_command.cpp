@@ -26,12 +26,11 @@ struct SolveArgs {
 constexpr int kPairRejected = 1;
 constexpr int kFileError = 2;
 
-template <class R>
-int write_results(const std::vector<PairResult<R>>& results, const NumberWriter<R>& number,
-                  std::ostream& out) {
+template <class R, class Record>
+int write_results(const std::vector<PairResult<R>>& results, Record record, std::ostream& out) {
   int status = 0;
   for (const auto& r : results) {
-    out << result_json(r, number).dump() << '\n';
+    out << record(r).dump() << '\n';
     if (r.error) {
       std::cerr << "pdd solve: pair '" << r.name << "' rejected: " << *r.error << '\n';
       status = kPairRejected;
@@ -64,10 +63,7 @@ int run_solve(const SolveArgs& args) {
   std::optional<tbb::global_control> limit;
   if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
   const auto results = run_reference(file.entries, options, !args.quiet);
-  NumberWriter<reference::Rational> exact = [](const reference::Rational& q) {
-    return Json(reference::to_string(q));
-  };
-  return write_results(results, exact, out);
+  return write_results(results, exact_record, out);
 }
 
 }  // namespace

@@ -23,23 +23,23 @@ int expected_ee_count(const EdgePairClass& c) {
 // the number of candidates accounted for.
 void check_against_exact(const TetPair& p, const CandidateSet& set, bool check_depths) {
   int idx = 0;
-  for (int i = 0; i < 4; ++i) BOOST_TEST(set.c[idx++].label.str() == "FV:" + std::to_string(i));
-  for (int j = 0; j < 4; ++j) BOOST_TEST(set.c[idx++].label.str() == "VF:" + std::to_string(j));
+  for (int i = 0; i < 4; ++i) BOOST_TEST(set.label[idx++].str() == "FV:" + std::to_string(i));
+  for (int j = 0; j < 4; ++j) BOOST_TEST(set.label[idx++].str() == "VF:" + std::to_string(j));
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6; ++b) {
       const EdgePairClass c = classify_edge_pair_exact(p.A, p.B, a, b);
       const int m = expected_ee_count(c);
-      if (m == 1) BOOST_TEST(set.c[idx].label == DirectionLabel::ee(a, b));
+      if (m == 1) BOOST_TEST(set.label[idx] == DirectionLabel::ee(a, b));
       if (m == 2) {
-        BOOST_TEST(set.c[idx].label == DirectionLabel::ee(a, b, EdgeOrientation::Plus));
-        BOOST_TEST(set.c[idx + 1].label == DirectionLabel::ee(a, b, EdgeOrientation::Minus));
+        BOOST_TEST(set.label[idx] == DirectionLabel::ee(a, b, EdgeOrientation::Plus));
+        BOOST_TEST(set.label[idx + 1] == DirectionLabel::ee(a, b, EdgeOrientation::Minus));
       }
       idx += m;
     }
   BOOST_TEST(idx == set.count);
   if (!check_depths) return;
   for (int k = 0; k < set.count; ++k)
-    BOOST_TEST(depth_sign_exact(p.A, p.B, set.c[k].label) == (set.c[k].depth > 0 ? 1 : -1));
+    BOOST_TEST(depth_sign_exact(p.A, p.B, set.label[k]) == (set.depth[k] > 0 ? 1 : -1));
 }
 
 }  // namespace
@@ -72,11 +72,12 @@ BOOST_AUTO_TEST_CASE(parallel_and_colinear_edges) {
   check_against_exact(p, set, true);
   bool found55 = false;
   for (int k = 0; k < set.count; ++k) {
-    BOOST_TEST(!(set.c[k].label.kind == ContactKind::EE && set.c[k].label.a == 0 &&
-                 set.c[k].label.b == 0));
-    if (set.c[k].label == DirectionLabel::ee(5, 5)) {
+    BOOST_TEST(!(set.label[k].kind == ContactKind::EE && set.label[k].a == 0 &&
+                 set.label[k].b == 0));
+    if (set.label[k] == DirectionLabel::ee(5, 5)) {
       found55 = true;
-      const double* n = set.c[k].n;
+      const Candidate c = candidate(set, k);
+      const double* n = c.n;
       BOOST_TEST(n[0] == -0.5);
       BOOST_TEST(n[1] == 0.5);
       BOOST_TEST(n[2] == 0.5);

@@ -68,11 +68,11 @@ BOOST_AUTO_TEST_CASE(pruning_is_exact) {
     build_candidates(p.A, p.B, set);
     double mins[3] = {1e300, 1e300, 1e300};
     for (int i = 0; i < set.count; ++i) {
-      const Candidate& c = set.c[i];
+      const Candidate c = candidate(set, i);
       const double v[3] = {static_value(c), deformable_value(c), relaxed_value(c)};
-      BOOST_TEST(leq(kStaticBoundCoeff * delta2(c), v[0]));
-      BOOST_TEST(leq(kDeformableBoundCoeff * delta2(c), v[1]));
-      BOOST_TEST(leq(kDeformableBoundCoeff * delta2(c), v[2]));
+      BOOST_TEST(leq(kStaticBoundCoeff * delta2(set, i), v[0]));
+      BOOST_TEST(leq(kDeformableBoundCoeff * delta2(set, i), v[1]));
+      BOOST_TEST(leq(kDeformableBoundCoeff * delta2(set, i), v[2]));
       for (int k = 0; k < 3; ++k) mins[k] = std::min(mins[k], v[k]);
     }
     const int hint = rigid_pd2(set).index;
@@ -93,10 +93,12 @@ BOOST_AUTO_TEST_CASE(deformed_positions_attain_and_separate) {
     BOOST_TEST(close_rel(sigma(p.A, r.q1_A) + sigma(p.B, r.q1_B), r.pdd2, 1e-9));
     CandidateSet set;
     build_candidates(p.A, p.B, set);
-    const Candidate* c = nullptr;
+    int found = -1;
     for (int k = 0; k < set.count; ++k)
-      if (set.c[k].label == *r.pdd2_dir) c = &set.c[k];
-    BOOST_REQUIRE(c);
+      if (set.label[k] == *r.pdd2_dir) found = k;
+    BOOST_REQUIRE(found >= 0);
+    const Candidate cand = candidate(set, found);
+    const Candidate* c = &cand;
     const double scale = std::sqrt(c->nn) * 10.0, tol = 1e-9 * scale;
     double plane = -1e300;
     for (int i = 0; i < 4; ++i)

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pdd/compare/fixture_io.h"
+#include "pdd/compare/golden.h"
 
 namespace pdd::test {
 
@@ -31,10 +32,10 @@ inline TetPair load_pair(const std::string& file, const std::string& name) {
   throw std::runtime_error("no pair '" + name + "' in " + file);
 }
 
-// The fixture files every engine-wide property is checked on.
-inline const std::vector<std::string>& property_fixture_files() {
-  static const std::vector<std::string> files = {"smoke.json", "degenerate.json"};
-  return files;
+// The fixture files every engine-wide property is checked on: all shipped fixtures with golden
+// files (smoke, degenerate, and every generated family).
+inline std::vector<std::string> property_fixture_files() {
+  return compare::golden_fixture_files(PDD_FIXTURES_DIR);
 }
 
 }  // namespace pdd::test

@@ -8,4 +8,10 @@ namespace pdd::compare {
 // `pdd solve --engine reference|fast --input FILE [--output FILE] [--formulation full|reduced]`
 void add_solve_command(CLI::App& app, int& exit_code);
 
+// `pdd generate --family NAME --seed S --count N [--output FILE] | --list`
+void add_generate_command(CLI::App& app, int& exit_code);
+
+// `pdd golden --check | --update [--fixtures DIR]`
+void add_golden_command(CLI::App& app, int& exit_code);
+
 }  // namespace pdd::compare

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pdd/compare/fixture_io.h"
+#include "pdd/compare/result_json.h"
 #include "pdd/pair_result.h"
 #include "pdd/reference/solve_pair.h"
 
@@ -16,5 +17,8 @@ namespace pdd::compare {
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   bool show_progress);
+
+// SPEC §6 record of an exact result: every number as an exact "p/q" string.
+Json exact_record(const reference::ExactResult& r);
 
 }  // namespace pdd::compare
