@@ -6,7 +6,10 @@
 //   eA × (s_k − s_u) = eps(u,v,k) · NA_f  with f the vertex not in {u,v,k} and eps the sign of
 //   the permutation sorting (u,v,k), because (p1 − p0) × (p2 − p0) is alternating in (p0,p1,p2).
 // So all 72 values g_k of the edge pairs come from 24 dots eB.NA_f, and all 72 B-side offsets
-// n.(r_j − r_x) from 24 dots eA.NB_f.
+// n.(r_j − r_x) from 24 dots eA.NB_f. The per-lane arithmetic (edge_lanes) is branch-free over
+// structure-of-arrays; on x86-64 GCC also emits an AVX2 clone chosen at run time (ifunc). Both
+// clones perform the same IEEE operations in the same order (no FMA contraction, no
+// reassociation), so results are identical on every machine.
 #include "pdd/fast/candidate_directions.h"
 
 #include <cmath>
@@ -53,6 +56,11 @@ struct Precomputed {
   int oA, oB;         // exact signs of detA, detB
   double GA[6][4];    // eB[b] . NA[f]
   double QB[6][4];    // eA[a] . NB[f]
+  // lane-ordered copies (b = 0..7, padding 0) for the vectorised edge lanes
+  alignas(32) double eBx[kLaneStride], eBy[kLaneStride], eBz[kLaneStride];
+  alignas(32) double W[3][3][kLaneStride];     // W[u][k][b] = (r_x(b) − s_u)_k
+  alignas(32) double G[4][kLaneStride];        // G[f][b] = eB[b] . NA[f]
+  alignas(32) double Q[6][2][kLaneStride];     // Q[a][m][b] = n.(r_jm − r_x) (see lane_heights)
 };
 
 void edges_and_faces(const TetVertices& T, V3* e, V3* N, double* det) {
@@ -71,6 +79,25 @@ int orientation(const TetVertices& T, double det, double bound3) {
   return orientation_sign_exact(T);
 }
 
+void lane_tables(Precomputed& p) {
+  for (int b = 0; b < kLaneStride; ++b) {
+    const bool real = b < 6;
+    const int x = real ? kEdges[b][0] : 0, y = real ? kEdges[b][1] : 1;
+    p.eBx[b] = real ? p.eB[b][0] : 0.0;
+    p.eBy[b] = real ? p.eB[b][1] : 0.0;
+    p.eBz[b] = real ? p.eB[b][2] : 0.0;
+    for (int u = 0; u < 3; ++u)
+      for (int k = 0; k < 3; ++k) p.W[u][k][b] = real ? p.d[u][x][k] : 0.0;
+    for (int f = 0; f < 4; ++f) p.G[f][b] = real ? p.GA[b][f] : 0.0;
+    for (int a = 0; a < 6; ++a)
+      for (int m = 0; m < 2; ++m) {
+        const int j = real ? kOther[b][m] : 0;
+        // n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f
+        p.Q[a][m][b] = real ? -parity(x, y, j) * p.QB[a][6 - x - y - j] : 0.0;
+      }
+  }
+}
+
 void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
   edges_and_faces(A, p.eA, p.NA, &p.detA);
   edges_and_faces(B, p.eB, p.NB, &p.detB);
@@ -81,6 +108,53 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
       p.GA[e][f] = dot(p.eB[e], p.NA[f]);
       p.QB[e][f] = dot(p.eA[e], p.NB[f]);
     }
+  lane_tables(p);
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define PDD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define PDD_VECTOR_CLONES
+#endif
+
+// All 36 edge pairs at once (lane 8a + b), unoriented n = eB × eA, heights relative to s_u:
+//   g_k = eps(u,v,k) eB.NA_f (A's free vertices), hx = n.(r_x − s_u), hx + q_m (B's free),
+//   D(+n) = max(0, g1, g2) − hx − min(0, q1, q2),  D(−n) = −min(0, g1, g2) + hx + max(0, q1, q2).
+PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, EdgeLanes& __restrict L) {
+  for (int a = 0; a < 6; ++a) {
+    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
+    const double ax = p.eA[a][0], ay = p.eA[a][1], az = p.eA[a][2];
+    const double s1 = parity(u, v, k1), s2 = parity(u, v, k2);
+    const double* G1 = p.G[6 - u - v - k1];
+    const double* G2 = p.G[6 - u - v - k2];
+    const double* Q1 = p.Q[a][0];
+    const double* Q2 = p.Q[a][1];
+    const double *wx = p.W[u][0], *wy = p.W[u][1], *wz = p.W[u][2];
+    const int o = kLaneStride * a;
+    for (int b = 0; b < kLaneStride; ++b) {
+      const double m0 = p.eBy[b] * az - p.eBz[b] * ay;
+      const double m1 = p.eBz[b] * ax - p.eBx[b] * az;
+      const double m2 = p.eBx[b] * ay - p.eBy[b] * ax;
+      const double h = m0 * wx[b] + m1 * wy[b] + m2 * wz[b];
+      const double g1 = s1 * G1[b], g2 = s2 * G2[b], q1 = Q1[b], q2 = Q2[b];
+      const double nn = m0 * m0 + m1 * m1 + m2 * m2;
+      L.n0[o + b] = m0;
+      L.n1[o + b] = m1;
+      L.n2[o + b] = m2;
+      L.nn[o + b] = nn;
+      L.hx[o + b] = h;
+      L.g1[o + b] = g1;
+      L.g2[o + b] = g2;
+      L.q1[o + b] = q1;
+      L.q2[o + b] = q2;
+      const double dp = max2(0.0, max2(g1, g2)) - h - min2(0.0, min2(q1, q2));
+      const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
+      L.dplus[o + b] = dp;
+      L.dminus[o + b] = dm;
+      L.d2plus[o + b] = dp * dp / nn;  // padding lanes: 0/0, never read
+      L.d2minus[o + b] = dm * dm / nn;
+    }
+  }
 }
 
 constexpr std::uint8_t mask_without(int f) { return std::uint8_t(0xF & ~(1u << f)); }
@@ -88,8 +162,7 @@ constexpr std::uint8_t edge_mask(int a) {
   return std::uint8_t((1u << kEdges[a][0]) | (1u << kEdges[a][1]));
 }
 
-// A direction under construction, kept in locals so every value is written to the set once
-// (read-modify-write of the set's memory cost more than the arithmetic).
+// A direction under construction (faces and exactly decided edge pairs), in locals.
 struct Draft {
   double n[3];
   double hA[4], hB[4];
@@ -121,15 +194,21 @@ void face_of_B(const Precomputed& p, int j, Draft& c) {
   c.conB = mask_without(j);
 }
 
-// Heights of a general (non-parallel) edge pair relative to s_u, unoriented (n = eB × eA).
-void edge_pair_heights(const Precomputed& p, int a, int b, Draft& c) {
+// Heights of edge pair (a, b) from its lane, unoriented (layout of EdgeLanes).
+void lane_heights(const EdgeLanes& L, int a, int b, Draft& c) {
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  const int i = kLaneStride * a + b;
+  c.n[0] = L.n0[i];
+  c.n[1] = L.n1[i];
+  c.n[2] = L.n2[i];
   c.hA[u] = c.hA[v] = 0.0;
-  for (int k : kOther[a]) c.hA[k] = parity(u, v, k) * p.GA[b][6 - u - v - k];  // g_k
-  const double hx = dot(c.n, p.d[u][x]);                                        // n.(r_x − s_u)
-  c.hB[x] = c.hB[y] = hx;
-  // n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f
-  for (int j : kOther[b]) c.hB[j] = hx - parity(x, y, j) * p.QB[a][6 - x - y - j];
+  c.hA[kOther[a][0]] = L.g1[i];
+  c.hA[kOther[a][1]] = L.g2[i];
+  c.hB[x] = c.hB[y] = L.hx[i];
+  c.hB[kOther[b][0]] = L.hx[i] + L.q1[i];
+  c.hB[kOther[b][1]] = L.hx[i] + L.q2[i];
+  c.conA = edge_mask(a);
+  c.conB = edge_mask(b);
 }
 
 // Parallel edges: n = (e.e) w − (w.e) e (division-free form of SPEC §3), heights directly.
@@ -157,27 +236,38 @@ struct Builder {
   const Precomputed& p;
   CandidateSet& out;
 
-  // Writes draft oriented by s (= ±1) as the next candidate and checks the sign of its depth
-  // D = max hA − min hB; false if exactly separating.
+  // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
+  bool depth_positive(int k, double bound) {
+    if (out.depth[k] > bound) return true;
+    if (out.depth[k] < -bound) return false;
+    return depth_sign_exact(A, B, out.label[k]) > 0;
+  }
+
+  // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
   bool emit(const Draft& d, double s, const DirectionLabel& label, double bound) {
-    Candidate& c = out.c[out.count++];
+    const int k = out.count++;
+    Candidate& c = out.explicit_[k];
     c.label = label;
     double hi = s * d.hA[0], lo = s * d.hB[0];  // running max of s·hA, min of s·hB
-    for (int k = 0; k < 4; ++k) {
-      const double a = s * d.hA[k], b = s * d.hB[k];
-      c.hA[k] = a;
-      c.hB[k] = b;
+    for (int m = 0; m < 4; ++m) {
+      const double a = s * d.hA[m], b = s * d.hB[m];
+      c.hA[m] = a;
+      c.hB[m] = b;
       hi = max2(hi, a);
       lo = min2(lo, b);
     }
-    for (int k = 0; k < 3; ++k) c.n[k] = s * d.n[k];
+    for (int m = 0; m < 3; ++m) c.n[m] = s * d.n[m];
     c.nn = dot(d.n, d.n);
     c.conA = d.conA;
     c.conB = d.conB;
     c.depth = hi - lo;
-    if (c.depth > bound) return true;
-    if (c.depth < -bound) return false;
-    return depth_sign_exact(A, B, label) > 0;
+    out.label[k] = label;
+    out.depth[k] = c.depth;
+    out.nn[k] = c.nn;
+    out.delta_sq[k] = c.depth * c.depth / c.nn;
+    out.lane[k] = -1;
+    out.sign[k] = 1;
+    return depth_positive(k, bound);
   }
 
   EdgePairClass classify(int a, int b, const Draft& c) {
@@ -194,10 +284,10 @@ struct Builder {
     return k;
   }
 
-  bool edge_pair(int a, int b) {
+  // Any edge pair, with the exact classification when the filter cannot decide (slow path).
+  bool edge_pair_general(int a, int b) {
     Draft c;
-    cross(p.eB[b], p.eA[a], c.n);
-    edge_pair_heights(p, a, b, c);
+    lane_heights(out.edges, a, b, c);
     const EdgePairClass k = classify(a, b, c);
     if (k.kind == EdgePairKind::Colinear) return true;  // no direction (SPEC §3)
     double bound = fb.deg3;
@@ -205,12 +295,54 @@ struct Builder {
       parallel_heights(A, p, a, b, c);
       bound = fb.deg4;
     }
-    c.conA = edge_mask(a);
-    c.conB = edge_mask(b);
     if (k.side == EdgePairSide::Keep) return emit(c, 1.0, DirectionLabel::ee(a, b), bound);
     if (k.side == EdgePairSide::Flip) return emit(c, -1.0, DirectionLabel::ee(a, b), bound);
     return emit(c, 1.0, DirectionLabel::ee(a, b, EdgeOrientation::Plus), bound) &&
            emit(c, -1.0, DirectionLabel::ee(a, b, EdgeOrientation::Minus), bound);
+  }
+
+  // Fast path over all edge pairs in canonical order: when n and both g_k are clearly nonzero
+  // the candidate (and, branch-free, the ':-' one after it) is written from its lane and the
+  // count advances by 2 only for an undecidable pair; otherwise edge_pair_general decides.
+  bool edge_pairs() {
+    const EdgeLanes& L = out.edges;
+    const double e2 = fb.deg2, e3 = fb.deg3;
+    int k = out.count;
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        const int i = kLaneStride * a + b;
+        const double g1 = L.g1[i], g2 = L.g2[i];
+        const double nmax =
+            max2(std::fabs(L.n0[i]), max2(std::fabs(L.n1[i]), std::fabs(L.n2[i])));
+        if (nmax <= e2 || std::fabs(g1) <= e3 || std::fabs(g2) <= e3) {
+          out.count = k;
+          if (!edge_pair_general(a, b)) return false;
+          k = out.count;
+          continue;
+        }
+        const bool flip = g1 > 0 && g2 > 0, undecidable = (g1 > 0) != (g2 > 0);
+        const double d0 = flip ? L.dminus[i] : L.dplus[i], d1 = L.dminus[i];
+        out.delta_sq[k] = flip ? L.d2minus[i] : L.d2plus[i];
+        out.delta_sq[k + 1] = L.d2minus[i];
+        out.label[k] = DirectionLabel::ee(
+            a, b, undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
+        out.label[k + 1] = DirectionLabel::ee(a, b, EdgeOrientation::Minus);
+        out.depth[k] = d0;
+        out.depth[k + 1] = d1;
+        out.nn[k] = out.nn[k + 1] = L.nn[i];
+        out.sign[k] = flip ? -1 : 1;
+        out.sign[k + 1] = -1;
+        out.lane[k] = out.lane[k + 1] = std::int16_t(i);
+        const int first = k;
+        k += 1 + undecidable;
+        if (!(d0 > e3) || (undecidable && !(d1 > e3))) {
+          out.count = k;
+          if (!depth_positive(first, e3)) return false;
+          if (undecidable && !depth_positive(first + 1, e3)) return false;
+        }
+      }
+    out.count = k;
+    return true;
   }
 
   bool run() {
@@ -223,10 +355,8 @@ struct Builder {
       face_of_B(p, j, d);
       if (!emit(d, 1.0, DirectionLabel::vf(j), fb.deg3)) return false;
     }
-    for (int a = 0; a < 6; ++a)
-      for (int b = 0; b < 6; ++b)
-        if (!edge_pair(a, b)) return false;
-    return true;
+    edge_lanes(p, out.edges);
+    return edge_pairs();
   }
 };
 
@@ -253,6 +383,26 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (p.oB == 0) return BuildStatus::DegenerateB;
   out.intersecting = Builder{A, B, fb, p, out}.run();
   return BuildStatus::Ok;
+}
+
+Candidate candidate(const CandidateSet& set, int k) {
+  if (set.lane[k] < 0) return set.explicit_[k];
+  const int i = set.lane[k], a = i / kLaneStride, b = i % kLaneStride;
+  Draft d;
+  lane_heights(set.edges, a, b, d);
+  Candidate c;
+  const double s = set.sign[k];
+  c.label = set.label[k];
+  for (int m = 0; m < 3; ++m) c.n[m] = s * d.n[m];
+  for (int m = 0; m < 4; ++m) {
+    c.hA[m] = s * d.hA[m];
+    c.hB[m] = s * d.hB[m];
+  }
+  c.nn = set.nn[k];
+  c.depth = set.depth[k];
+  c.conA = d.conA;
+  c.conB = d.conB;
+  return c;
 }
 
 }  // namespace pdd::fast

@@ -17,15 +17,15 @@ Choice sweep(const CandidateSet& set, double coeff, int hint, Value value) {
   if (!set.intersecting || set.count == 0) return {};
   double v[kMaxCandidates];
   double best = kInf;
-  if (hint >= 0 && hint < set.count) best = v[hint] = value(set.c[hint]);
+  if (hint >= 0 && hint < set.count) best = v[hint] = value(candidate(set, hint));
   for (int i = 0; i < set.count; ++i) {
     if (i == hint) continue;
-    const double bound = coeff * delta2(set.c[i]);
+    const double bound = coeff * delta2(set, i);
     if (!ties_with_min(bound, best)) {
       v[i] = kInf;
       continue;
     }
-    v[i] = value(set.c[i]);
+    v[i] = value(candidate(set, i));
     best = v[i] < best ? v[i] : best;
   }
   Choice ch;
@@ -75,7 +75,7 @@ Choice pdd2_relaxed(const CandidateSet& set, int hint) {
 
 int accel_order(const CandidateSet& set, int k, int* out) {
   double d[kMaxCandidates];
-  for (int i = 0; i < set.count; ++i) d[i] = delta2(set.c[i]);
+  for (int i = 0; i < set.count; ++i) d[i] = delta2(set, i);
   const int m = k < set.count ? k : set.count;
   for (int r = 0; r < m; ++r) {
     out[r] = first_tied_minimum(d, set.count);
@@ -88,13 +88,13 @@ Choice pdd2_accel(const CandidateSet& set, int k) {
   if (!set.intersecting || k <= 0) return {};
   if (k == 1) {
     const int i = rigid_pd2(set).index;
-    return {deformable_value(set.c[i]), i};
+    return {deformable_value(candidate(set, i)), i};
   }
   int order[kMaxCandidates];
   const int m = accel_order(set, k, order);
   double v[kMaxCandidates];
   for (int i = 0; i < set.count; ++i) v[i] = kInf;
-  for (int r = 0; r < m; ++r) v[order[r]] = deformable_value(set.c[order[r]]);
+  for (int r = 0; r < m; ++r) v[order[r]] = deformable_value(candidate(set, order[r]));
   Choice ch;
   ch.index = first_tied_minimum(v, set.count);
   ch.value = v[ch.index];

@@ -9,11 +9,9 @@ namespace pdd::fast {
 
 Choice rigid_pd2(const CandidateSet& set) {
   if (!set.intersecting) return {};
-  double v[kMaxCandidates];
-  for (int i = 0; i < set.count; ++i) v[i] = delta2(set.c[i]);
   Choice ch;
-  ch.index = first_tied_minimum(v, set.count);
-  ch.value = v[ch.index];
+  ch.index = first_tied_minimum(set.delta_sq, set.count);
+  ch.value = set.delta_sq[ch.index];
   return ch;
 }
 
@@ -21,7 +19,7 @@ double eq11_pd2(const CandidateSet& set) {
   if (!set.intersecting) return 0.0;
   double best = -1.0;  // min overlap²/nn over candidates
   for (int i = 0; i < set.count; ++i) {
-    const Candidate& c = set.c[i];
+    const Candidate c = candidate(set, i);
     const double loA = *std::min_element(c.hA, c.hA + 4), hiA = *std::max_element(c.hA, c.hA + 4);
     const double loB = *std::min_element(c.hB, c.hB + 4), hiB = *std::max_element(c.hB, c.hB + 4);
     const double overlap = (hiA - loA) + (hiB - loB) - (std::max(hiA, hiB) - std::min(loA, loB));

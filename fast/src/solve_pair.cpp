@@ -41,7 +41,7 @@ std::optional<std::string> status_message(BuildStatus st, const TetPair& p) {
 
 std::optional<DirectionLabel> label_of(const CandidateSet& s, int index) {
   if (index < 0) return std::nullopt;
-  return s.c[index].label;
+  return s.label[index];
 }
 
 void fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r) {
@@ -61,7 +61,7 @@ void fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<
   const Choice rel = pdd2_relaxed(set, def.index);
   r.pdd2_relaxed = rel.value;
   r.pdd2_relaxed_dir = label_of(set, rel.index);
-  deformed_positions(pair.A, pair.B, set.c[def.index], r.q1_A, r.q1_B);
+  deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
 }
 
 }  // namespace

@@ -2,21 +2,23 @@
 //
 // Input:  tetrahedra A (s0..s3) and B (r0..r3), raw doubles.
 // Output: CandidateSet: the oriented directions in canonical order (FV:0..3, VF:0..3, EE:a:b with
-//         ':+' before ':-'), each with
-//           n      unnormalised vector pointing from A to B,
-//           nn     = n.n,
-//           hA,hB  heights H = n.(x − o) of the 8 vertices (o: a point of the candidate's own
-//                  choosing; only differences of heights are ever used),
-//           conA,conB  bit masks of the constrained vertices C_A, C_B,
-//           depth  D = max_i hA_i − min_j hB_j, so delta(n) = D/|n| (SPEC §4),
-//         and `intersecting` = (every D > 0), i.e. min delta > 0.
+//         ':+' before ':-'); per candidate k
+//           label[k]   SPEC §3 label,
+//           depth[k]   D = max_i n.s_i − min_j n.r_j for the oriented unnormalised n, so that
+//                      delta(n) = D/|n| (SPEC §4),
+//           nn[k]      n.n,   delta_sq[k] = D²/(n.n),
+//         and, materialised on demand by candidate(set, k): n, the heights H = n.(x − o) of the 8
+//         vertices (o a point of the candidate's own choosing; only height differences are used)
+//         and the constrained masks C_A, C_B. `intersecting` = every D > 0 (min delta > 0).
 // Every combinatorial decision — orientation of A and B (sign of the volume, also the validity
 // test), parallel edges (n == 0), colinear edges, the signs of g_k (keep / flip / undecidable),
 // and the sign of each D (intersection) — is exact: a floating-point value is trusted only when
 // it exceeds the static bound of filter_bounds.h, otherwise exact_predicates.h decides.
 // Constrained vertices of one tetrahedron share one height by construction (they are exactly
-// coplanar with the plane orthogonal to n), so the solver sees exactly equal values.
-// No heap allocation: the set is a fixed-capacity array.
+// on the plane orthogonal to n), so the solvers see exactly equal values.
+// Layout: the 36 edge pairs are computed as structure-of-arrays "lanes" (lane = 8a + b), so the
+// arithmetic vectorises; the set stores per candidate only its label, D, n.n and the lane.
+// No heap allocation: fixed-capacity arrays.
 #pragma once
 
 #include <cstdint>
@@ -28,20 +30,41 @@ namespace pdd::fast {
 
 // 8 face directions + 36 edge pairs, each edge pair at most twice (undecidable).
 inline constexpr int kMaxCandidates = 8 + 2 * 36;
+inline constexpr int kLaneStride = 8;  // lanes b = 6, 7 of each edge a are padding
+inline constexpr int kLanes = 6 * kLaneStride;
 
+// One direction with everything the per-direction solvers need.
 struct Candidate {
   DirectionLabel label;
-  double n[3];
-  double nn;
-  double depth;
-  double hA[4], hB[4];
-  std::uint8_t conA, conB;
+  double n[3];          // oriented A -> B, unnormalised
+  double nn;            // n.n
+  double depth;         // D
+  double hA[4], hB[4];  // heights n.(x − o)
+  std::uint8_t conA, conB;  // bit i: vertex i constrained (SPEC §3)
+};
+
+// Edge-pair lanes, unoriented n = eB × eA (SPEC §3), heights relative to s_u:
+// A: 0, 0, g1, g2 at (u, v, k1, k2); B: hx, hx, hx + q1, hx + q2 at (x, y, j1, j2), where
+// (k1 < k2) are the vertices off edge a and (j1 < j2) those off edge b.
+struct EdgeLanes {
+  alignas(32) double n0[kLanes], n1[kLanes], n2[kLanes], nn[kLanes], hx[kLanes];
+  alignas(32) double g1[kLanes], g2[kLanes], q1[kLanes], q2[kLanes];
+  alignas(32) double dplus[kLanes], dminus[kLanes];  // D for +n and for −n
+  alignas(32) double d2plus[kLanes], d2minus[kLanes];  // D²/(n.n) for +n and for −n
 };
 
 struct CandidateSet {
   int count = 0;
   bool intersecting = false;  // valid only when build_candidates returned Ok
-  Candidate c[kMaxCandidates];
+  DirectionLabel label[kMaxCandidates];
+  double depth[kMaxCandidates];
+  double nn[kMaxCandidates];
+  double delta_sq[kMaxCandidates];  // D²/(n.n) = delta(n)²
+  // (16-bit, not 8-bit: char types alias everything and would pessimise the build loop)
+  std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
+  std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
+  EdgeLanes edges;
+  Candidate explicit_[kMaxCandidates];  // faces, and edge pairs decided by the exact fallback
 };
 
 enum class BuildStatus { Ok, NonFiniteA, NonFiniteB, DegenerateA, DegenerateB };
@@ -49,5 +72,11 @@ enum class BuildStatus { Ok, NonFiniteA, NonFiniteB, DegenerateA, DegenerateB };
 // Fills `out`. When the pair does not intersect the set may be left incomplete (the scan stops
 // at the first exactly separating candidate): only `intersecting == false` is then meaningful.
 BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, CandidateSet& out);
+
+// Candidate k of the set with its heights (cheap: a few loads and sign flips).
+Candidate candidate(const CandidateSet& set, int k);
+
+// delta(n)² of candidate k: D²/(n.n).
+inline double delta2(const CandidateSet& set, int k) { return set.delta_sq[k]; }
 
 }  // namespace pdd::fast

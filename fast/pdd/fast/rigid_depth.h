@@ -18,9 +18,6 @@ struct Choice {
   int index = -1;      // index into CandidateSet::c, −1 when none
 };
 
-// delta(n)² of one candidate.
-inline double delta2(const Candidate& c) { return c.depth * c.depth / c.nn; }
-
 Choice rigid_pd2(const CandidateSet& set);
 double eq11_pd2(const CandidateSet& set);
 
