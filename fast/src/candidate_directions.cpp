@@ -240,14 +240,13 @@ struct Builder {
   bool depth_positive(int k, double bound) {
     if (out.depth[k] > bound) return true;
     if (out.depth[k] < -bound) return false;
-    return depth_sign_exact(A, B, out.label[k]) > 0;
+    return depth_sign_exact(A, B, label(out, k)) > 0;
   }
 
   // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
-  bool emit(const Draft& d, double s, const DirectionLabel& label, double bound) {
+  bool emit(const Draft& d, double s, LabelCode code, double bound) {
     const int k = out.count++;
-    Candidate& c = out.explicit_[k];
-    c.label = label;
+    DirectionGeometry& c = out.explicit_[k];
     double hi = s * d.hA[0], lo = s * d.hB[0];  // running max of s·hA, min of s·hB
     for (int m = 0; m < 4; ++m) {
       const double a = s * d.hA[m], b = s * d.hB[m];
@@ -261,7 +260,7 @@ struct Builder {
     c.conA = d.conA;
     c.conB = d.conB;
     c.depth = hi - lo;
-    out.label[k] = label;
+    out.code[k] = code;
     out.depth[k] = c.depth;
     out.nn[k] = c.nn;
     out.delta_sq[k] = c.depth * c.depth / c.nn;
@@ -295,10 +294,11 @@ struct Builder {
       parallel_heights(A, p, a, b, c);
       bound = fb.deg4;
     }
-    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, DirectionLabel::ee(a, b), bound);
-    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, DirectionLabel::ee(a, b), bound);
-    return emit(c, 1.0, DirectionLabel::ee(a, b, EdgeOrientation::Plus), bound) &&
-           emit(c, -1.0, DirectionLabel::ee(a, b, EdgeOrientation::Minus), bound);
+    const LabelCode decided = pack_label(ContactKind::EE, a, b, EdgeOrientation::Decided);
+    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound);
+    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound);
+    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound) &&
+           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound);
   }
 
   // Fast path over all edge pairs in canonical order: when n and both g_k are clearly nonzero
@@ -324,9 +324,9 @@ struct Builder {
         const double d0 = flip ? L.dminus[i] : L.dplus[i], d1 = L.dminus[i];
         out.delta_sq[k] = flip ? L.d2minus[i] : L.d2plus[i];
         out.delta_sq[k + 1] = L.d2minus[i];
-        out.label[k] = DirectionLabel::ee(
-            a, b, undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
-        out.label[k + 1] = DirectionLabel::ee(a, b, EdgeOrientation::Minus);
+        out.code[k] = pack_label(ContactKind::EE, a, b,
+                                 undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
+        out.code[k + 1] = pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus);
         out.depth[k] = d0;
         out.depth[k + 1] = d1;
         out.nn[k] = out.nn[k + 1] = L.nn[i];
@@ -349,11 +349,13 @@ struct Builder {
     Draft d;
     for (int i = 0; i < 4; ++i) {
       face_of_A(p, i, d);
-      if (!emit(d, 1.0, DirectionLabel::fv(i), fb.deg3)) return false;
+      if (!emit(d, 1.0, pack_label(ContactKind::FV, i, 0, EdgeOrientation::Decided), fb.deg3))
+        return false;
     }
     for (int j = 0; j < 4; ++j) {
       face_of_B(p, j, d);
-      if (!emit(d, 1.0, DirectionLabel::vf(j), fb.deg3)) return false;
+      if (!emit(d, 1.0, pack_label(ContactKind::VF, j, 0, EdgeOrientation::Decided), fb.deg3))
+        return false;
     }
     edge_lanes(p, out.edges);
     return edge_pairs();
@@ -386,13 +388,18 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 }
 
 Candidate candidate(const CandidateSet& set, int k) {
-  if (set.lane[k] < 0) return set.explicit_[k];
+  if (set.lane[k] < 0) {
+    Candidate c;
+    static_cast<DirectionGeometry&>(c) = set.explicit_[k];
+    c.label = label(set, k);
+    return c;
+  }
   const int i = set.lane[k], a = i / kLaneStride, b = i % kLaneStride;
   Draft d;
   lane_heights(set.edges, a, b, d);
   Candidate c;
   const double s = set.sign[k];
-  c.label = set.label[k];
+  c.label = label(set, k);
   for (int m = 0; m < 3; ++m) c.n[m] = s * d.n[m];
   for (int m = 0; m < 4; ++m) {
     c.hA[m] = s * d.hA[m];

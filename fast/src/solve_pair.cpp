@@ -41,7 +41,7 @@ std::optional<std::string> status_message(BuildStatus st, const TetPair& p) {
 
 std::optional<DirectionLabel> label_of(const CandidateSet& s, int index) {
   if (index < 0) return std::nullopt;
-  return s.label[index];
+  return label(s, index);
 }
 
 void fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r) {
@@ -69,7 +69,8 @@ void fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<
 PairResult<double> solve_pair(const TetPair& pair) {
   PairResult<double> r;
   r.name = pair.name;
-  auto set = std::make_unique<CandidateSet>();  // ~10 KB; heap keeps TBB worker stacks small
+  // ~20 KB: on the heap to keep TBB worker stacks small; default-initialised (no zeroing).
+  std::unique_ptr<CandidateSet> set(new CandidateSet);
   r.error = status_message(build_candidates(pair.A, pair.B, *set), pair);
   if (r.error) return r;
   r.q1_A = pair.A;

@@ -23,23 +23,23 @@ int expected_ee_count(const EdgePairClass& c) {
 // the number of candidates accounted for.
 void check_against_exact(const TetPair& p, const CandidateSet& set, bool check_depths) {
   int idx = 0;
-  for (int i = 0; i < 4; ++i) BOOST_TEST(set.label[idx++].str() == "FV:" + std::to_string(i));
-  for (int j = 0; j < 4; ++j) BOOST_TEST(set.label[idx++].str() == "VF:" + std::to_string(j));
+  for (int i = 0; i < 4; ++i) BOOST_TEST(label(set, idx++).str() == "FV:" + std::to_string(i));
+  for (int j = 0; j < 4; ++j) BOOST_TEST(label(set, idx++).str() == "VF:" + std::to_string(j));
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6; ++b) {
       const EdgePairClass c = classify_edge_pair_exact(p.A, p.B, a, b);
       const int m = expected_ee_count(c);
-      if (m == 1) BOOST_TEST(set.label[idx] == DirectionLabel::ee(a, b));
+      if (m == 1) BOOST_TEST(label(set, idx) == DirectionLabel::ee(a, b));
       if (m == 2) {
-        BOOST_TEST(set.label[idx] == DirectionLabel::ee(a, b, EdgeOrientation::Plus));
-        BOOST_TEST(set.label[idx + 1] == DirectionLabel::ee(a, b, EdgeOrientation::Minus));
+        BOOST_TEST(label(set, idx) == DirectionLabel::ee(a, b, EdgeOrientation::Plus));
+        BOOST_TEST(label(set, idx + 1) == DirectionLabel::ee(a, b, EdgeOrientation::Minus));
       }
       idx += m;
     }
   BOOST_TEST(idx == set.count);
   if (!check_depths) return;
   for (int k = 0; k < set.count; ++k)
-    BOOST_TEST(depth_sign_exact(p.A, p.B, set.label[k]) == (set.depth[k] > 0 ? 1 : -1));
+    BOOST_TEST(depth_sign_exact(p.A, p.B, label(set, k)) == (set.depth[k] > 0 ? 1 : -1));
 }
 
 }  // namespace
@@ -72,9 +72,9 @@ BOOST_AUTO_TEST_CASE(parallel_and_colinear_edges) {
   check_against_exact(p, set, true);
   bool found55 = false;
   for (int k = 0; k < set.count; ++k) {
-    BOOST_TEST(!(set.label[k].kind == ContactKind::EE && set.label[k].a == 0 &&
-                 set.label[k].b == 0));
-    if (set.label[k] == DirectionLabel::ee(5, 5)) {
+    BOOST_TEST(!(label(set, k).kind == ContactKind::EE && label(set, k).a == 0 &&
+                 label(set, k).b == 0));
+    if (label(set, k) == DirectionLabel::ee(5, 5)) {
       found55 = true;
       const Candidate c = candidate(set, k);
       const double* n = c.n;

@@ -95,7 +95,7 @@ BOOST_AUTO_TEST_CASE(deformed_positions_attain_and_separate) {
     build_candidates(p.A, p.B, set);
     int found = -1;
     for (int k = 0; k < set.count; ++k)
-      if (set.label[k] == *r.pdd2_dir) found = k;
+      if (label(set, k) == *r.pdd2_dir) found = k;
     BOOST_REQUIRE(found >= 0);
     const Candidate cand = candidate(set, found);
     const Candidate* c = &cand;

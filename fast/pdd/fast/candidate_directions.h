@@ -3,7 +3,7 @@
 // Input:  tetrahedra A (s0..s3) and B (r0..r3), raw doubles.
 // Output: CandidateSet: the oriented directions in canonical order (FV:0..3, VF:0..3, EE:a:b with
 //         ':+' before ':-'); per candidate k
-//           label[k]   SPEC §3 label,
+//           label(set, k)  SPEC §3 label,
 //           depth[k]   D = max_i n.s_i − min_j n.r_j for the oriented unnormalised n, so that
 //                      delta(n) = D/|n| (SPEC §4),
 //           nn[k]      n.n,   delta_sq[k] = D²/(n.n),
@@ -33,15 +33,28 @@ inline constexpr int kMaxCandidates = 8 + 2 * 36;
 inline constexpr int kLaneStride = 8;  // lanes b = 6, 7 of each edge a are padding
 inline constexpr int kLanes = 6 * kLaneStride;
 
-// One direction with everything the per-direction solvers need.
-struct Candidate {
-  DirectionLabel label;
+// Geometry of one direction: everything the per-direction solvers need.
+struct DirectionGeometry {
   double n[3];          // oriented A -> B, unnormalised
   double nn;            // n.n
   double depth;         // D
   double hA[4], hB[4];  // heights n.(x − o)
   std::uint8_t conA, conB;  // bit i: vertex i constrained (SPEC §3)
 };
+
+struct Candidate : DirectionGeometry {
+  DirectionLabel label;
+};
+
+// A label packed in 16 bits (kind | a << 2 | b << 5 | orientation << 8): plain integers keep
+// the set trivially constructible (DirectionLabel has member initialisers).
+using LabelCode = std::uint16_t;
+constexpr LabelCode pack_label(ContactKind k, int a, int b, EdgeOrientation o) {
+  return LabelCode(int(k) | a << 2 | b << 5 | int(o) << 8);
+}
+inline DirectionLabel unpack_label(LabelCode c) {
+  return {ContactKind(c & 3), (c >> 2) & 7, (c >> 5) & 7, EdgeOrientation((c >> 8) & 3)};
+}
 
 // Edge-pair lanes, unoriented n = eB × eA (SPEC §3), heights relative to s_u:
 // A: 0, 0, g1, g2 at (u, v, k1, k2); B: hx, hx, hx + q1, hx + q2 at (x, y, j1, j2), where
@@ -56,7 +69,7 @@ struct EdgeLanes {
 struct CandidateSet {
   int count = 0;
   bool intersecting = false;  // valid only when build_candidates returned Ok
-  DirectionLabel label[kMaxCandidates];
+  LabelCode code[kMaxCandidates];  // label, see label(set, k)
   double depth[kMaxCandidates];
   double nn[kMaxCandidates];
   double delta_sq[kMaxCandidates];  // D²/(n.n) = delta(n)²
@@ -64,7 +77,7 @@ struct CandidateSet {
   std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
   std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
   EdgeLanes edges;
-  Candidate explicit_[kMaxCandidates];  // faces, and edge pairs decided by the exact fallback
+  DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
 };
 
 enum class BuildStatus { Ok, NonFiniteA, NonFiniteB, DegenerateA, DegenerateB };
@@ -75,6 +88,9 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 
 // Candidate k of the set with its heights (cheap: a few loads and sign flips).
 Candidate candidate(const CandidateSet& set, int k);
+
+// SPEC §3 label of candidate k.
+inline DirectionLabel label(const CandidateSet& set, int k) { return unpack_label(set.code[k]); }
 
 // delta(n)² of candidate k: D²/(n.n).
 inline double delta2(const CandidateSet& set, int k) { return set.delta_sq[k]; }
