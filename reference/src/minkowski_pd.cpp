@@ -39,6 +39,7 @@ MinkowskiPd minkowski_pd(const ExactPair& pair) {
 
   MinkowskiPd out;
   out.intersecting = true;
+  for (auto vd : hull.vertices()) out.vertices.push_back(hull.point(vd));
   for (auto f : hull.faces()) {
     std::vector<Point> v;
     for (auto vd : CGAL::vertices_around_face(hull.halfedge(f), hull)) v.push_back(hull.point(vd));

@@ -14,4 +14,10 @@ void add_generate_command(CLI::App& app, int& exit_code);
 // `pdd golden --check | --update [--fixtures DIR]`
 void add_golden_command(CLI::App& app, int& exit_code);
 
+// `pdd theorem --input FILE [--json] [--nef N]`
+void add_theorem_command(CLI::App& app, int& exit_code);
+
+// `pdd audit-ee --input FILE [--json]`
+void add_audit_ee_command(CLI::App& app, int& exit_code);
+
 }  // namespace pdd::compare
