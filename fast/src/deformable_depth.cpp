@@ -93,12 +93,12 @@ Choice pdd2_accel(const CandidateSet& set, int k) {
   int order[kMaxCandidates];
   const int m = accel_order(set, k, order);
   double v[kMaxCandidates];
-  for (int i = 0; i < set.count; ++i) v[i] = kInf;
-  for (int r = 0; r < m; ++r) v[order[r]] = deformable_value(candidate(set, order[r]));
-  Choice ch;
-  ch.index = first_tied_minimum(v, set.count);
-  ch.value = v[ch.index];
-  return ch;
+  for (int r = 0; r < m; ++r) v[r] = deformable_value(candidate(set, order[r]));
+  const double vmin = minimum(v, m);
+  int best = -1;  // among ties, the first in canonical order
+  for (int r = 0; r < m; ++r)
+    if (ties_with_min(v[r], vmin) && (best < 0 || order[r] < order[best])) best = r;
+  return {v[best], order[best]};
 }
 
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,

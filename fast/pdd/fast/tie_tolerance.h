@@ -17,10 +17,22 @@ inline constexpr double kTieRelTol = 1e-9;
 
 inline bool ties_with_min(double v, double vmin) { return v <= vmin + kTieRelTol * vmin; }
 
-// First index i < n (canonical order) whose value ties with the minimum; −1 if none is finite.
+// Minimum of v[0..n), n >= 1. Four independent accumulators break the latency chain of a single
+// running min; min over non-NaN values is order-independent, so the result is the same.
+inline double minimum(const double* v, int n) {
+  const double v0 = v[0];
+  double m[4] = {v0, v0, v0, v0};
+  int i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int j = 0; j < 4; ++j) m[j] = v[i + j] < m[j] ? v[i + j] : m[j];
+  for (; i < n; ++i) m[0] = v[i] < m[0] ? v[i] : m[0];
+  const double a = m[0] < m[1] ? m[0] : m[1], b = m[2] < m[3] ? m[2] : m[3];
+  return a < b ? a : b;
+}
+
+// First index i < n (canonical order) whose value ties with the minimum (n >= 1).
 inline int first_tied_minimum(const double* v, int n) {
-  double vmin = v[0];
-  for (int i = 1; i < n; ++i) vmin = v[i] < vmin ? v[i] : vmin;
+  const double vmin = minimum(v, n);
   for (int i = 0; i < n; ++i)
     if (ties_with_min(v[i], vmin)) return i;
   return -1;
