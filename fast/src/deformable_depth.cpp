@@ -92,6 +92,7 @@ Choice pdd2_accel(const CandidateSet& set, int k) {
   }
   int order[kMaxCandidates];
   const int m = accel_order(set, k, order);
+  if (m <= 0) return {};
   double v[kMaxCandidates];
   for (int r = 0; r < m; ++r) v[r] = deformable_value(candidate(set, order[r]));
   const double vmin = minimum(v, m);
