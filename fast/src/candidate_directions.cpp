@@ -388,27 +388,30 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 }
 
 Candidate candidate(const CandidateSet& set, int k) {
+  Candidate c;
+  c.label = label(set, k);
   if (set.lane[k] < 0) {
-    Candidate c;
     static_cast<DirectionGeometry&>(c) = set.explicit_[k];
-    c.label = label(set, k);
     return c;
   }
+  // the heights of lane_heights, oriented by the candidate's sign, written once
+  const EdgeLanes& L = set.edges;
   const int i = set.lane[k], a = i / kLaneStride, b = i % kLaneStride;
-  Draft d;
-  lane_heights(set.edges, a, b, d);
-  Candidate c;
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
   const double s = set.sign[k];
-  c.label = label(set, k);
-  for (int m = 0; m < 3; ++m) c.n[m] = s * d.n[m];
-  for (int m = 0; m < 4; ++m) {
-    c.hA[m] = s * d.hA[m];
-    c.hB[m] = s * d.hB[m];
-  }
+  c.n[0] = s * L.n0[i];
+  c.n[1] = s * L.n1[i];
+  c.n[2] = s * L.n2[i];
   c.nn = set.nn[k];
   c.depth = set.depth[k];
-  c.conA = d.conA;
-  c.conB = d.conB;
+  c.hA[u] = c.hA[v] = 0.0;
+  c.hA[kOther[a][0]] = s * L.g1[i];
+  c.hA[kOther[a][1]] = s * L.g2[i];
+  c.hB[x] = c.hB[y] = s * L.hx[i];
+  c.hB[kOther[b][0]] = s * (L.hx[i] + L.q1[i]);
+  c.hB[kOther[b][1]] = s * (L.hx[i] + L.q2[i]);
+  c.conA = edge_mask(a);
+  c.conB = edge_mask(b);
   return c;
 }
 
