@@ -3,8 +3,11 @@
 // Pairs: tetrahedra with vertices uniform in [0, 10]^3 (fixed seed), intersecting pairs only.
 // Each timed call goes from the raw pair to the value (candidate construction included):
 //   rigid_pd2, pdd2_static, pdd2 (all candidates), pdd2_accel1, pdd2_accel6, solve_pair.
-// Two reports: (1) "median per pair": every pair timed alone (kRepeat calls, mean), then the
-// median over pairs, on one thread; (2) Google Benchmark throughput over the whole set.
+// Two reports, one thread:
+// (1) "median per pair": each call timed alone with steady_clock while cycling through all
+//     pairs (so branch predictors are not trained on one pair), 5 passes, timer overhead (the
+//     median of empty timings) subtracted, median over all samples;
+// (2) Google Benchmark: mean time per call cycling through the whole set.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -65,21 +68,25 @@ double v_solve(const TetPair& p) { return solve_pair(p).pdd2; }
 
 template <class F>
 double median_ns(F f) {
-  constexpr int kRepeat = 200;
-  std::vector<double> t;
+  using clock = std::chrono::steady_clock;
+  constexpr int kPasses = 5;
+  std::vector<double> t, empty;
   double sink = 0;
-  for (const auto& p : pairs()) {
-    auto t0 = std::chrono::steady_clock::now();
-    for (int r = 0; r < kRepeat; ++r) {
+  for (int pass = 0; pass < kPasses; ++pass)
+    for (const auto& p : pairs()) {
+      const auto t0 = clock::now();
       sink += f(p);
-      benchmark::ClobberMemory();
+      const auto t1 = clock::now();
+      const auto t2 = clock::now();
+      t.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+      empty.push_back(std::chrono::duration<double, std::nano>(t2 - t1).count());
     }
-    auto t1 = std::chrono::steady_clock::now();
-    t.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / kRepeat);
-  }
   benchmark::DoNotOptimize(sink);
-  std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
-  return t[t.size() / 2];
+  auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  return median(t) - median(empty);
 }
 
 void print_medians() {
