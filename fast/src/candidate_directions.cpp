@@ -79,22 +79,40 @@ int orientation(const TetVertices& T, double det, double bound3) {
   return orientation_sign_exact(T);
 }
 
+// For lane b and its m-th vertex j off edge b = (x, y): −eps(x,y,j) and the face f' = 6−x−y−j,
+// so that n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f'.
+struct OffEdge {
+  int sign[6][2], face[6][2];
+};
+constexpr OffEdge make_off_edge() {
+  OffEdge t{};
+  for (int b = 0; b < 6; ++b)
+    for (int m = 0; m < 2; ++m) {
+      const int x = kEdges[b][0], y = kEdges[b][1], j = kOther[b][m];
+      t.sign[b][m] = -parity(x, y, j);
+      t.face[b][m] = 6 - x - y - j;
+    }
+  return t;
+}
+constexpr OffEdge kOffEdge = make_off_edge();
+
 void lane_tables(Precomputed& p) {
-  for (int b = 0; b < kLaneStride; ++b) {
-    const bool real = b < 6;
-    const int x = real ? kEdges[b][0] : 0, y = real ? kEdges[b][1] : 1;
-    p.eBx[b] = real ? p.eB[b][0] : 0.0;
-    p.eBy[b] = real ? p.eB[b][1] : 0.0;
-    p.eBz[b] = real ? p.eB[b][2] : 0.0;
+  for (int b = 0; b < kLaneStride; ++b) {  // padding lanes 6, 7: zeros, never read
+    p.eBx[b] = p.eBy[b] = p.eBz[b] = 0.0;
     for (int u = 0; u < 3; ++u)
-      for (int k = 0; k < 3; ++k) p.W[u][k][b] = real ? p.d[u][x][k] : 0.0;
-    for (int f = 0; f < 4; ++f) p.G[f][b] = real ? p.GA[b][f] : 0.0;
+      for (int k = 0; k < 3; ++k) p.W[u][k][b] = 0.0;
+    for (int f = 0; f < 4; ++f) p.G[f][b] = 0.0;
+    for (int a = 0; a < 6; ++a) p.Q[a][0][b] = p.Q[a][1][b] = 0.0;
+  }
+  for (int b = 0; b < 6; ++b) {
+    p.eBx[b] = p.eB[b][0];
+    p.eBy[b] = p.eB[b][1];
+    p.eBz[b] = p.eB[b][2];
+    for (int u = 0; u < 3; ++u)
+      for (int k = 0; k < 3; ++k) p.W[u][k][b] = p.d[u][kEdges[b][0]][k];
+    for (int f = 0; f < 4; ++f) p.G[f][b] = p.GA[b][f];
     for (int a = 0; a < 6; ++a)
-      for (int m = 0; m < 2; ++m) {
-        const int j = real ? kOther[b][m] : 0;
-        // n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f
-        p.Q[a][m][b] = real ? -parity(x, y, j) * p.QB[a][6 - x - y - j] : 0.0;
-      }
+      for (int m = 0; m < 2; ++m) p.Q[a][m][b] = kOffEdge.sign[b][m] * p.QB[a][kOffEdge.face[b][m]];
   }
 }
 
@@ -314,13 +332,14 @@ struct Builder {
         const double g1 = L.g1[i], g2 = L.g2[i];
         const double nmax =
             max2(std::fabs(L.n0[i]), max2(std::fabs(L.n1[i]), std::fabs(L.n2[i])));
-        if (nmax <= e2 || std::fabs(g1) <= e3 || std::fabs(g2) <= e3) {
+        if ((nmax <= e2) | (std::fabs(g1) <= e3) | (std::fabs(g2) <= e3)) {
           out.count = k;
           if (!edge_pair_general(a, b)) return false;
           k = out.count;
           continue;
         }
-        const bool flip = g1 > 0 && g2 > 0, undecidable = (g1 > 0) != (g2 > 0);
+        // (& and | rather than && and ||: no data-dependent branches on random signs)
+        const bool flip = (g1 > 0) & (g2 > 0), undecidable = (g1 > 0) != (g2 > 0);
         const double d0 = flip ? L.dminus[i] : L.dplus[i], d1 = L.dminus[i];
         out.delta_sq[k] = flip ? L.d2minus[i] : L.d2plus[i];
         out.delta_sq[k + 1] = L.d2minus[i];
@@ -335,7 +354,7 @@ struct Builder {
         out.lane[k] = out.lane[k + 1] = std::int16_t(i);
         const int first = k;
         k += 1 + undecidable;
-        if (!(d0 > e3) || (undecidable && !(d1 > e3))) {
+        if ((!(d0 > e3)) | (undecidable & (!(d1 > e3)))) {
           out.count = k;
           if (!depth_positive(first, e3)) return false;
           if (undecidable && !depth_positive(first + 1, e3)) return false;

@@ -56,8 +56,8 @@ inline FilterBounds filter_bounds(const TetVertices& A, const TetVertices& B) {
   for (int k = 0; k < 3; ++k) {
     double lo = A[0][k], hi = A[0][k];
     for (int i = 0; i < 4; ++i) {
-      lo = std::min({lo, A[i][k], B[i][k]});
-      hi = std::max({hi, A[i][k], B[i][k]});
+      lo = std::min(lo, std::min(A[i][k], B[i][k]));
+      hi = std::max(hi, std::max(A[i][k], B[i][k]));
     }
     L = std::max(L, hi - lo);
   }
