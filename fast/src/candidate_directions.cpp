@@ -13,9 +13,11 @@
 #include "pdd/fast/candidate_directions.h"
 
 #include <cmath>
+#include <limits>
 
 #include "pdd/fast/exact_predicates.h"
 #include "pdd/fast/filter_bounds.h"
+#include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
 namespace {
@@ -137,8 +139,11 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
 
 // All 36 edge pairs at once (lane 8a + b), unoriented n = eB × eA, heights relative to s_u:
 //   g_k = eps(u,v,k) eB.NA_f (A's free vertices), hx = n.(r_x − s_u), hx + q_m (B's free),
-//   D(+n) = max(0, g1, g2) − hx − min(0, q1, q2),  D(−n) = −min(0, g1, g2) + hx + max(0, q1, q2).
-PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, EdgeLanes& __restrict L) {
+//   D(+n) = max(0, g1, g2) − hx − min(0, q1, q2),  D(−n) = −min(0, g1, g2) + hx + max(0, q1, q2),
+// and the filter verdicts (EdgeLanes). Branch-free (& and | on bools) so that it vectorises.
+PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, double e3,
+                                  EdgeLanes& __restrict L) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
     const double ax = p.eA[a][0], ay = p.eA[a][1], az = p.eA[a][2];
@@ -156,6 +161,14 @@ PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, EdgeLanes& __
       const double h = m0 * wx[b] + m1 * wy[b] + m2 * wz[b];
       const double g1 = s1 * G1[b], g2 = s2 * G2[b], q1 = Q1[b], q2 = Q2[b];
       const double nn = m0 * m0 + m1 * m1 + m2 * m2;
+      const double dp = max2(0.0, max2(g1, g2)) - h - min2(0.0, min2(q1, q2));
+      const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
+      const double d2p = dp * dp / nn, d2m = dm * dm / nn;  // padding lanes: 0/0, never read
+      const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
+      const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
+      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+      const bool unclear = (nmax <= e2) | (std::fabs(g1) <= e3) | (std::fabs(g2) <= e3) |
+                           ((!(dp > e3)) & (!flip)) | ((!(dm > e3)) & (flip | undecidable));
       L.n0[o + b] = m0;
       L.n1[o + b] = m1;
       L.n2[o + b] = m2;
@@ -165,12 +178,13 @@ PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, EdgeLanes& __
       L.g2[o + b] = g2;
       L.q1[o + b] = q1;
       L.q2[o + b] = q2;
-      const double dp = max2(0.0, max2(g1, g2)) - h - min2(0.0, min2(q1, q2));
-      const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
       L.dplus[o + b] = dp;
       L.dminus[o + b] = dm;
-      L.d2plus[o + b] = dp * dp / nn;  // padding lanes: 0/0, never read
-      L.d2minus[o + b] = dm * dm / nn;
+      L.d2plus[o + b] = d2p;
+      L.d2minus[o + b] = d2m;
+      L.unclear[o + b] = unclear ? 1.0 : 0.0;
+      L.first[o + b] = flip ? d2m : d2p;
+      L.second[o + b] = undecidable ? d2m : kInf;
     }
   }
 }
@@ -189,7 +203,7 @@ struct Draft {
 
 // FV:i — n = sigma NA_i outward. n.(s_i − s_v0) = (−1)^(i+1) detA (permutation (v0,v1,v2,i)),
 // so sigma = oA (−1)^i makes it −|detA| < 0.
-void face_of_A(const Precomputed& p, int i, Draft& c) {
+inline void face_of_A(const Precomputed& p, int i, Draft& c) {
   const double s = ((i & 1) ? -1.0 : 1.0) * p.oA;
   const int v0 = kFace[i][0];
   for (int k = 0; k < 3; ++k) c.n[k] = s * p.NA[i][k];
@@ -201,7 +215,7 @@ void face_of_A(const Precomputed& p, int i, Draft& c) {
 }
 
 // VF:j — n = tau NB_j into B: n.(r_j − r_v0) = tau (−1)^(j+1) detB > 0 for tau = oB (−1)^(j+1).
-void face_of_B(const Precomputed& p, int j, Draft& c) {
+inline void face_of_B(const Precomputed& p, int j, Draft& c) {
   const double s = ((j & 1) ? 1.0 : -1.0) * p.oB;
   const int v0 = kFace[j][0];
   for (int k = 0; k < 3; ++k) c.n[k] = s * p.NB[j][k];
@@ -210,6 +224,28 @@ void face_of_B(const Precomputed& p, int j, Draft& c) {
   for (int i = 0; i < 4; ++i) c.hA[i] = -s * dot(p.NB[j], p.d[i][v0]);  // n.(s_i − r_v0)
   c.conA = 0;
   c.conB = mask_without(j);
+}
+
+// Face candidate f (FV:f for f < 4, VF:(f − 4) otherwise) computed in locals and written once:
+// a Draft round trip through memory costs store-forwarding stalls on this hot path. Same
+// arithmetic as face_of_A / face_of_B followed by orient_draft(·, 1).
+inline void face_geometry(const Precomputed& p, int f, DirectionGeometry& c) {
+  Draft d;
+  if (f < 4) face_of_A(p, f, d); else face_of_B(p, f - 4, d);
+  double hi = d.hA[0], lo = d.hB[0];
+  for (int m = 1; m < 4; ++m) {
+    hi = max2(hi, d.hA[m]);
+    lo = min2(lo, d.hB[m]);
+  }
+  for (int m = 0; m < 4; ++m) {
+    c.hA[m] = d.hA[m];
+    c.hB[m] = d.hB[m];
+  }
+  for (int m = 0; m < 3; ++m) c.n[m] = d.n[m];
+  c.nn = dot(d.n, d.n);
+  c.conA = d.conA;
+  c.conB = d.conB;
+  c.depth = hi - lo;
 }
 
 // Heights of edge pair (a, b) from its lane, unoriented (layout of EdgeLanes).
@@ -247,6 +283,22 @@ void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, 
   c.hB[y] = c.hB[x];        // exactly: n.(r_y − r_x) = 0 (parallel to e)
 }
 
+// Orients a draft by s into a full candidate (shared by Builder::emit and quick_rigid).
+void orient_draft(const Draft& d, double s, DirectionGeometry& c) {
+  double hi = s * d.hA[0], lo = s * d.hB[0];  // running max of s·hA, min of s·hB
+  for (int m = 0; m < 4; ++m) {
+    c.hA[m] = s * d.hA[m];
+    c.hB[m] = s * d.hB[m];
+    hi = max2(hi, c.hA[m]);
+    lo = min2(lo, c.hB[m]);
+  }
+  for (int m = 0; m < 3; ++m) c.n[m] = s * d.n[m];
+  c.nn = dot(d.n, d.n);
+  c.conA = d.conA;
+  c.conB = d.conB;
+  c.depth = hi - lo;
+}
+
 struct Builder {
   const TetVertices& A;
   const TetVertices& B;
@@ -265,19 +317,7 @@ struct Builder {
   bool emit(const Draft& d, double s, LabelCode code, double bound) {
     const int k = out.count++;
     DirectionGeometry& c = out.explicit_[k];
-    double hi = s * d.hA[0], lo = s * d.hB[0];  // running max of s·hA, min of s·hB
-    for (int m = 0; m < 4; ++m) {
-      const double a = s * d.hA[m], b = s * d.hB[m];
-      c.hA[m] = a;
-      c.hB[m] = b;
-      hi = max2(hi, a);
-      lo = min2(lo, b);
-    }
-    for (int m = 0; m < 3; ++m) c.n[m] = s * d.n[m];
-    c.nn = dot(d.n, d.n);
-    c.conA = d.conA;
-    c.conB = d.conB;
-    c.depth = hi - lo;
+    orient_draft(d, s, c);
     out.code[k] = code;
     out.depth[k] = c.depth;
     out.nn[k] = c.nn;
@@ -319,64 +359,55 @@ struct Builder {
            emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound);
   }
 
-  // Fast path over all edge pairs in canonical order: when n and both g_k are clearly nonzero
-  // the candidate (and, branch-free, the ':-' one after it) is written from its lane and the
-  // count advances by 2 only for an undecidable pair; otherwise edge_pair_general decides.
+  // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is
+  // written from its lane: the candidate and, branch-free, the ':-' one after it, the count
+  // advancing by 2 only for an undecidable pair; an unclear lane goes to edge_pair_general.
   bool edge_pairs() {
     const EdgeLanes& L = out.edges;
-    const double e2 = fb.deg2, e3 = fb.deg3;
     int k = out.count;
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) {
         const int i = kLaneStride * a + b;
-        const double g1 = L.g1[i], g2 = L.g2[i];
-        const double nmax =
-            max2(std::fabs(L.n0[i]), max2(std::fabs(L.n1[i]), std::fabs(L.n2[i])));
-        if ((nmax <= e2) | (std::fabs(g1) <= e3) | (std::fabs(g2) <= e3)) {
+        if (L.unclear[i] != 0.0) {
           out.count = k;
           if (!edge_pair_general(a, b)) return false;
           k = out.count;
           continue;
         }
-        // (& and | rather than && and ||: no data-dependent branches on random signs)
-        const bool flip = (g1 > 0) & (g2 > 0), undecidable = (g1 > 0) != (g2 > 0);
-        const double d0 = flip ? L.dminus[i] : L.dplus[i], d1 = L.dminus[i];
-        out.delta_sq[k] = flip ? L.d2minus[i] : L.d2plus[i];
-        out.delta_sq[k + 1] = L.d2minus[i];
+        const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
+        const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
         out.code[k] = pack_label(ContactKind::EE, a, b,
                                  undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
         out.code[k + 1] = pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus);
-        out.depth[k] = d0;
-        out.depth[k + 1] = d1;
+        out.depth[k] = flip ? L.dminus[i] : L.dplus[i];
+        out.depth[k + 1] = L.dminus[i];
+        out.delta_sq[k] = L.first[i];
+        out.delta_sq[k + 1] = L.d2minus[i];
         out.nn[k] = out.nn[k + 1] = L.nn[i];
         out.sign[k] = flip ? -1 : 1;
         out.sign[k + 1] = -1;
         out.lane[k] = out.lane[k + 1] = std::int16_t(i);
-        const int first = k;
         k += 1 + undecidable;
-        if ((!(d0 > e3)) | (undecidable & (!(d1 > e3)))) {
-          out.count = k;
-          if (!depth_positive(first, e3)) return false;
-          if (undecidable && !depth_positive(first + 1, e3)) return false;
-        }
       }
     out.count = k;
     return true;
   }
 
   bool run() {
-    Draft d;
-    for (int i = 0; i < 4; ++i) {
-      face_of_A(p, i, d);
-      if (!emit(d, 1.0, pack_label(ContactKind::FV, i, 0, EdgeOrientation::Decided), fb.deg3))
-        return false;
+    for (int f = 0; f < 8; ++f) {
+      const int k = out.count++;
+      DirectionGeometry& c = out.explicit_[k];
+      face_geometry(p, f, c);
+      out.code[k] = f < 4 ? pack_label(ContactKind::FV, f, 0, EdgeOrientation::Decided)
+                          : pack_label(ContactKind::VF, f - 4, 0, EdgeOrientation::Decided);
+      out.depth[k] = c.depth;
+      out.nn[k] = c.nn;
+      out.delta_sq[k] = c.depth * c.depth / c.nn;
+      out.lane[k] = -1;
+      out.sign[k] = 1;
+      if (!depth_positive(k, fb.deg3)) return false;
     }
-    for (int j = 0; j < 4; ++j) {
-      face_of_B(p, j, d);
-      if (!emit(d, 1.0, pack_label(ContactKind::VF, j, 0, EdgeOrientation::Decided), fb.deg3))
-        return false;
-    }
-    edge_lanes(p, out.edges);
+    edge_lanes(p, fb.deg2, fb.deg3, out.edges);
     return edge_pairs();
   }
 };
@@ -432,6 +463,99 @@ Candidate candidate(const CandidateSet& set, int k) {
   c.conA = edge_mask(a);
   c.conB = edge_mask(b);
   return c;
+}
+
+namespace {
+
+// Candidate of lane i oriented by s (the arithmetic of candidate(set, k)).
+void lane_candidate(const EdgeLanes& L, int i, double s, Candidate& c) {
+  const int a = i / kLaneStride, b = i % kLaneStride;
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  c.n[0] = s * L.n0[i];
+  c.n[1] = s * L.n1[i];
+  c.n[2] = s * L.n2[i];
+  c.nn = L.nn[i];
+  c.depth = s > 0 ? L.dplus[i] : L.dminus[i];
+  c.hA[u] = c.hA[v] = 0.0;
+  c.hA[kOther[a][0]] = s * L.g1[i];
+  c.hA[kOther[a][1]] = s * L.g2[i];
+  c.hB[x] = c.hB[y] = s * L.hx[i];
+  c.hB[kOther[b][0]] = s * (L.hx[i] + L.q1[i]);
+  c.hB[kOther[b][1]] = s * (L.hx[i] + L.q2[i]);
+  c.conA = edge_mask(a);
+  c.conB = edge_mask(b);
+}
+
+// Minimum of the edge candidates' delta² (lanes b < 6; `second` is +inf when absent).
+double lanes_minimum(const EdgeLanes& L) {
+  double m[4] = {L.first[0], L.first[0], L.first[0], L.first[0]};
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; b += 2) {
+      const int i = kLaneStride * a + b;
+      m[0] = L.first[i] < m[0] ? L.first[i] : m[0];
+      m[1] = L.second[i] < m[1] ? L.second[i] : m[1];
+      m[2] = L.first[i + 1] < m[2] ? L.first[i + 1] : m[2];
+      m[3] = L.second[i + 1] < m[3] ? L.second[i + 1] : m[3];
+    }
+  return min2(min2(m[0], m[1]), min2(m[2], m[3]));
+}
+
+bool lanes_clear(const EdgeLanes& L) {
+  double any = 0.0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) any += L.unclear[kLaneStride * a + b];
+  return any == 0.0;
+}
+
+}  // namespace
+
+bool quick_rigid(const TetVertices& A, const TetVertices& B, double& value, Candidate& best) {
+  if (!all_finite(A) || !all_finite(B)) return false;
+  const FilterBounds fb = filter_bounds(A, B);
+  Precomputed p;
+  precompute(A, B, p);
+  if (!(std::fabs(p.detA) > fb.deg3) || !(std::fabs(p.detB) > fb.deg3)) return false;
+  p.oA = p.detA > 0 ? 1 : -1;
+  p.oB = p.detB > 0 ? 1 : -1;
+  DirectionGeometry geo[8];
+  double v[8];
+  for (int f = 0; f < 8; ++f) {
+    face_geometry(p, f, geo[f]);
+    if (!(geo[f].depth > fb.deg3)) return false;
+    v[f] = geo[f].depth * geo[f].depth / geo[f].nn;
+  }
+  EdgeLanes L;
+  edge_lanes(p, fb.deg2, fb.deg3, L);
+  if (!lanes_clear(L)) return false;
+  // first_tied_minimum over the canonical sequence (faces, then lanes: first, second)
+  const double vmin = min2(minimum(v, 8), lanes_minimum(L));
+  for (int f = 0; f < 8; ++f)
+    if (ties_with_min(v[f], vmin)) {
+      value = v[f];
+      static_cast<DirectionGeometry&>(best) = geo[f];
+      best.label = f < 4 ? DirectionLabel::fv(f) : DirectionLabel::vf(f - 4);
+      return true;
+    }
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const int i = kLaneStride * a + b;
+      const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
+      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+      if (ties_with_min(L.first[i], vmin)) {
+        value = L.first[i];
+        lane_candidate(L, i, flip ? -1.0 : 1.0, best);
+        best.label = DirectionLabel::ee(
+            a, b, undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
+        return true;
+      }
+      if (undecidable && ties_with_min(L.second[i], vmin)) {
+        value = L.second[i];
+        lane_candidate(L, i, -1.0, best);
+        best.label = DirectionLabel::ee(a, b, EdgeOrientation::Minus);
+        return true;
+      }
+    }
+  return false;  // unreachable: vmin is attained
 }
 
 }  // namespace pdd::fast

@@ -135,6 +135,9 @@ Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
   return on_pair(A, B, [](const CandidateSet& s) { return pdd2_relaxed(s, rigid_pd2(s).index); });
 }
 Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
+  double rigid = 0.0;
+  Candidate best;
+  if (k == 1 && quick_rigid(A, B, rigid, best)) return {deformable_value(best), -1};
   return on_pair(A, B, [k](const CandidateSet& s) { return pdd2_accel(s, k); });
 }
 

@@ -31,6 +31,9 @@ double eq11_pd2(const CandidateSet& set) {
 }
 
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B) {
+  Choice ch;
+  Candidate best;
+  if (quick_rigid(A, B, ch.value, best)) return ch;  // no set: index stays −1
   CandidateSet set;
   if (build_candidates(A, B, set) != BuildStatus::Ok) return {};
   return rigid_pd2(set);

@@ -64,6 +64,12 @@ struct EdgeLanes {
   alignas(32) double g1[kLanes], g2[kLanes], q1[kLanes], q2[kLanes];
   alignas(32) double dplus[kLanes], dminus[kLanes];  // D for +n and for −n
   alignas(32) double d2plus[kLanes], d2minus[kLanes];  // D²/(n.n) for +n and for −n
+  // Filter verdicts of the lane (SPEC §3 orientation rule on the signs of g1, g2):
+  //   unclear = 1 when a sign of n, g1, g2 or of a used depth is within its filter bound (the
+  //             lane then goes through the exact path), else 0;
+  //   first   = delta² of the lane's first candidate (+n, or −n when both g > 0);
+  //   second  = delta² of the ':-' candidate of an undecidable pair, +inf otherwise.
+  alignas(32) double unclear[kLanes], first[kLanes], second[kLanes];
 };
 
 struct CandidateSet {
@@ -88,6 +94,12 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 
 // Candidate k of the set with its heights (cheap: a few loads and sign flips).
 Candidate candidate(const CandidateSet& set, int k);
+
+// Rigid query without materialising the set (hot path of rigid_pd2 and pdd2_accel(·, 1)): the
+// same delta² values in the same canonical order as build_candidates + rigid_pd2, so the same
+// value and candidate. Returns false — use build_candidates — when the input is invalid, some
+// filter verdict is unclear (degenerate or near-degenerate input) or the pair may not intersect.
+bool quick_rigid(const TetVertices& A, const TetVertices& B, double& value, Candidate& best);
 
 // SPEC §3 label of candidate k.
 inline DirectionLabel label(const CandidateSet& set, int k) { return unpack_label(set.code[k]); }

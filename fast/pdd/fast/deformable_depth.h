@@ -33,7 +33,6 @@ namespace pdd::fast {
 
 inline constexpr double kDeformableBoundCoeff = 1.0 / 32.0;  // case 2 and relaxed, see above
 inline constexpr double kStaticBoundCoeff = 1.0 / 16.0;      // case 1, see above
-inline constexpr int kAccelMax = kMaxCandidates;
 
 // Side views of one candidate: A below the plane, B above (SPEC §3 constrained/free sets).
 SideProblem side_problem(const double h[4], std::uint8_t constrained);
@@ -57,7 +56,8 @@ int accel_order(const CandidateSet& set, int k, int* out);
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);
 
-// Convenience over raw tetrahedra (candidate set on the stack); value 0 when not intersecting.
+// Convenience over raw tetrahedra (candidate set on the stack; pdd2_accel with k = 1 takes
+// quick_rigid when it decides, index −1 then); value 0 when not intersecting.
 Choice pdd2_static(const TetVertices& A, const TetVertices& B);
 Choice pdd2(const TetVertices& A, const TetVertices& B);
 Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B);
