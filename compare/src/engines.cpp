@@ -6,6 +6,7 @@
 #include <string>
 
 #include "pdd/compare/progress.h"
+#include "pdd/fast/solve_pair.h"
 
 namespace pdd::compare {
 
@@ -32,6 +33,29 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
   });
   progress.finish();
   return out;
+}
+
+std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries) {
+  std::vector<TetPair> valid;
+  for (const auto& e : entries)
+    if (!e.error) valid.push_back(e.pair);
+  std::vector<PairResult<double>> computed = fast::solve_batch(valid);
+  std::vector<PairResult<double>> out(entries.size());
+  for (std::size_t k = 0, v = 0; k < entries.size(); ++k) {
+    if (entries[k].error) {
+      out[k].name = entries[k].pair.name;
+      out[k].error = *entries[k].error;
+    } else {
+      out[k] = std::move(computed[v++]);
+      out[k].name = entries[k].pair.name;
+    }
+  }
+  return out;
+}
+
+Json fast_record(const PairResult<double>& r) {
+  static const NumberWriter<double> number = [](const double& x) { return Json(x); };
+  return result_json(r, number);
 }
 
 Json exact_record(const reference::ExactResult& r) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "pdd/compare/engines.h"
+#include "pdd/compare/result_json.h"
 
 namespace pdd::compare {
 namespace fs = std::filesystem;
@@ -71,6 +72,64 @@ std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, refere
     const std::string want = read_text(gpath);
     const std::string got = exact_json_lines((fs::path(fixtures_dir) / rel).string(), f);
     if (want != got) out.push_back({rel, first_difference(want, got)});
+  }
+  return out;
+}
+
+namespace {
+
+reference::Rational rational(const Json& j) { return reference::Rational(j.get<std::string>()); }
+
+std::optional<DirectionLabel> label(const Json& j) {
+  if (j.is_null()) return std::nullopt;
+  auto l = DirectionLabel::parse(j.get<std::string>());
+  if (!l) throw std::runtime_error("bad label " + j.dump());
+  return l;
+}
+
+Positions<reference::Rational> positions(const Json& j) {
+  Positions<reference::Rational> q;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) q[i][k] = rational(j.at(i).at(k));
+  return q;
+}
+
+reference::ExactResult exact_result_from_json(const Json& j) {
+  reference::ExactResult r;
+  r.name = j.at("name").get<std::string>();
+  if (!j.at("error").is_null()) {
+    r.error = j.at("error").get<std::string>();
+    return r;
+  }
+  r.intersecting = j.at("intersecting").get<bool>();
+  r.rigid_pd2 = rational(j.at("rigid_pd2"));
+  r.eq11_pd2 = rational(j.at("eq11_pd2"));
+  r.pdd2_static = rational(j.at("pdd2_static"));
+  r.pdd2 = rational(j.at("pdd2"));
+  r.pdd2_relaxed = rational(j.at("pdd2_relaxed"));
+  r.pdd2_accel1 = rational(j.at("pdd2_accel1"));
+  r.pdd2_accel6 = rational(j.at("pdd2_accel6"));
+  r.rigid_dir = label(j.at("rigid_dir"));
+  r.pdd2_static_dir = label(j.at("pdd2_static_dir"));
+  r.pdd2_dir = label(j.at("pdd2_dir"));
+  r.pdd2_relaxed_dir = label(j.at("pdd2_relaxed_dir"));
+  r.q1_A = positions(j.at("q1_A"));
+  r.q1_B = positions(j.at("q1_B"));
+  return r;
+}
+
+}  // namespace
+
+std::vector<reference::ExactResult> read_golden(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::vector<reference::ExactResult> out;
+  for (std::string line; std::getline(in, line);) {
+    try {
+      out.push_back(exact_result_from_json(Json::parse(line)));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(path + ": " + e.what());
+    }
   }
   return out;
 }

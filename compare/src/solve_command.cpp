@@ -54,14 +54,18 @@ int run_solve(const SolveArgs& args) {
     }
   }
   std::ostream& out = args.output.empty() ? std::cout : file_out;
+  std::optional<tbb::global_control> limit;
+  if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
 
+  if (args.engine == "fast") {
+    std::cerr << "pdd solve: " << file.entries.size() << " pairs, fast engine\n";
+    return write_results(run_fast(file.entries), fast_record, out);
+  }
   reference::SolveOptions options;
   options.formulation = args.formulation == "reduced" ? reference::QpFormulation::Reduced
                                                       : reference::QpFormulation::Full;
   std::cerr << "pdd solve: " << file.entries.size() << " pairs, reference engine, "
             << reference::to_string(options.formulation) << " QP formulation\n";
-  std::optional<tbb::global_control> limit;
-  if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
   const auto results = run_reference(file.entries, options, !args.quiet);
   return write_results(results, exact_record, out);
 }
@@ -72,8 +76,10 @@ void add_solve_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* cmd = app.add_subcommand(
       "solve", "Compute every SPEC §6 quantity for each pair of a fixture file; write JSON Lines.");
-  cmd->add_option("--engine", args->engine, "Engine: 'reference' (exact rationals as \"p/q\")")
-      ->check(CLI::IsMember({"reference"}))
+  cmd->add_option("--engine", args->engine,
+                  "Engine: 'reference' (exact, numbers as \"p/q\" strings) or 'fast' (doubles, "
+                  "JSON numbers that read back to the same double)")
+      ->check(CLI::IsMember({"reference", "fast"}))
       ->capture_default_str();
   cmd->add_option("--input", args->input, "Fixture file (JSON, SPEC §1)")->required();
   cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");

@@ -18,6 +18,13 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
                                                   const reference::SolveOptions& options,
                                                   bool show_progress);
 
+// The fast engine over the same entries: malformed entries become error records, the rest go
+// through pdd::fast::solve_batch (all cores), results in input order.
+std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries);
+
+// SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
+Json fast_record(const PairResult<double>& r);
+
 // SPEC §6 record of an exact result: every number as an exact "p/q" string.
 Json exact_record(const reference::ExactResult& r);
 

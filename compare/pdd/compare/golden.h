@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pdd/reference/direction_qp.h"
+#include "pdd/reference/solve_pair.h"
 
 namespace pdd::compare {
 
@@ -29,6 +30,10 @@ struct GoldenMismatch {
 
 // Compares every golden file with a fresh exact run; empty when all match.
 std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, reference::QpFormulation f);
+
+// Reads a golden JSON Lines file back into exact results (numbers parsed as exact rationals,
+// labels parsed); throws std::runtime_error on a malformed record.
+std::vector<reference::ExactResult> read_golden(const std::string& path);
 
 // Rewrites every golden file; returns the relative paths written.
 std::vector<std::string> update_golden(const std::string& fixtures_dir, reference::QpFormulation f);

@@ -1,0 +1,52 @@
+// The fast engine against the golden files (the exact engine's output), within the tolerance
+// argued in compare/pdd/compare/engine_comparison.h, on every shipped fixture; labels agree
+// wherever the exact minimum is unique (a tie or a near tie is the only accepted difference).
+#include <boost/test/unit_test.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "fixtures.h"
+#include "pdd/compare/engines.h"
+#include "pdd/compare/engine_comparison.h"
+#include "pdd/compare/golden.h"
+#include "pdd/fast/solve_pair.h"
+
+using namespace pdd;
+
+BOOST_AUTO_TEST_CASE(golden_files_read_back_exactly) {
+  // Reading a golden file and writing its records again gives the same bytes.
+  for (const auto& file : test::property_fixture_files()) {
+    const std::string path = compare::golden_path(PDD_FIXTURES_DIR, file);
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    std::string again;
+    for (const auto& r : compare::read_golden(path)) again += compare::exact_record(r).dump() + "\n";
+    BOOST_TEST(again == text.str(), file);
+  }
+  const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, "smoke.json"));
+  BOOST_TEST(golden.size() == 6u);
+  BOOST_TEST(golden[1].pdd2_static == reference::Rational(1, 64));
+  BOOST_TEST(golden[1].rigid_dir->str() == "FV:3");
+}
+
+BOOST_AUTO_TEST_CASE(fast_engine_within_tolerance_of_golden) {
+  int compared = 0;
+  for (const auto& file : test::property_fixture_files()) {
+    const auto pairs = test::load_pairs(file);
+    const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, file));
+    BOOST_REQUIRE(golden.size() == pairs.size());
+    const auto fast = fast::solve_batch(pairs);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const auto c = compare::compare_pair(pairs[k], golden[k], fast[k], compare::kDefaultToleranceFactor);
+      BOOST_TEST(!c.over_tolerance(), pairs[k].name);
+      for (int v = 0; v < 7; ++v)
+        BOOST_TEST(c.rel_error[v] <= c.tolerance[v], pairs[k].name << " " << compare::kValueKeys[v]);
+      for (int l = 0; l < 4; ++l)
+        BOOST_TEST((c.labels[l] != compare::LabelVerdict::Differ), pairs[k].name << " " << compare::kLabelKeys[l]);
+      ++compared;
+    }
+  }
+  BOOST_TEST(compared >= 85);
+}
