@@ -163,7 +163,8 @@ PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, do
       const double nn = m0 * m0 + m1 * m1 + m2 * m2;
       const double dp = max2(0.0, max2(g1, g2)) - h - min2(0.0, min2(q1, q2));
       const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
-      const double d2p = dp * dp / nn, d2m = dm * dm / nn;  // padding lanes: 0/0, never read
+      // one division per lane (padding lanes: 1/0, never read)
+      const double inv = 1.0 / nn, d2p = dp * dp * inv, d2m = dm * dm * inv;
       const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
       const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
       const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;

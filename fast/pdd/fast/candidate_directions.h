@@ -6,7 +6,7 @@
 //           label(set, k)  SPEC §3 label,
 //           depth[k]   D = max_i n.s_i − min_j n.r_j for the oriented unnormalised n, so that
 //                      delta(n) = D/|n| (SPEC §4),
-//           nn[k]      n.n,   delta_sq[k] = D²/(n.n),
+//           nn[k]      n.n,   delta_sq[k] = D²/(n.n) (edge lanes: D²·(1/n.n)),
 //         and, materialised on demand by candidate(set, k): n, the heights H = n.(x − o) of the 8
 //         vertices (o a point of the candidate's own choosing; only height differences are used)
 //         and the constrained masks C_A, C_B. `intersecting` = every D > 0 (min delta > 0).

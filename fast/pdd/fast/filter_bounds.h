@@ -17,8 +17,9 @@
 //           = 8uL².                                               E2 = 64 u L²     (8x slack)
 //   deg 3 — triple product (cross of differences)·(difference), e.g. orient3d, EE g_k, heights:
 //           |value| <= 6L³, error <= 3·(8uL²·L + 2L²·uL) + 3u·6L³ = 48uL³. The worst deg-3
-//           quantity we sign is an EE depth D = g − (h_x + q) with three such terms:
-//           48 + (48 + 48 + 12) + 18 = 174uL³.                     E3 = 512 u L³    (2.9x slack)
+//           quantity we sign is an EE depth D = max(0,g) − h_x − min(0,q) (or its mirror) with
+//           three such terms and two roundings: 3·48 + u·(12 + 18)L³ = 174uL³.
+//                                                                  E3 = 512 u L³    (2.9x slack)
 //           The parallel-edge normal n = (e·e)w − (w·e)e is also degree 3 with |n_k| <= 6L³ and
 //           error <= 48uL³ (e·e: 15uL²; each product term 21uL³; subtraction 6uL³).
 //   deg 4 — heights along the parallel-edge normal n·(x − y): |value| <= 18L⁴, error <=
