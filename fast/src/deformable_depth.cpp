@@ -30,7 +30,8 @@ Choice sweep(const CandidateSet& set, double coeff, int hint, Value value) {
   }
   Choice ch;
   ch.index = first_tied_minimum(v, set.count);
-  if (ch.index >= 0) ch.value = v[ch.index];
+  ch.value = v[ch.index];
+  ch.code = set.code[ch.index];
   return ch;
 }
 
@@ -88,7 +89,7 @@ Choice pdd2_accel(const CandidateSet& set, int k) {
   if (!set.intersecting || k <= 0) return {};
   if (k == 1) {
     const int i = rigid_pd2(set).index;
-    return {deformable_value(candidate(set, i)), i};
+    return {deformable_value(candidate(set, i)), i, set.code[i]};
   }
   int order[kMaxCandidates];
   const int m = accel_order(set, k, order);
@@ -99,7 +100,7 @@ Choice pdd2_accel(const CandidateSet& set, int k) {
   int best = -1;  // among ties, the first in canonical order
   for (int r = 0; r < m; ++r)
     if (ties_with_min(v[r], vmin) && (best < 0 || order[r] < order[best])) best = r;
-  return {v[best], order[best]};
+  return {v[best], order[best], set.code[order[best]]};
 }
 
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
@@ -137,7 +138,9 @@ Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
 Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
   double rigid = 0.0;
   Candidate best;
-  if (k == 1 && quick_rigid(A, B, rigid, best)) return {deformable_value(best), -1};
+  if (k == 1 && quick_rigid(A, B, rigid, best))
+    return {deformable_value(best), -1,
+            pack_label(best.label.kind, best.label.a, best.label.b, best.label.orientation)};
   return on_pair(A, B, [k](const CandidateSet& s) { return pdd2_accel(s, k); });
 }
 

@@ -12,6 +12,7 @@ Choice rigid_pd2(const CandidateSet& set) {
   Choice ch;
   ch.index = first_tied_minimum(set.delta_sq, set.count);
   ch.value = set.delta_sq[ch.index];
+  ch.code = set.code[ch.index];
   return ch;
 }
 
@@ -33,7 +34,10 @@ double eq11_pd2(const CandidateSet& set) {
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B) {
   Choice ch;
   Candidate best;
-  if (quick_rigid(A, B, ch.value, best)) return ch;  // no set: index stays −1
+  if (quick_rigid(A, B, ch.value, best)) {  // no set: index stays −1
+    ch.code = pack_label(best.label.kind, best.label.a, best.label.b, best.label.orientation);
+    return ch;
+  }
   CandidateSet set;
   if (build_candidates(A, B, set) != BuildStatus::Ok) return {};
   return rigid_pd2(set);

@@ -183,3 +183,23 @@ BOOST_AUTO_TEST_CASE(vertex_permutation_invariance) {
       BOOST_TEST(close_rel(a, b, 1e-9, 1e-12), a << " vs " << b);
   }
 }
+
+// The hot-path overloads over raw tetrahedra (what a benchmark times) return exactly what
+// solve_pair reports: same values bit for bit, same labels.
+BOOST_AUTO_TEST_CASE(hot_path_overloads_match_solve_pair) {
+  for (const auto& p : random_pairs(200, 41, false)) {
+    const auto r = solve_pair(p);
+    const Choice rigid = rigid_pd2(p.A, p.B), st = pdd2_static(p.A, p.B), def = pdd2(p.A, p.B),
+                 rel = pdd2_relaxed(p.A, p.B), a1 = pdd2_accel(p.A, p.B, 1),
+                 a6 = pdd2_accel(p.A, p.B, 6);
+    BOOST_TEST(rigid.value == r.rigid_pd2);
+    BOOST_TEST(st.value == r.pdd2_static);
+    BOOST_TEST(def.value == r.pdd2);
+    BOOST_TEST(rel.value == r.pdd2_relaxed);
+    BOOST_TEST(a1.value == r.pdd2_accel1);
+    BOOST_TEST(a6.value == r.pdd2_accel6);
+    if (!r.intersecting) continue;
+    BOOST_TEST((rigid.label() == *r.rigid_dir && st.label() == *r.pdd2_static_dir &&
+                def.label() == *r.pdd2_dir && rel.label() == *r.pdd2_relaxed_dir));
+  }
+}

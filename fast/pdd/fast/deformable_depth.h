@@ -1,7 +1,8 @@
 // deformable_depth.h — deformable penetration depth PD_d² over all candidates (SPEC §5).
 //
 // Input:  a CandidateSet of an intersecting pair (candidate_directions.h).
-// Output: Choice{value = PD_d², index = argmin candidate, first in canonical order among ties}:
+// Output: Choice{value = PD_d², index and label of the argmin candidate, the first in canonical
+//         order among ties}:
 //   pdd2_static   case 1, A static (paper Sec. IV); undecidable EE directions are infeasible and
 //                 skipped (SPEC §5).
 //   pdd2          case 2, both deform (paper Sec. V, eq. 10).

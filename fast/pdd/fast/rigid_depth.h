@@ -15,7 +15,9 @@ namespace pdd::fast {
 
 struct Choice {
   double value = 0.0;  // squared depth
-  int index = -1;      // index into CandidateSet::c, −1 when none
+  int index = -1;      // index of the candidate in the set, −1 when none or no set was built
+  LabelCode code = 0;  // packed SPEC §3 label of the choice (valid when value > 0)
+  DirectionLabel label() const { return unpack_label(code); }
 };
 
 Choice rigid_pd2(const CandidateSet& set);
