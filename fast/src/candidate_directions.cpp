@@ -284,7 +284,7 @@ void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, 
   c.hB[y] = c.hB[x];        // exactly: n.(r_y − r_x) = 0 (parallel to e)
 }
 
-// Orients a draft by s into a full candidate (shared by Builder::emit and quick_rigid).
+// Orients a draft by s into a full candidate.
 void orient_draft(const Draft& d, double s, DirectionGeometry& c) {
   double hi = s * d.hA[0], lo = s * d.hB[0];  // running max of s·hA, min of s·hB
   for (int m = 0; m < 4; ++m) {
@@ -487,20 +487,6 @@ void lane_candidate(const EdgeLanes& L, int i, double s, Candidate& c) {
   c.conB = edge_mask(b);
 }
 
-// Minimum of the edge candidates' delta² (lanes b < 6; `second` is +inf when absent).
-double lanes_minimum(const EdgeLanes& L) {
-  double m[4] = {L.first[0], L.first[0], L.first[0], L.first[0]};
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; b += 2) {
-      const int i = kLaneStride * a + b;
-      m[0] = L.first[i] < m[0] ? L.first[i] : m[0];
-      m[1] = L.second[i] < m[1] ? L.second[i] : m[1];
-      m[2] = L.first[i + 1] < m[2] ? L.first[i + 1] : m[2];
-      m[3] = L.second[i + 1] < m[3] ? L.second[i + 1] : m[3];
-    }
-  return min2(min2(m[0], m[1]), min2(m[2], m[3]));
-}
-
 bool lanes_clear(const EdgeLanes& L) {
   double any = 0.0;
   for (int a = 0; a < 6; ++a)
@@ -508,9 +494,27 @@ bool lanes_clear(const EdgeLanes& L) {
   return any == 0.0;
 }
 
+// The canonical list of the lanes (Builder::edge_pairs without labels): delta² and source.
+void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
+  int k = q.count;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const int i = kLaneStride * a + b;
+      const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
+      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+      q.delta_sq[k] = L.first[i];
+      q.delta_sq[k + 1] = L.d2minus[i];
+      q.src[k] = std::int16_t(8 + 2 * i + flip);
+      q.src[k + 1] = std::int16_t(8 + 2 * i + 1);
+      k += 1 + undecidable;
+    }
+  q.count = k;
+}
+
 }  // namespace
 
-bool quick_rigid(const TetVertices& A, const TetVertices& B, double& value, Candidate& best) {
+bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
+  q.count = 0;
   if (!all_finite(A) || !all_finite(B)) return false;
   const FilterBounds fb = filter_bounds(A, B);
   Precomputed p;
@@ -518,45 +522,44 @@ bool quick_rigid(const TetVertices& A, const TetVertices& B, double& value, Cand
   if (!(std::fabs(p.detA) > fb.deg3) || !(std::fabs(p.detB) > fb.deg3)) return false;
   p.oA = p.detA > 0 ? 1 : -1;
   p.oB = p.detB > 0 ? 1 : -1;
-  DirectionGeometry geo[8];
-  double v[8];
   for (int f = 0; f < 8; ++f) {
-    face_geometry(p, f, geo[f]);
-    if (!(geo[f].depth > fb.deg3)) return false;
-    v[f] = geo[f].depth * geo[f].depth / geo[f].nn;
+    DirectionGeometry& g = q.faces[f];
+    face_geometry(p, f, g);
+    if (!(g.depth > fb.deg3)) return false;
+    q.delta_sq[f] = g.depth * g.depth / g.nn;
+    q.src[f] = std::int16_t(f);
   }
-  EdgeLanes L;
-  edge_lanes(p, fb.deg2, fb.deg3, L);
-  if (!lanes_clear(L)) return false;
-  // first_tied_minimum over the canonical sequence (faces, then lanes: first, second)
-  const double vmin = min2(minimum(v, 8), lanes_minimum(L));
-  for (int f = 0; f < 8; ++f)
-    if (ties_with_min(v[f], vmin)) {
-      value = v[f];
-      static_cast<DirectionGeometry&>(best) = geo[f];
-      best.label = f < 4 ? DirectionLabel::fv(f) : DirectionLabel::vf(f - 4);
-      return true;
-    }
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) {
-      const int i = kLaneStride * a + b;
-      const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
-      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
-      if (ties_with_min(L.first[i], vmin)) {
-        value = L.first[i];
-        lane_candidate(L, i, flip ? -1.0 : 1.0, best);
-        best.label = DirectionLabel::ee(
-            a, b, undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
-        return true;
-      }
-      if (undecidable && ties_with_min(L.second[i], vmin)) {
-        value = L.second[i];
-        lane_candidate(L, i, -1.0, best);
-        best.label = DirectionLabel::ee(a, b, EdgeOrientation::Minus);
-        return true;
-      }
-    }
-  return false;  // unreachable: vmin is attained
+  q.count = 8;
+  edge_lanes(p, fb.deg2, fb.deg3, q.edges);
+  if (!lanes_clear(q.edges)) return false;
+  quick_edge_list(q.edges, q);
+  return true;
+}
+
+LabelCode label_code(const QuickCandidates& q, int k) {
+  const int src = q.src[k];
+  if (src < 8)
+    return src < 4 ? pack_label(ContactKind::FV, src, 0, EdgeOrientation::Decided)
+                   : pack_label(ContactKind::VF, src - 4, 0, EdgeOrientation::Decided);
+  const int i = (src - 8) / 2;
+  const bool minus = (src - 8) % 2;
+  const bool undecidable = (q.edges.g1[i] > 0.0) != (q.edges.g2[i] > 0.0);
+  return pack_label(ContactKind::EE, i / kLaneStride, i % kLaneStride,
+                    !undecidable ? EdgeOrientation::Decided
+                    : minus      ? EdgeOrientation::Minus
+                                 : EdgeOrientation::Plus);
+}
+
+Candidate candidate(const QuickCandidates& q, int k) {
+  Candidate c;
+  c.label = unpack_label(label_code(q, k));
+  const int src = q.src[k];
+  if (src < 8) {
+    static_cast<DirectionGeometry&>(c) = q.faces[src];
+    return c;
+  }
+  lane_candidate(q.edges, (src - 8) / 2, (src - 8) % 2 ? -1.0 : 1.0, c);
+  return c;
 }
 
 }  // namespace pdd::fast

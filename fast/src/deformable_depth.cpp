@@ -10,11 +10,15 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+inline bool usable(const CandidateSet& set) { return set.intersecting && set.count > 0; }
+inline bool usable(const QuickCandidates& q) { return q.count > 0; }  // intersecting by contract
+
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
-// the best value so far (header), then pick the first tied minimum.
-template <class Value>
-Choice sweep(const CandidateSet& set, double coeff, int hint, Value value) {
-  if (!set.intersecting || set.count == 0) return {};
+// the best value so far (header), then pick the first tied minimum. List: CandidateSet or
+// QuickCandidates (same candidates, same order, same values).
+template <class List, class Value>
+Choice sweep(const List& set, double coeff, int hint, Value value) {
+  if (!usable(set)) return {};
   double v[kMaxCandidates];
   double best = kInf;
   if (hint >= 0 && hint < set.count) best = v[hint] = value(candidate(set, hint));
@@ -31,8 +35,39 @@ Choice sweep(const CandidateSet& set, double coeff, int hint, Value value) {
   Choice ch;
   ch.index = first_tied_minimum(v, set.count);
   ch.value = v[ch.index];
-  ch.code = set.code[ch.index];
+  ch.code = label_code(set, ch.index);
   return ch;
+}
+
+template <class List>
+int accel_order_of(const List& set, int k, int* out) {
+  double d[kMaxCandidates];
+  for (int i = 0; i < set.count; ++i) d[i] = delta2(set, i);
+  const int m = k < set.count ? k : set.count;
+  for (int r = 0; r < m; ++r) {
+    out[r] = first_tied_minimum(d, set.count);
+    d[out[r]] = kInf;  // taken
+  }
+  return m;
+}
+
+template <class List>
+Choice accel_of(const List& set, int k) {
+  if (!usable(set) || k <= 0) return {};
+  if (k == 1) {
+    const int i = rigid_pd2(set).index;
+    return {deformable_value(candidate(set, i)), i, label_code(set, i)};
+  }
+  int order[kMaxCandidates];
+  const int m = accel_order_of(set, k, order);
+  if (m <= 0) return {};
+  double v[kMaxCandidates];
+  for (int r = 0; r < m; ++r) v[r] = deformable_value(candidate(set, order[r]));
+  const double vmin = minimum(v, m);
+  int best = -1;  // among ties, the first in canonical order
+  for (int r = 0; r < m; ++r)
+    if (ties_with_min(v[r], vmin) && (best < 0 || order[r] < order[best])) best = r;
+  return {v[best], order[best], label_code(set, order[best])};
 }
 
 }  // namespace
@@ -73,35 +108,19 @@ Choice pdd2(const CandidateSet& set, int hint) {
 Choice pdd2_relaxed(const CandidateSet& set, int hint) {
   return sweep(set, kDeformableBoundCoeff, hint, relaxed_value);
 }
-
-int accel_order(const CandidateSet& set, int k, int* out) {
-  double d[kMaxCandidates];
-  for (int i = 0; i < set.count; ++i) d[i] = delta2(set, i);
-  const int m = k < set.count ? k : set.count;
-  for (int r = 0; r < m; ++r) {
-    out[r] = first_tied_minimum(d, set.count);
-    d[out[r]] = kInf;  // taken
-  }
-  return m;
+Choice pdd2_static(const QuickCandidates& q, int hint) {
+  return sweep(q, kStaticBoundCoeff, hint, static_value);
+}
+Choice pdd2(const QuickCandidates& q, int hint) {
+  return sweep(q, kDeformableBoundCoeff, hint, deformable_value);
+}
+Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
+  return sweep(q, kDeformableBoundCoeff, hint, relaxed_value);
 }
 
-Choice pdd2_accel(const CandidateSet& set, int k) {
-  if (!set.intersecting || k <= 0) return {};
-  if (k == 1) {
-    const int i = rigid_pd2(set).index;
-    return {deformable_value(candidate(set, i)), i, set.code[i]};
-  }
-  int order[kMaxCandidates];
-  const int m = accel_order(set, k, order);
-  if (m <= 0) return {};
-  double v[kMaxCandidates];
-  for (int r = 0; r < m; ++r) v[r] = deformable_value(candidate(set, order[r]));
-  const double vmin = minimum(v, m);
-  int best = -1;  // among ties, the first in canonical order
-  for (int r = 0; r < m; ++r)
-    if (ties_with_min(v[r], vmin) && (best < 0 || order[r] < order[best])) best = r;
-  return {v[best], order[best], set.code[order[best]]};
-}
+int accel_order(const CandidateSet& set, int k, int* out) { return accel_order_of(set, k, out); }
+Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
+Choice pdd2_accel(const QuickCandidates& q, int k) { return accel_of(q, k); }
 
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB) {
@@ -118,8 +137,11 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 }
 
 namespace {
+// The quick list when it decides, else the full candidate set (both on the stack).
 template <class F>
 Choice on_pair(const TetVertices& A, const TetVertices& B, F f) {
+  QuickCandidates q;
+  if (quick_candidates(A, B, q)) return f(q);
   CandidateSet set;
   if (build_candidates(A, B, set) != BuildStatus::Ok || !set.intersecting) return {};
   return f(set);
@@ -127,21 +149,16 @@ Choice on_pair(const TetVertices& A, const TetVertices& B, F f) {
 }  // namespace
 
 Choice pdd2_static(const TetVertices& A, const TetVertices& B) {
-  return on_pair(A, B, [](const CandidateSet& s) { return pdd2_static(s, rigid_pd2(s).index); });
+  return on_pair(A, B, [](const auto& s) { return pdd2_static(s, rigid_pd2(s).index); });
 }
 Choice pdd2(const TetVertices& A, const TetVertices& B) {
-  return on_pair(A, B, [](const CandidateSet& s) { return pdd2(s, rigid_pd2(s).index); });
+  return on_pair(A, B, [](const auto& s) { return pdd2(s, rigid_pd2(s).index); });
 }
 Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
-  return on_pair(A, B, [](const CandidateSet& s) { return pdd2_relaxed(s, rigid_pd2(s).index); });
+  return on_pair(A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); });
 }
 Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
-  double rigid = 0.0;
-  Candidate best;
-  if (k == 1 && quick_rigid(A, B, rigid, best))
-    return {deformable_value(best), -1,
-            pack_label(best.label.kind, best.label.a, best.label.b, best.label.orientation)};
-  return on_pair(A, B, [k](const CandidateSet& s) { return pdd2_accel(s, k); });
+  return on_pair(A, B, [k](const auto& s) { return pdd2_accel(s, k); });
 }
 
 }  // namespace pdd::fast

@@ -16,6 +16,14 @@ Choice rigid_pd2(const CandidateSet& set) {
   return ch;
 }
 
+Choice rigid_pd2(const QuickCandidates& q) {
+  Choice ch;
+  ch.index = first_tied_minimum(q.delta_sq, q.count);
+  ch.value = q.delta_sq[ch.index];
+  ch.code = label_code(q, ch.index);
+  return ch;
+}
+
 double eq11_pd2(const CandidateSet& set) {
   if (!set.intersecting) return 0.0;
   double best = -1.0;  // min overlap²/nn over candidates
@@ -32,12 +40,8 @@ double eq11_pd2(const CandidateSet& set) {
 }
 
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B) {
-  Choice ch;
-  Candidate best;
-  if (quick_rigid(A, B, ch.value, best)) {  // no set: index stays −1
-    ch.code = pack_label(best.label.kind, best.label.a, best.label.b, best.label.orientation);
-    return ch;
-  }
+  QuickCandidates q;
+  if (quick_candidates(A, B, q)) return rigid_pd2(q);
   CandidateSet set;
   if (build_candidates(A, B, set) != BuildStatus::Ok) return {};
   return rigid_pd2(set);

@@ -6,7 +6,6 @@
 #include "fast_test_util.h"
 #include "pdd/fast/candidate_directions.h"
 #include "pdd/fast/exact_predicates.h"
-#include "pdd/fast/tie_tolerance.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -124,27 +123,28 @@ BOOST_AUTO_TEST_CASE(degenerate_and_nearly_degenerate) {
   BOOST_TEST(orientation_sign_exact(almost) != 0);
 }
 
-// quick_rigid (no set) must reproduce build_candidates + rigid_pd2 bit for bit, and its
-// candidate must equal the set's materialised argmin (same label, n, heights, D, n.n).
-BOOST_AUTO_TEST_CASE(quick_rigid_matches_the_set) {
+// quick_candidates (the hot-path list) must reproduce build_candidates bit for bit: same
+// count, same labels in the same order, same delta², and every materialised candidate equal
+// (n, n.n, D, heights, constrained masks).
+BOOST_AUTO_TEST_CASE(quick_candidates_match_the_set) {
   int quick = 0, intersecting = 0;
   for (const TetPair& p : random_pairs(600, 37, false)) {
     CandidateSet set;
     build_candidates(p.A, p.B, set);
     intersecting += set.intersecting;
-    double value = -1;
-    Candidate best;
-    if (!quick_rigid(p.A, p.B, value, best)) continue;  // callers then use the set
+    QuickCandidates q;
+    if (!quick_candidates(p.A, p.B, q)) continue;  // callers then use the set
     ++quick;
     BOOST_REQUIRE(set.intersecting);
-    const int k = first_tied_minimum(set.delta_sq, set.count);
-    const Candidate c = candidate(set, k);
-    BOOST_TEST(value == set.delta_sq[k]);
-    BOOST_TEST(best.label == c.label);
-    BOOST_TEST((best.depth == c.depth && best.nn == c.nn && best.conA == c.conA &&
-                best.conB == c.conB));
-    for (int m = 0; m < 4; ++m) BOOST_TEST((best.hA[m] == c.hA[m] && best.hB[m] == c.hB[m]));
-    for (int m = 0; m < 3; ++m) BOOST_TEST(best.n[m] == c.n[m]);
+    BOOST_REQUIRE(q.count == set.count);
+    for (int k = 0; k < set.count; ++k) {
+      const Candidate a = candidate(q, k), c = candidate(set, k);
+      BOOST_TEST(q.delta_sq[k] == set.delta_sq[k]);
+      BOOST_TEST(a.label == c.label);
+      BOOST_TEST((a.depth == c.depth && a.nn == c.nn && a.conA == c.conA && a.conB == c.conB));
+      for (int m = 0; m < 4; ++m) BOOST_TEST((a.hA[m] == c.hA[m] && a.hB[m] == c.hB[m]));
+      for (int m = 0; m < 3; ++m) BOOST_TEST(a.n[m] == c.n[m]);
+    }
   }
   // every intersecting random pair is decided quickly (no degeneracy), the others are not
   BOOST_TEST(quick == intersecting);

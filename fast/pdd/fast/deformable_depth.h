@@ -49,6 +49,12 @@ Choice pdd2(const CandidateSet& set, int hint = -1);
 Choice pdd2_relaxed(const CandidateSet& set, int hint = -1);
 Choice pdd2_accel(const CandidateSet& set, int k);
 
+// The same over the hot-path list (quick_candidates): identical results.
+Choice pdd2_static(const QuickCandidates& q, int hint = -1);
+Choice pdd2(const QuickCandidates& q, int hint = -1);
+Choice pdd2_relaxed(const QuickCandidates& q, int hint = -1);
+Choice pdd2_accel(const QuickCandidates& q, int k);
+
 // The first k candidate indices in ascending delta order, stable in canonical order (ties by
 // tie_tolerance.h). Writes min(k, set.count) indices to `out`; returns that count.
 int accel_order(const CandidateSet& set, int k, int* out);
@@ -57,8 +63,8 @@ int accel_order(const CandidateSet& set, int k, int* out);
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);
 
-// Convenience over raw tetrahedra (candidate set on the stack; pdd2_accel with k = 1 takes
-// quick_rigid when it decides, index −1 then); value 0 when not intersecting.
+// Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the full
+// candidate set (on the stack); value 0 when not intersecting. The hot functions to time.
 Choice pdd2_static(const TetVertices& A, const TetVertices& B);
 Choice pdd2(const TetVertices& A, const TetVertices& B);
 Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B);

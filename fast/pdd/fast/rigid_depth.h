@@ -21,10 +21,12 @@ struct Choice {
 };
 
 Choice rigid_pd2(const CandidateSet& set);
+Choice rigid_pd2(const QuickCandidates& q);  // same candidates, same result
 double eq11_pd2(const CandidateSet& set);
 
-// Convenience over raw tetrahedra: quick_rigid when it decides (index −1: no set), else the
-// candidate set on the stack; value 0 when the pair does not intersect or is invalid.
+// Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the
+// candidate set (index then refers to that list); value 0 when the pair does not intersect or
+// is invalid.
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B);
 
 }  // namespace pdd::fast
