@@ -46,11 +46,7 @@ Vec3d grid_point(Rng& r) {
 }
 TetVertices grid_tet(Rng& r) { return {grid_point(r), grid_point(r), grid_point(r), grid_point(r)}; }
 
-double volume(const TetVertices& t) {
-  const Vec3d a = sub(t[1], t[0]), b = sub(t[2], t[0]), c = sub(t[3], t[0]);
-  return std::abs(a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                  a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
-}
+double volume(const TetVertices& t) { return tetrahedron_volume(t); }
 
 bool valid(const TetVertices& t) { return !reference::validate_tetrahedron(t, "").has_value(); }
 
@@ -313,6 +309,12 @@ std::vector<Family> family_table(const PaperProtocol& pp) {
 }
 
 }  // namespace
+
+double tetrahedron_volume(const TetVertices& t) {
+  const Vec3d a = sub(t[1], t[0]), b = sub(t[2], t[0]), c = sub(t[3], t[0]);
+  return std::abs(a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                  a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+}
 
 const std::vector<FamilyInfo>& fixture_families() {
   static const std::vector<FamilyInfo> infos = [] {

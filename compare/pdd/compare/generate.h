@@ -39,6 +39,9 @@ struct PaperProtocol {
 std::vector<TetPair> generate_family(const std::string& family, std::uint64_t seed,
                                      std::size_t count, const PaperProtocol& protocol = {});
 
+// |volume| of a tetrahedron in double precision (the protocol's filter, volume statistics).
+double tetrahedron_volume(const TetVertices& t);
+
 // Expected exact values recorded in a pair's tags ("key=value"); empty when none.
 std::vector<std::pair<std::string, std::string>> tag_expectations(const TetPair& pair);
 
