@@ -6,6 +6,7 @@
 #include "fast_test_util.h"
 #include "pdd/fast/candidate_directions.h"
 #include "pdd/fast/exact_predicates.h"
+#include "pdd/fast/quick_candidates.h"
 
 using namespace pdd;
 using namespace pdd::fast;

@@ -95,28 +95,6 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 // Candidate k of the set with its heights (cheap: a few loads and sign flips).
 Candidate candidate(const CandidateSet& set, int k);
 
-// The candidate list of the hot path, when every filter verdict is clear (no exact fallback, no
-// label array): the same candidates, in the same canonical order, with bit-identical delta²,
-// heights, n and n.n as build_candidates. Candidate k is a face (src < 8) or an edge lane
-// (src = 8 + 2·lane + [oriented by −n]).
-struct QuickCandidates {
-  int count = 0;
-  double delta_sq[kMaxCandidates];
-  std::int16_t src[kMaxCandidates];
-  DirectionGeometry faces[8];
-  EdgeLanes edges;
-};
-
-// Fills `q` and returns true when the pair is valid, intersecting and every filter verdict
-// clear; returns false otherwise (degenerate or near-degenerate input, non-intersecting or
-// invalid pair) — then use build_candidates.
-bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q);
-
-// Candidate k of a quick list (label included).
-Candidate candidate(const QuickCandidates& q, int k);
-inline double delta2(const QuickCandidates& q, int k) { return q.delta_sq[k]; }
-LabelCode label_code(const QuickCandidates& q, int k);
-
 // SPEC §3 label of candidate k.
 inline DirectionLabel label(const CandidateSet& set, int k) { return unpack_label(set.code[k]); }
 

@@ -26,6 +26,7 @@
 #pragma once
 
 #include "pdd/fast/candidate_directions.h"
+#include "pdd/fast/quick_candidates.h"
 #include "pdd/fast/direction_qp.h"
 #include "pdd/fast/rigid_depth.h"
 #include "pdd/pair_result.h"

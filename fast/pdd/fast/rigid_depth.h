@@ -10,6 +10,7 @@
 #pragma once
 
 #include "pdd/fast/candidate_directions.h"
+#include "pdd/fast/quick_candidates.h"
 
 namespace pdd::fast {
 

@@ -1,0 +1,137 @@
+// direction_geometry.cpp — precomputation and vectorised edge-pair lanes. See the header.
+#include "direction_geometry.h"
+
+#include <limits>
+
+namespace pdd::fast::detail {
+namespace {
+
+void edges_and_faces(const TetVertices& T, V3* e, V3* N, double* det) {
+  for (int a = 0; a < 6; ++a) sub(T[kEdges[a][1]], T[kEdges[a][0]], e[a]);
+  // face f's (v1 − v0, v2 − v0) are edge vectors: faces 3,2,1 start at vertex 0, face 0 at 1.
+  cross(e[3], e[4], N[0]);  // (s2 − s1) × (s3 − s1)
+  cross(e[1], e[2], N[1]);  // (s2 − s0) × (s3 − s0)
+  cross(e[0], e[2], N[2]);  // (s1 − s0) × (s3 − s0)
+  cross(e[0], e[1], N[3]);  // (s1 − s0) × (s2 − s0)
+  *det = dot(N[3], e[2]);   // ((s1 − s0) × (s2 − s0)) . (s3 − s0)
+}
+
+// For lane b and its m-th vertex j off edge b = (x, y): −eps(x,y,j) and the face f' = 6−x−y−j,
+// so that n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f'.
+struct OffEdge {
+  int sign[6][2], face[6][2];
+};
+constexpr OffEdge make_off_edge() {
+  OffEdge t{};
+  for (int b = 0; b < 6; ++b)
+    for (int m = 0; m < 2; ++m) {
+      const int x = kEdges[b][0], y = kEdges[b][1], j = kOther[b][m];
+      t.sign[b][m] = -parity(x, y, j);
+      t.face[b][m] = 6 - x - y - j;
+    }
+  return t;
+}
+constexpr OffEdge kOffEdge = make_off_edge();
+
+void lane_tables(Precomputed& p) {
+  for (int b = 0; b < kLaneStride; ++b) {  // padding lanes 6, 7: zeros, never read
+    p.eBx[b] = p.eBy[b] = p.eBz[b] = 0.0;
+    for (int u = 0; u < 3; ++u)
+      for (int k = 0; k < 3; ++k) p.W[u][k][b] = 0.0;
+    for (int f = 0; f < 4; ++f) p.G[f][b] = 0.0;
+    for (int a = 0; a < 6; ++a) p.Q[a][0][b] = p.Q[a][1][b] = 0.0;
+  }
+  for (int b = 0; b < 6; ++b) {
+    p.eBx[b] = p.eB[b][0];
+    p.eBy[b] = p.eB[b][1];
+    p.eBz[b] = p.eB[b][2];
+    for (int u = 0; u < 3; ++u)
+      for (int k = 0; k < 3; ++k) p.W[u][k][b] = p.d[u][kEdges[b][0]][k];
+    for (int f = 0; f < 4; ++f) p.G[f][b] = p.GA[b][f];
+    for (int a = 0; a < 6; ++a)
+      for (int m = 0; m < 2; ++m) p.Q[a][m][b] = kOffEdge.sign[b][m] * p.QB[a][kOffEdge.face[b][m]];
+  }
+}
+
+}  // namespace
+
+void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
+  edges_and_faces(A, p.eA, p.NA, &p.detA);
+  edges_and_faces(B, p.eB, p.NB, &p.detB);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) sub(B[j], A[i], p.d[i][j]);
+  for (int e = 0; e < 6; ++e)
+    for (int f = 0; f < 4; ++f) {
+      p.GA[e][f] = dot(p.eB[e], p.NA[f]);
+      p.QB[e][f] = dot(p.eA[e], p.NB[f]);
+    }
+  lane_tables(p);
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define PDD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define PDD_VECTOR_CLONES
+#endif
+
+// All 36 edge pairs at once (lane 8a + b), unoriented n = eB × eA, heights relative to s_u:
+//   g_k = eps(u,v,k) eB.NA_f (A's free vertices), hx = n.(r_x − s_u), hx + q_m (B's free),
+//   D(+n) = max(0, g1, g2) − hx − min(0, q1, q2),  D(−n) = −min(0, g1, g2) + hx + max(0, q1, q2),
+// and the filter verdicts (EdgeLanes). Branch-free (& and | on bools) so that it vectorises.
+PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, double e3,
+                                  EdgeLanes& __restrict L) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 6; ++a) {
+    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
+    const double ax = p.eA[a][0], ay = p.eA[a][1], az = p.eA[a][2];
+    const double s1 = parity(u, v, k1), s2 = parity(u, v, k2);
+    const double* G1 = p.G[6 - u - v - k1];
+    const double* G2 = p.G[6 - u - v - k2];
+    const double* Q1 = p.Q[a][0];
+    const double* Q2 = p.Q[a][1];
+    const double *wx = p.W[u][0], *wy = p.W[u][1], *wz = p.W[u][2];
+    const int o = kLaneStride * a;
+    for (int b = 0; b < kLaneStride; ++b) {
+      const double m0 = p.eBy[b] * az - p.eBz[b] * ay;
+      const double m1 = p.eBz[b] * ax - p.eBx[b] * az;
+      const double m2 = p.eBx[b] * ay - p.eBy[b] * ax;
+      const double h = m0 * wx[b] + m1 * wy[b] + m2 * wz[b];
+      const double g1 = s1 * G1[b], g2 = s2 * G2[b], q1 = Q1[b], q2 = Q2[b];
+      const double nn = m0 * m0 + m1 * m1 + m2 * m2;
+      const double dp = max2(0.0, max2(g1, g2)) - h - min2(0.0, min2(q1, q2));
+      const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
+      // one division per lane (padding lanes: 1/0, never read)
+      const double inv = 1.0 / nn, d2p = dp * dp * inv, d2m = dm * dm * inv;
+      const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
+      const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
+      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+      const bool unclear = (nmax <= e2) | (std::fabs(g1) <= e3) | (std::fabs(g2) <= e3) |
+                           ((!(dp > e3)) & (!flip)) | ((!(dm > e3)) & (flip | undecidable));
+      L.n0[o + b] = m0;
+      L.n1[o + b] = m1;
+      L.n2[o + b] = m2;
+      L.nn[o + b] = nn;
+      L.hx[o + b] = h;
+      L.g1[o + b] = g1;
+      L.g2[o + b] = g2;
+      L.q1[o + b] = q1;
+      L.q2[o + b] = q2;
+      L.dplus[o + b] = dp;
+      L.dminus[o + b] = dm;
+      L.d2plus[o + b] = d2p;
+      L.d2minus[o + b] = d2m;
+      L.unclear[o + b] = unclear ? 1.0 : 0.0;
+      L.first[o + b] = flip ? d2m : d2p;
+      L.second[o + b] = undecidable ? d2m : kInf;
+    }
+  }
+}
+
+bool all_finite(const TetVertices& T) {
+  for (const auto& v : T)
+    for (double x : v)
+      if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace pdd::fast::detail

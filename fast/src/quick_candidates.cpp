@@ -1,0 +1,91 @@
+// quick_candidates.cpp — the hot path's candidate list (no labels emitted, no exact
+// fallback: it declines instead). See pdd/fast/quick_candidates.h.
+#include "pdd/fast/quick_candidates.h"
+
+#include <cmath>
+
+#include "direction_geometry.h"
+#include "pdd/fast/filter_bounds.h"
+
+namespace pdd::fast {
+
+using namespace detail;
+
+namespace {
+
+bool lanes_clear(const EdgeLanes& L) {
+  double any = 0.0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) any += L.unclear[kLaneStride * a + b];
+  return any == 0.0;
+}
+
+// The canonical list of the lanes (Builder::edge_pairs without labels): delta² and source.
+void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
+  int k = q.count;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const int i = kLaneStride * a + b;
+      const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
+      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+      q.delta_sq[k] = L.first[i];
+      q.delta_sq[k + 1] = L.d2minus[i];
+      q.src[k] = std::int16_t(8 + 2 * i + flip);
+      q.src[k + 1] = std::int16_t(8 + 2 * i + 1);
+      k += 1 + undecidable;
+    }
+  q.count = k;
+}
+
+}  // namespace
+
+bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
+  q.count = 0;
+  if (!all_finite(A) || !all_finite(B)) return false;
+  const FilterBounds fb = filter_bounds(A, B);
+  Precomputed p;
+  precompute(A, B, p);
+  if (!(std::fabs(p.detA) > fb.deg3) || !(std::fabs(p.detB) > fb.deg3)) return false;
+  p.oA = p.detA > 0 ? 1 : -1;
+  p.oB = p.detB > 0 ? 1 : -1;
+  for (int f = 0; f < 8; ++f) {
+    DirectionGeometry& g = q.faces[f];
+    face_geometry(p, f, g);
+    if (!(g.depth > fb.deg3)) return false;
+    q.delta_sq[f] = g.depth * g.depth / g.nn;
+    q.src[f] = std::int16_t(f);
+  }
+  q.count = 8;
+  edge_lanes(p, fb.deg2, fb.deg3, q.edges);
+  if (!lanes_clear(q.edges)) return false;
+  quick_edge_list(q.edges, q);
+  return true;
+}
+
+LabelCode label_code(const QuickCandidates& q, int k) {
+  const int src = q.src[k];
+  if (src < 8)
+    return src < 4 ? pack_label(ContactKind::FV, src, 0, EdgeOrientation::Decided)
+                   : pack_label(ContactKind::VF, src - 4, 0, EdgeOrientation::Decided);
+  const int i = (src - 8) / 2;
+  const bool minus = (src - 8) % 2;
+  const bool undecidable = (q.edges.g1[i] > 0.0) != (q.edges.g2[i] > 0.0);
+  return pack_label(ContactKind::EE, i / kLaneStride, i % kLaneStride,
+                    !undecidable ? EdgeOrientation::Decided
+                    : minus      ? EdgeOrientation::Minus
+                                 : EdgeOrientation::Plus);
+}
+
+Candidate candidate(const QuickCandidates& q, int k) {
+  Candidate c;
+  c.label = unpack_label(label_code(q, k));
+  const int src = q.src[k];
+  if (src < 8) {
+    static_cast<DirectionGeometry&>(c) = q.faces[src];
+    return c;
+  }
+  lane_candidate(q.edges, (src - 8) / 2, (src - 8) % 2 ? -1.0 : 1.0, c);
+  return c;
+}
+
+}  // namespace pdd::fast
