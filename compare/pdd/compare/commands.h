@@ -23,4 +23,7 @@ void add_audit_ee_command(CLI::App& app, int& exit_code);
 // `pdd compare --input FILE [--tolerance-factor K] [--json]`
 void add_compare_command(CLI::App& app, int& exit_code);
 
+// `pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]`
+void add_bench_command(CLI::App& app, int& exit_code);
+
 }  // namespace pdd::compare
