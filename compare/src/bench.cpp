@@ -283,17 +283,25 @@ BenchReport run_bench(const BenchOptions& o) {
     p.time_ratio = p.timing.median_ns_per_pair / ours.median_ns_per_pair;
     p.call_ratio = p.timing.median_call_ns / ours.median_call_ns;
     std::vector<double> err;
+    p.max_rel_dev_vs_fast = -1;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const PeerDepth d = specs[i].depth(k);
+      double dev = 0;
       if (d.status == PeerStatus::Failed) {
         ++p.failed;
-        p.max_rel_dev_vs_fast = std::numeric_limits<double>::infinity();
+        dev = std::numeric_limits<double>::infinity();
       } else {
         if (fast_inter[k] && (d.status == PeerStatus::NotIntersecting || d.pd == 0))
           ++p.not_intersecting;
-        if (fast_pd2[k] > 0)
-          p.max_rel_dev_vs_fast =
-              std::max(p.max_rel_dev_vs_fast, std::abs(d.pd * d.pd - fast_pd2[k]) / fast_pd2[k]);
+        if (fast_pd2[k] > 0) dev = std::abs(d.pd * d.pd - fast_pd2[k]) / fast_pd2[k];
+      }
+      p.off_1e6 += dev > 1e-6;
+      p.off_1e2 += dev > 1e-2;
+      if (dev > p.max_rel_dev_vs_fast) {
+        p.max_rel_dev_vs_fast = dev;
+        p.worst_pair = pairs[k].name;
+        p.worst_peer_pd2 = d.pd * d.pd;
+        p.worst_fast_pd2 = fast_pd2[k];
       }
       if (k < M) err.push_back(peer_relative_error(d, exact_pd2[k]));
     }

@@ -99,6 +99,11 @@ Json report_json(const BenchReport& r) {
     q["not_intersecting"] = p.not_intersecting;
     q["failed"] = p.failed;
     q["max_rel_dev_pd2_vs_fast_all_pairs"] = number(p.max_rel_dev_vs_fast);
+    q["pairs_dev_over_1e-6"] = p.off_1e6;
+    q["pairs_dev_over_1e-2"] = p.off_1e2;
+    q["worst_pair"] = p.worst_pair;
+    q["worst_pair_peer_pd2"] = number(p.worst_peer_pd2);
+    q["worst_pair_fast_pd2"] = number(p.worst_fast_pd2);
     q["sample"] = p.sample;
     q["max_rel_error_pd2"] = number(p.max_rel_error);
     q["median_rel_error_pd2"] = number(p.median_rel_error);
@@ -136,7 +141,8 @@ void print_table(const BenchReport& r, std::ostream& s) {
     << "machine:   " << m.cpu_model << ", " << m.logical_cpus << " logical CPUs; " << m.compiler
     << (m.assertions ? ", assertions ON" : ", NDEBUG") << "\n"
     << "load avg:  before " << m.load_before << "; after " << m.load_after << "\n"
-    << "peers:     FCL " << m.fcl_version << ", libccd " << m.ccd_version << " (Debian)\n\n";
+    << "peers:     FCL " << m.fcl_version << ", libccd (its CMake config says " << m.ccd_version
+    << ")\n\n";
 
   s << "Fast engine, one core, from raw vertices (ns per pair: median over passes of pass time /\n"
        "pairs, with the fastest and slowest pass; per call: median of single-call timings, timer\n"
@@ -175,17 +181,22 @@ void print_table(const BenchReport& r, std::ostream& s) {
     << r.exact.sample << " pairs (failures included: 'no isect' = 1, failed = inf); dev. vs\n"
        "fast = max relative deviation of PD² from our fast rigid_pd2 over all pairs\n";
   s << "  " << pad("peer", 40) << rpad("no isect", 9) << rpad("failed", 8)
-    << rpad("max err", 10) << rpad("med err", 10) << rpad("dev vs fast", 12) << "\n";
+    << rpad("max err", 10) << rpad("med err", 10) << rpad("dev vs fast", 12)
+    << rpad(">1e-6", 7) << rpad(">1e-2", 7) << "\n";
   for (const auto& p : r.peers)
     s << "  " << pad(p.name, 40) << rpad(std::to_string(p.not_intersecting), 9)
       << rpad(std::to_string(p.failed), 8) << rpad(fmt("%.2e", p.max_rel_error), 10)
       << rpad(fmt("%.2e", p.median_rel_error), 10) << rpad(fmt("%.2e", p.max_rel_dev_vs_fast), 12)
-      << "\n";
-  for (const auto& p : r.peers) s << "    " << p.name << ": " << p.config << "\n";
+      << rpad(std::to_string(p.off_1e6), 7) << rpad(std::to_string(p.off_1e2), 7) << "\n";
   const auto& e = r.exact;
   s << "  " << pad("ours: fast rigid_pd2", 40) << rpad("0", 9) << rpad("0", 8)
     << rpad(fmt("%.2e", e.fast_max_rel_error), 10) << rpad(fmt("%.2e", e.fast_median_rel_error), 10)
-    << "\n\n";
+    << "\n";
+  s << "  (>1e-6, >1e-2: pairs whose PD² deviates from ours by more than that, failures included)\n";
+  for (const auto& p : r.peers)
+    s << "    " << p.name << ": " << p.config << "; worst pair " << p.worst_pair << ": PD² "
+      << fmt("%.6g", p.worst_peer_pd2) << " vs ours " << fmt("%.6g", p.worst_fast_pd2) << "\n";
+  s << "\n";
 
   s << "Exact engine against ours, one core, first " << e.sample << " pairs\n"
     << "  rigid PD²: reference::minkowski_pd " << fmt("%.1f", e.exact_rigid_median_ns / 1e3)

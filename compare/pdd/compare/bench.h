@@ -84,6 +84,10 @@ struct PeerReport {
   std::size_t not_intersecting = 0;  // peer said "no intersection" (or depth 0)
   std::size_t failed = 0;            // peer error code or non-finite depth
   double max_rel_dev_vs_fast = 0;    // max |pd²_peer − pd²_fast| / pd²_fast over all pairs
+  std::size_t off_1e6 = 0, off_1e2 = 0;  // pairs with that deviation > 1e-6, > 1e-2 (failures
+                                         // included); ours is within 1e-10 of exact (tests)
+  std::string worst_pair;            // the pair attaining max_rel_dev_vs_fast
+  double worst_peer_pd2 = 0, worst_fast_pd2 = 0;
   // On the exact sample: relative error of PD² against the exact PD² (failures included:
   // "not intersecting" counts as relative error 1, a failure as +inf).
   std::size_t sample = 0;
