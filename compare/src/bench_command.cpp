@@ -76,7 +76,7 @@ Json report_json(const BenchReport& r) {
   m["loadavg_before"] = r.machine.load_before;
   m["loadavg_after"] = r.machine.load_after;
   m["fcl_version"] = r.machine.fcl_version;
-  m["ccd_version"] = r.machine.ccd_version;
+  m["ccd_cmake_config_version"] = r.machine.ccd_version;
   j["machine"] = m;
   j["fast"] = Json::array();
   for (const auto& t : r.fast) j["fast"].push_back(timing_json(t));
