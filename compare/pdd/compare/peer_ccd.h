@@ -25,6 +25,9 @@
 //   max_iterations [2^64−1]  GJK iterations (EPA's loop in libccd 2.1 has no iteration cap;
 //                  it ends because a tetrahedron pair's difference has at most 16 vertices).
 //   first_dir      libccd's default (1, 0, 0).
+// Measured (`pdd bench`, 10^4 paper pairs, seed 1): 253 pairs with PD² under ours by more than
+// 1% (never over; down to ~1e-11 for a PD² of 0.059), at either tolerance: EPA stopping
+// early, cause not diagnosed.
 // libccd returns depth 0 with "intersecting" for a touching contact; we report that as
 // Intersecting with pd = 0 (the caller compares with the exact PD, which is then 0).
 #pragma once
