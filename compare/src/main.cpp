@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   pdd::compare::add_theorem_command(app, exit_code);
   pdd::compare::add_audit_ee_command(app, exit_code);
   pdd::compare::add_compare_command(app, exit_code);
+  pdd::compare::add_paper_command(app, exit_code);
   pdd::compare::add_bench_command(app, exit_code);
   try {
     app.parse(argc, argv);

@@ -23,6 +23,9 @@ void add_audit_ee_command(CLI::App& app, int& exit_code);
 // `pdd compare --input FILE [--tolerance-factor K] [--json]`
 void add_compare_command(CLI::App& app, int& exit_code);
 
+// `pdd paper [--seed S] [--count N] [--out DIR] [--exact-sample M]`
+void add_paper_command(CLI::App& app, int& exit_code);
+
 // `pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]`
 void add_bench_command(CLI::App& app, int& exit_code);
 

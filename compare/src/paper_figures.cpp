@@ -1,0 +1,164 @@
+#include "pdd/compare/paper_figures.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/direction_qp.h"
+#include "pdd/reference/oriented_depth.h"
+#include "pdd/reference/solve_pair.h"
+
+namespace pdd::compare {
+namespace {
+
+TetVertices to_doubles(const reference::ExactTet& t) {
+  TetVertices out;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) out[i][k] = CGAL::to_double(t[i][k]);
+  return out;
+}
+
+bool run_gnuplot(const std::string& dir, const std::string& script, std::string& why) {
+  const std::string log = script.substr(0, script.find('.')) + ".log";
+  const std::string cmd = "cd '" + dir + "' && gnuplot '" + script + "' 2> '" + log + "'";
+  if (std::system(cmd.c_str()) == 0) return true;
+  why = "gnuplot failed on " + dir + "/" + script + " (see " + dir + "/" + log + "; is gnuplot installed?)";
+  return false;
+}
+
+// The six edges of a tetrahedron as gnuplot line segments (blank line between segments).
+void write_edges(std::ostream& o, const TetVertices& t) {
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b)
+      o << t[a][0] << ' ' << t[a][1] << ' ' << t[a][2] << '\n'
+        << t[b][0] << ' ' << t[b][1] << ' ' << t[b][2] << "\n\n";
+}
+
+}  // namespace
+
+PairConfigurations pair_configurations(const TetPair& pair) {
+  using namespace reference;
+  const ExactResult r = solve_pair(pair, {QpFormulation::Reduced});
+  const ExactPair p = to_exact(pair);
+  PairConfigurations c{pair.name, pair.A, pair.B, pair.B, pair.A, pair.B, pair.B,
+                       std::sqrt(CGAL::to_double(r.rigid_pd2)), std::sqrt(CGAL::to_double(r.pdd2_static)),
+                       std::sqrt(CGAL::to_double(r.pdd2))};
+  if (!r.intersecting) return c;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      c.A_deformable[i][k] = CGAL::to_double(r.q1_A[i][k]), c.B_deformable[i][k] = CGAL::to_double(r.q1_B[i][k]);
+  for (const auto& d : candidate_directions(p)) {
+    if (d.label == *r.pdd2_static_dir)
+      c.B_static = to_doubles(direction_qp(p, d, PddCase::Static, QpFormulation::Reduced)->q1_B);
+    if (d.label == *r.rigid_dir) {  // B + (D / n.n) n: translation by PD along n
+      const Vector v = (oriented_depth_numerator(p, d.n) / d.n.squared_length()) * d.n;
+      ExactTet moved = p.B;
+      for (auto& x : moved) x = x + v;
+      c.B_rigid = to_doubles(moved);
+    }
+  }
+  return c;
+}
+
+bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
+  constexpr int kBins = 60;
+  constexpr double kMax = 1.2;  // PD_d / PD <= 1 for static (<= 1/sqrt 2 for case 2); margin
+  std::ofstream dat(dir + "/fig3_histograms.dat");
+  dat << "# bin_center";
+  for (const char* v : kPaperVariants) dat << " \"" << v << "\"";
+  dat << "\n";
+  std::vector<std::array<double, 5>> counts(kBins);
+  for (int k = 0; k < 5; ++k)
+    for (double x : s.over_pd[k].values) {
+      const int b = std::min(kBins - 1, int(x / kMax * kBins));
+      counts[b][k] += 100.0 / double(s.over_pd[k].n);  // percent of pairs
+    }
+  for (int b = 0; b < kBins; ++b) {
+    dat << (b + 0.5) * kMax / kBins;
+    for (int k = 0; k < 5; ++k) dat << ' ' << counts[b][k];
+    dat << "\n";
+  }
+  dat.close();  // gnuplot reads it below
+  std::ofstream gp(dir + "/fig3_histograms.gp");
+  gp << "set terminal pngcairo size 1500,420 font 'Sans,11'\nset output 'fig3_histograms.png'\n"
+     << "set multiplot layout 1,3 title 'PD_d / PD over " << s.pairs << " random intersecting pairs (cf. paper Fig. 3)'\n"
+     << "set style fill solid 0.6 border -1\nset boxwidth " << kMax / kBins << "\nset xrange [0:1]\n"
+     << "set xlabel 'PD_d / PD'\nset ylabel '% of pairs'\nset grid ytics\n";
+  const int panels[3] = {0, 1, 2};
+  const char* colours[3] = {"#4477aa", "#cc3311", "#228833"};
+  for (int i = 0; i < 3; ++i) {
+    const int k = panels[i];
+    gp << std::fixed << std::setprecision(2) << "set title '" << kPaperVariants[k] << ": mean "
+       << 100 * s.over_pd[k].mean << "%, std " << 100 * s.over_pd[k].std << "%'\n"
+       << "plot 'fig3_histograms.dat' using 1:" << k + 2 << " with boxes lc rgb '" << colours[i]
+       << "' notitle\n";
+  }
+  gp << "unset multiplot\n";
+  gp.close();
+  return run_gnuplot(dir, "fig3_histograms.gp", why);
+}
+
+bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string& why) {
+  std::ofstream dat(dir + "/fig2_pair.dat");
+  dat << std::setprecision(17);
+  // index 0..7: A rest, B rest, A rest, B static, A def, B def, A rest, B rigid
+  const TetVertices* blocks[8] = {&c.A_rest, &c.B_rest, &c.A_rest, &c.B_static,
+                                  &c.A_deformable, &c.B_deformable, &c.A_rest, &c.B_rigid};
+  for (const auto* t : blocks) {
+    write_edges(dat, *t);
+    dat << "\n";  // two blank lines end a gnuplot index block
+  }
+  dat.close();  // gnuplot reads it below
+  std::ostringstream titles[4];
+  titles[0] << "(a) penetration state";
+  titles[1] << std::setprecision(4) << "(b) static / deformable, PD_d = " << c.pdd_static;
+  titles[2] << std::setprecision(4) << "(c) deformable / deformable, PD_d = " << c.pdd;
+  titles[3] << std::setprecision(4) << "(d) rigid, PD = " << c.pd;
+  // One cube around every configuration, the same in all panels.
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const auto* t : blocks)
+    for (const auto& v : *t)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+  double span = 0;
+  for (int k = 0; k < 3; ++k) span = std::max(span, hi[k] - lo[k]);
+  std::ofstream gp(dir + "/fig2_pair.gp");
+  gp << "set terminal pngcairo size 1400,1200 font 'Sans,12'\nset output 'fig2_pair.png'\n"
+     << "set multiplot layout 2,2 title 'pair " << c.name << ": A (blue) and B (red), rest pose dashed (cf. paper Fig. 2)'\n"
+     << "set view 65,35\nset view equal xyz\nset xyplane 0\nunset key\nset format '%.1f'\n";
+  const char axes[3] = {'x', 'y', 'z'};
+  for (int k = 0; k < 3; ++k) {
+    const double mid = 0.5 * (lo[k] + hi[k]);
+    gp << "set " << axes[k] << "range [" << mid - 0.55 * span << ":" << mid + 0.55 * span << "]\n";
+  }
+  for (int i = 0; i < 4; ++i) {
+    gp << "set title '" << titles[i].str() << "'\n"
+       << "splot 'fig2_pair.dat' index " << 2 * i << " with lines lw 2 lc rgb '#4477aa', "
+       << "'' index " << 2 * i + 1 << " with lines lw 2 lc rgb '#cc3311'";
+    if (i > 0)
+      gp << ", '' index 0 with lines dt 2 lc rgb '#99bbdd', '' index 1 with lines dt 2 lc rgb '#ee9988'";
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+  gp.close();
+  return run_gnuplot(dir, "fig2_pair.gp", why);
+}
+
+void write_vtk(const std::string& path, const PairConfigurations& c) {
+  const TetVertices* cells[6] = {&c.A_rest, &c.B_rest, &c.B_static, &c.A_deformable, &c.B_deformable, &c.B_rigid};
+  std::ofstream o(path);
+  o << std::setprecision(17) << "# vtk DataFile Version 3.0\n"
+    << "pdd pair " << c.name << ": 0 A rest, 1 B rest, 2 B static/def, 3 A def/def, 4 B def/def, 5 B rigid\n"
+    << "ASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 24 double\n";
+  for (const auto* t : cells)
+    for (const auto& v : *t) o << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
+  o << "CELLS 6 30\n";
+  for (int k = 0; k < 6; ++k) o << "4 " << 4 * k << ' ' << 4 * k + 1 << ' ' << 4 * k + 2 << ' ' << 4 * k + 3 << '\n';
+  o << "CELL_TYPES 6\n";
+  for (int k = 0; k < 6; ++k) o << "10\n";  // VTK_TETRA
+  o << "CELL_DATA 6\nSCALARS configuration int 1\nLOOKUP_TABLE default\n0\n1\n2\n3\n4\n5\n";
+}
+
+}  // namespace pdd::compare
