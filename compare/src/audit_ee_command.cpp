@@ -1,5 +1,3 @@
-#include <tbb/parallel_for.h>
-
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -7,7 +5,7 @@
 #include "pdd/compare/commands.h"
 #include "pdd/compare/edge_audit.h"
 #include "pdd/compare/fixture_io.h"
-#include "pdd/compare/progress.h"
+#include "pdd/compare/engines.h"
 #include "pdd/compare/result_json.h"
 
 namespace pdd::compare {
@@ -66,15 +64,8 @@ int run_audit(const AuditArgs& a) {
     std::cerr << "pdd audit-ee: " << *file.error << "\n";
     return 2;
   }
-  std::vector<EdgeAudit> out(file.entries.size());
-  Progress progress("pdd audit-ee", out.size());
-  tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t k) {
-    const auto& e = file.entries[k];
-    if (e.error) out[k].name = e.pair.name, out[k].error = e.error;
-    else out[k] = edge_audit(e.pair);
-    progress.tick();
-  });
-  progress.finish();
+  const auto out = map_entries<EdgeAudit>(file.entries, "pdd audit-ee", true,
+                                          [](const TetPair& pair, std::size_t) { return edge_audit(pair); });
 
   std::size_t audited = 0, rejected = 0, with_par = 0, n_par = 0, with_col = 0, n_col = 0,
               with_und = 0, n_und = 0, decided = 0, smaller_d = 0, smaller_r = 0, feas_s = 0,

@@ -1,7 +1,5 @@
 #include "pdd/compare/engines.h"
 
-#include <tbb/parallel_for.h>
-
 #include <exception>
 #include <string>
 
@@ -13,26 +11,17 @@ namespace pdd::compare {
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   bool show_progress) {
-  std::vector<reference::ExactResult> out(entries.size());
-  Progress progress("pdd: reference engine", entries.size(), show_progress ? 2.0 : 1e300);
-  tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
-    const FixtureEntry& e = entries[k];
-    if (e.error) {
-      out[k].name = e.pair.name;
-      out[k].error = *e.error;
-    } else {
-      try {
-        out[k] = reference::solve_pair(e.pair, options);
-      } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
-        out[k] = reference::ExactResult{};
-        out[k].name = e.pair.name;
-        out[k].error = std::string("internal error in the reference engine: ") + ex.what();
-      }
-    }
-    progress.tick();
-  });
-  progress.finish();
-  return out;
+  return map_entries<reference::ExactResult>(
+      entries, "pdd: reference engine", show_progress, [&](const TetPair& pair, std::size_t) {
+        try {
+          return reference::solve_pair(pair, options);
+        } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
+          reference::ExactResult r;
+          r.name = pair.name;
+          r.error = std::string("internal error in the reference engine: ") + ex.what();
+          return r;
+        }
+      });
 }
 
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries) {

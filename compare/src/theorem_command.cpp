@@ -1,11 +1,9 @@
-#include <tbb/parallel_for.h>
-
 #include <iostream>
 #include <memory>
 
 #include "pdd/compare/commands.h"
 #include "pdd/compare/fixture_io.h"
-#include "pdd/compare/progress.h"
+#include "pdd/compare/engines.h"
 #include "pdd/compare/result_json.h"
 #include "pdd/compare/theorem_audit.h"
 
@@ -52,18 +50,9 @@ int run_theorem(const TheoremArgs& a) {
     std::cerr << "pdd theorem: " << *file.error << "\n";
     return 2;
   }
-  std::vector<TheoremVerdict> out(file.entries.size());
-  Progress progress("pdd theorem", out.size());
-  tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t k) {
-    const auto& e = file.entries[k];
-    if (e.error) {
-      out[k].name = e.pair.name, out[k].error = e.error;
-    } else {
-      out[k] = theorem_verdict(e.pair, k < a.nef);
-    }
-    progress.tick();
-  });
-  progress.finish();
+  const auto out = map_entries<TheoremVerdict>(
+      file.entries, "pdd theorem", true,
+      [&](const TetPair& pair, std::size_t k) { return theorem_verdict(pair, k < a.nef); });
 
   std::size_t valid = 0, inter = 0, holds = 0, fails = 0, fails_nested = 0, witnessed = 0,
               corrected = 0, nef_checked = 0, nef_equal = 0, rejected = 0;

@@ -5,14 +5,40 @@
 // parallel with TBB (GMP and CGAL's exact types are thread-safe per object).
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "pdd/compare/fixture_io.h"
+#include "pdd/compare/progress.h"
 #include "pdd/compare/result_json.h"
 #include "pdd/pair_result.h"
 #include "pdd/reference/solve_pair.h"
 
 namespace pdd::compare {
+
+// Applies `compute(pair, index)` to every well-formed entry in parallel (TBB), in input order,
+// with progress on stderr; a malformed entry becomes a default T with `name` and `error` set.
+// T has members `name` and `error` (std::optional<std::string>).
+template <class T, class Compute>
+std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::string& what,
+                           bool show_progress, Compute compute) {
+  std::vector<T> out(entries.size());
+  Progress progress(what, entries.size(), show_progress ? 2.0 : 1e300);
+  tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
+    const FixtureEntry& e = entries[k];
+    if (e.error) {
+      out[k].name = e.pair.name;
+      out[k].error = *e.error;
+    } else {
+      out[k] = compute(e.pair, k);
+    }
+    progress.tick();
+  });
+  progress.finish();
+  return out;
+}
 
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
