@@ -3,6 +3,7 @@
 
 #include <limits>
 
+#include "pdd/fast/superset_depth.h"
 #include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
@@ -158,6 +159,9 @@ Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
   return on_pair(A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); });
 }
 Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
+  Choice rigid;
+  Candidate c;
+  if (k == 1 && rigid_superset(A, B, rigid, &c)) return {deformable_value(c), -1, rigid.code};
   return on_pair(A, B, [k](const auto& s) { return pdd2_accel(s, k); });
 }
 

@@ -4,7 +4,6 @@
 #include <limits>
 
 namespace pdd::fast::detail {
-namespace {
 
 void edges_and_faces(const TetVertices& T, V3* e, V3* N, double* det) {
   for (int a = 0; a < 6; ++a) sub(T[kEdges[a][1]], T[kEdges[a][0]], e[a]);
@@ -15,6 +14,8 @@ void edges_and_faces(const TetVertices& T, V3* e, V3* N, double* det) {
   cross(e[0], e[1], N[3]);  // (s1 − s0) × (s2 − s0)
   *det = dot(N[3], e[2]);   // ((s1 − s0) × (s2 − s0)) . (s3 − s0)
 }
+
+namespace {
 
 // For lane b and its m-th vertex j off edge b = (x, y): −eps(x,y,j) and the face f' = 6−x−y−j,
 // so that n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f'.

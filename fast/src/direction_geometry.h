@@ -63,6 +63,9 @@ struct Precomputed {
   alignas(32) double Q[6][2][kLaneStride];     // Q[a][m][b] = n.(r_jm − r_x) (see lane_heights)
 };
 
+// Edge vectors e[a] = x_v − x_u, raw face normals N[f] (see kFace) and det of one tetrahedron.
+void edges_and_faces(const TetVertices& T, V3* e, V3* N, double* det);
+
 // Edge vectors, face normals, determinants, differences and the lane tables of a pair.
 // (Orientations oA, oB are left to the caller: filtered, with or without exact fallback.)
 void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "pdd/fast/superset_depth.h"
 #include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
@@ -40,8 +41,8 @@ double eq11_pd2(const CandidateSet& set) {
 }
 
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B) {
-  QuickCandidates q;
-  if (quick_candidates(A, B, q)) return rigid_pd2(q);
+  Choice ch;
+  if (rigid_superset(A, B, ch)) return ch;
   CandidateSet set;
   if (build_candidates(A, B, set) != BuildStatus::Ok) return {};
   return rigid_pd2(set);

@@ -3,7 +3,8 @@
 //
 // Agreement required: error presence, `intersecting` and every label exactly (all decided by
 // exact predicates or by exact ties, see tie_tolerance.h); values and q1 to 1e-8 relative
-// (+1e-12 absolute for q1). The fast values carry rounding errors ~1e-16 amplified by the
+// (+1e-12 absolute for q1); the hot-path overloads (rigid_pd2, pdd2_accel over raw vertices)
+// equal to solve_pair bit for bit. The fast values carry rounding errors ~1e-16 amplified by the
 // conditioning of the pair (observed worst 1e-10, on slivers); 1e-8 keeps two orders of margin
 // and still catches any wrong direction, active set or variant (errors >= 1e-3 relative).
 #define BOOST_TEST_MODULE fast_golden
@@ -15,6 +16,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "pdd/fast/deformable_depth.h"
+#include "pdd/fast/rigid_depth.h"
 #include "pdd/fast/solve_pair.h"
 
 using namespace pdd;
@@ -88,6 +91,12 @@ void check_file(const fs::path& fixture, const fs::path& golden) {
       BOOST_TEST(label(r.pdd2_static_dir) == label(g.at("pdd2_static_dir")));
       BOOST_TEST(label(r.pdd2_dir) == label(g.at("pdd2_dir")));
       BOOST_TEST(label(r.pdd2_relaxed_dir) == label(g.at("pdd2_relaxed_dir")));
+      // the hot paths over raw vertices (superset_depth.h) report what solve_pair reports
+      const TetPair& p = pairs[&r - results.data()];
+      const fast::Choice rigid = fast::rigid_pd2(p.A, p.B), a1 = fast::pdd2_accel(p.A, p.B, 1);
+      BOOST_TEST(rigid.value == r.rigid_pd2);
+      BOOST_TEST(a1.value == r.pdd2_accel1);
+      if (r.intersecting) BOOST_TEST(rigid.label().str() == label(r.rigid_dir));
       for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 3; ++k) {
           BOOST_TEST(close(r.q1_A[i][k], g.at("q1_A")[i][k].get<std::string>(), 1e-8, 1e-12));

@@ -1,0 +1,88 @@
+// fast_superset_test — rigid PD² from the superset of directions (superset_depth.h) against
+// the candidate list (candidate_directions.h + rigid_depth.h).
+//
+// Whenever rigid_superset decides, the pair must intersect (exactly, by the list's filtered
+// exact test) and value, label and the chosen candidate's geometry must be bit-identical to the
+// list's rigid choice. It may decline; on generic random intersecting pairs it must not.
+#define BOOST_TEST_MODULE fast_superset
+#include <boost/test/unit_test.hpp>
+
+#include "fast_test_util.h"
+#include "pdd/fast/candidate_directions.h"
+#include "pdd/fast/rigid_depth.h"
+#include "pdd/fast/superset_depth.h"
+
+using namespace pdd;
+using namespace pdd::fast;
+using namespace pdd::fast::test;
+
+namespace {
+
+// Checks one pair; returns whether the superset decided.
+bool check_pair(const TetPair& p) {
+  Choice ch;
+  Candidate g;
+  const bool decided = rigid_superset(p.A, p.B, ch, &g);
+  if (!decided) return false;
+  CandidateSet set;
+  BOOST_REQUIRE((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
+  BOOST_REQUIRE(set.intersecting);
+  const Choice ref = rigid_pd2(set);
+  BOOST_TEST(ch.value == ref.value);
+  BOOST_TEST(ch.label() == ref.label());
+  const Candidate c = candidate(set, ref.index);
+  BOOST_TEST(g.label == c.label);
+  BOOST_TEST((g.depth == c.depth && g.nn == c.nn && g.conA == c.conA && g.conB == c.conB));
+  for (int m = 0; m < 4; ++m) BOOST_TEST((g.hA[m] == c.hA[m] && g.hB[m] == c.hB[m]));
+  for (int m = 0; m < 3; ++m) BOOST_TEST(g.n[m] == c.n[m]);
+  // the superset minimum is the list's minimum (the list is a subset, facet normals attain it)
+  for (int k = 0; k < set.count; ++k) BOOST_TEST(set.delta_sq[k] >= ch.value * (1 - 1e-12));
+  return true;
+}
+
+}  // namespace
+
+// Random pairs, intersecting or not (the paper's protocol: vertices uniform in a 10-cube).
+BOOST_AUTO_TEST_CASE(random_pairs_equal_the_list) {
+  int decided = 0, intersecting = 0;
+  for (const TetPair& p : random_pairs(3000, 77, false)) {
+    CandidateSet set;
+    build_candidates(p.A, p.B, set);
+    intersecting += set.intersecting;
+    decided += check_pair(p);
+  }
+  BOOST_TEST(intersecting > 1000);
+  BOOST_TEST(decided == intersecting);  // generic pairs: every intersecting one is decided
+}
+
+// Small and large scales, and far from the origin (bounds scale with the extent).
+BOOST_AUTO_TEST_CASE(scaled_and_translated_pairs) {
+  int decided = 0;
+  for (double scale : {1e-6, 1e6})
+    for (TetPair p : random_pairs(300, 78, true)) {
+      for (auto* T : {&p.A, &p.B})
+        for (auto& v : *T)
+          for (double& x : v) x = x * scale + 1e3 * scale;
+      decided += check_pair(p);
+    }
+  BOOST_TEST(decided > 550);
+}
+
+// Degenerate configurations: parallel and colinear edges, shared faces, exact zeros, touching
+// pairs. The superset must decline or agree with the list.
+BOOST_AUTO_TEST_CASE(degenerate_pairs_decline_or_agree) {
+  const TetVertices unit = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  const TetVertices A = {{{0.1, 0.2, 0.3}, {1.7, 0.4, 0.9}, {0.3, 1.9, 0.7}, {0.9, 0.8, 2.1}}};
+  TetVertices shared = A;
+  for (int k = 0; k < 3; ++k)
+    shared[3][k] = (A[0][k] + A[1][k] + A[2][k]) / 3 * 0.9 + A[3][k] * 0.1;
+  const TetPair pairs[] = {
+      tet_pair(unit, {{{-0.5, 0, 0}, {0.5, 0, 0}, {0.25, 0.25, 0.25}, {0.25, -0.25, 0.75}}}),
+      tet_pair(A, shared),
+      tet_pair(unit, {{{0.25, 0.25, -1}, {0.25, 0.25, 1}, {0.5, -0.5, 0}, {-0.5, 0.5, 0.1}}}),
+      tet_pair(unit, unit),
+      tet_pair(unit, {{{1, 0, 0}, {2, 0, 0}, {1, 1, 0}, {1, 0, 1}}}),           // touching
+      tet_pair(unit, {{{0.1, 0.1, 0.1}, {0.2, 0.1, 0.1}, {0.1, 0.2, 0.1}, {0.1, 0.1, 0.2}}}),
+  };
+  for (const TetPair& p : pairs) check_pair(p);
+}
