@@ -7,6 +7,7 @@
 #include "direction_geometry.h"
 #include "pdd/fast/exact_predicates.h"
 #include "pdd/fast/filter_bounds.h"
+#include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
 namespace {
@@ -158,6 +159,7 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (!all_finite(A)) return BuildStatus::NonFiniteA;
   if (!all_finite(B)) return BuildStatus::NonFiniteB;
   const FilterBounds fb = filter_bounds(A, B);
+  out.tie_kappa = tie_kappa(A, B);
   Precomputed p;
   precompute(A, B, p);
   p.oA = orientation(A, p.detA, fb.deg3);

@@ -21,20 +21,26 @@ template <class List, class Value>
 Choice sweep(const List& set, double coeff, int hint, Value value) {
   if (!usable(set)) return {};
   double v[kMaxCandidates];
-  double best = kInf;
-  if (hint >= 0 && hint < set.count) best = v[hint] = value(candidate(set, hint));
+  double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
+  if (hint >= 0 && hint < set.count) {
+    best = v[hint] = value(candidate(set, hint));
+    threshold = tie_threshold(best, set.tie_kappa);
+  }
   for (int i = 0; i < set.count; ++i) {
     if (i == hint) continue;
     const double bound = coeff * delta2(set, i);
-    if (!ties_with_min(bound, best)) {
+    if (!(bound <= threshold)) {
       v[i] = kInf;
       continue;
     }
     v[i] = value(candidate(set, i));
-    best = v[i] < best ? v[i] : best;
+    if (v[i] < best) {
+      best = v[i];
+      threshold = tie_threshold(best, set.tie_kappa);
+    }
   }
   Choice ch;
-  ch.index = first_tied_minimum(v, set.count);
+  ch.index = first_tied_minimum(v, set.count, set.tie_kappa);
   ch.value = v[ch.index];
   ch.code = label_code(set, ch.index);
   return ch;
@@ -46,7 +52,7 @@ int accel_order_of(const List& set, int k, int* out) {
   for (int i = 0; i < set.count; ++i) d[i] = delta2(set, i);
   const int m = k < set.count ? k : set.count;
   for (int r = 0; r < m; ++r) {
-    out[r] = first_tied_minimum(d, set.count);
+    out[r] = first_tied_minimum(d, set.count, set.tie_kappa);
     d[out[r]] = kInf;  // taken
   }
   return m;
@@ -67,7 +73,7 @@ Choice accel_of(const List& set, int k) {
   const double vmin = minimum(v, m);
   int best = -1;  // among ties, the first in canonical order
   for (int r = 0; r < m; ++r)
-    if (ties_with_min(v[r], vmin) && (best < 0 || order[r] < order[best])) best = r;
+    if (ties_with_min(v[r], vmin, set.tie_kappa) && (best < 0 || order[r] < order[best])) best = r;
   return {v[best], order[best], label_code(set, order[best])};
 }
 

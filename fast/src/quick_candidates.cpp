@@ -6,6 +6,7 @@
 
 #include "direction_geometry.h"
 #include "pdd/fast/filter_bounds.h"
+#include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
 
@@ -43,6 +44,7 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
   q.count = 0;
   if (!all_finite(A) || !all_finite(B)) return false;
   const FilterBounds fb = filter_bounds(A, B);
+  q.tie_kappa = tie_kappa(A, B);
   Precomputed p;
   precompute(A, B, p);
   if (!(std::fabs(p.detA) > fb.deg3) || !(std::fabs(p.detB) > fb.deg3)) return false;

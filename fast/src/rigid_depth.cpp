@@ -11,7 +11,7 @@ namespace pdd::fast {
 Choice rigid_pd2(const CandidateSet& set) {
   if (!set.intersecting) return {};
   Choice ch;
-  ch.index = first_tied_minimum(set.delta_sq, set.count);
+  ch.index = first_tied_minimum(set.delta_sq, set.count, set.tie_kappa);
   ch.value = set.delta_sq[ch.index];
   ch.code = set.code[ch.index];
   return ch;
@@ -19,7 +19,7 @@ Choice rigid_pd2(const CandidateSet& set) {
 
 Choice rigid_pd2(const QuickCandidates& q) {
   Choice ch;
-  ch.index = first_tied_minimum(q.delta_sq, q.count);
+  ch.index = first_tied_minimum(q.delta_sq, q.count, q.tie_kappa);
   ch.value = q.delta_sq[ch.index];
   ch.code = label_code(q, ch.index);
   return ch;

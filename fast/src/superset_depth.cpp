@@ -68,6 +68,7 @@ struct alignas(64) Kernel {
   v8 face_val;      // D²/(n.n) of the faces
   double lo;        // min over S of D (positivity)
   double vmin;      // min over S of the value
+  double kappa;     // tie band of the pair (tie_tolerance.h)
   double t1;        // tie threshold of vmin
   std::uint8_t face_bits;   // faces with value <= t2
   std::uint64_t lane_bits;  // edge pairs (bit 8a + b) with min(value(±n)) <= t2
@@ -81,7 +82,7 @@ struct alignas(64) Kernel {
 
 // D, n.n and D²/(n.n) of the 8 faces and of both orientations of the 36 edge pairs.
 PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices& B,
-                                         const Precomputed& p, Kernel& K) {
+                                         const Precomputed& p, double kappa, Kernel& K) {
   const v8 zero = bc(0.0);
   const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
   // ---- faces: lane f, heights sigma_f N_f . (r − s) of the other tetrahedron's 4 vertices,
@@ -155,8 +156,8 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
   K.lo = l;
   K.vmin = b;
   // Entries within t2 of the minimum (header): bit f of face_bits, bit 8a + b of lane_bits.
-  K.t1 = b + kTieRelTol * b;
-  const double t2 = K.t1 + kTieRelTol * K.t1;
+  K.t1 = tie_threshold(b, kappa);
+  const double t2 = tie_threshold(K.t1, kappa);
   const v8l one = {1, 2, 4, 8, 16, 32, 64, 128};
   v8l bits = (K.face_val <= t2) & one;
   K.face_bits = std::uint8_t(horizontal_or(bits));
@@ -178,7 +179,7 @@ struct Near {
 // orientation decision is unclear (filter) — then the caller declines.
 bool near_candidates(const Precomputed& p, const Kernel& K, const FilterBounds& fb, Near* out,
                      int& count) {
-  const double t2 = K.t1 + kTieRelTol * K.t1;
+  const double t2 = tie_threshold(K.t1, K.kappa);
   count = 0;
   for (unsigned bits = K.face_bits; bits; bits &= bits - 1) {
     const int f = __builtin_ctz(bits);
@@ -256,7 +257,8 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Cand
   p.oA = p.detA > 0 ? 1 : -1;
   p.oB = p.detB > 0 ? 1 : -1;
   Kernel K;
-  superset_kernel(A, B, p, K);
+  K.kappa = tie_kappa(A, B);
+  superset_kernel(A, B, p, K.kappa, K);
   if (!(K.lo > fb.deg3)) return false;  // not clearly intersecting: exact path decides
   Near near[kMaxCandidates];
   int count = 0;
@@ -265,7 +267,7 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Cand
   for (int i = 0; i < count; ++i) vmin = min2(vmin, near[i].value);
   if (!(vmin <= K.t1)) return false;
   int pick = 0;
-  while (!ties_with_min(near[pick].value, vmin)) ++pick;
+  while (!ties_with_min(near[pick].value, vmin, K.kappa)) ++pick;
   const Near& c = near[pick];
   ch.value = c.value;
   ch.index = -1;

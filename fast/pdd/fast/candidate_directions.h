@@ -75,6 +75,7 @@ struct EdgeLanes {
 struct CandidateSet {
   int count = 0;
   bool intersecting = false;  // valid only when build_candidates returned Ok
+  double tie_kappa = 0.0;     // the pair's tie band (tie_tolerance.h)
   LabelCode code[kMaxCandidates];  // label, see label(set, k)
   double depth[kMaxCandidates];
   double nn[kMaxCandidates];

@@ -20,8 +20,8 @@
 //                      ==> value(n) >= D²/(32 n.n) = delta²/32.
 //   case 1:            A static, the plane is at or above a, so B's vertex moves by >= D
 //                      ==> value(n) >= D²/(16 n.n) = delta²/16.
-// A candidate is skipped when its bound exceeds the best value found so far by more than the tie
-// tolerance, so it can neither be the minimum nor tie with it. Starting from a good direction
+// A candidate is skipped when its bound exceeds tie_threshold(best value so far) (tie_tolerance.h),
+// so it can neither be the minimum nor tie with it (the threshold of the final minimum is lower). Starting from a good direction
 // (the rigid one, `hint`) makes most bounds bite.
 #pragma once
 

@@ -20,6 +20,7 @@ namespace pdd::fast {
 // (src = 8 + 2·lane + [oriented by −n]).
 struct QuickCandidates {
   int count = 0;
+  double tie_kappa = 0.0;  // the pair's tie band (tie_tolerance.h)
   double delta_sq[kMaxCandidates];
   std::int16_t src[kMaxCandidates];
   DirectionGeometry faces[8];
