@@ -52,6 +52,17 @@ struct FilterBounds {
   double deg4 = std::numeric_limits<double>::infinity();
 };
 
+// The bounds for extent L (see above).
+inline FilterBounds filter_bounds_of_extent(double L) {
+  FilterBounds fb;
+  if (!(L >= kFilterMinExtent && L <= kFilterMaxExtent)) return fb;  // all +inf: exact path
+  const double uL2 = kUnitRoundoff * L * L;
+  fb.deg2 = kFilterCoeffDeg2 * uL2;
+  fb.deg3 = kFilterCoeffDeg3 * uL2 * L;
+  fb.deg4 = kFilterCoeffDeg4 * uL2 * L * L;
+  return fb;
+}
+
 inline FilterBounds filter_bounds(const TetVertices& A, const TetVertices& B) {
   double L = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -62,13 +73,7 @@ inline FilterBounds filter_bounds(const TetVertices& A, const TetVertices& B) {
     }
     L = std::max(L, hi - lo);
   }
-  FilterBounds fb;
-  if (!(L >= kFilterMinExtent && L <= kFilterMaxExtent)) return fb;  // all +inf: exact path
-  const double uL2 = kUnitRoundoff * L * L;
-  fb.deg2 = kFilterCoeffDeg2 * uL2;
-  fb.deg3 = kFilterCoeffDeg3 * uL2 * L;
-  fb.deg4 = kFilterCoeffDeg4 * uL2 * L * L;
-  return fb;
+  return filter_bounds_of_extent(L);
 }
 
 }  // namespace pdd::fast
