@@ -200,17 +200,19 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
     P[0][k] = perm(nb, kOffIndex[0]);
     P[1][k] = perm(nb, kOffIndex[1]);
   }
+  // Scalars of EA and NAB are broadcast from memory (load ports) rather than permuted: the
+  // barrier makes the compiler read them back from K.
+  asm volatile("" : : "m"(K.EA), "m"(K.NAB) : "memory");
   for (int f = 0; f < 4; ++f)
-    K.G[f] = EB[0] * splat(NAB[0], f) + EB[1] * splat(NAB[1], f) + EB[2] * splat(NAB[2], f);
+    K.G[f] = EB[0] * K.NAB[0][f] + EB[1] * K.NAB[1][f] + EB[2] * K.NAB[2][f];
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
-    const v8 ax = splat(K.EA[0], a), ay = splat(K.EA[1], a), az = splat(K.EA[2], a);
+    const double ax = K.EA[0][a], ay = K.EA[1][a], az = K.EA[2][a];
     const v8 m0 = EB[1] * az - EB[2] * ay;
     const v8 m1 = EB[2] * ax - EB[0] * az;
     const v8 m2 = EB[0] * ay - EB[1] * ax;
-    const v8 h = m0 * (RX[0] - splat(X[0], u)) + m1 * (RX[1] - splat(X[1], u)) +
-                 m2 * (RX[2] - splat(X[2], u));
+    const v8 h = m0 * (RX[0] - A[u][0]) + m1 * (RX[1] - A[u][1]) + m2 * (RX[2] - A[u][2]);
     const v8 g1 = double(parity(u, v, k1)) * K.G[6 - u - v - k1];
     const v8 g2 = double(parity(u, v, k2)) * K.G[6 - u - v - k2];
     const v8 q1 = ax * P[0][0] + ay * P[0][1] + az * P[0][2];
