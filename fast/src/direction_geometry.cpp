@@ -70,7 +70,7 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
 }
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define PDD_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#define PDD_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define PDD_VECTOR_CLONES
 #endif
