@@ -81,7 +81,6 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
 // and the filter verdicts (EdgeLanes). Branch-free (& and | on bools) so that it vectorises.
 PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, double e3,
                                   EdgeLanes& __restrict L) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
     const double ax = p.eA[a][0], ay = p.eA[a][1], az = p.eA[a][2];
@@ -103,11 +102,7 @@ PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, do
       const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
       // one division per lane (padding lanes: 1/0, never read)
       const double inv = 1.0 / nn, d2p = dp * dp * inv, d2m = dm * dm * inv;
-      const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
-      const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
-      const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
-      const bool unclear = (nmax <= e2) | (std::fabs(g1) <= e3) | (std::fabs(g2) <= e3) |
-                           ((!(dp > e3)) & (!flip)) | ((!(dm > e3)) & (flip | undecidable));
+      const LaneVerdict verdict = lane_verdict(m0, m1, m2, g1, g2, dp, dm, d2p, d2m, e2, e3);
       L.n0[o + b] = m0;
       L.n1[o + b] = m1;
       L.n2[o + b] = m2;
@@ -121,10 +116,20 @@ PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, do
       L.dminus[o + b] = dm;
       L.d2plus[o + b] = d2p;
       L.d2minus[o + b] = d2m;
-      L.unclear[o + b] = unclear ? 1.0 : 0.0;
-      L.first[o + b] = flip ? d2m : d2p;
-      L.second[o + b] = undecidable ? d2m : kInf;
+      L.unclear[o + b] = verdict.unclear;
+      L.first[o + b] = verdict.first;
+      L.second[o + b] = verdict.second;
     }
+  }
+}
+
+PDD_VECTOR_CLONES void finish_lanes(double e2, double e3, EdgeLanes& __restrict L) {
+  for (int i = 0; i < kLanes; ++i) {
+    const LaneVerdict v = lane_verdict(L.n0[i], L.n1[i], L.n2[i], L.g1[i], L.g2[i], L.dplus[i],
+                                       L.dminus[i], L.d2plus[i], L.d2minus[i], e2, e3);
+    L.unclear[i] = v.unclear;
+    L.first[i] = v.first;
+    L.second[i] = v.second;
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "pdd/fast/candidate_directions.h"
 
@@ -73,6 +74,24 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p);
 // All 36 edge pairs as lanes (EdgeLanes), with filter verdicts against bounds e2, e3.
 void edge_lanes(const Precomputed& p, double e2, double e3, EdgeLanes& L);
 
+// The filter verdicts (unclear, first, second) of lanes whose n, g, D and D²/(n.n) are set.
+void finish_lanes(double e2, double e3, EdgeLanes& L);
+
+// Verdicts of one lane (EdgeLanes): orientation rule on the signs of g1, g2 and the filter.
+struct LaneVerdict {
+  double unclear, first, second;
+};
+inline LaneVerdict lane_verdict(double m0, double m1, double m2, double g1, double g2, double dp,
+                                double dm, double d2p, double d2m, double e2, double e3) {
+  const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
+  const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
+  const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+  const bool unclear = (nmax <= e2) | (std::fabs(g1) <= e3) | (std::fabs(g2) <= e3) |
+                       ((!(dp > e3)) & (!flip)) | ((!(dm > e3)) & (flip | undecidable));
+  return {unclear ? 1.0 : 0.0, flip ? d2m : d2p,
+          undecidable ? d2m : std::numeric_limits<double>::infinity()};
+}
+
 bool all_finite(const TetVertices& T);
 
 constexpr std::uint8_t mask_without(int f) { return std::uint8_t(0xF & ~(1u << f)); }
@@ -115,9 +134,15 @@ inline void face_of_B(const Precomputed& p, int j, Draft& c) {
 // Face candidate f (FV:f for f < 4, VF:(f − 4) otherwise) computed in locals and written once:
 // a Draft round trip through memory costs store-forwarding stalls on this hot path. Same
 // arithmetic as face_of_A / face_of_B followed by orient_draft(·, 1).
+inline void finish_face(const Draft& d, DirectionGeometry& c);
 inline void face_geometry(const Precomputed& p, int f, DirectionGeometry& c) {
   Draft d;
   if (f < 4) face_of_A(p, f, d); else face_of_B(p, f - 4, d);
+  finish_face(d, c);
+}
+
+// A face's draft (oriented by construction) written as a candidate: depth = max hA − min hB.
+inline void finish_face(const Draft& d, DirectionGeometry& c) {
   double hi = d.hA[0], lo = d.hB[0];
   for (int m = 1; m < 4; ++m) {
     hi = max2(hi, d.hA[m]);

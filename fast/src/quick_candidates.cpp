@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "direction_geometry.h"
+#include "superset_kernel.h"
 #include "pdd/fast/filter_bounds.h"
 #include "pdd/fast/tie_tolerance.h"
 
@@ -40,25 +41,25 @@ void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
 
 }  // namespace
 
+// The arithmetic is the superset kernel's (superset_kernel.h), which also writes the lanes.
 bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
   q.count = 0;
-  if (!all_finite(A) || !all_finite(B)) return false;
-  const FilterBounds fb = filter_bounds(A, B);
-  q.tie_kappa = tie_kappa(A, B);
-  Precomputed p;
-  precompute(A, B, p);
-  if (!(std::fabs(p.detA) > fb.deg3) || !(std::fabs(p.detB) > fb.deg3)) return false;
-  p.oA = p.detA > 0 ? 1 : -1;
-  p.oB = p.detB > 0 ? 1 : -1;
+  Kernel K;
+  superset_kernel(A, B, K, &q.edges);
+  if (!(K.finite == 0.0)) return false;
+  const FilterBounds fb = filter_bounds_of_extent(K.extent);
+  if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
+  q.tie_kappa = K.kappa;
   for (int f = 0; f < 8; ++f) {
     DirectionGeometry& g = q.faces[f];
-    face_geometry(p, f, g);
+    Draft d;
+    face_draft(K, f, d);
+    finish_face(d, g);
     if (!(g.depth > fb.deg3)) return false;
     q.delta_sq[f] = g.depth * g.depth / g.nn;
     q.src[f] = std::int16_t(f);
   }
   q.count = 8;
-  edge_lanes(p, fb.deg2, fb.deg3, q.edges);
   if (!lanes_clear(q.edges)) return false;
   quick_edge_list(q.edges, q);
   return true;

@@ -60,16 +60,16 @@ inline DirectionLabel unpack_label(LabelCode c) {
 // A: 0, 0, g1, g2 at (u, v, k1, k2); B: hx, hx, hx + q1, hx + q2 at (x, y, j1, j2), where
 // (k1 < k2) are the vertices off edge a and (j1 < j2) those off edge b.
 struct EdgeLanes {
-  alignas(32) double n0[kLanes], n1[kLanes], n2[kLanes], nn[kLanes], hx[kLanes];
-  alignas(32) double g1[kLanes], g2[kLanes], q1[kLanes], q2[kLanes];
-  alignas(32) double dplus[kLanes], dminus[kLanes];  // D for +n and for −n
-  alignas(32) double d2plus[kLanes], d2minus[kLanes];  // D²/(n.n) for +n and for −n
+  alignas(64) double n0[kLanes], n1[kLanes], n2[kLanes], nn[kLanes], hx[kLanes];
+  alignas(64) double g1[kLanes], g2[kLanes], q1[kLanes], q2[kLanes];
+  alignas(64) double dplus[kLanes], dminus[kLanes];  // D for +n and for −n
+  alignas(64) double d2plus[kLanes], d2minus[kLanes];  // D²/(n.n) for +n and for −n
   // Filter verdicts of the lane (SPEC §3 orientation rule on the signs of g1, g2):
   //   unclear = 1 when a sign of n, g1, g2 or of a used depth is within its filter bound (the
   //             lane then goes through the exact path), else 0;
   //   first   = delta² of the lane's first candidate (+n, or −n when both g > 0);
   //   second  = delta² of the ':-' candidate of an undecidable pair, +inf otherwise.
-  alignas(32) double unclear[kLanes], first[kLanes], second[kLanes];
+  alignas(64) double unclear[kLanes], first[kLanes], second[kLanes];
 };
 
 struct CandidateSet {
