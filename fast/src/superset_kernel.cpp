@@ -13,15 +13,18 @@
 // selects counted apart):
 //   edges 36, face normals 48 + 72, determinants 10                              166
 //   faces: oriented normals 24, differences 96, 32 heights 160, n.n 40, D²/n.n 16  336
-//   tables: {NB, −NB} 24, G = eB.NA 120                                         144
-//   36 edge pairs × (n 9, r_x − s_u 3, hx 5, g 2, q1 q2 10, n.n 5, D(±n) 5,
-//                    1/n.n 1, +pad 1, value 2 = 43)                            1548
-//   total ≈ 2190 flops, plus ≈ 550 min/max/abs/selects (36 × 11 in the lanes, 24 face maxima,
-//   the extent, R and finiteness reductions) — ≈ 2750 lane operations, 3660 counting padding.
-// In AVX-512 that is ≈ 460 vector FP instructions plus ≈ 60 permutes, all on the two 512-bit
-// ports (p0, p5): >= 260 cycles, ≈ 100 ns at 2.6 GHz. Measured (pdd bench, this 2-core Xeon):
-// the kernel is ~2/3 of the ≈ 150 ns per pair; the rest is the scalar tie-band scan (usually one
-// entry), the call and the caller. So the kernel runs close to the machine's FP throughput.
+//   tables: {NB, −NB} 24, G = eB.NA 120, r_x − s_u 54                            198
+//   36 edge pairs × (n 9, hx 5, g 2, q1 q2 10, n.n 5, D(±n) 5, 1/n.n 1, +pad 1,
+//                    value 2 = 40)                                             1440
+//   total ≈ 2140 flops, plus ≈ 550 min/max/abs/selects (36 × 11 in the lanes, 24 face maxima,
+//   the extent, R and finiteness reductions) — ≈ 2700 lane operations, 3550 counting padding.
+// The AVX-512 clone of the rigid kernel has ≈ 500 vector FP instructions (167 mul, 84 add,
+// 75 sub, 7 div, ≈ 170 min/max/compare/blend) and ≈ 90 permutes, all issued on the two 512-bit
+// ports (p0, p5): >= 295 cycles, i.e. >= 115 ns at the nominal 2.3 GHz, ≈ 100 ns at 3 GHz.
+// Measured on this 2-core Xeon (Sapphire Rapids class, no PMU in the VM): rigid_pd2 ≈ 150-165
+// ns per pair, of which perf attributes ~3/4 (≈ 115 ns) to the kernel; the rest is the scalar
+// tie-band scan (usually one entry) and the call. So the kernel runs at the ports' throughput,
+// ≈ 19 useful flops per ns; the remaining lever would be the 2 padding lanes of 8 (25 %).
 #include "superset_kernel.h"
 
 #include <cmath>
@@ -110,10 +113,10 @@ PDD_INLINE void cross8(const v8* a, const v8* b, v8* o) {  // detail::cross, lan
 // Edges, face normals, determinants (the arithmetic of edges_and_faces, lane-wise), D, n.n and
 // D²/(n.n) of the 8 faces and of both orientations of the 36 edge pairs, and the entries near
 // the minimum.
-}  // namespace
-
-PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices& B, Kernel& K,
-                                         EdgeLanes* full) {
+// kFull: also the candidate list's lanes (superset_kernel.h). A template, so that the rigid
+// kernel carries no trace of the extra stores (registers, code size).
+template <bool kFull>
+PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full) {
   const v8 zero = bc(0.0);
   const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
   v8 X[3];  // coordinates, structure of arrays: lanes s0..s3, r0..r3
@@ -175,6 +178,9 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
   asm volatile("" : : "m"(K.EA), "m"(K.NAB) : "memory");
   for (int f = 0; f < 4; ++f)
     K.G[f] = EB[0] * K.NAB[0][f] + EB[1] * K.NAB[1][f] + EB[2] * K.NAB[2][f];
+  v8 W[3][3];  // W[u] = r_x(b) − s_u, u = 0, 1, 2 (the first vertex of every edge of A)
+  for (int u = 0; u < 3; ++u)
+    for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - A[u][k];
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
@@ -182,7 +188,8 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
     const v8 m0 = EB[1] * az - EB[2] * ay;
     const v8 m1 = EB[2] * ax - EB[0] * az;
     const v8 m2 = EB[0] * ay - EB[1] * ax;
-    const v8 h = m0 * (RX[0] - A[u][0]) + m1 * (RX[1] - A[u][1]) + m2 * (RX[2] - A[u][2]);
+    const v8* w = W[u];
+    const v8 h = m0 * w[0] + m1 * w[1] + m2 * w[2];
     const v8 g1 = double(parity(u, v, k1)) * K.G[6 - u - v - k1];
     const v8 g2 = double(parity(u, v, k2)) * K.G[6 - u - v - k2];
     const v8 q1 = ax * P[0][0] + ay * P[0][1] + az * P[0][2];
@@ -197,7 +204,7 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
     K.dm[a] = dm;
     K.inv[a] = inv;
     K.val[a] = val;
-    if (full) {  // the candidate list's lanes; verdicts by finish_lanes (direction_geometry.h)
+    if (kFull) {  // the candidate list's lanes; verdicts by finish_lanes (direction_geometry.h)
       const int o = kLaneStride * a;
       store8(full->n0 + o, m0);
       store8(full->n1 + o, m1);
@@ -216,7 +223,7 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
     lo = vmin(lo, dd);
     best = vmin(best, val);
   }
-  if (full) {
+  if (kFull) {
     const FilterBounds fb = filter_bounds_of_extent(K.extent);
     finish_lanes(fb.deg2, fb.deg3, *full);
   }
@@ -236,6 +243,23 @@ PDD_SUPERSET_CLONES void superset_kernel(const TetVertices& A, const TetVertices
   bits = v8l{};
   for (int a = 0; a < 6; ++a) bits |= (K.val[a] <= t2) & (one << (8 * a));
   K.lane_bits = std::uint64_t(horizontal_or(bits));
+}
+
+PDD_SUPERSET_CLONES void kernel_rigid(const TetVertices& A, const TetVertices& B, Kernel& K) {
+  kernel_body<false>(A, B, K, nullptr);
+}
+PDD_SUPERSET_CLONES void kernel_full(const TetVertices& A, const TetVertices& B, Kernel& K,
+                                     EdgeLanes* full) {
+  kernel_body<true>(A, B, K, full);
+}
+
+}  // namespace
+
+void superset_kernel(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full) {
+  if (full)
+    kernel_full(A, B, K, full);
+  else
+    kernel_rigid(A, B, K);
 }
 
 void face_draft(const Kernel& K, int f, Draft& d) {
