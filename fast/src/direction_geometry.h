@@ -8,8 +8,8 @@
 //   the permutation sorting (u,v,k), because (p1 − p0) × (p2 − p0) is alternating in (p0,p1,p2).
 // So all 72 values g_k of the edge pairs come from 24 dots eB.NA_f, and all 72 B-side offsets
 // n.(r_j − r_x) from 24 dots eA.NB_f. The per-lane arithmetic (edge_lanes) is branch-free over
-// structure-of-arrays; on x86-64 GCC also emits an AVX2 clone chosen at run time (ifunc). Both
-// clones perform the same IEEE operations in the same order (no FMA contraction, no
+// structure-of-arrays; on x86-64 GCC also emits AVX-512 and AVX2 clones chosen at run time
+// (ifunc). All clones perform the same IEEE operations in the same order (no FMA contraction, no
 // reassociation), so results are identical on every machine.
 #pragma once
 

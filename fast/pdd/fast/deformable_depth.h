@@ -66,6 +66,8 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 
 // Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the full
 // candidate set (on the stack); value 0 when not intersecting. The hot functions to time.
+// pdd2_accel(A, B, 1) is the case-2 QP on the rigid direction of rigid_superset
+// (superset_depth.h, index −1) when it decides: rigid PD plus one direction solve.
 Choice pdd2_static(const TetVertices& A, const TetVertices& B);
 Choice pdd2(const TetVertices& A, const TetVertices& B);
 Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B);

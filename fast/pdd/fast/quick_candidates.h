@@ -7,7 +7,9 @@
 //         label array (labels are derived on demand) and no exact fallback: quick_candidates
 //         declines (returns false) whenever a filter verdict is unclear, the pair may not
 //         intersect, or the input is invalid; callers then use build_candidates.
-// Used by the convenience functions over raw tetrahedra (rigid_depth.h, deformable_depth.h).
+// Used by the convenience functions over raw tetrahedra (deformable_depth.h). The arithmetic is
+// that of the superset kernel (src/superset_kernel.h, one vectorised pass that also writes the
+// edge lanes), bit-identical to build_candidates' (tested).
 #pragma once
 
 #include "pdd/fast/candidate_directions.h"

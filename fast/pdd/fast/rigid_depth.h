@@ -25,9 +25,9 @@ Choice rigid_pd2(const CandidateSet& set);
 Choice rigid_pd2(const QuickCandidates& q);  // same candidates, same result
 double eq11_pd2(const CandidateSet& set);
 
-// Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the
-// candidate set (index then refers to that list); value 0 when the pair does not intersect or
-// is invalid.
+// Convenience over raw tetrahedra (the hot path): rigid_superset (superset_depth.h) when it
+// decides (index −1: no list is built), else the candidate set (index then refers to it);
+// value 0 when the pair does not intersect or is invalid. Same value and label either way.
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B);
 
 }  // namespace pdd::fast

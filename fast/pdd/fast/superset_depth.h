@@ -40,12 +40,13 @@
 // entries of S within the tie band of min_S need the orientation rule (filtered signs of
 // g1, g2; declined when unclear). The list path takes vmin_c = min over real candidates and
 // then the first real v <= tie_threshold(vmin_c); we reproduce it exactly: with
-// t1 = tie_threshold(min_S) and t2 = tie_threshold(t1), every real candidate that can be the
-// real minimum or tie with it has v <= t2 (the threshold is monotone), so the entries of S
-// with v <= t2 decide. If no real candidate lies below t1 (impossible unless the tie band is
-// below the rounding error), we decline.
+// t1 = tie_threshold(min_S) and t2 >= tie_threshold(t1) (one square root, see
+// superset_kernel.cpp), every real candidate that can be the real minimum or tie with it has
+// v <= t2 (the threshold is monotone), so the entries of S with v <= t2 decide. If no real
+// candidate lies below t1 (impossible unless the tie band is below the rounding error), we
+// decline.
 //
-// ---- Cost. See superset_depth.cpp for the flop count per pair.
+// ---- Cost. See src/superset_kernel.cpp for the flop count per pair (≈ 2140 flops, ≈ 115 ns).
 #pragma once
 
 #include "pdd/fast/candidate_directions.h"
