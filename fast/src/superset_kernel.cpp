@@ -110,30 +110,28 @@ PDD_INLINE void cross8(const v8* a, const v8* b, v8* o) {  // detail::cross, lan
   o[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-// Edges, face normals, determinants (the arithmetic of edges_and_faces, lane-wise), D, n.n and
-// D²/(n.n) of the 8 faces and of both orientations of the 36 edge pairs, and the entries near
-// the minimum.
-// kFull: also the candidate list's lanes (superset_kernel.h). A template, so that the rigid
-// kernel carries no trace of the extra stores (registers, code size).
-template <bool kFull>
-PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full) {
-  const v8 zero = bc(0.0);
-  const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
-  v8 X[3];  // coordinates, structure of arrays: lanes s0..s3, r0..r3
-  {
-    const double *a = &A[0][0], *b = &B[0][0];  // 12 contiguous doubles each
-    const v8 a0 = load8(a), a1 = load8(a + 4), b0 = load8(b), b1 = load8(b + 4);
-    for (int k = 0; k < 3; ++k)
-      X[k] = __builtin_shuffle(__builtin_shuffle(a0, a1, kLoad[k]),
-                               __builtin_shuffle(b0, b1, kLoad[k]), kHalves);
-  }
-  // extent, largest |coordinate| (tie_tolerance.h), finiteness (x·0 is NaN for inf and NaN)
+// Coordinates as structure of arrays: X[k] = {s0, s1, s2, s3, r0, r1, r2, r3} of axis k.
+PDD_INLINE void soa_coordinates(const TetVertices& A, const TetVertices& B, v8* X) {
+  const double *a = &A[0][0], *b = &B[0][0];  // 12 contiguous doubles each
+  const v8 a0 = load8(a), a1 = load8(a + 4), b0 = load8(b), b1 = load8(b + 4);
+  for (int k = 0; k < 3; ++k)
+    X[k] = __builtin_shuffle(__builtin_shuffle(a0, a1, kLoad[k]),
+                             __builtin_shuffle(b0, b1, kLoad[k]), kHalves);
+}
+
+// Extent L (filter_bounds.h), kappa = kTieCoeff u R (tie_tolerance.h, R = max |coordinate|)
+// and finiteness (x·0 is NaN for inf and NaN).
+PDD_INLINE void pair_scales(const v8* X, Kernel& K) {
   K.extent = max2(hmax(X[0]) - hmin(X[0]), max2(hmax(X[1]) - hmin(X[1]), hmax(X[2]) - hmin(X[2])));
   const double R = hmax(vmax(vmax(vabs(X[0]), vabs(X[1])), vabs(X[2])));
-  const double kappa = K.kappa = kTieCoeff * kUnitRoundoff * R;
+  K.kappa = kTieCoeff * kUnitRoundoff * R;
   K.finite = hsum(X[0] * 0.0 + X[1] * 0.0 + X[2] * 0.0);
-  // edges, face normals (v1 − v0) × (v2 − v0), det = N_3 . (x3 − x0)
-  v8 U[3], V[3], T[3], RX[3];
+}
+
+// Edges EA, EB (and r_x of B's edges), face normals NAB = (v1 − v0) × (v2 − v0) and
+// det = N_3 . (x3 − x0): the arithmetic of edges_and_faces, lane-wise.
+PDD_INLINE void edges_and_normals(const v8* X, Kernel& K, v8* RX) {
+  v8 U[3], V[3], T[3];
   for (int k = 0; k < 3; ++k) {
     K.EA[k] = perm(X[k], kEdgeV) - perm(X[k], kEdgeU);
     RX[k] = perm(X[k], kEdgeX);
@@ -143,18 +141,20 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& 
     V[k] = perm(X[k], kFace2) - v0;
     T[k] = perm(X[k], kDet3) - perm(X[k], kDet0);
   }
-  v8* NAB = K.NAB;
-  cross8(U, V, NAB);
-  K.det = NAB[0] * T[0] + NAB[1] * T[1] + NAB[2] * T[2];
-  const v8* EB = K.EB;
-  // ---- faces: lane f, heights sigma_f N_f . (r − s) of the other tetrahedron's 4 vertices,
-  // D_f = max of them (FV: −min_j s N.(r_j − s_v0); VF: max_i −s N.(r_v0 − s_i), see
-  // face_of_A / face_of_B; sigma = −s, exact; o = orientation sign of the tetrahedron).
+  cross8(U, V, K.NAB);
+  K.det = K.NAB[0] * T[0] + K.NAB[1] * T[1] + K.NAB[2] * T[2];
+}
+
+// Faces, lane f: heights H_j = sigma_f N_f . (r − s) of the other tetrahedron's 4 vertices and
+// D_f = max_j H_j (FV: −min_j s N.(r_j − s_v0); VF: max_i −s N.(r_v0 − s_i), see face_of_A /
+// face_of_B; sigma = −s, exact; o = orientation sign of the tetrahedron); value D²/(n.n).
+// Returns D.
+PDD_INLINE v8 face_values(const v8* X, Kernel& K) {
   const v8 o = perm(K.det, kDet3) > 0.0 ? bc(1.0) : bc(-1.0);
   const v8 sig = o * v8{-1, 1, -1, 1, 1, -1, 1, -1};
   v8 N[3];
-  for (int k = 0; k < 3; ++k) N[k] = NAB[k] * sig;
-  v8 D = zero;
+  for (int k = 0; k < 3; ++k) N[k] = K.NAB[k] * sig;
+  v8 D = bc(0.0);
   for (int j = 0; j < 4; ++j) {
     v8 d[3];  // FV lanes: r_j − s_v0; VF lanes: r_v0 − s_j
     for (int k = 0; k < 3; ++k) d[k] = perm(X[k], kFaceR[j]) - perm(X[k], kFaceS[j]);
@@ -163,13 +163,22 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& 
   }
   const v8 fnn = N[0] * N[0] + N[1] * N[1] + N[2] * N[2];
   K.face_val = D * D / fnn;
-  v8 lo = D, best = K.face_val;
+  return D;
+}
 
-  // ---- edge pairs: n = eB × eA, lanes b, one vector per a.
+// Edge pairs, n = eB × eA, lanes b, one vector per a (edge_lanes' arithmetic): D(±n), 1/(n.n),
+// the lane's value min(D(±n))²/(n.n) (padding +inf); running minima of D and of the value.
+// kFull: also the candidate list's lanes (superset_kernel.h), verdicts by finish_lanes.
+template <bool kFull>
+PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, EdgeLanes* full,
+                                 v8& lo, v8& best) {
+  const v8 zero = bc(0.0);
+  const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
+  const v8* EB = K.EB;
   v8 P[2][3];  // P_m = sign · NB[face]: q_m = eA . P_m
   const v8 neg_hi = {1, 1, 1, 1, -1, -1, -1, -1};
   for (int k = 0; k < 3; ++k) {
-    const v8 nb = perm(NAB[k], kNB2) * neg_hi;  // {NB, −NB}
+    const v8 nb = perm(K.NAB[k], kNB2) * neg_hi;  // {NB, −NB}
     P[0][k] = perm(nb, kOffIndex[0]);
     P[1][k] = perm(nb, kOffIndex[1]);
   }
@@ -204,7 +213,7 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& 
     K.dm[a] = dm;
     K.inv[a] = inv;
     K.val[a] = val;
-    if (kFull) {  // the candidate list's lanes; verdicts by finish_lanes (direction_geometry.h)
+    if (kFull) {
       const int o = kLaneStride * a;
       store8(full->n0 + o, m0);
       store8(full->n1 + o, m1);
@@ -223,26 +232,42 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& 
     lo = vmin(lo, dd);
     best = vmin(best, val);
   }
-  if (kFull) {
-    const FilterBounds fb = filter_bounds_of_extent(K.extent);
-    finish_lanes(fb.deg2, fb.deg3, *full);
-  }
-  K.lo = hmin(lo);
-  const double b = K.vmin = hmin(best);
-  // Entries within t2 of the minimum (header): bit f of face_bits, bit 8a + b of lane_bits.
-  // One square root: with q = sqrt(vmin), t1 = vmin + kappa q and sqrt(t1) <= q + kappa/2,
-  // so tie_threshold(t1) <= t1 + kappa (q + kappa/2); the extra kappa q + kappa²/2 covers the
-  // rounding of both thresholds (kappa q >= 128 u R PD >= 4 u t1, as PD <= 4R).
+}
+
+// Entries within t2 of the minimum (superset_depth.h): bit f of face_bits, bit 8a + b of
+// lane_bits. One square root: with q = sqrt(vmin), t1 = vmin + kappa q and sqrt(t1) <=
+// q + kappa/2, so tie_threshold(t1) <= t1 + kappa (q + kappa/2); the extra kappa q + kappa²/2
+// covers the rounding of both thresholds (kappa q >= 128 u R PD >= 4 u t1, as PD <= 4R).
+PDD_INLINE void tie_masks(Kernel& K) {
+  const double b = K.vmin, kappa = K.kappa;
   const double q = std::sqrt(b);
   K.t1 = b + kappa * q;  // = tie_threshold(b, kappa)
-  const double t2 = K.t1 + kappa * (q + q + kappa);
-  K.t2 = t2;
+  const double t2 = K.t2 = K.t1 + kappa * (q + q + kappa);
   const v8l one = {1, 2, 4, 8, 16, 32, 64, 128};
   v8l bits = (K.face_val <= t2) & one;
   K.face_bits = std::uint8_t(horizontal_or(bits));
   bits = v8l{};
   for (int a = 0; a < 6; ++a) bits |= (K.val[a] <= t2) & (one << (8 * a));
   K.lane_bits = std::uint64_t(horizontal_or(bits));
+}
+
+// The whole kernel. kFull: also the candidate list's lanes. A template, so that the rigid
+// kernel carries no trace of the extra stores (registers, code size).
+template <bool kFull>
+PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full) {
+  v8 X[3], RX[3];
+  soa_coordinates(A, B, X);
+  pair_scales(X, K);
+  edges_and_normals(X, K, RX);
+  v8 lo = face_values(X, K), best = K.face_val;
+  edge_pair_values<kFull>(A, RX, K, full, lo, best);
+  if (kFull) {
+    const FilterBounds fb = filter_bounds_of_extent(K.extent);
+    finish_lanes(fb.deg2, fb.deg3, *full);
+  }
+  K.lo = hmin(lo);
+  K.vmin = hmin(best);
+  tie_masks(K);
 }
 
 PDD_SUPERSET_CLONES void kernel_rigid(const TetVertices& A, const TetVertices& B, Kernel& K) {
