@@ -7,7 +7,6 @@
 #include "direction_geometry.h"
 #include "superset_kernel.h"
 #include "pdd/fast/filter_bounds.h"
-#include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
 

@@ -124,9 +124,9 @@ BOOST_AUTO_TEST_CASE(degenerate_and_nearly_degenerate) {
   BOOST_TEST(orientation_sign_exact(almost) != 0);
 }
 
-// quick_candidates (the hot-path list) must reproduce build_candidates bit for bit: same
-// count, same labels in the same order, same delta², and every materialised candidate equal
-// (n, n.n, D, heights, constrained masks).
+// quick_candidates (the hot-path list, built by the superset kernel) must reproduce
+// build_candidates bit for bit: same count, same labels in the same order, same delta², same
+// tie band, and every materialised candidate equal (n, n.n, D, heights, constrained masks).
 BOOST_AUTO_TEST_CASE(quick_candidates_match_the_set) {
   int quick = 0, intersecting = 0;
   for (const TetPair& p : random_pairs(600, 37, false)) {
@@ -138,6 +138,7 @@ BOOST_AUTO_TEST_CASE(quick_candidates_match_the_set) {
     ++quick;
     BOOST_REQUIRE(set.intersecting);
     BOOST_REQUIRE(q.count == set.count);
+    BOOST_TEST(q.tie_kappa == set.tie_kappa);  // same tie band (tie_tolerance.h)
     for (int k = 0; k < set.count; ++k) {
       const Candidate a = candidate(q, k), c = candidate(set, k);
       BOOST_TEST(q.delta_sq[k] == set.delta_sq[k]);
