@@ -58,7 +58,8 @@ bool near_candidates(const Kernel& K, const FilterBounds& fb, Near* out, int& co
     const double d2p = K.dp[a][b] * K.dp[a][b] * inv, d2m = K.dm[a][b] * K.dm[a][b] * inv;
     const EdgeOrientation plus = undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided;
     const EdgeOrientation minus = undecidable ? EdgeOrientation::Minus : EdgeOrientation::Decided;
-    if (!flip && d2p <= t2) out[count++] = {d2p, pack_label(ContactKind::EE, a, b, plus), lane, -1, 1.0};
+    if (!flip && d2p <= t2)
+      out[count++] = {d2p, pack_label(ContactKind::EE, a, b, plus), lane, -1, 1.0};
     if ((flip || undecidable) && d2m <= t2)
       out[count++] = {d2m, pack_label(ContactKind::EE, a, b, minus), lane, -1, -1.0};
   }

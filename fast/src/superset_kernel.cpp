@@ -254,7 +254,8 @@ PDD_INLINE void tie_masks(Kernel& K) {
 // The whole kernel. kFull: also the candidate list's lanes. A template, so that the rigid
 // kernel carries no trace of the extra stores (registers, code size).
 template <bool kFull>
-PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full) {
+PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& K,
+                            EdgeLanes* full) {
   v8 X[3], RX[3];
   soa_coordinates(A, B, X);
   pair_scales(X, K);

@@ -72,7 +72,8 @@ BOOST_AUTO_TEST_CASE(exact_tie_fv_and_parallel_ee_is_recognised) {
     BOOST_REQUIRE((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
     BOOST_REQUIRE(set.intersecting);
     const double fv = value_of(set, DirectionLabel::fv(3));
-    const double ee0 = value_of(set, DirectionLabel::ee(0, 0)), ee1 = value_of(set, DirectionLabel::ee(1, 0));
+    const double ee0 = value_of(set, DirectionLabel::ee(0, 0));
+    const double ee1 = value_of(set, DirectionLabel::ee(1, 0));
     BOOST_REQUIRE((fv > 0 && ee0 > 0 && ee1 > 0));
     for (double x : {fv, ee0, ee1})
       for (double y : {fv, ee0, ee1}) BOOST_TEST(ties_with_min(x, y, set.tie_kappa));
@@ -98,7 +99,8 @@ BOOST_AUTO_TEST_CASE(gap_of_1e_11_is_not_a_tie) {
   CandidateSet set;
   BOOST_REQUIRE((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
   BOOST_REQUIRE(set.intersecting);
-  const double fv = value_of(set, DirectionLabel::fv(3)), vf = value_of(set, DirectionLabel::vf(3));
+  const double fv = value_of(set, DirectionLabel::fv(3));
+  const double vf = value_of(set, DirectionLabel::vf(3));
   BOOST_TEST(fv / vf - 1 > 1e-11);
   BOOST_TEST(fv / vf - 1 < 2e-11);
   BOOST_TEST(!ties_with_min(fv, vf, set.tie_kappa));
