@@ -19,8 +19,10 @@
 // A facet of M is the Minkowski sum of faces of A and of −B with a common outward normal and
 // dimension 2: a facet of A (normal ∝ ±N_A,f), a facet of B (∝ ±N_B,f), or the sum of two
 // non-parallel edges (normal ∝ ±eB × eA). With its OUTWARD orientation it is a SPEC §3
-// candidate (FV/VF are oriented outward by construction; the outward normal of an edge-edge
-// facet keeps A on its side, which is what the orientation rule selects). Hence over the superset
+// candidate: FV/VF are oriented outward by construction; for an edge-edge facet with outward
+// normal u, A's support set in direction u is its edge (s_u, s_v), so u.(s_k − s_u) < 0 for
+// A's two other vertices — for n = u both g_k < 0 and the rule keeps n, for n = −u both
+// g_k > 0 and the rule flips to −n = u (such a pair is never undecidable). Hence over the superset
 //     S = { FV:0..3, VF:0..3 } ∪ { +n, −n : n = eB × eA, all 36 edge pairs }
 // we have   min_{u in S} D(u)²/(u.u) = PD²   — every element is >= PD², the outward facet
 // normals are in S and attain it. No orientation rule, no classification, no exact predicate is
