@@ -14,17 +14,18 @@
 //   edges 36, face normals 48 + 72, determinants 10                              166
 //   faces: oriented normals 24, differences 96, 32 heights 160, n.n 40, D²/n.n 16  336
 //   tables: {NB, −NB} 24, G = eB.NA 120, r_x − s_u 54                            198
-//   36 edge pairs × (n 9, hx 5, g 2, q1 q2 10, n.n 5, D(±n) 5, 1/n.n 1, +pad 1,
-//                    value 2 = 40)                                             1440
-//   total ≈ 2140 flops, plus ≈ 550 min/max/abs/selects (36 × 11 in the lanes, 24 face maxima,
-//   the extent, R and finiteness reductions) — ≈ 2700 lane operations, 3550 counting padding.
-// The AVX-512 clone of the rigid kernel has ≈ 500 vector FP instructions (167 mul, 84 add,
-// 75 sub, 7 div, ≈ 170 min/max/compare/blend) and ≈ 90 permutes, all issued on the two 512-bit
-// ports (p0, p5): >= 295 cycles, i.e. >= 115 ns at the nominal 2.3 GHz, ≈ 100 ns at 3 GHz.
+//   QB = eA.NB for 6 × 4 (edge, face) pairs (q1, q2 are permuted lanes of {QB, −QB})  120
+//   36 edge pairs × (n 9, hx 5, g 2, n.n 5, D(±n) 5, 1/n.n 1, +pad 1, value 2 = 30) 1080
+//   total ≈ 1900 flops, plus ≈ 550 min/max/abs/selects (36 × 11 in the lanes, 24 face maxima,
+//   the extent, R and finiteness reductions) — ≈ 2450 lane operations, 3300 counting padding.
+// The AVX-512 clone of the rigid kernel has ≈ 470 vector FP instructions (149 mul, 72 add,
+// 75 sub, 7 div, ≈ 170 min/max/compare/blend) and ≈ 95 permutes, all issued on the two 512-bit
+// ports (p0, p5): >= 285 cycles, i.e. >= 125 ns at the nominal 2.3 GHz, ≈ 95 ns at 3 GHz.
 // Measured on this 2-core Xeon (Sapphire Rapids class, no PMU in the VM): rigid_pd2 ≈ 150-165
 // ns per pair, of which perf attributes ~3/4 (≈ 115 ns) to the kernel; the rest is the scalar
-// tie-band scan (usually one entry) and the call. So the kernel runs at the ports' throughput,
-// ≈ 19 useful flops per ns; the remaining lever would be the 2 padding lanes of 8 (25 %).
+// tie-band scan (usually one entry) and the call. So the kernel runs at the ports' throughput
+// (the core must clock ≈ 2.5 GHz), ≈ 16 useful flops per ns; the remaining lever would be the
+// 2 padding lanes of 8 (25 %).
 #include "superset_kernel.h"
 
 #include <cmath>
@@ -175,13 +176,9 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, 
   const v8 zero = bc(0.0);
   const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
   const v8* EB = K.EB;
-  v8 P[2][3];  // P_m = sign · NB[face]: q_m = eA . P_m
+  v8 NB2[3];  // {NB, −NB} per axis: eA . NB2 = {QB, −QB}, q_m = sign · QB[face] a lane of it
   const v8 neg_hi = {1, 1, 1, 1, -1, -1, -1, -1};
-  for (int k = 0; k < 3; ++k) {
-    const v8 nb = perm(K.NAB[k], kNB2) * neg_hi;  // {NB, −NB}
-    P[0][k] = perm(nb, kOffIndex[0]);
-    P[1][k] = perm(nb, kOffIndex[1]);
-  }
+  for (int k = 0; k < 3; ++k) NB2[k] = perm(K.NAB[k], kNB2) * neg_hi;
   // Scalars of EA and NAB are broadcast from memory (load ports) rather than permuted: the
   // barrier makes the compiler read them back from K.
   asm volatile("" : : "m"(K.EA), "m"(K.NAB) : "memory");
@@ -201,8 +198,8 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, 
     const v8 h = m0 * w[0] + m1 * w[1] + m2 * w[2];
     const v8 g1 = double(parity(u, v, k1)) * K.G[6 - u - v - k1];
     const v8 g2 = double(parity(u, v, k2)) * K.G[6 - u - v - k2];
-    const v8 q1 = ax * P[0][0] + ay * P[0][1] + az * P[0][2];
-    const v8 q2 = ax * P[1][0] + ay * P[1][1] + az * P[1][2];
+    const v8 qb = ax * NB2[0] + ay * NB2[1] + az * NB2[2];
+    const v8 q1 = perm(qb, kOffIndex[0]), q2 = perm(qb, kOffIndex[1]);
     const v8 nn = m0 * m0 + m1 * m1 + m2 * m2;
     const v8 dp = vmax(zero, vmax(g1, g2)) - h - vmin(zero, vmin(q1, q2));
     const v8 dm = -vmin(zero, vmin(g1, g2)) + h + vmax(zero, vmax(q1, q2));

@@ -48,7 +48,7 @@
 // candidate lies below t1 (impossible unless the tie band is below the rounding error), we
 // decline.
 //
-// ---- Cost. See src/superset_kernel.cpp for the flop count per pair (≈ 2140 flops, ≈ 115 ns).
+// ---- Cost. See src/superset_kernel.cpp for the flop count per pair (≈ 1900 flops, ≈ 115 ns).
 #pragma once
 
 #include "pdd/fast/candidate_directions.h"
