@@ -2,14 +2,11 @@
 // (fixtures/golden/**.jsonl, rational strings) on every fixture file that has one.
 //
 // Agreement required: error presence, `intersecting` and every label exactly (all decided by
-// exact predicates or by exact ties, see tie_tolerance.h); values and q1 to 1e-8 relative
-// (+1e-12 absolute for q1); the hot-path overloads (rigid_pd2, pdd2_accel over raw vertices)
-// equal to solve_pair bit for bit. The fast values carry rounding errors ~1e-16 amplified by the
-// conditioning of the pair (observed worst 1e-10, on slivers); 1e-8 keeps two orders of margin
-// and still catches any wrong direction, active set or variant (errors >= 1e-3 relative).
+// exact predicates or by exact ties, see tie_tolerance.h); the hot-path overloads (rigid_pd2,
+// pdd2_accel over raw vertices) equal to solve_pair bit for bit. The VALUES and q1 are held to
+// the project's argued tolerance (K eps R / sqrt(value), compare/pdd/compare/
+// engine_comparison.h) by tests/compare/test_fast_vs_golden.cpp, not repeated here.
 #define BOOST_TEST_MODULE fast_golden
-#include <gmpxx.h>
-
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fstream>
@@ -56,14 +53,6 @@ std::map<std::string, json> read_golden(const fs::path& file) {
   return out;
 }
 
-bool close(double fast, const std::string& exact, double rel, double abs) {
-  const mpq_class e(exact), f(fast);
-  mpq_class d = f - e;
-  if (d < 0) d = -d;
-  mpq_class m = e < 0 ? mpq_class(-e) : e;
-  return d <= mpq_class(rel) * m + mpq_class(abs);
-}
-
 std::string label(const std::optional<DirectionLabel>& l) { return l ? l->str() : "null"; }
 std::string label(const json& j) { return j.is_null() ? "null" : j.get<std::string>(); }
 
@@ -79,14 +68,6 @@ void check_file(const fs::path& fixture, const fs::path& golden) {
       BOOST_TEST(bool(r.error) == !g.at("error").is_null());
       if (r.error || !g.at("error").is_null()) continue;
       BOOST_TEST(r.intersecting == g.at("intersecting").get<bool>());
-      const std::pair<const char*, double> values[] = {
-          {"rigid_pd2", r.rigid_pd2},     {"eq11_pd2", r.eq11_pd2},
-          {"pdd2_static", r.pdd2_static}, {"pdd2", r.pdd2},
-          {"pdd2_relaxed", r.pdd2_relaxed}, {"pdd2_accel1", r.pdd2_accel1},
-          {"pdd2_accel6", r.pdd2_accel6}};
-      for (const auto& [key, v] : values)
-        BOOST_TEST(close(v, g.at(key).get<std::string>(), 1e-8, 0.0),
-                   key << ": fast " << v << " exact " << g.at(key).get<std::string>());
       BOOST_TEST(label(r.rigid_dir) == label(g.at("rigid_dir")));
       BOOST_TEST(label(r.pdd2_static_dir) == label(g.at("pdd2_static_dir")));
       BOOST_TEST(label(r.pdd2_dir) == label(g.at("pdd2_dir")));
@@ -97,11 +78,6 @@ void check_file(const fs::path& fixture, const fs::path& golden) {
       BOOST_TEST(rigid.value == r.rigid_pd2);
       BOOST_TEST(a1.value == r.pdd2_accel1);
       if (r.intersecting) BOOST_TEST(rigid.label().str() == label(r.rigid_dir));
-      for (int i = 0; i < 4; ++i)
-        for (int k = 0; k < 3; ++k) {
-          BOOST_TEST(close(r.q1_A[i][k], g.at("q1_A")[i][k].get<std::string>(), 1e-8, 1e-12));
-          BOOST_TEST(close(r.q1_B[i][k], g.at("q1_B")[i][k].get<std::string>(), 1e-8, 1e-12));
-        }
     }
   }
 }
@@ -125,5 +101,5 @@ BOOST_AUTO_TEST_CASE(all_fixtures_with_golden_records) {
       check_file(e.path(), golden);
       ++files;
     }
-  BOOST_TEST(files >= 2);  // the fixture tree must be found: a vacuous pass is a failure
+  BOOST_TEST(files == 19);  // every shipped fixture file has a golden record: none may be skipped
 }
