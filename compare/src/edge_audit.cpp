@@ -30,13 +30,26 @@ Minima minima(const std::vector<CandidateRow>& rows) {
   return m;
 }
 
-// Solves every case on `dir` and raises the flags where it beats the pair's result.
-void compare_with_result(const ExactPair& p, const CandidateDirection& dir, const Minima& m,
-                         CaseFlags& beats) {
+// The three case optima along one direction (static nullopt when infeasible).
+struct DirectionOptima {
+  std::optional<Rational> st;
+  Rational def, rel;
+};
+
+DirectionOptima solve_all_cases(const ExactPair& p, const CandidateDirection& dir) {
   const auto f = QpFormulation::Reduced;
-  if (auto s = direction_qp(p, dir, PddCase::Static, f); s && s->value < *m.st) beats.static_case = true;
-  if (direction_qp(p, dir, PddCase::Deformable, f)->value < *m.def) beats.deformable = true;
-  if (direction_qp(p, dir, PddCase::Relaxed, f)->value < *m.rel) beats.relaxed = true;
+  DirectionOptima o;
+  if (auto s = direction_qp(p, dir, PddCase::Static, f)) o.st = s->value;
+  o.def = direction_qp(p, dir, PddCase::Deformable, f)->value;
+  o.rel = direction_qp(p, dir, PddCase::Relaxed, f)->value;
+  return o;
+}
+
+// Raises the flags where the direction's optima beat the pair's result.
+void compare_with_result(const DirectionOptima& o, const Minima& m, CaseFlags& beats) {
+  if (o.st && *o.st < *m.st) beats.static_case = true;
+  if (o.def < *m.def) beats.deformable = true;
+  if (o.rel < *m.rel) beats.relaxed = true;
 }
 
 void audit_orientation_rule(const ExactPair& p, const std::vector<CandidateRow>& rows,
@@ -46,12 +59,12 @@ void audit_orientation_rule(const ExactPair& p, const std::vector<CandidateRow>&
     if (d.label.kind != ContactKind::EE || d.label.orientation != EdgeOrientation::Decided) continue;
     CandidateDirection flipped = d;
     flipped.n = -d.n;
-    const auto f = QpFormulation::Reduced;
+    const DirectionOptima o = solve_all_cases(p, flipped);  // each QP once
     ++out.decided_checked;
-    out.discarded_smaller_deformable += direction_qp(p, flipped, PddCase::Deformable, f)->value < row.deformable.value;
-    out.discarded_smaller_relaxed += direction_qp(p, flipped, PddCase::Relaxed, f)->value < row.relaxed.value;
-    out.discarded_feasible_static += direction_qp(p, flipped, PddCase::Static, f).has_value();
-    compare_with_result(p, flipped, m, out.discarded_changes_result);
+    out.discarded_smaller_deformable += o.def < row.deformable.value;
+    out.discarded_smaller_relaxed += o.rel < row.relaxed.value;
+    out.discarded_feasible_static += o.st.has_value();
+    compare_with_result(o, m, out.discarded_changes_result);
   }
 }
 
@@ -95,7 +108,7 @@ void audit_colinear(const ExactPair& p, const Minima& m, EdgeAudit& out) {
       for (const Vector& o : orientations) {
         d.n = o;
         ++out.colinear_directions;
-        compare_with_result(p, d, m, out.colinear_changes_result);
+        compare_with_result(solve_all_cases(p, d), m, out.colinear_changes_result);
       }
     }
   }

@@ -43,8 +43,10 @@ BOOST_AUTO_TEST_CASE(spec_inequalities_and_separation) {
       const ExactPair p = to_exact(pair);
       const ExactTet qa = to_tet(r.q1_A), qb = to_tet(r.q1_B);
       BOOST_TEST(object_norm(p.A, qa) + object_norm(p.B, qb) == r.pdd2, n);
+      bool found = false;  // pdd2_dir must name one of the pair's candidates
       for (const auto& d : candidate_directions(p)) {
         if (d.label != *r.pdd2_dir) continue;
+        found = true;
         const ExactPair deformed{qa, qb};
         const Rational plane = max_projection(qa, d.n);
         BOOST_TEST(oriented_depth_numerator(deformed, d.n) == 0, n);  // touching, separated
@@ -53,6 +55,7 @@ BOOST_AUTO_TEST_CASE(spec_inequalities_and_separation) {
           if (d.constrained_B[i]) BOOST_TEST(d.n * (qb[i] - CGAL::ORIGIN) == plane, n);
         }
       }
+      BOOST_TEST(found, n << ": pdd2_dir " << *r.pdd2_dir << " is not a candidate");
     }
   BOOST_TEST(intersecting >= 12);
 }
