@@ -13,11 +13,12 @@ using namespace pdd;
 using namespace pdd::reference;
 
 BOOST_AUTO_TEST_CASE(full_equals_reduced_exactly) {
-  int compared = 0, infeasible = 0, parallel = 0, undecidable = 0;
+  int compared = 0, infeasible = 0, parallel = 0, undecidable = 0, framed = 0;
   for (const auto& file : test::property_fixture_files())
     for (const TetPair& pair : test::load_pairs(file)) {
       const ExactPair p = to_exact(pair);
       for (const auto& d : candidate_directions(p)) {
+        framed += full_qp_uses_frame(d.n);
         parallel += d.edge_kind == EdgePairKind::Parallel;
         undecidable += d.label.orientation != EdgeOrientation::Decided;
         for (auto c : {PddCase::Static, PddCase::Deformable, PddCase::Relaxed}) {
@@ -39,6 +40,7 @@ BOOST_AUTO_TEST_CASE(full_equals_reduced_exactly) {
       }
     }
   BOOST_TEST(compared > 1000);
+  BOOST_TEST(framed == 0);  // every fixture is solved axis-aligned: an independent check
   BOOST_TEST(infeasible > 0);  // undecidable directions are present and skipped in case 1
   BOOST_TEST(parallel > 0);
   BOOST_TEST(undecidable > 0);
