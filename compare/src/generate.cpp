@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -266,6 +267,164 @@ Attempt closed_form_pair(Rng& r) {
   return p;
 }
 
+// ---------------------------------------------------------------- adversarial
+// Valid pairs that defeat naive double arithmetic (cancellation, overflow, underflow, lost
+// ulps). Pair k is of kind k % kAdversarialKinds, so every kind appears once in every run of
+// kAdversarialKinds consecutive pairs. Every coordinate is a double computed here by exact
+// operations (or by one correctly rounded addition, for the translated kind: the pair is
+// then what the rounded doubles say); validity (non-zero volume) and every promised property
+// are decided with the exact engine, and every exact squared output must be 0 or a normal
+// double (SPEC §8), else the draw is repeated.
+constexpr int kAdversarialKinds = 10;
+const char* const kAdversarialKind[kAdversarialKinds] = {
+    "ulp-sliver", "ulp-needle",     "nearly-flat",   "near-touching-in", "near-touching-out",
+    "nearly-parallel-edges", "nearly-coplanar-faces", "power-of-two-scale", "far-translated",
+    "far-vertex"};
+
+Vec3d paper_point(Rng& r) { return random_point(r, 10); }
+TetVertices paper_tet(Rng& r) { return {paper_point(r), paper_point(r), paper_point(r), paper_point(r)}; }
+// A small dyadic vector: components multiples of 1/16 in [-1, 1], not all zero.
+Vec3d small_grid_vector(Rng& r) {
+  Vec3d w;
+  do w = {r.grid(-1, 1, kGridStep), r.grid(-1, 1, kGridStep), r.grid(-1, 1, kGridStep)};
+  while (w[0] == 0 && w[1] == 0 && w[2] == 0);
+  return w;
+}
+// x moved by `ulps` units in the last place (exact: the neighbouring doubles).
+double nudge(double x, int ulps) {
+  const double to = ulps > 0 ? HUGE_VAL : -HUGE_VAL;
+  for (int k = 0; k < std::abs(ulps); ++k) x = std::nextafter(x, to);
+  return x;
+}
+
+bool normal_or_zero(const Rational& v) {
+  if (v == 0) return true;
+  const Rational a = CGAL::abs(v);
+  return a >= Rational(std::numeric_limits<double>::min()) &&
+         a <= Rational(std::numeric_limits<double>::max());
+}
+// Every squared value of SPEC §6 is 0 or a normal double (exact, reduced formulation).
+bool squared_outputs_normal(const TetPair& p) {
+  const auto r = reference::solve_pair(p, {reference::QpFormulation::Reduced});
+  if (r.error) return false;
+  for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,
+                            &r.pdd2_accel1, &r.pdd2_accel6})
+    if (!normal_or_zero(*v)) return false;
+  return true;
+}
+
+// A paper-protocol B against an adversarial A; kept when B is valid and the pair intersects.
+Attempt with_random_b(Rng& r, const TetVertices& a) {
+  const TetVertices b = paper_tet(r);
+  if (!valid(b)) return std::nullopt;
+  return if_intersecting(a, b);
+}
+
+Attempt adversarial_attempt(Rng& r, int kind) {
+  switch (kind) {
+    case 0: {  // ulp-sliver: s3 is s2 with one coordinate moved by 1 ulp; A is a flat sliver
+      TetVertices a = paper_tet(r);
+      a[3] = a[2];
+      const int c = r.integer(0, 2);
+      a[3][c] = nudge(a[3][c], r.integer(0, 1) ? 1 : -1);
+      return with_random_b(r, a);
+    }
+    case 1: {  // ulp-needle: s1, s2 within 1 and 2 ulps of s0 (different axes), s3 far: a needle
+      TetVertices a = paper_tet(r);
+      const int c = r.integer(0, 2), d = (c + r.integer(1, 2)) % 3;
+      a[1] = a[0], a[2] = a[0];
+      a[1][c] = nudge(a[0][c], 1);
+      a[2][d] = nudge(a[0][d], -2);
+      return with_random_b(r, a);
+    }
+    case 2: {  // nearly-flat: s3 = an exact point of the plane of s0 s1 s2 + 2^-40 w (grid A)
+      TetVertices a = grid_tet(r);
+      a[3] = add(face_point(a, 3, r.grid(0, 1, 0.125), r.grid(0, 1, 0.125)),
+                 mul(0x1.0p-40, small_grid_vector(r)));  // multiples of 2^-44 below 2^5: exact
+      return with_random_b(r, a);
+    }
+    case 3:
+    case 4: {  // near-touching: a vertex of B 2^-60 of A's height inside (3) / outside (4) a
+      // face of A. The pair is translated (exactly, on the 1/128 grid) so the contact point p
+      // is the origin; then r3 = +-2^-60 (s_i - p) is exact. B's other vertices lie beyond
+      // the face, so kind 4 is disjoint at distance ~2^-60 and kind 3 has PD ~2^-60.
+      TetVertices a = grid_tet(r);
+      const int i = r.integer(0, 3);
+      const Vec3d p = face_point(a, i, r.grid(0.125, 0.5, 0.125), r.grid(0.125, 0.375, 0.125));
+      for (auto& v : a) v = sub(v, p);
+      const Vec3d d = a[i];  // from the contact point into A
+      TetVertices b;
+      for (int j = 0, k = 0; j < 4; ++j)
+        if (j != i) b[k] = sub(mul(0.5, a[j]), mul(0.5, d)), ++k;
+      b[3] = mul(kind == 3 ? 0x1.0p-60 : -0x1.0p-60, d);
+      TetPair q = pair_of(a, b);
+      if (!valid(a) || !valid(b)) return std::nullopt;
+      const Rational m = min_facet_offset(q);
+      if (kind == 3 ? !(m > 0) : !(m < 0)) return std::nullopt;
+      return q;
+    }
+    case 5: {  // nearly-parallel-edges: r1 = r0 + m (s_v - s_u) + 2^-40 w (grid: exact)
+      const double ms[] = {0.5, -0.5, 0.25, -0.75, 1.0};
+      const TetVertices a = grid_tet(r);
+      const int e = r.integer(0, 5);
+      const Vec3d dir = sub(a[kEdges[e][1]], a[kEdges[e][0]]);
+      const Vec3d r0 = grid_point(r);
+      const Vec3d r1 = add(add(r0, mul(ms[r.integer(0, 4)], dir)), mul(0x1.0p-40, small_grid_vector(r)));
+      return if_intersecting(a, {r0, r1, grid_point(r), grid_point(r)});
+    }
+    case 6: {  // nearly-coplanar-faces: r0..r2 = points of a face plane of A + 2^-40 w_k
+      const TetVertices a = grid_tet(r);
+      const int i = r.integer(0, 3);
+      TetVertices b;
+      for (int k = 0; k < 3; ++k)
+        b[k] = add(face_point(a, i, r.grid(-0.25, 1, 0.125), r.grid(-0.25, 1, 0.125)),
+                   mul(0x1.0p-40, small_grid_vector(r)));
+      b[3] = grid_point(r);
+      if (!valid(b)) return std::nullopt;
+      return if_intersecting(a, b);
+    }
+    case 7: {  // power-of-two-scale: a paper pair times 2^e, e uniform in [-450, 450] (exact)
+      Attempt p = paper_pair(r, {});
+      if (!p) return p;
+      const int e = r.integer(-450, 450);
+      for (auto* t : {&p->A, &p->B})
+        for (auto& v : *t)
+          for (double& x : v) x = std::ldexp(x, e);
+      p->tags.push_back("scale-2^" + std::to_string(e));
+      return p;
+    }
+    case 8: {  // far-translated: a paper pair + (+-T, +-T, +-T), T in {1e6, 1e12}; each sum is
+      // rounded once (ulp 2^-33 or 2^-13), and the pair is the rounded doubles.
+      Attempt p = paper_pair(r, {});
+      if (!p) return p;
+      const double T = r.integer(0, 1) ? 1e12 : 1e6;
+      const Vec3d t = {r.integer(0, 1) ? T : -T, r.integer(0, 1) ? T : -T, r.integer(0, 1) ? T : -T};
+      for (auto* tet : {&p->A, &p->B})
+        for (auto& v : *tet) v = add(v, t);
+      return if_intersecting(p->A, p->B);
+    }
+    case 9: {  // far-vertex: a vertex of A moved by D w, D in {1e15, 1e18}, w a grid vector with
+      // max |w_k| = 1 (rounded once); A becomes a long spike and B meets it near its base.
+      TetVertices a = paper_tet(r);
+      const double D = r.integer(0, 1) ? 1e18 : 1e15;
+      const int i = r.integer(0, 3);
+      Vec3d w = small_grid_vector(r);
+      w[r.integer(0, 2)] = r.integer(0, 1) ? 1 : -1;  // |w|_max = 1: the vertex is >= D away
+      a[i] = add(a[i], mul(D, w));
+      return with_random_b(r, a);
+    }
+  }
+  throw std::logic_error("adversarial kind");
+}
+
+Attempt adversarial_pair(Rng& r, std::size_t k) {
+  const int kind = int(k % kAdversarialKinds);
+  Attempt p = adversarial_attempt(r, kind);
+  if (!p || !squared_outputs_normal(*p)) return std::nullopt;
+  p->tags.insert(p->tags.begin(), kAdversarialKind[kind]);
+  return p;
+}
+
 // One attempt at a pair of a family; nullopt when the draw does not have the property.
 using Maker = std::function<std::optional<TetPair>(Rng&, std::size_t)>;
 
@@ -305,6 +464,11 @@ std::vector<Family> family_table(const PaperProtocol& pp) {
        [pp](Rng& r, std::size_t) { return undecidable_optimum_pair(r, pp); }},
       {{"closed-form", "a vertex of B through a face of A at depth t: PD^2 = t^2, static PD_d^2 = t^2/16 (tags)"},
        [](Rng& r, std::size_t) { return closed_form_pair(r); }},
+      {{"adversarial",
+        "valid pairs that break naive doubles, kind k % 10: 1-ulp sliver, 1-ulp needle, nearly flat "
+        "(2^-40), vertex 2^-60 inside / outside a face, nearly parallel edges, nearly coplanar faces "
+        "(2^-40), scaled by 2^-450..2^450, translated by 1e6 / 1e12, a vertex 1e15 / 1e18 away"},
+       [](Rng& r, std::size_t k) { return adversarial_pair(r, k); }},
   };
 }
 

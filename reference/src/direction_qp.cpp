@@ -3,7 +3,10 @@
 #include <CGAL/QP_functions.h>
 #include <CGAL/QP_models.h>
 
+#include <gmp.h>
+
 #include <stdexcept>
+#include <vector>
 
 namespace pdd::reference {
 namespace {
@@ -62,8 +65,8 @@ void add_full_row(Program& qp, int row, int vertex_offset, int ps_offset, const 
   qp.set_r(row, rel);
 }
 
-std::optional<DirectionOptimum> full_qp(const ExactPair& p, const CandidateDirection& dir,
-                                        PddCase c) {
+std::optional<DirectionOptimum> full_qp_axes(const ExactPair& p, const CandidateDirection& dir,
+                                             PddCase c) {
   const bool a_moves = (c != PddCase::Static);
   const int off_A = a_moves ? 0 : -1, off_B = a_moves ? 12 : 0, off_ps = off_B + 12;
   Program qp = free_program();
@@ -90,6 +93,83 @@ std::optional<DirectionOptimum> full_qp(const ExactPair& p, const CandidateDirec
     out.q1_B[i] = Point(x[off_B + 3 * i], x[off_B + 3 * i + 1], x[off_B + 3 * i + 2]);
   }
   return out;
+}
+
+// The same 27-variable QP in the orthogonal frame (n, u, v), u = n x e_a, v = n x u, e_a the
+// axis of n's smallest component (so u != 0). Exact change of variables, per moving vertex i
+//   x_i = x0_i + (alpha_i / n.n) n + beta_i u + gamma_i v,   p_s = (P / n.n) n + rho u + tau v,
+// and the objective multiplied by n.n > 0. As n, u, v are pairwise orthogonal,
+//   n.n * 20 sigma = sum_T alpha_T^T M alpha_T + n.n u.u beta_T^T M beta_T + n.n v.v gamma_T^T M gamma_T
+// (M = I + J), and a row n.(x_i - p_s) (rel) 0 reads alpha_i - P (rel) -n.x0_i. Every variable
+// of the paper's formulation is still free; only the coordinates differ. In the axis-aligned
+// form the QP's matrix holds n's components, whose exact mantissas are as wide as the pair's
+// magnitude range (a pair mixing 1e308 with 5e-324 gives thousands of bits), and the
+// solver's fraction-free basis inverse multiplies them together: tens of thousands of bits per
+// entry. In this frame the matrix is 0, +-1 and the objective's small integers, and the wide
+// numbers stay in the right-hand side.
+std::optional<DirectionOptimum> full_qp_frame(const ExactPair& p, const CandidateDirection& dir,
+                                              PddCase c) {
+  const Vector& n = dir.n;
+  int a = 0;
+  for (int k = 1; k < 3; ++k)
+    if (CGAL::abs(n[k]) < CGAL::abs(n[a])) a = k;
+  const Vector e(a == 0 ? 1 : 0, a == 1 ? 1 : 0, a == 2 ? 1 : 0);
+  const Vector u = CGAL::cross_product(n, e), v = CGAL::cross_product(n, u);
+  const Rational nn = n.squared_length();
+  const QpNumber weight_u = to_qp_number(nn * u.squared_length());
+  const QpNumber weight_v = to_qp_number(nn * v.squared_length());
+
+  // Variables: per moving tetrahedron alpha (4), beta (4), gamma (4); then P, rho, tau.
+  const bool a_moves = (c != PddCase::Static);
+  const int off_A = a_moves ? 0 : -1, off_B = a_moves ? 12 : 0, off_ps = off_B + 12;
+  Program qp = free_program();
+  auto objective = [&](int offset) {
+    for (int block = 0; block < 3; ++block) {
+      const QpNumber w = block == 0 ? QpNumber(1) : block == 1 ? weight_u : weight_v;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j <= i; ++j)
+          qp.set_d(offset + 4 * block + i, offset + 4 * block + j, QpNumber(i == j ? 4 : 2) * w);
+    }
+  };
+  if (a_moves) objective(off_A);
+  objective(off_B);
+  auto row = [&](int r, int alpha, const Point& rest, CGAL::Comparison_result rel) {
+    if (alpha >= 0) qp.set_a(alpha, r, QpNumber(1));
+    qp.set_a(off_ps, r, QpNumber(-1));
+    qp.set_b(r, -to_qp_number(n * (rest - CGAL::ORIGIN)));
+    qp.set_r(r, rel);
+  };
+  for (int i = 0; i < 4; ++i) {
+    row(i, a_moves ? off_A + i : -1, p.A[i], relation(dir.constrained_A[i], true, c));
+    row(4 + i, off_B + i, p.B[i], relation(dir.constrained_B[i], false, c));
+  }
+  const Solution s = solve(qp);
+  if (s.is_infeasible()) return std::nullopt;
+
+  DirectionOptimum out{to_rational(s.objective_value()) / (20 * nn), p.A, p.B};
+  std::vector<Rational> y;
+  for (auto it = s.variable_values_begin(); it != s.variable_values_end(); ++it)
+    y.push_back(to_rational(*it));
+  y.resize(off_ps + 3);
+  auto moved = [&](const Point& rest, int offset, int i) {
+    return rest + (y[offset + i] / nn) * n + y[offset + 4 + i] * u + y[offset + 8 + i] * v;
+  };
+  for (int i = 0; i < 4; ++i) {
+    if (a_moves) out.q1_A[i] = moved(p.A[i], off_A, i);
+    out.q1_B[i] = moved(p.B[i], off_B, i);
+  }
+  return out;
+}
+
+// Axis-aligned while n's exact components have short mantissas, so that the paper's own
+// coordinates are what the solver sees and full == reduced is an independent check there; the
+// frame above when a component's mantissa exceeds kAxisAlignedBits. Every shipped fixture
+// stays below (at most 166 bits: paper pairs ~110, a vertex 1e18 away ~166); pairs mixing
+// magnitudes 1e20 and 1e-20 reach ~370 bits and took 6 s axis-aligned against 0.1 s reduced.
+constexpr std::size_t kAxisAlignedBits = 256;
+std::optional<DirectionOptimum> full_qp(const ExactPair& p, const CandidateDirection& dir,
+                                        PddCase c) {
+  return full_qp_uses_frame(dir.n) ? full_qp_frame(p, dir, c) : full_qp_axes(p, dir, c);
 }
 
 // ---------------------------------------------------------------- reduced formulation
@@ -140,6 +220,15 @@ std::optional<DirectionOptimum> reduced_qp(const ExactPair& p, const CandidateDi
 }
 
 }  // namespace
+
+bool full_qp_uses_frame(const Vector& n) {
+  for (int k = 0; k < 3; ++k)
+    if (n[k] != 0) {  // the denominator is a power of two: the mantissa is num / 2^(trailing 0s)
+      const mpz_srcptr num = mpq_numref(n[k].mpq());
+      if (mpz_sizeinbase(num, 2) - mpz_scan1(num, 0) > kAxisAlignedBits) return true;
+    }
+  return false;
+}
 
 const char* to_string(QpFormulation f) { return f == QpFormulation::Full ? "full" : "reduced"; }
 

@@ -2,7 +2,10 @@
 // every family has the property it is named after, checked exactly.
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -88,4 +91,62 @@ BOOST_AUTO_TEST_CASE(families_have_their_property) {
     BOOST_TEST(r.intersecting, p.name);
     BOOST_TEST(r.rigid_pd2 < Rational(1, 1000000000) * Rational(1, 1000000000) * 1000, p.name);
   }
+}
+
+// The adversarial family and the hand-made fixtures/adversarial.json: every pair valid, the
+// promised intersection status and feature per kind (tag 1), and every exact squared output
+// 0 or a normal double (so SPEC §8 applies to the fast engine on all of them).
+BOOST_AUTO_TEST_CASE(adversarial_pairs_have_their_property) {
+  using namespace reference;
+  const Rational dbl_min(std::numeric_limits<double>::min()), dbl_max(std::numeric_limits<double>::max());
+  auto normal_or_zero = [&](const Rational& v) {
+    return v == 0 || (CGAL::abs(v) >= dbl_min && CGAL::abs(v) <= dbl_max);
+  };
+  auto ulps_apart = [](const Vec3d& a, const Vec3d& b, int max_ulps) {  // b within a few ulps of a
+    for (int k = 0; k < 3; ++k) {
+      double x = a[k];
+      int steps = 0;
+      while (x != b[k] && steps <= max_ulps) x = std::nextafter(x, b[k]), ++steps;
+      if (steps > max_ulps) return false;
+    }
+    return a != b;
+  };
+  auto max_abs = [](const TetPair& p) {
+    double m = 0;
+    for (const auto* t : {&p.A, &p.B})
+      for (const auto& v : *t)
+        for (double x : v) m = std::max(m, std::abs(x));
+    return m;
+  };
+  std::map<std::string, int> kinds;
+  std::vector<TetPair> pairs = test::load_pairs("families/adversarial.json");
+  for (auto& p : test::load_pairs("adversarial.json")) pairs.push_back(p);
+  for (const auto& p : pairs) {
+    BOOST_REQUIRE(p.tags.size() >= 2);
+    const std::string kind = p.tags[1];
+    ++kinds[kind];
+    const auto r = solve_pair(p, {QpFormulation::Reduced});
+    BOOST_REQUIRE_MESSAGE(!r.error, p.name << ": " << *r.error);
+    BOOST_TEST(r.intersecting == (kind != "near-touching-out"), p.name);
+    for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,
+                              &r.pdd2_accel1, &r.pdd2_accel6})
+      BOOST_TEST(normal_or_zero(*v), p.name);
+    if (kind == "ulp-sliver") {
+      bool found = false;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) found = found || ulps_apart(p.A[i], p.A[j], 1);
+      BOOST_TEST(found, p.name);
+    } else if (kind == "ulp-needle") {
+      BOOST_TEST((ulps_apart(p.A[0], p.A[1], 2) && ulps_apart(p.A[0], p.A[2], 2)), p.name);
+    } else if (kind == "nearly-flat") {
+      BOOST_TEST(compare::tetrahedron_volume(p.A) < 1e-9, p.name);
+    } else if (kind == "near-touching-in") {
+      BOOST_TEST(r.rigid_pd2 < Rational(std::ldexp(1.0, -100)), p.name);
+    } else if (kind == "far-translated") {
+      BOOST_TEST(max_abs(p) >= 1e6, p.name);
+    } else if (kind == "far-vertex") {
+      BOOST_TEST(max_abs(p) >= 1e15, p.name);
+    }
+  }
+  BOOST_TEST(kinds.size() == 10u);  // every kind is shipped
 }

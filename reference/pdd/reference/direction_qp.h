@@ -39,6 +39,13 @@ struct DirectionOptimum {
   ExactTet q1_B;     // deformed B
 };
 
+// Full is solved axis-aligned (the paper's coordinates) unless some component of n has a
+// mantissa wider than 256 bits (only pairs mixing magnitudes far beyond a double's 53 bits,
+// e.g. 1e20 with 1e-20, or 1e308 with 5e-324; no shipped fixture); then in the orthogonal frame (n, n x e, n x (n x e)), an exact
+// change of the same 27 variables under which the solver's matrix entries stay small
+// (direction_qp.cpp explains the cost). Exposed for the tests.
+bool full_qp_uses_frame(const Vector& n);
+
 std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const CandidateDirection& dir,
                                              PddCase pdd_case, QpFormulation formulation);
 
