@@ -162,7 +162,14 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     c.tolerance[k] = kContractRel;
   }
   const auto p = reference::to_exact(pair);
-  if (exact.intersecting && fast.intersecting) {
+  bool finite_positions = true;
+  for (const Positions<double>* q : {&fast.q1_A, &fast.q1_B})
+    for (const auto& x : *q)
+      for (double v : x) finite_positions = finite_positions && std::isfinite(v);
+  if (!finite_positions) {  // a non-finite position can attain nothing: over the contract
+    c.position_error = std::numeric_limits<double>::infinity();
+    c.separated = false;
+  } else if (exact.intersecting && fast.intersecting) {
     double Q = R;
     for (const Positions<double>* q : {&fast.q1_A, &fast.q1_B})
       for (const auto& x : *q)

@@ -86,7 +86,7 @@ void check_file(const fs::path& fixture, const fs::path& golden) {
 
 BOOST_AUTO_TEST_CASE(all_fixtures_with_golden_records) {
   int files = 0;
-  for (const char* top : {"smoke", "degenerate"}) {
+  for (const char* top : {"smoke", "degenerate", "adversarial"}) {
     const fs::path golden = kFixtures / "golden" / (std::string(top) + ".jsonl");
     if (!fs::exists(golden)) continue;
     check_file(kFixtures / (std::string(top) + ".json"), golden);
@@ -101,5 +101,5 @@ BOOST_AUTO_TEST_CASE(all_fixtures_with_golden_records) {
       check_file(e.path(), golden);
       ++files;
     }
-  BOOST_TEST(files == 19);  // every shipped fixture file has a golden record: none may be skipped
+  BOOST_TEST(files == 21);  // every shipped fixture file has a golden record: none may be skipped
 }
