@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "pdd/compare/cli_checks.h"
 #include "pdd/compare/commands.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/engines.h"
@@ -120,6 +121,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--input", a->input, "Fixture file")->required();
   cmd->add_option("--tolerance-factor", a->tolerance_factor,
                   "K in the relative tolerance K eps R/sqrt(value) (see engine_comparison.h)")
+      ->check(finite_number(0, true))
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "One JSON object per pair on standard output (summary to stderr)");
   cmd->callback([a, &exit_code] { exit_code = run_compare(*a); });
