@@ -33,7 +33,7 @@ bool PairComparison::over_tolerance() const {
   if (!rejections_agree || !intersect_agree) return true;
   for (int k = 0; k < 7; ++k)
     if (!(rel_error[k] <= tolerance[k])) return true;
-  if (!(position_error <= position_tolerance)) return true;
+  if (!(position_error <= position_tolerance) || !separated) return true;
   for (auto l : labels)
     if (l == LabelVerdict::Differ) return true;
   return false;
@@ -79,14 +79,69 @@ double largest_coordinate(const TetPair& pair) {
   return r;
 }
 
+// Some non-zero exact value is outside the normal double range (SPEC §8's reason to reject).
+bool unrepresentable(const reference::ExactResult& e) {
+  for (const Rational* v : {&e.rigid_pd2, &e.eq11_pd2, &e.pdd2_static, &e.pdd2, &e.pdd2_relaxed,
+                            &e.pdd2_accel1, &e.pdd2_accel6}) {
+    if (*v == 0) continue;
+    const double d = std::abs(CGAL::to_double(*v));
+    if (!(d >= std::numeric_limits<double>::min() && d <= std::numeric_limits<double>::max()))
+      return true;
+  }
+  return false;
+}
+
+// Object norm (SPEC §2) of both tetrahedra moved from the pair to q1, exactly.
+Rational object_norm_of(const TetPair& pair, const PairResult<double>& fast) {
+  Rational total = 0;
+  for (int t = 0; t < 2; ++t) {
+    const TetVertices& X = t ? pair.B : pair.A;
+    const Positions<double>& Q = t ? fast.q1_B : fast.q1_A;
+    Rational sq = 0, sum[3] = {0, 0, 0};
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const Rational d = Rational(Q[i][k]) - Rational(X[i][k]);
+        sq += d * d;
+        sum[k] += d;
+      }
+    total += (sq + sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) / 20;
+  }
+  return total;
+}
+
+// q1 separated by the plane of `label`'s exact direction n up to slack |n| (1e-9 R).
+bool separated_by(const reference::ExactPair& p, const DirectionLabel& label,
+                  const PairResult<double>& fast, double R) {
+  using namespace reference;
+  for (const auto& d : candidate_directions(p)) {
+    if (d.label != label) continue;
+    auto height = [&](const std::array<double, 3>& x) {
+      return d.n.x() * Rational(x[0]) + d.n.y() * Rational(x[1]) + d.n.z() * Rational(x[2]);
+    };
+    Rational hiA = height(fast.q1_A[0]), loB = height(fast.q1_B[0]);
+    for (int i = 1; i < 4; ++i) {
+      hiA = std::max(hiA, height(fast.q1_A[i]));
+      loB = std::min(loB, height(fast.q1_B[i]));
+    }
+    const Rational gap = hiA - loB;  // <= 0 when separated
+    if (gap <= 0) return true;
+    const double n2 = CGAL::to_double(d.n.squared_length());
+    return CGAL::to_double(gap * gap) <= kContractRel * kContractRel * R * R * n2;
+  }
+  return false;
+}
+
 }  // namespace
 
 PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& exact,
-                            const PairResult<double>& fast, double tolerance_factor) {
+                            const PairResult<double>& fast) {
   PairComparison c;
   c.name = pair.name;
   c.exact_error = exact.error, c.fast_error = fast.error;
-  c.rejections_agree = exact.error.has_value() == fast.error.has_value();
+  const bool fast_unrepresentable =
+      fast.error && fast.error->rfind("not representable", 0) == 0;
+  c.rejections_agree = exact.error.has_value() == fast.error.has_value() ||
+                       (!exact.error && fast_unrepresentable && unrepresentable(exact));
   if (exact.error || fast.error) return c;
 
   c.intersecting = exact.intersecting;
@@ -104,26 +159,29 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     c.rel_error[k] = relative_error(fv[k], *ev[k]);
     c.exact_value[k] = CGAL::to_double(*ev[k]);
     c.fast_value[k] = fv[k];
-    c.tolerance[k] = exact.intersecting ? tolerance_factor * eps * R / std::sqrt(c.exact_value[k]) : 0;
+    c.tolerance[k] = kContractRel;
   }
-  c.position_tolerance = c.tolerance[3];  // pdd2's
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const double ea = CGAL::to_double(CGAL::abs(Rational(fast.q1_A[i][k]) - exact.q1_A[i][k]));
-      const double eb = CGAL::to_double(CGAL::abs(Rational(fast.q1_B[i][k]) - exact.q1_B[i][k]));
-      c.position_error = std::max({c.position_error, ea / R, eb / R});
-    }
-
   const auto p = reference::to_exact(pair);
+  if (exact.intersecting && fast.intersecting) {
+    double Q = R;
+    for (const Positions<double>* q : {&fast.q1_A, &fast.q1_B})
+      for (const auto& x : *q)
+        for (double v : x) Q = std::max(Q, std::abs(v));
+    const double root = std::sqrt(c.exact_value[3]);
+    const double allowance = std::sqrt(6.0) * 4 * eps * Q / root;  // relative, on sqrt(sigma)
+    c.position_tolerance = kContractRel + 2 * allowance + allowance * allowance;
+    c.position_error = relative_error(CGAL::to_double(object_norm_of(pair, fast)), exact.pdd2);
+    c.separated = fast.pdd2_dir && separated_by(p, *fast.pdd2_dir, fast, Q);
+  }
+
   const std::array<std::optional<DirectionLabel>, 4> el = {exact.rigid_dir, exact.pdd2_static_dir,
                                                            exact.pdd2_dir, exact.pdd2_relaxed_dir};
   const std::array<std::optional<DirectionLabel>, 4> fl = {fast.rigid_dir, fast.pdd2_static_dir,
                                                            fast.pdd2_dir, fast.pdd2_relaxed_dir};
   const std::array<const Rational*, 4> mins = {&exact.rigid_pd2, &exact.pdd2_static, &exact.pdd2,
                                                &exact.pdd2_relaxed};
-  const std::array<double, 4> label_tolerance = {c.tolerance[0], c.tolerance[2], c.tolerance[3], c.tolerance[4]};
   for (int k = 0; k < 4; ++k) {
-    c.labels[k] = label_verdict(p, el[k], fl[k], *mins[k], k, label_tolerance[k]);
+    c.labels[k] = label_verdict(p, el[k], fl[k], *mins[k], k, kContractRel);
     c.exact_label[k] = el[k] ? el[k]->str() : "null";
     c.fast_label[k] = fl[k] ? fl[k]->str() : "null";
   }

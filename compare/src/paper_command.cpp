@@ -100,7 +100,7 @@ ExactSample run_exact_sample(const std::vector<TetPair>& pairs, const std::vecto
   });
   progress.finish();
   for (std::size_t k = 0; k < s.indices.size(); ++k) {
-    const auto c = compare_pair(pairs[s.indices[k]], s.results[k], fast[s.indices[k]], kDefaultToleranceFactor);
+    const auto c = compare_pair(pairs[s.indices[k]], s.results[k], fast[s.indices[k]]);
     s.over_tolerance += c.over_tolerance();
     for (auto l : c.labels) s.labels_differ += (l == LabelVerdict::Differ);
     for (int v = 0; v < 7; ++v) s.max_rel_error[v] = std::max(s.max_rel_error[v], c.rel_error[v]);

@@ -53,8 +53,9 @@ struct Builder {
   }
 
   // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
-  bool emit(const Draft& d, double s, LabelCode code, double bound) {
+  bool emit(const Draft& d, double s, LabelCode code, double bound, bool parallel) {
     const int k = out.count++;
+    out.parallel[k] = parallel;
     DirectionGeometry& c = out.explicit_[k];
     orient_draft(d, s, c);
     out.code[k] = code;
@@ -87,15 +88,17 @@ struct Builder {
     const EdgePairClass k = classify(a, b, c);
     if (k.kind == EdgePairKind::Colinear) return true;  // no direction (SPEC §3)
     double bound = fb.deg3;
-    if (k.kind == EdgePairKind::Parallel) {
+    const bool parallel = k.kind == EdgePairKind::Parallel;
+    if (parallel) {
       parallel_heights(A, p, a, b, c);
       bound = fb.deg4;
     }
     const LabelCode decided = pack_label(ContactKind::EE, a, b, EdgeOrientation::Decided);
-    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound);
-    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound);
-    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound) &&
-           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound);
+    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, parallel);
+    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, parallel);
+    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, parallel) &&
+           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound,
+                parallel);
   }
 
   // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is
@@ -144,6 +147,7 @@ struct Builder {
       out.delta_sq[k] = c.depth * c.depth / c.nn;
       out.lane[k] = -1;
       out.sign[k] = 1;
+      out.parallel[k] = 0;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     edge_lanes(p, fb.deg2, fb.deg3, out.edges);
@@ -160,6 +164,7 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (!all_finite(B)) return BuildStatus::NonFiniteB;
   const FilterBounds fb = filter_bounds(A, B);
   out.tie_kappa = tie_kappa(A, B);
+  out.fb = fb;
   Precomputed p;
   precompute(A, B, p);
   p.oA = orientation(A, p.detA, fb.deg3);
@@ -175,6 +180,7 @@ Candidate candidate(const CandidateSet& set, int k) {
   c.label = label(set, k);
   if (set.lane[k] < 0) {
     static_cast<DirectionGeometry&>(c) = set.explicit_[k];
+    c.parallel = set.parallel[k] != 0;
     return c;
   }
   detail::lane_candidate(set.edges, set.lane[k], set.sign[k], c);

@@ -3,8 +3,11 @@
 
 #include <limits>
 
+#include "certify.h"
+#include "hot_path.h"
 #include "pdd/fast/superset_depth.h"
 #include "pdd/fast/tie_tolerance.h"
+#include "pdd/fast/value_bounds.h"
 
 namespace pdd::fast {
 namespace {
@@ -14,16 +17,81 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 inline bool usable(const CandidateSet& set) { return set.intersecting && set.count > 0; }
 inline bool usable(const QuickCandidates& q) { return q.count > 0; }  // intersecting by contract
 
+// The displacement error coefficient of value_bounds.h for a computed solution: the tight one
+// when every free vertex's KKT margin (A: C − H + S_A, B: C − H + S_B; its sign is the
+// vertex's status) exceeds twice the wide bound, so that no status can differ from the exact
+// solution's; else the wide one. `below_free`/`above_free`: bit i set for a free vertex.
+double displacement_coeff(const Candidate& c, const DirectionSolution& s, unsigned below_free,
+                          unsigned above_free) {
+  const double Hm = detail::max_height(c);
+  const double margin = 2 * kSolverDisplacementCoeff * kUnitRoundoff * Hm;
+  for (int i = 0; i < 4; ++i) {
+    if ((below_free >> i & 1u) && !(std::fabs(s.c - c.hA[i] + s.sumA) > margin))
+      return kSolverDisplacementCoeff;
+    if ((above_free >> i & 1u) && !(std::fabs(s.c - c.hB[i] + s.sumB) > margin))
+      return kSolverDisplacementCoeff;
+  }
+  return kSolverDisplacementCoeffTight;
+}
+
+struct Valued {
+  double v, r;  // value and its root bound (value_bounds.h); r = 0 when v = +inf
+};
+
+Valued valued(const Candidate& c, const DirectionSolution& s, double coeff, const FilterBounds& fb) {
+  const double v = s.cost / (20.0 * c.nn);
+  return {v, qp_root_rel(s.cost, c.nn, detail::max_height(c), degree_bounds(fb, c.parallel),
+                         coeff)};
+}
+
+Valued static_valued(const Candidate& c, const FilterBounds& fb) {
+  if (c.label.orientation != EdgeOrientation::Decided) return {kInf, 0.0};
+  const DirectionSolution s = solve_static(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+  // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
+  const double coeff = c.conA ? displacement_coeff(c, s, 0u, 0xFu & ~c.conB)
+                              : kSolverDisplacementCoeff;
+  return valued(c, s, coeff, fb);
+}
+
+Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
+  const DirectionSolution s =
+      solve_deformable(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+  return valued(c, s, displacement_coeff(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
+}
+
+Valued relaxed_valued(const Candidate& c, const FilterBounds& fb) {
+  const DirectionSolution s = solve_relaxed(c.hA, c.hB);
+  return valued(c, s, displacement_coeff(c, s, 0xFu, 0xFu), fb);
+}
+
+// A lower bound of an exact value from a computed one (NaN or a failed bound: 0, i.e. nothing
+// can be certified against it).
+inline double safe_lower(double v, double r) {
+  const double lo = lower_of(v, r);
+  return lo >= 0.0 ? lo : 0.0;
+}
+
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
 // the best value so far (header), then pick the first tied minimum. List: CandidateSet or
 // QuickCandidates (same candidates, same order, same values).
+// SPEC §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
+// bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
+// proven in the header, applied to the exact delta).
 template <class List, class Value>
 Choice sweep(const List& set, double coeff, int hint, Value value) {
   if (!usable(set)) return {};
-  double v[kMaxCandidates];
+  double v[kMaxCandidates], r[kMaxCandidates];
+  bool done[kMaxCandidates];
   double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
+  auto evaluate = [&](int i) {
+    const Valued x = value(candidate(set, i), set.fb);
+    v[i] = x.v;
+    r[i] = x.r;
+    done[i] = true;
+  };
   if (hint >= 0 && hint < set.count) {
-    best = v[hint] = value(candidate(set, hint));
+    evaluate(hint);
+    best = v[hint];
     threshold = tie_threshold(best, set.tie_kappa);
   }
   for (int i = 0; i < set.count; ++i) {
@@ -31,9 +99,10 @@ Choice sweep(const List& set, double coeff, int hint, Value value) {
     const double bound = coeff * delta2(set, i);
     if (!(bound <= threshold)) {
       v[i] = kInf;
+      done[i] = false;
       continue;
     }
-    v[i] = value(candidate(set, i));
+    evaluate(i);
     if (v[i] < best) {
       best = v[i];
       threshold = tie_threshold(best, set.tie_kappa);
@@ -41,40 +110,74 @@ Choice sweep(const List& set, double coeff, int hint, Value value) {
   }
   Choice ch;
   ch.index = first_tied_minimum(v, set.count, set.tie_kappa);
+  if (ch.index < 0) return {};  // no finite value (NaN): not certified
   ch.value = v[ch.index];
   ch.code = label_code(set, ch.index);
+  double lo_min = kInf;
+  for (int i = 0; i < set.count; ++i) {
+    const double lo = done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
+                              : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
+  ch.certified = certified_choice(upper_of(ch.value, r[ch.index]), lo_min);
   return ch;
 }
 
+// The first k candidates in ascending delta order (tie band); -1 entries never written: returns
+// the number found (< min(k, count) only on NaN input).
 template <class List>
 int accel_order_of(const List& set, int k, int* out) {
   double d[kMaxCandidates];
   for (int i = 0; i < set.count; ++i) d[i] = delta2(set, i);
   const int m = k < set.count ? k : set.count;
   for (int r = 0; r < m; ++r) {
-    out[r] = first_tied_minimum(d, set.count, set.tie_kappa);
-    d[out[r]] = kInf;  // taken
+    const int i = first_tied_minimum(d, set.count, set.tie_kappa);
+    if (i < 0) return r;
+    out[r] = i;
+    d[i] = kInf;  // taken
   }
   return m;
 }
 
+// Case 3. SPEC §8: the chosen candidates must be exactly the first k of the exact order (every
+// chosen exact delta² strictly below every other one; exact ties are left to the exact path),
+// and the minimum of their QP values is certified as in sweep.
 template <class List>
 Choice accel_of(const List& set, int k) {
   if (!usable(set) || k <= 0) return {};
-  if (k == 1) {
-    const int i = rigid_pd2(set).index;
-    return {deformable_value(candidate(set, i)), i, label_code(set, i)};
-  }
   int order[kMaxCandidates];
   const int m = accel_order_of(set, k, order);
   if (m <= 0) return {};
-  double v[kMaxCandidates];
-  for (int r = 0; r < m; ++r) v[r] = deformable_value(candidate(set, order[r]));
+  bool chosen[kMaxCandidates] = {};
+  double hi_chosen = 0.0;
+  for (int r = 0; r < m; ++r) {
+    chosen[order[r]] = true;
+    const double hi = upper_of(delta2(set, order[r]), detail::rigid_rel(set, order[r]));
+    hi_chosen = hi > hi_chosen ? hi : hi_chosen;
+  }
+  bool separated = hi_chosen < kInf;
+  for (int i = 0; i < set.count; ++i)
+    if (!chosen[i] && !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
+      separated = false;
+  double v[kMaxCandidates], rel[kMaxCandidates];
+  for (int r = 0; r < m; ++r) {
+    const Valued x = deformable_valued(candidate(set, order[r]), set.fb);
+    v[r] = x.v;
+    rel[r] = x.r;
+  }
   const double vmin = minimum(v, m);
   int best = -1;  // among ties, the first in canonical order
   for (int r = 0; r < m; ++r)
     if (ties_with_min(v[r], vmin, set.tie_kappa) && (best < 0 || order[r] < order[best])) best = r;
-  return {v[best], order[best], label_code(set, order[best])};
+  if (best < 0) return {};
+  double lo_min = kInf;
+  for (int r = 0; r < m; ++r) {
+    const double lo = safe_lower(v[r], rel[r]);
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
+  Choice ch{v[best], order[best], label_code(set, order[best])};
+  ch.certified = separated && certified_choice(upper_of(v[best], rel[best]), lo_min);
+  return ch;
 }
 
 }  // namespace
@@ -107,22 +210,22 @@ double deformable_value(const Candidate& c) {
 double relaxed_value(const Candidate& c) { return solve_relaxed(c.hA, c.hB).cost / (20.0 * c.nn); }
 
 Choice pdd2_static(const CandidateSet& set, int hint) {
-  return sweep(set, kStaticBoundCoeff, hint, static_value);
+  return sweep(set, kStaticBoundCoeff, hint, static_valued);
 }
 Choice pdd2(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, deformable_value);
+  return sweep(set, kDeformableBoundCoeff, hint, deformable_valued);
 }
 Choice pdd2_relaxed(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, relaxed_value);
+  return sweep(set, kDeformableBoundCoeff, hint, relaxed_valued);
 }
 Choice pdd2_static(const QuickCandidates& q, int hint) {
-  return sweep(q, kStaticBoundCoeff, hint, static_value);
+  return sweep(q, kStaticBoundCoeff, hint, static_valued);
 }
 Choice pdd2(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, deformable_value);
+  return sweep(q, kDeformableBoundCoeff, hint, deformable_valued);
 }
 Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, relaxed_value);
+  return sweep(q, kDeformableBoundCoeff, hint, relaxed_valued);
 }
 
 int accel_order(const CandidateSet& set, int k, int* out) { return accel_order_of(set, k, out); }
@@ -144,31 +247,83 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 }
 
 namespace {
-// The quick list when it decides, else the full candidate set (both on the stack).
-template <class F>
-Choice on_pair(const TetVertices& A, const TetVertices& B, F f) {
-  QuickCandidates q;
-  if (quick_candidates(A, B, q)) return f(q);
-  CandidateSet set;
-  if (build_candidates(A, B, set) != BuildStatus::Ok || !set.intersecting) return {};
-  return f(set);
+// The quick list when it decides, else the full candidate set (both on the stack), on the
+// rescaled pair; the exact path when the choice is not certified (hot_path.h).
+template <class F, class Pick>
+Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
+  return detail::certified_hot_path(
+      A, B,
+      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        QuickCandidates q;
+        if (quick_candidates(As, Bs, q)) {
+          ch = f(q);
+          return true;
+        }
+        CandidateSet set;
+        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        ch = f(set);
+        return true;
+      },
+      pick);
 }
 }  // namespace
 
 Choice pdd2_static(const TetVertices& A, const TetVertices& B) {
-  return on_pair(A, B, [](const auto& s) { return pdd2_static(s, rigid_pd2(s).index); });
+  return on_pair(
+      A, B, [](const auto& s) { return pdd2_static(s, rigid_pd2(s).index); },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.pdd2_static_dir;
+        return r.pdd2_static;
+      });
 }
 Choice pdd2(const TetVertices& A, const TetVertices& B) {
-  return on_pair(A, B, [](const auto& s) { return pdd2(s, rigid_pd2(s).index); });
+  return on_pair(
+      A, B, [](const auto& s) { return pdd2(s, rigid_pd2(s).index); },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.pdd2_dir;
+        return r.pdd2;
+      });
 }
 Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
-  return on_pair(A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); });
+  return on_pair(
+      A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.pdd2_relaxed_dir;
+        return r.pdd2_relaxed;
+      });
 }
 Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
-  Choice rigid;
-  Candidate c;
-  if (k == 1 && rigid_superset(A, B, rigid, &c)) return {deformable_value(c), -1, rigid.code};
-  return on_pair(A, B, [k](const auto& s) { return pdd2_accel(s, k); });
+  auto pick = [k](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+    l = std::nullopt;
+    return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;
+  };
+  if (k != 1 && k != kAccelWide) return {};  // the exact path reports the paper's k = 1 and 6
+  if (k == 1)
+    return detail::certified_hot_path(
+        A, B,
+        [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+          Choice rigid;
+          Candidate c;
+          bool unique = false;
+          if (rigid_superset(As, Bs, rigid, &c, &unique)) {
+            const Valued x = deformable_valued(c, filter_bounds(As, Bs));
+            const double v = x.v, r = x.r;
+            ch = {v, -1, rigid.code};
+            ch.certified = unique && certified_choice(upper_of(v, r), lower_of(v, r));
+            if (ch.certified) return true;
+          }
+          QuickCandidates q;
+          if (quick_candidates(As, Bs, q)) {
+            ch = pdd2_accel(q, 1);
+            return true;
+          }
+          CandidateSet set;
+          if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+          ch = pdd2_accel(set, 1);
+          return true;
+        },
+        pick);
+  return on_pair(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick);
 }
 
 }  // namespace pdd::fast

@@ -31,6 +31,9 @@ void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
       const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
       q.delta_sq[k] = L.first[i];
       q.delta_sq[k + 1] = L.d2minus[i];
+      q.depth[k] = flip ? L.dminus[i] : L.dplus[i];
+      q.depth[k + 1] = L.dminus[i];
+      q.nn[k] = q.nn[k + 1] = L.nn[i];
       q.src[k] = std::int16_t(8 + 2 * i + flip);
       q.src[k + 1] = std::int16_t(8 + 2 * i + 1);
       k += 1 + undecidable;
@@ -49,6 +52,7 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
   const FilterBounds fb = filter_bounds_of_extent(K.extent);
   if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
   q.tie_kappa = K.kappa;
+  q.fb = fb;
   for (int f = 0; f < 8; ++f) {
     DirectionGeometry& g = q.faces[f];
     Draft d;
@@ -56,6 +60,8 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
     finish_face(d, g);
     if (!(g.depth > fb.deg3)) return false;
     q.delta_sq[f] = g.depth * g.depth / g.nn;
+    q.depth[f] = g.depth;
+    q.nn[f] = g.nn;
     q.src[f] = std::int16_t(f);
   }
   q.count = 8;

@@ -2,50 +2,97 @@
 #include "pdd/fast/rigid_depth.h"
 
 #include <algorithm>
+#include <limits>
+
+#include "certify.h"
+#include "hot_path.h"
+#include "pdd/fast/value_bounds.h"
 
 #include "pdd/fast/superset_depth.h"
 #include "pdd/fast/tie_tolerance.h"
 
 namespace pdd::fast {
 
+namespace {
+
+// First tied minimum of delta², certified (value_bounds.h: every candidate's exact delta² is
+// >= lower_of(delta~², its bound)).
+template <class List>
+Choice rigid_of(const List& s) {
+  Choice ch;
+  ch.index = first_tied_minimum(s.delta_sq, s.count, s.tie_kappa);
+  if (ch.index < 0) return {};  // NaN: not certified
+  ch.value = s.delta_sq[ch.index];
+  ch.code = label_code(s, ch.index);
+  double lo_min = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < s.count; ++i) {
+    double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
+    if (!(lo >= 0.0)) lo = 0.0;
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
+  ch.certified =
+      certified_choice(upper_of(ch.value, detail::rigid_rel(s, ch.index)), lo_min);
+  return ch;
+}
+
+}  // namespace
+
 Choice rigid_pd2(const CandidateSet& set) {
   if (!set.intersecting) return {};
-  Choice ch;
-  ch.index = first_tied_minimum(set.delta_sq, set.count, set.tie_kappa);
-  ch.value = set.delta_sq[ch.index];
-  ch.code = set.code[ch.index];
-  return ch;
+  return rigid_of(set);
 }
 
-Choice rigid_pd2(const QuickCandidates& q) {
-  Choice ch;
-  ch.index = first_tied_minimum(q.delta_sq, q.count, q.tie_kappa);
-  ch.value = q.delta_sq[ch.index];
-  ch.code = label_code(q, ch.index);
-  return ch;
-}
+Choice rigid_pd2(const QuickCandidates& q) { return rigid_of(q); }
 
-double eq11_pd2(const CandidateSet& set) {
+// SPEC §8 (value_bounds.h): the overlap combines six heights (error <= e_h each) in five
+// roundings of values <= 4 Hm, so |overlap~ − overlap| <= eO = 6 e_h + 21 u Hm; its sign is
+// certain beyond eO, and its root bound is finish_root_rel(eO/|overlap~|).
+double eq11_pd2(const CandidateSet& set, bool* certified) {
+  if (certified) *certified = true;
   if (!set.intersecting) return 0.0;
-  double best = -1.0;  // min overlap²/nn over candidates
+  double best = -1.0, best_hi = 0.0, lo_min = std::numeric_limits<double>::infinity();
+  bool sure = true;
   for (int i = 0; i < set.count; ++i) {
     const Candidate c = candidate(set, i);
     const double loA = *std::min_element(c.hA, c.hA + 4), hiA = *std::max_element(c.hA, c.hA + 4);
     const double loB = *std::min_element(c.hB, c.hB + 4), hiB = *std::max_element(c.hB, c.hB + 4);
     const double overlap = (hiA - loA) + (hiB - loB) - (std::max(hiA, hiB) - std::min(loA, loB));
-    if (overlap <= 0.0) return 0.0;
+    const DegreeBounds db = degree_bounds(set.fb, c.parallel);
+    const double eO = 6 * db.e_h + 21 * kUnitRoundoff * detail::max_height(c);
+    if (overlap <= -eO) return 0.0;  // exactly <= 0: E11 = 0, certified
+    if (!(overlap > eO)) sure = false;  // sign unknown: keep scanning for a sure zero
+    if (overlap <= 0.0) {
+      best = 0.0;
+      continue;
+    }
     const double v = overlap * overlap / c.nn;
-    if (best < 0.0 || v < best) best = v;
+    const double r = finish_root_rel(eO / overlap, c.nn, db.e_n);
+    double lo = lower_of(v, r);
+    if (!(lo >= 0.0)) lo = 0.0;
+    lo_min = lo < lo_min ? lo : lo_min;
+    if (best < 0.0 || v < best) {
+      best = v;
+      best_hi = upper_of(v, r);
+    }
   }
-  return best;
+  if (certified) *certified = sure && best > 0.0 && certified_choice(best_hi, lo_min);
+  return best > 0.0 ? best : 0.0;
 }
 
 Choice rigid_pd2(const TetVertices& A, const TetVertices& B) {
-  Choice ch;
-  if (rigid_superset(A, B, ch)) return ch;
-  CandidateSet set;
-  if (build_candidates(A, B, set) != BuildStatus::Ok) return {};
-  return rigid_pd2(set);
+  return detail::certified_hot_path(
+      A, B,
+      [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        if (rigid_superset(As, Bs, ch) && ch.certified) return true;
+        CandidateSet set;
+        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        ch = rigid_pd2(set);
+        return true;
+      },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.rigid_dir;
+        return r.rigid_pd2;
+      });
 }
 
 }  // namespace pdd::fast

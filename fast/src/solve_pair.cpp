@@ -1,4 +1,5 @@
-// solve_pair.cpp — SPEC §6 record of one pair, and the parallel batch. See the header.
+// solve_pair.cpp — SPEC §6 record of one pair, certified (SPEC §8), and the parallel batch.
+// See the header.
 #include "pdd/fast/solve_pair.h"
 
 #include <tbb/parallel_for.h>
@@ -6,10 +7,16 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
+#include "direction_geometry.h"
+#include "exact_path.h"
 #include "pdd/fast/candidate_directions.h"
 #include "pdd/fast/deformable_depth.h"
+#include "pdd/fast/exact_predicates.h"
 #include "pdd/fast/rigid_depth.h"
+#include "pdd/fast/value_bounds.h"
+#include "power_scale.h"
 
 namespace pdd::fast {
 namespace {
@@ -39,54 +46,191 @@ std::optional<std::string> status_message(BuildStatus st, const TetPair& p) {
   return std::string("invalid input");
 }
 
-std::optional<DirectionLabel> label_of(const CandidateSet& s, int index) {
-  if (index < 0) return std::nullopt;
-  return label(s, index);
+const char* const kNotRepresentable =
+    "not representable: a result is outside the normal double range (SPEC §8)";
+
+std::optional<DirectionLabel> label_of(const CandidateSet& s, const Choice& c) {
+  if (c.index < 0) return std::nullopt;
+  return label(s, c.index);
 }
 
-void fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r) {
+// The deformed positions attain `value` (SPEC §8): their object norm, evaluated from the
+// computed displacements (each difference q − x exact to u|q − x|, the norm to 12 u), must be
+// within kContractRel − kCertifyRel − 1e-11 of the certified value.
+bool positions_attain(const TetPair& pair, const PairResult<double>& r, double value) {
+  double sigma = 0.0;
+  for (int t = 0; t < 2; ++t) {
+    const TetVertices& X = t ? pair.B : pair.A;
+    const Positions<double>& Q = t ? r.q1_B : r.q1_A;
+    double sum[3] = {0, 0, 0}, sq = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double d = Q[i][k] - X[i][k];
+        sum[k] += d;
+        sq += d * d;
+      }
+    sigma += (sq + sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) / 20.0;
+  }
+  return std::fabs(sigma - value) <= (kContractRel - kCertifyRel - 1e-11) * value;
+}
+
+// Which quantities of a record the double path could not certify (SPEC §8).
+enum Uncertified : unsigned {
+  kRigid = 1, kEq11 = 2, kStatic = 4, kAccel6 = 8, kAccel1 = 16, kDeformable = 32,
+  kRelaxed = 64, kPositions = 128
+};
+
+// The double path on a rescaled pair; returns the quantities that are not certified.
+unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r) {
+  unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
   r.rigid_pd2 = rigid.value;
-  r.rigid_dir = label_of(set, rigid.index);
-  r.eq11_pd2 = eq11_pd2(set);
+  r.rigid_dir = label_of(set, rigid);
+  missing |= rigid.certified ? 0 : kRigid;
+  bool e11_ok = false;
+  r.eq11_pd2 = eq11_pd2(set, &e11_ok);
+  missing |= e11_ok ? 0 : kEq11;
   const Choice st = pdd2_static(set, rigid.index);
   r.pdd2_static = st.value;
-  r.pdd2_static_dir = label_of(set, st.index);
-  const Choice accel6 = pdd2_accel(set, 6);
+  r.pdd2_static_dir = label_of(set, st);
+  missing |= st.certified ? 0 : kStatic;
+  const Choice accel6 = pdd2_accel(set, kAccelWide);
   r.pdd2_accel6 = accel6.value;
-  r.pdd2_accel1 = pdd2_accel(set, 1).value;
+  missing |= accel6.certified ? 0 : kAccel6;
+  const Choice accel1 = pdd2_accel(set, 1);
+  r.pdd2_accel1 = accel1.value;
+  missing |= accel1.certified ? 0 : kAccel1;
   const Choice def = pdd2(set, accel6.index);
   r.pdd2 = def.value;
-  r.pdd2_dir = label_of(set, def.index);
+  r.pdd2_dir = label_of(set, def);
+  missing |= def.certified ? 0 : kDeformable;
   const Choice rel = pdd2_relaxed(set, def.index);
   r.pdd2_relaxed = rel.value;
-  r.pdd2_relaxed_dir = label_of(set, rel.index);
-  deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
+  r.pdd2_relaxed_dir = label_of(set, rel);
+  missing |= rel.certified ? 0 : kRelaxed;
+  if (def.index >= 0) {
+    deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
+    if (!positions_attain(pair, r, def.value)) missing |= kPositions;
+  } else {
+    missing |= kPositions;
+  }
+  return missing;
+}
+
+// Replaces the uncertified quantities of r by the exact path's (rounded once). pdd2, its label
+// and q1 go together, so that the positions attain the reported value for the reported label.
+bool substitute_exact(const TetPair& pair, unsigned missing, PairResult<double>& r) {
+  const detail::ExactPathResult e = detail::solve_pair_exact_path(pair.A, pair.B);
+  if (!e.representable) return false;
+  const PairResult<double>& x = e.result;
+  if (missing & kRigid) { r.rigid_pd2 = x.rigid_pd2; r.rigid_dir = x.rigid_dir; }
+  if (missing & kEq11) r.eq11_pd2 = x.eq11_pd2;
+  if (missing & kStatic) { r.pdd2_static = x.pdd2_static; r.pdd2_static_dir = x.pdd2_static_dir; }
+  if (missing & kAccel6) r.pdd2_accel6 = x.pdd2_accel6;
+  if (missing & kAccel1) r.pdd2_accel1 = x.pdd2_accel1;
+  if (missing & (kDeformable | kPositions)) {
+    r.pdd2 = x.pdd2;
+    r.pdd2_dir = x.pdd2_dir;
+    r.q1_A = x.q1_A;
+    r.q1_B = x.q1_B;
+  }
+  if (missing & kRelaxed) {
+    r.pdd2_relaxed = x.pdd2_relaxed;
+    r.pdd2_relaxed_dir = x.pdd2_relaxed_dir;
+  }
+  return true;
+}
+
+// Scales the values of r by 2^(2k) and the positions by 2^k; false if a certified value leaves
+// the normal range (the others are replaced by substitute_exact).
+bool unscale(PairResult<double>& r, int k, unsigned missing) {
+  bool ok = true;
+  const std::pair<double*, unsigned> values[] = {
+      {&r.rigid_pd2, kRigid},        {&r.eq11_pd2, kEq11},       {&r.pdd2_static, kStatic},
+      {&r.pdd2, kDeformable},        {&r.pdd2_relaxed, kRelaxed}, {&r.pdd2_accel1, kAccel1},
+      {&r.pdd2_accel6, kAccel6}};
+  for (const auto& [v, bit] : values) {
+    bool in_range = true;
+    *v = detail::unscaled(*v, 2 * k, in_range);
+    if (!(missing & bit)) ok = ok && in_range;
+  }
+  for (Positions<double>* q : {&r.q1_A, &r.q1_B})
+    for (auto& x : *q)
+      for (double& c : x) c = std::ldexp(c, k);
+  return ok;
+}
+
+PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
+  detail::ExactPathResult e = detail::solve_pair_exact_path(pair.A, pair.B);
+  if (!e.representable) {
+    r.error = kNotRepresentable;
+    return r;
+  }
+  e.result.name = r.name;
+  return e.result;
 }
 
 }  // namespace
 
-PairResult<double> solve_pair(const TetPair& pair) {
+PairResult<double> solve_pair(const TetPair& pair, bool* slow_path) {
+  if (slow_path) *slow_path = false;
   PairResult<double> r;
   r.name = pair.name;
+  if (!detail::all_finite(pair.A)) {
+    r.error = non_finite_message("A", pair.A);
+    return r;
+  }
+  if (!detail::all_finite(pair.B)) {
+    r.error = non_finite_message("B", pair.B);
+    return r;
+  }
+  const detail::ScaledPair sp = detail::power_scaled(pair.A, pair.B);
+  if (!sp.exact) {  // a coordinate would leave the normal range when rescaled: exact path only
+    if (orientation_sign_exact(pair.A) == 0) r.error = degenerate_message("A");
+    else if (orientation_sign_exact(pair.B) == 0) r.error = degenerate_message("B");
+    if (r.error) return r;
+    if (slow_path) *slow_path = true;
+    return exact_path(pair, r);
+  }
   // ~20 KB: on the heap to keep TBB worker stacks small; default-initialised (no zeroing).
   std::unique_ptr<CandidateSet> set(new CandidateSet);
-  r.error = status_message(build_candidates(pair.A, pair.B, *set), pair);
+  r.error = status_message(build_candidates(sp.A, sp.B, *set), pair);
   if (r.error) return r;
   r.q1_A = pair.A;
   r.q1_B = pair.B;
   r.intersecting = set->intersecting;
-  if (r.intersecting) fill_intersecting(pair, *set, r);
+  if (!r.intersecting) return r;
+  TetPair scaled;
+  scaled.A = sp.A;
+  scaled.B = sp.B;
+  const unsigned missing = fill_intersecting(scaled, *set, r);
+  PairResult<double> bad;
+  bad.name = pair.name;
+  bad.error = kNotRepresentable;
+  if (!unscale(r, -sp.e, missing)) return bad;
+  if (missing) {
+    if (slow_path) *slow_path = true;
+    if (!substitute_exact(pair, missing, r)) return bad;
+  }
   return r;
 }
 
-std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs) {
+std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
+                                            std::size_t* slow_paths) {
   std::vector<PairResult<double>> out(pairs.size());
+  std::vector<char> slow(pairs.size(), 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size()),
                     [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t i = range.begin(); i != range.end(); ++i)
-                        out[i] = solve_pair(pairs[i]);
+                      for (size_t i = range.begin(); i != range.end(); ++i) {
+                        bool s = false;
+                        out[i] = solve_pair(pairs[i], &s);
+                        slow[i] = s;
+                      }
                     });
+  if (slow_paths) {
+    *slow_paths = 0;
+    for (char s : slow) *slow_paths += s != 0;
+  }
   return out;
 }
 

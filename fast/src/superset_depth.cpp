@@ -10,6 +10,7 @@
 #include "direction_geometry.h"
 #include "pdd/fast/filter_bounds.h"
 #include "pdd/fast/tie_tolerance.h"
+#include "pdd/fast/value_bounds.h"
 #include "superset_kernel.h"
 
 namespace pdd::fast {
@@ -101,9 +102,45 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const Kernel& K, 
   g.conB = edge_mask(b);
 }
 
+// SPEC §8 (value_bounds.h) over the superset S: every entry's exact value is >= PD² (header),
+// so the minimum of the entries' certified lower bounds is a lower bound of PD². `unique`: every
+// entry other than the chosen one is certainly above the chosen one's exact value (the exact
+// rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
+void certify(const Kernel& K, const FilterBounds& fb, const Near& c, Choice& ch, bool* unique) {
+  const DegreeBounds db = degree_bounds(fb, false);
+  double lo_all = kInf, lo_other = kInf, r_pick = kInf;
+  auto entry = [&](double v, double D, double nn, bool picked) {
+    const double r = rigid_root_rel(D, nn, db);
+    double lo = lower_of(v, r);
+    if (!(lo >= 0.0)) lo = 0.0;
+    lo_all = lo < lo_all ? lo : lo_all;
+    if (picked)
+      r_pick = r;
+    else
+      lo_other = lo < lo_other ? lo : lo_other;
+  };
+  for (int f = 0; f < 8; ++f) {
+    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
+                      K.NAB[2][f] * K.NAB[2][f];
+    const double v = K.face_val[f];
+    entry(v, std::sqrt(v * nn), nn, c.lane < 0 && c.face == f);
+  }
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const double inv = K.inv[a][b], nn = 1.0 / inv;
+      const double dp = K.dp[a][b], dm = K.dm[a][b];
+      const bool lane = c.lane == kLaneStride * a + b;
+      entry(dp * dp * inv, dp, nn, lane && c.sign > 0);
+      entry(dm * dm * inv, dm, nn, lane && c.sign < 0);
+    }
+  ch.certified = certified_choice(upper_of(ch.value, r_pick), lo_all);
+  if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;
+}
+
 }  // namespace
 
-bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry) {
+bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
+                    bool* unique) {
   Kernel K;
   superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
   if (!(K.finite == 0.0)) return false;
@@ -124,6 +161,7 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Cand
   ch.value = c.value;
   ch.index = -1;
   ch.code = c.code;
+  certify(K, fb, c, ch, unique);
   if (!geometry) return true;
   if (c.lane >= 0)
     lane_geometry(A, B, K, c, *geometry);

@@ -20,7 +20,7 @@ void add_theorem_command(CLI::App& app, int& exit_code);
 // `pdd audit-ee --input FILE [--json]`
 void add_audit_ee_command(CLI::App& app, int& exit_code);
 
-// `pdd compare --input FILE [--tolerance-factor K] [--json]`
+// `pdd compare --input FILE [--json]`
 void add_compare_command(CLI::App& app, int& exit_code);
 
 // `pdd paper [--seed S] [--count N] [--out DIR] [--exact-sample M]`

@@ -24,6 +24,7 @@
 #include <cstdint>
 
 #include "pdd/direction_label.h"
+#include "pdd/fast/filter_bounds.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast {
@@ -44,6 +45,7 @@ struct DirectionGeometry {
 
 struct Candidate : DirectionGeometry {
   DirectionLabel label;
+  bool parallel = false;  // a parallel edge pair: n of degree 3, heights of degree 4
 };
 
 // A label packed in 16 bits (kind | a << 2 | b << 5 | orientation << 8): plain integers keep
@@ -76,6 +78,7 @@ struct CandidateSet {
   int count = 0;
   bool intersecting = false;  // valid only when build_candidates returned Ok
   double tie_kappa = 0.0;     // the pair's tie band (tie_tolerance.h)
+  FilterBounds fb;            // the pair's error bounds (filter_bounds.h, value_bounds.h)
   LabelCode code[kMaxCandidates];  // label, see label(set, k)
   double depth[kMaxCandidates];
   double nn[kMaxCandidates];
@@ -83,6 +86,7 @@ struct CandidateSet {
   // (16-bit, not 8-bit: char types alias everything and would pessimise the build loop)
   std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
   std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
+  std::uint8_t parallel[kMaxCandidates];  // explicit candidates: a parallel edge pair
   EdgeLanes edges;
   DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
 };

@@ -33,6 +33,7 @@
 
 namespace pdd::fast {
 
+inline constexpr int kAccelWide = 6;  // pdd2_accel6: the paper's "first six directions" (SPEC §5)
 inline constexpr double kDeformableBoundCoeff = 1.0 / 32.0;  // case 2 and relaxed, see above
 inline constexpr double kStaticBoundCoeff = 1.0 / 16.0;      // case 1, see above
 
@@ -65,7 +66,10 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
                         Positions<double>& qA, Positions<double>& qB);
 
 // Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the full
-// candidate set (on the stack); value 0 when not intersecting. The hot functions to time.
+// candidate set (on the stack), on the pair rescaled by a power of two; value 0 when not
+// intersecting or invalid. The hot functions to time. SPEC §8: the choice is certified
+// (value_bounds.h) or comes from the exact path (certified = true either way); NaN with
+// certified = false when the value is not a normal double. pdd2_accel(A, B, k): k = 1 or 6.
 // pdd2_accel(A, B, 1) is the case-2 QP on the rigid direction of rigid_superset
 // (superset_depth.h, index −1) when it decides: rigid PD plus one direction solve.
 Choice pdd2_static(const TetVertices& A, const TetVertices& B);

@@ -23,7 +23,9 @@ namespace pdd::fast {
 struct QuickCandidates {
   int count = 0;
   double tie_kappa = 0.0;  // the pair's tie band (tie_tolerance.h)
+  FilterBounds fb;         // the pair's error bounds (value_bounds.h)
   double delta_sq[kMaxCandidates];
+  double depth[kMaxCandidates], nn[kMaxCandidates];  // D and n.n of each candidate
   std::int16_t src[kMaxCandidates];
   DirectionGeometry faces[8];
   EdgeLanes edges;

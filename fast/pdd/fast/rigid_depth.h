@@ -18,12 +18,17 @@ struct Choice {
   double value = 0.0;  // squared depth
   int index = -1;      // index of the candidate in the set, −1 when none or no set was built
   LabelCode code = 0;  // packed SPEC §3 label of the choice (valid when value > 0)
+  // SPEC §8 verdict (value_bounds.h): value within kCertifyRel of the exact minimum and the
+  // label's exact value too. False: the caller must take the exact path.
+  bool certified = false;
   DirectionLabel label() const { return unpack_label(code); }
 };
 
 Choice rigid_pd2(const CandidateSet& set);
 Choice rigid_pd2(const QuickCandidates& q);  // same candidates, same result
-double eq11_pd2(const CandidateSet& set);
+// `certified` (optional): the SPEC §8 verdict (value_bounds.h; exact 0 is certified only when
+// some overlap is surely <= 0).
+double eq11_pd2(const CandidateSet& set, bool* certified = nullptr);
 
 // Convenience over raw tetrahedra (the hot path): rigid_superset (superset_depth.h) when it
 // decides (index −1: no list is built), else the candidate set (index then refers to it);

@@ -11,9 +11,17 @@
 //   pdd2_accel1, pdd2_accel6                             (deformable_depth.h, SPEC §5)
 //   q1_A, q1_B   case-2 deformed positions along pdd2_dir.
 // A non-intersecting pair: all values 0, labels empty, q1 = rest pose.
+// SPEC §8: every value is within 1e-9 relative of the exact one and every label names a
+// candidate within that of the exact minimum. The pair is rescaled by a power of two (exact),
+// computed in doubles with an error bound per value (value_bounds.h); where a bound is too wide
+// the pair is recomputed on the exact path (src/exact_path.h: this engine's closed forms on GMP
+// rationals). A result outside the normal double range: an error record saying so. The
+// deformed positions attain pdd2 to 1e-9 relative up to the rounding of their coordinates
+// (they are the exact positions rounded when the double path cannot certify them).
 // solve_batch: same results, in input order, computed with TBB parallel_for.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "pdd/pair_result.h"
@@ -21,8 +29,11 @@
 
 namespace pdd::fast {
 
-PairResult<double> solve_pair(const TetPair& pair);
+// `slow_path` (optional): set when the pair took the exact path (SPEC §8).
+PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr);
 
-std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs);
+// `slow_paths` (optional): the number of pairs that took the exact path.
+std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
+                                            std::size_t* slow_paths = nullptr);
 
 }  // namespace pdd::fast

@@ -58,7 +58,9 @@ namespace pdd::fast {
 
 // `geometry` (optional): filled with the chosen candidate (n, heights, masks, label), equal to
 // candidate(build_candidates(A, B), index of the label).
+// ch.certified: the SPEC §8 verdict (value_bounds.h). `unique` (optional): certified, and every
+// other entry of S is certainly above the chosen one (so it is the exact rigid direction).
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
-                    Candidate* geometry = nullptr);
+                    Candidate* geometry = nullptr, bool* unique = nullptr);
 
 }  // namespace pdd::fast

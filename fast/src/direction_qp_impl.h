@@ -1,0 +1,199 @@
+// direction_qp_impl.h — internal to fast/src: the closed-form per-direction QP of
+// direction_qp.h (derivation and proof there) written once, for any ordered field T.
+//
+// Instantiated on double (the fast path, direction_qp.cpp) and on GMP rationals (mpq_class, the
+// exact slow path, exact_path.cpp): the same operations in the same order, so the double path
+// is this algorithm rounded, and the exact path is this algorithm without rounding. No infinity
+// is used as a sentinel (rationals have none): "no breakpoint left" is a flag.
+#pragma once
+
+namespace pdd::fast::detail {
+
+template <class T>
+inline void cswap_asc(T& a, T& b) {
+  if (b < a) {
+    T t = a;
+    a = b;
+    b = t;
+  }
+}
+
+// Sorting network, ascending, n <= 4.
+template <class T>
+inline void sort_small(T* v, int n) {
+  if (n == 2) {
+    cswap_asc(v[0], v[1]);
+  } else if (n == 3) {
+    cswap_asc(v[0], v[1]);
+    cswap_asc(v[1], v[2]);
+    cswap_asc(v[0], v[1]);
+  } else if (n == 4) {
+    cswap_asc(v[0], v[1]);
+    cswap_asc(v[2], v[3]);
+    cswap_asc(v[0], v[2]);
+    cswap_asc(v[1], v[3]);
+    cswap_asc(v[1], v[2]);
+  }
+}
+
+template <class T>
+inline void sort_small_desc(T* v, int n) {
+  for (int i = 0; i < n; ++i) v[i] = -v[i];
+  sort_small(v, n);
+  for (int i = 0; i < n; ++i) v[i] = -v[i];
+}
+
+template <class T>
+struct SideT {
+  int ncon = 0;
+  T hcon{};
+  int nfree = 0;
+  T f[4];
+};
+
+template <class T>
+struct SolutionT {
+  T cost{}, c{}, sumA{}, sumB{};
+};
+
+// A side at plane offset c with constrained (ncon at hcon) and the first k of f active.
+// Returns sum_active (c − H)² + (sum_active (c − H))² / (5 − m), writes S = sum/(5 − m).
+// (The sum form avoids cancellation in m c − P.)
+template <class T>
+inline T side_cost(int ncon, const T& hcon, const T* f, int k, const T& c, T* S) {
+  const T dc = c - hcon;
+  T s1 = ncon * dc, s2 = ncon * dc * dc;
+  for (int i = 0; i < k; ++i) {
+    const T d = c - f[i];
+    s1 += d;
+    s2 += d * d;
+  }
+  *S = s1 / (5 - ncon - k);
+  return s2 + s1 * *S;
+}
+
+// The merged-breakpoint walk of direction_qp.h. A.f sorted descending, B.f ascending.
+template <class T>
+SolutionT<T> two_sided(const SideT<T>& A, const SideT<T>& B) {
+  int kA = A.nfree, kB = 0;
+  int mA = A.ncon + A.nfree, mB = B.ncon;
+  T PA = A.ncon * A.hcon, PB = B.ncon * B.hcon;
+  for (int i = 0; i < A.nfree; ++i) PA += A.f[i];
+  T X{};
+  while (kA > 0 || kB < B.nfree) {
+    const bool hasA = kA > 0, hasB = kB < B.nfree;
+    T XA{}, XB{};
+    if (hasA) XA = (5 - mA) * A.f[kA - 1] + PA;
+    if (hasB) XB = (5 - mB) * B.f[kB] + PB;
+    const bool takeA = hasA && (!hasB || XA <= XB);
+    X = takeA ? XA : XB;
+    if ((mA * X - 5 * PA) * (5 - mB) + (mB * X - 5 * PB) * (5 - mA) >= 0) break;
+    if (takeA) {
+      --kA;
+      --mA;
+      PA -= A.f[kA];
+    } else {
+      PB += B.f[kB];
+      ++kB;
+      ++mB;
+    }
+  }
+  SolutionT<T> s;
+  const int den = mA * (5 - mB) + mB * (5 - mA);
+  if (den == 0)
+    s.c = X / 5;
+  else
+    s.c = (PA * (5 - mB) + PB * (5 - mA)) / den;
+  s.cost = side_cost(A.ncon, A.hcon, A.f, kA, s.c, &s.sumA) +
+           side_cost(B.ncon, B.hcon, B.f, kB, s.c, &s.sumB);
+  return s;
+}
+
+// Root of S_B alone (B ascending): the minimiser of phi_B. `bounded` = false when S_B = 0 on a
+// whole half-line (no constrained vertex): then phi_B = 0 for every c below the lowest vertex.
+template <class T>
+T root_of_side(const SideT<T>& B, bool& bounded) {
+  int kB = 0, mB = B.ncon;
+  T PB = B.ncon * B.hcon;
+  bounded = mB != 0;
+  if (!bounded) return PB;
+  while (kB < B.nfree) {
+    const T X = (5 - mB) * B.f[kB] + PB;
+    if (mB * X - 5 * PB >= 0) break;
+    PB += B.f[kB];
+    ++kB;
+    ++mB;
+  }
+  return PB / mB;
+}
+
+// Case 2 (both deform): A sorted descending, B ascending.
+template <class T>
+SolutionT<T> solve_deformable_sorted(SideT<T> A, SideT<T> B) {
+  sort_small_desc(A.f, A.nfree);
+  sort_small(B.f, B.nfree);
+  return two_sided(A, B);
+}
+
+// Case 1 (A static). Precondition (direction_qp.h): feasible.
+template <class T>
+SolutionT<T> solve_static_sides(const SideT<T>& A, SideT<T> B) {
+  sort_small(B.f, B.nfree);
+  SolutionT<T> s;
+  if (A.ncon > 0) {
+    s.c = A.hcon;
+  } else {
+    T amax = A.f[0];
+    for (int i = 1; i < A.nfree; ++i)
+      if (amax < A.f[i]) amax = A.f[i];
+    bool bounded = false;
+    const T root = root_of_side(B, bounded);
+    s.c = (bounded && amax < root) ? root : amax;
+  }
+  int kB = 0;
+  T PB = B.ncon * B.hcon;
+  while (kB < B.nfree && (5 - B.ncon - kB) * B.f[kB] + PB <= 5 * s.c) PB += B.f[kB++];
+  s.cost = side_cost(B.ncon, B.hcon, B.f, kB, s.c, &s.sumB);
+  return s;
+}
+
+// Relaxed case 2: every vertex free.
+template <class T>
+SolutionT<T> solve_relaxed_heights(const T hA[4], const T hB[4]) {
+  SideT<T> a, b;
+  a.nfree = b.nfree = 4;
+  for (int i = 0; i < 4; ++i) {
+    a.f[i] = hA[i];
+    b.f[i] = hB[i];
+  }
+  return solve_deformable_sorted(a, b);
+}
+
+// Side view of one tetrahedron: constrained vertices (bit i of `constrained`) share hcon.
+template <class T>
+SideT<T> side_of(const T h[4], unsigned constrained) {
+  SideT<T> s;
+  for (int i = 0; i < 4; ++i) {
+    if (constrained >> i & 1u) {
+      ++s.ncon;
+      s.hcon = h[i];
+    } else {
+      s.f[s.nfree++] = h[i];
+    }
+  }
+  return s;
+}
+
+// Optimal displacement T of one vertex of height h (KKT formulas of direction_qp.h).
+template <class T>
+T displacement_below_t(const T& h, bool constrained, const SolutionT<T>& s) {
+  const T to_plane = s.c - h;
+  return (constrained || to_plane < -s.sumA) ? to_plane : T(-s.sumA);
+}
+template <class T>
+T displacement_above_t(const T& h, bool constrained, const SolutionT<T>& s) {
+  const T to_plane = s.c - h;
+  return (constrained || to_plane > -s.sumB) ? to_plane : T(-s.sumB);
+}
+
+}  // namespace pdd::fast::detail

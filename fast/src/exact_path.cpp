@@ -1,0 +1,228 @@
+// exact_path.cpp — the fast engine's exact slow path (see exact_path.h). Written by hand on
+// GMP's mpq_class rather than on reference/'s CGAL kernel on purpose: the point of the slow path
+// is to be this engine's own algorithms (the closed forms of direction_qp_impl.h, the SPEC §3
+// rules as this engine reads them), so that reference/ still checks them independently.
+#include "exact_path.h"
+
+#include <gmpxx.h>
+
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "direction_qp_impl.h"
+
+namespace pdd::fast::detail {
+namespace {
+
+using Q = mpq_class;
+
+struct V {
+  Q x[3];
+};
+V operator-(const V& a, const V& b) { return {{a.x[0] - b.x[0], a.x[1] - b.x[1], a.x[2] - b.x[2]}}; }
+Q dot(const V& a, const V& b) { return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2]; }
+V cross(const V& a, const V& b) {
+  return {{a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
+           a.x[0] * b.x[1] - a.x[1] * b.x[0]}};
+}
+bool is_zero(const V& a) { return sgn(a.x[0]) == 0 && sgn(a.x[1]) == 0 && sgn(a.x[2]) == 0; }
+V scaled(const V& a, const Q& s) { return {{a.x[0] * s, a.x[1] * s, a.x[2] * s}}; }
+
+// Vertices of the face opposite f, increasing; the two vertices off edge a (SPEC §3).
+constexpr int kFaceQ[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+constexpr int kOffQ[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+constexpr unsigned without(int f) { return 0xFu & ~(1u << f); }
+constexpr unsigned edge_bits(int a) { return (1u << kEdges[a][0]) | (1u << kEdges[a][1]); }
+
+// One oriented candidate (SPEC §3): heights are n.(x − s_0), exact.
+struct Cand {
+  DirectionLabel label;
+  V n;
+  Q nn, D, hA[4], hB[4];
+  unsigned conA = 0, conB = 0;
+};
+
+struct Builder {
+  V s[4], r[4];  // s_i − s_0, r_j − s_0
+  std::vector<Cand> out;
+
+  void emit(const DirectionLabel& l, const V& n, unsigned conA, unsigned conB) {
+    Cand c;
+    c.label = l;
+    c.n = n;
+    c.nn = dot(n, n);
+    for (int i = 0; i < 4; ++i) {
+      c.hA[i] = dot(n, s[i]);
+      c.hB[i] = dot(n, r[i]);
+    }
+    Q hi = c.hA[0], lo = c.hB[0];
+    for (int i = 1; i < 4; ++i) {
+      if (hi < c.hA[i]) hi = c.hA[i];
+      if (c.hB[i] < lo) lo = c.hB[i];
+    }
+    c.D = hi - lo;
+    c.conA = conA;
+    c.conB = conB;
+    out.push_back(std::move(c));
+  }
+
+  void faces() {
+    for (int i = 0; i < 4; ++i) {  // FV:i, outward of A
+      const int* f = kFaceQ[i];
+      V n = cross(s[f[1]] - s[f[0]], s[f[2]] - s[f[0]]);
+      if (sgn(dot(n, s[i] - s[f[0]])) > 0) n = scaled(n, Q(-1));
+      emit(DirectionLabel::fv(i), n, without(i), 0);
+    }
+    for (int j = 0; j < 4; ++j) {  // VF:j, into B
+      const int* f = kFaceQ[j];
+      V n = cross(r[f[1]] - r[f[0]], r[f[2]] - r[f[0]]);
+      if (sgn(dot(n, r[j] - r[f[0]])) < 0) n = scaled(n, Q(-1));
+      emit(DirectionLabel::vf(j), n, 0, without(j));
+    }
+  }
+
+  void edge_pairs() {
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+        const V e = s[v] - s[u];
+        V n = cross(r[y] - r[x], e);
+        if (is_zero(n)) {  // parallel: n = (e.e) w − (w.e) e; colinear: no direction
+          const V w = r[x] - s[u];
+          if (is_zero(cross(w, e))) continue;
+          n = scaled(w, dot(e, e)) - scaled(e, dot(w, e));
+        }
+        const int g1 = sgn(dot(n, s[kOffQ[a][0]] - s[u])), g2 = sgn(dot(n, s[kOffQ[a][1]] - s[u]));
+        const unsigned ca = edge_bits(a), cb = edge_bits(b);
+        if (g1 <= 0 && g2 <= 0) {
+          emit(DirectionLabel::ee(a, b), n, ca, cb);
+        } else if (g1 >= 0 && g2 >= 0) {
+          emit(DirectionLabel::ee(a, b), scaled(n, Q(-1)), ca, cb);
+        } else {
+          emit(DirectionLabel::ee(a, b, EdgeOrientation::Plus), n, ca, cb);
+          emit(DirectionLabel::ee(a, b, EdgeOrientation::Minus), scaled(n, Q(-1)), ca, cb);
+        }
+      }
+  }
+};
+
+// Rounds to double; `ok` is cleared when a non-zero value is not a normal double.
+double rounded(const Q& q, bool& ok) {
+  const double d = q.get_d();
+  if (sgn(q) != 0 && !(std::fabs(d) >= DBL_MIN && std::fabs(d) <= DBL_MAX)) ok = false;
+  return d;
+}
+
+// First index of the minimum of finite entries (exact ties: canonical order).
+int argmin(const std::vector<Q>& v, const std::vector<bool>& usable) {
+  int best = -1;
+  for (int i = 0; i < int(v.size()); ++i)
+    if (usable[i] && (best < 0 || v[i] < v[best])) best = i;
+  return best;
+}
+
+}  // namespace
+
+ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B) {
+  ExactPathResult er;
+  PairResult<double>& r = er.result;
+  r.q1_A = A;
+  r.q1_B = B;
+  Builder bld;
+  V s0;
+  for (int k = 0; k < 3; ++k) s0.x[k] = A[0][k];
+  for (int i = 0; i < 4; ++i) {
+    V a, b;
+    for (int k = 0; k < 3; ++k) {
+      a.x[k] = A[i][k];
+      b.x[k] = B[i][k];
+    }
+    bld.s[i] = a - s0;
+    bld.r[i] = b - s0;
+  }
+  bld.faces();
+  bld.edge_pairs();
+  const std::vector<Cand>& C = bld.out;
+  const int n = int(C.size());
+  for (const Cand& c : C)
+    if (sgn(c.D) <= 0) return er;  // a separating candidate: not intersecting (SPEC §4)
+  r.intersecting = true;
+  bool& ok = er.representable;
+
+  std::vector<Q> delta2(n), st(n), def(n), rel(n);
+  std::vector<bool> all(n, true), decided(n, false);
+  std::vector<SolutionT<Q>> def_sol(n);
+  Q e11;
+  bool e11_zero = false, e11_set = false;
+  for (int k = 0; k < n; ++k) {
+    const Cand& c = C[k];
+    delta2[k] = c.D * c.D / c.nn;
+    const SideT<Q> sa = side_of(c.hA, c.conA), sb = side_of(c.hB, c.conB);
+    def_sol[k] = solve_deformable_sorted(sa, sb);
+    def[k] = def_sol[k].cost / (20 * c.nn);
+    rel[k] = solve_relaxed_heights(c.hA, c.hB).cost / (20 * c.nn);
+    decided[k] = c.label.orientation == EdgeOrientation::Decided;
+    if (decided[k]) st[k] = solve_static_sides(sa, sb).cost / (20 * c.nn);
+    // eq. 11: overlap of the projections, L_n(A) + L_n(B) − L_n(A ∪ B)
+    Q loA = c.hA[0], hiA = c.hA[0], loB = c.hB[0], hiB = c.hB[0];
+    for (int i = 1; i < 4; ++i) {
+      if (c.hA[i] < loA) loA = c.hA[i];
+      if (hiA < c.hA[i]) hiA = c.hA[i];
+      if (c.hB[i] < loB) loB = c.hB[i];
+      if (hiB < c.hB[i]) hiB = c.hB[i];
+    }
+    const Q overlap = (hiA - loA) + (hiB - loB) - ((hiA < hiB ? hiB : hiA) - (loA < loB ? loA : loB));
+    if (sgn(overlap) <= 0) e11_zero = true;
+    const Q v = overlap * overlap / c.nn;
+    if (!e11_set || v < e11) e11 = v;
+    e11_set = true;
+  }
+
+  const int ir = argmin(delta2, all);
+  r.rigid_pd2 = rounded(delta2[ir], ok);
+  r.rigid_dir = C[ir].label;
+  r.eq11_pd2 = e11_zero ? 0.0 : rounded(e11, ok);
+  const int is = argmin(st, decided);
+  r.pdd2_static = rounded(st[is], ok);
+  r.pdd2_static_dir = C[is].label;
+  const int id = argmin(def, all);
+  r.pdd2 = rounded(def[id], ok);
+  r.pdd2_dir = C[id].label;
+  const int il = argmin(rel, all);
+  r.pdd2_relaxed = rounded(rel[il], ok);
+  r.pdd2_relaxed_dir = C[il].label;
+
+  // case 3: candidates in ascending delta order, stable in canonical order
+  std::vector<bool> taken(n, false);
+  Q accel;
+  for (int m = 0; m < 6 && m < n; ++m) {
+    std::vector<bool> left(n);
+    for (int k = 0; k < n; ++k) left[k] = !taken[k];
+    const int k = argmin(delta2, left);
+    taken[k] = true;
+    if (m == 0) {
+      accel = def[k];
+      r.pdd2_accel1 = rounded(def[k], ok);
+    } else if (def[k] < accel) {
+      accel = def[k];
+    }
+  }
+  r.pdd2_accel6 = rounded(accel, ok);
+
+  // q1: x + (T / n.n) n along the pdd2 direction (direction_qp.h)
+  const Cand& c = C[id];
+  const SolutionT<Q>& sol = def_sol[id];
+  for (int i = 0; i < 4; ++i) {
+    const Q tA = displacement_below_t(c.hA[i], (c.conA >> i & 1u) != 0, sol) / c.nn;
+    const Q tB = displacement_above_t(c.hB[i], (c.conB >> i & 1u) != 0, sol) / c.nn;
+    for (int k = 0; k < 3; ++k) {
+      r.q1_A[i][k] = rounded(Q(A[i][k]) + tA * c.n.x[k], ok);
+      r.q1_B[i][k] = rounded(Q(B[i][k]) + tB * c.n.x[k], ok);
+    }
+  }
+  return er;
+}
+
+}  // namespace pdd::fast::detail

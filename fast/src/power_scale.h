@@ -1,0 +1,51 @@
+// power_scale.h — internal to fast/src: exact power-of-two rescaling of a pair (SPEC §8).
+//
+// Input:  a pair with finite coordinates.
+// Output: the pair multiplied by 2^e, with e chosen so that the largest |coordinate| R lies in
+//         [1, 2), and `exact` = whether every scaled coordinate is exactly x·2^e (always when
+//         e >= 0; when e < 0, unless a non-zero coordinate would become subnormal).
+// Why: every error bound of the double path (filter_bounds.h, value_bounds.h) assumes the
+// extent L in [2^-200, 2^200] and no overflow; after scaling R < 2, so nothing overflows, and the
+// bounds are invariant under the scaling (all relative). Values scale back by 2^-2e, positions
+// by 2^-e, exactly unless the result leaves the normal range (checked by the caller).
+#pragma once
+
+#include <cfloat>
+#include <cmath>
+
+#include "pdd/tet_pair.h"
+
+namespace pdd::fast::detail {
+
+struct ScaledPair {
+  TetVertices A, B;
+  int e = 0;
+  bool exact = true;
+};
+
+inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
+  double R = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) R = std::fmax(R, std::fmax(std::fabs(A[i][k]), std::fabs(B[i][k])));
+  ScaledPair s;
+  s.e = R > 0.0 ? -std::ilogb(R) : 0;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      s.A[i][k] = std::ldexp(A[i][k], s.e);
+      s.B[i][k] = std::ldexp(B[i][k], s.e);
+      const double a = std::fabs(s.A[i][k]), b = std::fabs(s.B[i][k]);
+      if ((a != 0.0 && a < DBL_MIN) || (b != 0.0 && b < DBL_MIN) ||
+          (A[i][k] != 0.0 && a == 0.0) || (B[i][k] != 0.0 && b == 0.0))
+        s.exact = false;
+    }
+  return s;
+}
+
+// v·2^k when it is 0 or a normal double; `ok` cleared otherwise.
+inline double unscaled(double v, int k, bool& ok) {
+  const double w = std::ldexp(v, k);
+  if (v != 0.0 && !(std::fabs(w) >= DBL_MIN && std::fabs(w) <= DBL_MAX)) ok = false;
+  return w;
+}
+
+}  // namespace pdd::fast::detail
