@@ -3,13 +3,12 @@
 // over tolerance, 2 unreadable input, usage error, failed write or unexpected error.
 #include <CLI/CLI.hpp>
 
-#include <cerrno>
-#include <cstring>
 #include <exception>
 #include <iostream>
 
 #include "pdd/compare/commands.h"
 #include "pdd/compare/exit_codes.h"
+#include "pdd/compare/output.h"
 
 int main(int argc, char** argv) {
   using namespace pdd::compare;
@@ -37,12 +36,9 @@ int main(int argc, char** argv) {
   }
   // Whatever a command wrote to standard output must have arrived (a full disk, a closed
   // pipe): results that were lost are an error, not a success.
-  errno = 0;
-  std::cout.flush();
-  if (!std::cout && exit_code != kExitFileError) {  // not said already by the command
-    std::cerr << "pdd: cannot write to standard output"
-              << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
+  if (const auto why = flush_error(std::cout, "standard output")) {
+    if (exit_code != kExitFileError) std::cerr << "pdd: " << *why << "\n";  // else said already
     return kExitFileError;
   }
-  return std::cout ? exit_code : kExitFileError;
+  return exit_code;
 }
