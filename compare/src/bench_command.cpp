@@ -89,6 +89,7 @@ Json report_json(const BenchReport& r) {
   b["repeats"] = r.batch.repeats;
   b["median_seconds"] = number(r.batch.median_seconds);
   b["pairs_per_second"] = number(r.batch.pairs_per_second);
+  b["slow_paths"] = r.batch.slow_paths;
   j["batch"] = b;
   j["peers"] = Json::array();
   for (const auto& p : r.peers) {
@@ -164,7 +165,10 @@ void print_table(const BenchReport& r, std::ostream& s) {
     << fmt("%.0f", b.pairs_per_second) << " pairs/s (median of " << b.repeats << " runs, "
     << fmt("%.4f", b.median_seconds) << " s per " << b.pairs << " pairs); one core solve_pair: "
     << fmt("%.0f", single) << " pairs/s; speed-up " << fmt("%.2f", b.pairs_per_second / single)
-    << "x\n\n";
+    << "x\n"
+    << "  SPEC §8 slow path (exact rationals where an error bound is wider than 1e-9): "
+    << b.slow_paths << " of " << b.pairs << " pairs ("
+    << fmt("%.3g", b.pairs ? 100.0 * double(b.slow_paths) / double(b.pairs) : 0.0) << "%)\n\n";
 
   s << "Rigid PD by the peers, same pairs, same process, passes interleaved with ours\n";
   s << "  " << pad("peer", 40) << rpad("ns/pair", 10) << rpad("min", 9) << rpad("max", 9)

@@ -60,6 +60,7 @@ struct BatchTiming {
   int repeats = 0;
   double median_seconds = 0;     // one solve_batch call over all pairs, median over repeats
   double pairs_per_second = 0;   // pairs / median_seconds
+  std::size_t slow_paths = 0;    // pairs that took the fast engine's exact path (SPEC §8)
 };
 BatchTiming time_batch(const std::vector<TetPair>& pairs, int repeats);
 
