@@ -12,7 +12,10 @@
 #include <string>
 
 #include "pdd/compare/bench.h"
+#include "pdd/compare/cli_checks.h"
 #include "pdd/compare/commands.h"
+#include "pdd/compare/exit_codes.h"
+#include "pdd/compare/output.h"
 #include "pdd/compare/result_json.h"
 
 namespace pdd::compare {
@@ -235,11 +238,9 @@ int run(const BenchArgs& a) {
     if (json_stdout) {
       std::cout << text;
     } else {
-      std::ofstream out(a.json_path);
-      out << text;
-      if (!out) {
-        std::cerr << "pdd bench: cannot write " << a.json_path << "\n";
-        return 2;
+      if (auto why = write_file(a.json_path, text)) {
+        std::cerr << "pdd bench: " << *why << "\n";
+        return kExitFileError;
       }
     }
   }
@@ -254,12 +255,18 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       "bench",
       "Time the fast engine, FCL and libccd (rigid PD) and the exact engine on the paper's "
       "protocol; medians of repeated passes, ratios in the same run.");
-  cmd->add_option("--count", a->options.count, "Pairs of the paper's protocol")->capture_default_str();
-  cmd->add_option("--seed", a->options.seed, "Random seed of the pairs")->capture_default_str();
+  cmd->add_option("--count", a->options.count, "Pairs of the paper's protocol")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--seed", a->options.seed, "Random seed of the pairs (0 to 2^64-1)")
+      ->check(seed_value())
+      ->capture_default_str();
   cmd->add_option("--repeats", a->options.repeats, "Timed passes per row (median reported)")
+      ->check(integer_in(1, 1000))
       ->capture_default_str();
   cmd->add_option("--exact-sample", a->options.exact_sample,
                   "The first M pairs are also solved exactly (errors, exact-engine ratio)")
+      ->check(integer_in(0, 100000000))
       ->capture_default_str();
   cmd->add_option("--json", a->json_path,
                   "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "

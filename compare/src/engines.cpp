@@ -11,8 +11,17 @@ namespace pdd::compare {
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   bool show_progress) {
+  Progress progress("pdd: reference engine", entries.size(), show_progress ? 2.0 : 1e300);
+  auto out = run_reference(entries, options, progress);
+  progress.finish();
+  return out;
+}
+
+std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+                                                  const reference::SolveOptions& options,
+                                                  Progress& progress) {
   return map_entries<reference::ExactResult>(
-      entries, "pdd: reference engine", show_progress, [&](const TetPair& pair, std::size_t) {
+      entries, progress, [&](const TetPair& pair, std::size_t) {
         try {
           return reference::solve_pair(pair, options);
         } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "pdd/compare/engines.h"
+#include "pdd/compare/output.h"
 #include "pdd/compare/result_json.h"
 
 namespace pdd::compare {
@@ -139,7 +140,8 @@ std::vector<std::string> update_golden(const std::string& fixtures_dir, referenc
   for (const auto& rel : golden_fixture_files(fixtures_dir)) {
     const std::string gpath = golden_path(fixtures_dir, rel);
     fs::create_directories(fs::path(gpath).parent_path());
-    std::ofstream(gpath, std::ios::binary) << exact_json_lines((fs::path(fixtures_dir) / rel).string(), f);
+    if (auto why = write_file(gpath, exact_json_lines((fs::path(fixtures_dir) / rel).string(), f)))
+      throw std::runtime_error(*why);
     written.push_back(rel);
   }
   return written;

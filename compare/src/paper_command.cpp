@@ -13,10 +13,13 @@
 #include <sstream>
 
 #include "pdd/compare/bench.h"
+#include "pdd/compare/cli_checks.h"
 #include "pdd/compare/commands.h"
+#include "pdd/compare/exit_codes.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/engines.h"
 #include "pdd/compare/generate.h"
+#include "pdd/compare/output.h"
 #include "pdd/compare/paper_experiment.h"
 #include "pdd/compare/paper_figures.h"
 #include "pdd/compare/progress.h"
@@ -134,9 +137,20 @@ std::size_t figure_pair(const ExactSample& s, const std::vector<TetPair>& pairs)
   return best;
 }
 
-int run_paper(const PaperArgs& a) {
+int run_paper_checked(const PaperArgs& a) {
   namespace fs = std::filesystem;
-  fs::create_directories(a.out);
+  if (!(a.min_volume < a.max_volume)) {
+    std::cerr << "pdd paper: --min-volume (" << a.min_volume << ") must be below --max-volume ("
+              << a.max_volume << ")\n";
+    return kExitUsage;
+  }
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (ec || !fs::is_directory(a.out)) {
+    std::cerr << "pdd paper: cannot make the output folder '" << a.out
+              << "': " << (ec ? ec.message() : std::string("a file of that name exists")) << "\n";
+    return kExitFileError;
+  }
   const PaperProtocol protocol{10.0, a.min_volume, a.max_volume};
   std::cerr << "pdd paper: generating " << a.count << " pairs (seed " << a.seed << ")\n";
   const auto pairs = generate_family("paper", a.seed, a.count, protocol);
@@ -225,10 +239,22 @@ int run_paper(const PaperArgs& a) {
      << "0 A rest, 1 B rest, 2 B static/def, 3 A def/def, 4 B def/def, 5 B rigid).\n\n";
   if (fig2) md << "![pair before and after](fig2_pair.png)\n";
   std::string text = md.str();
-  std::ofstream(a.out + "/report.md") << text;
+  if (auto why = write_file(a.out + "/report.md", text)) {
+    std::cerr << "pdd paper: " << *why << "\n";
+    return kExitFileError;
+  }
   std::cout << text;
   std::cerr << "pdd paper: wrote " << a.out << "/report.md\n";
-  return sample.over_tolerance ? 1 : 0;
+  return sample.over_tolerance ? kExitPairRejected : kExitOk;
+}
+
+int run_paper(const PaperArgs& a) {
+  try {
+    return run_paper_checked(a);
+  } catch (const std::exception& e) {  // e.g. no pair in the volume window, a failed write
+    std::cerr << "pdd paper: " << e.what() << "\n";
+    return kExitFileError;
+  }
 }
 
 }  // namespace
@@ -236,13 +262,23 @@ int run_paper(const PaperArgs& a) {
 void add_paper_command(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<PaperArgs>();
   CLI::App* cmd = app.add_subcommand("paper", "Reproduce the paper's experiment: Table I, direction statistics, Fig. 2 and 3.");
-  cmd->add_option("--seed", a->seed, "Random seed")->capture_default_str();
-  cmd->add_option("--count", a->count, "Number of intersecting pairs")->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Random seed (0 to 2^64-1)")->check(seed_value())->capture_default_str();
+  cmd->add_option("--count", a->count, "Number of intersecting pairs")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
   cmd->add_option("--out", a->out, "Output folder (report.md, pictures, VTK)")->capture_default_str();
-  cmd->add_option("--exact-sample", a->exact_sample, "Pairs also solved exactly (at least 200 for a fair check)")->capture_default_str();
-  cmd->add_option("--repeats", a->repeats, "Timing repeats (median)")->capture_default_str();
-  cmd->add_option("--min-volume", a->min_volume, "Smallest tetrahedron volume kept")->capture_default_str();
-  cmd->add_option("--max-volume", a->max_volume, "Largest tetrahedron volume kept")->capture_default_str();
+  cmd->add_option("--exact-sample", a->exact_sample, "Pairs also solved exactly (at least 200 for a fair check)")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--repeats", a->repeats, "Timing repeats (median)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--min-volume", a->min_volume, "Smallest tetrahedron volume kept")
+      ->check(finite_number(0, false))
+      ->capture_default_str();
+  cmd->add_option("--max-volume", a->max_volume, "Largest tetrahedron volume kept")
+      ->check(finite_number(0, true))
+      ->capture_default_str();
   cmd->callback([a, &exit_code] { exit_code = run_paper(*a); });
 }
 

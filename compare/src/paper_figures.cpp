@@ -5,7 +5,9 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
+#include "pdd/compare/output.h"
 #include "pdd/reference/candidate_directions.h"
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/oriented_depth.h"
@@ -27,6 +29,11 @@ bool run_gnuplot(const std::string& dir, const std::string& script, std::string&
   if (std::system(cmd.c_str()) == 0) return true;
   why = "gnuplot failed on " + dir + "/" + script + " (see " + dir + "/" + log + "; is gnuplot installed?)";
   return false;
+}
+
+// A file that could not be written in full is an error of the whole run, not a missing picture.
+void finish(std::ofstream& o, const std::string& path) {
+  if (auto why = close_error(o, path)) throw std::runtime_error(*why);
 }
 
 // The six edges of a tetrahedron as gnuplot line segments (blank line between segments).
@@ -81,7 +88,7 @@ bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
     for (int k = 0; k < 5; ++k) dat << ' ' << counts[b][k];
     dat << "\n";
   }
-  dat.close();  // gnuplot reads it below
+  finish(dat, dir + "/fig3_histograms.dat");  // gnuplot reads it below
   std::ofstream gp(dir + "/fig3_histograms.gp");
   gp << "set terminal pngcairo size 1500,420 font 'Sans,11'\nset output 'fig3_histograms.png'\n"
      << "set multiplot layout 1,3 title 'PD_d / PD over " << s.pairs << " random intersecting pairs (cf. paper Fig. 3)'\n"
@@ -97,7 +104,7 @@ bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
        << "' notitle\n";
   }
   gp << "unset multiplot\n";
-  gp.close();
+  finish(gp, dir + "/fig3_histograms.gp");
   return run_gnuplot(dir, "fig3_histograms.gp", why);
 }
 
@@ -111,7 +118,7 @@ bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string
     write_edges(dat, *t);
     dat << "\n";  // two blank lines end a gnuplot index block
   }
-  dat.close();  // gnuplot reads it below
+  finish(dat, dir + "/fig2_pair.dat");  // gnuplot reads it below
   std::ostringstream titles[4];
   titles[0] << "(a) penetration state";
   titles[1] << std::setprecision(4) << "(b) static / deformable, PD_d = " << c.pdd_static;
@@ -142,7 +149,7 @@ bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  gp.close();
+  finish(gp, dir + "/fig2_pair.gp");
   return run_gnuplot(dir, "fig2_pair.gp", why);
 }
 
@@ -159,6 +166,7 @@ void write_vtk(const std::string& path, const PairConfigurations& c) {
   o << "CELL_TYPES 6\n";
   for (int k = 0; k < 6; ++k) o << "10\n";  // VTK_TETRA
   o << "CELL_DATA 6\nSCALARS configuration int 1\nLOOKUP_TABLE default\n0\n1\n2\n3\n4\n5\n";
+  finish(o, path);
 }
 
 }  // namespace pdd::compare

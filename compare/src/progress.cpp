@@ -9,8 +9,8 @@ Progress::Progress(std::string what, std::size_t total, double quiet_seconds,
     : what_(std::move(what)), total_(total), quiet_(quiet_seconds),
       interval_(interval_seconds), start_(Clock::now()) {}
 
-void Progress::tick() {
-  const std::size_t done = ++done_;
+void Progress::tick(std::size_t n) {
+  const std::size_t done = done_ += n;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   if (elapsed < quiet_) return;
   std::lock_guard<std::mutex> lock(mutex_);

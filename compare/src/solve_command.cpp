@@ -1,4 +1,8 @@
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -7,7 +11,11 @@
 #include <tbb/global_control.h>
 
 #include "pdd/compare/commands.h"
+#include "pdd/compare/cli_checks.h"
 #include "pdd/compare/engines.h"
+#include "pdd/compare/exit_codes.h"
+#include "pdd/compare/output.h"
+#include "pdd/compare/progress.h"
 #include "pdd/compare/result_json.h"
 
 namespace pdd::compare {
@@ -22,56 +30,111 @@ struct SolveArgs {
   int threads = 0;  // 0: all cores
 };
 
-// Exit codes shared by every subcommand: 0 all good, 1 some pair rejected, 2 nothing read.
-constexpr int kPairRejected = 1;
-constexpr int kFileError = 2;
+// Pairs are read, solved and written this many at a time, so memory does not grow with the
+// file; the results are those of solving the whole file at once, in the same order.
+constexpr std::size_t kChunk = 4096;
 
 template <class R, class Record>
 int write_results(const std::vector<PairResult<R>>& results, Record record, std::ostream& out) {
-  int status = 0;
+  int status = kExitOk;
   for (const auto& r : results) {
     out << record(r).dump() << '\n';
     if (r.error) {
       std::cerr << "pdd solve: pair '" << r.name << "' rejected: " << *r.error << '\n';
-      status = kPairRejected;
+      status = kExitPairRejected;
     }
   }
   return status;
 }
 
 int run_solve(const SolveArgs& args) {
-  const FixtureFile file = read_fixture_file(args.input);
-  if (file.error) {
-    std::cerr << "pdd solve: " << *file.error << '\n';
-    return kFileError;
+  // The whole file is checked before anything is computed or written, so that a file that
+  // cannot be read produces no output. A regular file is then read a second time in chunks;
+  // anything else (a pipe) can be read only once and is held in memory.
+  std::error_code ec;
+  const bool regular = std::filesystem::is_regular_file(args.input, ec);
+  FixtureFile whole;
+  std::size_t total = 0;
+  if (regular) {
+    const FixtureCheck check = check_fixture_file(args.input);
+    if (check.error) {
+      std::cerr << "pdd solve: " << *check.error << '\n';
+      return kExitFileError;
+    }
+    total = check.entries;
+  } else {
+    whole = read_fixture_file(args.input);
+    if (whole.error) {
+      std::cerr << "pdd solve: " << *whole.error << '\n';
+      return kExitFileError;
+    }
+    total = whole.entries.size();
   }
   std::ofstream file_out;
   if (!args.output.empty()) {
-    file_out.open(args.output);
+    errno = 0;
+    file_out.open(args.output, std::ios::binary);
     if (!file_out) {
-      std::cerr << "pdd solve: cannot write '" << args.output << "'\n";
-      return kFileError;
+      std::cerr << "pdd solve: cannot write '" << args.output << "'"
+                << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
+      return kExitFileError;
     }
   }
   std::ostream& out = args.output.empty() ? std::cout : file_out;
+  const std::string where = args.output.empty() ? "standard output" : "'" + args.output + "'";
   std::optional<tbb::global_control> limit;
   if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
 
-  if (args.engine == "fast") {
-    std::cerr << "pdd solve: " << file.entries.size() << " pairs, fast engine\n";
-    std::size_t slow = 0;
-    const auto results = run_fast(file.entries, &slow);
-    std::cerr << "pdd solve: " << slow << " of " << file.entries.size()
-              << " pairs took the exact path (SPEC §8: error bound wider than 1e-9)\n";
-    return write_results(results, fast_record, out);
-  }
+  const bool fast = args.engine == "fast";
   reference::SolveOptions options;
   options.formulation = args.formulation == "reduced" ? reference::QpFormulation::Reduced
                                                       : reference::QpFormulation::Full;
-  std::cerr << "pdd solve: " << file.entries.size() << " pairs, reference engine, "
-            << reference::to_string(options.formulation) << " QP formulation\n";
-  const auto results = run_reference(file.entries, options, !args.quiet);
-  return write_results(results, exact_record, out);
+  if (fast)
+    std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
+  else
+    std::cerr << "pdd solve: " << total << " pairs, reference engine, "
+              << reference::to_string(options.formulation) << " QP formulation\n";
+  Progress progress(fast ? "pdd: fast engine" : "pdd: reference engine", total,
+                    args.quiet ? 1e300 : 2.0);
+
+  int status = kExitOk;
+  std::size_t slow_paths = 0;  // fast engine: pairs that took its exact path (SPEC §8)
+  std::optional<std::string> write_error;
+  const FixtureSink solve_chunk = [&](std::vector<FixtureEntry>& chunk, std::size_t) {
+    if (fast) {
+      std::size_t slow = 0;
+      status = std::max(status, write_results(run_fast(chunk, &slow), fast_record, out));
+      slow_paths += slow;
+      progress.tick(chunk.size());
+    } else {
+      status = std::max(status, write_results(run_reference(chunk, options, progress), exact_record, out));
+    }
+    if (!out) write_error = flush_error(out, where).value_or("cannot write to " + where);
+    return !write_error;  // stop early: the results would be lost
+  };
+  if (regular) {
+    if (auto why = stream_fixture_file(args.input, kChunk, solve_chunk); why && !write_error) {
+      std::cerr << "pdd solve: " << *why << '\n';  // the file changed since it was checked
+      return kExitFileError;
+    }
+  } else {
+    for (std::size_t k = 0; k < whole.entries.size() && !write_error; k += kChunk) {
+      std::vector<FixtureEntry> chunk(whole.entries.begin() + k,
+                                      whole.entries.begin() + std::min(k + kChunk, whole.entries.size()));
+      solve_chunk(chunk, k);
+    }
+  }
+  progress.finish();
+  if (fast)
+    std::cerr << "pdd solve: " << slow_paths << " of " << total
+              << " pairs took the exact path (SPEC §8: error bound wider than 1e-9)\n";
+  if (!write_error)
+    write_error = args.output.empty() ? flush_error(out, where) : close_error(file_out, args.output);
+  if (write_error) {
+    std::cerr << "pdd solve: " << *write_error << "; results lost\n";
+    return kExitFileError;
+  }
+  return status;
 }
 
 }  // namespace
@@ -93,7 +156,7 @@ void add_solve_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"full", "reduced"}))
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integer_in(0, 4096))
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
   cmd->callback([args, &exit_code] { exit_code = run_solve(*args); });

@@ -1,6 +1,7 @@
 #include <iostream>
 #include <memory>
 
+#include "pdd/compare/cli_checks.h"
 #include "pdd/compare/commands.h"
 #include "pdd/compare/fixture_io.h"
 #include "pdd/compare/engines.h"
@@ -97,6 +98,7 @@ void add_theorem_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--input", a->input, "Fixture file")->required();
   cmd->add_flag("--json", a->json, "Write one JSON object per pair to standard output (summary to stderr)");
   cmd->add_option("--nef", a->nef, "Check the hull against CGAL's Nef minkowski_sum_3 on the first N pairs")
+      ->check(integer_in(0, std::numeric_limits<long long>::max()))
       ->capture_default_str();
   cmd->callback([a, &exit_code] { exit_code = run_theorem(*a); });
 }

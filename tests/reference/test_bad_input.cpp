@@ -86,3 +86,133 @@ BOOST_AUTO_TEST_CASE(batch_reports_every_bad_pair_and_computes_the_rest) {
     }
   }
 }
+
+// ---- the fixture reader (compare/src/fixture_io.cpp), one defect per case ----
+
+namespace {
+const std::string kGoodTets =
+    R"("A": [[0,0,0],[4,0,0],[0,4,0],[0,0,4]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]])";
+std::string one_pair(const std::string& name_json) {
+  return R"({"pairs": [{"name": )" + name_json + ", " + kGoodTets + "}]}";
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(numbers_beyond_the_double_range_are_infinite_coordinates) {
+  const auto f = compare::read_fixture_file(test::fixture_path("bad/overflow.json"));
+  BOOST_REQUIRE(!f.error);
+  BOOST_REQUIRE(f.entries.size() == 6u);
+  BOOST_TEST(!f.entries[0].error.has_value());
+  BOOST_TEST(f.entries[1].pair.name == "overflow-x");
+  BOOST_TEST(!f.entries[1].error.has_value());
+  BOOST_TEST((std::isinf(f.entries[1].pair.A[1][0]) && f.entries[1].pair.A[1][0] > 0));
+  BOOST_TEST((std::isinf(f.entries[2].pair.B[2][2]) && f.entries[2].pair.B[2][2] < 0));
+  BOOST_TEST(contains(solve_pair(f.entries[1].pair).error, "not finite"));
+  // A number is never a name, however it is written.
+  BOOST_TEST(f.entries[3].pair.name == "#3");
+  BOOST_TEST(contains(f.entries[3].error, "field 'name' must be a string, not a number"));
+  // A string is never a coordinate, however it is spelled.
+  BOOST_TEST(contains(f.entries[4].error, "vertex 3 coordinate z is not a number"));
+  BOOST_TEST(!f.entries[5].error.has_value());
+  BOOST_TEST(f.entries[5].pair.A[1][0] == 4.0);
+  // Other large and small numbers are read as the double they round to.
+  const auto g = compare::parse_fixture_text(
+      R"({"pairs": [{"name": "n", "A": [[1e308,-1.7976931348623157e308,1e-400],[4,0,0],[0,4,0],)"
+      R"([0,0,184467440737095516160]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]})");
+  BOOST_REQUIRE(!g.error);
+  BOOST_TEST(g.entries[0].pair.A[0][0] == 1e308);
+  BOOST_TEST(g.entries[0].pair.A[0][1] == -1.7976931348623157e308);
+  BOOST_TEST(g.entries[0].pair.A[0][2] == 0.0);
+  BOOST_TEST(g.entries[0].pair.A[3][2] == 184467440737095516160.0);
+}
+
+BOOST_AUTO_TEST_CASE(malformed_numbers_make_the_file_unreadable_with_a_byte_position) {
+  for (const char* n : {"1.e400", "1e400e5", "-01e400", "01", "1.", "-", "+1", ".5", "1e", "1e+",
+                        "--1", "0x10", "1e400.5", "Infinity", "NaN"}) {
+    const std::string text = R"({"pairs": [{"name": "x", "A": [[0,0,0],[)" + std::string(n) +
+                             R"(,0,0],[0,4,0],[0,0,4]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]})";
+    const auto f = compare::parse_fixture_text(text);
+    BOOST_TEST(contains(f.error, "malformed JSON at byte "), n << ": " << f.error.value_or("no error"));
+    BOOST_TEST(f.entries.empty(), n);
+  }
+  const auto f = compare::read_fixture_file(test::fixture_path("bad/number-dot-exponent.json"));
+  BOOST_TEST(contains(f.error, "malformed JSON at byte 46: '1.e400' is not a valid number"),
+             f.error.value_or("no error"));
+}
+
+BOOST_AUTO_TEST_CASE(duplicate_keys_nul_bytes_and_trailing_garbage_are_unreadable) {
+  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/duplicate-pairs.json")).error,
+                      "duplicate key \"pairs\" at byte 110"));
+  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/duplicate-name.json")).error,
+                      "duplicate key \"name\" at byte 28"));
+  BOOST_TEST(contains(compare::parse_fixture_text(R"({"pairs": [], "x": {"a": 1, "a": 2}})").error,
+                      "duplicate key \"a\""));
+  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/nul-byte.json")).error,
+                      "NUL byte at byte 110"));
+  BOOST_TEST(contains(compare::parse_fixture_text(std::string("{\"pairs\": [\0]}", 14)).error, "NUL byte at byte 11"));
+  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/trailing-garbage.json")).error,
+                      "malformed JSON at byte "));
+  BOOST_TEST(contains(compare::parse_fixture_text(one_pair("\"a\"") + " x").error, "malformed JSON"));
+  BOOST_TEST(!compare::parse_fixture_text(one_pair("\"a\"") + " \n").error.has_value());
+  BOOST_TEST(contains(compare::parse_fixture_text(" \n\t").error, "file is empty"));
+  BOOST_TEST(contains(compare::parse_fixture_text(R"({"pairs": 3})").error, "array field 'pairs'"));
+  BOOST_TEST(contains(compare::parse_fixture_text(R"([{"pairs": []}])").error, "array field 'pairs'"));
+  // Keys that look alike are different keys; the same key in sibling objects is fine.
+  BOOST_TEST(!compare::parse_fixture_text(R"({"pairs": [], "Pairs": 1, "y": [{"a": 1}, {"a": 2}]})").error.has_value());
+}
+
+BOOST_AUTO_TEST_CASE(directories_and_missing_files_get_honest_messages) {
+  BOOST_TEST(contains(compare::read_fixture_file(PDD_FIXTURES_DIR).error, "is a directory"));
+  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/does-not-exist.json")).error,
+                      "No such file or directory"));
+  BOOST_TEST(contains(compare::check_fixture_file(PDD_FIXTURES_DIR).error, "is a directory"));
+}
+
+BOOST_AUTO_TEST_CASE(mistyped_fields_reject_one_pair_by_name_or_index) {
+  const auto f = compare::read_fixture_file(test::fixture_path("bad/mistyped.json"));
+  BOOST_REQUIRE(!f.error);
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"good", ""},
+      {"#1", "field 'name' must be a string, not an array"},
+      {"#2", "missing or empty string field 'name'"},
+      {"bad-tags", "field 'tags' must be an array of strings"},
+      {"A-not-array", "field 'A' must be an array of 4 vertices"},
+      {"vertex-two-numbers", "field 'A' vertex 0 must be an array of 3 numbers"},
+      {"#6", "entry is not a JSON object"},
+      {"good-after", ""}};
+  BOOST_REQUIRE(f.entries.size() == expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    BOOST_TEST(f.entries[k].pair.name == expected[k].first);
+    if (expected[k].second.empty()) BOOST_TEST(!f.entries[k].error.has_value());
+    else BOOST_TEST(contains(f.entries[k].error, expected[k].second), f.entries[k].error.value_or("none"));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(streaming_hands_over_every_entry_in_order_in_chunks) {
+  const auto whole = compare::read_fixture_file(test::fixture_path("bad/mixed.json"));
+  BOOST_REQUIRE(!whole.error);
+  const auto check = compare::check_fixture_file(test::fixture_path("bad/mixed.json"));
+  BOOST_TEST(!check.error.has_value());
+  BOOST_TEST(check.entries == whole.entries.size());
+  std::vector<compare::FixtureEntry> got;
+  std::vector<std::size_t> sizes, firsts;
+  const auto error = compare::stream_fixture_file(
+      test::fixture_path("bad/mixed.json"), 4, [&](std::vector<compare::FixtureEntry>& c, std::size_t first) {
+        sizes.push_back(c.size());
+        firsts.push_back(first);
+        for (auto& e : c) got.push_back(e);
+        return true;
+      });
+  BOOST_TEST(!error.has_value());
+  BOOST_TEST(sizes == (std::vector<std::size_t>{4, 4, 1}), boost::test_tools::per_element());
+  BOOST_TEST(firsts == (std::vector<std::size_t>{0, 4, 8}), boost::test_tools::per_element());
+  BOOST_REQUIRE(got.size() == whole.entries.size());
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    BOOST_TEST(got[k].pair.name == whole.entries[k].pair.name);
+    BOOST_TEST(got[k].error.value_or("-") == whole.entries[k].error.value_or("-"));
+  }
+  // The sink can stop the reading.
+  std::size_t calls = 0;
+  compare::stream_fixture_file(test::fixture_path("bad/mixed.json"), 2,
+                               [&](std::vector<compare::FixtureEntry>&, std::size_t) { return ++calls < 2; });
+  BOOST_TEST(calls == 2u);
+}

@@ -21,11 +21,11 @@ namespace pdd::compare {
 // Applies `compute(pair, index)` to every well-formed entry in parallel (TBB), in input order,
 // with progress on stderr; a malformed entry becomes a default T with `name` and `error` set.
 // T has members `name` and `error` (std::optional<std::string>).
+// This form ticks a caller's `progress` (one Progress over several calls, e.g. chunks).
 template <class T, class Compute>
-std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::string& what,
-                           bool show_progress, Compute compute) {
+std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, Progress& progress,
+                           Compute compute) {
   std::vector<T> out(entries.size());
-  Progress progress(what, entries.size(), show_progress ? 2.0 : 1e300);
   tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
     const FixtureEntry& e = entries[k];
     if (e.error) {
@@ -36,6 +36,14 @@ std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::
     }
     progress.tick();
   });
+  return out;
+}
+
+template <class T, class Compute>
+std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::string& what,
+                           bool show_progress, Compute compute) {
+  Progress progress(what, entries.size(), show_progress ? 2.0 : 1e300);
+  std::vector<T> out = map_entries<T>(entries, progress, compute);
   progress.finish();
   return out;
 }
@@ -43,6 +51,10 @@ std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   bool show_progress);
+// The same, ticking the caller's `progress` once per entry.
+std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+                                                  const reference::SolveOptions& options,
+                                                  Progress& progress);
 
 // The fast engine over the same entries: malformed entries become error records, the rest go
 // through pdd::fast::solve_batch (all cores), results in input order.

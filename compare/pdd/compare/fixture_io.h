@@ -4,10 +4,21 @@
 // Output: every entry of "pairs" in order, each either a TetPair or the reason it could not
 //         be read (missing or mistyped field, wrong shape); or a file-level error when the
 //         file cannot be read, is empty, is not JSON, or has no "pairs" array. Coordinates are
-//         parsed as doubles exactly as written; a number too large for a double becomes
-//         infinite and is rejected by the engines' validation (SPEC §1), not here.
+//         parsed as doubles exactly as written; a syntactically valid number too large for a
+//         double (1e400) becomes +-infinity and is rejected by the engines' validation
+//         (SPEC §1), not here. A file-level error names the byte where it was found.
+//
+// The file is read with nlohmann::json's SAX interface, so no document tree is ever built:
+// only one entry at a time is held, and stream_fixture_file hands entries over in chunks.
+// What makes a whole file unreadable: it cannot be opened or read, is a directory, is
+// empty, is not JSON (malformed numbers such as 1.e400 or -01, trailing garbage), holds a
+// NUL byte, repeats a key in any object, or has no "pairs" array. What rejects only one
+// entry: it is not an object; 'name' is missing, empty or not a string; 'tags' is not an
+// array of strings; 'A' or 'B' is missing or not 4 vertices of 3 numbers.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +39,23 @@ struct FixtureFile {
 
 FixtureFile read_fixture_file(const std::string& path);
 FixtureFile parse_fixture_text(const std::string& text);
+
+// Reads the whole file without keeping any pair: the number of entries, or the file-level
+// error. Lets a caller refuse a bad file before computing anything, and size its progress.
+struct FixtureCheck {
+  std::size_t entries = 0;
+  std::optional<std::string> error;
+};
+FixtureCheck check_fixture_file(const std::string& path);
+
+// Reads `path` once, handing its entries to `sink` in input order in chunks of at most
+// `chunk_size` (the last may be shorter; `first_index` is the chunk's first entry's index).
+// The sink returns false to stop reading. Returns the file-level error, if any; chunks read
+// before an error has been found have already been handed over (run check_fixture_file
+// first when that matters). Memory use does not grow with the file.
+using FixtureSink = std::function<bool(std::vector<FixtureEntry>& chunk, std::size_t first_index)>;
+std::optional<std::string> stream_fixture_file(const std::string& path, std::size_t chunk_size,
+                                               const FixtureSink& sink);
 
 // Writes pairs back in the same format (round-trip exact: doubles in shortest exact form).
 std::string fixture_json(const std::vector<TetPair>& pairs);

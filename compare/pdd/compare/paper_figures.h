@@ -21,6 +21,8 @@ struct PairConfigurations {
 
 PairConfigurations pair_configurations(const TetPair& pair);
 
+// The writers below throw std::runtime_error when a file cannot be written in full.
+
 // Writes DIR/fig3_histograms.{dat,gp,png}; returns false (with `why`) when gnuplot fails.
 bool write_fig3(const std::string& dir, const PaperStats& stats, std::string& why);
 

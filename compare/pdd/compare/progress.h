@@ -17,7 +17,7 @@ class Progress {
  public:
   Progress(std::string what, std::size_t total, double quiet_seconds = 2.0,
            double interval_seconds = 2.0);
-  void tick();    // one more item done
+  void tick(std::size_t n = 1);  // n more items done
   void finish();  // final line if anything was printed
 
  private:

@@ -1,0 +1,46 @@
+// output.h — writing results so that a failed write is noticed (a full disk, /dev/full, a
+// closed pipe): a command whose output was lost must not exit 0 (exit_codes.h).
+#pragma once
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace pdd::compare {
+
+// Flushes `out`; the reason when anything written to it so far was lost. `where` names the
+// destination in the message ("standard output", "'results.jsonl'").
+inline std::optional<std::string> flush_error(std::ostream& out, const std::string& where) {
+  if (out) {  // else errno still says why the last write failed
+    errno = 0;
+    out.flush();
+    if (out) return std::nullopt;
+  }
+  return "cannot write to " + where + (errno ? std::string(": ") + std::strerror(errno) : "");
+}
+
+// Closes a file stream and says why the data did not all reach the file, if it did not.
+inline std::optional<std::string> close_error(std::ofstream& out, const std::string& path) {
+  if (auto why = flush_error(out, "'" + path + "'")) return why;
+  errno = 0;
+  out.close();
+  if (out) return std::nullopt;
+  return "cannot write to '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : "");
+}
+
+// Writes `text` to the file `path` (created or truncated); the reason when it failed.
+inline std::optional<std::string> write_file(const std::string& path, const std::string& text,
+                                             std::ios::openmode mode = std::ios::binary) {
+  errno = 0;
+  std::ofstream out(path, mode);
+  if (!out)
+    return "cannot open '" + path + "' for writing" +
+           (errno ? std::string(": ") + std::strerror(errno) : "");
+  out << text;
+  return close_error(out, path);
+}
+
+}  // namespace pdd::compare

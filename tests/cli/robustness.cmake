@@ -1,0 +1,145 @@
+# Every `pdd` command on bad input, bad arguments and failed writes: the exit code of
+# exit_codes.h (1 some pair rejected, 2 unreadable file / usage error / lost output) and a
+# message naming the problem. One check per reported defect; each fails if the defect returns.
+# Needs PDD, FIXTURES, WORK (a scratch folder).
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+
+# run(<expected exit> <regex the stderr must match> ARGS... [STDOUT file]) — sets `out`, `err`.
+function(run code pattern)
+  cmake_parse_arguments(R "" "STDOUT;STDIN" "" ${ARGN})
+  set(extra)
+  if(R_STDOUT)
+    list(APPEND extra OUTPUT_FILE ${R_STDOUT})
+  else()
+    list(APPEND extra OUTPUT_VARIABLE out)
+  endif()
+  if(R_STDIN)
+    list(APPEND extra INPUT_FILE ${R_STDIN})
+  endif()
+  execute_process(COMMAND ${PDD} ${R_UNPARSED_ARGUMENTS} RESULT_VARIABLE rc ERROR_VARIABLE err ${extra}
+                  TIMEOUT 300)
+  string(REPLACE ";" " " cmd "${R_UNPARSED_ARGUMENTS}")
+  if(NOT rc STREQUAL "${code}")
+    message(FATAL_ERROR "pdd ${cmd}: exit '${rc}', expected ${code}\n${err}")
+  endif()
+  if(NOT err MATCHES "${pattern}")
+    message(FATAL_ERROR "pdd ${cmd}: stderr does not match '${pattern}':\n${err}")
+  endif()
+  if(err MATCHES "[0-9]{40}")
+    message(FATAL_ERROR "pdd ${cmd}: message with a 40-digit number:\n${err}")
+  endif()
+  set(out "${out}" PARENT_SCOPE)
+  set(err "${err}" PARENT_SCOPE)
+endfunction()
+
+function(expect_no_output what)
+  if(NOT out STREQUAL "")
+    message(FATAL_ERROR "${what}: unexpected output\n${out}")
+  endif()
+endfunction()
+
+set(B ${FIXTURES}/bad)
+set(SOLVE solve --engine reference --formulation reduced --quiet)
+
+# ---- 1. the fixture reader ---------------------------------------------------------------
+# Overflowing numbers: that pair rejected as non-finite, a numeric name rejected by index,
+# a string coordinate is not a number, the rest computed.
+foreach(engine reference fast)
+  run(1 "pair 'overflow-x' rejected: [^\n]*finite" solve --engine ${engine} --quiet --input ${B}/overflow.json)
+  string(REGEX MATCHALL "\n" lines "${out}")
+  list(LENGTH lines n)
+  if(NOT n EQUAL 6 OR out MATCHES "pdd:overflow" OR NOT out MATCHES "\"name\":\"#3\",\"error\":\"field 'name' must be a string"
+     OR NOT out MATCHES "\"name\":\"overflow-negative\",\"error\":\"[^\"]*finite"
+     OR NOT out MATCHES "\"name\":\"marker-string\",\"error\":\"[^\"]*coordinate z is not a number"
+     OR NOT out MATCHES "\"name\":\"good-after\",\"intersecting\":true")
+    message(FATAL_ERROR "overflow.json (${engine}): wrong records\n${out}")
+  endif()
+endforeach()
+foreach(f number-dot-exponent number-two-exponents number-leading-zero)
+  run(2 "malformed JSON at byte [0-9]+: '[-0-9.e]+' is not a valid number" ${SOLVE} --input ${B}/${f}.json)
+  expect_no_output(${f})
+endforeach()
+run(2 "duplicate key \"pairs\" at byte 110" ${SOLVE} --input ${B}/duplicate-pairs.json)
+expect_no_output(duplicate-pairs)
+run(2 "duplicate key \"name\" at byte 28" ${SOLVE} --input ${B}/duplicate-name.json)
+run(2 "NUL byte at byte 110" ${SOLVE} --input ${B}/nul-byte.json)
+expect_no_output(nul-byte)
+run(2 "malformed JSON at byte [0-9]+" ${SOLVE} --input ${B}/trailing-garbage.json)
+expect_no_output(trailing-garbage)
+run(2 "'${B}': it is a directory" ${SOLVE} --input ${B})
+run(2 "cannot open '${B}/does-not-exist.json': No such file or directory" ${SOLVE} --input ${B}/does-not-exist.json)
+run(2 "file is empty" ${SOLVE} --input ${B}/empty.json)
+run(1 "pair '#1' rejected: field 'name' must be a string.*pair 'bad-tags' rejected.*pair '#6' rejected: entry is not a JSON object"
+    ${SOLVE} --input ${B}/mistyped.json)
+if(NOT out MATCHES "\"name\":\"good-after\",\"intersecting\":true")
+  message(FATAL_ERROR "mistyped.json: the batch did not go on\n${out}")
+endif()
+# The other readers of fixture files say the same.
+run(2 "duplicate key" compare --input ${B}/duplicate-pairs.json)
+run(2 "NUL byte" theorem --input ${B}/nul-byte.json)
+run(2 "is a directory" audit-ee --input ${B})
+
+# ---- 2. failed writes are errors -----------------------------------------------------------
+foreach(engine reference fast)
+  run(2 "cannot write to '/dev/full'" solve --engine ${engine} --quiet --input ${FIXTURES}/smoke.json --output /dev/full)
+  run(2 "cannot write to standard output" solve --engine ${engine} --quiet --input ${FIXTURES}/smoke.json STDOUT /dev/full)
+endforeach()
+run(2 "cannot write to '/dev/full'" generate --family paper --count 3 --output /dev/full)
+run(2 "cannot write to standard output" generate --family paper --count 3 STDOUT /dev/full)
+run(2 "cannot write to standard output" compare --input ${FIXTURES}/smoke.json --json STDOUT /dev/full)
+run(2 "cannot write to standard output" theorem --input ${FIXTURES}/smoke.json --json --nef 0 STDOUT /dev/full)
+run(2 "cannot write to standard output" audit-ee --input ${FIXTURES}/smoke.json --json STDOUT /dev/full)
+# golden --update whose golden file is /dev/full
+file(MAKE_DIRECTORY ${WORK}/fixtures/golden)
+file(COPY ${FIXTURES}/smoke.json DESTINATION ${WORK}/fixtures)
+file(CREATE_LINK /dev/full ${WORK}/fixtures/golden/smoke.jsonl SYMBOLIC)
+run(2 "pdd golden: cannot write to '.*smoke.jsonl'" golden --update --fixtures ${WORK}/fixtures)
+# paper: a picture's data file that cannot be written, the report that cannot be written
+file(MAKE_DIRECTORY ${WORK}/paper)
+file(CREATE_LINK /dev/full ${WORK}/paper/fig3_histograms.dat SYMBOLIC)
+run(2 "pdd paper: cannot write to '.*fig3_histograms.dat'" paper --count 20 --exact-sample 2 --repeats 1 --out ${WORK}/paper)
+file(MAKE_DIRECTORY ${WORK}/paper2)
+file(CREATE_LINK /dev/full ${WORK}/paper2/report.md SYMBOLIC)
+run(2 "pdd paper: cannot write to '.*report.md'" paper --count 20 --exact-sample 2 --repeats 1 --out ${WORK}/paper2)
+
+# ---- 3. numbers on the command line --------------------------------------------------------
+run(2 "--count: -1 is out of range" generate --family paper --count -1)
+run(2 "--count: '1.5' is not an integer" generate --family paper --count 1.5)
+run(2 "--seed: '-1' is not a seed" generate --family paper --seed -1)
+run(2 "--seed: 18446744073709551616 is out of range" generate --family paper --seed 18446744073709551616)
+run(2 "--seed: 'x' is not a seed" generate --family paper --seed x)
+run(0 "" generate --family paper --count 1 --seed 18446744073709551615)
+run(2 "--threads: 'x' is not an integer" ${SOLVE} --input ${FIXTURES}/smoke.json --threads x)
+run(2 "--threads: -1 is out of range" ${SOLVE} --input ${FIXTURES}/smoke.json --threads -1)
+run(2 "--nef: -1 is out of range" theorem --input ${FIXTURES}/smoke.json --nef -1)
+run(2 "--count: 0 is out of range" bench --count 0)
+run(2 "--repeats: 0 is out of range" bench --repeats 0)
+run(2 "--seed: '-1' is not a seed" bench --seed -1)
+
+# ---- 4. pdd paper's arguments --------------------------------------------------------------
+run(2 "--count: 0 is out of range" paper --count 0 --out ${WORK}/p)
+run(2 "--exact-sample: 0 is out of range" paper --count 1 --exact-sample 0 --out ${WORK}/p)
+run(2 "--repeats: 0 is out of range" paper --repeats 0 --out ${WORK}/p)
+run(2 "--repeats: -3 is out of range" paper --repeats -3 --out ${WORK}/p)
+run(2 "--min-volume: 'nan' is not a finite number" paper --min-volume nan --out ${WORK}/p)
+run(2 "--min-volume \\(5\\) must be below --max-volume \\(1\\)" paper --min-volume 5 --max-volume 1 --out ${WORK}/p)
+run(2 "pdd paper: cannot make the output folder '/dev/null/x'" paper --count 5 --out /dev/null/x)
+run(2 "pdd paper: paper: no pair found" paper --count 1 --min-volume 400 --max-volume 500 --out ${WORK}/p)
+
+# ---- 5. streaming: chunks of 4096 give the same records, in order ---------------------------
+run(0 "" generate --family paper --count 4100 --seed 3 --output ${WORK}/many.json)
+run(0 "4100 pairs, fast engine" solve --engine fast --input ${WORK}/many.json --output ${WORK}/many-file.jsonl)
+run(0 "4100 pairs, fast engine" solve --engine fast --input /dev/stdin --output ${WORK}/many-pipe.jsonl STDIN ${WORK}/many.json)
+file(STRINGS ${WORK}/many-file.jsonl recs)
+list(LENGTH recs n)
+list(GET recs 0 first)
+list(GET recs 4099 last)
+if(NOT n EQUAL 4100 OR NOT first MATCHES "^{\"name\":\"paper-3-0\"" OR NOT last MATCHES "^{\"name\":\"paper-3-4099\"")
+  message(FATAL_ERROR "streamed solve: ${n} records, first ${first}")
+endif()
+file(SHA256 ${WORK}/many-file.jsonl h1)
+file(SHA256 ${WORK}/many-pipe.jsonl h2)
+if(NOT h1 STREQUAL h2)
+  message(FATAL_ERROR "solve from a file and from a pipe differ")
+endif()
