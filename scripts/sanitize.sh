@@ -58,7 +58,9 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$ROOT/scri
 export LSAN_OPTIONS="suppressions=$ROOT/scripts/sanitize/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 
 status=0
-ctest --test-dir build-san --output-on-failure "$@" || status=$?
+# Sanitized tests run several times slower than in Release (reference_tests alone takes ~6 min
+# there); CTest's default limit of 1500 s per test would cut them off.
+ctest --test-dir build-san --output-on-failure --timeout "${PDD_SAN_TEST_TIMEOUT:-7200}" "$@" || status=$?
 end=$(date +%s)
 echo "sanitize: ctest took $((end - built)) s; total $((end - start)) s; exit $status"
 exit $status
