@@ -59,8 +59,9 @@ export LSAN_OPTIONS="suppressions=$ROOT/scripts/sanitize/lsan.supp${LSAN_OPTIONS
 
 status=0
 # Sanitized tests run several times slower than in Release (reference_tests alone takes ~6 min
-# there); CTest's default limit of 1500 s per test would cut them off.
-ctest --test-dir build-san --output-on-failure --timeout "${PDD_SAN_TEST_TIMEOUT:-7200}" "$@" || status=$?
+# there); CTest's default limit of 1500 s per test would cut them off. The other tests run
+# beside it (-j), so the wall time is about reference_tests' own.
+ctest --test-dir build-san --output-on-failure -j"${PDD_JOBS:-$(nproc)}" --timeout "${PDD_SAN_TEST_TIMEOUT:-7200}" "$@" || status=$?
 end=$(date +%s)
 echo "sanitize: ctest took $((end - built)) s; total $((end - start)) s; exit $status"
 exit $status
