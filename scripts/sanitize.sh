@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# sanitize.sh — build the whole project (every test) with AddressSanitizer and
+# UndefinedBehaviorSanitizer into build-san/ and run its CTest suite. Exits non-zero on any
+# sanitizer report (every report aborts the process: -fno-sanitize-recover=all, halt_on_error)
+# or on any failing test. Used by CI (.ci/run) after the Release test suite.
+#
+# Compiler: clang++-14 when it compiles the fast engine, else g++ (the script says which and
+# why; today fast/src/superset_kernel.cpp uses GCC's __builtin_shuffle, which clang lacks).
+# Override with PDD_SAN_CXX=clang++-14 or PDD_SAN_CXX=g++.
+# Extra CTest arguments are passed through, e.g. `bash scripts/sanitize.sh -R fast_`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+start=$(date +%s)
+
+SAN_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g"
+
+# clang is preferred (the project must build with it). The fast engine's sources are the only
+# ones with compiler extensions (GCC vector extensions); probe them with -fsyntax-only (seconds)
+# before committing to a build of many minutes.
+pick_compiler() {
+  if [ -n "${PDD_SAN_CXX:-}" ]; then echo "$PDD_SAN_CXX"; return; fi
+  local clang
+  clang=$(command -v clang++-14 || command -v clang++ || true)
+  if [ -n "$clang" ]; then
+    local incs=(-I common -I fast -I fast/src -I reference -I compare -I /usr/include/eigen3)
+    local bad=()
+    : >"$ROOT/.san-probe.err"
+    for f in fast/src/*.cpp; do  # the only sources with compiler extensions
+      "$clang" -std=c++17 -fsyntax-only "${incs[@]}" "$f" >/dev/null 2>>"$ROOT/.san-probe.err" || bad+=("$f")
+    done
+    if ((${#bad[@]} == 0)); then rm -f "$ROOT/.san-probe.err"; echo "$clang"; return; fi
+    {
+      echo "sanitize: $clang cannot compile ${bad[*]}:"
+      grep -m5 'error:' "$ROOT/.san-probe.err" || true
+      echo "sanitize: falling back to g++"
+    } >&2
+    rm -f "$ROOT/.san-probe.err"
+  fi
+  echo g++
+}
+CXX_BIN=$(pick_compiler)
+echo "sanitize: compiler $CXX_BIN ($("$CXX_BIN" --version | head -1))"
+
+cmake -S . -B build-san \
+  -DCMAKE_CXX_COMPILER="$CXX_BIN" \
+  -DCMAKE_BUILD_TYPE=Sanitize \
+  -DCMAKE_CXX_FLAGS="$SAN_FLAGS" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DPDD_SANITIZE=ON >/dev/null
+nice cmake --build build-san -j"${PDD_JOBS:-$(nproc)}"
+built=$(date +%s)
+echo "sanitize: build took $((built - start)) s"
+
+# Every report is fatal. Suppressions apply to third-party libraries only (see the files).
+export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_odr_violation=2${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$ROOT/scripts/sanitize/ubsan.supp${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+export LSAN_OPTIONS="suppressions=$ROOT/scripts/sanitize/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+
+status=0
+# Sanitized tests run several times slower than in Release (reference_tests alone takes ~6 min
+# there); CTest's default limit of 1500 s per test would cut them off. The other tests run
+# beside it (-j), so the wall time is about reference_tests' own.
+ctest --test-dir build-san --output-on-failure -j"${PDD_JOBS:-$(nproc)}" --timeout "${PDD_SAN_TEST_TIMEOUT:-7200}" "$@" || status=$?
+end=$(date +%s)
+echo "sanitize: ctest took $((end - built)) s; total $((end - start)) s; exit $status"
+exit $status
