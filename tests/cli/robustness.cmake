@@ -46,7 +46,7 @@ set(SOLVE solve --engine reference --formulation reduced --quiet)
 # Overflowing numbers: that pair rejected as non-finite, a numeric name rejected by index,
 # a string coordinate is not a number, the rest computed.
 foreach(engine reference fast)
-  run(1 "pair 'overflow-x' rejected: [^\n]*finite" solve --engine ${engine} --quiet --input ${B}/overflow.json)
+  run(1 "pair 'overflow-x' rejected: [^\n]*finite" solve --engine ${engine} --formulation reduced --quiet --input ${B}/overflow.json)
   string(REGEX MATCHALL "\n" lines "${out}")
   list(LENGTH lines n)
   if(NOT n EQUAL 6 OR out MATCHES "pdd:overflow" OR NOT out MATCHES "\"name\":\"#3\",\"error\":\"field 'name' must be a string"
