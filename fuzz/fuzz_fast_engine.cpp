@@ -31,8 +31,8 @@
 #include <string>
 
 #include "pdd/compare/engine_comparison.h"  // relative_error: exact |fast - exact| / |exact|
-#include "pdd/fast/solve_pair.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/pdd.h"
+#include "pdd/reference/solve_exact.h"
 
 namespace {
 
@@ -198,8 +198,8 @@ void check_le(const TetPair& p, const char* lhs, double a, const char* rhs, doub
 // with each other (they must be equal) as well as the double one against them.
 pdd::reference::ExactResult exact_answer(const TetPair& p) {
   pdd::reference::SolveOptions options;
-  options.formulation = pdd::reference::QpFormulation::Reduced;
-  return pdd::reference::solve_pair(p, options);
+  options.formulation = pdd::QpFormulation::Reduced;
+  return pdd::reference::solve_exact(p, options);
 }
 // ---------------------------------------------------------------------------------------------
 

@@ -14,11 +14,9 @@
 #include <string>
 #include <tuple>
 
-namespace pdd {
+#include "pdd/tet_tables.h"  // kEdges: the edge numbering of EE labels
 
-// Edge k of a tetrahedron joins vertices kEdges[k][0] < kEdges[k][1] (SPEC §3).
-inline constexpr std::array<std::array<int, 2>, 6> kEdges = {
-    {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+namespace pdd {
 
 enum class ContactKind { FV = 0, VF = 1, EE = 2 };
 

@@ -17,11 +17,11 @@
 #include "pdd/compare/peer_ccd.h"
 #include "pdd/compare/peer_fcl.h"
 #include "pdd/compare/progress.h"
-#include "pdd/fast/deformable_depth.h"
-#include "pdd/fast/rigid_depth.h"
-#include "pdd/fast/solve_pair.h"
+#include "deformable_depth.h"
+#include "rigid_depth.h"
+#include "pdd/pdd.h"
 #include "pdd/reference/minkowski_pd.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
 namespace {
@@ -120,12 +120,12 @@ namespace {
 std::vector<TimedFunction> fast_functions(const std::vector<TetPair>& pairs) {
   const std::vector<TetPair>* p = &pairs;
   return {
-      {"rigid_pd2", [p](std::size_t k) { return fast::rigid_pd2((*p)[k].A, (*p)[k].B).value; }},
-      {"pdd2_static", [p](std::size_t k) { return fast::pdd2_static((*p)[k].A, (*p)[k].B).value; }},
-      {"pdd2", [p](std::size_t k) { return fast::pdd2((*p)[k].A, (*p)[k].B).value; }},
-      {"pdd2_relaxed", [p](std::size_t k) { return fast::pdd2_relaxed((*p)[k].A, (*p)[k].B).value; }},
-      {"pdd2_accel1", [p](std::size_t k) { return fast::pdd2_accel((*p)[k].A, (*p)[k].B, 1).value; }},
-      {"pdd2_accel6", [p](std::size_t k) { return fast::pdd2_accel((*p)[k].A, (*p)[k].B, 6).value; }},
+      {"rigid_pd2", [p](std::size_t k) { return fast::rigid_pd2((*p)[k].A, (*p)[k].B).pd2; }},
+      {"pdd2_static", [p](std::size_t k) { return fast::pdd2_static((*p)[k].A, (*p)[k].B).pd2; }},
+      {"pdd2", [p](std::size_t k) { return fast::pdd2((*p)[k].A, (*p)[k].B).pd2; }},
+      {"pdd2_relaxed", [p](std::size_t k) { return fast::pdd2_relaxed((*p)[k].A, (*p)[k].B).pd2; }},
+      {"pdd2_accel1", [p](std::size_t k) { return fast::pdd2_accel((*p)[k].A, (*p)[k].B, 1).pd2; }},
+      {"pdd2_accel6", [p](std::size_t k) { return fast::pdd2_accel((*p)[k].A, (*p)[k].B, 6).pd2; }},
       {"solve_pair", [p](std::size_t k) { return fast::solve_pair((*p)[k]).pdd2; }},
   };
 }
@@ -215,7 +215,7 @@ BenchReport run_bench(const BenchOptions& o) {
   std::vector<double> fast_pd2(pairs.size());
   std::vector<char> fast_inter(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const auto c = fast::rigid_pd2(pairs[k].A, pairs[k].B);
+    const auto c = fast::rigid_pd2_choice(pairs[k].A, pairs[k].B);
     fast_pd2[k] = c.value;
     fast_inter[k] = c.value > 0;
   }
@@ -333,13 +333,13 @@ BenchReport run_bench(const BenchOptions& o) {
     ex.fast_max_rel_error = *std::max_element(err.begin(), err.end());
     ex.fast_median_rel_error = median(err);
 
-    std::cerr << "pdd bench: exact engine (reference::solve_pair, Reduced) on " << M
+    std::cerr << "pdd bench: exact engine (reference::solve_exact, Reduced) on " << M
               << " pairs, one pass, one core\n";
     std::vector<double> solve_ns;
     Progress progress("pdd bench: exact solve_pair", M);
     for (std::size_t k = 0; k < M; ++k) {
       const auto t0 = Clock::now();
-      auto res = reference::solve_pair(sample[k], {reference::QpFormulation::Reduced});
+      auto res = reference::solve_exact(sample[k], {QpFormulation::Reduced});
       const auto t1 = Clock::now();
       do_not_optimize(res.intersecting);
       solve_ns.push_back(ns_between(t0, t1));

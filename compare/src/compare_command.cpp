@@ -73,7 +73,7 @@ int run_compare(const CompareArgs& a) {
     std::cerr << "pdd compare: " << *file.error << "\n";
     return 2;
   }
-  const auto exact = run_reference(file.entries, {reference::QpFormulation::Reduced}, true);
+  const auto exact = run_reference(file.entries, {QpFormulation::Reduced}, true);
   const auto fast = run_fast(file.entries);
   std::vector<PairComparison> cs;
   for (std::size_t k = 0; k < file.entries.size(); ++k)

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "pdd/compare/progress.h"
-#include "pdd/fast/solve_pair.h"
+#include "pdd/pdd.h"
 
 namespace pdd::compare {
 
@@ -23,7 +23,7 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
   return map_entries<reference::ExactResult>(
       entries, progress, [&](const TetPair& pair, std::size_t) {
         try {
-          return reference::solve_pair(pair, options);
+          return reference::solve_exact(pair, options);
         } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
           reference::ExactResult r;
           r.name = pair.name;

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "pdd/reference/minkowski_pd.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 #include "pdd/reference/validate_pair.h"
 
 namespace pdd::compare {
@@ -49,7 +49,7 @@ TetVertices grid_tet(Rng& r) { return {grid_point(r), grid_point(r), grid_point(
 
 double volume(const TetVertices& t) { return tetrahedron_volume(t); }
 
-bool valid(const TetVertices& t) { return !reference::validate_tetrahedron(t, "").has_value(); }
+bool valid(const TetVertices& t) { return !reference::validate_tetrahedron(t, 'A').has_value(); }
 
 // Smallest facet offset of A (+) (-B): > 0 intersecting, == 0 touching, < 0 disjoint.
 Rational min_facet_offset(const TetPair& p) {
@@ -239,7 +239,7 @@ Attempt sliver_pair(Rng& r) {
 Attempt undecidable_optimum_pair(Rng& r, const PaperProtocol& pp) {
   Attempt p = paper_pair(r, pp);
   if (!p) return p;
-  const auto res = reference::solve_pair(*p, {reference::QpFormulation::Reduced});
+  const auto res = reference::solve_exact(*p, {QpFormulation::Reduced});
   if (!res.pdd2_dir || res.pdd2_dir->orientation == EdgeOrientation::Decided) return std::nullopt;
   return p;
 }
@@ -305,7 +305,7 @@ bool normal_or_zero(const Rational& v) {
 }
 // Every squared value of SPEC §6 is 0 or a normal double (exact, reduced formulation).
 bool squared_outputs_normal(const TetPair& p) {
-  const auto r = reference::solve_pair(p, {reference::QpFormulation::Reduced});
+  const auto r = reference::solve_exact(p, {QpFormulation::Reduced});
   if (r.error) return false;
   for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,
                             &r.pdd2_accel1, &r.pdd2_accel6})

@@ -29,7 +29,7 @@ std::string golden_path(const std::string& fixtures_dir, const std::string& rela
       .generic_string();
 }
 
-std::string exact_json_lines(const std::string& fixture_path, reference::QpFormulation f) {
+std::string exact_json_lines(const std::string& fixture_path, QpFormulation f) {
   const FixtureFile file = read_fixture_file(fixture_path);
   if (file.error) throw std::runtime_error(*file.error);
   std::string out;
@@ -62,7 +62,7 @@ std::string first_difference(const std::string& want, const std::string& got) {
 
 }  // namespace
 
-std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, reference::QpFormulation f) {
+std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpFormulation f) {
   std::vector<GoldenMismatch> out;
   for (const auto& rel : golden_fixture_files(fixtures_dir)) {
     const std::string gpath = golden_path(fixtures_dir, rel);
@@ -135,7 +135,7 @@ std::vector<reference::ExactResult> read_golden(const std::string& path) {
   return out;
 }
 
-std::vector<std::string> update_golden(const std::string& fixtures_dir, reference::QpFormulation f) {
+std::vector<std::string> update_golden(const std::string& fixtures_dir, QpFormulation f) {
   std::vector<std::string> written;
   for (const auto& rel : golden_fixture_files(fixtures_dir)) {
     const std::string gpath = golden_path(fixtures_dir, rel);

@@ -14,7 +14,7 @@ struct GoldenArgs {
 };
 
 int run_golden(const GoldenArgs& a) {
-  const auto f = a.formulation == "full" ? reference::QpFormulation::Full : reference::QpFormulation::Reduced;
+  const auto f = a.formulation == "full" ? QpFormulation::Full : QpFormulation::Reduced;
   try {
     if (a.update) {
       for (const auto& rel : update_golden(a.fixtures, f)) std::cout << "wrote golden for " << rel << "\n";
@@ -24,7 +24,7 @@ int run_golden(const GoldenArgs& a) {
     const auto mismatches = check_golden(a.fixtures, f);
     for (const auto& m : mismatches) std::cout << "MISMATCH " << m.file << ": " << m.detail << "\n";
     std::cout << files.size() - mismatches.size() << " of " << files.size()
-              << " golden files match the exact engine (" << reference::to_string(f)
+              << " golden files match the exact engine (" << to_string(f)
               << " formulation)\n";
     return mismatches.empty() ? 0 : 1;
   } catch (const std::exception& e) {

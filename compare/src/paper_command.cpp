@@ -23,7 +23,7 @@
 #include "pdd/compare/paper_experiment.h"
 #include "pdd/compare/paper_figures.h"
 #include "pdd/compare/progress.h"
-#include "pdd/fast/solve_pair.h"
+#include "pdd/pdd.h"
 
 namespace pdd::compare {
 namespace {
@@ -94,7 +94,7 @@ ExactSample run_exact_sample(const std::vector<TetPair>& pairs, const std::vecto
   Progress progress("pdd paper: exact sample", s.indices.size());
   tbb::parallel_for(std::size_t{0}, s.indices.size(), [&](std::size_t k) {
     const auto t0 = std::chrono::steady_clock::now();
-    s.results[k] = reference::solve_pair(pairs[s.indices[k]], {reference::QpFormulation::Reduced});
+    s.results[k] = reference::solve_exact(pairs[s.indices[k]], {QpFormulation::Reduced});
     s.seconds[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     progress.tick();
   });

@@ -11,7 +11,7 @@
 #include "pdd/reference/candidate_directions.h"
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/oriented_depth.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
 namespace {
@@ -48,7 +48,7 @@ void write_edges(std::ostream& o, const TetVertices& t) {
 
 PairConfigurations pair_configurations(const TetPair& pair) {
   using namespace reference;
-  const ExactResult r = solve_pair(pair, {QpFormulation::Reduced});
+  const ExactResult r = solve_exact(pair, {QpFormulation::Reduced});
   const ExactPair p = to_exact(pair);
   PairConfigurations c{pair.name, pair.A, pair.B, pair.B, pair.A, pair.B, pair.B,
                        std::sqrt(CGAL::to_double(r.rigid_pd2)), std::sqrt(CGAL::to_double(r.pdd2_static)),

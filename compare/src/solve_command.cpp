@@ -87,13 +87,13 @@ int run_solve(const SolveArgs& args) {
 
   const bool fast = args.engine == "fast";
   reference::SolveOptions options;
-  options.formulation = args.formulation == "reduced" ? reference::QpFormulation::Reduced
-                                                      : reference::QpFormulation::Full;
+  options.formulation = args.formulation == "reduced" ? QpFormulation::Reduced
+                                                      : QpFormulation::Full;
   if (fast)
     std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
   else
     std::cerr << "pdd solve: " << total << " pairs, reference engine, "
-              << reference::to_string(options.formulation) << " QP formulation\n";
+              << to_string(options.formulation) << " QP formulation\n";
   Progress progress(fast ? "pdd: fast engine" : "pdd: reference engine", total,
                     args.quiet ? 1e300 : 2.0);
 

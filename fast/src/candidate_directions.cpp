@@ -1,13 +1,13 @@
 // candidate_directions.cpp — SPEC §3 candidate set with filtered exact decisions (the full
 // path: any input, exact fallbacks). See the header; shared arithmetic in direction_geometry.h.
-#include "pdd/fast/candidate_directions.h"
+#include "candidate_directions.h"
 
 #include <cmath>
 
 #include "direction_geometry.h"
-#include "pdd/fast/exact_predicates.h"
-#include "pdd/fast/filter_bounds.h"
-#include "pdd/fast/tie_tolerance.h"
+#include "exact_predicates.h"
+#include "filter_bounds.h"
+#include "tie_tolerance.h"
 
 namespace pdd::fast {
 namespace {
@@ -71,7 +71,7 @@ struct Builder {
     if (max_abs3(c.n) <= fb.deg2) return classify_edge_pair_exact(A, B, a, b);
     EdgePairClass k;
     int lo = 0, hi = 0;
-    for (int i : kOther[a]) {
+    for (int i : kOffEdge[a]) {
       const double g = c.hA[i];
       if (std::fabs(g) <= fb.deg3) return classify_edge_pair_exact(A, B, a, b);
       lo += g < 0;

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/quick_candidates.h"
-#include "pdd/fast/value_bounds.h"
+#include "candidate_directions.h"
+#include "quick_candidates.h"
+#include "value_bounds.h"
 
 namespace pdd::fast::detail {
 

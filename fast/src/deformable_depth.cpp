@@ -1,13 +1,13 @@
 // deformable_depth.cpp — SPEC §5 variants with exact pruning. See the header.
-#include "pdd/fast/deformable_depth.h"
+#include "deformable_depth.h"
 
 #include <limits>
 
 #include "certify.h"
 #include "hot_path.h"
-#include "pdd/fast/superset_depth.h"
-#include "pdd/fast/tie_tolerance.h"
-#include "pdd/fast/value_bounds.h"
+#include "superset_depth.h"
+#include "tie_tolerance.h"
+#include "value_bounds.h"
 
 namespace pdd::fast {
 namespace {
@@ -268,7 +268,7 @@ Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
 }
 }  // namespace
 
-Choice pdd2_static(const TetVertices& A, const TetVertices& B) {
+Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
       A, B, [](const auto& s) { return pdd2_static(s, rigid_pd2(s).index); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
@@ -276,7 +276,7 @@ Choice pdd2_static(const TetVertices& A, const TetVertices& B) {
         return r.pdd2_static;
       });
 }
-Choice pdd2(const TetVertices& A, const TetVertices& B) {
+Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
       A, B, [](const auto& s) { return pdd2(s, rigid_pd2(s).index); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
@@ -284,7 +284,7 @@ Choice pdd2(const TetVertices& A, const TetVertices& B) {
         return r.pdd2;
       });
 }
-Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
+Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
       A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
@@ -292,7 +292,7 @@ Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
         return r.pdd2_relaxed;
       });
 }
-Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
+Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
   auto pick = [k](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
     l = std::nullopt;
     return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;

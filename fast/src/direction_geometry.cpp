@@ -26,13 +26,13 @@ constexpr OffEdge make_off_edge() {
   OffEdge t{};
   for (int b = 0; b < 6; ++b)
     for (int m = 0; m < 2; ++m) {
-      const int x = kEdges[b][0], y = kEdges[b][1], j = kOther[b][m];
+      const int x = kEdges[b][0], y = kEdges[b][1], j = kOffEdge[b][m];
       t.sign[b][m] = -parity(x, y, j);
       t.face[b][m] = 6 - x - y - j;
     }
   return t;
 }
-constexpr OffEdge kOffEdge = make_off_edge();
+constexpr OffEdge kOffFace = make_off_edge();
 
 void lane_tables(Precomputed& p) {
   for (int b = 0; b < kLaneStride; ++b) {  // padding lanes 6, 7: zeros, never read
@@ -50,7 +50,7 @@ void lane_tables(Precomputed& p) {
       for (int k = 0; k < 3; ++k) p.W[u][k][b] = p.d[u][kEdges[b][0]][k];
     for (int f = 0; f < 4; ++f) p.G[f][b] = p.GA[b][f];
     for (int a = 0; a < 6; ++a)
-      for (int m = 0; m < 2; ++m) p.Q[a][m][b] = kOffEdge.sign[b][m] * p.QB[a][kOffEdge.face[b][m]];
+      for (int m = 0; m < 2; ++m) p.Q[a][m][b] = kOffFace.sign[b][m] * p.QB[a][kOffFace.face[b][m]];
   }
 }
 
@@ -82,7 +82,7 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
 PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, double e3,
                                   EdgeLanes& __restrict L) {
   for (int a = 0; a < 6; ++a) {
-    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
+    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
     const double ax = p.eA[a][0], ay = p.eA[a][1], az = p.eA[a][2];
     const double s1 = parity(u, v, k1), s2 = parity(u, v, k2);
     const double* G1 = p.G[6 - u - v - k1];

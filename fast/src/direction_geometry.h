@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "pdd/fast/candidate_directions.h"
+#include "candidate_directions.h"
 
 namespace pdd::fast::detail {
 
@@ -42,10 +42,7 @@ inline double max_abs3(const double* a) {
   return max2(std::fabs(a[0]), max2(std::fabs(a[1]), std::fabs(a[2])));
 }
 
-// Vertices of the face opposite f, increasing.
-constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-// The two vertices not on edge a, increasing.
-constexpr int kOther[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+// kFace, kOffEdge, kEdges: pdd/tet_tables.h.
 // eps(u,v,k) for edge a = (u,v), u < v: +1 if (u,v,k) is an even permutation of sorted order.
 constexpr int parity(int u, int v, int k) { return (k > u && k < v) ? -1 : 1; }
 
@@ -167,11 +164,11 @@ inline void lane_heights(const EdgeLanes& L, int a, int b, Draft& c) {
   c.n[1] = L.n1[i];
   c.n[2] = L.n2[i];
   c.hA[u] = c.hA[v] = 0.0;
-  c.hA[kOther[a][0]] = L.g1[i];
-  c.hA[kOther[a][1]] = L.g2[i];
+  c.hA[kOffEdge[a][0]] = L.g1[i];
+  c.hA[kOffEdge[a][1]] = L.g2[i];
   c.hB[x] = c.hB[y] = L.hx[i];
-  c.hB[kOther[b][0]] = L.hx[i] + L.q1[i];
-  c.hB[kOther[b][1]] = L.hx[i] + L.q2[i];
+  c.hB[kOffEdge[b][0]] = L.hx[i] + L.q1[i];
+  c.hB[kOffEdge[b][1]] = L.hx[i] + L.q2[i];
   c.conA = edge_mask(a);
   c.conB = edge_mask(b);
 }
@@ -202,11 +199,11 @@ inline void lane_candidate(const EdgeLanes& L, int i, double s, Candidate& c) {
   c.nn = L.nn[i];
   c.depth = s > 0 ? L.dplus[i] : L.dminus[i];
   c.hA[u] = c.hA[v] = 0.0;
-  c.hA[kOther[a][0]] = s * L.g1[i];
-  c.hA[kOther[a][1]] = s * L.g2[i];
+  c.hA[kOffEdge[a][0]] = s * L.g1[i];
+  c.hA[kOffEdge[a][1]] = s * L.g2[i];
   c.hB[x] = c.hB[y] = s * L.hx[i];
-  c.hB[kOther[b][0]] = s * (L.hx[i] + L.q1[i]);
-  c.hB[kOther[b][1]] = s * (L.hx[i] + L.q2[i]);
+  c.hB[kOffEdge[b][0]] = s * (L.hx[i] + L.q1[i]);
+  c.hB[kOffEdge[b][1]] = s * (L.hx[i] + L.q2[i]);
   c.conA = edge_mask(a);
   c.conB = edge_mask(b);
 }

@@ -1,6 +1,6 @@
 // direction_qp.cpp — closed-form per-direction QP on doubles; derivation and proof in the
 // header, the algorithm (written once for doubles and rationals) in src/direction_qp_impl.h.
-#include "pdd/fast/direction_qp.h"
+#include "direction_qp.h"
 
 #include "direction_qp_impl.h"
 

@@ -30,9 +30,6 @@ V cross(const V& a, const V& b) {
 bool is_zero(const V& a) { return sgn(a.x[0]) == 0 && sgn(a.x[1]) == 0 && sgn(a.x[2]) == 0; }
 V scaled(const V& a, const Q& s) { return {{a.x[0] * s, a.x[1] * s, a.x[2] * s}}; }
 
-// Vertices of the face opposite f, increasing; the two vertices off edge a (SPEC §3).
-constexpr int kFaceQ[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-constexpr int kOffQ[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
 constexpr unsigned without(int f) { return 0xFu & ~(1u << f); }
 constexpr unsigned edge_bits(int a) { return (1u << kEdges[a][0]) | (1u << kEdges[a][1]); }
 
@@ -70,13 +67,13 @@ struct Builder {
 
   void faces() {
     for (int i = 0; i < 4; ++i) {  // FV:i, outward of A
-      const int* f = kFaceQ[i];
+      const auto& f = kFace[i];
       V n = cross(s[f[1]] - s[f[0]], s[f[2]] - s[f[0]]);
       if (sgn(dot(n, s[i] - s[f[0]])) > 0) n = scaled(n, Q(-1));
       emit(DirectionLabel::fv(i), n, without(i), 0);
     }
     for (int j = 0; j < 4; ++j) {  // VF:j, into B
-      const int* f = kFaceQ[j];
+      const auto& f = kFace[j];
       V n = cross(r[f[1]] - r[f[0]], r[f[2]] - r[f[0]]);
       if (sgn(dot(n, r[j] - r[f[0]])) < 0) n = scaled(n, Q(-1));
       emit(DirectionLabel::vf(j), n, 0, without(j));
@@ -94,7 +91,7 @@ struct Builder {
           if (is_zero(cross(w, e))) continue;
           n = scaled(w, dot(e, e)) - scaled(e, dot(w, e));
         }
-        const int g1 = sgn(dot(n, s[kOffQ[a][0]] - s[u])), g2 = sgn(dot(n, s[kOffQ[a][1]] - s[u]));
+        const int g1 = sgn(dot(n, s[kOffEdge[a][0]] - s[u])), g2 = sgn(dot(n, s[kOffEdge[a][1]] - s[u]));
         const unsigned ca = edge_bits(a), cb = edge_bits(b);
         if (g1 <= 0 && g2 <= 0) {
           emit(DirectionLabel::ee(a, b), n, ca, cb);

@@ -1,5 +1,5 @@
 // exact_predicates.cpp — GMP (mpq) evaluation of the SPEC §3 decisions. See the header.
-#include "pdd/fast/exact_predicates.h"
+#include "exact_predicates.h"
 
 #include <gmpxx.h>
 
@@ -46,7 +46,7 @@ QV edge_pair_normal(const std::array<QV, 4>& A, const std::array<QV, 4>& B, int 
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
   QV e = sub(A[v], A[u]);
   QV n = cross(sub(B[y], B[x]), e);
-  *kind = EdgePairKind::General;
+  *kind = EdgePairKind::Generic;
   if (!is_zero(n)) return n;
   QV w = sub(B[x], A[u]);
   n = sub(scale(dot(e, e), w), scale(dot(w, e), e));

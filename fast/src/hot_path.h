@@ -9,8 +9,8 @@
 
 #include "direction_geometry.h"
 #include "exact_path.h"
-#include "pdd/fast/exact_predicates.h"
-#include "pdd/fast/rigid_depth.h"
+#include "exact_predicates.h"
+#include "rigid_depth.h"
 #include "power_scale.h"
 
 namespace pdd::fast::detail {

@@ -1,12 +1,12 @@
 // quick_candidates.cpp — the hot path's candidate list (no labels emitted, no exact
 // fallback: it declines instead). See pdd/fast/quick_candidates.h.
-#include "pdd/fast/quick_candidates.h"
+#include "quick_candidates.h"
 
 #include <cmath>
 
 #include "direction_geometry.h"
 #include "superset_kernel.h"
-#include "pdd/fast/filter_bounds.h"
+#include "filter_bounds.h"
 
 namespace pdd::fast {
 

@@ -1,15 +1,15 @@
 // rigid_depth.cpp — SPEC §4. See the header.
-#include "pdd/fast/rigid_depth.h"
+#include "rigid_depth.h"
 
 #include <algorithm>
 #include <limits>
 
 #include "certify.h"
 #include "hot_path.h"
-#include "pdd/fast/value_bounds.h"
+#include "value_bounds.h"
 
-#include "pdd/fast/superset_depth.h"
-#include "pdd/fast/tie_tolerance.h"
+#include "superset_depth.h"
+#include "tie_tolerance.h"
 
 namespace pdd::fast {
 
@@ -79,7 +79,7 @@ double eq11_pd2(const CandidateSet& set, bool* certified) {
   return best > 0.0 ? best : 0.0;
 }
 
-Choice rigid_pd2(const TetVertices& A, const TetVertices& B) {
+Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
   return detail::certified_hot_path(
       A, B,
       [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {

@@ -1,6 +1,6 @@
 // solve_pair.cpp — SPEC §6 record of one pair, certified (SPEC §8), and the parallel batch.
 // See the header.
-#include "pdd/fast/solve_pair.h"
+#include "pdd/pdd.h"
 
 #include <tbb/parallel_for.h>
 
@@ -11,43 +11,26 @@
 
 #include "direction_geometry.h"
 #include "exact_path.h"
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/deformable_depth.h"
-#include "pdd/fast/exact_predicates.h"
-#include "pdd/fast/rigid_depth.h"
-#include "pdd/fast/value_bounds.h"
+#include "candidate_directions.h"
+#include "deformable_depth.h"
+#include "exact_predicates.h"
+#include "rigid_depth.h"
+#include "value_bounds.h"
 #include "power_scale.h"
+#include "pdd/rejection.h"
 
 namespace pdd::fast {
 namespace {
 
-std::string non_finite_message(const char* which, const TetVertices& T) {
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(T[i][k]))
-        return std::string("tetrahedron ") + which + ": vertex " + std::to_string(i) +
-               " has a non-finite coordinate";
-  return std::string("tetrahedron ") + which + ": non-finite coordinate";
+// SPEC §1 with the shared wording (pdd/rejection.h); flatness decided exactly here.
+std::optional<std::string> rejection_of(const TetVertices& T, char which) {
+  if (auto reason = non_finite_reason(T, which)) return reason;
+  if (orientation_sign_exact(T) == 0) return flat_reason(which);
+  return std::nullopt;
 }
-
-std::string degenerate_message(const char* which) {
-  return std::string("tetrahedron ") + which +
-         ": zero volume (its four vertices are coplanar, decided exactly)";
+std::optional<std::string> rejection_of(const TetPair& p) {
+  return pair_rejection(rejection_of(p.A, 'A'), rejection_of(p.B, 'B'));
 }
-
-std::optional<std::string> status_message(BuildStatus st, const TetPair& p) {
-  switch (st) {
-    case BuildStatus::Ok: return std::nullopt;
-    case BuildStatus::NonFiniteA: return non_finite_message("A", p.A);
-    case BuildStatus::NonFiniteB: return non_finite_message("B", p.B);
-    case BuildStatus::DegenerateA: return degenerate_message("A");
-    case BuildStatus::DegenerateB: return degenerate_message("B");
-  }
-  return std::string("invalid input");
-}
-
-const char* const kNotRepresentable =
-    "not representable: a result is outside the normal double range (SPEC §8)";
 
 std::optional<DirectionLabel> label_of(const CandidateSet& s, const Choice& c) {
   if (c.index < 0) return std::nullopt;
@@ -75,10 +58,14 @@ bool positions_attain(const TetPair& pair, const PairResult<double>& r, double v
 }
 
 // Which quantities of a record the double path could not certify (SPEC §8).
-enum Uncertified : unsigned {
-  kRigid = 1, kEq11 = 2, kStatic = 4, kAccel6 = 8, kAccel1 = 16, kDeformable = 32,
-  kRelaxed = 64, kPositions = 128
-};
+constexpr unsigned kRigid = 1;
+constexpr unsigned kEq11 = 2;
+constexpr unsigned kStatic = 4;
+constexpr unsigned kAccel6 = 8;
+constexpr unsigned kAccel1 = 16;
+constexpr unsigned kDeformable = 32;
+constexpr unsigned kRelaxed = 64;
+constexpr unsigned kPositions = 128;
 
 // The double path on a rescaled pair; returns the quantities that are not certified.
 unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r) {
@@ -176,26 +163,23 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path) {
   if (slow_path) *slow_path = false;
   PairResult<double> r;
   r.name = pair.name;
-  if (!detail::all_finite(pair.A)) {
-    r.error = non_finite_message("A", pair.A);
-    return r;
-  }
-  if (!detail::all_finite(pair.B)) {
-    r.error = non_finite_message("B", pair.B);
+  if (!detail::all_finite(pair.A) || !detail::all_finite(pair.B)) {
+    r.error = rejection_of(pair);
     return r;
   }
   const detail::ScaledPair sp = detail::power_scaled(pair.A, pair.B);
   if (!sp.exact) {  // a coordinate would leave the normal range when rescaled: exact path only
-    if (orientation_sign_exact(pair.A) == 0) r.error = degenerate_message("A");
-    else if (orientation_sign_exact(pair.B) == 0) r.error = degenerate_message("B");
+    r.error = rejection_of(pair);
     if (r.error) return r;
     if (slow_path) *slow_path = true;
     return exact_path(pair, r);
   }
   // ~20 KB: on the heap to keep TBB worker stacks small; default-initialised (no zeroing).
   std::unique_ptr<CandidateSet> set(new CandidateSet);
-  r.error = status_message(build_candidates(sp.A, sp.B, *set), pair);
-  if (r.error) return r;
+  if (build_candidates(sp.A, sp.B, *set) != BuildStatus::Ok) {
+    r.error = rejection_of(pair);  // flat (decided exactly); the scaling preserves flatness
+    return r;
+  }
   r.q1_A = pair.A;
   r.q1_B = pair.B;
   r.intersecting = set->intersecting;

@@ -1,16 +1,16 @@
 // superset_depth.cpp — rigid PD² over the superset of candidate directions: the scan of the
 // tie band and the chosen candidate (the proof is in the header, the vector arithmetic in
 // superset_kernel.cpp).
-#include "pdd/fast/superset_depth.h"
+#include "superset_depth.h"
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include "direction_geometry.h"
-#include "pdd/fast/filter_bounds.h"
-#include "pdd/fast/tie_tolerance.h"
-#include "pdd/fast/value_bounds.h"
+#include "filter_bounds.h"
+#include "tie_tolerance.h"
+#include "value_bounds.h"
 #include "superset_kernel.h"
 
 namespace pdd::fast {
@@ -43,7 +43,7 @@ bool near_candidates(const Kernel& K, const FilterBounds& fb, Near* out, int& co
   }
   for (std::uint64_t bits = K.lane_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
-    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
+    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
     const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
     const double eB[3] = {K.EB[0][b], K.EB[1][b], K.EB[2][b]};
     const double m0 = eB[1] * eA[2] - eB[2] * eA[1];
@@ -72,7 +72,7 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const Kernel& K, 
                    Candidate& g) {
   const int a = c.lane / kLaneStride, b = c.lane % kLaneStride;
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
-  const int k1 = kOther[a][0], k2 = kOther[a][1];
+  const int k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
   const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
   const double eB[3] = {K.EB[0][b], K.EB[1][b], K.EB[2][b]};
   const double m[3] = {eB[1] * eA[2] - eB[2] * eA[1], eB[2] * eA[0] - eB[0] * eA[2],
@@ -96,8 +96,8 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const Kernel& K, 
   g.hA[k1] = s * g1;
   g.hA[k2] = s * g2;
   g.hB[x] = g.hB[y] = s * h;
-  g.hB[kOther[b][0]] = s * (h + q[0]);
-  g.hB[kOther[b][1]] = s * (h + q[1]);
+  g.hB[kOffEdge[b][0]] = s * (h + q[0]);
+  g.hB[kOffEdge[b][1]] = s * (h + q[1]);
   g.conA = edge_mask(a);
   g.conB = edge_mask(b);
 }

@@ -28,11 +28,13 @@
 // 2 padding lanes of 8 (25 %).
 #include "superset_kernel.h"
 
+#include "lane_shuffle.h"
+
 #include <cmath>
 #include <limits>
 
-#include "pdd/fast/filter_bounds.h"
-#include "pdd/fast/tie_tolerance.h"
+#include "filter_bounds.h"
+#include "tie_tolerance.h"
 
 namespace pdd::fast::detail {
 namespace {
@@ -44,7 +46,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 PDD_INLINE long long horizontal_or(v8l v) {
   return (v[0] | v[1]) | (v[2] | v[3]) | ((v[4] | v[5]) | (v[6] | v[7]));
 }
-PDD_INLINE v8 perm(v8 v, v8l idx) { return __builtin_shuffle(v, idx); }
+PDD_INLINE v8 perm(v8 v, v8l idx) { return shuffle(v, idx); }
 // Max (min, sum) of the 8 lanes, in lane 0 (max and min are exact in any order).
 PDD_INLINE double hmax(v8 v) {
   v = v > perm(v, v8l{4, 5, 6, 7, 0, 1, 2, 3}) ? v : perm(v, v8l{4, 5, 6, 7, 0, 1, 2, 3});
@@ -116,8 +118,7 @@ PDD_INLINE void soa_coordinates(const TetVertices& A, const TetVertices& B, v8* 
   const double *a = &A[0][0], *b = &B[0][0];  // 12 contiguous doubles each
   const v8 a0 = load8(a), a1 = load8(a + 4), b0 = load8(b), b1 = load8(b + 4);
   for (int k = 0; k < 3; ++k)
-    X[k] = __builtin_shuffle(__builtin_shuffle(a0, a1, kLoad[k]),
-                             __builtin_shuffle(b0, b1, kLoad[k]), kHalves);
+    X[k] = shuffle(shuffle(a0, a1, kLoad[k]), shuffle(b0, b1, kLoad[k]), kHalves);
 }
 
 // Extent L (filter_bounds.h), kappa = kTieCoeff u R (tie_tolerance.h, R = max |coordinate|)
@@ -189,7 +190,7 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, 
     for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - A[u][k];
 #pragma GCC unroll 6
   for (int a = 0; a < 6; ++a) {
-    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOther[a][0], k2 = kOther[a][1];
+    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
     const double ax = K.EA[0][a], ay = K.EA[1][a], az = K.EA[2][a];
     const v8 m0 = EB[1] * az - EB[2] * ay;
     const v8 m1 = EB[2] * ax - EB[0] * az;

@@ -15,8 +15,6 @@
 
 namespace pdd::fast::detail {
 
-// The kernel's helpers are always inlined, so the ABI of passing v8 by value never arises.
-#pragma GCC diagnostic ignored "-Wpsabi"
 typedef double v8 __attribute__((vector_size(64)));
 typedef long long v8l __attribute__((vector_size(64)));
 
@@ -30,7 +28,7 @@ constexpr OffEdgeTable make_off_edge() {
   OffEdgeTable t{};
   for (int b = 0; b < 6; ++b)
     for (int m = 0; m < 2; ++m) {
-      const int x = kEdges[b][0], y = kEdges[b][1], j = kOther[b][m];
+      const int x = kEdges[b][0], y = kEdges[b][1], j = kOffEdge[b][m];
       t.sign[m][b] = -parity(x, y, j);
       t.face[m][b] = 6 - x - y - j;
     }

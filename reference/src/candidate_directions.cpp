@@ -3,17 +3,9 @@
 namespace pdd::reference {
 namespace {
 
-// Vertices of the face opposite vertex `opposite`, in increasing index order.
-std::array<int, 3> face_opposite(int opposite) {
-  std::array<int, 3> f{};
-  for (int i = 0, k = 0; i < 4; ++i)
-    if (i != opposite) f[k++] = i;
-  return f;
-}
-
 // Unnormalised normal of the face opposite `opposite`, pointing out of `tet`.
 Vector outward_face_normal(const ExactTet& tet, int opposite) {
-  const auto f = face_opposite(opposite);
+  const auto& f = kFace[opposite];  // pdd/tet_tables.h
   Vector n = CGAL::cross_product(tet[f[1]] - tet[f[0]], tet[f[2]] - tet[f[0]]);
   if (n * (tet[opposite] - tet[f[0]]) > 0) n = -n;  // the opposite vertex lies inside
   return n;
@@ -21,7 +13,7 @@ Vector outward_face_normal(const ExactTet& tet, int opposite) {
 
 CandidateDirection face_candidate(const DirectionLabel& label, const Vector& n, int opposite,
                                   bool face_of_A) {
-  CandidateDirection c{label, n, {}, {}, EdgePairKind::NotEdgePair};
+  CandidateDirection c{label, n, {}, {}, std::nullopt};
   auto& constrained = face_of_A ? c.constrained_A : c.constrained_B;
   for (int i = 0; i < 4; ++i) constrained[i] = (i != opposite);
   return c;

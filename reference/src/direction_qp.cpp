@@ -230,7 +230,6 @@ bool full_qp_uses_frame(const Vector& n) {
   return false;
 }
 
-const char* to_string(QpFormulation f) { return f == QpFormulation::Full ? "full" : "reduced"; }
 
 std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const CandidateDirection& dir,
                                              PddCase pdd_case, QpFormulation formulation) {

@@ -8,7 +8,7 @@
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/object_norm.h"
 #include "pdd/reference/oriented_depth.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 using namespace pdd::compare;
@@ -79,7 +79,7 @@ BOOST_AUTO_TEST_CASE(orientation_rule_can_discard_the_better_orientation) {
   const EdgeAudit a = edge_audit(pair);
   BOOST_TEST(a.discarded_changes_result.deformable);
   const ExactPair p = to_exact(pair);
-  const Rational pdd2 = solve_pair(pair, {QpFormulation::Reduced}).pdd2;
+  const Rational pdd2 = solve_exact(pair, {QpFormulation::Reduced}).pdd2;
   int better = 0;
   for (auto d : candidate_directions(p)) {
     if (d.label.kind != ContactKind::EE || d.label.orientation != EdgeOrientation::Decided) continue;

@@ -13,8 +13,8 @@
 
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/generate.h"
-#include "pdd/fast/solve_pair.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/pdd.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 
@@ -83,7 +83,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           {{{2, 2, 2}, {7, 2, 2}, {2, 7, 2}, {2, 2, 7}}}));
   int computed = 0, rejected = 0;
   for (const auto& p : pairs) {
-    const auto exact = reference::solve_pair(p, {reference::QpFormulation::Reduced});
+    const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
     const auto fast = fast::solve_pair(p);
     const auto c = compare::compare_pair(p, exact, fast);
     BOOST_TEST(!c.over_tolerance(), p.name << (fast.error ? " fast: " + *fast.error : std::string())

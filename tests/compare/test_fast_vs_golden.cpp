@@ -11,7 +11,7 @@
 #include "pdd/compare/engines.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/golden.h"
-#include "pdd/fast/solve_pair.h"
+#include "pdd/pdd.h"
 
 using namespace pdd;
 

@@ -13,7 +13,7 @@
 #include "pdd/compare/engines.h"
 #include "pdd/compare/generate.h"
 #include "pdd/reference/candidate_directions.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 
@@ -56,7 +56,7 @@ BOOST_AUTO_TEST_CASE(fixture_families_reproduce) {
 BOOST_AUTO_TEST_CASE(closed_form_tags_hold_exactly) {
   int checked = 0;
   for (const auto& pair : test::load_pairs("families/closed-form.json")) {
-    const auto rec = compare::exact_record(reference::solve_pair(pair, {reference::QpFormulation::Reduced}));
+    const auto rec = compare::exact_record(reference::solve_exact(pair, {QpFormulation::Reduced}));
     for (const auto& [key, value] : compare::tag_expectations(pair)) {
       BOOST_TEST(rec.at(key).get<std::string>() == value, pair.name << " " << key);
       ++checked;
@@ -79,15 +79,15 @@ BOOST_AUTO_TEST_CASE(families_have_their_property) {
   for (const auto& p : test::load_pairs("families/colinear-edges.json"))
     BOOST_TEST(has_edge_kind(p, EdgePairKind::Colinear), p.name);
   for (const auto& p : test::load_pairs("families/touching.json")) {
-    const auto r = solve_pair(p, {QpFormulation::Reduced});
+    const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_TEST((!r.error && !r.intersecting), p.name);
   }
   for (const auto& p : test::load_pairs("families/undecidable-optimum.json")) {
-    const auto r = solve_pair(p, {QpFormulation::Reduced});
+    const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_TEST((r.pdd2_dir && r.pdd2_dir->orientation != EdgeOrientation::Decided), p.name);
   }
   for (const auto& p : test::load_pairs("families/near-touching.json")) {
-    const auto r = solve_pair(p, {QpFormulation::Reduced});
+    const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_TEST(r.intersecting, p.name);
     BOOST_TEST(r.rigid_pd2 < Rational(1, 1000000000) * Rational(1, 1000000000) * 1000, p.name);
   }
@@ -125,7 +125,7 @@ BOOST_AUTO_TEST_CASE(adversarial_pairs_have_their_property) {
     BOOST_REQUIRE(p.tags.size() >= 2);
     const std::string kind = p.tags[1];
     ++kinds[kind];
-    const auto r = solve_pair(p, {QpFormulation::Reduced});
+    const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_REQUIRE_MESSAGE(!r.error, p.name << ": " << *r.error);
     BOOST_TEST(r.intersecting == (kind != "near-touching-out"), p.name);
     for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "fast_test_util.h"
-#include "pdd/fast/solve_pair.h"
+#include "pdd/pdd.h"
 
 using namespace pdd;
 using namespace pdd::fast;

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "fast_test_util.h"
-#include "pdd/fast/solve_pair.h"
+#include "pdd/pdd.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -42,11 +42,13 @@ std::vector<Bad> bad_pairs() {
   return {
       {tet_pair(with(kGood, 2, 1, nan), kGood, "nan-A"), {"tetrahedron A", "vertex 2"}},
       {tet_pair(kGood, with(kGood, 3, 0, inf), "inf-B"), {"tetrahedron B", "vertex 3"}},
-      {tet_pair(with(kGood, 0, 2, -inf), kGood, "minf-A"), {"tetrahedron A", "non-finite"}},
-      {tet_pair(kFlat, kGood, "flat-A"), {"tetrahedron A", "zero volume"}},
-      {tet_pair(kGood, kFlat, "flat-B"), {"tetrahedron B", "zero volume"}},
+      {tet_pair(with(kGood, 0, 2, -inf), kGood, "minf-A"), {"tetrahedron A: vertex 0 coordinate z is not finite (-inf)"}},
+      {tet_pair(kFlat, kGood, "flat-A"), {"tetrahedron A is flat: its four vertices are coplanar (volume 0)"}},
+      {tet_pair(kGood, kFlat, "flat-B"), {"tetrahedron B is flat"}},
       {tet_pair(kGood, {{kGood[0], kGood[0], kGood[1], kGood[2]}}, "repeated-B"),
-       {"tetrahedron B", "zero volume"}},
+       {"tetrahedron B is flat"}},
+      {tet_pair(kFlat, with(kGood, 1, 1, nan), "flat-A-nan-B"),
+       {"tetrahedron A is flat", "; tetrahedron B: vertex 1 coordinate y is not finite (nan)"}},
   };
 }
 }  // namespace
@@ -57,7 +59,8 @@ BOOST_AUTO_TEST_CASE(each_bad_input_kind) {
     BOOST_TEST_CONTEXT(b.pair.name) {
       BOOST_REQUIRE(r.error);
       for (const char* s : b.must_contain)
-        BOOST_TEST(r.error->find(s) != std::string::npos, *r.error);
+        if (s)
+          BOOST_TEST(r.error->find(s) != std::string::npos, *r.error);
       BOOST_TEST(!r.intersecting);
     }
   }

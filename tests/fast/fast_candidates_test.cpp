@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "fast_test_util.h"
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/exact_predicates.h"
-#include "pdd/fast/quick_candidates.h"
+#include "candidate_directions.h"
+#include "exact_predicates.h"
+#include "quick_candidates.h"
 
 using namespace pdd;
 using namespace pdd::fast;

@@ -21,7 +21,7 @@
 #include <random>
 #include <vector>
 
-#include "pdd/fast/direction_qp.h"
+#include "direction_qp.h"
 
 using namespace pdd::fast;
 

@@ -13,9 +13,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "pdd/fast/deformable_depth.h"
-#include "pdd/fast/rigid_depth.h"
-#include "pdd/fast/solve_pair.h"
+#include "deformable_depth.h"
+#include "rigid_depth.h"
+#include "pdd/pdd.h"
 
 using namespace pdd;
 namespace fs = std::filesystem;
@@ -74,7 +74,7 @@ void check_file(const fs::path& fixture, const fs::path& golden) {
       BOOST_TEST(label(r.pdd2_relaxed_dir) == label(g.at("pdd2_relaxed_dir")));
       // the hot paths over raw vertices (superset_depth.h) report what solve_pair reports
       const TetPair& p = pairs[&r - results.data()];
-      const fast::Choice rigid = fast::rigid_pd2(p.A, p.B), a1 = fast::pdd2_accel(p.A, p.B, 1);
+      const fast::Choice rigid = fast::rigid_pd2_choice(p.A, p.B), a1 = fast::pdd2_accel_choice(p.A, p.B, 1);
       BOOST_TEST(rigid.value == r.rigid_pd2);
       BOOST_TEST(a1.value == r.pdd2_accel1);
       if (r.intersecting) BOOST_TEST(rigid.label().str() == label(r.rigid_dir));

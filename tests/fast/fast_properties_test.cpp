@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "fast_test_util.h"
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/deformable_depth.h"
-#include "pdd/fast/rigid_depth.h"
-#include "pdd/fast/solve_pair.h"
+#include "candidate_directions.h"
+#include "deformable_depth.h"
+#include "rigid_depth.h"
+#include "pdd/pdd.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -189,9 +189,9 @@ BOOST_AUTO_TEST_CASE(vertex_permutation_invariance) {
 BOOST_AUTO_TEST_CASE(hot_path_overloads_match_solve_pair) {
   for (const auto& p : random_pairs(200, 41, false)) {
     const auto r = solve_pair(p);
-    const Choice rigid = rigid_pd2(p.A, p.B), st = pdd2_static(p.A, p.B), def = pdd2(p.A, p.B),
-                 rel = pdd2_relaxed(p.A, p.B), a1 = pdd2_accel(p.A, p.B, 1),
-                 a6 = pdd2_accel(p.A, p.B, 6);
+    const Choice rigid = rigid_pd2_choice(p.A, p.B), st = pdd2_static_choice(p.A, p.B), def = pdd2_choice(p.A, p.B),
+                 rel = pdd2_relaxed_choice(p.A, p.B), a1 = pdd2_accel_choice(p.A, p.B, 1),
+                 a6 = pdd2_accel_choice(p.A, p.B, 6);
     BOOST_TEST(rigid.value == r.rigid_pd2);
     BOOST_TEST(st.value == r.pdd2_static);
     BOOST_TEST(def.value == r.pdd2);

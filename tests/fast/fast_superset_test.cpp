@@ -8,9 +8,9 @@
 #include <boost/test/unit_test.hpp>
 
 #include "fast_test_util.h"
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/rigid_depth.h"
-#include "pdd/fast/superset_depth.h"
+#include "candidate_directions.h"
+#include "rigid_depth.h"
+#include "superset_depth.h"
 
 using namespace pdd;
 using namespace pdd::fast;

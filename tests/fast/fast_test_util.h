@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "pdd/fast/candidate_directions.h"
+#include "candidate_directions.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast::test {

@@ -6,10 +6,10 @@
 #include <cstdint>
 
 #include "fast_test_util.h"
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/rigid_depth.h"
-#include "pdd/fast/solve_pair.h"
-#include "pdd/fast/tie_tolerance.h"
+#include "candidate_directions.h"
+#include "rigid_depth.h"
+#include "pdd/pdd.h"
+#include "tie_tolerance.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -80,7 +80,7 @@ BOOST_AUTO_TEST_CASE(exact_tie_fv_and_parallel_ee_is_recognised) {
     differently_rounded += (fv != ee0) + (fv != ee1);
     ee_below_fv += (ee0 < fv) + (ee1 < fv);
     BOOST_TEST(rigid_pd2(set).label() == DirectionLabel::fv(3));
-    BOOST_TEST(rigid_pd2(p.A, p.B).label() == DirectionLabel::fv(3));
+    BOOST_TEST(rigid_pd2_choice(p.A, p.B).label() == DirectionLabel::fv(3));
     BOOST_TEST(*solve_pair(p).rigid_dir == DirectionLabel::fv(3));
   }
   BOOST_TEST(differently_rounded > 0);  // the tie is not a bitwise coincidence
@@ -105,7 +105,7 @@ BOOST_AUTO_TEST_CASE(gap_of_1e_11_is_not_a_tie) {
   BOOST_TEST(fv / vf - 1 < 2e-11);
   BOOST_TEST(!ties_with_min(fv, vf, set.tie_kappa));
   BOOST_TEST(rigid_pd2(set).label() == DirectionLabel::vf(3));
-  BOOST_TEST(rigid_pd2(p.A, p.B).label() == DirectionLabel::vf(3));
-  BOOST_TEST(rigid_pd2(p.A, p.B).value == vf);
+  BOOST_TEST(rigid_pd2_choice(p.A, p.B).label() == DirectionLabel::vf(3));
+  BOOST_TEST(rigid_pd2_choice(p.A, p.B).value == vf);
   BOOST_TEST(*solve_pair(p).rigid_dir == DirectionLabel::vf(3));
 }

@@ -4,7 +4,7 @@
 #include "fixtures.h"
 #include "pdd/reference/candidate_directions.h"
 #include "pdd/reference/direction_qp.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 using namespace pdd::reference;
@@ -35,7 +35,7 @@ Rational q(long num, long den = 1) { return Rational(num, den); }
 // z = 1/14 and the base rises by tau/4 = 3/28 to z = -25/28.
 BOOST_AUTO_TEST_CASE(vertex_poking_through_a_face) {
   const TetPair pair = test::load_pair("smoke.json", "poke-vertex-through-face");
-  const ExactResult r = solve_pair(pair);
+  const ExactResult r = solve_exact(pair);
   BOOST_REQUIRE(!r.error);
   BOOST_TEST(r.intersecting);
   BOOST_TEST(r.rigid_pd2 == q(1, 4));
@@ -72,7 +72,7 @@ BOOST_AUTO_TEST_CASE(vertex_poking_through_a_face) {
 // width is its height over its own slanted face, (1/2)/sqrt(3), on a VF/FV normal:
 // E11^2 = 1/12 < PD^2. The appendix theorem fails here.
 BOOST_AUTO_TEST_CASE(nested_pair_breaks_the_appendix_theorem) {
-  const ExactResult r = solve_pair(test::load_pair("smoke.json", "nested-1"));
+  const ExactResult r = solve_exact(test::load_pair("smoke.json", "nested-1"));
   BOOST_TEST(r.rigid_pd2 == q(16, 3));
   BOOST_TEST(r.rigid_dir->str() == "FV:0");
   BOOST_TEST(r.eq11_pd2 == q(1, 12));
@@ -83,7 +83,7 @@ BOOST_AUTO_TEST_CASE(nested_pair_breaks_the_appendix_theorem) {
 BOOST_AUTO_TEST_CASE(disjoint_and_touching_pairs_report_zero) {
   for (const std::string name : {"disjoint-1", "touching-face-1"}) {
     const TetPair pair = test::load_pair("smoke.json", name);
-    const ExactResult r = solve_pair(pair);
+    const ExactResult r = solve_exact(pair);
     BOOST_REQUIRE(!r.error);
     BOOST_TEST(!r.intersecting, name);
     for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2,
@@ -101,9 +101,9 @@ BOOST_AUTO_TEST_CASE(disjoint_and_touching_pairs_report_zero) {
 // poke example scaled by 2^20 and 2^-20).
 BOOST_AUTO_TEST_CASE(scaled_copies_of_the_poke_example) {
   const Rational s40 = Rational(1LL << 40);
-  const ExactResult big = solve_pair(test::load_pair("degenerate.json", "large-coordinates-1"),
+  const ExactResult big = solve_exact(test::load_pair("degenerate.json", "large-coordinates-1"),
                                      {QpFormulation::Reduced});
-  const ExactResult small = solve_pair(test::load_pair("degenerate.json", "small-coordinates-1"),
+  const ExactResult small = solve_exact(test::load_pair("degenerate.json", "small-coordinates-1"),
                                        {QpFormulation::Reduced});
   BOOST_TEST(big.rigid_pd2 == q(1, 4) * s40);
   BOOST_TEST(big.pdd2_static == q(1, 64) * s40);

@@ -7,7 +7,7 @@
 #include "fixtures.h"
 #include "pdd/reference/candidate_directions.h"
 #include "pdd/reference/direction_qp.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 using namespace pdd::reference;
@@ -75,8 +75,8 @@ BOOST_AUTO_TEST_CASE(full_equals_reduced_on_huge_and_subnormal_coordinates) {
   BOOST_TEST(framed > 0);  // the frame path is exercised
   BOOST_TEST(compared > 0);
 
-  const auto full = solve_pair(pair, {QpFormulation::Full});
-  const auto reduced = solve_pair(pair, {QpFormulation::Reduced});
+  const auto full = solve_exact(pair, {QpFormulation::Full});
+  const auto reduced = solve_exact(pair, {QpFormulation::Reduced});
   BOOST_REQUIRE(!full.error);
   BOOST_TEST(full.intersecting);
   BOOST_TEST(full.pdd2 == reduced.pdd2);

@@ -7,7 +7,7 @@
 #include <algorithm>
 
 #include "fixtures.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 using namespace pdd::reference;
@@ -41,9 +41,9 @@ BOOST_AUTO_TEST_CASE(translation_changes_nothing) {
       bool exact = true;
       map_coordinates(pair, [&](double x, int k) { return exact = exact && exact_sum(x, t[k]), x; });
       if (!exact) continue;  // a rounded translate is a different pair; skip it
-      const ExactResult a = solve_pair(pair, kReduced);
+      const ExactResult a = solve_exact(pair, kReduced);
       const ExactResult b =
-          solve_pair(map_coordinates(pair, [&](double x, int k) { return x + t[k]; }), kReduced);
+          solve_exact(map_coordinates(pair, [&](double x, int k) { return x + t[k]; }), kReduced);
       BOOST_TEST((values(a) == values(b)), pair.name);
       BOOST_TEST((labels(a) == labels(b)), pair.name);
       for (int i = 0; i < 4; ++i)
@@ -56,8 +56,8 @@ BOOST_AUTO_TEST_CASE(translation_changes_nothing) {
 BOOST_AUTO_TEST_CASE(scaling_by_two_multiplies_squares_by_four) {
   for (const auto& file : test::property_fixture_files())
     for (const TetPair& pair : test::load_pairs(file)) {
-      const ExactResult a = solve_pair(pair, kReduced);
-      const ExactResult b = solve_pair(map_coordinates(pair, [](double x, int) { return 2 * x; }),
+      const ExactResult a = solve_exact(pair, kReduced);
+      const ExactResult b = solve_exact(map_coordinates(pair, [](double x, int) { return 2 * x; }),
                                        kReduced);
       auto va = values(a);
       for (auto& v : va) v = v * 4;
@@ -72,14 +72,14 @@ BOOST_AUTO_TEST_CASE(permuting_vertices_keeps_every_value) {
   const std::array<std::array<int, 4>, 3> perms = {{{1, 0, 2, 3}, {3, 2, 1, 0}, {2, 3, 0, 1}}};
   for (const auto& file : test::property_fixture_files())
     for (const TetPair& pair : test::load_pairs(file)) {
-      const ExactResult a = solve_pair(pair, kReduced);
+      const ExactResult a = solve_exact(pair, kReduced);
       for (std::size_t k = 0; k < perms.size(); ++k) {
         TetPair p = pair;
         for (int i = 0; i < 4; ++i) {
           p.A[i] = pair.A[perms[k][i]];
           p.B[i] = pair.B[perms[(k + 1) % perms.size()][i]];
         }
-        BOOST_TEST((values(a) == values(solve_pair(p, kReduced))), pair.name << " perm " << k);
+        BOOST_TEST((values(a) == values(solve_exact(p, kReduced))), pair.name << " perm " << k);
       }
     }
 }

@@ -9,7 +9,7 @@
 #include "pdd/reference/candidate_directions.h"
 #include "pdd/reference/object_norm.h"
 #include "pdd/reference/oriented_depth.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 using namespace pdd::reference;
@@ -26,7 +26,7 @@ BOOST_AUTO_TEST_CASE(spec_inequalities_and_separation) {
   int intersecting = 0;
   for (const auto& file : test::property_fixture_files())
     for (const TetPair& pair : test::load_pairs(file)) {
-      const ExactResult r = solve_pair(pair, {QpFormulation::Reduced});
+      const ExactResult r = solve_exact(pair, {QpFormulation::Reduced});
       BOOST_REQUIRE(!r.error);
       if (!r.intersecting) continue;
       ++intersecting;

@@ -101,7 +101,7 @@ struct ExactComparison {
   double exact_rigid_median_ns = 0;  // median single call, over `repeats` passes of the sample
   double fast_rigid_median_ns = 0;   // our rigid_pd2 on the same sample (median_ns_per_pair)
   double rigid_ratio = 0;            // exact / fast
-  // Every SPEC §6 value: reference::solve_pair (Reduced formulation, one pass) vs
+  // Every SPEC §6 value: reference::solve_exact (Reduced formulation, one pass) vs
   // fast::solve_pair on the same sample.
   double exact_solve_median_ns = 0;
   double fast_solve_median_ns = 0;

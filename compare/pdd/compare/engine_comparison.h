@@ -24,7 +24,7 @@
 #include <string>
 
 #include "pdd/pair_result.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
 

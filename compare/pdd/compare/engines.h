@@ -14,7 +14,7 @@
 #include "pdd/compare/progress.h"
 #include "pdd/compare/result_json.h"
 #include "pdd/pair_result.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "pdd/reference/direction_qp.h"
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
 
@@ -21,7 +21,7 @@ std::vector<std::string> golden_fixture_files(const std::string& fixtures_dir);
 std::string golden_path(const std::string& fixtures_dir, const std::string& relative);
 
 // The exact engine's JSON Lines for one fixture file (input order).
-std::string exact_json_lines(const std::string& fixture_path, reference::QpFormulation f);
+std::string exact_json_lines(const std::string& fixture_path, QpFormulation f);
 
 struct GoldenMismatch {
   std::string file;
@@ -29,13 +29,13 @@ struct GoldenMismatch {
 };
 
 // Compares every golden file with a fresh exact run; empty when all match.
-std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, reference::QpFormulation f);
+std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpFormulation f);
 
 // Reads a golden JSON Lines file back into exact results (numbers parsed as exact rationals,
 // labels parsed); throws std::runtime_error on a malformed record.
 std::vector<reference::ExactResult> read_golden(const std::string& path);
 
 // Rewrites every golden file; returns the relative paths written.
-std::vector<std::string> update_golden(const std::string& fixtures_dir, reference::QpFormulation f);
+std::vector<std::string> update_golden(const std::string& fixtures_dir, QpFormulation f);
 
 }  // namespace pdd::compare

@@ -17,22 +17,22 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "pdd/direction_label.h"
+#include "pdd/tet_tables.h"
 #include "pdd/reference/exact_kernel.h"
 
 namespace pdd::reference {
 
-// How an edge pair of SPEC §3 resolved; audits count these.
-enum class EdgePairKind { NotEdgePair, Generic, Parallel, Colinear };
 
 struct CandidateDirection {
   DirectionLabel label;
   Vector n;                       // exact, unnormalised, A -> B
   std::array<bool, 4> constrained_A{};  // true: in C_A, false: in F_A
   std::array<bool, 4> constrained_B{};  // true: in C_B, false: in F_B
-  EdgePairKind edge_kind = EdgePairKind::NotEdgePair;
+  std::optional<EdgePairKind> edge_kind;  // how an edge pair resolved (pdd/tet_tables.h); none for faces
 };
 
 // All candidates in canonical order (44 for a generic pair, +1 per undecidable edge pair,

@@ -3,7 +3,7 @@
 // Input : an exact pair and its candidates (candidate_directions), a QP formulation.
 // Output: one row per candidate, in canonical order: the oriented depth (as its exact signed
 //         square), eq. 11's overlap, and the per-direction QP optima of the three cases
-//         (static is nullopt where the case-1 QP is infeasible). solve_pair takes minima over
+//         (static is nullopt where the case-1 QP is infeasible). solve_exact takes minima over
 //         these rows; audits and the paper experiment read them directly.
 #pragma once
 

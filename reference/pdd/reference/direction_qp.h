@@ -24,14 +24,12 @@
 
 #include <optional>
 
+#include "pdd/qp_formulation.h"
 #include "pdd/reference/candidate_directions.h"
 
 namespace pdd::reference {
 
 enum class PddCase { Static, Deformable, Relaxed };
-enum class QpFormulation { Full, Reduced };
-
-const char* to_string(QpFormulation f);
 
 struct DirectionOptimum {
   Rational value;    // sigma_A + sigma_B at the optimum (PD_d^2 along this direction)

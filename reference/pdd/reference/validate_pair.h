@@ -12,8 +12,8 @@
 
 namespace pdd::reference {
 
-// nullopt when valid; otherwise the reason, naming the tetrahedron ("A" or "B").
-std::optional<std::string> validate_tetrahedron(const TetVertices& tet, const std::string& which);
+// nullopt when valid; otherwise the reason (pdd/rejection.h), naming the tetrahedron ('A' or 'B').
+std::optional<std::string> validate_tetrahedron(const TetVertices& tet, char which);
 
 // nullopt when both tetrahedra are valid; otherwise every reason, joined by "; ".
 std::optional<std::string> validate_pair(const TetPair& pair);

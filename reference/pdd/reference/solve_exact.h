@@ -1,4 +1,4 @@
-// solve_pair.h — the exact engine's answer for one pair: the SPEC §6 record.
+// solve_exact.h — the exact engine's answer for one pair: the SPEC §6 record.
 //
 // Input : a pair of tetrahedra (doubles, taken exactly) and the QP formulation to use.
 // Output: PairResult<Rational>: intersecting; rigid PD^2 (Minkowski difference, SPEC §4) and
@@ -20,6 +20,6 @@ struct SolveOptions {
   QpFormulation formulation = QpFormulation::Full;
 };
 
-ExactResult solve_pair(const TetPair& pair, const SolveOptions& options = {});
+ExactResult solve_exact(const TetPair& pair, const SolveOptions& options = {});
 
 }  // namespace pdd::reference

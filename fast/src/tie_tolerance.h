@@ -30,7 +30,7 @@
 
 #include <cmath>
 
-#include "pdd/fast/filter_bounds.h"
+#include "filter_bounds.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast {

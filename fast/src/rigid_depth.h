@@ -9,8 +9,8 @@
 // Both return 0 (index −1) for a non-intersecting set. Hot path: no allocation, no strings.
 #pragma once
 
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/quick_candidates.h"
+#include "candidate_directions.h"
+#include "quick_candidates.h"
 
 namespace pdd::fast {
 
@@ -33,6 +33,6 @@ double eq11_pd2(const CandidateSet& set, bool* certified = nullptr);
 // Convenience over raw tetrahedra (the hot path): rigid_superset (superset_depth.h) when it
 // decides (index −1: no list is built), else the candidate set (index then refers to it);
 // value 0 when the pair does not intersect or is invalid. Same value and label either way.
-Choice rigid_pd2(const TetVertices& A, const TetVertices& B);
+Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B);
 
 }  // namespace pdd::fast

@@ -15,10 +15,9 @@ namespace pdd::fast {
 int orientation_sign_exact(const TetVertices& T);
 
 // Classification of the edge pair EE:a:b by SPEC §3, decided exactly.
-enum class EdgePairKind { General, Parallel, Colinear };
 enum class EdgePairSide { Keep, Flip, Undecidable };  // orientation rule on g_k
 struct EdgePairClass {
-  EdgePairKind kind = EdgePairKind::General;
+  EdgePairKind kind = EdgePairKind::Generic;
   EdgePairSide side = EdgePairSide::Keep;
 };
 EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& B, int a, int b);

@@ -12,7 +12,7 @@
 // edge lanes), bit-identical to build_candidates' (tested).
 #pragma once
 
-#include "pdd/fast/candidate_directions.h"
+#include "candidate_directions.h"
 
 namespace pdd::fast {
 

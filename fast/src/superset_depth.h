@@ -51,8 +51,8 @@
 // ---- Cost. See src/superset_kernel.cpp for the flop count per pair (≈ 1900 flops, ≈ 115 ns).
 #pragma once
 
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/rigid_depth.h"
+#include "candidate_directions.h"
+#include "rigid_depth.h"
 
 namespace pdd::fast {
 

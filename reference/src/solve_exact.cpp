@@ -1,4 +1,4 @@
-#include "pdd/reference/solve_pair.h"
+#include "pdd/reference/solve_exact.h"
 
 #include <stdexcept>
 
@@ -62,7 +62,7 @@ void fill_intersecting(const ExactPair& exact, const std::vector<CandidateDirect
 
 }  // namespace
 
-ExactResult solve_pair(const TetPair& pair, const SolveOptions& options) {
+ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
   ExactResult out;
   out.name = pair.name;
   if (auto why = validate_pair(pair)) {

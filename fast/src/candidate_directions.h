@@ -24,7 +24,7 @@
 #include <cstdint>
 
 #include "pdd/direction_label.h"
-#include "pdd/fast/filter_bounds.h"
+#include "filter_bounds.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast {

@@ -25,10 +25,10 @@
 // (the rigid one, `hint`) makes most bounds bite.
 #pragma once
 
-#include "pdd/fast/candidate_directions.h"
-#include "pdd/fast/quick_candidates.h"
-#include "pdd/fast/direction_qp.h"
-#include "pdd/fast/rigid_depth.h"
+#include "candidate_directions.h"
+#include "quick_candidates.h"
+#include "direction_qp.h"
+#include "rigid_depth.h"
 #include "pdd/pair_result.h"
 
 namespace pdd::fast {
@@ -72,9 +72,9 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 // certified = false when the value is not a normal double. pdd2_accel(A, B, k): k = 1 or 6.
 // pdd2_accel(A, B, 1) is the case-2 QP on the rigid direction of rigid_superset
 // (superset_depth.h, index −1) when it decides: rigid PD plus one direction solve.
-Choice pdd2_static(const TetVertices& A, const TetVertices& B);
-Choice pdd2(const TetVertices& A, const TetVertices& B);
-Choice pdd2_relaxed(const TetVertices& A, const TetVertices& B);
-Choice pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
+Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B);
+Choice pdd2_choice(const TetVertices& A, const TetVertices& B);
+Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B);
+Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k);
 
 }  // namespace pdd::fast

@@ -55,7 +55,7 @@
 #include <cmath>
 #include <limits>
 
-#include "pdd/fast/filter_bounds.h"
+#include "filter_bounds.h"
 
 namespace pdd::fast {
 

@@ -1,0 +1,23 @@
+// The README's library example: one pair through both engines of an installed pdd.
+// The pair is fixtures/smoke.json's "poke-vertex-through-face": B's apex pokes 1/2 through A's
+// face z = 0; its exact values (fixtures/golden/smoke.jsonl) are PD² = 1/4 and PD_d² = 3/224,
+// both along FV:3.
+#include <pdd/pdd.h>
+
+#include <cmath>
+#include <iostream>
+
+int main() {
+  pdd::TetPair p{"poke", {}, {{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}},
+                 {{{1, 1, -1}, {3, 1, -1}, {1, 3, -1}, {1.5, 1.5, 0.5}}}};
+  pdd::PairResult<double> fast = pdd::fast::solve_pair(p);             // certified doubles
+  pdd::PairResult<pdd::Rational> exact = pdd::reference::solve_pair(p);  // exact rationals
+  std::cout << "fast:  pdd2 = " << fast.pdd2 << " along " << *fast.pdd2_dir << "\n"
+            << "exact: pdd2 = " << exact.pdd2 << " along " << *exact.pdd2_dir << "\n";
+  pdd::fast::Depth d = pdd::fast::rigid_pd2(p.A, p.B);  // the hot path: value and label
+  std::cout << "rigid: pd2 = " << d.pd2 << " along " << *d.dir << " (exact " << exact.rigid_pd2
+            << ")\n";
+  // SPEC §8: the fast value is within 1e-9 relative of the exact one.
+  const double e = exact.pdd2.get_d();
+  return std::fabs(fast.pdd2 - e) <= 1e-9 * e && fast.pdd2_dir == exact.pdd2_dir ? 0 : 1;
+}

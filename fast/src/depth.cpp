@@ -1,0 +1,57 @@
+// depth.cpp — the public hot-path functions of pdd.h (Depth over raw vertices) on top of the
+// engine's certified choices (rigid_depth.h, deformable_depth.h): status and label only; every
+// value is the choice's own.
+#include <cmath>
+#include <limits>
+
+#include "deformable_depth.h"
+#include "direction_geometry.h"
+#include "exact_predicates.h"
+#include "pdd/pdd.h"
+#include "rigid_depth.h"
+
+namespace pdd::fast {
+namespace {
+
+bool rejected(const TetVertices& T) { return !detail::all_finite(T) || orientation_sign_exact(T) == 0; }
+
+Depth depth_of(const Choice& ch, const TetVertices& A, const TetVertices& B, bool labelled) {
+  Depth d;
+  if (std::isnan(ch.value)) {  // certified_hot_path: not representable after scaling back
+    d.pd2 = std::numeric_limits<double>::quiet_NaN();
+    d.status = DepthStatus::NotRepresentable;
+    return d;
+  }
+  if (ch.value == 0.0) {  // not intersecting, or rejected: tell which (rare work only here)
+    if (rejected(A) || rejected(B)) d.status = DepthStatus::Rejected;
+    return d;
+  }
+  d.pd2 = ch.value;
+  if (labelled) d.dir = ch.label();
+  return d;
+}
+
+}  // namespace
+
+Depth rigid_pd2(const TetVertices& A, const TetVertices& B) {
+  return depth_of(rigid_pd2_choice(A, B), A, B, true);
+}
+Depth pdd2_static(const TetVertices& A, const TetVertices& B) {
+  return depth_of(pdd2_static_choice(A, B), A, B, true);
+}
+Depth pdd2(const TetVertices& A, const TetVertices& B) {
+  return depth_of(pdd2_choice(A, B), A, B, true);
+}
+Depth pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
+  return depth_of(pdd2_relaxed_choice(A, B), A, B, true);
+}
+Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
+  if (k != 1 && k != kAccelWide) {
+    Depth d;
+    d.status = DepthStatus::Rejected;
+    return d;
+  }
+  return depth_of(pdd2_accel_choice(A, B, k), A, B, false);
+}
+
+}  // namespace pdd::fast

@@ -1,0 +1,109 @@
+// pdd.h — the public interface of pdd: penetration depth between two tetrahedra.
+//
+//   #include <pdd/pdd.h>          // CMake: find_package(pdd CONFIG REQUIRED)
+//                                 //        target_link_libraries(app PRIVATE pdd::fast)
+//   pdd::TetPair p{"name", {}, A, B};               // A, B: 4 vertices x {x, y, z}, doubles
+//   pdd::PairResult<double> r = pdd::fast::solve_pair(p);
+//   if (r.error) ...;  else r.pdd2, r.pdd2_dir->str(), r.q1_A, ...
+//
+// What is computed (../SPEC.md of the source tree; Kim & Kim's paper):
+//   rigid_pd2      PD², the squared rigid penetration depth (SPEC §4), and its direction label;
+//   eq11_pd2       the paper's eq. 11 (an estimate, not a bound: it can be below PD²);
+//   pdd2_static    PD_d² with A static (paper case 1);  pdd2  PD_d² with both deforming (case 2,
+//                  eq. 3 with the constraints of eq. 10); pdd2_relaxed  case 2 with every
+//                  constraint an inequality; pdd2_accel1 / pdd2_accel6  case 2 restricted to the
+//                  1 / 6 shallowest candidate directions (the paper's acceleration);
+//   q1_A, q1_B     deformed vertex positions that attain pdd2 and are separated by its plane.
+// Every value is a squared length in the squared units of the coordinates. A pair whose
+// interiors do not intersect has every value 0, no labels, and q1 = the rest pose.
+// Labels (DirectionLabel, SPEC §3): "FV:i" face of A opposite s_i, "VF:j" face of B opposite
+// r_j, "EE:a:b" edge a of A against edge b of B (":+"/":-" for the two sides of an undecidable
+// edge pair).
+// Rejected pairs (SPEC §1): a non-finite coordinate or a tetrahedron of volume exactly 0. The
+// record's `error` says which tetrahedron and why, in the same words for both engines.
+//
+// Two engines, sharing no arithmetic:
+//   pdd::fast       doubles, certified (SPEC §8, below); target pdd::fast (needs TBB and GMP).
+//   pdd::reference  exact rationals (CGAL, GMP); target pdd::reference. Slow (milliseconds to
+//                   seconds a pair): the judge, and the source of counterexamples.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "pdd/direction_label.h"
+#include "pdd/pair_result.h"
+#include "pdd/qp_formulation.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd {
+
+// The reference engine's numbers: exact rationals (GMP's mpq_class, in lowest terms);
+// `r.pdd2.get_str()` and `std::cout << r.pdd2` print "p/q" (or "p" for an integer).
+using Rational = mpq_class;
+
+}  // namespace pdd
+
+namespace pdd::fast {
+
+// The SPEC §8 contract of every fast value: on every valid pair, whatever its scale, shape or
+// position, every reported squared value v satisfies |v − exact| ≤ 1e-9 · exact, v = 0 exactly
+// when the exact value is 0; `intersecting` is the exact decision; every label names a
+// candidate whose exact value is within that bound of the exact minimum; q1 attains pdd2 for
+// its label to the same accuracy. The engine enforces it itself: each value carries an error
+// bound, and where a bound is too wide the pair is recomputed on the engine's exact path (its
+// own closed forms on GMP rationals; rare, about 100x slower). A result that is not a normal
+// double gives an error record that starts "not representable".
+
+// Every SPEC §6 quantity of one pair.
+//   pair       the two tetrahedra; A is the paper's T1 (static in case 1), B is T2.
+//   slow_path  optional out: set to true when the pair took the exact path.
+// Returns the record; `error` set when the pair is rejected (SPEC §1) or not representable.
+PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr);
+
+// solve_pair on every pair, on all cores (TBB), results in input order; bit-identical to
+// solve_pair one at a time. `slow_paths` (optional out): how many pairs took the exact path.
+// A rejected pair is an error record; it never stops the batch.
+std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
+                                            std::size_t* slow_paths = nullptr);
+
+// One quantity over raw vertices: the hot path for contact handling (no record, no positions).
+enum class DepthStatus {
+  Ok,                // pd2 is the certified value (0: the interiors do not intersect)
+  Rejected,          // SPEC §1: a non-finite coordinate or a flat tetrahedron; pd2 = 0
+  NotRepresentable,  // the exact value is not a normal double after scaling back; pd2 = NaN
+};
+struct Depth {
+  double pd2 = 0.0;                   // the squared depth, SPEC §8 contract
+  std::optional<DirectionLabel> dir;  // the minimising direction; none when pd2 == 0 and
+                                      // for pdd2_accel (SPEC §6 prints no label for it)
+  DepthStatus status = DepthStatus::Ok;
+};
+
+// A, B: the tetrahedra's vertices s0..s3 and r0..r3 (any orientation). Same values and labels
+// as the fields of solve_pair's record of the same name.
+Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², SPEC §4
+Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, SPEC §5
+Depth pdd2(const TetVertices& A, const TetVertices& B);          // PD_d², case 2 (eq. 3, 10)
+Depth pdd2_relaxed(const TetVertices& A, const TetVertices& B);  // case 2, inequalities only
+// The paper's acceleration: case 2 on the k shallowest candidates; k = 1 or 6 (pdd2_accel1,
+// pdd2_accel6), any other k is DepthStatus::Rejected.
+Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
+
+}  // namespace pdd::fast
+
+namespace pdd::reference {
+
+// Every SPEC §6 quantity of one pair, exactly: each input double is taken as the rational it
+// denotes and every value is an exact rational; labels are the first minimising candidate in
+// the canonical order of SPEC §3; q1 are exact rationals attaining pdd2.
+//   formulation  of the per-direction QP (pdd/qp_formulation.h): both give the same result;
+//                Reduced is faster, Full solves the paper's own variables.
+// Returns the record; `error` set when the pair is rejected (SPEC §1).
+PairResult<Rational> solve_pair(const TetPair& pair,
+                                QpFormulation formulation = QpFormulation::Reduced);
+
+}  // namespace pdd::reference
