@@ -8,12 +8,12 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   build-essential cmake pkg-config
   libcgal-dev libgmp-dev libmpfr-dev      # exact engine: CGAL kernels, hull, QP solver; GMP
-  libeigen3-dev                           # fast engine
+  libeigen3-dev                           # tests of the fast engine (dense QP check)
   libtbb-dev                              # parallel batches
   nlohmann-json3-dev libcli11-dev         # JSON fixtures and output; command-line parsing
   libboost-test-dev                       # unit tests
-  libbenchmark-dev                        # pdd bench
   libfcl-dev libccd-dev                   # rigid-PD peers in pdd bench
+  clang-14 libclang-rt-14-dev             # second compiler (sanitized build in CI), libFuzzer
   gnuplot-nox                             # pictures of pdd paper
 )
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -26,5 +27,37 @@ struct PairResult {
   std::optional<DirectionLabel> rigid_dir, pdd2_static_dir, pdd2_dir, pdd2_relaxed_dir;
   Positions<R> q1_A{}, q1_B{};  // case-2 deformed positions attaining pdd2
 };
+
+// The record's values and labels by name, in SPEC §6 order, for code that treats them alike
+// (comparisons, tables, bindings): record_value(r, k) is the field named kValueKeys[k],
+// record_label(r, k) the one named kLabelKeys[k]; kLabelOfValue[k] is the label of value k
+// (-1: it has none).
+inline constexpr std::size_t kValueCount = 7, kLabelCount = 4;
+inline constexpr std::array<const char*, kValueCount> kValueKeys = {
+    "rigid_pd2", "eq11_pd2", "pdd2_static", "pdd2", "pdd2_relaxed", "pdd2_accel1", "pdd2_accel6"};
+inline constexpr std::array<const char*, kLabelCount> kLabelKeys = {
+    "rigid_dir", "pdd2_static_dir", "pdd2_dir", "pdd2_relaxed_dir"};
+inline constexpr std::array<int, kValueCount> kLabelOfValue = {0, -1, 1, 2, 3, -1, -1};
+
+template <class R>
+R& record_value(PairResult<R>& r, std::size_t k) {
+  R* const f[kValueCount] = {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2,
+                             &r.pdd2_relaxed, &r.pdd2_accel1, &r.pdd2_accel6};
+  return *f[k];
+}
+template <class R>
+const R& record_value(const PairResult<R>& r, std::size_t k) {
+  return record_value(const_cast<PairResult<R>&>(r), k);
+}
+template <class R>
+std::optional<DirectionLabel>& record_label(PairResult<R>& r, std::size_t k) {
+  std::optional<DirectionLabel>* const f[kLabelCount] = {&r.rigid_dir, &r.pdd2_static_dir,
+                                                         &r.pdd2_dir, &r.pdd2_relaxed_dir};
+  return *f[k];
+}
+template <class R>
+const std::optional<DirectionLabel>& record_label(const PairResult<R>& r, std::size_t k) {
+  return record_label(const_cast<PairResult<R>&>(r), k);
+}
 
 }  // namespace pdd

@@ -143,7 +143,7 @@ EdgeAudit edge_audit(const TetPair& pair) {
   }
   out.intersecting = minkowski_pd(p).intersecting;
   if (!out.intersecting) return out;
-  const auto rows = candidate_table(p, cands, {QpFormulation::Reduced, true});
+  const auto rows = candidate_table(p, cands, {QpFormulation::Reduced});
   const Minima m = minima(rows);
   audit_orientation_rule(p, rows, m, out);
   audit_colinear(p, m, out);

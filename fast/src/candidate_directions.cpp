@@ -14,9 +14,9 @@ namespace {
 
 using namespace detail;
 
-int orientation(const TetVertices& T, double det, double bound3) {
-  if (det > bound3) return 1;
-  if (det < -bound3) return -1;
+Sign orientation(const TetVertices& T, double det, double bound3) {
+  if (det > bound3) return Sign::Positive;
+  if (det < -bound3) return Sign::Negative;
   return orientation_sign_exact(T);
 }
 
@@ -49,7 +49,7 @@ struct Builder {
   bool depth_positive(int k, double bound) {
     if (out.depth[k] > bound) return true;
     if (out.depth[k] < -bound) return false;
-    return depth_sign_exact(A, B, label(out, k)) > 0;
+    return depth_sign_exact(A, B, label(out, k)) == Sign::Positive;
   }
 
   // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
@@ -168,9 +168,9 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   Precomputed p;
   precompute(A, B, p);
   p.oA = orientation(A, p.detA, fb.deg3);
-  if (p.oA == 0) return BuildStatus::DegenerateA;
+  if (p.oA == Sign::Zero) return BuildStatus::DegenerateA;
   p.oB = orientation(B, p.detB, fb.deg3);
-  if (p.oB == 0) return BuildStatus::DegenerateB;
+  if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
   out.intersecting = Builder{A, B, fb, p, out}.run();
   return BuildStatus::Ok;
 }

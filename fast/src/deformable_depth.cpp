@@ -228,7 +228,6 @@ Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
   return sweep(q, kDeformableBoundCoeff, hint, relaxed_valued);
 }
 
-int accel_order(const CandidateSet& set, int k, int* out) { return accel_order_of(set, k, out); }
 Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
 Choice pdd2_accel(const QuickCandidates& q, int k) { return accel_of(q, k); }
 

@@ -57,10 +57,6 @@ Choice pdd2(const QuickCandidates& q, int hint = -1);
 Choice pdd2_relaxed(const QuickCandidates& q, int hint = -1);
 Choice pdd2_accel(const QuickCandidates& q, int k);
 
-// The first k candidate indices in ascending delta order, stable in canonical order (ties by
-// tie_tolerance.h). Writes min(k, set.count) indices to `out`; returns that count.
-int accel_order(const CandidateSet& set, int k, int* out);
-
 // Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);

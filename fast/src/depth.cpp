@@ -13,7 +13,7 @@
 namespace pdd::fast {
 namespace {
 
-bool rejected(const TetVertices& T) { return !detail::all_finite(T) || orientation_sign_exact(T) == 0; }
+bool rejected(const TetVertices& T) { return !detail::all_finite(T) || orientation_sign_exact(T) == Sign::Zero; }
 
 Depth depth_of(const Choice& ch, const TetVertices& A, const TetVertices& B, bool labelled) {
   Depth d;

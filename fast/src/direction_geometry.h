@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "candidate_directions.h"
+#include "pdd/sign.h"
 
 namespace pdd::fast::detail {
 
@@ -51,7 +52,7 @@ struct Precomputed {
   V3 NA[4], NB[4];    // raw face normals
   V3 d[4][4];         // d[i][j] = r_j − s_i
   double detA, detB;  // det[x1 − x0, x2 − x0, x3 − x0]
-  int oA, oB;         // exact signs of detA, detB
+  Sign oA, oB;        // exact signs of detA, detB
   double GA[6][4];    // eB[b] . NA[f]
   double QB[6][4];    // eA[a] . NB[f]
   // lane-ordered copies (b = 0..7, padding 0) for the vectorised edge lanes
@@ -106,7 +107,7 @@ struct Draft {
 // FV:i — n = sigma NA_i outward. n.(s_i − s_v0) = (−1)^(i+1) detA (permutation (v0,v1,v2,i)),
 // so sigma = oA (−1)^i makes it −|detA| < 0.
 inline void face_of_A(const Precomputed& p, int i, Draft& c) {
-  const double s = ((i & 1) ? -1.0 : 1.0) * p.oA;
+  const double s = ((i & 1) ? -1.0 : 1.0) * to_int(p.oA);
   const int v0 = kFace[i][0];
   for (int k = 0; k < 3; ++k) c.n[k] = s * p.NA[i][k];
   for (int k = 0; k < 4; ++k) c.hA[k] = 0.0;
@@ -118,7 +119,7 @@ inline void face_of_A(const Precomputed& p, int i, Draft& c) {
 
 // VF:j — n = tau NB_j into B: n.(r_j − r_v0) = tau (−1)^(j+1) detB > 0 for tau = oB (−1)^(j+1).
 inline void face_of_B(const Precomputed& p, int j, Draft& c) {
-  const double s = ((j & 1) ? 1.0 : -1.0) * p.oB;
+  const double s = ((j & 1) ? 1.0 : -1.0) * to_int(p.oB);
   const int v0 = kFace[j][0];
   for (int k = 0; k < 3; ++k) c.n[k] = s * p.NB[j][k];
   for (int k = 0; k < 4; ++k) c.hB[k] = 0.0;

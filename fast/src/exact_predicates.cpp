@@ -26,17 +26,8 @@ std::array<QV, 4> qtet(const TetVertices& T) {
   return {qv(T[0]), qv(T[1]), qv(T[2]), qv(T[3])};
 }
 
-// Face opposite vertex f, vertices in increasing index order (SPEC §3 item 1).
-std::array<int, 3> face(int f) {
-  std::array<int, 3> v{};
-  int k = 0;
-  for (int i = 0; i < 4; ++i)
-    if (i != f) v[k++] = i;
-  return v;
-}
-
 QV raw_face_normal(const std::array<QV, 4>& T, int f) {
-  auto v = face(f);
+  const auto& v = kFace[f];
   return cross(sub(T[v[1]], T[v[0]]), sub(T[v[2]], T[v[0]]));
 }
 
@@ -70,9 +61,9 @@ EdgePairSide side_rule(const std::array<QV, 4>& A, const QV& n, int a) {
 
 }  // namespace
 
-int orientation_sign_exact(const TetVertices& T) {
+Sign orientation_sign_exact(const TetVertices& T) {
   auto q = qtet(T);
-  return sgn(dot(cross(sub(q[1], q[0]), sub(q[2], q[0])), sub(q[3], q[0])));
+  return sign_of(sgn(dot(cross(sub(q[1], q[0]), sub(q[2], q[0])), sub(q[3], q[0]))));
 }
 
 EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& B, int a, int b) {
@@ -83,15 +74,15 @@ EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& 
   return c;
 }
 
-int depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
+Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
   auto qa = qtet(A), qb = qtet(B);
   QV n;
   if (label.kind == ContactKind::FV) {
     n = raw_face_normal(qa, label.a);
-    if (sgn(dot(n, sub(qa[label.a], qa[face(label.a)[0]]))) > 0) n = scale(Q(-1), n);
+    if (sgn(dot(n, sub(qa[label.a], qa[kFace[label.a][0]]))) > 0) n = scale(Q(-1), n);
   } else if (label.kind == ContactKind::VF) {
     n = raw_face_normal(qb, label.a);
-    if (sgn(dot(n, sub(qb[label.a], qb[face(label.a)[0]]))) < 0) n = scale(Q(-1), n);
+    if (sgn(dot(n, sub(qb[label.a], qb[kFace[label.a][0]]))) < 0) n = scale(Q(-1), n);
   } else {
     EdgePairKind kind;
     n = edge_pair_normal(qa, qb, label.a, label.b, &kind);
@@ -106,7 +97,7 @@ int depth_sign_exact(const TetVertices& A, const TetVertices& B, const Direction
     if (ha > hi) hi = ha;
     if (hb < lo) lo = hb;
   }
-  return sgn(Q(hi - lo));
+  return sign_of(sgn(Q(hi - lo)));
 }
 
 }  // namespace pdd::fast

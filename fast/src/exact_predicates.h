@@ -7,12 +7,14 @@
 #pragma once
 
 #include "pdd/direction_label.h"
+#include "pdd/sign.h"
+#include "pdd/tet_tables.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast {
 
-// sign of det[t1 − t0, t2 − t0, t3 − t0] (6 × signed volume): −1, 0, +1.
-int orientation_sign_exact(const TetVertices& T);
+// sign of det[t1 − t0, t2 − t0, t3 − t0] (6 × signed volume).
+Sign orientation_sign_exact(const TetVertices& T);
 
 // Classification of the edge pair EE:a:b by SPEC §3, decided exactly.
 enum class EdgePairSide { Keep, Flip, Undecidable };  // orientation rule on g_k
@@ -24,6 +26,6 @@ EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& 
 
 // sign of max_i n.s_i − min_j n.r_j for the exact oriented candidate n of `label` (SPEC §3–4).
 // Precondition: the label is a candidate of the pair (not a colinear edge pair).
-int depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
+Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
 
 }  // namespace pdd::fast

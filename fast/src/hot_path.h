@@ -19,8 +19,8 @@ namespace pdd::fast::detail {
 // certified... but exact) for a non-intersecting or invalid pair, NaN when not representable.
 template <class Pick>
 Choice exact_choice(const TetVertices& A, const TetVertices& B, Pick pick) {
-  if (!all_finite(A) || !all_finite(B) || orientation_sign_exact(A) == 0 ||
-      orientation_sign_exact(B) == 0)
+  if (!all_finite(A) || !all_finite(B) || orientation_sign_exact(A) == Sign::Zero ||
+      orientation_sign_exact(B) == Sign::Zero)
     return {};
   const ExactPathResult e = solve_pair_exact_path(A, B);
   Choice ch;

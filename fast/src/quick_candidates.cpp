@@ -1,5 +1,5 @@
 // quick_candidates.cpp — the hot path's candidate list (no labels emitted, no exact
-// fallback: it declines instead). See pdd/fast/quick_candidates.h.
+// fallback: it declines instead). See quick_candidates.h.
 #include "quick_candidates.h"
 
 #include <cmath>
@@ -46,7 +46,7 @@ void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
 // The arithmetic is the superset kernel's (superset_kernel.h), which also writes the lanes.
 bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
   q.count = 0;
-  Kernel K;
+  SupersetLanes K;
   superset_kernel(A, B, K, &q.edges);
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);

@@ -25,7 +25,7 @@ namespace {
 // SPEC §1 with the shared wording (pdd/rejection.h); flatness decided exactly here.
 std::optional<std::string> rejection_of(const TetVertices& T, char which) {
   if (auto reason = non_finite_reason(T, which)) return reason;
-  if (orientation_sign_exact(T) == 0) return flat_reason(which);
+  if (orientation_sign_exact(T) == Sign::Zero) return flat_reason(which);
   return std::nullopt;
 }
 std::optional<std::string> rejection_of(const TetPair& p) {

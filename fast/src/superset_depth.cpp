@@ -31,7 +31,7 @@ struct Near {
 
 // Entries with value <= t2 that are real candidates, in canonical order; false when an
 // orientation decision is unclear (filter) — then the caller declines.
-bool near_candidates(const Kernel& K, const FilterBounds& fb, Near* out, int& count) {
+bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, int& count) {
   const double t2 = K.t2;
   count = 0;
   for (unsigned bits = K.face_bits; bits; bits &= bits - 1) {
@@ -68,7 +68,7 @@ bool near_candidates(const Kernel& K, const FilterBounds& fb, Near* out, int& co
 }
 
 // The chosen edge-pair candidate, as lane_candidate builds it from the lanes.
-void lane_geometry(const TetVertices& A, const TetVertices& B, const Kernel& K, const Near& c,
+void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLanes& K, const Near& c,
                    Candidate& g) {
   const int a = c.lane / kLaneStride, b = c.lane % kLaneStride;
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
@@ -106,7 +106,7 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const Kernel& K, 
 // so the minimum of the entries' certified lower bounds is a lower bound of PD². `unique`: every
 // entry other than the chosen one is certainly above the chosen one's exact value (the exact
 // rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
-void certify(const Kernel& K, const FilterBounds& fb, const Near& c, Choice& ch, bool* unique) {
+void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch, bool* unique) {
   const DegreeBounds db = degree_bounds(fb, false);
   double lo_all = kInf, lo_other = kInf, r_pick = kInf;
   auto entry = [&](double v, double D, double nn, bool picked) {
@@ -141,7 +141,7 @@ void certify(const Kernel& K, const FilterBounds& fb, const Near& c, Choice& ch,
 
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
                     bool* unique) {
-  Kernel K;
+  SupersetLanes K;
   superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);

@@ -1,5 +1,5 @@
 // superset_kernel.cpp — the vectorised superset arithmetic (superset_kernel.h); the proof that
-// the superset gives PD is in pdd/fast/superset_depth.h.
+// the superset gives PD is in superset_depth.h.
 //
 // Layout: 8-wide vectors (GCC vector extensions; one zmm with AVX-512, two ymm with AVX2, four
 // xmm otherwise — clones chosen at run time). Coordinates as structure of arrays (lanes s0..s3,
@@ -21,11 +21,8 @@
 // The AVX-512 clone of the rigid kernel has ≈ 470 vector FP instructions (149 mul, 72 add,
 // 75 sub, 7 div, ≈ 170 min/max/compare/blend) and ≈ 95 permutes, all issued on the two 512-bit
 // ports (p0, p5): >= 285 cycles, i.e. >= 125 ns at the nominal 2.3 GHz, ≈ 95 ns at 3 GHz.
-// Measured on this 2-core Xeon (Sapphire Rapids class, no PMU in the VM): rigid_pd2 ≈ 150-165
-// ns per pair, of which perf attributes ~3/4 (≈ 115 ns) to the kernel; the rest is the scalar
-// tie-band scan (usually one entry) and the call. So the kernel runs at the ports' throughput
-// (the core must clock ≈ 2.5 GHz), ≈ 16 useful flops per ns; the remaining lever would be the
-// 2 padding lanes of 8 (25 %).
+// So at the two ports' throughput the kernel takes ≈ 100-125 ns a pair; `pdd bench` measures
+// the whole call on the machine at hand (one machine's numbers live in issue notes, not here).
 #include "superset_kernel.h"
 
 #include "lane_shuffle.h"
@@ -66,7 +63,10 @@ PDD_INLINE v8 vmin(v8 a, v8 b) { return a < b ? a : b; }  // min2 lane-wise
 
 PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// Run-time dispatch on x86-64 (GCC 12 and clang >= 14 both have target_clones; ifunc, glibc).
+// The clones compute the same IEEE operations (no FMA: -ffp-contract=off), so results do not
+// depend on the machine.
+#if defined(__x86_64__) && (!defined(__clang__) || __clang_major__ >= 14)
 #define PDD_SUPERSET_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define PDD_SUPERSET_CLONES
@@ -106,7 +106,6 @@ PDD_INLINE v8 load8(const double* x) {
   __builtin_memcpy(&v, x, sizeof v);
   return v;
 }
-PDD_INLINE v8 splat(v8 v, int i) { return perm(v, v8l{i, i, i, i, i, i, i, i}); }
 PDD_INLINE void cross8(const v8* a, const v8* b, v8* o) {  // detail::cross, lane-wise
   o[0] = a[1] * b[2] - a[2] * b[1];
   o[1] = a[2] * b[0] - a[0] * b[2];
@@ -123,7 +122,7 @@ PDD_INLINE void soa_coordinates(const TetVertices& A, const TetVertices& B, v8* 
 
 // Extent L (filter_bounds.h), kappa = kTieCoeff u R (tie_tolerance.h, R = max |coordinate|)
 // and finiteness (x·0 is NaN for inf and NaN).
-PDD_INLINE void pair_scales(const v8* X, Kernel& K) {
+PDD_INLINE void pair_scales(const v8* X, SupersetLanes& K) {
   K.extent = max2(hmax(X[0]) - hmin(X[0]), max2(hmax(X[1]) - hmin(X[1]), hmax(X[2]) - hmin(X[2])));
   const double R = hmax(vmax(vmax(vabs(X[0]), vabs(X[1])), vabs(X[2])));
   K.kappa = kTieCoeff * kUnitRoundoff * R;
@@ -132,7 +131,7 @@ PDD_INLINE void pair_scales(const v8* X, Kernel& K) {
 
 // Edges EA, EB (and r_x of B's edges), face normals NAB = (v1 − v0) × (v2 − v0) and
 // det = N_3 . (x3 − x0): the arithmetic of edges_and_faces, lane-wise.
-PDD_INLINE void edges_and_normals(const v8* X, Kernel& K, v8* RX) {
+PDD_INLINE void edges_and_normals(const v8* X, SupersetLanes& K, v8* RX) {
   v8 U[3], V[3], T[3];
   for (int k = 0; k < 3; ++k) {
     K.EA[k] = perm(X[k], kEdgeV) - perm(X[k], kEdgeU);
@@ -151,7 +150,7 @@ PDD_INLINE void edges_and_normals(const v8* X, Kernel& K, v8* RX) {
 // D_f = max_j H_j (FV: −min_j s N.(r_j − s_v0); VF: max_i −s N.(r_v0 − s_i), see face_of_A /
 // face_of_B; sigma = −s, exact; o = orientation sign of the tetrahedron); value D²/(n.n).
 // Returns D.
-PDD_INLINE v8 face_values(const v8* X, Kernel& K) {
+PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K) {
   const v8 o = perm(K.det, kDet3) > 0.0 ? bc(1.0) : bc(-1.0);
   const v8 sig = o * v8{-1, 1, -1, 1, 1, -1, 1, -1};
   v8 N[3];
@@ -172,7 +171,7 @@ PDD_INLINE v8 face_values(const v8* X, Kernel& K) {
 // the lane's value min(D(±n))²/(n.n) (padding +inf); running minima of D and of the value.
 // kFull: also the candidate list's lanes (superset_kernel.h), verdicts by finish_lanes.
 template <bool kFull>
-PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, EdgeLanes* full,
+PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLanes& K, EdgeLanes* full,
                                  v8& lo, v8& best) {
   const v8 zero = bc(0.0);
   const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
@@ -181,14 +180,15 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, 
   const v8 neg_hi = {1, 1, 1, 1, -1, -1, -1, -1};
   for (int k = 0; k < 3; ++k) NB2[k] = perm(K.NAB[k], kNB2) * neg_hi;
   // Scalars of EA and NAB are broadcast from memory (load ports) rather than permuted: the
-  // barrier makes the compiler read them back from K.
+  // barrier makes the compiler read them back from K. An empty GNU asm statement (GCC and
+  // clang, any target): it emits no instruction and changes no value, only the schedule.
   asm volatile("" : : "m"(K.EA), "m"(K.NAB) : "memory");
   for (int f = 0; f < 4; ++f)
     K.G[f] = EB[0] * K.NAB[0][f] + EB[1] * K.NAB[1][f] + EB[2] * K.NAB[2][f];
   v8 W[3][3];  // W[u] = r_x(b) − s_u, u = 0, 1, 2 (the first vertex of every edge of A)
   for (int u = 0; u < 3; ++u)
     for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - A[u][k];
-#pragma GCC unroll 6
+#pragma GCC unroll 6  // clang reads it as its own unroll pragma
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
     const double ax = K.EA[0][a], ay = K.EA[1][a], az = K.EA[2][a];
@@ -236,7 +236,7 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, Kernel& K, 
 // lane_bits. One square root: with q = sqrt(vmin), t1 = vmin + kappa q and sqrt(t1) <=
 // q + kappa/2, so tie_threshold(t1) <= t1 + kappa (q + kappa/2); the extra kappa q + kappa²/2
 // covers the rounding of both thresholds (kappa q >= 128 u R PD >= 4 u t1, as PD <= 4R).
-PDD_INLINE void tie_masks(Kernel& K) {
+PDD_INLINE void tie_masks(SupersetLanes& K) {
   const double b = K.vmin, kappa = K.kappa;
   const double q = std::sqrt(b);
   K.t1 = b + kappa * q;  // = tie_threshold(b, kappa)
@@ -252,7 +252,7 @@ PDD_INLINE void tie_masks(Kernel& K) {
 // The whole kernel. kFull: also the candidate list's lanes. A template, so that the rigid
 // kernel carries no trace of the extra stores (registers, code size).
 template <bool kFull>
-PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& K,
+PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, SupersetLanes& K,
                             EdgeLanes* full) {
   v8 X[3], RX[3];
   soa_coordinates(A, B, X);
@@ -269,24 +269,24 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Kernel& 
   tie_masks(K);
 }
 
-PDD_SUPERSET_CLONES void kernel_rigid(const TetVertices& A, const TetVertices& B, Kernel& K) {
+PDD_SUPERSET_CLONES void kernel_rigid(const TetVertices& A, const TetVertices& B, SupersetLanes& K) {
   kernel_body<false>(A, B, K, nullptr);
 }
-PDD_SUPERSET_CLONES void kernel_full(const TetVertices& A, const TetVertices& B, Kernel& K,
+PDD_SUPERSET_CLONES void kernel_full(const TetVertices& A, const TetVertices& B, SupersetLanes& K,
                                      EdgeLanes* full) {
   kernel_body<true>(A, B, K, full);
 }
 
 }  // namespace
 
-void superset_kernel(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full) {
+void superset_kernel(const TetVertices& A, const TetVertices& B, SupersetLanes& K, EdgeLanes* full) {
   if (full)
     kernel_full(A, B, K, full);
   else
     kernel_rigid(A, B, K);
 }
 
-void face_draft(const Kernel& K, int f, Draft& d) {
+void face_draft(const SupersetLanes& K, int f, Draft& d) {
   const int t = f < 4 ? 3 : 7;  // lane of the tetrahedron's det
   const int o = K.det[t] > 0 ? 1 : -1;
   const double det = std::fabs(K.det[t]);

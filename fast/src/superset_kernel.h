@@ -4,7 +4,7 @@
 // the candidate list (EdgeLanes, with filter verdicts) for quick_candidates.
 //
 // Input:  tetrahedra A, B (raw doubles).
-// Output: Kernel (below). All values bit-identical to direction_geometry's arithmetic (same
+// Output: SupersetLanes (below). All values bit-identical to direction_geometry's arithmetic (same
 //         IEEE operations in the same order); arithmetic and flop count in superset_kernel.cpp.
 //         Non-finite input: garbage values and `finite` != 0; callers check `finite` first.
 #pragma once
@@ -38,7 +38,7 @@ inline constexpr OffEdgeTable kOff = make_off_edge();
 
 
 // Output of the vector kernel (lanes: see superset_kernel.cpp).
-struct alignas(64) Kernel {
+struct alignas(64) SupersetLanes {
   v8 EA[3], EB[3];  // edge vectors of A and of B, lanes = edges (padding 0), per coordinate
   v8 NAB[3];        // raw face normals, lanes NA[0..3], NB[0..3], per coordinate
   v8 det;           // lanes 3 and 7: det of A and of B (edges_and_faces)
@@ -60,10 +60,10 @@ struct alignas(64) Kernel {
 
 // Fills K. When `full` is non-null, also every field of the candidate list's edge lanes
 // (EdgeLanes), filter verdicts included (bounds of filter_bounds.h for K.extent).
-void superset_kernel(const TetVertices& A, const TetVertices& B, Kernel& K, EdgeLanes* full);
+void superset_kernel(const TetVertices& A, const TetVertices& B, SupersetLanes& K, EdgeLanes* full);
 
 // Face f (FV:f for f < 4, VF:(f − 4) otherwise) as face_of_A / face_of_B write it, from the
 // kernel's normals, determinants and heights; finish_face then gives the candidate.
-void face_draft(const Kernel& K, int f, Draft& d);
+void face_draft(const SupersetLanes& K, int f, Draft& d);
 
 }  // namespace pdd::fast::detail

@@ -68,7 +68,7 @@ void add_edge_pair(const ExactPair& p, int a, int b, std::vector<CandidateDirect
 
 std::vector<CandidateDirection> candidate_directions(const ExactPair& p) {
   std::vector<CandidateDirection> out;
-  out.reserve(52);
+  out.reserve(8 + 2 * 36);  // 8 faces, at most two orientations of each of the 36 edge pairs
   for (int i = 0; i < 4; ++i)
     out.push_back(face_candidate(DirectionLabel::fv(i), outward_face_normal(p.A, i), i, true));
   for (int j = 0; j < 4; ++j)  // into B = against B's outward normal

@@ -15,16 +15,14 @@ std::vector<CandidateRow> candidate_table(const ExactPair& pair,
   rows.reserve(candidates.size());
   for (const CandidateDirection& dir : candidates) {
     CandidateRow row{dir, oriented_depth_signed_square(pair, dir.n), std::nullopt, {}, {}};
-    if (options.solve_qps) {
-      const QpFormulation f = options.formulation;
-      row.static_case = direction_qp(pair, dir, PddCase::Static, f);
-      auto deformable = direction_qp(pair, dir, PddCase::Deformable, f);
-      auto relaxed = direction_qp(pair, dir, PddCase::Relaxed, f);
-      if (!deformable || !relaxed)  // case 2 is always feasible: move everything onto a plane
-        throw std::logic_error("candidate_table: case-2 QP infeasible on " + dir.label.str());
-      row.deformable = std::move(*deformable);
-      row.relaxed = std::move(*relaxed);
-    }
+    const QpFormulation f = options.formulation;
+    row.static_case = direction_qp(pair, dir, PddCase::Static, f);
+    auto deformable = direction_qp(pair, dir, PddCase::Deformable, f);
+    auto relaxed = direction_qp(pair, dir, PddCase::Relaxed, f);
+    if (!deformable || !relaxed)  // case 2 is always feasible: move everything onto a plane
+      throw std::logic_error("candidate_table: case-2 QP infeasible on " + dir.label.str());
+    row.deformable = std::move(*deformable);
+    row.relaxed = std::move(*relaxed);
     rows.push_back(std::move(row));
   }
   return rows;

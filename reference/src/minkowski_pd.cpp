@@ -50,10 +50,7 @@ MinkowskiPd minkowski_pd(const ExactPair& pair) {
   for (std::size_t k = 0; k < out.facets.size(); ++k) {
     const MinkowskiFacet& f = out.facets[k];
     const Rational d2 = f.offset * f.offset / f.outward_normal.squared_length();
-    if (k == 0 || d2 < out.pd2) {
-      out.pd2 = d2;
-      out.closest_facet = k;
-    }
+    if (k == 0 || d2 < out.pd2) out.pd2 = d2;
   }
   return out;
 }

@@ -77,7 +77,7 @@ ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
   if (!mink.intersecting) return out;  // SPEC §6: every value 0, labels null, rest pose
 
   const auto candidates = candidate_directions(exact);
-  const auto rows = candidate_table(exact, candidates, {options.formulation, true});
+  const auto rows = candidate_table(exact, candidates, {options.formulation});
   fill_intersecting(exact, candidates, rows, mink, out);
   return out;
 }

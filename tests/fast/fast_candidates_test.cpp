@@ -40,7 +40,7 @@ void check_against_exact(const TetPair& p, const CandidateSet& set, bool check_d
   BOOST_TEST(idx == set.count);
   if (!check_depths) return;
   for (int k = 0; k < set.count; ++k)
-    BOOST_TEST(depth_sign_exact(p.A, p.B, label(set, k)) == (set.depth[k] > 0 ? 1 : -1));
+    BOOST_TEST((depth_sign_exact(p.A, p.B, label(set, k)) == (set.depth[k] > 0 ? Sign::Positive : Sign::Negative)));
 }
 
 }  // namespace
@@ -121,7 +121,7 @@ BOOST_AUTO_TEST_CASE(degenerate_and_nearly_degenerate) {
   BOOST_TEST((build_candidates(good, flat, set) == BuildStatus::DegenerateB));
   BOOST_TEST((build_candidates(dyadic_flat, good, set) == BuildStatus::DegenerateA));
   BOOST_TEST((build_candidates(almost, good, set) == BuildStatus::Ok));
-  BOOST_TEST(orientation_sign_exact(almost) != 0);
+  BOOST_TEST((orientation_sign_exact(almost) != Sign::Zero));
 }
 
 // quick_candidates (the hot-path list, built by the superset kernel) must reproduce

@@ -23,10 +23,9 @@ struct CandidateRow {
   DirectionOptimum relaxed;                     // case 2, inequalities only
 };
 
-// Which case QPs to solve; the geometry columns are always filled.
+// The formulation of the case QPs (every row has all three solved).
 struct CandidateTableOptions {
   QpFormulation formulation = QpFormulation::Full;
-  bool solve_qps = true;
 };
 
 std::vector<CandidateRow> candidate_table(const ExactPair& pair,

@@ -24,7 +24,6 @@ struct MinkowskiPd {
   Rational pd2;               // 0 when not intersecting
   std::vector<MinkowskiFacet> facets;  // triangulated hull facets
   std::vector<Point> vertices;         // the hull's vertices (extreme differences)
-  std::size_t closest_facet = 0;       // a facet attaining pd2 (first in hull order)
 };
 
 // The 16 points s_i - r_j, i-major.
