@@ -69,7 +69,7 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
   lane_tables(p);
 }
 
-#if defined(__x86_64__) && (!defined(__clang__) || __clang_major__ >= 14)  // as superset_kernel.cpp
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)  // as superset_kernel.cpp
 #define PDD_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define PDD_VECTOR_CLONES

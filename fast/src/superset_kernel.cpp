@@ -63,10 +63,11 @@ PDD_INLINE v8 vmin(v8 a, v8 b) { return a < b ? a : b; }  // min2 lane-wise
 
 PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
-// Run-time dispatch on x86-64 (GCC 12 and clang >= 14 both have target_clones; ifunc, glibc).
-// The clones compute the same IEEE operations (no FMA: -ffp-contract=off), so results do not
-// depend on the machine.
-#if defined(__x86_64__) && (!defined(__clang__) || __clang_major__ >= 14)
+// Run-time dispatch on x86-64 with GCC (ifunc, glibc). The clones compute the same IEEE
+// operations (no FMA: -ffp-contract=off), so results do not depend on the machine. Not with
+// clang 14: its target_clones here ran AVX-512 code on a machine without it (SIGILL in
+// tests/fast), so clang builds get the baseline x86-64 code of the kernel.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PDD_SUPERSET_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define PDD_SUPERSET_CLONES
