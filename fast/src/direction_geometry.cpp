@@ -1,6 +1,8 @@
 // direction_geometry.cpp — precomputation and vectorised edge-pair lanes. See the header.
 #include "direction_geometry.h"
 
+#include "edge_pair_formula.h"
+
 #include <limits>
 
 namespace pdd::fast::detail {
@@ -16,23 +18,6 @@ void edges_and_faces(const TetVertices& T, V3* e, V3* N, double* det) {
 }
 
 namespace {
-
-// For lane b and its m-th vertex j off edge b = (x, y): −eps(x,y,j) and the face f' = 6−x−y−j,
-// so that n.(r_j − r_x) = −eA.((r_y − r_x) × (r_j − r_x)) = −eps(x,y,j) eA.NB_f'.
-struct OffEdge {
-  int sign[6][2], face[6][2];
-};
-constexpr OffEdge make_off_edge() {
-  OffEdge t{};
-  for (int b = 0; b < 6; ++b)
-    for (int m = 0; m < 2; ++m) {
-      const int x = kEdges[b][0], y = kEdges[b][1], j = kOffEdge[b][m];
-      t.sign[b][m] = -parity(x, y, j);
-      t.face[b][m] = 6 - x - y - j;
-    }
-  return t;
-}
-constexpr OffEdge kOffFace = make_off_edge();
 
 void lane_tables(Precomputed& p) {
   for (int b = 0; b < kLaneStride; ++b) {  // padding lanes 6, 7: zeros, never read
@@ -50,7 +35,7 @@ void lane_tables(Precomputed& p) {
       for (int k = 0; k < 3; ++k) p.W[u][k][b] = p.d[u][kEdges[b][0]][k];
     for (int f = 0; f < 4; ++f) p.G[f][b] = p.GA[b][f];
     for (int a = 0; a < 6; ++a)
-      for (int m = 0; m < 2; ++m) p.Q[a][m][b] = kOffFace.sign[b][m] * p.QB[a][kOffFace.face[b][m]];
+      for (int m = 0; m < 2; ++m) p.Q[a][m][b] = off_sign_B(b, m) * p.QB[a][kOffFaces.face[b][m]];
   }
 }
 
@@ -82,24 +67,22 @@ void precompute(const TetVertices& A, const TetVertices& B, Precomputed& p) {
 PDD_VECTOR_CLONES void edge_lanes(const Precomputed& __restrict p, double e2, double e3,
                                   EdgeLanes& __restrict L) {
   for (int a = 0; a < 6; ++a) {
-    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
+    const int u = kEdges[a][0];
     const double ax = p.eA[a][0], ay = p.eA[a][1], az = p.eA[a][2];
-    const double s1 = parity(u, v, k1), s2 = parity(u, v, k2);
-    const double* G1 = p.G[6 - u - v - k1];
-    const double* G2 = p.G[6 - u - v - k2];
+    const double s1 = kOffFaces.eps[a][0], s2 = kOffFaces.eps[a][1];
+    const double* G1 = p.G[kOffFaces.face[a][0]];
+    const double* G2 = p.G[kOffFaces.face[a][1]];
     const double* Q1 = p.Q[a][0];
     const double* Q2 = p.Q[a][1];
     const double *wx = p.W[u][0], *wy = p.W[u][1], *wz = p.W[u][2];
     const int o = kLaneStride * a;
     for (int b = 0; b < kLaneStride; ++b) {
-      const double m0 = p.eBy[b] * az - p.eBz[b] * ay;
-      const double m1 = p.eBz[b] * ax - p.eBx[b] * az;
-      const double m2 = p.eBx[b] * ay - p.eBy[b] * ax;
-      const double h = m0 * wx[b] + m1 * wy[b] + m2 * wz[b];
+      double m0, m1, m2, dp, dm;
+      edge_pair_normal(ax, ay, az, p.eBx[b], p.eBy[b], p.eBz[b], m0, m1, m2);
+      const double h = edge_pair_dot(m0, m1, m2, wx[b], wy[b], wz[b]);
       const double g1 = s1 * G1[b], g2 = s2 * G2[b], q1 = Q1[b], q2 = Q2[b];
-      const double nn = m0 * m0 + m1 * m1 + m2 * m2;
-      const double dp = max2(0.0, max2(g1, g2)) - h - min2(0.0, min2(q1, q2));
-      const double dm = -min2(0.0, min2(g1, g2)) + h + max2(0.0, max2(q1, q2));
+      const double nn = edge_pair_nn(m0, m1, m2);
+      edge_pair_depths(g1, g2, h, q1, q2, dp, dm);
       // one division per lane (padding lanes: 1/0, never read)
       const double inv = 1.0 / nn, d2p = dp * dp * inv, d2m = dm * dm * inv;
       const LaneVerdict verdict = lane_verdict(m0, m1, m2, g1, g2, dp, dm, d2p, d2m, e2, e3);

@@ -43,15 +43,12 @@ bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, 
   }
   for (std::uint64_t bits = K.lane_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
-    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
-    const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
-    const double eB[3] = {K.EB[0][b], K.EB[1][b], K.EB[2][b]};
-    const double m0 = eB[1] * eA[2] - eB[2] * eA[1];
-    const double m1 = eB[2] * eA[0] - eB[0] * eA[2];
-    const double m2 = eB[0] * eA[1] - eB[1] * eA[0];
+    double m0, m1, m2;
+    edge_pair_normal(K.EA[0][a], K.EA[1][a], K.EA[2][a], K.EB[0][b], K.EB[1][b], K.EB[2][b], m0,
+                     m1, m2);
     const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
-    const double g1 = parity(u, v, k1) * K.G[6 - u - v - k1][b];
-    const double g2 = parity(u, v, k2) * K.G[6 - u - v - k2][b];
+    const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
+    const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
     if (nmax <= fb.deg2 || std::fabs(g1) <= fb.deg3 || std::fabs(g2) <= fb.deg3) return false;
     const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
     const bool flip = pos1 && pos2, undecidable = pos1 != pos2;
@@ -74,23 +71,22 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLan
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
   const int k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
   const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
-  const double eB[3] = {K.EB[0][b], K.EB[1][b], K.EB[2][b]};
-  const double m[3] = {eB[1] * eA[2] - eB[2] * eA[1], eB[2] * eA[0] - eB[0] * eA[2],
-                       eB[0] * eA[1] - eB[1] * eA[0]};
+  double m[3];
+  edge_pair_normal(eA[0], eA[1], eA[2], K.EB[0][b], K.EB[1][b], K.EB[2][b], m[0], m[1], m[2]);
   double w[3];
   sub(B[x], A[u], w);
-  const double h = m[0] * w[0] + m[1] * w[1] + m[2] * w[2];
+  const double h = edge_pair_dot(m[0], m[1], m[2], w[0], w[1], w[2]);
   double q[2];
   for (int j = 0; j < 2; ++j) {
-    const int f = 4 + kOff.face[j][b];
+    const int f = 4 + kOffFaces.face[b][j];
     const double nb[3] = {K.NAB[0][f], K.NAB[1][f], K.NAB[2][f]};
-    q[j] = kOff.sign[j][b] * dot(eA, nb);
+    q[j] = off_sign_B(b, j) * dot(eA, nb);
   }
   const double s = c.sign;
-  const double g1 = parity(u, v, k1) * K.G[6 - u - v - k1][b];
-  const double g2 = parity(u, v, k2) * K.G[6 - u - v - k2][b];
+  const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
+  const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
   for (int k = 0; k < 3; ++k) g.n[k] = s * m[k];
-  g.nn = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+  g.nn = edge_pair_nn(m[0], m[1], m[2]);
   g.depth = s > 0 ? K.dp[a][b] : K.dm[a][b];
   g.hA[u] = g.hA[v] = 0.0;
   g.hA[k1] = s * g1;

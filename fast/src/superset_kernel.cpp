@@ -58,8 +58,6 @@ PDD_INLINE double hsum(v8 v) {
 }
 PDD_INLINE v8 vabs(v8 a) { return a < 0.0 ? -a : a; }
 PDD_INLINE v8 bc(double x) { return v8{x, x, x, x, x, x, x, x}; }
-PDD_INLINE v8 vmax(v8 a, v8 b) { return a > b ? a : b; }  // max2 lane-wise
-PDD_INLINE v8 vmin(v8 a, v8 b) { return a < b ? a : b; }  // min2 lane-wise
 
 PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
@@ -94,7 +92,7 @@ constexpr v8l kFaceS[4] = {{1, 0, 0, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 1, 1, 1, 1},
 constexpr v8l kNB2 = {4, 5, 6, 7, 4, 5, 6, 7};    // NB twice
 // P_m[b] = sign(b, m) NB[face(b, m)] as a lane of {NB, −NB}.
 constexpr long long off_index(int m, int b) {
-  return kOff.face[m][b] + (kOff.sign[m][b] < 0 ? 4 : 0);
+  return kOffFaces.face[b][m] + (off_sign_B(b, m) < 0 ? 4 : 0);
 }
 constexpr v8l make_off_index(int m) {
   return v8l{off_index(m, 0), off_index(m, 1), off_index(m, 2), off_index(m, 3),
@@ -125,7 +123,7 @@ PDD_INLINE void soa_coordinates(const TetVertices& A, const TetVertices& B, v8* 
 // and finiteness (x·0 is NaN for inf and NaN).
 PDD_INLINE void pair_scales(const v8* X, SupersetLanes& K) {
   K.extent = max2(hmax(X[0]) - hmin(X[0]), max2(hmax(X[1]) - hmin(X[1]), hmax(X[2]) - hmin(X[2])));
-  const double R = hmax(vmax(vmax(vabs(X[0]), vabs(X[1])), vabs(X[2])));
+  const double R = hmax(max2(max2(vabs(X[0]), vabs(X[1])), vabs(X[2])));
   K.kappa = kTieCoeff * kUnitRoundoff * R;
   K.finite = hsum(X[0] * 0.0 + X[1] * 0.0 + X[2] * 0.0);
 }
@@ -161,7 +159,7 @@ PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K) {
     v8 d[3];  // FV lanes: r_j − s_v0; VF lanes: r_v0 − s_j
     for (int k = 0; k < 3; ++k) d[k] = perm(X[k], kFaceR[j]) - perm(X[k], kFaceS[j]);
     const v8 h = K.H[j] = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
-    D = j == 0 ? h : vmax(D, h);
+    D = j == 0 ? h : max2(D, h);
   }
   const v8 fnn = N[0] * N[0] + N[1] * N[1] + N[2] * N[2];
   K.face_val = D * D / fnn;
@@ -174,7 +172,6 @@ PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K) {
 template <bool kFull>
 PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLanes& K, EdgeLanes* full,
                                  v8& lo, v8& best) {
-  const v8 zero = bc(0.0);
   const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
   const v8* EB = K.EB;
   v8 NB2[3];  // {NB, −NB} per axis: eA . NB2 = {QB, −QB}, q_m = sign · QB[face] a lane of it
@@ -191,22 +188,20 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLan
     for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - A[u][k];
 #pragma GCC unroll 6  // clang reads it as its own unroll pragma
   for (int a = 0; a < 6; ++a) {
-    const int u = kEdges[a][0], v = kEdges[a][1], k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
+    const int u = kEdges[a][0];
     const double ax = K.EA[0][a], ay = K.EA[1][a], az = K.EA[2][a];
-    const v8 m0 = EB[1] * az - EB[2] * ay;
-    const v8 m1 = EB[2] * ax - EB[0] * az;
-    const v8 m2 = EB[0] * ay - EB[1] * ax;
+    v8 m0, m1, m2, dp, dm;
+    edge_pair_normal(ax, ay, az, EB[0], EB[1], EB[2], m0, m1, m2);
     const v8* w = W[u];
-    const v8 h = m0 * w[0] + m1 * w[1] + m2 * w[2];
-    const v8 g1 = double(parity(u, v, k1)) * K.G[6 - u - v - k1];
-    const v8 g2 = double(parity(u, v, k2)) * K.G[6 - u - v - k2];
+    const v8 h = edge_pair_dot(m0, m1, m2, w[0], w[1], w[2]);
+    const v8 g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]];
+    const v8 g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]];
     const v8 qb = ax * NB2[0] + ay * NB2[1] + az * NB2[2];
     const v8 q1 = perm(qb, kOffIndex[0]), q2 = perm(qb, kOffIndex[1]);
-    const v8 nn = m0 * m0 + m1 * m1 + m2 * m2;
-    const v8 dp = vmax(zero, vmax(g1, g2)) - h - vmin(zero, vmin(q1, q2));
-    const v8 dm = -vmin(zero, vmin(g1, g2)) + h + vmax(zero, vmax(q1, q2));
+    const v8 nn = edge_pair_nn(m0, m1, m2);
+    edge_pair_depths(g1, g2, h, q1, q2, dp, dm);
     const v8 inv = 1.0 / nn;
-    const v8 dd = vmin(dp, dm) + pad;
+    const v8 dd = min2(dp, dm) + pad;
     const v8 val = dd * dd * inv;
     K.dp[a] = dp;
     K.dm[a] = dm;
@@ -228,8 +223,8 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLan
       store8(full->d2plus + o, dp * dp * inv);
       store8(full->d2minus + o, dm * dm * inv);
     }
-    lo = vmin(lo, dd);
-    best = vmin(best, val);
+    lo = min2(lo, dd);
+    best = min2(best, val);
   }
 }
 

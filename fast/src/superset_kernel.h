@@ -12,29 +12,11 @@
 #include <cstdint>
 
 #include "direction_geometry.h"
+#include "edge_pair_formula.h"
 
 namespace pdd::fast::detail {
 
-typedef double v8 __attribute__((vector_size(64)));
-typedef long long v8l __attribute__((vector_size(64)));
-
-// For lane b (edge (x, y) of B) and its m-th vertex j off the edge: the sign and face of
-// n.(r_j − r_x) = sign · eA.NB_face (direction_geometry.cpp, OffEdge).
-struct OffEdgeTable {
-  double sign[2][8];
-  int face[2][8];
-};
-constexpr OffEdgeTable make_off_edge() {
-  OffEdgeTable t{};
-  for (int b = 0; b < 6; ++b)
-    for (int m = 0; m < 2; ++m) {
-      const int x = kEdges[b][0], y = kEdges[b][1], j = kOffEdge[b][m];
-      t.sign[m][b] = -parity(x, y, j);
-      t.face[m][b] = 6 - x - y - j;
-    }
-  return t;
-}
-inline constexpr OffEdgeTable kOff = make_off_edge();
+// v8, v8l: edge_pair_formula.h.
 
 
 // Output of the vector kernel (lanes: see superset_kernel.cpp).
