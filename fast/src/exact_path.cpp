@@ -4,48 +4,31 @@
 // rules as this engine reads them), so that reference/ still checks them independently.
 #include "exact_path.h"
 
-#include <gmpxx.h>
-
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "direction_qp_impl.h"
+#include "exact_geometry.h"
 
 namespace pdd::fast::detail {
 namespace {
 
-using Q = mpq_class;
-
-struct V {
-  Q x[3];
-};
-V operator-(const V& a, const V& b) { return {{a.x[0] - b.x[0], a.x[1] - b.x[1], a.x[2] - b.x[2]}}; }
-Q dot(const V& a, const V& b) { return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2]; }
-V cross(const V& a, const V& b) {
-  return {{a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
-           a.x[0] * b.x[1] - a.x[1] * b.x[0]}};
-}
-bool is_zero(const V& a) { return sgn(a.x[0]) == 0 && sgn(a.x[1]) == 0 && sgn(a.x[2]) == 0; }
-V scaled(const V& a, const Q& s) { return {{a.x[0] * s, a.x[1] * s, a.x[2] * s}}; }
-
-constexpr unsigned without(int f) { return 0xFu & ~(1u << f); }
-constexpr unsigned edge_bits(int a) { return (1u << kEdges[a][0]) | (1u << kEdges[a][1]); }
 
 // One oriented candidate (SPEC §3): heights are n.(x − s_0), exact.
 struct Cand {
   DirectionLabel label;
-  V n;
+  QV n;
   Q nn, D, hA[4], hB[4];
   unsigned conA = 0, conB = 0;
 };
 
 struct Builder {
-  V s[4], r[4];  // s_i − s_0, r_j − s_0
+  QTet s, r;  // s_i − s_0, r_j − s_0
   std::vector<Cand> out;
 
-  void emit(const DirectionLabel& l, const V& n, unsigned conA, unsigned conB) {
+  void emit(const DirectionLabel& l, const QV& n, unsigned conA, unsigned conB) {
     Cand c;
     c.label = l;
     c.n = n;
@@ -66,40 +49,24 @@ struct Builder {
   }
 
   void faces() {
-    for (int i = 0; i < 4; ++i) {  // FV:i, outward of A
-      const auto& f = kFace[i];
-      V n = cross(s[f[1]] - s[f[0]], s[f[2]] - s[f[0]]);
-      if (sgn(dot(n, s[i] - s[f[0]])) > 0) n = scaled(n, Q(-1));
-      emit(DirectionLabel::fv(i), n, without(i), 0);
-    }
-    for (int j = 0; j < 4; ++j) {  // VF:j, into B
-      const auto& f = kFace[j];
-      V n = cross(r[f[1]] - r[f[0]], r[f[2]] - r[f[0]]);
-      if (sgn(dot(n, r[j] - r[f[0]])) < 0) n = scaled(n, Q(-1));
-      emit(DirectionLabel::vf(j), n, 0, without(j));
-    }
+    for (int i = 0; i < 4; ++i) emit(DirectionLabel::fv(i), face_normal_out_of(s, i), mask_without(i), 0);
+    for (int j = 0; j < 4; ++j) emit(DirectionLabel::vf(j), face_normal_into(r, j), 0, mask_without(j));
   }
 
   void edge_pairs() {
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) {
-        const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
-        const V e = s[v] - s[u];
-        V n = cross(r[y] - r[x], e);
-        if (is_zero(n)) {  // parallel: n = (e.e) w − (w.e) e; colinear: no direction
-          const V w = r[x] - s[u];
-          if (is_zero(cross(w, e))) continue;
-          n = scaled(w, dot(e, e)) - scaled(e, dot(w, e));
-        }
-        const int g1 = sgn(dot(n, s[kOffEdge[a][0]] - s[u])), g2 = sgn(dot(n, s[kOffEdge[a][1]] - s[u]));
-        const unsigned ca = edge_bits(a), cb = edge_bits(b);
-        if (g1 <= 0 && g2 <= 0) {
-          emit(DirectionLabel::ee(a, b), n, ca, cb);
-        } else if (g1 >= 0 && g2 >= 0) {
-          emit(DirectionLabel::ee(a, b), scaled(n, Q(-1)), ca, cb);
-        } else {
-          emit(DirectionLabel::ee(a, b, EdgeOrientation::Plus), n, ca, cb);
-          emit(DirectionLabel::ee(a, b, EdgeOrientation::Minus), scaled(n, Q(-1)), ca, cb);
+        EdgePairKind kind;
+        const QV n = edge_pair_normal(s, r, a, b, &kind);
+        if (kind == EdgePairKind::Colinear) continue;  // no direction (SPEC §3)
+        const unsigned ca = edge_mask(a), cb = edge_mask(b);
+        switch (side_rule(s, n, a)) {
+          case EdgePairSide::Keep: emit(DirectionLabel::ee(a, b), n, ca, cb); break;
+          case EdgePairSide::Flip: emit(DirectionLabel::ee(a, b), negated(n), ca, cb); break;
+          case EdgePairSide::Undecidable:
+            emit(DirectionLabel::ee(a, b, EdgeOrientation::Plus), n, ca, cb);
+            emit(DirectionLabel::ee(a, b, EdgeOrientation::Minus), negated(n), ca, cb);
+            break;
         }
       }
   }
@@ -128,10 +95,10 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   r.q1_A = A;
   r.q1_B = B;
   Builder bld;
-  V s0;
+  QV s0;
   for (int k = 0; k < 3; ++k) s0.x[k] = A[0][k];
   for (int i = 0; i < 4; ++i) {
-    V a, b;
+    QV a, b;
     for (int k = 0; k < 3; ++k) {
       a.x[k] = A[i][k];
       b.x[k] = B[i][k];
