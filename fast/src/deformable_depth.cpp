@@ -46,7 +46,7 @@ Valued valued(const Candidate& c, const DirectionSolution& s, double coeff, cons
 
 Valued static_valued(const Candidate& c, const FilterBounds& fb) {
   if (c.label.orientation != EdgeOrientation::Decided) return {kInf, 0.0};
-  const DirectionSolution s = solve_static(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+  const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
   const double coeff = c.conA ? displacement_coeff(c, s, 0u, 0xFu & ~c.conB)
                               : kSolverDisplacementCoeff;
@@ -55,7 +55,7 @@ Valued static_valued(const Candidate& c, const FilterBounds& fb) {
 
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
-      solve_deformable(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+      solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   return valued(c, s, displacement_coeff(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
@@ -182,28 +182,15 @@ Choice accel_of(const List& set, int k) {
 
 }  // namespace
 
-SideProblem side_problem(const double h[4], std::uint8_t constrained) {
-  SideProblem s;
-  for (int i = 0; i < 4; ++i) {
-    if (constrained >> i & 1u) {
-      ++s.ncon;
-      s.hcon = h[i];
-    } else {
-      s.hfree[s.nfree++] = h[i];
-    }
-  }
-  return s;
-}
-
 double static_value(const Candidate& c) {
   if (c.label.orientation != EdgeOrientation::Decided) return kInf;  // infeasible (SPEC §5)
-  const DirectionSolution s = solve_static(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+  const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   return s.cost / (20.0 * c.nn);
 }
 
 double deformable_value(const Candidate& c) {
   const DirectionSolution s =
-      solve_deformable(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+      solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   return s.cost / (20.0 * c.nn);
 }
 
@@ -234,7 +221,7 @@ Choice pdd2_accel(const QuickCandidates& q, int k) { return accel_of(q, k); }
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB) {
   const DirectionSolution s =
-      solve_deformable(side_problem(c.hA, c.conA), side_problem(c.hB, c.conB));
+      solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   for (int i = 0; i < 4; ++i) {
     const double tA = displacement_below(c.hA[i], c.conA >> i & 1u, s) / c.nn;
     const double tB = displacement_above(c.hB[i], c.conB >> i & 1u, s) / c.nn;

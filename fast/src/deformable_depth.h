@@ -37,9 +37,6 @@ inline constexpr int kAccelWide = 6;  // pdd2_accel6: the paper's "first six dir
 inline constexpr double kDeformableBoundCoeff = 1.0 / 32.0;  // case 2 and relaxed, see above
 inline constexpr double kStaticBoundCoeff = 1.0 / 16.0;      // case 1, see above
 
-// Side views of one candidate: A below the plane, B above (SPEC §3 constrained/free sets).
-SideProblem side_problem(const double h[4], std::uint8_t constrained);
-
 // PD_d² along one candidate; +inf when infeasible (case 1 on an undecidable EE direction).
 double static_value(const Candidate& c);
 double deformable_value(const Candidate& c);

@@ -52,19 +52,40 @@
 
 namespace pdd::fast {
 
-struct SideProblem {
-  int ncon = 0;          // number of constrained vertices
-  double hcon = 0.0;     // their common height
-  int nfree = 0;         // number of free vertices
-  double hfree[4] = {};  // their heights, any order
+// One tetrahedron's side of the problem, and the optimum; T = double here, GMP rationals on the
+// exact path (direction_qp_impl.h is the algorithm for any ordered field T).
+template <class T>
+struct Side {
+  int ncon = 0;     // number of constrained vertices
+  T hcon{};         // their common height
+  int nfree = 0;    // number of free vertices
+  T hfree[4]{};     // their heights, any order
 };
+template <class T>
+struct Solution {
+  T cost{};  // F (see above); PD_d² = cost / (20 n.n)
+  T c{};     // plane offset C
+  T sumA{};  // S_A (0 in case 1)
+  T sumB{};  // S_B
+};
+using SideProblem = Side<double>;
+using DirectionSolution = Solution<double>;
 
-struct DirectionSolution {
-  double cost = 0.0;  // F (see above); PD_d² = cost / (20 n.n)
-  double c = 0.0;     // plane offset C
-  double sumA = 0.0;  // S_A (0 in case 1)
-  double sumB = 0.0;  // S_B
-};
+// The side of one tetrahedron for a candidate: heights h, bit i of `constrained` set for the
+// constrained vertices (which share one height).
+template <class T>
+Side<T> side_of(const T h[4], unsigned constrained) {
+  Side<T> s;
+  for (int i = 0; i < 4; ++i) {
+    if (constrained >> i & 1u) {
+      ++s.ncon;
+      s.hcon = h[i];
+    } else {
+      s.hfree[s.nfree++] = h[i];
+    }
+  }
+  return s;
+}
 
 // Case 2 (both deform). Requires A.ncon + B.ncon >= 1 or overlapping sides.
 DirectionSolution solve_deformable(const SideProblem& A, const SideProblem& B);
@@ -77,13 +98,15 @@ DirectionSolution solve_static(const SideProblem& A, const SideProblem& B);
 DirectionSolution solve_relaxed(const double hA[4], const double hB[4]);
 
 // Optimal displacement T of one vertex of height h (KKT formulas above).
-inline double displacement_below(double h, bool constrained, const DirectionSolution& s) {
-  const double to_plane = s.c - h;
-  return (constrained || to_plane < -s.sumA) ? to_plane : -s.sumA;
+template <class T>
+T displacement_below(const T& h, bool constrained, const Solution<T>& s) {
+  const T to_plane = s.c - h;
+  return (constrained || to_plane < -s.sumA) ? to_plane : T(-s.sumA);
 }
-inline double displacement_above(double h, bool constrained, const DirectionSolution& s) {
-  const double to_plane = s.c - h;
-  return (constrained || to_plane > -s.sumB) ? to_plane : -s.sumB;
+template <class T>
+T displacement_above(const T& h, bool constrained, const Solution<T>& s) {
+  const T to_plane = s.c - h;
+  return (constrained || to_plane > -s.sumB) ? to_plane : T(-s.sumB);
 }
 
 }  // namespace pdd::fast

@@ -7,6 +7,8 @@
 // is used as a sentinel (rationals have none): "no breakpoint left" is a flag.
 #pragma once
 
+#include "direction_qp.h"
+
 namespace pdd::fast::detail {
 
 template <class T>
@@ -43,18 +45,7 @@ inline void sort_small_desc(T* v, int n) {
   for (int i = 0; i < n; ++i) v[i] = -v[i];
 }
 
-template <class T>
-struct SideT {
-  int ncon = 0;
-  T hcon{};
-  int nfree = 0;
-  T f[4];
-};
-
-template <class T>
-struct SolutionT {
-  T cost{}, c{}, sumA{}, sumB{};
-};
+// Side<T>, Solution<T>, side_of and the displacements: direction_qp.h.
 
 // A side at plane offset c with constrained (ncon at hcon) and the first k of f active.
 // Returns sum_active (c − H)² + (sum_active (c − H))² / (5 − m), writes S = sum/(5 − m).
@@ -72,55 +63,55 @@ inline T side_cost(int ncon, const T& hcon, const T* f, int k, const T& c, T* S)
   return s2 + s1 * *S;
 }
 
-// The merged-breakpoint walk of direction_qp.h. A.f sorted descending, B.f ascending.
+// The merged-breakpoint walk of direction_qp.h. A.hfree sorted descending, B.hfree ascending.
 template <class T>
-SolutionT<T> two_sided(const SideT<T>& A, const SideT<T>& B) {
+Solution<T> two_sided(const Side<T>& A, const Side<T>& B) {
   int kA = A.nfree, kB = 0;
   int mA = A.ncon + A.nfree, mB = B.ncon;
   T PA = A.ncon * A.hcon, PB = B.ncon * B.hcon;
-  for (int i = 0; i < A.nfree; ++i) PA += A.f[i];
+  for (int i = 0; i < A.nfree; ++i) PA += A.hfree[i];
   T X{};
   while (kA > 0 || kB < B.nfree) {
     const bool hasA = kA > 0, hasB = kB < B.nfree;
     T XA{}, XB{};
-    if (hasA) XA = (5 - mA) * A.f[kA - 1] + PA;
-    if (hasB) XB = (5 - mB) * B.f[kB] + PB;
+    if (hasA) XA = (5 - mA) * A.hfree[kA - 1] + PA;
+    if (hasB) XB = (5 - mB) * B.hfree[kB] + PB;
     const bool takeA = hasA && (!hasB || XA <= XB);
     X = takeA ? XA : XB;
     if ((mA * X - 5 * PA) * (5 - mB) + (mB * X - 5 * PB) * (5 - mA) >= 0) break;
     if (takeA) {
       --kA;
       --mA;
-      PA -= A.f[kA];
+      PA -= A.hfree[kA];
     } else {
-      PB += B.f[kB];
+      PB += B.hfree[kB];
       ++kB;
       ++mB;
     }
   }
-  SolutionT<T> s;
+  Solution<T> s;
   const int den = mA * (5 - mB) + mB * (5 - mA);
   if (den == 0)
     s.c = X / 5;
   else
     s.c = (PA * (5 - mB) + PB * (5 - mA)) / den;
-  s.cost = side_cost(A.ncon, A.hcon, A.f, kA, s.c, &s.sumA) +
-           side_cost(B.ncon, B.hcon, B.f, kB, s.c, &s.sumB);
+  s.cost = side_cost(A.ncon, A.hcon, A.hfree, kA, s.c, &s.sumA) +
+           side_cost(B.ncon, B.hcon, B.hfree, kB, s.c, &s.sumB);
   return s;
 }
 
 // Root of S_B alone (B ascending): the minimiser of phi_B. `bounded` = false when S_B = 0 on a
 // whole half-line (no constrained vertex): then phi_B = 0 for every c below the lowest vertex.
 template <class T>
-T root_of_side(const SideT<T>& B, bool& bounded) {
+T root_of_side(const Side<T>& B, bool& bounded) {
   int kB = 0, mB = B.ncon;
   T PB = B.ncon * B.hcon;
   bounded = mB != 0;
   if (!bounded) return PB;
   while (kB < B.nfree) {
-    const T X = (5 - mB) * B.f[kB] + PB;
+    const T X = (5 - mB) * B.hfree[kB] + PB;
     if (mB * X - 5 * PB >= 0) break;
-    PB += B.f[kB];
+    PB += B.hfree[kB];
     ++kB;
     ++mB;
   }
@@ -129,71 +120,44 @@ T root_of_side(const SideT<T>& B, bool& bounded) {
 
 // Case 2 (both deform): A sorted descending, B ascending.
 template <class T>
-SolutionT<T> solve_deformable_sorted(SideT<T> A, SideT<T> B) {
-  sort_small_desc(A.f, A.nfree);
-  sort_small(B.f, B.nfree);
+Solution<T> solve_deformable_sorted(Side<T> A, Side<T> B) {
+  sort_small_desc(A.hfree, A.nfree);
+  sort_small(B.hfree, B.nfree);
   return two_sided(A, B);
 }
 
 // Case 1 (A static). Precondition (direction_qp.h): feasible.
 template <class T>
-SolutionT<T> solve_static_sides(const SideT<T>& A, SideT<T> B) {
-  sort_small(B.f, B.nfree);
-  SolutionT<T> s;
+Solution<T> solve_static_sides(const Side<T>& A, Side<T> B) {
+  sort_small(B.hfree, B.nfree);
+  Solution<T> s;
   if (A.ncon > 0) {
     s.c = A.hcon;
   } else {
-    T amax = A.f[0];
+    T amax = A.hfree[0];
     for (int i = 1; i < A.nfree; ++i)
-      if (amax < A.f[i]) amax = A.f[i];
+      if (amax < A.hfree[i]) amax = A.hfree[i];
     bool bounded = false;
     const T root = root_of_side(B, bounded);
     s.c = (bounded && amax < root) ? root : amax;
   }
   int kB = 0;
   T PB = B.ncon * B.hcon;
-  while (kB < B.nfree && (5 - B.ncon - kB) * B.f[kB] + PB <= 5 * s.c) PB += B.f[kB++];
-  s.cost = side_cost(B.ncon, B.hcon, B.f, kB, s.c, &s.sumB);
+  while (kB < B.nfree && (5 - B.ncon - kB) * B.hfree[kB] + PB <= 5 * s.c) PB += B.hfree[kB++];
+  s.cost = side_cost(B.ncon, B.hcon, B.hfree, kB, s.c, &s.sumB);
   return s;
 }
 
 // Relaxed case 2: every vertex free.
 template <class T>
-SolutionT<T> solve_relaxed_heights(const T hA[4], const T hB[4]) {
-  SideT<T> a, b;
+Solution<T> solve_relaxed_heights(const T hA[4], const T hB[4]) {
+  Side<T> a, b;
   a.nfree = b.nfree = 4;
   for (int i = 0; i < 4; ++i) {
-    a.f[i] = hA[i];
-    b.f[i] = hB[i];
+    a.hfree[i] = hA[i];
+    b.hfree[i] = hB[i];
   }
   return solve_deformable_sorted(a, b);
-}
-
-// Side view of one tetrahedron: constrained vertices (bit i of `constrained`) share hcon.
-template <class T>
-SideT<T> side_of(const T h[4], unsigned constrained) {
-  SideT<T> s;
-  for (int i = 0; i < 4; ++i) {
-    if (constrained >> i & 1u) {
-      ++s.ncon;
-      s.hcon = h[i];
-    } else {
-      s.f[s.nfree++] = h[i];
-    }
-  }
-  return s;
-}
-
-// Optimal displacement T of one vertex of height h (KKT formulas of direction_qp.h).
-template <class T>
-T displacement_below_t(const T& h, bool constrained, const SolutionT<T>& s) {
-  const T to_plane = s.c - h;
-  return (constrained || to_plane < -s.sumA) ? to_plane : T(-s.sumA);
-}
-template <class T>
-T displacement_above_t(const T& h, bool constrained, const SolutionT<T>& s) {
-  const T to_plane = s.c - h;
-  return (constrained || to_plane > -s.sumB) ? to_plane : T(-s.sumB);
 }
 
 }  // namespace pdd::fast::detail

@@ -117,13 +117,13 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
 
   std::vector<Q> delta2(n), st(n), def(n), rel(n);
   std::vector<bool> all(n, true), decided(n, false);
-  std::vector<SolutionT<Q>> def_sol(n);
+  std::vector<Solution<Q>> def_sol(n);
   Q e11;
   bool e11_zero = false, e11_set = false;
   for (int k = 0; k < n; ++k) {
     const Cand& c = C[k];
     delta2[k] = c.D * c.D / c.nn;
-    const SideT<Q> sa = side_of(c.hA, c.conA), sb = side_of(c.hB, c.conB);
+    const Side<Q> sa = side_of(c.hA, c.conA), sb = side_of(c.hB, c.conB);
     def_sol[k] = solve_deformable_sorted(sa, sb);
     def[k] = def_sol[k].cost / (20 * c.nn);
     rel[k] = solve_relaxed_heights(c.hA, c.hB).cost / (20 * c.nn);
@@ -177,10 +177,10 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
 
   // q1: x + (T / n.n) n along the pdd2 direction (direction_qp.h)
   const Cand& c = C[id];
-  const SolutionT<Q>& sol = def_sol[id];
+  const Solution<Q>& sol = def_sol[id];
   for (int i = 0; i < 4; ++i) {
-    const Q tA = displacement_below_t(c.hA[i], (c.conA >> i & 1u) != 0, sol) / c.nn;
-    const Q tB = displacement_above_t(c.hB[i], (c.conB >> i & 1u) != 0, sol) / c.nn;
+    const Q tA = displacement_below(c.hA[i], (c.conA >> i & 1u) != 0, sol) / c.nn;
+    const Q tB = displacement_above(c.hB[i], (c.conB >> i & 1u) != 0, sol) / c.nn;
     for (int k = 0; k < 3; ++k) {
       r.q1_A[i][k] = rounded(Q(A[i][k]) + tA * c.n.x[k], ok);
       r.q1_B[i][k] = rounded(Q(B[i][k]) + tB * c.n.x[k], ok);
