@@ -1,6 +1,8 @@
 // deformable_depth.cpp — SPEC §5 variants with exact pruning. See the header.
 #include "deformable_depth.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "certify.h"
@@ -17,51 +19,67 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 inline bool usable(const CandidateSet& set) { return set.intersecting && set.count > 0; }
 inline bool usable(const QuickCandidates& q) { return q.count > 0; }  // intersecting by contract
 
-// The displacement error coefficient of value_bounds.h for a computed solution: the tight one
-// when every free vertex's KKT margin (A: C − H + S_A, B: C − H + S_B; its sign is the
-// vertex's status) exceeds twice the wide bound, so that no status can differ from the exact
-// solution's; else the wide one. `below_free`/`above_free`: bit i set for a free vertex.
-double displacement_coeff(const Candidate& c, const DirectionSolution& s, unsigned below_free,
-                          unsigned above_free) {
+// The solver's displacement error of value_bounds.h for a computed solution, dT = coeff u H:
+// the tight one when every free vertex's KKT margin (A: C − H + S_A, B: C − H + S_B; its sign
+// is the vertex's status) exceeds twice the wide bound, so that no status can differ from the
+// exact solution's — then H = Ha, the largest of |C| and the heights that enter the closed form
+// (constrained vertices, active free ones: A's with margin < 0, B's with margin > 0); else the
+// wide one with H = Hm (every height). `below_free`/`above_free`: bit i set for a free vertex
+// that the solver moves (A's, B's).
+struct SolverBound {
+  double coeff, H;
+};
+SolverBound solver_bound(const Candidate& c, const DirectionSolution& s, unsigned below_free,
+                         unsigned above_free) {
   const double Hm = detail::max_height(c);
+  const SolverBound wide{kSolverDisplacementCoeff, Hm};
   const double margin = 2 * kSolverDisplacementCoeff * kUnitRoundoff * Hm;
+  double Ha = std::fabs(s.c);
   for (int i = 0; i < 4; ++i) {
-    if ((below_free >> i & 1u) && !(std::fabs(s.c - c.hA[i] + s.sumA) > margin))
-      return kSolverDisplacementCoeff;
-    if ((above_free >> i & 1u) && !(std::fabs(s.c - c.hB[i] + s.sumB) > margin))
-      return kSolverDisplacementCoeff;
+    if (below_free >> i & 1u) {
+      const double m = s.c - c.hA[i] + s.sumA;
+      if (!(std::fabs(m) > margin)) return wide;
+      if (m < 0) Ha = std::max(Ha, std::fabs(c.hA[i]));
+    }
+    if (above_free >> i & 1u) {
+      const double m = s.c - c.hB[i] + s.sumB;
+      if (!(std::fabs(m) > margin)) return wide;
+      if (m > 0) Ha = std::max(Ha, std::fabs(c.hB[i]));
+    }
+    if (c.conA >> i & 1u) Ha = std::max(Ha, std::fabs(c.hA[i]));
+    if (c.conB >> i & 1u) Ha = std::max(Ha, std::fabs(c.hB[i]));
   }
-  return kSolverDisplacementCoeffTight;
+  return {kSolverDisplacementCoeffTight, Ha};
 }
 
 struct Valued {
   double v, r;  // value and its root bound (value_bounds.h); r = 0 when v = +inf
 };
 
-Valued valued(const Candidate& c, const DirectionSolution& s, double coeff, const FilterBounds& fb) {
+Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound& sb,
+              const FilterBounds& fb) {
   const double v = s.cost / (20.0 * c.nn);
-  return {v, qp_root_rel(s.cost, c.nn, detail::max_height(c), degree_bounds(fb, c.parallel),
-                         coeff)};
+  return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
 }
 
 Valued static_valued(const Candidate& c, const FilterBounds& fb) {
   if (c.label.orientation != EdgeOrientation::Decided) return {kInf, 0.0};
   const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
-  const double coeff = c.conA ? displacement_coeff(c, s, 0u, 0xFu & ~c.conB)
-                              : kSolverDisplacementCoeff;
-  return valued(c, s, coeff, fb);
+  const SolverBound sb = c.conA ? solver_bound(c, s, 0u, 0xFu & ~c.conB)
+                                 : SolverBound{kSolverDisplacementCoeff, detail::max_height(c)};
+  return valued(c, s, sb, fb);
 }
 
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
       solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
-  return valued(c, s, displacement_coeff(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
+  return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
 Valued relaxed_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s = solve_relaxed(c.hA, c.hB);
-  return valued(c, s, displacement_coeff(c, s, 0xFu, 0xFu), fb);
+  return valued(c, s, solver_bound(c, s, 0xFu, 0xFu), fb);
 }
 
 // A lower bound of an exact value from a computed one (NaN or a failed bound: 0, i.e. nothing

@@ -89,6 +89,11 @@ Solution<T> two_sided(const Side<T>& A, const Side<T>& B) {
       ++mB;
     }
   }
+  // A's sum over its active vertices, added afresh: the walk's running PA (every height of A
+  // minus the inactive ones) carries rounding errors of the whole height range, this one only
+  // of the active heights (value_bounds.h, tight case). Exact arithmetic: the same value.
+  PA = A.ncon * A.hcon;
+  for (int i = 0; i < kA; ++i) PA += A.hfree[i];
   Solution<T> s;
   const int den = mA * (5 - mB) + mB * (5 - mA);
   if (den == 0)

@@ -4,11 +4,14 @@
 // rules as this engine reads them), so that reference/ still checks them independently.
 #include "exact_path.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "deformable_depth.h"
 #include "direction_qp_impl.h"
 #include "exact_geometry.h"
 
@@ -79,14 +82,6 @@ double rounded(const Q& q, bool& ok) {
   return d;
 }
 
-// First index of the minimum of finite entries (exact ties: canonical order).
-int argmin(const std::vector<Q>& v, const std::vector<bool>& usable) {
-  int best = -1;
-  for (int i = 0; i < int(v.size()); ++i)
-    if (usable[i] && (best < 0 || v[i] < v[best])) best = i;
-  return best;
-}
-
 }  // namespace
 
 ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B) {
@@ -115,20 +110,17 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   r.intersecting = true;
   bool& ok = er.representable;
 
-  std::vector<Q> delta2(n), st(n), def(n), rel(n);
-  std::vector<bool> all(n, true), decided(n, false);
-  std::vector<Solution<Q>> def_sol(n);
+  // delta² and eq. 11 of every candidate (cheap); the QPs only where they can matter: scanning
+  // in ascending exact delta², a candidate whose exact pruning bound coeff·delta² (deformable_
+  // depth.h: every exact QP value is >= that) exceeds the best exact value so far can be neither
+  // the minimum nor tie with it, and neither can any later one. Same results as evaluating every
+  // candidate (ties: the first in canonical order), a fraction of the rational arithmetic.
+  std::vector<Q> delta2(n);
   Q e11;
   bool e11_zero = false, e11_set = false;
   for (int k = 0; k < n; ++k) {
     const Cand& c = C[k];
     delta2[k] = c.D * c.D / c.nn;
-    const Side<Q> sa = side_of(c.hA, c.conA), sb = side_of(c.hB, c.conB);
-    def_sol[k] = solve_deformable_sorted(sa, sb);
-    def[k] = def_sol[k].cost / (20 * c.nn);
-    rel[k] = solve_relaxed_heights(c.hA, c.hB).cost / (20 * c.nn);
-    decided[k] = c.label.orientation == EdgeOrientation::Decided;
-    if (decided[k]) st[k] = solve_static_sides(sa, sb).cost / (20 * c.nn);
     // eq. 11: overlap of the projections, L_n(A) + L_n(B) − L_n(A ∪ B)
     Q loA = c.hA[0], hiA = c.hA[0], loB = c.hB[0], hiB = c.hB[0];
     for (int i = 1; i < 4; ++i) {
@@ -143,36 +135,76 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
     if (!e11_set || v < e11) e11 = v;
     e11_set = true;
   }
+  // Ascending exact delta², ties in canonical order (stable): also case 3's order.
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return delta2[a] < delta2[b]; });
 
-  const int ir = argmin(delta2, all);
+  // Each QP variant evaluated once per candidate, on demand.
+  std::vector<Solution<Q>> def_sol(n);
+  std::vector<Q> st(n), def(n), rel(n);
+  std::vector<char> have_st(n, 0), have_def(n, 0), have_rel(n, 0);
+  auto sides = [&](int k) {
+    return std::make_pair(side_of(C[k].hA, C[k].conA), side_of(C[k].hB, C[k].conB));
+  };
+  auto def_of = [&](int k) -> const Q& {
+    if (!have_def[k]) {
+      const auto sd = sides(k);
+      def_sol[k] = solve_deformable_sorted(sd.first, sd.second);
+      def[k] = def_sol[k].cost / (20 * C[k].nn);
+      have_def[k] = 1;
+    }
+    return def[k];
+  };
+  auto st_of = [&](int k) -> const Q& {
+    if (!have_st[k]) {
+      const auto sd = sides(k);
+      st[k] = solve_static_sides(sd.first, sd.second).cost / (20 * C[k].nn);
+      have_st[k] = 1;
+    }
+    return st[k];
+  };
+  auto rel_of = [&](int k) -> const Q& {
+    if (!have_rel[k]) {
+      rel[k] = solve_relaxed_heights(C[k].hA, C[k].hB).cost / (20 * C[k].nn);
+      have_rel[k] = 1;
+    }
+    return rel[k];
+  };
+  auto decided = [&](int k) { return C[k].label.orientation == EdgeOrientation::Decided; };
+  // The first minimum (canonical order among exact ties) of value_of over usable candidates.
+  auto qp_min = [&](const Q& coeff, auto&& value_of, auto&& usable) {
+    int best = -1;
+    for (int k : order) {
+      if (!usable(k)) continue;
+      if (best >= 0 && coeff * delta2[k] > value_of(best)) break;
+      if (best < 0 || value_of(k) < value_of(best) || (value_of(k) == value_of(best) && k < best))
+        best = k;
+    }
+    return best;
+  };
+  auto any = [](int) { return true; };
+  const Q case2_coeff(kDeformableBoundCoeff), case1_coeff(kStaticBoundCoeff);  // dyadic: exact
+
+  const int ir = order[0];
   r.rigid_pd2 = rounded(delta2[ir], ok);
   r.rigid_dir = C[ir].label;
   r.eq11_pd2 = e11_zero ? 0.0 : rounded(e11, ok);
-  const int is = argmin(st, decided);
+  const int is = qp_min(case1_coeff, st_of, decided);
   r.pdd2_static = rounded(st[is], ok);
   r.pdd2_static_dir = C[is].label;
-  const int id = argmin(def, all);
+  const int id = qp_min(case2_coeff, def_of, any);
   r.pdd2 = rounded(def[id], ok);
   r.pdd2_dir = C[id].label;
-  const int il = argmin(rel, all);
+  const int il = qp_min(case2_coeff, rel_of, any);
   r.pdd2_relaxed = rounded(rel[il], ok);
   r.pdd2_relaxed_dir = C[il].label;
 
-  // case 3: candidates in ascending delta order, stable in canonical order
-  std::vector<bool> taken(n, false);
-  Q accel;
-  for (int m = 0; m < 6 && m < n; ++m) {
-    std::vector<bool> left(n);
-    for (int k = 0; k < n; ++k) left[k] = !taken[k];
-    const int k = argmin(delta2, left);
-    taken[k] = true;
-    if (m == 0) {
-      accel = def[k];
-      r.pdd2_accel1 = rounded(def[k], ok);
-    } else if (def[k] < accel) {
-      accel = def[k];
-    }
-  }
+  // case 3: the first 1 and 6 candidates in ascending delta order
+  Q accel = def_of(order[0]);
+  r.pdd2_accel1 = rounded(accel, ok);
+  for (int m = 1; m < kAccelWide && m < n; ++m)
+    if (def_of(order[m]) < accel) accel = def[order[m]];
   r.pdd2_accel6 = rounded(accel, ok);
 
   // q1: x + (T / n.n) n along the pdd2 direction (direction_qp.h)

@@ -38,10 +38,16 @@
 //   Tight case: when every free vertex's KKT margin at the computed solution (C − H + S, whose
 //   sign is its status) exceeds 2 dT, the exact solution's margins (within 2 dT of these) have
 //   the same signs, so the statuses are the exact ones and only the fixed closed form of that
-//   region is rounded: P (<= 4 terms <= Hm, one integer product) to 15 u Hm; the root
-//   C = (P_A(5 − m_B) + P_B(5 − m_A))/den (den >= 4) to 60 u Hm; each C − H to 62 u Hm; the
-//   sums s1 (<= 5 terms <= 2 Hm) to 350 u Hm, so S = s1/(5 − m) and every T to 360 u Hm:
-//   dT = 2^9 u Hm (src/deformable_depth.cpp decides which applies). In both cases, since
+//   region is rounded. That closed form involves only the heights of the constrained and the
+//   active free vertices (the final sums P are added afresh over them, not carried through the
+//   walk: src/direction_qp_impl.h), so with Ha = max(|C~|, those |H~|): P (<= 4 terms <= Ha,
+//   one integer product) to 15 u Ha; the root C = (P_A(5 − m_B) + P_B(5 − m_A))/den (den >= 4)
+//   to 60 u Ha; each C − H of an active vertex to 62 u Ha; the sums s1 (<= 5 terms <= 2 Ha)
+//   to 350 u Ha, so S = s1/(5 − m) and every T to 360 u Ha: dT = 2^9 u Ha. Inactive vertices
+//   (far from the plane) enter only through their margins, whose signs are certain.
+//   (src/deformable_depth.cpp decides which case applies and computes Ha.) Ha is about
+//   |n| PD_d for a shallow contact while Hm is about |n| L, so the tight bound is what lets
+//   shallow contacts (PD_d << L) be certified in doubles. In both cases, since
 //   sqrt(F) is a weighted Euclidean norm of T (weights I + J, norm <= 5, 8 entries):
 //   |Phi~ − Phi(H~)| <= sqrt(40/20) dT + 4 u Phi~  (the last term: rounding of the norm).
 // ---- Value. root(v~) = Phi~/|n~| (1 ± 3u): with a = |Phi~ − Phi|/Phi~ and rho_n both <= 1/100,
@@ -64,7 +70,7 @@ inline constexpr double kContractRel = 1e-9;  // SPEC §8
 // v~ and the exact minimum then differ by <= kCertifyRel (1 + kCertifyRel) < kContractRel.
 inline constexpr double kCertifyRel = 0.9e-9;
 inline constexpr double kSolverDisplacementCoeff = 4096.0;  // dT = 2^12 u Hm, see above
-inline constexpr double kSolverDisplacementCoeffTight = 512.0;  // dT = 2^9 u Hm, see above
+inline constexpr double kSolverDisplacementCoeffTight = 512.0;  // dT = 2^9 u Ha, see above
 
 struct DegreeBounds {
   double e_h;  // per-height error
@@ -86,8 +92,8 @@ inline double rigid_root_rel(double D, double nn, const DegreeBounds& b) {
   return finish_root_rel((2 * b.e_h + kUnitRoundoff * aD) / aD, nn, b.e_n);
 }
 
-// A QP value v~ = F~/(20 n~.n~) with heights bounded by Hm; `coeff`: kSolverDisplacementCoeff,
-// or kSolverDisplacementCoeffTight when the solution's statuses are certain (see above).
+// A QP value v~ = F~/(20 n~.n~); (coeff, Hm): (kSolverDisplacementCoeff, Hm), or
+// (kSolverDisplacementCoeffTight, Ha) when the solution's statuses are certain (see above).
 inline double qp_root_rel(double F, double nn, double Hm, const DegreeBounds& b,
                           double coeff = kSolverDisplacementCoeff) {
   const double phi = std::sqrt(F / 20);
