@@ -40,17 +40,6 @@ BOOST_AUTO_TEST_CASE(ratios_are_square_roots_of_squared_ratios) {
   BOOST_TEST(s.optimum_in_first_six == 2u);  // accel6 == pdd2 on both
 }
 
-BOOST_AUTO_TEST_CASE(quantiles_interpolate_between_ranks) {
-  // Sorted {1, 2, 3, 4, 5}: the median is 3; the 25% point sits at rank 1 (value 2); the 10%
-  // point at rank 0.4: 1 + 0.4 (2 - 1) = 1.4.
-  const auto q = quantiles({5, 1, 4, 2, 3}, {0, 0.1, 0.25, 0.5, 1});
-  BOOST_TEST(q[0] == 1.0);
-  BOOST_TEST(q[1] == 1.4, boost::test_tools::tolerance(1e-15));
-  BOOST_TEST(q[2] == 2.0);
-  BOOST_TEST(q[3] == 3.0);
-  BOOST_TEST(q[4] == 5.0);
-}
-
 BOOST_AUTO_TEST_CASE(volumes_of_both_tetrahedra) {
   // The unit corner tetrahedron has volume 1/6; B twice as large in each direction: 8/6.
   TetPair p;

@@ -18,10 +18,10 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <vector>
 
 #include "direction_qp.h"
+#include "pdd/compare/random.h"
 
 using namespace pdd::fast;
 
@@ -103,10 +103,8 @@ double dense_optimum(const SideProblem& A, const SideProblem& B, Mode mode) {
   return best;
 }
 
-SideProblem random_side(std::mt19937& rng, int ncon, int nfree, bool integer, double below) {
-  std::uniform_real_distribution<double> U(-10.0, 10.0);
-  std::uniform_int_distribution<int> I(-2, 2);
-  auto draw = [&] { return integer ? double(I(rng)) : U(rng); };
+SideProblem random_side(pdd::compare::ReproducibleRng& rng, int ncon, int nfree, bool integer, double below) {
+  auto draw = [&] { return integer ? double(rng.integer(-2, 2)) : rng.uniform(-10.0, 10.0); };
   SideProblem s;
   s.ncon = ncon;
   s.nfree = nfree;
@@ -172,7 +170,7 @@ void check_certificate(const SideProblem& A, const SideProblem& B, const Directi
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(deformable_matches_dense_enumeration) {
-  std::mt19937 rng(7);
+  pdd::compare::ReproducibleRng rng(7);
   for (int it = 0; it < 600; ++it) {
     const int* p = kPatterns[it % 3];
     const bool integer = it % 4 == 3;  // small-integer heights: ties and coincident breakpoints
@@ -188,7 +186,7 @@ BOOST_AUTO_TEST_CASE(deformable_matches_dense_enumeration) {
 }
 
 BOOST_AUTO_TEST_CASE(static_matches_dense_enumeration) {
-  std::mt19937 rng(11);
+  pdd::compare::ReproducibleRng rng(11);
   for (int it = 0; it < 600; ++it) {
     const int* p = kPatterns[it % 3];
     const bool integer = it % 4 == 3;
@@ -203,7 +201,7 @@ BOOST_AUTO_TEST_CASE(static_matches_dense_enumeration) {
 }
 
 BOOST_AUTO_TEST_CASE(relaxed_matches_dense_enumeration) {
-  std::mt19937 rng(13);
+  pdd::compare::ReproducibleRng rng(13);
   int tested = 0;
   for (int it = 0; tested < 600; ++it) {
     const int* p = kPatterns[it % 3];

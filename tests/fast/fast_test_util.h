@@ -3,10 +3,10 @@
 #pragma once
 
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "candidate_directions.h"
+#include "pdd/compare/random.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast::test {
@@ -23,8 +23,7 @@ inline TetPair tet_pair(const TetVertices& A, const TetVertices& B, const char* 
 // intersecting interiors (decided by the engine's exact test).
 inline std::vector<TetPair> random_pairs(int count, unsigned seed, bool intersecting_only,
                                          double side = 10.0) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> U(0.0, side);
+  pdd::compare::ReproducibleRng rng(seed);  // the same pairs with every standard library
   std::vector<TetPair> out;
   CandidateSet set;
   while (int(out.size()) < count) {
@@ -32,8 +31,8 @@ inline std::vector<TetPair> random_pairs(int count, unsigned seed, bool intersec
     p.name = "random-" + std::to_string(out.size());
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) {
-        p.A[i][k] = U(rng);
-        p.B[i][k] = U(rng);
+        p.A[i][k] = rng.uniform(0.0, side);
+        p.B[i][k] = rng.uniform(0.0, side);
       }
     if (build_candidates(p.A, p.B, set) != BuildStatus::Ok) continue;
     if (intersecting_only && !set.intersecting) continue;

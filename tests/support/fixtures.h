@@ -1,4 +1,5 @@
-// fixtures.h — test access to the shipped fixture files (PDD_FIXTURES_DIR from CMake).
+// fixtures.h — test access to the shipped fixture files (PDD_FIXTURES_DIR from CMake), through
+// io/ (pdd_io) only.
 #pragma once
 
 #include <stdexcept>
@@ -6,7 +7,7 @@
 #include <vector>
 
 #include "pdd/compare/fixture_io.h"
-#include "pdd/compare/golden.h"
+#include "pdd/compare/golden_files.h"
 
 namespace pdd::test {
 

@@ -1,0 +1,281 @@
+// bench_command.cpp — `pdd bench`: the speed table (bench.h; the protocol: timing.h).
+//
+// pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]
+// Table on standard output. --json FILE also writes the same numbers as one JSON object to
+// FILE; --json alone writes the JSON to standard output and the table to standard error.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "pdd/compare/bench.h"
+#include "cli_checks.h"
+#include "commands.h"
+#include "exit_codes.h"
+#include "pdd/compare/output.h"
+#include "pdd/compare/result_json.h"
+
+namespace pdd::compare {
+namespace {
+
+struct BenchArgs {
+  BenchOptions options;
+  std::string json_path;
+  bool json = false;
+};
+
+std::string fmt(const char* f, double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string pad(std::string s, std::size_t w) {
+  // Width in code points, so that "²" and "µ" do not shift the columns.
+  std::size_t cps = 0;
+  for (unsigned char c : s) cps += (c & 0xC0) != 0x80;
+  if (cps < w) s.append(w - cps, ' ');
+  return s;
+}
+std::string rpad(const std::string& s, std::size_t w) {
+  std::size_t cps = 0;
+  for (unsigned char c : s) cps += (c & 0xC0) != 0x80;
+  return cps < w ? std::string(w - cps, ' ') + s : s;
+}
+
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json timing_json(const VariantTiming& t) {
+  Json j;
+  j["name"] = t.name;
+  j["median_ns_per_pair"] = number(t.median_ns_per_pair);
+  j["min_ns_per_pair"] = number(t.min_ns_per_pair);
+  j["max_ns_per_pair"] = number(t.max_ns_per_pair);
+  j["median_call_ns"] = number(t.median_call_ns);
+  j["repeats"] = t.repeats;
+  j["pairs"] = t.pairs;
+  return j;
+}
+
+Json report_json(const BenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench";
+  j["family"] = "paper";
+  j["count"] = r.options.count;
+  j["seed"] = r.options.seed;
+  j["repeats"] = r.options.repeats;
+  j["exact_sample"] = r.exact.sample;
+  j["pairs"] = r.pairs;
+  Json m;
+  m["cpu_model"] = r.machine.cpu_model;
+  m["logical_cpus"] = r.machine.logical_cpus;
+  m["compiler"] = r.machine.compiler;
+  m["assertions"] = r.machine.assertions;
+  m["loadavg_before"] = r.machine.load_before;
+  m["loadavg_after"] = r.machine.load_after;
+  m["fcl_version"] = r.machine.fcl_version;
+  m["ccd_cmake_config_version"] = r.machine.ccd_version;
+  j["machine"] = m;
+  j["fast"] = Json::array();
+  for (const auto& t : r.fast) j["fast"].push_back(timing_json(t));
+  Json b;
+  b["threads"] = r.batch.threads;
+  b["pairs"] = r.batch.pairs;
+  b["repeats"] = r.batch.repeats;
+  b["median_seconds"] = number(r.batch.median_seconds);
+  b["pairs_per_second"] = number(r.batch.pairs_per_second);
+  b["slow_paths"] = r.batch.slow_paths;
+  j["batch"] = b;
+  j["peers"] = Json::array();
+  for (const auto& p : r.peers) {
+    Json q;
+    q["name"] = p.name;
+    q["config"] = p.config;
+    q["judged"] = p.judged;
+    q["timing"] = timing_json(p.timing);
+    q["time_ratio_to_rigid_pd2"] = number(p.time_ratio);
+    q["call_ratio_to_rigid_pd2"] = number(p.call_ratio);
+    q["not_intersecting"] = p.not_intersecting;
+    q["failed"] = p.failed;
+    q["max_rel_dev_pd2_vs_fast_all_pairs"] = number(p.max_rel_dev_vs_fast);
+    q["pairs_dev_over_1e-6"] = p.off_1e6;
+    q["pairs_dev_over_1e-2"] = p.off_1e2;
+    q["worst_pair"] = p.worst_pair;
+    q["worst_pair_peer_pd2"] = number(p.worst_peer_pd2);
+    q["worst_pair_fast_pd2"] = number(p.worst_fast_pd2);
+    q["sample"] = p.sample;
+    q["max_rel_error_pd2"] = number(p.max_rel_error);
+    q["median_rel_error_pd2"] = number(p.median_rel_error);
+    j["peers"].push_back(q);
+  }
+  const auto& e = r.exact;
+  Json x;
+  x["sample"] = e.sample;
+  x["exact_minkowski_pd_median_ns"] = number(e.exact_rigid_median_ns);
+  x["fast_rigid_pd2_median_ns"] = number(e.fast_rigid_median_ns);
+  x["rigid_ratio"] = number(e.rigid_ratio);
+  x["exact_solve_pair_reduced_median_ns"] = number(e.exact_solve_median_ns);
+  x["fast_solve_pair_median_ns"] = number(e.fast_solve_median_ns);
+  x["solve_ratio"] = number(e.solve_ratio);
+  x["fast_rigid_max_rel_error_pd2"] = number(e.fast_max_rel_error);
+  x["fast_rigid_median_rel_error_pd2"] = number(e.fast_median_rel_error);
+  j["exact"] = x;
+  j["targets"] = Json::array();
+  for (const auto& t : r.targets) {
+    Json q;
+    q["what"] = t.what;
+    q["bound"] = t.bound;
+    q["measured"] = number(t.measured);
+    q["pass"] = t.pass;
+    j["targets"].push_back(q);
+  }
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_table(const BenchReport& r, std::ostream& s) {
+  const auto& m = r.machine;
+  s << "pdd bench: " << r.pairs << " pairs of the paper's protocol (family paper, seed "
+    << r.options.seed << "), " << r.options.repeats << " timed passes per row\n"
+    << "machine:   " << m.cpu_model << ", " << m.logical_cpus << " logical CPUs; " << m.compiler
+    << (m.assertions ? ", assertions ON" : ", NDEBUG") << "\n"
+    << "load avg:  before " << m.load_before << "; after " << m.load_after << "\n"
+    << "peers:     FCL " << m.fcl_version << ", libccd (its CMake config says " << m.ccd_version
+    << ")\n\n";
+
+  s << "Fast engine, one core, from raw vertices (ns per pair: median over passes of pass time /\n"
+       "pairs, with the fastest and slowest pass; per call: median of single-call timings, timer\n"
+       "overhead subtracted)\n";
+  s << "  " << pad("variant", 14) << rpad("ns/pair", 10) << rpad("min", 9) << rpad("max", 9)
+    << rpad("per call", 10) << "\n";
+  for (const auto& t : r.fast)
+    s << "  " << pad(t.name, 14) << rpad(fmt("%.1f", t.median_ns_per_pair), 10)
+      << rpad(fmt("%.1f", t.min_ns_per_pair), 9) << rpad(fmt("%.1f", t.max_ns_per_pair), 9)
+      << rpad(fmt("%.1f", t.median_call_ns), 10) << "\n";
+  const auto& b = r.batch;
+  double single = 0;
+  for (const auto& t : r.fast)
+    if (t.name == "solve_pair") single = 1e9 / t.median_ns_per_pair;
+  s << "  batch API (fast::solve_batch, every value, " << b.threads << " threads): "
+    << fmt("%.0f", b.pairs_per_second) << " pairs/s (median of " << b.repeats << " runs, "
+    << fmt("%.4f", b.median_seconds) << " s per " << b.pairs << " pairs); one core solve_pair: "
+    << fmt("%.0f", single) << " pairs/s; speed-up " << fmt("%.2f", b.pairs_per_second / single)
+    << "x\n"
+    << "  SPEC §8 slow path (exact rationals where an error bound is wider than 1e-9): "
+    << b.slow_paths << " of " << b.pairs << " pairs ("
+    << fmt("%.3g", b.pairs ? 100.0 * double(b.slow_paths) / double(b.pairs) : 0.0) << "%)\n\n";
+
+  s << "Rigid PD by the peers, same pairs, same process, passes interleaved with ours\n";
+  s << "  " << pad("peer", 40) << rpad("ns/pair", 10) << rpad("min", 9) << rpad("max", 9)
+    << rpad("per call", 10) << rpad("ratio", 8) << rpad("call ratio", 11) << "\n";
+  for (const auto& p : r.peers)
+    s << "  " << pad(p.name + (p.judged ? " *" : ""), 40)
+      << rpad(fmt("%.1f", p.timing.median_ns_per_pair), 10)
+      << rpad(fmt("%.1f", p.timing.min_ns_per_pair), 9)
+      << rpad(fmt("%.1f", p.timing.max_ns_per_pair), 9)
+      << rpad(fmt("%.1f", p.timing.median_call_ns), 10) << rpad(fmt("%.1fx", p.time_ratio), 8)
+      << rpad(fmt("%.1fx", p.call_ratio), 11) << "\n";
+  s << "  (ratio = peer / our rigid_pd2; * = judged against the >= 10x target)\n\n";
+
+  s << "Peer accuracy: 'no isect' and 'failed' over all " << r.pairs
+    << " pairs (all intersect); rel. error of PD² against\n"
+       "the exact PD² on the first "
+    << r.exact.sample << " pairs (failures included: 'no isect' = 1, failed = inf); dev. vs\n"
+       "fast = max relative deviation of PD² from our fast rigid_pd2 over all pairs\n";
+  s << "  " << pad("peer", 40) << rpad("no isect", 9) << rpad("failed", 8)
+    << rpad("max err", 10) << rpad("med err", 10) << rpad("dev vs fast", 12)
+    << rpad(">1e-6", 7) << rpad(">1e-2", 7) << "\n";
+  for (const auto& p : r.peers)
+    s << "  " << pad(p.name, 40) << rpad(std::to_string(p.not_intersecting), 9)
+      << rpad(std::to_string(p.failed), 8) << rpad(fmt("%.2e", p.max_rel_error), 10)
+      << rpad(fmt("%.2e", p.median_rel_error), 10) << rpad(fmt("%.2e", p.max_rel_dev_vs_fast), 12)
+      << rpad(std::to_string(p.off_1e6), 7) << rpad(std::to_string(p.off_1e2), 7) << "\n";
+  const auto& e = r.exact;
+  s << "  " << pad("ours: fast rigid_pd2", 40) << rpad("0", 9) << rpad("0", 8)
+    << rpad(fmt("%.2e", e.fast_max_rel_error), 10) << rpad(fmt("%.2e", e.fast_median_rel_error), 10)
+    << "\n";
+  s << "  (>1e-6, >1e-2: pairs whose PD² deviates from ours by more than that, failures included)\n";
+  for (const auto& p : r.peers)
+    s << "    " << p.name << ": " << p.config << "; worst pair " << p.worst_pair << ": PD² "
+      << fmt("%.6g", p.worst_peer_pd2) << " vs ours " << fmt("%.6g", p.worst_fast_pd2) << "\n";
+  s << "\n";
+
+  s << "Exact engine against ours, one core, first " << e.sample << " pairs\n"
+    << "  rigid PD²: reference::minkowski_pd " << fmt("%.1f", e.exact_rigid_median_ns / 1e3)
+    << " us (median call, " << r.options.repeats << " passes) vs fast rigid_pd2 "
+    << fmt("%.1f", e.fast_rigid_median_ns) << " ns: ratio " << fmt("%.0f", e.rigid_ratio) << "x\n"
+    << "  every value: reference::solve_exact (Reduced) " << fmt("%.2f", e.exact_solve_median_ns / 1e6)
+    << " ms (median call, 1 pass) vs fast solve_pair " << fmt("%.1f", e.fast_solve_median_ns)
+    << " ns: ratio " << fmt("%.0f", e.solve_ratio) << "x\n\n";
+
+  s << "Targets (issue 3; time = median over passes of the time per pair, one core)\n";
+  for (const auto& t : r.targets) {
+    const bool ratio = t.bound.find('x') != std::string::npos;
+    s << "  " << pad(t.what, 62) << pad(t.bound, 11)
+      << rpad(ratio ? fmt("%.1fx", t.measured) : fmt("%.1f ns", t.measured), 11) << "  "
+      << (t.pass ? "pass" : "MISS") << "\n";
+  }
+  s << "(total " << fmt("%.1f", r.seconds) << " s)\n";
+}
+
+int run(const BenchArgs& a) {
+  BenchReport rep;
+  try {
+    rep = run_bench(a.options);
+  } catch (const std::invalid_argument& e) {  // bad options
+    std::cerr << "pdd bench: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
+  print_table(rep, json_stdout ? std::cerr : std::cout);
+  if (a.json) {
+    const std::string text = report_json(rep).dump(2) + "\n";
+    if (json_stdout) {
+      std::cout << text;
+    } else {
+      if (auto why = write_file(a.json_path, text)) {
+        std::cerr << "pdd bench: " << *why << "\n";
+        return kExitFileError;
+      }
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench",
+      "Time the fast engine, FCL and libccd (rigid PD) and the exact engine on the paper's "
+      "protocol; medians of repeated passes, ratios in the same run.");
+  cmd->add_option("--count", a->options.count, "Pairs of the paper's protocol")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--seed", a->options.seed, "Random seed of the pairs (0 to 2^64-1)")
+      ->check(seed_value())
+      ->capture_default_str();
+  cmd->add_option("--repeats", a->options.repeats, "Timed passes per row (median reported)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--exact-sample", a->options.exact_sample,
+                  "The first M pairs are also solved exactly (errors, exact-engine ratio)")
+      ->check(integer_in(0, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--json", a->json_path,
+                  "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                  "output, table on standard error)")
+      ->expected(0, 1);
+  cmd->callback([a, cmd, &exit_code] {
+    a->json = cmd->count("--json") > 0;
+    exit_code = run(*a);
+  });
+}
+
+}  // namespace pdd::compare

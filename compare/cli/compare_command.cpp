@@ -1,0 +1,135 @@
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "exit_codes.h"
+#include "pdd/compare/engine_comparison.h"
+#include "pdd/compare/engines.h"
+#include "pdd/compare/stats.h"
+
+namespace pdd::compare {
+namespace {
+
+struct CompareArgs {
+  std::string input;
+  bool json = false;
+};
+
+// stats.h's median; 0 when nothing was compared (the column is printed all the same).
+double median_or_zero(const std::vector<double>& v) { return v.empty() ? 0 : median(v); }
+
+Json comparison_json(const PairComparison& c) {
+  Json j;
+  j["name"] = c.name;
+  j["over_tolerance"] = c.over_tolerance();
+  if (c.exact_error || c.fast_error) {
+    j["exact_error"] = c.exact_error ? Json(*c.exact_error) : Json(nullptr);
+    j["fast_error"] = c.fast_error ? Json(*c.fast_error) : Json(nullptr);
+    return j;
+  }
+  j["intersect_agree"] = c.intersect_agree;
+  j["condition"] = c.condition;
+  for (int k = 0; k < 7; ++k)
+    j[std::string(kValueKeys[k])] = {{"exact", c.exact_value[k]}, {"fast", c.fast_value[k]},
+                                     {"rel_error", c.rel_error[k]}, {"tolerance", c.tolerance[k]}};
+  j["position_error"] = c.position_error;
+  j["position_tolerance"] = c.position_tolerance;
+  j["separated"] = c.separated;
+  for (int k = 0; k < 4; ++k)
+    j[std::string(kLabelKeys[k])] = {{"exact", c.exact_label[k]}, {"fast", c.fast_label[k]}, {"verdict", to_string(c.labels[k])}};
+  return j;
+}
+
+void print_over(const PairComparison& c) {
+  std::cout << "OVER TOLERANCE " << c.name;
+  if (!c.rejections_agree) {
+    std::cout << ": exact " << (c.exact_error ? "rejects (" + *c.exact_error + ")" : "accepts")
+              << ", fast " << (c.fast_error ? "rejects (" + *c.fast_error + ")" : "accepts") << "\n";
+    return;
+  }
+  std::cout << " (R/PD = " << c.condition << ")\n";
+  if (!c.intersect_agree) std::cout << "  intersecting: exact " << c.intersecting << ", fast " << !c.intersecting << "\n";
+  for (int k = 0; k < 7; ++k)
+    if (!(c.rel_error[k] <= c.tolerance[k]))
+      std::cout << "  " << kValueKeys[k] << ": exact " << std::setprecision(17) << c.exact_value[k]
+                << " fast " << c.fast_value[k] << " rel error " << std::setprecision(3) << c.rel_error[k]
+                << " > " << c.tolerance[k] << "\n";
+  if (!(c.position_error <= c.position_tolerance))
+    std::cout << "  q1 positions: object norm off pdd2 by " << c.position_error << " > "
+              << c.position_tolerance << "\n";
+  if (!c.separated) std::cout << "  q1 positions: not separated by the pdd2 plane up to 1e-9 R\n";
+  for (int k = 0; k < 4; ++k)
+    if (c.labels[k] == LabelVerdict::Differ)
+      std::cout << "  " << kLabelKeys[k] << ": exact " << c.exact_label[k] << " fast " << c.fast_label[k] << "\n";
+}
+
+int run_compare(const CompareArgs& a) {
+  const FixtureFile file = read_fixture_file(a.input);
+  if (file.error) {
+    std::cerr << "pdd compare: " << *file.error << "\n";
+    return kExitFileError;
+  }
+  const auto exact = run_reference(file.entries, {QpFormulation::Reduced}, true);
+  const auto fast = run_fast(file.entries);
+  std::vector<PairComparison> cs;
+  for (std::size_t k = 0; k < file.entries.size(); ++k)
+    cs.push_back(compare_pair(file.entries[k].pair, exact[k], fast[k]));
+
+  std::array<std::vector<double>, 7> errs;
+  std::vector<double> pos;
+  std::array<std::array<int, 5>, 4> verdicts{};
+  int over = 0, intersect_agree = 0, compared = 0, rejected = 0;
+  for (const auto& c : cs) {
+    if (a.json) std::cout << comparison_json(c).dump() << "\n";
+    if (c.over_tolerance()) {
+      ++over;
+      if (!a.json) print_over(c);
+    }
+    if (c.exact_error || c.fast_error) {
+      ++rejected;
+      if (c.rejections_agree)
+        std::cerr << "pdd compare: pair '" << c.name << "' rejected: "
+                  << (c.fast_error ? *c.fast_error : *c.exact_error)
+                  << (c.exact_error ? "" : " (the exact engine confirms: a value is outside the double range)")
+                  << "\n";
+      continue;
+    }
+    ++compared;
+    intersect_agree += c.intersect_agree;
+    if (!c.intersecting) continue;
+    for (int k = 0; k < 7; ++k) errs[k].push_back(c.rel_error[k]);
+    pos.push_back(c.position_error);
+    for (int k = 0; k < 4; ++k) ++verdicts[k][int(c.labels[k])];
+  }
+  std::ostream& s = a.json ? std::cerr : std::cout;
+  s << "\nfast vs exact on " << compared << " pairs (" << rejected << " rejected by an engine), "
+    << "contract SPEC §8: relative error <= 1e-9, labels by exact value\n"
+    << "intersecting agrees on " << intersect_agree << " of " << compared << "\n\n"
+    << std::left << std::setw(18) << "quantity" << std::setw(14) << "max rel err" << std::setw(14) << "median" << "\n";
+  for (int k = 0; k < 7; ++k) {
+    const double mx = errs[k].empty() ? 0 : *std::max_element(errs[k].begin(), errs[k].end());
+    s << std::setw(18) << kValueKeys[k] << std::setw(14) << std::setprecision(3) << mx << std::setw(14) << median_or_zero(errs[k]) << "\n";
+  }
+  s << std::setw(18) << "q1 positions" << std::setw(14) << (pos.empty() ? 0 : *std::max_element(pos.begin(), pos.end()))
+    << std::setw(14) << median_or_zero(pos) << "(|sigma(q1) - pdd2| / pdd2, exact)\n\n"
+    << std::setw(18) << "label" << "same / tie / near-tie / differ\n";
+  for (int k = 0; k < 4; ++k)
+    s << std::setw(18) << kLabelKeys[k] << verdicts[k][0] << " / " << verdicts[k][1] << " / " << verdicts[k][2] << " / " << verdicts[k][3] << "\n";
+  s << "\n" << over << " pair(s) over the contract, " << rejected << " rejected\n";
+  return over || rejected ? kExitCheckFailed : kExitOk;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand("compare", "Run both engines on every pair; report every disagreement.");
+  cmd->add_option("--input", a->input, "Fixture file")->required();
+  cmd->add_flag("--json", a->json, "One JSON object per pair on standard output (summary to stderr)");
+  cmd->callback([a, &exit_code] { exit_code = run_compare(*a); });
+}
+
+}  // namespace pdd::compare

@@ -1,0 +1,44 @@
+// pdd — penetration depth between tetrahedra: rigid PD and deformable PD_d (Kim & Kim).
+// See README.md and SPEC.md. Exit status (exit_codes.h): 0 success, 1 some pair rejected or
+// over tolerance, 2 unreadable input, usage error, failed write or unexpected error.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+#include "exit_codes.h"
+#include "pdd/compare/output.h"
+
+int main(int argc, char** argv) {
+  using namespace pdd::compare;
+  CLI::App app{
+      "pdd: rigid and deformable penetration depth between tetrahedra (Kim & Kim), with an "
+      "exact reference engine and a fast double-precision engine."};
+  app.require_subcommand(1);
+  int exit_code = kExitOk;
+  add_solve_command(app, exit_code);
+  add_generate_command(app, exit_code);
+  add_golden_command(app, exit_code);
+  add_theorem_command(app, exit_code);
+  add_audit_ee_command(app, exit_code);
+  add_compare_command(app, exit_code);
+  add_paper_command(app, exit_code);
+  add_bench_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  } catch (const std::exception& e) {  // never abort: say what went wrong
+    std::cerr << "pdd: error: " << e.what() << "\n";
+    return kExitFileError;
+  }
+  // Whatever a command wrote to standard output must have arrived (a full disk, a closed
+  // pipe): results that were lost are an error, not a success.
+  if (const auto why = flush_error(std::cout, "standard output")) {
+    if (exit_code != kExitFileError) std::cerr << "pdd: " << *why << "\n";  // else said already
+    return kExitFileError;
+  }
+  return exit_code;
+}

@@ -1,0 +1,276 @@
+// `pdd paper`: the paper's Sec. VI experiment reproduced (Table I, direction statistics,
+// Fig. 2, Fig. 3), fast engine on every pair, exact engine on a random sample.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <random>
+#include <sstream>
+
+#include "cli_checks.h"
+#include "commands.h"
+#include "exit_codes.h"
+#include "pdd/compare/engine_comparison.h"
+#include "pdd/compare/engines.h"
+#include "pdd/compare/generate.h"
+#include "pdd/compare/output.h"
+#include "pdd/compare/paper_experiment.h"
+#include "pdd/compare/paper_figures.h"
+#include "pdd/compare/progress.h"
+#include "pdd/compare/stats.h"
+#include "pdd/compare/timing.h"
+#include "pdd/pdd.h"
+
+namespace pdd::compare {
+namespace {
+
+struct PaperArgs {
+  std::uint64_t seed = 1;
+  std::size_t count = 10000;
+  std::string out = "paper-out";
+  std::size_t exact_sample = 200;
+  int repeats = 5;
+  double min_volume = 0.1, max_volume = 130;
+};
+
+// The paper's Table I (Kim & Kim, Sec. VI), for the side-by-side columns.
+struct PaperColumn {
+  const char* time;
+  const char* ratio;
+};
+const std::array<PaperColumn, 5> kPaperTableI = {{{"32.26 ms", "43.59% (13.17%)"},
+                                                  {"46.29 ms", "27.94% (3.15%)"},
+                                                  {"1.07 ms", "29.39% (3.47%)"},
+                                                  {"-", "-"},
+                                                  {"-", "-"}}};
+// Which timed fast variant belongs to each kPaperVariants column.
+const std::array<const char*, 5> kTimedVariant = {"pdd2_static", "pdd2", "pdd2_accel1", "pdd2_accel6", "pdd2_relaxed"};
+
+std::string machine_description() {
+  const MachineInfo m = machine_info();
+  return m.cpu_model + ", " + std::to_string(m.logical_cpus) + " logical CPUs, " + m.compiler +
+         (m.assertions ? ", assertions on (timings not representative)" : "");
+}
+
+std::string percent(const RatioStats& s) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(2) << 100 * s.mean << "% (" << 100 * s.std << "%)";
+  return o.str();
+}
+
+std::string time_string(double ns) {
+  std::ostringstream o;
+  o << std::setprecision(3);
+  if (ns < 1e3) o << ns << " ns";
+  else if (ns < 1e6) o << ns / 1e3 << " µs";
+  else o << ns / 1e6 << " ms";
+  return o.str();
+}
+
+struct ExactSample {
+  std::vector<std::size_t> indices;
+  std::vector<reference::ExactResult> results;
+  std::vector<double> call_ns;  // per pair: timing.h's single-call protocol (one core, in order)
+  std::size_t over_tolerance = 0, labels_differ = 0;
+  std::array<double, 7> max_rel_error{};
+};
+
+ExactSample run_exact_sample(const std::vector<TetPair>& pairs, const std::vector<PairResult<double>>& fast,
+                             std::size_t m, std::uint64_t seed) {
+  ExactSample s;
+  std::vector<std::size_t> all(pairs.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
+  for (std::size_t k = 0; k < std::min(m, all.size()); ++k)  // partial Fisher-Yates
+    std::swap(all[k], all[k + rng() % (all.size() - k)]);
+  s.indices.assign(all.begin(), all.begin() + std::min(m, all.size()));
+  std::sort(s.indices.begin(), s.indices.end());
+  s.results.resize(s.indices.size());
+  Progress progress("pdd paper: exact sample", s.indices.size());
+  s.call_ns = time_each_call(s.indices.size(), [&](std::size_t k) {
+    s.results[k] = reference::solve_exact(pairs[s.indices[k]], {QpFormulation::Reduced});
+    progress.tick();
+  });
+  progress.finish();
+  for (std::size_t k = 0; k < s.indices.size(); ++k) {
+    const auto c = compare_pair(pairs[s.indices[k]], s.results[k], fast[s.indices[k]]);
+    s.over_tolerance += c.over_tolerance();
+    for (auto l : c.labels) s.labels_differ += (l == LabelVerdict::Differ);
+    for (int v = 0; v < 7; ++v) s.max_rel_error[v] = std::max(s.max_rel_error[v], c.rel_error[v]);
+  }
+  return s;
+}
+
+// Index (into the sample) of the pair drawn in Fig. 2: among the pairs whose def/def ratio is
+// within 10% of the sample median (a typical pair), the one with the largest PD relative to its
+// extent, so that the deformation is visible at the scale of the picture.
+std::size_t figure_pair(const ExactSample& s, const std::vector<TetPair>& pairs) {
+  std::vector<double> ratio(s.results.size(), -1);
+  std::vector<double> valid;
+  for (std::size_t k = 0; k < s.results.size(); ++k)
+    if (s.results[k].intersecting)
+      valid.push_back(ratio[k] = std::sqrt(CGAL::to_double(s.results[k].pdd2) / CGAL::to_double(s.results[k].rigid_pd2)));
+  const double med = median(valid);
+  std::size_t best = 0;
+  double best_score = -1;
+  for (std::size_t k = 0; k < s.results.size(); ++k) {
+    if (ratio[k] < 0 || std::abs(ratio[k] - med) > 0.1 * med) continue;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto* t : {&pairs[s.indices[k]].A, &pairs[s.indices[k]].B})
+      for (const auto& v : *t)
+        for (double x : v) lo = std::min(lo, x), hi = std::max(hi, x);
+    const double score = std::sqrt(CGAL::to_double(s.results[k].rigid_pd2)) / (hi - lo);
+    if (score > best_score) best_score = score, best = k;
+  }
+  return best;
+}
+
+int run_paper_checked(const PaperArgs& a) {
+  namespace fs = std::filesystem;
+  if (!(a.min_volume < a.max_volume)) {
+    std::cerr << "pdd paper: --min-volume (" << a.min_volume << ") must be below --max-volume ("
+              << a.max_volume << ")\n";
+    return kExitUsage;
+  }
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (ec || !fs::is_directory(a.out)) {
+    std::cerr << "pdd paper: cannot make the output folder '" << a.out
+              << "': " << (ec ? ec.message() : std::string("a file of that name exists")) << "\n";
+    return kExitFileError;
+  }
+  const PaperProtocol protocol{10.0, a.min_volume, a.max_volume};
+  std::cerr << "pdd paper: generating " << a.count << " pairs (seed " << a.seed << ")\n";
+  const auto pairs = generate_family("paper", a.seed, a.count, protocol);
+  const auto unfiltered = generate_family("paper", a.seed, a.count, PaperProtocol{10.0, 0.0, std::numeric_limits<double>::infinity()});
+
+  std::cerr << "pdd paper: fast engine on every pair\n";
+  const auto fast = fast::solve_batch(pairs);
+  const PaperStats fs_stats = paper_statistics(fast, [](double x) { return x; });
+  std::cerr << "pdd paper: timing the fast engine (" << a.repeats << " repeats, one core)\n";
+  const auto timings = time_fast_variants(pairs, a.repeats);
+  auto timing_of = [&](const std::string& name) {
+    for (const auto& t : timings)
+      if (t.name == name) return time_string(t.median_ns_per_pair);
+    return std::string("-");
+  };
+
+  const ExactSample sample = run_exact_sample(pairs, fast, a.exact_sample, a.seed);
+  const PaperStats ex_stats = paper_statistics(sample.results, [](const reference::Rational& q) { return CGAL::to_double(q); });
+
+  std::string why;
+  const bool fig3 = write_fig3(a.out, fs_stats, why);
+  if (!fig3) std::cerr << "pdd paper: " << why << "\n";
+  const PairConfigurations conf = pair_configurations(pairs[sample.indices[figure_pair(sample, pairs)]]);
+  const bool fig2 = write_fig2(a.out, conf, why);
+  if (!fig2) std::cerr << "pdd paper: " << why << "\n";
+  write_vtk(a.out + "/pair_before_after.vtk", conf);
+
+  // ------------------------------------------------------------------ the report
+  std::ostringstream md;
+  md << std::fixed << std::setprecision(2);
+  md << "# pdd paper: Kim & Kim, Sec. VI, reproduced\n\n"
+     << "Run: `pdd paper --seed " << a.seed << " --count " << a.count << " --exact-sample " << a.exact_sample
+     << " --repeats " << a.repeats << "`. Protocol (SPEC §7): vertices uniform in a cube of side 10; each "
+     << "tetrahedron's volume in [" << a.min_volume << ", " << a.max_volume << "] (the paper's reported range); "
+     << "intersecting pairs only. Machine: " << machine_description() << ".\n\n"
+     << "PD_d/PD is sqrt(pdd2_x / rigid_pd2) per pair, PD the exact Minkowski-difference depth (SPEC §4); "
+     << "mean (sample standard deviation) over the pairs.\n\n"
+     << "## Table I\n\n"
+     << "| | STAT/DEF | DEF/DEF | DEF/DEF (ACCEL, first 1) | DEF/DEF (first 6) | DEF/DEF relaxed |\n"
+     << "| --- | --- | --- | --- | --- | --- |\n| time per pair, paper (Gurobi, Ryzen 7 1700X) |";
+  for (const auto& c : kPaperTableI) md << ' ' << c.time << " |";
+  md << "\n| time per pair, pdd fast engine (one core, median of " << a.repeats << " runs) |";
+  for (const char* v : kTimedVariant) md << ' ' << timing_of(v) << " |";
+  md << "\n| time per pair, pdd exact engine (median over the exact sample, all variants together) | "
+     << time_string(median(sample.call_ns)) << " | | | | |\n| PD_d/PD, paper |";
+  for (const auto& c : kPaperTableI) md << ' ' << c.ratio << " |";
+  md << "\n| PD_d/PD, pdd fast, " << fs_stats.pairs << " pairs |";
+  for (const auto& s : fs_stats.over_pd) md << ' ' << percent(s) << " |";
+  md << "\n| PD_d/PD, pdd exact, " << ex_stats.pairs << "-pair sample |";
+  for (const auto& s : ex_stats.over_pd) md << ' ' << percent(s) << " |";
+  md << "\n| PD_d/E11 (eq. 11 in place of PD), pdd fast |";
+  for (const auto& s : fs_stats.over_e11) md << ' ' << percent(s) << " |";
+  md << "\n\n## Directions\n\n| | paper | pdd fast | pdd exact sample |\n| --- | --- | --- | --- |\n"
+     << "| rigid direction = optimal case-2 direction | 52.33% | "
+     << 100.0 * fs_stats.rigid_is_optimal / fs_stats.pairs << "% | "
+     << 100.0 * ex_stats.rigid_is_optimal / ex_stats.pairs << "% |\n"
+     << "| case-2 optimum among the first six (depth order) | more than 90% | "
+     << 100.0 * fs_stats.optimum_in_first_six / fs_stats.pairs << "% | "
+     << 100.0 * ex_stats.optimum_in_first_six / ex_stats.pairs << "% |\n\n";
+
+  md << "## Exact sample: fast engine against exact arithmetic\n\n"
+     << sample.indices.size() << " pairs drawn at random (seed " << a.seed << ") and solved exactly: "
+     << sample.over_tolerance << " over the tolerance of `engine_comparison.h`, " << sample.labels_differ
+     << " label disagreements. Largest relative errors:";
+  md << std::scientific << std::setprecision(2);
+  for (int v = 0; v < 7; ++v) md << ' ' << kValueKeys[v] << ' ' << sample.max_rel_error[v] << (v < 6 ? "," : ".\n\n");
+  md << std::fixed;
+
+  const std::vector<double> probs = {0, 0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99, 1};
+  const auto qf = quantiles(tetrahedron_volumes(pairs), probs);
+  const auto qu = quantiles(tetrahedron_volumes(unfiltered), probs);
+  md << "## Tetrahedron volumes\n\nThe paper reports volumes \"from 0.1 to 130\". Quantiles of the "
+     << "volumes of A and B over the intersecting pairs, with the default filter and without it:\n\n"
+     << "| | min | 1% | 5% | 25% | 50% | 75% | 95% | 99% | max |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md << "| filtered [" << a.min_volume << ", " << a.max_volume << "] |";
+  for (double q : qf) md << ' ' << std::setprecision(3) << q << " |";
+  md << "\n| unfiltered |";
+  for (double q : qu) md << ' ' << q << " |";
+  md << "\n\n## Pictures\n\n";
+  if (fig3) md << "![PD_d/PD histograms](fig3_histograms.png)\n\n";
+  else md << "(fig. 3 not drawn: " << why << ")\n\n";
+  md << std::setprecision(4) << "Pair `" << conf.name << "` (def/def ratio within 10% of the sample median, the largest PD for its size among those): PD = " << conf.pd
+     << ", PD_d static/def = " << conf.pdd_static << ", def/def = " << conf.pdd
+     << ". `pair_before_after.vtk` holds the same tetrahedra for ParaView (cell scalar `configuration`: "
+     << "0 A rest, 1 B rest, 2 B static/def, 3 A def/def, 4 B def/def, 5 B rigid).\n\n";
+  if (fig2) md << "![pair before and after](fig2_pair.png)\n";
+  std::string text = md.str();
+  if (auto why = write_file(a.out + "/report.md", text)) {
+    std::cerr << "pdd paper: " << *why << "\n";
+    return kExitFileError;
+  }
+  std::cout << text;
+  std::cerr << "pdd paper: wrote " << a.out << "/report.md\n";
+  return sample.over_tolerance ? kExitCheckFailed : kExitOk;
+}
+
+int run_paper(const PaperArgs& a) {
+  try {
+    return run_paper_checked(a);
+  } catch (const std::exception& e) {  // e.g. no pair in the volume window, a failed write
+    std::cerr << "pdd paper: " << e.what() << "\n";
+    return kExitFileError;
+  }
+}
+
+}  // namespace
+
+void add_paper_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<PaperArgs>();
+  CLI::App* cmd = app.add_subcommand("paper", "Reproduce the paper's experiment: Table I, direction statistics, Fig. 2 and 3.");
+  cmd->add_option("--seed", a->seed, "Random seed (0 to 2^64-1)")->check(seed_value())->capture_default_str();
+  cmd->add_option("--count", a->count, "Number of intersecting pairs")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--out", a->out, "Output folder (report.md, pictures, VTK)")->capture_default_str();
+  cmd->add_option("--exact-sample", a->exact_sample, "Pairs also solved exactly (at least 200 for a fair check)")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--repeats", a->repeats, "Timing repeats (median)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--min-volume", a->min_volume, "Smallest tetrahedron volume kept")
+      ->check(finite_number(0, false))
+      ->capture_default_str();
+  cmd->add_option("--max-volume", a->max_volume, "Largest tetrahedron volume kept")
+      ->check(finite_number(0, true))
+      ->capture_default_str();
+  cmd->callback([a, &exit_code] { exit_code = run_paper(*a); });
+}
+
+}  // namespace pdd::compare

@@ -1,0 +1,165 @@
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <tbb/global_control.h>
+
+#include "commands.h"
+#include "cli_checks.h"
+#include "pdd/compare/engines.h"
+#include "exit_codes.h"
+#include "pdd/compare/output.h"
+#include "pdd/compare/progress.h"
+#include "pdd/compare/result_json.h"
+
+namespace pdd::compare {
+namespace {
+
+struct SolveArgs {
+  std::string engine = "reference";
+  std::string input;
+  std::string output;
+  std::string formulation = "full";
+  bool quiet = false;
+  int threads = 0;  // 0: all cores
+};
+
+// Pairs are read, solved and written this many at a time, so memory does not grow with the
+// file; the results are those of solving the whole file at once, in the same order.
+constexpr std::size_t kChunk = 4096;
+
+template <class R, class Record>
+int write_results(const std::vector<PairResult<R>>& results, Record record, std::ostream& out) {
+  int status = kExitOk;
+  for (const auto& r : results) {
+    out << record(r).dump() << '\n';
+    if (r.error) {
+      std::cerr << "pdd solve: pair '" << r.name << "' rejected: " << *r.error << '\n';
+      status = kExitPairRejected;
+    }
+  }
+  return status;
+}
+
+int run_solve(const SolveArgs& args) {
+  // The whole file is checked before anything is computed or written, so that a file that
+  // cannot be read produces no output. A regular file is then read a second time in chunks;
+  // anything else (a pipe) can be read only once and is held in memory.
+  std::error_code ec;
+  const bool regular = std::filesystem::is_regular_file(args.input, ec);
+  FixtureFile whole;
+  std::size_t total = 0;
+  if (regular) {
+    const FixtureCheck check = check_fixture_file(args.input);
+    if (check.error) {
+      std::cerr << "pdd solve: " << *check.error << '\n';
+      return kExitFileError;
+    }
+    total = check.entries;
+  } else {
+    whole = read_fixture_file(args.input);
+    if (whole.error) {
+      std::cerr << "pdd solve: " << *whole.error << '\n';
+      return kExitFileError;
+    }
+    total = whole.entries.size();
+  }
+  std::ofstream file_out;
+  if (!args.output.empty()) {
+    errno = 0;
+    file_out.open(args.output, std::ios::binary);
+    if (!file_out) {
+      std::cerr << "pdd solve: cannot write '" << args.output << "'"
+                << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
+      return kExitFileError;
+    }
+  }
+  std::ostream& out = args.output.empty() ? std::cout : file_out;
+  const std::string where = args.output.empty() ? "standard output" : "'" + args.output + "'";
+  std::optional<tbb::global_control> limit;
+  if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
+
+  const bool fast = args.engine == "fast";
+  reference::SolveOptions options;
+  options.formulation = args.formulation == "reduced" ? QpFormulation::Reduced
+                                                      : QpFormulation::Full;
+  if (fast)
+    std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
+  else
+    std::cerr << "pdd solve: " << total << " pairs, reference engine, "
+              << to_string(options.formulation) << " QP formulation\n";
+  Progress progress(fast ? "pdd: fast engine" : "pdd: reference engine", total,
+                    args.quiet ? Progress::kNever : 2.0);
+
+  int status = kExitOk;
+  std::size_t slow_paths = 0;  // fast engine: pairs that took its exact path (SPEC §8)
+  std::optional<std::string> write_error;
+  const FixtureSink solve_chunk = [&](std::vector<FixtureEntry>& chunk, std::size_t) {
+    if (fast) {
+      std::size_t slow = 0;
+      status = std::max(status, write_results(run_fast(chunk, &slow), fast_record, out));
+      slow_paths += slow;
+      progress.tick(chunk.size());
+    } else {
+      status = std::max(status, write_results(run_reference(chunk, options, progress), exact_record, out));
+    }
+    if (!out) write_error = flush_error(out, where).value_or("cannot write to " + where);
+    return !write_error;  // stop early: the results would be lost
+  };
+  if (regular) {
+    if (auto why = stream_fixture_file(args.input, kChunk, solve_chunk); why && !write_error) {
+      std::cerr << "pdd solve: " << *why << '\n';  // the file changed since it was checked
+      return kExitFileError;
+    }
+  } else {
+    for (std::size_t k = 0; k < whole.entries.size() && !write_error; k += kChunk) {
+      std::vector<FixtureEntry> chunk(whole.entries.begin() + k,
+                                      whole.entries.begin() + std::min(k + kChunk, whole.entries.size()));
+      solve_chunk(chunk, k);
+    }
+  }
+  progress.finish();
+  if (fast)
+    std::cerr << "pdd solve: " << slow_paths << " of " << total
+              << " pairs took the exact path (SPEC §8: error bound wider than 1e-9)\n";
+  if (!write_error)
+    write_error = args.output.empty() ? flush_error(out, where) : close_error(file_out, args.output);
+  if (write_error) {
+    std::cerr << "pdd solve: " << *write_error << "; results lost\n";
+    return kExitFileError;
+  }
+  return status;
+}
+
+}  // namespace
+
+void add_solve_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<SolveArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "solve", "Compute every SPEC §6 quantity for each pair of a fixture file; write JSON Lines.");
+  cmd->add_option("--engine", args->engine,
+                  "Engine: 'reference' (exact, numbers as \"p/q\" strings) or 'fast' (doubles, "
+                  "JSON numbers that read back to the same double)")
+      ->check(CLI::IsMember({"reference", "fast"}))
+      ->capture_default_str();
+  cmd->add_option("--input", args->input, "Fixture file (JSON, SPEC §1)")->required();
+  cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");
+  cmd->add_option("--formulation", args->formulation,
+                  "Reference QP formulation: 'full' (the paper's 27 variables) or 'reduced' "
+                  "(SPEC §5 scalar form, same exact values, faster)")
+      ->check(CLI::IsMember({"full", "reduced"}))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
+      ->check(integer_in(0, 4096))
+      ->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
+  cmd->callback([args, &exit_code] { exit_code = run_solve(*args); });
+}
+
+}  // namespace pdd::compare

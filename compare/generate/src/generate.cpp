@@ -1,0 +1,507 @@
+#include "pdd/compare/generate.h"
+#include "pdd/compare/random.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <random>
+#include <stdexcept>
+
+#include "pdd/reference/minkowski_pd.h"
+#include "pdd/reference/solve_exact.h"
+#include "pdd/reference/validate_pair.h"
+
+namespace pdd::compare {
+namespace {
+
+using reference::Rational;
+
+using Rng = ReproducibleRng;  // random.h: the same draws with every standard library
+
+constexpr double kGridStep = 1.0 / 16;  // degenerate families: coordinates k/16 in [0, 10]
+constexpr int kMaxTries = 200000;
+
+Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d mul(double s, const Vec3d& a) { return {s * a[0], s * a[1], s * a[2]}; }
+
+Vec3d random_point(Rng& r, double side) { return {r.uniform(0, side), r.uniform(0, side), r.uniform(0, side)}; }
+Vec3d grid_point(Rng& r) {
+  return {r.grid(0, 10, kGridStep), r.grid(0, 10, kGridStep), r.grid(0, 10, kGridStep)};
+}
+TetVertices grid_tet(Rng& r) { return {grid_point(r), grid_point(r), grid_point(r), grid_point(r)}; }
+
+double volume(const TetVertices& t) { return tetrahedron_volume(t); }
+
+bool valid(const TetVertices& t) { return !reference::validate_tetrahedron(t, 'A').has_value(); }
+
+// Smallest facet offset of A (+) (-B): > 0 intersecting, == 0 touching, < 0 disjoint.
+Rational min_facet_offset(const TetPair& p) {
+  const auto m = reference::minkowski_pd(reference::to_exact(p));
+  Rational lo = m.facets.front().offset;
+  for (const auto& f : m.facets) lo = CGAL::min(lo, f.offset);
+  return lo;
+}
+bool intersecting(const TetPair& p) { return valid(p.A) && valid(p.B) && min_facet_offset(p) > 0; }
+
+TetPair pair_of(const TetVertices& a, const TetVertices& b) {
+  TetPair p;
+  p.A = a, p.B = b;
+  return p;
+}
+
+// A vertex combination f0 + a (f1 - f0) + b (f2 - f0) of a face, a and b multiples of 1/8.
+Vec3d face_point(const TetVertices& t, int opposite, double a, double b) {
+  int f[3], k = 0;
+  for (int i = 0; i < 4; ++i)
+    if (i != opposite) f[k++] = i;
+  return add(t[f[0]], add(mul(a, sub(t[f[1]], t[f[0]])), mul(b, sub(t[f[2]], t[f[0]]))));
+}
+
+// ---------------------------------------------------------------- the families
+// Each maker is one attempt: nullopt when the draw lacks the family's property (then
+// generate_family draws again, at most kMaxTries times).
+using Attempt = std::optional<TetPair>;
+
+Attempt paper_pair(Rng& r, const PaperProtocol& pp) {
+  auto tet = [&]() -> std::optional<TetVertices> {
+    TetVertices t;
+    for (auto& v : t) v = random_point(r, pp.cube_side);
+    const double vol = volume(t);
+    if (vol < pp.min_volume || vol > pp.max_volume || !valid(t)) return std::nullopt;
+    return t;
+  };
+  const auto a = tet();
+  if (!a) return std::nullopt;
+  const auto b = tet();
+  if (!b) return std::nullopt;
+  TetPair p = pair_of(*a, *b);
+  if (!intersecting(p)) return std::nullopt;
+  return p;
+}
+
+bool strictly_inside(const TetVertices& outer, const Vec3d& x) {
+  const auto t = reference::to_exact(outer);
+  const reference::Point q{Rational(x[0]), Rational(x[1]), Rational(x[2])};
+  const auto whole = CGAL::orientation(t[0], t[1], t[2], t[3]);
+  for (int i = 0; i < 4; ++i) {
+    auto tt = t;
+    tt[i] = q;
+    if (CGAL::orientation(tt[0], tt[1], tt[2], tt[3]) != whole) return false;
+  }
+  return true;
+}
+
+// Keep the pair when A is valid and the pair intersects.
+Attempt if_intersecting(const TetVertices& a, const TetVertices& b) {
+  TetPair p = pair_of(a, b);
+  if (!valid(a) || !intersecting(p)) return std::nullopt;
+  return p;
+}
+
+Attempt nested_pair(Rng& r) {
+  TetVertices a, b;
+  for (auto& v : a) v = random_point(r, 10);
+  if (volume(a) < 50) return std::nullopt;
+  const Vec3d c = mul(0.25, add(add(a[0], a[1]), add(a[2], a[3])));
+  const double size = r.uniform(0.2, 1.0);
+  for (auto& v : b) v = add(c, {r.uniform(-size, size), r.uniform(-size, size), r.uniform(-size, size)});
+  if (!valid(b)) return std::nullopt;
+  if (!std::all_of(b.begin(), b.end(), [&](const Vec3d& x) { return strictly_inside(a, x); }))
+    return std::nullopt;
+  return pair_of(a, b);
+}
+
+// B's edge 0 (r0, r1) is parallel to edge e of A: r1 = r0 + m (s_v - s_u), exact on the grid.
+Attempt parallel_edges_pair(Rng& r) {
+  const double ms[] = {0.5, -0.5, 0.25, -0.75, 1.0};
+  const TetVertices a = grid_tet(r);
+  const int e = r.integer(0, 5);
+  const Vec3d dir = sub(a[kEdges[e][1]], a[kEdges[e][0]]);
+  const Vec3d r0 = grid_point(r);
+  return if_intersecting(a, {r0, add(r0, mul(ms[r.integer(0, 4)], dir)), grid_point(r), grid_point(r)});
+}
+
+// B's edge 0 lies on the line of edge e of A: r_k = s_u + alpha_k (s_v - s_u).
+Attempt colinear_edges_pair(Rng& r) {
+  const double alphas[] = {-0.25, 0.25, 0.5, 0.75, 1.25};
+  const TetVertices a = grid_tet(r);
+  const int e = r.integer(0, 5);
+  const Vec3d su = a[kEdges[e][0]], dir = sub(a[kEdges[e][1]], su);
+  const int i = r.integer(0, 4), j = (i + r.integer(1, 4)) % 5;
+  return if_intersecting(a, {add(su, mul(alphas[i], dir)), add(su, mul(alphas[j], dir)),
+                             grid_point(r), grid_point(r)});
+}
+
+// B's face (r0, r1, r2) lies in the plane of a face of A.
+Attempt coplanar_faces_pair(Rng& r) {
+  const TetVertices a = grid_tet(r);
+  const int i = r.integer(0, 3);
+  TetVertices b;
+  for (int k = 0; k < 3; ++k) b[k] = face_point(a, i, r.grid(-0.25, 1, 0.125), r.grid(-0.25, 1, 0.125));
+  b[3] = grid_point(r);
+  return if_intersecting(a, b);
+}
+
+// B's first `shared` vertices are vertices of A.
+Attempt shared_pair(Rng& r, int shared) {
+  const TetVertices a = grid_tet(r);
+  TetVertices b = grid_tet(r);
+  for (int k = 0; k < shared; ++k) b[k] = a[k];
+  return if_intersecting(a, b);
+}
+
+Attempt identical_pair(Rng& r) {
+  TetVertices a;
+  for (auto& v : a) v = random_point(r, 10);
+  if (!valid(a)) return std::nullopt;
+  TetVertices b = a;
+  for (int k = 3; k > 0; --k) std::swap(b[k], b[r.integer(0, k)]);  // Fisher-Yates
+  return pair_of(a, b);
+}
+
+// B stands on the outside of a face of A: three vertices in the face's plane, the apex
+// beyond it. The interiors are disjoint and the boundaries meet: PD = 0 exactly.
+Attempt touching_pair(Rng& r) {
+  const TetVertices a = grid_tet(r);
+  const int i = r.integer(0, 3);
+  const Vec3d p = face_point(a, i, 0.25, 0.25);
+  TetVertices b;
+  for (int k = 0; k < 3; ++k) b[k] = face_point(a, i, r.grid(0, 0.5, 0.125), r.grid(0, 0.5, 0.125));
+  b[3] = sub(p, mul(r.grid(0.25, 1, 0.25), sub(a[i], p)));
+  TetPair q = pair_of(a, b);
+  if (!valid(a) || !valid(b) || min_facet_offset(q) != 0) return std::nullopt;
+  return q;
+}
+
+Attempt disjoint_pair(Rng& r) {
+  TetVertices a, b;
+  for (auto& v : a) v = random_point(r, 10);
+  for (auto& v : b) v = add(random_point(r, 10), {r.uniform(0, 12), r.uniform(0, 12), 0});
+  TetPair p = pair_of(a, b);
+  if (!valid(a) || !valid(b) || min_facet_offset(p) >= 0) return std::nullopt;
+  return p;
+}
+
+// A vertex of B pokes through a face of A by 2^-30 of the way to the opposite vertex:
+// PD is about 1e-9 of the size. B's other three vertices lie beyond the face.
+Attempt near_touching_pair(Rng& r) {
+  const TetVertices a = grid_tet(r);
+  const int i = r.integer(0, 3);
+  const Vec3d p = face_point(a, i, r.grid(0.125, 0.5, 0.125), r.grid(0.125, 0.375, 0.125));
+  const Vec3d d = sub(a[i], p);  // into A
+  TetVertices b;
+  for (int j = 0, k = 0; j < 4; ++j)
+    if (j != i) b[k] = sub(add(p, mul(0.5, sub(a[j], p))), mul(0.5, d)), ++k;
+  b[3] = add(p, mul(0x1.0p-30, d));
+  return if_intersecting(a, b);
+}
+
+Attempt scaled_pair(Rng& r, const PaperProtocol& pp, int exponent) {
+  Attempt p = paper_pair(r, pp);
+  if (!p) return p;
+  for (auto* t : {&p->A, &p->B})
+    for (auto& v : *t)
+      for (double& x : v) x = std::ldexp(x, exponent);  // exact: no overflow or underflow
+  return p;
+}
+
+// B's fourth vertex sits about 1e-5 off the plane of its other three (size 10).
+Attempt sliver_pair(Rng& r) {
+  TetVertices a, b;
+  for (auto& v : a) v = random_point(r, 10);
+  if (volume(a) < 10) return std::nullopt;
+  for (int k = 0; k < 3; ++k) b[k] = random_point(r, 10);
+  const Vec3d off = {r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+  const Vec3d in_plane = add(mul(r.uniform(0, 1), sub(b[1], b[0])), mul(r.uniform(0, 1), sub(b[2], b[0])));
+  b[3] = add(add(b[0], in_plane), mul(0x1.0p-20 * 10, off));
+  if (!valid(b)) return std::nullopt;
+  return if_intersecting(a, b);
+}
+
+// Paper-protocol pairs whose exact case-2 optimum is an undecidable edge pair.
+Attempt undecidable_optimum_pair(Rng& r, const PaperProtocol& pp) {
+  Attempt p = paper_pair(r, pp);
+  if (!p) return p;
+  const auto res = reference::solve_exact(*p, {QpFormulation::Reduced});
+  if (!res.pdd2_dir || res.pdd2_dir->orientation == EdgeOrientation::Decided) return std::nullopt;
+  return p;
+}
+
+// A vertex of B pokes through the face z = 0 of the corner tetrahedron A (legs L) to depth t,
+// with t below its distance to every other face, and B's base at z = -h, h >= t/4. Then
+// PD = t along FV:3 and PD_d^2 (A static) = t^2/16 along FV:3 (derivation in
+// tests/reference/test_closed_form.cpp); both recorded as tags.
+Attempt closed_form_pair(Rng& r) {
+  const double L = r.grid(6, 12, 1);
+  const double t = r.grid(0.125, 1, 0.125);
+  const double x = r.grid(0.5, 3, 0.125), y = r.grid(0.5, 3, 0.125);
+  const double rest = L - x - y - t;  // rest / sqrt(3): the apex's distance to the slanted face
+  const double h = r.grid(0.25, 2, 0.125);
+  if (!(t < x && t < y && rest > 0 && rest * rest > 3 * t * t && h >= t / 4)) return std::nullopt;
+  TetPair p = pair_of({{{0, 0, 0}, {L, 0, 0}, {0, L, 0}, {0, 0, L}}},
+                      {{{r.grid(0, 4, 0.25), r.grid(-2, 0, 0.25), -h},
+                        {r.grid(4, 6, 0.25), r.grid(0, 4, 0.25), -h},
+                        {r.grid(-2, 0, 0.25), r.grid(4, 6, 0.25), -h},
+                        {x, y, t}}});
+  if (!valid(p.B) || !intersecting(p)) return std::nullopt;
+  const Rational t2 = Rational(t) * Rational(t);
+  p.tags = {"rigid_pd2=" + reference::to_string(t2), "rigid_dir=FV:3",
+            "pdd2_static=" + reference::to_string(t2 / 16), "pdd2_static_dir=FV:3"};
+  return p;
+}
+
+// ---------------------------------------------------------------- adversarial
+// Valid pairs that defeat naive double arithmetic (cancellation, overflow, underflow, lost
+// ulps). Pair k is of kind k % kAdversarialKinds, so every kind appears once in every run of
+// kAdversarialKinds consecutive pairs. Every coordinate is a double computed here by exact
+// operations (or by one correctly rounded addition, for the translated kind: the pair is
+// then what the rounded doubles say); validity (non-zero volume) and every promised property
+// are decided with the exact engine, and every exact squared output must be 0 or a normal
+// double (SPEC §8), else the draw is repeated.
+constexpr int kAdversarialKinds = 10;
+const char* const kAdversarialKind[kAdversarialKinds] = {
+    "ulp-sliver", "ulp-needle",     "nearly-flat",   "near-touching-in", "near-touching-out",
+    "nearly-parallel-edges", "nearly-coplanar-faces", "power-of-two-scale", "far-translated",
+    "far-vertex"};
+
+Vec3d paper_point(Rng& r) { return random_point(r, 10); }
+TetVertices paper_tet(Rng& r) { return {paper_point(r), paper_point(r), paper_point(r), paper_point(r)}; }
+// A small dyadic vector: components multiples of 1/16 in [-1, 1], not all zero.
+Vec3d small_grid_vector(Rng& r) {
+  Vec3d w;
+  do w = {r.grid(-1, 1, kGridStep), r.grid(-1, 1, kGridStep), r.grid(-1, 1, kGridStep)};
+  while (w[0] == 0 && w[1] == 0 && w[2] == 0);
+  return w;
+}
+// x moved by `ulps` units in the last place (exact: the neighbouring doubles).
+double nudge(double x, int ulps) {
+  const double to = ulps > 0 ? HUGE_VAL : -HUGE_VAL;
+  for (int k = 0; k < std::abs(ulps); ++k) x = std::nextafter(x, to);
+  return x;
+}
+
+bool normal_or_zero(const Rational& v) {
+  if (v == 0) return true;
+  const Rational a = CGAL::abs(v);
+  return a >= Rational(std::numeric_limits<double>::min()) &&
+         a <= Rational(std::numeric_limits<double>::max());
+}
+// Every squared value of SPEC §6 is 0 or a normal double (exact, reduced formulation).
+bool squared_outputs_normal(const TetPair& p) {
+  const auto r = reference::solve_exact(p, {QpFormulation::Reduced});
+  if (r.error) return false;
+  for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,
+                            &r.pdd2_accel1, &r.pdd2_accel6})
+    if (!normal_or_zero(*v)) return false;
+  return true;
+}
+
+// A paper-protocol B against an adversarial A; kept when B is valid and the pair intersects.
+Attempt with_random_b(Rng& r, const TetVertices& a) {
+  const TetVertices b = paper_tet(r);
+  if (!valid(b)) return std::nullopt;
+  return if_intersecting(a, b);
+}
+
+Attempt adversarial_attempt(Rng& r, int kind) {
+  switch (kind) {
+    case 0: {  // ulp-sliver: s3 is s2 with one coordinate moved by 1 ulp; A is a flat sliver
+      TetVertices a = paper_tet(r);
+      a[3] = a[2];
+      const int c = r.integer(0, 2);
+      a[3][c] = nudge(a[3][c], r.integer(0, 1) ? 1 : -1);
+      return with_random_b(r, a);
+    }
+    case 1: {  // ulp-needle: s1, s2 within 1 and 2 ulps of s0 (different axes), s3 far: a needle
+      TetVertices a = paper_tet(r);
+      const int c = r.integer(0, 2), d = (c + r.integer(1, 2)) % 3;
+      a[1] = a[0], a[2] = a[0];
+      a[1][c] = nudge(a[0][c], 1);
+      a[2][d] = nudge(a[0][d], -2);
+      return with_random_b(r, a);
+    }
+    case 2: {  // nearly-flat: s3 = an exact point of the plane of s0 s1 s2 + 2^-40 w (grid A)
+      TetVertices a = grid_tet(r);
+      a[3] = add(face_point(a, 3, r.grid(0, 1, 0.125), r.grid(0, 1, 0.125)),
+                 mul(0x1.0p-40, small_grid_vector(r)));  // multiples of 2^-44 below 2^5: exact
+      return with_random_b(r, a);
+    }
+    case 3:
+    case 4: {  // near-touching: a vertex of B 2^-60 of A's height inside (3) / outside (4) a
+      // face of A. The pair is translated (exactly, on the 1/128 grid) so the contact point p
+      // is the origin; then r3 = +-2^-60 (s_i - p) is exact. B's other vertices lie beyond
+      // the face, so kind 4 is disjoint at distance ~2^-60 and kind 3 has PD ~2^-60.
+      TetVertices a = grid_tet(r);
+      const int i = r.integer(0, 3);
+      const Vec3d p = face_point(a, i, r.grid(0.125, 0.5, 0.125), r.grid(0.125, 0.375, 0.125));
+      for (auto& v : a) v = sub(v, p);
+      const Vec3d d = a[i];  // from the contact point into A
+      TetVertices b;
+      for (int j = 0, k = 0; j < 4; ++j)
+        if (j != i) b[k] = sub(mul(0.5, a[j]), mul(0.5, d)), ++k;
+      b[3] = mul(kind == 3 ? 0x1.0p-60 : -0x1.0p-60, d);
+      TetPair q = pair_of(a, b);
+      if (!valid(a) || !valid(b)) return std::nullopt;
+      const Rational m = min_facet_offset(q);
+      if (kind == 3 ? !(m > 0) : !(m < 0)) return std::nullopt;
+      return q;
+    }
+    case 5: {  // nearly-parallel-edges: r1 = r0 + m (s_v - s_u) + 2^-40 w (grid: exact)
+      const double ms[] = {0.5, -0.5, 0.25, -0.75, 1.0};
+      const TetVertices a = grid_tet(r);
+      const int e = r.integer(0, 5);
+      const Vec3d dir = sub(a[kEdges[e][1]], a[kEdges[e][0]]);
+      const Vec3d r0 = grid_point(r);
+      const Vec3d r1 = add(add(r0, mul(ms[r.integer(0, 4)], dir)), mul(0x1.0p-40, small_grid_vector(r)));
+      return if_intersecting(a, {r0, r1, grid_point(r), grid_point(r)});
+    }
+    case 6: {  // nearly-coplanar-faces: r0..r2 = points of a face plane of A + 2^-40 w_k
+      const TetVertices a = grid_tet(r);
+      const int i = r.integer(0, 3);
+      TetVertices b;
+      for (int k = 0; k < 3; ++k)
+        b[k] = add(face_point(a, i, r.grid(-0.25, 1, 0.125), r.grid(-0.25, 1, 0.125)),
+                   mul(0x1.0p-40, small_grid_vector(r)));
+      b[3] = grid_point(r);
+      if (!valid(b)) return std::nullopt;
+      return if_intersecting(a, b);
+    }
+    case 7: {  // power-of-two-scale: a paper pair times 2^e, e uniform in [-450, 450] (exact)
+      Attempt p = paper_pair(r, {});
+      if (!p) return p;
+      const int e = r.integer(-450, 450);
+      for (auto* t : {&p->A, &p->B})
+        for (auto& v : *t)
+          for (double& x : v) x = std::ldexp(x, e);
+      p->tags.push_back("scale-2^" + std::to_string(e));
+      return p;
+    }
+    case 8: {  // far-translated: a paper pair + (+-T, +-T, +-T), T in {1e6, 1e12}; each sum is
+      // rounded once (ulp 2^-33 or 2^-13), and the pair is the rounded doubles.
+      Attempt p = paper_pair(r, {});
+      if (!p) return p;
+      const double T = r.integer(0, 1) ? 1e12 : 1e6;
+      const Vec3d t = {r.integer(0, 1) ? T : -T, r.integer(0, 1) ? T : -T, r.integer(0, 1) ? T : -T};
+      for (auto* tet : {&p->A, &p->B})
+        for (auto& v : *tet) v = add(v, t);
+      return if_intersecting(p->A, p->B);
+    }
+    case 9: {  // far-vertex: a vertex of A moved by D w, D in {1e15, 1e18}, w a grid vector with
+      // max |w_k| = 1 (rounded once); A becomes a long spike and B meets it near its base.
+      TetVertices a = paper_tet(r);
+      const double D = r.integer(0, 1) ? 1e18 : 1e15;
+      const int i = r.integer(0, 3);
+      Vec3d w = small_grid_vector(r);
+      w[r.integer(0, 2)] = r.integer(0, 1) ? 1 : -1;  // |w|_max = 1: the vertex is >= D away
+      a[i] = add(a[i], mul(D, w));
+      return with_random_b(r, a);
+    }
+  }
+  throw std::logic_error("adversarial kind");
+}
+
+Attempt adversarial_pair(Rng& r, std::size_t k) {
+  const int kind = int(k % kAdversarialKinds);
+  Attempt p = adversarial_attempt(r, kind);
+  if (!p || !squared_outputs_normal(*p)) return std::nullopt;
+  p->tags.insert(p->tags.begin(), kAdversarialKind[kind]);
+  return p;
+}
+
+// One attempt at a pair of a family; nullopt when the draw does not have the property.
+using Maker = std::function<std::optional<TetPair>(Rng&, std::size_t)>;
+
+struct Family {
+  FamilyInfo info;
+  Maker make;
+};
+
+std::vector<Family> family_table(const PaperProtocol& pp) {
+  return {
+      {{"paper", "the paper's protocol (SPEC §7): uniform in a 10-cube, volumes in [0.1, 130], intersecting"},
+       [pp](Rng& r, std::size_t) { return paper_pair(r, pp); }},
+      {{"nested", "B (size 0.2 to 1) strictly inside A (volume >= 50)"},
+       [](Rng& r, std::size_t) { return nested_pair(r); }},
+      {{"parallel-edges", "B's edge 0 parallel to an edge of A (grid coordinates)"},
+       [](Rng& r, std::size_t) { return parallel_edges_pair(r); }},
+      {{"colinear-edges", "B's edge 0 on the line of an edge of A"},
+       [](Rng& r, std::size_t) { return colinear_edges_pair(r); }},
+      {{"coplanar-faces", "B's face (r0, r1, r2) in the plane of a face of A"},
+       [](Rng& r, std::size_t) { return coplanar_faces_pair(r); }},
+      {{"shared-vertex", "B shares vertex s0 with A"}, [](Rng& r, std::size_t) { return shared_pair(r, 1); }},
+      {{"shared-edge", "B shares edge (s0, s1) with A"}, [](Rng& r, std::size_t) { return shared_pair(r, 2); }},
+      {{"shared-face", "B shares face (s0, s1, s2) with A"}, [](Rng& r, std::size_t) { return shared_pair(r, 3); }},
+      {{"identical", "B is A with its vertices permuted"}, [](Rng& r, std::size_t) { return identical_pair(r); }},
+      {{"touching", "B on the outside of a face of A, boundaries meeting: PD = 0 exactly"},
+       [](Rng& r, std::size_t) { return touching_pair(r); }},
+      {{"disjoint", "interiors and boundaries disjoint"}, [](Rng& r, std::size_t) { return disjoint_pair(r); }},
+      {{"near-touching", "a vertex of B 2^-30 of A's height through a face of A: PD ~ 1e-9 of the size"},
+       [](Rng& r, std::size_t) { return near_touching_pair(r); }},
+      {{"scaled-large", "paper pairs scaled by 2^20, 2^40, 2^60 (exactly)"},
+       [pp](Rng& r, std::size_t k) { return scaled_pair(r, pp, 20 * int(1 + k % 3)); }},
+      {{"scaled-small", "paper pairs scaled by 2^-20, 2^-40, 2^-60 (exactly)"},
+       [pp](Rng& r, std::size_t k) { return scaled_pair(r, pp, -20 * int(1 + k % 3)); }},
+      {{"sliver", "B's fourth vertex 1e-5 off the plane of its other three"},
+       [](Rng& r, std::size_t) { return sliver_pair(r); }},
+      {{"undecidable-optimum", "paper pairs whose exact case-2 optimum is an undecidable edge pair"},
+       [pp](Rng& r, std::size_t) { return undecidable_optimum_pair(r, pp); }},
+      {{"closed-form", "a vertex of B through a face of A at depth t: PD^2 = t^2, static PD_d^2 = t^2/16 (tags)"},
+       [](Rng& r, std::size_t) { return closed_form_pair(r); }},
+      {{"adversarial",
+        "valid pairs that break naive doubles, kind k % 10: 1-ulp sliver, 1-ulp needle, nearly flat "
+        "(2^-40), vertex 2^-60 inside / outside a face, nearly parallel edges, nearly coplanar faces "
+        "(2^-40), scaled by 2^-450..2^450, translated by 1e6 / 1e12, a vertex 1e15 / 1e18 away"},
+       [](Rng& r, std::size_t k) { return adversarial_pair(r, k); }},
+  };
+}
+
+}  // namespace
+
+double tetrahedron_volume(const TetVertices& t) {
+  const Vec3d a = sub(t[1], t[0]), b = sub(t[2], t[0]), c = sub(t[3], t[0]);
+  return std::abs(a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                  a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+}
+
+const std::vector<FamilyInfo>& fixture_families() {
+  static const std::vector<FamilyInfo> infos = [] {
+    std::vector<FamilyInfo> out;
+    for (const auto& f : family_table({})) out.push_back(f.info);
+    return out;
+  }();
+  return infos;
+}
+
+std::vector<TetPair> generate_family(const std::string& family, std::uint64_t seed,
+                                     std::size_t count, const PaperProtocol& protocol) {
+  for (const auto& f : family_table(protocol)) {
+    if (f.info.name != family) continue;
+    Rng rng(seed);
+    std::vector<TetPair> out;
+    for (std::size_t k = 0; k < count; ++k) {
+      std::optional<TetPair> attempt;
+      for (int tries = 0; !attempt && tries < kMaxTries; ++tries) attempt = f.make(rng, k);
+      if (!attempt) throw std::runtime_error(family + ": no pair found in " + std::to_string(kMaxTries) + " draws");
+      TetPair p = std::move(*attempt);
+      p.name = family + "-" + std::to_string(seed) + "-" + std::to_string(k);
+      p.tags.insert(p.tags.begin(), family);
+      out.push_back(std::move(p));
+    }
+    return out;
+  }
+  throw std::invalid_argument("unknown family '" + family + "' (see pdd generate --list)");
+}
+
+std::vector<std::pair<std::string, std::string>> tag_expectations(const TetPair& pair) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& tag : pair.tags) {
+    const auto eq = tag.find('=');
+    if (eq != std::string::npos) out.emplace_back(tag.substr(0, eq), tag.substr(eq + 1));
+  }
+  return out;
+}
+
+}  // namespace pdd::compare

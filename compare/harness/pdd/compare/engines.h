@@ -1,0 +1,71 @@
+// engines.h — running an engine over the entries of a fixture file, in input order.
+//
+// Malformed entries become error records without reaching an engine; every other pair is
+// computed even when some are rejected (SPEC §1). The reference engine runs pairs in
+// parallel with TBB (GMP and CGAL's exact types are thread-safe per object).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "pdd/compare/fixture_io.h"
+#include "pdd/compare/progress.h"
+#include "pdd/compare/result_json.h"
+#include "pdd/pair_result.h"
+#include "pdd/reference/solve_exact.h"
+
+namespace pdd::compare {
+
+// Applies `compute(pair, index)` to every well-formed entry in parallel (TBB), in input order,
+// with progress on stderr; a malformed entry becomes a default T with `name` and `error` set.
+// T has members `name` and `error` (std::optional<std::string>).
+// This form ticks a caller's `progress` (one Progress over several calls, e.g. chunks).
+template <class T, class Compute>
+std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, Progress& progress,
+                           Compute compute) {
+  std::vector<T> out(entries.size());
+  tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
+    const FixtureEntry& e = entries[k];
+    if (e.error) {
+      out[k].name = e.pair.name;
+      out[k].error = *e.error;
+    } else {
+      out[k] = compute(e.pair, k);
+    }
+    progress.tick();
+  });
+  return out;
+}
+
+template <class T, class Compute>
+std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::string& what,
+                           bool show_progress, Compute compute) {
+  Progress progress(what, entries.size(), show_progress ? 2.0 : Progress::kNever);
+  std::vector<T> out = map_entries<T>(entries, progress, compute);
+  progress.finish();
+  return out;
+}
+
+std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+                                                  const reference::SolveOptions& options,
+                                                  bool show_progress);
+// The same, ticking the caller's `progress` once per entry.
+std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+                                                  const reference::SolveOptions& options,
+                                                  Progress& progress);
+
+// The fast engine over the same entries: malformed entries become error records, the rest go
+// through pdd::fast::solve_batch (all cores), results in input order.
+// `slow_paths` (optional): how many pairs took the fast engine's exact path (SPEC §8).
+std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
+                                         std::size_t* slow_paths = nullptr);
+
+// SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
+Json fast_record(const PairResult<double>& r);
+
+// SPEC §6 record of an exact result: every number as an exact "p/q" string.
+Json exact_record(const reference::ExactResult& r);
+
+}  // namespace pdd::compare

@@ -1,0 +1,98 @@
+// result_json.h — one SPEC §6 JSON Lines record from a PairResult of either engine, and back.
+//
+// Keys in SPEC order: name, intersecting, the seven values, the four labels, q1_A, q1_B,
+// error. A rejected pair is {"name", "error"} only. The number writer decides how R is
+// written: exact rationals as "p/q" strings, doubles as JSON numbers that read back to the
+// same double (nlohmann writes the shortest round-trip form). result_from_json reads such a
+// record back with a number reader (the inverse of the writer).
+#pragma once
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "pdd/pair_result.h"
+
+namespace pdd::compare {
+
+using Json = nlohmann::ordered_json;
+
+template <class R>
+using NumberWriter = std::function<Json(const R&)>;
+template <class R>
+using NumberReader = std::function<R(const Json&)>;
+
+template <class R>
+Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
+  Json j;
+  j["name"] = r.name;
+  if (r.error) {
+    j["error"] = *r.error;
+    return j;
+  }
+  j["intersecting"] = r.intersecting;
+  j["rigid_pd2"] = number(r.rigid_pd2);
+  j["eq11_pd2"] = number(r.eq11_pd2);
+  j["pdd2_static"] = number(r.pdd2_static);
+  j["pdd2"] = number(r.pdd2);
+  j["pdd2_relaxed"] = number(r.pdd2_relaxed);
+  j["pdd2_accel1"] = number(r.pdd2_accel1);
+  j["pdd2_accel6"] = number(r.pdd2_accel6);
+  auto label = [](const std::optional<DirectionLabel>& l) { return l ? Json(l->str()) : Json(nullptr); };
+  j["rigid_dir"] = label(r.rigid_dir);
+  j["pdd2_static_dir"] = label(r.pdd2_static_dir);
+  j["pdd2_dir"] = label(r.pdd2_dir);
+  j["pdd2_relaxed_dir"] = label(r.pdd2_relaxed_dir);
+  auto positions = [&](const Positions<R>& q) {
+    Json a = Json::array();
+    for (const auto& v : q) a.push_back(Json::array({number(v[0]), number(v[1]), number(v[2])}));
+    return a;
+  };
+  j["q1_A"] = positions(r.q1_A);
+  j["q1_B"] = positions(r.q1_B);
+  j["error"] = nullptr;
+  return j;
+}
+
+// The record written by result_json, read back; throws (nlohmann::json's exceptions, or
+// std::runtime_error for a malformed label) when a key is missing or mistyped.
+template <class R>
+PairResult<R> result_from_json(const Json& j, const NumberReader<R>& number) {
+  PairResult<R> r;
+  r.name = j.at("name").template get<std::string>();
+  if (!j.at("error").is_null()) {
+    r.error = j.at("error").template get<std::string>();
+    return r;
+  }
+  auto label = [](const Json& l) -> std::optional<DirectionLabel> {
+    if (l.is_null()) return std::nullopt;
+    auto parsed = DirectionLabel::parse(l.template get<std::string>());
+    if (!parsed) throw std::runtime_error("bad label " + l.dump());
+    return parsed;
+  };
+  auto positions = [&](const Json& q) {
+    Positions<R> out;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) out[i][k] = number(q.at(i).at(k));
+    return out;
+  };
+  r.intersecting = j.at("intersecting").template get<bool>();
+  r.rigid_pd2 = number(j.at("rigid_pd2"));
+  r.eq11_pd2 = number(j.at("eq11_pd2"));
+  r.pdd2_static = number(j.at("pdd2_static"));
+  r.pdd2 = number(j.at("pdd2"));
+  r.pdd2_relaxed = number(j.at("pdd2_relaxed"));
+  r.pdd2_accel1 = number(j.at("pdd2_accel1"));
+  r.pdd2_accel6 = number(j.at("pdd2_accel6"));
+  r.rigid_dir = label(j.at("rigid_dir"));
+  r.pdd2_static_dir = label(j.at("pdd2_static_dir"));
+  r.pdd2_dir = label(j.at("pdd2_dir"));
+  r.pdd2_relaxed_dir = label(j.at("pdd2_relaxed_dir"));
+  r.q1_A = positions(j.at("q1_A"));
+  r.q1_B = positions(j.at("q1_B"));
+  return r;
+}
+
+}  // namespace pdd::compare

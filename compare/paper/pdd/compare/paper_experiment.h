@@ -1,0 +1,74 @@
+// paper_experiment.h — the statistics of the paper's Sec. VI experiment (Table I, the
+// direction statistics, Fig. 3), from either engine's results.
+//
+// Input : the results of a set of intersecting pairs (non-intersecting or rejected ones are
+//         skipped and counted).
+// Output: PD_d / PD = sqrt(pdd2_x / rigid_pd2) per variant, mean and sample standard deviation
+//         (Table I's "PD_d/PD"); the same over eq. 11's value in place of PD, so the reader sees
+//         what the paper's formula would have given; the fraction of pairs whose rigid
+//         direction is the case-2 optimal direction (paper: 52.33%) and whose case-2 optimum
+//         lies among the first six candidates in depth order (pdd2_accel6 == pdd2; paper:
+//         "more than 90%").
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pdd/pair_result.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd::compare {
+
+struct RatioStats {
+  double mean = 0, std = 0;
+  std::size_t n = 0;
+  std::vector<double> values;  // for histograms
+};
+
+// The variants of Table I and ours, in report order.
+inline const std::array<const char*, 5> kPaperVariants = {"static/def", "def/def", "accelerated (1)",
+                                                          "accelerated (6)", "relaxed"};
+
+struct PaperStats {
+  std::size_t pairs = 0, skipped = 0;
+  std::array<RatioStats, 5> over_pd;   // PD_d / PD, per kPaperVariants
+  std::array<RatioStats, 5> over_e11;  // PD_d / E11
+  std::size_t rigid_is_optimal = 0;    // rigid_dir == pdd2_dir
+  std::size_t optimum_in_first_six = 0;
+};
+
+RatioStats ratio_stats(std::vector<double> values);
+
+// R: double (fast engine) or an exact rational type with a to_double conversion `to_d`.
+template <class R, class ToDouble>
+PaperStats paper_statistics(const std::vector<PairResult<R>>& results, ToDouble to_d) {
+  PaperStats s;
+  std::array<std::vector<double>, 5> pd, e11;
+  for (const auto& r : results) {
+    if (r.error || !r.intersecting) {
+      ++s.skipped;
+      continue;
+    }
+    ++s.pairs;
+    const std::array<double, 5> v = {to_d(r.pdd2_static), to_d(r.pdd2), to_d(r.pdd2_accel1),
+                                     to_d(r.pdd2_accel6), to_d(r.pdd2_relaxed)};
+    for (int k = 0; k < 5; ++k) {
+      pd[k].push_back(std::sqrt(v[k] / to_d(r.rigid_pd2)));
+      e11[k].push_back(std::sqrt(v[k] / to_d(r.eq11_pd2)));
+    }
+    s.rigid_is_optimal += (r.rigid_dir == r.pdd2_dir);
+    s.optimum_in_first_six += (r.pdd2_accel6 == r.pdd2);
+  }
+  for (int k = 0; k < 5; ++k) {
+    s.over_pd[k] = ratio_stats(std::move(pd[k]));
+    s.over_e11[k] = ratio_stats(std::move(e11[k]));
+  }
+  return s;
+}
+
+// Tetrahedron volumes (A and B pooled); their quantiles: stats.h.
+std::vector<double> tetrahedron_volumes(const std::vector<TetPair>& pairs);
+
+}  // namespace pdd::compare
