@@ -239,7 +239,7 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
     if (!(rel <= kEps)) {
       std::ostringstream os;
       os.precision(17);
-      os << "SPEC §8: " << pdd::compare::kValueKeys[i] << " fast " << vs[i] << ", exact "
+      os << "SPEC §8: " << pdd::kValueKeys[i] << " fast " << vs[i] << ", exact "
          << pdd::reference::to_string(xs[i]) << " (~" << CGAL::to_double(xs[i])
          << "), relative error " << rel;
       fail(p, os.str());
@@ -275,7 +275,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (size_t i = 0; i < 7; ++i) {
       const double v = vs[i];
       if (std::isnan(v) || v < 0 || !(v == 0 || std::isnormal(v)))
-        fail(p, std::string("SPEC §6/§8: ") + pdd::compare::kValueKeys[i] + " = " +
+        fail(p, std::string("SPEC §6/§8: ") + pdd::kValueKeys[i] + " = " +
                     std::to_string(v) + " is NaN, negative, infinite or subnormal");
     }
     for (const auto* q : {&r.q1_A, &r.q1_B})
@@ -284,7 +284,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           if (!std::isfinite(x)) fail(p, "a deformed position is not finite");
     if (!r.intersecting) {
       for (size_t i = 0; i < 7; ++i)
-        if (vs[i] != 0) fail(p, std::string("not intersecting but ") + pdd::compare::kValueKeys[i] + " != 0");
+        if (vs[i] != 0) fail(p, std::string("not intersecting but ") + pdd::kValueKeys[i] + " != 0");
       if (r.rigid_dir || r.pdd2_static_dir || r.pdd2_dir || r.pdd2_relaxed_dir)
         fail(p, "not intersecting but a label is set");
       if (std::memcmp(&r.q1_A, &p.A, sizeof p.A) || std::memcmp(&r.q1_B, &p.B, sizeof p.B))

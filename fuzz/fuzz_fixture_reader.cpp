@@ -1,4 +1,4 @@
-// fuzz_fixture_reader — arbitrary bytes into the fixture reader (compare/pdd/compare/fixture_io.h,
+// fuzz_fixture_reader — arbitrary bytes into the fixture reader (compare/io/pdd/compare/fixture_io.h,
 // public functions only). Input format: the bytes of a fixture file, as `pdd` would read them.
 //
 // Must hold for every input (a violation aborts, which libFuzzer and the replay test report):

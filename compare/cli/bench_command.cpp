@@ -213,7 +213,7 @@ void print_table(const BenchReport& r, std::ostream& s) {
     << " ms (median call, 1 pass) vs fast solve_pair " << fmt("%.1f", e.fast_solve_median_ns)
     << " ns: ratio " << fmt("%.0f", e.solve_ratio) << "x\n\n";
 
-  s << "Targets (issue 3; time = median over passes of the time per pair, one core)\n";
+  s << "Targets (issue 8; time = median over passes of the time per pair, one core)\n";
   for (const auto& t : r.targets) {
     const bool ratio = t.bound.find('x') != std::string::npos;
     s << "  " << pad(t.what, 62) << pad(t.bound, 11)

@@ -32,13 +32,13 @@ Json comparison_json(const PairComparison& c) {
   }
   j["intersect_agree"] = c.intersect_agree;
   j["condition"] = c.condition;
-  for (int k = 0; k < 7; ++k)
+  for (std::size_t k = 0; k < kValueCount; ++k)
     j[std::string(kValueKeys[k])] = {{"exact", c.exact_value[k]}, {"fast", c.fast_value[k]},
                                      {"rel_error", c.rel_error[k]}, {"tolerance", c.tolerance[k]}};
   j["position_error"] = c.position_error;
   j["position_tolerance"] = c.position_tolerance;
   j["separated"] = c.separated;
-  for (int k = 0; k < 4; ++k)
+  for (std::size_t k = 0; k < kLabelCount; ++k)
     j[std::string(kLabelKeys[k])] = {{"exact", c.exact_label[k]}, {"fast", c.fast_label[k]}, {"verdict", to_string(c.labels[k])}};
   return j;
 }
@@ -52,7 +52,7 @@ void print_over(const PairComparison& c) {
   }
   std::cout << " (R/PD = " << c.condition << ")\n";
   if (!c.intersect_agree) std::cout << "  intersecting: exact " << c.intersecting << ", fast " << !c.intersecting << "\n";
-  for (int k = 0; k < 7; ++k)
+  for (std::size_t k = 0; k < kValueCount; ++k)
     if (!(c.rel_error[k] <= c.tolerance[k]))
       std::cout << "  " << kValueKeys[k] << ": exact " << std::setprecision(17) << c.exact_value[k]
                 << " fast " << c.fast_value[k] << " rel error " << std::setprecision(3) << c.rel_error[k]
@@ -61,7 +61,7 @@ void print_over(const PairComparison& c) {
     std::cout << "  q1 positions: object norm off pdd2 by " << c.position_error << " > "
               << c.position_tolerance << "\n";
   if (!c.separated) std::cout << "  q1 positions: not separated by the pdd2 plane up to 1e-9 R\n";
-  for (int k = 0; k < 4; ++k)
+  for (std::size_t k = 0; k < kLabelCount; ++k)
     if (c.labels[k] == LabelVerdict::Differ)
       std::cout << "  " << kLabelKeys[k] << ": exact " << c.exact_label[k] << " fast " << c.fast_label[k] << "\n";
 }
@@ -78,9 +78,9 @@ int run_compare(const CompareArgs& a) {
   for (std::size_t k = 0; k < file.entries.size(); ++k)
     cs.push_back(compare_pair(file.entries[k].pair, exact[k], fast[k]));
 
-  std::array<std::vector<double>, 7> errs;
+  std::array<std::vector<double>, kValueCount> errs;
   std::vector<double> pos;
-  std::array<std::array<int, 5>, 4> verdicts{};
+  std::array<std::array<int, 5>, kLabelCount> verdicts{};  // per label, per LabelVerdict (5)
   int over = 0, intersect_agree = 0, compared = 0, rejected = 0;
   for (const auto& c : cs) {
     if (a.json) std::cout << comparison_json(c).dump() << "\n";
@@ -100,23 +100,23 @@ int run_compare(const CompareArgs& a) {
     ++compared;
     intersect_agree += c.intersect_agree;
     if (!c.intersecting) continue;
-    for (int k = 0; k < 7; ++k) errs[k].push_back(c.rel_error[k]);
+    for (std::size_t k = 0; k < kValueCount; ++k) errs[k].push_back(c.rel_error[k]);
     pos.push_back(c.position_error);
-    for (int k = 0; k < 4; ++k) ++verdicts[k][int(c.labels[k])];
+    for (std::size_t k = 0; k < kLabelCount; ++k) ++verdicts[k][int(c.labels[k])];
   }
   std::ostream& s = a.json ? std::cerr : std::cout;
   s << "\nfast vs exact on " << compared << " pairs (" << rejected << " rejected by an engine), "
     << "contract SPEC §8: relative error <= 1e-9, labels by exact value\n"
     << "intersecting agrees on " << intersect_agree << " of " << compared << "\n\n"
     << std::left << std::setw(18) << "quantity" << std::setw(14) << "max rel err" << std::setw(14) << "median" << "\n";
-  for (int k = 0; k < 7; ++k) {
+  for (std::size_t k = 0; k < kValueCount; ++k) {
     const double mx = errs[k].empty() ? 0 : *std::max_element(errs[k].begin(), errs[k].end());
     s << std::setw(18) << kValueKeys[k] << std::setw(14) << std::setprecision(3) << mx << std::setw(14) << median_or_zero(errs[k]) << "\n";
   }
   s << std::setw(18) << "q1 positions" << std::setw(14) << (pos.empty() ? 0 : *std::max_element(pos.begin(), pos.end()))
     << std::setw(14) << median_or_zero(pos) << "(|sigma(q1) - pdd2| / pdd2, exact)\n\n"
     << std::setw(18) << "label" << "same / tie / near-tie / differ\n";
-  for (int k = 0; k < 4; ++k)
+  for (std::size_t k = 0; k < kLabelCount; ++k)
     s << std::setw(18) << kLabelKeys[k] << verdicts[k][0] << " / " << verdicts[k][1] << " / " << verdicts[k][2] << " / " << verdicts[k][3] << "\n";
   s << "\n" << over << " pair(s) over the contract, " << rejected << " rejected\n";
   return over || rejected ? kExitCheckFailed : kExitOk;

@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
     BOOST_TEST(!c.over_tolerance(), p.name << (fast.error ? " fast: " + *fast.error : std::string())
                                            << (exact.error ? " exact: " + *exact.error : std::string()));
     for (int v = 0; v < 7; ++v)
-      BOOST_TEST(c.rel_error[v] <= c.tolerance[v], p.name << " " << compare::kValueKeys[v] << " "
+      BOOST_TEST(c.rel_error[v] <= c.tolerance[v], p.name << " " << pdd::kValueKeys[v] << " "
                                                           << c.fast_value[v] << " vs " << c.exact_value[v]);
     (fast.error ? rejected : computed) += 1;
   }

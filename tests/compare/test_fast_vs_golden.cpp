@@ -46,9 +46,9 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
       BOOST_TEST(c.separated, pairs[k].name << " q1 separated");
       BOOST_TEST(!c.over_tolerance(), pairs[k].name);
       for (int v = 0; v < 7; ++v)
-        BOOST_TEST(c.rel_error[v] <= c.tolerance[v], pairs[k].name << " " << compare::kValueKeys[v]);
+        BOOST_TEST(c.rel_error[v] <= c.tolerance[v], pairs[k].name << " " << pdd::kValueKeys[v]);
       for (int l = 0; l < 4; ++l)
-        BOOST_TEST((c.labels[l] != compare::LabelVerdict::Differ), pairs[k].name << " " << compare::kLabelKeys[l]);
+        BOOST_TEST((c.labels[l] != compare::LabelVerdict::Differ), pairs[k].name << " " << pdd::kLabelKeys[l]);
       ++compared;
     }
   }

@@ -31,7 +31,7 @@ double relative_error(double fast, const Rational& exact) {
 
 bool PairComparison::over_tolerance() const {
   if (!rejections_agree || !intersect_agree) return true;
-  for (int k = 0; k < 7; ++k)
+  for (std::size_t k = 0; k < kValueCount; ++k)
     if (!(rel_error[k] <= tolerance[k])) return true;
   if (!(position_error <= position_tolerance) || !separated) return true;
   for (auto l : labels)
@@ -151,14 +151,12 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
   const double pd = std::sqrt(CGAL::to_double(exact.rigid_pd2));
   c.condition = exact.intersecting ? R / pd : 0;
 
-  const std::array<const Rational*, 7> ev = {&exact.rigid_pd2, &exact.eq11_pd2, &exact.pdd2_static, &exact.pdd2,
-                                             &exact.pdd2_relaxed, &exact.pdd2_accel1, &exact.pdd2_accel6};
-  const std::array<double, 7> fv = {fast.rigid_pd2, fast.eq11_pd2, fast.pdd2_static, fast.pdd2,
-                                    fast.pdd2_relaxed, fast.pdd2_accel1, fast.pdd2_accel6};
-  for (int k = 0; k < 7; ++k) {
-    c.rel_error[k] = relative_error(fv[k], *ev[k]);
-    c.exact_value[k] = CGAL::to_double(*ev[k]);
-    c.fast_value[k] = fv[k];
+  for (std::size_t k = 0; k < kValueCount; ++k) {
+    const Rational& ev = record_value(exact, k);
+    const double fv = record_value(fast, k);
+    c.rel_error[k] = relative_error(fv, ev);
+    c.exact_value[k] = CGAL::to_double(ev);
+    c.fast_value[k] = fv;
     c.tolerance[k] = kContractRel;
   }
   const auto p = reference::to_exact(pair);
@@ -181,16 +179,15 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     c.separated = fast.pdd2_dir && separated_by(p, *fast.pdd2_dir, fast, Q);
   }
 
-  const std::array<std::optional<DirectionLabel>, 4> el = {exact.rigid_dir, exact.pdd2_static_dir,
-                                                           exact.pdd2_dir, exact.pdd2_relaxed_dir};
-  const std::array<std::optional<DirectionLabel>, 4> fl = {fast.rigid_dir, fast.pdd2_static_dir,
-                                                           fast.pdd2_dir, fast.pdd2_relaxed_dir};
-  const std::array<const Rational*, 4> mins = {&exact.rigid_pd2, &exact.pdd2_static, &exact.pdd2,
-                                               &exact.pdd2_relaxed};
-  for (int k = 0; k < 4; ++k) {
-    c.labels[k] = label_verdict(p, el[k], fl[k], *mins[k], k, kContractRel);
-    c.exact_label[k] = el[k] ? el[k]->str() : "null";
-    c.fast_label[k] = fl[k] ? fl[k]->str() : "null";
+  for (std::size_t k = 0; k < kLabelCount; ++k) {
+    const auto& el = record_label(exact, k);
+    const auto& fl = record_label(fast, k);
+    // the value this label minimises: the one whose kLabelOfValue is k
+    std::size_t v = 0;
+    while (kLabelOfValue[v] != int(k)) ++v;
+    c.labels[k] = label_verdict(p, el, fl, record_value(exact, v), int(k), kContractRel);
+    c.exact_label[k] = el ? el->str() : "null";
+    c.fast_label[k] = fl ? fl->str() : "null";
   }
   return c;
 }

@@ -33,10 +33,7 @@ inline constexpr double kContractRel = 1e-9;  // SPEC §8
 enum class LabelVerdict { Same, Tie, NearTie, Differ, None };
 const char* to_string(LabelVerdict v);
 
-inline const std::array<const char*, 7> kValueKeys = {
-    "rigid_pd2", "eq11_pd2", "pdd2_static", "pdd2", "pdd2_relaxed", "pdd2_accel1", "pdd2_accel6"};
-inline const std::array<const char*, 4> kLabelKeys = {"rigid_dir", "pdd2_static_dir", "pdd2_dir",
-                                                      "pdd2_relaxed_dir"};
+// Values and labels in SPEC §6 order: kValueKeys, kLabelKeys (pdd/pair_result.h).
 
 struct PairComparison {
   std::string name;
@@ -45,14 +42,14 @@ struct PairComparison {
   bool intersecting = false;          // exact
   bool intersect_agree = true;
   double condition = 0;               // R / PD (reported; the contract does not depend on it)
-  std::array<double, 7> tolerance{};  // relative, per kValueKeys: kContractRel
-  std::array<double, 7> rel_error{};  // per kValueKeys
-  std::array<double, 7> exact_value{}, fast_value{};
+  std::array<double, kValueCount> tolerance{};  // relative, per kValueKeys: kContractRel
+  std::array<double, kValueCount> rel_error{};  // per kValueKeys
+  std::array<double, kValueCount> exact_value{}, fast_value{};
   // |sigma(q1_fast) − pdd2_exact| / pdd2_exact, exactly, and its allowance (see above)
   double position_error = 0, position_tolerance = 0;
   bool separated = true;  // q1 separated by the fast label's plane up to 1e-9 R
-  std::array<LabelVerdict, 4> labels{};
-  std::array<std::string, 4> exact_label, fast_label;
+  std::array<LabelVerdict, kLabelCount> labels{};
+  std::array<std::string, kLabelCount> exact_label, fast_label;
 
   bool over_tolerance() const;
 };
