@@ -89,14 +89,42 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   PairResult<double>& r = er.result;
   r.q1_A = A;
   r.q1_B = B;
+  // Coordinates relative to s_0, times 2^shift: integers (every double is an integer times a
+  // power of two), so that the candidates' normals and heights are integer arithmetic (no gcd
+  // work on power-of-two denominators). Values (squared lengths) are divided back by
+  // 2^(2 shift), displacements by 2^shift — exactly.
+  int lowest = 0;
+  bool nonzero = false;
+  for (const TetVertices* T : {&A, &B})
+    for (const auto& p : *T)
+      for (double x : p) {
+        if (x == 0.0) continue;
+        int e;
+        std::frexp(x, &e);  // x = m 2^e, m in [1/2, 1) with 53 bits: an integer times 2^(e − 53)
+        lowest = nonzero ? std::min(lowest, e - 53) : e - 53;
+        nonzero = true;
+      }
+  const long shift = nonzero ? -long(lowest) : 0;  // may be negative (huge coordinates): still exact
+  auto scaled_coordinate = [&](double x) {
+    Q q(x);
+    if (shift > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), shift);
+    if (shift < 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -shift);
+    return q;
+  };
+  auto unscale = [&](Q q, long times) {  // q / 2^(times · shift)
+    const long k = times * shift;
+    if (k > 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), k);
+    if (k < 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), -k);
+    return q;
+  };
   Builder bld;
   QV s0;
-  for (int k = 0; k < 3; ++k) s0.x[k] = A[0][k];
+  for (int k = 0; k < 3; ++k) s0.x[k] = scaled_coordinate(A[0][k]);
   for (int i = 0; i < 4; ++i) {
     QV a, b;
     for (int k = 0; k < 3; ++k) {
-      a.x[k] = A[i][k];
-      b.x[k] = B[i][k];
+      a.x[k] = scaled_coordinate(A[i][k]);
+      b.x[k] = scaled_coordinate(B[i][k]);
     }
     bld.s[i] = a - s0;
     bld.r[i] = b - s0;
@@ -187,25 +215,25 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   const Q case2_coeff(kDeformableBoundCoeff), case1_coeff(kStaticBoundCoeff);  // dyadic: exact
 
   const int ir = order[0];
-  r.rigid_pd2 = rounded(delta2[ir], ok);
+  r.rigid_pd2 = rounded(unscale(delta2[ir], 2), ok);
   r.rigid_dir = C[ir].label;
-  r.eq11_pd2 = e11_zero ? 0.0 : rounded(e11, ok);
+  r.eq11_pd2 = e11_zero ? 0.0 : rounded(unscale(e11, 2), ok);
   const int is = qp_min(case1_coeff, st_of, decided);
-  r.pdd2_static = rounded(st[is], ok);
+  r.pdd2_static = rounded(unscale(st[is], 2), ok);
   r.pdd2_static_dir = C[is].label;
   const int id = qp_min(case2_coeff, def_of, any);
-  r.pdd2 = rounded(def[id], ok);
+  r.pdd2 = rounded(unscale(def[id], 2), ok);
   r.pdd2_dir = C[id].label;
   const int il = qp_min(case2_coeff, rel_of, any);
-  r.pdd2_relaxed = rounded(rel[il], ok);
+  r.pdd2_relaxed = rounded(unscale(rel[il], 2), ok);
   r.pdd2_relaxed_dir = C[il].label;
 
   // case 3: the first 1 and 6 candidates in ascending delta order
   Q accel = def_of(order[0]);
-  r.pdd2_accel1 = rounded(accel, ok);
+  r.pdd2_accel1 = rounded(unscale(accel, 2), ok);
   for (int m = 1; m < kAccelWide && m < n; ++m)
     if (def_of(order[m]) < accel) accel = def[order[m]];
-  r.pdd2_accel6 = rounded(accel, ok);
+  r.pdd2_accel6 = rounded(unscale(accel, 2), ok);
 
   // q1: x + (T / n.n) n along the pdd2 direction (direction_qp.h)
   const Cand& c = C[id];
@@ -214,8 +242,8 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
     const Q tA = displacement_below(c.hA[i], (c.conA >> i & 1u) != 0, sol) / c.nn;
     const Q tB = displacement_above(c.hB[i], (c.conB >> i & 1u) != 0, sol) / c.nn;
     for (int k = 0; k < 3; ++k) {
-      r.q1_A[i][k] = rounded(Q(A[i][k]) + tA * c.n.x[k], ok);
-      r.q1_B[i][k] = rounded(Q(B[i][k]) + tB * c.n.x[k], ok);
+      r.q1_A[i][k] = rounded(Q(A[i][k]) + unscale(tA * c.n.x[k], 1), ok);
+      r.q1_B[i][k] = rounded(Q(B[i][k]) + unscale(tB * c.n.x[k], 1), ok);
     }
   }
   return er;
