@@ -3,9 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/candidate_table.h"
 #include "pdd/reference/direction_qp.h"
-#include "pdd/reference/oriented_depth.h"
 
 namespace pdd::compare {
 
@@ -46,16 +45,14 @@ namespace {
 // static, its QP is infeasible).
 std::optional<Rational> exact_value_at(const reference::ExactPair& p, const DirectionLabel& label,
                                        int which) {
-  using namespace reference;
-  for (const auto& d : candidate_directions(p)) {
-    if (d.label != label) continue;
-    if (which == 0) return oriented_depth_signed_square(p, d.n);
-    const PddCase c = which == 1 ? PddCase::Static : which == 2 ? PddCase::Deformable : PddCase::Relaxed;
-    auto opt = direction_qp(p, d, c, QpFormulation::Reduced);
-    if (!opt) return std::nullopt;
-    return opt->value;
+  const auto row = reference::candidate_row(p, label, {QpFormulation::Reduced});
+  if (!row) return std::nullopt;
+  switch (which) {
+    case 0: return row->depth_signed_square;
+    case 1: return row->static_case ? std::optional<Rational>(row->static_case->value) : std::nullopt;
+    case 2: return row->deformable.value;
+    default: return row->relaxed.value;
   }
-  return std::nullopt;
 }
 
 LabelVerdict label_verdict(const reference::ExactPair& p, const std::optional<DirectionLabel>& exact,

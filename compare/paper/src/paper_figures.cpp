@@ -8,9 +8,8 @@
 #include <stdexcept>
 
 #include "pdd/compare/output.h"
-#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/candidate_table.h"
 #include "pdd/reference/direction_qp.h"
-#include "pdd/reference/oriented_depth.h"
 #include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
@@ -57,15 +56,16 @@ PairConfigurations pair_configurations(const TetPair& pair) {
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k)
       c.A_deformable[i][k] = CGAL::to_double(r.q1_A[i][k]), c.B_deformable[i][k] = CGAL::to_double(r.q1_B[i][k]);
-  for (const auto& d : candidate_directions(p)) {
-    if (d.label == *r.pdd2_static_dir)
-      c.B_static = to_doubles(direction_qp(p, d, PddCase::Static, QpFormulation::Reduced)->q1_B);
-    if (d.label == *r.rigid_dir) {  // B + (D / n.n) n: translation by PD along n
-      const Vector v = (oriented_depth_numerator(p, d.n) / d.n.squared_length()) * d.n;
-      ExactTet moved = p.B;
-      for (auto& x : moved) x = x + v;
-      c.B_rigid = to_doubles(moved);
-    }
+  const CandidateTableOptions reduced{QpFormulation::Reduced};
+  if (const auto st = candidate_row(p, *r.pdd2_static_dir, reduced))
+    c.B_static = to_doubles(st->static_case->q1_B);
+  if (const auto rg = candidate_row(p, *r.rigid_dir, reduced)) {
+    // B + (D / n.n) n: translation by PD along n
+    const Vector& n = rg->direction.n;
+    const Vector v = (rg->depth / n.squared_length()) * n;
+    ExactTet moved = p.B;
+    for (auto& x : moved) x = x + v;
+    c.B_rigid = to_doubles(moved);
   }
   return c;
 }

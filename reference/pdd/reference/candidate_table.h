@@ -17,7 +17,8 @@ namespace pdd::reference {
 
 struct CandidateRow {
   CandidateDirection direction;
-  Rational depth_signed_square;  // sign(delta) delta^2, SPEC §4
+  Rational depth;                 // D = max n.s_i − min n.r_j (n unnormalised), SPEC §4
+  Rational depth_signed_square;  // sign(delta) delta^2 = sign(D) D² / n.n
   std::optional<DirectionOptimum> static_case;  // paper case 1
   DirectionOptimum deformable;                  // paper case 2
   DirectionOptimum relaxed;                     // case 2, inequalities only
@@ -30,6 +31,13 @@ struct CandidateTableOptions {
 
 std::vector<CandidateRow> candidate_table(const ExactPair& pair,
                                           const std::vector<CandidateDirection>& candidates,
+                                          const CandidateTableOptions& options);
+
+// The row of the one candidate labelled `label` (computed alone, as candidate_table would);
+// nullopt when the pair has no such candidate (e.g. the label of a colinear edge pair). For
+// consumers that need a candidate the result does not name (the judge of a fast label, a
+// figure), so that they ask the engine instead of re-deriving directions and re-solving QPs.
+std::optional<CandidateRow> candidate_row(const ExactPair& pair, const DirectionLabel& label,
                                           const CandidateTableOptions& options);
 
 // Candidate indices sorted by oriented depth ascending, stable in canonical order (case 3).
