@@ -19,6 +19,7 @@
 #include "pdd/compare/output.h"
 #include "pdd/compare/paper_experiment.h"
 #include "pdd/compare/paper_figures.h"
+#include "pdd/compare/paper_sample.h"
 #include "pdd/compare/progress.h"
 #include "pdd/compare/stats.h"
 #include "pdd/compare/timing.h"
@@ -35,19 +36,6 @@ struct PaperArgs {
   int repeats = 5;
   double min_volume = 0.1, max_volume = 130;
 };
-
-// The paper's Table I (Kim & Kim, Sec. VI), for the side-by-side columns.
-struct PaperColumn {
-  const char* time;
-  const char* ratio;
-};
-const std::array<PaperColumn, 5> kPaperTableI = {{{"32.26 ms", "43.59% (13.17%)"},
-                                                  {"46.29 ms", "27.94% (3.15%)"},
-                                                  {"1.07 ms", "29.39% (3.47%)"},
-                                                  {"-", "-"},
-                                                  {"-", "-"}}};
-// Which timed fast variant belongs to each kPaperVariants column.
-const std::array<const char*, 5> kTimedVariant = {"pdd2_static", "pdd2", "pdd2_accel1", "pdd2_accel6", "pdd2_relaxed"};
 
 std::string machine_description() {
   const MachineInfo m = machine_info();
@@ -68,64 +56,6 @@ std::string time_string(double ns) {
   else if (ns < 1e6) o << ns / 1e3 << " µs";
   else o << ns / 1e6 << " ms";
   return o.str();
-}
-
-struct ExactSample {
-  std::vector<std::size_t> indices;
-  std::vector<reference::ExactResult> results;
-  std::vector<double> call_ns;  // per pair: timing.h's single-call protocol (one core, in order)
-  std::size_t over_tolerance = 0, labels_differ = 0;
-  std::array<double, 7> max_rel_error{};
-};
-
-ExactSample run_exact_sample(const std::vector<TetPair>& pairs, const std::vector<PairResult<double>>& fast,
-                             std::size_t m, std::uint64_t seed) {
-  ExactSample s;
-  std::vector<std::size_t> all(pairs.size());
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
-  std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ULL);
-  for (std::size_t k = 0; k < std::min(m, all.size()); ++k)  // partial Fisher-Yates
-    std::swap(all[k], all[k + rng() % (all.size() - k)]);
-  s.indices.assign(all.begin(), all.begin() + std::min(m, all.size()));
-  std::sort(s.indices.begin(), s.indices.end());
-  s.results.resize(s.indices.size());
-  Progress progress("pdd paper: exact sample", s.indices.size());
-  s.call_ns = time_each_call(s.indices.size(), [&](std::size_t k) {
-    s.results[k] = reference::solve_exact(pairs[s.indices[k]], {QpFormulation::Reduced});
-    progress.tick();
-  });
-  progress.finish();
-  for (std::size_t k = 0; k < s.indices.size(); ++k) {
-    const auto c = compare_pair(pairs[s.indices[k]], s.results[k], fast[s.indices[k]]);
-    s.over_tolerance += c.over_tolerance();
-    for (auto l : c.labels) s.labels_differ += (l == LabelVerdict::Differ);
-    for (int v = 0; v < 7; ++v) s.max_rel_error[v] = std::max(s.max_rel_error[v], c.rel_error[v]);
-  }
-  return s;
-}
-
-// Index (into the sample) of the pair drawn in Fig. 2: among the pairs whose def/def ratio is
-// within 10% of the sample median (a typical pair), the one with the largest PD relative to its
-// extent, so that the deformation is visible at the scale of the picture.
-std::size_t figure_pair(const ExactSample& s, const std::vector<TetPair>& pairs) {
-  std::vector<double> ratio(s.results.size(), -1);
-  std::vector<double> valid;
-  for (std::size_t k = 0; k < s.results.size(); ++k)
-    if (s.results[k].intersecting)
-      valid.push_back(ratio[k] = std::sqrt(CGAL::to_double(s.results[k].pdd2) / CGAL::to_double(s.results[k].rigid_pd2)));
-  const double med = median(valid);
-  std::size_t best = 0;
-  double best_score = -1;
-  for (std::size_t k = 0; k < s.results.size(); ++k) {
-    if (ratio[k] < 0 || std::abs(ratio[k] - med) > 0.1 * med) continue;
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto* t : {&pairs[s.indices[k]].A, &pairs[s.indices[k]].B})
-      for (const auto& v : *t)
-        for (double x : v) lo = std::min(lo, x), hi = std::max(hi, x);
-    const double score = std::sqrt(CGAL::to_double(s.results[k].rigid_pd2)) / (hi - lo);
-    if (score > best_score) best_score = score, best = k;
-  }
-  return best;
 }
 
 int run_paper_checked(const PaperArgs& a) {
@@ -207,7 +137,8 @@ int run_paper_checked(const PaperArgs& a) {
      << sample.over_tolerance << " over the tolerance of `engine_comparison.h`, " << sample.labels_differ
      << " label disagreements. Largest relative errors:";
   md << std::scientific << std::setprecision(2);
-  for (int v = 0; v < 7; ++v) md << ' ' << kValueKeys[v] << ' ' << sample.max_rel_error[v] << (v < 6 ? "," : ".\n\n");
+  for (std::size_t v = 0; v < kValueCount; ++v)
+    md << ' ' << kValueKeys[v] << ' ' << sample.max_rel_error[v] << (v + 1 < kValueCount ? "," : ".\n\n");
   md << std::fixed;
 
   const std::vector<double> probs = {0, 0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99, 1};
