@@ -42,11 +42,20 @@ std::string short_repr(py::handle o) {
 
 [[noreturn]] void value_error(const std::string& msg) { throw py::value_error(msg); }
 
-// numpy.bool_ (leaked on purpose: released after the interpreter is gone otherwise).
-bool is_numpy_bool(py::handle x) {
-  static const py::object* bool_ = new py::object(py::module_::import("numpy").attr("bool_"));
-  return py::isinstance(x, *bool_);
-}
+// Python objects the module uses on every call, looked up once when the module is imported.
+// Not function-local statics: their first use can happen in two threads at once, and a C++
+// static's initialisation guard, held across an import that lets the GIL go, deadlocks against
+// a thread that holds the GIL and waits for the guard. Leaked on purpose: released after the
+// interpreter is gone otherwise.
+struct Cached {
+  py::object Fraction;     // fractions.Fraction
+  py::object numpy_bool;   // numpy.bool_
+  py::object asarray;      // numpy.asarray
+  py::object fsdecode;     // os.fsdecode
+};
+const Cached* cached = nullptr;
+
+bool is_numpy_bool(py::handle x) { return py::isinstance(x, cached->numpy_bool); }
 
 // One coordinate. Accepted: float, int, and any real number type whose value is exactly a
 // double (fractions.Fraction, decimal.Decimal, numpy scalars). Refused with ValueError: str,
@@ -133,9 +142,7 @@ py::object exact_integer(const mpz_class& z) {
 
 // GMP's rational (lowest terms, positive denominator) as fractions.Fraction, exactly.
 py::object fraction(const pdd::Rational& q) {
-  // Leaked on purpose: a static py::object would be released after the interpreter is gone.
-  static const py::object* Fraction = new py::object(py::module_::import("fractions").attr("Fraction"));
-  return (*Fraction)(exact_integer(q.get_num()), exact_integer(q.get_den()));
+  return cached->Fraction(exact_integer(q.get_num()), exact_integer(q.get_den()));
 }
 
 py::object number(double x) { return py::float_(x); }
@@ -237,8 +244,7 @@ constexpr int kLabelChars = 8;  // the longest label, "EE:a:b:+"
 
 // (N, 4, 3) float64, C order; ValueError naming the problem otherwise.
 py::array_t<double, py::array::c_style> batch_input(py::handle obj, const char* which) {
-  py::module_ np = py::module_::import("numpy");
-  py::array a = np.attr("asarray")(obj);
+  py::array a = cached->asarray(obj);
   const char kind = a.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u')
     value_error(std::string(which) + " must be an array of real numbers of shape (N, 4, 3); got dtype " +
@@ -373,7 +379,7 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_arg) {
 py::list read_fixtures(py::handle path_like) {
   std::string path;
   try {
-    path = py::module_::import("os").attr("fsdecode")(path_like).cast<std::string>();
+    path = cached->fsdecode(path_like).cast<std::string>();
   } catch (const py::error_already_set& e) {
     if (!e.matches(PyExc_TypeError)) throw;
     value_error("path must be a str, bytes or os.PathLike; got " + short_repr(path_like));
@@ -412,7 +418,7 @@ py::list read_fixtures(py::handle path_like) {
 // ---------------------------------------------------------------------------------------------
 // Docstrings: help(pdd), help(pdd.solve) read like the README.
 
-constexpr const char* kModuleDoc = R"doc(pdd — penetration depth between two tetrahedra, from Python.
+constexpr const char* kModuleDoc = R"doc(Penetration depth between two tetrahedra (pdd), from Python.
 
 Two senses of depth (SPEC.md; Kim & Kim, "A Penetration Metric for Deforming Tetrahedra
 using Object Norm"):
@@ -443,9 +449,10 @@ Example:
 KEYS is the tuple of a record's keys, in the order `pdd solve` writes them.
 )doc";
 
-constexpr const char* kSolveDoc = R"doc(solve(A, B, engine="fast", formulation="reduced", name="") -> dict
+constexpr const char* kSolveDoc = R"doc(solve(A, B, engine='fast', formulation='reduced', name='')
+--
 
-Every SPEC §6 quantity of one pair of tetrahedra, as `pdd solve` writes it (one JSON record).
+One pair -> dict: every SPEC §6 quantity, as `pdd solve` writes it (one JSON record).
 
 A, B     the tetrahedra: 4 vertices x 3 coordinates, anything array-like (nested lists,
          tuples, a numpy array of shape (4, 3)). A is the paper's T1 (static in case 1), B is
@@ -495,10 +502,11 @@ Example:
   (Fraction(4, 5), 'VF:0', [Fraction(7, 3), Fraction(11, 6), Fraction(11, 6)])
 )doc";
 
-constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None) -> dict of numpy arrays
+constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None)
+--
 
-The fast engine on N pairs at once, on all cores, with the GIL released: the same values,
-bit for bit, as solve(A[k], B[k]) one pair at a time.
+N pairs -> dict of numpy arrays: the fast engine on all cores, with the GIL released; the
+same values, bit for bit, as solve(A[k], B[k]) one pair at a time.
 
 A, B     arrays of shape (N, 4, 3) of real numbers (converted to float64 as
          numpy.asarray(A, dtype=numpy.float64) would); pair k is (A[k], B[k]). A wrong shape,
@@ -524,9 +532,10 @@ Example:
   >>> r["pdd2"][r["intersecting"]].mean()
 )doc";
 
-constexpr const char* kReadFixturesDoc = R"doc(read_fixtures(path) -> list of dicts
+constexpr const char* kReadFixturesDoc = R"doc(read_fixtures(path)
+--
 
-The pairs of a fixture file (SPEC §1; fixtures/*.json), read by the same reader as
+A fixture file -> list of dicts: the pairs of a fixture file (SPEC §1; fixtures/*.json), read by the same reader as
 `pdd solve`:  {"pairs": [{"name": ..., "tags": [...], "A": [[x,y,z] x 4], "B": ...}, ...]}.
 
 Returns one dict per entry, in file order:
@@ -545,8 +554,12 @@ prints after "pdd solve: ", e.g. "malformed JSON at byte 12: ...".
 
 PYBIND11_MODULE(pdd, m) {
   py::options options;
-  options.disable_function_signatures();  // each docstring starts with its README-style signature
+  options.disable_function_signatures();  // each docstring starts with its text signature
   m.doc() = kModuleDoc;
+  cached = new Cached{py::module_::import("fractions").attr("Fraction"),
+                      py::module_::import("numpy").attr("bool_"),
+                      py::module_::import("numpy").attr("asarray"),
+                      py::module_::import("os").attr("fsdecode")};
   m.attr("__version__") = PDD_VERSION;
   m.attr("KEYS") = py::make_tuple("name", "intersecting", "rigid_pd2", "eq11_pd2", "pdd2_static",
                                   "pdd2", "pdd2_relaxed", "pdd2_accel1", "pdd2_accel6",
