@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # setup.sh — install what is missing (Debian 12 packages only), then configure and build pdd
-# in Release into build/. Safe to run again: installs nothing that is already there and
-# rebuilds only what changed. Used by both README commands and by CI.
+# in Release into build/ (the Python module, for /usr/bin/python3, into build/python/). Safe to
+# run again: installs nothing that is already there and rebuilds only what changed. Used by both
+# README commands and by CI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,6 +16,8 @@ PACKAGES=(
   libfcl-dev libccd-dev                   # rigid-PD peers in pdd bench
   clang-14 libclang-rt-14-dev             # second compiler (sanitized build in CI), libFuzzer
   gnuplot-nox                             # pictures of pdd paper
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/), for /usr/bin/python3
+  python3-pytest python3-distributed      # its tests; the dask example
 )
 
 missing=()
@@ -29,5 +32,6 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Debian's interpreter, the one with numpy (the python3 first on PATH may be another one).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build -j"$(nproc)"

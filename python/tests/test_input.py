@@ -1,0 +1,204 @@
+"""pdd.solve and pdd.read_fixtures on every kind of input: array-likes, exact numbers, malformed
+arguments (ValueError naming the problem), rejected pairs (an error record with the CLI's words,
+never an exception), fixture files (the same messages and records as `pdd solve`)."""
+import inspect
+import json
+import os
+import pathlib
+import pydoc
+import subprocess
+from decimal import Decimal
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import pdd
+from conftest import FIXTURES, LABEL_KEYS, VALUE_KEYS, golden_records
+
+A = [[0, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]]
+B = [[2, 2, 2], [2.5, 2, 2], [2, 2.5, 2], [2, 2, 2.5]]  # nested-1 of fixtures/smoke.json
+FLAT = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+ENGINES = ("fast", "reference")
+
+
+def test_module_surface():
+    assert pdd.KEYS == ("name", "intersecting") + VALUE_KEYS + LABEL_KEYS + ("q1_A", "q1_B", "error")
+    assert pdd.KEYS == tuple(golden_records("smoke.json")[0])  # the keys of `pdd solve`'s records
+    assert isinstance(pdd.__version__, str)
+    for f in (pdd, pdd.solve, pdd.solve_batch, pdd.read_fixtures):
+        assert f.__doc__ and len(f.__doc__) > 400, f
+    assert list(inspect.signature(pdd.solve).parameters) == ["A", "B", "engine", "formulation", "name"]
+    assert inspect.signature(pdd.solve_batch).parameters["threads"].default is None
+    text = pydoc.render_doc(pdd.solve, renderer=pydoc.plaintext)
+    for words in ("solve(A, B, engine='fast', formulation='reduced', name='')", "fractions.Fraction",
+                  "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "SPEC §8", "GIL"):
+        assert words in text, words
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_array_likes_and_exact_numbers_are_the_same_pair(engine):
+    ref = pdd.solve(A, B, engine=engine)
+    assert ref["pdd2"] == (Fraction(4, 5) if engine == "reference" else 0.8)
+    same = [
+        (tuple(map(tuple, A)), tuple(map(tuple, B))),
+        (np.array(A), np.array(B, dtype=np.float64)),
+        (np.array(A, dtype=np.int32), np.array(B, dtype=np.float32)),
+        (np.array(A, dtype=np.float64).T.copy().T, np.asfortranarray(B)),
+        ([[Fraction(c) for c in v] for v in A], [[Fraction(c) for c in v] for v in B]),
+        ([[Decimal(c) for c in v] for v in A], [[Decimal(str(c)) for c in v] for v in B]),
+        ([[np.float32(c) for c in v] for v in A], [[np.int64(c * 2) / 2 for c in v] for v in B]),
+        (list(map(list, np.array(A))), B),  # rows that are numpy arrays
+    ]
+    for a, b in same:
+        assert pdd.solve(a, b, engine=engine) == ref
+
+
+@pytest.mark.parametrize("bad, message", [
+    (A[:3], r"A must be 4 vertices of 3 coordinates \(shape \(4, 3\)\); got 3 vertices"),
+    (A + [[1, 1, 1]], "got 5 vertices"),
+    ([[0, 0, 0], [10, 0], [0, 10, 0], [0, 0, 10]], r"A\[1\] must be 3 coordinates; got 2"),
+    ([[0, 0, 0], 10, [0, 10, 0], [0, 0, 10]], r"A\[1\] must be 3 coordinates; got 10"),
+    (np.zeros(12), r"got an array of shape \(12,\)"),
+    (np.zeros((4, 3, 1)), r"got an array of shape \(4, 3, 1\)"),
+    (np.zeros((3, 4)), r"got an array of shape \(3, 4\)"),
+    (5, "got 5"),
+    (None, "got None"),
+    ("abcd", "got 'abcd'"),
+    ([[0, 0, "1"], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[2\] is not a real number: '1'"),
+    ([[0, 0, None], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[2\] is not a real number: None"),
+    ([[0, 0, True], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[2\] is not a real number: True"),
+    ([[0, 0, 1j], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[2\] is not a real number: 1j"),
+    ([[0, 0, object()], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[2\] is not a real number"),
+    (np.array([["0", "0", "0"]] * 4), r"A\[0\]\[0\] is not a real number: '0'"),
+    (np.zeros((4, 3), dtype=bool), r"A\[0\]\[0\] is not a real number: False"),
+    ([[Fraction(1, 3), 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]],
+     r"A\[0\]\[0\] = Fraction\(1, 3\) is not exactly a double"),
+    ([[Decimal("0.1"), 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]],
+     r"A\[0\]\[0\] = Decimal\('0.1'\) is not exactly a double"),
+    ([[2**53 + 1, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[0\] = 9007199254740993 is not exactly a double"),
+])
+@pytest.mark.parametrize("engine", ENGINES)
+def test_malformed_tetrahedra_raise_value_error(bad, message, engine):
+    with pytest.raises(ValueError, match=message):
+        pdd.solve(bad, B, engine=engine)
+    with pytest.raises(ValueError, match=message.replace("A", "B", 1)):
+        pdd.solve(A, bad, engine=engine)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"engine": "gpu"}, "engine must be 'fast' or 'reference'; got 'gpu'"),
+    ({"engine": None}, "engine must be a str; got None"),
+    ({"formulation": "partial"}, "formulation must be 'reduced' or 'full'; got 'partial'"),
+    ({"name": 3}, "name must be a str; got 3"),
+])
+def test_bad_arguments_raise_value_error(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        pdd.solve(A, B, **kwargs)
+
+
+@pytest.mark.parametrize("b, error", [
+    (FLAT, "tetrahedron B is flat: its four vertices are coplanar (volume 0)"),
+    ([[0, 0, 0], [1, 1, 1], [2, 2, 2], [3, 3, 3]], "tetrahedron B is flat: its four vertices are coplanar (volume 0)"),
+    ([[0, 0, 0], [1, 0, 0], [0, float("inf"), 0], [0, 0, 1]], "tetrahedron B: vertex 2 coordinate y is not finite (inf)"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, float("nan")]], "tetrahedron B: vertex 3 coordinate z is not finite (nan)"),
+    ([[0, 0, 0], [10**400, 0, 0], [0, 1, 0], [0, 0, 1]], "tetrahedron B: vertex 1 coordinate x is not finite (inf)"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, -Fraction(10**400)]], "tetrahedron B: vertex 3 coordinate z is not finite (-inf)"),
+])
+def test_rejected_pairs_are_error_records_with_the_same_words(b, error):
+    for engine in ENGINES:
+        assert pdd.solve(A, b, engine=engine, name="p") == {"name": "p", "error": error}
+    both = pdd.solve(FLAT, b, engine="reference")["error"]
+    assert both == "tetrahedron A is flat: its four vertices are coplanar (volume 0); " + error
+
+
+def test_fractions_are_exact_beyond_the_double_range():
+    # nested-1 scaled by 2^-600 and 2^600: every squared value scales by 2^-1200 / 2^1200,
+    # far outside the double range, so only exact integers can carry it.
+    for e in (-600, 600):
+        s = Fraction(2) ** e
+        a = [[c * 2.0**e for c in v] for v in A]
+        b = [[c * 2.0**e for c in v] for v in B]
+        r = pdd.solve(a, b, engine="reference", name="scaled")
+        assert r["rigid_pd2"] == Fraction(16, 3) * s * s
+        assert r["eq11_pd2"] == Fraction(1, 12) * s * s
+        assert r["pdd2"] == Fraction(4, 5) * s * s
+        assert r["q1_B"][1] == [Fraction(7, 3) * s, Fraction(11, 6) * s, Fraction(11, 6) * s]
+        assert all(type(r[k]) is Fraction for k in VALUE_KEYS)
+        fast = pdd.solve(a, b)  # SPEC §8: not a normal double, so rejected with a message
+        assert fast["error"].startswith("not representable")
+
+
+@pytest.mark.parametrize("rel", ["smoke.json", "degenerate.json"])
+def test_fractions_print_as_the_golden_strings(rel):
+    lines = (FIXTURES / "golden" / rel).with_suffix(".jsonl").read_text().splitlines()
+    for p, line in zip(pdd.read_fixtures(FIXTURES / rel), lines):
+        g = json.loads(line)
+        r = pdd.solve(p["A"], p["B"], engine="reference", name=p["name"])
+        for k in VALUE_KEYS:
+            assert str(r[k]) == g[k]
+        assert [[str(c) for c in v] for v in r["q1_A"]] == g["q1_A"]
+
+
+def test_read_fixtures():
+    pairs = pdd.read_fixtures(str(FIXTURES / "smoke.json"))
+    assert [p["name"] for p in pairs][0] == "nested-1"
+    p = pairs[0]
+    assert set(p) == {"name", "tags", "A", "B", "error"}
+    assert p["A"] == A and p["B"] == B and p["error"] is None
+    assert all(type(c) is float for v in p["A"] + p["B"] for c in v)
+    assert all(isinstance(t, str) for q in pairs for t in q["tags"])
+    assert pdd.read_fixtures(FIXTURES / "smoke.json") == pairs                 # os.PathLike
+    assert pdd.read_fixtures(os.fsencode(FIXTURES / "smoke.json")) == pairs    # bytes
+    with pytest.raises(ValueError, match="path must be a str, bytes or os.PathLike; got 3"):
+        pdd.read_fixtures(3)
+
+
+def cli(pdd_cli, *args):
+    return subprocess.run([pdd_cli, *args], capture_output=True, text=True)
+
+
+BAD_FILES = sorted(p.name for p in (FIXTURES / "bad").glob("*.json"))
+
+
+@pytest.mark.parametrize("path", [str(FIXTURES / "bad" / f) for f in BAD_FILES]
+                         + [str(FIXTURES / "bad" / "does-not-exist.json"), str(FIXTURES / "bad")])
+def test_read_fixtures_raises_the_cli_message(path, pdd_cli):
+    out = cli(pdd_cli, "solve", "--engine", "fast", "--quiet", "--input", path)
+    if out.returncode != 2:  # the file itself is readable: read_fixtures reads it too
+        assert out.returncode in (0, 1), out.stderr
+        pdd.read_fixtures(path)
+        return
+    with pytest.raises(ValueError) as e:
+        pdd.read_fixtures(path)
+    assert "pdd solve: " + str(e.value) in out.stderr.splitlines()
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+@pytest.mark.parametrize("name", ["mixed.json", "overflow.json", "mistyped.json"])
+def test_fixture_pairs_solve_to_the_cli_records(engine, name, pdd_cli):
+    """Every entry of a fixture file, read by read_fixtures and solved by solve (an error entry
+    becomes {"name", "error"}), gives exactly the records of `pdd solve` on the file."""
+    path = FIXTURES / "bad" / name
+    out = cli(pdd_cli, "solve", "--engine", engine, "--formulation", "reduced", "--quiet", "--input", str(path))
+    assert out.returncode == 1, out.stderr  # some pairs rejected, the others computed
+    want = []
+    for line in out.stdout.splitlines():
+        r = json.loads(line)
+        if engine == "reference":
+            for k in VALUE_KEYS:
+                if k in r:
+                    r[k] = Fraction(r[k])
+            for k in ("q1_A", "q1_B"):
+                if k in r:
+                    r[k] = [[Fraction(c) for c in v] for v in r[k]]
+        want.append(r)
+    got = []
+    for p in pdd.read_fixtures(path):
+        if p["error"] is not None:
+            assert p["A"] is None and p["B"] is None
+            got.append({"name": p["name"], "error": p["error"]})
+        else:
+            got.append(pdd.solve(p["A"], p["B"], engine=engine, name=p["name"]))
+    assert got == want
+    assert any(r["error"] for r in got) and any(not r["error"] for r in got)
