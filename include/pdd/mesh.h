@@ -86,9 +86,9 @@ std::string variant_names(unsigned variants);  // the inverse, comma-separated
 
 struct ContactOptions {
   unsigned variants = kDefaultVariants;
-  // Called from worker threads (must be thread-safe) with how many more intersecting pairs
-  // were computed in stage 4; may be empty.
-  std::function<void(std::size_t)> progress;
+  // Stage 4 progress: progress(n, total) says n more of the `total` intersecting pairs are
+  // done. Called from worker threads (must be thread-safe); may be empty.
+  std::function<void(std::size_t n, std::size_t total)> progress;
 };
 
 // An element that was not computed (SPEC §10): `mesh` is 'A' or 'B', `index` its number.

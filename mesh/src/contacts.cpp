@@ -150,7 +150,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
     } else {
       c.result = reference::solve_pair(TetPair{"", {}, Ta, Tb}, QpFormulation::Reduced);
     }
-    if (options.progress) options.progress(1);
+    if (options.progress) options.progress(1, hits.size());
   });
   out.seconds_depth = since(t);
   return out;
