@@ -15,6 +15,7 @@ PACKAGES=(
   libfcl-dev libccd-dev                   # rigid-PD peers in pdd bench
   clang-14 libclang-rt-14-dev             # second compiler (sanitized build in CI), libFuzzer
   gnuplot-nox                             # pictures of pdd paper
+  gmsh                                    # scripts/make-meshes.sh only (test meshes; GPL, never linked)
 )
 
 missing=()
