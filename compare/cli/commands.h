@@ -29,4 +29,7 @@ void add_paper_command(CLI::App& app, int& exit_code);
 // `pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]`
 void add_bench_command(CLI::App& app, int& exit_code);
 
+// `pdd mesh --a A.msh (--b B.msh | --self) [--variants LIST] [--engine fast|reference] ...`
+void add_mesh_command(CLI::App& app, int& exit_code);
+
 }  // namespace pdd::compare

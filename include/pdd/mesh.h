@@ -1,0 +1,146 @@
+// mesh.h — pdd on tetrahedral meshes (SPEC §10): every intersecting element pair of two meshes
+// (or of one mesh with itself) and its penetration depths.
+//
+//   #include <pdd/mesh.h>             // CMake: target_link_libraries(app PRIVATE pdd::mesh)
+//   pdd::mesh::Mesh A = pdd::mesh::read_mesh("a.msh"), B = pdd::mesh::read_mesh("b.vtk");
+//   pdd::mesh::Contacts<double> c = pdd::mesh::contacts(A, B);     // default variants
+//   for (const auto& k : c.pairs) k.a, k.b, k.result.pdd2, k.result.q1_B ...;
+//   c.skipped: flat or non-finite elements, by mesh and index, with the reason
+//
+// Meshes: vertices (doubles) and tetrahedra (four vertex indices each, any orientation).
+// Tetrahedra are numbered 0, 1, ... in file order among the file's tetrahedral elements; other
+// element types (points, lines, triangles, hexahedra, ...) are ignored.
+//
+// Stages of contacts():
+//   1. boxes        the axis-aligned bounding box of every valid element (an element with a
+//                   non-finite coordinate or zero volume — exact test — is skipped and listed);
+//   2. broadphase   every pair (a, b) whose boxes overlap: CGAL's box_intersection_d, half-open
+//                   boxes (interiors that intersect have overlapping half-open boxes, so no pair
+//                   whose interiors intersect is lost; boxes that only touch are not reported);
+//   3. decision     the exact decision of SPEC §4 per box pair: the interiors intersect iff
+//                   pdd::fast::rigid_pd2 > 0 (exact, SPEC §8: 0 exactly when the exact value is 0),
+//                   touching is not intersecting;
+//   4. depth        the requested variants per intersecting pair, on all cores (TBB), through the
+//                   public engine calls of <pdd/pdd.h> only.
+// Results are sorted by (a, b), independent of the number of threads.
+//
+// Self-contact (self_contacts): pairs a < b of one mesh whose elements share no vertex index.
+//
+// Values: a record is pdd.h's PairResult with `name` empty; only the requested variants are
+// computed, the others are 0 with no label; q1_A / q1_B (the deformed positions attaining pdd2)
+// are set when kPdd2 is requested and are the rest pose otherwise. With the fast engine each
+// value equals the field of the same name of pdd::fast::solve_pair on the pair
+// (A = element a, B = element b); contacts_exact gives pdd::reference::solve_pair's exact record.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pdd/pdd.h"
+
+namespace pdd::mesh {
+
+struct Mesh {
+  std::vector<Vec3d> vertices;
+  std::vector<std::array<std::size_t, 4>> tets;  // vertex indices into `vertices`
+  // Where each tetrahedron came from, for messages: the element tag of a Gmsh file, the cell
+  // index of a VTK file (same length as `tets`; may be empty for meshes built in code).
+  std::vector<long long> source_ids;
+};
+
+// A mesh file that cannot be read: missing, truncated, malformed, an element referring to a
+// node that is not in the file, an unknown element type. what() names the file and the line
+// (text) or the byte offset (binary data): "a.msh:42: element 17 refers to node 999, which
+// is not in the file".
+struct ReadError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Reads a Gmsh .msh file (versions 2.2 and 4.1, ASCII and binary) or a legacy VTK unstructured
+// grid (.vtk, ASCII or BINARY, cell type 10), chosen by content ("$MeshFormat" or
+// "# vtk DataFile"). Coordinates are read as written (non-finite ones too: the element that
+// uses them is skipped by contacts(), with its index). Throws ReadError.
+Mesh read_mesh(const std::string& path);
+
+// Variants, one bit per SPEC §6 value; bit k is the value kValueKeys[k] of pair_result.h.
+enum Variant : unsigned {
+  kRigid = 1u << 0,    // rigid_pd2 (+ rigid_dir)
+  kEq11 = 1u << 1,     // eq11_pd2
+  kStatic = 1u << 2,   // pdd2_static (+ pdd2_static_dir)
+  kPdd2 = 1u << 3,     // pdd2 (+ pdd2_dir, q1_A, q1_B)
+  kRelaxed = 1u << 4,  // pdd2_relaxed (+ pdd2_relaxed_dir)
+  kAccel1 = 1u << 5,   // pdd2_accel1
+  kAccel6 = 1u << 6,   // pdd2_accel6
+};
+inline constexpr unsigned kAllVariants = 0x7f;
+inline constexpr unsigned kDefaultVariants = kRigid | kStatic | kPdd2 | kAccel1;
+// "rigid,static,pdd2,accel1" (names: rigid eq11 static pdd2 relaxed accel1 accel6, or "all")
+// -> bits; throws std::invalid_argument naming the unknown word.
+unsigned parse_variants(const std::string& list);
+std::string variant_names(unsigned variants);  // the inverse, comma-separated
+
+struct ContactOptions {
+  unsigned variants = kDefaultVariants;
+  // Stage 4 progress: progress(n, total) says n more of the `total` intersecting pairs are
+  // done. Called from worker threads (must be thread-safe); may be empty.
+  std::function<void(std::size_t n, std::size_t total)> progress;
+};
+
+// An element that was not computed (SPEC §10): `mesh` is 'A' or 'B', `index` its number.
+struct SkippedElement {
+  char mesh = 'A';
+  std::size_t index = 0;
+  std::string reason;  // "element 12 of mesh A is flat: its four vertices are coplanar (volume 0)"
+};
+
+template <class R>
+struct Contact {
+  std::size_t a = 0, b = 0;  // element of A (of the mesh, for self-contact), element of B
+  PairResult<R> result;      // error set only when a value is not representable (fast engine)
+};
+
+template <class R>
+struct Contacts {
+  std::vector<Contact<R>> pairs;  // intersecting pairs, sorted by (a, b)
+  std::vector<SkippedElement> skipped;
+  std::size_t elements_a = 0, elements_b = 0;  // tetrahedra in each mesh (B: 0 for self-contact)
+  std::size_t box_pairs = 0;  // stage 2's pairs (self-contact: after dropping vertex-sharing ones)
+  double seconds_boxes = 0, seconds_broadphase = 0, seconds_decision = 0, seconds_depth = 0;
+};
+
+// Throws std::invalid_argument when a tetrahedron refers to a vertex that does not exist.
+Contacts<double> contacts(const Mesh& A, const Mesh& B, const ContactOptions& options = {});
+Contacts<double> self_contacts(const Mesh& A, const ContactOptions& options = {});
+// The same pairs (stages 1–3 as above), each pair's record from the exact engine
+// (pdd::reference::solve_pair, reduced formulation; every value of the record is computed).
+Contacts<Rational> contacts_exact(const Mesh& A, const Mesh& B,
+                                  const ContactOptions& options = {});
+Contacts<Rational> self_contacts_exact(const Mesh& A, const ContactOptions& options = {});
+
+// Building blocks, for tests and benchmarks.
+TetVertices element(const Mesh& m, std::size_t i);  // the vertices of tetrahedron i
+// Why element i cannot be computed (non-finite coordinate, flat: exact), or nullopt.
+std::optional<std::string> element_problem(const Mesh& m, std::size_t i, char which);
+// Stage 2 alone over the given elements (indices into A and B; B == nullptr: self, a < b,
+// vertex-sharing pairs kept): the box pairs, sorted by (a, b).
+std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
+                                                  const Mesh* B, const std::vector<std::size_t>& eb);
+
+// Writes A (and B unless null: self-contact) as one legacy VTK unstructured grid (ASCII) for
+// ParaView: points of A then of B, cells of A then of B, with cell data `mesh` (0 A, 1 B),
+// `element` (its number in its mesh), `partners` (number of intersecting pairs it is in) and
+// `max_<value>` (largest value of each requested variant over its pairs, 0 if none), and,
+// when kPdd2 was requested, point data `displacement`: for each mesh vertex, among the
+// displacements q1 − rest that the pairs' pdd2 solutions give that vertex, the one of largest
+// length (first in (a, b) order among equals); 0 where no pair moves it. Throws
+// std::runtime_error when the file cannot be written.
+template <class R>
+void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Contacts<R>& contacts,
+               unsigned variants);
+
+}  // namespace pdd::mesh

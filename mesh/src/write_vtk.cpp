@@ -1,0 +1,103 @@
+// write_vtk.cpp — both meshes and their contacts in one legacy VTK file (mesh.h, write_vtk).
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include "pdd/mesh.h"
+
+namespace pdd::mesh {
+namespace {
+
+double to_double(double x) { return x; }
+double to_double(const Rational& x) { return x.get_d(); }
+
+}  // namespace
+
+template <class R>
+void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Contacts<R>& contacts,
+               unsigned variants) {
+  const std::size_t na = A.vertices.size(), nb = B ? B->vertices.size() : 0;
+  const std::size_t ta = A.tets.size(), tb = B ? B->tets.size() : 0;
+  // Cell data.
+  std::vector<int> partners(ta + tb, 0);
+  std::vector<std::array<double, kValueCount>> maxima(ta + tb);
+  for (auto& m : maxima) m.fill(0);
+  // Point data: the longest displacement any pair's pdd2 solution gives the vertex.
+  std::vector<Vec3d> disp(na + nb, Vec3d{0, 0, 0});
+  std::vector<double> disp_len2(na + nb, 0);
+  const std::size_t b_cell0 = B ? ta : 0, b_point0 = B ? na : 0;
+  const Mesh& BB = B ? *B : A;
+  for (const Contact<R>& c : contacts.pairs) {
+    if (c.result.error) continue;
+    const std::size_t cells[2] = {c.a, b_cell0 + c.b};
+    for (std::size_t cell : cells) {
+      ++partners[cell];
+      for (std::size_t k = 0; k < kValueCount; ++k)
+        if (variants & (1u << k))
+          maxima[cell][k] = std::max(maxima[cell][k], to_double(record_value(c.result, k)));
+    }
+    if (!(variants & kPdd2)) continue;
+    auto propose = [&](const Mesh& m, std::size_t tet, std::size_t point0, const Positions<R>& q1) {
+      for (int v = 0; v < 4; ++v) {
+        const std::size_t p = m.tets[tet][v];
+        Vec3d d;
+        double l2 = 0;
+        for (int k = 0; k < 3; ++k) {
+          d[k] = to_double(q1[v][k]) - m.vertices[p][k];
+          l2 += d[k] * d[k];
+        }
+        if (l2 > disp_len2[point0 + p]) disp_len2[point0 + p] = l2, disp[point0 + p] = d;
+      }
+    };
+    propose(A, c.a, 0, c.result.q1_A);
+    propose(BB, c.b, b_point0, c.result.q1_B);
+  }
+
+  errno = 0;
+  std::ofstream out(path, std::ios::binary);
+  if (!out)
+    throw std::runtime_error("cannot open '" + path + "' for writing" +
+                             (errno ? std::string(": ") + std::strerror(errno) : ""));
+  out.precision(17);
+  out << "# vtk DataFile Version 3.0\n"
+      << (B ? "pdd mesh: meshes A and B and their intersecting element pairs\n"
+            : "pdd mesh --self: mesh A and its self-intersecting element pairs\n")
+      << "ASCII\nDATASET UNSTRUCTURED_GRID\n";
+  out << "POINTS " << na + nb << " double\n";
+  auto finite = [](double x) { return std::isfinite(x) ? x : 0.0; };  // VTK readers choke on nan
+  for (const Vec3d& p : A.vertices) out << finite(p[0]) << ' ' << finite(p[1]) << ' ' << finite(p[2]) << '\n';
+  if (B)
+    for (const Vec3d& p : B->vertices) out << finite(p[0]) << ' ' << finite(p[1]) << ' ' << finite(p[2]) << '\n';
+  out << "CELLS " << ta + tb << ' ' << 5 * (ta + tb) << '\n';
+  for (const auto& t : A.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
+  if (B)
+    for (const auto& t : B->tets)
+      out << "4 " << na + t[0] << ' ' << na + t[1] << ' ' << na + t[2] << ' ' << na + t[3] << '\n';
+  out << "CELL_TYPES " << ta + tb << '\n';
+  for (std::size_t i = 0; i < ta + tb; ++i) out << "10\n";
+  out << "CELL_DATA " << ta + tb << "\nSCALARS mesh int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? 0 : 1) << '\n';
+  out << "SCALARS element int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
+  out << "SCALARS partners int 1\nLOOKUP_TABLE default\n";
+  for (int p : partners) out << p << '\n';
+  for (std::size_t k = 0; k < kValueCount; ++k) {
+    if (!(variants & (1u << k))) continue;
+    out << "SCALARS max_" << kValueKeys[k] << " double 1\nLOOKUP_TABLE default\n";
+    for (const auto& m : maxima) out << m[k] << '\n';
+  }
+  if (variants & kPdd2) {
+    out << "POINT_DATA " << na + nb << "\nVECTORS displacement double\n";
+    for (const Vec3d& d : disp) out << d[0] << ' ' << d[1] << ' ' << d[2] << '\n';
+  }
+  out.flush();
+  if (!out) throw std::runtime_error("cannot write to '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : ""));
+}
+
+template void write_vtk<double>(const std::string&, const Mesh&, const Mesh*, const Contacts<double>&, unsigned);
+template void write_vtk<Rational>(const std::string&, const Mesh&, const Mesh*, const Contacts<Rational>&, unsigned);
+
+}  // namespace pdd::mesh

@@ -1,0 +1,52 @@
+# `pdd mesh` as a user meets it: records sorted by (a, b) with a and b, the summary, the VTK
+# file; exit 1 with the element named when an element is skipped; exit 2 for an unreadable
+# mesh (message names the line) and for a wrong command line.
+set(M ${FIXTURES}/meshes)
+function(expect_exit code out_var)
+  execute_process(COMMAND ${PDD} mesh --quiet ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL ${code})
+    message(FATAL_ERROR "pdd mesh ${ARGN}: exit ${rc}, expected ${code}\n${err}")
+  endif()
+  set(${out_var} "${out}" PARENT_SCOPE)
+  set(${out_var}_err "${err}" PARENT_SCOPE)
+endfunction()
+
+file(MAKE_DIRECTORY ${WORK})
+expect_exit(0 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --summary --vtk ${WORK}/spheres.vtk)
+string(REGEX MATCHALL "\n" lines "${out}")
+list(LENGTH lines n)
+if(n LESS 1000 OR NOT out MATCHES "^{\"a\":[0-9]+,\"b\":[0-9]+,\"intersecting\":true,\"rigid_pd2\":")
+  message(FATAL_ERROR "unexpected records (${n}):\n${out}")
+endif()
+if(NOT out_err MATCHES "intersecting    ${n}\n" OR NOT out_err MATCHES "pdd2            sum [0-9.e-]+, max [0-9.e-]+ at \\([0-9]+, [0-9]+\\)")
+  message(FATAL_ERROR "summary:\n${out_err}")
+endif()
+if(NOT EXISTS ${WORK}/spheres.vtk)
+  message(FATAL_ERROR "no VTK file written")
+endif()
+
+expect_exit(0 self --a ${M}/two-spheres.msh --self --variants rigid,accel1)
+if(NOT self MATCHES "\"pdd2_accel1\"" OR self MATCHES "\"pdd2\"")
+  message(FATAL_ERROR "--variants rigid,accel1:\n${self}")
+endif()
+
+expect_exit(0 none --a ${M}/conforming-a.msh --b ${M}/conforming-b.msh)
+if(NOT none STREQUAL "")
+  message(FATAL_ERROR "conforming meshes reported pairs:\n${none}")
+endif()
+
+expect_exit(1 flat --a ${M}/bad/flat.msh --b ${M}/sphere-a.msh)
+if(NOT flat_err MATCHES "skipped element 1 of mesh A is flat" OR flat STREQUAL "")
+  message(FATAL_ERROR "flat element:\n${flat_err}")
+endif()
+
+expect_exit(2 out --a ${M}/bad/missing-node.msh --b ${M}/sphere-a.msh)
+if(NOT out_err MATCHES "missing-node.msh:14: element 2 \\(tetrahedron 1\\) refers to node 7")
+  message(FATAL_ERROR "missing node:\n${out_err}")
+endif()
+expect_exit(2 out --a ${M}/bad/truncated.msh --b ${M}/sphere-a.msh)
+expect_exit(2 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --self)
+expect_exit(2 out --a ${M}/sphere-a.msh)
+expect_exit(2 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --variants rigid,nonsense)
+expect_exit(2 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --output ${WORK}/no/such/dir/x.jsonl)

@@ -1,0 +1,256 @@
+// tests/mesh — pdd::mesh (include/pdd/mesh.h, SPEC §10) on the meshes Gmsh wrote
+// (fixtures/meshes/, scripts/make-meshes.sh):
+//   readers: the same ball in MSH 2.2 / 4.1, ASCII / binary and legacy VTK ASCII / binary
+//            reads to the same tetrahedra; bad files give messages naming the line or element;
+//   pairs:   the pair set equals brute force over all N·M (self: all i < j sharing no vertex)
+//            element pairs with the exact decision: nothing missed, nothing extra;
+//   values:  each pair's record equals pdd::fast::solve_pair on that pair, for every variant
+//            subset path; the exact engine on a tiny mesh gives pdd::reference::solve_pair's
+//            exact record and the fast values are within SPEC §8 of it;
+//   touching meshes (a shared plane, a conforming curved interface) give no pair.
+#define BOOST_TEST_MODULE mesh
+#include <boost/test/unit_test.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "pdd/mesh.h"
+
+using namespace pdd;
+using namespace pdd::mesh;
+
+namespace {
+
+const std::string kDir = std::string(PDD_FIXTURES_DIR) + "/meshes/";
+Mesh load(const std::string& name) { return read_mesh(kDir + name); }
+
+using PairSet = std::vector<std::array<std::size_t, 2>>;
+
+// All N·M pairs (self: i < j sharing no vertex), exact decision, no boxes.
+PairSet brute_force(const Mesh& A, const Mesh* B) {
+  const Mesh& BB = B ? *B : A;
+  std::vector<std::vector<std::size_t>> hits(A.tets.size());
+  tbb::parallel_for(std::size_t{0}, A.tets.size(), [&](std::size_t i) {
+    if (element_problem(A, i, 'A')) return;
+    const TetVertices Ti = element(A, i);
+    for (std::size_t j = B ? 0 : i + 1; j < BB.tets.size(); ++j) {
+      if (element_problem(BB, j, 'B')) continue;
+      if (!B) {
+        bool share = false;
+        for (auto u : A.tets[i])
+          for (auto v : A.tets[j]) share |= u == v;
+        if (share) continue;
+      }
+      const fast::Depth d = fast::rigid_pd2(Ti, element(BB, j));
+      if (d.status != fast::DepthStatus::Ok || d.pd2 > 0) hits[i].push_back(j);  // status: fails the test
+    }
+  });
+  PairSet out;
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    for (std::size_t j : hits[i]) out.push_back({i, j});
+  return out;
+}
+
+template <class R>
+PairSet pairs_of(const Contacts<R>& c) {
+  PairSet out;
+  for (const auto& p : c.pairs) out.push_back({p.a, p.b});
+  return out;
+}
+
+void check_pair_set(const std::string& a, const std::string& b) {
+  const Mesh A = load(a), B = load(b);
+  const Contacts<double> c = contacts(A, B, {kRigid, {}});
+  const PairSet expected = brute_force(A, &B);
+  BOOST_TEST_MESSAGE(a << " x " << b << ": " << A.tets.size() << " x " << B.tets.size()
+                       << " elements, " << c.box_pairs << " box pairs, " << expected.size()
+                       << " intersecting");
+  BOOST_TEST(!expected.empty());
+  BOOST_TEST(c.skipped.empty());
+  BOOST_TEST((pairs_of(c) == expected));
+}
+
+void check_values(const Contacts<double>& c, const Mesh& A, const Mesh& B, unsigned variants) {
+  for (const auto& p : c.pairs) {
+    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, element(A, p.a), element(B, p.b)});
+    BOOST_REQUIRE(!r.error);
+    BOOST_REQUIRE(!p.result.error);
+    BOOST_TEST(p.result.intersecting);
+    for (std::size_t k = 0; k < kValueCount; ++k) {
+      const bool on = variants & (1u << k);
+      BOOST_TEST(record_value(p.result, k) == (on ? record_value(r, k) : 0.0), kValueKeys[k]);
+      if (kLabelOfValue[k] >= 0) {
+        const auto& got = record_label(p.result, kLabelOfValue[k]);
+        const auto& want = record_label(r, kLabelOfValue[k]);
+        BOOST_TEST((got ? got->str() : "-") == (on && want ? want->str() : "-"), kLabelKeys[kLabelOfValue[k]]);
+      }
+    }
+    if (variants & kPdd2) BOOST_TEST((p.result.q1_A == r.q1_A && p.result.q1_B == r.q1_B));
+  }
+}
+
+std::string read_error(const std::string& name) {
+  try {
+    load(name);
+  } catch (const ReadError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+bool contains(const std::string& s, const std::string& part) {
+  if (s.find(part) != std::string::npos) return true;
+  BOOST_TEST_MESSAGE("'" << s << "' lacks '" << part << "'");
+  return false;
+}
+
+}  // namespace
+
+// Gmsh writes ASCII coordinates with 16 significant digits, which does not round-trip every
+// double, and binary ones exactly: the ASCII files agree with each other exactly, the binary
+// ones too, and the two groups to within a unit in the 16th digit.
+BOOST_AUTO_TEST_CASE(every_encoding_reads_the_same_tetrahedra) {
+  const Mesh text = load("sphere-a.msh"), bin = load("sphere-a.bin41.msh");
+  BOOST_TEST(text.tets.size() == 898u);  // Gmsh's count for this ball (triangles, lines ignored)
+  auto same = [](const Mesh& x, const Mesh& y, double tol) {
+    if (x.tets.size() != y.tets.size()) return false;
+    for (std::size_t i = 0; i < x.tets.size(); ++i) {
+      const TetVertices a = element(x, i), b = element(y, i);
+      for (int v = 0; v < 4; ++v)
+        for (int k = 0; k < 3; ++k)
+          if (std::abs(a[v][k] - b[v][k]) > tol) return false;
+    }
+    return true;
+  };
+  for (const char* f : {"sphere-a.v22.msh", "sphere-a.vtk"})
+    BOOST_TEST(same(load(f), text, 0.0), f);
+  for (const char* f : {"sphere-a.bin22.msh", "sphere-a.bin.vtk"})
+    BOOST_TEST(same(load(f), bin, 0.0), f);
+  BOOST_TEST(same(text, bin, 1e-15));
+  BOOST_TEST(!same(text, bin, 0.0));  // so the exact comparisons above mean something
+}
+
+BOOST_AUTO_TEST_CASE(bad_files_name_the_line_or_element) {
+  BOOST_TEST(contains(read_error("bad/truncated.msh"), "truncated.msh:"));
+  BOOST_TEST(contains(read_error("bad/truncated.msh"), "truncated?"));
+  BOOST_TEST(contains(read_error("bad/truncated.bin41.msh"), "truncated?"));
+  BOOST_TEST(contains(read_error("bad/truncated.bin41.msh"), ": byte "));
+  BOOST_TEST(contains(read_error("bad/truncated.bin22.msh"), "truncated?"));
+  BOOST_TEST(contains(read_error("bad/truncated.vtk"), "truncated?"));
+  BOOST_TEST(contains(read_error("bad/missing-node.msh"),
+                      "missing-node.msh:14: element 2 (tetrahedron 1) refers to node 7, which is not in the file"));
+  BOOST_TEST(contains(read_error("bad/bad-number.msh"), "bad-number.msh:8: a node coordinate: '0.3x' is not a number"));
+  BOOST_TEST(contains(read_error("bad/bad-index.vtk"), "bad-index.vtk:12: cell 1 (tetrahedron 1) refers to point 9"));
+  BOOST_TEST(contains(read_error("bad/README.md"), "neither a Gmsh mesh"));
+  BOOST_TEST(contains(read_error("does-not-exist.msh"), "cannot read"));
+}
+
+BOOST_AUTO_TEST_CASE(flat_and_nan_elements_are_reported_and_skipped) {
+  const Mesh ball = load("sphere-a.msh");
+  {
+    const Mesh m = load("bad/flat.msh");
+    BOOST_REQUIRE(m.tets.size() == 2u);  // the point element is ignored
+    const Contacts<double> c = contacts(m, ball);
+    BOOST_REQUIRE(c.skipped.size() == 1u);
+    BOOST_TEST(c.skipped[0].mesh == 'A');
+    BOOST_TEST(c.skipped[0].index == 1u);
+    BOOST_TEST(contains(c.skipped[0].reason, "element 1 of mesh A is flat"));
+    BOOST_TEST(!c.pairs.empty());  // the rest is computed: element 0 sits inside the ball
+    for (const auto& p : c.pairs) BOOST_TEST(p.a == 0u);
+  }
+  {
+    const Mesh m = load("bad/nan.msh");  // element 0 has the NaN node, element 1 is flat
+    const Contacts<double> c = contacts(ball, m);
+    BOOST_REQUIRE(c.skipped.size() == 2u);
+    BOOST_TEST(c.skipped[0].mesh == 'B');
+    BOOST_TEST(c.skipped[0].index == 0u);
+    BOOST_TEST(contains(c.skipped[0].reason, "element 0 of mesh B: vertex 3 (mesh vertex 3) coordinate z is not finite (nan)"));
+    BOOST_TEST(c.skipped[1].index == 1u);
+    BOOST_TEST(c.pairs.empty());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(pair_set_equals_brute_force) {
+  check_pair_set("sphere-a.msh", "sphere-b.msh");
+  check_pair_set("torus.msh", "box.vtk");
+  check_pair_set("slivers.msh", "sphere-a.bin22.msh");
+}
+
+BOOST_AUTO_TEST_CASE(self_contact_equals_brute_force) {
+  const Mesh m = load("two-spheres.msh");
+  const Contacts<double> c = self_contacts(m, {kRigid | kAccel1, {}});
+  const PairSet expected = brute_force(m, nullptr);
+  BOOST_TEST(!expected.empty());
+  BOOST_TEST((pairs_of(c) == expected));
+  for (const auto& p : c.pairs) BOOST_TEST(p.a < p.b);
+  // A valid conforming mesh does not intersect itself.
+  BOOST_TEST(self_contacts(load("sphere-a.msh")).pairs.empty());
+  BOOST_TEST(self_contacts(load("slivers.msh")).pairs.empty());
+}
+
+BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
+  const Mesh A = load("slivers.msh"), B = load("sphere-a.msh");
+  for (unsigned v : {kAllVariants, kDefaultVariants, unsigned(kRigid | kAccel1), unsigned(kStatic),
+                     unsigned(kRelaxed | kAccel6)}) {
+    BOOST_TEST_CONTEXT(variant_names(v)) {
+      const Contacts<double> c = contacts(A, B, {v, {}});
+      BOOST_TEST(!c.pairs.empty());
+      check_values(c, A, B, v);
+    }
+  }
+  const Mesh S = load("two-spheres.msh");
+  check_values(self_contacts(S, {kAllVariants, {}}), S, S, kAllVariants);
+}
+
+BOOST_AUTO_TEST_CASE(touching_meshes_report_no_pair) {
+  // Two boxes on either side of the plane x = 1, meshed independently.
+  const Contacts<double> t = contacts(load("touching-a.msh"), load("touching-b.msh"));
+  BOOST_TEST(t.pairs.empty());
+  // A ball and the box around it, one conforming mesh split in two: many boxes overlap, the
+  // exact decision finds that no interiors do.
+  const Contacts<double> c = contacts(load("conforming-a.msh"), load("conforming-b.msh"));
+  BOOST_TEST(c.box_pairs > 1000u);
+  BOOST_TEST(c.pairs.empty());
+}
+
+BOOST_AUTO_TEST_CASE(reference_engine_on_a_tiny_mesh_is_exact) {
+  const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
+  const Contacts<Rational> e = contacts_exact(A, B);
+  const Contacts<double> f = contacts(A, B, {kAllVariants, {}});
+  BOOST_TEST(!e.pairs.empty());
+  BOOST_TEST((pairs_of(e) == pairs_of(f)));
+  BOOST_TEST((pairs_of(e) == brute_force(A, &B)));
+  for (std::size_t i = 0; i < e.pairs.size(); ++i) {
+    const auto& x = e.pairs[i].result;
+    BOOST_REQUIRE(!x.error);
+    const PairResult<Rational> r =
+        reference::solve_pair(TetPair{"", {}, element(A, e.pairs[i].a), element(B, e.pairs[i].b)});
+    BOOST_TEST(x.intersecting);
+    for (std::size_t k = 0; k < kValueCount; ++k) {
+      BOOST_TEST(record_value(x, k) == record_value(r, k));
+      // SPEC §8 for the fast engine on the same pair, checked exactly.
+      const Rational fast_value(record_value(f.pairs[i].result, k));
+      const Rational err = abs(fast_value - record_value(x, k));
+      BOOST_TEST(err <= Rational(1, 1000000000) * record_value(x, k), kValueKeys[k]);
+    }
+    BOOST_TEST((x.q1_A == r.q1_A && x.q1_B == r.q1_B));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(vtk_output_reads_back) {
+  const Mesh A = load("sphere-a.msh"), B = load("sphere-b.msh");
+  const Contacts<double> c = contacts(A, B);
+  const std::string path = "mesh_test_out.vtk";
+  write_vtk(path, A, &B, c, kDefaultVariants);
+  const Mesh both = read_mesh(path);  // our own reader: the cells are A's then B's
+  BOOST_REQUIRE(both.tets.size() == A.tets.size() + B.tets.size());
+  BOOST_TEST((element(both, 0) == element(A, 0)));
+  BOOST_TEST((element(both, A.tets.size()) == element(B, 0)));
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* key : {"SCALARS partners int", "SCALARS max_pdd2 double", "VECTORS displacement double"})
+    BOOST_TEST(contains(text, key));
+}
