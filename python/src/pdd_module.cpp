@@ -63,11 +63,16 @@ bool is_numpy_bool(py::handle x) { return py::isinstance(x, cached->numpy_bool);
 // a double (the engines read IEEE doubles, SPEC §1; rounding it silently would solve another
 // pair). A number beyond the double range becomes +-inf, which the engines reject as
 // non-finite, as `pdd solve` does with 1e999 in a file.
-double coordinate(py::handle x, const std::string& where) {
+// The name of a coordinate in messages, "A[i][k]" (built only for a message).
+std::string where(const char* which, std::size_t i, std::size_t k) {
+  return std::string(which) + "[" + std::to_string(i) + "][" + std::to_string(k) + "]";
+}
+
+double coordinate(py::handle x, const char* which, std::size_t i, std::size_t k) {
   if (PyFloat_CheckExact(x.ptr())) return PyFloat_AS_DOUBLE(x.ptr());
   if (PyBool_Check(x.ptr()) || PyUnicode_Check(x.ptr()) || PyBytes_Check(x.ptr()) ||
       PyComplex_Check(x.ptr()) || x.is_none() || is_numpy_bool(x))
-    value_error(where + " is not a real number: " + short_repr(x));
+    value_error(where(which, i, k) + " is not a real number: " + short_repr(x));
   PyObject* f = PyNumber_Float(x.ptr());
   if (!f) {
     if (PyErr_ExceptionMatches(PyExc_OverflowError)) {  // e.g. 10**400: beyond the double range
@@ -78,7 +83,7 @@ double coordinate(py::handle x, const std::string& where) {
                       : std::numeric_limits<double>::infinity();
     }
     PyErr_Clear();
-    value_error(where + " is not a real number: " + short_repr(x));
+    value_error(where(which, i, k) + " is not a real number: " + short_repr(x));
   }
   py::object fo = py::reinterpret_steal<py::object>(f);
   const double v = PyFloat_AS_DOUBLE(f);
@@ -86,7 +91,7 @@ double coordinate(py::handle x, const std::string& where) {
   const int same = PyObject_RichCompareBool(x.ptr(), f, Py_EQ);
   if (same < 0) throw py::error_already_set();
   if (!same)
-    value_error(where + " = " + short_repr(x) +
+    value_error(where(which, i, k) + " = " + short_repr(x) +
                 " is not exactly a double: pdd reads coordinates as IEEE doubles (SPEC §1); "
                 "round it yourself with float() if that is what you mean");
   return v;
@@ -99,8 +104,8 @@ bool is_sequence(py::handle o) {
 }
 
 pdd::TetVertices tetrahedron(py::handle obj, const char* which) {
-  const std::string w = which;
-  const std::string shape_msg = w + " must be 4 vertices of 3 coordinates (shape (4, 3))";
+  const char* w = which;
+  auto shape_msg = [&] { return std::string(w) + " must be 4 vertices of 3 coordinates (shape (4, 3))"; };
   py::object o = py::reinterpret_borrow<py::object>(obj);
   if (py::isinstance<py::array>(o)) {
     py::array a = o.cast<py::array>();
@@ -108,24 +113,30 @@ pdd::TetVertices tetrahedron(py::handle obj, const char* which) {
       std::string shape = "(";
       for (py::ssize_t d = 0; d < a.ndim(); ++d)
         shape += (d ? ", " : "") + std::to_string(a.shape(d));
-      value_error(shape_msg + "; got an array of shape " + shape + (a.ndim() == 1 ? ",)" : ")"));
+      value_error(shape_msg() + "; got an array of shape " + shape + (a.ndim() == 1 ? ",)" : ")"));
+    }
+    if (a.dtype().is(py::dtype::of<double>())) {  // float64: read as it is
+      const auto d = a.cast<py::array_t<double>>().unchecked<2>();
+      pdd::TetVertices t{};
+      for (py::ssize_t i = 0; i < 4; ++i)
+        for (py::ssize_t k = 0; k < 3; ++k) t[i][k] = d(i, k);
+      return t;
     }
     o = a.attr("tolist")();  // numpy scalars become Python numbers of the same value
   }
-  if (!is_sequence(o)) value_error(shape_msg + "; got " + short_repr(o));
+  if (!is_sequence(o)) value_error(shape_msg() + "; got " + short_repr(o));
   py::sequence rows = o.cast<py::sequence>();
   if (rows.size() != 4)
-    value_error(shape_msg + "; got " + std::to_string(rows.size()) + " vertices");
+    value_error(shape_msg() + "; got " + std::to_string(rows.size()) + " vertices");
   pdd::TetVertices t{};
   for (std::size_t i = 0; i < 4; ++i) {
     py::object row = rows[i];
-    const std::string wi = w + "[" + std::to_string(i) + "]";
-    if (!is_sequence(row)) value_error(wi + " must be 3 coordinates; got " + short_repr(row));
+    auto wi = [&] { return std::string(w) + "[" + std::to_string(i) + "]"; };
+    if (!is_sequence(row)) value_error(wi() + " must be 3 coordinates; got " + short_repr(row));
     py::sequence r = row.cast<py::sequence>();
     if (r.size() != 3)
-      value_error(wi + " must be 3 coordinates; got " + std::to_string(r.size()));
-    for (std::size_t k = 0; k < 3; ++k)
-      t[i][k] = coordinate(r[k], wi + "[" + std::to_string(k) + "]");
+      value_error(wi() + " must be 3 coordinates; got " + std::to_string(r.size()));
+    for (std::size_t k = 0; k < 3; ++k) t[i][k] = coordinate(r[k], which, i, k);
   }
   return t;
 }
