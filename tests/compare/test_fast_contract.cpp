@@ -81,6 +81,16 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           {{{2.333, 4, 2.333}, {5.333, 4, 2.333}, {2.333, 7, 2.333}, {2.333, 4, 5.333}}}));
   pairs.push_back(literal("wide", {{{1, 0, 0}, {1e18, 0, 0}, {0, 1e18, 0}, {0, 0, 1e18}}},
                           {{{2, 2, 2}, {7, 2, 2}, {2, 7, 2}, {2, 2, 7}}}));
+  // the fuzzer's finds (fuzz/corpus/fast_engine/regress-subnormal-*): a subnormal coordinate
+  // beside ordinary ones; every value is normal, q1 has subnormal coordinates — computed, not
+  // "not representable"
+  pairs.push_back(literal("subnormal-vertex",
+                          {{{1.2648080533535912e-319, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}},
+                          {{{3, 1, -1}, {1, 1, 0}, {1, 3, -1}, {1.5, 1.5, 0.5}}}));
+  pairs.push_back(literal("needle-subnormal",
+                          {{{1.9663812704481612e-321, -10, 0}, {0, 0, 0}, {0, 0, 0.30000000000000498}, {0.01, 1, 0}}},
+                          {{{1.1798287622688967e-320, 0, 0}, {9, 6.6698862188568283e-322, 9},
+                            {1.0000000000000002, 1, 1}, {1, 1, 1}}}));
   int computed = 0, rejected = 0;
   for (const auto& p : pairs) {
     const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
