@@ -5,7 +5,6 @@
 //   build/bin/mesh_bench /tmp/large/large-a.msh /tmp/large/large-b.msh [variants] [threads]
 // FCL's managers test closed boxes (touching boxes overlap), CGAL's box_intersection_d is run
 // with half-open boxes here, as in contacts(): the pair counts may differ by boxes that only touch.
-#include <fcl/broadphase/broadphase_SaP.h>
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree_array.h>
 #include <fcl/geometry/shape/box.h>
@@ -107,6 +106,6 @@ int main(int argc, char** argv) {
               n, since(t));
   fcl_run<fcl::DynamicAABBTreeCollisionManagerd>("DynamicAABBTreeCollisionManager", A, B);
   fcl_run<fcl::DynamicAABBTreeCollisionManager_Arrayd>("DynamicAABBTreeCollisionManager_Array", A, B);
-  fcl_run<fcl::SaPCollisionManagerd>("SaPCollisionManager", A, B);
+  // SaPCollisionManager did not finish within 500 s on the 7·10^4-element balls: left out.
   return 0;
 }
