@@ -183,17 +183,8 @@ py::dict record(const pdd::PairResult<R>& r) {
     return d;
   }
   d["intersecting"] = r.intersecting;
-  d["rigid_pd2"] = number(r.rigid_pd2);
-  d["eq11_pd2"] = number(r.eq11_pd2);
-  d["pdd2_static"] = number(r.pdd2_static);
-  d["pdd2"] = number(r.pdd2);
-  d["pdd2_relaxed"] = number(r.pdd2_relaxed);
-  d["pdd2_accel1"] = number(r.pdd2_accel1);
-  d["pdd2_accel6"] = number(r.pdd2_accel6);
-  d["rigid_dir"] = label(r.rigid_dir);
-  d["pdd2_static_dir"] = label(r.pdd2_static_dir);
-  d["pdd2_dir"] = label(r.pdd2_dir);
-  d["pdd2_relaxed_dir"] = label(r.pdd2_relaxed_dir);
+  for (std::size_t k = 0; k < pdd::kValueCount; ++k) d[pdd::kValueKeys[k]] = number(pdd::record_value(r, k));
+  for (std::size_t k = 0; k < pdd::kLabelCount; ++k) d[pdd::kLabelKeys[k]] = label(pdd::record_label(r, k));
   d["q1_A"] = positions(r.q1_A);
   d["q1_B"] = positions(r.q1_B);
   d["error"] = py::none();

@@ -33,18 +33,11 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
     return j;
   }
   j["intersecting"] = r.intersecting;
-  j["rigid_pd2"] = number(r.rigid_pd2);
-  j["eq11_pd2"] = number(r.eq11_pd2);
-  j["pdd2_static"] = number(r.pdd2_static);
-  j["pdd2"] = number(r.pdd2);
-  j["pdd2_relaxed"] = number(r.pdd2_relaxed);
-  j["pdd2_accel1"] = number(r.pdd2_accel1);
-  j["pdd2_accel6"] = number(r.pdd2_accel6);
-  auto label = [](const std::optional<DirectionLabel>& l) { return l ? Json(l->str()) : Json(nullptr); };
-  j["rigid_dir"] = label(r.rigid_dir);
-  j["pdd2_static_dir"] = label(r.pdd2_static_dir);
-  j["pdd2_dir"] = label(r.pdd2_dir);
-  j["pdd2_relaxed_dir"] = label(r.pdd2_relaxed_dir);
+  for (std::size_t k = 0; k < kValueCount; ++k) j[kValueKeys[k]] = number(record_value(r, k));
+  for (std::size_t k = 0; k < kLabelCount; ++k) {
+    const auto& l = record_label(r, k);
+    j[kLabelKeys[k]] = l ? Json(l->str()) : Json(nullptr);
+  }
   auto positions = [&](const Positions<R>& q) {
     Json a = Json::array();
     for (const auto& v : q) a.push_back(Json::array({number(v[0]), number(v[1]), number(v[2])}));
