@@ -140,7 +140,10 @@ Attempt coplanar_faces_pair(Rng& r) {
   const TetVertices a = grid_tet(r);
   const int i = r.integer(0, 3);
   TetVertices b;
-  for (int k = 0; k < 3; ++k) b[k] = face_point(a, i, r.grid(-0.25, 1, 0.125), r.grid(-0.25, 1, 0.125));
+  for (int k = 0; k < 3; ++k) {
+    const double v = r.grid(-0.25, 1, 0.125), u = r.grid(-0.25, 1, 0.125);
+    b[k] = face_point(a, i, u, v);
+  }
   b[3] = grid_point(r);
   return if_intersecting(a, b);
 }
@@ -162,6 +165,9 @@ Attempt identical_pair(Rng& r) {
   return pair_of(a, b);
 }
 
+// (Random draws: one per statement, never two in one call's arguments, whose order C++ leaves
+// unspecified — GCC and clang differ. The order is the one the shipped fixtures were made with.)
+
 // B stands on the outside of a face of A: three vertices in the face's plane, the apex
 // beyond it. The interiors are disjoint and the boundaries meet: PD = 0 exactly.
 Attempt touching_pair(Rng& r) {
@@ -169,7 +175,10 @@ Attempt touching_pair(Rng& r) {
   const int i = r.integer(0, 3);
   const Vec3d p = face_point(a, i, 0.25, 0.25);
   TetVertices b;
-  for (int k = 0; k < 3; ++k) b[k] = face_point(a, i, r.grid(0, 0.5, 0.125), r.grid(0, 0.5, 0.125));
+  for (int k = 0; k < 3; ++k) {
+    const double v = r.grid(0, 0.5, 0.125), u = r.grid(0, 0.5, 0.125);
+    b[k] = face_point(a, i, u, v);
+  }
   b[3] = sub(p, mul(r.grid(0.25, 1, 0.25), sub(a[i], p)));
   TetPair q = pair_of(a, b);
   if (!valid(a) || !valid(b) || min_facet_offset(q) != 0) return std::nullopt;
@@ -179,7 +188,10 @@ Attempt touching_pair(Rng& r) {
 Attempt disjoint_pair(Rng& r) {
   TetVertices a, b;
   for (auto& v : a) v = random_point(r, 10);
-  for (auto& v : b) v = add(random_point(r, 10), {r.uniform(0, 12), r.uniform(0, 12), 0});
+  for (auto& v : b) {
+    const Vec3d shift = {r.uniform(0, 12), r.uniform(0, 12), 0};
+    v = add(random_point(r, 10), shift);
+  }
   TetPair p = pair_of(a, b);
   if (!valid(a) || !valid(b) || min_facet_offset(p) >= 0) return std::nullopt;
   return p;
@@ -190,7 +202,8 @@ Attempt disjoint_pair(Rng& r) {
 Attempt near_touching_pair(Rng& r) {
   const TetVertices a = grid_tet(r);
   const int i = r.integer(0, 3);
-  const Vec3d p = face_point(a, i, r.grid(0.125, 0.5, 0.125), r.grid(0.125, 0.375, 0.125));
+  const double pv = r.grid(0.125, 0.375, 0.125), pu = r.grid(0.125, 0.5, 0.125);
+  const Vec3d p = face_point(a, i, pu, pv);
   const Vec3d d = sub(a[i], p);  // into A
   TetVertices b;
   for (int j = 0, k = 0; j < 4; ++j)
@@ -215,7 +228,8 @@ Attempt sliver_pair(Rng& r) {
   if (volume(a) < 10) return std::nullopt;
   for (int k = 0; k < 3; ++k) b[k] = random_point(r, 10);
   const Vec3d off = {r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
-  const Vec3d in_plane = add(mul(r.uniform(0, 1), sub(b[1], b[0])), mul(r.uniform(0, 1), sub(b[2], b[0])));
+  const double t2 = r.uniform(0, 1), t1 = r.uniform(0, 1);
+  const Vec3d in_plane = add(mul(t1, sub(b[1], b[0])), mul(t2, sub(b[2], b[0])));
   b[3] = add(add(b[0], in_plane), mul(0x1.0p-20 * 10, off));
   if (!valid(b)) return std::nullopt;
   return if_intersecting(a, b);
@@ -325,8 +339,9 @@ Attempt adversarial_attempt(Rng& r, int kind) {
     }
     case 2: {  // nearly-flat: s3 = an exact point of the plane of s0 s1 s2 + 2^-40 w (grid A)
       TetVertices a = grid_tet(r);
-      a[3] = add(face_point(a, 3, r.grid(0, 1, 0.125), r.grid(0, 1, 0.125)),
-                 mul(0x1.0p-40, small_grid_vector(r)));  // multiples of 2^-44 below 2^5: exact
+      const Vec3d w = small_grid_vector(r);
+      const double v = r.grid(0, 1, 0.125), u = r.grid(0, 1, 0.125);
+      a[3] = add(face_point(a, 3, u, v), mul(0x1.0p-40, w));  // multiples of 2^-44 below 2^5: exact
       return with_random_b(r, a);
     }
     case 3:
@@ -336,7 +351,8 @@ Attempt adversarial_attempt(Rng& r, int kind) {
       // the face, so kind 4 is disjoint at distance ~2^-60 and kind 3 has PD ~2^-60.
       TetVertices a = grid_tet(r);
       const int i = r.integer(0, 3);
-      const Vec3d p = face_point(a, i, r.grid(0.125, 0.5, 0.125), r.grid(0.125, 0.375, 0.125));
+      const double pv = r.grid(0.125, 0.375, 0.125), pu = r.grid(0.125, 0.5, 0.125);
+      const Vec3d p = face_point(a, i, pu, pv);
       for (auto& v : a) v = sub(v, p);
       const Vec3d d = a[i];  // from the contact point into A
       TetVertices b;
@@ -355,7 +371,9 @@ Attempt adversarial_attempt(Rng& r, int kind) {
       const int e = r.integer(0, 5);
       const Vec3d dir = sub(a[kEdges[e][1]], a[kEdges[e][0]]);
       const Vec3d r0 = grid_point(r);
-      const Vec3d r1 = add(add(r0, mul(ms[r.integer(0, 4)], dir)), mul(0x1.0p-40, small_grid_vector(r)));
+      const Vec3d w = small_grid_vector(r);
+      const double m = ms[r.integer(0, 4)];
+      const Vec3d r1 = add(add(r0, mul(m, dir)), mul(0x1.0p-40, w));
       return if_intersecting(a, {r0, r1, grid_point(r), grid_point(r)});
     }
     case 6: {  // nearly-coplanar-faces: r0..r2 = points of a face plane of A + 2^-40 w_k
@@ -363,8 +381,11 @@ Attempt adversarial_attempt(Rng& r, int kind) {
       const int i = r.integer(0, 3);
       TetVertices b;
       for (int k = 0; k < 3; ++k)
-        b[k] = add(face_point(a, i, r.grid(-0.25, 1, 0.125), r.grid(-0.25, 1, 0.125)),
-                   mul(0x1.0p-40, small_grid_vector(r)));
+      {
+        const Vec3d w = small_grid_vector(r);
+        const double v = r.grid(-0.25, 1, 0.125), u = r.grid(-0.25, 1, 0.125);
+        b[k] = add(face_point(a, i, u, v), mul(0x1.0p-40, w));
+      }
       b[3] = grid_point(r);
       if (!valid(b)) return std::nullopt;
       return if_intersecting(a, b);
