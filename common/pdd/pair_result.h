@@ -26,9 +26,19 @@ struct PairResult {
   R rigid_pd2{}, eq11_pd2{}, pdd2_static{}, pdd2{}, pdd2_relaxed{}, pdd2_accel1{}, pdd2_accel6{};
   std::optional<DirectionLabel> rigid_dir, pdd2_static_dir, pdd2_dir, pdd2_relaxed_dir;
   Positions<R> q1_A{}, q1_B{};  // case-2 deformed positions attaining pdd2
+
+  // SPEC §9: PD_d^2 over every separating plane (paper eq. 5). pdd2_global is the relaxed
+  // optimum along pdd2_global_normal (A -> B; nullopt when not intersecting), attained by the
+  // deformed positions q1_A_global, q1_B_global (the rest pose when not intersecting).
+  // pdd2_global_lower: the exact engine's proved lower bound (nullopt from the fast engine).
+  R pdd2_global{};
+  std::optional<std::array<R, 3>> pdd2_global_normal;
+  Positions<R> q1_A_global{}, q1_B_global{};
+  std::optional<R> pdd2_global_lower;
 };
 
-// The record's values and labels by name, in SPEC §6 order, for code that treats them alike
+// The record's values and labels by name (the candidate-based values of SPEC §5–§6; the §9
+// keys are fields of their own above), in SPEC §6 order, for code that treats them alike
 // (comparisons, tables, bindings): record_value(r, k) is the field named kValueKeys[k],
 // record_label(r, k) the one named kLabelKeys[k]; kLabelOfValue[k] is the label of value k
 // (-1: it has none).

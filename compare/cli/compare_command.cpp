@@ -38,6 +38,8 @@ Json comparison_json(const PairComparison& c) {
   j["position_error"] = c.position_error;
   j["position_tolerance"] = c.position_tolerance;
   j["separated"] = c.separated;
+  j["pdd2_global"] = {{"exact", c.global_exact}, {"exact_lower", c.global_lower}, {"fast", c.global_fast},
+                      {"error", c.global_error}, {"normal_error", c.global_normal_error}};
   for (std::size_t k = 0; k < kLabelCount; ++k)
     j[std::string(kLabelKeys[k])] = {{"exact", c.exact_label[k]}, {"fast", c.fast_label[k]}, {"verdict", to_string(c.labels[k])}};
   return j;
@@ -61,6 +63,13 @@ void print_over(const PairComparison& c) {
     std::cout << "  q1 positions: object norm off pdd2 by " << c.position_error << " > "
               << c.position_tolerance << "\n";
   if (!c.separated) std::cout << "  q1 positions: not separated by the pdd2 plane up to 1e-9 R\n";
+  if (!(c.global_error <= kContractRel))
+    std::cout << "  pdd2_global: fast " << std::setprecision(17) << c.global_fast
+              << " outside the exact interval [" << c.global_lower << ", " << c.global_exact
+              << "] by " << std::setprecision(3) << c.global_error << " relative\n";
+  if (!(c.global_normal_error <= kContractRel))
+    std::cout << "  pdd2_global_normal: the exact relaxed value along it is off the fast value by "
+              << c.global_normal_error << "\n";
   for (std::size_t k = 0; k < kLabelCount; ++k)
     if (c.labels[k] == LabelVerdict::Differ)
       std::cout << "  " << kLabelKeys[k] << ": exact " << c.exact_label[k] << " fast " << c.fast_label[k] << "\n";

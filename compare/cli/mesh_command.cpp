@@ -58,6 +58,8 @@ Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWrit
         keep = on;
     }
     if ((key == "q1_A" || key == "q1_B") && !(variants & mesh::kPdd2)) keep = false;
+    if (key.rfind("pdd2_global", 0) == 0 || key.find("_global") != std::string::npos)
+      keep = false;  // SPEC §9 is not a mesh variant (yet): mesh contacts do not compute it
     if (keep) j[key] = value;
   }
   return j;

@@ -14,6 +14,7 @@
 #include "candidate_directions.h"
 #include "deformable_depth.h"
 #include "exact_predicates.h"
+#include "global_depth.h"
 #include "rigid_depth.h"
 #include "value_bounds.h"
 #include "power_scale.h"
@@ -66,9 +67,24 @@ constexpr unsigned kAccel1 = 16;
 constexpr unsigned kDeformable = 32;
 constexpr unsigned kRelaxed = 64;
 constexpr unsigned kPositions = 128;
+constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_depth.h)
+
+// SPEC §9 from the relaxed candidate `start` (its normal and value): value, normal, positions.
+// Returns false when the value is not certified (not representable).
+bool fill_global(const TetPair& pair, const Candidate& start, double start_value,
+                 PairResult<double>& r, bool* slow) {
+  const GlobalDepth g = global_depth(pair.A, pair.B, start.n, start_value);
+  r.pdd2_global = g.value;
+  r.pdd2_global_normal = g.normal;
+  r.q1_A_global = g.q1_A;
+  r.q1_B_global = g.q1_B;
+  if (slow && g.exact_value) *slow = true;
+  return g.certified;
+}
 
 // The double path on a rescaled pair; returns the quantities that are not certified.
-unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r) {
+unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r,
+                           bool& global_slow) {
   unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
   r.rigid_pd2 = rigid.value;
@@ -101,6 +117,8 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   } else {
     missing |= kPositions;
   }
+  if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel.value, r, &global_slow))
+    missing |= kGlobal;
   return missing;
 }
 
@@ -135,13 +153,13 @@ bool unscale(PairResult<double>& r, int k, unsigned missing) {
   const std::pair<double*, unsigned> values[] = {
       {&r.rigid_pd2, kRigid},        {&r.eq11_pd2, kEq11},       {&r.pdd2_static, kStatic},
       {&r.pdd2, kDeformable},        {&r.pdd2_relaxed, kRelaxed}, {&r.pdd2_accel1, kAccel1},
-      {&r.pdd2_accel6, kAccel6}};
+      {&r.pdd2_accel6, kAccel6},     {&r.pdd2_global, kGlobal}};
   for (const auto& [v, bit] : values) {
     bool in_range = true;
     *v = detail::unscaled(*v, 2 * k, in_range);
     if (!(missing & bit)) ok = ok && in_range;
   }
-  for (Positions<double>* q : {&r.q1_A, &r.q1_B})
+  for (Positions<double>* q : {&r.q1_A, &r.q1_B, &r.q1_A_global, &r.q1_B_global})
     for (auto& x : *q)
       for (double& c : x) c = std::ldexp(c, k);
   return ok;
@@ -154,7 +172,19 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
     return r;
   }
   e.result.name = r.name;
-  return e.result;
+  PairResult<double>& x = e.result;
+  x.q1_A_global = pair.A, x.q1_B_global = pair.B;
+  if (x.intersecting) {  // SPEC §9 with no start candidate: the enumeration alone
+    const double none[3] = {0, 0, 0};
+    const GlobalDepth g = global_depth(pair.A, pair.B, none, INFINITY);
+    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
+      r.error = kNotRepresentable;
+      return r;
+    }
+    x.pdd2_global = g.value, x.pdd2_global_normal = g.normal;
+    x.q1_A_global = g.q1_A, x.q1_B_global = g.q1_B;
+  }
+  return x;
 }
 
 }  // namespace
@@ -182,16 +212,19 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path) {
   }
   r.q1_A = pair.A;
   r.q1_B = pair.B;
+  r.q1_A_global = pair.A, r.q1_B_global = pair.B;
   r.intersecting = set->intersecting;
   if (!r.intersecting) return r;
   TetPair scaled;
   scaled.A = sp.A;
   scaled.B = sp.B;
-  const unsigned missing = fill_intersecting(scaled, *set, r);
+  bool global_slow = false;
+  const unsigned missing = fill_intersecting(scaled, *set, r, global_slow);
   PairResult<double> bad;
   bad.name = pair.name;
   bad.error = kNotRepresentable;
-  if (!unscale(r, -sp.e, missing)) return bad;
+  if (!unscale(r, -sp.e, missing) || (missing & kGlobal)) return bad;
+  if (global_slow && slow_path) *slow_path = true;
   if (missing) {
     if (slow_path) *slow_path = true;
     if (!substitute_exact(pair, missing, r)) return bad;

@@ -39,6 +39,14 @@ PairResult<pdd::Rational> solve_pair(const TetPair& pair, QpFormulation formulat
   r.pdd2_relaxed_dir = e.pdd2_relaxed_dir;
   r.q1_A = to_public(e.q1_A);
   r.q1_B = to_public(e.q1_B);
+  r.pdd2_global = to_public(e.pdd2_global);
+  if (e.pdd2_global_normal) {
+    const auto& n = *e.pdd2_global_normal;
+    r.pdd2_global_normal = std::array<pdd::Rational, 3>{to_public(n[0]), to_public(n[1]), to_public(n[2])};
+  }
+  r.q1_A_global = to_public(e.q1_A_global);
+  r.q1_B_global = to_public(e.q1_B_global);
+  if (e.pdd2_global_lower) r.pdd2_global_lower = to_public(*e.pdd2_global_lower);
   return r;
 }
 

@@ -4,6 +4,7 @@
 
 #include "pdd/reference/candidate_table.h"
 #include "pdd/reference/eq11.h"
+#include "pdd/reference/global_pdd.h"
 #include "pdd/reference/minkowski_pd.h"
 #include "pdd/reference/validate_pair.h"
 
@@ -60,6 +61,24 @@ void fill_intersecting(const ExactPair& exact, const std::vector<CandidateDirect
   out.pdd2_accel6 = accel6.value;
 }
 
+// SPEC §9, starting from the best relaxed candidate (so pdd2_global <= pdd2_relaxed).
+void fill_global(const ExactPair& exact, const std::vector<CandidateRow>& rows,
+                 const SolveOptions& options, ExactResult& out) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k)
+    if (rows[k].relaxed.value < rows[best].relaxed.value) best = k;
+  const CandidateRow& row = rows[best];
+  GlobalOptions global;
+  global.gap = options.global_gap;
+  const GlobalPdd g = global_pdd(exact, row.direction.n, row.relaxed.value, row.relaxed.q1_A,
+                                 row.relaxed.q1_B, global);
+  out.pdd2_global = g.value;
+  out.pdd2_global_lower = g.lower;
+  out.pdd2_global_normal = std::array<Rational, 3>{g.normal.x(), g.normal.y(), g.normal.z()};
+  out.q1_A_global = to_positions(g.q1_A);
+  out.q1_B_global = to_positions(g.q1_B);
+}
+
 }  // namespace
 
 ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
@@ -72,6 +91,8 @@ ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
   const ExactPair exact = to_exact(pair);
   out.q1_A = to_positions(exact.A);
   out.q1_B = to_positions(exact.B);
+  out.q1_A_global = out.q1_A, out.q1_B_global = out.q1_B;
+  out.pdd2_global_lower = Rational(0);
   const MinkowskiPd mink = minkowski_pd(exact);
   out.intersecting = mink.intersecting;
   if (!mink.intersecting) return out;  // SPEC §6: every value 0, labels null, rest pose
@@ -79,6 +100,7 @@ ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
   const auto candidates = candidate_directions(exact);
   const auto rows = candidate_table(exact, candidates, {options.formulation});
   fill_intersecting(exact, candidates, rows, mink, out);
+  if (options.global) fill_global(exact, rows, options, out);
   return out;
 }
 

@@ -33,6 +33,7 @@ bool PairComparison::over_tolerance() const {
   for (std::size_t k = 0; k < kValueCount; ++k)
     if (!(rel_error[k] <= tolerance[k])) return true;
   if (!(position_error <= position_tolerance) || !separated) return true;
+  if (!(global_error <= kContractRel) || !(global_normal_error <= kContractRel)) return true;
   for (auto l : labels)
     if (l == LabelVerdict::Differ) return true;
   return false;
@@ -128,6 +129,42 @@ bool separated_by(const reference::ExactPair& p, const DirectionLabel& label,
   return false;
 }
 
+// SPEC §9: the fast pdd2_global against the exact interval, and its normal re-evaluated exactly.
+void judge_global(const reference::ExactPair& p, const reference::ExactResult& exact,
+                  const PairResult<double>& fast, PairComparison& c) {
+  using namespace reference;
+  const Rational lower = exact.pdd2_global_lower ? *exact.pdd2_global_lower : exact.pdd2_global;
+  c.global_exact = CGAL::to_double(exact.pdd2_global);
+  c.global_lower = CGAL::to_double(lower);
+  c.global_fast = fast.pdd2_global;
+  if (!std::isfinite(fast.pdd2_global)) {
+    c.global_error = c.global_normal_error = std::numeric_limits<double>::infinity();
+    return;
+  }
+  const Rational v(fast.pdd2_global);
+  if (v < lower) c.global_error = relative_error(fast.pdd2_global, lower);
+  if (v > exact.pdd2_global) c.global_error = relative_error(fast.pdd2_global, exact.pdd2_global);
+  if (!exact.intersecting || !fast.intersecting) {
+    c.global_normal_error = (fast.pdd2_global == 0 && !fast.pdd2_global_normal) ? 0.0
+                            : std::numeric_limits<double>::infinity();
+    return;
+  }
+  if (!fast.pdd2_global_normal) {
+    c.global_normal_error = std::numeric_limits<double>::infinity();
+    return;
+  }
+  const auto& n = *fast.pdd2_global_normal;
+  CandidateDirection dir;
+  dir.n = Vector(Rational(n[0]), Rational(n[1]), Rational(n[2]));
+  if (dir.n == CGAL::NULL_VECTOR) {
+    c.global_normal_error = std::numeric_limits<double>::infinity();
+    return;
+  }
+  const auto qp = direction_qp(p, dir, PddCase::Relaxed, QpFormulation::Reduced);
+  c.global_normal_error = qp ? relative_error(fast.pdd2_global, qp->value)
+                             : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& exact,
@@ -175,6 +212,8 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     c.position_error = relative_error(CGAL::to_double(object_norm_of(pair, fast)), exact.pdd2);
     c.separated = fast.pdd2_dir && separated_by(p, *fast.pdd2_dir, fast, Q);
   }
+
+  judge_global(p, exact, fast, c);
 
   for (std::size_t k = 0; k < kLabelCount; ++k) {
     const auto& el = record_label(exact, k);

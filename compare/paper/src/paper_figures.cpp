@@ -108,6 +108,39 @@ bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
   return run_gnuplot(dir, "fig3_histograms.gp", why);
 }
 
+bool write_global_figure(const std::string& dir, const GlobalStats& s, std::string& why) {
+  constexpr int kBins = 60;
+  double top = 1.0;
+  for (const RatioStats* r : {&s.relaxed_over_global, &s.pdd2_over_global})
+    for (double x : r->values) top = std::max(top, x);
+  top = std::min(top, 4.0);  // the tail beyond 4 is counted in the last bin
+  std::ofstream dat(dir + "/global_cost.dat");
+  dat << "# bin_center \"pdd2_relaxed / pdd2_global\" \"pdd2 / pdd2_global\" (% of pairs)\n";
+  std::vector<std::array<double, 2>> counts(kBins);
+  const RatioStats* cols[2] = {&s.relaxed_over_global, &s.pdd2_over_global};
+  for (int k = 0; k < 2; ++k)
+    for (double x : cols[k]->values) {
+      const int b = std::clamp(int((x - 1.0) / (top - 1.0 + 1e-300) * kBins), 0, kBins - 1);
+      counts[b][k] += 100.0 / double(cols[k]->n);
+    }
+  for (int b = 0; b < kBins; ++b)
+    dat << 1.0 + (b + 0.5) * (top - 1.0) / kBins << ' ' << counts[b][0] << ' ' << counts[b][1] << "\n";
+  finish(dat, dir + "/global_cost.dat");
+  std::ofstream gp(dir + "/global_cost.gp");
+  gp << "set terminal pngcairo size 1000,420 font 'Sans,11'\nset output 'global_cost.png'\n"
+     << "set multiplot layout 1,2 title 'What the 44 candidate directions cost: squared PD_d over the "
+     << "minimum over every plane (eq. 5), " << s.pairs << " pairs'\n"
+     << "set style fill solid 0.6 border -1\nset boxwidth " << (top - 1.0) / kBins << "\nset xrange [1:"
+     << top << "]\nset ylabel '% of pairs'\nset grid ytics\n"
+     << std::fixed << std::setprecision(3)
+     << "set xlabel 'pdd2\\_relaxed / pdd2\\_global'\nset title 'relaxed, best candidate: mean "
+     << s.relaxed_over_global.mean << "'\nplot 'global_cost.dat' using 1:2 with boxes lc rgb '#4477aa' notitle\n"
+     << "set xlabel 'pdd2 / pdd2\\_global'\nset title 'paper case 2: mean " << s.pdd2_over_global.mean
+     << "'\nplot 'global_cost.dat' using 1:3 with boxes lc rgb '#cc3311' notitle\nunset multiplot\n";
+  finish(gp, dir + "/global_cost.gp");
+  return run_gnuplot(dir, "global_cost.gp", why);
+}
+
 bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string& why) {
   std::ofstream dat(dir + "/fig2_pair.dat");
   dat << std::setprecision(17);

@@ -5,7 +5,8 @@
 //         its direction (first candidate attaining min delta); E11^2 (eq. 11); PD_d^2 for
 //         static, deformable, relaxed (minimum over candidates, first in canonical order
 //         among ties) and accel1/accel6 (case 2 on the 1/6 shallowest candidates, case 3);
-//         q1_A, q1_B attaining pdd2. A rejected pair has `error` set (SPEC §1).
+//         q1_A, q1_B attaining pdd2; SPEC §9's pdd2_global with its witness normal, positions
+//         and proved lower bound (global_pdd.h). A rejected pair has `error` set (SPEC §1).
 #pragma once
 
 #include "pdd/pair_result.h"
@@ -18,6 +19,8 @@ using ExactResult = PairResult<Rational>;
 
 struct SolveOptions {
   QpFormulation formulation = QpFormulation::Full;
+  bool global = true;  // SPEC §9 (pdd2_global and its keys); false leaves them 0 / null
+  Rational global_gap = Rational(1) / Rational(1000000000000LL);  // 1e-12: SPEC §9's target
 };
 
 ExactResult solve_exact(const TetPair& pair, const SolveOptions& options = {});

@@ -16,7 +16,10 @@
 //   1e-9 up to the rounding of the coordinates themselves (a displacement given by absolute
 //   coordinates of size Q cannot be closer than u·Q: allowance 4 u Q per vertex, which moves
 //   sqrt(sigma) by <= sqrt(6) · 4 u Q, see value_bounds.h's norm argument), and the positions
-//   are separated by the plane of the fast pdd2 label's exact direction up to 1e-9 · R.
+//   are separated by the plane of the fast pdd2 label's exact direction up to 1e-9 · R;
+// - pdd2_global (SPEC §9): the fast value lies in the exact engine's certified interval
+//   [pdd2_global_lower, pdd2_global] widened by 1e-9 relative, and the fast normal reproduces
+//   it: the exact relaxed optimum along the fast normal (CGAL's QP) is within 1e-9 of it.
 #pragma once
 
 #include <array>
@@ -48,6 +51,10 @@ struct PairComparison {
   // |sigma(q1_fast) − pdd2_exact| / pdd2_exact, exactly, and its allowance (see above)
   double position_error = 0, position_tolerance = 0;
   bool separated = true;  // q1 separated by the fast label's plane up to 1e-9 R
+  // SPEC §9: distance of the fast pdd2_global outside [lower, witness] (relative; 0 inside),
+  // and |exact relaxed value along the fast normal − fast value| / that exact value.
+  double global_error = 0, global_normal_error = 0;
+  double global_exact = 0, global_lower = 0, global_fast = 0;
   std::array<LabelVerdict, kLabelCount> labels{};
   std::array<std::string, kLabelCount> exact_label, fast_label;
 

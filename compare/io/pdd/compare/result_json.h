@@ -1,7 +1,8 @@
 // result_json.h — one SPEC §6 JSON Lines record from a PairResult of either engine, and back.
 //
 // Keys in SPEC order: name, intersecting, the seven values, the four labels, q1_A, q1_B,
-// error. A rejected pair is {"name", "error"} only. The number writer decides how R is
+// error, then SPEC §9's pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global and (exact
+// engine) pdd2_global_lower. A rejected pair is {"name", "error"} only. The number writer decides how R is
 // written: exact rationals as "p/q" strings, doubles as JSON numbers that read back to the
 // same double (nlohmann writes the shortest round-trip form). result_from_json reads such a
 // record back with a number reader (the inverse of the writer).
@@ -46,6 +47,17 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
   j["q1_A"] = positions(r.q1_A);
   j["q1_B"] = positions(r.q1_B);
   j["error"] = nullptr;
+  // SPEC §9 (the table's order: after error)
+  j["pdd2_global"] = number(r.pdd2_global);
+  if (r.pdd2_global_normal) {
+    const auto& n = *r.pdd2_global_normal;
+    j["pdd2_global_normal"] = Json::array({number(n[0]), number(n[1]), number(n[2])});
+  } else {
+    j["pdd2_global_normal"] = nullptr;
+  }
+  j["q1_A_global"] = positions(r.q1_A_global);
+  j["q1_B_global"] = positions(r.q1_B_global);
+  if (r.pdd2_global_lower) j["pdd2_global_lower"] = number(*r.pdd2_global_lower);
   return j;
 }
 
@@ -85,6 +97,12 @@ PairResult<R> result_from_json(const Json& j, const NumberReader<R>& number) {
   r.pdd2_relaxed_dir = label(j.at("pdd2_relaxed_dir"));
   r.q1_A = positions(j.at("q1_A"));
   r.q1_B = positions(j.at("q1_B"));
+  r.pdd2_global = number(j.at("pdd2_global"));
+  if (const Json& n = j.at("pdd2_global_normal"); !n.is_null())
+    r.pdd2_global_normal = std::array<R, 3>{number(n.at(0)), number(n.at(1)), number(n.at(2))};
+  r.q1_A_global = positions(j.at("q1_A_global"));
+  r.q1_B_global = positions(j.at("q1_B_global"));
+  if (j.contains("pdd2_global_lower")) r.pdd2_global_lower = number(j.at("pdd2_global_lower"));
   return r;
 }
 

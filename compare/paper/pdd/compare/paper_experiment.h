@@ -68,6 +68,51 @@ PaperStats paper_statistics(const std::vector<PairResult<R>>& results, ToDouble 
   return s;
 }
 
+// SPEC §9: what the paper's restriction to the candidate directions costs. Per intersecting
+// pair: PD_d_global / PD = sqrt(pdd2_global / rigid_pd2); the squared ratios pdd2 / pdd2_global
+// and pdd2_relaxed / pdd2_global (>= 1; the values of RatioStats hold them for medians,
+// maxima and histograms); whether the global optimum is a candidate's (pdd2_relaxed within
+// 1e-9 of pdd2_global: the best relaxed candidate attains it); and the angle, in degrees,
+// between pdd2_global_normal and the nearest oriented candidate direction (SPEC §3).
+struct GlobalStats {
+  std::size_t pairs = 0;
+  RatioStats global_over_pd, pdd2_over_global, relaxed_over_global, angle_degrees;
+  std::size_t at_candidate = 0;
+};
+
+// `candidate_normals(pair)` returns the pair's oriented candidate directions (any length).
+template <class R, class ToDouble, class Candidates>
+GlobalStats global_statistics(const std::vector<TetPair>& pairs, const std::vector<PairResult<R>>& results,
+                              ToDouble to_d, Candidates candidate_normals) {
+  GlobalStats s;
+  std::vector<double> over_pd, pdd2_ratio, relaxed_ratio, angle;
+  for (std::size_t i = 0; i < results.size() && i < pairs.size(); ++i) {
+    const auto& r = results[i];
+    if (r.error || !r.intersecting || !r.pdd2_global_normal) continue;
+    const double g = to_d(r.pdd2_global);
+    if (!(g > 0)) continue;
+    ++s.pairs;
+    over_pd.push_back(std::sqrt(g / to_d(r.rigid_pd2)));
+    pdd2_ratio.push_back(to_d(r.pdd2) / g);
+    relaxed_ratio.push_back(to_d(r.pdd2_relaxed) / g);
+    s.at_candidate += (to_d(r.pdd2_relaxed) <= g * (1 + 1e-9));
+    const auto& nr = *r.pdd2_global_normal;
+    const double n[3] = {to_d(nr[0]), to_d(nr[1]), to_d(nr[2])};
+    const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double best = -1;
+    for (const std::array<double, 3>& c : candidate_normals(pairs[i])) {
+      const double cc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+      if (cc > 0) best = std::max(best, (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / (nn * cc));
+    }
+    angle.push_back(std::acos(std::min(1.0, std::max(-1.0, best))) * 180.0 / M_PI);
+  }
+  s.global_over_pd = ratio_stats(std::move(over_pd));
+  s.pdd2_over_global = ratio_stats(std::move(pdd2_ratio));
+  s.relaxed_over_global = ratio_stats(std::move(relaxed_ratio));
+  s.angle_degrees = ratio_stats(std::move(angle));
+  return s;
+}
+
 // Tetrahedron volumes (A and B pooled); their quantiles: stats.h.
 std::vector<double> tetrahedron_volumes(const std::vector<TetPair>& pairs);
 

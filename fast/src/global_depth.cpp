@@ -1,0 +1,339 @@
+// global_depth.cpp — see global_depth.h for the method and its argument.
+#include "global_depth.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "direction_qp.h"
+#include "direction_qp_impl.h"
+#include "exact_geometry.h"
+
+namespace pdd::fast {
+namespace {
+
+using V3 = std::array<double, 3>;
+
+constexpr double kU = 0x1p-53;         // unit roundoff
+constexpr double kGlobalRel = 1e-10;   // value error budget (SPEC §8's 1e-9, with room)
+constexpr double kPrune = 1e-10;       // an eigenvalue must beat the best by this, relative
+constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
+constexpr double kSign = 1e-6;         // sign tolerance, times the condition's scale
+constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
+
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 add(const V3& a, const V3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+V3 mul(const V3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+
+struct Problem {
+  V3 relA[4], relB[4];  // x - A[0] (rounded once): heights for the evaluations
+  V3 pA[4], pB[4];      // about the centroid: the enumeration's geometry
+  double scale = 0;     // max |relA|, |relB| component
+};
+
+// relaxed(v) = cost / (20 v.v) by direction_qp.h's closed form on heights relative to A[0].
+double relaxed_at(const Problem& P, const V3& v, DirectionSolution* sol = nullptr,
+                  double* hmax = nullptr) {
+  double hA[4], hB[4], hm = 0;
+  for (int i = 0; i < 4; ++i) {
+    hA[i] = dot(v, P.relA[i]), hB[i] = dot(v, P.relB[i]);
+    hm = std::max({hm, std::fabs(hA[i]), std::fabs(hB[i])});
+  }
+  const DirectionSolution s = solve_relaxed(hA, hB);
+  if (sol) *sol = s;
+  if (hmax) *hmax = hm;
+  return s.cost / (20.0 * dot(v, v));
+}
+
+// relaxed(v) in rationals (the exact closed form along the exact normal v), with its solution.
+detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v, detail::Q hA[4],
+                        detail::Q hB[4], Solution<detail::Q>& s) {
+  using detail::Q;
+  const Q v0(v[0]), v1(v[1]), v2(v[2]);
+  for (int i = 0; i < 4; ++i) {
+    hA[i] = v0 * (Q(A[i][0]) - Q(A[0][0])) + v1 * (Q(A[i][1]) - Q(A[0][1])) + v2 * (Q(A[i][2]) - Q(A[0][2]));
+    hB[i] = v0 * (Q(B[i][0]) - Q(A[0][0])) + v1 * (Q(B[i][1]) - Q(A[0][1])) + v2 * (Q(B[i][2]) - Q(A[0][2]));
+  }
+  s = detail::solve_relaxed_heights(hA, hB);
+  return s.cost / (20 * (v0 * v0 + v1 * v1 + v2 * v2));
+}
+
+// The best normal so far. Candidates are compared by the double closed form, or (slow path,
+// where doubles cannot resolve the pair's depths) by the exact one.
+struct Best {
+  double value;
+  V3 n;
+  const TetVertices* A = nullptr;  // set: compare exactly
+  const TetVertices* B = nullptr;
+  void offer(const Problem& P, const V3& v) {
+    if (!(norm(v) > 0)) return;
+    double x;
+    if (A) {
+      detail::Q hA[4], hB[4];
+      Solution<detail::Q> s;
+      x = relaxed_exact(*A, *B, v, hA, hB, s).get_d();
+    } else {
+      x = relaxed_at(P, v);
+    }
+    if (x < value) value = x, n = v;
+  }
+};
+
+// The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
+// l.v <= tol (free), per condition.
+struct Conditions {
+  V3 l[8];
+  double sign[8];  // +1: needs l.v >= 0, -1: l.v <= 0
+  double floor = 0;  // absolute error of the computed l (rounding of centred positions)
+  double tol(int k) const { return kSign * norm(l[k]) + floor; }
+  bool hold(const V3& v) const {
+    const double nv = norm(v);
+    for (int k = 0; k < 8; ++k)
+      if (sign[k] * dot(l[k], v) < -tol(k) * nv) return false;
+    return true;
+  }
+};
+
+// The plane spanned by unit p, q: the arc of unit vectors cos t p + sin t q where every
+// condition holds (each one a half circle widened by its tolerance); its middle, if any.
+bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
+  double lo = 0, hi = 0;
+  bool started = false;
+  for (int k = 0; k < 8; ++k) {
+    const double a = c.sign[k] * dot(c.l[k], p), b = c.sign[k] * dot(c.l[k], q);
+    const double R = std::hypot(a, b), tol = c.tol(k);
+    if (R <= tol) continue;  // holds on the whole circle within tolerance
+    const double phi = std::atan2(b, a), w = M_PI / 2 + std::asin(std::min(1.0, tol / R));
+    double x0 = phi - w, x1 = phi + w;
+    if (!started) {
+      lo = x0, hi = x1, started = true;
+      continue;
+    }
+    const double shift = 2 * M_PI * std::round(((lo + hi) / 2 - phi) / (2 * M_PI));
+    x0 += shift, x1 += shift;
+    lo = std::max(lo, x0), hi = std::min(hi, x1);
+    if (lo > hi) return false;
+  }
+  const double t = started ? (lo + hi) / 2 : 0.0;
+  out = add(mul(p, std::cos(t)), mul(q, std::sin(t)));
+  return true;
+}
+
+// One active set's H and sign conditions: prune by eigenvalue, evaluate the eigenvectors (or
+// the eigen-plane's arc) that satisfy the conditions (global_depth.h).
+template <class Refine>
+void consider_piece(const Eigen::Matrix3d& H, const Conditions& cond, const Problem& P, Best& best,
+                    Refine refine, bool exact) {
+  const double hnorm = H.norm();
+  const double threshold = best.value * (1 - kPrune) + kEigen * hnorm;
+  // Cheap test first: mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
+  // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and
+  // the entries' own errors): 64 u |H|_F^3.
+  const double tr = H.trace();
+  const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm;
+  if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return;
+  // The iterative solver (Householder + QR): eigenvectors accurate to u |H| / gap and exact
+  // where H is (structure such as a zero row survives), unlike the closed form.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+  if (eig.info() != Eigen::Success) return;
+  const Eigen::Vector3d mu = eig.eigenvalues();
+  // Generic minimisers are interior to their piece, hence the smallest eigenvalue's vector
+  // (the Rayleigh quotient has no other local minimum). Its eigenvalue can be far below the
+  // solver's resolution u |H| (a vertex 1e18 away makes |H| ~ 1e36 while the depth is ~1):
+  // inverse iteration with shift 0 on the exact H (slow path) finds it regardless.
+  if (exact) {
+    const Eigen::Vector3d e = eig.eigenvectors().col(0);
+    const V3 v = refine(V3{e(0), e(1), e(2)}, 0.0);
+    for (double s : {1.0, -1.0})
+      if (cond.hold(mul(v, s))) best.offer(P, mul(v, s));
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (!(mu(k) < threshold)) break;  // ascending
+    const Eigen::Vector3d e = eig.eigenvectors().col(k);
+    const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * hnorm;
+    const V3 v = plane ? V3{e(0), e(1), e(2)} : refine(V3{e(0), e(1), e(2)}, mu(k));
+    if (plane) {  // a plane of eigenvectors
+      const Eigen::Vector3d f = eig.eigenvectors().col(k + 1);
+      V3 w;
+      if (arc_middle(cond, v, {f(0), f(1), f(2)}, w)) best.offer(P, w);
+      ++k;
+      continue;
+    }
+    for (double s : {1.0, -1.0}) {
+      const V3 sv = mul(v, s);
+      if (cond.hold(sv)) best.offer(P, sv);
+    }
+  }
+}
+
+// Inverse iteration on the exact H (slow path): x = (H - sigma I)^-1 v by the adjugate, twice,
+// each time rounded componentwise to doubles. Eigen's vectors carry an absolute error of
+// u |v| in every component; a tiny component of the true eigenvector (a normal tilted by
+// 2^-60 from an axis) then has no correct digit, and the relaxed value along it, of order
+// |H| u^2, swamps a depth of 1e-38. Rounded componentwise, every component keeps its relative
+// accuracy. sigma = mu (1 - 1e-6): the iteration contracts by about 1e-6 towards mu's vector.
+V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu) {
+  using detail::Q;
+  const Q sigma = Q(mu) * (1 - Q(1, 1000000));
+  Q m[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : Q(0));
+  Q adj[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
+    }
+  const Q det = m[0][0] * adj[0][0] + m[0][1] * adj[1][0] + m[0][2] * adj[2][0];
+  V3 v = v0;
+  for (int it = 0; it < 3; ++it) {
+    Q x[3];
+    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * Q(v[0]) + adj[r][1] * Q(v[1]) + adj[r][2] * Q(v[2]);
+    Q big = 0;
+    for (const Q& c : x) big = std::max(big, Q(abs(c)));
+    if (sgn(big) == 0) return v;
+    if (sgn(det) < 0) big = -big;
+    v = {Q(x[0] / big).get_d(), Q(x[1] / big).get_d(), Q(x[2] / big).get_d()};
+  }
+  return v;
+}
+V3 refine(const double (&)[3][3], const V3& v, double) { return v; }  // fast path: as is
+
+// Visits every active set (both sides non-empty): H_S, its eigenpairs, the eigenvectors worth
+// evaluating (global_depth.h). T: double (positions about the centroid) or Q (exact positions
+// relative to A[0]); H and the conditions are rounded to doubles once built.
+template <class T, class ToDouble>
+void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
+                      const Problem& P, Best& best, ToDouble to_d) {
+  using TV = std::array<T, 3>;
+  auto vadd = [](const TV& a, const TV& b) { return TV{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; };
+  auto vsub = [](const TV& a, const TV& b) { return TV{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto vmul = [](const TV& a, const T& s) { return TV{a[0] * s, a[1] * s, a[2] * s}; };
+  TV SA[16], SB[16];
+  for (unsigned m = 0; m < 16; ++m) {
+    SA[m] = SB[m] = TV{T(0), T(0), T(0)};
+    for (int i = 0; i < 4; ++i)
+      if (m >> i & 1u) SA[m] = vadd(SA[m], pA[i]), SB[m] = vadd(SB[m], pB[i]);
+  }
+  for (unsigned ma = 1; ma < 16; ++ma) {
+    const int mA = __builtin_popcount(ma);
+    const T wA = T(1) / T(5 - mA);
+    for (unsigned mb = 1; mb < 16; ++mb) {
+      const int mB = __builtin_popcount(mb);
+      const T wB = T(1) / T(5 - mB);
+      // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B.
+      const TV C = vmul(vadd(vmul(SA[ma], wA), vmul(SB[mb], wB)), T(1) / (T(mA) * wA + T(mB) * wB));
+      const TV TA = vmul(vsub(vmul(C, T(mA)), SA[ma]), wA);
+      T h[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) h[r][c] = T(2) * TA[r] * TA[c];
+      Conditions cond;
+      cond.floor = 1e-12 * P.scale;  // l is a few roundings of coordinates <= scale: far above
+      for (int i = 0; i < 4; ++i) {
+        const bool a_on = ma >> i & 1u, b_on = mb >> i & 1u;
+        const TV tA = a_on ? vsub(C, pA[i]) : vmul(TA, T(-1));
+        const TV tB = b_on ? vsub(C, pB[i]) : TA;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) h[r][c] += tA[r] * tA[c] + tB[r] * tB[c];
+        const TV d = vsub(vsub(pA[i], C), TA), e = vsub(vsub(C, pB[i]), TA);
+        cond.l[i] = {to_d(d[0]), to_d(d[1]), to_d(d[2])};        // d_i = a_i - c - T_A
+        cond.sign[i] = a_on ? 1 : -1;
+        cond.l[4 + i] = {to_d(e[0]), to_d(e[1]), to_d(e[2])};    // e_j = c - b_j + T_B
+        cond.sign[4 + i] = b_on ? 1 : -1;
+      }
+      Eigen::Matrix3d H;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) h[r][c] /= T(20), H(r, c) = to_d(h[r][c]);
+      consider_piece(H, cond, P, best, [&](const V3& v, double mu) { return refine(h, v, mu); },
+                     !std::is_same_v<T, double>);
+    }
+  }
+}
+
+}  // namespace
+
+GlobalDepth global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
+                         double start_value) {
+  (void)start_value;  // re-evaluated below by the same closed form as every other normal
+  Problem P;
+  V3 centroid{0, 0, 0};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      P.relA[i][k] = A[i][k] - A[0][k], P.relB[i][k] = B[i][k] - A[0][k];
+      P.scale = std::max({P.scale, std::fabs(P.relA[i][k]), std::fabs(P.relB[i][k])});
+      centroid[k] += (P.relA[i][k] + P.relB[i][k]) / 8;
+    }
+  for (int i = 0; i < 4; ++i) P.pA[i] = sub(P.relA[i], centroid), P.pB[i] = sub(P.relB[i], centroid);
+
+  Best best{INFINITY, {start_normal[0], start_normal[1], start_normal[2]}};
+  best.offer(P, best.n);
+
+  // When the positions' rounding (u scale per coordinate, squared into H) could move H's
+  // stationary points by more than the contract allows at this depth, H and the conditions are
+  // built in rationals and rounded once (the slow path); the enumeration is the same.
+  const bool exact_pieces = 64 * kU * P.scale * P.scale > 1e-10 * best.value;
+  if (exact_pieces) {
+    using detail::Q;
+    best.A = &A, best.B = &B;
+    best.value = INFINITY;
+    best.offer(P, best.n);
+    std::array<std::array<Q, 3>, 4> qA, qB;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) qA[i][k] = Q(A[i][k]) - Q(A[0][k]), qB[i][k] = Q(B[i][k]) - Q(A[0][k]);
+    enumerate_pieces(qA, qB, P, best, [](const Q& x) { return x.get_d(); });
+  } else {
+    std::array<std::array<double, 3>, 4> dA, dB;
+    for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
+    enumerate_pieces(dA, dB, P, best, [](double x) { return x; });
+  }
+
+  // The value along the chosen normal, certified (value_bounds.h's QP bound) or exact.
+  GlobalDepth out;
+  out.normal = best.n;
+  const V3& v = best.n;
+  DirectionSolution sol;
+  double hm = 0;
+  out.value = relaxed_at(P, v, &sol, &hm);
+  // Heights: rel = x - A0 rounded (u |rel|), dot product (3 u sum |v_k rel_k|):
+  // e_h <= 5 u |v|_1 scale. QP closed form: T within dT = 2^12 u Hm (value_bounds.h), so
+  // |Phi~ - Phi| <= 2 e_h + sqrt(2) dT + 4 u Phi~ with Phi = sqrt(cost / 20); the value is
+  // Phi^2 / v.v (v.v to 3u): relative error <= 2 r + 8u, r = |Phi~ - Phi| / Phi~.
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double e_h = 5 * kU * vn1 * P.scale;
+  const double phi = std::sqrt(sol.cost / 20.0);
+  const double r = (2 * e_h + std::sqrt(2.0) * 0x1p12 * kU * hm) / phi + 4 * kU;
+  const double vv = dot(v, v);
+  auto place = [&](const auto& s, const auto& heights_A, const auto& heights_B, auto to_d) {
+    for (int i = 0; i < 4; ++i) {
+      const double tA = to_d(displacement_below(heights_A[i], false, s));
+      const double tB = to_d(displacement_above(heights_B[i], false, s));
+      for (int k = 0; k < 3; ++k) {
+        out.q1_A[i][k] = A[i][k] + tA / vv * v[k];
+        out.q1_B[i][k] = B[i][k] + tB / vv * v[k];
+      }
+    }
+  };
+  if (!exact_pieces && phi > 0 && std::isfinite(r) && 2 * r + 8 * kU <= kGlobalRel) {
+    double hA[4], hB[4];
+    for (int i = 0; i < 4; ++i) hA[i] = dot(v, P.relA[i]), hB[i] = dot(v, P.relB[i]);
+    place(sol, hA, hB, [](double x) { return x; });
+    out.certified = true;
+    return out;
+  }
+  // Slow path: the same closed form in rationals along the same (exact) normal.
+  using detail::Q;
+  Q hA[4], hB[4];
+  Solution<Q> qs;
+  const Q value = relaxed_exact(A, B, v, hA, hB, qs);
+  out.value = value.get_d();
+  place(qs, hA, hB, [](const Q& x) { return x.get_d(); });
+  out.exact_value = true;
+  out.certified = std::isfinite(out.value);
+  return out;
+}
+
+}  // namespace pdd::fast

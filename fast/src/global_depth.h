@@ -1,0 +1,53 @@
+// global_depth.h — SPEC §9 in the fast engine: PD_d^2 over every separating plane (paper eq. 5),
+// by enumerating the stationary points of the relaxed value on the unit sphere.
+//
+// Input : a pair (in the engine's rescaled range, solve_pair.cpp), a start normal with its
+//         relaxed value (the best candidate of pdd2_relaxed: the answer when nothing beats it).
+// Output: pdd2_global = relaxed(v) for the returned normal v (double components, A -> B), the
+//         deformed positions attaining it, and whether the value is certified to SPEC §8
+//         (relative error <= kGlobalRel of the exact relaxed value along v).
+//
+// Math (the exact engine's reference/pdd/reference/relaxed_pieces.h proves the closed form;
+// here it is used, not re-proved). G(n) = min of the relaxed QP with right-hand sides n.x is
+// convex, 2-homogeneous and C^1: the QP's multipliers are unique (each constraint has its own
+// variable t_i, so the constraint gradients are independent) and continuous, and dG/dn is a
+// linear function of them. For an active set S = (S_A, S_B) (both non-empty for an intersecting
+// pair) G(n) = n^T H_S n on the closed polyhedral cone R_S where S's KKT signs hold. A minimiser
+// u* of G on the sphere is a stationary point: grad G(u*) = 2 G(u*) u*, and grad G(u*) = 2 H_S u*
+// for the S optimal at u* (C^1: every S valid at u* gives the same gradient). So u* is an
+// eigenvector of H_S lying in R_S, and
+//     pdd2_global = min { mu : H_S v = mu v, v in R_S, S ranges over the 15 x 15 active sets }.
+// The enumeration below visits every S, computes H_S and its eigenpairs, and evaluates
+// relaxed(v) (the double closed form of direction_qp.h, which finds v's true active set) at every
+// eigenvector whose eigenvalue could beat the current best and which satisfies S's signs up to
+// a tolerance. Eigenvalues within kDegenerate of each other (an eigenspace of dimension 2, where
+// a computed eigenvector is arbitrary) are handled on the whole plane they span: the signs of S
+// cut the circle of unit vectors of the plane into one arc (each sign condition is a half
+// circle), and the arc's middle is evaluated.
+// Margins: an eigenpair is skipped only when its eigenvalue exceeds the best value by more than
+// kPrune relative plus an absolute kEigen * |H| for the eigen solver's error, or when a sign
+// condition is violated by more than kSign of its scale; every other eigenpair is evaluated, so a
+// skipped one cannot hide the minimiser (tolerances only cost evaluations). The value along the
+// returned normal is certified by value_bounds.h's QP bound on its heights, else recomputed in
+// rationals (the exact closed form, direction_qp_impl.h on mpq).
+#pragma once
+
+#include <array>
+
+#include "pdd/pair_result.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd::fast {
+
+struct GlobalDepth {
+  double value = 0;                 // pdd2_global
+  std::array<double, 3> normal{};   // A -> B, unnormalised
+  Positions<double> q1_A{}, q1_B{};
+  bool certified = false;           // false: not representable (the caller reports it)
+  bool exact_value = false;         // the value was recomputed in rationals (slow path)
+};
+
+GlobalDepth global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
+                         double start_value);
+
+}  // namespace pdd::fast

@@ -1,0 +1,463 @@
+#include "pdd/reference/global_pdd.h"
+
+#include <CGAL/Interval_nt.h>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <stdexcept>
+#include <vector>
+
+#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/direction_qp.h"
+#include "pdd/reference/relaxed_pieces.h"
+
+namespace pdd::reference {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+// ---------------------------------------------------------------- the double-precision guess
+// Only a heuristic: which active set to try at a normal. Every bound and value it leads to is
+// decided exactly (a wrong guess costs tightness, never validity).
+struct DoublePair {
+  std::array<Vec3, 4> A, B;
+};
+
+DoublePair to_doubles(const ExactPair& p) {
+  DoublePair d;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      d.A[i][k] = CGAL::to_double(p.A[i][k]), d.B[i][k] = CGAL::to_double(p.B[i][k]);
+  return d;
+}
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The threshold structure of relaxed_pieces.h: the active vertices of A are the highest m_A,
+// those of B the lowest m_B. Of the 16 (m_A, m_B), the one whose KKT conditions are violated
+// least (in doubles, relative to the spread of the heights).
+ActiveSet guess_active_set(const DoublePair& p, const Vec3& n) {
+  std::array<double, 4> a, b;
+  std::array<int, 4> ia{0, 1, 2, 3}, ib{0, 1, 2, 3};
+  for (int i = 0; i < 4; ++i) a[i] = dot(n, p.A[i]), b[i] = dot(n, p.B[i]);
+  std::sort(ia.begin(), ia.end(), [&](int x, int y) { return a[x] > a[y]; });
+  std::sort(ib.begin(), ib.end(), [&](int x, int y) { return b[x] < b[y]; });
+  ActiveSet best{};
+  double best_violation = INFINITY;
+  for (int mA = 1; mA <= 4; ++mA)
+    for (int mB = 1; mB <= 4; ++mB) {
+      double sa = 0, sb = 0;
+      for (int k = 0; k < mA; ++k) sa += a[ia[k]];
+      for (int k = 0; k < mB; ++k) sb += b[ib[k]];
+      const double wA = 1.0 / (5 - mA), wB = 1.0 / (5 - mB);
+      const double c = (wA * sa + wB * sb) / (mA * wA + mB * wB);
+      const double TA = (mA * c - sa) * wA, TB = -TA;
+      double violation = 0;
+      for (int k = 0; k < 4; ++k) {
+        const double d = a[ia[k]] - c - TA, e = c - b[ib[k]] + TB;
+        violation = std::max(violation, k < mA ? -d : d);
+        violation = std::max(violation, k < mB ? -e : e);
+      }
+      if (violation < best_violation) {
+        best_violation = violation;
+        best = {0, 0};
+        for (int k = 0; k < mA; ++k) best.a |= 1u << ia[k];
+        for (int k = 0; k < mB; ++k) best.b |= 1u << ib[k];
+      }
+    }
+  return best;
+}
+
+// ---------------------------------------------------------------- exact helpers
+bool positive_semidefinite(const std::array<std::array<Rational, 3>, 3>& S) {
+  for (int i = 0; i < 3; ++i)
+    if (S[i][i] < 0) return false;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j)
+      if (S[i][i] * S[j][j] - S[i][j] * S[j][i] < 0) return false;
+  const Rational det = S[0][0] * (S[1][1] * S[2][2] - S[1][2] * S[2][1]) -
+                       S[0][1] * (S[1][0] * S[2][2] - S[1][2] * S[2][0]) +
+                       S[0][2] * (S[1][0] * S[2][1] - S[1][1] * S[2][0]);
+  return det >= 0;  // all principal minors >= 0: positive semi-definite
+}
+
+// A double mu <= the smallest eigenvalue of H (proved: H - mu I is positive semi-definite,
+// checked exactly), close to it when doubles resolve it. H is a sum of outer products, so
+// mu = 0 always holds.
+double certified_min_eigenvalue(const std::array<std::array<Rational, 3>, 3>& H, double lambda_min) {
+  if (!(lambda_min > 0) || !std::isfinite(lambda_min)) return 0;
+  for (double shrink : {1e-15, 1e-13, 1e-10, 1e-7, 1e-4}) {
+    const double mu = lambda_min * (1 - shrink);
+    auto S = H;
+    for (int i = 0; i < 3; ++i) S[i][i] -= Rational(mu);
+    if (positive_semidefinite(S)) return mu;
+  }
+  return 0;
+}
+
+// Interval arithmetic (CGAL::Interval_nt, rounding set outward by the caller's protector):
+// every bound below is the lower end of an interval that contains an exact quantity, hence a
+// proved bound; signs an interval cannot decide are decided in exact rationals.
+using Interval = CGAL::Interval_nt<false>;
+using IVec = std::array<Interval, 3>;
+
+IVec to_ivec(const Vector& v) {
+  return {CGAL::to_interval(v.x()), CGAL::to_interval(v.y()), CGAL::to_interval(v.z())};
+}
+Interval idot(const IVec& a, const Vec3& n) { return a[0] * n[0] + a[1] * n[1] + a[2] * n[2]; }
+
+// The witness normal of a piece: its smallest eigenvector, polished by inverse iteration on
+// the exact H (x = adj(H - sigma I) v, sigma just below the eigenvalue, three times) and
+// rounded componentwise. The solver's vector has an absolute error ~u in every component, so
+// a component that should be 1e-20 has no correct digit, and the value along it exceeds the
+// minimum by ~|H| u^2, which is not small beside a depth of 1e-38; componentwise rounding keeps
+// every component's relative accuracy. Only the witness depends on it (any normal is a valid
+// witness; its value is computed exactly).
+Vec3 inverse_iteration(const std::array<std::array<Rational, 3>, 3>& H, Vec3 v, double lambda) {
+  const Rational sigma = lambda > 0 && std::isfinite(lambda) ? Rational(lambda) * Rational(999999, 1000000)
+                                                              : Rational(0);
+  Rational m[3][3], adj[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = H[r][c] - (r == c ? sigma : Rational(0));
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];
+    }
+  const Rational det = m[0][0] * adj[0][0] + m[0][1] * adj[1][0] + m[0][2] * adj[2][0];
+  for (int it = 0; it < 3; ++it) {
+    Rational x[3], big = 0;
+    for (int r = 0; r < 3; ++r) {
+      x[r] = adj[r][0] * Rational(v[0]) + adj[r][1] * Rational(v[1]) + adj[r][2] * Rational(v[2]);
+      big = std::max(big, CGAL::abs(x[r]));
+    }
+    if (big == 0) break;
+    if (det < 0) big = -big;
+    for (int r = 0; r < 3; ++r) v[r] = CGAL::to_double(x[r] / big);
+  }
+  return v;
+}
+
+struct CachedPiece {
+  RelaxedPiece piece;
+  std::array<IVec, 4> D, E;  // the sign conditions, as intervals
+  std::array<Vec3, 4> Dd, Ed;  // and as doubles (multiplier guesses)
+  std::array<IVec, 3> H;
+  double mu = 0;  // proved: u^T H u >= mu on the unit sphere
+};
+
+Vector to_vector(const Vec3& n) { return Vector(Rational(n[0]), Rational(n[1]), Rational(n[2])); }
+
+Vec3 face_normal(int face, double a, double b) {
+  const int k = face / 2;
+  Vec3 n;
+  n[k] = (face % 2) ? -1.0 : 1.0, n[(k + 1) % 3] = a, n[(k + 2) % 3] = b;
+  return n;
+}
+
+struct Patch {
+  int face;
+  double a0, a1, b0, b1;  // dyadic: exact in doubles down to widths of 2^-52
+  double lower;           // proved lower bound of relaxed(u) on the patch (a rational)
+};
+struct ByLower {
+  bool operator()(const Patch& x, const Patch& y) const { return y.lower < x.lower; }
+};
+
+class Search {
+ public:
+  Search(const ExactPair& pair) : pair_(pair) {
+    // Positions relative to s0 (exact), for the dual bound's g and the doubles' guess.
+    for (int i = 0; i < 4; ++i) {
+      const Vector a = pair.A[i] - pair.A[0], b = pair.B[i] - pair.A[0];
+      relA_[i] = to_ivec(a), relB_[i] = to_ivec(b);
+      for (int k = 0; k < 3; ++k)
+        dpair_.A[i][k] = CGAL::to_double(a[k]), dpair_.B[i][k] = CGAL::to_double(b[k]);
+    }
+  }
+
+  // Current witness.
+  Rational best_value;
+  Vector best_normal;
+  std::optional<ActiveSet> best_set;  // nullopt: the start witness
+  std::size_t evaluations = 0;
+
+  double evaluate(const Patch& patch) {
+    ++evaluations;
+    const double ac = (patch.a0 + patch.a1) / 2, bc = (patch.b0 + patch.b1) / 2;
+    const Vec3 nc = face_normal(patch.face, ac, bc);
+    ActiveSet s = guess_active_set(dpair_, nc);
+    if (s.a == 0 || s.b == 0) return 0;
+    if (!optimal_at(piece(s), nc)) {  // doubles guessed wrong (near ties): decide exactly
+      if (auto exact = exact_active_set(nc)) s = *exact;
+    }
+    const CachedPiece& cp = piece(s);
+    if (optimal_at(cp, nc)) offer(cp, nc);
+
+    const std::array<Vec3, 4> corners = {
+        face_normal(patch.face, patch.a0, patch.b0), face_normal(patch.face, patch.a1, patch.b0),
+        face_normal(patch.face, patch.a0, patch.b1), face_normal(patch.face, patch.a1, patch.b1)};
+    double lower = 0;
+    bool everywhere = true;  // the piece is optimal on the whole cone
+    for (const Vec3& n : corners) everywhere = everywhere && optimal_at(cp, n);
+    if (everywhere) lower = cp.mu;
+    return std::max(lower, dual_bound(cp, nc, corners));
+  }
+
+ private:
+  const CachedPiece& piece(ActiveSet s) {
+    auto it = cache_.find(s);
+    if (it != cache_.end()) return it->second;
+    CachedPiece c{relaxed_piece(pair_, s)};
+    for (int i = 0; i < 4; ++i) {
+      c.D[i] = to_ivec(c.piece.D[i]), c.E[i] = to_ivec(c.piece.E[i]);
+      for (int k = 0; k < 3; ++k)
+        c.Dd[i][k] = CGAL::to_double(c.piece.D[i][k]), c.Ed[i][k] = CGAL::to_double(c.piece.E[i][k]);
+    }
+    Eigen::Matrix3d H;
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) {
+        c.H[r][k] = CGAL::to_interval(c.piece.H[r][k]);
+        H(r, k) = CGAL::to_double(c.piece.H[r][k]);
+      }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+    if (eig.info() == Eigen::Success) {
+      const Eigen::Vector3d e = eig.eigenvectors().col(0);
+      double estimate = eig.eigenvalues()(0);
+      if (e.allFinite() && e.norm() > 0) {
+        const Vec3 v = inverse_iteration(c.piece.H, {e(0), e(1), e(2)}, estimate);
+        const Vector vv = to_vector(v);
+        // The Rayleigh quotient of the polished vector: >= the smallest eigenvalue and equal
+        // to it to second order, where the solver's own estimate has an absolute error of
+        // u |H| (useless for a depth of 1e-21 beside |H| ~ 1).
+        if (vv != CGAL::NULL_VECTOR)
+          estimate = CGAL::to_double(piece_quadratic(c.piece, vv) / vv.squared_length());
+        for (double sign : {1.0, -1.0}) {
+          const Vec3 n{sign * v[0], sign * v[1], sign * v[2]};
+          if (optimal_at(c, n)) offer(c, n);
+        }
+      }
+      c.mu = certified_min_eigenvalue(c.piece.H, estimate);
+    }
+    return cache_.emplace(s, std::move(c)).first->second;
+  }
+
+  // The active set optimal at n, by the threshold structure on exact heights (16 candidates).
+  std::optional<ActiveSet> exact_active_set(const Vec3& n) {
+    const Vector v = to_vector(n);
+    std::array<Rational, 4> a, b;
+    std::array<int, 4> ia{0, 1, 2, 3}, ib{0, 1, 2, 3};
+    for (int i = 0; i < 4; ++i) a[i] = (pair_.A[i] - CGAL::ORIGIN) * v, b[i] = (pair_.B[i] - CGAL::ORIGIN) * v;
+    std::sort(ia.begin(), ia.end(), [&](int x, int y) { return a[x] > a[y]; });
+    std::sort(ib.begin(), ib.end(), [&](int x, int y) { return b[x] < b[y]; });
+    for (int mA = 1; mA <= 4; ++mA)
+      for (int mB = 1; mB <= 4; ++mB) {
+        ActiveSet s;
+        for (int k = 0; k < mA; ++k) s.a |= 1u << ia[k];
+        for (int k = 0; k < mB; ++k) s.b |= 1u << ib[k];
+        if (piece_is_optimal_at(piece(s).piece, v)) return s;
+      }
+    return std::nullopt;
+  }
+
+  // The piece's KKT sign conditions at n: by intervals, exactly where they cannot tell.
+  bool optimal_at(const CachedPiece& cp, const Vec3& n) const {
+    bool exact_needed = false;
+    for (int i = 0; i < 4; ++i) {
+      for (int side = 0; side < 2; ++side) {
+        const Interval v = idot(side ? cp.E[i] : cp.D[i], n);
+        const bool active = ((side ? cp.piece.set.b : cp.piece.set.a) >> i) & 1u;
+        if (active ? v.sup() < 0 : v.inf() > 0) return false;
+        if (active ? v.inf() < 0 : v.sup() > 0) exact_needed = true;
+      }
+    }
+    return !exact_needed || piece_is_optimal_at(cp.piece, to_vector(n));
+  }
+
+  void offer(const CachedPiece& cp, const Vec3& n) {
+    const Vector v = to_vector(n);
+    if (v == CGAL::NULL_VECTOR) return;
+    Interval q = 0;
+    for (int r = 0; r < 3; ++r) q += idot(cp.H[r], n) * n[r];
+    const Interval value = q / (n[0] * Interval(n[0]) + n[1] * Interval(n[1]) + n[2] * Interval(n[2]));
+    if (Rational(value.inf()) >= best_value) return;  // cannot improve: skip the exact work
+    const Rational exact = piece_quadratic(cp.piece, v) / v.squared_length();
+    if (exact < best_value) best_value = exact, best_normal = v, best_set = cp.piece.set;
+  }
+
+  // Bound (D) of relaxed_pieces.h. The certificate: l_A = the piece's multipliers at nc in
+  // doubles, clamped at 0 (exact numbers), and l_B' = r l_B with l_B likewise and
+  // r = sum l_A / sum l_B (an exact real): admissible, exactly balanced. g and K are enclosed
+  // by intervals; g uses positions relative to s0, which balance makes equivalent.
+  double dual_bound(const CachedPiece& cp, const Vec3& nc, const std::array<Vec3, 4>& corners) const {
+    double lA[4], lB[4], sA = 0, sB = 0;
+    for (int i = 0; i < 4; ++i) {
+      lA[i] = (cp.piece.set.a >> i & 1u) ? std::max(0.0, dot(cp.Dd[i], nc)) : 0.0;
+      lB[i] = (cp.piece.set.b >> i & 1u) ? std::max(0.0, dot(cp.Ed[i], nc)) : 0.0;
+      if (!std::isfinite(lA[i]) || !std::isfinite(lB[i])) return 0;
+      sA += lA[i], sB += lB[i];
+    }
+    if (!(sA > 0) || !(sB > 0)) return 0;
+    Interval sumA = 0, sumB = 0, qA = 0, qB = 0;
+    IVec gA{0, 0, 0}, gB{0, 0, 0};
+    for (int i = 0; i < 4; ++i) {
+      sumA += lA[i], sumB += lB[i];
+      qA += Interval(lA[i]) * lA[i], qB += Interval(lB[i]) * lB[i];
+      for (int k = 0; k < 3; ++k) gA[k] += relA_[i][k] * lA[i], gB[k] += relB_[i][k] * lB[i];
+    }
+    const Interval r = sumA / sumB;
+    IVec g;
+    for (int k = 0; k < 3; ++k) g[k] = gA[k] - r * gB[k];
+    const Interval K = 5 * qA - CGAL::square(sumA) + CGAL::square(r) * (5 * qB - CGAL::square(sumB));
+    double lower = INFINITY;
+    bool undecided = !(K.inf() > 0);
+    for (std::size_t k = 0; k < corners.size() && !undecided; ++k) {
+      const Vec3& n = corners[k];
+      const Interval gn = idot(g, n);
+      if (gn.sup() <= 0) return 0;  // g.n <= 0 at a corner: (D) gives nothing here
+      if (!(gn.inf() > 0)) {
+        undecided = true;
+        break;
+      }
+      const Interval nn = n[0] * Interval(n[0]) + n[1] * Interval(n[1]) + n[2] * Interval(n[2]);
+      lower = std::min(lower, (CGAL::square(gn) / (4 * K * nn)).inf());
+    }
+    if (undecided) return exact_dual_bound(lA, lB, corners);
+    return std::isfinite(lower) ? lower : 0;
+  }
+
+  // The same certificate in exact rationals (cancellation beyond the intervals' reach); the
+  // bound is rounded down to a double.
+  double exact_dual_bound(const double lA[4], const double lB[4],
+                          const std::array<Vec3, 4>& corners) const {
+    Rational sA = 0, sB = 0, qA = 0, qB = 0;
+    Vector gA = CGAL::NULL_VECTOR, gB = CGAL::NULL_VECTOR;
+    for (int i = 0; i < 4; ++i) {
+      const Rational a(lA[i]), b(lB[i]);
+      sA += a, sB += b, qA += a * a, qB += b * b;
+      gA = gA + (pair_.A[i] - pair_.A[0]) * a;
+      gB = gB + (pair_.B[i] - pair_.A[0]) * b;
+    }
+    const Rational r = sA / sB;
+    const Vector g = gA - gB * r;
+    const Rational K = 5 * qA - sA * sA + r * r * (5 * qB - sB * sB);
+    if (K <= 0) return 0;
+    double lower = INFINITY;
+    for (const Vec3& n : corners) {
+      const Vector v = to_vector(n);
+      const Rational gn = g * v;
+      if (gn <= 0) return 0;
+      lower = std::min(lower, CGAL::to_interval(gn * gn / (4 * K * v.squared_length())).first);
+    }
+    return std::isfinite(lower) ? lower : 0;
+  }
+
+  const ExactPair& pair_;
+  DoublePair dpair_;
+  std::array<IVec, 4> relA_, relB_;
+  std::map<ActiveSet, CachedPiece> cache_;
+};
+
+}  // namespace
+
+GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational& start_value,
+                     const ExactTet& start_q1_A, const ExactTet& start_q1_B,
+                     const GlobalOptions& options) {
+  // The search runs on P' = (P - s0) 2^-e, with e making the largest coordinate of P' about 1:
+  // relaxed values scale by 4^-e exactly and are translation invariant, so every bound and
+  // witness carries over exactly, and the doubles and intervals of the search stay in range
+  // whatever the pair's scale (2^-300, 2^260, ...).
+  double largest = 0;
+  for (int t = 0; t < 2; ++t)
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k)
+        largest = std::max(largest, std::fabs(CGAL::to_double(((t ? pair.B : pair.A)[i][k]) - pair.A[0][k])));
+  int e = 0;
+  if (largest > 0 && std::isfinite(largest)) std::frexp(largest, &e);
+  const Rational down = e >= 0 ? Rational(1) / Rational(std::ldexp(1.0, e)) : Rational(std::ldexp(1.0, -e));
+  ExactPair P;
+  for (int i = 0; i < 4; ++i) {
+    P.A[i] = CGAL::ORIGIN + (pair.A[i] - pair.A[0]) * down;
+    P.B[i] = CGAL::ORIGIN + (pair.B[i] - pair.A[0]) * down;
+  }
+  const Rational value_scale = down * down;  // relaxed(P') = value_scale * relaxed(P)
+
+  const auto t0 = std::chrono::steady_clock::now();
+  CGAL::Protect_FPU_rounding<true> outward;  // Interval_nt<false> needs rounding towards +inf
+  Search search(P);
+  search.best_value = start_value * value_scale;
+  search.best_normal = start;
+
+  std::priority_queue<Patch, std::vector<Patch>, ByLower> open;
+  constexpr int kInitialSplit = 4;  // 4 x 4 patches per face to begin with
+  for (int face = 0; face < 6; ++face)
+    for (int i = 0; i < kInitialSplit; ++i)
+      for (int j = 0; j < kInitialSplit; ++j) {
+        const double w = 2.0 / kInitialSplit;
+        Patch p{face, -1 + i * w, -1 + (i + 1) * w, -1 + j * w, -1 + (j + 1) * w, 0};
+        p.lower = search.evaluate(p);
+        open.push(p);
+      }
+
+  const Rational keep = Rational(1) - options.gap;
+  Rational target = search.best_value * keep;
+  double target_d = CGAL::to_interval(target).second;  // >= target
+  bool gap_met = false;
+  while (!open.empty()) {
+    const Patch& top = open.top();
+    if (top.lower >= target_d || Rational(top.lower) >= target) {
+      gap_met = true;
+      break;
+    }
+    if (search.evaluations >= options.max_patches) break;
+    const Patch p = top;
+    open.pop();
+    const double am = (p.a0 + p.a1) / 2, bm = (p.b0 + p.b1) / 2;
+    if (!(p.a0 < am && am < p.a1 && p.b0 < bm && bm < p.b1)) {  // 2^-52 wide: cannot split
+      if (std::getenv("PDD_GLOBAL_DEBUG"))
+        std::fprintf(stderr, "unsplittable face %d [%.17g %.17g]x[%.17g %.17g] lower %.17g best %.17g\n", p.face, p.a0,
+                     p.a1, p.b0, p.b1, p.lower, CGAL::to_double(search.best_value));
+      open.push(p);
+      break;
+    }
+    for (Patch c : {Patch{p.face, p.a0, am, p.b0, bm, 0}, Patch{p.face, am, p.a1, p.b0, bm, 0},
+                    Patch{p.face, p.a0, am, bm, p.b1, 0}, Patch{p.face, am, p.a1, bm, p.b1, 0}}) {
+      c.lower = std::max(search.evaluate(c), p.lower);  // the parent's bound holds on the child
+      open.push(c);
+    }
+    if (search.best_value * keep != target) {
+      target = search.best_value * keep;
+      target_d = CGAL::to_interval(target).second;
+    }
+  }
+
+  GlobalPdd out;
+  out.patches = search.evaluations;
+  out.gap_met = gap_met;
+  out.lower = (open.empty() ? search.best_value
+                            : std::min(Rational(open.top().lower), search.best_value)) / value_scale;
+  out.normal = search.best_normal;
+  if (std::getenv("PDD_GLOBAL_DEBUG"))
+    std::fprintf(stderr, "global: %zu patches, %zu open, gap met %d, %.3f s\n", out.patches, open.size(),
+                 int(gap_met), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  if (!search.best_set) {
+    out.value = start_value, out.q1_A = start_q1_A, out.q1_B = start_q1_B;
+    return out;
+  }
+  // The witness's value from CGAL's QP solver, which must agree with the closed form exactly.
+  CandidateDirection dir;
+  dir.n = search.best_normal;
+  const auto qp = direction_qp(pair, dir, PddCase::Relaxed, QpFormulation::Reduced);
+  if (!qp || qp->value * value_scale != search.best_value)
+    throw std::logic_error("global_pdd: the closed-form relaxed optimum disagrees with the QP");
+  out.value = qp->value, out.q1_A = qp->q1_A, out.q1_B = qp->q1_B;
+  return out;
+}
+
+}  // namespace pdd::reference

@@ -1,0 +1,231 @@
+// SPEC §9 in the exact engine: pdd2_global with its witness normal, positions and proved lower
+// bound (reference/pdd/reference/global_pdd.h, relaxed_pieces.h).
+//
+// What is asserted, and where each expected value comes from:
+// - a hand-derived pair whose optimum is a candidate direction (derivation below), and the
+//   shipped pair poke-vertex-through-face whose optimum provably is not one (the exact witness
+//   is below every candidate's relaxed value);
+// - on every property fixture: lower <= pdd2_global <= pdd2_relaxed <= pdd2; the gap target;
+//   the witness normal's value re-solved by CGAL's QP in the paper's full formulation (an
+//   independent formulation of the same QP) equals pdd2_global; q1_*_global have object norm
+//   pdd2_global and are separated by a plane with that normal;
+// - the lower bound checked against the exact relaxed value along many other normals;
+// - invariants: scaling by 2 multiplies the exact values by 4, an exact translation changes
+//   nothing, swapping A and B (normal negated) gives intervals that intersect;
+// - the closed form of relaxed_pieces.h equals CGAL's QP wherever its active set is optimal.
+#include <boost/test/unit_test.hpp>
+
+#include <random>
+#include <set>
+#include <string>
+
+#include "fixtures.h"
+#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/direction_qp.h"
+#include "pdd/reference/relaxed_pieces.h"
+#include "pdd/reference/solve_exact.h"
+
+using namespace pdd;
+using namespace pdd::reference;
+
+namespace {
+const SolveOptions kReduced{QpFormulation::Reduced};
+const Rational kGap = Rational(1) / Rational(1000000000000LL);  // SPEC §9's 1e-12
+
+// Pairs on which the branch and bound does not close the gap within its budget (the lower
+// bound stays valid, but far from the witness). Each mixes magnitudes beyond 2^52: a vertex
+// 1e15-1e18 away from the others, or coordinates of 1e-18 beside ones of size 1. There the
+// optimal normals lie in a band narrower than the patches' dyadic grid (2^-52) can resolve.
+// A known limit, said in the README; when it is lifted this list must shrink (the test
+// checks that each listed pair still misses the target).
+const std::set<std::string> kGapNotClosed = {"coordinates-1-to-1e18", "adversarial-1-3", "adversarial-1-9",
+                                             "adversarial-1-13", "adversarial-1-19", "adversarial-1-23",
+                                             "adversarial-1-29"};
+
+Rational relaxed_along(const ExactPair& p, const Vector& n, QpFormulation f) {
+  CandidateDirection d;
+  d.n = n;
+  auto qp = direction_qp(p, d, PddCase::Relaxed, f);
+  BOOST_REQUIRE(qp);
+  return qp->value;
+}
+
+Vector normal_of(const ExactResult& r) {
+  BOOST_REQUIRE(r.pdd2_global_normal);
+  const auto& n = *r.pdd2_global_normal;
+  return Vector(n[0], n[1], n[2]);
+}
+
+Rational sigma(const ExactPair& p, const Positions<Rational>& qa, const Positions<Rational>& qb) {
+  Rational total = 0;
+  for (int t = 0; t < 2; ++t) {
+    const ExactTet& X = t ? p.B : p.A;
+    const Positions<Rational>& Q = t ? qb : qa;
+    Rational sq = 0, sum[3] = {0, 0, 0};
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const Rational d = Q[i][k] - X[i][k];
+        sq += d * d, sum[k] += d;
+      }
+    total += (sq + sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) / 20;
+  }
+  return total;
+}
+}  // namespace
+
+// The regular tetrahedron A = (1,1,1), (1,-1,-1), (-1,1,-1), (-1,-1,1) and B = A + (0, 0, 3/2).
+// The half-turn about the z axis maps A to A and B to B, so the relaxed value G is invariant
+// under it and its gradient at e_z is parallel to e_z: e_z is a stationary direction, and it is
+// a candidate (EE of A's edge s0 s3 with B's edge r1 r2: (r2 - r1) x (s3 - s0) = (0,0,8)).
+// Along e_z, A's heights are 1, -1, -1, 1 and B's 1/2, 5/2, 1/2, 5/2 (overlap delta = 1/2).
+// Active sets {s0, s3}, {r1, r2} (m = 2 each, w = 1/3): c = (2/3 + 2 (1/2)/3) / (4/3) = 3/4,
+// T_A = (2 c - 2) / 3 = -1/6, active A vertices move by c - 1 = -1/4, free ones by 1/6;
+// KKT: active d = 1 - 3/4 + 1/6 = 5/12 >= 0, free d = -1 - 3/4 + 1/6 < 0. Cost of A:
+// (2/16 + 2/36 + 1/36) / 20 = 1/96, B the same by symmetry: relaxed(e_z) = 1/48 = delta^2/12.
+// That no other normal does better is what the program proves (its lower bound).
+BOOST_AUTO_TEST_CASE(optimum_at_a_candidate_hand_derived) {
+  TetPair p{"regular-shifted", {},
+            {{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}},
+            {{{1, 1, 2.5}, {1, -1, 0.5}, {-1, 1, 0.5}, {-1, -1, 2.5}}}};
+  const ExactResult r = solve_exact(p, kReduced);
+  BOOST_REQUIRE(r.intersecting);
+  BOOST_TEST(relaxed_along(to_exact(p), Vector(0, 0, 1), QpFormulation::Full) == Rational(1, 48));
+  BOOST_TEST(r.pdd2_global == Rational(1, 48));
+  BOOST_TEST(r.pdd2_relaxed == Rational(1, 48));
+  BOOST_REQUIRE(r.pdd2_global_lower);
+  BOOST_TEST(*r.pdd2_global_lower <= r.pdd2_global);
+  BOOST_TEST(*r.pdd2_global_lower >= Rational(1, 48) * (1 - kGap));
+}
+
+// poke-vertex-through-face (fixtures/smoke.json): every candidate's relaxed value is at least
+// pdd2_relaxed = 3/224 (golden), and the exact witness is below it: the optimum over all planes
+// is not a candidate direction. The witness value is re-solved here by the full formulation.
+BOOST_AUTO_TEST_CASE(optimum_not_a_candidate) {
+  TetPair p{"poke", {}, {{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}},
+            {{{1, 1, -1}, {3, 1, -1}, {1, 3, -1}, {1.5, 1.5, 0.5}}}};
+  const ExactResult r = solve_exact(p, kReduced);
+  BOOST_TEST(r.pdd2_relaxed == Rational(3, 224));
+  BOOST_TEST(r.pdd2_global < Rational(3, 224) * Rational(9, 10));  // 0.0110 vs 0.0134
+  BOOST_TEST(relaxed_along(to_exact(p), normal_of(r), QpFormulation::Full) == r.pdd2_global);
+  for (const auto& d : candidate_directions(to_exact(p)))
+    BOOST_TEST(relaxed_along(to_exact(p), d.n, QpFormulation::Reduced) > r.pdd2_global, d.label.str());
+}
+
+BOOST_AUTO_TEST_CASE(witness_bounds_and_positions_on_every_fixture) {
+  int checked = 0;
+  for (const auto& file : test::property_fixture_files())
+    for (const TetPair& pair : test::load_pairs(file)) {
+      const ExactResult r = solve_exact(pair, kReduced);
+      if (r.error) continue;
+      const ExactPair p = to_exact(pair);
+      BOOST_REQUIRE(r.pdd2_global_lower);
+      if (!r.intersecting) {
+        BOOST_TEST(r.pdd2_global == 0);
+        BOOST_TEST(!r.pdd2_global_normal);
+        continue;
+      }
+      const Rational& g = r.pdd2_global;
+      BOOST_TEST(*r.pdd2_global_lower <= g, pair.name);
+      BOOST_TEST(g <= r.pdd2_relaxed, pair.name);
+      BOOST_TEST(r.pdd2_relaxed <= r.pdd2, pair.name);
+      BOOST_TEST(*r.pdd2_global_lower >= 0, pair.name);
+      const bool closed = *r.pdd2_global_lower >= g * (1 - kGap);
+      BOOST_TEST(closed != (kGapNotClosed.count(pair.name) > 0),
+                 pair.name << ": gap " << CGAL::to_double((g - *r.pdd2_global_lower) / g));
+      const Vector n = normal_of(r);
+      BOOST_TEST(relaxed_along(p, n, QpFormulation::Full) == g, pair.name);
+      BOOST_TEST(sigma(p, r.q1_A_global, r.q1_B_global) == g, pair.name);
+      Rational hiA, loB;
+      for (int i = 0; i < 4; ++i) {
+        const Rational a = n.x() * r.q1_A_global[i][0] + n.y() * r.q1_A_global[i][1] + n.z() * r.q1_A_global[i][2];
+        const Rational b = n.x() * r.q1_B_global[i][0] + n.y() * r.q1_B_global[i][1] + n.z() * r.q1_B_global[i][2];
+        if (i == 0 || a > hiA) hiA = a;
+        if (i == 0 || b < loB) loB = b;
+      }
+      BOOST_TEST(hiA <= loB, pair.name << ": the deformed pair is separated by the witness plane");
+      ++checked;
+    }
+  BOOST_TEST(checked >= 20);
+}
+
+// The proved lower bound against the exact relaxed value along 300 other normals per pair.
+BOOST_AUTO_TEST_CASE(lower_bound_holds_on_sampled_normals) {
+  std::mt19937_64 rng(9);
+  std::uniform_int_distribution<int> coord(-1000, 1000);
+  int checked = 0;
+  for (const char* name : {"paper.json", "sliver.json", "nested.json"})
+    for (const TetPair& pair : test::load_pairs(std::string("families/") + name)) {
+      const ExactResult r = solve_exact(pair, kReduced);
+      if (r.error || !r.intersecting) continue;
+      const ExactPair p = to_exact(pair);
+      for (int k = 0; k < 300; ++k) {
+        const Vector n(coord(rng), coord(rng), coord(rng));
+        if (n == CGAL::NULL_VECTOR) continue;
+        BOOST_TEST(relaxed_along(p, n, QpFormulation::Reduced) >= *r.pdd2_global_lower, pair.name);
+      }
+      if (++checked >= 8) break;
+    }
+  BOOST_TEST(checked >= 8);
+}
+
+BOOST_AUTO_TEST_CASE(scaling_translation_and_swap) {
+  int checked = 0;
+  for (const TetPair& pair : test::load_pairs("families/paper.json")) {
+    const ExactResult r = solve_exact(pair, kReduced);
+    if (!r.intersecting) continue;
+    TetPair scaled = pair, moved = pair, swapped = pair;
+    for (auto* t : {&scaled.A, &scaled.B})
+      for (auto& v : *t)
+        for (double& x : v) x *= 2;
+    for (auto* t : {&moved.A, &moved.B})
+      for (auto& v : *t) v[0] += 64;  // exact for the paper's coordinates (|x| < 16, 2^-k grid)
+    bool exact_move = true;
+    for (int t = 0; t < 2; ++t)
+      for (int i = 0; i < 4; ++i)
+        exact_move = exact_move && Rational((t ? moved.B : moved.A)[i][0]) ==
+                                       Rational((t ? pair.B : pair.A)[i][0]) + 64;
+    std::swap(swapped.A, swapped.B);
+    const ExactResult s = solve_exact(scaled, kReduced), w = solve_exact(swapped, kReduced);
+    BOOST_TEST(s.pdd2_global == 4 * r.pdd2_global, pair.name);
+    BOOST_TEST(*s.pdd2_global_lower == 4 * *r.pdd2_global_lower, pair.name);
+    if (exact_move) {
+      const ExactResult m = solve_exact(moved, kReduced);
+      BOOST_TEST(m.pdd2_global == r.pdd2_global, pair.name);
+      BOOST_TEST(*m.pdd2_global_lower == *r.pdd2_global_lower, pair.name);
+    }
+    // relaxed(u; A, B) = relaxed(-u; B, A): the two certified intervals must intersect, and
+    // each witness, negated, is a witness of the other problem.
+    BOOST_TEST(*w.pdd2_global_lower <= r.pdd2_global, pair.name);
+    BOOST_TEST(*r.pdd2_global_lower <= w.pdd2_global, pair.name);
+    BOOST_TEST(relaxed_along(to_exact(swapped), -normal_of(r), QpFormulation::Reduced) == r.pdd2_global,
+               pair.name);
+    ++checked;
+  }
+  BOOST_TEST(checked >= 5);
+}
+
+// relaxed_pieces.h: wherever an active set's KKT signs hold, n^T H n equals CGAL's QP optimum.
+BOOST_AUTO_TEST_CASE(closed_form_pieces_equal_the_qp) {
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> coord(-50, 50);
+  int matched = 0;
+  for (const TetPair& pair : test::load_pairs("families/paper.json")) {
+    const ExactPair p = to_exact(pair);
+    for (int k = 0; k < 40; ++k) {
+      const Vector n(coord(rng), coord(rng), coord(rng));
+      if (n == CGAL::NULL_VECTOR) continue;
+      int optimal = 0;
+      for (unsigned a = 1; a < 16; ++a)
+        for (unsigned b = 1; b < 16; ++b) {
+          const RelaxedPiece piece = relaxed_piece(p, {a, b});
+          if (!piece_is_optimal_at(piece, n)) continue;
+          ++optimal;
+          BOOST_TEST(piece_quadratic(piece, n) / n.squared_length() ==
+                     relaxed_along(p, n, QpFormulation::Reduced));
+        }
+      // an intersecting pair has exactly one optimal set at a generic normal (ties aside)
+      if (optimal > 0) ++matched;
+    }
+  }
+  BOOST_TEST(matched >= 100);
+}
