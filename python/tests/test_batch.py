@@ -187,7 +187,8 @@ A = [[0, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]]
 B = [[2, 2, 2], [2.5, 2, 2], [2, 2.5, 2], [2, 2, 2.5]]
 calls = [lambda: pdd.solve(A, B, engine="reference"), lambda: pdd.solve(A, B, engine="reference"),
          lambda: pdd.solve(A, B), lambda: pdd.solve_batch(np.array([A] * 500), np.array([B] * 500)),
-         lambda: pdd.read_fixtures({str(FIXTURES / 'smoke.json')!r}), lambda: pdd.solve(A, B, engine="reference")]
+         lambda: pdd.read_fixtures({str(FIXTURES / 'smoke.json')!r}), lambda: pdd.solve(A, B, engine="reference"),
+         lambda: pdd.mesh_contacts(*pdd.read_mesh({str(FIXTURES / 'meshes' / 'tiny-a.msh')!r}), variants="all")]
 go = threading.Barrier(len(calls))
 def run(f):
     go.wait()
