@@ -3,7 +3,7 @@ the same pairs and values as the `pdd mesh` tool on the shipped meshes (fixtures
 each pair's values those of pdd.solve on that element pair (fast: bit for bit; reference:
 equal Fractions), self-contact, skipped elements, bad input raising ValueError with the
 library's words, and meshes read by Debian's python3-meshio giving the same arrays and
-contacts."""
+contacts (on our files, and on formats only meshio reads)."""
 import json
 import subprocess
 import warnings
@@ -440,3 +440,24 @@ def test_meshio_does_not_check_indices_mesh_contacts_does():
         pdd.read_mesh(MESHES / "bad" / "bad-index.vtk")
     with pytest.raises(ValueError, match="^element 1 of mesh A refers to vertex 9, but the mesh has 4 vertices$"):
         pdd.mesh_contacts(P, C)
+
+
+@pytest.mark.parametrize("ext", ["vtu", "inp", "mesh", "node"])
+def test_meshio_serves_formats_read_mesh_does_not(tmp_path, ext):
+    """VTK XML (.vtu), Abaqus (.inp), Medit (.mesh), TetGen (.node/.ele): pdd.read_mesh refuses
+    them (it reads .msh and legacy .vtk only); meshio writes and reads them, and its arrays give
+    the contacts of the original mesh, bit for bit (these writers keep every double: ball A's
+    binary file holds coordinates that 16 significant digits do not round-trip)."""
+    meshio = pytest.importorskip("meshio", reason="meshio not importable (Debian python3-meshio)")
+    V, T = mesh("sphere-a.bin41.msh")
+    path = tmp_path / f"sphere-a.{ext}"
+    meshio.write(path, meshio.Mesh(V, [("tetra", T)]))
+    with pytest.raises(ValueError, match="neither a Gmsh mesh"):
+        pdd.read_mesh(path)
+    P, C = meshio_arrays(path)
+    assert (bits(P) == bits(V)).all() and (C == T).all()
+    res = pdd.mesh_contacts(P, C, *mesh("sphere-b.msh"), variants="all")
+    ref = contacts_of("sphere-a.bin41.msh", "sphere-b.msh", variants="all")
+    assert len(ref["a"]) > 0
+    for k in ("a", "b") + VALUE_KEYS + ("q1_A", "q1_B"):
+        assert (bits(res[k]) == bits(ref[k])).all(), k
