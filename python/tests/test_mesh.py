@@ -5,6 +5,7 @@ equal Fractions), self-contact, skipped elements, bad input raising ValueError w
 library's words, and meshes read by Debian's python3-meshio giving the same arrays and
 contacts (on our files, and on formats only meshio reads)."""
 import json
+import math
 import subprocess
 import warnings
 from fractions import Fraction
@@ -224,6 +225,55 @@ def test_self_contact_drops_pairs_sharing_a_vertex():
     assert own["a"].tolist() == [0] and own["b"].tolist() == [1]
     r = pdd.solve(V, V)
     assert bits(own["pdd2"][0]) == bits(r["pdd2"]) and own["pdd2_dir"][0] == r["pdd2_dir"]
+
+
+def write_legacy_vtk(path, V, T):
+    """A legacy ASCII VTK file of tetrahedra; repr() writes every double so that it reads back
+    as the same double."""
+    with open(path, "w") as f:
+        f.write(f"# vtk DataFile Version 2.0\ntest\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {len(V)} double\n")
+        f.writelines(" ".join(repr(float(x)) for x in p) + "\n" for p in V)
+        f.write(f"CELLS {len(T)} {5 * len(T)}\n")
+        f.writelines("4 " + " ".join(map(str, t)) + "\n" for t in T)
+        f.write(f"CELL_TYPES {len(T)}\n" + "10\n" * len(T))
+
+
+def test_rejected_pairs_are_error_rows(pdd_cli, tmp_path):
+    """A pair whose values leave the normal double range (SPEC §8: the tiny cubes scaled by
+    1e-160 have squared depths near 1e-323) is an error row — NaN values and positions, ""
+    labels, intersecting False, the engine's message — never an exception; the other rows are
+    computed. Each mesh is the tiny cube twice, as it is and scaled, so both kinds of row occur.
+    Rows and messages are those of `pdd mesh` (which writes {"a", "b", "error"} for them and
+    exits 1) and of pdd.solve on the pair."""
+    meshes = []
+    for name in ("tiny-a.msh", "tiny-b.msh"):
+        V, T = mesh(name)
+        meshes.append((np.concatenate([V, V * 1e-160]), np.concatenate([T, T + len(V)])))
+    (VA, TA), (VB, TB) = meshes
+    res = pdd.mesh_contacts(VA, TA, VB, TB)
+    write_legacy_vtk(tmp_path / "a.vtk", VA, TA)
+    write_legacy_vtk(tmp_path / "b.vtk", VB, TB)
+    assert (pdd.read_mesh(tmp_path / "a.vtk")[0] == VA).all()
+    run = subprocess.run([pdd_cli, "mesh", "--a", str(tmp_path / "a.vtk"), "--b", str(tmp_path / "b.vtk"),
+                          "--quiet", "--output", str(tmp_path / "o.jsonl")], capture_output=True, text=True)
+    assert run.returncode == 1, run.stderr
+    records = [json.loads(line) for line in (tmp_path / "o.jsonl").read_text().splitlines()]
+    assert res["a"].tolist() == [r["a"] for r in records] and res["b"].tolist() == [r["b"] for r in records]
+    rejected = [j for j, e in enumerate(res["error"]) if e is not None]
+    assert 0 < len(rejected) < len(records)
+    for j, r in enumerate(records):
+        A, B = VA[TA[res["a"][j]]], VB[TB[res["b"][j]]]
+        single = pdd.solve(A, B)
+        assert res["error"][j] == r["error"] == single["error"], j
+        if j in rejected:
+            assert tuple(r) == ("a", "b", "error") and "not representable" in r["error"]
+            assert not res["intersecting"][j] and res["pdd2_dir"][j] == "" and res["rigid_dir"][j] == ""
+            assert all(math.isnan(res[k][j]) for k in DEFAULT)
+            assert np.isnan(res["q1_A"][j]).all() and np.isnan(res["q1_B"][j]).all()
+        else:
+            assert res["intersecting"][j]
+            assert all(bits(res[k][j]) == bits(single[k]) for k in DEFAULT), j
+            assert (bits(res["q1_B"][j]) == bits(single["q1_B"])).all(), j
 
 
 def test_threads_do_not_change_results():
