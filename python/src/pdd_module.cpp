@@ -23,8 +23,8 @@
 #include <cstring>
 #include <exception>
 #include <limits>
-#include <stdexcept>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -548,7 +548,8 @@ std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which) {
   const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!d) throw py::error_already_set();
   std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
-  std::memcpy(out.data(), d.data(), out.size() * sizeof(pdd::Vec3d));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 3; ++k) out[i][k] = d.data()[i * 3 + k];
   return out;
 }
 
