@@ -18,6 +18,7 @@ PACKAGES=(
   gnuplot-nox                             # pictures of pdd paper
   pybind11-dev python3-dev python3-numpy  # the Python module (python/), for /usr/bin/python3
   python3-pytest python3-distributed      # its tests; the dask example
+  python3-meshio                          # its mesh tests: meshes read by meshio (test_mesh.py)
   gmsh                                    # scripts/make-meshes.sh only (test meshes; GPL, never linked)
 )
 

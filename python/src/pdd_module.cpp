@@ -3,9 +3,12 @@
 //   pdd.solve(A, B, engine="fast", formulation="reduced", name="")  -> dict (SPEC §6 record)
 //   pdd.solve_batch(A, B, threads=None)                            -> dict of numpy arrays
 //   pdd.read_fixtures(path)                                        -> list of dicts
+//   pdd.mesh_contacts(VA, TA, VB=None, TB=None, variants, engine, threads) -> dict of arrays
+//   pdd.read_mesh(path)                                            -> (V, T) numpy arrays
 //
-// Built only on the public C++ interface (<pdd/pdd.h>: pdd::fast, pdd::reference) and on
-// compare/'s fixture reader (the one `pdd solve` uses, so messages are the CLI's). Numbers:
+// Built only on the public C++ interface (<pdd/pdd.h>: pdd::fast, pdd::reference; <pdd/mesh.h>:
+// pdd::mesh) and on compare/'s fixture reader (the one `pdd solve` uses, so messages are the
+// CLI's). Many records become columns in one place (RecordColumns). Numbers:
 // the fast engine's are Python floats, the reference engine's fractions.Fraction, built from
 // GMP's integers exactly (never through a float). Every engine call runs with the GIL released.
 #include <pybind11/numpy.h>
@@ -13,17 +16,21 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "pdd/compare/fixture_io.h"
+#include "pdd/mesh.h"
 #include "pdd/pdd.h"
 
 namespace py = pybind11;
@@ -41,6 +48,13 @@ std::string short_repr(py::handle o) {
 }
 
 [[noreturn]] void value_error(const std::string& msg) { throw py::value_error(msg); }
+
+// An array's shape as Python writes it: "(4,)", "(2, 3)".
+std::string shape_str(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) s += (d ? ", " : "") + std::to_string(a.shape(d));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
 
 // Python objects the module uses on every call, looked up once when the module is imported.
 // Not function-local statics: their first use can happen in two threads at once, and a C++
@@ -109,12 +123,8 @@ pdd::TetVertices tetrahedron(py::handle obj, const char* which) {
   py::object o = py::reinterpret_borrow<py::object>(obj);
   if (py::isinstance<py::array>(o)) {
     py::array a = o.cast<py::array>();
-    if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 3) {
-      std::string shape = "(";
-      for (py::ssize_t d = 0; d < a.ndim(); ++d)
-        shape += (d ? ", " : "") + std::to_string(a.shape(d));
-      value_error(shape_msg() + "; got an array of shape " + shape + (a.ndim() == 1 ? ",)" : ")"));
-    }
+    if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 3)
+      value_error(shape_msg() + "; got an array of shape " + shape_str(a));
     if (a.dtype().is(py::dtype::of<double>())) {  // float64: read as it is
       const auto d = a.cast<py::array_t<double>>().unchecked<2>();
       pdd::TetVertices t{};
@@ -236,13 +246,163 @@ py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle for
 }
 
 // ---------------------------------------------------------------------------------------------
-// pdd.solve_batch
+// Records as columns: the one conversion of many PairResult records into numpy arrays (and
+// lists of Fractions), shared by solve_batch and mesh_contacts.
 
-constexpr const char* kValueKeys[7] = {"rigid_pd2",   "eq11_pd2",    "pdd2_static", "pdd2",
-                                       "pdd2_relaxed", "pdd2_accel1", "pdd2_accel6"};
-constexpr const char* kLabelKeys[4] = {"rigid_dir", "pdd2_static_dir", "pdd2_dir",
-                                       "pdd2_relaxed_dir"};
 constexpr int kLabelChars = 8;  // the longest label, "EE:a:b:+"
+
+// `threads`: None (all cores) or an int >= 1 (numpy integers too; not float, not bool).
+std::optional<int> threads_arg(py::handle threads_in) {
+  if (threads_in.is_none()) return std::nullopt;
+  const std::string msg = "threads must be a positive int, or None for all cores; got ";
+  PyObject* index = PyNumber_Index(threads_in.ptr());
+  if (!index || PyBool_Check(threads_in.ptr())) {
+    PyErr_Clear();
+    Py_XDECREF(index);
+    value_error(msg + short_repr(threads_in));
+  }
+  const long t = PyLong_AsLong(index);
+  Py_DECREF(index);
+  if (t == -1 && PyErr_Occurred()) PyErr_Clear();
+  if (t < 1 || t > 1 << 16) value_error(msg + short_repr(threads_in));
+  return static_cast<int>(t);
+}
+
+// Runs f on all cores, or in a TBB arena of `threads` threads for this call only.
+template <class F>
+void with_threads(std::optional<int> threads, F&& f) {
+  if (threads) {
+    tbb::task_arena arena(*threads);
+    arena.execute(f);
+  } else {
+    f();
+  }
+}
+
+// n records as columns, keyed as SPEC §6 (pair_result.h's kValueKeys / kLabelKeys):
+//   intersecting                (n,) bool
+//   the values of `values`      bit k of `values` selects kValueKeys[k] (the bits of
+//                               pdd::mesh::Variant); fast: (n,) float64, exact: a list of n
+//                               fractions.Fraction
+//   their labels                (n,) numpy str arrays ('<U8'), "" for no label
+//   q1_A, q1_B (if `positions`) fast: (n, 4, 3) float64; exact: n nested lists of Fractions
+//   error                       a list of n entries, None or why record j was rejected
+// A rejected record's row: values and positions NaN (exact: None), labels "", intersecting
+// False. Construct and add_to() with the GIL held; put() of a double record touches only the
+// arrays' memory and may run without the GIL; put() of an exact record needs the GIL. Rows are
+// put by one thread at a time.
+class RecordColumns {
+ public:
+  RecordColumns(std::size_t n, bool exact, unsigned values, bool positions)
+      : n_(static_cast<py::ssize_t>(n)), exact_(exact), values_(values), positions_(positions),
+        intersecting_(n_) {
+    for (std::size_t k = 0; k < pdd::kValueCount; ++k) {
+      if (!has_value(k)) continue;
+      if (exact_)
+        exact_values_[k] = py::list(n_);
+      else
+        values_out_[k] = py::array_t<double>(n_);
+      if (pdd::kLabelOfValue[k] >= 0) {
+        auto& l = labels_[pdd::kLabelOfValue[k]];
+        l = py::array(py::dtype("<U" + std::to_string(kLabelChars)), std::vector<py::ssize_t>{n_});
+        std::memset(l->mutable_data(), 0, n * kLabelChars * sizeof(std::uint32_t));
+      }
+    }
+    if (positions_) {
+      if (exact_) {
+        exact_q1_[0] = py::list(n_), exact_q1_[1] = py::list(n_);
+      } else {
+        q1_[0] = py::array_t<double>({n_, py::ssize_t{4}, py::ssize_t{3}});
+        q1_[1] = py::array_t<double>({n_, py::ssize_t{4}, py::ssize_t{3}});
+      }
+    }
+    // Raw pointers, so that put() of a double record calls nothing of Python's.
+    out_intersecting_ = intersecting_.mutable_data();
+    for (std::size_t k = 0; k < pdd::kValueCount; ++k)
+      out_values_[k] = values_out_[k] ? values_out_[k]->mutable_data() : nullptr;
+    for (std::size_t l = 0; l < pdd::kLabelCount; ++l)
+      out_labels_[l] = labels_[l] ? static_cast<std::uint32_t*>(labels_[l]->mutable_data()) : nullptr;
+    for (int s = 0; s < 2; ++s) out_q1_[s] = q1_[s] ? q1_[s]->mutable_data() : nullptr;
+  }
+
+  void put(std::size_t j, const pdd::PairResult<double>& r) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    put_common(j, r);
+    for (std::size_t k = 0; k < pdd::kValueCount; ++k)
+      if (out_values_[k]) out_values_[k][j] = r.error ? nan : pdd::record_value(r, k);
+    const pdd::Positions<double>* q[2] = {&r.q1_A, &r.q1_B};
+    for (int s = 0; s < 2; ++s)
+      if (out_q1_[s])
+        for (int i = 0; i < 4; ++i)
+          for (int c = 0; c < 3; ++c) out_q1_[s][(j * 4 + i) * 3 + c] = r.error ? nan : (*q[s])[i][c];
+  }
+
+  void put(std::size_t j, const pdd::PairResult<pdd::Rational>& r) {  // GIL held
+    put_common(j, r);
+    const auto J = static_cast<py::ssize_t>(j);
+    for (std::size_t k = 0; k < pdd::kValueCount; ++k)
+      if (exact_values_[k])
+        (*exact_values_[k])[J] = r.error ? py::object(py::none()) : number(pdd::record_value(r, k));
+    const pdd::Positions<pdd::Rational>* q[2] = {&r.q1_A, &r.q1_B};
+    for (int s = 0; s < 2; ++s)
+      if (exact_q1_[s]) (*exact_q1_[s])[J] = r.error ? py::object(py::none()) : py::object(positions(*q[s]));
+  }
+
+  void add_to(py::dict& d) const {
+    d["intersecting"] = intersecting_;
+    for (std::size_t k = 0; k < pdd::kValueCount; ++k) {
+      if (values_out_[k]) d[pdd::kValueKeys[k]] = *values_out_[k];
+      if (exact_values_[k]) d[pdd::kValueKeys[k]] = *exact_values_[k];
+    }
+    for (std::size_t l = 0; l < pdd::kLabelCount; ++l)
+      if (labels_[l]) d[pdd::kLabelKeys[l]] = *labels_[l];
+    const char* q1_keys[2] = {"q1_A", "q1_B"};
+    for (int s = 0; s < 2; ++s) {
+      if (q1_[s]) d[q1_keys[s]] = *q1_[s];
+      if (exact_q1_[s]) d[q1_keys[s]] = *exact_q1_[s];
+    }
+    py::list error_list(n_);
+    for (py::ssize_t j = 0; j < n_; ++j) error_list[j] = py::none();
+    for (const auto& [j, msg] : errors_) error_list[static_cast<py::ssize_t>(j)] = py::str(msg);
+    d["error"] = error_list;
+  }
+
+ private:
+  bool has_value(std::size_t k) const { return values_ & (1u << k); }
+
+  template <class R>
+  void put_common(std::size_t j, const pdd::PairResult<R>& r) {
+    if (r.error) errors_.emplace_back(j, *r.error);
+    out_intersecting_[j] = !r.error && r.intersecting;
+    for (std::size_t l = 0; l < pdd::kLabelCount; ++l) {
+      const auto& label = pdd::record_label(r, l);
+      if (!out_labels_[l] || r.error || !label) continue;
+      const std::string s = label->str();
+      for (std::size_t c = 0; c < s.size() && c < std::size_t(kLabelChars); ++c)
+        out_labels_[l][j * kLabelChars + c] = static_cast<unsigned char>(s[c]);
+    }
+  }
+
+  py::ssize_t n_;
+  bool exact_;
+  unsigned values_;
+  bool positions_;
+  py::array_t<bool> intersecting_;
+  // Empty where not a column (a default pybind11 array or list is not a null handle).
+  std::array<std::optional<py::array_t<double>>, pdd::kValueCount> values_out_;
+  std::array<std::optional<py::list>, pdd::kValueCount> exact_values_;
+  std::array<std::optional<py::array>, pdd::kLabelCount> labels_;
+  std::array<std::optional<py::array_t<double>>, 2> q1_;
+  std::array<std::optional<py::list>, 2> exact_q1_;
+  bool* out_intersecting_ = nullptr;
+  std::array<double*, pdd::kValueCount> out_values_{};
+  std::array<std::uint32_t*, pdd::kLabelCount> out_labels_{};
+  std::array<double*, 2> out_q1_{};
+  std::vector<std::pair<std::size_t, std::string>> errors_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// pdd.solve_batch
 
 // (N, 4, 3) float64, C order; ValueError naming the problem otherwise.
 py::array_t<double, py::array::c_style> batch_input(py::handle obj, const char* which) {
@@ -251,31 +411,13 @@ py::array_t<double, py::array::c_style> batch_input(py::handle obj, const char* 
   if (kind != 'f' && kind != 'i' && kind != 'u')
     value_error(std::string(which) + " must be an array of real numbers of shape (N, 4, 3); got dtype " +
                 py::str(a.dtype()).cast<std::string>());
-  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 3) {
-    std::string shape = "(";
-    for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(a.shape(d));
-    value_error(std::string(which) + " must have shape (N, 4, 3); got " + shape +
-                (a.ndim() == 1 ? ",)" : ")"));
-  }
+  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 3)
+    value_error(std::string(which) + " must have shape (N, 4, 3); got " + shape_str(a));
   return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
 }
 
-py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_arg) {
-  std::optional<int> threads;
-  if (!threads_arg.is_none()) {
-    const std::string msg = "threads must be a positive int, or None for all cores; got ";
-    PyObject* index = PyNumber_Index(threads_arg.ptr());  // int, numpy integers; not float, bool
-    if (!index || PyBool_Check(threads_arg.ptr())) {
-      PyErr_Clear();
-      Py_XDECREF(index);
-      value_error(msg + short_repr(threads_arg));
-    }
-    const long t = PyLong_AsLong(index);
-    Py_DECREF(index);
-    if (t == -1 && PyErr_Occurred()) PyErr_Clear();
-    if (t < 1 || t > 1 << 16) value_error(msg + short_repr(threads_arg));
-    threads = static_cast<int>(t);
-  }
+py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in) {
+  const std::optional<int> threads = threads_arg(threads_in);
   const auto A = batch_input(A_in, "A");
   const auto B = batch_input(B_in, "B");
   if (!A || !B) throw py::error_already_set();
@@ -285,36 +427,16 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_arg) {
   const std::size_t n = static_cast<std::size_t>(A.shape(0));
 
   // Outputs, allocated with the GIL held, filled without it.
-  const py::ssize_t N = static_cast<py::ssize_t>(n);
-  py::array_t<bool> intersecting(N);
-  std::vector<py::array_t<double>> values;
-  for (int v = 0; v < 7; ++v) values.emplace_back(N);
-  std::vector<py::array> labels;
-  for (int l = 0; l < 4; ++l) {
-    labels.emplace_back(py::dtype("<U" + std::to_string(kLabelChars)), std::vector<py::ssize_t>{N});
-    std::memset(labels.back().mutable_data(), 0, n * kLabelChars * sizeof(std::uint32_t));
-  }
-  py::array_t<double> q1_A({N, py::ssize_t{4}, py::ssize_t{3}});
-  py::array_t<double> q1_B({N, py::ssize_t{4}, py::ssize_t{3}});
-
+  RecordColumns out(n, /*exact=*/false, (1u << pdd::kValueCount) - 1, /*positions=*/true);
   const double* a = A.data();
   const double* b = B.data();
-  bool* out_intersecting = intersecting.mutable_data();
-  double* out_values[7];
-  for (int v = 0; v < 7; ++v) out_values[v] = values[v].mutable_data();
-  std::uint32_t* out_labels[4];
-  for (int l = 0; l < 4; ++l) out_labels[l] = static_cast<std::uint32_t*>(labels[l].mutable_data());
-  double* out_qa = q1_A.mutable_data();
-  double* out_qb = q1_B.mutable_data();
-
-  std::vector<std::pair<std::size_t, std::string>> errors;
   std::size_t slow_paths = 0;
   {
     py::gil_scoped_release release;
     // Chunks bound the memory of the engine's records; every chunk uses all cores (or the
     // arena's `threads`). Results are those of solve_pair one pair at a time, bit for bit.
     constexpr std::size_t kChunk = 1 << 15;
-    auto run = [&] {
+    with_threads(threads, [&] {
       std::vector<pdd::TetPair> chunk;
       for (std::size_t first = 0; first < n; first += kChunk) {
         const std::size_t m = std::min(kChunk, n - first);
@@ -328,49 +450,13 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_arg) {
         std::size_t slow = 0;
         const std::vector<pdd::PairResult<double>> res = pdd::fast::solve_batch(chunk, &slow);
         slow_paths += slow;
-        for (std::size_t k = 0; k < m; ++k) {
-          const std::size_t j = first + k;
-          const pdd::PairResult<double>& r = res[k];
-          const double nan = std::numeric_limits<double>::quiet_NaN();
-          if (r.error) errors.emplace_back(j, *r.error);
-          out_intersecting[j] = !r.error && r.intersecting;
-          const double vals[7] = {r.rigid_pd2, r.eq11_pd2,     r.pdd2_static, r.pdd2,
-                                  r.pdd2_relaxed, r.pdd2_accel1, r.pdd2_accel6};
-          for (int v = 0; v < 7; ++v) out_values[v][j] = r.error ? nan : vals[v];
-          const std::optional<pdd::DirectionLabel>* ls[4] = {&r.rigid_dir, &r.pdd2_static_dir,
-                                                             &r.pdd2_dir, &r.pdd2_relaxed_dir};
-          for (int l = 0; l < 4; ++l)
-            if (!r.error && *ls[l]) {
-              const std::string s = (*ls[l])->str();
-              for (std::size_t c = 0; c < s.size() && c < std::size_t(kLabelChars); ++c)
-                out_labels[l][j * kLabelChars + c] = static_cast<unsigned char>(s[c]);
-            }
-          for (int i = 0; i < 4; ++i)
-            for (int c = 0; c < 3; ++c) {
-              out_qa[(j * 4 + i) * 3 + c] = r.error ? nan : r.q1_A[i][c];
-              out_qb[(j * 4 + i) * 3 + c] = r.error ? nan : r.q1_B[i][c];
-            }
-        }
+        for (std::size_t k = 0; k < m; ++k) out.put(first + k, res[k]);
       }
-    };
-    if (threads) {
-      tbb::task_arena arena(*threads);
-      arena.execute(run);
-    } else {
-      run();
-    }
+    });
   }
 
   py::dict d;
-  d["intersecting"] = intersecting;
-  for (int v = 0; v < 7; ++v) d[kValueKeys[v]] = values[v];
-  for (int l = 0; l < 4; ++l) d[kLabelKeys[l]] = labels[l];
-  d["q1_A"] = q1_A;
-  d["q1_B"] = q1_B;
-  py::list error_list(N);
-  for (py::ssize_t j = 0; j < N; ++j) error_list[j] = py::none();
-  for (const auto& [j, msg] : errors) error_list[j] = py::str(msg);
-  d["error"] = error_list;
+  out.add_to(d);
   d["slow_paths"] = slow_paths;
   return d;
 }
@@ -378,14 +464,18 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_arg) {
 // ---------------------------------------------------------------------------------------------
 // pdd.read_fixtures
 
-py::list read_fixtures(py::handle path_like) {
-  std::string path;
+// A path argument (str, bytes, os.PathLike) as the C++ readers take it.
+std::string path_arg(py::handle path_like) {
   try {
-    path = cached->fsdecode(path_like).cast<std::string>();
+    return cached->fsdecode(path_like).cast<std::string>();
   } catch (const py::error_already_set& e) {
     if (!e.matches(PyExc_TypeError)) throw;
     value_error("path must be a str, bytes or os.PathLike; got " + short_repr(path_like));
   }
+}
+
+py::list read_fixtures(py::handle path_like) {
+  const std::string path = path_arg(path_like);
   pdd::compare::FixtureFile file;
   {
     py::gil_scoped_release release;
@@ -418,6 +508,160 @@ py::list read_fixtures(py::handle path_like) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// pdd.read_mesh, pdd.mesh_contacts (SPEC §10; the library include/pdd/mesh.h)
+
+py::tuple read_mesh(py::handle path_like) {
+  const std::string path = path_arg(path_like);
+  pdd::mesh::Mesh m;
+  std::optional<std::string> error;
+  {
+    py::gil_scoped_release release;
+    try {
+      m = pdd::mesh::read_mesh(path);
+    } catch (const pdd::mesh::ReadError& e) {
+      error = e.what();
+    }
+  }
+  if (error) value_error(*error);
+  const auto nv = static_cast<py::ssize_t>(m.vertices.size());
+  const auto nt = static_cast<py::ssize_t>(m.tets.size());
+  py::array_t<double> V({nv, py::ssize_t{3}});
+  py::array_t<std::int64_t> T({nt, py::ssize_t{4}});
+  double* v = V.mutable_data();
+  for (std::size_t i = 0; i < m.vertices.size(); ++i)
+    for (int k = 0; k < 3; ++k) v[i * 3 + k] = m.vertices[i][k];
+  std::int64_t* t = T.mutable_data();
+  for (std::size_t i = 0; i < m.tets.size(); ++i)
+    for (int k = 0; k < 4; ++k) t[i * 4 + k] = static_cast<std::int64_t>(m.tets[i][k]);
+  return py::make_tuple(V, T);
+}
+
+// Vertices: (n, 3) real numbers -> the mesh's vertices (float64, as numpy.asarray would convert).
+std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which) {
+  py::array a = cached->asarray(obj);
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    value_error(std::string(which) + " must be an array of real numbers of shape (n, 3); got dtype " +
+                py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    value_error(std::string(which) + " must have shape (n, 3); got " + shape_str(a));
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 3; ++k) out[i][k] = d.data()[i * 3 + k];
+  return out;
+}
+
+// Tetrahedra: (m, 4) integers -> vertex indices. Indices past the end are left to the library
+// (its message); a negative one has no size_t, so it is reported here in the same words.
+std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* which, char mesh,
+                                                  std::size_t vertices) {
+  py::array a = cached->asarray(obj);
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    value_error(std::string(which) + " must be an array of integers (vertex indices) of shape (m, 4); got dtype " +
+                py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 2 || a.shape(1) != 4)
+    value_error(std::string(which) + " must have shape (m, 4); got " + shape_str(a));
+  std::vector<std::array<std::size_t, 4>> out(static_cast<std::size_t>(a.shape(0)));
+  if (kind == 'u') {
+    const auto d = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+    if (!d) throw py::error_already_set();
+    for (std::size_t i = 0; i < out.size(); ++i)
+      for (int k = 0; k < 4; ++k) out[i][k] = static_cast<std::size_t>(d.data()[i * 4 + k]);
+    return out;
+  }
+  const auto d = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const std::int64_t v = d.data()[i * 4 + k];
+      if (v < 0)
+        value_error("element " + std::to_string(i) + " of mesh " + mesh + " refers to vertex " +
+                    std::to_string(v) + ", but the mesh has " + std::to_string(vertices) + " vertices");
+      out[i][k] = static_cast<std::size_t>(v);
+    }
+  return out;
+}
+
+template <class R>
+py::dict contacts_dict(const pdd::mesh::Contacts<R>& c, unsigned variants, bool exact) {
+  const std::size_t n = c.pairs.size();
+  const auto N = static_cast<py::ssize_t>(n);
+  py::array_t<std::int64_t> a(N), b(N);
+  RecordColumns columns(n, exact, variants, (variants & pdd::mesh::kPdd2) != 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    a.mutable_data()[j] = static_cast<std::int64_t>(c.pairs[j].a);
+    b.mutable_data()[j] = static_cast<std::int64_t>(c.pairs[j].b);
+    columns.put(j, c.pairs[j].result);
+  }
+  py::dict d;
+  d["a"] = a;
+  d["b"] = b;
+  columns.add_to(d);
+  py::list skipped;
+  for (const auto& s : c.skipped)
+    skipped.append(py::make_tuple(py::str(std::string(1, s.mesh)), s.index, py::str(s.reason)));
+  d["skipped"] = skipped;
+  d["elements_a"] = c.elements_a;
+  d["elements_b"] = c.elements_b;
+  d["box_pairs"] = c.box_pairs;
+  d["seconds_boxes"] = c.seconds_boxes;
+  d["seconds_broadphase"] = c.seconds_broadphase;
+  d["seconds_decision"] = c.seconds_decision;
+  d["seconds_depth"] = c.seconds_depth;
+  return d;
+}
+
+py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle TB,
+                       py::handle variants_in, py::handle engine_in, py::handle threads_in) {
+  const std::string engine = text_arg(engine_in, "engine");
+  if (engine != "fast" && engine != "reference")
+    value_error("engine must be 'fast' or 'reference'; got '" + engine + "'");
+  unsigned variants = 0;
+  try {
+    variants = pdd::mesh::parse_variants(text_arg(variants_in, "variants"));
+  } catch (const std::invalid_argument& e) {
+    value_error(std::string("variants: ") + e.what());
+  }
+  const std::optional<int> threads = threads_arg(threads_in);
+  if (VB.is_none() != TB.is_none())
+    value_error("give both VB and TB (contacts of A with B), or neither (self-contact of A)");
+  const bool self = VB.is_none();
+
+  pdd::mesh::Mesh A, B;
+  A.vertices = mesh_vertices(VA, "VA");
+  A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
+  if (!self) {
+    B.vertices = mesh_vertices(VB, "VB");
+    B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
+  }
+
+  pdd::mesh::ContactOptions options;
+  options.variants = variants;
+  std::optional<pdd::mesh::Contacts<double>> fast;
+  std::optional<pdd::mesh::Contacts<pdd::Rational>> exact;
+  std::optional<std::string> bad_input;
+  {
+    py::gil_scoped_release release;
+    with_threads(threads, [&] {
+      try {
+        if (engine == "fast")
+          fast = self ? pdd::mesh::self_contacts(A, options) : pdd::mesh::contacts(A, B, options);
+        else
+          exact = self ? pdd::mesh::self_contacts_exact(A, options)
+                       : pdd::mesh::contacts_exact(A, B, options);
+      } catch (const std::invalid_argument& e) {  // an index past the end of the vertices
+        bad_input = e.what();
+      }
+    });
+  }
+  if (bad_input) value_error(*bad_input);
+  return fast ? contacts_dict(*fast, variants, false) : contacts_dict(*exact, variants, true);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Docstrings: help(pdd), help(pdd.solve) read like the README.
 
 constexpr const char* kModuleDoc = R"doc(Penetration depth between two tetrahedra (pdd), from Python.
@@ -439,6 +683,10 @@ Functions:
   solve(A, B, engine="fast", formulation="reduced", name="")  one pair -> dict
   solve_batch(A, B, threads=None)      (N, 4, 3) numpy arrays, fast engine, all cores
   read_fixtures(path)                  a fixture file (fixtures/*.json) -> list of dicts
+  mesh_contacts(VA, TA, VB=None, TB=None, variants=..., engine="fast", threads=None)
+                                       every intersecting element pair of two tetrahedral
+                                       meshes (numpy arrays; SPEC §10) and its depths
+  read_mesh(path)                      a .msh or .vtk file -> (V, T) numpy arrays
 
 Example:
   >>> import pdd
@@ -552,6 +800,88 @@ a NUL byte, a repeated key, no "pairs" array) raises ValueError with the message
 prints after "pdd solve: ", e.g. "malformed JSON at byte 12: ...".
 )doc";
 
+constexpr const char* kMeshContactsDoc = R"doc(mesh_contacts(VA, TA, VB=None, TB=None, variants='rigid,static,pdd2,accel1', engine='fast', threads=None)
+--
+
+Two tetrahedral meshes (or one, with itself) -> every intersecting element pair and its
+depths, as numpy arrays: `pdd mesh` (SPEC §10) from Python, on the C++ library
+include/pdd/mesh.h, on all cores with the GIL released.
+
+VA, TA   mesh A: VA its vertices, shape (n, 3), real numbers (read as float64); TA its
+         tetrahedra, shape (m, 4), integers: four indices into VA each, any orientation.
+         Element i is TA[i]. pdd.read_mesh(path) gives (V, T) from a .msh or .vtk file;
+         meshio's points and cells_dict["tetra"] are the same arrays.
+VB, TB   mesh B, the same way; both None (the default): self-contact of A, the pairs a < b
+         of A's elements that share no vertex index.
+variants comma-separated, which values to compute: rigid (rigid_pd2), eq11 (eq11_pd2),
+         static (pdd2_static), pdd2, relaxed (pdd2_relaxed), accel1, accel6 (pdd2_accel1/6),
+         or all. Default: "rigid,static,pdd2,accel1", as `pdd mesh`.
+engine   "fast" (doubles, certified to SPEC §8) or "reference" (exact rationals,
+         fractions.Fraction; about 0.1 s a pair on one core: for small meshes).
+threads  None: all cores; k >= 1: at most k threads (a TBB arena for this call only).
+
+Stages (mesh.h): 1. a box per element (an element with a non-finite coordinate or zero
+volume, decided exactly, is skipped and listed); 2. the pairs whose boxes overlap (CGAL's
+box_intersection_d); 3. the exact decision: the interiors intersect iff rigid_pd2 > 0
+(touching is not intersecting); 4. the requested values per intersecting pair.
+
+Returns a dict; its first entries are columns with one row per intersecting pair, sorted
+by (a, b) as `pdd mesh` writes its records:
+  a, b          (k,) int64: element of A, element of B (of A, for self-contact)
+  intersecting  (k,) bool: True (False only on a rejected row)
+  the requested values, among rigid_pd2, eq11_pd2, pdd2_static, pdd2, pdd2_relaxed,
+                pdd2_accel1, pdd2_accel6: fast: (k,) float64; reference: a list of k
+                fractions.Fraction
+  their labels, among rigid_dir, pdd2_static_dir, pdd2_dir, pdd2_relaxed_dir:
+                (k,) numpy str arrays ('<U8'), as solve() gives them
+  q1_A, q1_B    when pdd2 is requested: the deformed positions attaining pdd2; fast
+                (k, 4, 3) float64, reference k nested 4 x 3 lists of Fractions
+  error         list of k entries: None, or why the pair was rejected (fast engine: a
+                value outside the normal double range); that row's values are NaN (None),
+                its labels "" and intersecting False
+then what happened:
+  skipped       list of (mesh, index, reason): mesh "A" or "B", the element's index, and
+                why, e.g. ("A", 12, "element 12 of mesh A is flat: its four vertices are
+                coplanar (volume 0)"); the rest is computed
+  elements_a, elements_b   tetrahedra in A and B (elements_b 0 for self-contact)
+  box_pairs     pairs whose boxes overlap (self-contact: sharing no vertex)
+  seconds_boxes, seconds_broadphase, seconds_decision, seconds_depth   time per stage
+Row j's values are those of solve(VA[TA[a]], VB[TB[b]], engine=engine) for (a, b) = (a[j],
+b[j]): fast ones bit for bit, reference ones exactly.
+
+A flat or non-finite element is skipped and listed, never an exception. Malformed
+arguments raise ValueError: a wrong shape or dtype, a vertex index out of range ("element
+3 of mesh A refers to vertex 99, but the mesh has 20 vertices"), an unknown variant
+("variants: unknown variant 'pd' (rigid, eq11, ...)"), an unknown engine, VB without TB.
+
+Example:
+  >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
+  >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
+  >>> c = pdd.mesh_contacts(VA, TA, VB, TB)
+  >>> len(c["a"]), c["a"][0], c["b"][0], c["pdd2"][0], c["pdd2_dir"][0], c["skipped"]
+  (51, 0, 8, 0.0034615384615384608, 'EE:2:1', [])
+  >>> s = pdd.mesh_contacts(VA, TA)       # self-contact of A
+)doc";
+
+constexpr const char* kReadMeshDoc = R"doc(read_mesh(path)
+--
+
+A tetrahedral mesh file -> (V, T), numpy arrays for mesh_contacts(): V the vertices,
+(n, 3) float64, T the tetrahedra, (m, 4) int64 indices into V.
+
+Read by the library's reader (pdd::mesh::read_mesh, the one `pdd mesh` uses): Gmsh .msh
+versions 2.2 and 4.1 (ASCII and binary) and legacy VTK unstructured grids (.vtk, ASCII or
+BINARY, cell type 10), chosen by content. Tetrahedra are numbered in file order among the
+file's tetrahedral elements; other elements (points, lines, triangles, ...) are ignored.
+Gmsh node tags become indices 0, 1, ... in the file's node order. Coordinates are read as
+written, non-finite ones too (mesh_contacts() then skips the element that uses them).
+
+A file that cannot be read (missing, truncated, malformed, an element referring to a node
+that is not in the file, an unknown element type) raises ValueError with the message
+`pdd mesh` prints, naming the file and the line or byte, e.g. "a.msh:42: element 17
+refers to node 999, which is not in the file".
+)doc";
+
 }  // namespace
 
 PYBIND11_MODULE(pdd, m) {
@@ -572,4 +902,9 @@ PYBIND11_MODULE(pdd, m) {
   m.def("solve_batch", &solve_batch, kSolveBatchDoc, py::arg("A"), py::arg("B"),
         py::arg("threads") = py::none());
   m.def("read_fixtures", &read_fixtures, kReadFixturesDoc, py::arg("path"));
+  m.def("mesh_contacts", &mesh_contacts, kMeshContactsDoc, py::arg("VA"), py::arg("TA"),
+        py::arg("VB") = py::none(), py::arg("TB") = py::none(),
+        py::arg("variants") = "rigid,static,pdd2,accel1", py::arg("engine") = "fast",
+        py::arg("threads") = py::none());
+  m.def("read_mesh", &read_mesh, kReadMeshDoc, py::arg("path"));
 }

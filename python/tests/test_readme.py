@@ -26,16 +26,27 @@ def run_block(code, tmp_path, name):
 
 def test_readme_has_the_section():
     blocks = readme_python_blocks()
-    assert len(blocks) == 2
+    assert len(blocks) == 3  # pairs, dask, meshes
     assert len(blocks[0].strip().splitlines()) <= 12  # "about ten lines"
+    assert len(blocks[2].strip().splitlines()) <= 12
+
+
+def assert_prints_what_it_shows(code, out):
+    """Every `print(...)  # shown` line of the block prints `shown`, in order."""
+    assert out.returncode == 0, out.stderr
+    shown = re.findall(r"^print\(.*\)\s+# (.*)$", code, re.M)  # the output the README promises
+    assert shown
+    assert out.stdout.splitlines()[:len(shown)] == shown
 
 
 def test_readme_first_block(tmp_path):
     code = readme_python_blocks()[0]
-    out = run_block(code, tmp_path, "readme_use.py")
-    assert out.returncode == 0, out.stderr
-    shown = re.search(r"print\(.*\)  # (.*)\n", code).group(1)  # the output the README promises
-    assert out.stdout.splitlines()[0] == shown
+    assert_prints_what_it_shows(code, run_block(code, tmp_path, "readme_use.py"))
+
+
+def test_readme_mesh_block(tmp_path):
+    code = readme_python_blocks()[2]
+    assert_prints_what_it_shows(code, run_block(code, tmp_path, "readme_mesh.py"))
 
 
 def test_readme_dask_block(tmp_path):
