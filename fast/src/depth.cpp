@@ -7,6 +7,8 @@
 #include "deformable_depth.h"
 #include "direction_geometry.h"
 #include "exact_predicates.h"
+#include "global_depth.h"
+#include "power_scale.h"
 #include "pdd/pdd.h"
 #include "rigid_depth.h"
 
@@ -52,6 +54,29 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
     return d;
   }
   return depth_of(pdd2_accel_choice(A, B, k), A, B, false);
+}
+
+NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
+  NormalDepth d;
+  const Depth rigid = depth_of(rigid_pd2_choice(A, B), A, B, false);  // intersecting, exactly
+  d.status = rigid.status;
+  if (rigid.status != DepthStatus::Ok || rigid.pd2 == 0.0) {
+    if (rigid.status == DepthStatus::NotRepresentable) d.pd2 = std::numeric_limits<double>::quiet_NaN();
+    return d;
+  }
+  const detail::ScaledPair sp = detail::power_scaled(A, B);
+  const double none[3] = {0, 0, 0};
+  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, INFINITY) : global_depth(A, B, none, INFINITY);
+  bool in_range = true;
+  const double value = sp.exact ? detail::unscaled(g.value, 2 * -sp.e, in_range) : g.value;
+  if (!g.certified || !in_range || !(value > 0) || !std::isfinite(value)) {
+    d.pd2 = std::numeric_limits<double>::quiet_NaN();
+    d.status = DepthStatus::NotRepresentable;
+    return d;
+  }
+  d.pd2 = value;
+  d.normal = g.normal;
+  return d;
 }
 
 }  // namespace pdd::fast

@@ -256,7 +256,7 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
 
 }  // namespace
 
-GlobalDepth global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
+GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
                          double start_value) {
   (void)start_value;  // re-evaluated below by the same closed form as every other normal
   Problem P;
@@ -292,7 +292,7 @@ GlobalDepth global_depth(const TetVertices& A, const TetVertices& B, const doubl
   }
 
   // The value along the chosen normal, certified (value_bounds.h's QP bound) or exact.
-  GlobalDepth out;
+  GlobalOptimum out;
   out.normal = best.n;
   const V3& v = best.n;
   DirectionSolution sol;

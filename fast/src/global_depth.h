@@ -39,7 +39,7 @@
 
 namespace pdd::fast {
 
-struct GlobalDepth {
+struct GlobalOptimum {
   double value = 0;                 // pdd2_global
   std::array<double, 3> normal{};   // A -> B, unnormalised
   Positions<double> q1_A{}, q1_B{};
@@ -47,7 +47,7 @@ struct GlobalDepth {
   bool exact_value = false;         // the value was recomputed in rationals (slow path)
 };
 
-GlobalDepth global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
+GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
                          double start_value);
 
 }  // namespace pdd::fast

@@ -73,7 +73,7 @@ constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_dept
 // Returns false when the value is not certified (not representable).
 bool fill_global(const TetPair& pair, const Candidate& start, double start_value,
                  PairResult<double>& r, bool* slow) {
-  const GlobalDepth g = global_depth(pair.A, pair.B, start.n, start_value);
+  const GlobalOptimum g = global_depth(pair.A, pair.B, start.n, start_value);
   r.pdd2_global = g.value;
   r.pdd2_global_normal = g.normal;
   r.q1_A_global = g.q1_A;
@@ -176,7 +176,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
   if (x.intersecting) {  // SPEC §9 with no start candidate: the enumeration alone
     const double none[3] = {0, 0, 0};
-    const GlobalDepth g = global_depth(pair.A, pair.B, none, INFINITY);
+    const GlobalOptimum g = global_depth(pair.A, pair.B, none, INFINITY);
     if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
       r.error = kNotRepresentable;
       return r;

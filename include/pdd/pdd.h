@@ -93,6 +93,17 @@ Depth pdd2_relaxed(const TetVertices& A, const TetVertices& B);  // case 2, ineq
 // pdd2_accel6), any other k is DepthStatus::Rejected.
 Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
 
+// SPEC §9: PD_d² over every separating plane (the paper's eq. 5 as defined, not restricted to
+// the candidate directions): the minimum over unit normals of the relaxed QP, with the normal
+// attaining it (A -> B, unnormalised; zero when pd2 == 0). Same contract as solve_pair's
+// pdd2_global (within 1e-9 of the exact minimum, the normal reproducing the value).
+struct NormalDepth {
+  double pd2 = 0.0;
+  std::array<double, 3> normal{};
+  DepthStatus status = DepthStatus::Ok;
+};
+NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B);
+
 }  // namespace pdd::fast
 
 namespace pdd::reference {

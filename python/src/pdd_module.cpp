@@ -198,6 +198,19 @@ py::dict record(const pdd::PairResult<R>& r) {
   d["q1_A"] = positions(r.q1_A);
   d["q1_B"] = positions(r.q1_B);
   d["error"] = py::none();
+  // SPEC §9, in the order `pdd solve` writes them
+  d["pdd2_global"] = number(r.pdd2_global);
+  if (r.pdd2_global_normal) {
+    const auto& n = *r.pdd2_global_normal;
+    py::list normal;
+    for (int c = 0; c < 3; ++c) normal.append(number(n[c]));
+    d["pdd2_global_normal"] = normal;
+  } else {
+    d["pdd2_global_normal"] = py::none();
+  }
+  d["q1_A_global"] = positions(r.q1_A_global);
+  d["q1_B_global"] = positions(r.q1_B_global);
+  if (r.pdd2_global_lower) d["pdd2_global_lower"] = number(*r.pdd2_global_lower);
   return d;
 }
 
@@ -293,9 +306,19 @@ void with_threads(std::optional<int> threads, F&& f) {
 // put by one thread at a time.
 class RecordColumns {
  public:
-  RecordColumns(std::size_t n, bool exact, unsigned values, bool positions)
+  RecordColumns(std::size_t n, bool exact, unsigned values, bool positions, bool global = false)
       : n_(static_cast<py::ssize_t>(n)), exact_(exact), values_(values), positions_(positions),
         intersecting_(n_) {
+    if (global && !exact_) {  // SPEC §9 (solve_batch): value (n,), normal (n, 3), positions (n, 4, 3)
+      global_value_ = py::array_t<double>(n_);
+      global_normal_ = py::array_t<double>({n_, py::ssize_t{3}});
+      global_q1_[0] = py::array_t<double>({n_, py::ssize_t{4}, py::ssize_t{3}});
+      global_q1_[1] = py::array_t<double>({n_, py::ssize_t{4}, py::ssize_t{3}});
+      out_global_ = global_value_->mutable_data();
+      out_global_normal_ = global_normal_->mutable_data();
+      out_global_q1_[0] = global_q1_[0]->mutable_data();
+      out_global_q1_[1] = global_q1_[1]->mutable_data();
+    }
     for (std::size_t k = 0; k < pdd::kValueCount; ++k) {
       if (!has_value(k)) continue;
       if (exact_)
@@ -335,6 +358,15 @@ class RecordColumns {
       if (out_q1_[s])
         for (int i = 0; i < 4; ++i)
           for (int c = 0; c < 3; ++c) out_q1_[s][(j * 4 + i) * 3 + c] = r.error ? nan : (*q[s])[i][c];
+    if (out_global_) {
+      out_global_[j] = r.error ? nan : r.pdd2_global;
+      for (int c = 0; c < 3; ++c)
+        out_global_normal_[j * 3 + c] = (r.error || !r.pdd2_global_normal) ? nan : (*r.pdd2_global_normal)[c];
+      const pdd::Positions<double>* g[2] = {&r.q1_A_global, &r.q1_B_global};
+      for (int s = 0; s < 2; ++s)
+        for (int i = 0; i < 4; ++i)
+          for (int c = 0; c < 3; ++c) out_global_q1_[s][(j * 4 + i) * 3 + c] = r.error ? nan : (*g[s])[i][c];
+    }
   }
 
   void put(std::size_t j, const pdd::PairResult<pdd::Rational>& r) {  // GIL held
@@ -360,6 +392,12 @@ class RecordColumns {
     for (int s = 0; s < 2; ++s) {
       if (q1_[s]) d[q1_keys[s]] = *q1_[s];
       if (exact_q1_[s]) d[q1_keys[s]] = *exact_q1_[s];
+    }
+    if (global_value_) {
+      d["pdd2_global"] = *global_value_;
+      d["pdd2_global_normal"] = *global_normal_;
+      d["q1_A_global"] = *global_q1_[0];
+      d["q1_B_global"] = *global_q1_[1];
     }
     py::list error_list(n_);
     for (py::ssize_t j = 0; j < n_; ++j) error_list[j] = py::none();
@@ -399,6 +437,11 @@ class RecordColumns {
   std::array<std::uint32_t*, pdd::kLabelCount> out_labels_{};
   std::array<double*, 2> out_q1_{};
   std::vector<std::pair<std::size_t, std::string>> errors_;
+  std::optional<py::array_t<double>> global_value_, global_normal_;
+  std::array<std::optional<py::array_t<double>>, 2> global_q1_;
+  double* out_global_ = nullptr;
+  double* out_global_normal_ = nullptr;
+  std::array<double*, 2> out_global_q1_{};
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -427,7 +470,8 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in) {
   const std::size_t n = static_cast<std::size_t>(A.shape(0));
 
   // Outputs, allocated with the GIL held, filled without it.
-  RecordColumns out(n, /*exact=*/false, (1u << pdd::kValueCount) - 1, /*positions=*/true);
+  RecordColumns out(n, /*exact=*/false, (1u << pdd::kValueCount) - 1, /*positions=*/true,
+                    /*global=*/true);
   const double* a = A.data();
   const double* b = B.data();
   std::size_t slow_paths = 0;
@@ -896,7 +940,8 @@ PYBIND11_MODULE(pdd, m) {
   m.attr("KEYS") = py::make_tuple("name", "intersecting", "rigid_pd2", "eq11_pd2", "pdd2_static",
                                   "pdd2", "pdd2_relaxed", "pdd2_accel1", "pdd2_accel6",
                                   "rigid_dir", "pdd2_static_dir", "pdd2_dir", "pdd2_relaxed_dir",
-                                  "q1_A", "q1_B", "error");
+                                  "q1_A", "q1_B", "error", "pdd2_global", "pdd2_global_normal",
+                                  "q1_A_global", "q1_B_global", "pdd2_global_lower");
   m.def("solve", &solve, kSolveDoc, py::arg("A"), py::arg("B"), py::arg("engine") = "fast",
         py::arg("formulation") = "reduced", py::arg("name") = "");
   m.def("solve_batch", &solve_batch, kSolveBatchDoc, py::arg("A"), py::arg("B"),

@@ -10,7 +10,8 @@ import pytest
 import pdd
 from conftest import LABEL_KEYS, VALUE_KEYS, golden_cases
 
-BATCH_KEYS = ("intersecting",) + VALUE_KEYS + LABEL_KEYS + ("q1_A", "q1_B", "error", "slow_paths")
+BATCH_KEYS = ("intersecting",) + VALUE_KEYS + LABEL_KEYS + ("q1_A", "q1_B", "error", "slow_paths",
+             "pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global")
 
 
 def random_pairs(n, seed=3):
@@ -48,6 +49,14 @@ def assert_batch_equals_single(A, B, res):
             assert res[k][j] == (r[k] or ""), (j, k)
         assert (bits(res["q1_A"][j]) == bits(r["q1_A"])).all(), j
         assert (bits(res["q1_B"][j]) == bits(r["q1_B"])).all(), j
+        # SPEC §9 columns
+        assert bits(res["pdd2_global"][j]) == bits(r["pdd2_global"]), j
+        if r["pdd2_global_normal"] is None:
+            assert np.isnan(res["pdd2_global_normal"][j]).all(), j
+        else:
+            assert (bits(res["pdd2_global_normal"][j]) == bits(r["pdd2_global_normal"])).all(), j
+        for k in ("q1_A_global", "q1_B_global"):
+            assert (bits(res[k][j]) == bits(r[k])).all(), (j, k)
 
 
 def test_batch_equals_single_calls_on_random_pairs():

@@ -23,7 +23,9 @@ ENGINES = ("fast", "reference")
 
 
 def test_module_surface():
-    assert pdd.KEYS == ("name", "intersecting") + VALUE_KEYS + LABEL_KEYS + ("q1_A", "q1_B", "error")
+    assert pdd.KEYS == ("name", "intersecting") + VALUE_KEYS + LABEL_KEYS + (
+        "q1_A", "q1_B", "error", "pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global",
+        "pdd2_global_lower")
     assert pdd.KEYS == tuple(golden_records("smoke.json")[0])  # the keys of `pdd solve`'s records
     assert isinstance(pdd.__version__, str)
     for f in (pdd, pdd.solve, pdd.solve_batch, pdd.read_fixtures):
@@ -186,12 +188,14 @@ def test_fixture_pairs_solve_to_the_cli_records(engine, name, pdd_cli):
     for line in out.stdout.splitlines():
         r = json.loads(line)
         if engine == "reference":
-            for k in VALUE_KEYS:
+            for k in VALUE_KEYS + ("pdd2_global", "pdd2_global_lower"):
                 if k in r:
                     r[k] = Fraction(r[k])
-            for k in ("q1_A", "q1_B"):
+            for k in ("q1_A", "q1_B", "q1_A_global", "q1_B_global"):
                 if k in r:
                     r[k] = [[Fraction(c) for c in v] for v in r[k]]
+            if r.get("pdd2_global_normal") is not None:
+                r["pdd2_global_normal"] = [Fraction(c) for c in r["pdd2_global_normal"]]
         want.append(r)
     got = []
     for p in pdd.read_fixtures(path):

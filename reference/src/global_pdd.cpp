@@ -364,6 +364,14 @@ class Search {
   std::map<ActiveSet, CachedPiece> cache_;
 };
 
+// 2^e exactly, for any int e (doubles stop at 2^+-1023).
+Rational power_of_two(int e) {
+  Rational r = 1, b = e >= 0 ? Rational(2) : Rational(1, 2);
+  for (unsigned k = static_cast<unsigned>(e >= 0 ? e : -e); k; k >>= 1, b = b * b)
+    if (k & 1u) r = r * b;
+  return r;
+}
+
 }  // namespace
 
 GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational& start_value,
@@ -379,8 +387,9 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
       for (int k = 0; k < 3; ++k)
         largest = std::max(largest, std::fabs(CGAL::to_double(((t ? pair.B : pair.A)[i][k]) - pair.A[0][k])));
   int e = 0;
-  if (largest > 0 && std::isfinite(largest)) std::frexp(largest, &e);
-  const Rational down = e >= 0 ? Rational(1) / Rational(std::ldexp(1.0, e)) : Rational(std::ldexp(1.0, -e));
+  if (!std::isfinite(largest)) e = 1026;  // differences beyond the double range (|x| ~ 1e308)
+  else if (largest > 0) std::frexp(largest, &e);
+  const Rational down = power_of_two(-e);  // exact, whatever e (2^-1100 .. 2^1100)
   ExactPair P;
   for (int i = 0; i < 4; ++i) {
     P.A[i] = CGAL::ORIGIN + (pair.A[i] - pair.A[0]) * down;

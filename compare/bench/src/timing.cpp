@@ -99,6 +99,7 @@ std::vector<TimedFunction> fast_timed_functions(const std::vector<TetPair>& pair
       {"pdd2_relaxed", [p](std::size_t k) { return fast::pdd2_relaxed((*p)[k].A, (*p)[k].B).pd2; }},
       {"pdd2_accel1", [p](std::size_t k) { return fast::pdd2_accel((*p)[k].A, (*p)[k].B, 1).pd2; }},
       {"pdd2_accel6", [p](std::size_t k) { return fast::pdd2_accel((*p)[k].A, (*p)[k].B, 6).pd2; }},
+      {"pdd2_global", [p](std::size_t k) { return fast::pdd2_global((*p)[k].A, (*p)[k].B).pd2; }},
       {"solve_pair", [p](std::size_t k) { return fast::solve_pair((*p)[k]).pdd2; }},
   };
 }
