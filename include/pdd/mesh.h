@@ -18,7 +18,8 @@
 //                   boxes (interiors that intersect have overlapping half-open boxes, so no pair
 //                   whose interiors intersect is lost; boxes that only touch are not reported),
 //                   after dropping the boxes that miss the other mesh's bounding box; CGAL's
-//                   parallel version (TBB);
+//                   parallel version (TBB) for two meshes, the sequential one for self-contact
+//                   (faster there);
 //   3. decision     the exact decision of SPEC §4 per box pair, on all cores:
 //                   pdd::fast::interiors_intersect (a certified separating-axis filter in
 //                   doubles, then rigid_pd2's exact decision for the pairs it cannot decide:
