@@ -218,6 +218,8 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
                                                        const BroadphaseOptions& options) {
   using Pairs = std::vector<std::array<std::size_t, 2>>;
   tbb::enumerable_thread_specific<Pairs> found;  // the callback runs on several threads
+  Pairs direct;  // sequential runs: no thread-local lookup per pair
+  auto sink = [&]() -> Pairs& { return options.parallel ? found.local() : direct; };
   using CGAL::Box_intersection_d::HALF_OPEN;
   // Below `cutoff` boxes CGAL scans instead of recursing. Element boxes of a mesh share many
   // coordinates exactly (neighbours share vertices), and the segment tree's splits degrade on
@@ -234,7 +236,7 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
     if constexpr (sizeof...(args) == 2)
       CGAL::box_intersection_d<Tag>(ba.begin(), ba.end(), args...,
                                     [&](const Box& x, const Box& y) {
-                                      found.local().push_back({x.info(), y.info()});
+                                      sink().push_back({x.info(), y.info()});
                                     },
                                     cutoff, HALF_OPEN, CGAL::Box_intersection_d::BIPARTITE);
     else
@@ -242,7 +244,7 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
           ba.begin(), ba.end(),
           [&](const Box& x, const Box& y) {
             if (options.drop_shared_vertex && share_vertex(A, x.info(), y.info())) return;
-            found.local().push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
+            sink().push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
           },
           cutoff, HALF_OPEN);
   };
@@ -292,8 +294,8 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
     else
       run(CGAL::Sequential_tag{});
   }
-  Pairs out;
-  std::size_t n = 0;
+  Pairs out = std::move(direct);
+  std::size_t n = out.size();
   for (const Pairs& p : found) n += p.size();
   out.reserve(n);
   for (const Pairs& p : found) out.insert(out.end(), p.begin(), p.end());
