@@ -320,6 +320,17 @@ Json mesh_report_json(const MeshBenchReport& r) {
   d["interiors_intersect_ns"] = number(r.decision.decision_ns);
   d["rigid_pd2_ns"] = number(r.decision.rigid_ns);
   j["decision_one_core"] = d;
+  Json dp = Json::array();
+  for (const auto& c : r.depth) {
+    Json q;
+    q["name"] = c.name;
+    q["median_call_ns"] = number(c.median_ns);
+    q["mean_call_ns"] = number(c.mean_ns);
+    q["calls_over_50us"] = c.slow_calls;
+    q["share_of_time_over_50us"] = number(c.slow_share);
+    dp.push_back(q);
+  }
+  j["depth_calls_one_core"] = {{"pairs", r.depth_sample}, {"calls", dp}};
   j["broadphase_all_boxes"] = broadphase_json(r.broadphase_all);
   j["broadphase_pruned_boxes"] = broadphase_json(r.broadphase_pruned);
   j["pruned_boxes_a"] = r.pruned_a;
@@ -363,6 +374,13 @@ void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
     << "  interiors_intersect (filter + exact rest)   " << rpad(fmt("%.1f ns", d.decision_ns), 12) << "\n"
     << "  rigid_pd2 > 0 (the decision before)         " << rpad(fmt("%.1f ns", d.rigid_ns), 12)
     << "  ratio " << fmt("%.1fx", d.rigid_ns / d.decision_ns) << "\n\n";
+  s << "Depth stage, one call at a time, one core, on the " << r.depth_sample
+    << " intersecting pairs of that sample\n";
+  for (const auto& c : r.depth)
+    s << "  " << pad(c.name, 14) << "median " << rpad(fmt("%.0f ns", c.median_ns), 10) << "  mean "
+      << rpad(fmt("%.0f ns", c.mean_ns), 10) << "  " << c.slow_calls << " calls over 50 us (exact path): "
+      << fmt("%.0f", 100 * c.slow_share) << "% of the time\n";
+  s << "\n";
   auto table = [&](const char* title, const std::vector<BroadphaseRow>& rows) {
     s << title << "\n  " << pad("broadphase", 44) << rpad("pairs", 10) << rpad("setup s", 10)
       << rpad("query s", 10) << rpad("total s", 10) << rpad("ratio", 9) << "\n";

@@ -408,6 +408,39 @@ MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
     });
   }
 
+  // The depth stage's calls one at a time on the intersecting pairs of the sample.
+  std::vector<std::array<TetVertices, 2>> hits;
+  for (const auto& p : sample)
+    if (fast::interiors_intersect(p[0], p[1])) hits.push_back(p);
+  rep.depth_sample = hits.size();
+  using DepthFn = std::function<double(const TetVertices&, const TetVertices&)>;
+  const std::vector<std::pair<unsigned, std::pair<const char*, DepthFn>>> calls = {
+      {mesh::kRigid, {"rigid_pd2", [](const TetVertices& a, const TetVertices& b) { return fast::rigid_pd2(a, b).pd2; }}},
+      {mesh::kStatic, {"pdd2_static", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_static(a, b).pd2; }}},
+      {mesh::kPdd2, {"pdd2", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2(a, b).pd2; }}},
+      {mesh::kRelaxed, {"pdd2_relaxed", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_relaxed(a, b).pd2; }}},
+      {mesh::kAccel1, {"pdd2_accel1", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_accel(a, b, 1).pd2; }}},
+      {mesh::kAccel6, {"pdd2_accel6", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_accel(a, b, 6).pd2; }}},
+  };
+  for (const auto& [bit, call] : calls) {
+    if (!(o.variants & bit) || hits.empty()) continue;
+    volatile double sink = 0;
+    const std::vector<double> ns = time_each_call(hits.size(), [&](std::size_t k) {
+      sink = sink + call.second(hits[k][0], hits[k][1]);
+    });
+    DepthCost d;
+    d.name = call.first;
+    d.median_ns = median(ns);
+    double total = 0, slow = 0;
+    for (double x : ns) {
+      total += x;
+      if (x > 50e3) slow += x, ++d.slow_calls;
+    }
+    d.mean_ns = total / double(ns.size());
+    d.slow_share = total > 0 ? slow / total : 0;
+    rep.depth.push_back(d);
+  }
+
   // Broadphase against FCL, one core, on all boxes and on the pruned boxes.
   std::cerr << "pdd bench mesh: broadphase against FCL (all boxes)\n";
   rep.broadphase_all = broadphase_rows(A, all_elements(A), B, all_elements(B), o.repeats);

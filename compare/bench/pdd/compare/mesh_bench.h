@@ -10,7 +10,8 @@
 //         stage's wall time (read; then contacts()'s boxes, broadphase, decision, depth), on one
 //         core (a tbb::task_arena of 1 thread) and on all cores (an arena of TBB's default
 //         concurrency), runs interleaved; the decision stage's filter alone against the
-//         rigid_pd2 decision it replaced (one core, per box pair); every broadphase (CGAL's
+//         rigid_pd2 decision it replaced (one core, per box pair); the depth calls one at a
+//         time on the sample's intersecting pairs (median, mean, exact-path share); every broadphase (CGAL's
 //         box_intersection_d as contacts() runs it, and FCL's managers) on the same boxes.
 #pragma once
 
@@ -72,6 +73,16 @@ struct DecisionCosts {     // one core, on a sample of the box pairs
   double rigid_ns = 0;      // fast::rigid_pd2 (the decision before the filter)
 };
 
+// The depth stage's calls one at a time, one core, on the intersecting pairs of the decision
+// sample: per requested variant (eq11 excepted) the median and the mean single-call time, and
+// the share of the time spent in calls over 50 µs (the fast engine's exact path, SPEC §8).
+struct DepthCost {
+  std::string name;
+  double median_ns = 0, mean_ns = 0;
+  std::size_t slow_calls = 0;   // calls over 50 µs
+  double slow_share = 0;        // their share of the total time
+};
+
 struct MeshBenchReport {
   MeshBenchOptions options;
   MachineInfo machine;
@@ -80,6 +91,8 @@ struct MeshBenchReport {
   double generate_seconds = 0;       // generated balls only
   MeshRun one_core, all_cores;
   DecisionCosts decision;
+  std::size_t depth_sample = 0;  // intersecting pairs of the decision sample
+  std::vector<DepthCost> depth;
   // Broadphase on all the element boxes (no pruning) and on the boxes contacts() keeps after
   // pruning by the other mesh's bounding box; ours first (one core), then FCL's managers.
   std::vector<BroadphaseRow> broadphase_all, broadphase_pruned;
