@@ -3,9 +3,10 @@
 # 4.8.4 in Debian 12), from the geometry scripts in scripts/meshes/*.geo. Reproducible: one
 # thread (-nt 1), fixed parameters; the same Gmsh version writes the same files.
 #   bash scripts/make-meshes.sh            the small shipped meshes (fixtures/meshes/)
-#   bash scripts/make-meshes.sh --large D  two unit balls of about 7·10^4 tetrahedra each whose
+#   bash scripts/make-meshes.sh --large D  two unit balls of about 10^5 tetrahedra each whose
 #                                          centres are 1.9 apart (a shallow lens of overlap), in
-#                                          D/ (for tests/mesh/mesh_bench; not shipped)
+#                                          D/ (for `pdd bench mesh --a D/large-a.msh --b
+#                                          D/large-b.msh`; not shipped)
 # Several formats on purpose: the readers (mesh/) are tested on files Gmsh itself wrote, in
 # MSH 2.2 and 4.1, ASCII and binary, and legacy VTK, ASCII and binary.
 set -euo pipefail
@@ -16,8 +17,8 @@ gm() { gmsh -v 1 -nt 1 -3 "$@"; }
 if [ "${1:-}" = "--large" ]; then
   D=${2:?usage: make-meshes.sh --large DIR}
   mkdir -p "$D"
-  gm $G/sphere.geo -setnumber h 0.065 -format msh41 -bin -o "$D/large-a.msh"
-  gm $G/sphere.geo -setnumber cx 1.9 -setnumber cy 0.1 -setnumber h 0.065 -format msh41 -bin \
+  gm $G/sphere.geo -setnumber h 0.058 -format msh41 -bin -o "$D/large-a.msh"
+  gm $G/sphere.geo -setnumber cx 1.9 -setnumber cy 0.1 -setnumber h 0.058 -format msh41 -bin \
      -o "$D/large-b.msh"
   exit 0
 fi

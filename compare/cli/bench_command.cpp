@@ -1,6 +1,8 @@
 // bench_command.cpp — `pdd bench`: the speed table (bench.h; the protocol: timing.h).
 //
 // pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]
+// pdd bench mesh [--a A --b B | --size N [--distance D] [--write-meshes DIR]]
+//                [--variants LIST] [--repeats R] [--json [FILE]]     (mesh_bench.h)
 // Table on standard output. --json FILE also writes the same numbers as one JSON object to
 // FILE; --json alone writes the JSON to standard output and the table to standard error.
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <string>
 
 #include "pdd/compare/bench.h"
+#include "pdd/compare/mesh_bench.h"
 #include "cli_checks.h"
 #include "commands.h"
 #include "exit_codes.h"
@@ -247,6 +250,191 @@ int run(const BenchArgs& a) {
   return kExitOk;
 }
 
+// ---- pdd bench mesh ----------------------------------------------------------------
+
+struct MeshBenchArgs {
+  MeshBenchOptions options;
+  std::string variants = "rigid,accel1";
+  std::string json_path;
+  bool json = false;
+};
+
+Json stage_json(const MeshRun& r) {
+  Json j;
+  j["threads"] = r.threads;
+  j["read_s"] = number(r.median.read);
+  j["boxes_s"] = number(r.median.boxes);
+  j["broadphase_s"] = number(r.median.broadphase);
+  j["decision_s"] = number(r.median.decision);
+  j["depth_s"] = number(r.median.depth);
+  j["after_read_s"] = number(r.median.after_read);
+  j["box_pairs"] = r.box_pairs;
+  j["intersecting_pairs"] = r.intersecting;
+  j["intersecting_pairs_per_s"] = number(r.pairs_per_second);
+  j["box_pairs_decided_per_s"] = number(r.box_pairs_per_second);
+  return j;
+}
+
+Json broadphase_json(const std::vector<BroadphaseRow>& rows) {
+  Json a = Json::array();
+  for (const auto& r : rows) {
+    Json j;
+    j["name"] = r.name;
+    j["pairs"] = r.pairs;
+    j["setup_s"] = number(r.setup);
+    j["query_s"] = number(r.query);
+    j["total_s"] = number(r.total);
+    j["ratio_to_ours"] = number(r.ratio);
+    a.push_back(j);
+  }
+  return a;
+}
+
+Json mesh_report_json(const MeshBenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench mesh";
+  j["a"] = r.source_a;
+  j["b"] = r.source_b;
+  j["elements_a"] = r.elements_a;
+  j["elements_b"] = r.elements_b;
+  j["variants"] = mesh::variant_names(r.options.variants);
+  j["repeats"] = r.options.repeats;
+  j["generate_s"] = number(r.generate_seconds);
+  Json m;
+  m["cpu_model"] = r.machine.cpu_model;
+  m["logical_cpus"] = r.machine.logical_cpus;
+  m["compiler"] = r.machine.compiler;
+  m["assertions"] = r.machine.assertions;
+  m["loadavg_before"] = r.machine.load_before;
+  m["loadavg_after"] = r.machine.load_after;
+  m["fcl_version"] = r.machine.fcl_version;
+  j["machine"] = m;
+  j["one_core"] = stage_json(r.one_core);
+  j["all_cores"] = stage_json(r.all_cores);
+  Json d;
+  d["sample"] = r.decision.sample;
+  d["filter_disjoint"] = r.decision.disjoint;
+  d["filter_intersecting"] = r.decision.intersecting;
+  d["filter_unknown"] = r.decision.unknown;
+  d["overlap_filter_ns"] = number(r.decision.filter_ns);
+  d["interiors_intersect_ns"] = number(r.decision.decision_ns);
+  d["rigid_pd2_ns"] = number(r.decision.rigid_ns);
+  j["decision_one_core"] = d;
+  Json dp = Json::array();
+  for (const auto& c : r.depth) {
+    Json q;
+    q["name"] = c.name;
+    q["median_call_ns"] = number(c.median_ns);
+    q["mean_call_ns"] = number(c.mean_ns);
+    q["calls_over_50us"] = c.slow_calls;
+    q["share_of_time_over_50us"] = number(c.slow_share);
+    dp.push_back(q);
+  }
+  j["depth_calls_one_core"] = {{"pairs", r.depth_sample}, {"calls", dp}};
+  j["broadphase_all_boxes"] = broadphase_json(r.broadphase_all);
+  j["broadphase_pruned_boxes"] = broadphase_json(r.broadphase_pruned);
+  j["pruned_boxes_a"] = r.pruned_a;
+  j["pruned_boxes_b"] = r.pruned_b;
+  j["notes"] = r.notes;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
+  const auto& m = r.machine;
+  s << "pdd bench mesh: " << r.elements_a << " x " << r.elements_b << " tetrahedra, variants "
+    << mesh::variant_names(r.options.variants) << "; medians of " << r.options.repeats
+    << " runs (after a warm-up run)\n"
+    << "A:         " << r.source_a << "\nB:         " << r.source_b << "\n"
+    << "machine:   " << m.cpu_model << ", " << m.logical_cpus << " logical CPUs; " << m.compiler
+    << (m.assertions ? ", assertions ON" : ", NDEBUG") << "\n"
+    << "load avg:  before " << m.load_before << "; after " << m.load_after << "\n"
+    << "peer:      FCL " << m.fcl_version << "\n";
+  for (const auto& n : r.notes) s << "note:      " << n << "\n";
+  if (r.generate_seconds > 0) s << "generated in " << fmt("%.3f", r.generate_seconds) << " s\n";
+  s << "\nStages of pdd::mesh::contacts (seconds, median)\n  " << pad("", 12) << rpad("read", 9)
+    << rpad("boxes", 9) << rpad("broad", 9) << rpad("decision", 10) << rpad("depth", 9)
+    << rpad("after read", 12) << rpad("pairs/s", 12) << rpad("box pairs/s", 13) << "\n";
+  for (const MeshRun* run : {&r.one_core, &r.all_cores}) {
+    const auto& t = run->median;
+    s << "  " << pad(std::to_string(run->threads) + (run->threads == 1 ? " thread" : " threads"), 12)
+      << rpad(fmt("%.4f", t.read), 9) << rpad(fmt("%.4f", t.boxes), 9)
+      << rpad(fmt("%.4f", t.broadphase), 9) << rpad(fmt("%.4f", t.decision), 10)
+      << rpad(fmt("%.4f", t.depth), 9) << rpad(fmt("%.4f", t.after_read), 12)
+      << rpad(fmt("%.0f", run->pairs_per_second), 12) << rpad(fmt("%.3g", run->box_pairs_per_second), 13)
+      << "\n";
+  }
+  s << "  box pairs " << r.all_cores.box_pairs << ", intersecting pairs " << r.all_cores.intersecting
+    << " (pairs/s: intersecting pairs / after read; box pairs/s: box pairs / decision)\n\n";
+  const auto& d = r.decision;
+  s << "Decision per box pair, one core, " << d.sample << " box pairs (every k-th)\n"
+    << "  overlap_filter (certified SAT in doubles)   " << rpad(fmt("%.1f ns", d.filter_ns), 12)
+    << "  verdicts: " << d.disjoint << " disjoint, " << d.intersecting << " intersecting, "
+    << d.unknown << " unknown\n"
+    << "  interiors_intersect (filter + exact rest)   " << rpad(fmt("%.1f ns", d.decision_ns), 12) << "\n"
+    << "  rigid_pd2 > 0 (the decision before)         " << rpad(fmt("%.1f ns", d.rigid_ns), 12)
+    << "  ratio " << fmt("%.1fx", d.rigid_ns / d.decision_ns) << "\n\n";
+  s << "Depth stage, one call at a time, one core, on the " << r.depth_sample
+    << " intersecting pairs of that sample\n";
+  for (const auto& c : r.depth)
+    s << "  " << pad(c.name, 14) << "median " << rpad(fmt("%.0f ns", c.median_ns), 10) << "  mean "
+      << rpad(fmt("%.0f ns", c.mean_ns), 10) << "  " << c.slow_calls << " calls over 50 us (exact path): "
+      << fmt("%.0f", 100 * c.slow_share) << "% of the time\n";
+  s << "\n";
+  auto table = [&](const char* title, const std::vector<BroadphaseRow>& rows) {
+    s << title << "\n  " << pad("broadphase", 44) << rpad("pairs", 10) << rpad("setup s", 10)
+      << rpad("query s", 10) << rpad("total s", 10) << rpad("ratio", 9) << "\n";
+    for (const auto& b : rows)
+      s << "  " << pad(b.name, 44) << rpad(std::to_string(b.pairs), 10)
+        << rpad(fmt("%.4f", b.setup), 10) << rpad(fmt("%.4f", b.query), 10)
+        << rpad(fmt("%.4f", b.total), 10) << rpad(fmt("%.1fx", b.ratio), 9) << "\n";
+  };
+  table("Broadphase on all element boxes, one core (median; ratio = time / ours)", r.broadphase_all);
+  table(("Broadphase on the boxes left after pruning by the other mesh's bounding box (" +
+         std::to_string(r.pruned_a) + " + " + std::to_string(r.pruned_b) + "), one core")
+            .c_str(),
+        r.broadphase_pruned);
+  s << "  (ours: CGAL box_intersection_d, half-open boxes, boxes built inside the time; FCL: closed\n"
+       "   boxes, objects built outside the time, setup = registerObjects + setup)\n";
+  double best = 0;
+  for (std::size_t k = 1; k < r.broadphase_all.size(); ++k)
+    if (best == 0 || r.broadphase_all[k].ratio < best) best = r.broadphase_all[k].ratio;
+  s << "\nTargets (issue 11)\n"
+    << "  " << pad("everything after reading, all cores", 52) << pad("<= 0.100 s", 14)
+    << rpad(fmt("%.4f s", r.all_cores.median.after_read), 10) << "  "
+    << (r.all_cores.median.after_read <= 0.1 ? "pass" : "MISS") << "\n"
+    << "  " << pad("broadphase vs best FCL manager, all boxes, one core", 52) << pad(">= 2x", 14)
+    << rpad(fmt("%.1fx", best), 10) << "  " << (best >= 2 ? "pass" : "MISS") << "\n"
+    << "(total " << fmt("%.1f", r.seconds) << " s)\n";
+}
+
+int run_mesh(const MeshBenchArgs& a) {
+  MeshBenchReport rep;
+  try {
+    MeshBenchOptions o = a.options;
+    o.variants = mesh::parse_variants(a.variants);
+    rep = run_mesh_bench(o);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "pdd bench mesh: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {  // mesh::ReadError, file system errors
+    std::cerr << "pdd bench mesh: " << e.what() << "\n";
+    return kExitFileError;
+  }
+  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
+  print_mesh_table(rep, json_stdout ? std::cerr : std::cout);
+  if (a.json) {
+    const std::string text = mesh_report_json(rep).dump(2) + "\n";
+    if (json_stdout) {
+      std::cout << text;
+    } else if (auto why = write_file(a.json_path, text)) {
+      std::cerr << "pdd bench mesh: " << *why << "\n";
+      return kExitFileError;
+    }
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, int& exit_code) {
@@ -272,7 +460,38 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                   "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
                   "output, table on standard error)")
       ->expected(0, 1);
-  cmd->callback([a, cmd, &exit_code] {
+  auto ma = std::make_shared<MeshBenchArgs>();
+  CLI::App* mesh_cmd = cmd->add_subcommand(
+      "mesh",
+      "Time pdd mesh per stage (read, boxes, broadphase, decision, depth) on two overlapping "
+      "meshes, one core and all cores, and the broadphase against FCL's managers on the same "
+      "boxes; medians of repeated runs.");
+  mesh_cmd->add_option("--a", ma->options.a, "Mesh A (.msh or .vtk); with --b")->check(CLI::ExistingFile);
+  mesh_cmd->add_option("--b", ma->options.b, "Mesh B (.msh or .vtk); with --a")->check(CLI::ExistingFile);
+  mesh_cmd->add_option("--size", ma->options.size,
+                       "Without --a/--b: tetrahedra per generated ball (two balls of radius 1)")
+      ->check(integer_in(6, 20000000))
+      ->capture_default_str();
+  mesh_cmd->add_option("--distance", ma->options.distance,
+                       "Without --a/--b: distance of the balls' centres (overlap: 2 - distance)")
+      ->check(CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  mesh_cmd->add_option("--write-meshes", ma->options.write_meshes,
+                       "Without --a/--b: keep the generated balls in DIR (ball-a.vtk, ball-b.vtk)");
+  mesh_cmd->add_option("--variants", ma->variants, "Variants of the depth stage")->capture_default_str();
+  mesh_cmd->add_option("--repeats", ma->options.repeats, "Timed runs (median reported)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  mesh_cmd->add_option("--json", ma->json_path,
+                       "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                       "output, table on standard error)")
+      ->expected(0, 1);
+  mesh_cmd->callback([ma, mesh_cmd, &exit_code] {
+    ma->json = mesh_cmd->count("--json") > 0;
+    exit_code = run_mesh(*ma);
+  });
+  cmd->callback([a, cmd, mesh_cmd, &exit_code] {
+    if (mesh_cmd->parsed()) return;  // `pdd bench mesh`
     a->json = cmd->count("--json") > 0;
     exit_code = run(*a);
   });

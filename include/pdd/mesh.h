@@ -16,10 +16,14 @@
 //                   non-finite coordinate or zero volume — exact test — is skipped and listed);
 //   2. broadphase   every pair (a, b) whose boxes overlap: CGAL's box_intersection_d, half-open
 //                   boxes (interiors that intersect have overlapping half-open boxes, so no pair
-//                   whose interiors intersect is lost; boxes that only touch are not reported);
-//   3. decision     the exact decision of SPEC §4 per box pair: the interiors intersect iff
-//                   pdd::fast::rigid_pd2 > 0 (exact, SPEC §8: 0 exactly when the exact value is 0),
-//                   touching is not intersecting;
+//                   whose interiors intersect is lost; boxes that only touch are not reported),
+//                   after dropping the boxes that miss the other mesh's bounding box; CGAL's
+//                   parallel version (TBB) for two meshes, the sequential one for self-contact
+//                   (faster there);
+//   3. decision     the exact decision of SPEC §4 per box pair, on all cores:
+//                   pdd::fast::interiors_intersect (a certified separating-axis filter in
+//                   doubles, then rigid_pd2's exact decision for the pairs it cannot decide:
+//                   touching or nearly touching, parallel edges); touching is not intersecting;
 //   4. depth        the requested variants per intersecting pair, on all cores (TBB), through the
 //                   public engine calls of <pdd/pdd.h> only.
 // Results are sorted by (a, b), independent of the number of threads.
@@ -127,9 +131,19 @@ TetVertices element(const Mesh& m, std::size_t i);  // the vertices of tetrahedr
 // Why element i cannot be computed (non-finite coordinate, flat: exact), or nullopt.
 std::optional<std::string> element_problem(const Mesh& m, std::size_t i, char which);
 // Stage 2 alone over the given elements (indices into A and B; B == nullptr: self, a < b,
-// vertex-sharing pairs kept): the box pairs, sorted by (a, b).
+// vertex-sharing pairs kept unless options.drop_shared_vertex): the box pairs, sorted by (a, b).
+//   prune     (two meshes) first drop the boxes that miss the other mesh's bounding box;
+//   parallel  CGAL's parallel box_intersection_d (Parallel_tag, on TBB's threads);
+//   drop_shared_vertex  (self) leave out the pairs whose elements share a vertex index.
+// The pair set does not depend on `prune` and `parallel`.
+struct BroadphaseOptions {
+  bool prune = true;
+  bool parallel = true;
+  bool drop_shared_vertex = false;
+};
 std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
-                                                  const Mesh* B, const std::vector<std::size_t>& eb);
+                                                  const Mesh* B, const std::vector<std::size_t>& eb,
+                                                  const BroadphaseOptions& options = {});
 
 // Writes A (and B unless null: self-contact) as one legacy VTK unstructured grid (ASCII) for
 // ParaView: points of A then of B, cells of A then of B, with cell data `mesh` (0 A, 1 B),

@@ -104,6 +104,18 @@ struct NormalDepth {
 };
 NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B);
 
+// The exact intersection decision of SPEC §4 alone: do the interiors of A and B intersect
+// (touching is not intersecting)? For the many pairs of a mesh broadphase, most of them
+// disjoint. overlap_filter is a certified separating-axis test in doubles over the 44 axes (the
+// 8 face normals, the 36 edge-pair cross products) with a static forward error bound: Disjoint
+// or Intersecting only when certain, Unknown otherwise (touching, nearly touching, parallel
+// edges, a near-flat or non-finite element); about 100-150 ns, no allocation.
+// interiors_intersect: the filter, then rigid_pd2's exact decision for the Unknown ones; equal
+// to rigid_pd2(A, B).pd2 > 0 (NaN counted as intersecting); false for a rejected pair.
+enum class Overlap { Disjoint, Intersecting, Unknown };
+Overlap overlap_filter(const TetVertices& A, const TetVertices& B);
+bool interiors_intersect(const TetVertices& A, const TetVertices& B);
+
 }  // namespace pdd::fast
 
 namespace pdd::reference {

@@ -117,6 +117,20 @@ run(2 "--nef: -1 is out of range" theorem --input ${FIXTURES}/smoke.json --nef -
 run(2 "--count: 0 is out of range" bench --count 0)
 run(2 "--repeats: 0 is out of range" bench --repeats 0)
 run(2 "--seed: '-1' is not a seed" bench --seed -1)
+run(2 "--repeats: 0 is out of range" bench mesh --repeats 0)
+run(2 "--size: 0 is out of range" bench mesh --size 0)
+run(2 "give both --a and --b" bench mesh --a ${FIXTURES}/meshes/tiny-a.msh)
+run(2 "truncated.msh:.*truncated" bench mesh --a ${FIXTURES}/meshes/bad/truncated.msh --b ${FIXTURES}/meshes/tiny-b.msh)
+# ... and end to end on small meshes (no timing asserted): files given, and generated balls.
+run(0 "" bench mesh --a ${FIXTURES}/meshes/tiny-a.msh --b ${FIXTURES}/meshes/tiny-b.msh --repeats 1)
+if(NOT out MATCHES "Stages of pdd::mesh::contacts" OR NOT out MATCHES "FCL DynamicAABBTreeCollisionManager")
+  message(FATAL_ERROR "pdd bench mesh: table incomplete\n${out}")
+endif()
+run(0 "" bench mesh --size 600 --repeats 1 --json ${WORK}/bench-mesh.json)
+file(READ ${WORK}/bench-mesh.json bench_mesh_json)
+if(NOT bench_mesh_json MATCHES "\"intersecting_pairs\": [1-9]")
+  message(FATAL_ERROR "pdd bench mesh --size 600: no intersecting pairs in the JSON\n${bench_mesh_json}")
+endif()
 
 # ---- 4. pdd paper's arguments --------------------------------------------------------------
 run(2 "--count: 0 is out of range" paper --count 0 --out ${WORK}/p)

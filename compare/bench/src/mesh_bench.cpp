@@ -1,0 +1,459 @@
+// mesh_bench.cpp — `pdd bench mesh` (mesh_bench.h). Moved here from tests/mesh/mesh_bench.cpp
+// (the hand-run benchmark of the first mesh session): the FCL broadphase runs and the stage
+// timings, now with medians, one core and all cores, and the decision costs.
+//
+// FCL's managers test closed boxes (boxes that only touch overlap), CGAL's box_intersection_d
+// is run with half-open boxes as in contacts(): FCL's pair counts may exceed ours by boxes that
+// only touch. Managers: DynamicAABBTree and DynamicAABBTree_Array (FCL's recommended ones) and
+// IntervalTree; SaP and SSaP are left out: SaPCollisionManager did not finish within 500 s on
+// two balls of 7·10^4 elements, SSaP (sorted sweep on one axis, then a scan) is quadratic in the
+// number of boxes overlapping on that axis; Naive is quadratic by design.
+#include "pdd/compare/mesh_bench.h"
+
+#include <fcl/config.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree_array.h>
+#include <fcl/broadphase/broadphase_interval_tree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+
+#include "pdd/compare/stats.h"
+
+namespace pdd::compare {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::uint64_t splitmix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+double unit(std::uint64_t x) { return double(splitmix(x) >> 11) * 0x1p-53; }  // [0, 1)
+
+// ---- FCL ------------------------------------------------------------------------------
+
+struct FclSet {
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  std::vector<fcl::CollisionObjectd*> raw;
+};
+
+FclSet fcl_boxes(const mesh::Mesh& m, const std::vector<std::size_t>& elements) {
+  FclSet s;
+  for (std::size_t i : elements) {
+    const TetVertices t = mesh::element(m, i);
+    fcl::Vector3d lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(std::min(t[0][k], t[1][k]), std::min(t[2][k], t[3][k]));
+      hi[k] = std::max(std::max(t[0][k], t[1][k]), std::max(t[2][k], t[3][k]));
+    }
+    auto box = std::make_shared<fcl::Boxd>(hi - lo);
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.translation() = (lo + hi) / 2;
+    auto o = std::make_unique<fcl::CollisionObjectd>(box, tf);
+    o->computeAABB();
+    s.raw.push_back(o.get());
+    s.objects.push_back(std::move(o));
+  }
+  return s;
+}
+
+bool count_pair(fcl::CollisionObjectd*, fcl::CollisionObjectd*, void* data) {
+  ++*static_cast<std::size_t*>(data);
+  return false;  // keep going: every pair
+}
+
+struct Sample {
+  std::size_t pairs = 0;
+  double setup = 0, query = 0;
+};
+
+template <class Manager>
+Sample fcl_once(FclSet& a, FclSet& b) {
+  Sample s;
+  auto t = Clock::now();
+  Manager ma, mb;
+  ma.registerObjects(a.raw);
+  mb.registerObjects(b.raw);
+  ma.setup();
+  mb.setup();
+  s.setup = since(t);
+  t = Clock::now();
+  ma.collide(&mb, &s.pairs, count_pair);
+  s.query = since(t);
+  return s;
+}
+
+// Every broadphase on the boxes of elements ea of A and eb of B, `repeats` interleaved
+// rounds, one core; row 0 is ours.
+std::vector<BroadphaseRow> broadphase_rows(const mesh::Mesh& A, const std::vector<std::size_t>& ea,
+                                           const mesh::Mesh& B, const std::vector<std::size_t>& eb,
+                                           int repeats) {
+  FclSet fa = fcl_boxes(A, ea), fb = fcl_boxes(B, eb);
+  tbb::task_arena one(1);
+  using Run = std::function<Sample()>;
+  const std::vector<std::pair<std::string, Run>> runs = {
+      {"CGAL box_intersection_d (ours)",
+       [&] {
+         Sample s;
+         const auto t = Clock::now();
+         one.execute([&] { s.pairs = mesh::box_pairs(A, ea, &B, eb, {false, false}).size(); });
+         s.query = since(t);
+         return s;
+       }},
+      {"FCL DynamicAABBTreeCollisionManager", [&] { return fcl_once<fcl::DynamicAABBTreeCollisionManagerd>(fa, fb); }},
+      {"FCL DynamicAABBTreeCollisionManager_Array",
+       [&] { return fcl_once<fcl::DynamicAABBTreeCollisionManager_Arrayd>(fa, fb); }},
+      {"FCL IntervalTreeCollisionManager", [&] { return fcl_once<fcl::IntervalTreeCollisionManagerd>(fa, fb); }},
+  };
+  std::vector<std::vector<Sample>> samples(runs.size());
+  for (int r = 0; r < repeats; ++r)
+    for (std::size_t k = 0; k < runs.size(); ++k) samples[k].push_back(runs[k].second());
+  std::vector<BroadphaseRow> rows;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    BroadphaseRow row;
+    row.name = runs[k].first;
+    row.pairs = samples[k].front().pairs;
+    std::vector<double> setup, query, total;
+    for (const Sample& s : samples[k]) {
+      setup.push_back(s.setup);
+      query.push_back(s.query);
+      total.push_back(s.setup + s.query);
+    }
+    row.setup = median(setup);
+    row.query = median(query);
+    row.total = median(total);
+    rows.push_back(row);
+  }
+  for (auto& row : rows) row.ratio = row.total / rows[0].total;
+  return rows;
+}
+
+// ---- contacts() per stage ---------------------------------------------------------------
+
+struct RunSample {
+  StageTimes t;
+  std::size_t box_pairs = 0, intersecting = 0;
+};
+
+RunSample run_once(tbb::task_arena& arena, const mesh::Mesh& A, const mesh::Mesh& B, unsigned variants) {
+  RunSample s;
+  arena.execute([&] {
+    const auto t = Clock::now();
+    const mesh::Contacts<double> c = mesh::contacts(A, B, {variants, {}});
+    s.t.after_read = since(t);
+    s.t.boxes = c.seconds_boxes;
+    s.t.broadphase = c.seconds_broadphase;
+    s.t.decision = c.seconds_decision;
+    s.t.depth = c.seconds_depth;
+    s.box_pairs = c.box_pairs;
+    s.intersecting = c.pairs.size();
+  });
+  return s;
+}
+
+MeshRun summarise(int threads, const std::vector<RunSample>& runs, const std::vector<double>& read) {
+  MeshRun m;
+  m.threads = threads;
+  auto med = [&](double StageTimes::*f) {
+    std::vector<double> v;
+    for (const RunSample& r : runs) v.push_back(r.t.*f);
+    return median(v);
+  };
+  m.median.read = median(read);
+  m.median.boxes = med(&StageTimes::boxes);
+  m.median.broadphase = med(&StageTimes::broadphase);
+  m.median.decision = med(&StageTimes::decision);
+  m.median.depth = med(&StageTimes::depth);
+  m.median.after_read = med(&StageTimes::after_read);
+  m.box_pairs = runs.front().box_pairs;
+  m.intersecting = runs.front().intersecting;
+  m.pairs_per_second = double(m.intersecting) / m.median.after_read;
+  m.box_pairs_per_second = double(m.box_pairs) / m.median.decision;
+  return m;
+}
+
+// Median ns per pair of `f` over the sample, `repeats` passes (one warm-up), one thread.
+double ns_per_pair(const std::vector<std::array<TetVertices, 2>>& sample, int repeats,
+                   const std::function<int(const TetVertices&, const TetVertices&)>& f) {
+  volatile int sink = 0;
+  std::vector<double> passes;
+  for (int r = 0; r <= repeats; ++r) {
+    const auto t = Clock::now();
+    int acc = 0;
+    for (const auto& p : sample) acc += f(p[0], p[1]);
+    const double s = since(t);
+    sink = sink + acc;
+    if (r > 0) passes.push_back(s * 1e9 / double(sample.size()));
+  }
+  return median(passes);
+}
+
+std::vector<std::size_t> all_elements(const mesh::Mesh& m) {
+  std::vector<std::size_t> e(m.tets.size());
+  std::iota(e.begin(), e.end(), std::size_t{0});
+  return e;
+}
+
+// The elements of A and B whose boxes contacts()'s pruning keeps (the same rounds as
+// mesh/src/contacts.cpp: boxes that overlap the other mesh's bounding box, half-open, repeated
+// while it removes boxes, at most 4 rounds).
+void pruned(const mesh::Mesh& A, const mesh::Mesh& B, std::vector<std::size_t>& ea, std::vector<std::size_t>& eb) {
+  struct Bx {
+    std::size_t i;
+    double lo[3], hi[3];
+  };
+  auto boxes = [](const mesh::Mesh& m) {
+    std::vector<Bx> v;
+    for (std::size_t i = 0; i < m.tets.size(); ++i) {
+      const TetVertices t = mesh::element(m, i);
+      Bx b{i, {}, {}};
+      for (int k = 0; k < 3; ++k) {
+        b.lo[k] = std::min(std::min(t[0][k], t[1][k]), std::min(t[2][k], t[3][k]));
+        b.hi[k] = std::max(std::max(t[0][k], t[1][k]), std::max(t[2][k], t[3][k]));
+      }
+      v.push_back(b);
+    }
+    return v;
+  };
+  auto bounds = [](const std::vector<Bx>& v) {
+    std::array<double, 6> u = {HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (const Bx& x : v)
+      for (int k = 0; k < 3; ++k) u[k] = std::min(u[k], x.lo[k]), u[3 + k] = std::max(u[3 + k], x.hi[k]);
+    return u;
+  };
+  auto keep = [](std::vector<Bx>& v, const std::array<double, 6>& u) {
+    v.erase(std::remove_if(v.begin(), v.end(),
+                           [&](const Bx& x) {
+                             for (int k = 0; k < 3; ++k)
+                               if (!(x.lo[k] < u[3 + k] && u[k] < x.hi[k])) return true;
+                             return false;
+                           }),
+            v.end());
+  };
+  std::vector<Bx> ba = boxes(A), bb = boxes(B);
+  for (int round = 0; round < 4; ++round) {
+    const std::size_t before = ba.size() + bb.size();
+    const auto ua = bounds(ba), ub = bounds(bb);
+    keep(ba, ub);
+    keep(bb, ua);
+    if (ba.size() + bb.size() == before) break;
+  }
+  ea.clear();
+  eb.clear();
+  for (const Bx& x : ba) ea.push_back(x.i);
+  for (const Bx& x : bb) eb.push_back(x.i);
+}
+
+}  // namespace
+
+mesh::Mesh make_bench_ball(std::size_t target, const std::array<double, 3>& centre, double radius,
+                           const std::array<double, 3>& axis, double angle, std::uint64_t seed) {
+  // 6 (4π/3) (R/h)³ tetrahedra: h = R (8π / target)^(1/3).
+  const double h = radius * std::cbrt(8 * M_PI / double(std::max<std::size_t>(target, 1)));
+  const int m = int(std::ceil(radius / h)) + 1;  // grid points −m..m per axis
+  const int side = 2 * m + 1;
+  auto gid = [&](int i, int j, int k) { return (std::size_t(i + m) * side + std::size_t(j + m)) * side + std::size_t(k + m); };
+  std::vector<long long> index(std::size_t(side) * side * side, -1);
+  mesh::Mesh out;
+  // Rotation (Rodrigues) about the unit axis.
+  const double an = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  const double x = axis[0] / an, y = axis[1] / an, z = axis[2] / an, c = std::cos(angle),
+               s = std::sin(angle), C = 1 - c;
+  const double R[3][3] = {{c + x * x * C, x * y * C - z * s, x * z * C + y * s},
+                          {y * x * C + z * s, c + y * y * C, y * z * C - x * s},
+                          {z * x * C - y * s, z * y * C + x * s, c + z * z * C}};
+  auto vertex = [&](int i, int j, int k) -> std::size_t {
+    long long& v = index[gid(i, j, k)];
+    if (v < 0) {
+      const std::uint64_t key = splitmix(seed) ^ gid(i, j, k);
+      const double p[3] = {(i + 0.2 * (unit(3 * key) - 0.5)) * h, (j + 0.2 * (unit(3 * key + 1) - 0.5)) * h,
+                           (k + 0.2 * (unit(3 * key + 2) - 0.5)) * h};
+      Vec3d q;
+      for (int r = 0; r < 3; ++r) q[r] = centre[r] + R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+      v = (long long)out.vertices.size();
+      out.vertices.push_back(q);
+    }
+    return std::size_t(v);
+  };
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int i = -m; i < m; ++i)
+    for (int j = -m; j < m; ++j)
+      for (int k = -m; k < m; ++k) {
+        const double cx = (i + 0.5) * h, cy = (j + 0.5) * h, cz = (k + 0.5) * h;
+        if (cx * cx + cy * cy + cz * cz > radius * radius) continue;
+        for (const auto& p : kPerm) {  // Kuhn: the path (0,0,0) -> +e_p0 -> +e_p1 -> +e_p2
+          int d[3] = {0, 0, 0};
+          std::array<std::size_t, 4> t;
+          t[0] = vertex(i, j, k);
+          for (int q = 0; q < 3; ++q) {
+            d[p[q]] = 1;
+            t[q + 1] = vertex(i + d[0], j + d[1], k + d[2]);
+          }
+          out.tets.push_back(t);
+        }
+      }
+  return out;
+}
+
+MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
+  if (o.a.empty() != o.b.empty()) throw std::invalid_argument("give both --a and --b, or neither");
+  if (o.repeats < 1) throw std::invalid_argument("--repeats must be at least 1");
+  const auto t_all = Clock::now();
+  MeshBenchReport rep;
+  rep.options = o;
+  rep.machine = machine_info();
+  rep.machine.fcl_version = FCL_VERSION;
+  std::string pa = o.a, pb = o.b;
+  std::filesystem::path tmp;
+  if (pa.empty()) {
+    std::cerr << "pdd bench mesh: generating two balls of about " << o.size << " tetrahedra\n";
+    const auto t = Clock::now();
+    const mesh::Mesh A = make_bench_ball(o.size, {0, 0, 0}, 1, {1, 2, 3}, 0.3, 1);
+    const double d = o.distance;
+    const mesh::Mesh B = make_bench_ball(o.size, {d * 0.99, d * 0.1, d * 0.07}, 1, {-2, 1, 1}, 0.7, 2);
+    rep.generate_seconds = since(t);
+    std::filesystem::path dir;
+    if (!o.write_meshes.empty()) {
+      dir = o.write_meshes;
+      std::filesystem::create_directories(dir);
+    } else {
+      tmp = dir = std::filesystem::temp_directory_path() /
+                  ("pdd-bench-mesh-" + std::to_string(::getpid()));
+      std::filesystem::create_directories(dir);
+    }
+    pa = (dir / "ball-a.vtk").string();
+    pb = (dir / "ball-b.vtk").string();
+    mesh::write_vtk(pa, A, nullptr, mesh::Contacts<double>{}, 0);
+    mesh::write_vtk(pb, B, nullptr, mesh::Contacts<double>{}, 0);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "generated ball (Kuhn grid, jittered), centre (0, 0, 0), radius 1");
+    rep.source_a = buf;
+    std::snprintf(buf, sizeof buf,
+                  "generated ball, centre %.4g x (0.99, 0.1, 0.07), radius 1, rotated", d);
+    rep.source_b = buf;
+    rep.notes.push_back("meshes written as legacy VTK (ASCII) to " + dir.string() +
+                        (tmp.empty() ? "" : " and removed afterwards") + "; read back for the read stage");
+  } else {
+    rep.source_a = pa;
+    rep.source_b = pb;
+  }
+
+  // Reading, then contacts() on one core and on all cores, interleaved, after one warm-up run.
+  std::cerr << "pdd bench mesh: reading\n";
+  std::vector<double> read;
+  mesh::Mesh A, B;
+  for (int r = 0; r < o.repeats; ++r) {
+    const auto t = Clock::now();
+    A = mesh::read_mesh(pa);
+    B = mesh::read_mesh(pb);
+    read.push_back(since(t));
+  }
+  if (!tmp.empty()) std::filesystem::remove_all(tmp);
+  rep.elements_a = A.tets.size();
+  rep.elements_b = B.tets.size();
+  tbb::task_arena one(1), all(tbb::info::default_concurrency());
+  std::cerr << "pdd bench mesh: " << A.tets.size() << " x " << B.tets.size()
+            << " tetrahedra; contacts() warm-up\n";
+  run_once(all, A, B, o.variants);
+  std::vector<RunSample> r1, ra;
+  for (int r = 0; r < o.repeats; ++r) {
+    std::cerr << "pdd bench mesh: run " << r + 1 << " of " << o.repeats << "\n";
+    r1.push_back(run_once(one, A, B, o.variants));
+    ra.push_back(run_once(all, A, B, o.variants));
+  }
+  rep.one_core = summarise(1, r1, read);
+  rep.all_cores = summarise(tbb::info::default_concurrency(), ra, read);
+
+  // The decision stage's costs on a sample of the box pairs (every k-th), one core.
+  std::cerr << "pdd bench mesh: decision costs\n";
+  const auto cand = mesh::box_pairs(A, all_elements(A), &B, all_elements(B));
+  std::vector<std::array<TetVertices, 2>> sample;
+  const std::size_t step = std::max<std::size_t>(1, cand.size() / 5000);
+  for (std::size_t k = 0; k < cand.size(); k += step)
+    sample.push_back({mesh::element(A, cand[k][0]), mesh::element(B, cand[k][1])});
+  DecisionCosts& dc = rep.decision;
+  dc.sample = sample.size();
+  for (const auto& p : sample) switch (fast::overlap_filter(p[0], p[1])) {
+      case fast::Overlap::Disjoint: ++dc.disjoint; break;
+      case fast::Overlap::Intersecting: ++dc.intersecting; break;
+      case fast::Overlap::Unknown: ++dc.unknown; break;
+    }
+  if (!sample.empty()) {
+    dc.filter_ns = ns_per_pair(sample, o.repeats, [](const TetVertices& a, const TetVertices& b) {
+      return int(fast::overlap_filter(a, b));
+    });
+    dc.decision_ns = ns_per_pair(sample, o.repeats, [](const TetVertices& a, const TetVertices& b) {
+      return int(fast::interiors_intersect(a, b));
+    });
+    dc.rigid_ns = ns_per_pair(sample, std::min(o.repeats, 3), [](const TetVertices& a, const TetVertices& b) {
+      return int(fast::rigid_pd2(a, b).pd2 > 0);
+    });
+  }
+
+  // The depth stage's calls one at a time on the intersecting pairs of the sample.
+  std::vector<std::array<TetVertices, 2>> hits;
+  for (const auto& p : sample)
+    if (fast::interiors_intersect(p[0], p[1])) hits.push_back(p);
+  rep.depth_sample = hits.size();
+  using DepthFn = std::function<double(const TetVertices&, const TetVertices&)>;
+  const std::vector<std::pair<unsigned, std::pair<const char*, DepthFn>>> calls = {
+      {mesh::kRigid, {"rigid_pd2", [](const TetVertices& a, const TetVertices& b) { return fast::rigid_pd2(a, b).pd2; }}},
+      {mesh::kStatic, {"pdd2_static", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_static(a, b).pd2; }}},
+      {mesh::kPdd2, {"pdd2", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2(a, b).pd2; }}},
+      {mesh::kRelaxed, {"pdd2_relaxed", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_relaxed(a, b).pd2; }}},
+      {mesh::kAccel1, {"pdd2_accel1", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_accel(a, b, 1).pd2; }}},
+      {mesh::kAccel6, {"pdd2_accel6", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_accel(a, b, 6).pd2; }}},
+  };
+  for (const auto& [bit, call] : calls) {
+    if (!(o.variants & bit) || hits.empty()) continue;
+    volatile double sink = 0;
+    const std::vector<double> ns = time_each_call(hits.size(), [&](std::size_t k) {
+      sink = sink + call.second(hits[k][0], hits[k][1]);
+    });
+    DepthCost d;
+    d.name = call.first;
+    d.median_ns = median(ns);
+    double total = 0, slow = 0;
+    for (double x : ns) {
+      total += x;
+      if (x > 50e3) slow += x, ++d.slow_calls;
+    }
+    d.mean_ns = total / double(ns.size());
+    d.slow_share = total > 0 ? slow / total : 0;
+    rep.depth.push_back(d);
+  }
+
+  // Broadphase against FCL, one core, on all boxes and on the pruned boxes.
+  std::cerr << "pdd bench mesh: broadphase against FCL (all boxes)\n";
+  rep.broadphase_all = broadphase_rows(A, all_elements(A), B, all_elements(B), o.repeats);
+  std::vector<std::size_t> pa_el, pb_el;
+  pruned(A, B, pa_el, pb_el);
+  rep.pruned_a = pa_el.size();
+  rep.pruned_b = pb_el.size();
+  std::cerr << "pdd bench mesh: broadphase against FCL (pruned boxes)\n";
+  rep.broadphase_pruned = broadphase_rows(A, pa_el, B, pb_el, o.repeats);
+  rep.ours_all_cores_pruned = rep.all_cores.median.broadphase;
+  rep.seconds = since(t_all);
+  rep.machine.load_after = read_first_line("/proc/loadavg");
+  return rep;
+}
+
+}  // namespace pdd::compare
