@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
+#include <vector>
 
 #include "direction_qp.h"
 #include "direction_qp_impl.h"
@@ -64,11 +65,31 @@ detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v,
 
 // The best normal so far. Candidates are compared by the double closed form, or (slow path,
 // where doubles cannot resolve the pair's depths) by the exact one.
+// The certified relative error of relaxed_at's value along v (value_bounds.h's QP bound):
+// heights rel = x - A0 rounded (u |rel|) then a dot product (3 u sum |v_k rel_k|), so
+// e_h <= 5 u |v|_1 scale; the closed form's T within dT = 2^12 u Hm; |Phi~ - Phi| <= 2 e_h +
+// sqrt(2) dT + 4 u Phi~ with Phi = sqrt(cost / 20); the value Phi^2 / v.v (v.v to 3u) has
+// relative error <= 2 r + 8u, r = |Phi~ - Phi| / Phi~. +inf when Phi~ = 0.
+double value_error(const Problem& P, const V3& v, double cost, double hm) {
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double phi = std::sqrt(cost / 20.0);
+  if (!(phi > 0)) return INFINITY;
+  const double r = (2 * 5 * kU * vn1 * P.scale + std::sqrt(2.0) * 0x1p12 * kU * hm) / phi + 4 * kU;
+  return 2 * r + 8 * kU;
+}
+
+// The normals offered so far and the best. Compared by the double closed form with its error
+// bound, or (slow path, where doubles cannot resolve the pair's depths) by the exact one.
 struct Best {
   double value;
   V3 n;
   const TetVertices* A = nullptr;  // set: compare exactly
   const TetVertices* B = nullptr;
+  struct Offer {
+    double value, error;
+    V3 n;
+  };
+  std::vector<Offer> offers;  // double path: every normal evaluated
   void offer(const Problem& P, const V3& v) {
     if (!(norm(v) > 0)) return;
     double x;
@@ -77,7 +98,10 @@ struct Best {
       Solution<detail::Q> s;
       x = relaxed_exact(*A, *B, v, hA, hB, s).get_d();
     } else {
-      x = relaxed_at(P, v);
+      DirectionSolution s;
+      double hm = 0;
+      x = relaxed_at(P, v, &s, &hm);
+      offers.push_back({x, value_error(P, v, s.cost, hm), v});
     }
     if (x < value) value = x, n = v;
   }
@@ -136,9 +160,13 @@ void consider_piece(const Eigen::Matrix3d& H, const Conditions& cond, const Prob
   const double tr = H.trace();
   const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm;
   if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return;
-  // The iterative solver (Householder + QR): eigenvectors accurate to u |H| / gap and exact
-  // where H is (structure such as a zero row survives), unlike the closed form.
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+  // Double path: the closed-form solver (fast; eigenvectors off by ~u |H| / gap, so the value
+  // along one exceeds the stationary value by ~|H| (u |H| / gap)^2, below 1e-13 of any depth
+  // this path takes, >= 1e-16 scale^2). Exact path: the iterative solver (Householder + QR),
+  // whose vectors keep structure such as a zero row, then inverse iteration (refine).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  if (exact) eig.compute(H);
+  else eig.computeDirect(H);
   if (eig.info() != Eigen::Success) return;
   const Eigen::Vector3d mu = eig.eigenvalues();
   // Generic minimisers are interior to their piece, hence the smallest eigenvalue's vector
@@ -275,7 +303,12 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // When the positions' rounding (u scale per coordinate, squared into H) could move H's
   // stationary points by more than the contract allows at this depth, H and the conditions are
   // built in rationals and rounded once (the slow path); the enumeration is the same.
-  const bool exact_pieces = 64 * kU * P.scale * P.scale > 1e-10 * best.value;
+  // H's entries carry absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off
+  // by an angle ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about
+  // gap * angle^2 ~ 1e-28 scale^4 / gap (gap ~ scale^2): negligible (1e-11 relative) unless the
+  // depth is below ~1e-17 scale^2. Below 1e-16 scale^2 (a vertex far from the others, a contact
+  // of 2^-60), the pieces are built exactly and their eigenvectors polished.
+  const bool exact_pieces = !(best.value >= 1e-16 * P.scale * P.scale);
   if (exact_pieces) {
     using detail::Q;
     best.A = &A, best.B = &B;
@@ -291,21 +324,33 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     enumerate_pieces(dA, dB, P, best, [](double x) { return x; });
   }
 
-  // The value along the chosen normal, certified (value_bounds.h's QP bound) or exact.
+  // The value along the chosen normal, certified (value_error) or exact. When the winner's
+  // bound is too wide, every offer whose interval meets the winner's is evaluated exactly and
+  // the exact minimum wins (the double comparison could not tell them apart).
   GlobalOptimum out;
+  if (!exact_pieces) {
+    double win_err = INFINITY;
+    for (const auto& o : best.offers)
+      if (o.n == best.n) win_err = std::min(win_err, o.error);
+    if (!(win_err <= kGlobalRel)) {
+      detail::Q bestq;
+      bool have = false;
+      for (const auto& o : best.offers) {
+        const double band = std::isfinite(win_err) && std::isfinite(o.error) ? 2 * (win_err + o.error) : INFINITY;
+        if (!(o.value <= best.value * (1 + band))) continue;
+        detail::Q hA[4], hB[4];
+        Solution<detail::Q> sq;
+        const detail::Q x = relaxed_exact(A, B, o.n, hA, hB, sq);
+        if (!have || x < bestq) bestq = x, best.n = o.n, have = true;
+      }
+    }
+  }
   out.normal = best.n;
   const V3& v = best.n;
   DirectionSolution sol;
   double hm = 0;
   out.value = relaxed_at(P, v, &sol, &hm);
-  // Heights: rel = x - A0 rounded (u |rel|), dot product (3 u sum |v_k rel_k|):
-  // e_h <= 5 u |v|_1 scale. QP closed form: T within dT = 2^12 u Hm (value_bounds.h), so
-  // |Phi~ - Phi| <= 2 e_h + sqrt(2) dT + 4 u Phi~ with Phi = sqrt(cost / 20); the value is
-  // Phi^2 / v.v (v.v to 3u): relative error <= 2 r + 8u, r = |Phi~ - Phi| / Phi~.
-  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
-  const double e_h = 5 * kU * vn1 * P.scale;
-  const double phi = std::sqrt(sol.cost / 20.0);
-  const double r = (2 * e_h + std::sqrt(2.0) * 0x1p12 * kU * hm) / phi + 4 * kU;
+  const double err = value_error(P, v, sol.cost, hm);
   const double vv = dot(v, v);
   auto place = [&](const auto& s, const auto& heights_A, const auto& heights_B, auto to_d) {
     for (int i = 0; i < 4; ++i) {
@@ -317,7 +362,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       }
     }
   };
-  if (!exact_pieces && phi > 0 && std::isfinite(r) && 2 * r + 8 * kU <= kGlobalRel) {
+  if (!exact_pieces && err <= kGlobalRel) {
     double hA[4], hB[4];
     for (int i = 0; i < 4; ++i) hA[i] = dot(v, P.relA[i]), hB[i] = dot(v, P.relB[i]);
     place(sol, hA, hB, [](double x) { return x; });
