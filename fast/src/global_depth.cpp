@@ -324,20 +324,27 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     enumerate_pieces(dA, dB, P, best, [](double x) { return x; });
   }
 
-  // The value along the chosen normal, certified (value_error) or exact. When the winner's
-  // bound is too wide, every offer whose interval meets the winner's is evaluated exactly and
-  // the exact minimum wins (the double comparison could not tell them apart).
+  // Which offer wins. Each double value carries value_error's loose bound; offers whose
+  // intervals meet the winner's are contenders. When every contender's bounds together stay
+  // below kCompare, the double winner is within kCompare of the true best offer; otherwise the
+  // contenders are compared exactly (where doubles cannot separate them).
   GlobalOptimum out;
+  constexpr double kCompare = 4e-10;
   if (!exact_pieces) {
     double win_err = INFINITY;
     for (const auto& o : best.offers)
       if (o.n == best.n) win_err = std::min(win_err, o.error);
-    if (!(win_err <= kGlobalRel)) {
+    bool separated = true;
+    for (const auto& o : best.offers)
+      if (o.n != best.n && o.value <= best.value * (1 + 2 * (win_err + o.error)) &&
+          !(win_err + o.error <= kCompare))
+        separated = false;
+    if (!separated) {
       detail::Q bestq;
       bool have = false;
       for (const auto& o : best.offers) {
-        const double band = std::isfinite(win_err) && std::isfinite(o.error) ? 2 * (win_err + o.error) : INFINITY;
-        if (!(o.value <= best.value * (1 + band))) continue;
+        const double band = 2 * (win_err + o.error);
+        if (!(o.value <= best.value * (1 + band))) continue;  // inf band: every offer
         detail::Q hA[4], hB[4];
         Solution<detail::Q> sq;
         const detail::Q x = relaxed_exact(A, B, o.n, hA, hB, sq);
@@ -347,10 +354,6 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   }
   out.normal = best.n;
   const V3& v = best.n;
-  DirectionSolution sol;
-  double hm = 0;
-  out.value = relaxed_at(P, v, &sol, &hm);
-  const double err = value_error(P, v, sol.cost, hm);
   const double vv = dot(v, v);
   auto place = [&](const auto& s, const auto& heights_A, const auto& heights_B, auto to_d) {
     for (int i = 0; i < 4; ++i) {
@@ -362,12 +365,42 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       }
     }
   };
-  if (!exact_pieces && err <= kGlobalRel) {
+  if (!exact_pieces) {
+    // The reported value: heights relative to o, A's highest vertex along v (near the plane),
+    // so that value_bounds.h's tight case applies: when every vertex's KKT margin at the
+    // computed solution exceeds 2 dT, dT = 2^9 u Ha with Ha = max(|C|, |heights of the vertices
+    // at the plane|) ~ |v| depth, instead of 2^12 u max|H| ~ |v| size. Heights: x - o rounded
+    // (u |x - o| <= 2u scale per coordinate) then a dot product: e_h <= 10 u |v|_1 scale.
+    int top = 0;
+    for (int i = 1; i < 4; ++i)
+      if (dot(v, P.relA[i]) > dot(v, P.relA[top])) top = i;
     double hA[4], hB[4];
-    for (int i = 0; i < 4; ++i) hA[i] = dot(v, P.relA[i]), hB[i] = dot(v, P.relB[i]);
-    place(sol, hA, hB, [](double x) { return x; });
-    out.certified = true;
-    return out;
+    for (int i = 0; i < 4; ++i) {
+      V3 a, b;
+      for (int k = 0; k < 3; ++k) a[k] = A[i][k] - A[top][k], b[k] = B[i][k] - A[top][k];
+      hA[i] = dot(v, a), hB[i] = dot(v, b);
+    }
+    const DirectionSolution sol = solve_relaxed(hA, hB);
+    double Ha = std::fabs(sol.c);
+    bool margins = true;
+    double margin[8];
+    for (int i = 0; i < 4; ++i) {
+      margin[i] = sol.c - hA[i] + sol.sumA;      // < 0: at the plane (active)
+      margin[4 + i] = sol.c - hB[i] + sol.sumB;  // > 0: at the plane (active)
+      if (margin[i] < 0) Ha = std::max(Ha, std::fabs(hA[i]));
+      if (margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(hB[i]));
+    }
+    const double dT = 0x1p9 * kU * Ha;
+    for (double m : margin) margins = margins && std::fabs(m) > 2 * dT;
+    const double phi = std::sqrt(sol.cost / 20.0);
+    const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+    const double r = phi > 0 ? (2 * 10 * kU * vn1 * P.scale + std::sqrt(2.0) * dT) / phi + 4 * kU : INFINITY;
+    if (margins && 2 * r + 8 * kU <= kGlobalRel) {
+      out.value = sol.cost / (20.0 * vv);
+      place(sol, hA, hB, [](double x) { return x; });
+      out.certified = true;
+      return out;
+    }
   }
   // Slow path: the same closed form in rationals along the same (exact) normal.
   using detail::Q;

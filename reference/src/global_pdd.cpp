@@ -4,9 +4,6 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <queue>
@@ -397,7 +394,6 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
   }
   const Rational value_scale = down * down;  // relaxed(P') = value_scale * relaxed(P)
 
-  const auto t0 = std::chrono::steady_clock::now();
   CGAL::Protect_FPU_rounding<true> outward;  // Interval_nt<false> needs rounding towards +inf
   Search search(P);
   search.best_value = start_value * value_scale;
@@ -429,9 +425,6 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
     open.pop();
     const double am = (p.a0 + p.a1) / 2, bm = (p.b0 + p.b1) / 2;
     if (!(p.a0 < am && am < p.a1 && p.b0 < bm && bm < p.b1)) {  // 2^-52 wide: cannot split
-      if (std::getenv("PDD_GLOBAL_DEBUG"))
-        std::fprintf(stderr, "unsplittable face %d [%.17g %.17g]x[%.17g %.17g] lower %.17g best %.17g\n", p.face, p.a0,
-                     p.a1, p.b0, p.b1, p.lower, CGAL::to_double(search.best_value));
       open.push(p);
       break;
     }
@@ -452,9 +445,6 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
   out.lower = (open.empty() ? search.best_value
                             : std::min(Rational(open.top().lower), search.best_value)) / value_scale;
   out.normal = search.best_normal;
-  if (std::getenv("PDD_GLOBAL_DEBUG"))
-    std::fprintf(stderr, "global: %zu patches, %zu open, gap met %d, %.3f s\n", out.patches, open.size(),
-                 int(gap_met), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   if (!search.best_set) {
     out.value = start_value, out.q1_A = start_q1_A, out.q1_B = start_q1_B;
     return out;
