@@ -90,6 +90,7 @@ Json report_json(const BenchReport& r) {
   b["median_seconds"] = number(r.batch.median_seconds);
   b["pairs_per_second"] = number(r.batch.pairs_per_second);
   b["slow_paths"] = r.batch.slow_paths;
+  b["refined"] = r.batch.refined;
   j["batch"] = b;
   j["peers"] = Json::array();
   for (const auto& p : r.peers) {
@@ -168,7 +169,10 @@ void print_table(const BenchReport& r, std::ostream& s) {
     << "x\n"
     << "  SPEC §8 slow path (exact rationals where an error bound is wider than 1e-9): "
     << b.slow_paths << " of " << b.pairs << " pairs ("
-    << fmt("%.3g", b.pairs ? 100.0 * double(b.slow_paths) / double(b.pairs) : 0.0) << "%)\n\n";
+    << fmt("%.3g", b.pairs ? 100.0 * double(b.slow_paths) / double(b.pairs) : 0.0) << "%)\n"
+    << "  SPEC §8 refined (the few contending candidates evaluated exactly, no whole exact path): "
+    << b.refined << " of " << b.pairs << " pairs ("
+    << fmt("%.3g", b.pairs ? 100.0 * double(b.refined) / double(b.pairs) : 0.0) << "%)\n\n";
 
   s << "Rigid PD by the peers, same pairs, same process, passes interleaved with ours\n";
   s << "  " << pad("peer", 40) << rpad("ns/pair", 10) << rpad("min", 9) << rpad("max", 9)
