@@ -153,7 +153,9 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
                    : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   double lo_min = kInf;
+  const double far = 2 * ch.value;  // certify.h: skipped candidates far above, small bound
   for (int i = 0; i < set.count; ++i) {
+    if (!done[i] && coeff * delta2(set, i) > far && detail::rigid_rel_small(set, i)) continue;
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
   }
@@ -251,8 +253,10 @@ Choice accel_of(const List& set, int k) {
     hi_chosen = hi > hi_chosen ? hi : hi_chosen;
   }
   bool separated = hi_chosen < kInf;
-  for (int i = 0; i < set.count; ++i)
-    if (!chosen[i] && !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
+  // (certify.h: delta² > 2 hi_chosen with a small bound has lower bound > 1.96 hi_chosen)
+  for (int i = 0; i < set.count && separated; ++i)
+    if (!chosen[i] && !(delta2(set, i) > 2 * hi_chosen && detail::rigid_rel_small(set, i)) &&
+        !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
       separated = false;
   double v[kMaxCandidates], rel[kMaxCandidates];
   for (int r = 0; r < m; ++r) {

@@ -26,7 +26,9 @@ Choice rigid_of(const List& s) {
   ch.value = s.delta_sq[ch.index];
   ch.code = label_code(s, ch.index);
   double lo_min = std::numeric_limits<double>::infinity();
+  const double far = 2 * ch.value;  // certify.h: candidates above it with a small bound skipped
   for (int i = 0; i < s.count; ++i) {
+    if (s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) continue;
     double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
     if (!(lo >= 0.0)) lo = 0.0;
     lo_min = lo < lo_min ? lo : lo_min;
