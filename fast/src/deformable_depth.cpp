@@ -333,6 +333,14 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 }
 
 namespace {
+// The sweeps' hint: the rigid direction's index (first tied minimum of delta²). Only the index
+// is needed — the sweeps' results do not depend on the hint (header: it only seeds the
+// pruning) — so rigid_pd2's certification and refinement are not run for it.
+template <class List>
+int rigid_hint(const List& s) {
+  return s.count > 0 ? first_tied_minimum(s.delta_sq, s.count, s.tie_kappa) : -1;
+}
+
 // The quick list when it decides, else the full candidate set (both on the stack), on the
 // rescaled pair; the exact path when the choice is not certified (hot_path.h).
 template <class F, class Pick>
@@ -356,7 +364,7 @@ Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
 
 Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
-      A, B, [](const auto& s) { return pdd2_static(s, rigid_pd2(s).index); },
+      A, B, [](const auto& s) { return pdd2_static(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_static_dir;
         return r.pdd2_static;
@@ -364,7 +372,7 @@ Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
 }
 Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
-      A, B, [](const auto& s) { return pdd2(s, rigid_pd2(s).index); },
+      A, B, [](const auto& s) { return pdd2(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_dir;
         return r.pdd2;
@@ -372,7 +380,7 @@ Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
 }
 Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
-      A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); },
+      A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_relaxed_dir;
         return r.pdd2_relaxed;
