@@ -217,7 +217,7 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   if (!unscale(r, -sp.e, missing)) return bad;
   if (exact_q1 && !(missing & kDeformable) && !exact_positions_of(pair, *r.pdd2_dir, r))
     missing |= kPositions;
-  if (refined_out) *refined_out = refined || exact_q1;
+  if (refined_out) *refined_out = (refined || exact_q1) && !missing;  // exclusive of slow_path
   if (missing) {
     if (slow_path) *slow_path = true;
     if (!substitute_exact(pair, missing, r)) return bad;
