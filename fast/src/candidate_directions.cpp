@@ -160,6 +160,8 @@ struct Builder {
 BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, CandidateSet& out) {
   out.count = 0;
   out.intersecting = false;
+  out.A = &A;
+  out.B = &B;
   if (!all_finite(A)) return BuildStatus::NonFiniteA;
   if (!all_finite(B)) return BuildStatus::NonFiniteB;
   const FilterBounds fb = filter_bounds(A, B);

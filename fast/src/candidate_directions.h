@@ -79,6 +79,10 @@ struct CandidateSet {
   bool intersecting = false;  // valid only when build_candidates returned Ok
   double tie_kappa = 0.0;     // the pair's tie band (tie_tolerance.h)
   FilterBounds fb;            // the pair's error bounds (filter_bounds.h, value_bounds.h)
+  // The pair the set was built from (refine.h evaluates a few candidates exactly); valid as
+  // long as the caller's pair lives (every user keeps both in one scope).
+  const TetVertices* A = nullptr;
+  const TetVertices* B = nullptr;
   LabelCode code[kMaxCandidates];  // label, see label(set, k)
   double depth[kMaxCandidates];
   double nn[kMaxCandidates];

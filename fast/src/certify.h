@@ -20,6 +20,19 @@ double rigid_rel(const List& s, int k) {
   return rigid_root_rel(s.depth[k], s.nn[k], degree_bounds(s.fb, is_parallel(s, k)));
 }
 
+// Cheap test, products only: |D| >= 400 e_h and n.n >= (400 e_n)². Then rigid_rel(s, k) is
+// finite and <= 1.02 (2/400 + u + sqrt(3)/400 + 4u) < 0.0095 (value_bounds.h), so
+// lower_of(delta², rigid_rel) >= 0.981 delta². Used to skip the division and square root of
+// rigid_rel for candidates far above a chosen value v (delta² > 2 v, or coeff delta² > 2 v):
+// their lower bound then exceeds 1.96 v >= the chosen candidate's own lower bound, so it can
+// never be the minimum of the lower bounds, and skipping it leaves that minimum unchanged.
+template <class List>
+bool rigid_rel_small(const List& s, int k) {
+  const DegreeBounds db = degree_bounds(s.fb, is_parallel(s, k));
+  const double D = s.depth[k], eh = 400 * db.e_h, en = 400 * db.e_n;
+  return D * D >= eh * eh && s.nn[k] >= en * en;
+}
+
 // Largest |height| of a candidate (value_bounds.h: Hm).
 inline double max_height(const DirectionGeometry& c) {
   double m = 0.0;

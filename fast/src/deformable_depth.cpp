@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "certify.h"
 #include "hot_path.h"
+#include "refine.h"
 #include "superset_depth.h"
 #include "tie_tolerance.h"
 #include "value_bounds.h"
@@ -82,6 +84,21 @@ Valued relaxed_valued(const Candidate& c, const FilterBounds& fb) {
   return valued(c, s, solver_bound(c, s, 0xFu, 0xFu), fb);
 }
 
+// The exact values of refine.h, per variant (false: not in the family).
+bool exact_static(const detail::ExactCandidate& c, detail::Q& v) {
+  if (c.label.orientation != EdgeOrientation::Decided) return false;  // infeasible (SPEC §5)
+  v = detail::exact_static_value(c);
+  return true;
+}
+bool exact_deformable(const detail::ExactCandidate& c, detail::Q& v) {
+  v = detail::exact_deformable_value(c);
+  return true;
+}
+bool exact_relaxed(const detail::ExactCandidate& c, detail::Q& v) {
+  v = detail::exact_relaxed_value(c);
+  return true;
+}
+
 // A lower bound of an exact value from a computed one (NaN or a failed bound: 0, i.e. nothing
 // can be certified against it).
 inline double safe_lower(double v, double r) {
@@ -95,8 +112,8 @@ inline double safe_lower(double v, double r) {
 // SPEC §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
 // bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
 // proven in the header, applied to the exact delta).
-template <class List, class Value>
-Choice sweep(const List& set, double coeff, int hint, Value value) {
+template <class List, class Value, class ExactValue>
+Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue exact_value) {
   if (!usable(set)) return {};
   double v[kMaxCandidates], r[kMaxCandidates];
   bool done[kMaxCandidates];
@@ -131,13 +148,22 @@ Choice sweep(const List& set, double coeff, int hint, Value value) {
   if (ch.index < 0) return {};  // no finite value (NaN): not certified
   ch.value = v[ch.index];
   ch.code = label_code(set, ch.index);
+  auto lower = [&](int i) {
+    return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
+                   : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+  };
   double lo_min = kInf;
+  const double far = 2 * ch.value;  // certify.h: skipped candidates far above, small bound
   for (int i = 0; i < set.count; ++i) {
-    const double lo = done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
-                              : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    if (!done[i] && coeff * delta2(set, i) > far && detail::rigid_rel_small(set, i)) continue;
+    const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
   }
-  ch.certified = certified_choice(upper_of(ch.value, r[ch.index]), lo_min);
+  const double hi = upper_of(ch.value, r[ch.index]);
+  ch.certified = certified_choice(hi, lo_min);
+  // Not certified: the contenders exactly (refine.h). A skipped candidate's exact value is
+  // >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the family.
+  if (!ch.certified) detail::refine_minimum(set, lower, hi, exact_value, ch);
   return ch;
 }
 
@@ -157,6 +183,59 @@ int accel_order_of(const List& set, int k, int* out) {
   return m;
 }
 
+// Case 3 refined (refine.h): the exact first k in ascending exact delta² (stable in canonical
+// order), then the exact minimum of their case-2 values. `order` (m entries): the double path's
+// first k when they are certainly the exact first k (separated), else nullptr: then the
+// contenders are the candidates whose certified lower bound of delta² is <= hi_chosen (the
+// largest certified upper bound among the double path's k choices). At least k candidates have
+// exact delta² <= hi_chosen, so the exact k-th smallest is <= hi_chosen and every non-contender
+// is strictly above it: the exact first k are the first k of the contenders in exact order.
+template <class List>
+void refine_accel(const List& set, int k, const int* order, int m, double hi_chosen,
+                  Choice& ch) {
+  constexpr int kMax = kAccelWide + detail::kMaxRefined;
+  int idx[kMax], n = 0;
+  if (order) {
+    for (int r = 0; r < m; ++r) idx[n++] = order[r];
+  } else {
+    for (int i = 0; i < set.count; ++i)
+      if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen)) {
+        if (n == kMax) return;
+        idx[n++] = i;
+      }
+  }
+  if (!set.A || n == 0) return;
+  const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
+  std::vector<detail::ExactCandidate> c;
+  c.reserve(n);
+  for (int j = 0; j < n; ++j) c.push_back(detail::exact_candidate(f, unpack_label(label_code(set, idx[j]))));
+  int pos[kMax];
+  for (int j = 0; j < n; ++j) pos[j] = j;
+  if (!order) {
+    std::vector<detail::Q> d(n);
+    for (int j = 0; j < n; ++j) d[j] = detail::exact_delta2(c[j]);
+    // idx ascends (canonical order), so a stable sort keeps exact ties in canonical order
+    std::stable_sort(pos, pos + n, [&d](int a, int b) { return d[a] < d[b]; });
+  }
+  const int kk = k < n ? k : n;
+  detail::Q best;
+  int bi = -1;
+  for (int r = 0; r < kk; ++r) {
+    const detail::Q v = detail::exact_deformable_value(c[pos[r]]);
+    if (bi < 0 || v < best || (v == best && idx[pos[r]] < idx[bi])) {
+      best = v;
+      bi = pos[r];
+    }
+  }
+  bool ok = true;
+  const double d = detail::rounded_value(detail::unscaled(f, best, 2), ok);
+  if (!ok || !(d > 0.0)) return;
+  ch.value = d;
+  ch.index = idx[bi];
+  ch.code = label_code(set, idx[bi]);
+  ch.certified = ch.refined = true;
+}
+
 // Case 3. SPEC §8: the chosen candidates must be exactly the first k of the exact order (every
 // chosen exact delta² strictly below every other one; exact ties are left to the exact path),
 // and the minimum of their QP values is certified as in sweep.
@@ -174,8 +253,10 @@ Choice accel_of(const List& set, int k) {
     hi_chosen = hi > hi_chosen ? hi : hi_chosen;
   }
   bool separated = hi_chosen < kInf;
-  for (int i = 0; i < set.count; ++i)
-    if (!chosen[i] && !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
+  // (certify.h: delta² > 2 hi_chosen with a small bound has lower bound > 1.96 hi_chosen)
+  for (int i = 0; i < set.count && separated; ++i)
+    if (!chosen[i] && !(delta2(set, i) > 2 * hi_chosen && detail::rigid_rel_small(set, i)) &&
+        !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
       separated = false;
   double v[kMaxCandidates], rel[kMaxCandidates];
   for (int r = 0; r < m; ++r) {
@@ -195,6 +276,7 @@ Choice accel_of(const List& set, int k) {
   }
   Choice ch{v[best], order[best], label_code(set, order[best])};
   ch.certified = separated && certified_choice(upper_of(v[best], rel[best]), lo_min);
+  if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }
 
@@ -215,22 +297,22 @@ double deformable_value(const Candidate& c) {
 double relaxed_value(const Candidate& c) { return solve_relaxed(c.hA, c.hB).cost / (20.0 * c.nn); }
 
 Choice pdd2_static(const CandidateSet& set, int hint) {
-  return sweep(set, kStaticBoundCoeff, hint, static_valued);
+  return sweep(set, kStaticBoundCoeff, hint, static_valued, exact_static);
 }
 Choice pdd2(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, deformable_valued);
+  return sweep(set, kDeformableBoundCoeff, hint, deformable_valued, exact_deformable);
 }
 Choice pdd2_relaxed(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, relaxed_valued);
+  return sweep(set, kDeformableBoundCoeff, hint, relaxed_valued, exact_relaxed);
 }
 Choice pdd2_static(const QuickCandidates& q, int hint) {
-  return sweep(q, kStaticBoundCoeff, hint, static_valued);
+  return sweep(q, kStaticBoundCoeff, hint, static_valued, exact_static);
 }
 Choice pdd2(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, deformable_valued);
+  return sweep(q, kDeformableBoundCoeff, hint, deformable_valued, exact_deformable);
 }
 Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, relaxed_valued);
+  return sweep(q, kDeformableBoundCoeff, hint, relaxed_valued, exact_relaxed);
 }
 
 Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
@@ -251,6 +333,14 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 }
 
 namespace {
+// The sweeps' hint: the rigid direction's index (first tied minimum of delta²). Only the index
+// is needed — the sweeps' results do not depend on the hint (header: it only seeds the
+// pruning) — so rigid_pd2's certification and refinement are not run for it.
+template <class List>
+int rigid_hint(const List& s) {
+  return s.count > 0 ? first_tied_minimum(s.delta_sq, s.count, s.tie_kappa) : -1;
+}
+
 // The quick list when it decides, else the full candidate set (both on the stack), on the
 // rescaled pair; the exact path when the choice is not certified (hot_path.h).
 template <class F, class Pick>
@@ -274,7 +364,7 @@ Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
 
 Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
-      A, B, [](const auto& s) { return pdd2_static(s, rigid_pd2(s).index); },
+      A, B, [](const auto& s) { return pdd2_static(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_static_dir;
         return r.pdd2_static;
@@ -282,7 +372,7 @@ Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
 }
 Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
-      A, B, [](const auto& s) { return pdd2(s, rigid_pd2(s).index); },
+      A, B, [](const auto& s) { return pdd2(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_dir;
         return r.pdd2;
@@ -290,7 +380,7 @@ Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
 }
 Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
-      A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_pd2(s).index); },
+      A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_relaxed_dir;
         return r.pdd2_relaxed;

@@ -13,57 +13,33 @@
 
 #include "deformable_depth.h"
 #include "direction_qp_impl.h"
-#include "exact_geometry.h"
+#include "exact_candidate.h"
 
 namespace pdd::fast::detail {
 namespace {
 
-
-// One oriented candidate (SPEC §3): heights are n.(x − s_0), exact.
-struct Cand {
-  DirectionLabel label;
-  QV n;
-  Q nn, D, hA[4], hB[4];
-  unsigned conA = 0, conB = 0;
-};
-
+// Every candidate of SPEC §3 in canonical order (exact_candidate.h).
 struct Builder {
-  QTet s, r;  // s_i − s_0, r_j − s_0
-  std::vector<Cand> out;
+  const ExactFrame& f;
+  std::vector<ExactCandidate> out;
 
   void emit(const DirectionLabel& l, const QV& n, unsigned conA, unsigned conB) {
-    Cand c;
-    c.label = l;
-    c.n = n;
-    c.nn = dot(n, n);
-    for (int i = 0; i < 4; ++i) {
-      c.hA[i] = dot(n, s[i]);
-      c.hB[i] = dot(n, r[i]);
-    }
-    Q hi = c.hA[0], lo = c.hB[0];
-    for (int i = 1; i < 4; ++i) {
-      if (hi < c.hA[i]) hi = c.hA[i];
-      if (c.hB[i] < lo) lo = c.hB[i];
-    }
-    c.D = hi - lo;
-    c.conA = conA;
-    c.conB = conB;
-    out.push_back(std::move(c));
+    out.push_back(exact_candidate(f, l, n, conA, conB));
   }
 
   void faces() {
-    for (int i = 0; i < 4; ++i) emit(DirectionLabel::fv(i), face_normal_out_of(s, i), mask_without(i), 0);
-    for (int j = 0; j < 4; ++j) emit(DirectionLabel::vf(j), face_normal_into(r, j), 0, mask_without(j));
+    for (int i = 0; i < 4; ++i) emit(DirectionLabel::fv(i), face_normal_out_of(f.s, i), mask_without(i), 0);
+    for (int j = 0; j < 4; ++j) emit(DirectionLabel::vf(j), face_normal_into(f.r, j), 0, mask_without(j));
   }
 
   void edge_pairs() {
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) {
         EdgePairKind kind;
-        const QV n = edge_pair_normal(s, r, a, b, &kind);
+        const QV n = edge_pair_normal(f.s, f.r, a, b, &kind);
         if (kind == EdgePairKind::Colinear) continue;  // no direction (SPEC §3)
         const unsigned ca = edge_mask(a), cb = edge_mask(b);
-        switch (side_rule(s, n, a)) {
+        switch (side_rule(f.s, n, a)) {
           case EdgePairSide::Keep: emit(DirectionLabel::ee(a, b), n, ca, cb); break;
           case EdgePairSide::Flip: emit(DirectionLabel::ee(a, b), negated(n), ca, cb); break;
           case EdgePairSide::Undecidable:
@@ -75,22 +51,6 @@ struct Builder {
   }
 };
 
-// Rounds a value (a squared length, held to 1e-9 relative) to double; `ok` is cleared when a
-// non-zero value is not a normal double.
-double rounded(const Q& q, bool& ok) {
-  const double d = q.get_d();
-  if (sgn(q) != 0 && !(std::fabs(d) >= DBL_MIN && std::fabs(d) <= DBL_MAX)) ok = false;
-  return d;
-}
-// Rounds a coordinate of q1 to double; `ok` is cleared only when it overflows. A subnormal
-// coordinate is a fine position (its absolute error, <= 2^-1075, is far below the 1e-9 R of
-// SPEC §8); inputs with subnormal coordinates have such positions (the fuzzer found it).
-double rounded_coordinate(const Q& q, bool& ok) {
-  const double d = q.get_d();
-  if (!(std::fabs(d) <= DBL_MAX)) ok = false;
-  return d;
-}
-
 }  // namespace
 
 ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B) {
@@ -98,51 +58,14 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   PairResult<double>& r = er.result;
   r.q1_A = A;
   r.q1_B = B;
-  // Coordinates relative to s_0, times 2^shift: integers (every double is an integer times a
-  // power of two), so that the candidates' normals and heights are integer arithmetic (no gcd
-  // work on power-of-two denominators). Values (squared lengths) are divided back by
-  // 2^(2 shift), displacements by 2^shift — exactly.
-  int lowest = 0;
-  bool nonzero = false;
-  for (const TetVertices* T : {&A, &B})
-    for (const auto& p : *T)
-      for (double x : p) {
-        if (x == 0.0) continue;
-        int e;
-        std::frexp(x, &e);  // x = m 2^e, m in [1/2, 1) with 53 bits: an integer times 2^(e − 53)
-        lowest = nonzero ? std::min(lowest, e - 53) : e - 53;
-        nonzero = true;
-      }
-  const long shift = nonzero ? -long(lowest) : 0;  // may be negative (huge coordinates): still exact
-  auto scaled_coordinate = [&](double x) {
-    Q q(x);
-    if (shift > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), shift);
-    if (shift < 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -shift);
-    return q;
-  };
-  auto unscale = [&](Q q, long times) {  // q / 2^(times · shift)
-    const long k = times * shift;
-    if (k > 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), k);
-    if (k < 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), -k);
-    return q;
-  };
-  Builder bld;
-  QV s0;
-  for (int k = 0; k < 3; ++k) s0.x[k] = scaled_coordinate(A[0][k]);
-  for (int i = 0; i < 4; ++i) {
-    QV a, b;
-    for (int k = 0; k < 3; ++k) {
-      a.x[k] = scaled_coordinate(A[i][k]);
-      b.x[k] = scaled_coordinate(B[i][k]);
-    }
-    bld.s[i] = a - s0;
-    bld.r[i] = b - s0;
-  }
+  // Coordinates relative to s_0, times 2^shift: integers (exact_candidate.h).
+  const ExactFrame frame = exact_frame(A, B);
+  Builder bld{frame, {}};
   bld.faces();
   bld.edge_pairs();
-  const std::vector<Cand>& C = bld.out;
+  const std::vector<ExactCandidate>& C = bld.out;
   const int n = int(C.size());
-  for (const Cand& c : C)
+  for (const ExactCandidate& c : C)
     if (sgn(c.D) <= 0) return er;  // a separating candidate: not intersecting (SPEC §4)
   r.intersecting = true;
   bool& ok = er.representable;
@@ -156,19 +79,10 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   Q e11;
   bool e11_zero = false, e11_set = false;
   for (int k = 0; k < n; ++k) {
-    const Cand& c = C[k];
-    delta2[k] = c.D * c.D / c.nn;
-    // eq. 11: overlap of the projections, L_n(A) + L_n(B) − L_n(A ∪ B)
-    Q loA = c.hA[0], hiA = c.hA[0], loB = c.hB[0], hiB = c.hB[0];
-    for (int i = 1; i < 4; ++i) {
-      if (c.hA[i] < loA) loA = c.hA[i];
-      if (hiA < c.hA[i]) hiA = c.hA[i];
-      if (c.hB[i] < loB) loB = c.hB[i];
-      if (hiB < c.hB[i]) hiB = c.hB[i];
-    }
-    const Q overlap = (hiA - loA) + (hiB - loB) - ((hiA < hiB ? hiB : hiA) - (loA < loB ? loA : loB));
+    delta2[k] = exact_delta2(C[k]);
+    const Q overlap = exact_overlap(C[k]);  // eq. 11
     if (sgn(overlap) <= 0) e11_zero = true;
-    const Q v = overlap * overlap / c.nn;
+    const Q v = overlap * overlap / C[k].nn;
     if (!e11_set || v < e11) e11 = v;
     e11_set = true;
   }
@@ -181,29 +95,23 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   std::vector<Solution<Q>> def_sol(n);
   std::vector<Q> st(n), def(n), rel(n);
   std::vector<char> have_st(n, 0), have_def(n, 0), have_rel(n, 0);
-  auto sides = [&](int k) {
-    return std::make_pair(side_of(C[k].hA, C[k].conA), side_of(C[k].hB, C[k].conB));
-  };
   auto def_of = [&](int k) -> const Q& {
     if (!have_def[k]) {
-      const auto sd = sides(k);
-      def_sol[k] = solve_deformable_sorted(sd.first, sd.second);
-      def[k] = def_sol[k].cost / (20 * C[k].nn);
+      def[k] = exact_deformable_value(C[k], &def_sol[k]);
       have_def[k] = 1;
     }
     return def[k];
   };
   auto st_of = [&](int k) -> const Q& {
     if (!have_st[k]) {
-      const auto sd = sides(k);
-      st[k] = solve_static_sides(sd.first, sd.second).cost / (20 * C[k].nn);
+      st[k] = exact_static_value(C[k]);
       have_st[k] = 1;
     }
     return st[k];
   };
   auto rel_of = [&](int k) -> const Q& {
     if (!have_rel[k]) {
-      rel[k] = solve_relaxed_heights(C[k].hA, C[k].hB).cost / (20 * C[k].nn);
+      rel[k] = exact_relaxed_value(C[k]);
       have_rel[k] = 1;
     }
     return rel[k];
@@ -224,37 +132,28 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   const Q case2_coeff(kDeformableBoundCoeff), case1_coeff(kStaticBoundCoeff);  // dyadic: exact
 
   const int ir = order[0];
-  r.rigid_pd2 = rounded(unscale(delta2[ir], 2), ok);
+  r.rigid_pd2 = rounded_value(unscaled(frame, delta2[ir], 2), ok);
   r.rigid_dir = C[ir].label;
-  r.eq11_pd2 = e11_zero ? 0.0 : rounded(unscale(e11, 2), ok);
+  r.eq11_pd2 = e11_zero ? 0.0 : rounded_value(unscaled(frame, e11, 2), ok);
   const int is = qp_min(case1_coeff, st_of, decided);
-  r.pdd2_static = rounded(unscale(st[is], 2), ok);
+  r.pdd2_static = rounded_value(unscaled(frame, st[is], 2), ok);
   r.pdd2_static_dir = C[is].label;
   const int id = qp_min(case2_coeff, def_of, any);
-  r.pdd2 = rounded(unscale(def[id], 2), ok);
+  r.pdd2 = rounded_value(unscaled(frame, def[id], 2), ok);
   r.pdd2_dir = C[id].label;
   const int il = qp_min(case2_coeff, rel_of, any);
-  r.pdd2_relaxed = rounded(unscale(rel[il], 2), ok);
+  r.pdd2_relaxed = rounded_value(unscaled(frame, rel[il], 2), ok);
   r.pdd2_relaxed_dir = C[il].label;
 
   // case 3: the first 1 and 6 candidates in ascending delta order
   Q accel = def_of(order[0]);
-  r.pdd2_accel1 = rounded(unscale(accel, 2), ok);
+  r.pdd2_accel1 = rounded_value(unscaled(frame, accel, 2), ok);
   for (int m = 1; m < kAccelWide && m < n; ++m)
     if (def_of(order[m]) < accel) accel = def[order[m]];
-  r.pdd2_accel6 = rounded(unscale(accel, 2), ok);
+  r.pdd2_accel6 = rounded_value(unscaled(frame, accel, 2), ok);
 
   // q1: x + (T / n.n) n along the pdd2 direction (direction_qp.h)
-  const Cand& c = C[id];
-  const Solution<Q>& sol = def_sol[id];
-  for (int i = 0; i < 4; ++i) {
-    const Q tA = displacement_below(c.hA[i], (c.conA >> i & 1u) != 0, sol) / c.nn;
-    const Q tB = displacement_above(c.hB[i], (c.conB >> i & 1u) != 0, sol) / c.nn;
-    for (int k = 0; k < 3; ++k) {
-      r.q1_A[i][k] = rounded_coordinate(Q(A[i][k]) + unscale(tA * c.n.x[k], 1), ok);
-      r.q1_B[i][k] = rounded_coordinate(Q(B[i][k]) + unscale(tB * c.n.x[k], 1), ok);
-    }
-  }
+  exact_positions(A, B, frame, C[id], def_sol[id], r.q1_A, r.q1_B, ok);
   return er;
 }
 

@@ -23,16 +23,26 @@ struct ScaledPair {
   bool exact = true;
 };
 
+// Precondition: finite coordinates (the callers check all_finite first).
+// x·2^e is computed as one multiplication by the double 2^e when |e| <= 1000 (2^e is then a
+// normal double): the same correctly rounded product as ldexp (exact unless the result is
+// subnormal, which is detected below), without a library call per coordinate.
 inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   double R = 0.0;
   for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) R = std::fmax(R, std::fmax(std::fabs(A[i][k]), std::fabs(B[i][k])));
+    for (int k = 0; k < 3; ++k) {
+      const double a = std::fabs(A[i][k]), b = std::fabs(B[i][k]);
+      R = R > a ? R : a;
+      R = R > b ? R : b;
+    }
   ScaledPair s;
   s.e = R > 0.0 ? -std::ilogb(R) : 0;
+  const bool direct = s.e >= -1000 && s.e <= 1000;
+  const double p = direct ? std::ldexp(1.0, s.e) : 1.0;
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
-      s.A[i][k] = std::ldexp(A[i][k], s.e);
-      s.B[i][k] = std::ldexp(B[i][k], s.e);
+      s.A[i][k] = direct ? A[i][k] * p : std::ldexp(A[i][k], s.e);
+      s.B[i][k] = direct ? B[i][k] * p : std::ldexp(B[i][k], s.e);
       const double a = std::fabs(s.A[i][k]), b = std::fabs(s.B[i][k]);
       if ((a != 0.0 && a < DBL_MIN) || (b != 0.0 && b < DBL_MIN) ||
           (A[i][k] != 0.0 && a == 0.0) || (B[i][k] != 0.0 && b == 0.0))

@@ -46,6 +46,8 @@ void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
 // The arithmetic is the superset kernel's (superset_kernel.h), which also writes the lanes.
 bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
   q.count = 0;
+  q.A = &A;
+  q.B = &B;
   SupersetLanes K;
   superset_kernel(A, B, K, &q.edges);
   if (!(K.finite == 0.0)) return false;

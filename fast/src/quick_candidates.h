@@ -24,6 +24,9 @@ struct QuickCandidates {
   int count = 0;
   double tie_kappa = 0.0;  // the pair's tie band (tie_tolerance.h)
   FilterBounds fb;         // the pair's error bounds (value_bounds.h)
+  // The pair (refine.h); valid as long as the caller's pair lives (as CandidateSet's).
+  const TetVertices* A = nullptr;
+  const TetVertices* B = nullptr;
   double delta_sq[kMaxCandidates];
   double depth[kMaxCandidates], nn[kMaxCandidates];  // D and n.n of each candidate
   std::int16_t src[kMaxCandidates];

@@ -7,6 +7,9 @@
 //         eq11_pd2    E11² = (min_n overlap(n)/|n|)², overlap = L_n(A) + L_n(B) − L_n(A ∪ B),
 //                     L_n the width of the projection (paper eq. 11); 0 if some overlap <= 0.
 // Both return 0 (index −1) for a non-intersecting set. Hot path: no allocation, no strings.
+// SPEC §8: a choice the double bounds cannot certify is refined (refine.h): its contenders are
+// evaluated exactly; `certified` stays false only when that is not possible (then the caller
+// takes the exact path).
 #pragma once
 
 #include "candidate_directions.h"
@@ -21,14 +24,17 @@ struct Choice {
   // SPEC §8 verdict (value_bounds.h): value within kCertifyRel of the exact minimum and the
   // label's exact value too. False: the caller must take the exact path.
   bool certified = false;
+  // Certified by evaluating the contenders exactly (refine.h) rather than in doubles alone.
+  bool refined = false;
   DirectionLabel label() const { return unpack_label(code); }
 };
 
 Choice rigid_pd2(const CandidateSet& set);
 Choice rigid_pd2(const QuickCandidates& q);  // same candidates, same result
 // `certified` (optional): the SPEC §8 verdict (value_bounds.h; exact 0 is certified only when
-// some overlap is surely <= 0).
-double eq11_pd2(const CandidateSet& set, bool* certified = nullptr);
+// some overlap is surely <= 0). Not certified in doubles: the contenders are evaluated exactly
+// (refine.h), `refined` (optional) then set.
+double eq11_pd2(const CandidateSet& set, bool* certified = nullptr, bool* refined = nullptr);
 
 // Convenience over raw tetrahedra (the hot path): rigid_superset (superset_depth.h) when it
 // decides (index −1: no list is built), else the candidate set (index then refers to it);

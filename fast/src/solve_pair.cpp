@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "direction_geometry.h"
+#include "exact_candidate.h"
 #include "exact_path.h"
 #include "candidate_directions.h"
 #include "deformable_depth.h"
@@ -83,15 +84,18 @@ bool fill_global(const TetPair& pair, const Candidate& start, double start_value
 }
 
 // The double path on a rescaled pair; returns the quantities that are not certified.
+// `refined`: some quantity was certified by refine.h (a few candidates evaluated exactly);
+// `exact_q1`: the pdd2 choice was refined, so q1 must be the exact solution's (solve_pair);
+// `global_slow`: pdd2_global's value was computed in rationals (global_depth.h).
 unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r,
-                           bool& global_slow) {
+                           bool& refined, bool& exact_q1, bool& global_slow) {
   unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
   r.rigid_pd2 = rigid.value;
   r.rigid_dir = label_of(set, rigid);
   missing |= rigid.certified ? 0 : kRigid;
-  bool e11_ok = false;
-  r.eq11_pd2 = eq11_pd2(set, &e11_ok);
+  bool e11_ok = false, e11_refined = false;
+  r.eq11_pd2 = eq11_pd2(set, &e11_ok, &e11_refined);
   missing |= e11_ok ? 0 : kEq11;
   const Choice st = pdd2_static(set, rigid.index);
   r.pdd2_static = st.value;
@@ -111,15 +115,32 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   r.pdd2_relaxed = rel.value;
   r.pdd2_relaxed_dir = label_of(set, rel);
   missing |= rel.certified ? 0 : kRelaxed;
-  if (def.index >= 0) {
+  refined = rigid.refined || e11_refined || st.refined || accel6.refined || accel1.refined ||
+            def.refined || rel.refined;
+  exact_q1 = false;
+  if (def.index >= 0 && def.certified) {
     deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
-    if (!positions_attain(pair, r, def.value)) missing |= kPositions;
+    // refined, or the double positions miss the contract: the exact ones for the label
+    exact_q1 = def.refined || !positions_attain(pair, r, def.value);
   } else {
     missing |= kPositions;
   }
   if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel.value, r, &global_slow))
     missing |= kGlobal;
   return missing;
+}
+
+// q1 of SPEC §8 for the reported pdd2 label: the exact case-2 solution of that candidate
+// (exact_candidate.h), which attains its exact value — the reported value's to the contract
+// (exactly so when the choice was refined). False when a coordinate is not representable.
+bool exact_positions_of(const TetPair& pair, const DirectionLabel& l, PairResult<double>& r) {
+  const detail::ExactFrame f = detail::exact_frame(pair.A, pair.B);
+  const detail::ExactCandidate c = detail::exact_candidate(f, l);
+  Solution<detail::Q> sol;
+  (void)detail::exact_deformable_value(c, &sol);
+  bool ok = true;
+  detail::exact_positions(pair.A, pair.B, f, c, sol, r.q1_A, r.q1_B, ok);
+  return ok;
 }
 
 // Replaces the uncertified quantities of r by the exact path's (rounded once). pdd2, its label
@@ -189,8 +210,9 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
 
 }  // namespace
 
-PairResult<double> solve_pair(const TetPair& pair, bool* slow_path) {
+PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refined_out) {
   if (slow_path) *slow_path = false;
+  if (refined_out) *refined_out = false;
   PairResult<double> r;
   r.name = pair.name;
   if (!detail::all_finite(pair.A) || !detail::all_finite(pair.B)) {
@@ -218,13 +240,16 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path) {
   TetPair scaled;
   scaled.A = sp.A;
   scaled.B = sp.B;
-  bool global_slow = false;
-  const unsigned missing = fill_intersecting(scaled, *set, r, global_slow);
+  bool refined = false, exact_q1 = false, global_slow = false;
+  unsigned missing = fill_intersecting(scaled, *set, r, refined, exact_q1, global_slow);
   PairResult<double> bad;
   bad.name = pair.name;
   bad.error = kNotRepresentable;
   if (!unscale(r, -sp.e, missing) || (missing & kGlobal)) return bad;
   if (global_slow && slow_path) *slow_path = true;
+  if (exact_q1 && !(missing & kDeformable) && !exact_positions_of(pair, *r.pdd2_dir, r))
+    missing |= kPositions;
+  if (refined_out) *refined_out = (refined || exact_q1) && !missing && !global_slow;  // exclusive of slow_path
   if (missing) {
     if (slow_path) *slow_path = true;
     if (!substitute_exact(pair, missing, r)) return bad;
@@ -233,20 +258,25 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path) {
 }
 
 std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
-                                            std::size_t* slow_paths) {
+                                            std::size_t* slow_paths, std::size_t* refined) {
   std::vector<PairResult<double>> out(pairs.size());
-  std::vector<char> slow(pairs.size(), 0);
+  std::vector<char> slow(pairs.size(), 0), ref(pairs.size(), 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size()),
                     [&](const tbb::blocked_range<size_t>& range) {
                       for (size_t i = range.begin(); i != range.end(); ++i) {
-                        bool s = false;
-                        out[i] = solve_pair(pairs[i], &s);
+                        bool s = false, f = false;
+                        out[i] = solve_pair(pairs[i], &s, &f);
                         slow[i] = s;
+                        ref[i] = f;
                       }
                     });
   if (slow_paths) {
     *slow_paths = 0;
     for (char s : slow) *slow_paths += s != 0;
+  }
+  if (refined) {
+    *refined = 0;
+    for (char f : ref) *refined += f != 0;
   }
   return out;
 }

@@ -46,9 +46,12 @@ PDD_INLINE long long horizontal_or(v8l v) {
 PDD_INLINE v8 perm(v8 v, v8l idx) { return shuffle(v, idx); }
 // Max (min, sum) of the 8 lanes, in lane 0 (max and min are exact in any order).
 PDD_INLINE double hmax(v8 v) {
-  v = v > perm(v, v8l{4, 5, 6, 7, 0, 1, 2, 3}) ? v : perm(v, v8l{4, 5, 6, 7, 0, 1, 2, 3});
-  v = v > perm(v, v8l{2, 3, 0, 1, 6, 7, 4, 5}) ? v : perm(v, v8l{2, 3, 0, 1, 6, 7, 4, 5});
-  return v[0] > v[1] ? v[0] : v[1];
+  // (the maximum of the lanes in any order: max is exact; max2 on halves, edge_pair_formula.h)
+  const V8Halves h = halves_of(v);
+  v4h m = h.lo > h.hi ? h.lo : h.hi;
+  const v4h s = shuffle(m, v4hl{2, 3, 0, 1});
+  m = m > s ? m : s;
+  return m[0] > m[1] ? m[0] : m[1];
 }
 PDD_INLINE double hmin(v8 v) { return -hmax(-v); }
 PDD_INLINE double hsum(v8 v) {
@@ -56,7 +59,10 @@ PDD_INLINE double hsum(v8 v) {
   v = v + perm(v, v8l{2, 3, 0, 1, 6, 7, 4, 5});
   return v[0] + v[1];
 }
-PDD_INLINE v8 vabs(v8 a) { return a < 0.0 ? -a : a; }
+PDD_INLINE v8 vabs(v8 a) {
+  const V8Halves h = halves_of(a);
+  return joined<v8>(h.lo < 0.0 ? -h.lo : h.lo, h.hi < 0.0 ? -h.hi : h.hi);
+}
 PDD_INLINE v8 bc(double x) { return v8{x, x, x, x, x, x, x, x}; }
 
 PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
@@ -150,7 +156,9 @@ PDD_INLINE void edges_and_normals(const v8* X, SupersetLanes& K, v8* RX) {
 // face_of_B; sigma = −s, exact; o = orientation sign of the tetrahedron); value D²/(n.n).
 // Returns D.
 PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K) {
-  const v8 o = perm(K.det, kDet3) > 0.0 ? bc(1.0) : bc(-1.0);
+  const V8Halves dh = halves_of(perm(K.det, kDet3));
+  const v4h plus = {1.0, 1.0, 1.0, 1.0}, minus = -plus;
+  const v8 o = joined<v8>(dh.lo > 0.0 ? plus : minus, dh.hi > 0.0 ? plus : minus);
   const v8 sig = o * v8{-1, 1, -1, 1, 1, -1, 1, -1};
   v8 N[3];
   for (int k = 0; k < 3; ++k) N[k] = K.NAB[k] * sig;
@@ -238,10 +246,10 @@ PDD_INLINE void tie_masks(SupersetLanes& K) {
   K.t1 = b + kappa * q;  // = tie_threshold(b, kappa)
   const double t2 = K.t2 = K.t1 + kappa * (q + q + kappa);
   const v8l one = {1, 2, 4, 8, 16, 32, 64, 128};
-  v8l bits = (K.face_val <= t2) & one;
+  v8l bits = le_bits(K.face_val, t2, one);
   K.face_bits = std::uint8_t(horizontal_or(bits));
   bits = v8l{};
-  for (int a = 0; a < 6; ++a) bits |= (K.val[a] <= t2) & (one << (8 * a));
+  for (int a = 0; a < 6; ++a) bits |= le_bits(K.val[a], t2, one << (8 * a));
   K.lane_bits = std::uint64_t(horizontal_or(bits));
 }
 

@@ -54,21 +54,28 @@ namespace pdd::fast {
 // when the exact value is 0; `intersecting` is the exact decision; every label names a
 // candidate whose exact value is within that bound of the exact minimum; q1 attains pdd2 for
 // its label to the same accuracy. The engine enforces it itself: each value carries an error
-// bound, and where a bound is too wide the pair is recomputed on the engine's exact path (its
-// own closed forms on GMP rationals; rare, about 100x slower). A result that is not a normal
+// bound; where bounds are too wide to decide a minimum, the few candidates that can still be
+// it are evaluated exactly ("refined": the engine's own closed forms on GMP rationals, tens of
+// microseconds), and where that does not suffice the whole pair is recomputed on the engine's
+// exact path (rare, about 100x slower). A result that is not a normal
 // double gives an error record that starts "not representable".
 
 // Every SPEC §6 quantity of one pair.
 //   pair       the two tetrahedra; A is the paper's T1 (static in case 1), B is T2.
 //   slow_path  optional out: set to true when the pair took the exact path.
+//   refined    optional out: set to true when some quantity was refined (a few candidates
+//              evaluated exactly) and the pair did not need the exact path for it.
 // Returns the record; `error` set when the pair is rejected (SPEC §1) or not representable.
-PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr);
+PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr,
+                              bool* refined = nullptr);
 
 // solve_pair on every pair, on all cores (TBB), results in input order; bit-identical to
-// solve_pair one at a time. `slow_paths` (optional out): how many pairs took the exact path.
+// solve_pair one at a time. `slow_paths` (optional out): how many pairs took the exact path;
+// `refined` (optional out): how many were refined (solve_pair's `refined`).
 // A rejected pair is an error record; it never stops the batch.
 std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
-                                            std::size_t* slow_paths = nullptr);
+                                            std::size_t* slow_paths = nullptr,
+                                            std::size_t* refined = nullptr);
 
 // One quantity over raw vertices: the hot path for contact handling (no record, no positions).
 enum class DepthStatus {

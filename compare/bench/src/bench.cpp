@@ -195,6 +195,36 @@ BenchReport run_bench(const BenchOptions& o) {
     ex.solve_ratio = ex.exact_solve_median_ns / ex.fast_solve_median_ns;
   }
 
+  // ---- the cost of the pairs that needed more than the double path (SPEC §8) ----
+  {
+    CertificationCost& cc = rep.certification;
+    std::vector<std::size_t> refined, slow;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      bool s = false, f = false;
+      (void)fast::solve_pair(pairs[k], &s, &f);
+      if (s) slow.push_back(k);
+      else if (f) refined.push_back(k);
+    }
+    cc.refined = refined.size();
+    cc.slow_paths = slow.size();
+    double sum = 0;
+    auto timed = [&](const std::vector<std::size_t>& which) {
+      std::vector<double> all;
+      for (int r = 0; r < o.repeats; ++r) {
+        const auto ns = time_each_call(which.size(), [&](std::size_t i) {
+          (void)fast::solve_pair(pairs[which[i]]);
+        });
+        all.insert(all.end(), ns.begin(), ns.end());
+      }
+      for (double x : all) sum += x / o.repeats;
+      return all.empty() ? 0.0 : median(all);
+    };
+    cc.refined_median_ns = timed(refined);
+    cc.slow_median_ns = timed(slow);
+    const double total = find_timing(rep.fast, "solve_pair").median_ns_per_pair * double(pairs.size());
+    cc.share_of_solve_pair = total > 0 ? sum / total : 0.0;
+  }
+
   // ---- batch, all cores ----
   std::cerr << "pdd bench: batch API on all cores\n";
   rep.batch = time_batch(pairs, o.repeats);

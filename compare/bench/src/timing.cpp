@@ -117,7 +117,7 @@ BatchTiming time_batch(const std::vector<TetPair>& pairs, int repeats) {
   b.repeats = repeats;
   std::vector<double> s;
   {
-    auto warm = fast::solve_batch(pairs, &b.slow_paths);
+    auto warm = fast::solve_batch(pairs, &b.slow_paths, &b.refined);
     do_not_optimize(warm.data());
   }
   for (int r = 0; r < repeats; ++r) {

@@ -34,11 +34,11 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
 }
 
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
-                                         std::size_t* slow_paths) {
+                                         std::size_t* slow_paths, std::size_t* refined) {
   std::vector<TetPair> valid;
   for (const auto& e : entries)
     if (!e.error) valid.push_back(e.pair);
-  std::vector<PairResult<double>> computed = fast::solve_batch(valid, slow_paths);
+  std::vector<PairResult<double>> computed = fast::solve_batch(valid, slow_paths, refined);
   std::vector<PairResult<double>> out(entries.size());
   for (std::size_t k = 0, v = 0; k < entries.size(); ++k) {
     if (entries[k].error) {

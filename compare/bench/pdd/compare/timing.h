@@ -68,6 +68,7 @@ struct BatchTiming {
   double median_seconds = 0;     // one solve_batch call over all pairs, median over repeats
   double pairs_per_second = 0;   // pairs / median_seconds
   std::size_t slow_paths = 0;    // pairs that took the fast engine's exact path (SPEC §8)
+  std::size_t refined = 0;       // pairs refined instead (a few candidates evaluated exactly)
 };
 BatchTiming time_batch(const std::vector<TetPair>& pairs, int repeats);
 

@@ -58,9 +58,11 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
 
 // The fast engine over the same entries: malformed entries become error records, the rest go
 // through pdd::fast::solve_batch (all cores), results in input order.
-// `slow_paths` (optional): how many pairs took the fast engine's exact path (SPEC §8).
+// `slow_paths` (optional): how many pairs took the fast engine's exact path (SPEC §8);
+// `refined` (optional): how many were refined instead (solve_pair's `refined`).
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
-                                         std::size_t* slow_paths = nullptr);
+                                         std::size_t* slow_paths = nullptr,
+                                         std::size_t* refined = nullptr);
 
 // SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
 Json fast_record(const PairResult<double>& r);
