@@ -49,10 +49,10 @@ int write_results(const std::vector<PairResult<R>>& results, Record record, std:
     if constexpr (!std::is_same_v<R, double>) {  // SPEC §9: say when the proof fell short
       if (r.pdd2_global_lower && r.pdd2_global > 0 &&
           *r.pdd2_global_lower < r.pdd2_global * (1 - R(gap)))
-        std::cerr << "pdd solve: pair '" << r.name << "': pdd2_global's lower bound is "
+        std::cerr << "pdd solve: pair '" << r.name << "': pdd2_global - pdd2_global_lower = "
                   << CGAL::to_double((r.pdd2_global - *r.pdd2_global_lower) / r.pdd2_global)
-                  << " below it (relative), not within --global-gap " << gap
-                  << " (the search budget ran out; the bound is still proved)\n";
+                  << " * pdd2_global, above --global-gap " << gap
+                  << " (the search budget ran out; the lower bound is still proved)\n";
     }
   }
   return status;
