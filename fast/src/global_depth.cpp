@@ -297,7 +297,9 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     }
   for (int i = 0; i < 4; ++i) P.pA[i] = sub(P.relA[i], centroid), P.pB[i] = sub(P.relB[i], centroid);
 
-  Best best{INFINITY, {start_normal[0], start_normal[1], start_normal[2]}};
+  Best best;
+  best.value = INFINITY;
+  best.n = {start_normal[0], start_normal[1], start_normal[2]};
   best.offer(P, best.n);
 
   // When the positions' rounding (u scale per coordinate, squared into H) could move H's
