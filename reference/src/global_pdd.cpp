@@ -26,14 +26,6 @@ struct DoublePair {
   std::array<Vec3, 4> A, B;
 };
 
-DoublePair to_doubles(const ExactPair& p) {
-  DoublePair d;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-      d.A[i][k] = CGAL::to_double(p.A[i][k]), d.B[i][k] = CGAL::to_double(p.B[i][k]);
-  return d;
-}
-
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // The threshold structure of relaxed_pieces.h: the active vertices of A are the highest m_A,
@@ -211,7 +203,8 @@ class Search {
   const CachedPiece& piece(ActiveSet s) {
     auto it = cache_.find(s);
     if (it != cache_.end()) return it->second;
-    CachedPiece c{relaxed_piece(pair_, s)};
+    CachedPiece c;
+    c.piece = relaxed_piece(pair_, s);
     for (int i = 0; i < 4; ++i) {
       c.D[i] = to_ivec(c.piece.D[i]), c.E[i] = to_ivec(c.piece.E[i]);
       for (int k = 0; k < 3; ++k)
