@@ -302,10 +302,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   best.n = {start_normal[0], start_normal[1], start_normal[2]};
   best.offer(P, best.n);
 
-  // When the positions' rounding (u scale per coordinate, squared into H) could move H's
-  // stationary points by more than the contract allows at this depth, H and the conditions are
-  // built in rationals and rounded once (the slow path); the enumeration is the same.
-  // H's entries carry absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off
+  // Doubles or rationals for the pieces (the enumeration is the same). H's entries carry absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off
   // by an angle ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about
   // gap * angle^2 ~ 1e-28 scale^4 / gap (gap ~ scale^2): negligible (1e-11 relative) unless the
   // depth is below ~1e-17 scale^2. Below 1e-16 scale^2 (a vertex far from the others, a contact
