@@ -354,6 +354,10 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   out.normal = best.n;
   const V3& v = best.n;
   const double vv = dot(v, v);
+  // No normal at all (no start and no stationary point passed: coordinates spanning the whole
+  // double range, the caller's exact-path branch): not certified; the caller reports it
+  // (found by the fast_engine fuzzer: the exact evaluation along a zero normal divided by 0).
+  if (!(norm(v) > 0) || !std::isfinite(vv)) return out;
   auto place = [&](const auto& s, const auto& heights_A, const auto& heights_B, auto to_d) {
     for (int i = 0; i < 4; ++i) {
       const double tA = to_d(displacement_below(heights_A[i], false, s));
