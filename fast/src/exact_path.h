@@ -11,6 +11,8 @@
 // each other. Cost: milliseconds per pair (used on the pairs whose error bound is too wide).
 #pragma once
 
+#include <array>
+
 #include "pdd/pair_result.h"
 #include "pdd/tet_pair.h"
 
@@ -19,6 +21,10 @@ namespace pdd::fast::detail {
 struct ExactPathResult {
   PairResult<double> result;  // name and error are left to the caller
   bool representable = true;
+  // pdd2_relaxed's normal (exact, A -> B) rounded componentwise after an exact power-of-two
+  // scaling that brings its largest component near 1: pdd2_global's start (global_depth.h).
+  // Zero when the pair does not intersect.
+  std::array<double, 3> relaxed_normal{};
 };
 
 ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B);

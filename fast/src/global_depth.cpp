@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -85,6 +86,13 @@ struct Best {
   V3 n;
   const TetVertices* A = nullptr;  // set: compare exactly
   const TetVertices* B = nullptr;
+  // Exact comparison (A set): the best exact value, and `value` = it times 2^-2unit (the
+  // pieces' units, where eigenvalues are compared). `value` may underflow to 0 on a pair whose
+  // depth is below 2^-1022 of its size squared; the pruning threshold is then lower than it
+  // could be, which costs evaluations, never a minimiser.
+  long unit = 0;
+  detail::Q qvalue;
+  bool have_q = false;
   struct Offer {
     double value, error;
     V3 n;
@@ -92,17 +100,23 @@ struct Best {
   std::vector<Offer> offers;  // double path: every normal evaluated
   void offer(const Problem& P, const V3& v) {
     if (!(norm(v) > 0)) return;
-    double x;
     if (A) {
       detail::Q hA[4], hB[4];
       Solution<detail::Q> s;
-      x = relaxed_exact(*A, *B, v, hA, hB, s).get_d();
-    } else {
-      DirectionSolution s;
-      double hm = 0;
-      x = relaxed_at(P, v, &s, &hm);
-      offers.push_back({x, value_error(P, v, s.cost, hm), v});
+      const detail::Q q = relaxed_exact(*A, *B, v, hA, hB, s);
+      if (have_q && !(q < qvalue)) return;
+      qvalue = q, have_q = true, n = v;
+      detail::Q scaled = q;
+      if (unit > 0) mpz_mul_2exp(scaled.get_den_mpz_t(), scaled.get_den_mpz_t(), 2 * unit);
+      else if (unit < 0) mpz_mul_2exp(scaled.get_num_mpz_t(), scaled.get_num_mpz_t(), -2 * unit);
+      scaled.canonicalize();
+      value = scaled.get_d();
+      return;
     }
+    DirectionSolution s;
+    double hm = 0;
+    const double x = relaxed_at(P, v, &s, &hm);
+    offers.push_back({x, value_error(P, v, s.cost, hm), v});
     if (x < value) value = x, n = v;
   }
 };
@@ -307,20 +321,52 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // gap * angle^2 ~ 1e-28 scale^4 / gap (gap ~ scale^2): negligible (1e-11 relative) unless the
   // depth is below ~1e-17 scale^2. Below 1e-16 scale^2 (a vertex far from the others, a contact
   // of 2^-60), the pieces are built exactly and their eigenvectors polished.
-  const bool exact_pieces = !(best.value >= 1e-16 * P.scale * P.scale);
-  if (exact_pieces) {
-    using detail::Q;
-    best.A = &A, best.B = &B;
-    best.value = INFINITY;
-    best.offer(P, best.n);
-    std::array<std::array<Q, 3>, 4> qA, qB;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) qA[i][k] = Q(A[i][k]) - Q(A[0][k]), qB[i][k] = Q(B[i][k]) - Q(A[0][k]);
-    enumerate_pieces(qA, qB, P, best, [](const Q& x) { return x.get_d(); });
-  } else {
+  //
+  // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
+  // 2^unit the largest of them: H's entries, the conditions and the values compared stay near 1
+  // however far apart the coordinates are (a pair spanning 1e-302..1e308 reaches this branch
+  // unscaled, through solve_pair's exact path; its H would overflow in doubles). A uniform scale
+  // leaves the normals unchanged and multiplies every value by 2^-2unit (Best::unit).
+  // The double pieces also need the pair's own scale within [2^-100, 2^100] (solve_pair and
+  // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
+  // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
+  // determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
+  // (started with no candidate, as the hot path does) finds a depth below 1e-16 scale^2, it is
+  // done again exactly.
+  auto tiny = [&](double value) { return !(value >= 1e-16 * P.scale * P.scale); };
+  bool exact_pieces = !(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value);
+  if (!exact_pieces) {
     std::array<std::array<double, 3>, 4> dA, dB;
     for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
     enumerate_pieces(dA, dB, P, best, [](double x) { return x; });
+    if (tiny(best.value)) exact_pieces = true, best.offers.clear();
+  }
+  if (exact_pieces) {
+    using detail::Q;
+    std::array<std::array<Q, 3>, 4> qA, qB;
+    long unit = LONG_MIN;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        qA[i][k] = Q(A[i][k]) - Q(A[0][k]), qB[i][k] = Q(B[i][k]) - Q(A[0][k]);
+        for (const Q* x : {&qA[i][k], &qB[i][k]})
+          if (sgn(*x) != 0)  // log2 |x| within 1: bit lengths of numerator and denominator
+            unit = std::max(unit, long(mpz_sizeinbase(x->get_num_mpz_t(), 2)) -
+                                      long(mpz_sizeinbase(x->get_den_mpz_t(), 2)));
+      }
+    if (unit == LONG_MIN) unit = 0;  // not reached: a valid pair has a non-zero edge
+    for (auto* side : {&qA, &qB})
+      for (auto& x : *side)
+        for (Q& c : x) {
+          if (unit > 0) mpz_mul_2exp(c.get_den_mpz_t(), c.get_den_mpz_t(), unit);
+          else if (unit < 0) mpz_mul_2exp(c.get_num_mpz_t(), c.get_num_mpz_t(), -unit);
+          c.canonicalize();
+        }
+    Problem Ps = P;  // the conditions' floor in the scaled units
+    Ps.scale = 4.0;  // |x| 2^-unit < 4 (bit lengths give log2 |x| within 1)
+    best.A = &A, best.B = &B, best.unit = unit;
+    best.value = INFINITY;
+    best.offer(Ps, best.n);
+    enumerate_pieces(qA, qB, Ps, best, [](const Q& x) { return x.get_d(); });
   }
 
   // Which offer wins. Each double value carries value_error's loose bound; offers whose

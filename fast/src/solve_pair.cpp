@@ -195,9 +195,8 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   e.result.name = r.name;
   PairResult<double>& x = e.result;
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
-  if (x.intersecting) {  // SPEC §9 with no start candidate: the enumeration alone
-    const double none[3] = {0, 0, 0};
-    const GlobalOptimum g = global_depth(pair.A, pair.B, none, INFINITY);
+  if (x.intersecting) {  // SPEC §9, started at pdd2_relaxed's normal
+    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), INFINITY);
     if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
       r.error = kNotRepresentable;
       return r;
