@@ -66,7 +66,8 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   }
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   const double none[3] = {0, 0, 0};
-  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, INFINITY) : global_depth(A, B, none, INFINITY);
+  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, INFINITY, std::ldexp(rigid.pd2, 2 * sp.e))
+                                   : global_depth(A, B, none, INFINITY, rigid.pd2);
   bool in_range = true;
   const double value = sp.exact ? detail::unscaled(g.value, 2 * -sp.e, in_range) : g.value;
   if (!g.certified || !in_range || !(value > 0) || !std::isfinite(value)) {

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "deformable_depth.h"
 #include "direction_qp.h"
 #include "direction_qp_impl.h"
 #include "exact_geometry.h"
@@ -127,7 +128,12 @@ struct Conditions {
   V3 l[8];
   double sign[8];  // +1: needs l.v >= 0, -1: l.v <= 0
   double floor = 0;  // absolute error of the computed l (rounding of centred positions)
-  double tol(int k) const { return kSign * norm(l[k]) + floor; }
+  double tol_[8];    // kSign |l|_1 + floor (|l|_1 >= |l|_2: a wider tolerance, no square root)
+  void finish() {
+    for (int k = 0; k < 8; ++k)
+      tol_[k] = kSign * (std::fabs(l[k][0]) + std::fabs(l[k][1]) + std::fabs(l[k][2])) + floor;
+  }
+  double tol(int k) const { return tol_[k]; }
   bool hold(const V3& v) const {
     const double nv = norm(v);
     for (int k = 0; k < 8; ++k)
@@ -161,19 +167,28 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
   return true;
 }
 
-// One active set's H and sign conditions: prune by eigenvalue, evaluate the eigenvectors (or
-// the eigen-plane's arc) that satisfy the conditions (global_depth.h).
-template <class Refine>
-void consider_piece(const Eigen::Matrix3d& H, const Conditions& cond, const Problem& P, Best& best,
-                    Refine refine, bool exact) {
+// One active set's H (its entries within h_error, absolute) and sign conditions (built only
+// when an eigenpair survives): prune by eigenvalue, evaluate the eigenvectors (or the
+// eigen-plane's arc) that satisfy the conditions (global_depth.h).
+// Pruning window: an eigenpair can hold the minimiser only if its exact eigenvalue mu (= G
+// there) lies in [lower, best): every G(u) >= lower (global_depth.h's bound), and a value at or
+// above the best cannot improve it. The computed eigenvalues of the rounded H are within
+// h_error (Weyl: |E|_2 <= |E|_F <= 3 max |E_rc|) plus the solver's kEigen |H|_F of the exact
+// ones, so the window is widened by that margin on both sides (and by kPrune relative above).
+template <class Refine, class MakeConditions>
+void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions make_conditions,
+                    const Problem& P, Best& best, double lower, Refine refine, bool exact) {
   const double hnorm = H.norm();
-  const double threshold = best.value * (1 - kPrune) + kEigen * hnorm;
-  // Cheap test first: mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
-  // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and
-  // the entries' own errors): 64 u |H|_F^3.
+  const double margin = kEigen * hnorm + 3 * h_error;
+  const double threshold = best.value * (1 - kPrune) + margin;
+  const double floor = lower - margin;
+  // Cheap tests first. mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
+  // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and the
+  // entries' own errors): 64 u |H|_F^3 + 6 |H|_F^2 (3 h_error). mu_max <= trace (H is PSD).
   const double tr = H.trace();
-  const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm;
+  const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm - 18 * hnorm * hnorm * h_error;
   if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return;
+  if (tr + 3 * margin < floor) return;
   // Double path: the closed-form solver (fast; eigenvectors off by ~u |H| / gap, so the value
   // along one exceeds the stationary value by ~|H| (u |H| / gap)^2, below 1e-13 of any depth
   // this path takes, >= 1e-16 scale^2). Exact path: the iterative solver (Householder + QR),
@@ -183,11 +198,15 @@ void consider_piece(const Eigen::Matrix3d& H, const Conditions& cond, const Prob
   else eig.computeDirect(H);
   if (eig.info() != Eigen::Success) return;
   const Eigen::Vector3d mu = eig.eigenvalues();
+  bool any = exact;  // exact: the smallest eigenvector is tried below whatever mu(0) says
+  for (int k = 0; k < 3; ++k) any = any || (mu(k) >= floor && mu(k) < threshold);
+  if (!any) return;
+  const Conditions cond = make_conditions();
   // Generic minimisers are interior to their piece, hence the smallest eigenvalue's vector
   // (the Rayleigh quotient has no other local minimum). Its eigenvalue can be far below the
   // solver's resolution u |H| (a vertex 1e18 away makes |H| ~ 1e36 while the depth is ~1):
   // inverse iteration with shift 0 on the exact H (slow path) finds it regardless.
-  if (exact) {
+  if (exact && !(mu(0) < floor)) {
     const Eigen::Vector3d e = eig.eigenvectors().col(0);
     const V3 v = refine(V3{e(0), e(1), e(2)}, 0.0);
     for (double s : {1.0, -1.0})
@@ -195,8 +214,9 @@ void consider_piece(const Eigen::Matrix3d& H, const Conditions& cond, const Prob
   }
   for (int k = 0; k < 3; ++k) {
     if (!(mu(k) < threshold)) break;  // ascending
-    const Eigen::Vector3d e = eig.eigenvectors().col(k);
     const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * hnorm;
+    if (mu(k) < floor && !(plane && mu(k + 1) >= floor)) continue;  // below every G(u)
+    const Eigen::Vector3d e = eig.eigenvectors().col(k);
     const V3 v = plane ? V3{e(0), e(1), e(2)} : refine(V3{e(0), e(1), e(2)}, mu(k));
     if (plane) {  // a plane of eigenvectors
       const Eigen::Vector3d f = eig.eigenvectors().col(k + 1);
@@ -247,19 +267,42 @@ V3 refine(const double (&)[3][3], const V3& v, double) { return v; }  // fast pa
 
 // Visits every active set (both sides non-empty): H_S, its eigenpairs, the eigenvectors worth
 // evaluating (global_depth.h). T: double (positions about the centroid) or Q (exact positions
-// relative to A[0]); H and the conditions are rounded to doubles once built.
+// relative to A[0], scaled); H and the conditions are rounded to doubles once built.
+// H_S by moments: with S_A's sum SA and second moment QA = sum a a^T (and B's), the closed form's
+//   20 H = sum_{S_A} (C - a)(C - a)^T + sum_{S_B} (C - b)(C - b)^T + k TA TA^T
+//        = QA + QB - C (SA + SB)^T - (SA + SB) C^T + (mA + mB) C C^T + k TA TA^T,
+// k = 2 + (4 - mA) + (4 - mB) (the free vertices' T_A^2 and T_B^2, and 2 T_A^2 for the centre),
+// with the 16 subsets' sums and moments computed once. In doubles each entry is 7 terms, each
+// of <= 3 roundings, summed: absolute error <= 16 u mag with mag the sum of the terms' bounds
+// (|QA| + |QB| + 2 |C| |SA + SB| + (mA + mB) |C|^2 + k |TA|^2, max norms), then /20.
 template <class T, class ToDouble>
 void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
-                      const Problem& P, Best& best, ToDouble to_d) {
+                      const Problem& P, Best& best, double lower, ToDouble to_d) {
+  constexpr bool kExact = !std::is_same_v<T, double>;
   using TV = std::array<T, 3>;
+  using M6 = std::array<T, 6>;  // xx xy xz yy yz zz
+  constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
   auto vadd = [](const TV& a, const TV& b) { return TV{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; };
   auto vsub = [](const TV& a, const TV& b) { return TV{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
   auto vmul = [](const TV& a, const T& s) { return TV{a[0] * s, a[1] * s, a[2] * s}; };
+  auto amax = [&](const auto& x) {
+    double m = 0;
+    for (const T& c : x) m = std::max(m, std::fabs(to_d(c)));
+    return m;
+  };
   TV SA[16], SB[16];
+  M6 QA[16], QB[16];
+  double qa[16], qb[16];  // max |QA|, |QB| (doubles only)
   for (unsigned m = 0; m < 16; ++m) {
     SA[m] = SB[m] = TV{T(0), T(0), T(0)};
+    QA[m].fill(T(0)), QB[m].fill(T(0));
     for (int i = 0; i < 4; ++i)
-      if (m >> i & 1u) SA[m] = vadd(SA[m], pA[i]), SB[m] = vadd(SB[m], pB[i]);
+      if (m >> i & 1u) {
+        SA[m] = vadd(SA[m], pA[i]), SB[m] = vadd(SB[m], pB[i]);
+        for (int q = 0; q < 6; ++q)
+          QA[m][q] += pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] += pB[i][kR[q]] * pB[i][kC[q]];
+      }
+    if constexpr (!kExact) qa[m] = amax(QA[m]), qb[m] = amax(QB[m]);
   }
   for (unsigned ma = 1; ma < 16; ++ma) {
     const int mA = __builtin_popcount(ma);
@@ -270,28 +313,37 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
       // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B.
       const TV C = vmul(vadd(vmul(SA[ma], wA), vmul(SB[mb], wB)), T(1) / (T(mA) * wA + T(mB) * wB));
       const TV TA = vmul(vsub(vmul(C, T(mA)), SA[ma]), wA);
+      const TV S = vadd(SA[ma], SB[mb]);
+      const T m = T(mA + mB), k = T(10 - mA - mB);
       T h[3][3];
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) h[r][c] = T(2) * TA[r] * TA[c];
-      Conditions cond;
-      cond.floor = 1e-12 * P.scale;  // l is a few roundings of coordinates <= scale: far above
-      for (int i = 0; i < 4; ++i) {
-        const bool a_on = ma >> i & 1u, b_on = mb >> i & 1u;
-        const TV tA = a_on ? vsub(C, pA[i]) : vmul(TA, T(-1));
-        const TV tB = b_on ? vsub(C, pB[i]) : TA;
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) h[r][c] += tA[r] * tA[c] + tB[r] * tB[c];
-        const TV d = vsub(vsub(pA[i], C), TA), e = vsub(vsub(C, pB[i]), TA);
-        cond.l[i] = {to_d(d[0]), to_d(d[1]), to_d(d[2])};        // d_i = a_i - c - T_A
-        cond.sign[i] = a_on ? 1 : -1;
-        cond.l[4 + i] = {to_d(e[0]), to_d(e[1]), to_d(e[2])};    // e_j = c - b_j + T_B
-        cond.sign[4 + i] = b_on ? 1 : -1;
-      }
       Eigen::Matrix3d H;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) h[r][c] /= T(20), H(r, c) = to_d(h[r][c]);
-      consider_piece(H, cond, P, best, [&](const V3& v, double mu) { return refine(h, v, mu); },
-                     !std::is_same_v<T, double>);
+      for (int q = 0; q < 6; ++q) {
+        const int r = kR[q], c = kC[q];
+        h[r][c] = (QA[ma][q] + QB[mb][q] - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
+                   k * TA[r] * TA[c]) / T(20);
+        h[c][r] = h[r][c];
+        H(r, c) = H(c, r) = to_d(h[r][c]);
+      }
+      double h_error = 0;
+      if constexpr (!kExact) {
+        const double c = amax(C), t = amax(TA);
+        h_error = 16 * kU * (qa[ma] + qb[mb] + 2 * c * amax(S) + (mA + mB) * c * c + (10 - mA - mB) * t * t) / 20;
+      }
+      auto make_conditions = [&] {
+        Conditions cond;
+        cond.floor = 1e-12 * P.scale;  // l is a few roundings of coordinates <= scale: far above
+        for (int i = 0; i < 4; ++i) {
+          const TV d = vsub(vsub(pA[i], C), TA), e = vsub(vsub(C, pB[i]), TA);
+          cond.l[i] = {to_d(d[0]), to_d(d[1]), to_d(d[2])};        // d_i = a_i - c - T_A
+          cond.sign[i] = ma >> i & 1u ? 1 : -1;
+          cond.l[4 + i] = {to_d(e[0]), to_d(e[1]), to_d(e[2])};    // e_j = c - b_j + T_B
+          cond.sign[4 + i] = mb >> i & 1u ? 1 : -1;
+        }
+        cond.finish();
+        return cond;
+      };
+      consider_piece(H, h_error, make_conditions, P, best, lower,
+                     [&](const V3& v, double mu) { return refine(h, v, mu); }, kExact);
     }
   }
 }
@@ -299,7 +351,9 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
 }  // namespace
 
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                         double start_value) {
+                           double start_value, double rigid_pd2) {
+  // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
+  const double lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
   (void)start_value;  // re-evaluated below by the same closed form as every other normal
   Problem P;
   V3 centroid{0, 0, 0};
@@ -338,7 +392,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   if (!exact_pieces) {
     std::array<std::array<double, 3>, 4> dA, dB;
     for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
-    enumerate_pieces(dA, dB, P, best, [](double x) { return x; });
+    enumerate_pieces(dA, dB, P, best, lower, [](double x) { return x; });
     if (tiny(best.value)) exact_pieces = true, best.offers.clear();
   }
   if (exact_pieces) {
@@ -366,7 +420,8 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     best.A = &A, best.B = &B, best.unit = unit;
     best.value = INFINITY;
     best.offer(Ps, best.n);
-    enumerate_pieces(qA, qB, Ps, best, [](const Q& x) { return x.get_d(); });
+    enumerate_pieces(qA, qB, Ps, best, std::ldexp(lower, int(std::clamp(-2 * unit, -4000L, 4000L))),
+                     [](const Q& x) { return x.get_d(); });
   }
 
   // Which offer wins. Each double value carries value_error's loose bound; offers whose

@@ -24,6 +24,11 @@
 // a computed eigenvector is arbitrary) are handled on the whole plane they span: the signs of S
 // cut the circle of unit vectors of the plane into one arc (each sign condition is a half
 // circle), and the arc's middle is evaluated.
+// Lower bound: along every normal u, relaxed(u) >= D(u)^2 / 32 (deformable_depth.h's proof: keep
+// only the highest vertex of A and the lowest of B, overlap D(u) along unit u), and D(u)^2 >=
+// PD^2 (the rigid depth is the smallest overlap over all directions). So G >= PD^2 / 32 on the
+// sphere, and an eigenvalue below it (a zero eigenvalue of a piece whose H has rank 1 or 2, most
+// of them) cannot be a stationary value inside its piece: skipped without its vectors.
 // Margins: an eigenpair is skipped only when its eigenvalue exceeds the best value by more than
 // kPrune relative plus an absolute kEigen * |H| for the eigen solver's error, or when a sign
 // condition is violated by more than kSign of its scale; every other eigenpair is evaluated, so a
@@ -47,7 +52,10 @@ struct GlobalOptimum {
   bool exact_value = false;         // the value was recomputed in rationals (slow path)
 };
 
+// rigid_pd2: a value within 1e-8 relative of the pair's exact PD^2 (the engine's certified
+// rigid_pd2, in the same units), or 0 when none is known. It prunes the enumeration: every
+// G(u) >= PD^2 / 32 (below).
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                         double start_value);
+                           double start_value, double rigid_pd2);
 
 }  // namespace pdd::fast

@@ -72,9 +72,9 @@ constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_dept
 
 // SPEC §9 from the relaxed candidate `start` (its normal and value): value, normal, positions.
 // Returns false when the value is not certified (not representable).
-bool fill_global(const TetPair& pair, const Candidate& start, double start_value,
+bool fill_global(const TetPair& pair, const Candidate& start, double start_value, double rigid_pd2,
                  PairResult<double>& r, bool* slow) {
-  const GlobalOptimum g = global_depth(pair.A, pair.B, start.n, start_value);
+  const GlobalOptimum g = global_depth(pair.A, pair.B, start.n, start_value, rigid_pd2);
   r.pdd2_global = g.value;
   r.pdd2_global_normal = g.normal;
   r.q1_A_global = g.q1_A;
@@ -125,7 +125,8 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   } else {
     missing |= kPositions;
   }
-  if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel.value, r, &global_slow))
+  if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel.value,
+                                    rigid.certified ? rigid.value : 0.0, r, &global_slow))
     missing |= kGlobal;
   return missing;
 }
@@ -196,7 +197,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   PairResult<double>& x = e.result;
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
   if (x.intersecting) {  // SPEC §9, started at pdd2_relaxed's normal
-    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), INFINITY);
+    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), INFINITY, x.rigid_pd2);
     if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
       r.error = kNotRepresentable;
       return r;
