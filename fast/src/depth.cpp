@@ -6,6 +6,7 @@
 
 #include "deformable_depth.h"
 #include "direction_geometry.h"
+#include "exact_candidate.h"
 #include "exact_predicates.h"
 #include "global_depth.h"
 #include "power_scale.h"
@@ -66,8 +67,14 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   }
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   const double none[3] = {0, 0, 0};
-  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, INFINITY, std::ldexp(rigid.pd2, 2 * sp.e))
-                                   : global_depth(A, B, none, INFINITY, rigid.pd2);
+  // pdd2_relaxed's exact normal, asked for only where the depth is far below the pair's size.
+  const ExactStart relaxed_start = [&]() -> std::array<double, 3> {
+    const Depth rel = pdd2_relaxed(A, B);
+    if (!rel.dir) return {0, 0, 0};
+    return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(A, B), *rel.dir).n);
+  };
+  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, relaxed_start, std::ldexp(rigid.pd2, 2 * sp.e))
+                                   : global_depth(A, B, none, relaxed_start, rigid.pd2);
   bool in_range = true;
   const double value = sp.exact ? detail::unscaled(g.value, 2 * -sp.e, in_range) : g.value;
   if (!g.certified || !in_range || !(value > 0) || !std::isfinite(value)) {

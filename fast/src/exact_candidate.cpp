@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 
 #include "direction_qp_impl.h"
@@ -139,6 +140,24 @@ double rounded_value(const Q& q, bool& ok) {
   const double d = q.get_d();
   if (sgn(q) != 0 && !(std::fabs(d) >= DBL_MIN && std::fabs(d) <= DBL_MAX)) ok = false;
   return d;
+}
+
+std::array<double, 3> rounded_normal(const QV& n) {
+  long top = LONG_MIN;  // log2 of the largest component, within 1 (bit lengths)
+  for (const Q& x : n.x)
+    if (sgn(x) != 0)
+      top = std::max(top, long(mpz_sizeinbase(x.get_num_mpz_t(), 2)) -
+                              long(mpz_sizeinbase(x.get_den_mpz_t(), 2)));
+  std::array<double, 3> out{};
+  if (top == LONG_MIN) return out;
+  for (int k = 0; k < 3; ++k) {
+    Q x = n.x[k];
+    if (top > 0) mpz_mul_2exp(x.get_den_mpz_t(), x.get_den_mpz_t(), top);
+    else if (top < 0) mpz_mul_2exp(x.get_num_mpz_t(), x.get_num_mpz_t(), -top);
+    x.canonicalize();
+    out[k] = x.get_d();
+  }
+  return out;
 }
 
 }  // namespace pdd::fast::detail

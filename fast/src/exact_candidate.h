@@ -13,6 +13,7 @@
 //         and QP values (direction_qp_impl.h on mpq_class), rounded once by rounded_value().
 #pragma once
 
+#include <array>
 #include <utility>
 
 #include "direction_qp.h"
@@ -66,5 +67,10 @@ void exact_positions(const TetVertices& A, const TetVertices& B, const ExactFram
 // Rounds a value of the pair's units (a squared length) to double (mpq_get_d: truncation,
 // relative error < 2^-52); `ok` cleared when a non-zero value is not a normal double.
 double rounded_value(const Q& q, bool& ok);
+
+// A normal's direction in doubles: n times the exact power of two that brings its largest
+// component near 1, rounded componentwise (each component to 2^-53 of itself, so a normal
+// tilted by 2^-60 from an axis keeps its tilt). Zero for the zero vector.
+std::array<double, 3> rounded_normal(const QV& n);
 
 }  // namespace pdd::fast::detail

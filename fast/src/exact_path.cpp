@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cfloat>
-#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -145,20 +144,7 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   const int il = qp_min(case2_coeff, rel_of, any);
   r.pdd2_relaxed = rounded_value(unscaled(frame, rel[il], 2), ok);
   r.pdd2_relaxed_dir = C[il].label;
-  {
-    long top = LONG_MIN;  // log2 of the largest component, within 1 (bit lengths)
-    for (const Q& x : C[il].n.x)
-      if (sgn(x) != 0)
-        top = std::max(top, long(mpz_sizeinbase(x.get_num_mpz_t(), 2)) -
-                                long(mpz_sizeinbase(x.get_den_mpz_t(), 2)));
-    for (int k = 0; k < 3; ++k) {
-      Q x = C[il].n.x[k];
-      if (top > 0) mpz_mul_2exp(x.get_den_mpz_t(), x.get_den_mpz_t(), top);
-      else if (top < 0 && top != LONG_MIN) mpz_mul_2exp(x.get_num_mpz_t(), x.get_num_mpz_t(), -top);
-      x.canonicalize();
-      er.relaxed_normal[k] = x.get_d();
-    }
-  }
+  er.relaxed_normal = rounded_normal(C[il].n);
 
   // case 3: the first 1 and 6 candidates in ascending delta order
   Q accel = def_of(order[0]);

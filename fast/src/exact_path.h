@@ -21,8 +21,8 @@ namespace pdd::fast::detail {
 struct ExactPathResult {
   PairResult<double> result;  // name and error are left to the caller
   bool representable = true;
-  // pdd2_relaxed's normal (exact, A -> B) rounded componentwise after an exact power-of-two
-  // scaling that brings its largest component near 1: pdd2_global's start (global_depth.h).
+  // pdd2_relaxed's normal (exact, A -> B) by rounded_normal (exact_candidate.h): pdd2_global's
+  // start (global_depth.h).
   // Zero when the pair does not intersect.
   std::array<double, 3> relaxed_normal{};
 };

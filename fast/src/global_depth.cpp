@@ -351,10 +351,9 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
 }  // namespace
 
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           double start_value, double rigid_pd2) {
+                           const ExactStart& exact_start, double rigid_pd2) {
   // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
   const double lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
-  (void)start_value;  // re-evaluated below by the same closed form as every other normal
   Problem P;
   V3 centroid{0, 0, 0};
   for (int i = 0; i < 4; ++i)
@@ -420,6 +419,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     best.A = &A, best.B = &B, best.unit = unit;
     best.value = INFINITY;
     best.offer(Ps, best.n);
+    if (exact_start) best.offer(Ps, exact_start());
     enumerate_pieces(qA, qB, Ps, best, std::ldexp(lower, int(std::clamp(-2 * unit, -4000L, 4000L))),
                      [](const Q& x) { return x.get_d(); });
   }

@@ -1,8 +1,11 @@
 // global_depth.h — SPEC §9 in the fast engine: PD_d^2 over every separating plane (paper eq. 5),
 // by enumerating the stationary points of the relaxed value on the unit sphere.
 //
-// Input : a pair (in the engine's rescaled range, solve_pair.cpp), a start normal with its
-//         relaxed value (the best candidate of pdd2_relaxed: the answer when nothing beats it).
+// Input : a pair (in the engine's rescaled range, solve_pair.cpp, or as given on the exact
+//         path), a start normal (the best candidate of pdd2_relaxed: the answer when nothing
+//         beats it) and, on demand, its exact normal: where the depth is far below the pair's
+//         size (the exact pieces below), the double normal has no accurate digit in the
+//         direction that matters, so the exact one is offered, rounded componentwise.
 // Output: pdd2_global = relaxed(v) for the returned normal v (double components, A -> B), the
 //         deformed positions attaining it, and whether the value is certified to SPEC §8
 //         (relative error <= kGlobalRel of the exact relaxed value along v).
@@ -38,6 +41,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 
 #include "pdd/pair_result.h"
 #include "pdd/tet_pair.h"
@@ -55,7 +59,10 @@ struct GlobalOptimum {
 // rigid_pd2: a value within 1e-8 relative of the pair's exact PD^2 (the engine's certified
 // rigid_pd2, in the same units), or 0 when none is known. It prunes the enumeration: every
 // G(u) >= PD^2 / 32 (below).
+// exact_start: called only when the exact pieces are needed (rare): pdd2_relaxed's exact normal
+// rounded componentwise (exact_candidate.h's rounded_normal), or zero when none is known.
+using ExactStart = std::function<std::array<double, 3>()>;
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           double start_value, double rigid_pd2);
+                           const ExactStart& exact_start, double rigid_pd2);
 
 }  // namespace pdd::fast

@@ -70,11 +70,18 @@ constexpr unsigned kRelaxed = 64;
 constexpr unsigned kPositions = 128;
 constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_depth.h)
 
-// SPEC §9 from the relaxed candidate `start` (its normal and value): value, normal, positions.
+// SPEC §9 from the relaxed candidate `start` (its normal and label): value, normal, positions.
 // Returns false when the value is not certified (not representable).
-bool fill_global(const TetPair& pair, const Candidate& start, double start_value, double rigid_pd2,
-                 PairResult<double>& r, bool* slow) {
-  const GlobalOptimum g = global_depth(pair.A, pair.B, start.n, start_value, rigid_pd2);
+bool fill_global(const TetPair& pair, const Candidate& start, const Choice& rel, const CandidateSet& set,
+                 double rigid_pd2, PairResult<double>& r, bool* slow) {
+  // The exact start (rare: a depth far below the pair's size): the certified label's exact
+  // normal, else the exact path's pdd2_relaxed normal.
+  const ExactStart exact_start = [&] {
+    if (const std::optional<DirectionLabel> l = label_of(set, rel); l && rel.certified)
+      return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(pair.A, pair.B), *l).n);
+    return detail::solve_pair_exact_path(pair.A, pair.B).relaxed_normal;
+  };
+  const GlobalOptimum g = global_depth(pair.A, pair.B, start.n, exact_start, rigid_pd2);
   r.pdd2_global = g.value;
   r.pdd2_global_normal = g.normal;
   r.q1_A_global = g.q1_A;
@@ -125,7 +132,7 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   } else {
     missing |= kPositions;
   }
-  if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel.value,
+  if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel, set,
                                     rigid.certified ? rigid.value : 0.0, r, &global_slow))
     missing |= kGlobal;
   return missing;
@@ -197,7 +204,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   PairResult<double>& x = e.result;
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
   if (x.intersecting) {  // SPEC §9, started at pdd2_relaxed's normal
-    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), INFINITY, x.rigid_pd2);
+    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), {}, x.rigid_pd2);
     if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
       r.error = kNotRepresentable;
       return r;

@@ -91,6 +91,23 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           {{{1.9663812704481612e-321, -10, 0}, {0, 0, 0}, {0, 0, 0.30000000000000498}, {0.01, 1, 0}}},
                           {{{1.1798287622688967e-320, 0, 0}, {9, 6.6698862188568283e-322, 9},
                             {1.0000000000000002, 1, 1}, {1, 1, 1}}}));
+  // SPEC §9 where the depth is ~1e-36 of the size squared (a vertex ~1e18 away): the double
+  // normal of pdd2_relaxed has no accurate digit where it matters, and pdd2_global was above
+  // the exact witness on these two (global_depth.h: the exact start, rounded componentwise).
+  const auto far = compare::generate_family("adversarial", 78, 40);
+  pairs.push_back(far[29]);
+  pairs.push_back(far[39]);
+  // the fuzzer's pair spanning 1e-302..1e308 (fuzz/corpus/fast_engine/regress-global-span-1e308):
+  // the seven values are normal doubles and so is pdd2_global; it was rejected (SIGFPE before)
+  pairs.push_back(literal("span-1e308",
+                          {{{-1.0439190266794049e+308, -1.6699141076786345e+71, -8.2689907683260735e-273},
+                            {-9.0229300059495633e+281, -5.6416252970077373e+182, -2.9723526587278523e+67},
+                            {3.1097388496567073e+231, -4.3453923822790139e-72, 6.1863313510113515e-53},
+                            {1.4410116083510851e+48, 1.0859609912968175e-182, -2.5955854277891067e+266}}},
+                          {{{6.051450253959454e+256, -1.1663002744834767e+223, -6.3117898324690887e+203},
+                            {-2.0676582014446153e-230, -1.6314770617200834e+206, -9.9784784730759232e+145},
+                            {-4.5011173095793752e+102, 1.9378519314214893e+112, 5.6970126625825217e+73},
+                            {1.1681938447588521e-302, 3.0614408184858201e+54, 1.7935001692194402e-307}}}));
   int computed = 0, rejected = 0;
   for (const auto& p : pairs) {
     const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
