@@ -31,6 +31,9 @@ V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]
 V3 add(const V3& a, const V3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 V3 mul(const V3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
 double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
 
 struct Problem {
   V3 relA[4], relB[4];  // x - A[0] (rounded once): heights for the evaluations
@@ -212,6 +215,46 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
     for (double s : {1.0, -1.0})
       if (cond.hold(mul(v, s))) best.offer(P, mul(v, s));
   }
+  // A far vertex (exact path): a vertex 1e18 away from the others makes the H of every piece
+  // where it is active the sum of a moderate part and a huge rank-one part ~ d d^T (d its
+  // lever); the minimiser then sits on the wall l.v = 0 between a moderate piece (vertex free)
+  // and that steep one (within ~1e-36 rad of it), an eigenvector of the steep H with an
+  // eigenvalue far below its resolution, and no double normal reaches the steep side without
+  // its value exploding. So on each wall of each piece the moderate H's smallest stationary
+  // point on the wall (the 2x2 eigenproblem of H on the plane l^T v = 0) is offered, nudged
+  // by 2^-49 rad into the piece: far above the normal's rounding (3 u of each component), so
+  // the vertex stays free, and a change of the value of ~2^-49 |H| / G relative. Each offer is
+  // evaluated exactly; offers only ever lower the result.
+  if (exact)
+    for (int k = 0; k < 8; ++k) {
+      const V3& l = cond.l[k];
+      const double ln = norm(l);
+      if (!(ln > 0)) continue;
+      const int axis = std::fabs(l[0]) <= std::fabs(l[1]) && std::fabs(l[0]) <= std::fabs(l[2]) ? 0
+                       : std::fabs(l[1]) <= std::fabs(l[2])                                     ? 1
+                                                                                                : 2;
+      V3 p = cross(l, V3{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0});
+      p = mul(p, 1 / norm(p));
+      const V3 q = mul(cross(l, p), 1 / ln);
+      auto form = [&](const V3& x, const V3& y) {
+        double f = 0;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) f += x[r] * H(r, c) * y[c];
+        return f;
+      };
+      const double m00 = form(p, p), m01 = form(p, q), m11 = form(q, q);
+      const double mw = (m00 + m11) / 2 - std::hypot((m00 - m11) / 2, m01);
+      if (!(mw < threshold) || mw < floor) continue;
+      const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
+      const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
+      const V3 u = add(mul(p, first ? a0 : a1), mul(q, first ? b0 : b1));
+      if (!(norm(u) > 0)) continue;
+      const V3 nudge = mul(l, cond.sign[k] * 0x1p-49 / ln);
+      for (double s : {1.0, -1.0}) {
+        const V3 v = add(mul(u, s / norm(u)), nudge);
+        if (cond.hold(v)) best.offer(P, v);
+      }
+    }
   for (int k = 0; k < 3; ++k) {
     if (!(mu(k) < threshold)) break;  // ascending
     const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * hnorm;

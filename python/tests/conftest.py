@@ -24,8 +24,6 @@ VALUE_KEYS = ("rigid_pd2", "eq11_pd2", "pdd2_static", "pdd2", "pdd2_relaxed", "p
               "pdd2_accel6")
 LABEL_KEYS = ("rigid_dir", "pdd2_static_dir", "pdd2_dir", "pdd2_relaxed_dir")
 GLOBAL_VALUE_KEYS = ("pdd2_global", "pdd2_global_lower")  # SPEC §9 (lower: exact engine only)
-# The fast engine's known pdd2_global miss (tests/support/fixtures.h says why).
-FAST_GLOBAL_KNOWN_MISSES = {"adversarial-1-29"}
 CONTRACT = Fraction(1, 10**9)  # SPEC §8: 1e-9 relative
 
 

@@ -40,16 +40,3 @@ inline std::vector<std::string> property_fixture_files() {
 }
 
 }  // namespace pdd::test
-
-namespace pdd::test {
-
-// Shipped pairs on which the fast engine's pdd2_global (SPEC §9) misses the exact engine's
-// witness by more than the contract: adversarial-1-29 has a vertex 1e18 away from the others
-// (fast 0.0042 against the exact witness 0.00080; the exact engine's lower bound is 0 there,
-// see tests/reference/test_global_pdd.cpp). The stationary-point enumeration of
-// fast/src/global_depth.h does not find that optimum. A known defect, said in the README and
-// the issue; the tests check that each listed pair still misses (so the list must shrink when
-// it is fixed) and hold every other pair to the contract.
-inline bool fast_global_known_miss(const std::string& name) { return name == "adversarial-1-29"; }
-
-}  // namespace pdd::test
