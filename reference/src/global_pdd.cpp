@@ -143,6 +143,36 @@ struct CachedPiece {
 
 Vector to_vector(const Vec3& n) { return Vector(Rational(n[0]), Rational(n[1]), Rational(n[2])); }
 
+// The smallest stationary point of u^T H u on the plane l.u = 0 (the 2x2 eigenproblem there),
+// both orientations, each nudged by 2^-49 rad to the side `side` of the plane (+1: l.u > 0);
+// none when l or the plane's form vanishes. A heuristic for witnesses only (each is decided
+// exactly): the minimiser of a pair with a vertex 1e18 away lies on such a wall of a moderate
+// piece (the far vertex free), next to a piece whose H has a huge rank-one part, which no
+// double normal can enter without its value exploding (global_pdd.h).
+std::vector<Vec3> wall_points(const Eigen::Matrix3d& H, const Vec3& l, double side) {
+  const double ln = std::sqrt(dot(l, l));
+  if (!(ln > 0) || !std::isfinite(ln)) return {};
+  const int axis = std::fabs(l[0]) <= std::fabs(l[1]) && std::fabs(l[0]) <= std::fabs(l[2]) ? 0
+                   : std::fabs(l[1]) <= std::fabs(l[2])                                     ? 1
+                                                                                            : 2;
+  const Eigen::Vector3d L(l[0], l[1], l[2]);
+  Eigen::Vector3d p = L.cross(Eigen::Vector3d::Unit(axis));
+  p.normalize();
+  const Eigen::Vector3d q = L.cross(p) / ln;
+  const double m00 = p.dot(H * p), m01 = p.dot(H * q), m11 = q.dot(H * q);
+  const double mw = (m00 + m11) / 2 - std::hypot((m00 - m11) / 2, m01);
+  const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
+  const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
+  const Eigen::Vector3d u = p * (first ? a0 : a1) + q * (first ? b0 : b1);
+  if (!(u.norm() > 0) || !u.allFinite()) return {};
+  std::vector<Vec3> out;
+  for (double s : {1.0, -1.0}) {
+    const Eigen::Vector3d w = u * (s / u.norm()) + L * (side * 0x1p-49 / ln);
+    out.push_back({w(0), w(1), w(2)});
+  }
+  return out;
+}
+
 Vec3 face_normal(int face, double a, double b) {
   const int k = face / 2;
   Vec3 n;
@@ -235,6 +265,14 @@ class Search {
       }
       c.mu = certified_min_eigenvalue(c.piece.H, estimate);
     }
+    // Witnesses on the piece's walls (wall_point), both orientations, each decided exactly.
+    for (int i = 0; i < 4; ++i)
+      for (int side = 0; side < 2; ++side) {
+        const Vec3& l = side ? c.Ed[i] : c.Dd[i];
+        const bool active = ((side ? c.piece.set.b : c.piece.set.a) >> i) & 1u;
+        for (const Vec3& n : wall_points(H, l, active ? 1.0 : -1.0))
+          if (optimal_at(c, n)) offer(c, n);
+      }
     return cache_.emplace(s, std::move(c)).first->second;
   }
 
@@ -437,6 +475,7 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
   out.gap_met = gap_met;
   out.lower = (open.empty() ? search.best_value
                             : std::min(Rational(open.top().lower), search.best_value)) / value_scale;
+  if (options.floor > out.lower) out.lower = options.floor;
   out.normal = search.best_normal;
   if (!search.best_set) {
     out.value = start_value, out.q1_A = start_q1_A, out.q1_B = start_q1_B;

@@ -55,6 +55,14 @@ struct GlobalPdd {
 struct GlobalOptions {
   Rational gap = Rational(1) / Rational(1000000000000LL);  // 1e-12 (SPEC §9)
   std::size_t max_patches = 100000;  // a few seconds at most; see kGapNotClosed in the tests
+  // A lower bound proved beforehand, reported when the search's own is lower (pairs where the
+  // gap is not closed): solve_exact passes PD^2 / 32. Proof: along a unit normal u, dropping
+  // every constraint but those of A's highest vertex and B's lowest can only lower the relaxed
+  // minimum; one vertex of a tetrahedron pushed by x with the other three free costs
+  // (1/20) min {t1^2 + 3 t^2 + (t1 + 3 t)^2 : t1 >= x} = x^2/16 (optimum t = -t1/4), so with
+  // the overlap D(u) = x + y split between the two, relaxed(u) >= min (x^2 + y^2)/16 = D(u)^2/32;
+  // and D(u) >= PD for every u (PD is the smallest overlap over all directions).
+  Rational floor = 0;
 };
 
 // `start` is a normal with its exact relaxed optimum `start_value` and positions (the best
