@@ -155,10 +155,8 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
   if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;
 }
 
-}  // namespace
-
-bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
-                    bool* unique) {
+bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
+                     bool* unique, bool with_certificate) {
   SupersetLanes K;
   superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
   if (!(K.finite == 0.0)) return false;
@@ -179,7 +177,7 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Cand
   ch.value = c.value;
   ch.index = -1;
   ch.code = c.code;
-  certify(K, fb, c, ch, unique);
+  if (with_certificate) certify(K, fb, c, ch, unique);
   if (!geometry) return true;
   if (c.lane >= 0)
     lane_geometry(A, B, K, c, *geometry);
@@ -191,6 +189,17 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Cand
   }
   geometry->label = unpack_label(c.code);
   return true;
+}
+
+}  // namespace
+
+bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
+                    bool* unique) {
+  return superset_choice(A, B, ch, geometry, unique, true);
+}
+
+bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch) {
+  return superset_choice(A, B, ch, nullptr, nullptr, false);
 }
 
 }  // namespace pdd::fast

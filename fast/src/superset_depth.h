@@ -63,4 +63,10 @@ namespace pdd::fast {
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
                     Candidate* geometry = nullptr, bool* unique = nullptr);
 
+// A benchmark baseline only, NOT SPEC §8: the same kernel and pick on the pair as given, with
+// none of the certification (no power-of-two rescaling, no certify pass, no exact path;
+// ch.certified stays false). `pdd bench` times it beside rigid_pd2(A, B) to report what the
+// certification costs.
+bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch);
+
 }  // namespace pdd::fast

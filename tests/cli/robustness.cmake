@@ -126,6 +126,13 @@ run(0 "" bench mesh --a ${FIXTURES}/meshes/tiny-a.msh --b ${FIXTURES}/meshes/tin
 if(NOT out MATCHES "Stages of pdd::mesh::contacts" OR NOT out MATCHES "FCL DynamicAABBTreeCollisionManager")
   message(FATAL_ERROR "pdd bench mesh: table incomplete\n${out}")
 endif()
+# pdd bench end to end on a few pairs (no timing asserted): the slow-path rate and the cost of
+# certification are in the report and in the JSON.
+run(0 "" bench --count 20 --repeats 1 --exact-sample 2 --json ${WORK}/bench.json)
+file(READ ${WORK}/bench.json bench_json)
+if(NOT bench_json MATCHES "\"slow_path_pairs\": [0-9]" OR NOT bench_json MATCHES "\"rigid_pd2_uncertified_ns\": [0-9]")
+  message(FATAL_ERROR "pdd bench --json: the certification block is incomplete\n${bench_json}")
+endif()
 run(0 "" bench mesh --size 600 --repeats 1 --json ${WORK}/bench-mesh.json)
 file(READ ${WORK}/bench-mesh.json bench_mesh_json)
 if(NOT bench_mesh_json MATCHES "\"intersecting_pairs\": [1-9]")

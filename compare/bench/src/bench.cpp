@@ -17,6 +17,7 @@
 #include "pdd/pdd.h"
 #include "pdd/reference/minkowski_pd.h"
 #include "pdd/reference/solve_exact.h"
+#include "superset_depth.h"  // fast/src (pdd_fast_internal): the uncertified baseline
 
 namespace pdd::compare {
 namespace {
@@ -103,6 +104,11 @@ BenchReport run_bench(const BenchOptions& o) {
 
   std::vector<TimedFunction> fns = fast_timed_functions(pairs);
   const std::size_t n_fast = fns.size();
+  fns.push_back({"rigid_pd2, no certification", [&pairs](std::size_t k) {
+                   fast::Choice ch;
+                   return fast::rigid_superset_uncertified(pairs[k].A, pairs[k].B, ch) ? ch.value : 0.0;
+                 }});
+  const std::size_t n_uncertified = fns.size() - 1;
   for (const auto& s : specs) {
     auto depth = s.depth;
     fns.push_back({s.name, [depth](std::size_t k) { return depth(k).pd; }});
@@ -110,6 +116,8 @@ BenchReport run_bench(const BenchOptions& o) {
   const auto timings = time_functions(pairs.size(), fns, o.repeats);
   rep.fast.assign(timings.begin(), timings.begin() + n_fast);
   const VariantTiming& ours = find_timing(rep.fast, "rigid_pd2");
+  rep.certification.rigid_uncertified_ns = timings[n_uncertified].median_ns_per_pair;
+  rep.certification.rigid_certified_ns = ours.median_ns_per_pair;
 
   // ---- peers: failures and deviations on all pairs, errors on the exact sample ----
   std::cerr << "pdd bench: exact PD² on a sample of " << M << " pairs\n";
@@ -128,7 +136,7 @@ BenchReport run_bench(const BenchOptions& o) {
     p.name = specs[i].name;
     p.config = specs[i].config;
     p.judged = specs[i].judged;
-    p.timing = timings[n_fast + i];
+    p.timing = timings[n_uncertified + 1 + i];
     p.time_ratio = p.timing.median_ns_per_pair / ours.median_ns_per_pair;
     p.call_ratio = p.timing.median_call_ns / ours.median_call_ns;
     std::vector<double> err;

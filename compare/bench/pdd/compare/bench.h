@@ -70,6 +70,11 @@ struct CertificationCost {
   std::size_t refined = 0, slow_paths = 0;
   double refined_median_ns = 0, slow_median_ns = 0;  // median solve_pair call on those pairs
   double share_of_solve_pair = 0;  // (sum of their calls) / (solve_pair time over all pairs)
+  // The certification of rigid_pd2 on every pair: rigid_pd2 against the same kernel and pick
+  // with no certification at all (no rescaling, no certify pass, no exact path; fast/src/
+  // superset_depth.h's rigid_superset_uncertified), timed in the same passes (ns per pair,
+  // median over passes). The bound lanes the kernel computes beside the values are in both.
+  double rigid_uncertified_ns = 0, rigid_certified_ns = 0;
 };
 
 struct BenchTarget {
