@@ -32,6 +32,7 @@
 
 #include "pdd/compare/engine_comparison.h"  // relative_error: exact |fast - exact| / |exact|
 #include "pdd/pdd.h"
+#include "pdd/rejection.h"
 #include "pdd/reference/solve_exact.h"
 
 namespace {
@@ -220,6 +221,23 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
   const std::array<pdd::reference::Rational, 7> xs = {
       exact.rigid_pd2, exact.eq11_pd2,     exact.pdd2_static, exact.pdd2,
       exact.pdd2_relaxed, exact.pdd2_accel1, exact.pdd2_accel6};
+  if (fast.error && *fast.error == pdd::kGlobalNotRepresentable) {
+    // Allowed only where a double normal cannot resolve the depth: the exact relaxed value below
+    // 2^-1022 of the extent squared (R: the largest |x - s0| coordinate, exactly).
+    pdd::reference::Rational R = 0;
+    for (const auto* t : {&p.A, &p.B})
+      for (const auto& v : *t)
+        for (int k = 0; k < 3; ++k) {
+          pdd::reference::Rational d = pdd::reference::Rational(v[k]) - pdd::reference::Rational(p.A[0][k]);
+          if (d < 0) d = -d;
+          if (d > R) R = d;
+        }
+    const pdd::reference::Rational tiny(std::numeric_limits<double>::min());
+    if (!exact.intersecting || !(exact.pdd2_relaxed < tiny * R * R))
+      fail(p, "the fast engine gives up on pdd2_global's normal where the depth is within the "
+              "resolution of the extent: " + *fast.error);
+    return;
+  }
   if (fast.error) {
     bool all_representable = true;
     for (const auto& x : xs) all_representable = all_representable && representable(x);
@@ -231,6 +249,17 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
   if (fast.intersecting != exact.intersecting)
     fail(p, std::string("intersecting: fast ") + (fast.intersecting ? "true" : "false") +
                 ", exact " + (exact.intersecting ? "true" : "false"));
+  // SPEC §9: inside the exact engine's proved interval [lower, witness], with §8's 1e-9.
+  if (exact.intersecting && exact.pdd2_global_lower) {
+    const pdd::reference::Rational g(fast.pdd2_global), e(kEps);
+    if (!(g >= *exact.pdd2_global_lower * (1 - e) && g <= exact.pdd2_global * (1 + e))) {
+      std::ostringstream os;
+      os.precision(17);
+      os << "SPEC §9: pdd2_global fast " << fast.pdd2_global << " outside the exact interval ["
+         << CGAL::to_double(*exact.pdd2_global_lower) << ", " << CGAL::to_double(exact.pdd2_global) << "]";
+      fail(p, os.str());
+    }
+  }
   const auto vs = values(fast);
   for (size_t i = 0; i < 7; ++i) {
     // relative_error is exact: 0 when both are 0, +inf when only the exact value is 0, 1 when
@@ -289,6 +318,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         fail(p, "not intersecting but a label is set");
       if (std::memcmp(&r.q1_A, &p.A, sizeof p.A) || std::memcmp(&r.q1_B, &p.B, sizeof p.B))
         fail(p, "not intersecting but q1 is not the rest pose");
+      if (r.pdd2_global != 0 || r.pdd2_global_normal)
+        fail(p, "not intersecting but pdd2_global or its normal is set (SPEC §9)");
     } else {
       if (!(r.rigid_pd2 > 0 && r.pdd2 > 0 && r.pdd2_static > 0 && r.pdd2_relaxed > 0))
         fail(p, "intersecting but a depth is 0");
@@ -302,6 +333,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       check_le(p, "pdd2_relaxed", r.pdd2_relaxed, "pdd2", r.pdd2);
       check_le(p, "pdd2", r.pdd2, "pdd2_accel6", r.pdd2_accel6);
       check_le(p, "pdd2_accel6", r.pdd2_accel6, "pdd2_accel1", r.pdd2_accel1);
+      // SPEC §9: 0 < pdd2_global <= pdd2_relaxed, a non-zero finite normal, finite positions
+      if (!(r.pdd2_global > 0) || !std::isnormal(r.pdd2_global))
+        fail(p, "intersecting but pdd2_global is 0 or not a normal double");
+      check_le(p, "pdd2_global", r.pdd2_global, "pdd2_relaxed", r.pdd2_relaxed);
+      if (!r.pdd2_global_normal) fail(p, "intersecting but pdd2_global_normal is null");
+      else {
+        const auto& n = *r.pdd2_global_normal;
+        if (!(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2])) ||
+            (n[0] == 0 && n[1] == 0 && n[2] == 0))
+          fail(p, "pdd2_global_normal is zero or not finite");
+      }
+      for (const auto* q : {&r.q1_A_global, &r.q1_B_global})
+        for (const auto& v : *q)
+          for (double x : v)
+            if (!std::isfinite(x)) fail(p, "a deformed position of pdd2_global is not finite");
     }
   }
 

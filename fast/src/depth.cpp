@@ -76,7 +76,10 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, relaxed_start, std::ldexp(rigid.pd2, 2 * sp.e))
                                    : global_depth(A, B, none, relaxed_start, rigid.pd2);
   bool in_range = true;
-  const double value = sp.exact ? detail::unscaled(g.value, 2 * -sp.e, in_range) : g.value;
+  // computed in rationals: taken again on the pair as given (solve_pair.cpp says why)
+  const double value = g.exact_value && sp.exact ? exact_relaxed_value(A, B, g.normal, in_range)
+                       : sp.exact                ? detail::unscaled(g.value, 2 * -sp.e, in_range)
+                                                 : g.value;
   if (!g.certified || !in_range || !(value > 0) || !std::isfinite(value)) {
     d.pd2 = std::numeric_limits<double>::quiet_NaN();
     d.status = DepthStatus::NotRepresentable;

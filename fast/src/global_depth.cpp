@@ -12,6 +12,7 @@
 #include "deformable_depth.h"
 #include "direction_qp.h"
 #include "direction_qp_impl.h"
+#include "exact_candidate.h"
 #include "exact_geometry.h"
 
 namespace pdd::fast {
@@ -392,6 +393,13 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
 }
 
 }  // namespace
+
+double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& n,
+                           bool& ok) {
+  detail::Q hA[4], hB[4];
+  Solution<detail::Q> s;
+  return detail::rounded_value(relaxed_exact(A, B, n, hA, hB, s), ok);
+}
 
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
                            const ExactStart& exact_start, double rigid_pd2) {

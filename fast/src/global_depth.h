@@ -59,6 +59,13 @@ struct GlobalOptimum {
 // rigid_pd2: a value within 1e-8 relative of the pair's exact PD^2 (the engine's certified
 // rigid_pd2, in the same units), or 0 when none is known. It prunes the enumeration: every
 // G(u) >= PD^2 / 32 (below).
+// The exact relaxed value along `n` for the pair as given, rounded once; `ok` cleared unless it
+// is 0 or a normal double. For a caller that ran global_depth on a rescaled pair: a value
+// computed exactly there (exact_value) may lie outside the double range in those units while
+// the pair's own is a normal double (a depth of 1e-37 at coordinates 1e192 rescaled by 2^-640).
+double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& n,
+                           bool& ok);
+
 // exact_start: called only when the exact pieces are needed (rare): pdd2_relaxed's exact normal
 // rounded componentwise (exact_candidate.h's rounded_normal), or zero when none is known.
 using ExactStart = std::function<std::array<double, 3>()>;

@@ -70,10 +70,16 @@ constexpr unsigned kRelaxed = 64;
 constexpr unsigned kPositions = 128;
 constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_depth.h)
 
-// SPEC §9 from the relaxed candidate `start` (its normal and label): value, normal, positions.
-// Returns false when the value is not certified (not representable).
-bool fill_global(const TetPair& pair, const Candidate& start, const Choice& rel, const CandidateSet& set,
-                 double rigid_pd2, PairResult<double>& r, bool* slow) {
+// SPEC §9 from the relaxed choice `rel` (its candidate's normal and label, when the double path
+// has one): value, normal, positions. Returns false when the value is not certified (not
+// representable).
+bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set, double rigid_pd2,
+                 PairResult<double>& r, bool* slow) {
+  double start[3] = {0, 0, 0};
+  if (rel.index >= 0) {
+    const Candidate c = candidate(set, rel.index);
+    for (int k = 0; k < 3; ++k) start[k] = c.n[k];
+  }
   // The exact start (rare: a depth far below the pair's size): the certified label's exact
   // normal, else the exact path's pdd2_relaxed normal.
   const ExactStart exact_start = [&] {
@@ -81,7 +87,7 @@ bool fill_global(const TetPair& pair, const Candidate& start, const Choice& rel,
       return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(pair.A, pair.B), *l).n);
     return detail::solve_pair_exact_path(pair.A, pair.B).relaxed_normal;
   };
-  const GlobalOptimum g = global_depth(pair.A, pair.B, start.n, exact_start, rigid_pd2);
+  const GlobalOptimum g = global_depth(pair.A, pair.B, start, exact_start, rigid_pd2);
   r.pdd2_global = g.value;
   r.pdd2_global_normal = g.normal;
   r.q1_A_global = g.q1_A;
@@ -132,8 +138,7 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   } else {
     missing |= kPositions;
   }
-  if (rel.index < 0 || !fill_global(pair, candidate(set, rel.index), rel, set,
-                                    rigid.certified ? rigid.value : 0.0, r, &global_slow))
+  if (!fill_global(pair, rel, set, rigid.certified ? rigid.value : 0.0, r, &global_slow))
     missing |= kGlobal;
   return missing;
 }
@@ -194,6 +199,16 @@ bool unscale(PairResult<double>& r, int k, unsigned missing) {
   return ok;
 }
 
+// pdd2_global's value is 0 or a normal double and its positions are finite.
+bool global_representable(const PairResult<double>& r) {
+  if (!(r.pdd2_global == 0 || std::isnormal(r.pdd2_global))) return false;
+  for (const Positions<double>* q : {&r.q1_A_global, &r.q1_B_global})
+    for (const auto& x : *q)
+      for (double c : x)
+        if (!std::isfinite(c)) return false;
+  return true;
+}
+
 PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   detail::ExactPathResult e = detail::solve_pair_exact_path(pair.A, pair.B);
   if (!e.representable) {
@@ -205,12 +220,13 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
   if (x.intersecting) {  // SPEC §9, started at pdd2_relaxed's normal
     const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), {}, x.rigid_pd2);
-    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
-      r.error = kNotRepresentable;
-      return r;
-    }
     x.pdd2_global = g.value, x.pdd2_global_normal = g.normal;
     x.q1_A_global = g.q1_A, x.q1_B_global = g.q1_B;
+    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0) ||
+        !global_representable(x)) {
+      r.error = kGlobalNotRepresentable;
+      return r;
+    }
   }
   return x;
 }
@@ -252,7 +268,21 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   PairResult<double> bad;
   bad.name = pair.name;
   bad.error = kNotRepresentable;
-  if (!unscale(r, -sp.e, missing) || (missing & kGlobal)) return bad;
+  // pdd2_global computed in rationals: its value in the rescaled units may have left the double
+  // range (a depth of 1e-37 at coordinates 1e192 is 1e-422 there); taken again, exactly, on the
+  // pair as given along the same normal (a normal does not change with a uniform scale).
+  const bool global_exact = global_slow && !(missing & kGlobal) && r.pdd2_global_normal;
+  if (global_exact) r.pdd2_global = 0;
+  if (!unscale(r, -sp.e, missing | kGlobal)) return bad;  // pdd2_global: checked below
+  if (global_exact) {
+    bool ok = true;
+    r.pdd2_global = exact_relaxed_value(pair.A, pair.B, *r.pdd2_global_normal, ok);
+    if (!ok) missing |= kGlobal;
+  }
+  if ((missing & kGlobal) || !global_representable(r)) {
+    bad.error = kGlobalNotRepresentable;
+    return bad;
+  }
   if (global_slow && slow_path) *slow_path = true;
   if (exact_q1 && !(missing & kDeformable) && !exact_positions_of(pair, *r.pdd2_dir, r))
     missing |= kPositions;

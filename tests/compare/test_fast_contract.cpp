@@ -108,6 +108,18 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                             {-2.0676582014446153e-230, -1.6314770617200834e+206, -9.9784784730759232e+145},
                             {-4.5011173095793752e+102, 1.9378519314214893e+112, 5.6970126625825217e+73},
                             {1.1681938447588521e-302, 3.0614408184858201e+54, 1.7935001692194402e-307}}}));
+  // the fuzzer's (fuzz/corpus/fast_engine/regress-global-far-vertex-1e192-a): a vertex 1e192
+  // away, a depth of 1e-37; pdd2_global computed in rationals on the rescaled pair is 1e-422
+  // there and was reported 0 (then rejected as not representable before that)
+  pairs.push_back(literal("far-vertex-1e192",
+                          {{{6.1869652345266624e-64, 3.4721511805082962e-15, 1.256142812420757e-19},
+                            {2.9024137781856264e-18, -1.7829949767912386e+179, -9.8540028720327217e+192},
+                            {1.4979184045187882e-18, 2.0013308293968663e-19, 8.4313681814522292e-18},
+                            {2.4769325036142077e-18, 3.8394191780818924e-18, 3.3042097304216101e-18}}},
+                          {{{5.1471184288869538e-18, 1.7968774262075965e-19, 2.9010090630874396e-18},
+                            {1.5495325739710195e-18, 6.9469722445301342e-18, 7.0795386101003494e-18},
+                            {3.2834170918216976e-18, 3.7745084273024319e-19, 2.0425652625649374e-18},
+                            {0, 0, 0}}}));
   int computed = 0, rejected = 0;
   for (const auto& p : pairs) {
     const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
