@@ -222,8 +222,9 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
       exact.rigid_pd2, exact.eq11_pd2,     exact.pdd2_static, exact.pdd2,
       exact.pdd2_relaxed, exact.pdd2_accel1, exact.pdd2_accel6};
   if (fast.error && *fast.error == pdd::kGlobalNotRepresentable) {
-    // Allowed only where a double normal cannot resolve the depth: the exact relaxed value below
-    // 2^-1022 of the extent squared (R: the largest |x - s0| coordinate, exactly).
+    // Allowed only where a double normal's rounding (u R at a vertex R away) can exceed 1e-9 of
+    // the depth: the exact relaxed value below 1e-14 of the extent squared (R: the largest
+    // |x - s0| coordinate, exactly).
     pdd::reference::Rational R = 0;
     for (const auto* t : {&p.A, &p.B})
       for (const auto& v : *t)
@@ -232,7 +233,7 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
           if (d < 0) d = -d;
           if (d > R) R = d;
         }
-    const pdd::reference::Rational tiny(std::numeric_limits<double>::min());
+    const pdd::reference::Rational tiny(1e-14);
     if (!exact.intersecting || !(exact.pdd2_relaxed < tiny * R * R))
       fail(p, "the fast engine gives up on pdd2_global's normal where the depth is within the "
               "resolution of the extent: " + *fast.error);

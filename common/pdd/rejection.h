@@ -49,8 +49,8 @@ inline std::optional<std::string> pair_rejection(const std::optional<std::string
 inline constexpr const char* kNotRepresentable =
     "not representable: a result is outside the normal double range (SPEC §8)";
 // The fast engine's pdd2_global (SPEC §9) where no normal in doubles was found that attains it:
-// a pair whose depth is below 2^-1022 of its extent squared (coordinates spanning the double
-// range), where a normal's rounding alone moves a far vertex by more than the depth.
+// a pair whose depth is below 1e-7 of its extent (a far vertex), where a normal's rounding
+// alone moves a far vertex by more than 1e-9 of the depth.
 inline constexpr const char* kGlobalNotRepresentable =
     "not representable: no normal in doubles attains pdd2_global (the pair's depth is below the "
     "resolution of its extent; SPEC §8, §9)";

@@ -67,20 +67,23 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   }
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   const double none[3] = {0, 0, 0};
-  // pdd2_relaxed's exact normal, asked for only where the depth is far below the pair's size.
+  // pdd2_relaxed (certified): its value checks the double enumeration (global_depth.h), its
+  // exact normal starts the exact one.
+  const Depth rel = pdd2_relaxed(A, B);
+  const double rel_value = rel.status == DepthStatus::Ok && rel.pd2 > 0 ? rel.pd2 : INFINITY;
   const ExactStart relaxed_start = [&]() -> std::array<double, 3> {
-    const Depth rel = pdd2_relaxed(A, B);
     if (!rel.dir) return {0, 0, 0};
     return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(A, B), *rel.dir).n);
   };
-  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, relaxed_start, std::ldexp(rigid.pd2, 2 * sp.e))
-                                   : global_depth(A, B, none, relaxed_start, rigid.pd2);
+  const GlobalOptimum g = sp.exact ? global_depth(sp.A, sp.B, none, std::ldexp(rel_value, 2 * sp.e), relaxed_start,
+                                                  std::ldexp(rigid.pd2, 2 * sp.e))
+                                   : global_depth(A, B, none, rel_value, relaxed_start, rigid.pd2);
   bool in_range = true;
   // computed in rationals: taken again on the pair as given (solve_pair.cpp says why)
   const double value = g.exact_value && sp.exact ? exact_relaxed_value(A, B, g.normal, in_range)
                        : sp.exact                ? detail::unscaled(g.value, 2 * -sp.e, in_range)
                                                  : g.value;
-  if (!g.certified || !in_range || !(value > 0) || !std::isfinite(value)) {
+  if (!g.certified || !in_range || !std::isnormal(value) || !(value > 0)) {
     d.pd2 = std::numeric_limits<double>::quiet_NaN();
     d.status = DepthStatus::NotRepresentable;
     return d;

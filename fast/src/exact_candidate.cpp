@@ -143,18 +143,13 @@ double rounded_value(const Q& q, bool& ok) {
 }
 
 std::array<double, 3> rounded_normal(const QV& n) {
-  long top = LONG_MIN;  // log2 of the largest component, within 1 (bit lengths)
-  for (const Q& x : n.x)
-    if (sgn(x) != 0)
-      top = std::max(top, long(mpz_sizeinbase(x.get_num_mpz_t(), 2)) -
-                              long(mpz_sizeinbase(x.get_den_mpz_t(), 2)));
+  long top = LONG_MIN;  // log2 of the largest component, within 1
+  for (const Q& x : n.x) top = std::max(top, log2_estimate(x));
   std::array<double, 3> out{};
   if (top == LONG_MIN) return out;
   for (int k = 0; k < 3; ++k) {
     Q x = n.x[k];
-    if (top > 0) mpz_mul_2exp(x.get_den_mpz_t(), x.get_den_mpz_t(), top);
-    else if (top < 0) mpz_mul_2exp(x.get_num_mpz_t(), x.get_num_mpz_t(), -top);
-    x.canonicalize();
+    scale_pow2(x, -top);
     out[k] = x.get_d();
   }
   return out;

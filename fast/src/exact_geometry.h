@@ -9,6 +9,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <climits>
 
 #include "direction_geometry.h"
 #include "exact_predicates.h"
@@ -16,6 +17,18 @@
 namespace pdd::fast::detail {
 
 using Q = mpq_class;
+
+// log2 |x| within 1 (the bit lengths of numerator and denominator); LONG_MIN for 0.
+inline long log2_estimate(const Q& x) {
+  if (sgn(x) == 0) return LONG_MIN;
+  return long(mpz_sizeinbase(x.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(x.get_den_mpz_t(), 2));
+}
+// x * 2^e, exactly.
+inline void scale_pow2(Q& x, long e) {
+  if (e > 0) mpz_mul_2exp(x.get_num_mpz_t(), x.get_num_mpz_t(), e);
+  else if (e < 0) mpz_mul_2exp(x.get_den_mpz_t(), x.get_den_mpz_t(), -e);
+  x.canonicalize();
+}
 
 struct QV {
   Q x[3];

@@ -69,8 +69,6 @@ detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v,
   return s.cost / (20 * (v0 * v0 + v1 * v1 + v2 * v2));
 }
 
-// The best normal so far. Candidates are compared by the double closed form, or (slow path,
-// where doubles cannot resolve the pair's depths) by the exact one.
 // The certified relative error of relaxed_at's value along v (value_bounds.h's QP bound):
 // heights rel = x - A0 rounded (u |rel|) then a dot product (3 u sum |v_k rel_k|), so
 // e_h <= 5 u |v|_1 scale; the closed form's T within dT = 2^12 u Hm; |Phi~ - Phi| <= 2 e_h +
@@ -84,17 +82,18 @@ double value_error(const Problem& P, const V3& v, double cost, double hm) {
   return 2 * r + 8 * kU;
 }
 
+bool nonzero(const V3& v) { return v[0] != 0 || v[1] != 0 || v[2] != 0; }
+
 // The normals offered so far and the best. Compared by the double closed form with its error
 // bound, or (slow path, where doubles cannot resolve the pair's depths) by the exact one.
 struct Best {
-  double value;
-  V3 n;
+  double value = INFINITY;
+  V3 n{};
   const TetVertices* A = nullptr;  // set: compare exactly
   const TetVertices* B = nullptr;
-  // Exact comparison (A set): the best exact value, and `value` = it times 2^-2unit (the
-  // pieces' units, where eigenvalues are compared). `value` may underflow to 0 on a pair whose
-  // depth is below 2^-1022 of its size squared; the pruning threshold is then lower than it
-  // could be, which costs evaluations, never a minimiser.
+  // Exact comparison (A set): the best exact value `qvalue` (the pair's units); `value` is it
+  // times 2^-2unit (the coordinates' scale of the exact pieces), for the record only: pieces
+  // compare eigenvalues in their own units through value_in().
   long unit = 0;
   detail::Q qvalue;
   bool have_q = false;
@@ -103,19 +102,23 @@ struct Best {
     V3 n;
   };
   std::vector<Offer> offers;  // double path: every normal evaluated
+  // The best value in units scaled by 2^-extra (a piece's own scale, exact path), or as is.
+  double value_in(long extra) const {
+    if (!A) return value;
+    if (!have_q) return INFINITY;
+    detail::Q x = qvalue;
+    detail::scale_pow2(x, -2 * unit - extra);
+    return x.get_d();
+  }
   void offer(const Problem& P, const V3& v) {
-    if (!(norm(v) > 0)) return;
+    if (!nonzero(v)) return;
     if (A) {
       detail::Q hA[4], hB[4];
       Solution<detail::Q> s;
       const detail::Q q = relaxed_exact(*A, *B, v, hA, hB, s);
       if (have_q && !(q < qvalue)) return;
       qvalue = q, have_q = true, n = v;
-      detail::Q scaled = q;
-      if (unit > 0) mpz_mul_2exp(scaled.get_den_mpz_t(), scaled.get_den_mpz_t(), 2 * unit);
-      else if (unit < 0) mpz_mul_2exp(scaled.get_num_mpz_t(), scaled.get_num_mpz_t(), -2 * unit);
-      scaled.canonicalize();
-      value = scaled.get_d();
+      value = value_in(0);
       return;
     }
     DirectionSolution s;
@@ -171,21 +174,27 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
   return true;
 }
 
-// One active set's H (its entries within h_error, absolute) and sign conditions (built only
-// when an eigenpair survives): prune by eigenvalue, evaluate the eigenvectors (or the
-// eigen-plane's arc) that satisfy the conditions (global_depth.h).
+// One active set's H (its entries within h_error, absolute; on the exact path H is the exact
+// one times 2^-pe, rounded once) and sign conditions (built only when an eigenpair survives):
+// prune by eigenvalue, evaluate the eigenvectors (or the eigen-plane's arc) that satisfy the
+// conditions (global_depth.h).
 // Pruning window: an eigenpair can hold the minimiser only if its exact eigenvalue mu (= G
 // there) lies in [lower, best): every G(u) >= lower (global_depth.h's bound), and a value at or
 // above the best cannot improve it. The computed eigenvalues of the rounded H are within
-// h_error (Weyl: |E|_2 <= |E|_F <= 3 max |E_rc|) plus the solver's kEigen |H|_F of the exact
-// ones, so the window is widened by that margin on both sides (and by kPrune relative above).
+// h_error (Weyl: |E|_2 <= |E|_F <= 3 max |E_rc|) of the exact ones, plus the solver's own error:
+// kEigen |H|_F where the eigenvalues are apart, growing near a double eigenvalue (the closed
+// form's cubic roots: measured 2e-11 |H| at a gap of 4e-6 |H|, 4.5e-9 |H| below 1e-6 |H|), so
+// each eigenvalue's margin adds 8 u |H|^2 / max(gap to its neighbours, sqrt(u) |H|) (>= 1e-9
+// |H| at any gap). The window is widened by that margin on both sides (and kPrune above).
 template <class Refine, class MakeConditions>
 void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions make_conditions,
-                    const Problem& P, Best& best, double lower, Refine refine, bool exact) {
+                    const Problem& P, Best& best, double lower, Refine refine, bool exact, long pe) {
   const double hnorm = H.norm();
   const double margin = kEigen * hnorm + 3 * h_error;
-  const double threshold = best.value * (1 - kPrune) + margin;
-  const double floor = lower - margin;
+  const double best_here = best.value_in(pe);  // the best value in this piece's units
+  const double lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
+  const double threshold = best_here * (1 - kPrune) + margin;
+  const double floor = lower_here - margin;
   // Cheap tests first. mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
   // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and the
   // entries' own errors): 64 u |H|_F^3 + 6 |H|_F^2 (3 h_error). mu_max <= trace (H is PSD).
@@ -202,15 +211,25 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   else eig.computeDirect(H);
   if (eig.info() != Eigen::Success) return;
   const Eigen::Vector3d mu = eig.eigenvalues();
-  bool any = exact;  // exact: the smallest eigenvector is tried below whatever mu(0) says
-  for (int k = 0; k < 3; ++k) any = any || (mu(k) >= floor && mu(k) < threshold);
+  double m[3];  // each eigenvalue's margin (above)
+  for (int k = 0; k < 3; ++k) {
+    double gap = INFINITY;
+    if (k > 0) gap = std::min(gap, mu(k) - mu(k - 1));
+    if (k < 2) gap = std::min(gap, mu(k + 1) - mu(k));
+    m[k] = margin + 8 * kU * hnorm * hnorm / std::max(gap, std::sqrt(kU) * hnorm);
+  }
+  auto in_window = [&](int k) {
+    return mu(k) >= lower_here - m[k] && mu(k) < best_here * (1 - kPrune) + m[k];
+  };
+  bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
+  for (int k = 0; k < 3; ++k) any = any || in_window(k);
   if (!any) return;
   const Conditions cond = make_conditions();
   // Generic minimisers are interior to their piece, hence the smallest eigenvalue's vector
   // (the Rayleigh quotient has no other local minimum). Its eigenvalue can be far below the
   // solver's resolution u |H| (a vertex 1e18 away makes |H| ~ 1e36 while the depth is ~1):
   // inverse iteration with shift 0 on the exact H (slow path) finds it regardless.
-  if (exact && !(mu(0) < floor)) {
+  if (exact && !(mu(0) < lower_here - m[0])) {
     const Eigen::Vector3d e = eig.eigenvectors().col(0);
     const V3 v = refine(V3{e(0), e(1), e(2)}, 0.0);
     for (double s : {1.0, -1.0})
@@ -248,8 +267,10 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
       if (!(mw < threshold) || mw < floor) continue;
       const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
       const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
-      const V3 u = add(mul(p, first ? a0 : a1), mul(q, first ? b0 : b1));
-      if (!(norm(u) > 0)) continue;
+      double ua = first ? a0 : a1, ub = first ? b0 : b1;
+      const double big = std::max(std::fabs(ua), std::fabs(ub));  // H-sized: may be ~1e-300
+      if (!(big > 0)) continue;
+      const V3 u = add(mul(p, ua / big), mul(q, ub / big));
       const V3 nudge = mul(l, cond.sign[k] * 0x1p-49 / ln);
       for (double s : {1.0, -1.0}) {
         const V3 v = add(mul(u, s / norm(u)), nudge);
@@ -257,18 +278,26 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
       }
     }
   for (int k = 0; k < 3; ++k) {
-    if (!(mu(k) < threshold)) break;  // ascending
-    const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * hnorm;
-    if (mu(k) < floor && !(plane && mu(k + 1) >= floor)) continue;  // below every G(u)
+    if (!(mu(k) < best_here * (1 - kPrune) + m[k])) break;  // ascending
+    // A plane of eigenvectors: two eigenvalues within the solver's resolution of each other
+    // (relative to them, not to |H|: a far vertex's huge eigenvalue beside two moderate ones
+    // must not merge the moderate two). Its arc's middle is offered, and each computed vector.
+    const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * std::fabs(mu(k + 1)) + 2 * m[k];
+    if (mu(k) < lower_here - m[k] && !(plane && mu(k + 1) >= lower_here - m[k + 1])) continue;
     const Eigen::Vector3d e = eig.eigenvectors().col(k);
-    const V3 v = plane ? V3{e(0), e(1), e(2)} : refine(V3{e(0), e(1), e(2)}, mu(k));
-    if (plane) {  // a plane of eigenvectors
+    if (plane) {
       const Eigen::Vector3d f = eig.eigenvectors().col(k + 1);
       V3 w;
-      if (arc_middle(cond, v, {f(0), f(1), f(2)}, w)) best.offer(P, w);
+      if (arc_middle(cond, V3{e(0), e(1), e(2)}, {f(0), f(1), f(2)}, w)) best.offer(P, w);
+      for (const Eigen::Vector3d& g : {e, f}) {
+        const V3 u = refine(V3{g(0), g(1), g(2)}, mu(k));
+        for (double s : {1.0, -1.0})
+          if (cond.hold(mul(u, s))) best.offer(P, mul(u, s));
+      }
       ++k;
       continue;
     }
+    const V3 v = refine(V3{e(0), e(1), e(2)}, mu(k));
     for (double s : {1.0, -1.0}) {
       const V3 sv = mul(v, s);
       if (cond.hold(sv)) best.offer(P, sv);
@@ -282,9 +311,10 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
 // 2^-60 from an axis) then has no correct digit, and the relaxed value along it, of order
 // |H| u^2, swamps a depth of 1e-38. Rounded componentwise, every component keeps its relative
 // accuracy. sigma = mu (1 - 1e-6): the iteration contracts by about 1e-6 towards mu's vector.
-V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu) {
+V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe) {
   using detail::Q;
-  const Q sigma = Q(mu) * (1 - Q(1, 1000000));
+  Q sigma = Q(mu) * (1 - Q(1, 1000000));
+  detail::scale_pow2(sigma, pe);  // mu is in the piece's units, 2^-pe of h's
   Q m[3][3];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : Q(0));
@@ -307,7 +337,33 @@ V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu) {
   }
   return v;
 }
-V3 refine(const double (&)[3][3], const V3& v, double) { return v; }  // fast path: as is
+// Double path: two steps of inverse iteration in doubles, x = adj(H - sigma I) v with sigma =
+// mu (1 - 1e-6), normalised. The closed-form solver's vectors are the cross products of rows
+// of H - mu I: beside a vertex 10^4 away (|H| ~ 1e9, a depth ~ 1) their error along the large
+// eigenvector, ~ u |H| / mu, costs |H| (u |H| / mu)^2 ~ 1e-5 of the value. Each step damps that
+// component by (mu - sigma) / (lambda_big - sigma); the vector's rounding then leaves u.
+V3 refine(const double (&h)[3][3], const V3& v0, double mu, long) {
+  const double sigma = mu * (1 - 1e-6);
+  double m[3][3], adj[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : 0.0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
+    }
+  V3 v = v0;
+  for (int it = 0; it < 2; ++it) {
+    V3 x;
+    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * v[0] + adj[r][1] * v[1] + adj[r][2] * v[2];
+    const double nx = norm(x);
+    if (!(nx > 0) || !std::isfinite(nx)) return v;
+    x = mul(x, 1 / nx);
+    if (dot(x, v) < 0) x = mul(x, -1.0);  // keep the orientation
+    v = x;
+  }
+  return v;
+}
 
 // Visits every active set (both sides non-empty): H_S, its eigenpairs, the eigenvectors worth
 // evaluating (global_depth.h). T: double (positions about the centroid) or Q (exact positions
@@ -360,34 +416,67 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
       const TV S = vadd(SA[ma], SB[mb]);
       const T m = T(mA + mB), k = T(10 - mA - mB);
       T h[3][3];
-      Eigen::Matrix3d H;
       for (int q = 0; q < 6; ++q) {
         const int r = kR[q], c = kC[q];
         h[r][c] = (QA[ma][q] + QB[mb][q] - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
                    k * TA[r] * TA[c]) / T(20);
         h[c][r] = h[r][c];
-        H(r, c) = H(c, r) = to_d(h[r][c]);
+      }
+      // Exact path: H rounded after scaling by 2^-pe, its largest entry near 1 (a piece of the
+      // near vertices of a pair with a vertex 1e200 away has entries ~1e-400 in the pair's
+      // scaled units: they would underflow). Eigenvectors do not change; eigenvalues and the
+      // values they are compared with are taken in the piece's units (consider_piece).
+      long pe = 0;
+      if constexpr (kExact) {
+        pe = LONG_MIN;
+        for (int q = 0; q < 6; ++q) pe = std::max(pe, detail::log2_estimate(h[kR[q]][kC[q]]));
+        if (pe == LONG_MIN) pe = 0;
+      }
+      Eigen::Matrix3d H;
+      for (int q = 0; q < 6; ++q) {
+        const int r = kR[q], c = kC[q];
+        if constexpr (kExact) {
+          T x = h[r][c];
+          detail::scale_pow2(x, -pe);
+          H(r, c) = H(c, r) = to_d(x);
+        } else {
+          H(r, c) = H(c, r) = to_d(h[r][c]);
+        }
       }
       double h_error = 0;
       if constexpr (!kExact) {
         const double c = amax(C), t = amax(TA);
         h_error = 16 * kU * (qa[ma] + qb[mb] + 2 * c * amax(S) + (mA + mB) * c * c + (10 - mA - mB) * t * t) / 20;
       }
+      // The conditions' vectors: in doubles, with an absolute floor for their rounding (a few
+      // roundings of coordinates <= scale: far above); exact path, each scaled by its own power
+      // of two before rounding once (relative error u, no floor: a condition of the near
+      // vertices beside a far one would underflow or drown in an absolute floor).
+      auto rounded = [&](TV x) {
+        if constexpr (kExact) {
+          long top = LONG_MIN;
+          for (const T& y : x) top = std::max(top, detail::log2_estimate(y));
+          if (top != LONG_MIN)
+            for (T& y : x) detail::scale_pow2(y, -top);
+        }
+        return V3{to_d(x[0]), to_d(x[1]), to_d(x[2])};
+      };
       auto make_conditions = [&] {
         Conditions cond;
-        cond.floor = 1e-12 * P.scale;  // l is a few roundings of coordinates <= scale: far above
+        cond.floor = kExact ? 0.0 : 1e-12 * P.scale;
         for (int i = 0; i < 4; ++i) {
           const TV d = vsub(vsub(pA[i], C), TA), e = vsub(vsub(C, pB[i]), TA);
-          cond.l[i] = {to_d(d[0]), to_d(d[1]), to_d(d[2])};        // d_i = a_i - c - T_A
+          cond.l[i] = rounded(d);        // d_i = a_i - c - T_A
           cond.sign[i] = ma >> i & 1u ? 1 : -1;
-          cond.l[4 + i] = {to_d(e[0]), to_d(e[1]), to_d(e[2])};    // e_j = c - b_j + T_B
+          cond.l[4 + i] = rounded(e);    // e_j = c - b_j + T_B
           cond.sign[4 + i] = mb >> i & 1u ? 1 : -1;
         }
         cond.finish();
         return cond;
       };
       consider_piece(H, h_error, make_conditions, P, best, lower,
-                     [&](const V3& v, double mu) { return refine(h, v, mu); }, kExact);
+                     [&](const V3& v, double mu) { return refine(h, v, mu, pe); },
+                     kExact, pe);
     }
   }
 }
@@ -402,7 +491,7 @@ double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std
 }
 
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           const ExactStart& exact_start, double rigid_pd2) {
+                           double start_value, const ExactStart& exact_start, double rigid_pd2) {
   // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
   const double lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
   Problem P;
@@ -443,7 +532,9 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     std::array<std::array<double, 3>, 4> dA, dB;
     for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
     enumerate_pieces(dA, dB, P, best, lower, [](double x) { return x; });
-    if (tiny(best.value)) exact_pieces = true, best.offers.clear();
+    // A result above the start's certified value means the doubles could not evaluate even the
+    // start's normal (its components are not accurate enough beside a far vertex): exactly.
+    if (tiny(best.value) || best.value > start_value * (1 + 1e-9)) exact_pieces = true, best.offers.clear();
   }
   if (exact_pieces) {
     using detail::Q;
@@ -452,19 +543,12 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) {
         qA[i][k] = Q(A[i][k]) - Q(A[0][k]), qB[i][k] = Q(B[i][k]) - Q(A[0][k]);
-        for (const Q* x : {&qA[i][k], &qB[i][k]})
-          if (sgn(*x) != 0)  // log2 |x| within 1: bit lengths of numerator and denominator
-            unit = std::max(unit, long(mpz_sizeinbase(x->get_num_mpz_t(), 2)) -
-                                      long(mpz_sizeinbase(x->get_den_mpz_t(), 2)));
+        unit = std::max({unit, detail::log2_estimate(qA[i][k]), detail::log2_estimate(qB[i][k])});
       }
     if (unit == LONG_MIN) unit = 0;  // not reached: a valid pair has a non-zero edge
     for (auto* side : {&qA, &qB})
       for (auto& x : *side)
-        for (Q& c : x) {
-          if (unit > 0) mpz_mul_2exp(c.get_den_mpz_t(), c.get_den_mpz_t(), unit);
-          else if (unit < 0) mpz_mul_2exp(c.get_num_mpz_t(), c.get_num_mpz_t(), -unit);
-          c.canonicalize();
-        }
+        for (Q& c : x) detail::scale_pow2(c, -unit);
     Problem Ps = P;  // the conditions' floor in the scaled units
     Ps.scale = 4.0;  // |x| 2^-unit < 4 (bit lengths give log2 |x| within 1)
     best.A = &A, best.B = &B, best.unit = unit;
@@ -473,6 +557,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     if (exact_start) best.offer(Ps, exact_start());
     enumerate_pieces(qA, qB, Ps, best, std::ldexp(lower, int(std::clamp(-2 * unit, -4000L, 4000L))),
                      [](const Q& x) { return x.get_d(); });
+    // (lower is in the pair's units; each piece takes it, and the best value, in its own)
   }
 
   // Which offer wins. Each double value carries value_error's loose bound; offers whose
@@ -509,7 +594,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // No normal at all (no start and no stationary point passed: coordinates spanning the whole
   // double range, the caller's exact-path branch): not certified; the caller reports it
   // (found by the fast_engine fuzzer: the exact evaluation along a zero normal divided by 0).
-  if (!(norm(v) > 0) || !std::isfinite(vv)) return out;
+  if (!nonzero(v) || !std::isfinite(vv)) return out;
   auto place = [&](const auto& s, const auto& heights_A, const auto& heights_B, auto to_d) {
     for (int i = 0; i < 4; ++i) {
       const double tA = to_d(displacement_below(heights_A[i], false, s));
@@ -565,7 +650,11 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   out.value = value.get_d();
   place(qs, hA, hB, [](const Q& x) { return x.get_d(); });
   out.exact_value = true;
-  out.certified = std::isfinite(out.value);
+  // Not even the start's certified value reached (rare: a pair whose depth is below about 1e-7
+  // of its extent, where no double normal near the start's exact one reproduces it, and the
+  // walls did not help): the normal is not given (kGlobalNotRepresentable).
+  out.certified = std::isfinite(out.value) &&
+                  !(std::isfinite(start_value) && value > detail::Q(start_value) * detail::Q(1 + 1e-9));
   return out;
 }
 

@@ -69,7 +69,10 @@ double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std
 // exact_start: called only when the exact pieces are needed (rare): pdd2_relaxed's exact normal
 // rounded componentwise (exact_candidate.h's rounded_normal), or zero when none is known.
 using ExactStart = std::function<std::array<double, 3>()>;
+// start_value: the start's certified relaxed value (same units), or +inf when none: a double
+// enumeration that ends above it could not evaluate the start's own normal, and is redone
+// exactly.
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           const ExactStart& exact_start, double rigid_pd2);
+                           double start_value, const ExactStart& exact_start, double rigid_pd2);
 
 }  // namespace pdd::fast

@@ -80,14 +80,16 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
     const Candidate c = candidate(set, rel.index);
     for (int k = 0; k < 3; ++k) start[k] = c.n[k];
   }
-  // The exact start (rare: a depth far below the pair's size): the certified label's exact
-  // normal, else the exact path's pdd2_relaxed normal.
+  // The exact start (rare: a depth far below the pair's size): the label's exact normal (a
+  // candidate of the pair even when the choice is not certified: only a start), else the exact
+  // path's pdd2_relaxed normal.
   const ExactStart exact_start = [&] {
-    if (const std::optional<DirectionLabel> l = label_of(set, rel); l && rel.certified)
+    if (const std::optional<DirectionLabel> l = label_of(set, rel))
       return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(pair.A, pair.B), *l).n);
     return detail::solve_pair_exact_path(pair.A, pair.B).relaxed_normal;
   };
-  const GlobalOptimum g = global_depth(pair.A, pair.B, start, exact_start, rigid_pd2);
+  const GlobalOptimum g = global_depth(pair.A, pair.B, start, rel.certified ? rel.value : INFINITY,
+                                       exact_start, rigid_pd2);
   r.pdd2_global = g.value;
   r.pdd2_global_normal = g.normal;
   r.q1_A_global = g.q1_A;
@@ -219,12 +221,15 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   PairResult<double>& x = e.result;
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
   if (x.intersecting) {  // SPEC §9, started at pdd2_relaxed's normal
-    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), {}, x.rigid_pd2);
+    const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), x.pdd2_relaxed, {}, x.rigid_pd2);
     x.pdd2_global = g.value, x.pdd2_global_normal = g.normal;
     x.q1_A_global = g.q1_A, x.q1_B_global = g.q1_B;
-    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0) ||
-        !global_representable(x)) {
-      r.error = kGlobalNotRepresentable;
+    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
+      r.error = kGlobalNotRepresentable;  // no double normal found (global_depth.h)
+      return r;
+    }
+    if (!global_representable(x)) {
+      r.error = kNotRepresentable;  // its value or positions leave the double range
       return r;
     }
   }
@@ -274,15 +279,16 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   const bool global_exact = global_slow && !(missing & kGlobal) && r.pdd2_global_normal;
   if (global_exact) r.pdd2_global = 0;
   if (!unscale(r, -sp.e, missing | kGlobal)) return bad;  // pdd2_global: checked below
-  if (global_exact) {
-    bool ok = true;
-    r.pdd2_global = exact_relaxed_value(pair.A, pair.B, *r.pdd2_global_normal, ok);
-    if (!ok) missing |= kGlobal;
-  }
-  if ((missing & kGlobal) || !global_representable(r)) {
+  if (missing & kGlobal) {  // no double normal found (global_depth.h)
     bad.error = kGlobalNotRepresentable;
     return bad;
   }
+  if (global_exact) {
+    bool ok = true;
+    r.pdd2_global = exact_relaxed_value(pair.A, pair.B, *r.pdd2_global_normal, ok);
+    if (!ok) return bad;  // the value leaves the double range
+  }
+  if (!global_representable(r)) return bad;  // likewise, or a position
   if (global_slow && slow_path) *slow_path = true;
   if (exact_q1 && !(missing & kDeformable) && !exact_positions_of(pair, *r.pdd2_dir, r))
     missing |= kPositions;

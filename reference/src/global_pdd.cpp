@@ -163,7 +163,10 @@ std::vector<Vec3> wall_points(const Eigen::Matrix3d& H, const Vec3& l, double si
   const double mw = (m00 + m11) / 2 - std::hypot((m00 - m11) / 2, m01);
   const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
   const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
-  const Eigen::Vector3d u = p * (first ? a0 : a1) + q * (first ? b0 : b1);
+  const double ua = first ? a0 : a1, ub = first ? b0 : b1;
+  const double big = std::max(std::fabs(ua), std::fabs(ub));  // H-sized: may be ~1e-300
+  if (!(big > 0) || !std::isfinite(big)) return {};
+  const Eigen::Vector3d u = p * (ua / big) + q * (ub / big);
   if (!(u.norm() > 0) || !u.allFinite()) return {};
   std::vector<Vec3> out;
   for (double s : {1.0, -1.0}) {
