@@ -297,9 +297,12 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
       ++k;
       continue;
     }
-    const V3 v = refine(V3{e(0), e(1), e(2)}, mu(k));
+    // The polish (refine) only for an orientation that holds its conditions as computed: the
+    // conditions' tolerance (kSign) is far above the polish's change of direction.
+    const V3 raw{e(0), e(1), e(2)};
     for (double s : {1.0, -1.0}) {
-      const V3 sv = mul(v, s);
+      if (!exact && !cond.hold(mul(raw, s))) continue;
+      const V3 sv = mul(refine(raw, mu(k)), s);
       if (cond.hold(sv)) best.offer(P, sv);
     }
   }
