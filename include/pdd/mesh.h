@@ -39,9 +39,9 @@
 //
 // kGlobal (SPEC §9, "global"; not a default): pdd2_global, PD_d² over every separating plane
 // (the paper's eq. 5 as defined: the minimum over unit normals of the relaxed QP, so
-// pdd2_global <= pdd2_relaxed), with pdd2_global_normal (the normal attaining it, A -> B,
-// unnormalised) and q1_A_global / q1_B_global (deformed positions attaining it, separated by a
-// plane of that normal). Fast engine: the fields of one pdd::fast::solve_pair (bit for bit),
+// pdd2_global <= pdd2_relaxed), with pdd2_global_normal (the normal attaining it, A -> B, not
+// necessarily of unit length) and q1_A_global / q1_B_global (the deformed positions attaining
+// it, every vertex moved along that normal). Fast engine: the fields of one pdd::fast::solve_pair (bit for bit),
 // not the hot path pdd::fast::pdd2_global, which gives no positions and, starting without the
 // relaxed candidate's normal, was slower on mesh pairs (51 against 46 µs a pair, mean over the
 // 2639 pairs of the shipped balls). The search is most of solve_pair's time (rigid_pd2 alone:
