@@ -405,7 +405,7 @@ void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
     << " intersecting pairs of that sample\n";
   for (const auto& c : r.depth)
     s << "  " << pad(c.name, 14) << "median " << rpad(fmt("%.0f ns", c.median_ns), 10) << "  mean "
-      << rpad(fmt("%.0f ns", c.mean_ns), 10) << "  " << c.slow_calls << " calls over 50 us (exact path): "
+      << rpad(fmt("%.0f ns", c.mean_ns), 10) << "  " << c.slow_calls << " calls over 50 us: "
       << fmt("%.0f", 100 * c.slow_share) << "% of the time\n";
   s << "\n";
   auto table = [&](const char* title, const std::vector<BroadphaseRow>& rows) {

@@ -3,8 +3,10 @@
 // Every intersecting element pair of two tetrahedral meshes (or of one mesh with itself) and
 // its penetration depths (SPEC §10; library: include/pdd/mesh.h). One JSON Lines record per
 // pair, sorted by (a, b): {"a": i, "b": j, "intersecting", the requested values and their
-// labels, q1_A and q1_B when pdd2 is requested, "error"} — SPEC §6's keys and order, with a
-// and b in place of name (`--variants all`: every key). Exit status as for `pdd solve`: 0,
+// labels, q1_A and q1_B when pdd2 is requested, "error", and with global SPEC §9's
+// pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global (and pdd2_global_lower with the
+// reference engine)} — SPEC §6's keys and order, with a and b in place of name (`--variants
+// all`: every key). Exit status as for `pdd solve`: 0,
 // 1 when an element was skipped (flat, non-finite) or a pair rejected, 2 when a mesh cannot be
 // read, the command line is wrong or an output cannot be written.
 #include <algorithm>
@@ -58,8 +60,8 @@ Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWrit
         keep = on;
     }
     if ((key == "q1_A" || key == "q1_B") && !(variants & mesh::kPdd2)) keep = false;
-    if (key.rfind("pdd2_global", 0) == 0 || key.find("_global") != std::string::npos)
-      keep = false;  // SPEC §9 is not a mesh variant (yet): mesh contacts do not compute it
+    // SPEC §9: pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global, pdd2_global_lower
+    if (key.find("_global") != std::string::npos) keep = variants & mesh::kGlobal;
     if (keep) j[key] = value;
   }
   return j;
@@ -120,17 +122,18 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
       << "  time (s)        read " << read_seconds << ", boxes " << c.seconds_boxes << ", broadphase "
       << c.seconds_broadphase << ", exact decision " << c.seconds_decision << ", depth "
       << c.seconds_depth << "\n";
-    for (std::size_t k = 0; k < kValueCount; ++k) {
+    for (std::size_t k = 0; k < mesh::kVariantCount; ++k) {
       if (!(variants & (1u << k))) continue;
       double sum = 0, best = -1;
       const mesh::Contact<R>* arg = nullptr;
       for (const auto& p : c.pairs) {
         if (p.result.error) continue;
-        const double v = as_double(record_value(p.result, k));
+        const double v = as_double(mesh::variant_value(p.result, k));
         sum += v;
         if (v > best) best = v, arg = &p;
       }
-      s << "  " << kValueKeys[k] << std::string(16 - std::min<std::size_t>(15, std::strlen(kValueKeys[k])), ' ')
+      const char* key = mesh::kVariantKeys[k];
+      s << "  " << key << std::string(16 - std::min<std::size_t>(15, std::strlen(key)), ' ')
         << "sum " << sum << ", max " << (arg ? best : 0.0);
       if (arg) s << " at (" << arg->a << ", " << arg->b << ")";
       s << "\n";
@@ -207,7 +210,8 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs a < b sharing no vertex");
   cmd->add_option("--variants", args->variants,
-                  "Comma-separated: rigid, eq11, static, pdd2, relaxed, accel1, accel6, or all")
+                  "Comma-separated: rigid, eq11, static, pdd2, relaxed, accel1, accel6, global "
+                  "(SPEC §9's pdd2_global; tens of microseconds a pair with the fast engine), or all")
       ->capture_default_str();
   cmd->add_option("--engine", args->engine,
                   "'fast' (doubles, SPEC §8) or 'reference' (exact rationals as \"p/q\" strings; "

@@ -34,7 +34,22 @@
 // computed, the others are 0 with no label; q1_A / q1_B (the deformed positions attaining pdd2)
 // are set when kPdd2 is requested and are the rest pose otherwise. With the fast engine each
 // value equals the field of the same name of pdd::fast::solve_pair on the pair
-// (A = element a, B = element b); contacts_exact gives pdd::reference::solve_pair's exact record.
+// (A = element a, B = element b); contacts_exact gives pdd::reference::solve_pair's exact record
+// (every value; SPEC §9's search only with kGlobal).
+//
+// kGlobal (SPEC §9, "global"; not a default): pdd2_global, PD_d² over every separating plane
+// (the paper's eq. 5 as defined: the minimum over unit normals of the relaxed QP, so
+// pdd2_global <= pdd2_relaxed), with pdd2_global_normal (the normal attaining it, A -> B, not
+// necessarily of unit length) and q1_A_global / q1_B_global (the deformed positions attaining
+// it, every vertex moved along that normal). Fast engine: the fields of one pdd::fast::solve_pair (bit for bit),
+// not the hot path pdd::fast::pdd2_global, which gives no positions and, starting without the
+// relaxed candidate's normal, was slower on mesh pairs (51 against 46 µs a pair, mean over the
+// 2639 pairs of the shipped balls). The search is most of solve_pair's time (rigid_pd2 alone:
+// 1.1 µs there), and solve_pair computes it whether asked or not: with kPdd2 or kEq11 (which
+// take one solve_pair anyway) kGlobal costs nothing more. Reference engine: the exact witness
+// value, normal and positions and pdd2_global_lower, the proved lower bound (pdd2_global −
+// pdd2_global_lower <= 1e-12 · pdd2_global); the search runs only with kGlobal. Without
+// kGlobal these fields are 0, no normal, the rest pose and (reference) no lower bound.
 #pragma once
 
 #include <array>
@@ -71,7 +86,8 @@ struct ReadError : std::runtime_error {
 // uses them is skipped by contacts(), with its index). Throws ReadError.
 Mesh read_mesh(const std::string& path);
 
-// Variants, one bit per SPEC §6 value; bit k is the value kValueKeys[k] of pair_result.h.
+// Variants, one bit per SPEC §6 value; bit k < kValueCount is the value kValueKeys[k] of
+// pair_result.h, bit kValueCount (kGlobal) SPEC §9's pdd2_global and its keys.
 enum Variant : unsigned {
   kRigid = 1u << 0,    // rigid_pd2 (+ rigid_dir)
   kEq11 = 1u << 1,     // eq11_pd2
@@ -80,11 +96,26 @@ enum Variant : unsigned {
   kRelaxed = 1u << 4,  // pdd2_relaxed (+ pdd2_relaxed_dir)
   kAccel1 = 1u << 5,   // pdd2_accel1
   kAccel6 = 1u << 6,   // pdd2_accel6
+  kGlobal = 1u << 7,   // pdd2_global (+ pdd2_global_normal, q1_A_global, q1_B_global and,
+                       // reference engine, pdd2_global_lower); see "kGlobal" above
 };
-inline constexpr unsigned kAllVariants = 0x7f;
+inline constexpr std::size_t kVariantCount = kValueCount + 1;
+inline constexpr unsigned kAllVariants = (1u << kVariantCount) - 1;
 inline constexpr unsigned kDefaultVariants = kRigid | kStatic | kPdd2 | kAccel1;
-// "rigid,static,pdd2,accel1" (names: rigid eq11 static pdd2 relaxed accel1 accel6, or "all")
-// -> bits; throws std::invalid_argument naming the unknown word.
+static_assert(kGlobal == 1u << kValueCount, "bit k of a variant set is the value kVariantKeys[k]");
+// Variant k's name (--variants) and the key of its value in the record.
+inline constexpr std::array<const char*, kVariantCount> kVariantNames = {
+    "rigid", "eq11", "static", "pdd2", "relaxed", "accel1", "accel6", "global"};
+inline constexpr std::array<const char*, kVariantCount> kVariantKeys = {
+    kValueKeys[0], kValueKeys[1], kValueKeys[2], kValueKeys[3],
+    kValueKeys[4], kValueKeys[5], kValueKeys[6], "pdd2_global"};
+// The value of variant k (kVariantKeys[k]) in a record.
+template <class R>
+const R& variant_value(const PairResult<R>& r, std::size_t k) {
+  return k < kValueCount ? record_value(r, k) : r.pdd2_global;
+}
+// "rigid,static,pdd2,accel1" (names: rigid eq11 static pdd2 relaxed accel1 accel6 global, or
+// "all": every one) -> bits; throws std::invalid_argument naming the unknown word.
 unsigned parse_variants(const std::string& list);
 std::string variant_names(unsigned variants);  // the inverse, comma-separated
 
@@ -148,7 +179,8 @@ std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vect
 // Writes A (and B unless null: self-contact) as one legacy VTK unstructured grid (ASCII) for
 // ParaView: points of A then of B, cells of A then of B, with cell data `mesh` (0 A, 1 B),
 // `element` (its number in its mesh), `partners` (number of intersecting pairs it is in) and
-// `max_<value>` (largest value of each requested variant over its pairs, 0 if none), and,
+// `max_<value>` (largest value of each requested variant over its pairs, 0 if none;
+// `max_pdd2_global` for kGlobal), and,
 // when kPdd2 was requested, point data `displacement`: for each mesh vertex, among the
 // displacements q1 − rest that the pairs' pdd2 solutions give that vertex, the one of largest
 // length (first in (a, b) order among equals); 0 where no pair moves it. Throws

@@ -132,8 +132,12 @@ namespace pdd::reference {
 // the canonical order of SPEC §3; q1 are exact rationals attaining pdd2.
 //   formulation  of the per-direction QP (pdd/qp_formulation.h): both give the same result;
 //                Reduced is faster, Full solves the paper's own variables.
+//   global       SPEC §9 (pdd2_global, its normal, positions and proved lower bound, to the
+//                gap 1e-12): a branch and bound of 5 to 50 ms more per pair. false skips it:
+//                then pdd2_global = pdd2_global_lower = 0, no normal, q1_*_global = the rest pose.
 // Returns the record; `error` set when the pair is rejected (SPEC §1).
 PairResult<Rational> solve_pair(const TetPair& pair,
-                                QpFormulation formulation = QpFormulation::Reduced);
+                                QpFormulation formulation = QpFormulation::Reduced,
+                                bool global = true);
 
 }  // namespace pdd::reference

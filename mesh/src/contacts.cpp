@@ -88,12 +88,35 @@ std::vector<Box> valid_boxes(const Mesh& m, char which, std::size_t id_offset,
   return out;
 }
 
+// Positions of a rest pose in the record's number type.
+template <class R>
+Positions<R> rest(const TetVertices& T) {
+  Positions<R> p;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = R(T[i][k]);
+  return p;
+}
+
+// SPEC §9's fields as when kGlobal is not requested (mesh.h): 0, no normal, the rest pose, no
+// lower bound.
+template <class R>
+void clear_global(PairResult<R>& r, const TetVertices& A, const TetVertices& B) {
+  r.pdd2_global = R(0);
+  r.pdd2_global_normal.reset();
+  r.q1_A_global = rest<R>(A);
+  r.q1_B_global = rest<R>(B);
+  r.pdd2_global_lower.reset();
+}
+
 // The record of one intersecting pair with only the requested variants (fast engine).
 PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsigned variants) {
   PairResult<double> r;
-  const bool needs_record = (variants & (kPdd2 | kEq11)) ||
+  // One solve_pair: for pdd2 and global (their positions come only from it; global's hot path
+  // was also slower than solve_pair on mesh pairs, mesh.h), eq11 (no separate call), and two
+  // or more variants besides rigid.
+  const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal)) ||
                             __builtin_popcount(variants & ~unsigned(kRigid)) >= 2;
-  if (needs_record) {  // one solve_pair is cheaper than two separate variants
+  if (needs_record) {
     r = fast::solve_pair(TetPair{"", {}, A, B});
     if (r.error) return r;
     for (std::size_t k = 0; k < kValueCount; ++k)
@@ -102,11 +125,13 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
         if (kLabelOfValue[k] >= 0) record_label(r, kLabelOfValue[k]).reset();
       }
     if (!(variants & kPdd2)) r.q1_A = A, r.q1_B = B;
+    if (!(variants & kGlobal)) clear_global(r, A, B);
     return r;
   }
   r.intersecting = true;
   r.q1_A = A;
   r.q1_B = B;
+  clear_global(r, A, B);
   auto put = [&](const fast::Depth& d, double& v, std::optional<DirectionLabel>* label) {
     if (d.status != fast::DepthStatus::Ok) r.error = kNotRepresentable;
     v = d.pd2;
@@ -176,7 +201,9 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
     if constexpr (std::is_same_v<R, double>) {
       c.result = fast_record(Ta, Tb, options.variants);
     } else {
-      c.result = reference::solve_pair(TetPair{"", {}, Ta, Tb}, QpFormulation::Reduced);
+      const bool global = options.variants & kGlobal;
+      c.result = reference::solve_pair(TetPair{"", {}, Ta, Tb}, QpFormulation::Reduced, global);
+      if (!global && !c.result.error) clear_global(c.result, Ta, Tb);
     }
     if (options.progress) options.progress(1, hits.size());
   });
@@ -323,17 +350,18 @@ unsigned parse_variants(const std::string& list) {
   unsigned v = 0;
   std::stringstream in(list);
   std::string w;
-  static const char* names[] = {"rigid", "eq11", "static", "pdd2", "relaxed", "accel1", "accel6"};
   while (std::getline(in, w, ',')) {
     if (w == "all") {
       v |= kAllVariants;
       continue;
     }
     std::size_t k = 0;
-    while (k < 7 && w != names[k]) ++k;
-    if (k == 7)
-      throw std::invalid_argument("unknown variant '" + w +
-                                  "' (rigid, eq11, static, pdd2, relaxed, accel1, accel6, all)");
+    while (k < kVariantCount && w != kVariantNames[k]) ++k;
+    if (k == kVariantCount) {
+      std::string known;
+      for (const char* name : kVariantNames) known += std::string(name) + ", ";
+      throw std::invalid_argument("unknown variant '" + w + "' (" + known + "all)");
+    }
     v |= 1u << k;
   }
   if (!v) throw std::invalid_argument("no variant named");
@@ -341,10 +369,9 @@ unsigned parse_variants(const std::string& list) {
 }
 
 std::string variant_names(unsigned variants) {
-  static const char* names[] = {"rigid", "eq11", "static", "pdd2", "relaxed", "accel1", "accel6"};
   std::string s;
-  for (int k = 0; k < 7; ++k)
-    if (variants & (1u << k)) s += (s.empty() ? "" : ",") + std::string(names[k]);
+  for (std::size_t k = 0; k < kVariantCount; ++k)
+    if (variants & (1u << k)) s += (s.empty() ? "" : ",") + std::string(kVariantNames[k]);
   return s;
 }
 

@@ -23,7 +23,7 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
   const std::size_t ta = A.tets.size(), tb = B ? B->tets.size() : 0;
   // Cell data.
   std::vector<int> partners(ta + tb, 0);
-  std::vector<std::array<double, kValueCount>> maxima(ta + tb);
+  std::vector<std::array<double, kVariantCount>> maxima(ta + tb);
   for (auto& m : maxima) m.fill(0);
   // Point data: the longest displacement any pair's pdd2 solution gives the vertex.
   std::vector<Vec3d> disp(na + nb, Vec3d{0, 0, 0});
@@ -35,9 +35,9 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
     const std::size_t cells[2] = {c.a, b_cell0 + c.b};
     for (std::size_t cell : cells) {
       ++partners[cell];
-      for (std::size_t k = 0; k < kValueCount; ++k)
+      for (std::size_t k = 0; k < kVariantCount; ++k)
         if (variants & (1u << k))
-          maxima[cell][k] = std::max(maxima[cell][k], to_double(record_value(c.result, k)));
+          maxima[cell][k] = std::max(maxima[cell][k], to_double(variant_value(c.result, k)));
     }
     if (!(variants & kPdd2)) continue;
     auto propose = [&](const Mesh& m, std::size_t tet, std::size_t point0, const Positions<R>& q1) {
@@ -84,9 +84,9 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
   for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
   out << "SCALARS partners int 1\nLOOKUP_TABLE default\n";
   for (int p : partners) out << p << '\n';
-  for (std::size_t k = 0; k < kValueCount; ++k) {
+  for (std::size_t k = 0; k < kVariantCount; ++k) {
     if (!(variants & (1u << k))) continue;
-    out << "SCALARS max_" << kValueKeys[k] << " double 1\nLOOKUP_TABLE default\n";
+    out << "SCALARS max_" << kVariantKeys[k] << " double 1\nLOOKUP_TABLE default\n";
     for (const auto& m : maxima) out << m[k] << '\n';
   }
   if (variants & kPdd2) {

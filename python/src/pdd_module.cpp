@@ -299,6 +299,10 @@ void with_threads(std::optional<int> threads, F&& f) {
 //                               fractions.Fraction
 //   their labels                (n,) numpy str arrays ('<U8'), "" for no label
 //   q1_A, q1_B (if `positions`) fast: (n, 4, 3) float64; exact: n nested lists of Fractions
+//   SPEC §9 (if `global`)       pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global:
+//                               fast (n,), (n, 3) (NaN where no normal), (n, 4, 3) float64;
+//                               exact lists of n Fractions, [x, y, z] Fractions or None,
+//                               nested lists of Fractions, and pdd2_global_lower (Fractions)
 //   error                       a list of n entries, None or why record j was rejected
 // A rejected record's row: values and positions NaN (exact: None), labels "", intersecting
 // False. Construct and add_to() with the GIL held; put() of a double record touches only the
@@ -309,7 +313,12 @@ class RecordColumns {
   RecordColumns(std::size_t n, bool exact, unsigned values, bool positions, bool global = false)
       : n_(static_cast<py::ssize_t>(n)), exact_(exact), values_(values), positions_(positions),
         intersecting_(n_) {
-    if (global && !exact_) {  // SPEC §9 (solve_batch): value (n,), normal (n, 3), positions (n, 4, 3)
+    if (global && exact_) {
+      for (auto* l : {&exact_global_, &exact_global_normal_, &exact_global_q1_[0], &exact_global_q1_[1],
+                       &exact_global_lower_})
+        *l = py::list(n_);
+    }
+    if (global && !exact_) {  // SPEC §9: value (n,), normal (n, 3), positions (n, 4, 3)
       global_value_ = py::array_t<double>(n_);
       global_normal_ = py::array_t<double>({n_, py::ssize_t{3}});
       global_q1_[0] = py::array_t<double>({n_, py::ssize_t{4}, py::ssize_t{3}});
@@ -378,6 +387,20 @@ class RecordColumns {
     const pdd::Positions<pdd::Rational>* q[2] = {&r.q1_A, &r.q1_B};
     for (int s = 0; s < 2; ++s)
       if (exact_q1_[s]) (*exact_q1_[s])[J] = r.error ? py::object(py::none()) : py::object(positions(*q[s]));
+    if (exact_global_) {
+      const py::object none = py::none();
+      (*exact_global_)[J] = r.error ? none : number(r.pdd2_global);
+      py::object normal = none;
+      if (!r.error && r.pdd2_global_normal) {
+        py::list n;
+        for (const auto& c : *r.pdd2_global_normal) n.append(number(c));
+        normal = n;
+      }
+      (*exact_global_normal_)[J] = normal;
+      const pdd::Positions<pdd::Rational>* g[2] = {&r.q1_A_global, &r.q1_B_global};
+      for (int s = 0; s < 2; ++s) (*exact_global_q1_[s])[J] = r.error ? none : py::object(positions(*g[s]));
+      (*exact_global_lower_)[J] = (r.error || !r.pdd2_global_lower) ? none : number(*r.pdd2_global_lower);
+    }
   }
 
   void add_to(py::dict& d) const {
@@ -398,6 +421,13 @@ class RecordColumns {
       d["pdd2_global_normal"] = *global_normal_;
       d["q1_A_global"] = *global_q1_[0];
       d["q1_B_global"] = *global_q1_[1];
+    }
+    if (exact_global_) {  // in the order `pdd solve` writes them
+      d["pdd2_global"] = *exact_global_;
+      d["pdd2_global_normal"] = *exact_global_normal_;
+      d["q1_A_global"] = *exact_global_q1_[0];
+      d["q1_B_global"] = *exact_global_q1_[1];
+      d["pdd2_global_lower"] = *exact_global_lower_;
     }
     py::list error_list(n_);
     for (py::ssize_t j = 0; j < n_; ++j) error_list[j] = py::none();
@@ -442,6 +472,8 @@ class RecordColumns {
   double* out_global_ = nullptr;
   double* out_global_normal_ = nullptr;
   std::array<double*, 2> out_global_q1_{};
+  std::optional<py::list> exact_global_, exact_global_normal_, exact_global_lower_;
+  std::array<std::optional<py::list>, 2> exact_global_q1_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -634,7 +666,8 @@ py::dict contacts_dict(const pdd::mesh::Contacts<R>& c, unsigned variants, bool 
   const std::size_t n = c.pairs.size();
   const auto N = static_cast<py::ssize_t>(n);
   py::array_t<std::int64_t> a(N), b(N);
-  RecordColumns columns(n, exact, variants, (variants & pdd::mesh::kPdd2) != 0);
+  RecordColumns columns(n, exact, variants & ((1u << pdd::kValueCount) - 1),
+                        (variants & pdd::mesh::kPdd2) != 0, (variants & pdd::mesh::kGlobal) != 0);
   for (std::size_t j = 0; j < n; ++j) {
     a.mutable_data()[j] = static_cast<std::int64_t>(c.pairs[j].a);
     b.mutable_data()[j] = static_cast<std::int64_t>(c.pairs[j].b);
@@ -814,6 +847,9 @@ Returns a dict:
   rigid_dir, pdd2_static_dir, pdd2_dir, pdd2_relaxed_dir
                              (N,) numpy str arrays ('<U8'); "" where solve() gives None
   q1_A, q1_B                 (N, 4, 3) float64
+  pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global
+                             SPEC §9: (N,), (N, 3) (NaN where solve() gives None), (N, 4, 3)
+                             float64
   error                      list of N entries: None, or why pair k was rejected
   slow_paths                 int: how many pairs took the engine's exact path (SPEC §8)
 A rejected pair never stops the batch: its error is set, its values and positions are NaN,
@@ -859,7 +895,9 @@ VB, TB   mesh B, the same way; both None (the default): self-contact of A, the p
          of A's elements that share no vertex index.
 variants comma-separated, which values to compute: rigid (rigid_pd2), eq11 (eq11_pd2),
          static (pdd2_static), pdd2, relaxed (pdd2_relaxed), accel1, accel6 (pdd2_accel1/6),
-         or all. Default: "rigid,static,pdd2,accel1", as `pdd mesh`.
+         global (SPEC §9's pdd2_global over every separating plane: tens of microseconds
+         a pair with the fast engine), or all. Default: "rigid,static,pdd2,accel1", as
+         `pdd mesh`.
 engine   "fast" (doubles, certified to SPEC §8) or "reference" (exact rationals,
          fractions.Fraction; about 0.1 s a pair on one core: for small meshes).
 threads  None: all cores; k >= 1: at most k threads (a TBB arena for this call only).
@@ -880,6 +918,10 @@ by (a, b) as `pdd mesh` writes its records:
                 (k,) numpy str arrays ('<U8'), as solve() gives them
   q1_A, q1_B    when pdd2 is requested: the deformed positions attaining pdd2; fast
                 (k, 4, 3) float64, reference k nested 4 x 3 lists of Fractions
+  pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global   when global is requested
+                (SPEC §9), as solve_batch gives them: fast (k,), (k, 3), (k, 4, 3) float64;
+                reference lists of Fractions, of [x, y, z] Fractions, of nested lists, and
+                then pdd2_global_lower, the proved lower bound (a list of Fractions)
   error         list of k entries: None, or why the pair was rejected (fast engine: a
                 value outside the normal double range); that row's values are NaN (None),
                 its labels "" and intersecting False

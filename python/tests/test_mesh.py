@@ -1,7 +1,8 @@
 """pdd.mesh_contacts and pdd.read_mesh (SPEC §10; the C++ library include/pdd/mesh.h):
 the same pairs and values as the `pdd mesh` tool on the shipped meshes (fixtures/meshes),
 each pair's values those of pdd.solve on that element pair (fast: bit for bit; reference:
-equal Fractions), self-contact, skipped elements, bad input raising ValueError with the
+equal Fractions), SPEC §9's global variant (its four columns, and the exact engine's lower
+bound), self-contact, skipped elements, bad input raising ValueError with the
 library's words, and meshes read by Debian's python3-meshio giving the same arrays and
 contacts (on our files, and on formats only meshio reads)."""
 import json
@@ -14,13 +15,15 @@ import numpy as np
 import pytest
 
 import pdd
-from conftest import FIXTURES, LABEL_KEYS, VALUE_KEYS
+from conftest import CONTRACT, FIXTURES, LABEL_KEYS, VALUE_KEYS
 
 MESHES = FIXTURES / "meshes"
 VARIANT_OF_KEY = dict(zip(VALUE_KEYS, ("rigid", "eq11", "static", "pdd2", "relaxed", "accel1", "accel6")))
 LABEL_OF_KEY = {"rigid_pd2": "rigid_dir", "pdd2_static": "pdd2_static_dir", "pdd2": "pdd2_dir",
                 "pdd2_relaxed": "pdd2_relaxed_dir"}
 DEFAULT = ("rigid_pd2", "pdd2_static", "pdd2", "pdd2_accel1")  # "rigid,static,pdd2,accel1"
+# SPEC §9's columns with variant "global" (as solve_batch gives them); reference: and the bound.
+GLOBAL_COLUMNS = ("pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global")
 STATS = ("skipped", "elements_a", "elements_b", "box_pairs", "seconds_boxes", "seconds_broadphase",
          "seconds_decision", "seconds_depth")
 
@@ -41,10 +44,26 @@ def value_keys(variants):
     return tuple(k for k in VALUE_KEYS if VARIANT_OF_KEY[k] in names or "all" in names)
 
 
-def column_keys(keys):
-    """The row columns mesh_contacts returns for value keys `keys` (in SPEC §6 order)."""
+def wants_global(variants):
+    names = variants.split(",")
+    return "global" in names or "all" in names
+
+
+def global_keys(glob, exact):
+    return (GLOBAL_COLUMNS + (("pdd2_global_lower",) if exact else ())) if glob else ()
+
+
+def column_keys(keys, glob=False, exact=False):
+    """The row columns mesh_contacts returns for value keys `keys` (in SPEC §6 order) and, with
+    `glob`, SPEC §9's (before "error", as solve_batch places them)."""
     out = ("a", "b", "intersecting") + keys + tuple(LABEL_OF_KEY[k] for k in keys if k in LABEL_OF_KEY)
-    return out + (("q1_A", "q1_B") if "pdd2" in keys else ()) + ("error",)
+    return out + (("q1_A", "q1_B") if "pdd2" in keys else ()) + global_keys(glob, exact) + ("error",)
+
+
+def record_keys(keys, glob=False, exact=False):
+    """The keys of the CLI's records: `pdd solve`'s order, SPEC §9's after "error"."""
+    out = column_keys(keys)
+    return out + global_keys(glob, exact)
 
 
 _meshes = {}
@@ -72,16 +91,19 @@ def cli_records(cli, tmp_path, a, b, *extra):
     return [json.loads(line) for line in out.read_text().splitlines()]
 
 
-def assert_same_as_cli(res, records, keys, exact):
+def assert_same_as_cli(res, records, keys, exact, glob=False):
     """mesh_contacts' columns == the CLI's JSON Lines records, row for row."""
-    assert list(res)[:len(column_keys(keys))] == list(column_keys(keys))
-    assert list(res)[len(column_keys(keys)):] == list(STATS)
+    cols = column_keys(keys, glob, exact)
+    assert list(res)[:len(cols)] == list(cols)
+    assert list(res)[len(cols):] == list(STATS)
     n = len(records)
     assert res["a"].dtype == np.int64 and res["b"].dtype == np.int64
     assert res["a"].tolist() == [r["a"] for r in records]
     assert res["b"].tolist() == [r["b"] for r in records]
     for j, r in enumerate(records):  # the CLI writes the same keys, `a` and `b` in place of name
-        assert tuple(r) == column_keys(keys), r
+        assert tuple(r) == record_keys(keys, glob, exact), r
+        if glob:
+            assert_global_row(res, j, r, exact)
         assert res["intersecting"][j] == r["intersecting"] and res["error"][j] == r["error"]
         for k in keys:
             if exact:
@@ -106,19 +128,38 @@ def assert_same_as_cli(res, records, keys, exact):
         assert res["q1_A"].shape == (n, 4, 3) and res["q1_B"].shape == (n, 4, 3)
 
 
+def assert_global_row(res, j, r, exact):
+    """Row j's SPEC §9 columns == the record r (a CLI record or a pdd.solve dict): the same
+    doubles bit for bit (fast), equal Fractions (reference; the CLI's "p/q" strings read)."""
+    if exact:
+        F = Fraction
+        assert res["pdd2_global"][j] == F(r["pdd2_global"]), j
+        assert res["pdd2_global_lower"][j] == F(r["pdd2_global_lower"]), j
+        assert res["pdd2_global_normal"][j] == [F(c) for c in r["pdd2_global_normal"]], j
+        for q in ("q1_A_global", "q1_B_global"):
+            assert res[q][j] == [[F(c) for c in v] for v in r[q]], (j, q)
+    else:
+        assert bits(res["pdd2_global"][j]) == bits(r["pdd2_global"]), j
+        assert (bits(res["pdd2_global_normal"][j]) == bits(r["pdd2_global_normal"])).all(), j
+        for q in ("q1_A_global", "q1_B_global"):
+            assert (bits(res[q][j]) == bits(r[q])).all(), (j, q)
+
+
 def pair_of(res, j, a, b):
     VA, TA = mesh(a)
     VB, TB = (VA, TA) if b is None else mesh(b)
     return VA[TA[res["a"][j]]], VB[TB[res["b"][j]]]
 
 
-def assert_rows_are_single_solves(res, a, b, keys, engine="fast", rows=None):
+def assert_rows_are_single_solves(res, a, b, keys, engine="fast", rows=None, glob=False):
     """Row j == pdd.solve(element a[j], element b[j]) on the requested keys: bit for bit (fast),
     equal Fractions (reference)."""
     for j in (range(len(res["a"])) if rows is None else rows):
         A, B = pair_of(res, j, a, b)
         r = pdd.solve(A, B, engine=engine)
         assert r["error"] is None and r["intersecting"] and res["error"][j] is None, j
+        if glob:
+            assert_global_row(res, j, r, exact=engine == "reference")
         for k in keys:
             if engine == "fast":
                 assert bits(res[k][j]) == bits(r[k]), (j, k)
@@ -151,7 +192,47 @@ def test_fast_contacts_are_the_cli_records(pdd_cli, tmp_path, a, b):
 def test_fast_all_variants_are_the_cli_records(pdd_cli, tmp_path):
     res = contacts_of("sphere-a.msh", "sphere-b.msh", variants="all")
     assert_same_as_cli(res, cli_records(pdd_cli, tmp_path, "sphere-a.msh", "sphere-b.msh",
-                                        "--variants", "all"), VALUE_KEYS, exact=False)
+                                        "--variants", "all"), VALUE_KEYS, exact=False, glob=True)
+
+
+def test_fast_global_columns():
+    """Variant "global" (SPEC §9): pdd2_global, its normal and positions as columns of
+    solve_batch's shapes, each row pdd.solve's on that pair bit for bit (the library takes them
+    from the same solve_pair), strictly positive and at most the pair's pdd2_relaxed (a minimum
+    over every separating plane, the candidates' included); NaN-free. Without it, no such column."""
+    res = contacts_of("sphere-a.msh", "sphere-b.msh", variants="rigid,global")
+    n = len(res["a"])
+    assert n == 2639
+    assert list(res)[:len(column_keys(("rigid_pd2",), True))] == list(column_keys(("rigid_pd2",), True))
+    assert res["pdd2_global"].dtype == np.float64 and res["pdd2_global"].shape == (n,)
+    assert res["pdd2_global_normal"].dtype == np.float64 and res["pdd2_global_normal"].shape == (n, 3)
+    assert res["q1_A_global"].shape == (n, 4, 3) and res["q1_B_global"].shape == (n, 4, 3)
+    assert not any(np.isnan(res[k]).any() for k in GLOBAL_COLUMNS)
+    assert_rows_are_single_solves(res, "sphere-a.msh", "sphere-b.msh", ("rigid_pd2",), glob=True)
+    for j in range(n):
+        r = pdd.solve(*pair_of(res, j, "sphere-a.msh", "sphere-b.msh"))
+        assert 0 < res["pdd2_global"][j] <= r["pdd2_relaxed"], j
+    assert (res["pdd2_global"] <= contacts_of("sphere-a.msh", "sphere-b.msh", variants="relaxed")["pdd2_relaxed"]).all()
+    assert not set(GLOBAL_COLUMNS) & set(contacts_of("sphere-a.msh", "sphere-b.msh"))
+
+
+def test_reference_global_is_the_cli_records_and_single_solves(pdd_cli, tmp_path):
+    """The exact engine with "rigid,global" on the tiny cubes (51 pairs): SPEC §9's witness,
+    normal, positions and proved lower bound as Fractions, equal to the CLI's records and to
+    pdd.solve(engine="reference"); the fast pdd2_global lies in [lower, witness] up to SPEC §8."""
+    res = contacts_of("tiny-a.msh", "tiny-b.msh", engine="reference", variants="rigid,global")
+    keys = ("rigid_pd2",)
+    records = cli_records(pdd_cli, tmp_path, "tiny-a.msh", "tiny-b.msh", "--engine", "reference",
+                          "--variants", "rigid,global")
+    assert len(records) == 51
+    assert_same_as_cli(res, records, keys, exact=True, glob=True)
+    assert all(isinstance(x, Fraction) for k in ("pdd2_global", "pdd2_global_lower") for x in res[k])
+    assert_rows_are_single_solves(res, "tiny-a.msh", "tiny-b.msh", keys, engine="reference", glob=True)
+    fast = contacts_of("tiny-a.msh", "tiny-b.msh", variants="global")
+    assert fast["a"].tolist() == res["a"].tolist() and fast["b"].tolist() == res["b"].tolist()
+    for x, lower, upper in zip(fast["pdd2_global"], res["pdd2_global_lower"], res["pdd2_global"]):
+        assert 0 < lower <= upper
+        assert lower * (1 - CONTRACT) <= Fraction(float(x)) <= upper * (1 + CONTRACT)
 
 
 @pytest.mark.parametrize("b", ["tiny-b.msh", None])
@@ -176,16 +257,17 @@ def test_reference_contacts_are_the_cli_records_and_single_solves(pdd_cli, tmp_p
 
 @pytest.mark.parametrize("variants", ["rigid,static,pdd2,accel1", "rigid", "eq11", "static", "pdd2",
                                       "relaxed", "accel1", "accel6", "rigid,static", "static,accel6",
-                                      "all"])
+                                      "global", "accel1,global", "all"])
 def test_fast_rows_are_single_solves(variants):
     """Every variant set, including those the library computes by separate engine calls
     instead of one solve_pair (one variant, or rigid and one other): the same bits."""
     res = contacts_of("sphere-a.msh", "sphere-b.msh", variants=variants)
     keys = value_keys(variants)
+    glob = wants_global(variants)
     assert tuple(k for k in res if k in VALUE_KEYS) == keys
-    assert list(res)[:len(column_keys(keys))] == list(column_keys(keys))
+    assert list(res)[:len(column_keys(keys, glob))] == list(column_keys(keys, glob))
     assert len(res["a"]) == 2639
-    assert_rows_are_single_solves(res, "sphere-a.msh", "sphere-b.msh", keys)
+    assert_rows_are_single_solves(res, "sphere-a.msh", "sphere-b.msh", keys, glob=glob)
 
 
 def test_self_contact_is_brute_force_and_contacts_of_the_parts():
@@ -347,7 +429,7 @@ def test_skipped_elements_are_the_cli_messages(pdd_cli, tmp_path):
 
 @pytest.mark.parametrize("args, kw, message", [
     (("V", "T"), dict(variants="pd"),
-     r"^variants: unknown variant 'pd' \(rigid, eq11, static, pdd2, relaxed, accel1, accel6, all\)$"),
+     r"^variants: unknown variant 'pd' \(rigid, eq11, static, pdd2, relaxed, accel1, accel6, global, all\)$"),
     (("V", "T"), dict(variants=""), "^variants: no variant named$"),
     (("V", "T"), dict(variants=3), "^variants must be a str; got 3$"),
     (("V", "T"), dict(engine="exact"), "^engine must be 'fast' or 'reference'; got 'exact'$"),

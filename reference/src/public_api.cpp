@@ -18,9 +18,10 @@ Positions<pdd::Rational> to_public(const Positions<Rational>& p) {
 
 }  // namespace
 
-PairResult<pdd::Rational> solve_pair(const TetPair& pair, QpFormulation formulation) {
+PairResult<pdd::Rational> solve_pair(const TetPair& pair, QpFormulation formulation, bool global) {
   SolveOptions options;
   options.formulation = formulation;
+  options.global = global;
   const ExactResult e = solve_exact(pair, options);
   PairResult<pdd::Rational> r;
   r.name = e.name;

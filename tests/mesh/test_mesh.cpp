@@ -5,8 +5,10 @@
 //   pairs:   the pair set equals brute force over all N·M (self: all i < j sharing no vertex)
 //            element pairs with the exact decision: nothing missed, nothing extra;
 //   values:  each pair's record equals pdd::fast::solve_pair on that pair, for every variant
-//            subset path; the exact engine on a tiny mesh gives pdd::reference::solve_pair's
-//            exact record and the fast values are within SPEC §8 of it;
+//            subset path, SPEC §9's global keys included (and cleared when not requested);
+//            the exact engine on a tiny mesh gives pdd::reference::solve_pair's exact record
+//            and the fast values are within SPEC §8 of it (pdd2_global: of the exact interval
+//            [pdd2_global_lower, pdd2_global]);
 //   touching meshes (a shared plane, a conforming curved interface) give no pair.
 #define BOOST_TEST_MODULE mesh
 #include <boost/test/unit_test.hpp>
@@ -15,6 +17,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "pdd/mesh.h"
@@ -89,7 +92,31 @@ void check_values(const Contacts<double>& c, const Mesh& A, const Mesh& B, unsig
       }
     }
     if (variants & kPdd2) BOOST_TEST((p.result.q1_A == r.q1_A && p.result.q1_B == r.q1_B));
+    // SPEC §9: solve_pair's fields bit for bit (mesh.h: the same call), below pdd2_relaxed
+    // (SPEC §9: a minimum over every normal, the candidates' included); else cleared.
+    const TetVertices Ta = element(A, p.a), Tb = element(B, p.b);
+    if (variants & kGlobal) {
+      BOOST_TEST(p.result.pdd2_global > 0.0);
+      BOOST_TEST(p.result.pdd2_global == r.pdd2_global);
+      BOOST_TEST(p.result.pdd2_global <= r.pdd2_relaxed);
+      BOOST_TEST((p.result.pdd2_global_normal && r.pdd2_global_normal &&
+                  *p.result.pdd2_global_normal == *r.pdd2_global_normal));
+      BOOST_TEST((p.result.q1_A_global == r.q1_A_global && p.result.q1_B_global == r.q1_B_global));
+    } else {
+      BOOST_TEST(p.result.pdd2_global == 0.0);
+      BOOST_TEST(!p.result.pdd2_global_normal);
+      BOOST_TEST((p.result.q1_A_global == Ta && p.result.q1_B_global == Tb));
+    }
+    BOOST_TEST(!p.result.pdd2_global_lower);
   }
+}
+
+// A tetrahedron's rest pose as exact rationals (each double taken exactly).
+Positions<Rational> exact_pose(const TetVertices& T) {
+  Positions<Rational> p;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = Rational(T[i][k]);
+  return p;
 }
 
 std::string read_error(const std::string& name) {
@@ -194,7 +221,8 @@ BOOST_AUTO_TEST_CASE(self_contact_equals_brute_force) {
 BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
   const Mesh A = load("slivers.msh"), B = load("sphere-a.msh");
   for (unsigned v : {kAllVariants, kDefaultVariants, unsigned(kRigid | kAccel1), unsigned(kStatic),
-                     unsigned(kRelaxed | kAccel6)}) {
+                     unsigned(kRelaxed | kAccel6), unsigned(kGlobal), unsigned(kRigid | kGlobal),
+                     unsigned(kPdd2 | kGlobal)}) {
     BOOST_TEST_CONTEXT(variant_names(v)) {
       const Contacts<double> c = contacts(A, B, {v, {}});
       BOOST_TEST(!c.pairs.empty());
@@ -218,26 +246,57 @@ BOOST_AUTO_TEST_CASE(touching_meshes_report_no_pair) {
 
 BOOST_AUTO_TEST_CASE(reference_engine_on_a_tiny_mesh_is_exact) {
   const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
-  const Contacts<Rational> e = contacts_exact(A, B);
+  const Contacts<Rational> e = contacts_exact(A, B, {kAllVariants, {}});
+  const Contacts<Rational> plain = contacts_exact(A, B);  // default variants: no SPEC §9 search
   const Contacts<double> f = contacts(A, B, {kAllVariants, {}});
   BOOST_TEST(!e.pairs.empty());
   BOOST_TEST((pairs_of(e) == pairs_of(f)));
+  BOOST_TEST((pairs_of(plain) == pairs_of(f)));
   BOOST_TEST((pairs_of(e) == brute_force(A, &B)));
+  const Rational contract(1, 1000000000);  // SPEC §8: 1e-9 relative
+  std::size_t strictly_inside = 0;
   for (std::size_t i = 0; i < e.pairs.size(); ++i) {
     const auto& x = e.pairs[i].result;
     BOOST_REQUIRE(!x.error);
-    const PairResult<Rational> r =
-        reference::solve_pair(TetPair{"", {}, element(A, e.pairs[i].a), element(B, e.pairs[i].b)});
+    const TetVertices Ta = element(A, e.pairs[i].a), Tb = element(B, e.pairs[i].b);
+    const PairResult<Rational> r = reference::solve_pair(TetPair{"", {}, Ta, Tb});
     BOOST_TEST(x.intersecting);
     for (std::size_t k = 0; k < kValueCount; ++k) {
       BOOST_TEST(record_value(x, k) == record_value(r, k));
+      BOOST_TEST(record_value(plain.pairs[i].result, k) == record_value(r, k));
       // SPEC §8 for the fast engine on the same pair, checked exactly.
       const Rational fast_value(record_value(f.pairs[i].result, k));
       const Rational err = abs(fast_value - record_value(x, k));
-      BOOST_TEST(err <= Rational(1, 1000000000) * record_value(x, k), kValueKeys[k]);
+      BOOST_TEST(err <= contract * record_value(x, k), kValueKeys[k]);
     }
     BOOST_TEST((x.q1_A == r.q1_A && x.q1_B == r.q1_B));
+    // SPEC §9 with kGlobal: pdd::reference::solve_pair's exact witness and proved bound, an
+    // interval below pdd2_relaxed no wider than 1e-12 of it, and the fast value inside it up
+    // to SPEC §8 (the fast engine's §9 contract).
+    BOOST_REQUIRE(x.pdd2_global_lower);
+    BOOST_REQUIRE(x.pdd2_global_normal);
+    BOOST_TEST(x.pdd2_global == r.pdd2_global);
+    BOOST_TEST(*x.pdd2_global_lower == *r.pdd2_global_lower);
+    BOOST_TEST((*x.pdd2_global_normal == *r.pdd2_global_normal));
+    BOOST_TEST((x.q1_A_global == r.q1_A_global && x.q1_B_global == r.q1_B_global));
+    const Rational lower = *x.pdd2_global_lower, upper = x.pdd2_global;
+    BOOST_TEST(lower > 0);
+    BOOST_TEST(lower <= upper);
+    BOOST_TEST(upper <= x.pdd2_relaxed);
+    BOOST_TEST(upper - lower <= Rational(1, 1000000000000) * upper);
+    const Rational fast_global(f.pairs[i].result.pdd2_global);
+    BOOST_TEST(fast_global >= lower * (1 - contract));
+    BOOST_TEST(fast_global <= upper * (1 + contract));
+    if (lower <= fast_global && fast_global <= upper) ++strictly_inside;
+    // Without kGlobal the search does not run: the fields are cleared (mesh.h).
+    const auto& y = plain.pairs[i].result;
+    BOOST_TEST(y.pdd2_global == 0);
+    BOOST_TEST(!y.pdd2_global_lower);
+    BOOST_TEST(!y.pdd2_global_normal);
+    BOOST_TEST((y.q1_A_global == exact_pose(Ta) && y.q1_B_global == exact_pose(Tb)));
   }
+  BOOST_TEST_MESSAGE("fast pdd2_global strictly inside the exact interval on " << strictly_inside << " of "
+                                                                               << e.pairs.size() << " pairs");
 }
 
 BOOST_AUTO_TEST_CASE(vtk_output_reads_back) {
@@ -253,4 +312,54 @@ BOOST_AUTO_TEST_CASE(vtk_output_reads_back) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const char* key : {"SCALARS partners int", "SCALARS max_pdd2 double", "VECTORS displacement double"})
     BOOST_TEST(contains(text, key));
+  BOOST_TEST(!contains(text, "max_pdd2_global"));
+  // With kGlobal: max_pdd2_global, each cell's largest pdd2_global over its pairs.
+  const Mesh a = load("tiny-a.msh"), b = load("tiny-b.msh");
+  const Contacts<double> g = contacts(a, b, {kRigid | kGlobal, {}});
+  write_vtk(path, a, &b, g, kRigid | kGlobal);
+  std::ifstream gin(path);
+  const std::string gtext((std::istreambuf_iterator<char>(gin)), std::istreambuf_iterator<char>());
+  const std::size_t at = gtext.find("SCALARS max_pdd2_global double 1\nLOOKUP_TABLE default\n");
+  BOOST_REQUIRE(at != std::string::npos);
+  std::istringstream cells(gtext.substr(at));
+  std::string line;
+  std::getline(cells, line), std::getline(cells, line);
+  double biggest = 0;
+  for (std::size_t i = 0; i < a.tets.size() + b.tets.size(); ++i) {
+    double v = -1;
+    cells >> v;
+    biggest = std::max(biggest, v);
+  }
+  double want = 0;
+  for (const auto& p : g.pairs) want = std::max(want, p.result.pdd2_global);
+  BOOST_TEST(want > 0.0);
+  BOOST_TEST(biggest == want);
+}
+
+BOOST_AUTO_TEST_CASE(variant_names_parse_and_print) {
+  BOOST_TEST(parse_variants("global") == unsigned(kGlobal));
+  BOOST_TEST(parse_variants("rigid,global,accel1") == unsigned(kRigid | kGlobal | kAccel1));
+  BOOST_TEST((parse_variants("all") & kGlobal) != 0u);
+  BOOST_TEST(parse_variants("all") == (parse_variants("rigid,eq11,static,pdd2,relaxed,accel1,accel6") | kGlobal));
+  BOOST_TEST((kDefaultVariants & kGlobal) == 0u);  // tens of microseconds a pair: asked for only
+  BOOST_TEST(variant_names(kAllVariants) == "rigid,eq11,static,pdd2,relaxed,accel1,accel6,global");
+  BOOST_TEST(variant_names(parse_variants("global,rigid")) == "rigid,global");
+  for (const char* bad : {"bogus", "Global", ",global", "pdd2_global", ""}) {
+    BOOST_TEST_CONTEXT(bad) {
+      std::string what;
+      try {
+        parse_variants(bad);
+      } catch (const std::invalid_argument& e) {
+        what = e.what();
+      }
+      BOOST_TEST(!what.empty());
+    }
+  }
+  std::string what = "(no exception)";
+  try {
+    parse_variants("rigid,bogus");
+  } catch (const std::invalid_argument& e) {
+    what = e.what();
+  }
+  BOOST_TEST(what == "unknown variant 'bogus' (rigid, eq11, static, pdd2, relaxed, accel1, accel6, global, all)");
 }

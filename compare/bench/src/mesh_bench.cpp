@@ -421,6 +421,9 @@ MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
       {mesh::kRelaxed, {"pdd2_relaxed", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_relaxed(a, b).pd2; }}},
       {mesh::kAccel1, {"pdd2_accel1", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_accel(a, b, 1).pd2; }}},
       {mesh::kAccel6, {"pdd2_accel6", [](const TetVertices& a, const TetVertices& b) { return fast::pdd2_accel(a, b, 6).pd2; }}},
+      // global: what the depth stage calls for it (mesh.h), one solve_pair (every value)
+      {mesh::kGlobal, {"solve_pair", [](const TetVertices& a, const TetVertices& b) {
+         return fast::solve_pair(TetPair{"", {}, a, b}).pdd2_global; }}},
   };
   for (const auto& [bit, call] : calls) {
     if (!(o.variants & bit) || hits.empty()) continue;

@@ -74,8 +74,10 @@ struct DecisionCosts {     // one core, on a sample of the box pairs
 };
 
 // The depth stage's calls one at a time, one core, on the intersecting pairs of the decision
-// sample: per requested variant (eq11 excepted) the median and the mean single-call time, and
-// the share of the time spent in calls over 50 µs (the fast engine's exact path, SPEC §8).
+// sample: per requested variant (eq11 excepted; global: "solve_pair", the call the depth
+// stage makes for it) the median and the mean single-call time, and the share of the time
+// spent in calls over 50 µs (for the single variants, the fast engine's refined or exact
+// path, SPEC §8; most solve_pair calls take about that long).
 struct DepthCost {
   std::string name;
   double median_ns = 0, mean_ns = 0;
