@@ -519,10 +519,11 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // of 2^-60), the pieces are built exactly and their eigenvectors polished.
   //
   // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
-  // 2^unit the largest of them: H's entries, the conditions and the values compared stay near 1
-  // however far apart the coordinates are (a pair spanning 1e-302..1e308 reaches this branch
-  // unscaled, through solve_pair's exact path; its H would overflow in doubles). A uniform scale
-  // leaves the normals unchanged and multiplies every value by 2^-2unit (Best::unit).
+  // 2^unit the largest of them (a pair spanning 1e-302..1e308 reaches this branch unscaled,
+  // through solve_pair's exact path; its H would overflow in doubles). A uniform scale leaves
+  // the normals unchanged and multiplies every value by 2^-2unit (Best::unit). The near
+  // vertices' pieces beside a far vertex are still ~(size / R)^2: each piece's H and each
+  // condition is scaled again by its own power of two before rounding (enumerate_pieces).
   // The double pieces also need the pair's own scale within [2^-100, 2^100] (solve_pair and
   // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
   // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its

@@ -32,10 +32,11 @@
 // PD^2 (the rigid depth is the smallest overlap over all directions). So G >= PD^2 / 32 on the
 // sphere, and an eigenvalue below it (a zero eigenvalue of a piece whose H has rank 1 or 2, most
 // of them) cannot be a stationary value inside its piece: skipped without its vectors.
-// Margins: an eigenpair is skipped only when its eigenvalue exceeds the best value by more than
-// kPrune relative plus an absolute kEigen * |H| for the eigen solver's error, or when a sign
-// condition is violated by more than kSign of its scale; every other eigenpair is evaluated, so a
-// skipped one cannot hide the minimiser (tolerances only cost evaluations). The value along the
+// Margins: an eigenpair is skipped only when its eigenvalue lies outside [lower, best) by more
+// than its margin (kPrune relative above; H's rounding h_error, the solver's kEigen |H| and its
+// loss near a double eigenvalue, consider_piece), or when a sign condition is violated by more
+// than kSign of its scale; every other eigenpair is evaluated, so a skipped one cannot hide the
+// minimiser (tolerances only cost evaluations). The value along the
 // returned normal is certified by value_bounds.h's QP bound on its heights, else recomputed in
 // rationals (the exact closed form, direction_qp_impl.h on mpq).
 #pragma once
