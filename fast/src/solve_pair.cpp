@@ -103,7 +103,7 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
 // `exact_q1`: the pdd2 choice was refined, so q1 must be the exact solution's (solve_pair);
 // `global_slow`: pdd2_global's value was computed in rationals (global_depth.h).
 unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r,
-                           bool& refined, bool& exact_q1, bool& global_slow) {
+                           bool& refined, bool& exact_q1, bool& global_slow, bool global) {
   unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
   r.rigid_pd2 = rigid.value;
@@ -140,7 +140,7 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   } else {
     missing |= kPositions;
   }
-  if (!fill_global(pair, rel, set, rigid.certified ? rigid.value : 0.0, r, &global_slow))
+  if (global && !fill_global(pair, rel, set, rigid.certified ? rigid.value : 0.0, r, &global_slow))
     missing |= kGlobal;
   return missing;
 }
@@ -211,7 +211,7 @@ bool global_representable(const PairResult<double>& r) {
   return true;
 }
 
-PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
+PairResult<double> exact_path(const TetPair& pair, PairResult<double> r, bool global) {
   detail::ExactPathResult e = detail::solve_pair_exact_path(pair.A, pair.B);
   if (!e.representable) {
     r.error = kNotRepresentable;
@@ -220,7 +220,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
   e.result.name = r.name;
   PairResult<double>& x = e.result;
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
-  if (x.intersecting) {  // SPEC §9, started at pdd2_relaxed's normal
+  if (x.intersecting && global) {  // SPEC §9, started at pdd2_relaxed's normal
     const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), x.pdd2_relaxed, {}, x.rigid_pd2);
     x.pdd2_global = g.value, x.pdd2_global_normal = g.normal;
     x.q1_A_global = g.q1_A, x.q1_B_global = g.q1_B;
@@ -238,7 +238,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r) {
 
 }  // namespace
 
-PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refined_out) {
+PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refined_out, bool global) {
   if (slow_path) *slow_path = false;
   if (refined_out) *refined_out = false;
   PairResult<double> r;
@@ -252,7 +252,7 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
     r.error = rejection_of(pair);
     if (r.error) return r;
     if (slow_path) *slow_path = true;
-    return exact_path(pair, r);
+    return exact_path(pair, r, global);
   }
   // ~20 KB: on the heap to keep TBB worker stacks small; default-initialised (no zeroing).
   std::unique_ptr<CandidateSet> set(new CandidateSet);
@@ -269,7 +269,7 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   scaled.A = sp.A;
   scaled.B = sp.B;
   bool refined = false, exact_q1 = false, global_slow = false;
-  unsigned missing = fill_intersecting(scaled, *set, r, refined, exact_q1, global_slow);
+  unsigned missing = fill_intersecting(scaled, *set, r, refined, exact_q1, global_slow, global);
   PairResult<double> bad;
   bad.name = pair.name;
   bad.error = kNotRepresentable;
@@ -279,6 +279,7 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   const bool global_exact = global_slow && !(missing & kGlobal) && r.pdd2_global_normal;
   if (global_exact) r.pdd2_global = 0;
   if (!unscale(r, -sp.e, missing | kGlobal)) return bad;  // pdd2_global: checked below
+  if (!global) r.q1_A_global = pair.A, r.q1_B_global = pair.B;  // SPEC §9 skipped: rest pose
   if (missing & kGlobal) {  // no double normal found (global_depth.h)
     bad.error = kGlobalNotRepresentable;
     return bad;

@@ -65,9 +65,11 @@ namespace pdd::fast {
 //   slow_path  optional out: set to true when the pair took the exact path.
 //   refined    optional out: set to true when some quantity was refined (a few candidates
 //              evaluated exactly) and the pair did not need the exact path for it.
+//   global     false: skip SPEC §9 (pdd2_global 0, no normal, q1_*_global the rest pose); it
+//              is most of the call's time (about 45 of 50 us on the paper's protocol).
 // Returns the record; `error` set when the pair is rejected (SPEC §1) or not representable.
 PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr,
-                              bool* refined = nullptr);
+                              bool* refined = nullptr, bool global = true);
 
 // solve_pair on every pair, on all cores (TBB), results in input order; bit-identical to
 // solve_pair one at a time. `slow_paths` (optional out): how many pairs took the exact path;
