@@ -82,3 +82,30 @@ BOOST_AUTO_TEST_CASE(batch_equals_single) {
   BOOST_TEST(intersecting > 50);
   BOOST_TEST(solve_batch({}).empty());
 }
+
+// solve_pair(..., global = false) (pdd.h): SPEC §9 skipped, every other field bit for bit the
+// same as with it; pdd2_global 0, no normal, q1_*_global the rest pose. Also on scaled pairs,
+// where the positions are rescaled (a skipped search must not leave rescaled rest poses).
+BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
+  std::vector<TetPair> pairs = random_pairs(200, 77, false);
+  for (int k = 0; k < 40; ++k) {  // the same pairs far from unit scale
+    TetPair p = pairs[k];
+    for (auto* t : {&p.A, &p.B})
+      for (auto& v : *t)
+        for (double& c : v) c = std::ldexp(c, k % 2 ? 300 : -300);
+    pairs.push_back(p);
+  }
+  int intersecting = 0;
+  for (const TetPair& p : pairs) {
+    PairResult<double> with = solve_pair(p), without = solve_pair(p, nullptr, nullptr, false);
+    BOOST_TEST(without.pdd2_global == 0.0);
+    BOOST_TEST(!without.pdd2_global_normal);
+    BOOST_TEST((without.q1_A_global == p.A && without.q1_B_global == p.B));
+    intersecting += with.intersecting;
+    if (with.intersecting && !with.error) BOOST_TEST(with.pdd2_global > 0.0);
+    with.pdd2_global = 0, with.pdd2_global_normal.reset();
+    with.q1_A_global = p.A, with.q1_B_global = p.B;
+    BOOST_TEST(same(with, without), p.name);
+  }
+  BOOST_TEST(intersecting > 50);
+}
