@@ -204,7 +204,7 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   if (tr + 3 * margin < floor) return;
   // Double path: the closed-form solver (fast; eigenvectors off by ~u |H| / gap, so the value
   // along one exceeds the stationary value by ~|H| (u |H| / gap)^2, below 1e-13 of any depth
-  // this path takes, >= 1e-16 scale^2). Exact path: the iterative solver (Householder + QR),
+  // this path takes, >= 1e-10 scale^2). Exact path: the iterative solver (Householder + QR),
   // whose vectors keep structure such as a zero row, then inverse iteration (refine).
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   if (exact) eig.compute(H);
@@ -512,11 +512,14 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   best.n = {start_normal[0], start_normal[1], start_normal[2]};
   best.offer(P, best.n);
 
-  // Doubles or rationals for the pieces (the enumeration is the same). H's entries carry absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off
-  // by an angle ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about
-  // gap * angle^2 ~ 1e-28 scale^4 / gap (gap ~ scale^2): negligible (1e-11 relative) unless the
-  // depth is below ~1e-17 scale^2. Below 1e-16 scale^2 (a vertex far from the others, a contact
-  // of 2^-60), the pieces are built exactly and their eigenvectors polished.
+  // Doubles or rationals for the pieces (the enumeration is the same). H's entries carry
+  // absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off by an angle
+  // ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about gap * angle^2 ~
+  // 1e-28 scale^4 / gap: negligible while the depth is far above 1e-16 scale^2. A far vertex
+  // (depth ~1e-11 scale^2 with a vertex 3e4 away) can also put the minimiser on the wall of a
+  // steep piece, which only the exact path's wall offers reach (the fuzzer found a miss of
+  // 1.6e-8 there). Below 1e-10 scale^2 (far vertices, contacts of 1e-5 of the pair's size) the
+  // pieces are built exactly, with the wall offers, and their eigenvectors polished.
   //
   // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
   // 2^unit the largest of them (a pair spanning 1e-302..1e308 reaches this branch unscaled,
@@ -528,9 +531,8 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
   // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
   // determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
-  // (started with no candidate, as the hot path does) finds a depth below 1e-16 scale^2, it is
-  // done again exactly.
-  auto tiny = [&](double value) { return !(value >= 1e-16 * P.scale * P.scale); };
+  // finds a depth below 1e-10 scale^2, it is done again exactly.
+  auto tiny = [&](double value) { return !(value >= 1e-10 * P.scale * P.scale); };
   bool exact_pieces = !(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value);
   if (!exact_pieces) {
     std::array<std::array<double, 3>, 4> dA, dB;
