@@ -12,6 +12,8 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "pdd/tet_pair.h"
 
@@ -25,24 +27,47 @@ struct ScaledPair {
 
 // Precondition: finite coordinates (the callers check all_finite first).
 // x·2^e is computed as one multiplication by the double 2^e when |e| <= 1000 (2^e is then a
-// normal double): the same correctly rounded product as ldexp (exact unless the result is
-// subnormal, which is detected below), without a library call per coordinate.
+// normal double, built from its exponent bits): the same correctly rounded product as ldexp
+// (exact unless the result is subnormal), without a library call per coordinate.
+// Exactness: the old per-coordinate test "a non-zero x with |x·2^e| < DBL_MIN (or 0)" fails for
+// some coordinate iff it fails for m = the smallest non-zero |x| (the rounded product by
+// 2^e > 0 is monotone in |x|), so one test on m·2^e decides it.
 inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
-  double R = 0.0;
+  constexpr double kInf = HUGE_VAL;
+  double R = 0.0, m = kInf;  // max |x|; min non-zero |x|
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
       const double a = std::fabs(A[i][k]), b = std::fabs(B[i][k]);
       R = R > a ? R : a;
       R = R > b ? R : b;
+      const double ma = a != 0.0 ? a : kInf, mb = b != 0.0 ? b : kInf;
+      m = m < ma ? m : ma;
+      m = m < mb ? m : mb;
     }
   ScaledPair s;
-  s.e = R > 0.0 ? -std::ilogb(R) : 0;
-  const bool direct = s.e >= -1000 && s.e <= 1000;
-  const double p = direct ? std::ldexp(1.0, s.e) : 1.0;
+  if (R >= DBL_MIN) {  // normal R: ilogb(R) = biased exponent − 1023
+    std::uint64_t bits;
+    std::memcpy(&bits, &R, sizeof bits);
+    s.e = 1023 - int((bits >> 52) & 0x7ff);
+  } else {
+    s.e = R > 0.0 ? -std::ilogb(R) : 0;
+  }
+  if (s.e >= -1000 && s.e <= 1000) {
+    const std::uint64_t pbits = std::uint64_t(s.e + 1023) << 52;  // 2^e, a normal double
+    double p;
+    std::memcpy(&p, &pbits, sizeof p);
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        s.A[i][k] = A[i][k] * p;
+        s.B[i][k] = B[i][k] * p;
+      }
+    s.exact = m == kInf || m * p >= DBL_MIN;
+    return s;
+  }
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
-      s.A[i][k] = direct ? A[i][k] * p : std::ldexp(A[i][k], s.e);
-      s.B[i][k] = direct ? B[i][k] * p : std::ldexp(B[i][k], s.e);
+      s.A[i][k] = std::ldexp(A[i][k], s.e);
+      s.B[i][k] = std::ldexp(B[i][k], s.e);
       const double a = std::fabs(s.A[i][k]), b = std::fabs(s.B[i][k]);
       if ((a != 0.0 && a < DBL_MIN) || (b != 0.0 && b < DBL_MIN) ||
           (A[i][k] != 0.0 && a == 0.0) || (B[i][k] != 0.0 && b == 0.0))

@@ -128,29 +128,32 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
     else
       lo_other = lo < lo_other ? lo : lo_other;
   };
-  for (int f = 0; f < 8; ++f) {
+  // Only the entries of the kernel's bound bits: the others are skipped below whatever the
+  // pick (superset_kernel.cpp, certify_bits), so the verdict is unchanged.
+  for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
+    const int f = __builtin_ctz(bits);
     const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                       K.NAB[2][f] * K.NAB[2][f];
     const double v = K.face_val[f];
     const bool picked = c.lane < 0 && c.face == f;
     if (!skip(v, v * nn, nn, picked)) entry(v, std::sqrt(v * nn), nn, picked);
   }
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) {
-      const double inv = K.inv[a][b];
-      const double dp = K.dp[a][b], dm = K.dm[a][b];
-      const bool lane = c.lane == kLaneStride * a + b;
-      const double vp = dp * dp * inv, vm = dm * dm * inv;
-      // n.n >= nn_min as 1/inv >= nn_min: inv * nn_min <= 1 (both sides rounded once; the
-      // margin of the bound, a factor 2, absorbs it)
-      const bool nn_ok = inv * nn_min <= 1.0;
-      const bool skip_p = nn_ok && skip(vp, dp * dp, nn_min, lane && c.sign > 0);
-      const bool skip_m = nn_ok && skip(vm, dm * dm, nn_min, lane && c.sign < 0);
-      if (skip_p && skip_m) continue;
-      const double nn = 1.0 / inv;
-      if (!skip_p) entry(vp, dp, nn, lane && c.sign > 0);
-      if (!skip_m) entry(vm, dm, nn, lane && c.sign < 0);
-    }
+  for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    const double inv = K.inv[a][b];
+    const double dp = K.dp[a][b], dm = K.dm[a][b];
+    const bool picked_lane = c.lane == lane;
+    const double vp = dp * dp * inv, vm = dm * dm * inv;
+    // n.n >= nn_min as 1/inv >= nn_min: inv * nn_min <= 1 (both sides rounded once; the
+    // margin of the bound, a factor 2, absorbs it)
+    const bool nn_ok = inv * nn_min <= 1.0;
+    const bool skip_p = nn_ok && skip(vp, dp * dp, nn_min, picked_lane && c.sign > 0);
+    const bool skip_m = nn_ok && skip(vm, dm * dm, nn_min, picked_lane && c.sign < 0);
+    if (skip_p && skip_m) continue;
+    const double nn = 1.0 / inv;
+    if (!skip_p) entry(vp, dp, nn, picked_lane && c.sign > 0);
+    if (!skip_m) entry(vm, dm, nn, picked_lane && c.sign < 0);
+  }
   ch.certified = certified_choice(upper_of(ch.value, r_pick), lo_all);
   if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;
 }

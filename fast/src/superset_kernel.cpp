@@ -32,6 +32,7 @@
 
 #include "filter_bounds.h"
 #include "tie_tolerance.h"
+#include "value_bounds.h"
 
 namespace pdd::fast::detail {
 namespace {
@@ -63,7 +64,14 @@ PDD_INLINE v8 vabs(v8 a) {
   const V8Halves h = halves_of(a);
   return joined<v8>(h.lo < 0.0 ? -h.lo : h.lo, h.hi < 0.0 ? -h.hi : h.hi);
 }
-PDD_INLINE v8 bc(double x) { return v8{x, x, x, x, x, x, x, x}; }
+// A scalar in every lane, built as two 4-lane halves: GCC without AVX-512 builds a 64-byte
+// splat (also the implicit one of `scalar * v8`) with eight scalar stores and two 16-byte
+// reloads through the stack (store-forwarding stalls; measured: most of the AVX2 kernel's
+// time), while a 4-lane splat is one vbroadcastsd. Every scalar operand below goes through it.
+PDD_INLINE v8 bc(double x) {
+  const v4h h = {x, x, x, x};
+  return joined<v8>(h, h);
+}
 
 PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
@@ -155,7 +163,7 @@ PDD_INLINE void edges_and_normals(const v8* X, SupersetLanes& K, v8* RX) {
 // D_f = max_j H_j (FV: −min_j s N.(r_j − s_v0); VF: max_i −s N.(r_v0 − s_i), see face_of_A /
 // face_of_B; sigma = −s, exact; o = orientation sign of the tetrahedron); value D²/(n.n).
 // Returns D.
-PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K) {
+PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K, v8& fnn) {
   const V8Halves dh = halves_of(perm(K.det, kDet3));
   const v4h plus = {1.0, 1.0, 1.0, 1.0}, minus = -plus;
   const v8 o = joined<v8>(dh.lo > 0.0 ? plus : minus, dh.hi > 0.0 ? plus : minus);
@@ -169,7 +177,7 @@ PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K) {
     const v8 h = K.H[j] = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
     D = j == 0 ? h : max2(D, h);
   }
-  const v8 fnn = N[0] * N[0] + N[1] * N[1] + N[2] * N[2];
+  fnn = N[0] * N[0] + N[1] * N[1] + N[2] * N[2];
   K.face_val = D * D / fnn;
   return D;
 }
@@ -190,20 +198,20 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLan
   // clang, any target): it emits no instruction and changes no value, only the schedule.
   asm volatile("" : : "m"(K.EA), "m"(K.NAB) : "memory");
   for (int f = 0; f < 4; ++f)
-    K.G[f] = EB[0] * K.NAB[0][f] + EB[1] * K.NAB[1][f] + EB[2] * K.NAB[2][f];
+    K.G[f] = EB[0] * bc(K.NAB[0][f]) + EB[1] * bc(K.NAB[1][f]) + EB[2] * bc(K.NAB[2][f]);
   v8 W[3][3];  // W[u] = r_x(b) − s_u, u = 0, 1, 2 (the first vertex of every edge of A)
   for (int u = 0; u < 3; ++u)
-    for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - A[u][k];
+    for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - bc(A[u][k]);
 #pragma GCC unroll 6  // clang reads it as its own unroll pragma
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0];
-    const double ax = K.EA[0][a], ay = K.EA[1][a], az = K.EA[2][a];
+    const v8 ax = bc(K.EA[0][a]), ay = bc(K.EA[1][a]), az = bc(K.EA[2][a]);
     v8 m0, m1, m2, dp, dm;
     edge_pair_normal(ax, ay, az, EB[0], EB[1], EB[2], m0, m1, m2);
     const v8* w = W[u];
     const v8 h = edge_pair_dot(m0, m1, m2, w[0], w[1], w[2]);
-    const v8 g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]];
-    const v8 g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]];
+    const v8 g1 = bc(kOffFaces.eps[a][0]) * K.G[kOffFaces.face[a][0]];
+    const v8 g2 = bc(kOffFaces.eps[a][1]) * K.G[kOffFaces.face[a][1]];
     const v8 qb = ax * NB2[0] + ay * NB2[1] + az * NB2[2];
     const v8 q1 = perm(qb, kOffIndex[0]), q2 = perm(qb, kOffIndex[1]);
     const v8 nn = edge_pair_nn(m0, m1, m2);
@@ -253,6 +261,37 @@ PDD_INLINE void tie_masks(SupersetLanes& K) {
   K.lane_bits = std::uint64_t(horizontal_or(bits));
 }
 
+// Entries certify() (superset_depth.cpp) must bound: all but those it would skip whatever it
+// picks. certify() skips an entry (value v, depth D, n.n) that is not the picked one when
+// v > 2 v~, D² >= (400 e_h)² and n.n >= (400 e_n)² (test: inv·(400 e_n)² <= 1), v~ = the picked
+// value. The picked value is <= t2 (superset_depth.cpp: it is <= tie_threshold(vmin') with
+// vmin' <= t1, so <= tie_threshold(t1) <= t2), so an entry with v > 2 t2 and the other two
+// conditions is skipped by certify() for every pick; the picked entry itself has v <= t2 and
+// is always kept. Per edge lane the test is made on dd = min(D(+n), D(−n)) and
+// val = dd·dd·inv: D(±n) >= dd and both are > 0 here (else the pair is declined), so both
+// orientations' D² and values are >= dd², val (rounding is monotone): both are skipped. Faces:
+// n.n = N.N with N = ±NAB (the same squares). NaN anywhere: every comparison is false, kept.
+PDD_INLINE void certify_bits(SupersetLanes& K, const v8& fnn) {
+  const DegreeBounds db = degree_bounds(filter_bounds_of_extent(K.extent), false);
+  const double D_min2 = (400 * db.e_h) * (400 * db.e_h), nn_min = (400 * db.e_n) * (400 * db.e_n);
+  const double far = 2.0 * K.t2;
+  const v8l one = {1, 2, 4, 8, 16, 32, 64, 128};
+  const v8 fv = K.face_val, fd2 = fv * fnn;
+  // le_bits(−x, −t, m) is x >= t (false for NaN); v > far as (v >= far) & !(v <= far).
+  const v8l skip = le_bits(-fv, -far, one) & ~le_bits(fv, far, one) &
+                   le_bits(-fd2, -D_min2, one) & le_bits(-fnn, -nn_min, one);
+  K.face_bound_bits = std::uint8_t(~horizontal_or(skip) & 0xff);
+  v8l keep{};
+  for (int a = 0; a < 6; ++a) {
+    const v8 dd = min2(K.dp[a], K.dm[a]), d2 = dd * dd, v = K.val[a];
+    const v8l lane = one << (8 * a);
+    const v8l s = le_bits(-v, -far, lane) & ~le_bits(v, far, lane) &
+                  le_bits(-d2, -D_min2, lane) & le_bits(K.inv[a] * nn_min, 1.0, lane);
+    keep |= ~s & lane;
+  }
+  K.lane_bound_bits = std::uint64_t(horizontal_or(keep)) & 0x3f3f3f3f3f3fULL;
+}
+
 // The whole kernel. kFull: also the candidate list's lanes. A template, so that the rigid
 // kernel carries no trace of the extra stores (registers, code size).
 template <bool kFull>
@@ -262,7 +301,8 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Superset
   soa_coordinates(A, B, X);
   pair_scales(X, K);
   edges_and_normals(X, K, RX);
-  v8 lo = face_values(X, K), best = K.face_val;
+  v8 fnn;
+  v8 lo = face_values(X, K, fnn), best = K.face_val;
   edge_pair_values<kFull>(A, RX, K, full, lo, best);
   if (kFull) {
     const FilterBounds fb = filter_bounds_of_extent(K.extent);
@@ -271,6 +311,7 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Superset
   K.lo = hmin(lo);
   K.vmin = hmin(best);
   tie_masks(K);
+  certify_bits(K, fnn);
 }
 
 PDD_SUPERSET_CLONES void kernel_rigid(const TetVertices& A, const TetVertices& B, SupersetLanes& K) {

@@ -38,6 +38,10 @@ struct alignas(64) SupersetLanes {
   double t1, t2;    // tie_threshold(vmin); the bound on tie_threshold(t1) used for the masks
   std::uint8_t face_bits;   // faces with value <= t2
   std::uint64_t lane_bits;  // edge pairs (bit 8a + b) with min(value(±n)) <= t2
+  // Entries that superset_depth.cpp's certify() must bound (the others are provably far from
+  // the minimum: see certify_bits in superset_kernel.cpp): faces, and edge pairs (bit 8a + b).
+  std::uint8_t face_bound_bits;
+  std::uint64_t lane_bound_bits;
 };
 
 // Fills K. When `full` is non-null, also every field of the candidate list's edge lanes
