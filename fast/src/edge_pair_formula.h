@@ -21,51 +21,64 @@
 
 namespace pdd::fast::detail {
 
-// The 8-wide vectors of the superset kernel (GCC vector extensions, also in clang).
-typedef double v8 __attribute__((vector_size(64)));
-typedef long long v8l __attribute__((vector_size(64)));
+// The 8-wide vectors of the superset kernel: two 4-lane halves (GCC vector extensions, also in
+// clang). A native 64-byte vector_size type is lowered by GCC without AVX-512 through the stack
+// (its splats, selects, permutes and the joins of its halves: eight scalar stores and 16-byte
+// reloads, store-forwarding stalls; measured: most of the kernel's time on an AVX2 machine),
+// while every operation on a 32-byte half is one AVX instruction (two SSE2 ones in the default
+// clone). Lane-wise operations on both halves: the same IEEE operations as on 8 lanes.
+typedef double v4h __attribute__((vector_size(32)));
+typedef long long v4hl __attribute__((vector_size(32)));
+
+struct v8 {
+  v4h lo, hi;  // lanes 0..3, 4..7
+  v8() = default;  // (v8{} is all zero)
+  constexpr v8(v4h l, v4h h) : lo(l), hi(h) {}
+  constexpr v8(double a, double b, double c, double d, double e, double f, double g, double h)
+      : lo{a, b, c, d}, hi{e, f, g, h} {}
+  double operator[](int i) const {  // lane i (a copy of its bits)
+    double x;
+    __builtin_memcpy(&x, reinterpret_cast<const char*>(this) + 8 * i, sizeof x);
+    return x;
+  }
+};
+struct v8l {
+  v4hl lo, hi;
+  v8l() = default;
+  constexpr v8l(v4hl l, v4hl h) : lo(l), hi(h) {}
+  constexpr v8l(long long a, long long b, long long c, long long d, long long e, long long f,
+                long long g, long long h)
+      : lo{a, b, c, d}, hi{e, f, g, h} {}
+};
 
 #define PDD_FORMULA static inline __attribute__((always_inline))
 
-// Lane-wise operations on the two 32-byte halves of a v8. Without AVX-512 GCC scalarises a
-// comparison or a select of 64-byte vectors (one vmaxsd, vucomisd, cmov per lane, through the
-// stack: measured, most of the kernel's time on an AVX2 machine), while on 32-byte halves it
-// emits vmaxpd / vcmppd / vblendvpd. The same lane-wise expression, so the same values.
-typedef double v4h __attribute__((vector_size(32)));
-typedef long long v4hl __attribute__((vector_size(32)));
-struct V8Halves {
-  v4h lo, hi;
-};
-PDD_FORMULA V8Halves halves_of(v8 v) {
-  V8Halves h;
-  __builtin_memcpy(&h.lo, &v, 32);
-  __builtin_memcpy(&h.hi, reinterpret_cast<const char*>(&v) + 32, 32);
-  return h;
-}
-template <class V, class H>
-PDD_FORMULA V joined(H lo, H hi) {
-  V r;
-  __builtin_memcpy(&r, &lo, 32);
-  __builtin_memcpy(reinterpret_cast<char*>(&r) + 32, &hi, 32);
-  return r;
-}
+PDD_FORMULA v8 operator+(v8 a, v8 b) { return {a.lo + b.lo, a.hi + b.hi}; }
+PDD_FORMULA v8 operator-(v8 a, v8 b) { return {a.lo - b.lo, a.hi - b.hi}; }
+PDD_FORMULA v8 operator*(v8 a, v8 b) { return {a.lo * b.lo, a.hi * b.hi}; }
+PDD_FORMULA v8 operator/(v8 a, v8 b) { return {a.lo / b.lo, a.hi / b.hi}; }
+PDD_FORMULA v8 operator-(v8 a) { return {-a.lo, -a.hi}; }
+// A scalar operand is splat per half (one vbroadcastsd).
+PDD_FORMULA v8 operator*(double s, v8 b) { return {s * b.lo, s * b.hi}; }
+PDD_FORMULA v8 operator/(double s, v8 b) { return {s / b.lo, s / b.hi}; }
+PDD_FORMULA v8 operator*(v8 a, double s) { return {a.lo * s, a.hi * s}; }
+PDD_FORMULA v8 operator-(v8 a, double s) { return {a.lo - s, a.hi - s}; }
+PDD_FORMULA v8l operator&(v8l a, v8l b) { return {a.lo & b.lo, a.hi & b.hi}; }
+PDD_FORMULA v8l operator|(v8l a, v8l b) { return {a.lo | b.lo, a.hi | b.hi}; }
+PDD_FORMULA v8l operator~(v8l a) { return {~a.lo, ~a.hi}; }
+PDD_FORMULA v8l operator<<(v8l a, int k) { return {a.lo << k, a.hi << k}; }
+PDD_FORMULA v8l& operator|=(v8l& a, v8l b) { return a = a | b; }
 
 // max2 / min2 on vectors, lane-wise, with the scalar ones' semantics (direction_geometry.h).
 PDD_FORMULA v8 max2(v8 a, v8 b) {
-  const V8Halves x = halves_of(a), y = halves_of(b);
-  return joined<v8>(x.lo > y.lo ? x.lo : y.lo, x.hi > y.hi ? x.hi : y.hi);
+  return {a.lo > b.lo ? a.lo : b.lo, a.hi > b.hi ? a.hi : b.hi};
 }
 PDD_FORMULA v8 min2(v8 a, v8 b) {
-  const V8Halves x = halves_of(a), y = halves_of(b);
-  return joined<v8>(x.lo < y.lo ? x.lo : y.lo, x.hi < y.hi ? x.hi : y.hi);
+  return {a.lo < b.lo ? a.lo : b.lo, a.hi < b.hi ? a.hi : b.hi};
 }
 // Lane-wise (a <= t) & bits, i.e. bits[i] where a[i] <= t, else 0.
 PDD_FORMULA v8l le_bits(v8 a, double t, v8l bits) {
-  const V8Halves x = halves_of(a);
-  v4hl b0, b1;
-  __builtin_memcpy(&b0, &bits, 32);
-  __builtin_memcpy(&b1, reinterpret_cast<const char*>(&bits) + 32, 32);
-  return joined<v8l>((x.lo <= t) & b0, (x.hi <= t) & b1);
+  return {(a.lo <= t) & bits.lo, (a.hi <= t) & bits.hi};
 }
 
 // For edge e and its m-th off-edge vertex k (kOffEdge[e][m]): eps(edge, k) and the face

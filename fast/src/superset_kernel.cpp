@@ -1,8 +1,8 @@
 // superset_kernel.cpp — the vectorised superset arithmetic (superset_kernel.h); the proof that
 // the superset gives PD is in superset_depth.h.
 //
-// Layout: 8-wide vectors (GCC vector extensions; one zmm with AVX-512, two ymm with AVX2, four
-// xmm otherwise — clones chosen at run time). Coordinates as structure of arrays (lanes s0..s3,
+// Layout: 8-wide vectors, each two 4-lane halves (edge_pair_formula.h: two ymm with AVX2 and
+// AVX-512, four xmm otherwise — clones chosen at run time). Coordinates as structure of arrays (lanes s0..s3,
 // r0..r3, one vector per axis); edges and face normals by lane permutations of them. Edge pairs:
 // one vector per edge a of A, lane b = edge of B (lanes 6, 7 padding). Faces: one vector, lane
 // f = FV:0..3, VF:0..3. Every value is computed with the same IEEE operations in the same order
@@ -18,11 +18,11 @@
 //   36 edge pairs × (n 9, hx 5, g 2, n.n 5, D(±n) 5, 1/n.n 1, +pad 1, value 2 = 30) 1080
 //   total ≈ 1900 flops, plus ≈ 550 min/max/abs/selects (36 × 11 in the lanes, 24 face maxima,
 //   the extent, R and finiteness reductions) — ≈ 2450 lane operations, 3300 counting padding.
-// The AVX-512 clone of the rigid kernel has ≈ 470 vector FP instructions (149 mul, 72 add,
-// 75 sub, 7 div, ≈ 170 min/max/compare/blend) and ≈ 95 permutes, all issued on the two 512-bit
-// ports (p0, p5): >= 285 cycles, i.e. >= 125 ns at the nominal 2.3 GHz, ≈ 95 ns at 3 GHz.
-// So at the two ports' throughput the kernel takes ≈ 100-125 ns a pair; `pdd bench` measures
-// the whole call on the machine at hand (one machine's numbers live in issue notes, not here).
+// The AVX2 clone of the rigid kernel has ≈ 950 vector FP instructions on 4-lane halves
+// (≈ 300 mul, 290 add/sub, 14 div, ≈ 300 min/max/compare/blend) and ≈ 100 permutes, plus
+// spills (16 ymm registers): ≈ 2000 instructions, ≈ 650 cycles at the measured IPC of ≈ 3 on
+// an AMD EPYC (Zen) core, ≈ 240 ns. `pdd bench` measures the whole call on the machine at hand
+// (one machine's numbers live in issue notes, not here).
 #include "superset_kernel.h"
 
 #include "lane_shuffle.h"
@@ -42,35 +42,35 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 PDD_INLINE long long horizontal_or(v8l v) {
-  return (v[0] | v[1]) | (v[2] | v[3]) | ((v[4] | v[5]) | (v[6] | v[7]));
+  const v4hl m = v.lo | v.hi;
+  return (m[0] | m[1]) | (m[2] | m[3]);
 }
-PDD_INLINE v8 perm(v8 v, v8l idx) { return shuffle(v, idx); }
+// x[i] = v[idx[i]]: per output half one two-source 4-lane permute of v's halves (constant
+// masks: vpermpd / vshufpd / vblendpd / vperm2f128 on AVX2).
+PDD_INLINE v8 perm(v8 v, v8l idx) {
+  return {shuffle(v.lo, v.hi, idx.lo & 7), shuffle(v.lo, v.hi, idx.hi & 7)};
+}
 // Max (min, sum) of the 8 lanes, in lane 0 (max and min are exact in any order).
 PDD_INLINE double hmax(v8 v) {
   // (the maximum of the lanes in any order: max is exact; max2 on halves, edge_pair_formula.h)
-  const V8Halves h = halves_of(v);
-  v4h m = h.lo > h.hi ? h.lo : h.hi;
+  v4h m = v.lo > v.hi ? v.lo : v.hi;
   const v4h s = shuffle(m, v4hl{2, 3, 0, 1});
   m = m > s ? m : s;
   return m[0] > m[1] ? m[0] : m[1];
 }
 PDD_INLINE double hmin(v8 v) { return -hmax(-v); }
-PDD_INLINE double hsum(v8 v) {
-  v = v + perm(v, v8l{4, 5, 6, 7, 0, 1, 2, 3});
-  v = v + perm(v, v8l{2, 3, 0, 1, 6, 7, 4, 5});
-  return v[0] + v[1];
+PDD_INLINE double hsum(v8 v) {  // (only tested against 0: the order is immaterial)
+  v4h m = v.lo + v.hi;
+  m = m + shuffle(m, v4hl{2, 3, 0, 1});
+  return m[0] + m[1];
 }
 PDD_INLINE v8 vabs(v8 a) {
-  const V8Halves h = halves_of(a);
-  return joined<v8>(h.lo < 0.0 ? -h.lo : h.lo, h.hi < 0.0 ? -h.hi : h.hi);
+  return {a.lo < 0.0 ? -a.lo : a.lo, a.hi < 0.0 ? -a.hi : a.hi};
 }
-// A scalar in every lane, built as two 4-lane halves: GCC without AVX-512 builds a 64-byte
-// splat (also the implicit one of `scalar * v8`) with eight scalar stores and two 16-byte
-// reloads through the stack (store-forwarding stalls; measured: most of the AVX2 kernel's
-// time), while a 4-lane splat is one vbroadcastsd. Every scalar operand below goes through it.
+// A scalar in every lane (one 4-lane splat, used for both halves).
 PDD_INLINE v8 bc(double x) {
   const v4h h = {x, x, x, x};
-  return joined<v8>(h, h);
+  return {h, h};
 }
 
 PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
@@ -87,9 +87,6 @@ PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
 
 // Lane-index tables of the permutations below (x[i] = v[idx[i]], v = the SoA vector
 // {s0, s1, s2, s3, r0, r1, r2, r3} of one coordinate, or a table of 8 normals).
-constexpr v8l kLoad[3] = {{0, 3, 6, 13, 0, 3, 6, 13}, {1, 4, 7, 14, 1, 4, 7, 14},
-                          {2, 5, 12, 15, 2, 5, 12, 15}};  // coordinate k of a[0..7], a[4..11]
-constexpr v8l kHalves = {0, 1, 2, 3, 12, 13, 14, 15};
 constexpr v8l kEdgeU = {0, 0, 0, 1, 1, 2, 0, 0};  // s_u of edge a (padding s0: eA = 0)
 constexpr v8l kEdgeV = {1, 2, 3, 2, 3, 3, 0, 0};
 constexpr v8l kEdgeX = {4, 4, 4, 5, 5, 6, 4, 4};  // r_x of edge b (padding r0: eB = 0)
@@ -114,11 +111,6 @@ constexpr v8l make_off_index(int m) {
 }
 constexpr v8l kOffIndex[2] = {make_off_index(0), make_off_index(1)};
 
-PDD_INLINE v8 load8(const double* x) {
-  v8 v;
-  __builtin_memcpy(&v, x, sizeof v);
-  return v;
-}
 PDD_INLINE void cross8(const v8* a, const v8* b, v8* o) {  // detail::cross, lane-wise
   o[0] = a[1] * b[2] - a[2] * b[1];
   o[1] = a[2] * b[0] - a[0] * b[2];
@@ -127,10 +119,8 @@ PDD_INLINE void cross8(const v8* a, const v8* b, v8* o) {  // detail::cross, lan
 
 // Coordinates as structure of arrays: X[k] = {s0, s1, s2, s3, r0, r1, r2, r3} of axis k.
 PDD_INLINE void soa_coordinates(const TetVertices& A, const TetVertices& B, v8* X) {
-  const double *a = &A[0][0], *b = &B[0][0];  // 12 contiguous doubles each
-  const v8 a0 = load8(a), a1 = load8(a + 4), b0 = load8(b), b1 = load8(b + 4);
   for (int k = 0; k < 3; ++k)
-    X[k] = shuffle(shuffle(a0, a1, kLoad[k]), shuffle(b0, b1, kLoad[k]), kHalves);
+    X[k] = {v4h{A[0][k], A[1][k], A[2][k], A[3][k]}, v4h{B[0][k], B[1][k], B[2][k], B[3][k]}};
 }
 
 // Extent L (filter_bounds.h), kappa = kTieCoeff u R (tie_tolerance.h, R = max |coordinate|)
@@ -164,9 +154,9 @@ PDD_INLINE void edges_and_normals(const v8* X, SupersetLanes& K, v8* RX) {
 // face_of_B; sigma = −s, exact; o = orientation sign of the tetrahedron); value D²/(n.n).
 // Returns D.
 PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K, v8& fnn) {
-  const V8Halves dh = halves_of(perm(K.det, kDet3));
+  const v8 dh = perm(K.det, kDet3);
   const v4h plus = {1.0, 1.0, 1.0, 1.0}, minus = -plus;
-  const v8 o = joined<v8>(dh.lo > 0.0 ? plus : minus, dh.hi > 0.0 ? plus : minus);
+  const v8 o = {dh.lo > 0.0 ? plus : minus, dh.hi > 0.0 ? plus : minus};
   const v8 sig = o * v8{-1, 1, -1, 1, 1, -1, 1, -1};
   v8 N[3];
   for (int k = 0; k < 3; ++k) N[k] = K.NAB[k] * sig;
