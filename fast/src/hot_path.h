@@ -41,8 +41,8 @@ Choice exact_choice(const TetVertices& A, const TetVertices& B, Pick pick) {
 // invalid or does not intersect (value 0). Its choice is used when certified.
 template <class Run, class Pick>
 Choice certified_hot_path(const TetVertices& A, const TetVertices& B, Run run, Pick pick) {
-  if (!all_finite(A) || !all_finite(B)) return {};
   const ScaledPair sp = power_scaled(A, B);
+  if (!sp.finite) return {};
   if (sp.exact) {
     Choice ch;
     if (!run(sp.A, sp.B, ch)) return {};

@@ -23,9 +23,11 @@ struct ScaledPair {
   TetVertices A, B;
   int e = 0;
   bool exact = true;
+  bool finite = true;  // false: a coordinate is ±inf or NaN (nothing else is set then)
 };
 
-// Precondition: finite coordinates (the callers check all_finite first).
+// A non-finite coordinate: `finite` false and nothing else (callers may test it instead of
+// calling all_finite first).
 // x·2^e is computed as one multiplication by the double 2^e when |e| <= 1000 (2^e is then a
 // normal double, built from its exponent bits): the same correctly rounded product as ldexp
 // (exact unless the result is subnormal), without a library call per coordinate.
@@ -35,9 +37,11 @@ struct ScaledPair {
 inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   constexpr double kInf = HUGE_VAL;
   double R = 0.0, m = kInf;  // max |x|; min non-zero |x|
+  bool finite = true;        // x − x is 0 for a finite x, NaN for ±inf and NaN
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
       const double a = std::fabs(A[i][k]), b = std::fabs(B[i][k]);
+      finite &= (a - a) == 0.0 && (b - b) == 0.0;
       R = R > a ? R : a;
       R = R > b ? R : b;
       const double ma = a != 0.0 ? a : kInf, mb = b != 0.0 ? b : kInf;
@@ -45,6 +49,10 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
       m = m < mb ? m : mb;
     }
   ScaledPair s;
+  if (!finite) {
+    s.finite = s.exact = false;
+    return s;
+  }
   if (R >= DBL_MIN) {  // normal R: ilogb(R) = biased exponent − 1023
     std::uint64_t bits;
     std::memcpy(&bits, &R, sizeof bits);
@@ -76,9 +84,18 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   return s;
 }
 
-// v·2^k when it is 0 or a normal double; `ok` cleared otherwise.
+// v·2^k when it is 0 or a normal double; `ok` cleared otherwise. One multiplication by the
+// double 2^k when |k| <= 1000 (correctly rounded, as ldexp), else ldexp.
 inline double unscaled(double v, int k, bool& ok) {
-  const double w = std::ldexp(v, k);
+  double w;
+  if (k >= -1000 && k <= 1000) {
+    const std::uint64_t pbits = std::uint64_t(k + 1023) << 52;
+    double p;
+    std::memcpy(&p, &pbits, sizeof p);
+    w = v * p;
+  } else {
+    w = std::ldexp(v, k);
+  }
   if (v != 0.0 && !(std::fabs(w) >= DBL_MIN && std::fabs(w) <= DBL_MAX)) ok = false;
   return w;
 }

@@ -2,6 +2,7 @@
 // state, so bitwise equal), in input order, with invalid pairs reported in place.
 #define BOOST_TEST_MODULE fast_batch
 #include <boost/test/unit_test.hpp>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -108,4 +109,56 @@ BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
     BOOST_TEST(same(with, without), p.name);
   }
   BOOST_TEST(intersecting > 50);
+}
+
+// The hot paths over raw vertices (hot_path.h) decide finiteness inside power_scaled (one pass
+// over the 24 coordinates): every non-finite pair above is Rejected with pd2 0 by each of them,
+// and no value is made up from a NaN or an infinity (NaN loses a max comparison, so a max-based
+// test alone would miss it: the pairs put NaN and ±inf at different vertices and axes).
+BOOST_AUTO_TEST_CASE(hot_paths_reject_non_finite_coordinates) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int v = 0; v < 4; ++v)
+    for (int k = 0; k < 3; ++k)
+      for (double x : {nan, inf, -inf}) {
+        const TetVertices bad = with(kGood, v, k, x);
+        for (const auto& [A, B] : {std::pair{bad, kGood}, std::pair{kGood, bad}}) {
+          BOOST_TEST_CONTEXT("vertex " << v << " axis " << k << " value " << x) {
+            for (const Depth d : {rigid_pd2(A, B), pdd2_static(A, B), pdd2(A, B),
+                                  pdd2_relaxed(A, B), pdd2_accel(A, B, 1), pdd2_accel(A, B, 6)}) {
+              BOOST_TEST((d.status == DepthStatus::Rejected));
+              BOOST_TEST(d.pd2 == 0.0);
+            }
+          }
+        }
+      }
+}
+
+// Values scale back by one multiplication with 2^k (power_scale.h's unscaled, |k| <= 1000) or
+// by ldexp beyond: the pair scaled by 2^j has every squared depth scaled by exactly 2^(2j),
+// bit for bit, on both sides of the switch (2j = ±1000 and ±1004 for j = ±500, ±502).
+BOOST_AUTO_TEST_CASE(hot_paths_scale_back_exactly) {
+  const std::vector<TetPair> pairs = random_pairs(40, 77, true);
+  for (int j : {-502, -500, -37, 37, 500, 502})
+    for (const TetPair& p : pairs) {
+      TetVertices A = p.A, B = p.B;
+      for (auto* T : {&A, &B})
+        for (auto& vtx : *T)
+          for (double& c : vtx) c = std::ldexp(c, j);
+      const Depth r0 = rigid_pd2(p.A, p.B), r1 = rigid_pd2(A, B);
+      const Depth a0 = pdd2_accel(p.A, p.B, 1), a1 = pdd2_accel(A, B, 1);
+      BOOST_TEST_CONTEXT(p.name << " scaled by 2^" << j) {
+        for (const auto& [d0, d1] : {std::pair{r0, r1}, std::pair{a0, a1}}) {
+          BOOST_REQUIRE((d0.status == DepthStatus::Ok));
+          const double want = std::ldexp(d0.pd2, 2 * j);
+          if (want == 0.0 || std::fabs(want) >= DBL_MIN) {  // a normal double: exactly it
+            BOOST_TEST((d1.status == DepthStatus::Ok));
+            BOOST_TEST(d1.pd2 == want);
+          } else {  // below the normal range: SPEC §8's error record, never a rounded value
+            BOOST_TEST((d1.status == DepthStatus::NotRepresentable));
+          }
+        }
+        BOOST_TEST((r1.dir == r0.dir));
+      }
+    }
 }
