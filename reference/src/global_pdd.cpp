@@ -229,8 +229,34 @@ class Search {
     bool everywhere = true;  // the piece is optimal on the whole cone
     for (const Vec3& n : corners) everywhere = everywhere && optimal_at(cp, n);
     if (everywhere) lower = cp.mu;
-    return std::max(lower, dual_bound(cp, nc, corners));
+    lower = std::max(lower, dual_bound(cp, nc, corners));
+    // Bound (D) holds for ANY admissible multipliers (relaxed_pieces.h), so where the centre's
+    // do not reach the target, two more choices are tried:
+    //  - those of the piece optimal at each corner (decided exactly where the doubles' guess
+    //    fails). This closes patches that straddle a wall: beside a far vertex
+    //    (coordinates-1-to-1e18) a centre just on the steep side gives multipliers dominated by
+    //    that vertex, whose g is nearly orthogonal to the corners on the moderate side (bound
+    //    0), while a corner on the moderate side gives the moderate multipliers, continuous
+    //    across the wall (G is C^1);
+    //  - those of the witness's piece at the witness: tight there (at a stationary point g is
+    //    parallel to the normal), so the patches around the witness close at a coarser width.
+    for (std::size_t k = 0; k < corners.size() && lower < want; ++k) {
+      ActiveSet sk = guess_active_set(dpair_, corners[k]);
+      if (sk.a == 0 || sk.b == 0 || !optimal_at(piece(sk), corners[k]))
+        if (auto exact = exact_active_set(corners[k])) sk = *exact;
+      if (sk.a == 0 || sk.b == 0) continue;
+      lower = std::max(lower, dual_bound(piece(sk), corners[k], corners));
+    }
+    if (lower < want && best_set) {
+      const Vec3 nb{CGAL::to_double(best_normal[0]), CGAL::to_double(best_normal[1]),
+                    CGAL::to_double(best_normal[2])};
+      lower = std::max(lower, dual_bound(piece(*best_set), nb, corners));
+    }
+    return lower;
   }
+
+  // The bound a patch must reach to be closed (the search's target; 0: no extra work).
+  double want = 0;
 
  private:
   const CachedPiece& piece(ActiveSet s) {
@@ -447,6 +473,7 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
   const Rational keep = Rational(1) - options.gap;
   Rational target = search.best_value * keep;
   double target_d = CGAL::to_interval(target).second;  // >= target
+  search.want = target_d;
   bool gap_met = false;
   while (!open.empty()) {
     const Patch& top = open.top();
@@ -470,6 +497,7 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
     if (search.best_value * keep != target) {
       target = search.best_value * keep;
       target_d = CGAL::to_interval(target).second;
+      search.want = target_d;
     }
   }
 
