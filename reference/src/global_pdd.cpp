@@ -182,11 +182,22 @@ Vec3 face_normal(int face, double a, double b) {
   n[k] = (face % 2) ? -1.0 : 1.0, n[(k + 1) % 3] = a, n[(k + 2) % 3] = b;
   return n;
 }
+Vector face_normal(int face, const Rational& a, const Rational& b) {
+  const int k = face / 2;
+  Rational n[3];
+  n[k] = (face % 2) ? -1 : 1, n[(k + 1) % 3] = a, n[(k + 2) % 3] = b;
+  return Vector(n[0], n[1], n[2]);
+}
 
 struct Patch {
   int face;
   double a0, a1, b0, b1;  // dyadic: exact in doubles down to widths of 2^-52
   double lower;           // proved lower bound of relaxed(u) on the patch (a rational)
+  int exact = -1;         // >= 0: the corners are ExactRect number `exact` (a0..b1 unused)
+};
+// A patch narrower than the doubles' grid: its dyadic corners as exact rationals.
+struct ExactRect {
+  Rational a0, a1, b0, b1;
 };
 struct ByLower {
   bool operator()(const Patch& x, const Patch& y) const { return y.lower < x.lower; }
@@ -247,11 +258,40 @@ class Search {
       if (sk.a == 0 || sk.b == 0) continue;
       lower = std::max(lower, dual_bound(piece(sk), corners[k], corners));
     }
-    if (lower < want && best_set) {
-      const Vec3 nb{CGAL::to_double(best_normal[0]), CGAL::to_double(best_normal[1]),
-                    CGAL::to_double(best_normal[2])};
-      lower = std::max(lower, dual_bound(piece(*best_set), nb, corners));
+    if (lower < want) {
+      if (const CachedPiece* wp = witness_piece()) {
+        const Vec3 nb{CGAL::to_double(best_normal[0]), CGAL::to_double(best_normal[1]),
+                      CGAL::to_double(best_normal[2])};
+        lower = std::max(lower, dual_bound(*wp, nb, corners));
+      }
     }
+    return lower;
+  }
+
+  // A patch below the doubles' grid (a vertex 1e-18 inside a face puts the minimiser in a
+  // band ~1e-19 rad wide, where G changes by orders of magnitude across 2^-52): the same
+  // bounds with every normal, active set and multiplier exact. Multipliers in doubles carry an
+  // error ~u |D_i| |n|, which swamps g when the depth is below ~u times the pair's size.
+  double evaluate_exact(int face, const ExactRect& r) {
+    ++evaluations;
+    const Vector nc = face_normal(face, (r.a0 + r.a1) / 2, (r.b0 + r.b1) / 2);
+    const std::array<Vector, 4> corners = {face_normal(face, r.a0, r.b0), face_normal(face, r.a1, r.b0),
+                                           face_normal(face, r.a0, r.b1), face_normal(face, r.a1, r.b1)};
+    double lower = 0;
+    if (const auto s = exact_active_set(nc)) {
+      const CachedPiece& cp = piece(*s);
+      offer_exact(cp, nc);
+      bool everywhere = true;
+      for (const Vector& n : corners) everywhere = everywhere && piece_is_optimal_at(cp.piece, n);
+      if (everywhere) lower = cp.mu;
+      lower = std::max(lower, exact_multiplier_bound(cp, nc, corners));
+    }
+    for (std::size_t k = 0; k < corners.size() && lower < want; ++k)
+      if (const auto sk = exact_active_set(corners[k]))
+        lower = std::max(lower, exact_multiplier_bound(piece(*sk), corners[k], corners));
+    if (lower < want)
+      if (const CachedPiece* wp = witness_piece())
+        lower = std::max(lower, exact_multiplier_bound(*wp, best_normal, corners));
     return lower;
   }
 
@@ -305,9 +345,48 @@ class Search {
     return cache_.emplace(s, std::move(c)).first->second;
   }
 
+  // The piece optimal at the witness (nullptr when none is: a start witness outside every
+  // piece cannot happen for an intersecting pair, but nothing relies on it).
+  const CachedPiece* witness_piece() {
+    if (best_set) return &piece(*best_set);
+    if (witness_normal_ != best_normal) {  // the start witness: its set, decided once
+      witness_normal_ = best_normal;
+      witness_set_ = exact_active_set(best_normal);
+    }
+    return witness_set_ ? &piece(*witness_set_) : nullptr;
+  }
+
+  void offer_exact(const CachedPiece& cp, const Vector& v) {  // cp optimal at v
+    if (v == CGAL::NULL_VECTOR) return;
+    const Rational exact = piece_quadratic(cp.piece, v) / v.squared_length();
+    if (exact < best_value) best_value = exact, best_normal = v, best_set = cp.piece.set;
+  }
+
+  // Bound (D) with the piece's multipliers at n computed exactly: l_A,i = max(0, D_i.n) for
+  // the active vertices (likewise l_B), as dual_bound takes them in doubles; admissible and
+  // balanced the same way, so the bound holds whatever n is.
+  double exact_multiplier_bound(const CachedPiece& cp, const Vector& n,
+                                const std::array<Vector, 4>& corners) const {
+    std::array<Rational, 4> a, b;
+    bool anyA = false, anyB = false;
+    for (int i = 0; i < 4; ++i) {
+      a[i] = b[i] = 0;
+      if (cp.piece.set.a >> i & 1u) {
+        const Rational d = cp.piece.D[i] * n;
+        if (d > 0) a[i] = d, anyA = true;
+      }
+      if (cp.piece.set.b >> i & 1u) {
+        const Rational e = cp.piece.E[i] * n;
+        if (e > 0) b[i] = e, anyB = true;
+      }
+    }
+    if (!anyA || !anyB) return 0;
+    return exact_dual_bound(a, b, corners);
+  }
+
   // The active set optimal at n, by the threshold structure on exact heights (16 candidates).
-  std::optional<ActiveSet> exact_active_set(const Vec3& n) {
-    const Vector v = to_vector(n);
+  std::optional<ActiveSet> exact_active_set(const Vec3& n) { return exact_active_set(to_vector(n)); }
+  std::optional<ActiveSet> exact_active_set(const Vector& v) {
     std::array<Rational, 4> a, b;
     std::array<int, 4> ia{0, 1, 2, 3}, ib{0, 1, 2, 3};
     for (int i = 0; i < 4; ++i) a[i] = (pair_.A[i] - CGAL::ORIGIN) * v, b[i] = (pair_.B[i] - CGAL::ORIGIN) * v;
@@ -393,10 +472,18 @@ class Search {
   // bound is rounded down to a double.
   double exact_dual_bound(const double lA[4], const double lB[4],
                           const std::array<Vec3, 4>& corners) const {
+    std::array<Rational, 4> a, b;
+    std::array<Vector, 4> c;
+    for (int i = 0; i < 4; ++i) a[i] = lA[i], b[i] = lB[i], c[i] = to_vector(corners[i]);
+    return exact_dual_bound(a, b, c);
+  }
+  double exact_dual_bound(const std::array<Rational, 4>& lA, const std::array<Rational, 4>& lB,
+                          const std::array<Vector, 4>& corners) const {
     Rational sA = 0, sB = 0, qA = 0, qB = 0;
     Vector gA = CGAL::NULL_VECTOR, gB = CGAL::NULL_VECTOR;
     for (int i = 0; i < 4; ++i) {
-      const Rational a(lA[i]), b(lB[i]);
+      const Rational& a = lA[i];
+      const Rational& b = lB[i];
       sA += a, sB += b, qA += a * a, qB += b * b;
       gA = gA + (pair_.A[i] - pair_.A[0]) * a;
       gB = gB + (pair_.B[i] - pair_.A[0]) * b;
@@ -406,8 +493,7 @@ class Search {
     const Rational K = 5 * qA - sA * sA + r * r * (5 * qB - sB * sB);
     if (K <= 0) return 0;
     double lower = INFINITY;
-    for (const Vec3& n : corners) {
-      const Vector v = to_vector(n);
+    for (const Vector& v : corners) {
       const Rational gn = g * v;
       if (gn <= 0) return 0;
       lower = std::min(lower, CGAL::to_interval(gn * gn / (4 * K * v.squared_length())).first);
@@ -417,6 +503,8 @@ class Search {
 
   const ExactPair& pair_;
   DoublePair dpair_;
+  Vector witness_normal_ = CGAL::NULL_VECTOR;  // witness_piece()'s cache
+  std::optional<ActiveSet> witness_set_;
   std::array<IVec, 4> relA_, relB_;
   std::map<ActiveSet, CachedPiece> cache_;
 };
@@ -460,6 +548,7 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
   search.best_normal = start;
 
   std::priority_queue<Patch, std::vector<Patch>, ByLower> open;
+  std::vector<ExactRect> rects;  // the corners of the patches below the doubles' grid
   constexpr int kInitialSplit = 4;  // 4 x 4 patches per face to begin with
   for (int face = 0; face < 6; ++face)
     for (int i = 0; i < kInitialSplit; ++i)
@@ -481,18 +570,31 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
       gap_met = true;
       break;
     }
-    if (search.evaluations >= options.max_patches) break;
-    const Patch p = top;
+    if (search.evaluations >= options.max_patches || rects.size() > options.max_exact_patches) break;
+    Patch p = top;
     open.pop();
     const double am = (p.a0 + p.a1) / 2, bm = (p.b0 + p.b1) / 2;
-    if (!(p.a0 < am && am < p.a1 && p.b0 < bm && bm < p.b1)) {  // 2^-52 wide: cannot split
-      open.push(p);
-      break;
+    if (p.exact < 0 && !(p.a0 < am && am < p.a1 && p.b0 < bm && bm < p.b1)) {
+      // 2^-52 wide: the doubles cannot split it; its corners go on exactly (the same normals)
+      p.exact = int(rects.size());
+      rects.push_back({Rational(p.a0), Rational(p.a1), Rational(p.b0), Rational(p.b1)});
     }
-    for (Patch c : {Patch{p.face, p.a0, am, p.b0, bm, 0}, Patch{p.face, am, p.a1, p.b0, bm, 0},
-                    Patch{p.face, p.a0, am, bm, p.b1, 0}, Patch{p.face, am, p.a1, bm, p.b1, 0}}) {
-      c.lower = std::max(search.evaluate(c), p.lower);  // the parent's bound holds on the child
-      open.push(c);
+    if (p.exact >= 0) {
+      const ExactRect r = rects[p.exact];
+      const Rational am_x = (r.a0 + r.a1) / 2, bm_x = (r.b0 + r.b1) / 2;
+      for (const ExactRect& c : {ExactRect{r.a0, am_x, r.b0, bm_x}, ExactRect{am_x, r.a1, r.b0, bm_x},
+                                 ExactRect{r.a0, am_x, bm_x, r.b1}, ExactRect{am_x, r.a1, bm_x, r.b1}}) {
+        Patch child{p.face, 0, 0, 0, 0, 0, int(rects.size())};
+        rects.push_back(c);
+        child.lower = std::max(search.evaluate_exact(p.face, c), p.lower);
+        open.push(child);
+      }
+    } else {
+      for (Patch c : {Patch{p.face, p.a0, am, p.b0, bm, 0}, Patch{p.face, am, p.a1, p.b0, bm, 0},
+                      Patch{p.face, p.a0, am, bm, p.b1, 0}, Patch{p.face, am, p.a1, bm, p.b1, 0}}) {
+        c.lower = std::max(search.evaluate(c), p.lower);  // the parent's bound holds on the child
+        open.push(c);
+      }
     }
     if (search.best_value * keep != target) {
       target = search.best_value * keep;

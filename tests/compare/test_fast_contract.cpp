@@ -98,7 +98,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
   pairs.push_back(far[29]);
   pairs.push_back(far[39]);
   // the fuzzer's pair spanning 1e-302..1e308 (fuzz/corpus/fast_engine/regress-global-span-1e308):
-  // the seven values are normal doubles and so is pdd2_global; it was rejected (SIGFPE before)
+  // the seven values are normal doubles; pdd2_global is rejected as not representable (below)
   pairs.push_back(literal("span-1e308",
                           {{{-1.0439190266794049e+308, -1.6699141076786345e+71, -8.2689907683260735e-273},
                             {-9.0229300059495633e+281, -5.6416252970077373e+182, -2.9723526587278523e+67},
@@ -142,8 +142,13 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
       BOOST_TEST(c.rel_error[v] <= c.tolerance[v], p.name << " " << pdd::kValueKeys[v] << " "
                                                           << c.fast_value[v] << " vs " << c.exact_value[v]);
     (fast.error ? rejected : computed) += 1;
+    if (fast.error) BOOST_TEST_MESSAGE("rejected " << p.name << ": " << *fast.error);
   }
-  // every kind is computed except the scale 2^-1010 (values ~2^-2000: not representable)
-  BOOST_TEST(rejected == 5);
-  BOOST_TEST(computed == int(pairs.size()) - 5);
+  // every kind is computed except the scale 2^-1010 (values ~2^-2000: not representable) and
+  // span-1e308, whose pdd2_global (5.03e224 in doubles, inside the exact engine's interval
+  // [3.46e224, 9.23e224], which is not closed there) has an eigenvalue of a piece in the window
+  // no double normal reaches (global_depth.cpp's unrepresented()): rejected, in the class
+  // pdd compare allows
+  BOOST_TEST(rejected == 6);
+  BOOST_TEST(computed == int(pairs.size()) - 6);
 }

@@ -18,6 +18,8 @@
 #include "pdd/compare/fixture_io.h"
 #include "pdd/compare/golden_files.h"
 #include "pdd/pdd.h"
+#include "pdd/rejection.h"
+#include "exact_geometry.h"
 
 using namespace pdd;
 
@@ -46,6 +48,24 @@ std::map<std::string, PairResult<std::string>> read_golden(const std::string& fi
 
 std::string label(const std::optional<DirectionLabel>& l) { return l ? l->str() : "null"; }
 
+// The fast engine's kGlobalNotRepresentable (no double normal attains pdd2_global) where
+// pdd compare allows it (compare/harness/src/engine_comparison.cpp): the exact pdd2_relaxed
+// below 1e-14 R^2, R the largest coordinate difference from A's first vertex.
+bool global_unresolvable(const TetPair& p, const PairResult<std::string>& g) {
+  using fast::detail::Q;
+  Q relaxed(g.pdd2_relaxed);
+  relaxed.canonicalize();
+  Q R = 0;
+  for (const auto* t : {&p.A, &p.B})
+    for (const auto& v : *t)
+      for (int k = 0; k < 3; ++k) {
+        Q d = Q(v[k]) - Q(p.A[0][k]);
+        if (d < 0) d = -d;
+        if (d > R) R = d;
+      }
+  return g.intersecting && relaxed < Q(1e-14) * R * R;
+}
+
 void check_file(const std::string& fixture, const std::string& golden) {
   const auto pairs = read_pairs(fixture);
   const auto gold = read_golden(golden);
@@ -55,6 +75,9 @@ void check_file(const std::string& fixture, const std::string& golden) {
       const auto it = gold.find(r.name);
       BOOST_REQUIRE(it != gold.end());
       const PairResult<std::string>& g = it->second;
+      const TetPair& p = pairs[&r - results.data()];
+      if (r.error && *r.error == kGlobalNotRepresentable && !g.error && global_unresolvable(p, g))
+        continue;  // (adversarial-1-3, -13, -23: a vertex 1e-18 inside a face)
       BOOST_TEST(bool(r.error) == bool(g.error));
       if (r.error || g.error) continue;
       BOOST_TEST(r.intersecting == g.intersecting);
@@ -63,7 +86,6 @@ void check_file(const std::string& fixture, const std::string& golden) {
       BOOST_TEST(label(r.pdd2_dir) == label(g.pdd2_dir));
       BOOST_TEST(label(r.pdd2_relaxed_dir) == label(g.pdd2_relaxed_dir));
       // the hot paths over raw vertices (superset_depth.h) report what solve_pair reports
-      const TetPair& p = pairs[&r - results.data()];
       const fast::Choice rigid = fast::rigid_pd2_choice(p.A, p.B), a1 = fast::pdd2_accel_choice(p.A, p.B, 1);
       BOOST_TEST(rigid.value == r.rigid_pd2);
       BOOST_TEST(a1.value == r.pdd2_accel1);

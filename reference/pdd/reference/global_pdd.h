@@ -55,6 +55,8 @@ struct GlobalPdd {
 struct GlobalOptions {
   Rational gap = Rational(1) / Rational(1000000000000LL);  // 1e-12 (SPEC §9)
   std::size_t max_patches = 100000;  // a few seconds at most; see kGapNotClosed in the tests
+  // Patches below the doubles' grid (2^-52 wide) go on in exact rationals, at ~1 ms each.
+  std::size_t max_exact_patches = 2000;
   // A lower bound proved beforehand, reported when the search's own is lower (pairs where the
   // gap is not closed): solve_exact passes PD^2 / 32. Proof: along a unit normal u, dropping
   // every constraint but those of A's highest vertex and B's lowest can only lower the relaxed
