@@ -12,6 +12,12 @@
 #include "exact_path.h"
 #include "rigid_depth.h"
 #include "superset_depth.h"
+#include "superset_kernel.h"
+#include "filter_bounds.h"
+#include "power_scale.h"
+#include "value_bounds.h"
+
+#include <cmath>
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -118,4 +124,73 @@ BOOST_AUTO_TEST_CASE(degenerate_pairs_decline_or_agree) {
       BOOST_TEST(hot.label() == list.label());
     }
   }
+}
+
+// certify() (superset_depth.cpp) bounds only the entries of the kernel's face_bound_bits /
+// lane_bound_bits. The verdict equals the one over all 8 faces and 36 edge pairs iff every
+// entry left out is one the full loop skips whatever the pick: for every value v~ <= t2 a pick
+// can have, not picked, v > 2 v~, D² >= (400 e_h)² and n.n >= (400 e_n)² (edge pairs: both
+// orientations, n.n as inv·(400 e_n)² <= 1), in certify()'s own arithmetic; and every entry a
+// pick can be (value <= t2) is kept. Checked on every pair where certify() can run.
+BOOST_AUTO_TEST_CASE(certify_bound_bits_leave_out_only_skipped_entries) {
+  using namespace pdd::fast::detail;
+  std::vector<TetPair> pairs = random_pairs(3000, 91, false);
+  for (const TetPair& p : random_pairs(2000, 92, true, 1e-3)) pairs.push_back(p);
+  pdd::compare::ReproducibleRng rng(93);
+  for (int i = 0; i < 2000; ++i) {  // slivers, near-touching reflections, subnormal offsets
+    TetPair p = pairs[i];
+    p.B = p.A;
+    for (auto& v : p.B)
+      for (double& c : v) c += std::ldexp(double(rng.integer(-1024, 1023)), -10 - int(i % 40));
+    pairs.push_back(p);
+  }
+  int checked = 0, left_out = 0;
+  for (const TetPair& p : pairs) {
+    const ScaledPair sp = power_scaled(p.A, p.B);
+    if (!sp.finite || !sp.exact) continue;
+    SupersetLanes K;
+    superset_kernel(sp.A, sp.B, K, nullptr);
+    const FilterBounds fb = filter_bounds_of_extent(K.extent);
+    if (!(K.finite == 0.0) || !(std::fabs(K.det[3]) > fb.deg3) ||
+        !(std::fabs(K.det[7]) > fb.deg3) || !(K.lo > fb.deg3))
+      continue;  // certify() is not reached
+    ++checked;
+    const DegreeBounds db = degree_bounds(fb, false);
+    const double far = 2.0 * K.t2, D_min2 = (400 * db.e_h) * (400 * db.e_h),
+                 nn_min = (400 * db.e_n) * (400 * db.e_n);
+    // v > 2 v~ for every v~ <= t2 is v > 2 t2 (2 v~ <= 2 t2, rounding monotone)
+    auto skipped = [&](double v, double D2, double nn) {
+      return v > far && D2 >= D_min2 && nn >= nn_min;
+    };
+    BOOST_TEST_CONTEXT(p.name) {
+      for (int f = 0; f < 8; ++f) {
+        const double v = K.face_val[f];
+        if (v <= K.t2) BOOST_TEST((K.face_bound_bits >> f & 1u));
+        if (K.face_bound_bits >> f & 1u) continue;
+        ++left_out;
+        const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
+                          K.NAB[2][f] * K.NAB[2][f];
+        BOOST_TEST(skipped(v, v * nn, nn), "face " << f);
+      }
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 8; ++b) {
+          const int lane = kLaneStride * a + b;
+          const bool kept = K.lane_bound_bits >> lane & 1u;
+          if (b >= 6) {
+            BOOST_TEST(!kept);  // padding
+            continue;
+          }
+          const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
+          const double vp = dp * dp * inv, vm = dm * dm * inv;
+          if (vp <= K.t2 || vm <= K.t2) BOOST_TEST(kept, "lane " << lane);
+          if (kept) continue;
+          ++left_out;
+          const bool nn_ok = inv * nn_min <= 1.0;
+          BOOST_TEST((nn_ok && skipped(vp, dp * dp, nn_min) && skipped(vm, dm * dm, nn_min)),
+                     "lane " << lane);
+        }
+    }
+  }
+  BOOST_TEST(checked > 3000);
+  BOOST_TEST(left_out > 100000);
 }
