@@ -31,9 +31,10 @@ struct ScaledPair {
 // x·2^e is computed as one multiplication by the double 2^e when |e| <= 1000 (2^e is then a
 // normal double, built from its exponent bits): the same correctly rounded product as ldexp
 // (exact unless the result is subnormal), without a library call per coordinate.
-// Exactness: the old per-coordinate test "a non-zero x with |x·2^e| < DBL_MIN (or 0)" fails for
-// some coordinate iff it fails for m = the smallest non-zero |x| (the rounded product by
-// 2^e > 0 is monotone in |x|), so one test on m·2^e decides it.
+// Exactness: x·2^e is exact iff the exact product is 0 or at least DBL_MIN (normal range, no
+// overflow as R·2^e < 2). The smallest non-zero |x| = m has the smallest product, so the test on
+// m decides it for every coordinate: m·2^e >= DBL_MIN after rounding and, since a product just
+// below DBL_MIN rounds up to exactly DBL_MIN, (m·2^e)/2^e == m.
 inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   constexpr double kInf = HUGE_VAL;
   double R = 0.0, m = kInf;  // max |x|; min non-zero |x|
@@ -69,7 +70,9 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
         s.A[i][k] = A[i][k] * p;
         s.B[i][k] = B[i][k] * p;
       }
-    s.exact = m == kInf || m * p >= DBL_MIN;
+    // (m p rounded up to exactly DBL_MIN is not exact: m p / p == m tells, as division by a
+    // power of two is exact in the normal range; a review found that case)
+    s.exact = m == kInf || (m * p >= DBL_MIN && (m * p) / p == m);
     return s;
   }
   for (int i = 0; i < 4; ++i)

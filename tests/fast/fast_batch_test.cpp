@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "fast_test_util.h"
+#include "power_scale.h"
 #include "pdd/pdd.h"
 
 using namespace pdd;
@@ -161,4 +162,21 @@ BOOST_AUTO_TEST_CASE(hot_paths_scale_back_exactly) {
         BOOST_TEST((r1.dir == r0.dir));
       }
     }
+}
+
+// power_scaled's exactness test (a review's case): R = 1000 gives e = -9; a coordinate
+// m = (2 - 2^-52) 2^-1014 has m 2^-9 = 2^-1022 - 2^-1075 exactly, which rounds (to even) up
+// to DBL_MIN: a normal result, but not x 2^e, so the pair is not "exactly" rescaled. One ulp
+// above, m 2^-9 = 2^-1022 exactly: exact.
+BOOST_AUTO_TEST_CASE(power_scaled_exactness_at_the_normal_boundary) {
+  const double m = std::ldexp(2 - std::ldexp(1.0, -52), -1014);
+  TetVertices A = kGood, B = kGood;
+  A[1][0] = 1000.0;
+  A[2][2] = m;
+  const detail::ScaledPair sp = detail::power_scaled(A, B);
+  BOOST_TEST(sp.e == -9);
+  BOOST_TEST(std::fabs(sp.A[2][2]) == DBL_MIN);  // rounded up
+  BOOST_TEST(!sp.exact);
+  A[2][2] = std::ldexp(1.0, -1013);
+  BOOST_TEST(detail::power_scaled(A, B).exact);
 }
