@@ -152,10 +152,21 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
     return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
                    : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
+  // lo_min = the minimum of lower(i) over every candidate. The evaluated ones first (their
+  // bounds are known); then a skipped one is left out when certify.h's cheap test shows
+  // lower(i) > kSmallRigidLower · coeff delta² > lo_min so far (>= the final lo_min): it
+  // cannot be the minimum, so the minimum is unchanged (min is exact in any order). Only the
+  // few others pay rigid_rel's division and square root.
   double lo_min = kInf;
-  const double far = 2 * ch.value;  // certify.h: skipped candidates far above, small bound
+  for (int i = 0; i < set.count; ++i)
+    if (done[i]) {
+      const double lo = lower(i);
+      lo_min = lo < lo_min ? lo : lo_min;
+    }
   for (int i = 0; i < set.count; ++i) {
-    if (!done[i] && coeff * delta2(set, i) > far && detail::rigid_rel_small(set, i)) continue;
+    if (done[i] || (detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min &&
+                    detail::rigid_rel_small(set, i)))
+      continue;
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
   }
@@ -253,9 +264,11 @@ Choice accel_of(const List& set, int k) {
     hi_chosen = hi > hi_chosen ? hi : hi_chosen;
   }
   bool separated = hi_chosen < kInf;
-  // (certify.h: delta² > 2 hi_chosen with a small bound has lower bound > 1.96 hi_chosen)
+  // (certify.h: kSmallRigidLower delta² > hi_chosen with a small bound has lower bound
+  // > hi_chosen, so the exact test below would pass: it is skipped)
   for (int i = 0; i < set.count && separated; ++i)
-    if (!chosen[i] && !(delta2(set, i) > 2 * hi_chosen && detail::rigid_rel_small(set, i)) &&
+    if (!chosen[i] &&
+        !(detail::kSmallRigidLower * delta2(set, i) > hi_chosen && detail::rigid_rel_small(set, i)) &&
         !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
       separated = false;
   double v[kMaxCandidates], rel[kMaxCandidates];
