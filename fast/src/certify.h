@@ -35,7 +35,7 @@ template <class List>
 bool rigid_rel_small(const List& s, int k) {
   const DegreeBounds db = degree_bounds(s.fb, is_parallel(s, k));
   const double D = s.depth[k], eh = 400 * db.e_h, en = 400 * db.e_n;
-  return D * D >= eh * eh && s.nn[k] >= en * en;
+  return (D * D >= eh * eh) & (s.nn[k] >= en * en);  // (no short-circuit: no branch)
 }
 
 // Largest |height| of a candidate (value_bounds.h: Hm).

@@ -84,6 +84,19 @@ Valued relaxed_valued(const Candidate& c, const FilterBounds& fb) {
   return valued(c, s, solver_bound(c, s, 0xFu, 0xFu), fb);
 }
 
+// The variants as function objects: the sweep's calls inline (a function pointer would not).
+struct StaticValued {
+  Valued operator()(const Candidate& c, const FilterBounds& fb) const { return static_valued(c, fb); }
+};
+struct DeformableValued {
+  Valued operator()(const Candidate& c, const FilterBounds& fb) const {
+    return deformable_valued(c, fb);
+  }
+};
+struct RelaxedValued {
+  Valued operator()(const Candidate& c, const FilterBounds& fb) const { return relaxed_valued(c, fb); }
+};
+
 // The exact values of refine.h, per variant (false: not in the family).
 bool exact_static(const detail::ExactCandidate& c, detail::Q& v) {
   if (c.label.orientation != EdgeOrientation::Decided) return false;  // infeasible (SPEC §5)
@@ -117,12 +130,14 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
   if (!usable(set)) return {};
   double v[kMaxCandidates], r[kMaxCandidates];
   bool done[kMaxCandidates];
+  int evaluated[kMaxCandidates], n_evaluated = 0;  // the indices with done[i], any order
   double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
   auto evaluate = [&](int i) {
     const Valued x = value(candidate(set, i), set.fb);
     v[i] = x.v;
     r[i] = x.r;
     done[i] = true;
+    evaluated[n_evaluated++] = i;
   };
   if (hint >= 0 && hint < set.count) {
     evaluate(hint);
@@ -157,15 +172,17 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
   // lower(i) > kSmallRigidLower · coeff delta² > lo_min so far (>= the final lo_min): it
   // cannot be the minimum, so the minimum is unchanged (min is exact in any order). Only the
   // few others pay rigid_rel's division and square root.
+  // (The evaluated ones through their index list, and the skip test of the others without
+  // short-circuits: it is almost always true, so its one branch predicts well, while a branch
+  // on done[i] would not.)
   double lo_min = kInf;
-  for (int i = 0; i < set.count; ++i)
-    if (done[i]) {
-      const double lo = lower(i);
-      lo_min = lo < lo_min ? lo : lo_min;
-    }
+  for (int j = 0; j < n_evaluated; ++j) {
+    const double lo = lower(evaluated[j]);
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
   for (int i = 0; i < set.count; ++i) {
-    if (done[i] || (detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min &&
-                    detail::rigid_rel_small(set, i)))
+    if (done[i] | ((detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
+                   detail::rigid_rel_small(set, i)))
       continue;
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
@@ -310,22 +327,22 @@ double deformable_value(const Candidate& c) {
 double relaxed_value(const Candidate& c) { return solve_relaxed(c.hA, c.hB).cost / (20.0 * c.nn); }
 
 Choice pdd2_static(const CandidateSet& set, int hint) {
-  return sweep(set, kStaticBoundCoeff, hint, static_valued, exact_static);
+  return sweep(set, kStaticBoundCoeff, hint, StaticValued{}, exact_static);
 }
 Choice pdd2(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, deformable_valued, exact_deformable);
+  return sweep(set, kDeformableBoundCoeff, hint, DeformableValued{}, exact_deformable);
 }
 Choice pdd2_relaxed(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, relaxed_valued, exact_relaxed);
+  return sweep(set, kDeformableBoundCoeff, hint, RelaxedValued{}, exact_relaxed);
 }
 Choice pdd2_static(const QuickCandidates& q, int hint) {
-  return sweep(q, kStaticBoundCoeff, hint, static_valued, exact_static);
+  return sweep(q, kStaticBoundCoeff, hint, StaticValued{}, exact_static);
 }
 Choice pdd2(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, deformable_valued, exact_deformable);
+  return sweep(q, kDeformableBoundCoeff, hint, DeformableValued{}, exact_deformable);
 }
 Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, relaxed_valued, exact_relaxed);
+  return sweep(q, kDeformableBoundCoeff, hint, RelaxedValued{}, exact_relaxed);
 }
 
 Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
