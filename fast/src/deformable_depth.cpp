@@ -64,37 +64,43 @@ Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound&
   return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
 }
 
-Valued static_valued(const Candidate& c, const FilterBounds& fb) {
-  if (c.label.orientation != EdgeOrientation::Decided) return {kInf, 0.0};
-  const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
-  // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
-  const SolverBound sb = c.conA ? solver_bound(c, s, 0u, 0xFu & ~c.conB)
-                                 : SolverBound{kSolverDisplacementCoeff, detail::max_height(c)};
-  return valued(c, s, sb, fb);
-}
-
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
       solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
-Valued relaxed_valued(const Candidate& c, const FilterBounds& fb) {
-  const DirectionSolution s = solve_relaxed(c.hA, c.hB);
-  return valued(c, s, solver_bound(c, s, 0xFu, 0xFu), fb);
-}
-
-// The variants as function objects: the sweep's calls inline (a function pointer would not).
-struct StaticValued {
-  Valued operator()(const Candidate& c, const FilterBounds& fb) const { return static_valued(c, fb); }
-};
-struct DeformableValued {
-  Valued operator()(const Candidate& c, const FilterBounds& fb) const {
-    return deformable_valued(c, fb);
+// The sweep's variants, as function objects (inlined): `solve` the QP (false: infeasible, not
+// in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
+struct StaticVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    if (c.label.orientation != EdgeOrientation::Decided) return false;  // SPEC §5
+    s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+    return true;
+  }
+  // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return c.conA ? solver_bound(c, s, 0u, 0xFu & ~c.conB)
+                  : SolverBound{kSolverDisplacementCoeff, detail::max_height(c)};
   }
 };
-struct RelaxedValued {
-  Valued operator()(const Candidate& c, const FilterBounds& fb) const { return relaxed_valued(c, fb); }
+struct DeformableVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    s = solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+    return true;
+  }
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB);
+  }
+};
+struct RelaxedVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    s = solve_relaxed(c.hA, c.hB);
+    return true;
+  }
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return solver_bound(c, s, 0xFu, 0xFu);
+  }
 };
 
 // The exact values of refine.h, per variant (false: not in the family).
@@ -125,19 +131,41 @@ inline double safe_lower(double v, double r) {
 // SPEC §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
 // bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
 // proven in the header, applied to the exact delta).
-template <class List, class Value, class ExactValue>
-Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue exact_value) {
+template <class List, class Variant, class ExactValue>
+Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValue exact_value) {
   if (!usable(set)) return {};
+  // Per evaluated candidate: its solution and what the cheap bound test needs (n.n, Hm, degree
+  // class); r[i], the root bound valued() would give, only where it is used (below).
+  struct Pending {
+    DirectionSolution s;
+    double nn, Hm;
+    bool feasible, parallel;
+  };
   double v[kMaxCandidates], r[kMaxCandidates];
+  Pending p[kMaxCandidates];
   bool done[kMaxCandidates];
   int evaluated[kMaxCandidates], n_evaluated = 0;  // the indices with done[i], any order
   double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
   auto evaluate = [&](int i) {
-    const Valued x = value(candidate(set, i), set.fb);
-    v[i] = x.v;
-    r[i] = x.r;
+    const Candidate c = candidate(set, i);
+    Pending& e = p[i];
+    e.feasible = variant.solve(c, e.s);
+    e.nn = c.nn;
+    e.Hm = detail::max_height(c);
+    e.parallel = c.parallel;
+    v[i] = e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
     done[i] = true;
     evaluated[n_evaluated++] = i;
+  };
+  // valued()'s root bound of evaluated candidate i (0 when infeasible), into r[i].
+  auto bound = [&](int i) {
+    if (!p[i].feasible) {
+      r[i] = 0.0;
+      return;
+    }
+    const Candidate c = candidate(set, i);
+    const SolverBound sb = variant.bound(c, p[i].s);
+    r[i] = qp_root_rel(p[i].s.cost, c.nn, sb.H, degree_bounds(set.fb, c.parallel), sb.coeff);
   };
   if (hint >= 0 && hint < set.count) {
     evaluate(hint);
@@ -167,17 +195,26 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
     return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
                    : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
-  // lo_min = the minimum of lower(i) over every candidate. The evaluated ones first (their
-  // bounds are known); then a skipped one is left out when certify.h's cheap test shows
-  // lower(i) > kSmallRigidLower · coeff delta² > lo_min so far (>= the final lo_min): it
-  // cannot be the minimum, so the minimum is unchanged (min is exact in any order). Only the
-  // few others pay rigid_rel's division and square root.
-  // (The evaluated ones through their index list, and the skip test of the others without
-  // short-circuits: it is almost always true, so its one branch predicts well, while a branch
-  // on done[i] would not.)
-  double lo_min = kInf;
+  // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
+  // An evaluated candidate is left out, its bound not computed, when qp_root_rel_small
+  // (value_bounds.h; the wide solver bound covers the tight one) shows
+  // lower(i) > kSmallQpLower · v > lo_min so far; a skipped one when certify.h's cheap test
+  // shows lower(i) > kSmallRigidLower · coeff delta² > lo_min so far. Either way lower(i)
+  // exceeds a value >= the final lo_min, so it cannot be the minimum, and the minimum is
+  // unchanged (min is exact in any order). Only the few others pay the divisions and square
+  // roots of their bounds. (v = +inf or NaN: lower = +inf, never the minimum.)
+  // (Without short-circuits where the test is almost always true: its branch predicts well.)
+  bound(ch.index);
+  double lo_min = lower(ch.index);
   for (int j = 0; j < n_evaluated; ++j) {
-    const double lo = lower(evaluated[j]);
+    const int i = evaluated[j];
+    const Pending& e = p[i];
+    if ((i == ch.index) | !(v[i] < kInf) ||
+        ((kSmallQpLower * v[i] > lo_min) &
+         qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(set.fb, e.parallel))))
+      continue;
+    bound(i);
+    const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
   }
   for (int i = 0; i < set.count; ++i) {
@@ -189,9 +226,13 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
   }
   const double hi = upper_of(ch.value, r[ch.index]);
   ch.certified = certified_choice(hi, lo_min);
-  // Not certified: the contenders exactly (refine.h). A skipped candidate's exact value is
-  // >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the family.
-  if (!ch.certified) detail::refine_minimum(set, lower, hi, exact_value, ch);
+  // Not certified: the contenders exactly (refine.h), with every bound. A skipped candidate's
+  // exact value is >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the
+  // family.
+  if (!ch.certified) {
+    for (int j = 0; j < n_evaluated; ++j) bound(evaluated[j]);
+    detail::refine_minimum(set, lower, hi, exact_value, ch);
+  }
   return ch;
 }
 
@@ -327,22 +368,22 @@ double deformable_value(const Candidate& c) {
 double relaxed_value(const Candidate& c) { return solve_relaxed(c.hA, c.hB).cost / (20.0 * c.nn); }
 
 Choice pdd2_static(const CandidateSet& set, int hint) {
-  return sweep(set, kStaticBoundCoeff, hint, StaticValued{}, exact_static);
+  return sweep(set, kStaticBoundCoeff, hint, StaticVariant{}, exact_static);
 }
 Choice pdd2(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, DeformableValued{}, exact_deformable);
+  return sweep(set, kDeformableBoundCoeff, hint, DeformableVariant{}, exact_deformable);
 }
 Choice pdd2_relaxed(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, RelaxedValued{}, exact_relaxed);
+  return sweep(set, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
 }
 Choice pdd2_static(const QuickCandidates& q, int hint) {
-  return sweep(q, kStaticBoundCoeff, hint, StaticValued{}, exact_static);
+  return sweep(q, kStaticBoundCoeff, hint, StaticVariant{}, exact_static);
 }
 Choice pdd2(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, DeformableValued{}, exact_deformable);
+  return sweep(q, kDeformableBoundCoeff, hint, DeformableVariant{}, exact_deformable);
 }
 Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, RelaxedValued{}, exact_relaxed);
+  return sweep(q, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
 }
 
 Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
