@@ -125,6 +125,36 @@ inline double safe_lower(double v, double r) {
   return lo >= 0.0 ? lo : 0.0;
 }
 
+// One evaluated candidate whose root bound is deferred: its solution and what the cheap bound
+// test needs (n.n, Hm, degree class). evaluate() gives valued()'s value, root_bound() its
+// root bound (0 when infeasible), deferred_small() qp_root_rel_small (value_bounds.h) with the
+// wide solver bound, which covers the tight one: when true, lower_of(v, root_bound) >
+// kSmallQpLower · v.
+struct Pending {
+  DirectionSolution s;
+  double nn, Hm;
+  bool feasible, parallel;
+};
+template <class List, class Variant>
+double evaluate(const List& set, int i, const Variant& variant, Pending& e) {
+  const Candidate c = candidate(set, i);
+  e.feasible = variant.solve(c, e.s);
+  e.nn = c.nn;
+  e.Hm = detail::max_height(c);
+  e.parallel = c.parallel;
+  return e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
+}
+template <class List, class Variant>
+double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
+  if (!e.feasible) return 0.0;
+  const Candidate c = candidate(set, i);
+  const SolverBound sb = variant.bound(c, e.s);
+  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(set.fb, c.parallel), sb.coeff);
+}
+inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
+  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(fb, e.parallel));
+}
+
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
 // the best value so far (header), then pick the first tied minimum. List: CandidateSet or
 // QuickCandidates (same candidates, same order, same values).
@@ -134,41 +164,20 @@ inline double safe_lower(double v, double r) {
 template <class List, class Variant, class ExactValue>
 Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValue exact_value) {
   if (!usable(set)) return {};
-  // Per evaluated candidate: its solution and what the cheap bound test needs (n.n, Hm, degree
-  // class); r[i], the root bound valued() would give, only where it is used (below).
-  struct Pending {
-    DirectionSolution s;
-    double nn, Hm;
-    bool feasible, parallel;
-  };
+  // r[i], the root bound valued() would give, only where it is used (below).
   double v[kMaxCandidates], r[kMaxCandidates];
   Pending p[kMaxCandidates];
   bool done[kMaxCandidates];
   int evaluated[kMaxCandidates], n_evaluated = 0;  // the indices with done[i], any order
   double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
-  auto evaluate = [&](int i) {
-    const Candidate c = candidate(set, i);
-    Pending& e = p[i];
-    e.feasible = variant.solve(c, e.s);
-    e.nn = c.nn;
-    e.Hm = detail::max_height(c);
-    e.parallel = c.parallel;
-    v[i] = e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
+  auto evaluate_ = [&](int i) {
+    v[i] = evaluate(set, i, variant, p[i]);
     done[i] = true;
     evaluated[n_evaluated++] = i;
   };
-  // valued()'s root bound of evaluated candidate i (0 when infeasible), into r[i].
-  auto bound = [&](int i) {
-    if (!p[i].feasible) {
-      r[i] = 0.0;
-      return;
-    }
-    const Candidate c = candidate(set, i);
-    const SolverBound sb = variant.bound(c, p[i].s);
-    r[i] = qp_root_rel(p[i].s.cost, c.nn, sb.H, degree_bounds(set.fb, c.parallel), sb.coeff);
-  };
+  auto bound = [&](int i) { r[i] = root_bound(set, i, variant, p[i]); };
   if (hint >= 0 && hint < set.count) {
-    evaluate(hint);
+    evaluate_(hint);
     best = v[hint];
     threshold = tie_threshold(best, set.tie_kappa);
   }
@@ -180,7 +189,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
       done[i] = false;
       continue;
     }
-    evaluate(i);
+    evaluate_(i);
     if (v[i] < best) {
       best = v[i];
       threshold = tie_threshold(best, set.tie_kappa);
@@ -196,8 +205,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
                    : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
-  // An evaluated candidate is left out, its bound not computed, when qp_root_rel_small
-  // (value_bounds.h; the wide solver bound covers the tight one) shows
+  // An evaluated candidate is left out, its bound not computed, when deferred_small shows
   // lower(i) > kSmallQpLower · v > lo_min so far; a skipped one when certify.h's cheap test
   // shows lower(i) > kSmallRigidLower · coeff delta² > lo_min so far. Either way lower(i)
   // exceeds a value >= the final lo_min, so it cannot be the minimum, and the minimum is
@@ -208,10 +216,8 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   double lo_min = lower(ch.index);
   for (int j = 0; j < n_evaluated; ++j) {
     const int i = evaluated[j];
-    const Pending& e = p[i];
     if ((i == ch.index) | !(v[i] < kInf) ||
-        ((kSmallQpLower * v[i] > lo_min) &
-         qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(set.fb, e.parallel))))
+        ((kSmallQpLower * v[i] > lo_min) & deferred_small(p[i], set.fb)))
       continue;
     bound(i);
     const double lo = lower(i);
@@ -329,24 +335,27 @@ Choice accel_of(const List& set, int k) {
         !(detail::kSmallRigidLower * delta2(set, i) > hi_chosen && detail::rigid_rel_small(set, i)) &&
         !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
       separated = false;
-  double v[kMaxCandidates], rel[kMaxCandidates];
-  for (int r = 0; r < m; ++r) {
-    const Valued x = deformable_valued(candidate(set, order[r]), set.fb);
-    v[r] = x.v;
-    rel[r] = x.r;
-  }
+  const DeformableVariant variant;
+  double v[kMaxCandidates];  // (k is any count on the lists' interface)
+  Pending p[kMaxCandidates];
+  for (int r = 0; r < m; ++r) v[r] = evaluate(set, order[r], variant, p[r]);
   const double vmin = minimum(v, m);
   int best = -1;  // among ties, the first in canonical order
   for (int r = 0; r < m; ++r)
     if (ties_with_min(v[r], vmin, set.tie_kappa) && (best < 0 || order[r] < order[best])) best = r;
   if (best < 0) return {};
-  double lo_min = kInf;
+  // lo_min = the minimum of safe_lower(v, root bound) over the k, as in sweep: the choice's
+  // own first; another one's bound only when deferred_small cannot show its lower bound above
+  // kSmallQpLower · v > lo_min so far (then it is not the minimum). (NaN v: never left out.)
+  const double rel_best = root_bound(set, order[best], variant, p[best]);
+  double lo_min = safe_lower(v[best], rel_best);
   for (int r = 0; r < m; ++r) {
-    const double lo = safe_lower(v[r], rel[r]);
+    if ((r == best) | ((kSmallQpLower * v[r] > lo_min) & deferred_small(p[r], set.fb))) continue;
+    const double lo = safe_lower(v[r], root_bound(set, order[r], variant, p[r]));
     lo_min = lo < lo_min ? lo : lo_min;
   }
   Choice ch{v[best], order[best], label_code(set, order[best])};
-  ch.certified = separated && certified_choice(upper_of(v[best], rel[best]), lo_min);
+  ch.certified = separated && certified_choice(upper_of(v[best], rel_best), lo_min);
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }
