@@ -212,7 +212,9 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   // unchanged (min is exact in any order). Only the few others pay the divisions and square
   // roots of their bounds. (v = +inf or NaN: lower = +inf, never the minimum.)
   // (Without short-circuits where the test is almost always true: its branch predicts well.)
-  bound(ch.index);
+  // (The choice is an evaluated candidate unless every evaluated value is NaN; then r = 0
+  // gives hi = +inf and no certificate, as any bound would.)
+  if (done[ch.index]) bound(ch.index); else r[ch.index] = 0.0;
   double lo_min = lower(ch.index);
   for (int j = 0; j < n_evaluated; ++j) {
     const int i = evaluated[j];

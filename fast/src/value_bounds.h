@@ -106,7 +106,7 @@ inline double qp_root_rel(double F, double nn, double Hm, const DegreeBounds& b,
 // < 0.0195 for every (coeff', H') with coeff' H' <= coeff H, so that
 // lower_of(F/(20 nn), it) >= (1 − 0.0195)² (1 − 3u) v > 0.9613 v (three roundings). Proof:
 // dT' = coeff' u H' <= dT (coeff', u powers of two: exact scalings). X = 2 e_h + 1.5 coeff u H
-// (computed; >= the computed 2 e_h + sqrt(2) dT', as 1.5 > sqrt(2)(1 + 4u)) and
+// (computed; >= the computed 2 e_h + sqrt(2) dT' up to 2u relative, as 1.5 > sqrt(2)(1 + 4u)) and
 // X² · 222000 <= F give X²/(F/20) <= 20/222000, i.e. X/phi <= 0.009492 (phi = sqrt(F/20)); with
 // the few roundings of qp_root_rel its a is <= 0.0095 < 0.01. 3 e_n² · 11100 <= nn gives
 // rho = sqrt(3) e_n/sqrt(nn) <= 0.009492, computed <= 0.0095 < 0.01. So the bound is finite
