@@ -64,25 +64,44 @@ Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound&
   return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
 }
 
-Valued static_valued(const Candidate& c, const FilterBounds& fb) {
-  if (c.label.orientation != EdgeOrientation::Decided) return {kInf, 0.0};
-  const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
-  // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
-  const SolverBound sb = c.conA ? solver_bound(c, s, 0u, 0xFu & ~c.conB)
-                                 : SolverBound{kSolverDisplacementCoeff, detail::max_height(c)};
-  return valued(c, s, sb, fb);
-}
-
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
       solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
-Valued relaxed_valued(const Candidate& c, const FilterBounds& fb) {
-  const DirectionSolution s = solve_relaxed(c.hA, c.hB);
-  return valued(c, s, solver_bound(c, s, 0xFu, 0xFu), fb);
-}
+// The sweep's variants, as function objects (inlined): `solve` the QP (false: infeasible, not
+// in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
+struct StaticVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    if (c.label.orientation != EdgeOrientation::Decided) return false;  // SPEC §5
+    s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+    return true;
+  }
+  // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return c.conA ? solver_bound(c, s, 0u, 0xFu & ~c.conB)
+                  : SolverBound{kSolverDisplacementCoeff, detail::max_height(c)};
+  }
+};
+struct DeformableVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    s = solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+    return true;
+  }
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB);
+  }
+};
+struct RelaxedVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    s = solve_relaxed(c.hA, c.hB);
+    return true;
+  }
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return solver_bound(c, s, 0xFu, 0xFu);
+  }
+};
 
 // The exact values of refine.h, per variant (false: not in the family).
 bool exact_static(const detail::ExactCandidate& c, detail::Q& v) {
@@ -106,26 +125,59 @@ inline double safe_lower(double v, double r) {
   return lo >= 0.0 ? lo : 0.0;
 }
 
+// One evaluated candidate whose root bound is deferred: its solution and what the cheap bound
+// test needs (n.n, Hm, degree class). evaluate() gives valued()'s value, root_bound() its
+// root bound (0 when infeasible), deferred_small() qp_root_rel_small (value_bounds.h) with the
+// wide solver bound, which covers the tight one: when true, lower_of(v, root_bound) >
+// kSmallQpLower · v.
+struct Pending {
+  DirectionSolution s;
+  double nn, Hm;
+  bool feasible, parallel;
+};
+template <class List, class Variant>
+double evaluate(const List& set, int i, const Variant& variant, Pending& e) {
+  const Candidate c = candidate(set, i);
+  e.feasible = variant.solve(c, e.s);
+  e.nn = c.nn;
+  e.Hm = detail::max_height(c);
+  e.parallel = c.parallel;
+  return e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
+}
+template <class List, class Variant>
+double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
+  if (!e.feasible) return 0.0;
+  const Candidate c = candidate(set, i);
+  const SolverBound sb = variant.bound(c, e.s);
+  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(set.fb, c.parallel), sb.coeff);
+}
+inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
+  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(fb, e.parallel));
+}
+
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
 // the best value so far (header), then pick the first tied minimum. List: CandidateSet or
 // QuickCandidates (same candidates, same order, same values).
 // SPEC §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
 // bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
 // proven in the header, applied to the exact delta).
-template <class List, class Value, class ExactValue>
-Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue exact_value) {
+template <class List, class Variant, class ExactValue>
+Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValue exact_value) {
   if (!usable(set)) return {};
+  // r[i], the root bound valued() would give, only where it is used (below).
   double v[kMaxCandidates], r[kMaxCandidates];
+  Pending p[kMaxCandidates];
   bool done[kMaxCandidates];
+  int evaluated[kMaxCandidates], n_evaluated = 0;  // the indices with done[i], any order
   double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
-  auto evaluate = [&](int i) {
-    const Valued x = value(candidate(set, i), set.fb);
-    v[i] = x.v;
-    r[i] = x.r;
+  auto evaluate_ = [&](int i) {
+    v[i] = evaluate(set, i, variant, p[i]);
     done[i] = true;
+    evaluated[n_evaluated++] = i;
   };
+  auto bound = [&](int i) { r[i] = root_bound(set, i, variant, p[i]); };
   if (hint >= 0 && hint < set.count) {
-    evaluate(hint);
+    evaluate_(hint);
     best = v[hint];
     threshold = tie_threshold(best, set.tie_kappa);
   }
@@ -137,7 +189,7 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
       done[i] = false;
       continue;
     }
-    evaluate(i);
+    evaluate_(i);
     if (v[i] < best) {
       best = v[i];
       threshold = tie_threshold(best, set.tie_kappa);
@@ -152,18 +204,43 @@ Choice sweep(const List& set, double coeff, int hint, Value value, ExactValue ex
     return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
                    : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
-  double lo_min = kInf;
-  const double far = 2 * ch.value;  // certify.h: skipped candidates far above, small bound
+  // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
+  // An evaluated candidate is left out, its bound not computed, when deferred_small shows
+  // lower(i) > kSmallQpLower · v > lo_min so far; a skipped one when certify.h's cheap test
+  // shows lower(i) > kSmallRigidLower · coeff delta² > lo_min so far. Either way lower(i)
+  // exceeds a value >= the final lo_min, so it cannot be the minimum, and the minimum is
+  // unchanged (min is exact in any order). Only the few others pay the divisions and square
+  // roots of their bounds. (v = +inf or NaN: lower = +inf, never the minimum.)
+  // (Without short-circuits where the test is almost always true: its branch predicts well.)
+  // (The choice is an evaluated candidate unless every evaluated value is NaN; then r = 0
+  // gives hi = +inf and no certificate, as any bound would.)
+  if (done[ch.index]) bound(ch.index); else r[ch.index] = 0.0;
+  double lo_min = lower(ch.index);
+  for (int j = 0; j < n_evaluated; ++j) {
+    const int i = evaluated[j];
+    if ((i == ch.index) | !(v[i] < kInf) ||
+        ((kSmallQpLower * v[i] > lo_min) & deferred_small(p[i], set.fb)))
+      continue;
+    bound(i);
+    const double lo = lower(i);
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
   for (int i = 0; i < set.count; ++i) {
-    if (!done[i] && coeff * delta2(set, i) > far && detail::rigid_rel_small(set, i)) continue;
+    if (done[i] | ((detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
+                   detail::rigid_rel_small(set, i)))
+      continue;
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
   }
   const double hi = upper_of(ch.value, r[ch.index]);
   ch.certified = certified_choice(hi, lo_min);
-  // Not certified: the contenders exactly (refine.h). A skipped candidate's exact value is
-  // >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the family.
-  if (!ch.certified) detail::refine_minimum(set, lower, hi, exact_value, ch);
+  // Not certified: the contenders exactly (refine.h), with every bound. A skipped candidate's
+  // exact value is >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the
+  // family.
+  if (!ch.certified) {
+    for (int j = 0; j < n_evaluated; ++j) bound(evaluated[j]);
+    detail::refine_minimum(set, lower, hi, exact_value, ch);
+  }
   return ch;
 }
 
@@ -253,29 +330,34 @@ Choice accel_of(const List& set, int k) {
     hi_chosen = hi > hi_chosen ? hi : hi_chosen;
   }
   bool separated = hi_chosen < kInf;
-  // (certify.h: delta² > 2 hi_chosen with a small bound has lower bound > 1.96 hi_chosen)
+  // (certify.h: kSmallRigidLower delta² > hi_chosen with a small bound has lower bound
+  // > hi_chosen, so the exact test below would pass: it is skipped)
   for (int i = 0; i < set.count && separated; ++i)
-    if (!chosen[i] && !(delta2(set, i) > 2 * hi_chosen && detail::rigid_rel_small(set, i)) &&
+    if (!chosen[i] &&
+        !(detail::kSmallRigidLower * delta2(set, i) > hi_chosen && detail::rigid_rel_small(set, i)) &&
         !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
       separated = false;
-  double v[kMaxCandidates], rel[kMaxCandidates];
-  for (int r = 0; r < m; ++r) {
-    const Valued x = deformable_valued(candidate(set, order[r]), set.fb);
-    v[r] = x.v;
-    rel[r] = x.r;
-  }
+  const DeformableVariant variant;
+  double v[kMaxCandidates];  // (k is any count on the lists' interface)
+  Pending p[kMaxCandidates];
+  for (int r = 0; r < m; ++r) v[r] = evaluate(set, order[r], variant, p[r]);
   const double vmin = minimum(v, m);
   int best = -1;  // among ties, the first in canonical order
   for (int r = 0; r < m; ++r)
     if (ties_with_min(v[r], vmin, set.tie_kappa) && (best < 0 || order[r] < order[best])) best = r;
   if (best < 0) return {};
-  double lo_min = kInf;
+  // lo_min = the minimum of safe_lower(v, root bound) over the k, as in sweep: the choice's
+  // own first; another one's bound only when deferred_small cannot show its lower bound above
+  // kSmallQpLower · v > lo_min so far (then it is not the minimum). (NaN v: never left out.)
+  const double rel_best = root_bound(set, order[best], variant, p[best]);
+  double lo_min = safe_lower(v[best], rel_best);
   for (int r = 0; r < m; ++r) {
-    const double lo = safe_lower(v[r], rel[r]);
+    if ((r == best) | ((kSmallQpLower * v[r] > lo_min) & deferred_small(p[r], set.fb))) continue;
+    const double lo = safe_lower(v[r], root_bound(set, order[r], variant, p[r]));
     lo_min = lo < lo_min ? lo : lo_min;
   }
   Choice ch{v[best], order[best], label_code(set, order[best])};
-  ch.certified = separated && certified_choice(upper_of(v[best], rel[best]), lo_min);
+  ch.certified = separated && certified_choice(upper_of(v[best], rel_best), lo_min);
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }
@@ -297,22 +379,22 @@ double deformable_value(const Candidate& c) {
 double relaxed_value(const Candidate& c) { return solve_relaxed(c.hA, c.hB).cost / (20.0 * c.nn); }
 
 Choice pdd2_static(const CandidateSet& set, int hint) {
-  return sweep(set, kStaticBoundCoeff, hint, static_valued, exact_static);
+  return sweep(set, kStaticBoundCoeff, hint, StaticVariant{}, exact_static);
 }
 Choice pdd2(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, deformable_valued, exact_deformable);
+  return sweep(set, kDeformableBoundCoeff, hint, DeformableVariant{}, exact_deformable);
 }
 Choice pdd2_relaxed(const CandidateSet& set, int hint) {
-  return sweep(set, kDeformableBoundCoeff, hint, relaxed_valued, exact_relaxed);
+  return sweep(set, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
 }
 Choice pdd2_static(const QuickCandidates& q, int hint) {
-  return sweep(q, kStaticBoundCoeff, hint, static_valued, exact_static);
+  return sweep(q, kStaticBoundCoeff, hint, StaticVariant{}, exact_static);
 }
 Choice pdd2(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, deformable_valued, exact_deformable);
+  return sweep(q, kDeformableBoundCoeff, hint, DeformableVariant{}, exact_deformable);
 }
 Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
-  return sweep(q, kDeformableBoundCoeff, hint, relaxed_valued, exact_relaxed);
+  return sweep(q, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
 }
 
 Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }

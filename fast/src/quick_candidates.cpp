@@ -55,11 +55,14 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
   if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
   q.tie_kappa = K.kappa;
   q.fb = fb;
+  // All eight drafts first, then the candidates: finish_face's wide loads right after
+  // face_draft's narrow stores of the same Draft cannot be store-forwarded (a stall per
+  // load); eight calls later those stores have reached the cache.
+  Draft drafts[8];
+  for (int f = 0; f < 8; ++f) face_draft(K, f, drafts[f]);
   for (int f = 0; f < 8; ++f) {
     DirectionGeometry& g = q.faces[f];
-    Draft d;
-    face_draft(K, f, d);
-    finish_face(d, g);
+    finish_face(drafts[f], g);
     if (!(g.depth > fb.deg3)) return false;
     q.delta_sq[f] = g.depth * g.depth / g.nn;
     q.depth[f] = g.depth;

@@ -101,6 +101,27 @@ inline double qp_root_rel(double F, double nn, double Hm, const DegreeBounds& b,
   return finish_root_rel((2 * b.e_h + std::sqrt(2.0) * dT) / phi + 4 * kUnitRoundoff, nn, b.e_n);
 }
 
+// Cheap test, products only, for deferring qp_root_rel (two square roots, two divisions) and
+// the solver bound it needs: true only when qp_root_rel(F, nn, H', b, coeff') is finite and
+// < 0.0195 for every (coeff', H') with coeff' H' <= coeff H, so that
+// lower_of(F/(20 nn), it) >= (1 − 0.0195)² (1 − 3u) v > 0.9613 v (three roundings). Proof:
+// dT' = coeff' u H' <= dT (coeff', u powers of two: exact scalings). X = 2 e_h + 1.5 coeff u H
+// (computed; >= the computed 2 e_h + sqrt(2) dT' up to 2u relative, as 1.5 > sqrt(2)(1 + 4u)) and
+// X² · 222000 <= F give X²/(F/20) <= 20/222000, i.e. X/phi <= 0.009492 (phi = sqrt(F/20)); with
+// the few roundings of qp_root_rel its a is <= 0.0095 < 0.01. 3 e_n² · 11100 <= nn gives
+// rho = sqrt(3) e_n/sqrt(nn) <= 0.009492, computed <= 0.0095 < 0.01. So the bound is finite
+// and 1.02 (a + rho + 4u)(1 + 3u) < 0.0195. (NaN F or nn: false.) kSmallQpLower · v
+// (computed: <= 0.96 (1 + u) v < 0.9613 v) is then below lower_of(v, that bound).
+// Used with the wide solver bound (coeff = kSolverDisplacementCoeff, H = Hm): the tight one
+// has coeff' H' = 512 Ha <= 4096 Hm (Ha <= max(|C|, Hm) and the root C is a weighted average
+// of heights, |C| <= Hm (1 + 20u)), so the test covers whichever of the two applies.
+inline constexpr double kSmallQpLower = 0.96;
+inline bool qp_root_rel_small(double F, double nn, double H, const DegreeBounds& b,
+                              double coeff = kSolverDisplacementCoeff) {
+  const double X = 2 * b.e_h + 1.5 * coeff * kUnitRoundoff * H;
+  return (X * X * 222000.0 <= F) & (3 * b.e_n * b.e_n * 11100.0 <= nn);
+}
+
 // Interval of the exact value from v~ and its root bound r.
 inline double lower_of(double v, double r) { return r >= 1 ? 0.0 : v * (1 - r) * (1 - r); }
 inline double upper_of(double v, double r) { return v * (1 + r) * (1 + r); }
