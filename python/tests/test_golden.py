@@ -83,11 +83,23 @@ def cli_label_verdict(cli, rel, name, key):
     return _verdicts[rel][name][key]["verdict"]
 
 
+def global_unresolvable(p, g):
+    """engine_comparison.cpp's global_normal_unresolvable: the fast engine may reject a pair's
+    pdd2_global (no double normal attains it) where the exact pdd2_relaxed < 1e-14 R^2, R the
+    largest coordinate difference from A's first vertex."""
+    a0 = [Fraction(c) for c in p["A"][0]]
+    R = max(abs(Fraction(c) - a0[k]) for t in ("A", "B") for v in p[t] for k, c in enumerate(v))
+    return g["intersecting"] and Fraction(g["pdd2_relaxed"]) < Fraction(1e-14) * R * R
+
+
 def test_fast_engine_within_contract_of_golden(request):
     eps = 2.0 ** -53
     for rel, p, g in CASES:
         r = pdd.solve(p["A"], p["B"], name=p["name"])
         where = f"{rel} {p['name']}"
+        if (r.get("error") or "").startswith("not representable: no normal in doubles") and \
+                global_unresolvable(p, g):
+            continue  # allowed where the C++ judge allows it (adversarial-1-3, -13, -23)
         assert list(r) == [k for k in g if k != "pdd2_global_lower"], where
         assert r["error"] is None, where
         # SPEC §9: inside the exact engine's certified interval, widened by the contract
