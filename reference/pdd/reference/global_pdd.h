@@ -32,7 +32,13 @@
 //     minors >= 0); mu is the smallest eigenvalue in doubles, lowered until the check passes.
 //   The patch's bound is the larger of the two (0 when neither applies). Both are second
 //   order near a minimiser (the multipliers' g is parallel to the minimiser there), so the gap
-//   closes after O(log 1/gap) subdivisions around it.
+//   closes after O(log 1/gap) subdivisions around it. (D) holds for any admissible
+//   multipliers, so where the centre's fall short of the target, those of the piece optimal at
+//   each corner and those of the witness are tried too (a patch straddling a far vertex's wall:
+//   the centre on the steep side gives nothing on the near side's corners).
+// Patches narrower than the doubles' grid (2^-52; a vertex 1e-18 inside a face puts the
+// minimiser in a band ~1e-19 rad wide) go on with exact rational corners, normals, active
+// sets and multipliers (max_exact_patches of them).
 // Patches are refined best-first (smallest lower bound first) until the smallest lower bound
 // of the open patches reaches pdd2_global (1 - gap), or the budget of patch evaluations is spent.
 #pragma once
