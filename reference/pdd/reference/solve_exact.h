@@ -9,6 +9,8 @@
 //         and proved lower bound (global_pdd.h). A rejected pair has `error` set (SPEC §1).
 #pragma once
 
+#include <cstddef>
+
 #include "pdd/pair_result.h"
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/exact_kernel.h"
@@ -21,6 +23,7 @@ struct SolveOptions {
   QpFormulation formulation = QpFormulation::Full;
   bool global = true;  // SPEC §9 (pdd2_global and its keys); false leaves them 0 / null
   Rational global_gap = Rational(1) / Rational(1000000000000LL);  // 1e-12: SPEC §9's target
+  std::size_t global_max_exact_patches = 1000;  // GlobalOptions::max_exact_patches
 };
 
 ExactResult solve_exact(const TetPair& pair, const SolveOptions& options = {});
