@@ -226,8 +226,8 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
     lo_min = lo < lo_min ? lo : lo_min;
   }
   for (int i = 0; i < set.count; ++i) {
-    if (done[i] | ((detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
-                   detail::rigid_rel_small(set, i)))
+    if (done[i] | (int(detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
+                   int(detail::rigid_rel_small(set, i))))  // (both evaluated: no branch)
       continue;
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
