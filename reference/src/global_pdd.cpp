@@ -76,18 +76,54 @@ bool positive_semidefinite(const std::array<std::array<Rational, 3>, 3>& S) {
   return det >= 0;  // all principal minors >= 0: positive semi-definite
 }
 
-// A double mu <= the smallest eigenvalue of H (proved: H - mu I is positive semi-definite,
-// checked exactly), close to it when doubles resolve it. H is a sum of outer products, so
-// mu = 0 always holds.
+// A double mu <= the smallest eigenvalue lambda_1 of H (proved), as close to it as a double can
+// be. H is symmetric (real eigenvalues lambda_1 <= lambda_2 <= lambda_3) and a sum of outer
+// products (lambda_1 >= 0), so mu = 0 always holds.
+// Start: the doubles' estimate (a Rayleigh quotient), lowered until H - mu I is positive
+// semi-definite (checked exactly: all principal minors >= 0, i.e. mu <= lambda_1), else 0.
+// Then Newton's method on p(t) = det(t I - H) = t^3 - tr t^2 + m2 t - det (exact rational
+// coefficients; m2 the sum of the principal 2 x 2 minors), from the left. Proof that every
+// iterate stays <= lambda_1: for t <= lambda_1, p(t) = (t - lambda_1)(t - lambda_2)(t - lambda_3)
+// <= 0, p'(t) > 0 unless t = lambda_1 = lambda_2, and p''(t) = 6 (t - tr/3) <= 0 since
+// lambda_1 <= tr/3 (the smallest eigenvalue is at most their mean). p is concave on
+// [t, lambda_1], so its tangent at t lies above it there and meets 0 at t' = t - p(t)/p'(t) <=
+// lambda_1 (t' >= t as p(t) <= 0 < p'(t)). Each iterate is rounded DOWN to a double (to_interval's
+// lower end), which keeps it <= lambda_1 and the rationals small. Convergence is quadratic for a
+// simple root: the estimate's ~u |H|^2 / gap error (a depth of 1e-27 beside |H| ~ 1 leaves it
+// no correct digit; the exact check then accepts only mu = lambda (1 - 1e-4)) is gone after a
+// few steps, and a double root converges linearly. The result is re-checked exactly.
 double certified_min_eigenvalue(const std::array<std::array<Rational, 3>, 3>& H, double lambda_min) {
-  if (!(lambda_min > 0) || !std::isfinite(lambda_min)) return 0;
-  for (double shrink : {1e-15, 1e-13, 1e-10, 1e-7, 1e-4}) {
-    const double mu = lambda_min * (1 - shrink);
-    auto S = H;
-    for (int i = 0; i < 3; ++i) S[i][i] -= Rational(mu);
-    if (positive_semidefinite(S)) return mu;
+  double mu = 0;
+  if (lambda_min > 0 && std::isfinite(lambda_min))
+    for (double shrink : {1e-15, 1e-13, 1e-10, 1e-7, 1e-4}) {
+      const double m = lambda_min * (1 - shrink);
+      auto S = H;
+      for (int i = 0; i < 3; ++i) S[i][i] -= Rational(m);
+      if (positive_semidefinite(S)) {
+        mu = m;
+        break;
+      }
+    }
+  const double start = mu;
+  const Rational tr = H[0][0] + H[1][1] + H[2][2];
+  const Rational m2 = H[0][0] * H[1][1] - H[0][1] * H[1][0] + H[0][0] * H[2][2] - H[0][2] * H[2][0] +
+                      H[1][1] * H[2][2] - H[1][2] * H[2][1];
+  const Rational det = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) -
+                       H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
+                       H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
+  for (int it = 0; it < 60; ++it) {
+    const Rational t(mu);
+    const Rational p = ((t - tr) * t + m2) * t - det;
+    if (p >= 0) break;  // p(t) = 0: t = lambda_1 (p > 0 cannot happen for t <= lambda_1)
+    const Rational dp = (3 * t - 2 * tr) * t + m2;
+    if (dp <= 0) break;  // t = lambda_1 = lambda_2 (then p(t) = 0 too): nothing to gain
+    const double next = CGAL::to_interval(t - p / dp).first;  // rounded down
+    if (!(next > mu)) break;  // no progress in doubles
+    mu = next;
   }
-  return 0;
+  auto S = H;  // the proof above, checked
+  for (int i = 0; i < 3; ++i) S[i][i] -= Rational(mu);
+  return positive_semidefinite(S) ? mu : start;
 }
 
 // Interval arithmetic (CGAL::Interval_nt, rounding set outward by the caller's protector):
@@ -333,6 +369,42 @@ class Search {
         }
       }
       c.mu = certified_min_eigenvalue(c.piece.H, estimate);
+      // One more step of inverse iteration, exact and not rounded: x = adj(H - mu I) v. A
+      // double normal (any rounding of the eigenvector) is off by an angle ~u, which puts its
+      // value ~|H| u^2 above the eigenvalue: a relative excess of ~1e-6 for a depth of 1e-27
+      // beside |H| ~ 1 (nearly coplanar faces), far above the 1e-12 gap. With mu within a few
+      // ulps of lambda_1 the step divides the angle by ~(lambda_2 - mu)/(lambda_1 - mu), and the
+      // rational x is the witness (its value is decided exactly like any other).
+      if (e.allFinite() && e.norm() > 0 && c.mu > 0) {
+        const Vec3 v = {e(0), e(1), e(2)};
+        const Rational sigma(c.mu);
+        Rational m[3][3];
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k) m[r][k] = c.piece.H[r][k] - (r == k ? sigma : Rational(0));
+        Rational x[3];
+        for (int r = 0; r < 3; ++r) {
+          x[r] = 0;
+          for (int k = 0; k < 3; ++k) {
+            const int r1 = (k + 1) % 3, r2 = (k + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+            x[r] += (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) * Rational(v[k]);
+          }
+        }
+        // scaled to integers: the witness is handed to CGAL's QP solver, which takes dyadic
+        // numbers only (to_qp_number); any positive multiple of a normal is the same normal
+        const Rational d = Rational(x[0].denominator()) * Rational(x[1].denominator()) *
+                           Rational(x[2].denominator());
+        const Vector xv(x[0] * d, x[1] * d, x[2] * d);
+        // Taken only where it matters for the gap (it beats the witness by more than 1e-13,
+        // a tenth of the default gap): elsewhere a double normal is as good and far shorter
+        // to print (the rational x has ~300 digits per component).
+        if (xv != CGAL::NULL_VECTOR)
+          for (const Vector& n : {xv, -xv})
+            if (piece_is_optimal_at(c.piece, n)) {
+              const Rational value = piece_quadratic(c.piece, n) / n.squared_length();
+              if (value < best_value * Rational(9999999999999, 10000000000000))
+                best_value = value, best_normal = n, best_set = c.piece.set;
+            }
+      }
     }
     // Witnesses on the piece's walls (wall_point), both orientations, each decided exactly.
     for (int i = 0; i < 4; ++i)
