@@ -299,6 +299,15 @@ class Search {
         const Vec3 nb{CGAL::to_double(best_normal[0]), CGAL::to_double(best_normal[1]),
                       CGAL::to_double(best_normal[2])};
         lower = std::max(lower, dual_bound(*wp, nb, corners));
+        // The same multipliers taken exactly, at the exact witness: where heights cancel (six
+        // vertices of nearly coplanar faces within 1e-13 of one plane, a far vertex's walls
+        // stacked in one band) the doubles' multipliers have no correct digit, while the
+        // exact ones at a minimiser make g parallel to it, so (D) loses only ~theta^2 of the
+        // value at an angle theta from it: the patches there close.
+        if (lower < want)
+          lower = std::max(lower, exact_multiplier_bound(*wp, best_normal,
+                                                         {to_vector(corners[0]), to_vector(corners[1]),
+                                                          to_vector(corners[2]), to_vector(corners[3])}));
       }
     }
     return lower;
