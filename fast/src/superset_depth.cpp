@@ -102,21 +102,12 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLan
 // so the minimum of the entries' certified lower bounds is a lower bound of PD². `unique`: every
 // entry other than the chosen one is certainly above the chosen one's exact value (the exact
 // rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
-// Cost: the root bound of an entry takes a division and a square root; only the entries near
-// the chosen value need it. An entry with v > 2 v~ (v~ = ch.value) whose |D| >= 400 e_h and
-// n.n >= (400 e_n)² has a finite bound r <= 1.02 (0.005 + u + sqrt(3)/400 + 4u) < 0.0095
-// (value_bounds.h), so lower_of(v, r) >= 0.98 v > 1.96 v~, above every hi_k the verdict can
-// accept (a certified hi_k is <= (1 + kCertifyRel) lo_all <= 1.001 v~ and r_pick < 0.0205 makes
-// hi_k <= 1.042 v~): such an entry changes neither lo_all's verdict nor `unique`, and is skipped.
-// The test needs products only (|D| >= 400 e_h as D² >= (400 e_h)², faces: D² = v n.n); every
-// other entry is bounded as before, so the verdict is the one of bounding every entry.
+// Cost: the root bound of an entry takes a division and a square root, so only the entries of
+// the kernel's bound bits are bounded: the others cannot change the verdict or `unique`,
+// whatever the pick (the proof is at certify_bits in superset_kernel.cpp; tests/fast checks
+// the verdict against bounding every entry). The picked entry is always among them.
 void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch, bool* unique) {
   const DegreeBounds db = degree_bounds(fb, false);
-  const double far = 2.0 * ch.value, D_min2 = (400 * db.e_h) * (400 * db.e_h),
-               nn_min = (400 * db.e_n) * (400 * db.e_n);
-  auto skip = [&](double v, double D2, double nn, bool picked) {
-    return !picked && v > far && D2 >= D_min2 && nn >= nn_min;
-  };
   double lo_all = kInf, lo_other = kInf, r_pick = kInf;
   auto entry = [&](double v, double D, double nn, bool picked) {
     const double r = rigid_root_rel(D, nn, db);
@@ -128,31 +119,20 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
     else
       lo_other = lo < lo_other ? lo : lo_other;
   };
-  // Only the entries of the kernel's bound bits: the others are skipped below whatever the
-  // pick (superset_kernel.cpp, certify_bits), so the verdict is unchanged.
   for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
     const int f = __builtin_ctz(bits);
     const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                       K.NAB[2][f] * K.NAB[2][f];
     const double v = K.face_val[f];
-    const bool picked = c.lane < 0 && c.face == f;
-    if (!skip(v, v * nn, nn, picked)) entry(v, std::sqrt(v * nn), nn, picked);
+    entry(v, std::sqrt(v * nn), nn, c.lane < 0 && c.face == f);
   }
   for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
-    const double inv = K.inv[a][b];
-    const double dp = K.dp[a][b], dm = K.dm[a][b];
+    const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
     const bool picked_lane = c.lane == lane;
-    const double vp = dp * dp * inv, vm = dm * dm * inv;
-    // n.n >= nn_min as 1/inv >= nn_min: inv * nn_min <= 1 (both sides rounded once; the
-    // margin of the bound, a factor 2, absorbs it)
-    const bool nn_ok = inv * nn_min <= 1.0;
-    const bool skip_p = nn_ok && skip(vp, dp * dp, nn_min, picked_lane && c.sign > 0);
-    const bool skip_m = nn_ok && skip(vm, dm * dm, nn_min, picked_lane && c.sign < 0);
-    if (skip_p && skip_m) continue;
     const double nn = 1.0 / inv;
-    if (!skip_p) entry(vp, dp, nn, picked_lane && c.sign > 0);
-    if (!skip_m) entry(vm, dm, nn, picked_lane && c.sign < 0);
+    entry(dp * dp * inv, dp, nn, picked_lane && c.sign > 0);
+    entry(dm * dm * inv, dm, nn, picked_lane && c.sign < 0);
   }
   ch.certified = certified_choice(upper_of(ch.value, r_pick), lo_all);
   if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;

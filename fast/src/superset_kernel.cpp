@@ -251,20 +251,39 @@ PDD_INLINE void tie_masks(SupersetLanes& K) {
   K.lane_bits = std::uint64_t(horizontal_or(bits));
 }
 
-// Entries certify() (superset_depth.cpp) must bound: all but those it would skip whatever it
-// picks. certify() skips an entry (value v, depth D, n.n) that is not the picked one when
-// v > 2 v~, D² >= (400 e_h)² and n.n >= (400 e_n)² (test: inv·(400 e_n)² <= 1), v~ = the picked
-// value. The picked value is <= t2 (superset_depth.cpp: it is <= tie_threshold(vmin') with
-// vmin' <= t1, so <= tie_threshold(t1) <= t2), so an entry with v > 2 t2 and the other two
-// conditions is skipped by certify() for every pick; the picked entry itself has v <= t2 and
-// is always kept. Per edge lane the test is made on dd = min(D(+n), D(−n)) and
-// val = dd·dd·inv: D(±n) >= dd and both are > 0 here (else the pair is declined), so both
-// orientations' D² and values are >= dd², val (rounding is monotone): both are skipped. Faces:
-// n.n = N.N with N = ±NAB (the same squares). NaN anywhere: every comparison is false, kept.
+// Entries certify() (superset_depth.cpp) must bound: all but those that cannot change its
+// verdict whatever it picks. Proof. certify() computes lo_all = min of the bounded entries'
+// lower_of(v, r) and certifies when hi = upper_of(v~, r_pick) <= (1 + kCertifyRel) lo_all
+// (computed: <= (1 + 1e-9)(1 + u) lo_all), lo_all > 0; `unique` adds hi < lo_other.
+// The picked value v~ is <= t2 (superset_depth.cpp: v~ <= tie_threshold(vmin') with
+// vmin' <= t1, so v~ <= tie_threshold(t1) <= t2), and lo_all <= lo_pick <= v~ (lower_of
+// multiplies by factors <= 1: monotone roundings). So a certified verdict has
+// hi <= (1 + 1e-9)(1 + u) t2 < 1.0001 t2, and an entry whose exact-value lower bound
+// lo >= 1.0001 t2 can change neither the verdict (certified_choice is monotone in lo_min and
+// holds for lo >= hi) nor `unique` (lo > hi): it is skipped. Test (products only, no division or
+// square root): v > far = 1.001 t2 (computed: >= 1.001 (1 − u) t2), D² >= (K e_h)² and
+// n.n >= (K e_n)² with K = 10^5 (test for lanes: inv·(K e_n)² <= 1, a rounding of 1/(n.n)
+// times a rounded product: n.n >= (1 − 3u)(K e_n)², a margin far below the one used next).
+// Then value_bounds.h's root bound is r = 1.02 (a + rho + 4u) with a <= (2 e_h + u|D|)/|D|
+// (1 + 3u) <= 2/K + 2u and rho <= sqrt(3)(1 + 4u)/K: r <= 1.02 (3.7321e-5 + 6u)(1 + 4u)
+// < 3.81e-5 (finite: a, rho <= 0.01), and lower_of(v, r) >= v (1 − r)² (1 − 3u)
+// > 1.001 (1 − u)(1 − 7.63e-5)(1 − 3u) t2 > 1.00092 t2 >= 1.0001 t2. (On the paper's
+// protocol this leaves 1.01 bounded entries per pair, against 6.2 with the earlier test
+// v > 2 t2, K = 400: each bounded entry costs a division and a square root.)
+// Per edge lane the test is made on dd = min(D(+n), D(−n)) and val = dd·dd·inv: D(±n) >= dd and
+// both are > 0 here (else the pair is declined), so both orientations' D² and values are >= dd²,
+// val (rounding is monotone): both are skipped. Faces: n.n = N.N with N = ±NAB (the same
+// squares). NaN anywhere: every comparison is false, kept. No underflow in (K e_h)²: certify()
+// runs on pairs rescaled by power_scale.h (largest |coordinate| in [1, 2)) that passed the
+// orientation filter; a coordinate c of magnitude in [1, 2) has another vertex of its
+// tetrahedron at a different value on that axis (else the tetrahedron is flat), at distance
+// >= 2^-53, so L >= 2^-53, e_h >= 128 u L³ >= 2^-205 and (K e_h)² >= 2^-376.
+inline constexpr double kFarFactor = 1.001, kFarBoundScale = 1e5;
 PDD_INLINE void certify_bits(SupersetLanes& K, const v8& fnn) {
   const DegreeBounds db = degree_bounds(filter_bounds_of_extent(K.extent), false);
-  const double D_min2 = (400 * db.e_h) * (400 * db.e_h), nn_min = (400 * db.e_n) * (400 * db.e_n);
-  const double far = 2.0 * K.t2;
+  const double eh = kFarBoundScale * db.e_h, en = kFarBoundScale * db.e_n;
+  const double D_min2 = eh * eh, nn_min = en * en;
+  const double far = kFarFactor * K.t2;
   const v8l one = {1, 2, 4, 8, 16, 32, 64, 128};
   const v8 fv = K.face_val, fd2 = fv * fnn;
   // le_bits(−x, −t, m) is x >= t (false for NaN); v > far as (v >= far) & !(v <= far).
