@@ -221,6 +221,32 @@ std::optional<DirectionOptimum> reduced_qp(const ExactPair& p, const CandidateDi
 
 }  // namespace
 
+Rational relaxed_hull_minimum(const ExactPair& p, const std::vector<Vector>& normals) {
+  const int m = static_cast<int>(normals.size());
+  if (m < 1 || m > 8) throw std::invalid_argument("relaxed_hull_minimum: 1 to 8 normals");
+  // Variables: lambda (m, >= 0), mu_A (4), mu_B (4), C; rows 0..7 as reduced_qp's (Relaxed),
+  // with n.x_i = sum_k lambda_k normals_k.x_i on the left; row 8: sum lambda = 1.
+  const int off_A = m, off_B = m + 4, c_var = m + 8;
+  Program qp = free_program();
+  add_reduced_objective(qp, off_A);
+  add_reduced_objective(qp, off_B);
+  for (int k = 0; k < m; ++k) {
+    qp.set_l(k, true, QpNumber(0));
+    qp.set_a(k, 8, QpNumber(1));
+  }
+  qp.set_b(8, QpNumber(1));
+  qp.set_r(8, CGAL::EQUAL);
+  for (int i = 0; i < 8; ++i) {
+    const Point& x = i < 4 ? p.A[i] : p.B[i - 4];
+    add_reduced_row(qp, i, (i < 4 ? off_A : off_B - 4) + i, c_var, Rational(0),
+                    relation(false, i < 4, PddCase::Relaxed));
+    for (int k = 0; k < m; ++k) qp.set_a(k, i, to_qp_number(normals[k] * (x - CGAL::ORIGIN)));
+  }
+  const Solution s = solve(qp);
+  if (!s.is_optimal()) throw std::logic_error("relaxed_hull_minimum: the QP has no optimum");
+  return to_rational(s.objective_value()) / 20;
+}
+
 bool full_qp_uses_frame(const Vector& n) {
   for (int k = 0; k < 3; ++k)
     if (n[k] != 0) {  // the denominator is a power of two: the mantissa is num / 2^(trailing 0s)

@@ -310,6 +310,9 @@ class Search {
                                                           to_vector(corners[2]), to_vector(corners[3])}));
       }
     }
+    if (lower < want)  // bound (Q) below: every active set of the patch at once
+      lower = std::max(lower, hull_bound({to_vector(corners[0]), to_vector(corners[1]),
+                                          to_vector(corners[2]), to_vector(corners[3])}));
     return lower;
   }
 
@@ -337,7 +340,36 @@ class Search {
     if (lower < want)
       if (const CachedPiece* wp = witness_piece())
         lower = std::max(lower, exact_multiplier_bound(*wp, best_normal, corners));
+    if (lower < want) lower = std::max(lower, hull_bound(corners));
     return lower;
+  }
+
+  // Bound (Q), for patches that no single multiplier vector closes: around a vertex 1e15 to
+  // 1e18 away from the others, its walls (where its status changes) stack within ~1e-14 rad,
+  // the corners of one patch fall in up to four active sets, and bound (D) with any one
+  // piece's multipliers gives nothing there (adversarial kind 9: gaps of 1e-9 to 53% before).
+  // The patch is the cone spanned by its four corners c_k; scaled by dyadic s_k with
+  // |s_k c_k| <= 1 (checked exactly), every unit u of the patch is p/|p| with p in
+  // conv{s_k c_k}, |p| <= 1, so relaxed(u) = G(p)/|p|² >= G(p) >= the minimum of G over the hull,
+  // which relaxed_hull_minimum (direction_qp.h) computes exactly as one QP, over every active
+  // set at once. Valid at any width; it loses only the factor |p*|² at the hull's minimiser,
+  // 1 − O(width²) (the chord's sagitta) − 2^-50 (the scaling). Returned rounded down to a
+  // double. One exact QP (~2 ms): used only where the other bounds fall short of the target,
+  // at most kMaxHullBounds times per search (the far-vertex pairs need 40 to 120).
+  static constexpr std::size_t kMaxHullBounds = 4000;
+  std::size_t hull_bounds = 0;
+  double hull_bound(const std::array<Vector, 4>& corners) {
+    if (hull_bounds >= kMaxHullBounds) return 0;
+    ++hull_bounds;
+    std::vector<Vector> scaled;
+    for (const Vector& c : corners) {
+      const Rational cc = c.squared_length();
+      double s = (1 / std::sqrt(CGAL::to_double(cc))) * (1 - 0x1p-50);
+      while (!(Rational(s) * Rational(s) * cc <= 1)) s *= 1 - 0x1p-50;
+      scaled.push_back(c * Rational(s));
+    }
+    const double v = CGAL::to_interval(relaxed_hull_minimum(pair_, scaled)).first;
+    return v > 0 ? v : 0;
   }
 
   // The bound a patch must reach to be closed (the search's target; 0: no extra work).

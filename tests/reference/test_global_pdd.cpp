@@ -33,15 +33,14 @@ const SolveOptions kReduced{QpFormulation::Reduced};
 const Rational kGap = Rational(1) / Rational(1000000000000LL);  // SPEC §9's 1e-12
 
 // Pairs on which the branch and bound does not close the gap within its budget (the lower
-// bound stays valid, but short of the witness): adversarial-1-29, a vertex 1e18 away with the
-// minimiser on that vertex's wall (far_vertex_witness_on_its_wall); the gap stops at ~1.7e-8
-// of the value. coordinates-1-to-1e18, adversarial-1-9 and -19 (a vertex 1e15-1e18 away) were
-// on this list until the patches tried the multipliers of their corners' pieces and of the
-// witness; adversarial-1-3, -13 and -23 (a vertex 1e-18 inside a face, whose minimiser lies in
-// a band ~1e-19 rad wide) until patches below the doubles' grid went on in exact rationals.
-// A known limit, said in the README; when it is lifted this list must shrink (the test
-// checks that each listed pair still misses the target).
-const std::set<std::string> kGapNotClosed = {"adversarial-1-29"};
+// bound stays valid, but short of the witness). Empty since bound (Q) (global_pdd.cpp's
+// hull_bound): adversarial-1-29 (a vertex 1e18 away, the minimiser on that vertex's wall) was
+// here at a gap of 1.7e-8; coordinates-1-to-1e18, adversarial-1-9 and -19 (a vertex 1e15-1e18
+// away) until the patches tried the multipliers of their corners' pieces and of the witness;
+// adversarial-1-3, -13 and -23 (a vertex 1e-18 inside a face, whose minimiser lies in a band
+// ~1e-19 rad wide) until patches below the doubles' grid went on in exact rationals. The test
+// checks that each listed pair still misses the target and every other one meets it.
+const std::set<std::string> kGapNotClosed = {};
 
 Rational relaxed_along(const ExactPair& p, const Vector& n, QpFormulation f) {
   CandidateDirection d;
@@ -119,17 +118,99 @@ BOOST_AUTO_TEST_CASE(optimum_not_a_candidate) {
 // it reproduced) reached 0.000720963442344484 at n ~ (0.70908, -0.21916, -0.67020), where
 // n.(s1 - s0) = -15810: the minimiser sits on the wall where s1 stops being free (within 1e-14
 // rad of the plane normal to s1 - s0), which the patches cannot resolve. The wall witnesses of
-// global_pdd.cpp must find at least that.
+// global_pdd.cpp must find at least that, and the proved lower bound (gap met since bound (Q))
+// must not exceed it: the independent value lies in the engine's interval.
 BOOST_AUTO_TEST_CASE(far_vertex_witness_on_its_wall) {
   for (const TetPair& pair : test::load_pairs("families/adversarial.json")) {
     if (pair.name != "adversarial-1-29") continue;
     const ExactResult r = solve_exact(pair, kReduced);
     BOOST_REQUIRE(r.intersecting);
+    BOOST_REQUIRE(r.pdd2_global_lower);
     BOOST_TEST(r.pdd2_global <= Rational(720963442344484LL) / Rational(1000000000000000000LL));
+    // (the independent value is printed to 15 digits: its last digit rounded up)
+    BOOST_TEST(*r.pdd2_global_lower <= Rational(720963442344485LL) / Rational(1000000000000000000LL));
+    BOOST_TEST(r.pdd2_global - *r.pdd2_global_lower <= kGap * r.pdd2_global);
     BOOST_TEST(relaxed_along(to_exact(pair), normal_of(r), QpFormulation::Full) == r.pdd2_global);
     return;
   }
   BOOST_FAIL("adversarial-1-29 not found");
+}
+
+// A vertex 1e15 away where the minimiser lies in the band normal to its offset (pdd generate
+// --family adversarial --seed 101, pair 39; not a shipped fixture). Along that band the far
+// vertex's height sweeps through the other seven within ~1e-14 rad, so one patch's corners
+// fall in up to four active sets (f/f, d/f, d/d, c/d), and no single piece's multipliers bound
+// it: the gap stopped at 37% of the value with its 1,000 exact patches spent. Bound (Q), the
+// exact minimum of G over each patch's hull in one QP (all active sets at once), closes it
+// (~100 such QPs). The witness is re-solved by the full formulation.
+BOOST_AUTO_TEST_CASE(far_vertex_band_gap_closed) {
+  TetPair p{"adversarial-101-39", {},
+            {{{-687499999999998.4, -999999999999995.2, 625000000000007.4},
+              {7.329927766436054, 3.1387307446093127, 3.179897467032423},
+              {9.557033192526355, 7.224239331728396, 6.028756997720545},
+              {0.7901867511128946, 7.9696781226671645, 6.2377807894446}}},
+            {{{3.152070483949826, 3.456869097575158, 6.613628663520281},
+              {8.224052090727028, 7.481751067348652, 7.894871453945757},
+              {0.46815284297627713, 6.117352947194075, 3.8854231266616646},
+              {3.33217682984867, 2.8647862744117214, 5.688322476618486}}}};
+  const ExactResult r = solve_exact(p, kReduced);
+  BOOST_REQUIRE(r.intersecting);
+  BOOST_REQUIRE(r.pdd2_global_lower);
+  BOOST_TEST(r.pdd2_global < r.pdd2_relaxed);
+  BOOST_TEST(*r.pdd2_global_lower <= r.pdd2_global);
+  BOOST_TEST(r.pdd2_global - *r.pdd2_global_lower <= kGap * r.pdd2_global,
+             "gap " << CGAL::to_double((r.pdd2_global - *r.pdd2_global_lower) / r.pdd2_global));
+  BOOST_TEST(relaxed_along(to_exact(p), normal_of(r), QpFormulation::Full) == r.pdd2_global);
+}
+
+// relaxed_hull_minimum (direction_qp.h), the QP behind bound (Q), against its definition on
+// poke-vertex-through-face: with one normal it is G(n) = relaxed(n) n.n; with four it is at most
+// G at each corner and at sampled points of the hull; and, the corners scaled to |c| <= 1
+// (dyadic: components k/2048 with k^2 sums <= 2048^2), it is at most relaxed(u) for every
+// sampled u of the cone they span (the lemma global_pdd.cpp relies on). The sampled points are
+// exact rationals; every comparison is exact.
+BOOST_AUTO_TEST_CASE(hull_minimum_bounds_the_cone) {
+  TetPair pair{"poke", {}, {{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}},
+               {{{1, 1, -1}, {3, 1, -1}, {1, 3, -1}, {1.5, 1.5, 0.5}}}};
+  const ExactPair p = to_exact(pair);
+  // relaxed(n) is the same for every positive multiple of n: the QP (dyadic numbers only) gets
+  // n times its components' denominators
+  auto relaxed = [&](const Vector& n) {
+    const Rational d = Rational(n.x().denominator()) * Rational(n.y().denominator()) *
+                       Rational(n.z().denominator());
+    return relaxed_along(p, n * d, QpFormulation::Reduced);
+  };
+  auto G = [&](const Vector& n) { return relaxed(n) * n.squared_length(); };
+  const Vector n0(Rational(3, 4), Rational(-1, 8), Rational(1, 2));
+  BOOST_TEST(relaxed_hull_minimum(p, {n0}) == G(n0));
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<int> coord(-2048, 2048), weight(1, 1000);
+  int cones = 0;
+  while (cones < 12) {
+    std::vector<Vector> c;
+    const Vector centre(coord(rng), coord(rng), coord(rng));
+    for (int k = 0; k < 4; ++k) {  // corners near a common direction, so the cone is narrow
+      const Vector v = centre + Vector(coord(rng) / 8, coord(rng) / 8, coord(rng) / 8);
+      if (v.squared_length() == 0) break;
+      // scaled to |v| <= 1 by a power of two: components stay dyadic
+      Rational s = 1;
+      while (s * s * v.squared_length() > 1) s /= 2;
+      c.push_back(v * s);
+    }
+    if (c.size() < 4) continue;
+    ++cones;
+    const Rational h = relaxed_hull_minimum(p, c);
+    BOOST_TEST(h >= 0);
+    for (const Vector& v : c) BOOST_TEST(h <= G(v));
+    for (int k = 0; k < 10; ++k) {
+      Rational w[4], sum = 0;
+      for (Rational& x : w) x = weight(rng), sum += x;
+      Vector u = CGAL::NULL_VECTOR;
+      for (int j = 0; j < 4; ++j) u = u + c[j] * (w[j] / sum);
+      BOOST_TEST(h <= G(u));                                              // a point of the hull
+      BOOST_TEST(h <= relaxed(u));                                        // relaxed(u/|u|)
+    }
+  }
 }
 
 // Nearly coplanar faces (pdd generate --family adversarial --seed 101, pair 6: B's face 2^-40

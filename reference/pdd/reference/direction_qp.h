@@ -47,4 +47,16 @@ bool full_qp_uses_frame(const Vector& n);
 std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const CandidateDirection& dir,
                                              PddCase pdd_case, QpFormulation formulation);
 
+// SPEC §9, a lower bound for a whole cone of normals. With G(n) = (the Reduced Relaxed QP's
+// optimum for the unnormalised n) · n.n = the minimum of sum_T mu_T^T (I + J) mu_T / 20 subject
+// to n.x_i + mu_i <= C (A), >= C (B), returns
+//     min { G(n) : n in conv(normals) },
+// solved as ONE convex QP in (lambda, mu, C) with n = sum_k lambda_k normals_k, lambda >= 0,
+// sum lambda = 1: the constraints are linear in (lambda, mu, C) jointly, so the joint minimum is
+// the minimum of G over the hull (no convexity of G needed; it is convex all the same).
+// Use (global_pdd.cpp): if every normal has |n_k| <= 1, every unit u in the cone they span is
+// p/|p| for a p in the hull with |p| <= 1, and relaxed(u) = G(p)/|p|² >= G(p) >= the returned
+// value. `normals`: 1 to 8 vectors with dyadic components (CGAL's QP solver takes Gmpzf).
+Rational relaxed_hull_minimum(const ExactPair& pair, const std::vector<Vector>& normals);
+
 }  // namespace pdd::reference

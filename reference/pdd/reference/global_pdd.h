@@ -39,6 +39,13 @@
 // Patches narrower than the doubles' grid (2^-52; a vertex 1e-18 inside a face puts the
 // minimiser in a band ~1e-19 rad wide) go on with exact rational corners, normals, active
 // sets and multipliers (max_exact_patches of them).
+// (Q) Where all of these fall short of the target, the patch's own minimum over its hull:
+//     with its corners c_k scaled to |c_k| <= 1, every unit u of the patch is p/|p| for a p in
+//     their convex hull with |p| <= 1, so relaxed(u) = G(p)/|p|² >= G(p) >= min over the hull
+//     of G, which relaxed_hull_minimum (direction_qp.h) solves exactly as one QP over every
+//     active set at once. This closes the patches around a vertex 1e15 to 1e18 away, where that
+//     vertex's walls stack within ~1e-14 rad and a patch's corners lie in up to four active
+//     sets (no single multiplier vector bounds it). At most 4000 per search, ~2 ms each.
 // Patches are refined best-first (smallest lower bound first) until the smallest lower bound
 // of the open patches reaches pdd2_global (1 - gap), or the budget of patch evaluations is spent.
 #pragma once
