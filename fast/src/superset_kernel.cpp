@@ -73,7 +73,19 @@ PDD_INLINE v8 bc(double x) {
   return {h, h};
 }
 
-PDD_INLINE void store8(double* p, v8 v) { __builtin_memcpy(p, &v, sizeof v); }
+// A v8 stored as its two 32-byte halves (put: into K; store8: into the candidate list's
+// lanes). With an aggregate assignment or one 64-byte memcpy, GCC's AVX-512 clone copies the
+// struct with one 64-byte move, which it builds by spilling both halves to the stack and
+// reloading them as one zmm: a store-forwarding stall per store (perf: the hottest
+// instructions of the kernel on a Zen 4). Same bits, only the moves differ.
+PDD_INLINE void store8(double* p, v8 v) {
+  __builtin_memcpy(p, &v.lo, sizeof v.lo);
+  __builtin_memcpy(p + 4, &v.hi, sizeof v.hi);
+}
+PDD_INLINE void put(v8& dst, v8 v) {
+  dst.lo = v.lo;
+  dst.hi = v.hi;
+}
 
 // Run-time dispatch on x86-64 with GCC (ifunc, glibc). The clones compute the same IEEE
 // operations (no FMA: -ffp-contract=off), so results do not depend on the machine. Not with
@@ -137,16 +149,18 @@ PDD_INLINE void pair_scales(const v8* X, SupersetLanes& K) {
 PDD_INLINE void edges_and_normals(const v8* X, SupersetLanes& K, v8* RX) {
   v8 U[3], V[3], T[3];
   for (int k = 0; k < 3; ++k) {
-    K.EA[k] = perm(X[k], kEdgeV) - perm(X[k], kEdgeU);
+    put(K.EA[k], perm(X[k], kEdgeV) - perm(X[k], kEdgeU));
     RX[k] = perm(X[k], kEdgeX);
-    K.EB[k] = perm(X[k], kEdgeY) - RX[k];
+    put(K.EB[k], perm(X[k], kEdgeY) - RX[k]);
     const v8 v0 = perm(X[k], kFace0);
     U[k] = perm(X[k], kFace1) - v0;
     V[k] = perm(X[k], kFace2) - v0;
     T[k] = perm(X[k], kDet3) - perm(X[k], kDet0);
   }
-  cross8(U, V, K.NAB);
-  K.det = K.NAB[0] * T[0] + K.NAB[1] * T[1] + K.NAB[2] * T[2];
+  v8 nab[3];
+  cross8(U, V, nab);
+  for (int k = 0; k < 3; ++k) put(K.NAB[k], nab[k]);
+  put(K.det, nab[0] * T[0] + nab[1] * T[1] + nab[2] * T[2]);
 }
 
 // Faces, lane f: heights H_j = sigma_f N_f . (r − s) of the other tetrahedron's 4 vertices and
@@ -164,11 +178,12 @@ PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K, v8& fnn) {
   for (int j = 0; j < 4; ++j) {
     v8 d[3];  // FV lanes: r_j − s_v0; VF lanes: r_v0 − s_j
     for (int k = 0; k < 3; ++k) d[k] = perm(X[k], kFaceR[j]) - perm(X[k], kFaceS[j]);
-    const v8 h = K.H[j] = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
+    const v8 h = N[0] * d[0] + N[1] * d[1] + N[2] * d[2];
+    put(K.H[j], h);
     D = j == 0 ? h : max2(D, h);
   }
   fnn = N[0] * N[0] + N[1] * N[1] + N[2] * N[2];
-  K.face_val = D * D / fnn;
+  put(K.face_val, D * D / fnn);
   return D;
 }
 
@@ -188,7 +203,7 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLan
   // clang, any target): it emits no instruction and changes no value, only the schedule.
   asm volatile("" : : "m"(K.EA), "m"(K.NAB) : "memory");
   for (int f = 0; f < 4; ++f)
-    K.G[f] = EB[0] * bc(K.NAB[0][f]) + EB[1] * bc(K.NAB[1][f]) + EB[2] * bc(K.NAB[2][f]);
+    put(K.G[f], EB[0] * bc(K.NAB[0][f]) + EB[1] * bc(K.NAB[1][f]) + EB[2] * bc(K.NAB[2][f]));
   v8 W[3][3];  // W[u] = r_x(b) − s_u, u = 0, 1, 2 (the first vertex of every edge of A)
   for (int u = 0; u < 3; ++u)
     for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - bc(A[u][k]);
@@ -209,10 +224,10 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLan
     const v8 inv = 1.0 / nn;
     const v8 dd = min2(dp, dm) + pad;
     const v8 val = dd * dd * inv;
-    K.dp[a] = dp;
-    K.dm[a] = dm;
-    K.inv[a] = inv;
-    K.val[a] = val;
+    put(K.dp[a], dp);
+    put(K.dm[a], dm);
+    put(K.inv[a], inv);
+    put(K.val[a], val);
     if (kFull) {
       const int o = kLaneStride * a;
       store8(full->n0 + o, m0);
