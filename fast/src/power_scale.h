@@ -77,8 +77,11 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
     std::memcpy(&s.A, &x[0], sizeof s.A);
     std::memcpy(&s.B, &x[6], sizeof s.B);
     // (m p rounded up to exactly DBL_MIN is not exact: m p / p == m tells, as division by a
-    // power of two is exact in the normal range; a review found that case)
-    s.exact = m == kInf || (m * p >= DBL_MIN && (m * p) / p == m);
+    // power of two is exact in the normal range; a review found that case. A computed m p >=
+    // 2 DBL_MIN comes from an exact product >= 2 DBL_MIN (1 − u) > DBL_MIN, which is exact:
+    // the division, a long latency on every call, runs only below that.)
+    const double mp = m * p;
+    s.exact = m == kInf || mp >= 2 * DBL_MIN || (mp >= DBL_MIN && mp / p == m);
     return s;
   }
   for (int i = 0; i < 4; ++i)
