@@ -60,6 +60,10 @@ namespace pdd::fast {
 // candidate(build_candidates(A, B), index of the label).
 // ch.certified: the SPEC §8 verdict (value_bounds.h). `unique` (optional): certified, and every
 // other entry of S is certainly above the chosen one (so it is the exact rigid direction).
+// Precondition for ch.certified and `unique` (not for the value and label): A and B rescaled by
+// power_scale.h (largest |coordinate| in [1, 2)), as hot_path.h does; the error bounds assume
+// that range (value_bounds.h), and so does the kernel's choice of entries to bound
+// (certify_bits in superset_kernel.cpp: no underflow in its thresholds).
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
                     Candidate* geometry = nullptr, bool* unique = nullptr);
 

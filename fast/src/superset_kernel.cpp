@@ -270,9 +270,9 @@ PDD_INLINE void tie_masks(SupersetLanes& K) {
 // verdict whatever it picks. Proof. certify() computes lo_all = min of the bounded entries'
 // lower_of(v, r) and certifies when hi = upper_of(v~, r_pick) <= (1 + kCertifyRel) lo_all
 // (computed: <= (1 + 1e-9)(1 + u) lo_all), lo_all > 0; `unique` adds hi < lo_other.
-// The picked value v~ is <= t2 (superset_depth.cpp: v~ <= tie_threshold(vmin') with
-// vmin' <= t1, so v~ <= tie_threshold(t1) <= t2), and lo_all <= lo_pick <= v~ (lower_of
-// multiplies by factors <= 1: monotone roundings). So a certified verdict has
+// The picked value v~ is <= t2 (near_candidates in superset_depth.cpp admits only entries
+// with value <= t2), and lo_all <= lo_pick <= v~ (lower_of multiplies by factors <= 1:
+// monotone roundings). So a certified verdict has
 // hi <= (1 + 1e-9)(1 + u) t2 < 1.0001 t2, and an entry whose exact-value lower bound
 // lo >= 1.0001 t2 can change neither the verdict (certified_choice is monotone in lo_min and
 // holds for lo >= hi) nor `unique` (lo > hi): it is skipped. Test (products only, no division or
@@ -288,11 +288,13 @@ PDD_INLINE void tie_masks(SupersetLanes& K) {
 // Per edge lane the test is made on dd = min(D(+n), D(−n)) and val = dd·dd·inv: D(±n) >= dd and
 // both are > 0 here (else the pair is declined), so both orientations' D² and values are >= dd²,
 // val (rounding is monotone): both are skipped. Faces: n.n = N.N with N = ±NAB (the same
-// squares). NaN anywhere: every comparison is false, kept. No underflow in (K e_h)²: certify()
-// runs on pairs rescaled by power_scale.h (largest |coordinate| in [1, 2)) that passed the
+// squares). NaN anywhere: every comparison is false, kept. No underflow in (K e_h)² or
+// (K e_n)² (an underflow to 0 would make its test vacuous): certify()'s verdict is used only on
+// pairs rescaled by power_scale.h (largest |coordinate| in [1, 2); hot_path.h) that passed the
 // orientation filter; a coordinate c of magnitude in [1, 2) has another vertex of its
 // tetrahedron at a different value on that axis (else the tetrahedron is flat), at distance
-// >= 2^-53, so L >= 2^-53, e_h >= 128 u L³ >= 2^-205 and (K e_h)² >= 2^-376.
+// >= 2^-53, so L >= 2^-53, e_h >= 128 u L³ >= 2^-205, e_n >= 64 u L² >= 2^-153, and
+// (K = 1e5 > 2^16.6) (K e_h)² >= 2^-377, (K e_n)² >= 2^-273, both normal.
 inline constexpr double kFarFactor = 1.001, kFarBoundScale = 1e5;
 PDD_INLINE void certify_bits(SupersetLanes& K, const v8& fnn) {
   const DegreeBounds db = degree_bounds(filter_bounds_of_extent(K.extent), false);

@@ -221,7 +221,8 @@ std::optional<DirectionOptimum> reduced_qp(const ExactPair& p, const CandidateDi
 
 }  // namespace
 
-Rational relaxed_hull_minimum(const ExactPair& p, const std::vector<Vector>& normals) {
+Rational relaxed_hull_minimum(const ExactPair& p, const std::vector<Vector>& normals,
+                              std::vector<Rational>* lambda) {
   const int m = static_cast<int>(normals.size());
   if (m < 1 || m > 8) throw std::invalid_argument("relaxed_hull_minimum: 1 to 8 normals");
   // Variables: lambda (m, >= 0), mu_A (4), mu_B (4), C; rows 0..7 as reduced_qp's (Relaxed),
@@ -244,6 +245,12 @@ Rational relaxed_hull_minimum(const ExactPair& p, const std::vector<Vector>& nor
   }
   const Solution s = solve(qp);
   if (!s.is_optimal()) throw std::logic_error("relaxed_hull_minimum: the QP has no optimum");
+  if (lambda) {
+    lambda->clear();
+    for (auto it = s.variable_values_begin(); it != s.variable_values_end(); ++it)
+      lambda->push_back(to_rational(*it));
+    lambda->resize(m);
+  }
   return to_rational(s.objective_value()) / 20;
 }
 

@@ -353,7 +353,7 @@ class Search {
   // conv{s_k c_k}, |p| <= 1, so relaxed(u) = G(p)/|p|² >= G(p) >= the minimum of G over the hull,
   // which relaxed_hull_minimum (direction_qp.h) computes exactly as one QP, over every active
   // set at once. Valid at any width; it loses only the factor |p*|² at the hull's minimiser,
-  // 1 − O(width²) (the chord's sagitta) − 2^-50 (the scaling). Returned rounded down to a
+  // 1 − O(width²) (the chord's sagitta) − ~2^-49 (the scaling). Returned rounded down to a
   // double. One exact QP (~2 ms): used only where the other bounds fall short of the target,
   // at most kMaxHullBounds times per search (the far-vertex pairs need 40 to 120).
   static constexpr std::size_t kMaxHullBounds = 4000;

@@ -131,8 +131,9 @@ BOOST_AUTO_TEST_CASE(degenerate_pairs_decline_or_agree) {
 // (superset_kernel.cpp). Checked here against the definition: the verdict (certified, unique)
 // that rigid_superset reports equals the one computed by bounding all 8 faces and both
 // orientations of all 36 edge pairs (value_bounds.h's bounds, no entry skipped), for the
-// entry it picked; every entry a pick can be (value <= t2) is kept; and entries are left out
-// (the test would be vacuous otherwise). On every pair where certify() runs: random pairs,
+// entry it picked; every entry left out has a lower bound above any hi a certified verdict
+// can have (the lemma itself, per entry; a review's check); every entry a pick can be
+// (value <= t2) is kept; and entries are left out (the test would be vacuous otherwise). On every pair where certify() runs: random pairs,
 // shallow pairs, and slivers / near-touching reflections with subnormal-scale offsets.
 BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {
   using namespace pdd::fast::detail;
@@ -159,33 +160,41 @@ BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {
     const DegreeBounds db = degree_bounds(fb, false);
     ++checked;
     BOOST_TEST_CONTEXT(p.name) {
-      // Every entry, bounded; the picked one is the entry whose value is ch.value with the
-      // label's edge pair or face (either orientation when both give that value: the bound
-      // depends on |D| and n.n only, so both give the same r).
+      // Every entry, bounded; the picked one is named by the label (edge pairs: orientation
+      // below), and its value must be ch.value.
       const DirectionLabel lab = ch.label();
       double lo_all = HUGE_VAL, lo_other = HUGE_VAL, r_pick = HUGE_VAL;
-      bool pick_found = false;
+      int picks = 0;
       auto entry = [&](double v, double D, double nn, bool pick) {
         const double r = rigid_root_rel(D, nn, db);
         double lo = lower_of(v, r);
         if (!(lo >= 0.0)) lo = 0.0;
         lo_all = std::min(lo_all, lo);
-        if (pick && !pick_found) {
+        if (pick) {
           r_pick = r;
-          pick_found = true;
+          ++picks;
+          BOOST_TEST(v == ch.value);
         } else {
           lo_other = std::min(lo_other, lo);
         }
       };
+      // The lemma itself, per entry: every entry left out has a lower bound above any hi a
+      // certified verdict can have, (1 + kCertifyRel)(1 + u) t2 (the proof claims >= 1.00092 t2).
+      const double cap = (1 + kCertifyRel) * (1 + kUnitRoundoff) * K.t2;
+      auto left_out_clears = [&](double v, double D, double nn) {
+        ++left_out;
+        const double lo = lower_of(v, rigid_root_rel(D, nn, db));
+        BOOST_TEST(lo > cap, "left out: lo/t2 " << lo / K.t2);
+      };
       for (int f = 0; f < 8; ++f) {
         const double v = K.face_val[f];
         if (v <= K.t2) BOOST_TEST((K.face_bound_bits >> f & 1u), "face " << f);
-        left_out += !(K.face_bound_bits >> f & 1u);
         const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                           K.NAB[2][f] * K.NAB[2][f];
+        if (!(K.face_bound_bits >> f & 1u)) left_out_clears(v, std::sqrt(v * nn), nn);
         const bool is_face = f < 4 ? lab.kind == ContactKind::FV && lab.a == f
                                    : lab.kind == ContactKind::VF && lab.a == f - 4;
-        entry(v, std::sqrt(v * nn), nn, is_face && v == ch.value);
+        entry(v, std::sqrt(v * nn), nn, is_face);
       }
       for (int a = 0; a < 6; ++a)
         for (int b = 0; b < 8; ++b) {
@@ -198,12 +207,21 @@ BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {
           const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
           const double vp = dp * dp * inv, vm = dm * dm * inv, nn = 1.0 / inv;
           if (vp <= K.t2 || vm <= K.t2) BOOST_TEST(kept, "lane " << lane);
-          left_out += !kept;
+          if (!kept) {
+            left_out_clears(vp, dp, nn);
+            left_out_clears(vm, dm, nn);
+          }
+          // the picked orientation, as near_candidates chooses it: Plus/Minus for an
+          // undecidable pair, else −n exactly when both g1, g2 > 0 (the rule flips)
           const bool is_lane = lab.kind == ContactKind::EE && lab.a == a && lab.b == b;
-          entry(vp, dp, nn, is_lane && vp == ch.value);
-          entry(vm, dm, nn, is_lane && vm == ch.value);
+          const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
+          const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
+          const bool minus = lab.orientation == EdgeOrientation::Minus ||
+                             (lab.orientation == EdgeOrientation::Decided && g1 > 0.0 && g2 > 0.0);
+          entry(vp, dp, nn, is_lane && !minus);
+          entry(vm, dm, nn, is_lane && minus);
         }
-      BOOST_TEST(pick_found);
+      BOOST_TEST(picks == 1);
       const double hi = upper_of(ch.value, r_pick);
       const bool full_certified = certified_choice(hi, lo_all);
       BOOST_TEST(ch.certified == full_certified);

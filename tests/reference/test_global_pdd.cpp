@@ -164,11 +164,13 @@ BOOST_AUTO_TEST_CASE(far_vertex_band_gap_closed) {
 }
 
 // relaxed_hull_minimum (direction_qp.h), the QP behind bound (Q), against its definition on
-// poke-vertex-through-face: with one normal it is G(n) = relaxed(n) n.n; with four it is at most
-// G at each corner and at sampled points of the hull; and, the corners scaled to |c| <= 1
-// (dyadic: components k/2048 with k^2 sums <= 2048^2), it is at most relaxed(u) for every
-// sampled u of the cone they span (the lemma global_pdd.cpp relies on). The sampled points are
-// exact rationals; every comparison is exact.
+// poke-vertex-through-face: with one normal it is G(n) = relaxed(n) n.n; with four it is
+// attained (G at its own minimiser sum lambda_k c_k equals it: not merely a number below G) and
+// at most G at each corner and at sampled points of the hull; and, the corners scaled to
+// |c| <= 1 (by powers of two here; global_pdd.cpp's hull_bound scales by any dyadic s_k, the
+// same lemma), it is at most relaxed(u) for every sampled u of the cone they span (the lemma
+// global_pdd.cpp relies on). Corners are integer vectors near a common direction; every
+// comparison is exact.
 BOOST_AUTO_TEST_CASE(hull_minimum_bounds_the_cone) {
   TetPair pair{"poke", {}, {{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}},
                {{{1, 1, -1}, {3, 1, -1}, {1, 3, -1}, {1.5, 1.5, 0.5}}}};
@@ -199,8 +201,19 @@ BOOST_AUTO_TEST_CASE(hull_minimum_bounds_the_cone) {
     }
     if (c.size() < 4) continue;
     ++cones;
-    const Rational h = relaxed_hull_minimum(p, c);
+    std::vector<Rational> lambda;
+    const Rational h = relaxed_hull_minimum(p, c, &lambda);
     BOOST_TEST(h >= 0);
+    BOOST_REQUIRE(lambda.size() == 4u);
+    Vector star = CGAL::NULL_VECTOR;
+    Rational total = 0;
+    for (int j = 0; j < 4; ++j) {
+      BOOST_TEST(lambda[j] >= 0);
+      total += lambda[j];
+      star = star + c[j] * lambda[j];
+    }
+    BOOST_TEST(total == 1);
+    BOOST_TEST(G(star) == h);  // attained: the QP returns the minimum, not just a lower number
     for (const Vector& v : c) BOOST_TEST(h <= G(v));
     for (int k = 0; k < 10; ++k) {
       Rational w[4], sum = 0;

@@ -57,6 +57,8 @@ std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const Candid
 // Use (global_pdd.cpp): if every normal has |n_k| <= 1, every unit u in the cone they span is
 // p/|p| for a p in the hull with |p| <= 1, and relaxed(u) = G(p)/|p|² >= G(p) >= the returned
 // value. `normals`: 1 to 8 vectors with dyadic components (CGAL's QP solver takes Gmpzf).
-Rational relaxed_hull_minimum(const ExactPair& pair, const std::vector<Vector>& normals);
+// `lambda` (optional): the minimiser's weights (n* = sum_k lambda_k normals_k).
+Rational relaxed_hull_minimum(const ExactPair& pair, const std::vector<Vector>& normals,
+                              std::vector<Rational>* lambda = nullptr);
 
 }  // namespace pdd::reference
