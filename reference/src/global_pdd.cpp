@@ -355,11 +355,11 @@ class Search {
   // set at once. Valid at any width; it loses only the factor |p*|² at the hull's minimiser,
   // 1 − O(width²) (the chord's sagitta) − ~2^-49 (the scaling). Returned rounded down to a
   // double. One exact QP (~2 ms): used only where the other bounds fall short of the target,
-  // at most kMaxHullBounds times per search (the far-vertex pairs need 40 to 120).
-  static constexpr std::size_t kMaxHullBounds = 4000;
+  // at most max_hull_bounds times per search (GlobalOptions; the far-vertex pairs need 40 to 120).
+  std::size_t max_hull_bounds = 0;
   std::size_t hull_bounds = 0;
   double hull_bound(const std::array<Vector, 4>& corners) {
-    if (hull_bounds >= kMaxHullBounds) return 0;
+    if (hull_bounds >= max_hull_bounds) return 0;
     ++hull_bounds;
     std::vector<Vector> scaled;
     for (const Vector& c : corners) {
@@ -657,6 +657,7 @@ GlobalPdd global_pdd(const ExactPair& pair, const Vector& start, const Rational&
 
   CGAL::Protect_FPU_rounding<true> outward;  // Interval_nt<false> needs rounding towards +inf
   Search search(P);
+  search.max_hull_bounds = options.max_hull_bounds;
   search.best_value = start_value * value_scale;
   search.best_normal = start;
 

@@ -71,6 +71,7 @@ void fill_global(const ExactPair& exact, const std::vector<CandidateRow>& rows,
   GlobalOptions global;
   global.gap = options.global_gap;
   global.max_exact_patches = options.global_max_exact_patches;
+  global.max_hull_bounds = options.global_max_hull_bounds;
   global.floor = out.rigid_pd2 / 32;  // every relaxed value is >= PD^2/32 (global_pdd.h)
   const GlobalPdd g = global_pdd(exact, row.direction.n, row.relaxed.value, row.relaxed.q1_A,
                                  row.relaxed.q1_B, global);

@@ -45,7 +45,8 @@
 //     of G, which relaxed_hull_minimum (direction_qp.h) solves exactly as one QP over every
 //     active set at once. This closes the patches around a vertex 1e15 to 1e18 away, where that
 //     vertex's walls stack within ~1e-14 rad and a patch's corners lie in up to four active
-//     sets (no single multiplier vector bounds it). At most 4000 per search, ~2 ms each.
+//     sets (no single multiplier vector bounds it). At most max_hull_bounds per search, ~2 ms
+//     each.
 // Patches are refined best-first (smallest lower bound first) until the smallest lower bound
 // of the open patches reaches pdd2_global (1 - gap), or the budget of patch evaluations is spent.
 #pragma once
@@ -72,6 +73,10 @@ struct GlobalOptions {
   // (Release): a pair that does not close spends at most ~3 s here. The shipped pairs that need
   // them (adversarial-1-3, -13, -23) close within 600.
   std::size_t max_exact_patches = 1000;
+  // Bounds (Q) (one exact QP each, ~2 ms in Release): the far-vertex pairs that need them take
+  // 40 to 120; a pair that does not close (span-1e308 in tests/compare: coordinates from 1e-302
+  // to 1e308) spends them all, ~2 s.
+  std::size_t max_hull_bounds = 1000;
   // A lower bound proved beforehand, reported when the search's own is lower (pairs where the
   // gap is not closed): solve_exact passes PD^2 / 32. Proof: along a unit normal u, dropping
   // every constraint but those of A's highest vertex and B's lowest can only lower the relaxed

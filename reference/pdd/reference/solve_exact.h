@@ -24,6 +24,7 @@ struct SolveOptions {
   bool global = true;  // SPEC §9 (pdd2_global and its keys); false leaves them 0 / null
   Rational global_gap = Rational(1) / Rational(1000000000000LL);  // 1e-12: SPEC §9's target
   std::size_t global_max_exact_patches = 1000;  // GlobalOptions::max_exact_patches
+  std::size_t global_max_hull_bounds = 1000;    // GlobalOptions::max_hull_bounds
 };
 
 ExactResult solve_exact(const TetPair& pair, const SolveOptions& options = {});
