@@ -3,11 +3,13 @@
 //
 // Agreement required: error presence, `intersecting` and every label exactly (all decided by
 // exact predicates or by exact ties, see tie_tolerance.h); the hot-path overloads (rigid_pd2,
-// pdd2_accel over raw vertices) equal to solve_pair bit for bit. The VALUES and q1 are held to
+// pdd2_accel over raw vertices) equal to solve_pair bit for bit, pdd2_global over raw vertices
+// within the contract of solve_pair's. The VALUES and q1 are held to
 // the project's argued tolerance (SPEC §8, compare/harness/pdd/compare/
 // engine_comparison.h) by tests/compare/test_fast_vs_golden.cpp, not repeated here.
 #define BOOST_TEST_MODULE fast_golden
 #include <boost/test/unit_test.hpp>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -21,6 +23,7 @@
 #include "pdd/pdd.h"
 #include "pdd/rejection.h"
 #include "exact_geometry.h"
+#include "global_depth.h"
 
 using namespace pdd;
 
@@ -95,6 +98,20 @@ void check_file(const std::string& fixture, const std::string& golden) {
       BOOST_TEST(rigid.value == r.rigid_pd2);
       BOOST_TEST(a1.value == r.pdd2_accel1);
       if (r.intersecting) BOOST_TEST(rigid.label().str() == label(r.rigid_dir));
+      // pdd2_global over raw vertices (its own start and screen, depth.cpp): both values are
+      // within 1e-9 of the exact minimum (SPEC §8), so within 2e-9 of each other (the normals
+      // may differ among ties), and its normal reproduces its value: the exact relaxed value
+      // along it (global_depth.h) within 1e-9.
+      const fast::NormalDepth gd = fast::pdd2_global(p.A, p.B);
+      BOOST_TEST((gd.status == fast::DepthStatus::Ok));
+      if (!r.intersecting) BOOST_TEST(gd.pd2 == 0.0);
+      if (r.intersecting && gd.status == fast::DepthStatus::Ok) {
+        BOOST_TEST(std::fabs(gd.pd2 - r.pdd2_global) <= 2e-9 * r.pdd2_global, gd.pd2 << " vs " << r.pdd2_global);
+        bool ok = true;
+        const double along = fast::exact_relaxed_value(p.A, p.B, gd.normal, ok);
+        BOOST_TEST(ok);
+        BOOST_TEST(std::fabs(along - gd.pd2) <= 1e-9 * along, along << " along the normal, reported " << gd.pd2);
+      }
     }
   }
 }
