@@ -14,9 +14,18 @@
 #include "direction_qp_impl.h"
 #include "exact_candidate.h"
 #include "exact_geometry.h"
+#include "piece_screen.h"
 
 namespace pdd::fast {
 namespace {
+
+using detail::ColumnsB;
+using detail::kPopcount;
+using detail::kSign;
+using detail::RowLanes;
+using detail::ScreenLanes;
+using detail::screen;
+using detail::surviving_pieces;
 
 using V3 = std::array<double, 3>;
 
@@ -24,9 +33,7 @@ constexpr double kU = 0x1p-53;         // unit roundoff
 constexpr double kGlobalRel = 1e-10;   // value error budget (SPEC §8's 1e-9, with room)
 constexpr double kPrune = 1e-10;       // an eigenvalue must beat the best by this, relative
 constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
-constexpr double kSign = 1e-6;         // sign tolerance, times the condition's scale
 constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
-constexpr int kPopcount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};  // bits of an active set
 
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -180,243 +187,6 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
   const double t = started ? (lo + hi) / 2 : 0.0;
   out = add(mul(p, std::cos(t)), mul(q, std::sin(t)));
   return true;
-}
-
-// The number of eigenvalues of the symmetric double matrix H = (h00 h01 h02 / h11 h12 / h22)
-// (its exact eigenvalues) below t, or -1 when the doubles cannot decide it. eigenvalues_below's
-// rule (Descartes on N = H - tI: the sign changes of (1, tr N, c1 N, det N)), each
-// coefficient's sign certified: N's diagonal is rounded (relative u), off-diagonal entries
-// exact. A sum of m products of d entries, each entry off by u relative and each product and
-// sum rounded, is within ((d + d - 1 + m - 1) u + O(u^2)) of its value times the sum of its
-// terms' magnitudes P (computed with the same roundings: within (1 + 8u) of the exact one):
-// tr (d 1, m 3) 4u, c1 (d 2, m 6) 9u, det as written (d 3; two products, a subtraction, an
-// outer product, two outer sums) 11u. Each is taken as 16u P: a coefficient within that of 0
-// is undecided, and with it the count. Branch-free (the lanes of surviving_pieces vectorise).
-inline int eigenvalues_below_certain(double h00, double h01, double h02, double h11, double h12,
-                                     double h22, double t) {
-  const double a00 = h00 - t, a11 = h11 - t, a22 = h22 - t;
-  const double tr = a00 + a11 + a22, ptr = std::fabs(a00) + std::fabs(a11) + std::fabs(a22);
-  const double c1 = a00 * a11 - h01 * h01 + a00 * a22 - h02 * h02 + a11 * a22 - h12 * h12;
-  const double pc1 = std::fabs(a00 * a11) + h01 * h01 + std::fabs(a00 * a22) + h02 * h02 +
-                     std::fabs(a11 * a22) + h12 * h12;
-  const double m0 = a11 * a22 - h12 * h12, m1 = h01 * a22 - h12 * h02, m2 = h01 * h12 - a11 * h02;
-  const double det = a00 * m0 - h01 * m1 + h02 * m2;
-  const double pdet = std::fabs(a00) * (std::fabs(a11 * a22) + h12 * h12) +
-                      std::fabs(h01) * (std::fabs(h01 * a22) + std::fabs(h12 * h02)) +
-                      std::fabs(h02) * (std::fabs(h01 * h12) + std::fabs(a11 * h02));
-  const bool decided = std::fabs(tr) > 16 * kU * ptr && std::fabs(c1) > 16 * kU * pc1 &&
-                       std::fabs(det) > 16 * kU * pdet;  // false on NaN
-  const int changes = int(tr < 0) + int((c1 < 0) != (tr < 0)) + int((det < 0) != (c1 < 0));
-  return decided ? changes : -1;
-}
-
-// The double pieces of one row (A's active set fixed: its sums SA, QA (xx xy xz yy yz zz),
-// max |QA| qa, size mA) against every B active set mb = 1..15 at once (lane mb; lane 0 is
-// padding): bit mb of the result is set unless the piece is certainly outside the pruning
-// window. The lanes hold N = 20 H, enumerate_pieces' numerator (same operations in the same
-// order, without its final /20: no division per entry), within n_error = 16 u mag of the exact
-// 20 H entrywise (enumerate_pieces' argument). So (Weyl, |E|_2 <= |E|_F <= 3 n_error) each
-// exact eigenvalue of 20 H is within 3 n_error of one of the double N's own. The window of
-// consider_piece, [lower, top) with top = best (1 - kPrune), becomes [20 lower, 20 top) for 20 H,
-// and window_edges() widens it by 4 n_error (3 for Weyl, the rest and a relative 2^-40 for the
-// edges' own roundings, each <= u relative). When N has no eigenvalue between the edges,
-// counted exactly (eigenvalues_below_certain), no exact eigenvalue of H lies in the window and
-// the piece cannot hold the minimiser: it is skipped without its eigenpairs.
-struct Edges {
-  double lo, hi;
-};
-inline Edges window_edges(double top, double lower, double n_error) {  // top, lower >= 0
-  return {20 * lower * (1 - 0x1p-40) - 4 * n_error, 20 * top * (1 + 0x1p-40) + 4 * n_error};
-}
-struct ColumnsB {  // B's active sets, lane mb (structure of arrays)
-  double S[3][16], Q[6][16], q[16], m[16], w[16];
-};
-// One row's pieces as lanes (lane mb): N = 20 H (xx xy xz yy yz zz), n_error, c and T_A's
-// vectors, and the number of N's eigenvalues below the window's bottom edge (parity: f's sign
-// there, screen()).
-struct RowLanes {
-  double N[6][16], n_error[16], C[3][16], TA[3][16], below_low[16];
-  int one[16];  // exactly one eigenvalue in the window, both counts decided
-};
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)  // as superset_kernel.cpp
-#define PDD_GLOBAL_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define PDD_GLOBAL_CLONES
-#endif
-PDD_GLOBAL_CLONES unsigned surviving_pieces(const double SA[3], const double QA[6], double qa, int mA,
-                                            const ColumnsB& __restrict b, double top, double lower,
-                                            RowLanes& __restrict out) {
-  constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
-  const double wA = 1.0 / (5 - mA), dA = double(mA);
-  int keep[16];
-  for (int l = 0; l < 16; ++l) {
-    const double wB = b.w[l], mB = b.m[l];
-    const double r = 1.0 / (dA * wA + mB * wB);
-    double C[3], TA[3], S[3];
-    for (int k = 0; k < 3; ++k) {
-      C[k] = (SA[k] * wA + b.S[k][l] * wB) * r;
-      TA[k] = (C[k] * dA - SA[k]) * wA;
-      S[k] = SA[k] + b.S[k][l];
-      out.C[k][l] = C[k], out.TA[k][l] = TA[k];
-    }
-    const double m = dA + mB, kk = 10 - dA - mB;
-    double h[6];  // 20 H
-    for (int q = 0; q < 6; ++q) {
-      const int rr = kR[q], cc = kC[q];
-      h[q] = QA[q] + b.Q[q][l] - C[rr] * S[cc] - S[rr] * C[cc] + m * C[rr] * C[cc] + kk * TA[rr] * TA[cc];
-      out.N[q][l] = h[q];
-    }
-    const double c = std::max({std::fabs(C[0]), std::fabs(C[1]), std::fabs(C[2])});
-    const double t = std::max({std::fabs(TA[0]), std::fabs(TA[1]), std::fabs(TA[2])});
-    const double sm = std::max({std::fabs(S[0]), std::fabs(S[1]), std::fabs(S[2])});
-    const double n_error = 16 * kU * (qa + b.q[l] + 2 * c * sm + m * c * c + kk * t * t);
-    out.n_error[l] = n_error;
-    const Edges e = window_edges(top, lower, n_error);
-    const int below_top = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.hi);
-    const int below_low = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.lo);
-    keep[l] = !(below_top == 0 || (below_top > 0 && below_top == below_low));
-    out.one[l] = below_low >= 0 && below_top == below_low + 1;
-    out.below_low[l] = below_low;
-  }
-  unsigned mask = 0;
-  for (int l = 1; l < 16; ++l) mask |= unsigned(keep[l]) << l;
-  return mask;
-}
-
-// The pieces that passed surviving_pieces, gathered as lanes for screen().
-struct ScreenLanes {
-  static constexpr int kMax = 232;  // 225 pieces, padded to whole 8-lane vectors
-  int n = 0;
-  double N[6][kMax], n_error[kMax], C[3][kMax], TA[3][kMax], below_low[kMax];  // as RowLanes
-  double sign[8][kMax];  // each condition's sign (+1: active, l.v >= 0; -1: free, l.v <= 0)
-  int one[kMax];
-  unsigned char ma[kMax], mb[kMax];
-  int keep[kMax];
-};
-
-// The double path's screen of the pieces that passed surviving_pieces: keep[p] false when piece
-// p certainly cannot hold the minimiser, decided without the eigensolver. It works on N = 20 H
-// (the eigenvectors of H) and handles the common case only: exactly one eigenvalue mu of the
-// double N between the window's edges [lo, hi) (window_edges; counted exactly by
-// surviving_pieces; the other two lie outside), and its eigenvector violating one of the
-// piece's sign conditions by more than
-// consider_piece's tolerance in both orientations. Every other piece (two or three eigenvalues
-// in the window, a vector not resolved, a condition met or nearly met) is kept: consider_piece
-// decides it. Lane loops (the pieces side by side) so that each step vectorises.
-//  (H below: the lanes' N.)
-//  - mu~: a root of f(x) = det(H - xI) = prod (lambda_i - x) in (lo, hi), where f changes
-//    sign exactly once (f's sign is (-1)^(eigenvalues below x)); safeguarded Newton (a step
-//    leaving the bracket, kept by f's computed signs, bisects), stopped at a step of 2^-24 of
-//    the window or after kNewton steps: the test below needs sin t, about |mu~ - mu| / delta,
-//    far below the conditions' violations, O(1) of |l| when they are violated. Its accuracy
-//    is not relied on: the bound below takes mu~ as it is.
-//  - v~: the largest cross product of two rows of M = H - mu~ I (M's null vector when mu~ is
-//    exact), normalised.
-//  - Residual bound (any shift rho): write v~ / |v~| = cos t v + sin t y with v the unit
-//    eigenvector of mu and y a unit vector in the span of the other two eigenvectors; then
-//    |(H - rho I) v~| / |v~| >= sin t |(H - rho I) y| >= sin t delta, delta the distance from
-//    rho to the other eigenvalues. With rho = mu~ in (lo, hi) and the others outside [lo, hi),
-//    delta >= min(mu~ - lo, hi - mu~). The residual w = M v~ is computed with M's diagonal
-//    rounded (u relative) and a 3-term dot product per row: each component within 4u of
-//    sum_c |m_rc| |v~_c|, so |w_exact| <= |w| (1 + 2u) + 5u sum_rc |m_rc| |v~_c| (the 1-norm of
-//    the error vector bounds its 2-norm); |v~| >= 1 - 4u. So sin t <= r / delta.
-//  - For the orientation of v nearer v~ (angle t <= pi / 2), |v~ / |v~| - v| = 2 sin(t / 2) <=
-//    sqrt(2) sin t. A condition's computed l.v~ is within 3u |l|_1 (1 + 4u) of the exact one,
-//    and v~ / |v~| moves it by 4u |l|_2 more; |l|_2 <= |l|_1. So sign_k s l_k.v~ < -(tol_k +
-//    |l_k|_1 (sqrt(2) sin t + 8u)) (computed) implies the exact unit eigenvector s v violates
-//    condition k beyond tol_k, consider_piece's criterion for not offering it (Conditions::hold
-//    with |v| = 1). Both orientations s = +1 and -1 are tested (v~ may be near either).
-//    The conditions' vectors l (d_i = (a_i - c) - T_A, e_j = (c - b_j) - T_A) and tolerances
-//    are computed as make_conditions computes them (same operations).
-PDD_GLOBAL_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3], const double (&pB)[4][3],
-                              double floor, double top, double lower) {
-  constexpr int kNewton = 16;
-  const int n = S.n;
-  double a[ScreenLanes::kMax], b[ScreenLanes::kMax], d[ScreenLanes::kMax], lo[ScreenLanes::kMax],
-      hi[ScreenLanes::kMax], x[ScreenLanes::kMax], x0[ScreenLanes::kMax], x1[ScreenLanes::kMax];
-  int lo_positive[ScreenLanes::kMax], done[ScreenLanes::kMax];
-  for (int p = 0; p < n; ++p) {
-    const double h00 = S.N[0][p], h01 = S.N[1][p], h02 = S.N[2][p], h11 = S.N[3][p], h12 = S.N[4][p],
-                 h22 = S.N[5][p];
-    a[p] = h00 + h11 + h22;
-    b[p] = h00 * h11 - h01 * h01 + h00 * h22 - h02 * h02 + h11 * h22 - h12 * h12;
-    d[p] = h00 * (h11 * h22 - h12 * h12) - h01 * (h01 * h22 - h12 * h02) + h02 * (h01 * h12 - h11 * h02);
-    const Edges e = window_edges(top, lower, S.n_error[p]);
-    lo[p] = e.lo, hi[p] = e.hi;
-    x0[p] = lo[p], x1[p] = hi[p], x[p] = 0.5 * (lo[p] + hi[p]);
-    lo_positive[p] = int(S.below_low[p]) % 2 == 0;  // f > 0 at lo
-    done[p] = 0;
-  }
-  for (int it = 0; it < kNewton; ++it) {
-    for (int p = 0; p < n; ++p) {
-      const double xp = x[p];
-      const double f = ((-xp + a[p]) * xp - b[p]) * xp + d[p], df = (-3 * xp + 2 * a[p]) * xp - b[p];
-      const bool on_lo_side = (f > 0) == bool(lo_positive[p]);
-      const double y0 = on_lo_side ? xp : x0[p], y1 = on_lo_side ? x1[p] : xp;
-      double next = xp - f / df;
-      next = next > y0 && next < y1 ? next : 0.5 * (y0 + y1);
-      const double eps = 0x1p-24 * (hi[p] - lo[p]);
-      const bool stop = f == 0 || std::fabs(next - xp) <= eps || y1 - y0 <= eps;
-      const bool moving = !done[p];
-      x0[p] = moving ? y0 : x0[p], x1[p] = moving ? y1 : x1[p];
-      x[p] = moving && f != 0 ? next : xp;
-      done[p] = done[p] | int(stop);
-    }
-    int all_done = 1;
-    for (int p = 0; p < n; ++p) all_done &= done[p];
-    if (all_done) break;
-  }
-  for (int p = 0; p < n; ++p) {
-    const double mu = x[p];
-    const double m00 = S.N[0][p] - mu, m01 = S.N[1][p], m02 = S.N[2][p], m11 = S.N[3][p] - mu,
-                 m12 = S.N[4][p], m22 = S.N[5][p] - mu;
-    // rows r0 = (m00 m01 m02), r1 = (m01 m11 m12), r2 = (m02 m12 m22); r0 x r1, r0 x r2, r1 x r2
-    const double a0 = m01 * m12 - m02 * m11, a1 = m02 * m01 - m00 * m12, a2 = m00 * m11 - m01 * m01;
-    const double b0 = m01 * m22 - m02 * m12, b1 = m02 * m02 - m00 * m22, b2 = m00 * m12 - m01 * m02;
-    const double c0 = m11 * m22 - m12 * m12, c1 = m12 * m02 - m01 * m22, c2 = m01 * m12 - m11 * m02;
-    const double na = a0 * a0 + a1 * a1 + a2 * a2, nb = b0 * b0 + b1 * b1 + b2 * b2,
-                 nc = c0 * c0 + c1 * c1 + c2 * c2;
-    // the largest (the first of equals), by single selects (nested ones stop the vectoriser)
-    double big = na, x0_ = a0, x1_ = a1, x2_ = a2;
-    const bool take_b = nb > big;
-    big = take_b ? nb : big, x0_ = take_b ? b0 : x0_, x1_ = take_b ? b1 : x1_, x2_ = take_b ? b2 : x2_;
-    const bool take_c = nc > big;
-    big = take_c ? nc : big, x0_ = take_c ? c0 : x0_, x1_ = take_c ? c1 : x1_, x2_ = take_c ? c2 : x2_;
-    const double nv = std::sqrt(big);
-    const double inv = (int(nv > 0) & int(nv < HUGE_VAL)) ? 1 / nv : 0.0;  // 0: not resolved
-    const double v0 = x0_ * inv, v1 = x1_ * inv, v2 = x2_ * inv;
-    const double w0 = m00 * v0 + m01 * v1 + m02 * v2;
-    const double w1 = m01 * v0 + m11 * v1 + m12 * v2;
-    const double w2 = m02 * v0 + m12 * v1 + m22 * v2;
-    const double spread = std::fabs(m00 * v0) + std::fabs(m01 * v1) + std::fabs(m02 * v2) +
-                          std::fabs(m01 * v0) + std::fabs(m11 * v1) + std::fabs(m12 * v2) +
-                          std::fabs(m02 * v0) + std::fabs(m12 * v1) + std::fabs(m22 * v2);
-    const double res = (std::sqrt(w0 * w0 + w1 * w1 + w2 * w2) * (1 + 2 * kU) + 5 * kU * spread) /
-                       (1 - 4 * kU) * (1 + 4 * kU);
-    const double delta = std::min(mu - lo[p], hi[p] - mu);
-    const double sin_t = res / delta;
-    const double slack = std::sqrt(2.0) * sin_t + 8 * kU;
-    const double C0 = S.C[0][p], C1 = S.C[1][p], C2 = S.C[2][p], T0 = S.TA[0][p], T1 = S.TA[1][p],
-                 T2 = S.TA[2][p];
-    int violated_plus = 0, violated_minus = 0;
-    auto condition = [&](double l0, double l1, double l2, double sign) {
-      const double n1 = std::fabs(l0) + std::fabs(l1) + std::fabs(l2);
-      const double tol = kSign * n1 + floor;
-      const double lv = sign * (l0 * v0 + l1 * v1 + l2 * v2);
-      const double beyond = tol + n1 * slack;
-      violated_plus |= int(lv < -beyond);
-      violated_minus |= int(-lv < -beyond);
-    };
-#pragma GCC unroll 4
-    for (int i = 0; i < 4; ++i)  // (unrolled, so that the lane loop vectorises)
-      condition((pA[i][0] - C0) - T0, (pA[i][1] - C1) - T1, (pA[i][2] - C2) - T2, S.sign[i][p]);
-#pragma GCC unroll 4
-    for (int i = 0; i < 4; ++i)
-      condition((C0 - pB[i][0]) - T0, (C1 - pB[i][1]) - T1, (C2 - pB[i][2]) - T2, S.sign[4 + i][p]);
-    const int skip = S.one[p] & int(mu > lo[p]) & int(mu < hi[p]) & int(inv > 0) & int(sin_t <= 1e-3) &
-                     violated_plus & violated_minus;  // (& on ints: no branch, so the loop vectorises)
-    S.keep[p] = 1 - skip;
-  }
 }
 
 // One active set's H (its entries within h_error, absolute; on the exact path H is the exact

@@ -1,0 +1,145 @@
+// piece_screen.h — internal to fast/src: the double path of global_depth.cpp prunes its 225
+// pieces (active sets of the relaxed QP, global_depth.h) without an eigensolver.
+//
+// Input:  per active set S = (S_A, S_B), the piece's matrix as lanes; the pruning window
+//         [lower, top) of consider_piece (global_depth.cpp: an eigenpair can hold the minimiser
+//         only if its exact eigenvalue lies there); the pair's centred vertices.
+// Output: surviving_pieces: per row (S_A fixed, 15 lanes S_B), the pieces with an eigenvalue
+//         possibly in the window; screen: of those, the ones whose in-window eigenvector may
+//         satisfy the piece's sign conditions. Every other piece is certainly unable to hold
+//         the minimiser (the arguments below); the survivors go to consider_piece.
+// Both run as lane loops (the pieces side by side, branch-free) that GCC vectorises; on the
+// paper's pairs about 36 of the 225 pieces reach screen() and 1.7 reach consider_piece.
+// Written by hand: no library counts a symmetric 3x3 matrix's eigenvalues in an interval with
+// certified signs, or screens 8 lanes of them at once.
+#pragma once
+
+#include <cmath>
+
+namespace pdd::fast::detail {
+
+inline constexpr double kScreenU = 0x1p-53;  // unit roundoff
+// A sign condition l.v >= 0 (or <= 0) holds within tolerance kSign |l|_1 + floor (|l|_1 >=
+// |l|_2: a wider tolerance, no square root; global_depth.cpp's Conditions).
+inline constexpr double kSign = 1e-6;
+// Bits of an active set (a subset of a tetrahedron's four vertices).
+inline constexpr int kPopcount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+// The number of eigenvalues of the symmetric double matrix H = (h00 h01 h02 / h11 h12 / h22)
+// (its exact eigenvalues) below t, or -1 when the doubles cannot decide it. eigenvalues_below's
+// rule (Descartes on N = H - tI: the sign changes of (1, tr N, c1 N, det N)), each
+// coefficient's sign certified: N's diagonal is rounded (relative u), off-diagonal entries
+// exact. A sum of m products of d entries, each entry off by u relative and each product and
+// sum rounded, is within ((d + d - 1 + m - 1) u + O(u^2)) of its value times the sum of its
+// terms' magnitudes P (computed with the same roundings: within (1 + 8u) of the exact one):
+// tr (d 1, m 3) 4u, c1 (d 2, m 6) 9u, det as written (d 3; two products, a subtraction, an
+// outer product, two outer sums) 11u. Each is taken as 16u P: a coefficient within that of 0
+// is undecided, and with it the count. Range: relative bounds hold for normal results only. A
+// product that underflows errs by up to 2^-1075 absolute, and that error is multiplied by at
+// most two more factors; with the entries and t below 2^100 in magnitude (global_depth's N on
+// a pair rescaled to coordinates in [1, 2), power_scale.h: entries and window edges far below)
+// it stays below 2^-870, far under 16u P when P >= 2^-900: a smaller P (a piece of vertices
+// 1e-135 apart beside a vertex at 1) is undecided. Overflow gives inf or NaN, which fail every
+// comparison: undecided. (Sums and differences are exact when subnormal.) Branch-free (the
+// lanes of surviving_pieces vectorise).
+inline int eigenvalues_below_certain(double h00, double h01, double h02, double h11, double h12,
+                                     double h22, double t) {
+  const double a00 = h00 - t, a11 = h11 - t, a22 = h22 - t;
+  const double tr = a00 + a11 + a22, ptr = std::fabs(a00) + std::fabs(a11) + std::fabs(a22);
+  const double c1 = a00 * a11 - h01 * h01 + a00 * a22 - h02 * h02 + a11 * a22 - h12 * h12;
+  const double pc1 = std::fabs(a00 * a11) + h01 * h01 + std::fabs(a00 * a22) + h02 * h02 +
+                     std::fabs(a11 * a22) + h12 * h12;
+  const double m0 = a11 * a22 - h12 * h12, m1 = h01 * a22 - h12 * h02, m2 = h01 * h12 - a11 * h02;
+  const double det = a00 * m0 - h01 * m1 + h02 * m2;
+  const double pdet = std::fabs(a00) * (std::fabs(a11 * a22) + h12 * h12) +
+                      std::fabs(h01) * (std::fabs(h01 * a22) + std::fabs(h12 * h02)) +
+                      std::fabs(h02) * (std::fabs(h01 * h12) + std::fabs(a11 * h02));
+  const bool decided = std::fabs(tr) > 16 * kScreenU * ptr && std::fabs(c1) > 16 * kScreenU * pc1 &&
+                       std::fabs(det) > 16 * kScreenU * pdet &&  // false on NaN (and on inf)
+                       pc1 >= 0x1p-900 && pdet >= 0x1p-900;      // no underflow that matters
+  const int changes = int(tr < 0) + int((c1 < 0) != (tr < 0)) + int((det < 0) != (c1 < 0));
+  return decided ? changes : -1;
+}
+
+// The double pieces of one row (A's active set fixed: its sums SA, QA (xx xy xz yy yz zz),
+// max |QA| qa, size mA) against every B active set mb = 1..15 at once (lane mb; lane 0 is
+// padding): bit mb of the result is set unless the piece is certainly outside the pruning
+// window. The lanes hold N = 20 H, enumerate_pieces' numerator (the same operations in the
+// same order, without its final /20: no division per entry), within n_error = 16 u mag of the
+// exact 20 H entrywise (the argument above global_depth.cpp's enumerate_pieces). So (Weyl,
+// |E|_2 <= |E|_F <= 3 n_error) each exact eigenvalue of 20 H is within 3 n_error of one of
+// the double N's own. The window of global_depth.cpp's consider_piece, [lower, top) with
+// top = best (1 - kPrune), becomes [20 lower, 20 top) for 20 H, and window_edges() widens it
+// by 4 n_error (3 for Weyl, the rest and a relative 2^-40 for the edges' own roundings, each
+// <= u relative). When N has no eigenvalue between the edges, counted exactly
+// (eigenvalues_below_certain), no exact eigenvalue of H lies in the window and the piece
+// cannot hold the minimiser: it is skipped without its eigenpairs.
+struct Edges {
+  double lo, hi;
+};
+inline Edges window_edges(double top, double lower, double n_error) {  // top, lower >= 0
+  return {20 * lower * (1 - 0x1p-40) - 4 * n_error, 20 * top * (1 + 0x1p-40) + 4 * n_error};
+}
+struct ColumnsB {  // B's active sets, lane mb (structure of arrays)
+  double S[3][16], Q[6][16], q[16], m[16], w[16];
+};
+// One row's pieces as lanes (lane mb): N = 20 H (xx xy xz yy yz zz), n_error, c and T_A's
+// vectors, and the number of N's eigenvalues below the window's bottom edge (parity: f's sign
+// there, screen()).
+struct RowLanes {
+  double N[6][16], n_error[16], C[3][16], TA[3][16], below_low[16];
+  int one[16];  // exactly one eigenvalue in the window, both counts decided
+};
+unsigned surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
+                          double top, double lower, RowLanes& out);
+
+// The pieces that passed surviving_pieces, gathered as lanes for screen().
+struct ScreenLanes {
+  static constexpr int kMax = 232;  // 225 pieces, padded to whole 8-lane vectors
+  int n = 0;
+  double N[6][kMax], n_error[kMax], C[3][kMax], TA[3][kMax], below_low[kMax];  // as RowLanes
+  double sign[8][kMax];  // each condition's sign (+1: active, l.v >= 0; -1: free, l.v <= 0)
+  int one[kMax];
+  unsigned char ma[kMax], mb[kMax];
+  int keep[kMax];
+};
+
+// The double path's screen of the pieces that passed surviving_pieces: keep[p] false when piece
+// p certainly cannot hold the minimiser, decided without the eigensolver. It works on N = 20 H
+// (the eigenvectors of H) and handles the common case only: exactly one eigenvalue mu of the
+// double N between the window's edges [lo, hi) (window_edges; counted exactly by
+// surviving_pieces; the other two lie outside), and its eigenvector violating one of the
+// piece's sign conditions by more than
+// consider_piece's tolerance in both orientations. Every other piece (two or three eigenvalues
+// in the window, a vector not resolved, a condition met or nearly met) is kept: consider_piece
+// decides it. Lane loops (the pieces side by side) so that each step vectorises.
+//  (H below: the lanes' N.)
+//  - mu~: a root of f(x) = det(H - xI) = prod (lambda_i - x) in (lo, hi), where f changes
+//    sign exactly once (f's sign is (-1)^(eigenvalues below x)); safeguarded Newton (a step
+//    leaving the bracket, kept by f's computed signs, bisects), stopped at a step of 2^-24 of
+//    the window or after kNewton steps: the test below needs sin t, about |mu~ - mu| / delta,
+//    far below the conditions' violations, O(1) of |l| when they are violated. Its accuracy
+//    is not relied on: the bound below takes mu~ as it is.
+//  - v~: the largest cross product of two rows of M = H - mu~ I (M's null vector when mu~ is
+//    exact), normalised.
+//  - Residual bound (any shift rho): write v~ / |v~| = cos t v + sin t y with v the unit
+//    eigenvector of mu and y a unit vector in the span of the other two eigenvectors; then
+//    |(H - rho I) v~| / |v~| >= sin t |(H - rho I) y| >= sin t delta, delta the distance from
+//    rho to the other eigenvalues. With rho = mu~ in (lo, hi) and the others outside [lo, hi),
+//    delta >= min(mu~ - lo, hi - mu~). The residual w = M v~ is computed with M's diagonal
+//    rounded (u relative) and a 3-term dot product per row: each component within 4u of
+//    sum_c |m_rc| |v~_c|, so |w_exact| <= |w| (1 + 2u) + 5u sum_rc |m_rc| |v~_c| (the 1-norm of
+//    the error vector bounds its 2-norm); |v~| >= 1 - 4u. So sin t <= r / delta. (Relative
+//    bounds: decided only when that sum is >= 2^-900, as for eigenvalues_below_certain.)
+//  - For the orientation of v nearer v~ (angle t <= pi / 2), |v~ / |v~| - v| = 2 sin(t / 2) <=
+//    sqrt(2) sin t. A condition's computed l.v~ is within 3u |l|_1 (1 + 4u) of the exact one,
+//    and v~ / |v~| moves it by 4u |l|_2 more; |l|_2 <= |l|_1. So sign_k s l_k.v~ < -(tol_k +
+//    |l_k|_1 (sqrt(2) sin t + 8u)) (computed) implies the exact unit eigenvector s v violates
+//    condition k beyond tol_k, consider_piece's criterion for not offering it (Conditions::hold
+//    with |v| = 1). Both orientations s = +1 and -1 are tested (v~ may be near either).
+//    The conditions' vectors l (d_i = (a_i - c) - T_A, e_j = (c - b_j) - T_A) and tolerances
+//    are computed as make_conditions computes them (same operations).
+void screen(ScreenLanes& S, const double (&pA)[4][3], const double (&pB)[4][3], double floor, double top,
+            double lower);
+
+}  // namespace pdd::fast::detail
