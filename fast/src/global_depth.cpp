@@ -21,6 +21,7 @@ namespace {
 
 using detail::ColumnsB;
 using detail::kPopcount;
+using detail::kSignOf;
 using detail::kSign;
 using detail::RowLanes;
 using detail::ScreenLanes;
@@ -551,10 +552,7 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
         for (int q = 0; q < 6; ++q) lanes.N[q][p] = row.N[q][mb];
         for (int k = 0; k < 3; ++k) lanes.C[k][p] = row.C[k][mb], lanes.TA[k][p] = row.TA[k][mb];
         lanes.n_error[p] = row.n_error[mb], lanes.below_low[p] = row.below_low[mb], lanes.one[p] = row.one[mb];
-        for (int i = 0; i < 4; ++i) {
-          lanes.sign[i][p] = ma >> i & 1u ? 1 : -1;
-          lanes.sign[4 + i][p] = mb >> i & 1u ? 1 : -1;
-        }
+        for (int i = 0; i < 4; ++i) lanes.sign[i][p] = kSignOf[ma][i], lanes.sign[4 + i][p] = kSignOf[mb][i];
         lanes.ma[p] = static_cast<unsigned char>(ma), lanes.mb[p] = static_cast<unsigned char>(mb);
       }
     }

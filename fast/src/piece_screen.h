@@ -22,8 +22,13 @@ inline constexpr double kScreenU = 0x1p-53;  // unit roundoff
 // A sign condition l.v >= 0 (or <= 0) holds within tolerance kSign |l|_1 + floor (|l|_1 >=
 // |l|_2: a wider tolerance, no square root; global_depth.cpp's Conditions).
 inline constexpr double kSign = 1e-6;
-// Bits of an active set (a subset of a tetrahedron's four vertices).
+// Bits of an active set (a subset of a tetrahedron's four vertices), and each vertex's sign
+// condition in it: +1 active (l.v >= 0), -1 free (l.v <= 0). Tables: no branch per lane.
 inline constexpr int kPopcount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+inline constexpr double kSignOf[16][4] = {
+    {-1, -1, -1, -1}, {1, -1, -1, -1}, {-1, 1, -1, -1}, {1, 1, -1, -1}, {-1, -1, 1, -1}, {1, -1, 1, -1},
+    {-1, 1, 1, -1},   {1, 1, 1, -1},   {-1, -1, -1, 1}, {1, -1, -1, 1}, {-1, 1, -1, 1}, {1, 1, -1, 1},
+    {-1, -1, 1, 1},   {1, -1, 1, 1},   {-1, 1, 1, 1},   {1, 1, 1, 1}};
 
 // The number of eigenvalues of the symmetric double matrix H = (h00 h01 h02 / h11 h12 / h22)
 // (its exact eigenvalues) below t, or -1 when the doubles cannot decide it. eigenvalues_below's

@@ -209,3 +209,10 @@ BOOST_AUTO_TEST_CASE(screen_drops_only_pieces_whose_vector_violates_a_condition)
   BOOST_TEST(kept > 100);
   BOOST_TEST(forced_kept > 100);
 }
+
+BOOST_AUTO_TEST_CASE(tables_are_the_bits) {  // kPopcount and kSignOf against the bits themselves
+  for (unsigned m = 0; m < 16; ++m) {
+    BOOST_TEST(kPopcount[m] == __builtin_popcount(m));
+    for (int i = 0; i < 4; ++i) BOOST_TEST(kSignOf[m][i] == ((m >> i & 1u) ? 1.0 : -1.0));
+  }
+}
