@@ -39,7 +39,7 @@ PDD_SCREEN_CLONES unsigned surviving_pieces(const double SA[3], const double QA[
     const double c = std::max({std::fabs(C[0]), std::fabs(C[1]), std::fabs(C[2])});
     const double t = std::max({std::fabs(TA[0]), std::fabs(TA[1]), std::fabs(TA[2])});
     const double sm = std::max({std::fabs(S[0]), std::fabs(S[1]), std::fabs(S[2])});
-    const double n_error = 16 * kScreenU * (qa + b.q[l] + 2 * c * sm + m * c * c + kk * t * t);
+    const double n_error = 0x1p-39 * (qa + b.q[l] + 2 * c * sm + m * c * c + kk * t * t);  // (header)
     out.n_error[l] = n_error;
     const Edges e = window_edges(top, lower, n_error);
     const int below_top = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.hi);
@@ -108,7 +108,7 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     const bool take_c = nc > big;
     big = take_c ? nc : big, x0_ = take_c ? c0 : x0_, x1_ = take_c ? c1 : x1_, x2_ = take_c ? c2 : x2_;
     const double nv = std::sqrt(big);
-    const double inv = (int(nv > 0) & int(nv < HUGE_VAL)) ? 1 / nv : 0.0;  // 0: not resolved
+    const double inv = (int(big >= 0x1p-900) & int(nv < HUGE_VAL)) ? 1 / nv : 0.0;  // 0: not resolved
     const double v0 = x0_ * inv, v1 = x1_ * inv, v2 = x2_ * inv;
     const double w0 = m00 * v0 + m01 * v1 + m02 * v2;
     const double w1 = m01 * v0 + m11 * v1 + m12 * v2;
@@ -116,10 +116,11 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     const double spread = std::fabs(m00 * v0) + std::fabs(m01 * v1) + std::fabs(m02 * v2) +
                           std::fabs(m01 * v0) + std::fabs(m11 * v1) + std::fabs(m12 * v2) +
                           std::fabs(m02 * v0) + std::fabs(m12 * v1) + std::fabs(m22 * v2);
-    const double res = (std::sqrt(w0 * w0 + w1 * w1 + w2 * w2) * (1 + 2 * kScreenU) + 5 * kScreenU * spread) /
-                       (1 - 4 * kScreenU) * (1 + 4 * kScreenU);
-    const double delta = std::min(mu - lo[p], hi[p] - mu);
-    const double sin_t = res / delta;
+    const double res = (std::sqrt(w0 * w0 + w1 * w1 + w2 * w2) * (1 + 3 * kScreenU) + 5 * kScreenU * spread) /
+                       (1 - 5 * kScreenU) * (1 + 4 * kScreenU);
+    const double e3 = 3 * S.n_error[p] * (1 + 4 * kScreenU);  // |E|_2 bound (header)
+    const double delta = std::min(mu - lo[p], hi[p] - mu) * (1 - 4 * kScreenU) - e3;
+    const double sin_t = (res + e3) * (1 + 4 * kScreenU) / delta;
     const double slack = std::sqrt(2.0) * sin_t + 8 * kScreenU;
     const double C0 = S.C[0][p], C1 = S.C[1][p], C2 = S.C[2][p], T0 = S.TA[0][p], T1 = S.TA[1][p],
                  T2 = S.TA[2][p];
@@ -139,8 +140,8 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     for (int i = 0; i < 4; ++i)
       condition((C0 - pB[i][0]) - T0, (C1 - pB[i][1]) - T1, (C2 - pB[i][2]) - T2, S.sign[4 + i][p]);
     // (& on ints: no branch, so that the loop vectorises)
-    const int skip = S.one[p] & int(mu > lo[p]) & int(mu < hi[p]) & int(inv > 0) & int(sin_t <= 1e-3) &
-                     int(spread >= 0x1p-900) & violated_plus & violated_minus;
+    const int skip = S.one[p] & int(mu > lo[p]) & int(mu < hi[p]) & int(inv > 0) & int(delta > 0) &
+                     int(sin_t <= 1e-3) & int(spread >= 0x1p-900) & violated_plus & violated_minus;
     S.keep[p] = 1 - skip;
   }
 }

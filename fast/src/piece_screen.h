@@ -14,6 +14,7 @@
 // certified signs, or screens 8 lanes of them at once.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace pdd::fast::detail {
@@ -39,14 +40,15 @@ inline constexpr double kSignOf[16][4] = {
 // terms' magnitudes P (computed with the same roundings: within (1 + 8u) of the exact one):
 // tr (d 1, m 3) 4u, c1 (d 2, m 6) 9u, det as written (d 3; two products, a subtraction, an
 // outer product, two outer sums) 11u. Each is taken as 16u P: a coefficient within that of 0
-// is undecided, and with it the count. Range: relative bounds hold for normal results only. A
-// product that underflows errs by up to 2^-1075 absolute, and that error is multiplied by at
-// most two more factors; with the entries and t below 2^100 in magnitude (global_depth's N on
-// a pair rescaled to coordinates in [1, 2), power_scale.h: entries and window edges far below)
-// it stays below 2^-870, far under 16u P when P >= 2^-900: a smaller P (a piece of vertices
-// 1e-135 apart beside a vertex at 1) is undecided. Overflow gives inf or NaN, which fail every
-// comparison: undecided. (Sums and differences are exact when subnormal.) Branch-free (the
-// lanes of surviving_pieces vectorise).
+// is undecided, and with it the count. Range: those relative bounds hold for normal results
+// (each bound has >= 5u P to spare). A product that underflows errs by up to 2^-1075 absolute,
+// and that error is multiplied by at most two more entries; with every entry of N - tI at most
+// 2^100 in magnitude (checked), each of the <= 6 terms errs by <= 2^-875 more, under 2^-872 in
+// all, while the spare 5u P is >= 2^-851 when P >= 2^-800 (checked): a smaller P (a piece whose
+// entries are ~1e-80, vertices ~1e-40 apart beside a vertex at 1) or a larger entry is
+// undecided. (A review found the count wrong on a matrix whose products underflowed before
+// these checks.) Overflow gives inf or NaN, which fail every comparison: undecided. Sums and
+// differences are exact when subnormal. Branch-free (the lanes of surviving_pieces vectorise).
 inline int eigenvalues_below_certain(double h00, double h01, double h02, double h11, double h12,
                                      double h22, double t) {
   const double a00 = h00 - t, a11 = h11 - t, a22 = h22 - t;
@@ -59,9 +61,13 @@ inline int eigenvalues_below_certain(double h00, double h01, double h02, double 
   const double pdet = std::fabs(a00) * (std::fabs(a11 * a22) + h12 * h12) +
                       std::fabs(h01) * (std::fabs(h01 * a22) + std::fabs(h12 * h02)) +
                       std::fabs(h02) * (std::fabs(h01 * h12) + std::fabs(a11 * h02));
-  const bool decided = std::fabs(tr) > 16 * kScreenU * ptr && std::fabs(c1) > 16 * kScreenU * pc1 &&
-                       std::fabs(det) > 16 * kScreenU * pdet &&  // false on NaN (and on inf)
-                       pc1 >= 0x1p-900 && pdet >= 0x1p-900;      // no underflow that matters
+  // (pairwise maxima: an initializer list stops the vectoriser; a NaN entry fails a test above)
+  const double big = std::max(std::max(std::max(std::fabs(a00), std::fabs(a11)), std::max(std::fabs(a22), std::fabs(h01))),
+                              std::max(std::fabs(h02), std::fabs(h12)));
+  // (& on ints, not &&: no branch, so that the lanes vectorise)
+  const int decided = int(std::fabs(tr) > 16 * kScreenU * ptr) & int(std::fabs(c1) > 16 * kScreenU * pc1) &
+                      int(std::fabs(det) > 16 * kScreenU * pdet) &  // false on NaN (and on inf)
+                      int(pc1 >= 0x1p-800) & int(pdet >= 0x1p-800) & int(big <= 0x1p100);  // (range, above)
   const int changes = int(tr < 0) + int((c1 < 0) != (tr < 0)) + int((det < 0) != (c1 < 0));
   return decided ? changes : -1;
 }
@@ -69,16 +75,29 @@ inline int eigenvalues_below_certain(double h00, double h01, double h02, double 
 // The double pieces of one row (A's active set fixed: its sums SA, QA (xx xy xz yy yz zz),
 // max |QA| qa, size mA) against every B active set mb = 1..15 at once (lane mb; lane 0 is
 // padding): bit mb of the result is set unless the piece is certainly outside the pruning
-// window. The lanes hold N = 20 H, enumerate_pieces' numerator (the same operations in the
-// same order, without its final /20: no division per entry), within n_error = 16 u mag of the
-// exact 20 H entrywise (the argument above global_depth.cpp's enumerate_pieces). So (Weyl,
-// |E|_2 <= |E|_F <= 3 n_error) each exact eigenvalue of 20 H is within 3 n_error of one of
-// the double N's own. The window of global_depth.cpp's consider_piece, [lower, top) with
-// top = best (1 - kPrune), becomes [20 lower, 20 top) for 20 H, and window_edges() widens it
-// by 4 n_error (3 for Weyl, the rest and a relative 2^-40 for the edges' own roundings, each
-// <= u relative). When N has no eigenvalue between the edges, counted exactly
-// (eigenvalues_below_certain), no exact eigenvalue of H lies in the window and the piece
-// cannot hold the minimiser: it is skipped without its eigenpairs.
+// window. The lanes hold N = 20 H, global_depth.cpp's enumerate_pieces' numerator (the same
+// operations in the same order, without its final /20: no division per entry).
+// N's error, entrywise, against the exact 20 H of the (centred, rounded) vertices: first order
+// in u, with L the largest |coordinate| of the piece's active vertices, so that mag (the sum
+// qa + qb + 2 |C| |S| + (mA + mB) |C|^2 + k |TA|^2 of max norms) >= qa + qb >= L^2 (a diagonal
+// entry of QA or QB). SA, SB: <= 4 terms, |dS*| <= 12u L; QA, QB: 4 products summed, <= 16u
+// L^2 each. The exact C is a convex combination of the active vertices' means, |C| <= L; its
+// numerator's and r's roundings (wA, r, two products, a sum: <= 8u relative of a weighted mean
+// <= L) give |dC| <= 12u L (wA + wB) r + 9u L <= 21u L ((wA + wB) r <= 1). TA = (mA C - SA) wA:
+// |TA| <= 8L wA and |dTA| <= (mA 21 + 4 + 12 + 8 + 16) u L wA <= 124u L wA. S = SA + SB: |S| <=
+// 8L, |dS| <= 32u L. Terms of 20 H: QA + QB 32u L^2; the two C S terms (21 8 + 32 + 16) u L^2
+// each, 432u L^2; m C C (m <= 8) 2 8 21 = 336u L^2; k TA TA: 2 k |TA| |dTA| = 1984 k wA^2 u L^2
+// with k wA^2 <= 5 (mA = 4: k <= 5, wA = 1; mA = 3, 2, 1: 6/4, 7/9, 8/16): 9920u L^2; each
+// term's own roundings and the sum's, <= 9u mag. In all <= 10720u L^2 + 9u mag < 2^14 u mag:
+// n_error = 2^-39 mag (2^14 u mag), second-order terms far inside the rest. (A review showed
+// the 16u mag first used here left out the inputs' own errors; measured errors stay below
+// 0.3 of that.) So (Weyl, |E|_2 <= |E|_F <= 3 n_error) each exact eigenvalue of 20 H is
+// within 3 n_error of one of the double N's own. The window of global_depth.cpp's
+// consider_piece, [lower, top) with top = best (1 - kPrune), becomes [20 lower, 20 top) for
+// 20 H, and window_edges() widens it by 4 n_error (3 for Weyl, the rest and a relative 2^-40
+// for the edges' own roundings, each <= u relative). When N has no eigenvalue between the
+// edges, counted exactly (eigenvalues_below_certain), no exact eigenvalue of H lies in the
+// window and the piece cannot hold the minimiser: it is skipped without its eigenpairs.
 struct Edges {
   double lo, hi;
 };
@@ -127,15 +146,21 @@ struct ScreenLanes {
 //    is not relied on: the bound below takes mu~ as it is.
 //  - v~: the largest cross product of two rows of M = H - mu~ I (M's null vector when mu~ is
 //    exact), normalised.
-//  - Residual bound (any shift rho): write v~ / |v~| = cos t v + sin t y with v the unit
-//    eigenvector of mu and y a unit vector in the span of the other two eigenvectors; then
-//    |(H - rho I) v~| / |v~| >= sin t |(H - rho I) y| >= sin t delta, delta the distance from
-//    rho to the other eigenvalues. With rho = mu~ in (lo, hi) and the others outside [lo, hi),
-//    delta >= min(mu~ - lo, hi - mu~). The residual w = M v~ is computed with M's diagonal
-//    rounded (u relative) and a 3-term dot product per row: each component within 4u of
-//    sum_c |m_rc| |v~_c|, so |w_exact| <= |w| (1 + 2u) + 5u sum_rc |m_rc| |v~_c| (the 1-norm of
-//    the error vector bounds its 2-norm); |v~| >= 1 - 4u. So sin t <= r / delta. (Relative
-//    bounds: decided only when that sum is >= 2^-900, as for eigenvalues_below_certain.)
+//  - Residual bound (any shift rho), first for N itself: write v~ / |v~| = cos t v + sin t y
+//    with v the unit eigenvector of mu and y a unit vector in the span of the other two
+//    eigenvectors; then |(N - rho I) v~| / |v~| >= sin t |(N - rho I) y| >= sin t delta, delta
+//    the distance from rho to the other eigenvalues. The residual w = M v~ is computed with
+//    M's diagonal rounded (u relative) and a 3-term dot product per row: each component
+//    within 4u of sum_c |m_rc| |v~_c|, so |w_exact| <= |w| (1 + 3u) + 5u sum_rc |m_rc| |v~_c|
+//    (the 1-norm of the error vector bounds its 2-norm), and |v~| >= 1 - 5u: r, the bound.
+//    Then for the exact 20 H = N + E (|E|_2 <= 3 n_error, surviving_pieces): its residual is
+//    <= r + 3 n_error, and by Weyl its other two eigenvalues lie within 3 n_error of N's,
+//    outside [lo, hi): with rho = mu~ in (lo, hi), delta >= min(mu~ - lo, hi - mu~) - 3 n_error,
+//    required > 0. So the angle t to the exact piece's eigenvector (the one whose eigenvalue
+//    is within 3 n_error of mu, the only one that can lie in the window) has sin t <= (r + 3
+//    n_error) / delta. (A review showed that N's own angle, used first, is not the exact H's:
+//    their gap is ~u mag / delta.) The relative bounds need normal results: decided only when
+//    the sum above and |v~|'s square are >= 2^-900 (as for eigenvalues_below_certain).
 //  - For the orientation of v nearer v~ (angle t <= pi / 2), |v~ / |v~| - v| = 2 sin(t / 2) <=
 //    sqrt(2) sin t. A condition's computed l.v~ is within 3u |l|_1 (1 + 4u) of the exact one,
 //    and v~ / |v~| moves it by 4u |l|_2 more; |l|_2 <= |l|_1. So sign_k s l_k.v~ < -(tol_k +
