@@ -492,9 +492,11 @@ V3 refine(const double (&h)[3][3], const V3& v0, double mu, long) {
 //   20 H = sum_{S_A} (C - a)(C - a)^T + sum_{S_B} (C - b)(C - b)^T + k TA TA^T
 //        = QA + QB - C (SA + SB)^T - (SA + SB) C^T + (mA + mB) C C^T + k TA TA^T,
 // k = 2 + (4 - mA) + (4 - mB) (the free vertices' T_A^2 and T_B^2, and 2 T_A^2 for the centre),
-// with the 16 subsets' sums and moments computed once. In doubles each entry is 7 terms, each
-// of <= 3 roundings, summed: absolute error <= 16 u mag with mag the sum of the terms' bounds
-// (|QA| + |QB| + 2 |C| |SA + SB| + (mA + mB) |C|^2 + k |TA|^2, max norms), then /20.
+// with the 16 subsets' sums and moments computed once. In doubles each entry of 20 H errs by
+// at most 2^-39 mag, mag the sum of the terms' bounds (|QA| + |QB| + 2 |C| |SA + SB| +
+// (mA + mB) |C|^2 + k |TA|^2, max norms): the derivation is piece_screen.h's (the inputs' own
+// errors, C's and T_A's above all, included; 16u mag, used before, counted only the last
+// expression's roundings). The /20 adds u relative, inside that bound's margin.
 template <class T, class ToDouble>
 void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
                       const Problem& P, Best& best, double lower, ToDouble to_d) {
@@ -606,7 +608,7 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
       double h_error = 0;
       if constexpr (!kExact) {
         const double c = amax(C), t = amax(TA);
-        h_error = 16 * kU * (qa[ma] + qb[mb] + 2 * c * amax(S) + (mA + mB) * c * c + (10 - mA - mB) * t * t) / 20;
+        h_error = 0x1p-39 * (qa[ma] + qb[mb] + 2 * c * amax(S) + (mA + mB) * c * c + (10 - mA - mB) * t * t) / 20;
       }
       // The conditions' vectors: in doubles, with an absolute floor for their rounding (a few
       // roundings of coordinates <= scale: far above); exact path, each scaled by its own power
