@@ -543,7 +543,7 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
   for (unsigned& x : survivors) x = 0xfffe;  // exact path: every piece
   if constexpr (!kExact) {
     const double top = best.value_in(0) * (1 - kPrune);
-    static thread_local ScreenLanes lanes;  // (~25 KB: off the stack)
+    static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
     lanes.n = 0;
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
