@@ -8,6 +8,7 @@
 
 #include "certify.h"
 #include "hot_path.h"
+#include "qp_lower_bound.h"
 #include "refine.h"
 #include "superset_depth.h"
 #include "tie_tolerance.h"
@@ -135,9 +136,8 @@ struct Pending {
   double nn, Hm;
   bool feasible, parallel;
 };
-template <class List, class Variant>
-double evaluate(const List& set, int i, const Variant& variant, Pending& e) {
-  const Candidate c = candidate(set, i);
+template <class Variant>
+double evaluate(const Candidate& c, const Variant& variant, Pending& e) {
   e.feasible = variant.solve(c, e.s);
   e.nn = c.nn;
   e.Hm = detail::max_height(c);
@@ -145,11 +145,18 @@ double evaluate(const List& set, int i, const Variant& variant, Pending& e) {
   return e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
 }
 template <class List, class Variant>
-double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
+double evaluate(const List& set, int i, const Variant& variant, Pending& e) {
+  return evaluate(candidate(set, i), variant, e);
+}
+template <class Variant>
+double root_bound(const Candidate& c, const FilterBounds& fb, const Variant& variant, const Pending& e) {
   if (!e.feasible) return 0.0;
-  const Candidate c = candidate(set, i);
   const SolverBound sb = variant.bound(c, e.s);
-  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(set.fb, c.parallel), sb.coeff);
+  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff);
+}
+template <class List, class Variant>
+double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
+  return e.feasible ? root_bound(candidate(set, i), set.fb, variant, e) : 0.0;
 }
 inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
   return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(fb, e.parallel));
@@ -242,6 +249,80 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
     detail::refine_minimum(set, lower, hi, exact_value, ch);
   }
   return ch;
+}
+
+// The sweep over a quick list's lanes, before its edge list exists (quick_lanes), pruned by the
+// dual lower bounds of qp_lower_bound.h: lo[e] <= the exact value of entry e (+inf: not a
+// candidate of the family). Entries are visited as in sweep(): first the one of smallest bound
+// (the hint), then in canonical order (entries ascend in it) every entry whose bound is <=
+// tie_threshold(best so far); the choice is the first tied minimum of the evaluated values in
+// canonical order, as sweep()'s. SPEC §8: an evaluated entry's exact value is >= lower_of(v, its
+// QP bound), a skipped one's >= lo[e]; certified as in sweep. Returns false (nothing decided)
+// when the choice is not certified or more than kMaxLaneEvaluated entries pass: the caller then
+// builds the list and runs sweep(), which can refine (refine.h).
+constexpr int kMaxLaneEvaluated = 16;
+template <class Variant>
+bool lane_sweep(const QuickCandidates& q, const detail::QpLowerBounds& bounds, Variant variant, Choice& ch) {
+  constexpr int kN = detail::kQpEntries;
+  const double* lo = bounds.lo;
+  int idx[kMaxLaneEvaluated], n = 0;
+  double v[kMaxLaneEvaluated];
+  Pending p[kMaxLaneEvaluated];
+  const double lmin = minimum(lo, kN);
+  if (!(lmin < kInf)) return false;  // (bounds are never NaN)
+  int first = 0;
+  while (!(lo[first] == lmin)) ++first;  // (lmin is one of them)
+  auto evaluate_ = [&](int e) {
+    v[n] = evaluate(entry_candidate(q, e), variant, p[n]);
+    idx[n++] = e;
+  };
+  evaluate_(first);
+  double best = v[0], threshold = tie_threshold(best, q.tie_kappa);
+  const double threshold0 = threshold;
+  // The entries with lo <= threshold0 (often only `first`), in canonical order; of those, the
+  // ones still <= the threshold when reached are evaluated. The others are skipped, their
+  // smallest lo is `split.above`.
+  const detail::QpSplit split = detail::split_at(bounds, threshold0);
+  int pass[kN], m = 0;
+  if (split.below > (lo[first] <= threshold0 ? 1 : 0))
+    for (int e = 0; e < kN; ++e)
+      if ((lo[e] <= threshold0) & (e != first)) pass[m++] = e;
+  for (int j = 0; j < m; ++j) {
+    const int e = pass[j];
+    if (!(lo[e] <= threshold)) continue;
+    if (n == kMaxLaneEvaluated) return false;
+    evaluate_(e);
+    if (v[n - 1] < best) {
+      best = v[n - 1];
+      threshold = tie_threshold(best, q.tie_kappa);
+    }
+  }
+  const double vmin = minimum(v, n), tie = tie_threshold(vmin, q.tie_kappa);
+  int b = -1;  // the first tied minimum in canonical order
+  for (int j = 0; j < n; ++j)
+    if (v[j] <= tie && (b < 0 || idx[j] < idx[b])) b = j;
+  if (b < 0 || !(v[b] < kInf)) return false;
+  const double r_b = root_bound(entry_candidate(q, idx[b]), q.fb, variant, p[b]);
+  double lo_min = safe_lower(v[b], r_b);
+  // the other evaluated entries (deferred_small as in sweep), then every skipped entry's lo:
+  // those above threshold0 (one vectorised pass), and those of `pass` not evaluated
+  for (int j = 0; j < n; ++j) {
+    if ((j == b) | !(v[j] < kInf) || ((kSmallQpLower * v[j] > lo_min) & deferred_small(p[j], q.fb)))
+      continue;
+    const double l = safe_lower(v[j], root_bound(entry_candidate(q, idx[j]), q.fb, variant, p[j]));
+    lo_min = l < lo_min ? l : lo_min;
+  }
+  lo_min = split.above < lo_min ? split.above : lo_min;
+  for (int j = 0; j < m; ++j) {
+    const int e = pass[j];
+    bool evaluated = false;
+    for (int t = 0; t < n; ++t) evaluated |= idx[t] == e;
+    if (!evaluated) lo_min = lo[e] < lo_min ? lo[e] : lo_min;
+  }
+  if (!certified_choice(upper_of(v[b], r_b), lo_min)) return false;
+  ch = Choice{v[b], -1, entry_label_code(q, idx[b])};
+  ch.certified = true;
+  return true;
 }
 
 // The first k candidates in ascending delta order (tie band); -1 entries never written: returns
@@ -426,12 +507,38 @@ int rigid_hint(const List& s) {
 // The quick list when it decides, else the full candidate set (both on the stack), on the
 // rescaled pair; the exact path when the choice is not certified (hot_path.h).
 template <class F, class Pick>
-Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
+Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
   return detail::certified_hot_path(
       A, B,
       [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
         QuickCandidates q;
         if (quick_candidates(As, Bs, q)) {
+          ch = f(q);
+          return true;
+        }
+        CandidateSet set;
+        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        ch = f(set);
+        return true;
+      },
+      pick);
+}
+
+// The quick lanes' sweep when it decides (lane_sweep with the bounds `lo` of `variant`), else
+// the quick list, else the full candidate set (all on the stack), on the rescaled pair; the
+// exact path when the choice is not certified (hot_path.h).
+template <class F, class Pick, class Variant>
+Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick, Variant variant,
+               detail::QpCase which) {
+  return detail::certified_hot_path(
+      A, B,
+      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        QuickCandidates q;
+        if (quick_lanes(As, Bs, q)) {
+          detail::QpLowerBounds lb;
+          detail::qp_lower_bounds(q, which, lb);
+          if (lane_sweep(q, lb, variant, ch)) return true;
+          quick_edge_list(q);
           ch = f(q);
           return true;
         }
@@ -450,7 +557,8 @@ Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_static_dir;
         return r.pdd2_static;
-      });
+      },
+      StaticVariant{}, detail::QpCase::Static);
 }
 Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
@@ -458,7 +566,8 @@ Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_dir;
         return r.pdd2;
-      });
+      },
+      DeformableVariant{}, detail::QpCase::Deformable);
 }
 Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
   return on_pair(
@@ -466,7 +575,8 @@ Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_relaxed_dir;
         return r.pdd2_relaxed;
-      });
+      },
+      RelaxedVariant{}, detail::QpCase::Deformable);
 }
 Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
   auto pick = [k](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
@@ -499,7 +609,7 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
           return true;
         },
         pick);
-  return on_pair(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick);
+  return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick);
 }
 
 }  // namespace pdd::fast

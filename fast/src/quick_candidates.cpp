@@ -21,9 +21,12 @@ bool lanes_clear(const EdgeLanes& L) {
   return any == 0.0;
 }
 
+}  // namespace
+
 // The canonical list of the lanes (Builder::edge_pairs without labels): delta² and source.
-void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
-  int k = q.count;
+void quick_edge_list(QuickCandidates& q) {
+  const EdgeLanes& L = q.edges;
+  int k = 8;
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6; ++b) {
       const int i = kLaneStride * a + b;
@@ -41,10 +44,8 @@ void quick_edge_list(const EdgeLanes& L, QuickCandidates& q) {
   q.count = k;
 }
 
-}  // namespace
-
 // The arithmetic is the superset kernel's (superset_kernel.h), which also writes the lanes.
-bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
+bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
   q.count = 0;
   q.A = &A;
   q.B = &B;
@@ -70,13 +71,16 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
     q.src[f] = std::int16_t(f);
   }
   q.count = 8;
-  if (!lanes_clear(q.edges)) return false;
-  quick_edge_list(q.edges, q);
+  return lanes_clear(q.edges);
+}
+
+bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
+  if (!quick_lanes(A, B, q)) return false;
+  quick_edge_list(q);
   return true;
 }
 
-LabelCode label_code(const QuickCandidates& q, int k) {
-  const int src = q.src[k];
+LabelCode entry_label_code(const QuickCandidates& q, int src) {
   if (src < 8)
     return src < 4 ? pack_label(ContactKind::FV, src, 0, EdgeOrientation::Decided)
                    : pack_label(ContactKind::VF, src - 4, 0, EdgeOrientation::Decided);
@@ -89,10 +93,9 @@ LabelCode label_code(const QuickCandidates& q, int k) {
                                  : EdgeOrientation::Plus);
 }
 
-Candidate candidate(const QuickCandidates& q, int k) {
+Candidate entry_candidate(const QuickCandidates& q, int src) {
   Candidate c;
-  c.label = unpack_label(label_code(q, k));
-  const int src = q.src[k];
+  c.label = unpack_label(entry_label_code(q, src));
   if (src < 8) {
     static_cast<DirectionGeometry&>(c) = q.faces[src];
     return c;

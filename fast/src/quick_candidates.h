@@ -39,9 +39,22 @@ struct QuickCandidates {
 // invalid pair) — then use build_candidates.
 bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidates& q);
 
+// quick_candidates in two steps: quick_lanes fills everything but the edge candidates (count =
+// 8, the faces; the lanes and their verdicts are set) and declines as quick_candidates does;
+// quick_edge_list then appends the edge candidates. Between the two, the lanes can be used
+// directly by entry (below), as deformable_depth.cpp's lane sweeps do.
+bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q);
+void quick_edge_list(QuickCandidates& q);
+
+// An entry is a candidate's `src` (a face f < 8, or 8 + 2·lane + [oriented by −n]), usable
+// before the list exists; which entries are candidates: the orientation rule on the lane's g
+// signs (qp_lower_bound.cpp writes it as a mask). Its candidate and label:
+Candidate entry_candidate(const QuickCandidates& q, int src);
+LabelCode entry_label_code(const QuickCandidates& q, int src);
+
 // Candidate k of a quick list (label included).
-Candidate candidate(const QuickCandidates& q, int k);
+inline Candidate candidate(const QuickCandidates& q, int k) { return entry_candidate(q, q.src[k]); }
 inline double delta2(const QuickCandidates& q, int k) { return q.delta_sq[k]; }
-LabelCode label_code(const QuickCandidates& q, int k);
+inline LabelCode label_code(const QuickCandidates& q, int k) { return entry_label_code(q, q.src[k]); }
 
 }  // namespace pdd::fast
