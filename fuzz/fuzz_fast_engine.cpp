@@ -197,6 +197,26 @@ void check_le(const TetPair& p, const char* lhs, double a, const char* rhs, doub
 // own exact path (a function of pdd::fast that runs the engine's slow exact fallback on every
 // value), switch here: either replace the call, or keep both and compare the two exact answers
 // with each other (they must be equal) as well as the double one against them.
+// The hot functions over raw tetrahedra (pdd.h: rigid_superset, and deformable_depth.cpp's
+// lane sweeps pruned by qp_lower_bound.h, not solve_pair's candidate set): each is certified on
+// its own (SPEC §8), so each is within 1e-9 (1 + 1e-9) of the exact value, as solve_pair's is:
+// the two differ by < 2.1e-9 relative, and are 0 together.
+void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
+  if (r.error) return;
+  const pdd::fast::Depth hot[4] = {pdd::fast::rigid_pd2(p.A, p.B), pdd::fast::pdd2_static(p.A, p.B),
+                                   pdd::fast::pdd2(p.A, p.B), pdd::fast::pdd2_relaxed(p.A, p.B)};
+  const double ref[4] = {r.rigid_pd2, r.pdd2_static, r.pdd2, r.pdd2_relaxed};
+  const char* names[4] = {"rigid_pd2", "pdd2_static", "pdd2", "pdd2_relaxed"};
+  for (int i = 0; i < 4; ++i)
+    if (hot[i].status != pdd::fast::DepthStatus::Ok || !(std::fabs(hot[i].pd2 - ref[i]) <= 2.1e-9 * ref[i])) {
+      std::ostringstream os;
+      os.precision(17);
+      os << "SPEC §8: the hot " << names[i] << "(A, B) gives " << hot[i].pd2 << " (status "
+         << int(hot[i].status) << "), solve_pair " << ref[i];
+      fail(p, os.str());
+    }
+}
+
 pdd::reference::ExactResult exact_answer(const TetPair& p) {
   pdd::reference::SolveOptions options;
   options.formulation = pdd::QpFormulation::Reduced;
@@ -306,6 +326,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (force_exact || (every > 0 && count++ % every == 0)) compare_with_exact(p, r);
 
   if (!finite_input(p) && !r.error) fail(p, "SPEC §1: a non-finite coordinate is not rejected");
+  check_hot(p, r);
   if (!r.error) {
     const auto vs = values(r);
     for (size_t i = 0; i < 7; ++i) {
