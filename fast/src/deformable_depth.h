@@ -20,6 +20,11 @@
 //                      ==> value(n) >= D²/(32 n.n) = delta²/32.
 //   case 1:            A static, the plane is at or above a, so B's vertex moves by >= D
 //                      ==> value(n) >= D²/(16 n.n) = delta²/16.
+// The functions over raw tetrahedra (pdd2_static_choice, pdd2_choice, pdd2_relaxed_choice) prune
+// with much stronger bounds first: qp_lower_bound.h's dual bounds (the k = m = 1 case is the
+// bound above), computed for all candidates at once on the quick list's lanes, so that ~1.7
+// candidates per sweep are solved instead of ~8; the list and the sweeps below are their
+// fallback when that sweep cannot certify its choice.
 // A candidate is skipped when its bound exceeds tie_threshold(best value so far) (tie_tolerance.h),
 // so it can neither be the minimum nor tie with it (the threshold of the final minimum is lower). Starting from a good direction
 // (the rigid one, `hint`) makes most bounds bite.

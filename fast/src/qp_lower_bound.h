@@ -5,10 +5,12 @@
 //
 // Input:  a quick list's lanes (quick_lanes, quick_candidates.h): the 8 faces' heights and the
 //         36 edge pairs' lanes, every filter verdict clear (so no parallel pair).
-// Output: per entry e (faces e = f < 8; edge lane i, orientation s: e = 8 + 2i + [s = −1], the
-//         quick list's `src`), lo[e] <= the EXACT value of that candidate's QP, for
-//           stat:   case 1 (A static; +inf on an undecidable edge pair: infeasible, SPEC §5);
-//           deform: case 2 and the relaxed case 2 (both deform; the same bound serves both);
+// Output: for one case, per entry e (faces e = f < 8; edge lane i, orientation s: e = 8 + 2i +
+//         [s = −1], the quick list's `src`, so entries ascend in canonical order),
+//         lo[e] <= the EXACT value of that candidate's QP:
+//           QpCase::Static      case 1 (A static); +inf on an undecidable edge pair (infeasible,
+//                               SPEC §5);
+//           QpCase::Deformable  case 2 and the relaxed case 2 (the same bound serves both);
 //         +inf for an entry that is not a candidate (the discarded orientation of a decided
 //         edge pair, padding lanes); 0 when nothing can be certified (never NaN).
 //
