@@ -11,7 +11,13 @@
 namespace pdd::fast::detail {
 namespace {
 
+// Run-time dispatch on x86-64 with GCC, as superset_kernel.cpp (the clones compute the same
+// IEEE operations: no FMA, -ffp-contract=off); clang has no target_clones on templates.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PDD_QP_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define PDD_QP_CLONES
+#endif
 #define PDD_QP_INLINE static inline __attribute__((always_inline))
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -87,8 +93,8 @@ PDD_QP_CLONES void lane_bounds(const EdgeLanes& L, double e_h, double e_n, doubl
     // both g > 0 (flip), −n when flipped or undecidable; case 1 skips undecidable pairs
     const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0, pad = kPadding.is_pad[i] != 0.0;
     const bool und = pos1 ^ pos2, skip = pad | (K == QpCase::Static && und);
-    out[2 * i] = !(pos1 & pos2) & !skip ? up * f : kInf;
-    out[2 * i + 1] = (pos1 | pos2) & !skip ? down * f : kInf;
+    out[2 * i] = (!(pos1 & pos2) & !skip) ? up * f : kInf;
+    out[2 * i + 1] = ((pos1 | pos2) & !skip) ? down * f : kInf;
   }
 }
 
