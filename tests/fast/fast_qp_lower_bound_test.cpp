@@ -10,6 +10,8 @@
 
 #include "fast_test_util.h"
 #include "exact_candidate.h"
+#include "exact_path.h"
+#include "pdd/pdd.h"
 #include "power_scale.h"
 #include "qp_lower_bound.h"
 #include "quick_candidates.h"
@@ -143,5 +145,31 @@ BOOST_AUTO_TEST_CASE(split_matches_a_plain_loop) {
     const detail::QpSplit s = detail::split_at(b, t);
     BOOST_TEST(s.below == below);
     BOOST_TEST(s.above == above);
+  }
+}
+
+// A review's pair (nearly parallel edges, a shallow contact): solve_pair cannot certify its
+// pdd2 minimum in doubles (its pruning bound coeff·delta² is too weak) and evaluates it exactly
+// (refine.h); the lane sweep's dual bounds certify it in doubles. The two values then differ in
+// the last digits (6.5e-16 apart when found), both within SPEC §8 of the exact value, with the
+// same label (include/pdd/pdd.h says so).
+BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
+  const double z = -0x1.6cb49ed376162p-4;
+  TetPair p;
+  p.name = "review-16";
+  p.A = {{{-5, 0x1p-31, z}, {5, -0x1p-31, z}, {0, 3, 5}, {0.5, -3, 5}}};
+  p.B = {{{-5, 0, 0}, {5, 0, 0}, {0, 3, -5}, {0, -3, -5}}};
+  const PairResult<double> r = solve_pair(p);
+  const PairResult<double> e = detail::solve_pair_exact_path(p.A, p.B).result;  // exact, rounded
+  BOOST_REQUIRE(!r.error && r.intersecting);
+  const Depth hot[3] = {fast::pdd2_static(p.A, p.B), fast::pdd2(p.A, p.B), fast::pdd2_relaxed(p.A, p.B)};
+  const double ref[3] = {r.pdd2_static, r.pdd2, r.pdd2_relaxed}, ex[3] = {e.pdd2_static, e.pdd2, e.pdd2_relaxed};
+  const std::optional<DirectionLabel> lab[3] = {r.pdd2_static_dir, r.pdd2_dir, r.pdd2_relaxed_dir};
+  for (int i = 0; i < 3; ++i) {
+    BOOST_TEST((hot[i].status == DepthStatus::Ok));
+    // within 1e-9 of the exact value (the exact path's value is it rounded once: 2^-52 more)
+    BOOST_TEST(std::fabs(hot[i].pd2 - ex[i]) <= 1.001e-9 * ex[i], hot[i].pd2 << " vs exact " << ex[i]);
+    BOOST_TEST(std::fabs(ref[i] - ex[i]) <= 1.001e-9 * ex[i]);
+    BOOST_TEST((hot[i].dir && lab[i] && *hot[i].dir == *lab[i]));
   }
 }
