@@ -57,7 +57,9 @@ PDD_QP_INLINE double dual_bound(double a0, double a1, double a2, double b0, doub
 }
 
 // ε and the factor kLowerSafety / n.n (0 when rho_n is not small), qp_lower_bound.h.
-PDD_QP_INLINE double epsilon(double e_h, double Hm) { return 2.0002 * e_h + 32.0 * kUnitRoundoff * Hm + 0x1p-1000; }
+PDD_QP_INLINE double epsilon(double e_h, double Hm) {
+  return 2.0002 * e_h + 32.0 * kUnitRoundoff * Hm + 0x1p-1000;
+}
 PDD_QP_INLINE double scale_of(double nn, double e_n) {
   return 3.0 * e_n * e_n * 0x1p23 <= nn ? kLowerSafety / nn : 0.0;
 }
@@ -105,7 +107,8 @@ PDD_QP_CLONES void face_bounds(const double (*ha)[8], const double (*hb)[8], con
   for (int f = 0; f < 8; ++f) {
     double a0 = ha[0][f], a1 = ha[1][f], a2 = ha[2][f], a3 = ha[3][f];
     double b0 = hb[0][f], b1 = hb[1][f], b2 = hb[2][f], b3 = hb[3][f];
-    const double Hm = mx(mx(mx(ab(a0), ab(a1)), mx(ab(a2), ab(a3))), mx(mx(ab(b0), ab(b1)), mx(ab(b2), ab(b3))));
+    const double Hm = mx(mx(mx(ab(a0), ab(a1)), mx(ab(a2), ab(a3))),
+                         mx(mx(ab(b0), ab(b1)), mx(ab(b2), ab(b3))));
     double t;
     t = mx(a0, a1), a1 = mn(a0, a1), a0 = t;
     t = mx(a2, a3), a3 = mn(a2, a3), a2 = t;

@@ -44,7 +44,8 @@
 // compute d = (mean_A − ε) − mean_B (case 1: mean_A = the highest computed A height): the first
 // subtraction errs by <= u (Hm + ε), the second by u|d| (counted below as a relative rounding).
 // With Δ the exact dual Δ of these index sets and d = d'(1 + δ), |δ| <= u:
-//   d' <= Δ + (2 e_h + 26 u Hm) − ε + 1.01 u (Hm + ε) = Δ + 2 e_h + 27.01 u Hm − (1 − 1.01u) ε <= Δ,
+//   d' <= Δ + (2 e_h + 26 u Hm) − ε + 1.01 u (Hm + ε)
+//      = Δ + 2 e_h + 27.01 u Hm − (1 − 1.01u) ε <= Δ,
 // because ε is computed as 2.0002 e_h + 32 u Hm (+ 2^-1000, below), >= 2.0001 e_h + 31.9 u Hm
 // after its roundings.
 // Hence when d > 0,  exact value >= c Δ²/(n.n) >= c d'² / (n~.n~ (1 + rho_n)²).

@@ -163,7 +163,8 @@ BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
   const PairResult<double> e = detail::solve_pair_exact_path(p.A, p.B).result;  // exact, rounded
   BOOST_REQUIRE(!r.error && r.intersecting);
   const Depth hot[3] = {fast::pdd2_static(p.A, p.B), fast::pdd2(p.A, p.B), fast::pdd2_relaxed(p.A, p.B)};
-  const double ref[3] = {r.pdd2_static, r.pdd2, r.pdd2_relaxed}, ex[3] = {e.pdd2_static, e.pdd2, e.pdd2_relaxed};
+  const double ref[3] = {r.pdd2_static, r.pdd2, r.pdd2_relaxed};
+  const double ex[3] = {e.pdd2_static, e.pdd2, e.pdd2_relaxed};
   const std::optional<DirectionLabel> lab[3] = {r.pdd2_static_dir, r.pdd2_dir, r.pdd2_relaxed_dir};
   for (int i = 0; i < 3; ++i) {
     BOOST_TEST((hot[i].status == DepthStatus::Ok));
