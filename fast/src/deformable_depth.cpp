@@ -505,15 +505,18 @@ int rigid_hint(const List& s) {
   return s.count > 0 ? first_tied_minimum(s.delta_sq, s.count, s.tie_kappa) : -1;
 }
 
-// The quick list when it decides, else the full candidate set (both on the stack), on the
-// rescaled pair; the exact path when the choice is not certified (hot_path.h).
-template <class F, class Pick>
-Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
+// `lanes(q, ch)` on the quick lanes when it decides, else f on the quick list, else f on the full
+// candidate set (all on the stack), on the rescaled pair; the exact path when the choice is not
+// certified (hot_path.h).
+template <class F, class Pick, class Lanes>
+Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick, Lanes lanes) {
   return detail::certified_hot_path(
       A, B,
       [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
         QuickCandidates q;
-        if (quick_candidates(As, Bs, q)) {
+        if (quick_lanes(As, Bs, q)) {
+          if (lanes(q, ch)) return true;
+          quick_edge_list(q);
           ch = f(q);
           return true;
         }
@@ -525,30 +528,15 @@ Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick) {
       pick);
 }
 
-// The quick lanes' sweep when it decides (lane_sweep with the bounds `lo` of `variant`), else
-// the quick list, else the full candidate set (all on the stack), on the rescaled pair; the
-// exact path when the choice is not certified (hot_path.h).
+// on_list with the lane sweep of `variant` (bounds of case `which`) first.
 template <class F, class Pick, class Variant>
 Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick, Variant variant,
                detail::QpCase which) {
-  return detail::certified_hot_path(
-      A, B,
-      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
-        QuickCandidates q;
-        if (quick_lanes(As, Bs, q)) {
-          detail::QpLowerBounds lb;
-          detail::qp_lower_bounds(q, which, lb);
-          if (lane_sweep(q, lb, variant, ch)) return true;
-          quick_edge_list(q);
-          ch = f(q);
-          return true;
-        }
-        CandidateSet set;
-        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
-        ch = f(set);
-        return true;
-      },
-      pick);
+  return on_list(A, B, f, pick, [&](const QuickCandidates& q, Choice& ch) {
+    detail::QpLowerBounds lb;
+    detail::qp_lower_bounds(q, which, lb);
+    return lane_sweep(q, lb, variant, ch);
+  });
 }
 }  // namespace
 
@@ -610,7 +598,8 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
           return true;
         },
         pick);
-  return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick);
+  return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick,
+                 [](const QuickCandidates&, Choice&) { return false; });
 }
 
 }  // namespace pdd::fast
