@@ -528,44 +528,50 @@ Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick, Lanes
       pick);
 }
 
-// on_list with the lane sweep of `variant` (bounds of case `which`) first.
-template <class F, class Pick, class Variant>
-Choice on_pair(const TetVertices& A, const TetVertices& B, F f, Pick pick, Variant variant,
-               detail::QpCase which) {
-  return on_list(A, B, f, pick, [&](const QuickCandidates& q, Choice& ch) {
-    detail::QpLowerBounds lb;
-    detail::qp_lower_bounds(q, which, lb);
-    return lane_sweep(q, lb, variant, ch);
-  });
+template <class Variant>
+bool lanes_of(const QuickCandidates& q, Variant variant, detail::QpCase which, Choice& ch) {
+  detail::QpLowerBounds lb;
+  detail::qp_lower_bounds(q, which, lb);
+  return lane_sweep(q, lb, variant, ch);
 }
 }  // namespace
 
+bool pdd2_static_lanes(const QuickCandidates& q, Choice& ch) {
+  return lanes_of(q, StaticVariant{}, detail::QpCase::Static, ch);
+}
+bool pdd2_lanes(const QuickCandidates& q, Choice& ch) {
+  return lanes_of(q, DeformableVariant{}, detail::QpCase::Deformable, ch);
+}
+bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch) {
+  return lanes_of(q, RelaxedVariant{}, detail::QpCase::Deformable, ch);
+}
+
 Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
-  return on_pair(
+  return on_list(
       A, B, [](const auto& s) { return pdd2_static(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_static_dir;
         return r.pdd2_static;
       },
-      StaticVariant{}, detail::QpCase::Static);
+      [](const QuickCandidates& q, Choice& ch) { return pdd2_static_lanes(q, ch); });
 }
 Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
-  return on_pair(
+  return on_list(
       A, B, [](const auto& s) { return pdd2(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_dir;
         return r.pdd2;
       },
-      DeformableVariant{}, detail::QpCase::Deformable);
+      [](const QuickCandidates& q, Choice& ch) { return pdd2_lanes(q, ch); });
 }
 Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
-  return on_pair(
+  return on_list(
       A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_hint(s)); },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
         l = r.pdd2_relaxed_dir;
         return r.pdd2_relaxed;
       },
-      RelaxedVariant{}, detail::QpCase::Deformable);
+      [](const QuickCandidates& q, Choice& ch) { return pdd2_relaxed_lanes(q, ch); });
 }
 Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
   auto pick = [k](const PairResult<double>& r, std::optional<DirectionLabel>& l) {

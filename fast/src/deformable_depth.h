@@ -59,6 +59,15 @@ Choice pdd2(const QuickCandidates& q, int hint = -1);
 Choice pdd2_relaxed(const QuickCandidates& q, int hint = -1);
 Choice pdd2_accel(const QuickCandidates& q, int k);
 
+// The lane sweeps of the functions over raw tetrahedra below, on a quick_lanes result of a
+// rescaled pair (quick_candidates.h), pruned by qp_lower_bound.h's dual bounds: true with a
+// certified choice (index −1, label code set), false when they cannot decide (then the list's
+// or the set's sweeps above, which can refine). solve_pair uses them too, so that both report
+// the same values and labels.
+bool pdd2_static_lanes(const QuickCandidates& q, Choice& ch);
+bool pdd2_lanes(const QuickCandidates& q, Choice& ch);
+bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch);
+
 // Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);

@@ -102,8 +102,24 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
 // `refined`: some quantity was certified by refine.h (a few candidates evaluated exactly);
 // `exact_q1`: the pdd2 choice was refined, so q1 must be the exact solution's (solve_pair);
 // `global_slow`: pdd2_global's value was computed in rationals (global_depth.h).
-unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairResult<double>& r,
-                           bool& refined, bool& exact_q1, bool& global_slow, bool global) {
+// `lanes`: the pair's quick lanes (quick_lanes), or null when they decline: pdd2_static, pdd2 and
+// pdd2_relaxed are then first taken from the lane sweeps of the functions over raw tetrahedra
+// (deformable_depth.h), which see the same rescaled pair, so that both report the same values
+// and labels; the set's sweeps where those cannot decide (their results do not depend on the
+// hint, so the choice is the hot functions' fallback's too).
+unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const QuickCandidates* lanes,
+                           PairResult<double>& r, bool& refined, bool& exact_q1, bool& global_slow,
+                           bool global) {
+  // a lane choice as a choice of the set (its index: the same label; same candidates, same order)
+  auto from_lanes = [&](bool (*sweep)(const QuickCandidates&, Choice&), Choice& ch) {
+    if (!lanes || !sweep(*lanes, ch)) return false;
+    for (int k = 0; k < set.count; ++k)
+      if (set.code[k] == ch.code) {
+        ch.index = k;
+        return true;
+      }
+    return false;
+  };
   unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
   r.rigid_pd2 = rigid.value;
@@ -112,7 +128,8 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   bool e11_ok = false, e11_refined = false;
   r.eq11_pd2 = eq11_pd2(set, &e11_ok, &e11_refined);
   missing |= e11_ok ? 0 : kEq11;
-  const Choice st = pdd2_static(set, rigid.index);
+  Choice st;
+  if (!from_lanes(pdd2_static_lanes, st)) st = pdd2_static(set, rigid.index);
   r.pdd2_static = st.value;
   r.pdd2_static_dir = label_of(set, st);
   missing |= st.certified ? 0 : kStatic;
@@ -122,11 +139,13 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, PairRes
   const Choice accel1 = pdd2_accel(set, 1);
   r.pdd2_accel1 = accel1.value;
   missing |= accel1.certified ? 0 : kAccel1;
-  const Choice def = pdd2(set, accel6.index);
+  Choice def;
+  if (!from_lanes(pdd2_lanes, def)) def = pdd2(set, accel6.index);
   r.pdd2 = def.value;
   r.pdd2_dir = label_of(set, def);
   missing |= def.certified ? 0 : kDeformable;
-  const Choice rel = pdd2_relaxed(set, def.index);
+  Choice rel;
+  if (!from_lanes(pdd2_relaxed_lanes, rel)) rel = pdd2_relaxed(set, def.index);
   r.pdd2_relaxed = rel.value;
   r.pdd2_relaxed_dir = label_of(set, rel);
   missing |= rel.certified ? 0 : kRelaxed;
@@ -269,7 +288,10 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   scaled.A = sp.A;
   scaled.B = sp.B;
   bool refined = false, exact_q1 = false, global_slow = false;
-  unsigned missing = fill_intersecting(scaled, *set, r, refined, exact_q1, global_slow, global);
+  std::unique_ptr<QuickCandidates> lanes(new QuickCandidates);  // (~8 KB: off the stack as well)
+  const bool have_lanes = quick_lanes(scaled.A, scaled.B, *lanes);
+  unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes.get() : nullptr, r, refined,
+                                       exact_q1, global_slow, global);
   PairResult<double> bad;
   bad.name = pair.name;
   bad.error = kNotRepresentable;

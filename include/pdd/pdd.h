@@ -92,13 +92,10 @@ struct Depth {
   DepthStatus status = DepthStatus::Ok;
 };
 
-// A, B: the tetrahedra's vertices s0..s3 and r0..r3 (any orientation). The same quantities as
-// the fields of solve_pair's record of the same name, under the same SPEC §8 contract, but
-// computed on their own (faster) path: on most pairs the same values bit for bit and the same
-// labels, but where solve_pair evaluates its minimum exactly (a shallow contact whose double
-// bounds are too wide for its weaker pruning) and these functions certify it in doubles, the
-// values differ in their last digits (both within 1e-9 of the exact value), and in a near tie
-// (exact values within 1e-9) the labels may name different candidates, each within the contract.
+// A, B: the tetrahedra's vertices s0..s3 and r0..r3 (any orientation). Same values and labels
+// as the fields of solve_pair's record of the same name (the same certified computation on the
+// same rescaled pair; the one exception: where solve_pair cannot certify pdd2's deformed
+// positions it reports the exact path's pdd2, which may differ from this one within SPEC §8).
 Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², SPEC §4
 Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, SPEC §5
 Depth pdd2(const TetVertices& A, const TetVertices& B);          // PD_d², case 2 (eq. 3, 10)

@@ -99,14 +99,14 @@ void check_file(const std::string& fixture, const std::string& golden) {
       BOOST_TEST(a1.value == r.pdd2_accel1);
       if (r.intersecting) BOOST_TEST(rigid.label().str() == label(r.rigid_dir));
       // pdd2_static, pdd2, pdd2_relaxed over raw vertices (the lane sweeps pruned by
-      // qp_lower_bound.h): the golden labels, and values within SPEC §8 of solve_pair's (both
-      // within 1e-9 of the exact value: < 2.1e-9 apart; pdd.h says why not always bit for bit)
+      // qp_lower_bound.h, which solve_pair runs too): solve_pair's values bit for bit and the
+      // golden labels
       const fast::Depth hot[3] = {fast::pdd2_static(p.A, p.B), fast::pdd2(p.A, p.B), fast::pdd2_relaxed(p.A, p.B)};
       const double ref[3] = {r.pdd2_static, r.pdd2, r.pdd2_relaxed};
       const std::optional<DirectionLabel>* gl[3] = {&g.pdd2_static_dir, &g.pdd2_dir, &g.pdd2_relaxed_dir};
       for (int i = 0; i < 3; ++i) {
         BOOST_TEST((hot[i].status == fast::DepthStatus::Ok));
-        BOOST_TEST(std::fabs(hot[i].pd2 - ref[i]) <= 2.1e-9 * ref[i], hot[i].pd2 << " vs " << ref[i]);
+        BOOST_TEST(hot[i].pd2 == ref[i], hot[i].pd2 << " vs " << ref[i]);
         if (r.intersecting) BOOST_TEST((hot[i].dir && hot[i].dir->str() == label(*gl[i])));
       }
       // pdd2_global over raw vertices (its own start and screen, depth.cpp): both values are

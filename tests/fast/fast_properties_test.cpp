@@ -191,11 +191,10 @@ BOOST_AUTO_TEST_CASE(vertex_permutation_invariance) {
   }
 }
 
-// The hot-path overloads over raw tetrahedra (what a benchmark times) return what solve_pair
-// reports. On these generic pairs: the same values bit for bit, the same labels. (pdd.h: where
-// solve_pair refines a shallow contact exactly and the overloads certify it in doubles, values
-// differ within SPEC §8; fast_qp_lower_bound_test has such a pair, fuzz_fast_engine checks the
-// contract on every input.)
+// The hot-path overloads over raw tetrahedra (what a benchmark times) return exactly what
+// solve_pair reports: same values bit for bit, same labels (both run the lane sweeps of
+// deformable_depth.h first; fast_qp_lower_bound_test and fast_golden_test check it on harder
+// pairs).
 BOOST_AUTO_TEST_CASE(hot_path_overloads_match_solve_pair) {
   for (const auto& p : random_pairs(200, 41, false)) {
     const auto r = solve_pair(p);

@@ -148,11 +148,11 @@ BOOST_AUTO_TEST_CASE(split_matches_a_plain_loop) {
   }
 }
 
-// A review's pair (nearly parallel edges, a shallow contact): solve_pair cannot certify its
-// pdd2 minimum in doubles (its pruning bound coeff·delta² is too weak) and evaluates it exactly
-// (refine.h); the lane sweep's dual bounds certify it in doubles. The two values then differ in
-// the last digits (6.5e-16 apart when found), both within SPEC §8 of the exact value, with the
-// same label (include/pdd/pdd.h says so).
+// A review's pair (nearly parallel edges, a shallow contact): solve_pair's set sweep cannot
+// certify its pdd2 minimum in doubles (its pruning bound coeff·delta² is too weak) and evaluates
+// it exactly (refine.h), while the lane sweep's dual bounds certify it in doubles: the two
+// values differed in the last digits (6.5e-16 apart) until solve_pair ran the lane sweeps too.
+// Now: the same values bit for bit and labels, each within SPEC §8 of the exact value.
 BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
   const double z = -0x1.6cb49ed376162p-4;
   TetPair p;
@@ -172,5 +172,6 @@ BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
     BOOST_TEST(std::fabs(hot[i].pd2 - ex[i]) <= 1.001e-9 * ex[i], hot[i].pd2 << " vs exact " << ex[i]);
     BOOST_TEST(std::fabs(ref[i] - ex[i]) <= 1.001e-9 * ex[i]);
     BOOST_TEST((hot[i].dir && lab[i] && *hot[i].dir == *lab[i]));
+    BOOST_TEST(hot[i].pd2 == ref[i]);
   }
 }
