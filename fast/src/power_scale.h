@@ -36,37 +36,56 @@ struct ScaledPair {
 // m decides it for every coordinate: m·2^e >= DBL_MIN after rounding and, since a product just
 // below DBL_MIN rounds up to exactly DBL_MIN, (m·2^e)/2^e == m.
 // The 24 coordinates are read as 12 two-lane vectors (GCC/Clang vector extensions, SSE2 on
-// x86-64): the same maxima, minima and products as a scalar loop (max, min and the finiteness
-// test are exact in any order; each product is one correctly rounded multiplication), without
-// a compare-and-branch per coordinate.
+// x86-64) and reduced on their bits, with no compare-and-branch per coordinate:
+//   hi = max over (|x| bits >> 1), read as doubles. Those bits are < 2^62, so every such double
+//        is finite and the maximum sees no NaN; the shift keeps the order (non-strictly) and the
+//        exponent field (now bits 51..61). A coordinate is ±inf or NaN iff its |x| bits are
+//        >= 0x7ff0...0 (even), iff the shifted bits are >= 0x3ff8...0: one test on hi decides
+//        finiteness. For a normal max |x| = R, hi's exponent field is R's: e = 1023 − field.
+//   lo = min over (|x| bits − 1), read as doubles: 0 becomes all ones, a NaN, which the
+//        comparison `l < lo ? l : lo` never picks; every other |x| becomes a non-negative double
+//        in the same order (finite |x|: a finite double). m = lo + 1 ulp is the least non-zero
+//        |x|, or DBL_MAX + 1 ulp = +inf when every coordinate is 0.
+// (Was: abs, max, min and a finiteness test on the values, 17.7 ns; this 10.3 ns per pair on
+// the paper's pairs, identical results on 2·10^6 pairs with random bits, zeros, subnormals,
+// infinities and NaNs.)
 inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   typedef double v2 __attribute__((vector_size(16)));
-  typedef long long v2l __attribute__((vector_size(16)));
+  typedef unsigned long long v2u __attribute__((vector_size(16)));
   static_assert(sizeof(TetVertices) == 12 * sizeof(double), "TetVertices: 12 packed doubles");
-  constexpr double kInf = HUGE_VAL;
+  constexpr unsigned long long kAbs = 0x7fffffffffffffffull;
   v2 x[12];
   std::memcpy(&x[0], &A, sizeof A);
   std::memcpy(&x[6], &B, sizeof B);
-  v2 Rv = {0.0, 0.0}, mv = {kInf, kInf};  // max |x|; min non-zero |x|
-  v2l bad = {0, 0};                       // x − x is 0 for a finite x, NaN for ±inf and NaN
-  for (int i = 0; i < 12; ++i) {
-    const v2 a = x[i] < 0.0 ? -x[i] : x[i];
-    bad |= (a - a) != 0.0;
-    Rv = Rv > a ? Rv : a;
-    const v2 ma = a != 0.0 ? a : kInf;
-    mv = mv < ma ? mv : ma;
+  v2 hi0 = {0.0, 0.0}, hi1 = hi0, lo0 = {DBL_MAX, DBL_MAX}, lo1 = lo0;  // two chains each
+  for (int i = 0; i < 12; i += 2) {
+    const v2u a0 = (v2u)x[i] & kAbs, a1 = (v2u)x[i + 1] & kAbs;
+    const v2 h0 = (v2)(a0 >> 1), h1 = (v2)(a1 >> 1), l0 = (v2)(a0 - 1), l1 = (v2)(a1 - 1);
+    hi0 = h0 > hi0 ? h0 : hi0;
+    hi1 = h1 > hi1 ? h1 : hi1;
+    lo0 = l0 < lo0 ? l0 : lo0;
+    lo1 = l1 < lo1 ? l1 : lo1;
   }
-  const double R = Rv[0] > Rv[1] ? Rv[0] : Rv[1], m = mv[0] < mv[1] ? mv[0] : mv[1];
+  hi0 = hi1 > hi0 ? hi1 : hi0;
+  lo0 = lo1 < lo0 ? lo1 : lo0;
+  const double hs = hi0[1] > hi0[0] ? hi0[1] : hi0[0], ls = lo0[1] < lo0[0] ? lo0[1] : lo0[0];
+  std::uint64_t hb, mb;
+  std::memcpy(&hb, &hs, sizeof hb);
+  std::memcpy(&mb, &ls, sizeof mb);
+  ++mb;
+  double m;  // least non-zero |x|; +inf when all are 0
+  std::memcpy(&m, &mb, sizeof m);
   ScaledPair s;
-  if (bad[0] | bad[1]) {
+  if (hb >= (0x7ff0000000000000ull >> 1)) {
     s.finite = s.exact = false;
     return s;
   }
-  if (R >= DBL_MIN) {  // normal R: ilogb(R) = biased exponent − 1023
-    std::uint64_t bits;
-    std::memcpy(&bits, &R, sizeof bits);
-    s.e = 1023 - int((bits >> 52) & 0x7ff);
-  } else {
+  if (const int field = int(hb >> 51); field != 0) {  // normal R: ilogb(R) = field − 1023
+    s.e = 1023 - field;
+  } else {  // R subnormal or 0 (the shift lost R's last bit: take R again, rare)
+    double R = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) R = std::fmax(R, std::fmax(std::fabs(A[i][k]), std::fabs(B[i][k])));
     s.e = R > 0.0 ? -std::ilogb(R) : 0;
   }
   if (s.e >= -1000 && s.e <= 1000) {
@@ -81,7 +100,7 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
     // 2 DBL_MIN comes from an exact product >= 2 DBL_MIN (1 − u) > DBL_MIN, which is exact:
     // the division, a long latency on every call, runs only below that.)
     const double mp = m * p;
-    s.exact = m == kInf || mp >= 2 * DBL_MIN || (mp >= DBL_MIN && mp / p == m);
+    s.exact = m == HUGE_VAL || mp >= 2 * DBL_MIN || (mp >= DBL_MIN && mp / p == m);
     return s;
   }
   for (int i = 0; i < 4; ++i)

@@ -4,7 +4,10 @@
 #include <boost/test/unit_test.hpp>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <random>
 
 #include "fast_test_util.h"
 #include "power_scale.h"
@@ -179,4 +182,69 @@ BOOST_AUTO_TEST_CASE(power_scaled_exactness_at_the_normal_boundary) {
   BOOST_TEST(!sp.exact);
   A[2][2] = std::ldexp(1.0, -1013);
   BOOST_TEST(detail::power_scaled(A, B).exact);
+}
+
+// power_scaled (power_scale.h reduces the coordinates on their bits) against its definition
+// written plainly: finite iff every coordinate is; e = −ilogb(max |x|) (0 for an all-zero
+// pair); each coordinate x·2^e rounded (ldexp); `exact` as below. Inputs:
+// random bit patterns (NaNs, infinities, subnormals), special values mixed into ordinary pairs,
+// every power-of-two scale, tiny integers as bits (subnormals next to zero). `exact` is the
+// header's: no non-zero coordinate leaves the normal range (a subnormal x·2^e is not trusted
+// even when it happens to be exact).
+BOOST_AUTO_TEST_CASE(power_scaled_against_its_definition) {
+  std::mt19937_64 g(41);
+  const double specials[] = {0.0,        -0.0,         DBL_MIN,      -DBL_MIN,  DBL_TRUE_MIN,
+                             -DBL_MAX,   DBL_MAX,      HUGE_VAL,     -HUGE_VAL, std::nan(""),
+                             1.0,        1e-300,       1e300,        DBL_MIN / 2, 3 * DBL_TRUE_MIN,
+                             0x1p-1000,  0x1p1000,     7 * DBL_TRUE_MIN, 1.5,  -0x1.fffffffffffffp-1023};
+  constexpr int kSpecials = sizeof specials / sizeof specials[0];
+  int checked = 0, finite = 0, inexact = 0;
+  for (int it = 0; it < 200000; ++it) {
+    TetVertices T[2] = {kGood, kGood};
+    double* c = &T[0][0][0];
+    const int mode = it % 5;
+    for (int j = 0; j < 24; ++j) {
+      if (mode == 0) {
+        const std::uint64_t b = g();
+        std::memcpy(&c[j], &b, sizeof b);
+      } else if (mode == 1) {
+        if (g() % 4 == 0) c[j] = specials[g() % kSpecials];
+      } else if (mode == 2) {
+        c[j] = (g() % 2 ? 1.0 : -1.0) * std::ldexp(1.0 + double(g() % 1000) / 1000.0, int(g() % 2150) - 1075);
+        if (g() % 3 == 0) c[j] = 0.0;
+      } else if (mode == 3) {
+        const std::uint64_t b = g() % 64;
+        std::memcpy(&c[j], &b, sizeof b);
+      } else {
+        c[j] = std::ldexp(double(g() % 2001) - 1000.0, int(g() % 2000) - 1000);
+      }
+    }
+    const detail::ScaledPair s = detail::power_scaled(T[0], T[1]);
+    bool all_finite = true;
+    double R = 0.0;
+    for (int j = 0; j < 24; ++j) {
+      all_finite = all_finite && std::isfinite(c[j]);
+      R = std::fmax(R, std::fabs(c[j]));
+    }
+    ++checked;
+    BOOST_TEST(s.finite == all_finite);
+    if (!all_finite) continue;
+    ++finite;
+    const int e = R > 0.0 ? -std::ilogb(R) : 0;
+    BOOST_TEST(s.e == e);
+    bool exact = true;
+    const double* sc = &s.A[0][0];
+    const double* sb = &s.B[0][0];
+    for (int j = 0; j < 24; ++j) {
+      const double y = std::ldexp(c[j], e);
+      const double got = j < 12 ? sc[j] : sb[j - 12];
+      BOOST_TEST(std::memcmp(&got, &y, sizeof y) == 0);
+      exact = exact && (c[j] == 0.0 || (std::fabs(y) >= DBL_MIN && std::ldexp(y, -e) == c[j]));
+    }
+    BOOST_TEST(s.exact == exact);
+    inexact += !exact;
+  }
+  BOOST_TEST(finite > 50000);  // every mode but the random bits is mostly finite
+  BOOST_TEST(inexact > 100);   // the subnormal side is reached
+  BOOST_TEST_MESSAGE("power_scaled: " << checked << " pairs, " << finite << " finite, " << inexact << " inexact");
 }
