@@ -374,7 +374,7 @@ int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const de
 // |v|^2, which is not small beside mu when the depth is far below the pair's size (a vertex
 // 1e-18 inside a face: mu ~1e-37 beside |H| ~ 25). So for every eigenvector that held its
 // piece's signs when offered (the minimum may be there), its exact eigenvalue must not lie in
-// (floor, best (1 - 1e-9)): one there is a stationary value (if the exact vector lies in the
+// (floor, best (1 + 2^-53) / (1 + 1e-9)): one there is a stationary value (if the exact vector lies in the
 // piece's cone, which the doubles cannot tell) that beats every offer, the offer having missed
 // it. Eigenvalues at or below the floor (PD^2 / 32 (1 - 1e-8), strictly below G everywhere;
 // 0 when the rigid value is not known in doubles: G > 0 on the sphere of an intersecting pair)
@@ -385,7 +385,10 @@ int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const de
 bool unrepresented(const Best& best, double floor_scaled) {
   using detail::Q;
   if (!best.have_q || best.suspects.empty()) return false;
-  Q top = best.qvalue * (Q(1) - Q(1, 1000000000));
+  // top: the reported value, qvalue rounded to a double (<= qvalue (1 + 2^-53)), is within
+  // 1e-9 of every stationary value mu >= top (qvalue (1 + 2^-53) <= mu (1 + 1e-9)). (Was
+  // qvalue (1 - 1e-9): it let the rounded value exceed such a mu by up to 1e-9 + 1.2e-16.)
+  Q top = best.qvalue * (Q(1) + Q(1, 1ul << 53)) / (Q(1) + Q(1, 1000000000));
   detail::scale_pow2(top, -2 * best.unit);
   const Q bottom(floor_scaled);
   for (const auto& [h, k] : best.suspects) {  // eigenvalue k (ascending) in [bottom, top)?
