@@ -35,6 +35,7 @@ constexpr double kGlobalRel = 1e-10;   // value error budget (SPEC §8's 1e-9, w
 constexpr double kPrune = 1e-10;       // an eigenvalue must beat the best by this, relative
 constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
 constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
+constexpr double kNearDouble = 1e-2;   // a gap below this (times |H|_F): the iterative solver
 
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -111,6 +112,9 @@ struct Best {
     V3 n;
   };
   std::vector<Offer> offers;  // double path: every normal evaluated
+  // Double path: an in-window eigenvalue so close to another that the doubles' eigenvector
+  // may miss its value by more than the budget (consider_piece): the caller redoes it exactly.
+  bool needs_exact = false;
   // Exact path: the exact H (the scaled pair's units) and the eigenvalue's index of every
   // eigenvector that held its piece's sign conditions when offered (unrepresented() below).
   struct Suspect {
@@ -202,10 +206,10 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
 // form's cubic roots: measured 2e-11 |H| at a gap of 4e-6 |H|, 4.5e-9 |H| below 1e-6 |H|), so
 // each eigenvalue's margin adds 8 u |H|^2 / max(gap to its neighbours, sqrt(u) |H|) (>= 1e-9
 // |H| at any gap). The window is widened by that margin on both sides (and kPrune above).
-template <class Refine, class MakeConditions, class Suspect>
+template <class Refine, class Ritz, class MakeConditions, class Suspect>
 void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions make_conditions,
-                    const Problem& P, Best& best, double lower, Refine refine, bool exact, long pe,
-                    Suspect suspect) {
+                    const Problem& P, Best& best, double lower, Refine refine, Ritz ritz, bool exact,
+                    long pe, Suspect suspect) {
   const double hnorm = H.norm();
   const double margin = kEigen * hnorm + 3 * h_error;
   const double best_here = best.value_in(pe);  // the best value in this piece's units
@@ -227,7 +231,7 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   if (exact) eig.compute(H);
   else eig.computeDirect(H);
   if (eig.info() != Eigen::Success) return;
-  const Eigen::Vector3d mu = eig.eigenvalues();
+  Eigen::Vector3d mu = eig.eigenvalues();
   double m[3];  // each eigenvalue's margin (above)
   for (int k = 0; k < 3; ++k) {
     double gap = INFINITY;
@@ -241,6 +245,42 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
   for (int k = 0; k < 3; ++k) any = any || in_window(k);
   if (!any) return;
+  // Near-double eigenvalues (double path). An eigenvector v~ off the exact one v* by small
+  // components d_j along the other eigenvectors has a value off by sum_j (lambda_j - mu) d_j^2
+  // (the quadratic form on the unit sphere), and d_j ~ E / |lambda_j - mu| for a matrix error
+  // E: so about E^2 / gap, which is not small beside a shallow mu when the gap is small. The
+  // closed-form solver is worse there (its eigenvalues err by up to ~4.5e-9 |H| near a double
+  // root, so its vectors can be anywhere in the plane: a review's pairs of nearly collinear
+  // edges in shallow contact, two eigenvalues 1e-9 apart, came out 4% above the minimum).
+  // So an in-window eigenvalue within kNearDouble |H| of another is taken from the iterative
+  // solver (vectors off by ~u |H| / gap; eigenvalues backward stable, within a few u |H| of
+  // H's whatever the gap, so the margin drops the closed form's loss term and keeps kEigen
+  // |H| + 3 h_error), and where its estimate 2 E^2 / gap, E = 3 h_error +
+  // 8 u |H| (H's error and the solver's), exceeds 1e-11 of the eigenvalue (a tenth of the
+  // budget kGlobalRel), the pair is redone on exact pieces (needs_exact), whose Ritz offers
+  // below do not depend on the gap.
+  if (!exact) {
+    auto gap_of = [&](int k) {
+      double g = INFINITY;
+      for (int j = 0; j < 3; ++j)
+        if (j != k) g = std::min(g, std::fabs(mu(j) - mu(k)));
+      return g;
+    };
+    bool near_double = false;
+    for (int k = 0; k < 3; ++k) near_double = near_double || (in_window(k) && !(gap_of(k) >= kNearDouble * hnorm));
+    if (near_double) {
+      eig.compute(H);
+      if (eig.info() != Eigen::Success) {
+        best.needs_exact = true;
+        return;
+      }
+      mu = eig.eigenvalues();
+      for (double& mk : m) mk = margin;
+      const double E = 3 * h_error + 8 * kU * hnorm;
+      for (int k = 0; k < 3; ++k)
+        if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here))) best.needs_exact = true;
+    }
+  }
   const Conditions cond = make_conditions();
   bool held[3] = {false, false, false};  // exact path: eigenvector k held the signs
   auto offer_if_held = [&](const V3& v, int k) {
@@ -297,6 +337,27 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
       for (double s : {1.0, -1.0}) {
         offer_if_held(add(mul(u, s / norm(u)), nudge), -1);  // (a wall: not an eigenvector)
       }
+    }
+  // Exact path: near-double eigenvalues. On the plane of two computed eigenvectors e, f whose
+  // eigenvalues are within 1e-2 of each other, the Rayleigh-Ritz vectors of the exact H (ritz:
+  // the 2x2 matrix K = [e f]^T H [e f] in rationals, its eigenvectors by one atan2 of its
+  // exactly computed entries) are offered. Why they are accurate whatever the gap: e, f span
+  // the exact invariant plane up to components w orthogonal to it, |w| ~ u |H| / (distance to
+  // the third eigenvalue), and H maps that plane into itself, so K differs from H's own
+  // restriction by w^T H w only (second order); [e f]^T [e f] = I + O(u) moves K's eigenvalues
+  // by O(u mu) and its vectors by O(u mu / gap), a value change of O(min(gap, (u mu)^2 / gap))
+  // <= u mu; the atan2 of entries rounded once is good to a few u. The inverse iteration
+  // (refine) alone cannot do this: its shift, 1e-6 of mu below, lies between two eigenvalues
+  // that are closer than that.
+  if (exact)
+    for (int k = 0; k < 2; ++k) {
+      if (!(in_window(k) || in_window(k + 1))) continue;
+      if (!(mu(k + 1) - mu(k) <= 1e-2 * std::max(std::fabs(mu(k + 1)), std::fabs(mu(k))) + 2 * m[k])) continue;
+      const Eigen::Vector3d e = eig.eigenvectors().col(k), f = eig.eigenvectors().col(k + 1);
+      V3 r[2];
+      if (!ritz(V3{e(0), e(1), e(2)}, V3{f(0), f(1), f(2)}, r)) continue;
+      for (const V3& v : r)
+        for (double s : {1.0, -1.0}) offer_if_held(mul(v, s), -1);
     }
   for (int k = 0; k < 3; ++k) {
     if (!(mu(k) < best_here * (1 - kPrune) + m[k])) break;  // ascending
@@ -460,6 +521,32 @@ V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe) {
   }
   return v;
 }
+// Rayleigh-Ritz on the plane of e and f (consider_piece's exact path): K = [e f]^T h [e f] in
+// rationals; its eigenvectors make the angles t and t + pi/2 with e, tan 2t = 2 K01 / (K00 -
+// K11), taken from K01 and (K00 - K11) / 2 rounded once. false when K is a multiple of I (every
+// vector of the plane is an eigenvector: e and f are offered already).
+bool ritz(const detail::Q (&h)[3][3], const V3& e, const V3& f, V3 (&out)[2]) {
+  using detail::Q;
+  const Q qe[3] = {Q(e[0]), Q(e[1]), Q(e[2])}, qf[3] = {Q(f[0]), Q(f[1]), Q(f[2])};
+  Q he[3], hf[3];
+  for (int r = 0; r < 3; ++r) {
+    he[r] = h[r][0] * qe[0] + h[r][1] * qe[1] + h[r][2] * qe[2];
+    hf[r] = h[r][0] * qf[0] + h[r][1] * qf[1] + h[r][2] * qf[2];
+  }
+  const Q k00 = qe[0] * he[0] + qe[1] * he[1] + qe[2] * he[2];
+  const Q k11 = qf[0] * hf[0] + qf[1] * hf[1] + qf[2] * hf[2];
+  const Q k01 = qe[0] * hf[0] + qe[1] * hf[1] + qe[2] * hf[2];
+  const Q half_diff = (k00 - k11) / 2;
+  if (sgn(k01) == 0 && sgn(half_diff) == 0) return false;
+  // (the ratio, not the parts: h's entries may lie far outside the double range)
+  const double t = sgn(half_diff) == 0 ? (sgn(k01) > 0 ? M_PI / 4 : -M_PI / 4)
+                                       : 0.5 * std::atan2(Q(k01 / abs(half_diff)).get_d(), sgn(half_diff) > 0 ? 1.0 : -1.0);
+  const double c = std::cos(t), s = std::sin(t);
+  out[0] = add(mul(e, c), mul(f, s));
+  out[1] = add(mul(e, -s), mul(f, c));
+  return true;
+}
+
 // Double path: two steps of inverse iteration in doubles, x = adj(H - sigma I) v with sigma =
 // mu (1 - 1e-6), normalised. The closed-form solver's vectors are the cross products of rows
 // of H - mu I: beside a vertex 10^4 away (|H| ~ 1e9, a depth ~ 1) their error along the large
@@ -641,6 +728,10 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
       };
       consider_piece(H, h_error, make_conditions, P, best, lower,
                      [&](const V3& v, double mu) { return refine(h, v, mu, pe); },
+                     [&](const V3& e, const V3& f, V3 (&r)[2]) {
+                       if constexpr (kExact) return ritz(h, e, f, r);
+                       else return false;
+                     },
                      kExact, pe, [&](int k) {
                        if constexpr (kExact)
                          best.suspects.push_back({{{{h[0][0], h[0][1], h[0][2]},
@@ -708,7 +799,8 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     enumerate_pieces(dA, dB, P, best, lower, [](double x) { return x; });
     // A result above the start's certified value means the doubles could not evaluate even the
     // start's normal (its components are not accurate enough beside a far vertex): exactly.
-    if (tiny(best.value) || best.value > start_value * (1 + 1e-9)) exact_pieces = true, best.offers.clear();
+    if (tiny(best.value) || best.value > start_value * (1 + 1e-9) || best.needs_exact)
+      exact_pieces = true, best.offers.clear();
   }
   double lower_scaled = 0;  // the exact path's floor in its units
   if (exact_pieces) {
