@@ -324,14 +324,14 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
 }
 
 std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
-                                            std::size_t* slow_paths, std::size_t* refined) {
+                                            std::size_t* slow_paths, std::size_t* refined, bool global) {
   std::vector<PairResult<double>> out(pairs.size());
   std::vector<char> slow(pairs.size(), 0), ref(pairs.size(), 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size()),
                     [&](const tbb::blocked_range<size_t>& range) {
                       for (size_t i = range.begin(); i != range.end(); ++i) {
                         bool s = false, f = false;
-                        out[i] = solve_pair(pairs[i], &s, &f);
+                        out[i] = solve_pair(pairs[i], &s, &f, global);
                         slow[i] = s;
                         ref[i] = f;
                       }

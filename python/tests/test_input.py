@@ -30,10 +30,11 @@ def test_module_surface():
     assert isinstance(pdd.__version__, str)
     for f in (pdd, pdd.solve, pdd.solve_batch, pdd.read_fixtures):
         assert f.__doc__ and len(f.__doc__) > 400, f
-    assert list(inspect.signature(pdd.solve).parameters) == ["A", "B", "engine", "formulation", "name"]
+    assert list(inspect.signature(pdd.solve).parameters) == ["A", "B", "engine", "formulation", "name",
+                                                             "with_global"]
     assert inspect.signature(pdd.solve_batch).parameters["threads"].default is None
     text = pydoc.render_doc(pdd.solve, renderer=pydoc.plaintext)
-    for words in ("solve(A, B, engine='fast', formulation='reduced', name='')", "fractions.Fraction",
+    for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True)", "fractions.Fraction",
                   "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "SPEC §8", "GIL"):
         assert words in text, words
 
@@ -206,3 +207,34 @@ def test_fixture_pairs_solve_to_the_cli_records(engine, name, pdd_cli):
             got.append(pdd.solve(p["A"], p["B"], engine=engine, name=p["name"]))
     assert got == want
     assert any(r["error"] for r in got) and any(not r["error"] for r in got)
+
+
+# A near-touching pair (a vertex of B ~1e-12 inside a face of A; an independent review's
+# near-touching-4): its exact pdd2_relaxed is below 1e-14 of its extent squared, where no double
+# normal need attain pdd2_global, and the fast engine rejects the whole record for it (SPEC §6:
+# an error record has no other value). with_global=False skips SPEC §9: the pair's values come
+# back, within SPEC §8 of the exact engine's, and no record carries §9's keys.
+NEAR_A = [[9.037675410932524, 1.693031294904751, 5.424321574712652], [3.8210777667020013, 4.148092997056115, 6.978517449636188],
+          [4.607158911182355, 0.6403846042413175, 9.325503552447756], [5.179261075285503, 1.4998039580173883, 4.764574921655386]]
+NEAR_B = [[5.095298979210175, 2.44263248876802, 7.508522662217512], [6.694381701516087, 5.585622012955357, 10.846255457025519],
+          [7.076930292266666, 1.7370670768927319, 8.261623391742717], [4.324619576096192, 4.561418815077989, 10.29440907742961]]
+GLOBAL_KEYS = {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower"}
+
+
+def test_with_global_false():
+    assert "no normal in doubles attains pdd2_global" in pdd.solve(NEAR_A, NEAR_B)["error"]
+    fast = pdd.solve(NEAR_A, NEAR_B, with_global=False)
+    exact = pdd.solve(NEAR_A, NEAR_B, engine="reference", with_global=False)
+    assert fast["error"] is None and exact["error"] is None and fast["intersecting"]
+    assert not GLOBAL_KEYS & set(fast) and not GLOBAL_KEYS & set(exact)
+    for k in VALUE_KEYS:
+        assert exact[k] > 0 and abs(Fraction(fast[k]) - exact[k]) <= Fraction(1, 10**9) * exact[k], k
+    # elsewhere it changes nothing but the keys
+    full = pdd.solve(A, B)
+    assert {k: v for k, v in full.items() if k not in GLOBAL_KEYS} == pdd.solve(A, B, with_global=False)
+    batch = pdd.solve_batch(np.array([A, NEAR_A]), np.array([B, NEAR_B]), with_global=False)
+    assert not GLOBAL_KEYS & set(batch) and batch["error"] == [None, None]
+    assert batch["pdd2"][0] == full["pdd2"] and batch["pdd2"][1] == fast["pdd2"]
+    for bad in (1, None, "no"):
+        with pytest.raises(ValueError, match="with_global must be True or False"):
+            pdd.solve(A, B, with_global=bad)

@@ -34,11 +34,11 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
 }
 
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
-                                         std::size_t* slow_paths, std::size_t* refined) {
+                                         std::size_t* slow_paths, std::size_t* refined, bool global) {
   std::vector<TetPair> valid;
   for (const auto& e : entries)
     if (!e.error) valid.push_back(e.pair);
-  std::vector<PairResult<double>> computed = fast::solve_batch(valid, slow_paths, refined);
+  std::vector<PairResult<double>> computed = fast::solve_batch(valid, slow_paths, refined, global);
   std::vector<PairResult<double>> out(entries.size());
   for (std::size_t k = 0, v = 0; k < entries.size(); ++k) {
     if (entries[k].error) {
@@ -52,16 +52,25 @@ std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entrie
   return out;
 }
 
-Json fast_record(const PairResult<double>& r) {
+namespace {
+Json without_global(Json j, bool global) {
+  if (!global)
+    for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower"})
+      j.erase(key);
+  return j;
+}
+}  // namespace
+
+Json fast_record(const PairResult<double>& r, bool global) {
   static const NumberWriter<double> number = [](const double& x) { return Json(x); };
-  return result_json(r, number);
+  return without_global(result_json(r, number), global);
 }
 
-Json exact_record(const reference::ExactResult& r) {
+Json exact_record(const reference::ExactResult& r, bool global) {
   static const NumberWriter<reference::Rational> exact = [](const reference::Rational& q) {
     return Json(reference::to_string(q));
   };
-  return result_json(r, exact);
+  return without_global(result_json(r, exact), global);
 }
 
 }  // namespace pdd::compare

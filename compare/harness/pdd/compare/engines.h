@@ -60,14 +60,17 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
 // through pdd::fast::solve_batch (all cores), results in input order.
 // `slow_paths` (optional): how many pairs took the fast engine's exact path (SPEC §8);
 // `refined` (optional): how many were refined instead (solve_pair's `refined`).
+// `global` false: SPEC §9 skipped (solve_pair's `global`).
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
                                          std::size_t* slow_paths = nullptr,
-                                         std::size_t* refined = nullptr);
+                                         std::size_t* refined = nullptr, bool global = true);
 
 // SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
-Json fast_record(const PairResult<double>& r);
+// `global` false: without SPEC §9's keys (pdd2_global, pdd2_global_normal, q1_A_global,
+// q1_B_global, pdd2_global_lower), for results computed without it.
+Json fast_record(const PairResult<double>& r, bool global = true);
 
 // SPEC §6 record of an exact result: every number as an exact "p/q" string.
-Json exact_record(const reference::ExactResult& r);
+Json exact_record(const reference::ExactResult& r, bool global = true);
 
 }  // namespace pdd::compare
