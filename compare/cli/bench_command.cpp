@@ -501,7 +501,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   mesh_cmd->add_option("--distance", ma->options.distance,
                        "Without --a/--b: distance of the balls' centres (overlap: 2 - distance)")
-      ->check(CLI::Range(0.0, 4.0))
+      ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
       ->capture_default_str();
   mesh_cmd->add_option("--write-meshes", ma->options.write_meshes,
                        "Without --a/--b: keep the generated balls in DIR (ball-a.vtk, ball-b.vtk)");

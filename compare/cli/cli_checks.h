@@ -13,11 +13,26 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <string>
 
 namespace pdd::compare {
+
+// Whether two paths name one file: the same existing file, or the same path once normalised
+// (an output that does not exist yet). An output that is also an input would be emptied before
+// it is read (found by a review: `pdd solve --input f --output f` left f empty); two outputs
+// that are one file would overwrite each other.
+inline bool same_file(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return false;
+  std::error_code e;
+  if (std::filesystem::equivalent(a, b, e)) return true;
+  const auto ca = std::filesystem::weakly_canonical(a, e);
+  if (e) return false;
+  const auto cb = std::filesystem::weakly_canonical(b, e);
+  return !e && ca == cb;
+}
 
 // A decimal integer in [lo, hi] (no sign unless lo < 0, no spaces, no fraction).
 inline CLI::Validator integer_in(long long lo, long long hi) {

@@ -22,6 +22,10 @@ int run_golden(const GoldenArgs& a) {
       return kExitOk;
     }
     const auto files = golden_fixture_files(a.fixtures);
+    if (files.empty()) {  // a wrong folder must not pass the check
+      std::cerr << "pdd golden: no fixture files under '" << a.fixtures << "'\n";
+      return kExitFileError;
+    }
     const auto mismatches = check_golden(a.fixtures, f);
     for (const auto& m : mismatches) std::cout << "MISMATCH " << m.file << ": " << m.detail << "\n";
     std::cout << files.size() - mismatches.size() << " of " << files.size()

@@ -147,6 +147,13 @@ int run_mesh(const MeshArgs& args) {
     std::cerr << "pdd mesh: give either --b B or --self\n";
     return kExitUsage;
   }
+  for (const auto& [flag, path] : {std::pair{"--a", args.a}, std::pair{"--b", args.b}, std::pair{"--output", args.output}})
+    for (const auto& [oflag, opath] : {std::pair{"--output", args.output}, std::pair{"--vtk", args.vtk}})
+      if (std::string(flag) != oflag && same_file(path, opath)) {
+        std::cerr << "pdd mesh: " << oflag << " '" << opath << "' is the same file as " << flag
+                  << " (it would be overwritten)\n";
+        return kExitUsage;
+      }
   unsigned variants = 0;
   try {
     variants = mesh::parse_variants(args.variants);

@@ -63,6 +63,10 @@ int run_solve(const SolveArgs& args) {
   // The whole file is checked before anything is computed or written, so that a file that
   // cannot be read produces no output. A regular file is then read a second time in chunks;
   // anything else (a pipe) can be read only once and is held in memory.
+  if (same_file(args.input, args.output)) {
+    std::cerr << "pdd solve: --output '" << args.output << "' is the input file (it would be emptied before it is read)\n";
+    return kExitUsage;
+  }
   std::error_code ec;
   const bool regular = std::filesystem::is_regular_file(args.input, ec);
   FixtureFile whole;

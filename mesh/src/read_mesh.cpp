@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -101,6 +102,13 @@ class Cursor {
     const std::size_t at = (skip_space(), pos_);
     const long long v = integer(what, on_line);
     if (v < 0 || v > (1ll << 40)) fail(std::string(what) + ": " + std::to_string(v) + " is out of range", at);
+    // Every counted item takes at least a byte of the file: a larger count is a lie, and the
+    // reader would allocate for it before finding out (a review's 300-byte "POINTS 1000000000
+    // double" asked for 24 GB).
+    if (static_cast<unsigned long long>(v) > s_.size() - std::min(pos_, s_.size()))
+      fail(std::string(what) + ": " + std::to_string(v) + " is more than the " +
+               std::to_string(s_.size() - std::min(pos_, s_.size())) + " bytes left in the file",
+           at);
     return v;
   }
   // A coordinate: any decimal or "nan"/"inf" (kept as read; the element is reported later).
@@ -140,6 +148,13 @@ class Cursor {
 };
 
 std::string read_file(const std::string& path) {
+  // A mesh is a regular file: a directory would read as empty, a device such as /dev/zero
+  // would never end.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::is_directory(status)) throw ReadError("'" + path + "' is a directory, not a mesh file");
+  if (!ec && !std::filesystem::is_regular_file(status))
+    throw ReadError("'" + path + "' is not a regular file (a mesh is read from a file)");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in)

@@ -181,3 +181,26 @@ run(0 "" ${SOLVE} --no-global --input ${FIXTURES}/smoke.json)
 if(out MATCHES "_global" OR NOT out MATCHES "\"pdd2\":\"4/5\"")
   message(FATAL_ERROR "solve --no-global (reference): wrong records\n${out}")
 endif()
+
+# ---- a review's finds (2026-11-24) ---------------------------------------------------------
+# An output that is an input would be emptied before it is read (solve left the input empty).
+file(COPY ${FIXTURES}/smoke.json DESTINATION ${WORK}/same)
+file(SHA256 ${WORK}/same/smoke.json before)
+run(2 "--output '.*smoke.json' is the input file" solve --engine fast --quiet --input ${WORK}/same/smoke.json --output ${WORK}/same/../same/smoke.json)
+file(SHA256 ${WORK}/same/smoke.json after)
+if(NOT before STREQUAL after)
+  message(FATAL_ERROR "solve --output = --input changed the input")
+endif()
+file(COPY ${FIXTURES}/meshes/tiny-a.msh DESTINATION ${WORK}/same)
+run(2 "--output '.*tiny-a.msh' is the same file as --a" mesh --a ${WORK}/same/tiny-a.msh --b ${FIXTURES}/meshes/tiny-b.msh --output ${WORK}/same/tiny-a.msh)
+run(2 "--vtk '.*o.txt' is the same file as --output" mesh --a ${FIXTURES}/meshes/tiny-a.msh --b ${FIXTURES}/meshes/tiny-b.msh --output ${WORK}/same/o.txt --vtk ${WORK}/same/o.txt)
+# A header that claims more items than the file has bytes (it was allocated first: 24 GB for a
+# 300-byte file); a device and a directory as a mesh.
+file(WRITE ${WORK}/same/lie.vtk "# vtk DataFile Version 3.0\nlie\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1000000000 double\n0 0 0\n")
+run(2 "lie.vtk:5: the number of points: 1000000000 is more than the [0-9]+ bytes left in the file" mesh --a ${WORK}/same/lie.vtk --b ${FIXTURES}/meshes/tiny-b.msh)
+run(2 "'/dev/zero' is not a regular file" mesh --a /dev/zero --b ${FIXTURES}/meshes/tiny-b.msh)
+run(2 "is a directory, not a mesh file" mesh --a ${WORK}/same --b ${FIXTURES}/meshes/tiny-b.msh)
+# A folder without fixtures passed the golden check (0 of 0 match, exit 0).
+file(MAKE_DIRECTORY ${WORK}/empty)
+run(2 "no fixture files under" golden --check --fixtures ${WORK}/empty)
+run(2 "not a finite number" bench mesh --size 200 --distance nan)
