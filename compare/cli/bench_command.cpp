@@ -235,13 +235,17 @@ void print_table(const BenchReport& r, std::ostream& s) {
       << fmt("%.6g", p.worst_peer_pd2) << " vs ours " << fmt("%.6g", p.worst_fast_pd2) << "\n";
   s << "\n";
 
-  s << "Exact engine against ours, one core, first " << e.sample << " pairs\n"
-    << "  rigid PD²: reference::minkowski_pd " << fmt("%.1f", e.exact_rigid_median_ns / 1e3)
-    << " us (median call, " << r.options.repeats << " passes) vs fast rigid_pd2 "
-    << fmt("%.1f", e.fast_rigid_median_ns) << " ns: ratio " << fmt("%.0f", e.rigid_ratio) << "x\n"
-    << "  every value: reference::solve_exact (Reduced) " << fmt("%.2f", e.exact_solve_median_ns / 1e6)
-    << " ms (median call, 1 pass) vs fast solve_pair " << fmt("%.1f", e.fast_solve_median_ns)
-    << " ns: ratio " << fmt("%.0f", e.solve_ratio) << "x\n\n";
+  if (e.sample == 0) {
+    s << "Exact engine against ours: not sampled (--exact-sample 0)\n\n";
+  } else {
+    s << "Exact engine against ours, one core, first " << e.sample << " pairs\n"
+      << "  rigid PD²: reference::minkowski_pd " << fmt("%.1f", e.exact_rigid_median_ns / 1e3)
+      << " us (median call, " << r.options.repeats << " passes) vs fast rigid_pd2 "
+      << fmt("%.1f", e.fast_rigid_median_ns) << " ns: ratio " << fmt("%.0f", e.rigid_ratio) << "x\n"
+      << "  every value: reference::solve_exact (Reduced) " << fmt("%.2f", e.exact_solve_median_ns / 1e6)
+      << " ms (median call, 1 pass) vs fast solve_pair " << fmt("%.1f", e.fast_solve_median_ns)
+      << " ns: ratio " << fmt("%.0f", e.solve_ratio) << "x\n\n";
+  }
 
   s << "Targets (issue 8; time = median over passes of the time per pair, one core)\n";
   for (const auto& t : r.targets) {
@@ -254,6 +258,11 @@ void print_table(const BenchReport& r, std::ostream& s) {
 }
 
 int run(const BenchArgs& a) {
+  if (a.json && !a.json_path.empty() && a.json_path != "-")
+    if (auto why = check_writable(a.json_path)) {  // before the run, not after it
+      std::cerr << "pdd bench: " << *why << "\n";
+      return kExitFileError;
+    }
   BenchReport rep;
   try {
     rep = run_bench(a.options);
@@ -436,6 +445,11 @@ void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
 }
 
 int run_mesh(const MeshBenchArgs& a) {
+  if (a.json && !a.json_path.empty() && a.json_path != "-")
+    if (auto why = check_writable(a.json_path)) {  // before the run, not after it
+      std::cerr << "pdd bench mesh: " << *why << "\n";
+      return kExitFileError;
+    }
   MeshBenchReport rep;
   try {
     MeshBenchOptions o = a.options;

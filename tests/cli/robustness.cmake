@@ -204,3 +204,6 @@ run(2 "is a directory, not a mesh file" mesh --a ${WORK}/same --b ${FIXTURES}/me
 file(MAKE_DIRECTORY ${WORK}/empty)
 run(2 "no fixture files under" golden --check --fixtures ${WORK}/empty)
 run(2 "not a finite number" bench mesh --size 200 --distance nan)
+# bench --json to a path that cannot be written: said before the run (it was said after it).
+run(2 "cannot write '/nonexistent-dir/b.json'" bench --count 10 --repeats 1 --json /nonexistent-dir/b.json)
+run(2 "cannot write '/nonexistent-dir/m.json'" bench mesh --size 200 --repeats 1 --json /nonexistent-dir/m.json)

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <ostream>
@@ -29,6 +30,21 @@ inline std::optional<std::string> close_error(std::ofstream& out, const std::str
   out.close();
   if (out) return std::nullopt;
   return "cannot write to '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : "");
+}
+
+// Whether the file `path` can be opened for writing, checked before a long run whose output
+// would otherwise be lost at its end; the file is left as it was (created for the test and
+// removed again when it did not exist).
+inline std::optional<std::string> check_writable(const std::string& path) {
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(path, ec);
+  errno = 0;
+  {
+    std::ofstream o(path, std::ios::app | std::ios::binary);
+    if (!o) return "cannot write '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : "");
+  }
+  if (!existed) std::filesystem::remove(path, ec);
+  return std::nullopt;
 }
 
 // Writes `text` to the file `path` (created or truncated); the reason when it failed.
