@@ -283,17 +283,18 @@ struct MshState {
 
   void nodes_v4() {
     std::size_t blocks, total;
+    long long min_tag, max_tag;  // every node tag lies in [min_tag, max_tag] (the header's)
     if (binary) {
       to_binary_data();
       blocks = c.raw<std::uint64_t>("$Nodes header");
       total = c.raw<std::uint64_t>("$Nodes header");
-      c.raw<std::uint64_t>("$Nodes header");
-      c.raw<std::uint64_t>("$Nodes header");
+      min_tag = static_cast<long long>(c.raw<std::uint64_t>("$Nodes header"));
+      max_tag = static_cast<long long>(c.raw<std::uint64_t>("$Nodes header"));
     } else {
       blocks = c.count("the number of node blocks");
       total = c.count("the number of nodes", true);
-      c.integer("the smallest node tag", true);
-      c.integer("the largest node tag", true);
+      min_tag = c.integer("the smallest node tag", true);
+      max_tag = c.integer("the largest node tag", true);
     }
     std::size_t read = 0;
     for (std::size_t b = 0; b < blocks; ++b) {
@@ -310,8 +311,10 @@ struct MshState {
         param = c.integer("the parametric flag", true);
         n = c.count("the number of nodes in the block", true);
       }
+      // (n is at most the bytes left too: its tags are allocated before they are read)
       if (dim < 0 || dim > 3 || (param != 0 && param != 1) || n < 0 ||
-          static_cast<std::size_t>(n) > total - read)
+          static_cast<std::size_t>(n) > total - read ||
+          static_cast<std::size_t>(n) > c.data().size() - std::min(c.pos(), c.data().size()))
         c.fail("bad node block header", at, binary);
       const int extra = param ? static_cast<int>(dim) : 0;  // parametric coordinates follow
       std::vector<long long> tags(n);
@@ -320,6 +323,10 @@ struct MshState {
         where[i] = binary ? c.pos() : (c.skip_space(), c.pos());
         tags[i] = binary ? static_cast<long long>(c.raw<std::uint64_t>("node tags"))
                          : c.integer("a node tag");
+        if (tags[i] < min_tag || tags[i] > max_tag)
+          c.fail("node tag " + std::to_string(tags[i]) + " is outside the $Nodes header's range [" +
+                     std::to_string(min_tag) + ", " + std::to_string(max_tag) + "]",
+                 where[i], binary);
       }
       for (long long i = 0; i < n; ++i) {
         const std::size_t cat = binary ? c.pos() : (c.skip_space(), c.pos());
@@ -509,6 +516,10 @@ Mesh read_vtk(Cursor& c) {
     if (key == "POINTS") {
       const long long n = c.count("the number of points", true);
       const std::string type(c.word_on_line("the point type"));
+      static const char* const kTypes[] = {"unsigned_char", "char",  "unsigned_short", "short", "unsigned_int",
+                                           "int",           "unsigned_long", "long", "float", "double"};
+      if (std::find(std::begin(kTypes), std::end(kTypes), type) == std::end(kTypes))
+        c.fail("'" + type + "' is not a VTK data type", at);
       if (binary && type != "float" && type != "double")
         c.fail("binary point type '" + type + "' is not supported (float, double are)", at);
       if (binary) c.next_line();
@@ -548,6 +559,7 @@ Mesh read_vtk(Cursor& c) {
         }
       } else {
         c.set_pos(binary ? peek : after);
+        long long listed = 0;  // the legacy list's length: a size and k indices per cell
         for (long long i = 0; i < n; ++i) {
           const std::size_t cat = binary ? c.pos() : (c.skip_space(), c.pos());
           const long long k = binary ? c.raw<std::int32_t>("cell sizes", true) : c.count("a cell size");
@@ -556,7 +568,12 @@ Mesh read_vtk(Cursor& c) {
           for (auto& v : ids) v = binary ? c.raw<std::int32_t>("cell points", true) : c.integer("a cell point index", true);
           cells.push_back(std::move(ids));
           cell_where.push_back(cat);
+          listed += 1 + k;
         }
+        if (listed != size)  // (a review's file: "CELLS 2 3" over two tetrahedra, read as fine)
+          c.fail("the cell list has " + std::to_string(listed) + " numbers, not the " + std::to_string(size) +
+                     " its header says",
+                 at);
       }
       have_cells = true;
     } else if (key == "CELL_TYPES") {

@@ -207,3 +207,12 @@ run(2 "not a finite number" bench mesh --size 200 --distance nan)
 # bench --json to a path that cannot be written: said before the run (it was said after it).
 run(2 "cannot write '/nonexistent-dir/b.json'" bench --count 10 --repeats 1 --json /nonexistent-dir/b.json)
 run(2 "cannot write '/nonexistent-dir/m.json'" bench mesh --size 200 --repeats 1 --json /nonexistent-dir/m.json)
+# Mesh headers that contradict their contents (accepted before): a point type that is no VTK
+# type, a legacy CELLS size that is not the list's length, an MSH 4.1 node tag outside the
+# $Nodes header's range.
+file(WRITE ${WORK}/same/type.vtk "# vtk DataFile Version 2.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 quaternion\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n")
+run(2 "type.vtk:5: 'quaternion' is not a VTK data type" mesh --a ${WORK}/same/type.vtk --b ${FIXTURES}/meshes/tiny-b.msh)
+file(WRITE ${WORK}/same/size.vtk "# vtk DataFile Version 2.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 3\n4 0 1 2 3\nCELL_TYPES 1\n10\n")
+run(2 "size.vtk:10: the cell list has 5 numbers, not the 3 its header says" mesh --a ${WORK}/same/size.vtk --b ${FIXTURES}/meshes/tiny-b.msh)
+file(WRITE ${WORK}/same/tag.msh "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 3\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n")
+run(2 "tag.msh:[0-9]+: node tag 4 is outside the \\$Nodes header's range \\[1, 3\\]" mesh --a ${WORK}/same/tag.msh --b ${FIXTURES}/meshes/tiny-b.msh)
