@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "pdd/compare/output.h"
 #include "pdd/compare/edge_audit.h"
 #include "pdd/compare/fixture_io.h"
 #include "pdd/compare/engines.h"
@@ -76,7 +77,7 @@ int run_audit(const AuditArgs& a) {
     if (a.json) std::cout << audit_json(r).dump() << "\n";
     if (r.error) {
       ++rejected;
-      std::cerr << "pdd audit-ee: pair '" << r.name << "' rejected: " << *r.error << "\n";
+      std::cerr << "pdd audit-ee: pair '" << printable(r.name) << "' rejected: " << *r.error << "\n";
       continue;
     }
     if (!r.intersecting) continue;

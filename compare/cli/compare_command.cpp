@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "pdd/compare/output.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/engines.h"
 #include "pdd/compare/stats.h"
@@ -47,7 +48,7 @@ Json comparison_json(const PairComparison& c) {
 }
 
 void print_over(const PairComparison& c) {
-  std::cout << "OVER TOLERANCE " << c.name;
+  std::cout << "OVER TOLERANCE " << printable(c.name);
   if (!c.rejections_agree) {
     std::cout << ": exact " << (c.exact_error ? "rejects (" + *c.exact_error + ")" : "accepts")
               << ", fast " << (c.fast_error ? "rejects (" + *c.fast_error + ")" : "accepts") << "\n";
@@ -101,7 +102,7 @@ int run_compare(const CompareArgs& a) {
     if (c.exact_error || c.fast_error) {
       ++rejected;
       if (c.rejections_agree)
-        std::cerr << "pdd compare: pair '" << c.name << "' rejected: "
+        std::cerr << "pdd compare: pair '" << printable(c.name) << "' rejected: "
                   << (c.fast_error ? *c.fast_error : *c.exact_error)
                   << (c.exact_error ? ""
                       : *c.fast_error == kGlobalNotRepresentable

@@ -44,13 +44,13 @@ int write_results(const std::vector<PairResult<R>>& results, Record record, std:
   for (const auto& r : results) {
     out << record(r).dump() << '\n';
     if (r.error) {
-      std::cerr << "pdd solve: pair '" << r.name << "' rejected: " << *r.error << '\n';
+      std::cerr << "pdd solve: pair '" << printable(r.name) << "' rejected: " << *r.error << '\n';
       status = kExitPairRejected;
     }
     if constexpr (!std::is_same_v<R, double>) {  // SPEC §9: say when the proof fell short
       if (r.pdd2_global_lower && r.pdd2_global > 0 &&
           *r.pdd2_global_lower < r.pdd2_global * (1 - R(gap)))
-        std::cerr << "pdd solve: pair '" << r.name << "': pdd2_global - pdd2_global_lower = "
+        std::cerr << "pdd solve: pair '" << printable(r.name) << "': pdd2_global - pdd2_global_lower = "
                   << CGAL::to_double((r.pdd2_global - *r.pdd2_global_lower) / r.pdd2_global)
                   << " * pdd2_global, above --global-gap " << gap
                   << " (the search budget ran out; the lower bound is still proved)\n";

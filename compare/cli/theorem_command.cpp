@@ -4,6 +4,7 @@
 #include "cli_checks.h"
 #include "commands.h"
 #include "exit_codes.h"
+#include "pdd/compare/output.h"
 #include "pdd/compare/fixture_io.h"
 #include "pdd/compare/engines.h"
 #include "pdd/compare/result_json.h"
@@ -62,7 +63,7 @@ int run_theorem(const TheoremArgs& a) {
     if (a.json) std::cout << verdict_json(v).dump() << "\n";
     if (v.error) {
       ++rejected;
-      std::cerr << "pdd theorem: pair '" << v.name << "' rejected: " << *v.error << "\n";
+      std::cerr << "pdd theorem: pair '" << printable(v.name) << "' rejected: " << *v.error << "\n";
       continue;
     }
     ++valid;

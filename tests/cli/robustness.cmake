@@ -216,3 +216,6 @@ file(WRITE ${WORK}/same/size.vtk "# vtk DataFile Version 2.0\nx\nASCII\nDATASET 
 run(2 "size.vtk:10: the cell list has 5 numbers, not the 3 its header says" mesh --a ${WORK}/same/size.vtk --b ${FIXTURES}/meshes/tiny-b.msh)
 file(WRITE ${WORK}/same/tag.msh "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 3\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n")
 run(2 "tag.msh:[0-9]+: node tag 4 is outside the \\$Nodes header's range \\[1, 3\\]" mesh --a ${WORK}/same/tag.msh --b ${FIXTURES}/meshes/tiny-b.msh)
+# A pair name with a newline and a terminal escape: shown as \xNN in messages (it was printed raw).
+file(WRITE ${WORK}/same/esc.json "{\"pairs\":[{\"name\":\"bad\\nname\\u001b[31m\",\"A\":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]],\"B\":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}]}")
+run(1 "pair 'bad\\\\x0aname\\\\x1b\\[31m' rejected: tetrahedron A is flat" solve --engine fast --quiet --input ${WORK}/same/esc.json)
