@@ -10,7 +10,6 @@
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/engines.h"
 #include "pdd/compare/stats.h"
-#include "pdd/rejection.h"
 
 namespace pdd::compare {
 namespace {
@@ -104,12 +103,7 @@ int run_compare(const CompareArgs& a) {
       if (c.rejections_agree)
         std::cerr << "pdd compare: pair '" << printable(c.name) << "' rejected: "
                   << (c.fast_error ? *c.fast_error : *c.exact_error)
-                  << (c.exact_error ? ""
-                      : *c.fast_error == kGlobalNotRepresentable
-                          ? " (allowed: the exact pdd2_relaxed is below 1e-14 of the pair's extent squared, "
-                            "where no double normal need attain pdd2_global)"
-                          : " (the exact engine confirms: a value is outside the double range)")
-                  << "\n";
+                  << (c.allowed_because.empty() ? "" : " (" + c.allowed_because + ")") << "\n";
       continue;
     }
     ++compared;

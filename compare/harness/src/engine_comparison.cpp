@@ -192,10 +192,15 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
   c.exact_error = exact.error, c.fast_error = fast.error;
   const bool fast_unrepresentable =
       fast.error && fast.error->rfind("not representable", 0) == 0;
-  c.rejections_agree = exact.error.has_value() == fast.error.has_value() ||
-                       (!exact.error && fast_unrepresentable && unrepresentable(exact)) ||
-                       (!exact.error && fast.error && *fast.error == kGlobalNotRepresentable &&
-                        global_normal_unresolvable(pair, exact));
+  const bool out_of_range = !exact.error && fast_unrepresentable && unrepresentable(exact);
+  const bool no_normal = !exact.error && fast.error && *fast.error == kGlobalNotRepresentable &&
+                         global_normal_unresolvable(pair, exact);
+  c.rejections_agree = exact.error.has_value() == fast.error.has_value() || out_of_range || no_normal;
+  if (out_of_range)
+    c.allowed_because = "the exact engine confirms: a value is outside the double range";
+  else if (no_normal)
+    c.allowed_because = "allowed: the exact pdd2_relaxed is below 1e-14 of the pair's extent squared, "
+                        "where no double normal need attain pdd2_global";
   if (exact.error || fast.error) return c;
 
   c.intersecting = exact.intersecting;

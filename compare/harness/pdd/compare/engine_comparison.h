@@ -42,6 +42,8 @@ struct PairComparison {
   std::string name;
   std::optional<std::string> exact_error, fast_error;  // rejections
   bool rejections_agree = true;
+  // Where only the fast engine rejected and that is allowed: why (for the message).
+  std::string allowed_because;
   bool intersecting = false;          // exact
   bool intersect_agree = true;
   double condition = 0;               // R / PD (reported; the contract does not depend on it)
