@@ -27,6 +27,7 @@
 #include <unordered_map>
 
 #include "pdd/mesh.h"
+#include "pdd/printable.h"
 
 namespace pdd::mesh {
 namespace {
@@ -43,7 +44,7 @@ class Cursor {
       const std::size_t line = 1 + std::count(s_.begin(), s_.begin() + std::min(at, s_.size()), '\n');
       o << path_ << ":" << line << ": " << msg;
     }
-    throw ReadError(o.str());
+    throw ReadError(printable(o.str()));  // the file's control characters as \xNN
   }
   [[noreturn]] void fail(const std::string& msg) const { fail(msg, pos_); }
 

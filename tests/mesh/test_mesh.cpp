@@ -16,6 +16,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -173,6 +174,20 @@ BOOST_AUTO_TEST_CASE(bad_files_name_the_line_or_element) {
   BOOST_TEST(contains(read_error("bad/bad-index.vtk"), "bad-index.vtk:12: cell 1 (tetrahedron 1) refers to point 9"));
   BOOST_TEST(contains(read_error("bad/README.md"), "neither a Gmsh mesh"));
   BOOST_TEST(contains(read_error("does-not-exist.msh"), "cannot read"));
+  // A NUL in a section name (a review's file): the message shows it as \x00 instead of ending
+  // there ("section $No").
+  const std::string path = (std::filesystem::temp_directory_path() / "pdd-nul-section.msh").string();
+  {
+    std::ofstream f(path, std::ios::binary);
+    f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$No" << '\0' << "des\n1\n1 0 0 0\n$EndNodes\n";
+  }
+  std::string why = "(no error)";
+  try {
+    read_mesh(path);
+  } catch (const ReadError& e) {
+    why = e.what();
+  }
+  BOOST_TEST(contains(why, "nul-section.msh:4: section $No\\x00des has no $EndNo\\x00des"));
 }
 
 BOOST_AUTO_TEST_CASE(flat_and_nan_elements_are_reported_and_skipped) {

@@ -10,6 +10,8 @@
 #include <ostream>
 #include <string>
 
+#include "pdd/printable.h"
+
 namespace pdd::compare {
 
 // Flushes `out`; the reason when anything written to it so far was lost. `where` names the
@@ -32,22 +34,8 @@ inline std::optional<std::string> close_error(std::ofstream& out, const std::str
   return "cannot write to '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : "");
 }
 
-// A pair name as a message shows it: control characters (a newline, a terminal escape) as
-// \xNN, so that a name from a file cannot forge or garble the lines around it (a review's).
-inline std::string printable(const std::string& s) {
-  std::string out;
-  for (const unsigned char ch : s) {
-    if (ch < 0x20 || ch == 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      out += "\\x";
-      out += hex[ch >> 4];
-      out += hex[ch & 15];
-    } else {
-      out += static_cast<char>(ch);
-    }
-  }
-  return out;
-}
+// printable(): pdd/printable.h (a pair name in a message).
+using pdd::printable;
 
 // Whether the file `path` can be opened for writing, checked before a long run whose output
 // would otherwise be lost at its end; the file is left as it was (created for the test and
