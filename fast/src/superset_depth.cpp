@@ -104,13 +104,40 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLan
 // rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
 // Cost: the root bound of an entry takes a division and a square root, so only the entries of
 // the kernel's bound bits are bounded: the others cannot change the verdict or `unique`,
-// whatever the pick (the proof is at certify_bits in superset_kernel.cpp; tests/fast checks
-// the verdict against bounding every entry). The picked entry is always among them.
-void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch, bool* unique) {
+// whatever the pick (the proof is at tie_and_certify_bits in superset_kernel.cpp; tests/fast
+// checks the verdict against bounding every entry). The picked entry is always among them.
+// Most entries are far inside the filter range, where the root bound is tiny: a products-only
+// test (small_root in certify) then stands in a fixed bound kSmallRoot for value_bounds.h's r,
+// saving its chain of two divisions and a square root.
+// Proof that kSmallRoot >= the r that rigid_root_rel would compute. With D² >= 4.2e22 e_h²
+// (computed: e_h² · 4.2e22 (1 − 2u) <= D² (1 + u)), 2 e_h/|D| <= 0.97590e-11 (1 + 2u), so
+// its a = ((2 e_h + u|D|)/|D|, three roundings) <= (0.9759e-11 + u)(1 + 5u) < 0.977e-11.
+// With n.n >= 3.2e22 e_n² (faces; lanes: e_n² · 3.2e22 · inv <= 1, inv = fl(1/(n.n)), so
+// 3.2e22 e_n² <= (1/inv)(1 + 3u) <= fl(1/inv)(1 + 4u), the nn rigid_root_rel is given),
+// rho = sqrt(3) e_n/sqrt(nn) <= sqrt(3/3.2e22)(1 + 2u) = 0.96825e-11 (1 + 2u), computed
+// < 0.97e-11. Both are <= 0.01, so r = 1.02 (a + rho + 4u) (three roundings)
+// < 1.02 (1.947e-11 + 4.5e-16)(1 + 3u) < 1.987e-11 < kSmallRoot. lower_of and upper_of are
+// monotone in r (every rounding is), so lower_of(v, kSmallRoot) <= lower_of(v, r) and
+// upper_of(v, kSmallRoot) >= upper_of(v, r): every verdict reached with it is one the exact
+// bound would reach too (certified_choice is monotone in both). The cost: a verdict needs
+// hi <= (1 + kCertifyRel) lo_all, and (1 + 2e-11)²/(1 − 2e-11)² < 1 + 8.1e-11, far inside
+// kCertifyRel = 9e-10; `unique` (hi < lo_other) can fail where the exact r would pass when
+// another entry is within ~8e-11 of the pick (2% of fast_superset_test's random pairs have
+// such a near-tie): certify() then redoes the verdict with the exact bounds, so its verdict
+// is always theirs. NaN: every test false, exact bound.
+constexpr double kSmallRoot = 2e-11;
+
+// with_small: substitute kSmallRoot where small_root holds (else every bound is rigid_root_rel's).
+void certify_pass(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
+                  bool* unique, bool with_small) {
   const DegreeBounds db = degree_bounds(fb, false);
+  // small_root's thresholds: D² >= eh2k (faces: fl(v·nn), within 3u of the D² that
+  // rigid_root_rel's D = sqrt(v·nn) has, inside the margin above); n.n >= en2k (lanes:
+  // en2k · inv <= 1).
+  const double eh2k = db.e_h * db.e_h * 4.2e22, en2k = db.e_n * db.e_n * 3.2e22;
   double lo_all = kInf, lo_other = kInf, r_pick = kInf;
-  auto entry = [&](double v, double D, double nn, bool picked) {
-    const double r = rigid_root_rel(D, nn, db);
+  auto entry = [&](double v, bool small_root, auto exact_root, bool picked) {
+    const double r = with_small && small_root ? kSmallRoot : exact_root();
     double lo = lower_of(v, r);
     if (!(lo >= 0.0)) lo = 0.0;
     lo_all = lo < lo_all ? lo : lo_all;
@@ -124,18 +151,30 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
     const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                       K.NAB[2][f] * K.NAB[2][f];
     const double v = K.face_val[f];
-    entry(v, std::sqrt(v * nn), nn, c.lane < 0 && c.face == f);
+    entry(v, (eh2k <= v * nn) & (en2k <= nn),
+          [&] { return rigid_root_rel(std::sqrt(v * nn), nn, db); }, c.lane < 0 && c.face == f);
   }
   for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
     const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
     const bool picked_lane = c.lane == lane;
-    const double nn = 1.0 / inv;
-    entry(dp * dp * inv, dp, nn, picked_lane && c.sign > 0);
-    entry(dm * dm * inv, dm, nn, picked_lane && c.sign < 0);
+    const bool small_n = en2k * inv <= 1.0;
+    entry(dp * dp * inv, small_n & (eh2k <= dp * dp),
+          [&] { return rigid_root_rel(dp, 1.0 / inv, db); }, picked_lane && c.sign > 0);
+    entry(dm * dm * inv, small_n & (eh2k <= dm * dm),
+          [&] { return rigid_root_rel(dm, 1.0 / inv, db); }, picked_lane && c.sign < 0);
   }
   ch.certified = certified_choice(upper_of(ch.value, r_pick), lo_all);
   if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;
+}
+
+// The verdict with kSmallRoot, and where it fails (not certified, or not `unique` when asked)
+// the verdict with every bound exact: the same verdict as the exact bounds alone give (a pass
+// with kSmallRoot implies one without it, above).
+void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
+             bool* unique) {
+  certify_pass(K, fb, c, ch, unique, true);
+  if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false);
 }
 
 bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,

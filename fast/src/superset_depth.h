@@ -63,7 +63,7 @@ namespace pdd::fast {
 // Precondition for ch.certified and `unique` (not for the value and label): A and B rescaled by
 // power_scale.h (largest |coordinate| in [1, 2)), as hot_path.h does; the error bounds assume
 // that range (value_bounds.h), and so does the kernel's choice of entries to bound
-// (certify_bits in superset_kernel.cpp: no underflow in its thresholds).
+// (tie_and_certify_bits in superset_kernel.cpp: no underflow in its thresholds).
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
                     Candidate* geometry = nullptr, bool* unique = nullptr);
 

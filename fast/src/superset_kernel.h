@@ -39,7 +39,7 @@ struct alignas(64) SupersetLanes {
   std::uint8_t face_bits;   // faces with value <= t2
   std::uint64_t lane_bits;  // edge pairs (bit 8a + b) with min(value(±n)) <= t2
   // Entries that superset_depth.cpp's certify() must bound (the others are provably far from
-  // the minimum: see certify_bits in superset_kernel.cpp): faces, and edge pairs (bit 8a + b).
+  // the minimum: see tie_and_certify_bits in superset_kernel.cpp): faces, and edge pairs (bit 8a + b).
   std::uint8_t face_bound_bits;
   std::uint64_t lane_bound_bits;
 };

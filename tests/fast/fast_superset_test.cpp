@@ -127,7 +127,7 @@ BOOST_AUTO_TEST_CASE(degenerate_pairs_decline_or_agree) {
 }
 
 // certify() (superset_depth.cpp) bounds only the entries of the kernel's face_bound_bits /
-// lane_bound_bits; the proof that the others cannot change its verdict is at certify_bits
+// lane_bound_bits; the proof that the others cannot change its verdict is at tie_and_certify_bits
 // (superset_kernel.cpp). Checked here against the definition: the verdict (certified, unique)
 // that rigid_superset reports equals the one computed by bounding all 8 faces and both
 // orientations of all 36 edge pairs (value_bounds.h's bounds, no entry skipped), for the
