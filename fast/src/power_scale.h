@@ -49,6 +49,34 @@ struct ScaledPair {
 // (Was: abs, max, min and a finiteness test on the values, 17.7 ns; this 10.3 ns per pair on
 // the paper's pairs, identical results on 2·10^6 pairs with random bits, zeros, subnormals,
 // infinities and NaNs.)
+// The common case of the scaling, from the two reductions described below (hs: the maximum of
+// the shifted |x| bits, ls: the minimum of |x| bits − 1, both read as doubles): every
+// coordinate finite, R normal and |e| <= 1000. Then true, with e, the factor p = 2^e and
+// `exact`; else false (power_scaled's other branches). One place for the rule: power_scaled
+// and the superset kernel's fused scaling (superset_kernel.h) both decide with it.
+inline bool common_scale(double hs, double ls, int& e, double& p, bool& exact) {
+  std::uint64_t hb, mb;
+  std::memcpy(&hb, &hs, sizeof hb);
+  std::memcpy(&mb, &ls, sizeof mb);
+  if (hb >= (0x7ff0000000000000ull >> 1)) return false;  // a coordinate is ±inf or NaN
+  const int field = int(hb >> 51);  // normal R: ilogb(R) = field − 1023
+  if (field == 0) return false;      // R subnormal or 0
+  e = 1023 - field;
+  if (e < -1000 || e > 1000) return false;
+  const std::uint64_t pbits = std::uint64_t(e + 1023) << 52;  // 2^e, a normal double
+  std::memcpy(&p, &pbits, sizeof p);
+  ++mb;
+  double m;  // least non-zero |x|; +inf when all are 0
+  std::memcpy(&m, &mb, sizeof m);
+  // (m p rounded up to exactly DBL_MIN is not exact: m p / p == m tells, as division by a
+  // power of two is exact in the normal range; a review found that case. A computed m p >=
+  // 2 DBL_MIN comes from an exact product >= 2 DBL_MIN (1 − u) > DBL_MIN, which is exact:
+  // the division, a long latency on every call, runs only below that.)
+  const double mp = m * p;
+  exact = m == HUGE_VAL || mp >= 2 * DBL_MIN || (mp >= DBL_MIN && mp / p == m);
+  return true;
+}
+
 inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   typedef double v2 __attribute__((vector_size(16)));
   typedef unsigned long long v2u __attribute__((vector_size(16)));
@@ -69,18 +97,21 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
   hi0 = hi1 > hi0 ? hi1 : hi0;
   lo0 = lo1 < lo0 ? lo1 : lo0;
   const double hs = hi0[1] > hi0[0] ? hi0[1] : hi0[0], ls = lo0[1] < lo0[0] ? lo0[1] : lo0[0];
-  std::uint64_t hb, mb;
-  std::memcpy(&hb, &hs, sizeof hb);
-  std::memcpy(&mb, &ls, sizeof mb);
-  ++mb;
-  double m;  // least non-zero |x|; +inf when all are 0
-  std::memcpy(&m, &mb, sizeof m);
   ScaledPair s;
+  double p;
+  if (common_scale(hs, ls, s.e, p, s.exact)) {
+    for (int i = 0; i < 12; ++i) x[i] = x[i] * p;
+    std::memcpy(&s.A, &x[0], sizeof s.A);
+    std::memcpy(&s.B, &x[6], sizeof s.B);
+    return s;
+  }
+  std::uint64_t hb;
+  std::memcpy(&hb, &hs, sizeof hb);
   if (hb >= (0x7ff0000000000000ull >> 1)) {
     s.finite = s.exact = false;
     return s;
   }
-  if (const int field = int(hb >> 51); field != 0) {  // normal R: ilogb(R) = field − 1023
+  if (const int field = int(hb >> 51); field != 0) {  // normal R, |e| > 1000
     s.e = 1023 - field;
   } else {  // R subnormal or 0 (the shift lost R's last bit: take R again, rare)
     double R = 0.0;
@@ -88,21 +119,7 @@ inline ScaledPair power_scaled(const TetVertices& A, const TetVertices& B) {
       for (int k = 0; k < 3; ++k) R = std::fmax(R, std::fmax(std::fabs(A[i][k]), std::fabs(B[i][k])));
     s.e = R > 0.0 ? -std::ilogb(R) : 0;
   }
-  if (s.e >= -1000 && s.e <= 1000) {
-    const std::uint64_t pbits = std::uint64_t(s.e + 1023) << 52;  // 2^e, a normal double
-    double p;
-    std::memcpy(&p, &pbits, sizeof p);
-    for (int i = 0; i < 12; ++i) x[i] = x[i] * p;
-    std::memcpy(&s.A, &x[0], sizeof s.A);
-    std::memcpy(&s.B, &x[6], sizeof s.B);
-    // (m p rounded up to exactly DBL_MIN is not exact: m p / p == m tells, as division by a
-    // power of two is exact in the normal range; a review found that case. A computed m p >=
-    // 2 DBL_MIN comes from an exact product >= 2 DBL_MIN (1 − u) > DBL_MIN, which is exact:
-    // the division, a long latency on every call, runs only below that.)
-    const double mp = m * p;
-    s.exact = m == HUGE_VAL || mp >= 2 * DBL_MIN || (mp >= DBL_MIN && mp / p == m);
-    return s;
-  }
+  s.exact = true;
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
       s.A[i][k] = std::ldexp(A[i][k], s.e);

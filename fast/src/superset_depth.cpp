@@ -177,10 +177,9 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
   if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false);
 }
 
-bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
-                     bool* unique, bool with_certificate) {
-  SupersetLanes K;
-  superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
+// The choice from the kernel's lanes K of the pair (A, B) (A, B: only for `geometry`).
+bool choice_of_lanes(const SupersetLanes& K, const TetVertices& A, const TetVertices& B,
+                     Choice& ch, Candidate* geometry, bool* unique, bool with_certificate) {
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);
   // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
@@ -213,7 +212,19 @@ bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Can
   return true;
 }
 
+bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
+                     bool* unique, bool with_certificate) {
+  SupersetLanes K;
+  superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
+  return choice_of_lanes(K, A, B, ch, geometry, unique, with_certificate);
+}
+
 }  // namespace
+
+bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e) {
+  SupersetLanes K;
+  return superset_kernel_scaled(A, B, K, e) && choice_of_lanes(K, A, B, ch, nullptr, nullptr, true);
+}
 
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
                     bool* unique) {

@@ -67,6 +67,12 @@ namespace pdd::fast {
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
                     Candidate* geometry = nullptr, bool* unique = nullptr);
 
+// rigid_superset(power_scaled(A, B)...) on the raw pair, the scaling fused into the kernel
+// (superset_kernel_scaled): the same choice bit for bit (value on the scaled pair, e the
+// exponent: the value scales back by 2^-2e). False when power_scale.h's common exact case does
+// not apply or the choice declines: the caller then takes hot_path.h's general frame.
+bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e);
+
 // A benchmark baseline only, NOT SPEC §8: the same kernel and pick on the pair as given, with
 // none of the certification (no power-of-two rescaling, no certify pass, no exact path;
 // ch.certified stays false). `pdd bench` times it beside rigid_pd2(A, B) to report what the

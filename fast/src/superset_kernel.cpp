@@ -31,6 +31,7 @@
 #include <limits>
 
 #include "filter_bounds.h"
+#include "power_scale.h"
 #include "tie_tolerance.h"
 #include "value_bounds.h"
 
@@ -210,9 +211,11 @@ PDD_INLINE SmallBounds small_bounds(double extent) {
 // Edge pairs, n = eB × eA, lanes b, one vector per a (edge_lanes' arithmetic): D(±n), 1/(n.n),
 // the lane's value min(D(±n))²/(n.n) (padding +inf); running minima of D and of the value.
 // kFull: also the candidate list's lanes (superset_kernel.h), verdicts by finish_lanes.
-template <bool kFull>
-PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLanes& K, EdgeLanes* full,
-                                 v8& lo, v8& best, const SmallBounds& sb, v8l& small) {
+// pA: the factor of A's coordinates (the fused scaling, kernel_body; 1 otherwise, not applied).
+template <bool kFull, bool kScaled>
+PDD_INLINE void edge_pair_values(const TetVertices& A, double pA, const v8* RX, SupersetLanes& K,
+                                 EdgeLanes* full, v8& lo, v8& best, const SmallBounds& sb,
+                                 v8l& small) {
   const v8 pad = {0, 0, 0, 0, 0, 0, kInf, kInf};
   const v8* EB = K.EB;
   v8 NB2[3];  // {NB, −NB} per axis: eA . NB2 = {QB, −QB}, q_m = sign · QB[face] a lane of it
@@ -226,7 +229,7 @@ PDD_INLINE void edge_pair_values(const TetVertices& A, const v8* RX, SupersetLan
     put(K.G[f], EB[0] * bc(K.NAB[0][f]) + EB[1] * bc(K.NAB[1][f]) + EB[2] * bc(K.NAB[2][f]));
   v8 W[3][3];  // W[u] = r_x(b) − s_u, u = 0, 1, 2 (the first vertex of every edge of A)
   for (int u = 0; u < 3; ++u)
-    for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - bc(A[u][k]);
+    for (int k = 0; k < 3; ++k) W[u][k] = RX[k] - bc(kScaled ? A[u][k] * pA : A[u][k]);
 #pragma GCC unroll 6  // clang reads it as its own unroll pragma
   for (int a = 0; a < 6; ++a) {
     const int u = kEdges[a][0];
@@ -333,20 +336,50 @@ PDD_INLINE void tie_and_certify_bits(SupersetLanes& K, const v8& fnn, const Smal
   K.lane_bound_bits = std::uint64_t(~horizontal_or(far_bits & small)) & 0x3f3f3f3f3f3fULL;
 }
 
+// power_scale.h's scaling of the pair, fused (kernel_rigid_scaling): its two reductions on the
+// coordinate vectors (the maxima and minima are exact, so the lanes' order does not matter and
+// hs, ls are power_scaled's), its rule (common_scale), and the products x·2^e (the same
+// correctly rounded products). False, X unchanged: not the common case, or not exact.
+PDD_INLINE bool scale_coordinates(v8* X, int& e, double& p) {
+  const v4hl abs = {0x7fffffffffffffffll, 0x7fffffffffffffffll, 0x7fffffffffffffffll,
+                    0x7fffffffffffffffll};
+  const v4h zero = {0.0, 0.0, 0.0, 0.0}, dmax = {DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX};
+  v4h hi = zero, lo = dmax;
+  for (int k = 0; k < 3; ++k)
+    for (const v4h half : {X[k].lo, X[k].hi}) {
+      const v4hl a = (v4hl)half & abs;
+      const v4h h = (v4h)(a >> 1), l = (v4h)(a - 1);
+      hi = h > hi ? h : hi;
+      lo = l < lo ? l : lo;  // (NaN l is never taken: power_scale.h)
+    }
+  const v4h hs2 = shuffle(hi, v4hl{2, 3, 0, 1}), ls2 = shuffle(lo, v4hl{2, 3, 0, 1});
+  hi = hs2 > hi ? hs2 : hi;
+  lo = ls2 < lo ? ls2 : lo;
+  const double hs = hi[1] > hi[0] ? hi[1] : hi[0], ls = lo[1] < lo[0] ? lo[1] : lo[0];
+  bool exact = false;
+  if (!common_scale(hs, ls, e, p, exact) || !exact) return false;
+  const v8 pv = bc(p);
+  for (int k = 0; k < 3; ++k) X[k] = X[k] * pv;
+  return true;
+}
+
 // The whole kernel. kFull: also the candidate list's lanes. A template, so that the rigid
-// kernel carries no trace of the extra stores (registers, code size).
-template <bool kFull>
-PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, SupersetLanes& K,
-                            EdgeLanes* full) {
+// kernel carries no trace of the extra stores (registers, code size). kScaled: on the pair
+// power_scaled(A, B) (scale_coordinates; false when that is not its common exact case).
+template <bool kFull, bool kScaled = false>
+PDD_INLINE bool kernel_body(const TetVertices& A, const TetVertices& B, SupersetLanes& K,
+                            EdgeLanes* full, int* e = nullptr) {
   v8 X[3], RX[3];
   soa_coordinates(A, B, X);
+  double pA = 1.0;
+  if (kScaled && !scale_coordinates(X, *e, pA)) return false;
   pair_scales(X, K);
   edges_and_normals(X, K, RX);
   const SmallBounds sb = small_bounds(K.extent);
   v8 fnn;
   v8 lo = face_values(X, K, fnn), best = K.face_val;
   v8l small{};
-  edge_pair_values<kFull>(A, RX, K, full, lo, best, sb, small);
+  edge_pair_values<kFull, kScaled>(A, pA, RX, K, full, lo, best, sb, small);
   if (kFull) {
     const FilterBounds fb = filter_bounds_of_extent(K.extent);
     finish_lanes(fb.deg2, fb.deg3, *full);
@@ -354,6 +387,7 @@ PDD_INLINE void kernel_body(const TetVertices& A, const TetVertices& B, Superset
   K.lo = hmin(lo);
   K.vmin = hmin(best);
   tie_and_certify_bits(K, fnn, sb, small);
+  return true;
 }
 
 PDD_SUPERSET_CLONES void kernel_rigid(const TetVertices& A, const TetVertices& B, SupersetLanes& K) {
@@ -363,6 +397,10 @@ PDD_SUPERSET_CLONES void kernel_full(const TetVertices& A, const TetVertices& B,
                                      EdgeLanes* full) {
   kernel_body<true>(A, B, K, full);
 }
+PDD_SUPERSET_CLONES bool kernel_rigid_scaling(const TetVertices& A, const TetVertices& B,
+                                              SupersetLanes& K, int* e) {
+  return kernel_body<false, true>(A, B, K, nullptr, e);
+}
 
 }  // namespace
 
@@ -371,6 +409,10 @@ void superset_kernel(const TetVertices& A, const TetVertices& B, SupersetLanes& 
     kernel_full(A, B, K, full);
   else
     kernel_rigid(A, B, K);
+}
+
+bool superset_kernel_scaled(const TetVertices& A, const TetVertices& B, SupersetLanes& K, int& e) {
+  return kernel_rigid_scaling(A, B, K, &e);
 }
 
 void face_draft(const SupersetLanes& K, int f, Draft& d) {

@@ -48,6 +48,13 @@ struct alignas(64) SupersetLanes {
 // (EdgeLanes), filter verdicts included (bounds of filter_bounds.h for K.extent).
 void superset_kernel(const TetVertices& A, const TetVertices& B, SupersetLanes& K, EdgeLanes* full);
 
+// superset_kernel(power_scaled(A, B).A, power_scaled(A, B).B, K, nullptr), bit for bit, with the
+// scaling fused into the kernel (no scaled copy of the pair; power_scale.h's reductions on the
+// kernel's coordinate vectors): true, with power_scaled's exponent e, when power_scale.h's
+// common case applies and is exact (common_scale); false otherwise (K not filled: the caller
+// scales the general way).
+bool superset_kernel_scaled(const TetVertices& A, const TetVertices& B, SupersetLanes& K, int& e);
+
 // Face f (FV:f for f < 4, VF:(f − 4) otherwise) as face_of_A / face_of_B write it, from the
 // kernel's normals, determinants and heights; finish_face then gives the candidate.
 void face_draft(const SupersetLanes& K, int f, Draft& d);

@@ -18,6 +18,9 @@
 #include "value_bounds.h"
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -236,4 +239,68 @@ BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {
   // both verdicts occur, so the equality is tested both ways (counts printed on failure)
   BOOST_TEST(certified > 1000);
   BOOST_TEST(not_certified > 0, "certified " << certified << ", unique " << uniques);
+}
+
+// superset_kernel_scaled (the scaling fused into the kernel, rigid_pd2's common case) against
+// its definition, superset_kernel on power_scaled(A, B): it computes exactly when power_scaled
+// is exact and took its common case (|e| <= 1000, R normal: checked here by e's range and by
+// the scaled pair being the product by 2^e), and then every field of K is the same bits, with
+// the same e. Pairs: random bits (NaN, inf, subnormals, any exponent), random coordinates at
+// scales 2^-1070..2^1020, a subnormal least coordinate beside a large one (not exact), zeros.
+BOOST_AUTO_TEST_CASE(fused_scaling_equals_power_scaled) {
+  using namespace pdd::fast::detail;
+  pdd::compare::ReproducibleRng rng(95);
+  int computed = 0, declined = 0;
+  for (int i = 0; i < 60000; ++i) {
+    TetVertices A, B;
+    const int mode = i % 4;
+    const int ex = rng.integer(-1070, 1020);
+    for (int v = 0; v < 4; ++v)
+      for (int k = 0; k < 3; ++k)
+        for (TetVertices* T : {&A, &B}) {
+          double& x = (*T)[v][k];
+          if (mode == 0) {
+            const std::uint64_t bits = (std::uint64_t(rng.integer(0, 0x7fffffff)) << 33) ^
+                                       (std::uint64_t(rng.integer(0, 0x7fffffff)) << 2) ^
+                                       std::uint64_t(rng.integer(0, 3));
+            std::memcpy(&x, &bits, sizeof x);
+          } else if (mode == 1) {
+            x = std::ldexp(rng.uniform(-1.0, 1.0), ex);
+          } else if (mode == 2) {
+            x = rng.integer(0, 2) == 0 ? std::ldexp(rng.uniform(-1.0, 1.0), -1060)
+                                       : rng.uniform(-1.0, 1.0) * std::ldexp(1.0, ex % 60);
+          } else {
+            x = rng.integer(0, 3) == 0 ? 0.0 : rng.uniform(-4.0, 4.0);
+          }
+        }
+    const ScaledPair sp = power_scaled(A, B);
+    SupersetLanes K1, K2;
+    int e = 12345;
+    const bool fused = superset_kernel_scaled(A, B, K2, e);
+    bool all_zero = true;
+    for (int v = 0; v < 4; ++v)
+      for (int k = 0; k < 3; ++k) all_zero = all_zero && A[v][k] == 0.0 && B[v][k] == 0.0;
+    // power_scaled's common exact case: finite, exact, |e| <= 1000 and R normal (R subnormal
+    // has e >= 1022; R = 0 has e = 0: all_zero)
+    const bool common = sp.finite && sp.exact && sp.e >= -1000 && sp.e <= 1000 && !all_zero;
+    BOOST_TEST_CONTEXT("pair " << i << " mode " << mode) {
+      BOOST_TEST(fused == common);
+      if (!fused) {
+        ++declined;
+        continue;
+      }
+      ++computed;
+      BOOST_TEST(e == sp.e);
+      superset_kernel(sp.A, sp.B, K1, nullptr);
+      // (every byte of K but the padding after the bit masks, which no one reads)
+      const std::size_t n = offsetof(SupersetLanes, face_bits);
+      BOOST_TEST(std::memcmp(&K1, &K2, n) == 0);
+      BOOST_TEST(K1.face_bits == K2.face_bits);
+      BOOST_TEST(K1.lane_bits == K2.lane_bits);
+      BOOST_TEST(K1.face_bound_bits == K2.face_bound_bits);
+      BOOST_TEST(K1.lane_bound_bits == K2.lane_bound_bits);
+    }
+  }
+  BOOST_TEST(computed > 30000);
+  BOOST_TEST(declined > 5000);
 }
