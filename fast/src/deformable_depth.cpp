@@ -579,7 +579,28 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
     return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;
   };
   if (k != 1 && k != kAccelWide) return {};  // the exact path reports the paper's k = 1 and 6
-  if (k == 1)
+  if (k == 1) {
+    // The common case first, the scaling fused into the kernel: what certified_hot_path below
+    // computes when power_scaled is exact and the first branch of its lambda certifies, bit
+    // for bit (the same kernel lanes, geometry and `unique`; filter_bounds of the scaled pair
+    // is filter_bounds_of_extent of the kernel's extent); every other case goes the general
+    // way (recomputing: rare).
+    {
+      Choice rigid;
+      Candidate c;
+      bool unique = false;
+      int e = 0;
+      double extent = 0;
+      if (rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent)) {
+        const Valued x = deformable_valued(c, filter_bounds_of_extent(extent));
+        if (unique && certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r))) {
+          bool ok = true;
+          Choice ch{detail::unscaled(x.v, -2 * e, ok), -1, rigid.code};
+          ch.certified = true;
+          if (ok) return ch;
+        }
+      }
+    }
     return detail::certified_hot_path(
         A, B,
         [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
@@ -604,6 +625,7 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
           return true;
         },
         pick);
+  }
   return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick,
                  [](const QuickCandidates&, Choice&) { return false; });
 }

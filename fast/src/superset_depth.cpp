@@ -65,16 +65,15 @@ bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, 
 }
 
 // The chosen edge-pair candidate, as lane_candidate builds it from the lanes.
-void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLanes& K, const Near& c,
-                   Candidate& g) {
+void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
   const int a = c.lane / kLaneStride, b = c.lane % kLaneStride;
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
   const int k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
   const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
   double m[3];
   edge_pair_normal(eA[0], eA[1], eA[2], K.EB[0][b], K.EB[1][b], K.EB[2][b], m[0], m[1], m[2]);
-  double w[3];
-  sub(B[x], A[u], w);
+  double w[3];  // r_x − s_u (sub(B[x], A[u]) on the kernel's copy of the pair)
+  for (int k = 0; k < 3; ++k) w[k] = K.X[k][4 + x] - K.X[k][u];
   const double h = edge_pair_dot(m[0], m[1], m[2], w[0], w[1], w[2]);
   double q[2];
   for (int j = 0; j < 2; ++j) {
@@ -110,8 +109,10 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLan
 // test (small_root in certify) then stands in a fixed bound kSmallRoot for value_bounds.h's r,
 // saving its chain of two divisions and a square root.
 // Proof that kSmallRoot >= the r that rigid_root_rel would compute. With D² >= 4.2e22 e_h²
-// (computed: e_h² · 4.2e22 (1 − 2u) <= D² (1 + u)), 2 e_h/|D| <= 0.97590e-11 (1 + 2u), so
-// its a = ((2 e_h + u|D|)/|D|, three roundings) <= (0.9759e-11 + u)(1 + 5u) < 0.977e-11.
+// up to a few roundings (computed: e_h² · 4.2e22 (1 − 2u) <= D² (1 + u); the double 4.2e22 is
+// 1e-16 below 4.2e22; faces: D = sqrt(fl(v·nn)), so D² >= 4.2e22 e_h² (1 − 5u) — every such
+// factor is ~1e-16 against the margin of 0.8% left below), 2 e_h/|D| <= 0.97590e-11 (1 + 4u),
+// so its a = ((2 e_h + u|D|)/|D|, three roundings) <= (0.9759e-11 + u)(1 + 7u) < 0.977e-11.
 // With n.n >= 3.2e22 e_n² (faces; lanes: e_n² · 3.2e22 · inv <= 1, inv = fl(1/(n.n)), so
 // 3.2e22 e_n² <= (1/inv)(1 + 3u) <= fl(1/inv)(1 + 4u), the nn rigid_root_rel is given),
 // rho = sqrt(3) e_n/sqrt(nn) <= sqrt(3/3.2e22)(1 + 2u) = 0.96825e-11 (1 + 2u), computed
@@ -124,7 +125,11 @@ void lane_geometry(const TetVertices& A, const TetVertices& B, const SupersetLan
 // kCertifyRel = 9e-10; `unique` (hi < lo_other) can fail where the exact r would pass when
 // another entry is within ~8e-11 of the pick (2% of fast_superset_test's random pairs have
 // such a near-tie): certify() then redoes the verdict with the exact bounds, so its verdict
-// is always theirs. NaN: every test false, exact bound.
+// is always theirs. NaN: every test false, exact bound. Precondition, as for the kernel's bound
+// bits: a rescaled pair (power_scale.h), so that e_h² · 4.2e22 and e_n² · 3.2e22 are normal
+// (>= 2^-335; unscaled, they could underflow for L < 2^-167 and the test would be unsound).
+// (A review re-derived every constant, drove 4·10^7 inputs onto the tests' boundaries — the
+// largest rigid_root_rel found was 1.98309e-11 — and compared both verdicts on 874,930 calls.)
 constexpr double kSmallRoot = 2e-11;
 
 // with_small: substitute kSmallRoot where small_root holds (else every bound is rigid_root_rel's).
@@ -177,9 +182,9 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
   if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false);
 }
 
-// The choice from the kernel's lanes K of the pair (A, B) (A, B: only for `geometry`).
-bool choice_of_lanes(const SupersetLanes& K, const TetVertices& A, const TetVertices& B,
-                     Choice& ch, Candidate* geometry, bool* unique, bool with_certificate) {
+// The choice from the kernel's lanes K.
+bool choice_of_lanes(const SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
+                     bool with_certificate) {
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);
   // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
@@ -201,7 +206,7 @@ bool choice_of_lanes(const SupersetLanes& K, const TetVertices& A, const TetVert
   if (with_certificate) certify(K, fb, c, ch, unique);
   if (!geometry) return true;
   if (c.lane >= 0)
-    lane_geometry(A, B, K, c, *geometry);
+    lane_geometry(K, c, *geometry);
   else
   {
     Draft d;
@@ -216,14 +221,17 @@ bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Can
                      bool* unique, bool with_certificate) {
   SupersetLanes K;
   superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
-  return choice_of_lanes(K, A, B, ch, geometry, unique, with_certificate);
+  return choice_of_lanes(K, ch, geometry, unique, with_certificate);
 }
 
 }  // namespace
 
-bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e) {
+bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
+                           Candidate* geometry, bool* unique, double* extent) {
   SupersetLanes K;
-  return superset_kernel_scaled(A, B, K, e) && choice_of_lanes(K, A, B, ch, nullptr, nullptr, true);
+  if (!superset_kernel_scaled(A, B, K, e)) return false;
+  if (extent) *extent = K.extent;
+  return choice_of_lanes(K, ch, geometry, unique, true);
 }
 
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,

@@ -68,10 +68,15 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
                     Candidate* geometry = nullptr, bool* unique = nullptr);
 
 // rigid_superset(power_scaled(A, B)...) on the raw pair, the scaling fused into the kernel
-// (superset_kernel_scaled): the same choice bit for bit (value on the scaled pair, e the
-// exponent: the value scales back by 2^-2e). False when power_scale.h's common exact case does
-// not apply or the choice declines: the caller then takes hot_path.h's general frame.
-bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e);
+// (superset_kernel_scaled): the same choice, geometry and `unique` bit for bit (value and
+// geometry of the scaled pair, e the exponent: the value scales back by 2^-2e), and `extent`
+// (optional) the scaled pair's L of filter_bounds.h (filter_bounds(scaled pair) is
+// filter_bounds_of_extent(*extent): the same maxima, minima and differences). False when
+// power_scale.h's common exact case does not apply or the choice declines: the caller then
+// takes hot_path.h's general frame.
+bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
+                           Candidate* geometry = nullptr, bool* unique = nullptr,
+                           double* extent = nullptr);
 
 // A benchmark baseline only, NOT SPEC §8: the same kernel and pick on the pair as given, with
 // none of the certification (no power-of-two rescaling, no certify pass, no exact path;

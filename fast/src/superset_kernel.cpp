@@ -373,6 +373,7 @@ PDD_INLINE bool kernel_body(const TetVertices& A, const TetVertices& B, Superset
   soa_coordinates(A, B, X);
   double pA = 1.0;
   if (kScaled && !scale_coordinates(X, *e, pA)) return false;
+  for (int k = 0; k < 3; ++k) put(K.X[k], X[k]);
   pair_scales(X, K);
   edges_and_normals(X, K, RX);
   const SmallBounds sb = small_bounds(K.extent);

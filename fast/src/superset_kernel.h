@@ -21,6 +21,7 @@ namespace pdd::fast::detail {
 
 // Output of the vector kernel (lanes: see superset_kernel.cpp).
 struct alignas(64) SupersetLanes {
+  v8 X[3];          // the pair's coordinates (scaled, superset_kernel_scaled), lanes s0..s3, r0..r3
   v8 EA[3], EB[3];  // edge vectors of A and of B, lanes = edges (padding 0), per coordinate
   v8 NAB[3];        // raw face normals, lanes NA[0..3], NB[0..3], per coordinate
   v8 det;           // lanes 3 and 7: det of A and of B (edges_and_faces)

@@ -260,9 +260,10 @@ BOOST_AUTO_TEST_CASE(fused_scaling_equals_power_scaled) {
         for (TetVertices* T : {&A, &B}) {
           double& x = (*T)[v][k];
           if (mode == 0) {
-            const std::uint64_t bits = (std::uint64_t(rng.integer(0, 0x7fffffff)) << 33) ^
-                                       (std::uint64_t(rng.integer(0, 0x7fffffff)) << 2) ^
-                                       std::uint64_t(rng.integer(0, 3));
+            // (64 random bits from three draws; integer(lo, hi) needs hi + 1 to fit an int)
+            const std::uint64_t bits = (std::uint64_t(rng.integer(0, 0x3fffffff)) << 34) ^
+                                       (std::uint64_t(rng.integer(0, 0x3fffffff)) << 4) ^
+                                       std::uint64_t(rng.integer(0, 15));
             std::memcpy(&x, &bits, sizeof x);
           } else if (mode == 1) {
             x = std::ldexp(rng.uniform(-1.0, 1.0), ex);
