@@ -65,9 +65,14 @@ Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound&
   return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
 }
 
+// pdd2_accel(A, B, 1)'s value (only its own interval is used, so kTinyQpRoot may stand in for
+// the root bound where its products-only test passes: value_bounds.h; the wide solver bound
+// (kSolverDisplacementCoeff, Hm) covers whichever solver_bound would return).
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
       solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+  if (qp_root_rel_tiny(s.cost, c.nn, detail::max_height(c), degree_bounds(fb, c.parallel)))
+    return {s.cost / (20.0 * c.nn), kTinyQpRoot};  // valued()'s value
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 

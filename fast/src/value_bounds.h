@@ -122,6 +122,29 @@ inline bool qp_root_rel_small(double F, double nn, double H, const DegreeBounds&
   return (X * X * 222000.0 <= F) & (3 * b.e_n * b.e_n * 11100.0 <= nn);
 }
 
+// A products-only test that qp_root_rel, for any solver bound covered as above (coeff' H' <=
+// coeff H), is <= kTinyQpRoot: for a single candidate's value where only its own interval
+// matters (pdd2_accel(A, B, 1): certified_choice(upper_of(v, r), lower_of(v, r)) holds for r up to
+// ~2.2e-10, and (1 + 1.1e-10)²/(1 − 1.1e-10)² < 1 + 4.5e-10), it saves the solver bound's
+// loop and qp_root_rel's two square roots and two divisions. Proof (the notation of
+// qp_root_rel_small, whose rounding argument it repeats): X = 2 e_h + 1.5 coeff u H (computed)
+// >= the computed 2 e_h + sqrt(2) dT'. X² · 8.4e21 <= F (8.4e21 = 21·5^20·2^22 and 1.25e21 =
+// 5^22·2^19 are exact doubles; three roundings) gives X/phi <= sqrt(20/8.4e21)(1 + 2u) =
+// 4.8795e-11 (1 + 2u), so its a <= 4.8796e-11 after qp_root_rel's roundings; e_n² · 1.25e21 <=
+// nn gives rho = sqrt(3) e_n/sqrt(nn) <= sqrt(3/1.25e21)(1 + 2u) = 4.8990e-11 (1 + 2u), computed
+// <= 4.8991e-11. Both <= 0.01: r = 1.02 (a + rho + 4u) (three roundings)
+// <= 1.02 · 9.7788e-11 (1 + 3u) < 9.975e-11 < kTinyQpRoot. lower_of and upper_of are monotone
+// in r, so a verdict reached with kTinyQpRoot is one the exact bound reaches too; and with it
+// the single-candidate verdict above always holds, so the verdict is the same. NaN: false.
+// (No underflow: e_h², e_n² are normal on rescaled pairs, tie_and_certify_bits in
+// superset_kernel.cpp.)
+inline constexpr double kTinyQpRoot = 1.1e-10;
+inline bool qp_root_rel_tiny(double F, double nn, double H, const DegreeBounds& b,
+                             double coeff = kSolverDisplacementCoeff) {
+  const double X = 2 * b.e_h + 1.5 * coeff * kUnitRoundoff * H;
+  return (X * X * 8.4e21 <= F) & (b.e_n * b.e_n * 1.25e21 <= nn);
+}
+
 // Interval of the exact value from v~ and its root bound r.
 inline double lower_of(double v, double r) { return r >= 1 ? 0.0 : v * (1 - r) * (1 - r); }
 inline double upper_of(double v, double r) { return v * (1 + r) * (1 + r); }

@@ -15,7 +15,9 @@
 #include "power_scale.h"
 #include "qp_lower_bound.h"
 #include "quick_candidates.h"
+#include "value_bounds.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -174,4 +176,35 @@ BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
     BOOST_TEST((hot[i].dir && lab[i] && *hot[i].dir == *lab[i]));
     BOOST_TEST(hot[i].pd2 == ref[i]);
   }
+}
+
+// value_bounds.h's qp_root_rel_tiny: wherever it holds, qp_root_rel is <= kTinyQpRoot for the
+// wide solver bound (kSolverDisplacementCoeff, H) and for every tight one it covers
+// (kSolverDisplacementCoeffTight, H' <= 8 H), as pdd2_accel(A, B, 1) relies on. Inputs driven
+// onto the test's boundary (F and nn at most 1e-6 above their thresholds, one at a time and
+// both) for extents 2^-53..8 (the rescaled range), both degree classes and heights up to 8 L;
+// the largest bound found is printed against the proof's 9.975e-11.
+BOOST_AUTO_TEST_CASE(tiny_qp_root_bound_holds_on_its_boundary) {
+  pdd::compare::ReproducibleRng rng(97);
+  double worst = 0.0;
+  int held = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const double L = std::ldexp(rng.uniform(1.0, 2.0), rng.integer(-53, 2));
+    const DegreeBounds db = degree_bounds(filter_bounds_of_extent(L), i % 2 == 1);
+    const double H = L * std::ldexp(rng.uniform(0.0, 1.0), rng.integer(-30, 3));
+    const double X = 2 * db.e_h + 1.5 * kSolverDisplacementCoeff * kUnitRoundoff * H;
+    const int mode = i % 3;
+    const double F = X * X * 8.4e21 * (1 + (mode == 2 ? 1e6 : 1e-6) * rng.uniform(0.0, 1.0));
+    const double nn = db.e_n * db.e_n * 1.25e21 * (1 + (mode == 1 ? 1e6 : 1e-6) * rng.uniform(0.0, 1.0));
+    if (!qp_root_rel_tiny(F, nn, H, db)) continue;
+    ++held;
+    const double wide = qp_root_rel(F, nn, H, db);
+    const double tight = qp_root_rel(F, nn, 8 * H, db, kSolverDisplacementCoeffTight);
+    worst = std::max({worst, wide, tight});
+    BOOST_TEST(wide <= kTinyQpRoot);
+    BOOST_TEST(tight <= kTinyQpRoot);
+  }
+  BOOST_TEST(held > 300000);
+  BOOST_TEST(worst > 9.0e-11, "the boundary was reached: worst " << worst);
+  BOOST_TEST_MESSAGE("qp_root_rel_tiny: largest qp_root_rel where it holds " << worst);
 }
