@@ -133,7 +133,7 @@ void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
 constexpr double kSmallRoot = 2e-11;
 
 // with_small: substitute kSmallRoot where small_root holds (else every bound is rigid_root_rel's).
-void certify_pass(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
+inline __attribute__((always_inline)) void certify_pass(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
                   bool* unique, bool with_small) {
   const DegreeBounds db = degree_bounds(fb, false);
   // small_root's thresholds: D² >= eh2k (faces: fl(v·nn), within 3u of the D² that
