@@ -76,6 +76,17 @@ Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
+// pdd2_accel(A, B, 1) from the superset's rigid choice and its candidate c: the case-2 value
+// along c, certified when the rigid direction is the exact one (`unique`, superset_depth.h)
+// and the value's own interval meets SPEC §8. Returns ch.certified.
+bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const FilterBounds& fb,
+                     Choice& ch) {
+  const Valued x = deformable_valued(c, fb);
+  ch = {x.v, -1, rigid.code};
+  ch.certified = unique && certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r));
+  return ch.certified;
+}
+
 // The sweep's variants, as function objects (inlined): `solve` the QP (false: infeasible, not
 // in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
 struct StaticVariant {
@@ -584,41 +595,27 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
     return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;
   };
   if (k != 1 && k != kAccelWide) return {};  // the exact path reports the paper's k = 1 and 6
-  if (k == 1) {
-    // The common case first, the scaling fused into the kernel: what certified_hot_path below
-    // computes when power_scaled is exact and the first branch of its lambda certifies, bit
-    // for bit (the same kernel lanes, geometry and `unique`; filter_bounds of the scaled pair
-    // is filter_bounds_of_extent of the kernel's extent); every other case goes the general
-    // way (recomputing: rare).
-    {
-      Choice rigid;
-      Candidate c;
-      bool unique = false;
-      int e = 0;
-      double extent = 0;
-      if (rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent)) {
-        const Valued x = deformable_valued(c, filter_bounds_of_extent(extent));
-        if (unique && certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r))) {
-          bool ok = true;
-          Choice ch{detail::unscaled(x.v, -2 * e, ok), -1, rigid.code};
-          ch.certified = true;
-          if (ok) return ch;
-        }
-      }
-    }
-    return detail::certified_hot_path(
+  if (k == 1)
+    return detail::fused_hot_path(
         A, B,
+        // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
+        // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
+        // of the kernel's extent: the same maxima, minima and differences)
+        [&A, &B](Choice& ch, int& e) {
+          Choice rigid;
+          Candidate c;
+          bool unique = false;
+          double extent = 0;
+          return rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent) &&
+                 accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch);
+        },
         [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
           Choice rigid;
           Candidate c;
           bool unique = false;
-          if (rigid_superset(As, Bs, rigid, &c, &unique)) {
-            const Valued x = deformable_valued(c, filter_bounds(As, Bs));
-            const double v = x.v, r = x.r;
-            ch = {v, -1, rigid.code};
-            ch.certified = unique && certified_choice(upper_of(v, r), lower_of(v, r));
-            if (ch.certified) return true;
-          }
+          if (rigid_superset(As, Bs, rigid, &c, &unique) &&
+              accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), ch))
+            return true;
           QuickCandidates q;
           if (quick_candidates(As, Bs, q)) {
             ch = pdd2_accel(q, 1);
@@ -630,7 +627,6 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
           return true;
         },
         pick);
-  }
   return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick,
                  [](const QuickCandidates&, Choice&) { return false; });
 }

@@ -58,4 +58,24 @@ Choice certified_hot_path(const TetVertices& A, const TetVertices& B, Run run, P
   return exact_choice(A, B, pick);
 }
 
+// certified_hot_path with a first try that fuses the rescaling into the kernel
+// (superset_kernel_scaled): `fused(ch, e)` returns true with a choice on the pair rescaled by
+// 2^e when power_scale.h's common exact case applies; a certified one whose value scales back
+// into the normal range is what certified_hot_path would return (the same scaled pair, the
+// same double path: each caller argues that its `fused` is its `run` on it). Everything else
+// goes the general way (recomputing: rare).
+template <class Fused, class Run, class Pick>
+Choice fused_hot_path(const TetVertices& A, const TetVertices& B, Fused fused, Run run, Pick pick) {
+  {
+    Choice ch;
+    int e = 0;
+    if (fused(ch, e) && ch.certified) {
+      bool ok = true;
+      ch.value = unscaled(ch.value, -2 * e, ok);
+      if (ok) return ch;
+    }
+  }
+  return certified_hot_path(A, B, run, pick);
+}
+
 }  // namespace pdd::fast::detail

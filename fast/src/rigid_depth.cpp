@@ -131,20 +131,10 @@ double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
 }
 
 Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
-  // The common case first, the scaling fused into the kernel: what certified_hot_path below
-  // computes when power_scaled is exact and the superset's choice is certified (its first
-  // branch), bit for bit; every other case goes the general way (recomputing: rare).
-  {
-    Choice ch;
-    int e = 0;
-    if (rigid_superset_scaled(A, B, ch, e) && ch.certified) {
-      bool ok = true;
-      ch.value = detail::unscaled(ch.value, -2 * e, ok);
-      if (ok) return ch;
-    }
-  }
-  return detail::certified_hot_path(
+  return detail::fused_hot_path(
       A, B,
+      // rigid_superset on the rescaled pair, the run's first branch (superset_depth.h)
+      [&A, &B](Choice& ch, int& e) { return rigid_superset_scaled(A, B, ch, e); },
       [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
         if (rigid_superset(As, Bs, ch) && ch.certified) return true;
         CandidateSet set;
