@@ -7,26 +7,46 @@
 // is used as a sentinel (rationals have none): "no breakpoint left" is a flag.
 #pragma once
 
+#include <type_traits>
+
 #include "direction_qp.h"
 
 namespace pdd::fast::detail {
 
-// Compare-exchange as two selects of one comparison (no branch on the data for doubles;
-// measured: the branches of the network mispredicted, and this form took solve_deformable
-// from 55 to 45 ns on the paper's rigid candidates).
+// Doubles take selects and counts in T (no branch on the data: the sorting network's branches
+// mispredicted; measured on the paper's rigid candidates, solve_deformable 55 -> 45 ns).
+// Exact types (mpq_class) keep branches and int counts: a select evaluates both sides, and a
+// rational count turns integer arithmetic into rational (the exact path was 10% slower so).
+template <class T>
+inline constexpr bool kSelects = std::is_floating_point_v<T>;
+template <class T>
+using Count = std::conditional_t<kSelects<T>, T, int>;  // small integers: exact either way
+
 template <class T>
 inline void cswap_asc(T& a, T& b) {  // afterwards a <= b (unless NaN)
-  const bool swap = b < a;
-  const T lo = swap ? b : a, hi = swap ? a : b;
-  a = lo;
-  b = hi;
+  if constexpr (kSelects<T>) {
+    const bool swap = b < a;
+    const T lo = swap ? b : a, hi = swap ? a : b;
+    a = lo;
+    b = hi;
+  } else if (b < a) {
+    T t = a;
+    a = b;
+    b = t;
+  }
 }
 template <class T>
 inline void cswap_desc(T& a, T& b) {  // afterwards a >= b: the swaps of cswap_asc on −a, −b
-  const bool swap = a < b;
-  const T hi = swap ? b : a, lo = swap ? a : b;
-  a = hi;
-  b = lo;
+  if constexpr (kSelects<T>) {
+    const bool swap = a < b;
+    const T hi = swap ? b : a, lo = swap ? a : b;
+    a = hi;
+    b = lo;
+  } else if (a < b) {
+    T t = a;
+    a = b;
+    b = t;
+  }
 }
 
 // Sorting networks, n <= 4. The descending one is the ascending network on −v (the same
@@ -76,32 +96,30 @@ inline T side_cost(int ncon, const T& hcon, const T* f, int k, const T& c, T* S)
 }
 
 // The merged-breakpoint walk of direction_qp.h. A.hfree sorted descending, B.hfree ascending.
-// The counts mA, mB are kept in T (small integers: exact in doubles, the same products as
-// int · T) and each step's updates are selects of both candidates' (the walk's branch is its
-// trip count only; measured with the sort above: 55 -> 43 ns).
 template <class T>
 Solution<T> two_sided(const Side<T>& A, const Side<T>& B) {
   int kA = A.nfree, kB = 0;
-  T mA = A.ncon + A.nfree, mB = B.ncon;
+  Count<T> mA = A.ncon + A.nfree, mB = B.ncon;  // (kSelects above)
   T PA = A.ncon * A.hcon, PB = B.ncon * B.hcon;
   for (int i = 0; i < A.nfree; ++i) PA += A.hfree[i];
   T X{};
   while (kA > 0 || kB < B.nfree) {
     const bool hasA = kA > 0, hasB = kB < B.nfree;
-    const T& hA = A.hfree[hasA ? kA - 1 : 0];  // (index 0 when absent: read, not used)
-    const T& hB = B.hfree[hasB ? kB : 0];
-    const T XA = (5 - mA) * hA + PA;
-    const T XB = (5 - mB) * hB + PB;
+    T XA{}, XB{};
+    if (hasA) XA = (5 - mA) * A.hfree[kA - 1] + PA;
+    if (hasB) XB = (5 - mB) * B.hfree[kB] + PB;
     const bool takeA = hasA && (!hasB || XA <= XB);
     X = takeA ? XA : XB;
     if ((mA * X - 5 * PA) * (5 - mB) + (mB * X - 5 * PB) * (5 - mA) >= 0) break;
-    const T PA1 = PA - hA, PB1 = PB + hB;  // take A's next (leaves), or B's (joins)
-    PA = takeA ? PA1 : PA;
-    PB = takeA ? PB : PB1;
-    mA = takeA ? T(mA - 1) : mA;
-    mB = takeA ? mB : T(mB + 1);
-    kA -= int(takeA);
-    kB += int(!takeA);
+    if (takeA) {
+      --kA;
+      mA -= 1;
+      PA -= A.hfree[kA];
+    } else {
+      PB += B.hfree[kB];
+      ++kB;
+      mB += 1;
+    }
   }
   // A's sum over its active vertices, added afresh: the walk's running PA (every height of A
   // minus the inactive ones) carries rounding errors of the whole height range, this one only
@@ -109,7 +127,7 @@ Solution<T> two_sided(const Side<T>& A, const Side<T>& B) {
   PA = A.ncon * A.hcon;
   for (int i = 0; i < kA; ++i) PA += A.hfree[i];
   Solution<T> s;
-  const T den = mA * (5 - mB) + mB * (5 - mA);
+  const Count<T> den = mA * (5 - mB) + mB * (5 - mA);
   if (den == 0)
     s.c = X / 5;
   else
