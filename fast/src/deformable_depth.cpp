@@ -87,6 +87,17 @@ bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const
   return ch.certified;
 }
 
+}  // namespace
+
+bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
+                      Choice& accel1) {
+  bool unique = false;
+  return rigid_superset(As, Bs, rigid, &c, &unique) &&
+         accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), accel1);
+}
+
+namespace {
+
 // The sweep's variants, as function objects (inlined): `solve` the QP (false: infeasible, not
 // in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
 struct StaticVariant {
@@ -612,10 +623,7 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
         [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
           Choice rigid;
           Candidate c;
-          bool unique = false;
-          if (rigid_superset(As, Bs, rigid, &c, &unique) &&
-              accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), ch))
-            return true;
+          if (rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
           QuickCandidates q;
           if (quick_candidates(As, Bs, q)) {
             ch = pdd2_accel(q, 1);

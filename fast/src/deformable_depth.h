@@ -68,6 +68,13 @@ bool pdd2_static_lanes(const QuickCandidates& q, Choice& ch);
 bool pdd2_lanes(const QuickCandidates& q, Choice& ch);
 bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch);
 
+// The first try of pdd2_accel(A, B, 1) on a pair rescaled by power_scale.h (As, Bs):
+// rigid_superset's rigid choice and its candidate `c` (superset_depth.h), and `accel1`, the
+// case-2 value along c. True when both are certified (the rigid direction is the exact one,
+// `unique`, and accel1's own interval meets SPEC §8); false: the caller takes the candidate list.
+bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
+                      Choice& accel1);
+
 // Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);

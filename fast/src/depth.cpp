@@ -61,34 +61,42 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
 NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   NormalDepth d;
   const detail::ScaledPair sp = detail::power_scaled(A, B);
-  // The hot path: on the exactly scaled pair, one quick candidate list gives the rigid value
-  // (the enumeration's lower bound PD^2 / 32, global_depth.h), the start and a certified upper
-  // bound. The start: the rigid direction's normal, whose relaxed value prunes every piece
-  // whose eigenvalues lie above it (with no start, nothing is pruned until the first offer).
-  // Measured on the paper's pairs: starting from the six shallowest candidates, or from
-  // pdd2_relaxed's candidate (its sweep costs ~2 us), prunes a few more pieces but costs more
-  // than it saves. The bound: pdd2_accel1, certified, >= relaxed along the rigid direction >=
-  // pdd2_global (global_depth.h's check of the double enumeration).
+  // The hot path: on the exactly scaled pair, the rigid value (the enumeration's lower bound
+  // PD^2 / 32, global_depth.h), the start and a certified upper bound, from rigid_superset
+  // and accel1 along its direction (rigid_and_accel1, deformable_depth.h: ~0.3 us), or where
+  // they do not certify, from one quick candidate list (~1.1 us; the same values, label and
+  // normal: superset_depth.h). The start: the rigid direction's normal, whose relaxed value
+  // prunes every piece whose eigenvalues lie above it (with no start, nothing is pruned until
+  // the first offer). Measured on the paper's pairs: starting from the six shallowest
+  // candidates, or from pdd2_relaxed's candidate (its sweep costs ~2 us), prunes a few more
+  // pieces but costs more than it saves. The bound: pdd2_accel1, certified, >= relaxed along
+  // the rigid direction >= pdd2_global (global_depth.h's check of the double enumeration).
   if (sp.finite && sp.exact) {
-    QuickCandidates q;
-    if (quick_candidates(sp.A, sp.B, q)) {
-      const Choice rigid = rigid_pd2(q);
-      const Choice accel1 = pdd2_accel(q, 1);
-      if (rigid.certified && accel1.certified && rigid.value > 0 && accel1.value > 0 && rigid.index >= 0) {
-        const Candidate c = candidate(q, rigid.index);
-        const TetVertices &As = sp.A, &Bs = sp.B;
-        const ExactStart rigid_start = [&]() -> std::array<double, 3> {
-          return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), rigid.label()).n);
-        };
-        const GlobalOptimum g = global_depth(As, Bs, c.n, accel1.value, rigid_start, rigid.value);
-        bool in_range = true;
-        const double value = g.exact_value ? exact_relaxed_value(A, B, g.normal, in_range)
-                                           : detail::unscaled(g.value, 2 * -sp.e, in_range);
-        if (g.certified && in_range && std::isnormal(value) && value > 0) {
-          d.pd2 = value;
-          d.normal = g.normal;
-          return d;
-        }
+    Choice rigid, accel1;
+    Candidate c;
+    bool have = rigid_and_accel1(sp.A, sp.B, rigid, c, accel1);
+    if (!have) {
+      QuickCandidates q;
+      if (quick_candidates(sp.A, sp.B, q)) {
+        rigid = rigid_pd2(q);
+        accel1 = pdd2_accel(q, 1);
+        have = rigid.certified && accel1.certified && rigid.index >= 0;
+        if (have) c = candidate(q, rigid.index);
+      }
+    }
+    if (have && rigid.value > 0 && accel1.value > 0) {
+      const TetVertices &As = sp.A, &Bs = sp.B;
+      const ExactStart rigid_start = [&]() -> std::array<double, 3> {
+        return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), rigid.label()).n);
+      };
+      const GlobalOptimum g = global_depth(As, Bs, c.n, accel1.value, rigid_start, rigid.value);
+      bool in_range = true;
+      const double value = g.exact_value ? exact_relaxed_value(A, B, g.normal, in_range)
+                                         : detail::unscaled(g.value, 2 * -sp.e, in_range);
+      if (g.certified && in_range && std::isnormal(value) && value > 0) {
+        d.pd2 = value;
+        d.normal = g.normal;
+        return d;
       }
     }
   }
