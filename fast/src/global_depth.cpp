@@ -141,13 +141,55 @@ struct Best {
       value = value_in(0);
       return;
     }
-    DirectionSolution s;
+    DirectionSolution& s = last;
     double hm = 0;
     const double x = relaxed_at(P, v, &s, &hm);
     offers.push_back({x, value_error(P, v, s.cost, hm), v});
     if (x < value) value = x, n = v;
   }
+  DirectionSolution last;  // double path: the last offer's solution (descent_step)
 };
+
+// One step from v towards a local minimum (double path, before the enumeration): v's active
+// set S (its solution s, direction_qp.h: A's vertices at or above C + S_A, B's at or below
+// C + S_B) has G = n^T H_S n on S's piece (enumerate_pieces' H_S, here from the centred
+// vertices directly), and H_S's smallest eigenvector, oriented as v, is where G would be least
+// if the piece reached that far. It is only offered: an offer only ever lowers the best value,
+// and a lower best prunes more pieces (the screen's and consider_piece's windows). Measured on
+// the paper's pairs: 41 -> 30 pieces screened, 2.3 -> 1.4 to the eigensolver, ~0.3 us saved
+// per pair; a second step costs more than it saves. Zero when S has an empty side.
+V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
+  unsigned ma = 0, mb = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (dot(v, P.relA[i]) >= s.c + s.sumA) ma |= 1u << i;
+    if (dot(v, P.relB[i]) <= s.c + s.sumB) mb |= 1u << i;
+  }
+  if (!ma || !mb) return {0, 0, 0};
+  const int mA = kPopcount[ma], mB = kPopcount[mb];
+  const double wA = 1.0 / (5 - mA), wB = 1.0 / (5 - mB);
+  V3 SA{0, 0, 0}, SB{0, 0, 0};
+  for (int i = 0; i < 4; ++i) {
+    if (ma >> i & 1u) SA = add(SA, P.pA[i]);
+    if (mb >> i & 1u) SB = add(SB, P.pB[i]);
+  }
+  const V3 C = mul(add(mul(SA, wA), mul(SB, wB)), 1 / (mA * wA + mB * wB));
+  const V3 TA = mul(sub(mul(C, mA), SA), wA);
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  // 20 H_S: the same eigenvectors
+  auto add_outer = [&H](const V3& d, double w) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) H(r, c) += w * d[r] * d[c];
+  };
+  for (int i = 0; i < 4; ++i) {
+    if (ma >> i & 1u) add_outer(sub(C, P.pA[i]), 1);
+    if (mb >> i & 1u) add_outer(sub(C, P.pB[i]), 1);
+  }
+  add_outer(TA, 10 - mA - mB);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(H);
+  const Eigen::Vector3d e = eig.eigenvectors().col(0);
+  const V3 u{e(0), e(1), e(2)};
+  return dot(u, v) < 0 ? mul(u, -1.0) : u;
+}
 
 // The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
 // l.v <= tol (free), per condition.
@@ -743,6 +785,48 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
   }
 }
 
+// The relaxed value along v (a double normal, A -> B) with a certified relative error bound,
+// on heights relative to A's highest vertex along v (near the plane), so that value_bounds.h's
+// tight case applies: when every vertex's KKT margin at the computed solution exceeds 2 dT,
+// dT = 2^9 u Ha with Ha = max(|C|, |heights of the vertices at the plane|) ~ |v| depth, instead
+// of value_error's 2^12 u max|H| ~ |v| size. Heights: x - o rounded (u |x - o| <= 2u scale per
+// coordinate) then a dot product: e_h <= 10 u |v|_1 scale; then value_error's chain: r =
+// (2 e_h + sqrt(2) dT) / Phi~ + 4u, error 2 r + 8u. error = +inf when a margin fails.
+struct Evaluation {
+  double value = INFINITY, error = INFINITY;
+  DirectionSolution sol;
+  double hA[4], hB[4];
+};
+Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v) {
+  Evaluation ev;
+  int top = 0;
+  for (int i = 1; i < 4; ++i)
+    if (dot(v, P.relA[i]) > dot(v, P.relA[top])) top = i;
+  for (int i = 0; i < 4; ++i) {
+    V3 a, b;
+    for (int k = 0; k < 3; ++k) a[k] = A[i][k] - A[top][k], b[k] = B[i][k] - A[top][k];
+    ev.hA[i] = dot(v, a), ev.hB[i] = dot(v, b);
+  }
+  const DirectionSolution& sol = ev.sol = solve_relaxed(ev.hA, ev.hB);
+  double Ha = std::fabs(sol.c);
+  bool margins = true;
+  double margin[8];
+  for (int i = 0; i < 4; ++i) {
+    margin[i] = sol.c - ev.hA[i] + sol.sumA;      // < 0: at the plane (active)
+    margin[4 + i] = sol.c - ev.hB[i] + sol.sumB;  // > 0: at the plane (active)
+    if (margin[i] < 0) Ha = std::max(Ha, std::fabs(ev.hA[i]));
+    if (margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(ev.hB[i]));
+  }
+  const double dT = 0x1p9 * kU * Ha;
+  for (double m : margin) margins = margins && std::fabs(m) > 2 * dT;
+  const double phi = std::sqrt(sol.cost / 20.0);
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double r = phi > 0 ? (2 * 10 * kU * vn1 * P.scale + std::sqrt(2.0) * dT) / phi + 4 * kU : INFINITY;
+  ev.value = sol.cost / (20.0 * dot(v, v));
+  if (margins) ev.error = 2 * r + 8 * kU;
+  return ev;
+}
+
 }  // namespace
 
 double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& n,
@@ -794,6 +878,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   auto tiny = [&](double value) { return !(value >= 1e-10 * P.scale * P.scale); };
   bool exact_pieces = !(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value);
   if (!exact_pieces) {
+    if (nonzero(best.n) && std::isfinite(best.value)) best.offer(P, descent_step(P, best.n, best.last));
     std::array<std::array<double, 3>, 4> dA, dB;
     for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
     enumerate_pieces(dA, dB, P, best, lower, [](double x) { return x; });
@@ -828,9 +913,11 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   }
 
   // Which offer wins. Each double value carries value_error's loose bound; offers whose
-  // intervals meet the winner's are contenders. When every contender's bounds together stay
-  // below kCompare, the double winner is within kCompare of the true best offer; otherwise the
-  // contenders are compared exactly (where doubles cannot separate them).
+  // intervals meet the winner's are contenders (every other offer is certainly above the
+  // winner). When every contender's bounds together stay below kCompare, the double winner is
+  // within kCompare of the true best offer; otherwise the same test on the contenders with
+  // evaluate_tight's values and bounds (its winner, likewise, is within kCompare of the best
+  // contender), and where that fails too the contenders are compared exactly.
   GlobalOptimum out;
   constexpr double kCompare = 4e-10;
   if (!exact_pieces) {
@@ -842,6 +929,25 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       if (o.n != best.n && o.value <= best.value * (1 + 2 * (win_err + o.error)) &&
           !(win_err + o.error <= kCompare))
         separated = false;
+    if (!separated) {
+      // evaluate_tight's bounds first (doubles): value_error's are wider than kCompare where the
+      // depth is far below the pair's size, and two offers of one stationary point (the
+      // descent's and the enumeration's) tie within them.
+      std::vector<std::pair<Evaluation, V3>> contenders;
+      for (const auto& o : best.offers)
+        if (o.value <= best.value * (1 + 2 * (win_err + o.error)))  // inf band: every offer
+          contenders.push_back({evaluate_tight(A, B, P, o.n), o.n});
+      std::size_t w = 0;
+      for (std::size_t i = 1; i < contenders.size(); ++i)
+        if (contenders[i].first.value < contenders[w].first.value) w = i;
+      separated = !contenders.empty();
+      for (std::size_t i = 0; i < contenders.size(); ++i) {
+        const Evaluation &x = contenders[w].first, &y = contenders[i].first;
+        if (i != w && y.value <= x.value * (1 + 2 * (x.error + y.error)) && !(x.error + y.error <= kCompare))
+          separated = false;
+      }
+      if (separated) best.n = contenders[w].second;
+    }
     if (!separated) {
       detail::Q bestq;
       bool have = false;
@@ -873,38 +979,11 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     }
   };
   if (!exact_pieces) {
-    // The reported value: heights relative to o, A's highest vertex along v (near the plane),
-    // so that value_bounds.h's tight case applies: when every vertex's KKT margin at the
-    // computed solution exceeds 2 dT, dT = 2^9 u Ha with Ha = max(|C|, |heights of the vertices
-    // at the plane|) ~ |v| depth, instead of 2^12 u max|H| ~ |v| size. Heights: x - o rounded
-    // (u |x - o| <= 2u scale per coordinate) then a dot product: e_h <= 10 u |v|_1 scale.
-    int top = 0;
-    for (int i = 1; i < 4; ++i)
-      if (dot(v, P.relA[i]) > dot(v, P.relA[top])) top = i;
-    double hA[4], hB[4];
-    for (int i = 0; i < 4; ++i) {
-      V3 a, b;
-      for (int k = 0; k < 3; ++k) a[k] = A[i][k] - A[top][k], b[k] = B[i][k] - A[top][k];
-      hA[i] = dot(v, a), hB[i] = dot(v, b);
-    }
-    const DirectionSolution sol = solve_relaxed(hA, hB);
-    double Ha = std::fabs(sol.c);
-    bool margins = true;
-    double margin[8];
-    for (int i = 0; i < 4; ++i) {
-      margin[i] = sol.c - hA[i] + sol.sumA;      // < 0: at the plane (active)
-      margin[4 + i] = sol.c - hB[i] + sol.sumB;  // > 0: at the plane (active)
-      if (margin[i] < 0) Ha = std::max(Ha, std::fabs(hA[i]));
-      if (margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(hB[i]));
-    }
-    const double dT = 0x1p9 * kU * Ha;
-    for (double m : margin) margins = margins && std::fabs(m) > 2 * dT;
-    const double phi = std::sqrt(sol.cost / 20.0);
-    const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
-    const double r = phi > 0 ? (2 * 10 * kU * vn1 * P.scale + std::sqrt(2.0) * dT) / phi + 4 * kU : INFINITY;
-    if (margins && 2 * r + 8 * kU <= kGlobalRel) {
-      out.value = sol.cost / (20.0 * vv);
-      place(sol, hA, hB, [](double x) { return x; });
+    // The reported value: evaluate_tight's, when its bound meets the budget.
+    const Evaluation ev = evaluate_tight(A, B, P, v);
+    if (ev.error <= kGlobalRel) {
+      out.value = ev.value;
+      place(ev.sol, ev.hA, ev.hB, [](double x) { return x; });
       out.certified = true;
       return out;
     }
