@@ -56,7 +56,18 @@ PDD_SCREEN_CLONES unsigned surviving_pieces(const double SA[3], const double QA[
 PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3], const double (&pB)[4][3],
                               double floor, double top, double lower) {
   constexpr int kNewton = 16;
-  const int n = S.n;
+  // The lanes run in whole 8-lane vectors: up to 7 padding lanes (copies of the last piece,
+  // their verdicts unused) instead of the vectorised loops' scalar remainder (a lane there
+  // costs as much as a vector: the screen took ~45 ns per piece before).
+  if (S.n <= 0) return;
+  const int n = (S.n + 7) & ~7;  // <= ScreenLanes::kMax (232 = 29 * 8 >= 225)
+  for (int p = S.n; p < n; ++p) {
+    const int q = S.n - 1;
+    for (int k = 0; k < 6; ++k) S.N[k][p] = S.N[k][q];
+    for (int k = 0; k < 3; ++k) S.C[k][p] = S.C[k][q], S.TA[k][p] = S.TA[k][q];
+    for (int k = 0; k < 8; ++k) S.sign[k][p] = S.sign[k][q];
+    S.n_error[p] = S.n_error[q], S.below_low[p] = S.below_low[q], S.one[p] = S.one[q];
+  }
   double a[ScreenLanes::kMax], b[ScreenLanes::kMax], d[ScreenLanes::kMax], lo[ScreenLanes::kMax],
       hi[ScreenLanes::kMax], x[ScreenLanes::kMax], x0[ScreenLanes::kMax], x1[ScreenLanes::kMax];
   int lo_positive[ScreenLanes::kMax], done[ScreenLanes::kMax];
