@@ -647,15 +647,17 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
   TV SA[16], SB[16];
   M6 QA[16], QB[16];
   double qa[16], qb[16];  // max |QA|, |QB| (doubles only)
-  for (unsigned m = 0; m < 16; ++m) {
-    SA[m] = SB[m] = TV{T(0), T(0), T(0)};
-    QA[m].fill(T(0)), QB[m].fill(T(0));
-    for (int i = 0; i < 4; ++i)
-      if (m >> i & 1u) {
-        SA[m] = vadd(SA[m], pA[i]), SB[m] = vadd(SB[m], pB[i]);
-        for (int q = 0; q < 6; ++q)
-          QA[m][q] += pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] += pB[i][kR[q]] * pB[i][kC[q]];
-      }
+  // Each subset's sums from the subset without its highest vertex i: the terms added in
+  // increasing i, from 0 (the same roundings as summing each subset on its own).
+  SA[0] = SB[0] = TV{T(0), T(0), T(0)};
+  QA[0].fill(T(0)), QB[0].fill(T(0));
+  if constexpr (!kExact) qa[0] = qb[0] = 0;
+  for (unsigned m = 1; m < 16; ++m) {
+    const int i = m >= 8 ? 3 : m >= 4 ? 2 : m >= 2 ? 1 : 0;
+    const unsigned rest = m & ~(1u << i);
+    SA[m] = vadd(SA[rest], pA[i]), SB[m] = vadd(SB[rest], pB[i]);
+    for (int q = 0; q < 6; ++q)
+      QA[m][q] = QA[rest][q] + pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] = QB[rest][q] + pB[i][kR[q]] * pB[i][kC[q]];
     if constexpr (!kExact) qa[m] = amax(QA[m]), qb[m] = amax(QB[m]);
   }
   ColumnsB cols{};  // double path: B's sums as lanes (surviving_pieces)
@@ -680,8 +682,8 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
       survivors[ma] = surviving_pieces(SA[ma].data(), QA[ma].data(), qa[ma], kPopcount[ma], cols, top, lower, row);
-      for (unsigned mb = 1; mb < 16; ++mb) {
-        if (!(survivors[ma] >> mb & 1u)) continue;
+      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {  // (set bits: no branch per piece)
+        const unsigned mb = unsigned(__builtin_ctz(bits));
         const int p = lanes.n++;
         for (int q = 0; q < 6; ++q) lanes.N[q][p] = row.N[q][mb];
         for (int k = 0; k < 3; ++k) lanes.C[k][p] = row.C[k][mb], lanes.TA[k][p] = row.TA[k][mb];
