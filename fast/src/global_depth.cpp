@@ -629,6 +629,25 @@ V3 refine(const double (&h)[3][3], const V3& v0, double mu, long) {
 // (mA + mB) |C|^2 + k |TA|^2, max norms): the derivation is piece_screen.h's (the inputs' own
 // errors, C's and T_A's above all, included; 16u mag, used before, counted only the last
 // expression's roundings). The /20 adds u relative, inside that bound's margin.
+// The 16 subsets' sums and second moments (xx xy xz yy yz zz) of A's and B's positions, each
+// from the subset without its highest vertex i: the terms added in increasing i, from 0 (the
+// same roundings as summing each subset on its own).
+template <class T>
+void subset_sums(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
+                 std::array<T, 3> (&SA)[16], std::array<T, 3> (&SB)[16], std::array<T, 6> (&QA)[16],
+                 std::array<T, 6> (&QB)[16]) {
+  constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
+  SA[0] = SB[0] = {T(0), T(0), T(0)};
+  QA[0].fill(T(0)), QB[0].fill(T(0));
+  for (unsigned m = 1; m < 16; ++m) {
+    const int i = m >= 8 ? 3 : m >= 4 ? 2 : m >= 2 ? 1 : 0;
+    const unsigned rest = m & ~(1u << i);
+    for (int k = 0; k < 3; ++k) SA[m][k] = SA[rest][k] + pA[i][k], SB[m][k] = SB[rest][k] + pB[i][k];
+    for (int q = 0; q < 6; ++q)
+      QA[m][q] = QA[rest][q] + pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] = QB[rest][q] + pB[i][kR[q]] * pB[i][kC[q]];
+  }
+}
+
 template <class T, class ToDouble>
 void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
                       const Problem& P, Best& best, double lower, ToDouble to_d) {
@@ -644,44 +663,70 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
     for (const T& c : x) m = std::max(m, std::fabs(to_d(c)));
     return m;
   };
-  TV SA[16], SB[16];
-  M6 QA[16], QB[16];
-  double qa[16], qb[16];  // max |QA|, |QB| (doubles only)
-  // Each subset's sums from the subset without its highest vertex i: the terms added in
-  // increasing i, from 0 (the same roundings as summing each subset on its own).
-  SA[0] = SB[0] = TV{T(0), T(0), T(0)};
-  QA[0].fill(T(0)), QB[0].fill(T(0));
-  if constexpr (!kExact) qa[0] = qb[0] = 0;
-  for (unsigned m = 1; m < 16; ++m) {
-    const int i = m >= 8 ? 3 : m >= 4 ? 2 : m >= 2 ? 1 : 0;
-    const unsigned rest = m & ~(1u << i);
-    SA[m] = vadd(SA[rest], pA[i]), SB[m] = vadd(SB[rest], pB[i]);
-    for (int q = 0; q < 6; ++q)
-      QA[m][q] = QA[rest][q] + pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] = QB[rest][q] + pB[i][kR[q]] * pB[i][kC[q]];
-    if constexpr (!kExact) qa[m] = amax(QA[m]), qb[m] = amax(QB[m]);
+  // The pieces' double matrices N = 20 H by rows (surviving_pieces), with their eigenvalue
+  // counts at the window's edges. Double path: on its own sums. Exact path: on the exact
+  // positions rounded once (|x| < 4 here), each coordinate within u |x| of the exact one;
+  // that moves the exact 20 H by at most 704 u L^2 per entry (C moves by <= u L and each C - a
+  // by <= 2u L, |C - a| <= 2L: 8u L^2 per outer product, <= 8 of them; T_A = wA sum (C - a)
+  // moves by <= 2u L mA wA, |T_A| <= 2L mA wA, so k T_A T_A^T by <= 8 k wA^2 mA^2 u L^2 <=
+  // 640u L^2 (mA = 4: k <= 5, wA = 1)), inside the 2^14 u mag of n_error (piece_screen.h's
+  // count, 10720u L^2 + 9u mag, leaves 5655u L^2 with mag >= L^2): the counts hold for the
+  // exact H too.
+  std::array<std::array<double, 3>, 4> dA, dB;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) dA[i][k] = to_d(pA[i][k]), dB[i][k] = to_d(pB[i][k]);
+  std::array<double, 3> dSA[16], dSB[16];
+  std::array<double, 6> dQA[16], dQB[16];
+  subset_sums(dA, dB, dSA, dSB, dQA, dQB);
+  TV xSA[16], xSB[16];  // exact path: the exact sums
+  M6 xQA[16], xQB[16];
+  const TV *SA, *SB;
+  const M6 *QA, *QB;
+  if constexpr (kExact) {
+    subset_sums(pA, pB, xSA, xSB, xQA, xQB);
+    SA = xSA, SB = xSB, QA = xQA, QB = xQB;
+  } else {
+    SA = dSA, SB = dSB, QA = dQA, QB = dQB;  // (the double path's own: dA = pA)
   }
-  ColumnsB cols{};  // double path: B's sums as lanes (surviving_pieces)
-  if constexpr (!kExact)
-    for (unsigned mb = 0; mb < 16; ++mb) {
-      for (int k = 0; k < 3; ++k) cols.S[k][mb] = SB[mb][k];
-      for (int q = 0; q < 6; ++q) cols.Q[q][mb] = QB[mb][q];
-      cols.q[mb] = qb[mb];
-      cols.m[mb] = kPopcount[mb];
-      cols.w[mb] = 1.0 / (5 - kPopcount[mb]);
-    }
+  double qa[16], qb[16];  // max |QA|, |QB| (doubles)
+  for (unsigned m = 0; m < 16; ++m) {
+    qa[m] = qb[m] = 0;
+    for (int q = 0; q < 6; ++q) qa[m] = std::max(qa[m], std::fabs(dQA[m][q])), qb[m] = std::max(qb[m], std::fabs(dQB[m][q]));
+  }
+  ColumnsB cols{};  // B's sums as lanes (surviving_pieces)
+  for (unsigned mb = 0; mb < 16; ++mb) {
+    for (int k = 0; k < 3; ++k) cols.S[k][mb] = dSB[mb][k];
+    for (int q = 0; q < 6; ++q) cols.Q[q][mb] = dQB[mb][q];
+    cols.q[mb] = qb[mb];
+    cols.m[mb] = kPopcount[mb];
+    cols.w[mb] = 1.0 / (5 - kPopcount[mb]);
+  }
   // Double path: every row's pieces outside the window are dropped (surviving_pieces), the
   // rest gathered and screened side by side (screen); survivors[ma] keeps the bits of the
   // pieces left for consider_piece. Both use the best value offered so far (the start's): a
   // higher threshold than later ones, so nothing is dropped that a later one would keep.
+  // Exact path: only the pieces whose eigenvalues all lie certainly above the window's top
+  // edge or below its bottom one are dropped: such a piece holds no stationary value in the
+  // window, and no wall offer either (a wall's value lies between H's two smallest
+  // eigenvalues, Cauchy interlacing: above the top, or below the bottom edge); the pieces
+  // with eigenvalues on both sides of the window keep their wall offers (a far vertex's
+  // minimiser, consider_piece).
   unsigned survivors[16];
-  for (unsigned& x : survivors) x = 0xfffe;  // exact path: every piece
-  if constexpr (!kExact) {
-    const double top = best.value_in(0) * (1 - kPrune);
+  const double top = best.value_in(0) * (1 - kPrune);
+  if constexpr (kExact) {
+    for (unsigned ma = 1; ma < 16; ++ma) {
+      RowLanes row;
+      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, lower, row);
+      survivors[ma] = 0;
+      for (unsigned mb = 1; mb < 16; ++mb)
+        if (!(row.below_top[mb] == 0 || row.below_low[mb] == 3)) survivors[ma] |= 1u << mb;
+    }
+  } else {
     static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
     lanes.n = 0;
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
-      survivors[ma] = surviving_pieces(SA[ma].data(), QA[ma].data(), qa[ma], kPopcount[ma], cols, top, lower, row);
+      survivors[ma] = surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, lower, row);
       for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {  // (set bits: no branch per piece)
         const unsigned mb = unsigned(__builtin_ctz(bits));
         const int p = lanes.n++;
@@ -694,16 +739,15 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
     }
     double qA[4][3], qB[4][3];
     for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) qA[i][k] = pA[i][k], qB[i][k] = pB[i][k];
+      for (int k = 0; k < 3; ++k) qA[i][k] = dA[i][k], qB[i][k] = dB[i][k];
     screen(lanes, qA, qB, 1e-12 * P.scale, top, lower);
-    for (int p = 0; p < lanes.n; ++p)
-      if (!lanes.keep[p]) survivors[lanes.ma[p]] &= ~(1u << lanes.mb[p]);
+    for (int p = 0; p < lanes.n; ++p) survivors[lanes.ma[p]] &= ~(unsigned(!lanes.keep[p]) << lanes.mb[p]);
   }
   for (unsigned ma = 1; ma < 16; ++ma) {
     const int mA = kPopcount[ma];
     const T wA = T(1) / T(5 - mA);
-    for (unsigned mb = 1; mb < 16; ++mb) {
-      if (!(survivors[ma] >> mb & 1u)) continue;
+    for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
+      const unsigned mb = unsigned(__builtin_ctz(bits));
       const int mB = kPopcount[mb];
       const T wB = T(1) / T(5 - mB);
       // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B.

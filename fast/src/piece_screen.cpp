@@ -47,6 +47,7 @@ PDD_SCREEN_CLONES unsigned surviving_pieces(const double SA[3], const double QA[
     keep[l] = !(below_top == 0 || (below_top > 0 && below_top == below_low));
     out.one[l] = below_low >= 0 && below_top == below_low + 1;
     out.below_low[l] = below_low;
+    out.below_top[l] = below_top;
   }
   unsigned mask = 0;
   for (int l = 1; l < 16; ++l) mask |= unsigned(keep[l]) << l;

@@ -112,10 +112,11 @@ struct ColumnsB {  // B's active sets, lane mb (structure of arrays)
 };
 // One row's pieces as lanes (lane mb): N = 20 H (xx xy xz yy yz zz), n_error, c and T_A's
 // vectors, and the number of N's eigenvalues below the window's bottom edge (parity: f's sign
-// there, screen()).
+// there, screen()) and below its top edge (-1: undecided).
 struct RowLanes {
   double N[6][16], n_error[16], C[3][16], TA[3][16], below_low[16];
-  int one[16];  // exactly one eigenvalue in the window, both counts decided
+  int one[16];        // exactly one eigenvalue in the window, both counts decided
+  int below_top[16];
 };
 unsigned surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
                           double top, double lower, RowLanes& out);
