@@ -517,6 +517,7 @@ bool unrepresented(const Best& best, double floor_scaled) {
 // the fast values agree with the exact engine's closed intervals (coordinates-1-to-1e18,
 // adversarial-1-9, -19, the wide pair of tests/compare; -29 within its 1.7e-8 gap).
 constexpr double kUnrepresentedDepth = 1e-20;
+constexpr double kCompactTiny = 1e-14;  // global_depth(): the compact pairs' exact-pieces depth
 double near_extent_sq(const TetVertices& A, const TetVertices& B) {
   double L = INFINITY;  // the smaller tetrahedron's extent (largest coordinate range)
   for (const TetVertices* T : {&A, &B}) {
@@ -908,7 +909,11 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // (depth ~1e-11 scale^2 with a vertex 3e4 away) can also put the minimiser on the wall of a
   // steep piece, which only the exact path's wall offers reach (the fuzzer found a miss of
   // 1.6e-8 there). Below 1e-10 scale^2 (far vertices, contacts of 1e-5 of the pair's size) the
-  // pieces are built exactly, with the wall offers, and their eigenvectors polished.
+  // pieces are built exactly, with the wall offers, and their eigenvectors polished. A compact
+  // pair (the smaller tetrahedron's extent >= scale / 16: no vertex far from the others, so
+  // every piece's |H| <= 12 L^2 <= 3072 near^2, no steep piece) keeps the doubles down to
+  // kCompactTiny = 1e-14 scale^2 (two orders above the 1e-16 of the argument above): the
+  // paper's shallow contacts (1 pair in 10^4 below 1e-10 scale^2, each ~3 ms exactly).
   //
   // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
   // 2^unit the largest of them (a pair spanning 1e-302..1e308 reaches this branch unscaled,
@@ -920,8 +925,9 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
   // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
   // determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
-  // finds a depth below 1e-10 scale^2, it is done again exactly.
-  auto tiny = [&](double value) { return !(value >= 1e-10 * P.scale * P.scale); };
+  // finds a depth below that (1e-10 or, compact, 1e-14 scale^2), it is done again exactly.
+  const double tiny_rel = near_extent_sq(A, B) >= P.scale * P.scale / 256 ? kCompactTiny : 1e-10;
+  auto tiny = [&](double value) { return !(value >= tiny_rel * P.scale * P.scale); };
   bool exact_pieces = !(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value);
   if (!exact_pieces) {
     if (nonzero(best.n) && std::isfinite(best.value)) best.offer(P, descent_step(P, best.n, best.last));
