@@ -111,7 +111,15 @@ struct Best {
     double value, error;
     V3 n;
   };
-  std::vector<Offer> offers;  // double path: every normal evaluated
+  // Double path: every normal evaluated. One buffer per thread, cleared per call (its
+  // allocations, three per pair as it grew, were ~2% of pdd2_global); global_depth() does not
+  // recurse, and one Best lives at a time per thread.
+  std::vector<Offer>& offers = offer_buffer();
+  static std::vector<Offer>& offer_buffer() {
+    static thread_local std::vector<Offer> buffer;
+    buffer.clear();
+    return buffer;
+  }
   // Double path: an in-window eigenvalue so close to another that the doubles' eigenvector
   // may miss its value by more than the budget (consider_piece): the caller redoes it exactly.
   bool needs_exact = false;
