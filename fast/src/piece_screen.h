@@ -45,8 +45,10 @@ inline constexpr double kSignOf[16][4] = {
 // outer product, two outer sums) 11u. Each is taken as 16u P: a coefficient within that of 0
 // is undecided, and with it the count. Range: those relative bounds hold for normal results
 // (each bound has >= 5u P to spare). A product that underflows errs by up to 2^-1075 absolute,
-// and that error is multiplied by at most two more entries; with every entry of N - tI at most
-// 2^100 in magnitude (checked), each of the <= 6 terms errs by <= 2^-875 more, under 2^-872 in
+// and that error is multiplied by at most two more entries; with every entry of N - tI below
+// 2^102 in magnitude (checked without a maximum: ptr <= 2^102 bounds the diagonal, pc1 <= 2^204
+// the off-diagonal squares, each computed within a few u of its exact value), each of the <= 6
+// terms errs by <= 2^-871 more, under 2^-868 in
 // all, while the spare 5u P is >= 2^-851 when P >= 2^-800 (checked): a smaller P (a piece whose
 // entries are ~1e-80, vertices ~1e-40 apart beside a vertex at 1) or a larger entry is
 // undecided. (A review found the count wrong on a matrix whose products underflowed before
@@ -64,13 +66,11 @@ inline int eigenvalues_below_certain(double h00, double h01, double h02, double 
   const double pdet = std::fabs(a00) * (std::fabs(a11 * a22) + h12 * h12) +
                       std::fabs(h01) * (std::fabs(h01 * a22) + std::fabs(h12 * h02)) +
                       std::fabs(h02) * (std::fabs(h01 * h12) + std::fabs(a11 * h02));
-  // (pairwise maxima: an initializer list stops the vectoriser; a NaN entry fails a test above)
-  const double big = std::max(std::max(std::max(std::fabs(a00), std::fabs(a11)), std::max(std::fabs(a22), std::fabs(h01))),
-                              std::max(std::fabs(h02), std::fabs(h12)));
   // (& on ints, not &&: no branch, so that the lanes vectorise)
   const int decided = int(std::fabs(tr) > 16 * kScreenU * ptr) & int(std::fabs(c1) > 16 * kScreenU * pc1) &
                       int(std::fabs(det) > 16 * kScreenU * pdet) &  // false on NaN (and on inf)
-                      int(pc1 >= 0x1p-800) & int(pdet >= 0x1p-800) & int(big <= 0x1p100);  // (range, above)
+                      int(pc1 >= 0x1p-800) & int(pdet >= 0x1p-800) &  // (range, above)
+                      int(ptr <= 0x1p102) & int(pc1 <= 0x1p204);
   const int changes = int(tr < 0) + int((c1 < 0) != (tr < 0)) + int((det < 0) != (c1 < 0));
   return decided ? changes : -1;
 }
