@@ -247,7 +247,7 @@ void print_table(const BenchReport& r, std::ostream& s) {
       << " ns: ratio " << fmt("%.0f", e.solve_ratio) << "x\n\n";
   }
 
-  s << "Targets (issue 8; time = median over passes of the time per pair, one core)\n";
+  s << "Targets (issues 8 and 10; time = median over passes of the time per pair, one core)\n";
   for (const auto& t : r.targets) {
     const bool ratio = t.bound.find('x') != std::string::npos;
     s << "  " << pad(t.what, 62) << pad(t.bound, 11)
