@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "certify.h"
+#include "compensated_heights.h"
 #include "hot_path.h"
 #include "qp_lower_bound.h"
 #include "refine.h"
@@ -76,6 +77,48 @@ Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
+// pdd2_accel(A, B, 1)'s value along c when c is the exact rigid direction and the double
+// heights cannot certify it (a shallow contact: their errors ~u L^3 beside a value ~|n| depth):
+// the case-2 QP on compensated_heights.h's heights (each within e_i of the exact one), certified
+// by value_bounds.h's tight case with the heights' errors restricted to the vertices that
+// matter. Argument: let H~ be those heights, H* the exact ones, e_act the largest e_i over
+// the constrained and the active free vertices. (1) As in solver_bound, a free vertex's
+// computed margin m_i is within 2 dT (wide: 2^12 u Hm) of the exact solution's for H~. (2)
+// Under one fixed status pattern C is a convex combination of the constrained and active
+// heights (direction_qp_impl.h: weights 5 - m_B and 5 - m_A summing to den), so H* moves it by
+// <= e_act; S = (m C - P)/(5 - m) by <= 2 m e_act/(5 - m) <= 8 e_act; a margin C - h_i + S by
+// <= 9 e_act + e_i. So |m_i| > 2 dT + 9 e_act + e_i for every free vertex keeps the pattern
+// optimal (KKT) for H~ and for H*, and for H'' (H* on the constrained and active vertices, H~
+// elsewhere); the closed form ignores the other heights, so Phi(H*) = Phi(H''), and
+// value_bounds.h's Lipschitz argument on H~ and H'' (which differ by <= e_act) gives
+// |Phi(H*) - Phi(H~)| <= 2 e_act: qp_root_rel's e_h. The solver's own error is the tight
+// dT (2^9 u Ha), the direction's e_n the compensated normal's. Returns the verdict.
+bool accel1_compensated(const TetVertices& A, const TetVertices& B, const Candidate& c, double& value) {
+  detail::CompensatedHeights h;
+  if (!detail::compensated_heights(A, B, c, h)) return false;
+  const DirectionSolution s = solve_deformable(side_of(h.hA, c.conA), side_of(h.hB, c.conB));
+  double Hm = 0;
+  for (int i = 0; i < 4; ++i) Hm = std::max({Hm, std::fabs(h.hA[i]), std::fabs(h.hB[i])});
+  double Ha = std::fabs(s.c), e_act = 0;
+  double margin[8];
+  for (int i = 0; i < 4; ++i) {
+    margin[i] = s.c - h.hA[i] + s.sumA;      // free A vertex: < 0 active
+    margin[4 + i] = s.c - h.hB[i] + s.sumB;  // free B vertex: > 0 active
+    const bool conA = c.conA >> i & 1u, conB = c.conB >> i & 1u;
+    if (conA || margin[i] < 0) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
+    if (conB || margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
+  }
+  const double two_dT = 2 * kSolverDisplacementCoeff * kUnitRoundoff * Hm;
+  for (int i = 0; i < 4; ++i) {
+    if (!(c.conA >> i & 1u) && !(std::fabs(margin[i]) > (two_dT + 9 * e_act + h.eA[i]) * (1 + 0x1p-40))) return false;
+    if (!(c.conB >> i & 1u) && !(std::fabs(margin[4 + i]) > (two_dT + 9 * e_act + h.eB[i]) * (1 + 0x1p-40))) return false;
+  }
+  const double v = s.cost / (20.0 * h.nn);
+  const double r = qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight);
+  value = v;
+  return certified_choice(upper_of(v, r), lower_of(v, r));
+}
+
 // pdd2_accel(A, B, 1) from the superset's rigid choice and its candidate c: the case-2 value
 // along c, certified when the rigid direction is the exact one (`unique`, superset_depth.h)
 // and the value's own interval meets SPEC §8. Returns ch.certified.
@@ -92,8 +135,13 @@ bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const
 bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
                       Choice& accel1) {
   bool unique = false;
-  return rigid_superset(As, Bs, rigid, &c, &unique) &&
-         accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), accel1);
+  if (!rigid_superset(As, Bs, rigid, &c, &unique)) return false;
+  if (accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), accel1)) return true;
+  double v = 0;
+  if (!unique || !accel1_compensated(As, Bs, c, v)) return false;
+  accel1 = {v, -1, rigid.code};
+  accel1.certified = true;
+  return true;
 }
 
 namespace {
@@ -467,6 +515,13 @@ Choice accel_of(const List& set, int k) {
   }
   Choice ch{v[best], order[best], label_code(set, order[best])};
   ch.certified = separated && certified_choice(upper_of(v[best], rel_best), lo_min);
+  // k = 1 along the exact rigid direction (separated): compensated heights before rationals
+  // (accel1_compensated; rigid_and_accel1 takes the same step, so both paths agree bit for bit)
+  if (!ch.certified && k == 1 && m == 1 && separated && set.A) {
+    const Candidate c = candidate(set, order[0]);
+    double value = 0;
+    if (accel1_compensated(*set.A, *set.B, c, value)) ch.value = value, ch.certified = true;
+  }
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }
