@@ -23,7 +23,7 @@
 //   two_prod(a, b) = (p, e), p + e = a b exactly (e = fma(a, b, −p)) unless e underflows:
 //     then off by <= 2^-1075, covered by an absolute 2^-1040 in every e_i (below);
 //   mul(x, y): (ch, c1) = two_prod(xh, yh); t0 = xl yl; t1 = fma(xh, yl, t0);
-//     c2 = fma(xl, yh, t1); c3 = c1 + c2; two_sum(ch, c3). Error <= 8u² |xh| |yh|:
+//     c2 = fma(xl, yh, t1); c3 = c1 + c2; two_sum(ch, c3). Error <= 6.2u² |xh| |yh|:
 //     |xl yl| <= u²|xh yh| (t0's rounding: u³); t1 errs by <= u |xh yl + t0| <= u²(1 + u)
 //     |xh yh|; c2 by <= u |xl yh + t1| <= 2u²(1 + u) |xh yh|; c3 by <= u (|c1| + |c2|) <= u
 //     (u + 2u(1 + u)) |xh yh| < 3.1 u² |xh yh|; two_sum exact: < 6.2 u² in all;
@@ -37,7 +37,7 @@
 //   within (1 + u)² of the exact ones: absorbed in the rounding up to 10.5 below).
 // A height h = n.d (d = x − o exact): three products, each off by 6.2 u² |n_k||d_k| plus
 //   |n_k error| |d_k| <= 10.5 u² N_k |d_k|, and two adds (4u² of the running magnitudes each):
-//   <= (6.2 + 10.5 + 8) u² M (1 + 2u) < 25 u² M, M = sum_k N_k |d_k| (|n_k| <= N_k (1 + u²)).
+//   <= (6.2 + 10.5 + 8) u² M (1 + 2u) < 25 u² M, M = sum_k N_k |d_k| (|n_k| <= N_k (1 + O(u))).
 //   Rounding the double word to its high part adds u |h~|. So e_i = u |h~_i| + 25 u² M_i,
 //   computed with a factor (1 + 2^-40) over the few roundings of these products and sums, and
 //   the absolute 2^-1040 (at most ~40 underflowed two_prod errors of 2^-1075, each multiplied
