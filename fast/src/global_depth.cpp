@@ -355,10 +355,16 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
       }
       mu = eig.eigenvalues();
       for (double& mk : m) mk = margin;
-      const double E = 3 * h_error + 8 * kU * hnorm;
-      for (int k = 0; k < 3; ++k)
-        if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here))) best.needs_exact = true;
     }
+    // The same estimate for every in-window eigenvalue, near-double or not (the closed-form
+    // solver's vectors are off by ~u |H| / gap too): H's error E is absolute, ~2^-39 of the
+    // moments' magnitude, so a piece whose active vertices form a small cluster far from the
+    // centroid (|H| << mag) in a shallow contact can have E^2 / gap near the eigenvalue
+    // itself (a review's estimate: ~1e-8 of it for |H| ~ 1e-8 R^2, gap ~ 1e-2 |H|). Such a
+    // piece sends the pair to the exact pieces. On the paper's pairs it never triggers.
+    const double E = 3 * h_error + 8 * kU * hnorm;
+    for (int k = 0; k < 3; ++k)
+      if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here))) best.needs_exact = true;
   }
   const Conditions cond = make_conditions();
   bool held[3] = {false, false, false};  // exact path: eigenvector k held the signs
@@ -948,9 +954,14 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   // 1.6e-8 there). Below 1e-10 scale^2 (far vertices, contacts of 1e-5 of the pair's size) the
   // pieces are built exactly, with the wall offers, and their eigenvectors polished. A compact
   // pair (the smaller tetrahedron's extent >= scale / 16: no vertex far from the others, so
-  // every piece's |H| <= 12 L^2 <= 3072 near^2, no steep piece) keeps the doubles down to
-  // kCompactTiny = 1e-14 scale^2 (two orders above the 1e-16 of the argument above): the
-  // paper's shallow contacts (1 pair in 10^4 below 1e-10 scale^2, each ~3 ms exactly).
+  // every piece's |H| <= 12 L^2 with centred |coordinates| L <= 2 scale, <= 12288 near^2: no
+  // steep piece) keeps the doubles down to kCompactTiny = 1e-14 scale^2: the paper's shallow
+  // contacts (1 pair in 10^4 below 1e-10 scale^2, each ~3 ms exactly). The argument above
+  // takes gap ~ |H| ~ scale^2; a piece whose active vertices form a small cluster far from the
+  // centroid has |H| << scale^2 while H's error stays ~2^-39 of the moments: consider_piece's
+  // estimate 2 E^2 / gap <= 1e-11 mu, checked for every in-window eigenvalue, sends such a pair
+  // to the exact pieces (a review's shallow "tip" contacts: 10-25% stayed in doubles, all
+  // between 1e-12 and 1e-10 scale^2, all within the exact intervals).
   //
   // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
   // 2^unit the largest of them (a pair spanning 1e-302..1e308 reaches this branch unscaled,
@@ -1015,7 +1026,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       if (o.n == best.n) win_err = std::min(win_err, o.error);
     bool separated = true;
     for (const auto& o : best.offers)
-      if (o.n != best.n && o.value <= best.value * (1 + 2 * (win_err + o.error)) &&
+      if (o.n != best.n && !(o.value > best.value * (1 + 2 * (win_err + o.error))) &&
           !(win_err + o.error <= kCompare))
         separated = false;
     if (!separated) {
@@ -1024,7 +1035,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       // descent's and the enumeration's) tie within them.
       std::vector<std::pair<Evaluation, V3>> contenders;
       for (const auto& o : best.offers)
-        if (o.value <= best.value * (1 + 2 * (win_err + o.error)))  // inf band: every offer
+        if (!(o.value > best.value * (1 + 2 * (win_err + o.error))))  // inf band (or NaN): every offer
           contenders.push_back({evaluate_tight(A, B, P, o.n), o.n});
       std::size_t w = 0;
       for (std::size_t i = 1; i < contenders.size(); ++i)
@@ -1032,7 +1043,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       separated = !contenders.empty();
       for (std::size_t i = 0; i < contenders.size(); ++i) {
         const Evaluation &x = contenders[w].first, &y = contenders[i].first;
-        if (i != w && y.value <= x.value * (1 + 2 * (x.error + y.error)) && !(x.error + y.error <= kCompare))
+        if (i != w && !(y.value > x.value * (1 + 2 * (x.error + y.error))) && !(x.error + y.error <= kCompare))
           separated = false;
       }
       if (separated) best.n = contenders[w].second;
@@ -1042,7 +1053,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       bool have = false;
       for (const auto& o : best.offers) {
         const double band = 2 * (win_err + o.error);
-        if (!(o.value <= best.value * (1 + band))) continue;  // inf band: every offer
+        if (o.value > best.value * (1 + band)) continue;  // inf band (or NaN): every offer
         detail::Q hA[4], hB[4];
         Solution<detail::Q> sq;
         const detail::Q x = relaxed_exact(A, B, o.n, hA, hB, sq);

@@ -59,3 +59,35 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
   }
   BOOST_TEST(compared >= 85);
 }
+
+// SPEC §9 on the public hot path: pdd::fast::pdd2_global(A, B) (depth.cpp: started from
+// rigid_and_accel1's rigid direction, not from pdd2_relaxed's as in solve_pair) inside the
+// golden exact interval, its normal reproducing the value, on every shipped fixture. (A review
+// found `pdd compare` and the test above judge only solve_pair's pdd2_global.) A rejection
+// (NotRepresentable) is accepted only where solve_pair rejects the pair too.
+BOOST_AUTO_TEST_CASE(public_pdd2_global_within_contract_of_golden) {
+  int compared = 0;
+  for (const auto& file : test::property_fixture_files()) {
+    const auto pairs = test::load_pairs(file);
+    const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, file));
+    BOOST_REQUIRE(golden.size() == pairs.size());
+    const auto fast = fast::solve_batch(pairs);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const fast::NormalDepth g = fast::pdd2_global(pairs[k].A, pairs[k].B);
+      if (g.status != fast::DepthStatus::Ok) {
+        BOOST_TEST(fast[k].error.has_value(), pairs[k].name << " public pdd2_global rejected alone");
+        continue;
+      }
+      PairResult<double> record = fast[k];
+      record.pdd2_global = g.pd2;
+      if (g.pd2 > 0) record.pdd2_global_normal = g.normal;
+      const auto c = compare::compare_pair(pairs[k], golden[k], record);
+      BOOST_TEST(c.global_error <= compare::kContractRel,
+                 pairs[k].name << " public pdd2_global " << g.pd2 << " exact [" << c.global_lower << ", "
+                               << c.global_exact << "]");
+      BOOST_TEST(c.global_normal_error <= compare::kContractRel, pairs[k].name << " public normal");
+      ++compared;
+    }
+  }
+  BOOST_TEST(compared >= 85);
+}
