@@ -86,8 +86,11 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
     }
     if (have && rigid.value > 0 && accel1.value > 0) {
       const TetVertices &As = sp.A, &Bs = sp.B;
-      const ExactStart rigid_start = [&]() -> std::array<double, 3> {
-        return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), rigid.label()).n);
+      // (one pointer captured: std::function keeps it inline instead of allocating per call)
+      const std::pair<const detail::ScaledPair*, const Choice*> start{&sp, &rigid};
+      const ExactStart rigid_start = [&start]() -> std::array<double, 3> {
+        const detail::ScaledPair& p = *start.first;
+        return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(p.A, p.B), start.second->label()).n);
       };
       const GlobalOptimum g = global_depth(As, Bs, c.n, accel1.value, rigid_start, rigid.value);
       bool in_range = true;
