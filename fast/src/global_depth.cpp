@@ -172,10 +172,12 @@ struct Best {
   } win;
 };
 
+V3 refine(const double (&h)[3][3], const V3& v0, double mu, long);  // (below)
+
 // One step from v towards a local minimum (double path, before the enumeration): v's active
 // set S (its solution s, direction_qp.h: A's vertices at or above C + S_A, B's at or below
 // C + S_B) has G = n^T H_S n on S's piece (enumerate_pieces' H_S, here from the centred
-// vertices directly), and H_S's smallest eigenvector, oriented as v (three steps of inverse
+// vertices directly), and H_S's smallest eigenvector, oriented as v (two steps of inverse
 // iteration from v), is where G would be least if the piece reached that far. It is only
 // offered: an offer only ever lowers the best value,
 // and a lower best prunes more pieces (the screen's and consider_piece's windows). Measured on
@@ -208,24 +210,10 @@ V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
     if (mb >> i & 1u) add_outer(sub(C, P.pB[i]), 1);
   }
   add_outer(TA, 10 - mA - mB);
-  // Its smallest eigenvector by inverse iteration from v (x <- adj(H) x: H^-1 up to the
-  // determinant's factor, and the projector onto the kernel when H is singular): cheaper than
-  // an eigensolver, and v, the start, is usually near it.
-  double adj[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-      adj[r][c] = H[r1][c1] * H[r2][c2] - H[r1][c2] * H[r2][c1];  // cofactor (c, r)
-    }
-  V3 u = v;
-  for (int it = 0; it < 3; ++it) {
-    V3 x;
-    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * u[0] + adj[r][1] * u[1] + adj[r][2] * u[2];
-    const double nx = norm(x);
-    if (!(nx > 0) || !std::isfinite(nx)) break;
-    u = mul(x, 1 / nx);
-  }
-  return dot(u, v) < 0 ? mul(u, -1.0) : u;
+  // Its smallest eigenvector by inverse iteration from v (refine with shift 0: x <- adj(H) x,
+  // H^-1 up to the determinant's factor, the projector onto the kernel when H is singular),
+  // oriented as v: cheaper than an eigensolver, and v, the start, is usually near it.
+  return refine(H, v, 0.0, 0);
 }
 
 // The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
