@@ -32,31 +32,38 @@ BOOST_AUTO_TEST_CASE(golden_files_read_back_exactly) {
   BOOST_TEST(golden[1].rigid_dir->str() == "FV:3");
 }
 
-BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
-  int compared = 0;
+namespace {
+// Every shipped fixture pair with its golden record and the fast engine's (solve_batch).
+template <class Check>
+void for_each_fixture_pair(Check check) {
   for (const auto& file : test::property_fixture_files()) {
     const auto pairs = test::load_pairs(file);
     const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, file));
     BOOST_REQUIRE(golden.size() == pairs.size());
     const auto fast = fast::solve_batch(pairs);
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const auto c = compare::compare_pair(pairs[k], golden[k], fast[k]);
-      BOOST_TEST(c.rejections_agree, pairs[k].name);
-      BOOST_TEST(c.position_error <= c.position_tolerance, pairs[k].name << " q1");
-      BOOST_TEST(c.separated, pairs[k].name << " q1 separated");
-      // SPEC §9: inside the exact interval and reproduced by its normal
-      const bool global_ok = c.global_error <= compare::kContractRel &&
-                             c.global_normal_error <= compare::kContractRel;
-      BOOST_TEST(global_ok, pairs[k].name << " pdd2_global " << c.global_fast << " exact ["
-                                          << c.global_lower << ", " << c.global_exact << "]");
-      BOOST_TEST(!c.over_tolerance(), pairs[k].name);
-      for (int v = 0; v < 7; ++v)
-        BOOST_TEST(c.rel_error[v] <= c.tolerance[v], pairs[k].name << " " << pdd::kValueKeys[v]);
-      for (int l = 0; l < 4; ++l)
-        BOOST_TEST((c.labels[l] != compare::LabelVerdict::Differ), pairs[k].name << " " << pdd::kLabelKeys[l]);
-      ++compared;
-    }
+    for (std::size_t k = 0; k < pairs.size(); ++k) check(pairs[k], golden[k], fast[k]);
   }
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
+  int compared = 0;
+  for_each_fixture_pair([&](const TetPair& pair, const auto& golden, const PairResult<double>& fast) {
+    const auto c = compare::compare_pair(pair, golden, fast);
+    BOOST_TEST(c.rejections_agree, pair.name);
+    BOOST_TEST(c.position_error <= c.position_tolerance, pair.name << " q1");
+    BOOST_TEST(c.separated, pair.name << " q1 separated");
+    // SPEC §9: inside the exact interval and reproduced by its normal
+    const bool global_ok = c.global_error <= compare::kContractRel &&
+                           c.global_normal_error <= compare::kContractRel;
+    BOOST_TEST(global_ok, pair.name << " pdd2_global " << c.global_fast << " exact [" << c.global_lower << ", "
+                                    << c.global_exact << "]");
+    BOOST_TEST(!c.over_tolerance(), pair.name);
+    for (int v = 0; v < 7; ++v) BOOST_TEST(c.rel_error[v] <= c.tolerance[v], pair.name << " " << pdd::kValueKeys[v]);
+    for (int l = 0; l < 4; ++l)
+      BOOST_TEST((c.labels[l] != compare::LabelVerdict::Differ), pair.name << " " << pdd::kLabelKeys[l]);
+    ++compared;
+  });
   BOOST_TEST(compared >= 85);
 }
 
@@ -67,27 +74,21 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
 // (NotRepresentable) is accepted only where solve_pair rejects the pair too.
 BOOST_AUTO_TEST_CASE(public_pdd2_global_within_contract_of_golden) {
   int compared = 0;
-  for (const auto& file : test::property_fixture_files()) {
-    const auto pairs = test::load_pairs(file);
-    const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, file));
-    BOOST_REQUIRE(golden.size() == pairs.size());
-    const auto fast = fast::solve_batch(pairs);
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const fast::NormalDepth g = fast::pdd2_global(pairs[k].A, pairs[k].B);
-      if (g.status != fast::DepthStatus::Ok) {
-        BOOST_TEST(fast[k].error.has_value(), pairs[k].name << " public pdd2_global rejected alone");
-        continue;
-      }
-      PairResult<double> record = fast[k];
-      record.pdd2_global = g.pd2;
-      if (g.pd2 > 0) record.pdd2_global_normal = g.normal;
-      const auto c = compare::compare_pair(pairs[k], golden[k], record);
-      BOOST_TEST(c.global_error <= compare::kContractRel,
-                 pairs[k].name << " public pdd2_global " << g.pd2 << " exact [" << c.global_lower << ", "
-                               << c.global_exact << "]");
-      BOOST_TEST(c.global_normal_error <= compare::kContractRel, pairs[k].name << " public normal");
-      ++compared;
+  for_each_fixture_pair([&](const TetPair& pair, const auto& golden, const PairResult<double>& fast) {
+    const fast::NormalDepth g = fast::pdd2_global(pair.A, pair.B);
+    if (g.status != fast::DepthStatus::Ok) {
+      BOOST_TEST(fast.error.has_value(), pair.name << " public pdd2_global rejected alone");
+      return;
     }
-  }
+    PairResult<double> record = fast;
+    record.pdd2_global = g.pd2;
+    if (g.pd2 > 0) record.pdd2_global_normal = g.normal;
+    const auto c = compare::compare_pair(pair, golden, record);
+    BOOST_TEST(c.global_error <= compare::kContractRel,
+               pair.name << " public pdd2_global " << g.pd2 << " exact [" << c.global_lower << ", "
+                         << c.global_exact << "]");
+    BOOST_TEST(c.global_normal_error <= compare::kContractRel, pair.name << " public normal");
+    ++compared;
+  });
   BOOST_TEST(compared >= 85);
 }
