@@ -15,6 +15,7 @@
 #include "exit_codes.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/engines.h"
+#include "pdd/compare/family_global_cost.h"
 #include "pdd/compare/generate.h"
 #include "pdd/compare/output.h"
 #include "pdd/compare/paper_experiment.h"
@@ -24,7 +25,6 @@
 #include "pdd/compare/stats.h"
 #include "pdd/compare/timing.h"
 #include "pdd/pdd.h"
-#include "pdd/reference/candidate_directions.h"
 
 namespace pdd::compare {
 namespace {
@@ -36,6 +36,8 @@ struct PaperArgs {
   std::size_t exact_sample = 200;
   int repeats = 5;
   double min_volume = 0.1, max_volume = 130;
+  std::string fixtures = "fixtures";
+  bool fixtures_given = false;  // --fixtures on the command line: a missing folder is then an error
 };
 
 std::string machine_description() {
@@ -66,6 +68,10 @@ int run_paper_checked(const PaperArgs& a) {
               << a.max_volume << ")\n";
     return kExitUsage;
   }
+  if (a.fixtures_given && !fs::is_directory(a.fixtures + "/families")) {
+    std::cerr << "pdd paper: --fixtures: no folder '" << a.fixtures << "/families'\n";
+    return kExitUsage;
+  }
   std::error_code ec;
   fs::create_directories(a.out, ec);
   if (ec || !fs::is_directory(a.out)) {
@@ -93,18 +99,22 @@ int run_paper_checked(const PaperArgs& a) {
   const PaperStats ex_stats = paper_statistics(sample.results, [](const reference::Rational& q) { return CGAL::to_double(q); });
 
   // SPEC §9: the minimum over every plane, against the candidates.
-  auto candidate_normals = [](const TetPair& p) {
-    std::vector<std::array<double, 3>> out;
-    for (const auto& d : reference::candidate_directions(reference::to_exact(p)))
-      out.push_back({CGAL::to_double(d.n.x()), CGAL::to_double(d.n.y()), CGAL::to_double(d.n.z())});
-    return out;
-  };
-  const GlobalStats fs_global = global_statistics(pairs, fast, [](double x) { return x; }, candidate_normals);
+  const GlobalStats fs_global = global_statistics(pairs, fast, [](double x) { return x; }, candidate_normals_rounded);
   std::vector<TetPair> sample_pairs;
   for (std::size_t i : sample.indices) sample_pairs.push_back(pairs[i]);
   const GlobalStats ex_global = global_statistics(
       sample_pairs, sample.results, [](const reference::Rational& q) { return CGAL::to_double(q); },
-      candidate_normals);
+      candidate_normals_rounded);
+
+  // The same on the shipped fixture families (fast engine here, exact from their golden files).
+  std::vector<FamilyGlobalCost> families;
+  std::string families_note;
+  if (a.fixtures_given || std::filesystem::is_directory(a.fixtures + "/families")) {
+    std::cerr << "pdd paper: the fixture families in " << a.fixtures << "/families\n";
+    families = family_global_costs(a.fixtures);
+  } else {
+    families_note = "(not run: no folder `" + a.fixtures + "/families`; run `pdd paper` from the repository's root or pass `--fixtures`)";
+  }
 
   std::string why;
   const bool fig_global = write_global_figure(a.out, fs_global, why);
@@ -177,6 +187,33 @@ int run_paper_checked(const PaperArgs& a) {
      << "% of the " << ex_global.pairs << " exact ones. Histograms: `global_cost.png`"
      << (fig_global ? "" : " (not drawn: gnuplot failed)") << ".\n\n";
 
+  md << "### The same on the fixture families\n\n";
+  if (families.empty()) {
+    md << families_note << "\n\n";
+  } else {
+    md << "Every shipped family of `" << a.fixtures << "/families` (`pdd generate --list` says what each "
+       << "covers): the fast engine run here, the exact engine's values read from the golden files. "
+       << "Pairs counted: those that intersect and that neither engine rejects. Squared ratios, mean "
+       << "(max); angle in degrees, mean (max); at candidate: pdd2_relaxed within 1e-9 of pdd2_global.\n\n"
+       << "| family | pairs | counted (fast / exact) | pdd2_relaxed / pdd2_global, fast | exact | "
+       << "pdd2 / pdd2_global, fast | PD_d_global / PD, fast | angle, fast | at candidate (fast / exact) |\n"
+       << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    auto mean_max = [](const RatioStats& s, int digits) {
+      std::ostringstream o;
+      if (s.n == 0) return std::string("-");
+      o << std::setprecision(digits) << s.mean << " ("
+        << *std::max_element(s.values.begin(), s.values.end()) << ")";
+      return o.str();
+    };
+    for (const FamilyGlobalCost& f : families)
+      md << "| " << f.family << " | " << f.pairs << " | " << f.fast.pairs << " / " << f.exact.pairs << " | "
+         << mean_max(f.fast.relaxed_over_global, 5) << " | " << mean_max(f.exact.relaxed_over_global, 5) << " | "
+         << mean_max(f.fast.pdd2_over_global, 5) << " | " << mean_max(f.fast.global_over_pd, 4) << " | "
+         << mean_max(f.fast.angle_degrees, 3) << " | " << f.fast.at_candidate << " / " << f.exact.at_candidate
+         << " |\n";
+    md << "\n";
+  }
+
   md << "## Exact sample: fast engine against exact arithmetic\n\n"
      << sample.indices.size() << " pairs drawn at random (seed " << a.seed << ") and solved exactly: "
      << sample.over_tolerance << " over the tolerance of `engine_comparison.h`, " << sample.labels_differ
@@ -246,7 +283,14 @@ void add_paper_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-volume", a->max_volume, "Largest tetrahedron volume kept")
       ->check(finite_number(0, true))
       ->capture_default_str();
-  cmd->callback([a, &exit_code] { exit_code = run_paper(*a); });
+  CLI::Option* fixtures = cmd->add_option(
+      "--fixtures", a->fixtures,
+      "Fixtures folder whose families/*.json (with their golden files) get the SPEC §9 cost table too")
+      ->capture_default_str();
+  cmd->callback([a, fixtures, &exit_code] {
+    a->fixtures_given = fixtures->count() > 0;
+    exit_code = run_paper(*a);
+  });
 }
 
 }  // namespace pdd::compare

@@ -5,6 +5,7 @@
 # exactly or by an exact tie). The paper's own numbers, printed from constants, are not checked.
 file(REMOVE_RECURSE ${OUT})
 execute_process(COMMAND ${PDD} paper --seed 7 --count 120 --exact-sample 120 --repeats 1 --out ${OUT}
+                        --fixtures ${FIXTURES}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "pdd paper: exit ${rc}\n${err}")
@@ -57,5 +58,29 @@ foreach(what "| rigid direction = optimal case-2 direction |"
   endif()
   if(NOT CMAKE_MATCH_1 STREQUAL CMAKE_MATCH_2)
     message(FATAL_ERROR "${what}: fast ${CMAKE_MATCH_1} but exact ${CMAKE_MATCH_2} on the same pairs")
+  endif()
+endforeach()
+
+# SPEC §9 on the fixture families: a row per shipped family file, and on every family where both
+# engines count the same pairs the fast pdd2_relaxed / pdd2_global column prints what the exact
+# one (read from the golden files) does (within 2e-9 of each other, far below 5 digits).
+file(GLOB family_files RELATIVE ${FIXTURES}/families ${FIXTURES}/families/*.json)
+list(LENGTH family_files n_families)
+if(n_families LESS 10)
+  message(FATAL_ERROR "expected the shipped families in ${FIXTURES}/families, found ${n_families}")
+endif()
+string(FIND "${report}" "### The same on the fixture families" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "report.md lacks the fixture families' table")
+endif()
+string(SUBSTRING "${report}" ${at} -1 report)  # row_after searches the table only from here on
+foreach(f ${family_files})
+  string(REGEX REPLACE "\\.json$" "" family "${f}")
+  row_after("| ${family} | " row)
+  if(NOT row MATCHES "^[0-9]+ \\| ([0-9]+) / ([0-9]+) \\| ([^|]+) \\| ([^|]+) \\|")
+    message(FATAL_ERROR "unexpected family row: '| ${family} | ${row}'")
+  endif()
+  if(CMAKE_MATCH_1 STREQUAL CMAKE_MATCH_2 AND NOT CMAKE_MATCH_3 STREQUAL CMAKE_MATCH_4)
+    message(FATAL_ERROR "family ${family}: fast '${CMAKE_MATCH_3}' but exact '${CMAKE_MATCH_4}'")
   endif()
 endforeach()

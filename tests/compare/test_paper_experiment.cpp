@@ -1,7 +1,13 @@
 // The statistics of `pdd paper` on hand-made results (values derived in the comments).
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
+#include <cmath>
+
+#include "fixtures.h"
+#include "pdd/compare/family_global_cost.h"
 #include "pdd/compare/paper_experiment.h"
+#include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
 using namespace pdd::compare;
@@ -49,4 +55,85 @@ BOOST_AUTO_TEST_CASE(volumes_of_both_tetrahedra) {
   BOOST_TEST(v.size() == 2u);
   BOOST_TEST(v[0] == 1.0 / 6, boost::test_tools::tolerance(1e-15));
   BOOST_TEST(v[1] == 8.0 / 6, boost::test_tools::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(global_statistics_by_hand) {
+  // One pair: PD^2 = 4, pdd2 = 2, pdd2_relaxed = 1.5, pdd2_global = 1 along (1, 0, 0).
+  // PD_d_global / PD = sqrt(1/4) = 1/2; pdd2 / global = 2; relaxed / global = 1.5 (so the
+  // optimum is not a candidate's). Candidates (0, 1, 0) at 90 degrees and (1, 1, 0) at 45: the
+  // nearest is 45 degrees. The second candidate is given as (1e205, 1e205, 0), whose squared
+  // length overflows a double (as a candidate of a pair scaled by 2^450 does: an adversarial
+  // family pair once read 180 degrees here), and the exact normal as (2^1100, 0, 0), which no
+  // double holds: neither may change the angle.
+  PairResult<reference::Rational> r;
+  r.intersecting = true;
+  r.rigid_pd2 = 4, r.pdd2 = 2, r.pdd2_relaxed = 1.5, r.pdd2_global = 1;
+  reference::Rational huge = 1;
+  for (int i = 0; i < 1100; ++i) huge *= 2;
+  r.pdd2_global_normal = std::array<reference::Rational, 3>{huge, 0, 0};
+  PairResult<reference::Rational> skipped;  // not intersecting: not counted
+  const std::vector<PairResult<reference::Rational>> rs = {r, skipped};
+  const std::vector<TetPair> pairs(2);
+  auto candidates = [](const TetPair&) {
+    return std::vector<std::array<double, 3>>{{0, 1, 0}, {1e205, 1e205, 0}};
+  };
+  const GlobalStats s = global_statistics(
+      pairs, rs, [](const reference::Rational& q) { return CGAL::to_double(q); }, candidates);
+  BOOST_TEST(s.pairs == 1u);
+  BOOST_TEST(s.global_over_pd.mean == 0.5);
+  BOOST_TEST(s.pdd2_over_global.mean == 2.0);
+  BOOST_TEST(s.relaxed_over_global.mean == 1.5);
+  BOOST_TEST(s.at_candidate == 0u);
+  BOOST_TEST(s.angle_degrees.mean == 45.0, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(candidate_normals_survive_extreme_scales) {
+  // A paper-like pair and the same pair scaled by 2^450 and 2^-450 (exact): the candidate
+  // directions are the same up to a positive factor, so after rounding each one's direction
+  // must agree to a few ulps (the unscaled cross products' components are far from overflow).
+  TetPair p;
+  p.A = {{{0, 0, 0}, {3, 0.5, 0}, {0.25, 2, 0.75}, {0.5, 0.5, 4}}};
+  p.B = {{{1, 1, 1}, {4, 1.5, 0.25}, {1.75, 3, 2}, {0.5, 2.5, 3.5}}};
+  for (int e : {450, -450}) {
+    TetPair q = p;
+    for (auto* T : {&q.A, &q.B})
+      for (auto& v : *T)
+        for (double& x : v) x = std::ldexp(x, e);
+    const auto a = candidate_normals_rounded(p), b = candidate_normals_rounded(q);
+    BOOST_TEST_REQUIRE(a.size() == b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      auto unit = [](std::array<double, 3> v) {
+        const double m = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+        for (double& x : v) x /= m;
+        return v;
+      };
+      const auto u = unit(a[i]), w = unit(b[i]);
+      for (int k = 0; k < 3; ++k) BOOST_TEST(std::abs(u[k] - w[k]) <= 1e-15, "scale 2^" << e << " candidate " << i);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(family_global_costs_of_the_shipped_families) {
+  // Every family file with its golden file; the fast engine's statistics against the exact
+  // ones read from the golden files. Where both engines count the same pairs, SPEC §8 puts
+  // each fast value within 1e-9 of the exact one, so each squared ratio within ~2e-9 and so
+  // their means and maxima; the same pairs have their optimum at a candidate's.
+  const auto costs = family_global_costs(PDD_FIXTURES_DIR);
+  const auto files = pdd::test::property_fixture_files();
+  const auto families = std::count_if(files.begin(), files.end(), [](const std::string& f) { return f.rfind("families/", 0) == 0; });
+  BOOST_TEST_REQUIRE(costs.size() == std::size_t(families));
+  for (const FamilyGlobalCost& f : costs) {
+    BOOST_TEST_CONTEXT(f.family) {
+      BOOST_TEST(f.exact.pairs <= f.intersecting);
+      BOOST_TEST(f.fast.pairs <= f.exact.pairs);  // the fast engine may reject (SPEC §8), never add
+      if (f.family == "disjoint" || f.family == "touching") BOOST_TEST(f.exact.pairs == 0u);
+      if (f.fast.pairs != f.exact.pairs || f.fast.pairs == 0) continue;
+      auto close = [](double x, double y) { return std::abs(x - y) <= 1e-8 * y; };
+      BOOST_TEST(close(f.fast.relaxed_over_global.mean, f.exact.relaxed_over_global.mean));
+      BOOST_TEST(close(f.fast.pdd2_over_global.mean, f.exact.pdd2_over_global.mean));
+      BOOST_TEST(close(f.fast.global_over_pd.mean, f.exact.global_over_pd.mean));
+      BOOST_TEST(f.fast.at_candidate == f.exact.at_candidate);
+      for (double a : f.fast.angle_degrees.values) BOOST_TEST((a >= 0 && a <= 180));
+    }
+  }
 }

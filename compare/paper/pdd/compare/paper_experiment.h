@@ -12,7 +12,9 @@
 #pragma once
 
 #include <array>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -96,13 +98,21 @@ GlobalStats global_statistics(const std::vector<TetPair>& pairs, const std::vect
     pdd2_ratio.push_back(to_d(r.pdd2) / g);
     relaxed_ratio.push_back(to_d(r.pdd2_relaxed) / g);
     s.at_candidate += (to_d(r.pdd2_relaxed) <= g * (1 + 1e-9));
+    // Both vectors divided by their largest component first (in R for the normal): an exact
+    // normal of a pair far from the unit scale need not fit a double, and squares of a
+    // candidate's components of 1e205 overflow.
     const auto& nr = *r.pdd2_global_normal;
-    const double n[3] = {to_d(nr[0]), to_d(nr[1]), to_d(nr[2])};
+    auto magnitude = [](const R& x) { return x < R(0) ? R(-x) : x; };
+    const R big = std::max({magnitude(nr[0]), magnitude(nr[1]), magnitude(nr[2])});
+    const double n[3] = {to_d(nr[0] / big), to_d(nr[1] / big), to_d(nr[2] / big)};
     const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     double best = -1;
-    for (const std::array<double, 3>& c : candidate_normals(pairs[i])) {
+    for (std::array<double, 3> c : candidate_normals(pairs[i])) {
+      const double cm = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2])});
+      if (!(cm > 0 && cm <= std::numeric_limits<double>::max())) continue;
+      for (double& x : c) x /= cm;
       const double cc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-      if (cc > 0) best = std::max(best, (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / (nn * cc));
+      best = std::max(best, (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / (nn * cc));
     }
     angle.push_back(std::acos(std::min(1.0, std::max(-1.0, best))) * 180.0 / M_PI);
   }
