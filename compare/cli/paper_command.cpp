@@ -79,6 +79,17 @@ int run_paper_checked(const PaperArgs& a) {
               << "': " << (ec ? ec.message() : std::string("a file of that name exists")) << "\n";
     return kExitFileError;
   }
+  // The same on the shipped fixture families (fast engine here, exact from their golden files),
+  // first: a bad family or golden file then fails in seconds, before the long run.
+  std::vector<FamilyGlobalCost> families;
+  std::string families_note;
+  if (a.fixtures_given || std::filesystem::is_directory(a.fixtures + "/families")) {
+    std::cerr << "pdd paper: the fixture families in " << a.fixtures << "/families\n";
+    families = family_global_costs(a.fixtures);
+  } else {
+    families_note = "(not run: no folder `" + a.fixtures + "/families`; run `pdd paper` from the repository's root or pass `--fixtures`)";
+  }
+
   const PaperProtocol protocol{10.0, a.min_volume, a.max_volume};
   std::cerr << "pdd paper: generating " << a.count << " pairs (seed " << a.seed << ")\n";
   const auto pairs = generate_family("paper", a.seed, a.count, protocol);
@@ -105,16 +116,6 @@ int run_paper_checked(const PaperArgs& a) {
   const GlobalStats ex_global = global_statistics(
       sample_pairs, sample.results, [](const reference::Rational& q) { return CGAL::to_double(q); },
       candidate_normals_rounded);
-
-  // The same on the shipped fixture families (fast engine here, exact from their golden files).
-  std::vector<FamilyGlobalCost> families;
-  std::string families_note;
-  if (a.fixtures_given || std::filesystem::is_directory(a.fixtures + "/families")) {
-    std::cerr << "pdd paper: the fixture families in " << a.fixtures << "/families\n";
-    families = family_global_costs(a.fixtures);
-  } else {
-    families_note = "(not run: no folder `" + a.fixtures + "/families`; run `pdd paper` from the repository's root or pass `--fixtures`)";
-  }
 
   std::string why;
   const bool fig_global = write_global_figure(a.out, fs_global, why);
