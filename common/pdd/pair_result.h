@@ -35,6 +35,11 @@ struct PairResult {
   std::optional<std::array<R, 3>> pdd2_global_normal;
   Positions<R> q1_A_global{}, q1_B_global{};
   std::optional<R> pdd2_global_lower;
+  // Set when pdd2_global alone cannot be had (fast engine only: no normal in doubles was
+  // certified to attain it, or it lies outside the double range). The candidate-based values
+  // above are still reported; pdd2_global and q1_*_global are then NaN and there is no normal,
+  // so that none of them can be read as a depth. Written as null keys in a record.
+  std::optional<std::string> pdd2_global_error;
 };
 
 // The record's values and labels by name (the candidate-based values of SPEC §5–§6; the §9

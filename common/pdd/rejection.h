@@ -48,11 +48,14 @@ inline std::optional<std::string> pair_rejection(const std::optional<std::string
 
 inline constexpr const char* kNotRepresentable =
     "not representable: a result is outside the normal double range (SPEC §8)";
-// The fast engine's pdd2_global (SPEC §9) where no normal in doubles was found that attains it:
-// a pair whose depth is below 1e-7 of its extent (a far vertex), where a normal's rounding
-// alone moves a far vertex by more than 1e-9 of the depth.
+// The fast engine's pdd2_global_error (the record's other values stay): no normal in doubles
+// was certified to attain pdd2_global, or pdd2_global or its positions are outside the normal
+// double range.
 inline constexpr const char* kGlobalNotRepresentable =
-    "not representable: no normal in doubles attains pdd2_global (the pair's depth is below the "
-    "resolution of its extent; SPEC §8, §9)";
+    "pdd2_global not representable: no normal in doubles was certified to attain it within the "
+    "fast engine's accuracy contract (the depth is below the resolution of the pair's extent)";
+inline constexpr const char* kGlobalOutOfRange =
+    "pdd2_global not representable: its value or deformed positions are outside the normal "
+    "double range";
 
 }  // namespace pdd

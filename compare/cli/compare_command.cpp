@@ -108,11 +108,17 @@ int run_compare(const CompareArgs& a) {
     }
     ++compared;
     intersect_agree += c.intersect_agree;
+    if (c.global_declined)
+      std::cerr << "pdd compare: pair '" << printable(c.name) << "': the fast engine declined pdd2_global"
+                << (c.allowed_because.empty() ? " where the contract requires it" : " (" + c.allowed_because + ")")
+                << "\n";
     if (!c.intersecting) continue;
     for (std::size_t k = 0; k < kValueCount; ++k) errs[k].push_back(c.rel_error[k]);
     pos.push_back(c.position_error);
-    global.push_back(c.global_error);
-    global_normal.push_back(c.global_normal_error);
+    if (!c.global_declined || c.allowed_because.empty()) {
+      global.push_back(c.global_error);
+      global_normal.push_back(c.global_normal_error);
+    }
     for (std::size_t k = 0; k < kLabelCount; ++k) ++verdicts[k][int(c.labels[k])];
   }
   std::ostream& s = a.json ? std::cerr : std::cout;

@@ -11,6 +11,7 @@
 // read, the command line is wrong or an output cannot be written.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -95,6 +96,10 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
       std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << ") rejected: " << *p.result.error << '\n';
       status = kExitPairRejected;
       ++errors;
+    } else if (p.result.pdd2_global_error && (variants & mesh::kGlobal)) {
+      std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << "): " << *p.result.pdd2_global_error
+                << " (its keys are null; the other values are reported)\n";
+      status = kExitPairRejected;
     }
   }
   const std::string where = args.output.empty() ? "standard output" : "'" + args.output + "'";
@@ -129,6 +134,7 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
       for (const auto& p : c.pairs) {
         if (p.result.error) continue;
         const double v = as_double(mesh::variant_value(p.result, k));
+        if (std::isnan(v)) continue;  // pdd2_global declined (named above)
         sum += v;
         if (v > best) best = v, arg = &p;
       }

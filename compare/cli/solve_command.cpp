@@ -46,6 +46,10 @@ int write_results(const std::vector<PairResult<R>>& results, Record record, std:
     if (r.error) {
       std::cerr << "pdd solve: pair '" << printable(r.name) << "' rejected: " << *r.error << '\n';
       status = kExitPairRejected;
+    } else if (r.pdd2_global_error) {  // the other values are in the record
+      std::cerr << "pdd solve: pair '" << printable(r.name) << "': " << *r.pdd2_global_error
+                << " (its keys are null; the other values are reported)\n";
+      status = kExitPairRejected;
     }
     if constexpr (!std::is_same_v<R, double>) {  // SPEC §9: say when the proof fell short
       if (r.pdd2_global_lower && r.pdd2_global > 0 &&

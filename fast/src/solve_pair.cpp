@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -230,6 +231,17 @@ bool global_representable(const PairResult<double>& r) {
   return true;
 }
 
+// pdd2_global alone cannot be had: the record keeps its other values; the SPEC §9 fields become
+// NaN (no normal), so that none of them reads as a depth, and `why` is recorded.
+void decline_global(PairResult<double>& r, const char* why) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  r.pdd2_global = nan;
+  r.pdd2_global_normal.reset();
+  for (Positions<double>* q : {&r.q1_A_global, &r.q1_B_global})
+    for (auto& x : *q) x = {nan, nan, nan};
+  r.pdd2_global_error = why;
+}
+
 PairResult<double> exact_path(const TetPair& pair, PairResult<double> r, bool global) {
   detail::ExactPathResult e = detail::solve_pair_exact_path(pair.A, pair.B);
   if (!e.representable) {
@@ -243,14 +255,10 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r, bool gl
     const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), x.pdd2_relaxed, {}, x.rigid_pd2);
     x.pdd2_global = g.value, x.pdd2_global_normal = g.normal;
     x.q1_A_global = g.q1_A, x.q1_B_global = g.q1_B;
-    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) {
-      r.error = kGlobalNotRepresentable;  // no double normal found (global_depth.h)
-      return r;
-    }
-    if (!global_representable(x)) {
-      r.error = kNotRepresentable;  // its value or positions leave the double range
-      return r;
-    }
+    if (!g.certified || !(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0))
+      decline_global(x, kGlobalNotRepresentable);  // no double normal found (global_depth.h)
+    else if (!global_representable(x))
+      decline_global(x, kGlobalOutOfRange);
   }
   return x;
 }
@@ -302,16 +310,15 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
   if (global_exact) r.pdd2_global = 0;
   if (!unscale(r, -sp.e, missing | kGlobal)) return bad;  // pdd2_global: checked below
   if (!global) r.q1_A_global = pair.A, r.q1_B_global = pair.B;  // SPEC §9 skipped: rest pose
-  if (missing & kGlobal) {  // no double normal found (global_depth.h)
-    bad.error = kGlobalNotRepresentable;
-    return bad;
-  }
-  if (global_exact) {
+  if (missing & kGlobal) {
+    decline_global(r, kGlobalNotRepresentable);  // no double normal found (global_depth.h)
+    missing &= ~kGlobal;  // the exact path below replaces candidate-based values only
+  } else if (global_exact) {
     bool ok = true;
     r.pdd2_global = exact_relaxed_value(pair.A, pair.B, *r.pdd2_global_normal, ok);
-    if (!ok) return bad;  // the value leaves the double range
+    if (!ok) decline_global(r, kGlobalOutOfRange);
   }
-  if (!global_representable(r)) return bad;  // likewise, or a position
+  if (!r.pdd2_global_error && !global_representable(r)) decline_global(r, kGlobalOutOfRange);
   if (global_slow && slow_path) *slow_path = true;
   if (exact_q1 && !(missing & kDeformable) && !exact_positions_of(pair, *r.pdd2_dir, r))
     missing |= kPositions;

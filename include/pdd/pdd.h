@@ -66,18 +66,20 @@ namespace pdd::fast {
 //   refined    optional out: set to true when some quantity was refined (a few candidates
 //              evaluated exactly) and the pair did not need the exact path for it.
 //   global     false: skip SPEC §9 (pdd2_global 0, no normal, q1_*_global the rest pose); it
-//              is about 6 of the call's 15 us on the paper's protocol, and the only reason a
-//              valid pair of normal-range values can be rejected: where the depth is below
-//              ~1e-7 of the pair's extent, no double normal may attain pdd2_global
-//              (kGlobalNotRepresentable), and with it the record loses every value.
-// Returns the record; `error` set when the pair is rejected (SPEC §1) or not representable.
+//              is about 3.5 of the call's 13 us on the paper's protocol.
+// Returns the record; `error` set when the pair is rejected (SPEC §1) or a candidate-based
+// value is not representable (then nothing else is set). pdd2_global alone may be declined:
+// where the depth is far below the pair's extent no normal in doubles may be certified to
+// attain it (kGlobalNotRepresentable), or it may lie outside the double range
+// (kGlobalOutOfRange); then `pdd2_global_error` says so, pdd2_global and q1_*_global are NaN,
+// there is no normal, and every other value of the record is reported as usual.
 PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr,
                               bool* refined = nullptr, bool global = true);
 
 // solve_pair on every pair, on all cores (TBB), results in input order; bit-identical to
 // solve_pair one at a time. `slow_paths` (optional out): how many pairs took the exact path;
 // `refined` (optional out): how many were refined (solve_pair's `refined`); `global` as for
-// solve_pair (false: no SPEC §9, and no pair rejected for want of a double normal).
+// solve_pair.
 // A rejected pair is an error record; it never stops the batch.
 std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
                                             std::size_t* slow_paths = nullptr,

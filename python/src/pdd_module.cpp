@@ -27,6 +27,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <type_traits>
 #include <vector>
 
 #include "pdd/compare/fixture_io.h"
@@ -200,7 +201,12 @@ py::dict record(const pdd::PairResult<R>& r, bool global) {
   d["q1_B"] = positions(r.q1_B);
   d["error"] = py::none();
   if (!global) return d;
-  // SPEC §9, in the order `pdd solve` writes them
+  // SPEC §9, in the order `pdd solve` writes them; None where the fast engine declined it
+  if (r.pdd2_global_error) {
+    for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global"}) d[key] = py::none();
+    d["pdd2_global_error"] = *r.pdd2_global_error;
+    return d;
+  }
   d["pdd2_global"] = number(r.pdd2_global);
   if (r.pdd2_global_normal) {
     const auto& n = *r.pdd2_global_normal;
@@ -213,6 +219,7 @@ py::dict record(const pdd::PairResult<R>& r, bool global) {
   d["q1_A_global"] = positions(r.q1_A_global);
   d["q1_B_global"] = positions(r.q1_B_global);
   if (r.pdd2_global_lower) d["pdd2_global_lower"] = number(*r.pdd2_global_lower);
+  if constexpr (std::is_same_v<R, double>) d["pdd2_global_error"] = py::none();
   return d;
 }
 
@@ -311,7 +318,9 @@ void with_threads(std::optional<int> threads, F&& f) {
 //   SPEC §9 (if `global`)       pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global:
 //                               fast (n,), (n, 3) (NaN where no normal), (n, 4, 3) float64;
 //                               exact lists of n Fractions, [x, y, z] Fractions or None,
-//                               nested lists of Fractions, and pdd2_global_lower (Fractions)
+//                               nested lists of Fractions, and pdd2_global_lower (Fractions);
+//                               fast: pdd2_global_error, a list of n entries, None or why the
+//                               engine declined pdd2_global alone (then its row is NaN)
 //   error                       a list of n entries, None or why record j was rejected
 // A rejected record's row: values and positions NaN (exact: None), labels "", intersecting
 // False. Construct and add_to() with the GIL held; put() of a double record touches only the
@@ -384,6 +393,7 @@ class RecordColumns {
       for (int s = 0; s < 2; ++s)
         for (int i = 0; i < 4; ++i)
           for (int c = 0; c < 3; ++c) out_global_q1_[s][(j * 4 + i) * 3 + c] = r.error ? nan : (*g[s])[i][c];
+      if (!r.error && r.pdd2_global_error) global_errors_.emplace_back(j, *r.pdd2_global_error);
     }
   }
 
@@ -430,6 +440,7 @@ class RecordColumns {
       d["pdd2_global_normal"] = *global_normal_;
       d["q1_A_global"] = *global_q1_[0];
       d["q1_B_global"] = *global_q1_[1];
+      d["pdd2_global_error"] = error_column(global_errors_);
     }
     if (exact_global_) {  // in the order `pdd solve` writes them
       d["pdd2_global"] = *exact_global_;
@@ -438,13 +449,18 @@ class RecordColumns {
       d["q1_B_global"] = *exact_global_q1_[1];
       d["pdd2_global_lower"] = *exact_global_lower_;
     }
-    py::list error_list(n_);
-    for (py::ssize_t j = 0; j < n_; ++j) error_list[j] = py::none();
-    for (const auto& [j, msg] : errors_) error_list[static_cast<py::ssize_t>(j)] = py::str(msg);
-    d["error"] = error_list;
+    d["error"] = error_column(errors_);
   }
 
  private:
+  // n entries: None, or the message of row j
+  py::list error_column(const std::vector<std::pair<std::size_t, std::string>>& messages) const {
+    py::list out(n_);
+    for (py::ssize_t j = 0; j < n_; ++j) out[j] = py::none();
+    for (const auto& [j, msg] : messages) out[static_cast<py::ssize_t>(j)] = py::str(msg);
+    return out;
+  }
+
   bool has_value(std::size_t k) const { return values_ & (1u << k); }
 
   template <class R>
@@ -475,7 +491,7 @@ class RecordColumns {
   std::array<double*, pdd::kValueCount> out_values_{};
   std::array<std::uint32_t*, pdd::kLabelCount> out_labels_{};
   std::array<double*, 2> out_q1_{};
-  std::vector<std::pair<std::size_t, std::string>> errors_;
+  std::vector<std::pair<std::size_t, std::string>> errors_, global_errors_;
   std::optional<py::array_t<double>> global_value_, global_normal_;
   std::array<std::optional<py::array_t<double>>, 2> global_q1_;
   double* out_global_ = nullptr;
@@ -802,9 +818,7 @@ formulation  the reference engine's per-direction QP: "reduced" (SPEC §5's 9-va
 name     copied to the record's "name".
 with_global  False: skip SPEC §9 (the record has no pdd2_global, pdd2_global_normal,
          q1_A_global, q1_B_global, pdd2_global_lower keys). Faster (fast engine: about 6 of
-         15 us a pair; reference: its branch and bound of 5 to 50 ms), and the fast engine
-         then never rejects a pair for want of a double normal attaining pdd2_global (a depth
-         below about 1e-7 of the pair's extent, where that rejection takes every value with it).
+         15 us a pair; reference: its branch and bound of 5 to 50 ms).
 
 Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that order:
   name          the name given
@@ -824,6 +838,12 @@ Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that o
                 None when the pair does not intersect
   q1_A, q1_B    the deformed vertex positions attaining pdd2, 4 x [x, y, z] nested lists
   error         None
+  pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global (with_global)   PD_d² over every
+                separating plane, the normal attaining it (pointing from A to B) and the
+                deformed positions; pdd2_global_lower (reference engine) its proved lower bound
+  pdd2_global_error (fast engine, with_global)   None, or why pdd2_global alone could not be
+                certified in doubles (a depth below the resolution of the pair's extent): then
+                the four keys above are None and every other value is still reported
 Values are floats from the fast engine and fractions.Fraction from the reference engine
 (exact, in lowest terms); positions are of the same type. A pair that does not intersect
 reports 0 everywhere, None labels and its rest pose.
@@ -865,6 +885,9 @@ Returns a dict:
   pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global
                              SPEC §9: (N,), (N, 3) (NaN where solve() gives None), (N, 4, 3)
                              float64
+  pdd2_global_error          list of N entries (with_global only): None, or why the engine
+                             declined pdd2_global alone for pair k (its SPEC §9 row is NaN, the
+                             other values are reported)
   error                      list of N entries: None, or why pair k was rejected
   slow_paths                 int: how many pairs took the engine's exact path (SPEC §8)
 A rejected pair never stops the batch: its error is set, its values and positions are NaN,
@@ -998,7 +1021,8 @@ PYBIND11_MODULE(pdd, m) {
                                   "pdd2", "pdd2_relaxed", "pdd2_accel1", "pdd2_accel6",
                                   "rigid_dir", "pdd2_static_dir", "pdd2_dir", "pdd2_relaxed_dir",
                                   "q1_A", "q1_B", "error", "pdd2_global", "pdd2_global_normal",
-                                  "q1_A_global", "q1_B_global", "pdd2_global_lower");
+                                  "q1_A_global", "q1_B_global", "pdd2_global_lower",
+                                  "pdd2_global_error");
   m.def("solve", &solve, kSolveDoc, py::arg("A"), py::arg("B"), py::arg("engine") = "fast",
         py::arg("formulation") = "reduced", py::arg("name") = "", py::arg("with_global") = true);
   m.def("solve_batch", &solve_batch, kSolveBatchDoc, py::arg("A"), py::arg("B"),

@@ -11,7 +11,7 @@ import pdd
 from conftest import LABEL_KEYS, VALUE_KEYS, golden_cases
 
 BATCH_KEYS = ("intersecting",) + VALUE_KEYS + LABEL_KEYS + ("q1_A", "q1_B", "error", "slow_paths",
-             "pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global")
+             "pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_error")
 
 
 def random_pairs(n, seed=3):

@@ -50,7 +50,8 @@ def wants_global(variants):
 
 
 def global_keys(glob, exact):
-    return (GLOBAL_COLUMNS + (("pdd2_global_lower",) if exact else ())) if glob else ()
+    """SPEC §9's keys: the exact engine adds its lower bound, the fast one pdd2_global_error."""
+    return (GLOBAL_COLUMNS + (("pdd2_global_lower",) if exact else ("pdd2_global_error",))) if glob else ()
 
 
 def column_keys(keys, glob=False, exact=False):

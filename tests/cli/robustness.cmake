@@ -168,11 +168,16 @@ endif()
 
 # ---- --no-global: SPEC §9 skipped -------------------------------------------------------------
 # A near-touching pair (an independent review's near-touching-4: a vertex ~1e-12 inside a face)
-# whose exact pdd2_relaxed is below 1e-14 of its extent squared: the fast engine rejects the
-# record for want of a double normal attaining pdd2_global (the allowed class); with --no-global
-# every other value is computed and no record carries SPEC §9's keys.
+# whose exact pdd2_relaxed is below 1e-14 of its extent squared: the fast engine declines
+# pdd2_global for want of a double normal attaining it (the allowed class): exit 1, the pair
+# named on standard error, its SPEC §9 keys null and every other value in the record; with
+# --no-global no record carries SPEC §9's keys.
 file(WRITE ${WORK}/near.json "{\"pairs\":[{\"name\":\"near\",\"A\":[[9.037675410932524,1.693031294904751,5.424321574712652],[3.8210777667020013,4.148092997056115,6.978517449636188],[4.607158911182355,0.6403846042413175,9.325503552447756],[5.179261075285503,1.4998039580173883,4.764574921655386]],\"B\":[[5.095298979210175,2.44263248876802,7.508522662217512],[6.694381701516087,5.585622012955357,10.846255457025519],[7.076930292266666,1.7370670768927319,8.261623391742717],[4.324619576096192,4.561418815077989,10.29440907742961]]}]}")
-run(1 "pair 'near' rejected: not representable: no normal in doubles attains pdd2_global" solve --engine fast --quiet --input ${WORK}/near.json)
+run(1 "pair 'near': pdd2_global not representable: no normal in doubles" solve --engine fast --quiet --input ${WORK}/near.json)
+if(NOT out MATCHES "\"intersecting\":true,\"rigid_pd2\":1\\.29258663601169[0-9]*e-24" OR
+   NOT out MATCHES "\"error\":null,\"pdd2_global\":null,\"pdd2_global_normal\":null,\"q1_A_global\":null,\"q1_B_global\":null,\"pdd2_global_error\":\"pdd2_global not representable")
+  message(FATAL_ERROR "solve (fast) with pdd2_global declined: wrong record\n${out}")
+endif()
 run(0 "took the exact path" solve --engine fast --quiet --no-global --input ${WORK}/near.json)
 if(out MATCHES "_global" OR NOT out MATCHES "\"intersecting\":true,\"rigid_pd2\":1\\.29258663601169[0-9]*e-24")
   message(FATAL_ERROR "solve --no-global (fast): wrong record\n${out}")

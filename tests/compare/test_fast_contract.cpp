@@ -155,6 +155,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           collinear_B({-1.0927037033402687, -0.00012862182936045253, -0.0015175529619056876},
                                       {0.814369731757143, -0.001334792991424085, 0.0004421242974513408})));
   int computed = 0, rejected = 0;
+  std::vector<std::string> declined;  // pdd2_global alone
   for (const auto& p : pairs) {
     const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
     const auto fast = fast::solve_pair(p);
@@ -166,12 +167,14 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                                                           << c.fast_value[v] << " vs " << c.exact_value[v]);
     (fast.error ? rejected : computed) += 1;
     if (fast.error) BOOST_TEST_MESSAGE("rejected " << p.name << ": " << *fast.error);
+    if (!fast.error && fast.pdd2_global_error) declined.push_back(p.name);
   }
   // every kind is computed except the scale 2^-1010 (values ~2^-2000: not representable) and
   // span-1e308, whose pdd2_global (5.03e224 in doubles, inside the exact engine's interval
   // [3.46e224, 9.23e224], which is not closed there) has an eigenvalue of a piece in the window
-  // no double normal reaches (global_depth.cpp's unrepresented()): rejected, in the class
-  // pdd compare allows
-  BOOST_TEST(rejected == 6);
-  BOOST_TEST(computed == int(pairs.size()) - 6);
+  // no double normal reaches (global_depth.cpp's unrepresented()): that value alone declined,
+  // in the class pdd compare allows, every other value computed
+  BOOST_TEST(rejected == 5);
+  BOOST_TEST(computed == int(pairs.size()) - 5);
+  BOOST_TEST((declined == std::vector<std::string>{"span-1e308"}));
 }

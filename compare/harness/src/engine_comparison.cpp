@@ -90,7 +90,8 @@ bool unrepresentable(const reference::ExactResult& e) {
   return false;
 }
 
-// The fast engine's kGlobalNotRepresentable (no normal in doubles attains pdd2_global) is
+// The fast engine's pdd2_global_error kGlobalNotRepresentable (no normal in doubles attains
+// pdd2_global; the pair's other values stay) is
 // allowed where a double normal's rounding, u R at a vertex R away, can exceed 1e-9 of the
 // depth: the exact relaxed value below 1e-14 of the extent squared (R: the largest |x - s0|
 // coordinate, exactly). fuzz/fuzz_fast_engine.cpp holds the engine to the same rule.
@@ -105,6 +106,16 @@ bool global_normal_unresolvable(const TetPair& pair, const reference::ExactResul
         if (d > R) R = d;
       }
   return e.pdd2_relaxed < Rational(1e-14) * R * R;
+}
+
+// pdd2_global's exact interval lies in the normal double range (or is 0).
+bool representable_global(const reference::ExactResult& e) {
+  for (const Rational& v : {e.pdd2_global, e.pdd2_global_lower.value_or(e.pdd2_global)}) {
+    if (v == 0) continue;
+    const double d = std::abs(CGAL::to_double(v));
+    if (!(d >= std::numeric_limits<double>::min() && d <= std::numeric_limits<double>::max())) return false;
+  }
+  return true;
 }
 
 // Object norm (SPEC §2) of both tetrahedra moved from the pair to q1, exactly.
@@ -193,14 +204,9 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
   const bool fast_unrepresentable =
       fast.error && fast.error->rfind("not representable", 0) == 0;
   const bool out_of_range = !exact.error && fast_unrepresentable && unrepresentable(exact);
-  const bool no_normal = !exact.error && fast.error && *fast.error == kGlobalNotRepresentable &&
-                         global_normal_unresolvable(pair, exact);
-  c.rejections_agree = exact.error.has_value() == fast.error.has_value() || out_of_range || no_normal;
+  c.rejections_agree = exact.error.has_value() == fast.error.has_value() || out_of_range;
   if (out_of_range)
     c.allowed_because = "the exact engine confirms: a value is outside the double range";
-  else if (no_normal)
-    c.allowed_because = "allowed: the exact pdd2_relaxed is below 1e-14 of the pair's extent squared, "
-                        "where no double normal need attain pdd2_global";
   if (exact.error || fast.error) return c;
 
   c.intersecting = exact.intersecting;
@@ -238,7 +244,19 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     c.separated = fast.pdd2_dir && separated_by(p, *fast.pdd2_dir, fast, Q);
   }
 
-  judge_global(p, exact, fast, c);
+  if (!fast.pdd2_global_error) {
+    judge_global(p, exact, fast, c);
+  } else if ((*fast.pdd2_global_error == kGlobalNotRepresentable && global_normal_unresolvable(pair, exact)) ||
+             (*fast.pdd2_global_error == kGlobalOutOfRange && !representable_global(exact))) {
+    c.global_declined = true;
+    c.allowed_because = *fast.pdd2_global_error == kGlobalOutOfRange
+                            ? "pdd2_global declined: the exact engine confirms it is outside the double range"
+                            : "pdd2_global declined: the exact pdd2_relaxed is below 1e-14 of the pair's "
+                              "extent squared, where no double normal need attain it";
+  } else {  // declined where the contract requires a value
+    c.global_declined = true;
+    c.global_error = c.global_normal_error = std::numeric_limits<double>::infinity();
+  }
 
   for (std::size_t k = 0; k < kLabelCount; ++k) {
     const auto& el = record_label(exact, k);

@@ -55,7 +55,8 @@ std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entrie
 namespace {
 Json without_global(Json j, bool global) {
   if (!global)
-    for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower"})
+    for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower",
+                            "pdd2_global_error"})
       j.erase(key);
   return j;
 }

@@ -19,7 +19,10 @@
 //   are separated by the plane of the fast pdd2 label's exact direction up to 1e-9 · R;
 // - pdd2_global (SPEC §9): the fast value lies in the exact engine's certified interval
 //   [pdd2_global_lower, pdd2_global] widened by 1e-9 relative, and the fast normal reproduces
-//   it: the exact relaxed optimum along the fast normal (CGAL's QP) is within 1e-9 of it.
+//   it: the exact relaxed optimum along the fast normal (CGAL's QP) is within 1e-9 of it; the
+//   fast engine may decline pdd2_global alone (pdd2_global_error) only where no double normal
+//   need attain it (the exact pdd2_relaxed below 1e-14 of the pair's extent squared) or where
+//   the exact value is outside the double range.
 #pragma once
 
 #include <array>
@@ -57,6 +60,9 @@ struct PairComparison {
   // and |exact relaxed value along the fast normal − fast value| / that exact value.
   double global_error = 0, global_normal_error = 0;
   double global_exact = 0, global_lower = 0, global_fast = 0;
+  // The fast engine declined pdd2_global (pdd2_global_error): allowed when allowed_because says
+  // so, else global_error is infinite.
+  bool global_declined = false;
   std::array<LabelVerdict, kLabelCount> labels{};
   std::array<std::string, kLabelCount> exact_label, fast_label;
 

@@ -2,17 +2,20 @@
 //
 // Keys in SPEC order: name, intersecting, the seven values, the four labels, q1_A, q1_B,
 // error, then SPEC §9's pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global and (exact
-// engine) pdd2_global_lower. A rejected pair is {"name", "error"} only. The number writer decides how R is
+// engine) pdd2_global_lower or (fast engine) pdd2_global_error: null, or why the §9 keys are null
+// while the others are reported. A rejected pair is {"name", "error"} only. The number writer decides how R is
 // written: exact rationals as "p/q" strings, doubles as JSON numbers that read back to the
 // same double (nlohmann writes the shortest round-trip form). result_from_json reads such a
 // record back with a number reader (the inverse of the writer).
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "pdd/pair_result.h"
 
@@ -47,17 +50,21 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
   j["q1_A"] = positions(r.q1_A);
   j["q1_B"] = positions(r.q1_B);
   j["error"] = nullptr;
-  // SPEC §9 (the table's order: after error)
-  j["pdd2_global"] = number(r.pdd2_global);
-  if (r.pdd2_global_normal) {
+  // SPEC §9 (the table's order: after error); null keys where pdd2_global alone could not be had
+  // (fast engine: pdd2_global_error, written by the fast engine's records only)
+  const bool global_ok = !r.pdd2_global_error;
+  j["pdd2_global"] = global_ok ? number(r.pdd2_global) : Json(nullptr);
+  if (r.pdd2_global_normal && global_ok) {
     const auto& n = *r.pdd2_global_normal;
     j["pdd2_global_normal"] = Json::array({number(n[0]), number(n[1]), number(n[2])});
   } else {
     j["pdd2_global_normal"] = nullptr;
   }
-  j["q1_A_global"] = positions(r.q1_A_global);
-  j["q1_B_global"] = positions(r.q1_B_global);
+  j["q1_A_global"] = global_ok ? positions(r.q1_A_global) : Json(nullptr);
+  j["q1_B_global"] = global_ok ? positions(r.q1_B_global) : Json(nullptr);
   if (r.pdd2_global_lower) j["pdd2_global_lower"] = number(*r.pdd2_global_lower);
+  if constexpr (std::is_floating_point_v<R>)
+    j["pdd2_global_error"] = global_ok ? Json(nullptr) : Json(*r.pdd2_global_error);
   return j;
 }
 
@@ -97,6 +104,16 @@ PairResult<R> result_from_json(const Json& j, const NumberReader<R>& number) {
   r.pdd2_relaxed_dir = label(j.at("pdd2_relaxed_dir"));
   r.q1_A = positions(j.at("q1_A"));
   r.q1_B = positions(j.at("q1_B"));
+  if (const auto e = j.find("pdd2_global_error"); e != j.end() && !e->is_null()) {
+    r.pdd2_global_error = e->template get<std::string>();
+    if constexpr (std::is_floating_point_v<R>) {  // the fields' values for a declined pdd2_global
+      const R nan = std::numeric_limits<R>::quiet_NaN();
+      r.pdd2_global = nan;
+      for (Positions<R>* q : {&r.q1_A_global, &r.q1_B_global})
+        for (auto& x : *q) x = {nan, nan, nan};
+    }
+    return r;
+  }
   r.pdd2_global = number(j.at("pdd2_global"));
   if (const Json& n = j.at("pdd2_global_normal"); !n.is_null())
     r.pdd2_global_normal = std::array<R, 3>{number(n.at(0)), number(n.at(1)), number(n.at(2))};
