@@ -28,6 +28,7 @@
 #include "pdd/compare/output.h"
 #include "pdd/compare/progress.h"
 #include "pdd/compare/result_json.h"
+#include "pdd/compare/streaming.h"
 #include "pdd/mesh.h"
 
 namespace pdd::compare {
@@ -89,9 +90,17 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
     }
   }
   std::ostream& out = args.output.empty() ? std::cout : file_out;
-  std::size_t errors = 0;
+  std::size_t errors = 0, written = 0;
+  InterruptGuard interrupts;  // a signal while writing: the line is finished, then exit 128 + signal
   for (const auto& p : c.pairs) {
+    if (const int sig = pending_signal()) {
+      out.flush();
+      std::cerr << "pdd mesh: interrupted (signal " << sig << "): " << written
+                << " records written, each complete, in (a, b) order\n";
+      return interrupted_exit(sig);
+    }
     out << contact_json(p, variants, number).dump() << '\n';
+    ++written;
     if (p.result.error) {
       std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << ") rejected: " << *p.result.error << '\n';
       status = kExitPairRejected;

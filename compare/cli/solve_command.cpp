@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <atomic>
+#include <sstream>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +12,7 @@
 #include <optional>
 
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
 #include "commands.h"
 #include "cli_checks.h"
@@ -18,6 +21,8 @@
 #include "pdd/compare/output.h"
 #include "pdd/compare/progress.h"
 #include "pdd/compare/result_json.h"
+#include "pdd/compare/streaming.h"
+#include "pdd/pdd.h"
 
 namespace pdd::compare {
 namespace {
@@ -33,34 +38,40 @@ struct SolveArgs {
   bool no_global = false;     // skip SPEC §9: records without its keys
 };
 
-// Pairs are read, solved and written this many at a time, so memory does not grow with the
-// file; the results are those of solving the whole file at once, in the same order.
+// Pairs are read this many at a time, so memory does not grow with the file; within a chunk
+// they are solved in parallel and each record is written as soon as it and every record before
+// it are done (streaming.h), so an interrupted run leaves a valid prefix of the output.
 constexpr std::size_t kChunk = 4096;
 
-template <class R, class Record>
-int write_results(const std::vector<PairResult<R>>& results, Record record, std::ostream& out,
-                  double gap = 1e-12) {
-  int status = kExitOk;
-  for (const auto& r : results) {
-    out << record(r).dump() << '\n';
-    if (r.error) {
-      std::cerr << "pdd solve: pair '" << printable(r.name) << "' rejected: " << *r.error << '\n';
-      status = kExitPairRejected;
-    } else if (r.pdd2_global_error) {  // the other values are in the record
-      std::cerr << "pdd solve: pair '" << printable(r.name) << "': " << *r.pdd2_global_error
-                << " (its keys are null; the other values are reported)\n";
-      status = kExitPairRejected;
-    }
-    if constexpr (!std::is_same_v<R, double>) {  // SPEC §9: say when the proof fell short
-      if (r.pdd2_global_lower && r.pdd2_global > 0 &&
-          *r.pdd2_global_lower < r.pdd2_global * (1 - R(gap)))
-        std::cerr << "pdd solve: pair '" << printable(r.name) << "': pdd2_global - pdd2_global_lower = "
-                  << CGAL::to_double((r.pdd2_global - *r.pdd2_global_lower) / r.pdd2_global)
-                  << " * pdd2_global, above --global-gap " << gap
-                  << " (the search budget ran out; the lower bound is still proved)\n";
-    }
+// The note on standard error that goes with a record (written when the record is).
+template <class R>
+std::string record_note(const PairResult<R>& r, double gap) {
+  std::ostringstream note;
+  if (r.error) {
+    note << "pdd solve: pair '" << printable(r.name) << "' rejected: " << *r.error << '\n';
+  } else if (r.pdd2_global_error) {  // the other values are in the record
+    note << "pdd solve: pair '" << printable(r.name) << "': " << *r.pdd2_global_error
+         << " (its keys are null; the other values are reported)\n";
   }
-  return status;
+  if constexpr (!std::is_same_v<R, double>) {  // SPEC §9: say when the proof fell short
+    if (r.pdd2_global_lower && r.pdd2_global > 0 && *r.pdd2_global_lower < r.pdd2_global * (1 - R(gap)))
+      note << "pdd solve: pair '" << printable(r.name) << "': pdd2_global - pdd2_global_lower = "
+           << CGAL::to_double((r.pdd2_global - *r.pdd2_global_lower) / r.pdd2_global)
+           << " * pdd2_global, above --global-gap " << gap
+           << " (the search budget ran out; the lower bound is still proved)\n";
+  }
+  return note.str();
+}
+
+reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options) {
+  try {
+    return reference::solve_exact(pair, options);
+  } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
+    reference::ExactResult r;
+    r.name = pair.name;
+    r.error = std::string("internal error in the reference engine: ") + ex.what();
+    return r;
+  }
 }
 
 int run_solve(const SolveArgs& args) {
@@ -112,31 +123,64 @@ int run_solve(const SolveArgs& args) {
   options.global_gap = reference::Rational(args.global_gap);
   options.global = !args.no_global;
   const bool global = !args.no_global;
-  if (fast)
-    std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
-  else
-    std::cerr << "pdd solve: " << total << " pairs, reference engine, "
-              << to_string(options.formulation) << " QP formulation\n";
+  if (!args.quiet) {
+    if (fast)
+      std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
+    else
+      std::cerr << "pdd solve: " << total << " pairs, reference engine, "
+                << to_string(options.formulation) << " QP formulation\n";
+  }
   Progress progress(fast ? "pdd: fast engine" : "pdd: reference engine", total,
                     args.quiet ? Progress::kNever : 2.0);
 
-  int status = kExitOk;
-  std::size_t slow_paths = 0;  // fast engine: pairs that took its exact path (SPEC §8)
-  std::size_t refined = 0;     // fast engine: pairs where a few candidates were evaluated exactly
+  std::atomic<int> status{kExitOk};
+  std::atomic<std::size_t> slow_paths{0};  // fast engine: pairs that took its exact path (SPEC §8)
+  std::atomic<std::size_t> refined{0};     // fast engine: pairs where a few candidates were evaluated exactly
   std::optional<std::string> write_error;
-  const FixtureSink solve_chunk = [&](std::vector<FixtureEntry>& chunk, std::size_t) {
+  InterruptGuard interrupts;
+  OrderedLines lines(out);
+  std::atomic<bool> stop{false};
+  // One record: computed, its line and note handed to `lines` (any thread).
+  auto solve_one = [&](const FixtureEntry& e, std::size_t k) {
+    int code = kExitOk;
     if (fast) {
-      std::size_t slow = 0, ref = 0;
-      status = std::max(status, write_results(run_fast(chunk, &slow, &ref, global),
-                                              [global](const auto& r) { return fast_record(r, global); }, out));
-      slow_paths += slow;
-      refined += ref;
-      progress.tick(chunk.size());
+      PairResult<double> r;
+      r.name = e.pair.name;
+      if (e.error) {
+        r.error = *e.error;
+      } else {
+        bool slow = false, ref = false;
+        r = fast::solve_pair(e.pair, &slow, &ref, global);
+        r.name = e.pair.name;
+        slow_paths += slow;
+        refined += ref;
+      }
+      code = r.error || r.pdd2_global_error ? kExitPairRejected : kExitOk;
+      lines.done(k, fast_record(r, global).dump(), record_note(r, args.global_gap));
     } else {
-      status = std::max(status, write_results(run_reference(chunk, options, progress),
-                                              [global](const auto& r) { return exact_record(r, global); }, out,
-                                              args.global_gap));
+      reference::ExactResult r;
+      r.name = e.pair.name;
+      if (e.error)
+        r.error = *e.error;
+      else
+        r = solve_reference(e.pair, options);
+      code = r.error ? kExitPairRejected : kExitOk;
+      lines.done(k, exact_record(r, global).dump(), record_note(r, args.global_gap));
     }
+    for (int s = status.load(); code > s && !status.compare_exchange_weak(s, code);) {
+    }
+    progress.tick();
+  };
+  const FixtureSink solve_chunk = [&](std::vector<FixtureEntry>& chunk, std::size_t) {
+    lines.start(chunk.size());
+    run_interruptible(
+        [&] {
+          tbb::parallel_for(std::size_t{0}, chunk.size(), [&](std::size_t k) {
+            if (!stop) solve_one(chunk[k], k);
+          });
+        },
+        lines, stop, "pdd solve");
+    lines.flush();
     if (!out) write_error = flush_error(out, where).value_or("cannot write to " + where);
     return !write_error;  // stop early: the results would be lost
   };
@@ -153,7 +197,7 @@ int run_solve(const SolveArgs& args) {
     }
   }
   progress.finish();
-  if (fast)
+  if (fast && !args.quiet)
     std::cerr << "pdd solve: " << slow_paths << " of " << total
               << " pairs took the exact path (SPEC §8: error bound wider than 1e-9); " << refined
               << " were refined (a few candidates evaluated exactly)\n";

@@ -178,7 +178,7 @@ if(NOT out MATCHES "\"intersecting\":true,\"rigid_pd2\":1\\.29258663601169[0-9]*
    NOT out MATCHES "\"error\":null,\"pdd2_global\":null,\"pdd2_global_normal\":null,\"q1_A_global\":null,\"q1_B_global\":null,\"pdd2_global_error\":\"pdd2_global not representable")
   message(FATAL_ERROR "solve (fast) with pdd2_global declined: wrong record\n${out}")
 endif()
-run(0 "took the exact path" solve --engine fast --quiet --no-global --input ${WORK}/near.json)
+run(0 "took the exact path" solve --engine fast --no-global --input ${WORK}/near.json)
 if(out MATCHES "_global" OR NOT out MATCHES "\"intersecting\":true,\"rigid_pd2\":1\\.29258663601169[0-9]*e-24")
   message(FATAL_ERROR "solve --no-global (fast): wrong record\n${out}")
 endif()
