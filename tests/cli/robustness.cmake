@@ -49,7 +49,7 @@ foreach(engine reference fast)
   run(1 "pair 'overflow-x' rejected: [^\n]*finite" solve --engine ${engine} --formulation reduced --quiet --input ${B}/overflow.json)
   string(REGEX MATCHALL "\n" lines "${out}")
   list(LENGTH lines n)
-  if(NOT n EQUAL 6 OR out MATCHES "pdd:overflow" OR NOT out MATCHES "\"name\":\"#3\",\"error\":\"field 'name' must be a string"
+  if(NOT n EQUAL 6 OR out MATCHES "pdd:overflow" OR NOT out MATCHES "\"name\":\"#4 \\(byte 342\\)\",\"error\":\"field 'name' must be a string"
      OR NOT out MATCHES "\"name\":\"overflow-negative\",\"error\":\"[^\"]*finite"
      OR NOT out MATCHES "\"name\":\"marker-string\",\"error\":\"[^\"]*coordinate z is not a number"
      OR NOT out MATCHES "\"name\":\"good-after\",\"intersecting\":true")
@@ -70,7 +70,15 @@ expect_no_output(trailing-garbage)
 run(2 "'${B}': it is a directory" ${SOLVE} --input ${B})
 run(2 "cannot open '${B}/does-not-exist.json': No such file or directory" ${SOLVE} --input ${B}/does-not-exist.json)
 run(2 "file is empty" ${SOLVE} --input ${B}/empty.json)
-run(1 "pair '#1' rejected: field 'name' must be a string.*pair 'bad-tags' rejected.*pair '#6' rejected: entry is not a JSON object"
+# "-" is standard input; an integer coordinate that is not exactly a double rejects its pair only
+file(WRITE ${WORK}/ints.json "{\"pairs\":[{\"name\":\"big\",\"A\":[[0,0,0],[9007199254740993,0,0],[0,10,0],[0,0,10]],\"B\":[[1,1,1],[2,1,1],[1,2,1],[1,1,2]]},{\"name\":\"ok\",\"A\":[[0,0,0],[9007199254740992,0,0],[0,10,0],[0,0,10]],\"B\":[[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]}")
+foreach(engine reference fast)
+  run(1 "pair 'big' rejected: the integer 9007199254740993 at byte 38 is not exactly a double" solve --engine ${engine} --formulation reduced --quiet --input - STDIN ${WORK}/ints.json)
+  if(NOT out MATCHES "\"name\":\"ok\",\"intersecting\":true")
+    message(FATAL_ERROR "--input - (${engine}): wrong records\n${out}")
+  endif()
+endforeach()
+run(1 "pair '#2 \\(byte 114\\)' rejected: field 'name' must be a string.*pair 'bad-tags' rejected.*pair '#7 \\(byte 630\\)' rejected: entry is not a JSON object"
     ${SOLVE} --input ${B}/mistyped.json)
 if(NOT out MATCHES "\"name\":\"good-after\",\"intersecting\":true")
   message(FATAL_ERROR "mistyped.json: the batch did not go on\n${out}")

@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "fixtures.h"
@@ -74,7 +75,7 @@ BOOST_AUTO_TEST_CASE(batch_reports_every_bad_pair_and_computes_the_rest) {
       {"missing-B", "missing field 'B'"},
       {"three-vertices", "field 'A' must be an array of 4 vertices"},
       {"string-coordinate", "vertex 3 coordinate z is not a number"},
-      {"#7", "missing or empty string field 'name'"},
+      {"#8 (byte 735)", "missing or empty string field 'name'"},  // 1-based, the byte of its '{'
       {"good-after", ""}};
   for (std::size_t k = 0; k < expected.size(); ++k) {
     BOOST_TEST(results[k].name == expected[k].first);
@@ -108,7 +109,7 @@ BOOST_AUTO_TEST_CASE(numbers_beyond_the_double_range_are_infinite_coordinates) {
   BOOST_TEST((std::isinf(f.entries[2].pair.B[2][2]) && f.entries[2].pair.B[2][2] < 0));
   BOOST_TEST(contains(solve_exact(f.entries[1].pair).error, "not finite"));
   // A number is never a name, however it is written.
-  BOOST_TEST(f.entries[3].pair.name == "#3");
+  BOOST_TEST(f.entries[3].pair.name == "#4 (byte 342)");  // the 4th entry, its '{' at byte 342
   BOOST_TEST(contains(f.entries[3].error, "field 'name' must be a string, not a number"));
   // A string is never a coordinate, however it is spelled.
   BOOST_TEST(contains(f.entries[4].error, "vertex 3 coordinate z is not a number"));
@@ -172,12 +173,12 @@ BOOST_AUTO_TEST_CASE(mistyped_fields_reject_one_pair_by_name_or_index) {
   BOOST_REQUIRE(!f.error);
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"good", ""},
-      {"#1", "field 'name' must be a string, not an array"},
-      {"#2", "missing or empty string field 'name'"},
+      {"#2 (byte 114)", "field 'name' must be a string, not an array"},
+      {"#3 (byte 230)", "missing or empty string field 'name'"},
       {"bad-tags", "field 'tags' must be an array of strings"},
       {"A-not-array", "field 'A' must be an array of 4 vertices"},
       {"vertex-two-numbers", "field 'A' vertex 0 must be an array of 3 numbers"},
-      {"#6", "entry is not a JSON object"},
+      {"#7 (byte 630)", "entry is not a JSON object"},  // the scalar 7 at byte 630
       {"good-after", ""}};
   BOOST_REQUIRE(f.entries.size() == expected.size());
   for (std::size_t k = 0; k < expected.size(); ++k) {
@@ -215,4 +216,31 @@ BOOST_AUTO_TEST_CASE(streaming_hands_over_every_entry_in_order_in_chunks) {
   compare::stream_fixture_file(test::fixture_path("bad/mixed.json"), 2,
                                [&](std::vector<compare::FixtureEntry>&, std::size_t) { return ++calls < 2; });
   BOOST_TEST(calls == 2u);
+}
+
+// Coordinates are doubles: an integer literal that is not exactly one (2^53 + 1, a 30-digit
+// integer) rejects its entry, naming the integer and its byte; one that is exactly a double
+// (2^53, 10^20 = 2^20 5^20 with 5^20 < 2^53, -0) and any decimal or exponent literal (the
+// nearest double, as everywhere) is read as it is.
+BOOST_AUTO_TEST_CASE(integer_literals_that_are_not_doubles_reject_their_entry) {
+  auto entry = [](const std::string& x) {
+    const std::string text = R"({"pairs": [{"name": "p", "A": [[0,0,0],[)" + x +
+                             R"(,0,0],[0,4,0],[0,0,4]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]})";
+    const auto f = compare::parse_fixture_text(text);
+    BOOST_REQUIRE(!f.error);
+    BOOST_REQUIRE(f.entries.size() == 1u);
+    return f.entries[0];
+  };
+  // byte 40 (counted from 0, as every byte in a message): where the second vertex's x starts
+  BOOST_TEST(entry("9007199254740993").error.value_or("") ==
+             "the integer 9007199254740993 at byte 40 is not exactly a double (coordinates are "
+             "doubles; write it as one, e.g. 9007199254740992)");
+  BOOST_TEST(contains(entry("-123456789012345678901234567890").error,
+                      "the integer -123456789012345678901234567890 at byte 40 is not exactly a double"));
+  for (const char* ok : {"9007199254740992", "100000000000000000000", "-0", "9007199254740993.0",
+                         "9007199254740993e0", "0.1"}) {
+    const auto e = entry(ok);
+    BOOST_TEST(!e.error.has_value(), ok);
+    BOOST_TEST(e.pair.A[1][0] == std::strtod(ok, nullptr), ok);
+  }
 }

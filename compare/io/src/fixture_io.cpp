@@ -2,11 +2,14 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <tuple>
 #include <cstring>
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <istream>
 #include <iterator>
 #include <limits>
@@ -51,6 +54,12 @@ class FilteredInput {
   std::optional<std::size_t> first_nul;                 // byte offset of the first NUL
   std::optional<std::pair<std::size_t, std::string>> bad_number;  // first malformed number
   std::size_t last_string_start = 0;                    // offset of the last '"' opening a string
+  std::size_t last_open = 0;                            // offset of the last '{' or '['
+  std::size_t last_scalar = 0;                          // offset of the last scalar token
+  // Integer literals that are not exactly a double (SPEC §1 reads coordinates as doubles; an
+  // integer such as 9007199254740993 would silently become another integer): (ordinal among
+  // the numbers, byte offset, text), in order. The entry holding one is rejected, naming it.
+  std::deque<std::tuple<std::size_t, std::size_t, std::string>> inexact;
   bool saw_content = false;                             // a byte other than white space
   std::optional<std::string> read_error;
 
@@ -100,6 +109,16 @@ class FilteredInput {
     return i == n;
   }
 
+  // Whether the integer literal `text` (JSON grammar, no fraction or exponent) denotes exactly
+  // the double `value` it was read as: glibc prints a double's exact decimal expansion.
+  static bool integer_is_exact(const std::string& text, double value) {
+    if (!std::isfinite(value)) return true;  // an overflow: rejected as non-finite instead
+    char buf[400];
+    std::snprintf(buf, sizeof buf, "%.0f", std::fabs(value));
+    const std::string digits = text[0] == '-' ? text.substr(1) : text;
+    return digits == buf;
+  }
+
   void fill() {
     out_.clear();
     out_pos_ = 0;
@@ -119,16 +138,21 @@ class FilteredInput {
     }
     if (c == '"') {
       in_string_ = true;
-      last_string_start = at;
+      last_string_start = last_scalar = at;
       saw_content = true;
       out_.push_back('"');
       return;
     }
     if (c != ' ' && c != '\t' && c != '\r' && c != '\n') saw_content = true;
+    if (c == '{' || c == '[') last_open = at;
+    const bool letter = c >= 'a' && c <= 'z';
+    if (letter && !after_letter_) last_scalar = at;  // true, false, null
+    after_letter_ = letter;
     if (c != '-' && !(c >= '0' && c <= '9')) {
       out_.push_back(static_cast<char>(c));
       return;
     }
+    last_scalar = at;
     out_.push_back(static_cast<char>(c));
     while (number_char(raw_peek())) out_.push_back(static_cast<char>(raw_get()));
     if (!valid_number(out_)) {
@@ -136,7 +160,10 @@ class FilteredInput {
       return;
     }
     ++numbers;
-    if (std::isfinite(std::strtod(out_.c_str(), nullptr))) return;
+    const double value = std::strtod(out_.c_str(), nullptr);
+    if (out_.find_first_of(".eE") == std::string::npos && !integer_is_exact(out_, value))
+      inexact.emplace_back(numbers, at, out_.substr(0, 60));
+    if (std::isfinite(value)) return;
     const bool negative = out_[0] == '-';
     overflows.emplace_back(numbers, negative);
     const std::size_t len = out_.size();  // >= 5: the shortest overflow is 2e308
@@ -147,7 +174,7 @@ class FilteredInput {
   std::istream& in_;
   std::vector<char> block_;
   std::size_t pos_ = 0, len_ = 0, offset_ = 0;
-  bool eof_ = false, in_string_ = false, escaped_ = false;
+  bool eof_ = false, in_string_ = false, escaped_ = false, after_letter_ = false;
   std::string out_;
   std::size_t out_pos_ = 0;
 };
@@ -212,9 +239,9 @@ std::optional<std::string> read_tet(const json& entry, const char* key, TetVerti
   return std::nullopt;
 }
 
-FixtureEntry read_entry(const json& entry, std::size_t index) {
+FixtureEntry read_entry(const json& entry, std::size_t index, std::size_t start_byte) {
   FixtureEntry e;
-  e.pair.name = "#" + std::to_string(index);
+  e.pair.name = "#" + std::to_string(index + 1) + " (byte " + std::to_string(start_byte) + ")";
   if (!entry.is_object()) {
     e.error = std::string("entry is not a JSON object (it is ") + type_name(entry) + ")";
     return e;
@@ -318,11 +345,22 @@ class FixtureHandler {
       pairs_open_ = pairs_array_;
     } else if (depth == 2 && pairs_open_ && !building_) {
       index_ = entries++;
+      // the entry starts at the bracket, or the scalar token, the lexer has just read
+      start_byte_ = container ? in_.last_open : in_.last_scalar;
+      inexact_.reset();
       building_ = !count_only_;
     }
   }
   bool number(double value, json v) {
     ++numbers_;
+    while (!in_.inexact.empty() && std::get<0>(in_.inexact.front()) < numbers_) in_.inexact.pop_front();
+    const bool inexact = !in_.inexact.empty() && std::get<0>(in_.inexact.front()) == numbers_;
+    if (inexact && building_ && !inexact_)
+      inexact_ = "the integer " + std::get<2>(in_.inexact.front()) + " at byte " +
+                 std::to_string(std::get<1>(in_.inexact.front())) +
+                 " is not exactly a double (coordinates are doubles; write it as one, e.g. " +
+                 nearest(value) + ")";
+    if (inexact) in_.inexact.pop_front();
     if (!in_.overflows.empty() && in_.overflows.front().first == numbers_) {
       value = in_.overflows.front().second ? -std::numeric_limits<double>::infinity()
                                            : std::numeric_limits<double>::infinity();
@@ -369,9 +407,15 @@ class FixtureHandler {
     slot = std::move(v);
     return &slot;
   }
+  static std::string nearest(double v) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+  }
   bool finish_entry() {
     building_ = false;
-    chunk_.push_back(read_entry(entry_, index_));
+    chunk_.push_back(read_entry(entry_, index_, start_byte_));
+    if (inexact_ && !chunk_.back().error) chunk_.back().error = inexact_;
     entry_ = nullptr;
     return chunk_.size() < chunk_size_ || flush();
   }
@@ -385,7 +429,8 @@ class FixtureHandler {
   std::string top_key_;
   bool top_object_ = false, pairs_array_ = false, pairs_open_ = false;
   bool building_ = false;
-  std::size_t index_ = 0, numbers_ = 0;
+  std::size_t index_ = 0, numbers_ = 0, start_byte_ = 0;
+  std::optional<std::string> inexact_;  // the entry's first inexact integer, worded
   json entry_;
   std::vector<json*> build_;
   std::string key_;
@@ -455,11 +500,14 @@ FixtureFile parse_fixture_text(const std::string& text) {
 
 FixtureFile read_fixture_file(const std::string& path) {
   FixtureFile f;
-  std::ifstream in;
-  if (auto why = open_input(path, in)) {
-    f.error = why;
-    return f;
+  std::ifstream file;
+  if (path != "-") {
+    if (auto why = open_input(path, file)) {
+      f.error = why;
+      return f;
+    }
   }
+  std::istream& in = path == "-" ? std::cin : file;
   const FixtureSink keep = [&f](std::vector<FixtureEntry>& chunk, std::size_t) {
     for (auto& e : chunk) f.entries.push_back(std::move(e));
     return true;

@@ -4,9 +4,12 @@
 // Output: every entry of "pairs" in order, each either a TetPair or the reason it could not
 //         be read (missing or mistyped field, wrong shape); or a file-level error when the
 //         file cannot be read, is empty, is not JSON, or has no "pairs" array. Coordinates are
-//         parsed as doubles exactly as written; a syntactically valid number too large for a
-//         double (1e400) becomes +-infinity and is rejected by the engines' validation
-//         (SPEC §1), not here. A file-level error names the byte where it was found.
+//         parsed as doubles exactly as written (a decimal or exponent literal: the nearest
+//         double); a syntactically valid number too large for a double (1e400) becomes
+//         +-infinity and is rejected by the engines' validation, not here; an integer literal
+//         that is not exactly a double (9007199254740993) rejects its entry, naming the integer
+//         and its byte (the Python module rejects such an int too). A file-level error names
+//         the byte where it was found. The path "-" is standard input.
 //
 // The file is read with nlohmann::json's SAX interface, so no document tree is ever built:
 // only one entry at a time is held, and stream_fixture_file hands entries over in chunks.
@@ -28,7 +31,8 @@
 namespace pdd::compare {
 
 struct FixtureEntry {
-  TetPair pair;                      // name is "#<index>" when the entry has no usable name
+  TetPair pair;  // name is "#<k> (byte <b>)" when the entry has no usable name: its 1-based
+                 // position in "pairs" and the byte where it starts
   std::optional<std::string> error;  // set when the entry is malformed
 };
 
