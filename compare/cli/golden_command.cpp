@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -12,13 +13,25 @@ struct GoldenArgs {
   bool check = false, update = false;
   std::string fixtures = "fixtures";
   std::string formulation = "reduced";
+  bool quiet = false;
 };
 
 int run_golden(const GoldenArgs& a) {
   const auto f = a.formulation == "full" ? QpFormulation::Full : QpFormulation::Reduced;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(a.fixtures, ec)) {
+    std::cerr << "pdd golden: no fixture folder '" << a.fixtures
+              << "' (run from the repository's root, or give --fixtures DIR)\n";
+    return kExitFileError;
+  }
   try {
     if (a.update) {
-      for (const auto& rel : update_golden(a.fixtures, f)) std::cout << "wrote golden for " << rel << "\n";
+      try {
+        for (const auto& rel : update_golden(a.fixtures, f, !a.quiet)) std::cout << "wrote golden for " << rel << "\n";
+      } catch (const GoldenRejection& e) {
+        std::cerr << "pdd golden: " << e.what() << "\n";
+        return kExitPairRejected;
+      }
       return kExitOk;
     }
     const auto files = golden_fixture_files(a.fixtures);
@@ -26,7 +39,7 @@ int run_golden(const GoldenArgs& a) {
       std::cerr << "pdd golden: no fixture files under '" << a.fixtures << "'\n";
       return kExitFileError;
     }
-    const auto mismatches = check_golden(a.fixtures, f);
+    const auto mismatches = check_golden(a.fixtures, f, !a.quiet);
     for (const auto& m : mismatches) std::cout << "MISMATCH " << m.file << ": " << m.detail << "\n";
     std::cout << files.size() - mismatches.size() << " of " << files.size()
               << " golden files match the exact engine (" << to_string(f)
@@ -48,6 +61,7 @@ void add_golden_command(CLI::App& app, int& exit_code) {
   auto* update = cmd->add_flag("--update", a->update, "Rewrite fixtures/golden/ from the exact engine");
   check->excludes(update);
   cmd->add_option("--fixtures", a->fixtures, "Fixture folder")->capture_default_str();
+  cmd->add_flag("--quiet", a->quiet, "No progress on standard error");
   cmd->add_option("--formulation", a->formulation,
                   "QP formulation ('reduced' equals 'full' exactly; see test_formulations)")
       ->check(CLI::IsMember({"full", "reduced"}))

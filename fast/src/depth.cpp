@@ -27,7 +27,10 @@ Depth depth_of(const Choice& ch, const TetVertices& A, const TetVertices& B, boo
     return d;
   }
   if (ch.value == 0.0) {  // not intersecting, or rejected: tell which (rare work only here)
-    if (rejected(A) || rejected(B)) d.status = DepthStatus::Rejected;
+    if (rejected(A) || rejected(B)) {
+      d.status = DepthStatus::Rejected;
+      d.pd2 = std::numeric_limits<double>::quiet_NaN();  // never readable as "not intersecting"
+    }
     return d;
   }
   d.pd2 = ch.value;
@@ -53,6 +56,7 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
   if (k != 1 && k != kAccelWide) {
     Depth d;
     d.status = DepthStatus::Rejected;
+    d.pd2 = std::numeric_limits<double>::quiet_NaN();
     return d;
   }
   return depth_of(pdd2_accel_choice(A, B, k), A, B, false);
@@ -106,7 +110,7 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   const Depth rigid = depth_of(rigid_pd2_choice(A, B), A, B, false);  // intersecting, exactly
   d.status = rigid.status;
   if (rigid.status != DepthStatus::Ok || rigid.pd2 == 0.0) {
-    if (rigid.status == DepthStatus::NotRepresentable) d.pd2 = std::numeric_limits<double>::quiet_NaN();
+    if (rigid.status != DepthStatus::Ok) d.pd2 = std::numeric_limits<double>::quiet_NaN();
     return d;
   }
   const double none[3] = {0, 0, 0};

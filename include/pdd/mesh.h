@@ -178,10 +178,11 @@ std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vect
 
 // Writes A (and B unless null: self-contact) as one legacy VTK unstructured grid (ASCII) for
 // ParaView: points of A then of B, cells of A then of B, with cell data `mesh` (0 A, 1 B),
-// `element` (its number in its mesh), `partners` (number of intersecting pairs it is in) and
-// `max_<value>` (largest value of each requested variant over its pairs, 0 if none;
-// `max_pdd2_global` for kGlobal), and,
-// when kPdd2 was requested, point data `displacement`: for each mesh vertex, among the
+// `element` (its number in its mesh), `partners` (number of intersecting pairs it is in),
+// `skipped` (1: the element was skipped, flat or with a non-finite vertex) and `max_<value>`
+// (largest value of each requested variant over its pairs, 0 if none; `max_pdd2_global` for
+// kGlobal); point data `non_finite` (1: a vertex with a non-finite coordinate, written at the
+// origin since VTK readers reject nan) and, when kPdd2 was requested, `displacement`: for each mesh vertex, among the
 // displacements q1 − rest that the pairs' pdd2 solutions give that vertex, the one of largest
 // length (first in (a, b) order among equals); 0 where no pair moves it. Throws
 // std::runtime_error when the file cannot be written.

@@ -88,11 +88,12 @@ std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
 // One quantity over raw vertices: the hot path for contact handling (no record, no positions).
 enum class DepthStatus {
   Ok,                // pd2 is the certified value (0: the interiors do not intersect)
-  Rejected,          // SPEC §1: a non-finite coordinate or a flat tetrahedron; pd2 = 0
+  Rejected,          // a non-finite coordinate or a flat tetrahedron (or pdd2_accel's k is
+                     // not 1 or 6); pd2 = NaN, so that it never reads as "not intersecting"
   NotRepresentable,  // the exact value is not a normal double after scaling back; pd2 = NaN
 };
 struct Depth {
-  double pd2 = 0.0;                   // the squared depth, SPEC §8 contract
+  double pd2 = 0.0;                   // the squared depth, SPEC §8 contract; NaN unless Ok
   std::optional<DirectionLabel> dir;  // the minimising direction; none when pd2 == 0 and
                                       // for pdd2_accel (SPEC §6 prints no label for it)
   DepthStatus status = DepthStatus::Ok;

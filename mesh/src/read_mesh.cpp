@@ -625,9 +625,19 @@ Mesh read_mesh(const std::string& path) {
   if (s.empty()) throw ReadError(path + ": the file is empty");
   std::size_t b = 0;
   while (b < s.size() && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  if (s.compare(b, 11, "$MeshFormat") == 0) return read_msh(c);
-  if (s.compare(b, 14, "# vtk DataFile") == 0) return read_vtk(c);
-  throw ReadError(path + ": neither a Gmsh mesh ($MeshFormat) nor a legacy VTK file (# vtk DataFile)");
+  Mesh m;
+  if (s.compare(b, 11, "$MeshFormat") == 0)
+    m = read_msh(c);
+  else if (s.compare(b, 14, "# vtk DataFile") == 0)
+    m = read_vtk(c);
+  else
+    throw ReadError(path + ": neither a Gmsh mesh ($MeshFormat) nor a legacy VTK file (# vtk DataFile)");
+  // Other elements are ignored; a file of nothing else has nothing to compute, and saying so
+  // beats an empty result that reads as "no contact".
+  if (m.tets.empty())
+    throw ReadError(path + ": no first-order tetrahedra (4-node elements: Gmsh type 4, VTK cell type 10); "
+                    "surface, second-order and hexahedral elements are ignored");
+  return m;
 }
 
 }  // namespace pdd::mesh

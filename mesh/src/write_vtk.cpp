@@ -67,10 +67,17 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
             : "pdd mesh --self: mesh A and its self-intersecting element pairs\n")
       << "ASCII\nDATASET UNSTRUCTURED_GRID\n";
   out << "POINTS " << na + nb << " double\n";
-  auto finite = [](double x) { return std::isfinite(x) ? x : 0.0; };  // VTK readers choke on nan
-  for (const Vec3d& p : A.vertices) out << finite(p[0]) << ' ' << finite(p[1]) << ' ' << finite(p[2]) << '\n';
+  // VTK readers reject nan and inf: such a vertex is written at the origin and marked by the
+  // point field `non_finite`, its elements by the cell field `skipped`.
+  std::vector<char> non_finite(na + nb, 0);
+  auto write_point = [&](const Vec3d& p, std::size_t id) {
+    non_finite[id] = !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
+    if (non_finite[id]) out << "0 0 0\n";
+    else out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  };
+  for (std::size_t i = 0; i < na; ++i) write_point(A.vertices[i], i);
   if (B)
-    for (const Vec3d& p : B->vertices) out << finite(p[0]) << ' ' << finite(p[1]) << ' ' << finite(p[2]) << '\n';
+    for (std::size_t i = 0; i < nb; ++i) write_point(B->vertices[i], na + i);
   out << "CELLS " << ta + tb << ' ' << 5 * (ta + tb) << '\n';
   for (const auto& t : A.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
   if (B)
@@ -84,13 +91,20 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
   for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
   out << "SCALARS partners int 1\nLOOKUP_TABLE default\n";
   for (int p : partners) out << p << '\n';
+  // 1: the element was skipped (flat, or a vertex not finite; contacts' `skipped`), no values
+  std::vector<char> skipped(ta + tb, 0);
+  for (const SkippedElement& e : contacts.skipped) skipped[(e.mesh == 'B' ? b_cell0 : 0) + e.index] = 1;
+  out << "SCALARS skipped int 1\nLOOKUP_TABLE default\n";
+  for (char k : skipped) out << int(k) << '\n';
   for (std::size_t k = 0; k < kVariantCount; ++k) {
     if (!(variants & (1u << k))) continue;
     out << "SCALARS max_" << kVariantKeys[k] << " double 1\nLOOKUP_TABLE default\n";
     for (const auto& m : maxima) out << m[k] << '\n';
   }
+  out << "POINT_DATA " << na + nb << "\nSCALARS non_finite int 1\nLOOKUP_TABLE default\n";
+  for (char k : non_finite) out << int(k) << '\n';
   if (variants & kPdd2) {
-    out << "POINT_DATA " << na + nb << "\nVECTORS displacement double\n";
+    out << "VECTORS displacement double\n";
     for (const Vec3d& d : disp) out << d[0] << ' ' << d[1] << ' ' << d[2] << '\n';
   }
   out.flush();

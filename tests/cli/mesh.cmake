@@ -74,3 +74,15 @@ expect_exit(2 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --self)
 expect_exit(2 out --a ${M}/sphere-a.msh)
 expect_exit(2 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --variants rigid,nonsense)
 expect_exit(2 out --a ${M}/sphere-a.msh --b ${M}/sphere-b.msh --output ${WORK}/no/such/dir/x.jsonl)
+
+# A mesh with no first-order tetrahedra (surface triangles only; a second-order tetrahedron,
+# Gmsh type 11; VTK hexahedra) is an error that says so, not an empty result.
+file(WRITE ${WORK}/surface.msh "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n2\n1 2 0 1 2 3\n2 2 0 1 2 4\n$EndElements\n")
+file(WRITE ${WORK}/tet10.msh "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n10\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 .5 0 0\n6 .5 .5 0\n7 0 .5 0\n8 0 0 .5\n9 0 .5 .5\n10 .5 0 .5\n$EndNodes\n$Elements\n1\n1 11 0 1 2 3 4 5 6 7 8 9 10\n$EndElements\n")
+file(WRITE ${WORK}/hex.vtk "# vtk DataFile Version 3.0\nhex\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n0 0 0 1 0 0 1 1 0 0 1 0 0 0 1 1 0 1 1 1 1 0 1 1\nCELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n12\n")
+foreach(f surface.msh tet10.msh hex.vtk)
+  expect_exit(2 out --a ${WORK}/${f} --b ${M}/tiny-b.msh)
+  if(NOT out_err MATCHES "${f}: no first-order tetrahedra" OR NOT out STREQUAL "")
+    message(FATAL_ERROR "a mesh without tetrahedra (${f}):\n${out_err}\n${out}")
+  endif()
+endforeach()

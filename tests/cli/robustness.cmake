@@ -216,6 +216,20 @@ run(2 "is a directory, not a mesh file" mesh --a ${WORK}/same --b ${FIXTURES}/me
 # A folder without fixtures passed the golden check (0 of 0 match, exit 0).
 file(MAKE_DIRECTORY ${WORK}/empty)
 run(2 "no fixture files under" golden --check --fixtures ${WORK}/empty)
+# A golden file holds computed records only: a flat pair makes --update write nothing (exit 1,
+# the pair named) and --check fail naming it; a missing fixture folder is said in words.
+file(MAKE_DIRECTORY ${WORK}/flatfix/golden)
+file(WRITE ${WORK}/flatfix/flat.json "{\"pairs\":[{\"name\":\"ok\",\"A\":[[0,0,0],[4,0,0],[0,4,0],[0,0,4]],\"B\":[[1,1,1],[2,1,1],[1,2,1],[1,1,2]]},{\"name\":\"flat\",\"A\":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]],\"B\":[[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]}")
+run(1 "nothing written: .*flat.json: pair 'flat': tetrahedron A is flat" golden --update --quiet --fixtures ${WORK}/flatfix)
+if(EXISTS ${WORK}/flatfix/golden/flat.jsonl)
+  message(FATAL_ERROR "golden --update wrote a golden file holding a rejected pair")
+endif()
+file(WRITE ${WORK}/flatfix/golden/flat.jsonl "")
+run(1 "" golden --check --quiet --fixtures ${WORK}/flatfix)
+if(NOT out MATCHES "MISMATCH flat.json: pair 'flat': tetrahedron A is flat[^\n]*rejected")
+  message(FATAL_ERROR "golden --check with a flat pair:\n${out}")
+endif()
+run(2 "no fixture folder '${WORK}/nowhere'" golden --check --fixtures ${WORK}/nowhere)
 run(2 "not a finite number" bench mesh --size 200 --distance nan)
 # bench --json to a path that cannot be written: said before the run (it was said after it).
 run(2 "cannot write '/nonexistent-dir/b.json'" bench --count 10 --repeats 1 --json /nonexistent-dir/b.json)

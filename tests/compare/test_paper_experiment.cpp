@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "fixtures.h"
 #include "pdd/compare/family_global_cost.h"
 #include "pdd/compare/paper_experiment.h"
+#include "pdd/compare/paper_figures.h"
 #include "pdd/reference/solve_exact.h"
 
 using namespace pdd;
@@ -135,5 +139,43 @@ BOOST_AUTO_TEST_CASE(family_global_costs_of_the_shipped_families) {
       BOOST_TEST(f.fast.at_candidate == f.exact.at_candidate);
       for (double a : f.fast.angle_degrees.values) BOOST_TEST((a >= 0 && a <= 180));
     }
+  }
+}
+
+// pair_before_after.vtk: every cell of a rest tetrahedron is positive by VTK's convention
+// ((p1 - p0) . ((p2 - p0) x (p3 - p0)) > 0, read back from the file), whichever orientation the
+// pair's vertices have; here A is negatively ordered and B positively.
+BOOST_AUTO_TEST_CASE(pair_vtk_cells_follow_vtk_orientation) {
+  PairConfigurations c;
+  c.name = "poke";
+  c.A_rest = {{{0, 0, 0}, {0, 10, 0}, {10, 0, 0}, {0, 0, 10}}};  // negative as given
+  c.B_rest = {{{1, 1, -1}, {3, 1, -1}, {1, 3, -1}, {1.5, 1.5, 0.5}}};
+  c.B_static = c.B_deformable = c.B_rigid = c.B_rest;
+  c.A_deformable = c.A_rest;
+  const std::string path = "paper_pair_test.vtk";
+  write_vtk(path, c);
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::array<double, 3>> points;
+  while (std::getline(in, line) && line.rfind("POINTS", 0) != 0) {
+  }
+  for (int i = 0; i < 24; ++i) {
+    std::array<double, 3> p{};
+    in >> p[0] >> p[1] >> p[2];
+    points.push_back(p);
+  }
+  while (std::getline(in, line) && line.rfind("CELLS", 0) != 0) {
+  }
+  for (int k = 0; k < 6; ++k) {
+    int n = 0, v[4];
+    in >> n >> v[0] >> v[1] >> v[2] >> v[3];
+    BOOST_REQUIRE(n == 4);
+    double e[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int d = 0; d < 3; ++d) e[i][d] = points[v[i + 1]][d] - points[v[0]][d];
+    const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                       e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                       e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+    BOOST_TEST(det > 0, "cell " << k);
   }
 }

@@ -116,7 +116,7 @@ BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
 }
 
 // The hot paths over raw vertices (hot_path.h) decide finiteness inside power_scaled (one pass
-// over the 24 coordinates): every non-finite pair above is Rejected with pd2 0 by each of them,
+// over the 24 coordinates): every non-finite pair above is Rejected with pd2 NaN by each of them,
 // and no value is made up from a NaN or an infinity (NaN loses a max comparison, so a max-based
 // test alone would miss it: the pairs put NaN and ±inf at different vertices and axes).
 BOOST_AUTO_TEST_CASE(hot_paths_reject_non_finite_coordinates) {
@@ -131,8 +131,10 @@ BOOST_AUTO_TEST_CASE(hot_paths_reject_non_finite_coordinates) {
             for (const Depth d : {rigid_pd2(A, B), pdd2_static(A, B), pdd2(A, B),
                                   pdd2_relaxed(A, B), pdd2_accel(A, B, 1), pdd2_accel(A, B, 6)}) {
               BOOST_TEST((d.status == DepthStatus::Rejected));
-              BOOST_TEST(d.pd2 == 0.0);
+              BOOST_TEST(std::isnan(d.pd2));  // a rejected pair never reads as a depth of 0
             }
+            const NormalDepth g = pdd2_global(A, B);
+            BOOST_TEST((g.status == DepthStatus::Rejected && std::isnan(g.pd2)));
           }
         }
       }

@@ -212,6 +212,25 @@ BOOST_AUTO_TEST_CASE(flat_and_nan_elements_are_reported_and_skipped) {
     BOOST_TEST(contains(c.skipped[0].reason, "element 0 of mesh B: vertex 3 (mesh vertex 3) coordinate z is not finite (nan)"));
     BOOST_TEST(c.skipped[1].index == 1u);
     BOOST_TEST(c.pairs.empty());
+    // In the VTK file both skipped elements of B are marked (cells after the ball's) and the
+    // NaN vertex (B's vertex 3) is marked non_finite where it is written at the origin.
+    const std::string path = "mesh_test_skipped.vtk";
+    write_vtk(path, ball, &m, c, kDefaultVariants);
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto field = [&](const std::string& header, std::size_t count) {
+      const std::size_t at = text.find(header + "\nLOOKUP_TABLE default\n");
+      BOOST_REQUIRE(at != std::string::npos);
+      std::istringstream values(text.substr(at + header.size() + 22));
+      std::vector<int> out(count);
+      for (int& v : out) values >> v;
+      return out;
+    };
+    const std::vector<int> skipped = field("SCALARS skipped int 1", ball.tets.size() + m.tets.size());
+    for (std::size_t i = 0; i < skipped.size(); ++i) BOOST_TEST(skipped[i] == (i >= ball.tets.size() ? 1 : 0), i);
+    const std::vector<int> non_finite = field("SCALARS non_finite int 1", ball.vertices.size() + m.vertices.size());
+    for (std::size_t i = 0; i < non_finite.size(); ++i)
+      BOOST_TEST(non_finite[i] == (i == ball.vertices.size() + 3 ? 1 : 0), i);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "pdd/compare/engines.h"
@@ -13,11 +14,14 @@
 namespace pdd::compare {
 namespace fs = std::filesystem;
 
-std::string exact_json_lines(const std::string& fixture_path, QpFormulation f) {
+ExactLines exact_json_lines(const std::string& fixture_path, QpFormulation f, bool progress) {
   const FixtureFile file = read_fixture_file(fixture_path);
   if (file.error) throw std::runtime_error(*file.error);
-  std::string out;
-  for (const auto& r : run_reference(file.entries, {f}, false)) out += exact_record(r).dump() + "\n";
+  ExactLines out;
+  for (const auto& r : run_reference(file.entries, {f}, progress)) {
+    out.text += exact_record(r).dump() + "\n";
+    if (r.error) out.rejected.push_back("pair '" + printable(r.name) + "': " + *r.error);
+  }
   return out;
 }
 
@@ -46,7 +50,7 @@ std::string first_difference(const std::string& want, const std::string& got) {
 
 }  // namespace
 
-std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpFormulation f) {
+std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpFormulation f, bool progress) {
   std::vector<GoldenMismatch> out;
   for (const auto& rel : golden_fixture_files(fixtures_dir)) {
     const std::string gpath = golden_path(fixtures_dir, rel);
@@ -54,9 +58,12 @@ std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpForm
       out.push_back({rel, "no golden file " + gpath + " (run pdd golden --update)"});
       continue;
     }
+    if (progress) std::cerr << "pdd golden: checking " << rel << "\n";
     const std::string want = read_text(gpath);
-    const std::string got = exact_json_lines((fs::path(fixtures_dir) / rel).string(), f);
-    if (want != got) out.push_back({rel, first_difference(want, got)});
+    const ExactLines got = exact_json_lines((fs::path(fixtures_dir) / rel).string(), f, progress);
+    for (const auto& why : got.rejected)
+      out.push_back({rel, why + " (rejected: a golden file holds computed records only)"});
+    if (want != got.text) out.push_back({rel, first_difference(want, got.text)});
   }
   return out;
 }
@@ -66,13 +73,23 @@ std::vector<reference::ExactResult> read_golden(const std::string& path) {
       path, [](const Json& j) { return reference::Rational(j.get<std::string>()); });
 }
 
-std::vector<std::string> update_golden(const std::string& fixtures_dir, QpFormulation f) {
-  std::vector<std::string> written;
+std::vector<std::string> update_golden(const std::string& fixtures_dir, QpFormulation f, bool progress) {
+  std::vector<std::pair<std::string, std::string>> files;  // (relative path, text)
+  std::string rejected;
   for (const auto& rel : golden_fixture_files(fixtures_dir)) {
+    if (progress) std::cerr << "pdd golden: computing " << rel << "\n";
+    ExactLines lines = exact_json_lines((fs::path(fixtures_dir) / rel).string(), f, progress);
+    for (const auto& why : lines.rejected) rejected += "\n  " + rel + ": " + why;
+    files.emplace_back(rel, std::move(lines.text));
+  }
+  if (!rejected.empty())
+    throw GoldenRejection("nothing written: a golden file holds computed records only, and the exact "
+                             "engine rejects" + rejected);
+  std::vector<std::string> written;
+  for (const auto& [rel, text] : files) {
     const std::string gpath = golden_path(fixtures_dir, rel);
     fs::create_directories(fs::path(gpath).parent_path());
-    if (auto why = write_file(gpath, exact_json_lines((fs::path(fixtures_dir) / rel).string(), f)))
-      throw std::runtime_error(*why);
+    if (auto why = write_file(gpath, text)) throw std::runtime_error(*why);
     written.push_back(rel);
   }
   return written;

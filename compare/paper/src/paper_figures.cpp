@@ -194,8 +194,23 @@ void write_vtk(const std::string& path, const PairConfigurations& c) {
     << "ASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 24 double\n";
   for (const auto* t : cells)
     for (const auto& v : *t) o << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
+  // VTK_TETRA wants (p1 - p0) . ((p2 - p0) x (p3 - p0)) > 0: each cell takes the vertex order
+  // that makes its rest tetrahedron positive (A's for cell 3, B's for 2, 4, 5), so a deformed
+  // cell that turned inside out shows as negative. (Doubles: the picture's sign only.)
+  auto positive = [](const TetVertices& t) {
+    double e[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) e[i][k] = t[i + 1][k] - t[0][k];
+    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]) > 0;
+  };
+  const bool rest_positive[6] = {positive(c.A_rest), positive(c.B_rest), positive(c.B_rest),
+                                 positive(c.A_rest), positive(c.B_rest), positive(c.B_rest)};
   o << "CELLS 6 30\n";
-  for (int k = 0; k < 6; ++k) o << "4 " << 4 * k << ' ' << 4 * k + 1 << ' ' << 4 * k + 2 << ' ' << 4 * k + 3 << '\n';
+  for (int k = 0; k < 6; ++k) {
+    const int second = rest_positive[k] ? 1 : 2, third = rest_positive[k] ? 2 : 1;
+    o << "4 " << 4 * k << ' ' << 4 * k + second << ' ' << 4 * k + third << ' ' << 4 * k + 3 << '\n';
+  }
   o << "CELL_TYPES 6\n";
   for (int k = 0; k < 6; ++k) o << "10\n";  // VTK_TETRA
   o << "CELL_DATA 6\nSCALARS configuration int 1\nLOOKUP_TABLE default\n0\n1\n2\n3\n4\n5\n";

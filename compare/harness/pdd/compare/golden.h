@@ -6,6 +6,7 @@
 // up as a reviewable diff.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,22 +16,40 @@
 
 namespace pdd::compare {
 
-// The exact engine's JSON Lines for one fixture file (input order).
-std::string exact_json_lines(const std::string& fixture_path, QpFormulation f);
+// A golden file holds computed records only: a pair the exact engine rejects (a flat or
+// non-finite tetrahedron, a malformed entry) has no place in one, since a golden file that
+// pins a rejection would pass a check while testing nothing the fixture claims.
+
+// The exact engine's JSON Lines for one fixture file (input order), and the rejections found
+// ("pair 'x': why"). `progress`: show progress on standard error.
+struct ExactLines {
+  std::string text;
+  std::vector<std::string> rejected;
+};
+ExactLines exact_json_lines(const std::string& fixture_path, QpFormulation f, bool progress = false);
 
 struct GoldenMismatch {
   std::string file;
-  std::string detail;  // first differing record, or a missing file
+  std::string detail;  // first differing record, a missing file, or a rejected pair
 };
 
-// Compares every golden file with a fresh exact run; empty when all match.
-std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpFormulation f);
+// Compares every golden file with a fresh exact run; empty when all match. `progress`: one line
+// per file and a progress bar on standard error.
+std::vector<GoldenMismatch> check_golden(const std::string& fixtures_dir, QpFormulation f,
+                                         bool progress = false);
 
 // Reads a golden JSON Lines file back into exact results (numbers parsed as exact rationals,
 // labels parsed); throws std::runtime_error on a malformed record.
 std::vector<reference::ExactResult> read_golden(const std::string& path);
 
-// Rewrites every golden file; returns the relative paths written.
-std::vector<std::string> update_golden(const std::string& fixtures_dir, QpFormulation f);
+// Thrown by update_golden when the exact engine rejects a pair: nothing was written.
+struct GoldenRejection : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Rewrites every golden file; returns the relative paths written. Computes every file first:
+// when a pair is rejected it writes nothing and throws GoldenRejection naming the pairs.
+std::vector<std::string> update_golden(const std::string& fixtures_dir, QpFormulation f,
+                                       bool progress = false);
 
 }  // namespace pdd::compare

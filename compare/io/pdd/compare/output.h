@@ -10,6 +10,8 @@
 #include <ostream>
 #include <string>
 
+#include <unistd.h>
+
 #include "pdd/printable.h"
 
 namespace pdd::compare {
@@ -52,16 +54,29 @@ inline std::optional<std::string> check_writable(const std::string& path) {
   return std::nullopt;
 }
 
-// Writes `text` to the file `path` (created or truncated); the reason when it failed.
-inline std::optional<std::string> write_file(const std::string& path, const std::string& text,
-                                             std::ios::openmode mode = std::ios::binary) {
+// Writes `text` to the file `path` (created or replaced); the reason when it failed. A new or
+// regular file is written beside it under a temporary name and renamed over it, so that an
+// interrupted or failed run leaves either the old file or the whole new one, never a part;
+// anything else (a device, a pipe, a symbolic link) is written in place.
+inline std::optional<std::string> write_file(const std::string& path, const std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(path, ec);
+  const bool replace = st.type() == fs::file_type::not_found || st.type() == fs::file_type::regular;
+  const std::string target = replace ? path + ".partial-" + std::to_string(::getpid()) : path;
   errno = 0;
-  std::ofstream out(path, mode);
+  std::ofstream out(target, std::ios::binary);
   if (!out)
     return "cannot open '" + path + "' for writing" +
            (errno ? std::string(": ") + std::strerror(errno) : "");
   out << text;
-  return close_error(out, path);
+  auto why = close_error(out, path);
+  if (replace && !why) {
+    fs::rename(target, path, ec);
+    if (ec) why = "cannot write '" + path + "': " + ec.message();
+  }
+  if (replace && why) fs::remove(target, ec);
+  return why;
 }
 
 }  // namespace pdd::compare
