@@ -5,6 +5,7 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.h"
 #include "exit_codes.h"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "pdd: rigid and deformable penetration depth between tetrahedra (Kim & Kim), with an "
       "exact reference engine and a fast double-precision engine."};
+  app.set_version_flag("--version", std::string("pdd ") + PDD_VERSION);
   app.require_subcommand(1);
   int exit_code = kExitOk;
   add_solve_command(app, exit_code);

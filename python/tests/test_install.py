@@ -33,3 +33,26 @@ def test_install_where_python_finds_it(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "True"
+
+
+def test_install_puts_the_program_in_bin(tmp_path):
+    """The `tools` component installs the `pdd` program into <prefix>/bin; it runs from there
+    (no library of the build tree needed) and names the project's version."""
+    build = os.environ.get("PDD_BUILD_DIR")
+    cmake = os.environ.get("CMAKE_COMMAND", "cmake")
+    if not build:
+        pytest.skip("PDD_BUILD_DIR (the build tree) not set; CTest sets it")
+    prefix = tmp_path / "prefix"
+    out = subprocess.run([cmake, "--install", build, "--component", "tools", "--prefix", str(prefix)],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
+    program = prefix / "bin" / "pdd"
+    assert program.is_file() and os.access(program, os.X_OK)
+    run = subprocess.run([str(program), "--version"], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0 and run.stdout.strip() == "pdd " + pdd_version(), run.stdout + run.stderr
+
+
+def pdd_version():
+    """The version of the build's module, which CMake sets from project(pdd VERSION ...)."""
+    import pdd
+    return pdd.__version__
