@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "exit_codes.h"
 #include "pdd/compare/output.h"
+#include "pdd/compare/streaming.h"
 
 int main(int argc, char** argv) {
   using namespace pdd::compare;
@@ -36,6 +37,11 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {  // never abort: say what went wrong
     std::cerr << "pdd: error: " << e.what() << "\n";
     return kExitFileError;
+  }
+  // A command stopped by SIGINT or SIGTERM (streaming.h) ends with 128 + the signal.
+  if (const int sig = pending_signal()) {
+    std::cout.flush();
+    return interrupted_exit(sig);
   }
   // Whatever a command wrote to standard output must have arrived (a full disk, a closed
   // pipe): results that were lost are an error, not a success.

@@ -83,3 +83,23 @@ def test_solve_to_standard_output_keeps_a_valid_prefix(pdd_cli, tmp_path):
         proc.send_signal(signal.SIGINT)
         assert proc.wait(timeout=30) == 130
     assert 1 <= len(assert_valid_prefix(out, names)) < len(names)
+
+
+def test_generate_closes_a_valid_fixture_file(pdd_cli, tmp_path):
+    """pdd generate writes pairs as it makes them; interrupted, the file it leaves is a complete
+    fixture file holding the pairs made so far (the same bytes as a run with that --count)."""
+    out = tmp_path / "big.json"
+    proc = subprocess.Popen([pdd_cli, "generate", "--family", "paper", "--count", "100000000", "--quiet",
+                             "--output", str(out)], stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5)
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(timeout=30) == 130
+    assert "pairs written, as a complete fixture file" in proc.stderr.read()
+    pairs = json.loads(out.read_text())["pairs"]
+    assert 100 <= len(pairs) < 100000000
+    assert [p["name"] for p in pairs] == [f"paper-1-{k}" for k in range(len(pairs))]
+    again = tmp_path / "again.json"
+    subprocess.run([pdd_cli, "generate", "--family", "paper", "--count", str(len(pairs)), "--quiet",
+                    "--output", str(again)], check=True)
+    assert again.read_bytes() == out.read_bytes()
+    assert not list(tmp_path.glob("*.partial-*"))

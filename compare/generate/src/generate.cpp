@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "pdd/reference/minkowski_pd.h"
+#include "pdd/pdd.h"
 #include "pdd/reference/solve_exact.h"
 #include "pdd/reference/validate_pair.h"
 
@@ -37,6 +38,9 @@ double volume(const TetVertices& t) { return tetrahedron_volume(t); }
 
 bool valid(const TetVertices& t) { return !reference::validate_tetrahedron(t, 'A').has_value(); }
 
+// The exact intersection decision: the fast engine's certified separating-axis filter
+// (pdd.h's overlap_filter: Disjoint or Intersecting only when certain, ~100 ns), and where it
+// cannot tell (touching, nearly touching, parallel edges), the exact Minkowski difference.
 // Smallest facet offset of A (+) (-B): > 0 intersecting, == 0 touching, < 0 disjoint.
 Rational min_facet_offset(const TetPair& p) {
   const auto m = reference::minkowski_pd(reference::to_exact(p));
@@ -44,7 +48,15 @@ Rational min_facet_offset(const TetPair& p) {
   for (const auto& f : m.facets) lo = CGAL::min(lo, f.offset);
   return lo;
 }
-bool intersecting(const TetPair& p) { return valid(p.A) && valid(p.B) && min_facet_offset(p) > 0; }
+bool intersecting(const TetPair& p) {
+  if (!valid(p.A) || !valid(p.B)) return false;
+  switch (fast::overlap_filter(p.A, p.B)) {
+    case fast::Overlap::Disjoint: return false;
+    case fast::Overlap::Intersecting: return true;
+    case fast::Overlap::Unknown: break;
+  }
+  return min_facet_offset(p) > 0;
+}
 
 TetPair pair_of(const TetVertices& a, const TetVertices& b) {
   TetPair p;
@@ -239,7 +251,9 @@ Attempt sliver_pair(Rng& r) {
 Attempt undecidable_optimum_pair(Rng& r, const PaperProtocol& pp) {
   Attempt p = paper_pair(r, pp);
   if (!p) return p;
-  const auto res = reference::solve_exact(*p, {QpFormulation::Reduced});
+  reference::SolveOptions options{QpFormulation::Reduced};
+  options.global = false;  // the candidates' optimum only
+  const auto res = reference::solve_exact(*p, options);
   if (!res.pdd2_dir || res.pdd2_dir->orientation == EdgeOrientation::Decided) return std::nullopt;
   return p;
 }
@@ -305,7 +319,9 @@ bool normal_or_zero(const Rational& v) {
 }
 // Every squared value of SPEC §6 is 0 or a normal double (exact, reduced formulation).
 bool squared_outputs_normal(const TetPair& p) {
-  const auto r = reference::solve_exact(p, {QpFormulation::Reduced});
+  reference::SolveOptions options{QpFormulation::Reduced};
+  options.global = false;  // the seven values below only
+  const auto r = reference::solve_exact(p, options);
   if (r.error) return false;
   for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,
                             &r.pdd2_accel1, &r.pdd2_accel6})
@@ -496,12 +512,11 @@ const std::vector<FamilyInfo>& fixture_families() {
   return infos;
 }
 
-std::vector<TetPair> generate_family(const std::string& family, std::uint64_t seed,
-                                     std::size_t count, const PaperProtocol& protocol) {
+void generate_family(const std::string& family, std::uint64_t seed, std::size_t count,
+                     const PaperProtocol& protocol, const std::function<bool(TetPair&&)>& sink) {
   for (const auto& f : family_table(protocol)) {
     if (f.info.name != family) continue;
     Rng rng(seed);
-    std::vector<TetPair> out;
     for (std::size_t k = 0; k < count; ++k) {
       std::optional<TetPair> attempt;
       for (int tries = 0; !attempt && tries < kMaxTries; ++tries) attempt = f.make(rng, k);
@@ -509,11 +524,21 @@ std::vector<TetPair> generate_family(const std::string& family, std::uint64_t se
       TetPair p = std::move(*attempt);
       p.name = family + "-" + std::to_string(seed) + "-" + std::to_string(k);
       p.tags.insert(p.tags.begin(), family);
-      out.push_back(std::move(p));
+      if (!sink(std::move(p))) return;
     }
-    return out;
+    return;
   }
   throw std::invalid_argument("unknown family '" + family + "' (see pdd generate --list)");
+}
+
+std::vector<TetPair> generate_family(const std::string& family, std::uint64_t seed,
+                                     std::size_t count, const PaperProtocol& protocol) {
+  std::vector<TetPair> out;
+  generate_family(family, seed, count, protocol, [&out](TetPair&& p) {
+    out.push_back(std::move(p));
+    return true;
+  });
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> tag_expectations(const TetPair& pair) {

@@ -542,19 +542,21 @@ std::optional<std::string> stream_fixture_file(const std::string& path, std::siz
   return std::nullopt;
 }
 
+std::string fixture_json_entry(const TetPair& p) {
+  nlohmann::ordered_json e;
+  e["name"] = p.name;
+  e["tags"] = p.tags;
+  e["A"] = p.A;
+  e["B"] = p.B;
+  return e.dump();
+}
+
 std::string fixture_json(const std::vector<TetPair>& pairs) {
   // One pair per line keeps diffs of generated fixture files reviewable.
-  std::string out = "{\"pairs\": [\n";
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const TetPair& p = pairs[k];
-    nlohmann::ordered_json e;
-    e["name"] = p.name;
-    e["tags"] = p.tags;
-    e["A"] = p.A;
-    e["B"] = p.B;
-    out += "  " + e.dump() + (k + 1 < pairs.size() ? ",\n" : "\n");
-  }
-  return out + "]}\n";
+  std::string out = kFixtureJsonHead;
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    out += "  " + fixture_json_entry(pairs[k]) + (k + 1 < pairs.size() ? ",\n" : "\n");
+  return out + kFixtureJsonTail;
 }
 
 }  // namespace pdd::compare

@@ -38,7 +38,6 @@ InterruptGuard::~InterruptGuard() {
   if (--g_guards) return;
   sigaction(SIGINT, &g_old_int, nullptr);
   sigaction(SIGTERM, &g_old_term, nullptr);
-  if (const int sig = g_signal) std::raise(sig);  // a signal the command did not act on
 }
 
 int pending_signal() { return g_signal; }

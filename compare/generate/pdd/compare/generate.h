@@ -6,11 +6,13 @@
 // Degenerate families place coordinates on a dyadic grid, so that the degeneracy they are
 // named after (parallel or colinear edges, coplanar faces, touching) holds exactly in the
 // doubles, and every property a family promises is checked with the exact engine before a
-// pair is kept. Closed-form families record their exact expected values as tags
+// pair is kept (intersection: the fast engine's certified filter, the exact Minkowski difference
+// where it cannot tell). Closed-form families record their exact expected values as tags
 // "key=value" (e.g. "rigid_pd2=1/4"), checked by the tests.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,10 @@ struct PaperProtocol {
 // unknown family.
 std::vector<TetPair> generate_family(const std::string& family, std::uint64_t seed,
                                      std::size_t count, const PaperProtocol& protocol = {});
+// The same pairs handed to `sink` one at a time, in order, as they are made (memory does not
+// grow with `count`); the sink returns false to stop.
+void generate_family(const std::string& family, std::uint64_t seed, std::size_t count,
+                     const PaperProtocol& protocol, const std::function<bool(TetPair&&)>& sink);
 
 // |volume| of a tetrahedron in double precision (the protocol's filter, volume statistics).
 double tetrahedron_volume(const TetVertices& t);

@@ -61,7 +61,11 @@ using FixtureSink = std::function<bool(std::vector<FixtureEntry>& chunk, std::si
 std::optional<std::string> stream_fixture_file(const std::string& path, std::size_t chunk_size,
                                                const FixtureSink& sink);
 
-// Writes pairs back in the same format (round-trip exact: doubles in shortest exact form).
+// Writes pairs back in the same format (round-trip exact: doubles in shortest exact form): the
+// head, one line per pair ("  " + fixture_json_entry, a comma after all but the last), the tail.
 std::string fixture_json(const std::vector<TetPair>& pairs);
+std::string fixture_json_entry(const TetPair& pair);
+inline constexpr const char* kFixtureJsonHead = "{\"pairs\": [\n";
+inline constexpr const char* kFixtureJsonTail = "]}\n";
 
 }  // namespace pdd::compare

@@ -58,11 +58,19 @@ inline std::optional<std::string> check_writable(const std::string& path) {
 // regular file is written beside it under a temporary name and renamed over it, so that an
 // interrupted or failed run leaves either the old file or the whole new one, never a part;
 // anything else (a device, a pipe, a symbolic link) is written in place.
-inline std::optional<std::string> write_file(const std::string& path, const std::string& text) {
+// Whether `path` is written by renaming a temporary file over it: a new or regular file (not a
+// device, a pipe or a symbolic link, which must be written in place).
+inline bool replaced_by_rename(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(path, ec);
-  const bool replace = st.type() == fs::file_type::not_found || st.type() == fs::file_type::regular;
+  return st.type() == fs::file_type::not_found || st.type() == fs::file_type::regular;
+}
+
+inline std::optional<std::string> write_file(const std::string& path, const std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const bool replace = replaced_by_rename(path);
   const std::string target = replace ? path + ".partial-" + std::to_string(::getpid()) : path;
   errno = 0;
   std::ofstream out(target, std::ios::binary);

@@ -7,7 +7,8 @@
 // in the stream's buffer. Hence:
 //   - InterruptGuard: while alive, SIGINT and SIGTERM only record the signal (a second one
 //     takes the default action at once: the user insists); the command polls
-//     pending_signal() and stops at a line boundary.
+//     pending_signal() and stops at a line boundary. main() exits 128 + signal whenever one
+//     was recorded, whatever the command returned.
 //   - OrderedLines: done(k, line) from any thread; the lines 0..m-1 already done are written
 //     in order, each whole, under one mutex; the stream is flushed at least every
 //     `flush_seconds` (and by finish()), so that a killed run loses at most that much.
