@@ -224,6 +224,54 @@ Attempt near_touching_pair(Rng& r) {
   return if_intersecting(a, b);
 }
 
+// A resting contact as meshes have them everywhere: B's face (r0, r1, r2) a depth
+// d = 2^-50 .. 2^-37 (~1e-15 .. 7e-12) below A's face z = 0 (sizes ~8), flat (kind 0) or tilted
+// by theta = +-2^-43 .. 2^-37 rad about an axis in the face plane through B's face centroid
+// (kind 1: part of the face out of contact); kind 2 is kind 1 with y and z swapped (the face in
+// y = 0), kind 3 kind 1 under a random rotation (a generic plane: no normal near an axis). The
+// tilt moves z only (x, y change by theta z ~ 1e-11, far below the face's size: left out), so
+// the depths are not lost to rounding in the coordinate planes.
+bool squared_outputs_normal(const TetPair& p);
+
+Attempt near_coplanar_pair(Rng& r, std::size_t k) {
+  const int kind = int(k % 4);
+  const TetVertices a = {{{0, 0, 0}, {8, 0, 0}, {0, 8, 0}, {r.uniform(0, 2), r.uniform(0, 2), -r.uniform(6, 8)}}};
+  const double depth = std::ldexp(1.0, -r.integer(37, 50));
+  const double x0 = r.uniform(0.5, 1.5), y0 = r.uniform(0.5, 1.5), w = r.uniform(2, 4), h = r.uniform(2, 4);
+  TetVertices b = {{{x0, y0, -depth}, {x0 + w, y0, -depth}, {x0, y0 + h, -depth},
+                    {x0 + r.uniform(0, 1), y0 + r.uniform(0, 1), r.uniform(4, 8)}}};
+  if (kind > 0) {
+    const double theta = (r.integer(0, 1) ? 1 : -1) * std::ldexp(1.0, -r.integer(37, 43));
+    const double phi = r.uniform(0, 6.283185307179586);
+    const double ux = std::cos(phi), uy = std::sin(phi);
+    const double cx = x0 + w / 3, cy = y0 + h / 3;
+    for (int i = 0; i < 3; ++i) b[i][2] += (ux * (b[i][1] - cy) - uy * (b[i][0] - cx)) * theta;
+  }
+  TetVertices aa = a;
+  if (kind == 2)
+    for (auto* t : {&aa, &b})
+      for (auto& v : *t) std::swap(v[1], v[2]);
+  if (kind == 3) {  // rotation about a random unit axis by a random angle (Rodrigues)
+    Vec3d u = {r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    const double n = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (n < 0.1) return std::nullopt;
+    for (double& c : u) c /= n;
+    const double t = r.uniform(0.3, 3), c = std::cos(t), s = std::sin(t), C = 1 - c;
+    const double R[3][3] = {{c + u[0] * u[0] * C, u[0] * u[1] * C - u[2] * s, u[0] * u[2] * C + u[1] * s},
+                            {u[1] * u[0] * C + u[2] * s, c + u[1] * u[1] * C, u[1] * u[2] * C - u[0] * s},
+                            {u[2] * u[0] * C - u[1] * s, u[2] * u[1] * C + u[0] * s, c + u[2] * u[2] * C}};
+    for (auto* tet : {&aa, &b})
+      for (auto& v : *tet) {
+        const Vec3d x = v;
+        for (int i = 0; i < 3; ++i) v[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2];
+      }
+  }
+  Attempt p = if_intersecting(aa, b);
+  if (!p || !valid(b) || !squared_outputs_normal(*p)) return std::nullopt;
+  p->tags = {kind == 0 ? "flat" : kind == 1 ? "tilted" : kind == 2 ? "tilted-y-plane" : "tilted-generic-plane"};
+  return p;
+}
+
 Attempt scaled_pair(Rng& r, const PaperProtocol& pp, int exponent) {
   Attempt p = paper_pair(r, pp);
   if (!p) return p;
@@ -487,6 +535,10 @@ std::vector<Family> family_table(const PaperProtocol& pp) {
        [pp](Rng& r, std::size_t) { return undecidable_optimum_pair(r, pp); }},
       {{"closed-form", "a vertex of B through a face of A at depth t: PD^2 = t^2, static PD_d^2 = t^2/16 (tags)"},
        [](Rng& r, std::size_t) { return closed_form_pair(r); }},
+      {{"near-coplanar",
+        "a face of B 2^-50..2^-37 inside a face of A (sizes ~8), flat or tilted 2^-43..2^-37 rad, "
+        "in z = 0, y = 0 or a generic plane: resting contacts"},
+       [](Rng& r, std::size_t k) { return near_coplanar_pair(r, k); }},
       {{"adversarial",
         "valid pairs that break naive doubles, kind k % 10: 1-ulp sliver, 1-ulp needle, nearly flat "
         "(2^-40), vertex 2^-60 inside / outside a face, nearly parallel edges, nearly coplanar faces "
