@@ -280,20 +280,26 @@ py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle for
 
 constexpr int kLabelChars = 8;  // the longest label, "EE:a:b:+"
 
-// `threads`: None (all cores) or an int >= 1 (numpy integers too; not float, not bool).
+// `threads`, as the CLI's --threads: None or 0 all cores, 1..4096 at most that many (numpy
+// integers too; not float, not bool). nullopt stands for all cores.
+constexpr long kMaxThreads = 4096;
 std::optional<int> threads_arg(py::handle threads_in) {
   if (threads_in.is_none()) return std::nullopt;
-  const std::string msg = "threads must be a positive int, or None for all cores; got ";
-  PyObject* index = PyNumber_Index(threads_in.ptr());
-  if (!index || PyBool_Check(threads_in.ptr())) {
+  const std::string msg = "threads must be 0 (all cores) or an int from 1 to " +
+                          std::to_string(kMaxThreads) + ", or None; got ";
+  const bool is_bool = PyBool_Check(threads_in.ptr()) || is_numpy_bool(threads_in);
+  PyObject* index = is_bool ? nullptr : PyNumber_Index(threads_in.ptr());
+  if (!index) {
     PyErr_Clear();
     Py_XDECREF(index);
     value_error(msg + short_repr(threads_in));
   }
-  const long t = PyLong_AsLong(index);
+  int overflow = 0;
+  const long t = PyLong_AsLongAndOverflow(index, &overflow);
   Py_DECREF(index);
   if (t == -1 && PyErr_Occurred()) PyErr_Clear();
-  if (t < 1 || t > 1 << 16) value_error(msg + short_repr(threads_in));
+  if (overflow || t < 0 || t > kMaxThreads) value_error(msg + short_repr(threads_in));
+  if (t == 0) return std::nullopt;
   return static_cast<int>(t);
 }
 
@@ -872,7 +878,8 @@ same values, bit for bit, as solve(A[k], B[k]) one pair at a time.
 A, B     arrays of shape (N, 4, 3) of real numbers (converted to float64 as
          numpy.asarray(A, dtype=numpy.float64) would); pair k is (A[k], B[k]). A wrong shape,
          a different N, or a non-numeric dtype raises ValueError.
-threads  None: all cores; k >= 1: at most k threads (a TBB arena for this call only).
+threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
+         call only), as `pdd solve --threads`. Anything else raises ValueError.
 with_global  False: skip SPEC §9, as in solve() (no pdd2_global* / q1_*_global arrays).
 
 Returns a dict:
@@ -938,7 +945,8 @@ variants comma-separated, which values to compute: rigid (rigid_pd2), eq11 (eq11
          `pdd mesh`.
 engine   "fast" (doubles, certified to SPEC §8) or "reference" (exact rationals,
          fractions.Fraction; about 0.1 s a pair on one core: for small meshes).
-threads  None: all cores; k >= 1: at most k threads (a TBB arena for this call only).
+threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
+         call only), as `pdd mesh --threads`. Anything else raises ValueError.
 
 Stages (mesh.h): 1. a box per element (an element with a non-finite coordinate or zero
 volume, decided exactly, is skipped and listed); 2. the pairs whose boxes overlap (CGAL's

@@ -1,6 +1,9 @@
 """pdd.solve_batch: bit for bit the single calls, on all cores with the GIL released; rejected
 pairs are error entries, malformed arrays raise ValueError."""
+import json
 import math
+import re
+import subprocess
 import threading
 import time
 
@@ -141,10 +144,38 @@ def test_malformed_batches_raise_value_error(A, B, message):
         pdd.solve_batch(A, B)
 
 
-@pytest.mark.parametrize("threads", [0, -1, 1.5, "2", True])
+THREADS_MESSAGE = r"^threads must be 0 \(all cores\) or an int from 1 to 4096, or None; got "
+
+
+@pytest.mark.parametrize("threads", [-1, 4097, 10**6, 2**80, 1.5, 2.0, "2", True, False, np.bool_(True)])
 def test_bad_threads_raise_value_error(threads):
-    with pytest.raises(ValueError, match="threads must be a positive int, or None"):
+    with pytest.raises(ValueError, match=THREADS_MESSAGE + re.escape(repr(threads)) + "$"):
         pdd.solve_batch(np.zeros((1, 4, 3)), np.zeros((1, 4, 3)), threads=threads)
+
+
+@pytest.mark.parametrize("threads", [None, 0, np.int64(0), 1, 4096, np.uint16(4096)])
+def test_threads_as_the_cli_reads_them(threads):
+    """None and 0 are all cores, 1..4096 at most that many (4096: all of this machine's)."""
+    A, B = random_pairs(50, seed=5)
+    res = pdd.solve_batch(A, B, threads=threads)
+    ref = pdd.solve_batch(A, B)
+    assert (bits(res["pdd2"]) == bits(ref["pdd2"])).all()
+
+
+def test_threads_rule_is_the_clis(pdd_cli, tmp_path):
+    """The same numbers are accepted by `pdd solve --threads` and solve_batch(threads=...)."""
+    path = tmp_path / "one.json"
+    path.write_text(json.dumps({"pairs": [{"name": "p", "A": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                                           "B": [[2, 2, 2], [3, 2, 2], [2, 3, 2], [2, 2, 3]]}]}))
+    for threads in (-1, 0, 1, 2, 4096, 4097):
+        cli = subprocess.run([pdd_cli, "solve", "--engine", "fast", "--quiet", "--input", str(path),
+                              "--threads", str(threads)], capture_output=True, text=True)
+        try:
+            pdd.solve_batch(np.zeros((1, 4, 3)), np.zeros((1, 4, 3)), threads=threads)
+            python_ok = True
+        except ValueError:
+            python_ok = False
+        assert (cli.returncode == 0) == python_ok, (threads, cli.returncode, cli.stderr)
 
 
 def python_work_during(call):

@@ -361,7 +361,7 @@ def test_rejected_pairs_are_error_rows(pdd_cli, tmp_path):
 
 def test_threads_do_not_change_results():
     ref = contacts_of("torus.msh", "box.vtk", variants="all")
-    for threads in (1, np.int32(2)):
+    for threads in (1, np.int32(2), 0, 4096):
         res = contacts_of("torus.msh", "box.vtk", variants="all", threads=threads)
         for k in ("a", "b") + VALUE_KEYS + ("q1_A", "q1_B"):
             assert (bits(res[k]) == bits(ref[k])).all(), k
@@ -434,8 +434,10 @@ def test_skipped_elements_are_the_cli_messages(pdd_cli, tmp_path):
     (("V", "T"), dict(variants=""), "^variants: no variant named$"),
     (("V", "T"), dict(variants=3), "^variants must be a str; got 3$"),
     (("V", "T"), dict(engine="exact"), "^engine must be 'fast' or 'reference'; got 'exact'$"),
-    (("V", "T"), dict(threads=0), "^threads must be a positive int, or None for all cores; got 0$"),
-    (("V", "T"), dict(threads=1.5), "^threads must be a positive int"),
+    (("V", "T"), dict(threads=-1),
+     r"^threads must be 0 \(all cores\) or an int from 1 to 4096, or None; got -1$"),
+    (("V", "T"), dict(threads=4097), "^threads must be 0 .all cores. or an int from 1 to 4096, or None; got 4097$"),
+    (("V", "T"), dict(threads=1.5), "^threads must be 0 .all cores. or an int from 1 to 4096, or None; got 1.5$"),
     (("V", "T", "V"), {}, r"^give both VB and TB \(contacts of A with B\), or neither"),
     (("V", "T", None, "T"), {}, r"^give both VB and TB"),
     (("V2", "T"), {}, r"^VA must have shape \(n, 3\); got \(14, 2\)$"),
