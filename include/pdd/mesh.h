@@ -53,6 +53,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -122,8 +123,19 @@ std::string variant_names(unsigned variants);  // the inverse, comma-separated
 struct ContactOptions {
   unsigned variants = kDefaultVariants;
   // Stage 4 progress: progress(n, total) says n more of the `total` intersecting pairs are
-  // done. Called from worker threads (must be thread-safe); may be empty.
+  // done; called once with n = 0 when stage 4 starts (`total` known), then from worker threads
+  // (must be thread-safe). May be empty.
   std::function<void(std::size_t n, std::size_t total)> progress;
+  // Cancellation, for interactive callers: when not null and *cancel becomes true (from any
+  // thread), the call starts no more work and throws Cancelled. Checked between stages, per
+  // block of box pairs in stage 3 and before each pair in stage 4; stage 2 (CGAL's
+  // broadphase) and the pairs already being computed run to their end.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+// What contacts() throws when ContactOptions::cancel stopped it.
+struct Cancelled : std::runtime_error {
+  Cancelled() : std::runtime_error("pdd::mesh: cancelled") {}
 };
 
 // An element that was not computed (SPEC §10): `mesh` is 'A' or 'B', `index` its number.

@@ -155,6 +155,10 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   check_indices(A, 'A');
   if (B) check_indices(*B, 'B');
   const Mesh& BB = B ? *B : A;
+  const auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+  const auto stop_if_cancelled = [&] {
+    if (cancelled()) throw Cancelled();
+  };
   Contacts<R> out;
   out.elements_a = A.tets.size();
   out.elements_b = B ? B->tets.size() : 0;
@@ -163,6 +167,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   std::vector<Box> ba = valid_boxes(A, 'A', 0, out.skipped);
   std::vector<Box> bb = B ? valid_boxes(*B, 'B', A.tets.size(), out.skipped) : std::vector<Box>{};
   out.seconds_boxes = since(t);
+  stop_if_cancelled();
 
   t = Clock::now();
   BroadphaseOptions bo;
@@ -173,6 +178,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   std::vector<std::array<std::size_t, 2>> cand = pairs_of_boxes(A, ba, B ? &bb : nullptr, bo);
   out.box_pairs = cand.size();
   out.seconds_broadphase = since(t);
+  stop_if_cancelled();
 
   // Stage 3: the exact decision (SPEC §4): fast::interiors_intersect, a certified
   // separating-axis filter in doubles that decides almost every box pair in about 100 ns, and
@@ -181,6 +187,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   std::vector<char> hit(cand.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
+                      if (cancelled()) return;
                       for (std::size_t k = r.begin(); k != r.end(); ++k)
                         hit[k] = fast::interiors_intersect(element(A, cand[k][0]),
                                                            element(BB, cand[k][1]));
@@ -189,11 +196,14 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   for (std::size_t k = 0; k < cand.size(); ++k)
     if (hit[k]) hits.push_back(k);
   out.seconds_decision = since(t);
+  stop_if_cancelled();
 
   // Stage 4: the variants.
   t = Clock::now();
   out.pairs.resize(hits.size());
+  if (options.progress) options.progress(0, hits.size());
   tbb::parallel_for(std::size_t{0}, hits.size(), [&](std::size_t h) {
+    if (cancelled()) return;
     const std::size_t k = hits[h];
     Contact<R>& c = out.pairs[h];
     c.a = cand[k][0];
@@ -208,6 +218,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
     }
     if (options.progress) options.progress(1, hits.size());
   });
+  stop_if_cancelled();
   out.seconds_depth = since(t);
   return out;
 }

@@ -15,11 +15,13 @@
 
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "pdd/mesh.h"
 
@@ -265,6 +267,38 @@ BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
   }
   const Mesh S = load("two-spheres.msh");
   check_values(self_contacts(S, {kAllVariants, {}}), S, S, kAllVariants);
+}
+
+BOOST_AUTO_TEST_CASE(progress_starts_at_zero_and_cancel_stops_the_call) {
+  const Mesh A = load("slivers.msh"), B = load("sphere-a.msh");
+  const std::size_t total = contacts(A, B).pairs.size();
+  BOOST_REQUIRE(total > 100u);
+  // progress: (0, total) first, then every pair once
+  std::atomic<std::size_t> calls{0}, done{0}, first_n{1}, first_total{0};
+  ContactOptions o;
+  o.progress = [&](std::size_t n, std::size_t t) {
+    if (calls++ == 0) first_n = n, first_total = t;
+    done += n;
+  };
+  contacts(A, B, o);
+  BOOST_TEST(first_n == 0u);
+  BOOST_TEST(first_total == total);
+  BOOST_TEST(done == total);
+  // cancelled before the call: nothing is computed
+  std::atomic<bool> cancel{true};
+  o.cancel = &cancel;
+  done = 0;
+  BOOST_CHECK_THROW(contacts(A, B, o), Cancelled);
+  BOOST_CHECK_THROW(self_contacts_exact(A, o), Cancelled);
+  BOOST_TEST(done == 0u);
+  // cancelled from stage 4 after 10 pairs: at most the pairs already started finish
+  cancel = false;
+  o.progress = [&](std::size_t n, std::size_t) {
+    if ((done += n) >= 10) cancel = true;
+  };
+  BOOST_CHECK_THROW(contacts(A, B, o), Cancelled);
+  BOOST_TEST(done >= 10u);
+  BOOST_TEST(done < 10u + 4 * std::thread::hardware_concurrency() + 4);
 }
 
 BOOST_AUTO_TEST_CASE(touching_meshes_report_no_pair) {
