@@ -10,22 +10,33 @@
 // pdd::mesh) and on compare/'s fixture reader (the one `pdd solve` uses, so messages are the
 // CLI's). Many records become columns in one place (RecordColumns). Numbers:
 // the fast engine's are Python floats, the reference engine's fractions.Fraction, built from
-// GMP's integers exactly (never through a float). Every engine call runs with the GIL released.
+// GMP's integers exactly (never through a float). Every engine call runs with the GIL released;
+// the long ones (solve_batch, mesh_contacts) stop on Ctrl-C (LongCall).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <pthread.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <type_traits>
 #include <vector>
@@ -314,6 +325,152 @@ void with_threads(std::optional<int> threads, F&& f) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Threads that compute the long calls (LongCall below), kept for the next call: a new thread's
+// first TBB loop costs 0.1 to 0.3 ms (it registers with TBB), handing a job to a waiting one
+// about 7 us. A call takes an idle one or starts one, so there are as many as calls ever ran
+// at once. Used with the GIL held (the GIL orders them); after fork() the child has none.
+class Workers {
+ public:
+  static Workers& get() {
+    if (!instance) instance = new Workers;  // never destroyed: idle threads wait in it
+    return *instance;
+  }
+  static void forget_after_fork() { instance = nullptr; }  // the threads did not come along
+
+  // Runs work() then done() on an idle thread (a new one if none is idle) and returns at once;
+  // neither may throw. The thread is idle again before done() is called, so that a call that
+  // follows this one finds it.
+  void start(std::function<void()> work, std::function<void()> done) {
+    Worker* w = nullptr;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!idle_.empty()) {
+        w = idle_.back();
+        idle_.pop_back();
+      }
+    }
+    if (!w) {
+      auto fresh = std::make_unique<Worker>();
+      std::thread(&Workers::loop, this, fresh.get()).detach();
+      w = fresh.release();
+    }
+    {
+      std::lock_guard<std::mutex> lock(w->mutex);
+      w->work = std::move(work);
+      w->done = std::move(done);
+    }
+    w->cv.notify_one();
+  }
+
+ private:
+  struct Worker {
+    std::mutex mutex;
+    std::condition_variable cv;
+    std::function<void()> work, done;
+  };
+
+  void loop(Worker* w) {
+    for (;;) {
+      std::function<void()> work, done;
+      {
+        std::unique_lock<std::mutex> lock(w->mutex);
+        w->cv.wait(lock, [&] { return bool(w->work); });
+        work = std::move(w->work);
+        done = std::move(w->done);
+        w->work = w->done = nullptr;
+      }
+      work();
+      work = nullptr;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        idle_.push_back(w);
+      }
+      done();
+    }
+  }
+
+  static inline Workers* instance = nullptr;
+  std::mutex mutex_;
+  std::vector<Worker*> idle_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Long calls (solve_batch, mesh_contacts) stop on Ctrl-C.
+//
+// The pairs are computed on a thread of Workers (TBB's loops inside, in the call's arena)
+// while the calling thread waits with the GIL released; every kPoll it takes the GIL and runs
+// Python's signal handlers (PyErr_CheckSignals: in the main thread Ctrl-C raises
+// KeyboardInterrupt there). On an exception it sets `cancel`, which the pair loops check before
+// each pair, waits for the pairs already started (one per thread: microseconds with the fast
+// engine, up to seconds for an exact pair) and raises the exception; the results are dropped.
+// Python code on other threads runs meanwhile, as with any call that releases the GIL.
+class LongCall {
+ public:
+  static constexpr auto kPoll = std::chrono::milliseconds(50);
+
+  // Set by the calling thread; the computation starts no more pairs once it is.
+  std::atomic<bool> cancel{false};
+
+  bool cancelled() const { return cancel.load(std::memory_order_relaxed); }
+
+  // Runs compute() (no Python inside) as described above, or, when `watch` is false (short
+  // calls), on the calling thread with the GIL released. Called with the GIL held; throws the Python exception that stopped it, or what
+  // compute() threw.
+  template <class Compute>
+  void run(bool watch, Compute&& compute) {
+    if (!watch) {
+      py::gil_scoped_release release;
+      compute();
+      return;
+    }
+    std::mutex mutex;
+    std::condition_variable finished_cv;
+    bool finished = false;
+    std::exception_ptr failure;        // compute()'s exception
+    std::exception_ptr watch_failure;  // a C++ exception in the watch itself
+    bool python_error = false;         // set in this thread's state; raised once compute() ended
+    Workers& workers = Workers::get();
+    {
+      py::gil_scoped_release release;
+      workers.start(
+          [&] {
+            try {
+              compute();
+            } catch (...) {
+              failure = std::current_exception();
+            }
+          },
+          [&] {
+            std::lock_guard<std::mutex> lock(mutex);
+            finished = true;
+            finished_cv.notify_one();
+          });
+      for (;;) {
+        {
+          std::unique_lock<std::mutex> lock(mutex);
+          if (finished_cv.wait_for(lock, kPoll, [&] { return finished; })) break;
+        }
+        py::gil_scoped_acquire gil;
+        try {
+          python_error = PyErr_CheckSignals() != 0;
+        } catch (...) {  // nothing may leave this scope while the worker runs
+          watch_failure = std::current_exception();
+        }
+        if (python_error || watch_failure) {
+          cancel.store(true, std::memory_order_relaxed);
+          break;
+        }
+      }
+      std::unique_lock<std::mutex> lock(mutex);
+      finished_cv.wait(lock, [&] { return finished; });
+    }
+    if (python_error) throw py::error_already_set();
+    if (watch_failure) std::rethrow_exception(watch_failure);
+    if (failure) std::rethrow_exception(failure);
+  }
+};
+
 // n records as columns, keyed as SPEC §6 (pair_result.h's kValueKeys / kLabelKeys):
 //   intersecting                (n,) bool
 //   the values of `values`      bit k of `values` selects kValueKeys[k] (the bits of
@@ -522,6 +679,12 @@ py::array_t<double, py::array::c_style> batch_input(py::handle obj, const char* 
   return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
 }
 
+// Pairs a chunk of solve_batch's loop holds (its records' memory: about 700 bytes a pair).
+constexpr std::size_t kChunk = 1 << 15;
+// Batches of more pairs than this are watched for Ctrl-C (LongCall); smaller ones take about a
+// millisecond a core (a few when some take the exact path) and run on the calling thread.
+constexpr std::size_t kWatchedPairs = 256;
+
 py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py::handle global_arg) {
   const bool global = bool_arg(global_arg, "with_global");
   const std::optional<int> threads = threads_arg(threads_in);
@@ -538,13 +701,16 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
   const double* a = A.data();
   const double* b = B.data();
   std::size_t slow_paths = 0;
-  {
-    py::gil_scoped_release release;
-    // Chunks bound the memory of the engine's records; every chunk uses all cores (or the
-    // arena's `threads`). Results are those of solve_pair one pair at a time, bit for bit.
-    constexpr std::size_t kChunk = 1 << 15;
+  LongCall call;
+  // Chunks bound the memory of the engine's records; every chunk uses all cores (or the arena's
+  // `threads`). Each record is solve_pair's on that pair, as fast::solve_batch gives it (bit for
+  // bit the same as one pair at a time), by a loop that stops before the next pair once
+  // `cancel` is set.
+  call.run(n > kWatchedPairs, [&] {
     with_threads(threads, [&] {
       std::vector<pdd::TetPair> chunk;
+      std::vector<pdd::PairResult<double>> res;
+      std::vector<char> slow;
       for (std::size_t first = 0; first < n; first += kChunk) {
         const std::size_t m = std::min(kChunk, n - first);
         chunk.resize(m);
@@ -554,13 +720,24 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
               chunk[k].A[i][c] = a[((first + k) * 4 + i) * 3 + c];
               chunk[k].B[i][c] = b[((first + k) * 4 + i) * 3 + c];
             }
-        std::size_t slow = 0;
-        const std::vector<pdd::PairResult<double>> res = pdd::fast::solve_batch(chunk, &slow, nullptr, global);
-        slow_paths += slow;
-        for (std::size_t k = 0; k < m; ++k) out.put(first + k, res[k]);
+        res.resize(m);
+        slow.assign(m, 0);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m), [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            if (call.cancelled()) return;
+            bool s = false;
+            res[k] = pdd::fast::solve_pair(chunk[k], &s, nullptr, global);
+            slow[k] = s;
+          }
+        });
+        if (call.cancelled()) return;
+        for (std::size_t k = 0; k < m; ++k) {
+          slow_paths += slow[k] != 0;
+          out.put(first + k, res[k]);
+        }
       }
     });
-  }
+  });
 
   py::dict d;
   out.add_to(d);
@@ -751,8 +928,9 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
   std::optional<pdd::mesh::Contacts<double>> fast;
   std::optional<pdd::mesh::Contacts<pdd::Rational>> exact;
   std::optional<std::string> bad_input;
-  {
-    py::gil_scoped_release release;
+  LongCall call;
+  options.cancel = &call.cancel;
+  call.run(true, [&] {
     with_threads(threads, [&] {
       try {
         if (engine == "fast")
@@ -762,9 +940,10 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
                        : pdd::mesh::contacts_exact(A, B, options);
       } catch (const std::invalid_argument& e) {  // an index past the end of the vertices
         bad_input = e.what();
+      } catch (const pdd::mesh::Cancelled&) {  // call.run raises why
       }
     });
-  }
+  });
   if (bad_input) value_error(*bad_input);
   return fast ? contacts_dict(*fast, variants, false) : contacts_dict(*exact, variants, true);
 }
@@ -900,6 +1079,11 @@ Returns a dict:
 A rejected pair never stops the batch: its error is set, its values and positions are NaN,
 its labels "" and intersecting False.
 
+Ctrl-C stops a call from the main thread (where Python handles signals): KeyboardInterrupt
+(or whatever a signal handler raises) within about 0.1 s, the pairs already computed
+dropped. Batches of more than 256 pairs are computed on a thread of their own while the
+calling thread watches for signals.
+
 Example:
   >>> rng = numpy.random.default_rng(1)
   >>> A, B = rng.uniform(0, 10, (2, 100000, 4, 3))
@@ -981,6 +1165,12 @@ then what happened:
 Row j's values are those of solve(VA[TA[a]], VB[TB[b]], engine=engine) for (a, b) = (a[j],
 b[j]): fast ones bit for bit, reference ones exactly.
 
+Ctrl-C stops a call from the main thread (where Python handles signals): KeyboardInterrupt
+(or whatever a signal handler raises), the pairs already computed dropped; within about
+0.1 s with the fast engine, once the pairs being computed are done with the reference engine
+(one per thread, about 0.1 s each on small meshes). Stage 2 runs to its end first (under a
+second for 10^5 elements).
+
 A flat or non-finite element is skipped and listed, never an exception. Malformed
 arguments raise ValueError: a wrong shape or dtype, a vertex index out of range ("element
 3 of mesh A refers to vertex 99, but the mesh has 20 vertices"), an unknown variant
@@ -1020,6 +1210,7 @@ PYBIND11_MODULE(pdd, m) {
   py::options options;
   options.disable_function_signatures();  // each docstring starts with its text signature
   m.doc() = kModuleDoc;
+  pthread_atfork(nullptr, nullptr, &Workers::forget_after_fork);
   cached = new Cached{py::module_::import("fractions").attr("Fraction"),
                       py::module_::import("numpy").attr("bool_"),
                       py::module_::import("numpy").attr("asarray"),
