@@ -19,6 +19,7 @@ PACKAGES=(
   pybind11-dev python3-dev python3-numpy  # the Python module (python/), for /usr/bin/python3
   python3-pytest python3-distributed      # its tests; the dask example
   python3-meshio                          # its mesh tests: meshes read by meshio (test_mesh.py)
+  python3-tqdm                            # its progress bars (progress=True)
   gmsh                                    # scripts/make-meshes.sh only (test meshes; GPL, never linked)
 )
 

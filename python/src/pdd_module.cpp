@@ -1,9 +1,9 @@
 // pdd_module.cpp — the Python module `pdd` (pybind11): both engines from Python.
 //
 //   pdd.solve(A, B, engine="fast", formulation="reduced", name="", with_global=True) -> dict
-//   pdd.solve_batch(A, B, threads=None, with_global=True)          -> dict of numpy arrays
+//   pdd.solve_batch(A, B, threads=None, with_global=True, progress=None) -> dict of arrays
 //   pdd.read_fixtures(path)                                        -> list of dicts
-//   pdd.mesh_contacts(VA, TA, VB=None, TB=None, variants, engine, threads) -> dict of arrays
+//   pdd.mesh_contacts(VA, TA, VB=None, TB=None, variants, engine, threads, progress) -> dict
 //   pdd.read_mesh(path)                                            -> (V, T) numpy arrays
 //
 // Built only on the public C++ interface (<pdd/pdd.h>: pdd::fast, pdd::reference; <pdd/mesh.h>:
@@ -396,34 +396,113 @@ class Workers {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Long calls (solve_batch, mesh_contacts) stop on Ctrl-C.
-//
+// Long calls (solve_batch, mesh_contacts): Ctrl-C and progress.
+
+// The `progress` argument: None or False (silent), a callable progress(done, total), or True
+// (a tqdm bar on standard error; tqdm is imported when the call starts, so that a missing one
+// fails before any work). Used with the GIL held.
+class Progress {
+ public:
+  Progress(py::handle arg, const char* what) : what_(what) {
+    if (arg.is_none() || arg.ptr() == Py_False) return;
+    if (arg.ptr() == Py_True) {
+      try {
+        tqdm_ = py::module_::import("tqdm").attr("tqdm");
+      } catch (py::error_already_set& e) {
+        if (!e.matches(PyExc_ImportError)) throw;
+        py::raise_from(e, PyExc_ImportError,
+                       "progress=True draws a tqdm bar, but tqdm cannot be imported (Debian: "
+                       "apt install python3-tqdm; pip: pip install tqdm); pass a callable "
+                       "progress(done, total) instead, or None");
+        throw py::error_already_set();
+      }
+      return;
+    }
+    if (!PyCallable_Check(arg.ptr()))
+      value_error("progress must be None, True or a callable progress(done, total); got " + short_repr(arg));
+    callable_ = py::reinterpret_borrow<py::object>(arg);
+  }
+
+  bool active() const { return bool(callable_) || bool(tqdm_); }
+
+  // `done` of `total` pairs are computed: calls progress(done, total) or moves the bar, unless
+  // that is what it last said. Throws py::error_already_set when the callable raises.
+  void report(std::size_t done, std::size_t total) {
+    if (!active() || (said_ && done == done_ && total == total_)) return;
+    if (tqdm_) {
+      if (!bar_) bar_ = tqdm_(py::arg("total") = total, py::arg("desc") = what_, py::arg("unit") = "pair");
+      bar_.attr("update")(done - done_);
+    } else {
+      callable_(done, total);
+    }
+    said_ = true, done_ = done, total_ = total;
+  }
+
+  // The call ended: closes the bar.
+  void close() {
+    if (!bar_) return;
+    const py::object bar = std::move(bar_);
+    bar.attr("close")();
+  }
+
+ private:
+  const char* what_;
+  py::object callable_, tqdm_, bar_;
+  bool said_ = false;
+  std::size_t done_ = 0, total_ = 0;
+};
+
 // The pairs are computed on a thread of Workers (TBB's loops inside, in the call's arena)
-// while the calling thread waits with the GIL released; every kPoll it takes the GIL and runs
+// while the calling thread waits with the GIL released; every kPoll it takes the GIL, runs
 // Python's signal handlers (PyErr_CheckSignals: in the main thread Ctrl-C raises
-// KeyboardInterrupt there). On an exception it sets `cancel`, which the pair loops check before
-// each pair, waits for the pairs already started (one per thread: microseconds with the fast
-// engine, up to seconds for an exact pair) and raises the exception; the results are dropped.
-// Python code on other threads runs meanwhile, as with any call that releases the GIL.
+// KeyboardInterrupt there) and reports progress. On an exception (from a signal handler or
+// the progress callable) it sets `cancel`, which the pair loops check before each pair, waits
+// for the pairs already started (one per thread: microseconds with the fast engine, up to
+// seconds for an exact pair) and raises it; the results are dropped. Python code on other
+// threads runs meanwhile, as with any call that releases the GIL.
 class LongCall {
  public:
   static constexpr auto kPoll = std::chrono::milliseconds(50);
+  static constexpr std::size_t kUnknown = std::size_t(-1);
+
+  explicit LongCall(Progress& progress) : progress_(progress) {}
 
   // Set by the calling thread; the computation starts no more pairs once it is.
   std::atomic<bool> cancel{false};
+  // Set by the computation: pairs computed, of `total` (kUnknown until it is known).
+  std::atomic<std::size_t> done{0}, total{kUnknown};
 
   bool cancelled() const { return cancel.load(std::memory_order_relaxed); }
+  void add_done(std::size_t n) { done.fetch_add(n, std::memory_order_relaxed); }
 
   // Runs compute() (no Python inside) as described above, or, when `watch` is false (short
-  // calls), on the calling thread with the GIL released. Called with the GIL held; throws the Python exception that stopped it, or what
-  // compute() threw.
+  // calls), on the calling thread with the GIL released; then reports progress(total, total).
+  // Called with the GIL held; throws the Python exception that stopped it, or what compute()
+  // threw.
   template <class Compute>
   void run(bool watch, Compute&& compute) {
-    if (!watch) {
-      py::gil_scoped_release release;
-      compute();
-      return;
+    try {
+      if (watch) {
+        watched(compute);
+      } else {
+        py::gil_scoped_release release;
+        compute();
+      }
+      const std::size_t t = total.load();
+      if (t != kUnknown) progress_.report(t, t);
+    } catch (...) {
+      try {
+        progress_.close();
+      } catch (py::error_already_set&) {  // the exception that stopped the call goes on
+      }
+      throw;
     }
+    progress_.close();
+  }
+
+ private:
+  template <class Compute>
+  void watched(Compute& compute) {
     std::mutex mutex;
     std::condition_variable finished_cv;
     bool finished = false;
@@ -452,9 +531,14 @@ class LongCall {
           if (finished_cv.wait_for(lock, kPoll, [&] { return finished; })) break;
         }
         py::gil_scoped_acquire gil;
-        try {
+        try {  // nothing may leave this scope while the worker runs
           python_error = PyErr_CheckSignals() != 0;
-        } catch (...) {  // nothing may leave this scope while the worker runs
+          const std::size_t t = total.load();
+          if (!python_error && t != kUnknown) progress_.report(done.load(), t);
+        } catch (py::error_already_set& e) {
+          e.restore();
+          python_error = true;
+        } catch (...) {
           watch_failure = std::current_exception();
         }
         if (python_error || watch_failure) {
@@ -469,6 +553,8 @@ class LongCall {
     if (watch_failure) std::rethrow_exception(watch_failure);
     if (failure) std::rethrow_exception(failure);
   }
+
+  Progress& progress_;
 };
 
 // n records as columns, keyed as SPEC §6 (pair_result.h's kValueKeys / kLabelKeys):
@@ -685,9 +771,11 @@ constexpr std::size_t kChunk = 1 << 15;
 // millisecond a core (a few when some take the exact path) and run on the calling thread.
 constexpr std::size_t kWatchedPairs = 256;
 
-py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py::handle global_arg) {
+py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py::handle global_arg,
+                     py::handle progress_arg) {
   const bool global = bool_arg(global_arg, "with_global");
   const std::optional<int> threads = threads_arg(threads_in);
+  Progress progress(progress_arg, "pdd.solve_batch");
   const auto A = batch_input(A_in, "A");
   const auto B = batch_input(B_in, "B");
   if (!A || !B) throw py::error_already_set();
@@ -701,7 +789,8 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
   const double* a = A.data();
   const double* b = B.data();
   std::size_t slow_paths = 0;
-  LongCall call;
+  LongCall call(progress);
+  call.total = n;
   // Chunks bound the memory of the engine's records; every chunk uses all cores (or the arena's
   // `threads`). Each record is solve_pair's on that pair, as fast::solve_batch gives it (bit for
   // bit the same as one pair at a time), by a loop that stops before the next pair once
@@ -729,6 +818,7 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
             res[k] = pdd::fast::solve_pair(chunk[k], &s, nullptr, global);
             slow[k] = s;
           }
+          call.add_done(r.size());
         });
         if (call.cancelled()) return;
         for (std::size_t k = 0; k < m; ++k) {
@@ -900,7 +990,8 @@ py::dict contacts_dict(const pdd::mesh::Contacts<R>& c, unsigned variants, bool 
 }
 
 py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle TB,
-                       py::handle variants_in, py::handle engine_in, py::handle threads_in) {
+                       py::handle variants_in, py::handle engine_in, py::handle threads_in,
+                       py::handle progress_arg) {
   const std::string engine = text_arg(engine_in, "engine");
   if (engine != "fast" && engine != "reference")
     value_error("engine must be 'fast' or 'reference'; got '" + engine + "'");
@@ -911,6 +1002,7 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
     value_error(std::string("variants: ") + e.what());
   }
   const std::optional<int> threads = threads_arg(threads_in);
+  Progress progress(progress_arg, "pdd.mesh_contacts");
   if (VB.is_none() != TB.is_none())
     value_error("give both VB and TB (contacts of A with B), or neither (self-contact of A)");
   const bool self = VB.is_none();
@@ -928,8 +1020,12 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
   std::optional<pdd::mesh::Contacts<double>> fast;
   std::optional<pdd::mesh::Contacts<pdd::Rational>> exact;
   std::optional<std::string> bad_input;
-  LongCall call;
+  LongCall call(progress);
   options.cancel = &call.cancel;
+  options.progress = [&call](std::size_t n, std::size_t total) {
+    call.total.store(total, std::memory_order_relaxed);
+    call.add_done(n);
+  };
   call.run(true, [&] {
     with_threads(threads, [&] {
       try {
@@ -968,9 +1064,11 @@ Two engines:
 
 Functions:
   solve(A, B, engine="fast", formulation="reduced", name="")  one pair -> dict
-  solve_batch(A, B, threads=None)      (N, 4, 3) numpy arrays, fast engine, all cores
+  solve_batch(A, B, threads=None, progress=None)
+                                       (N, 4, 3) numpy arrays, fast engine, all cores
   read_fixtures(path)                  a fixture file (fixtures/*.json) -> list of dicts
-  mesh_contacts(VA, TA, VB=None, TB=None, variants=..., engine="fast", threads=None)
+  mesh_contacts(VA, TA, VB=None, TB=None, variants=..., engine="fast", threads=None,
+                progress=None)
                                        every intersecting element pair of two tetrahedral
                                        meshes (numpy arrays; SPEC §10) and its depths
   read_mesh(path)                      a .msh or .vtk file -> (V, T) numpy arrays
@@ -1048,7 +1146,7 @@ Example:
   (Fraction(4, 5), 'VF:0', [Fraction(7, 3), Fraction(11, 6), Fraction(11, 6)])
 )doc";
 
-constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None, with_global=True)
+constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None, with_global=True, progress=None)
 --
 
 N pairs -> dict of numpy arrays: the fast engine on all cores, with the GIL released; the
@@ -1060,6 +1158,12 @@ A, B     arrays of shape (N, 4, 3) of real numbers (converted to float64 as
 threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
          call only), as `pdd solve --threads`. Anything else raises ValueError.
 with_global  False: skip SPEC §9, as in solve() (no pdd2_global* / q1_*_global arrays).
+progress None (the default) or False: silent. A callable progress(done, total): called
+         from the calling thread with the GIL held, about every 0.05 s while pairs are
+         computed when `done` (pairs computed so far) has grown, and once at the end with
+         done == total == N; an exception it raises stops the call (as Ctrl-C does, below)
+         and propagates. True: a tqdm progress bar on standard error (Debian python3-tqdm;
+         without tqdm, ImportError before any work).
 
 Returns a dict:
   intersecting               (N,) bool
@@ -1109,7 +1213,7 @@ a NUL byte, a repeated key, no "pairs" array) raises ValueError with the message
 prints after "pdd solve: ", e.g. "malformed JSON at byte 12: ...".
 )doc";
 
-constexpr const char* kMeshContactsDoc = R"doc(mesh_contacts(VA, TA, VB=None, TB=None, variants='rigid,static,pdd2,accel1', engine='fast', threads=None)
+constexpr const char* kMeshContactsDoc = R"doc(mesh_contacts(VA, TA, VB=None, TB=None, variants='rigid,static,pdd2,accel1', engine='fast', threads=None, progress=None)
 --
 
 Two tetrahedral meshes (or one, with itself) -> every intersecting element pair and its
@@ -1131,6 +1235,9 @@ engine   "fast" (doubles, certified to SPEC §8) or "reference" (exact rationals
          fractions.Fraction; about 0.1 s a pair on one core: for small meshes).
 threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
          call only), as `pdd mesh --threads`. Anything else raises ValueError.
+progress None (the default) or False: silent; a callable progress(done, total) or True (a
+         tqdm bar), as in solve_batch(). Over stage 4 below: `done` counts the intersecting
+         pairs computed, `total` is their number (no call comes before stage 3 is done).
 
 Stages (mesh.h): 1. a box per element (an element with a non-finite coordinate or zero
 volume, decided exactly, is skipped and listed); 2. the pairs whose boxes overlap (CGAL's
@@ -1225,11 +1332,12 @@ PYBIND11_MODULE(pdd, m) {
   m.def("solve", &solve, kSolveDoc, py::arg("A"), py::arg("B"), py::arg("engine") = "fast",
         py::arg("formulation") = "reduced", py::arg("name") = "", py::arg("with_global") = true);
   m.def("solve_batch", &solve_batch, kSolveBatchDoc, py::arg("A"), py::arg("B"),
-        py::arg("threads") = py::none(), py::arg("with_global") = true);
+        py::arg("threads") = py::none(), py::arg("with_global") = true,
+        py::arg("progress") = py::none());
   m.def("read_fixtures", &read_fixtures, kReadFixturesDoc, py::arg("path"));
   m.def("mesh_contacts", &mesh_contacts, kMeshContactsDoc, py::arg("VA"), py::arg("TA"),
         py::arg("VB") = py::none(), py::arg("TB") = py::none(),
         py::arg("variants") = "rigid,static,pdd2,accel1", py::arg("engine") = "fast",
-        py::arg("threads") = py::none());
+        py::arg("threads") = py::none(), py::arg("progress") = py::none());
   m.def("read_mesh", &read_mesh, kReadMeshDoc, py::arg("path"));
 }

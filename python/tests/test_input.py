@@ -36,7 +36,13 @@ def test_module_surface():
         assert f.__doc__ and len(f.__doc__) > 400, f
     assert list(inspect.signature(pdd.solve).parameters) == ["A", "B", "engine", "formulation", "name",
                                                              "with_global"]
-    assert inspect.signature(pdd.solve_batch).parameters["threads"].default is None
+    batch = inspect.signature(pdd.solve_batch).parameters
+    assert list(batch) == ["A", "B", "threads", "with_global", "progress"]
+    assert batch["threads"].default is None and batch["progress"].default is None
+    text = pydoc.render_doc(pdd.solve_batch, renderer=pydoc.plaintext)
+    for words in ("solve_batch(A, B, threads=None, with_global=True, progress=None)", "None or 0: all cores",
+                  "progress(done, total)", "tqdm", "Ctrl-C", "KeyboardInterrupt", "bit for bit"):
+        assert words in text, words
     text = pydoc.render_doc(pdd.solve, renderer=pydoc.plaintext)
     for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True)", "fractions.Fraction",
                   "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "SPEC §8", "GIL"):

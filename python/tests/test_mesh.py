@@ -526,13 +526,15 @@ def test_docstrings_read_like_the_readme():
     import inspect
     import pydoc
     sig = inspect.signature(pdd.mesh_contacts).parameters
-    assert list(sig) == ["VA", "TA", "VB", "TB", "variants", "engine", "threads"]
+    assert list(sig) == ["VA", "TA", "VB", "TB", "variants", "engine", "threads", "progress"]
     assert sig["VB"].default is None and sig["variants"].default == "rigid,static,pdd2,accel1"
     assert sig["engine"].default == "fast" and sig["threads"].default is None
+    assert sig["progress"].default is None
     text = pydoc.render_doc(pdd.mesh_contacts, renderer=pydoc.plaintext)
     for words in ("mesh_contacts(VA, TA, VB=None, TB=None, variants='rigid,static,pdd2,accel1', "
-                  "engine='fast', threads=None)", "self-contact", "skipped", "fractions.Fraction",
-                  "sorted", "q1_A", "ValueError", "GIL", "SPEC §10", "read_mesh", "meshio"):
+                  "engine='fast', threads=None, progress=None)", "self-contact", "skipped",
+                  "fractions.Fraction", "sorted", "q1_A", "ValueError", "GIL", "SPEC §10", "read_mesh",
+                  "meshio", "progress(done, total)", "tqdm", "Ctrl-C", "KeyboardInterrupt"):
         assert words in text, words
     text = pydoc.render_doc(pdd.read_mesh, renderer=pydoc.plaintext)
     for words in ("read_mesh(path)", "(n, 3) float64", "(m, 4) int64", "ValueError", ".msh", ".vtk"):
