@@ -27,5 +27,6 @@ scaled-small 4 3
 sliver 1 4
 undecidable-optimum 2 3
 closed-form 1 6
+near-coplanar 1 8
 adversarial 1 30
 LIST

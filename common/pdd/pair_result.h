@@ -29,7 +29,8 @@ struct PairResult {
 
   // SPEC §9: PD_d^2 over every separating plane (paper eq. 5). pdd2_global is the relaxed
   // optimum along pdd2_global_normal (A -> B; nullopt when not intersecting), attained by the
-  // deformed positions q1_A_global, q1_B_global (the rest pose when not intersecting).
+  // deformed positions q1_A_global, q1_B_global (the rest pose when not intersecting). The
+  // normal's scale: pdd.h (fast engine: largest |component| in [1, 2); exact: as found).
   // pdd2_global_lower: the exact engine's proved lower bound (nullopt from the fast engine).
   R pdd2_global{};
   std::optional<std::array<R, 3>> pdd2_global_normal;

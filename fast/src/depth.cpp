@@ -103,6 +103,7 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
       if (g.certified && in_range && std::isnormal(value) && value > 0) {
         d.pd2 = value;
         d.normal = g.normal;
+        detail::power_normalized(d.normal);
         return d;
       }
     }
@@ -137,6 +138,7 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   }
   d.pd2 = value;
   d.normal = g.normal;
+  detail::power_normalized(d.normal);
   return d;
 }
 

@@ -10,6 +10,8 @@
 // by 2^-e, exactly unless the result leaves the normal range (checked by the caller).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -146,6 +148,24 @@ inline double unscaled(double v, int k, bool& ok) {
   }
   if (v != 0.0 && !(std::fabs(w) >= DBL_MIN && std::fabs(w) <= DBL_MAX)) ok = false;
   return w;
+}
+
+// The fast engine's scale of a normal (pdd2_global_normal, pdd.h): multiplied by the power of two
+// that puts its largest |component| in [1, 2), which keeps its direction exactly (a unit vector
+// rounded would not: the engine's normal is the triple along which the value was certified,
+// and on a contact far shallower than the pair's extent only a few triples of doubles, not
+// always one near the unit sphere, attain it). Left as it is when the scaling would not be
+// exact (a component would become subnormal) or the normal is zero.
+inline void power_normalized(std::array<double, 3>& n) {
+  const double m = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+  if (!(m > 0) || !std::isfinite(m)) return;
+  const int e = std::ilogb(m);
+  std::array<double, 3> out;
+  for (int k = 0; k < 3; ++k) {
+    out[k] = std::ldexp(n[k], -e);
+    if (std::ldexp(out[k], e) != n[k]) return;
+  }
+  n = out;
 }
 
 }  // namespace pdd::fast::detail

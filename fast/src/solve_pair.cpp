@@ -259,6 +259,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r, bool gl
       decline_global(x, kGlobalNotRepresentable);  // no double normal found (global_depth.h)
     else if (!global_representable(x))
       decline_global(x, kGlobalOutOfRange);
+    if (x.pdd2_global_normal) detail::power_normalized(*x.pdd2_global_normal);
   }
   return x;
 }
@@ -319,6 +320,7 @@ PairResult<double> solve_pair(const TetPair& pair, bool* slow_path, bool* refine
     if (!ok) decline_global(r, kGlobalOutOfRange);
   }
   if (!r.pdd2_global_error && !global_representable(r)) decline_global(r, kGlobalOutOfRange);
+  if (r.pdd2_global_normal) detail::power_normalized(*r.pdd2_global_normal);
   if (global_slow && slow_path) *slow_path = true;
   if (exact_q1 && !(missing & kDeformable) && !exact_positions_of(pair, *r.pdd2_dir, r))
     missing |= kPositions;

@@ -113,8 +113,15 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
 
 // SPEC §9: PD_d² over every separating plane (the paper's eq. 5 as defined, not restricted to
 // the candidate directions): the minimum over unit normals of the relaxed QP, with the normal
-// attaining it (A -> B, unnormalised; zero when pd2 == 0). Same contract as solve_pair's
-// pdd2_global (within 1e-9 of the exact minimum, the normal reproducing the value).
+// attaining it (A -> B; zero when pd2 == 0). Same contract as solve_pair's pdd2_global (within
+// 1e-9 of the exact minimum, the normal reproducing the value).
+// The fast engine's normal (here and solve_pair's pdd2_global_normal) is a direction, scaled by
+// a power of two so that its largest |component| lies in [1, 2) (length in [1, 2 sqrt(3))):
+// exactly the triple of doubles along which the value was certified. It is not rescaled to unit
+// length because rounding n / |n| turns the direction by ~1e-16, and on a contact far shallower
+// than the pair's extent that alone can move the value by more than 1e-9; where a unit normal
+// is wanted, n / |n| is the same plane up to that rounding. (The exact engine's normal is its
+// rational witness as found, of no fixed length.)
 struct NormalDepth {
   double pd2 = 0.0;
   std::array<double, 3> normal{};

@@ -1123,7 +1123,12 @@ Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that o
   error         None
   pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global (with_global)   PD_d² over every
                 separating plane, the normal attaining it (pointing from A to B) and the
-                deformed positions; pdd2_global_lower (reference engine) its proved lower bound
+                deformed positions; pdd2_global_lower (reference engine) its proved lower bound.
+                The normal is a direction: from the fast engine the exact triple of doubles
+                along which the value was certified, scaled by a power of two so that its
+                largest |component| is in [1, 2) (not rescaled to unit length: rounding n/|n|
+                can move the value of a very shallow contact by more than 1e-9); from the
+                reference engine the exact rational witness, of no fixed length
   pdd2_global_error (fast engine, with_global)   None, or why pdd2_global alone could not be
                 certified in doubles (a depth below the resolution of the pair's extent): then
                 the four keys above are None and every other value is still reported

@@ -246,3 +246,25 @@ print("done")
         out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
                              text=True, timeout=120)
         assert out.returncode == 0 and out.stdout.strip() == "done", out.stderr
+
+
+def test_fast_normals_have_one_scale():
+    """The fast engine's pdd2_global_normal, from solve() and solve_batch() alike (the same bits),
+    is scaled by a power of two so that its largest |component| is in [1, 2): checked on every
+    intersecting pair of the shipped fixtures and on random paper-protocol pairs."""
+    pairs = [(p["A"], p["B"]) for _, p, _ in golden_cases()]
+    rng = np.random.default_rng(5)
+    pairs += [(a.tolist(), b.tolist()) for a, b in rng.uniform(0, 10, (200, 2, 4, 3))]
+    A = np.array([a for a, _ in pairs], dtype=float)
+    B = np.array([b for _, b in pairs], dtype=float)
+    batch = pdd.solve_batch(A, B)
+    seen = 0
+    for k, (a, b) in enumerate(pairs):
+        r = pdd.solve(a, b)
+        if r.get("error") or not r["intersecting"] or r["pdd2_global_normal"] is None:
+            continue
+        n = np.array(r["pdd2_global_normal"])
+        assert 1 <= np.abs(n).max() < 2, (k, n)
+        assert (batch["pdd2_global_normal"][k] == n).all(), k
+        seen += 1
+    assert seen > 100

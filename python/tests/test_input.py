@@ -219,16 +219,14 @@ def test_fixture_pairs_solve_to_the_cli_records(engine, name, pdd_cli):
     assert any(r["error"] for r in got) and any(not r["error"] for r in got)
 
 
-# A near-touching pair (a vertex of B ~1e-12 inside a face of A; an independent review's
-# near-touching-4): its exact pdd2_relaxed is below 1e-14 of its extent squared, where no double
-# normal need attain pdd2_global, and the fast engine declines that value alone: its keys are
-# None, pdd2_global_error says why, and every other value is reported. with_global=False skips
-# SPEC §9: the pair's values come back, within SPEC §8 of the exact engine's, and no record
-# carries §9's keys.
-NEAR_A = [[9.037675410932524, 1.693031294904751, 5.424321574712652], [3.8210777667020013, 4.148092997056115, 6.978517449636188],
-          [4.607158911182355, 0.6403846042413175, 9.325503552447756], [5.179261075285503, 1.4998039580173883, 4.764574921655386]]
-NEAR_B = [[5.095298979210175, 2.44263248876802, 7.508522662217512], [6.694381701516087, 5.585622012955357, 10.846255457025519],
-          [7.076930292266666, 1.7370670768927319, 8.261623391742717], [4.324619576096192, 4.561418815077989, 10.29440907742961]]
+# adversarial-1-3 of fixtures/families (a vertex of B 1e-18 inside a face of A): its exact
+# pdd2_relaxed is below 1e-14 of its extent squared, where no double normal need attain
+# pdd2_global, and the fast engine declines that value alone: its keys are None,
+# pdd2_global_error says why, and every other value is reported. with_global=False skips SPEC §9:
+# the pair's values come back, within SPEC §8 of the exact engine's, and no record carries §9's
+# keys.
+NEAR_A = [[1.484375, 0.0390625, -2.0625], [-2.390625, -0.8359375, 1.3125], [-2.640625, 1.4765625, 7.6875], [-4.765625, 1.7890625, 7.125]]
+NEAR_B = [[3.125, -0.875, -4.59375], [1.1875, -1.3125, -2.90625], [1.0625, -0.15625, 0.28125], [-4.133520782600986e-18, 1.5517643593698782e-18, 6.179952383167375e-18]]
 GLOBAL_KEYS = {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower",
                "pdd2_global_error"}
 
