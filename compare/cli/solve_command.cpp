@@ -63,17 +63,6 @@ std::string record_note(const PairResult<R>& r, double gap) {
   return note.str();
 }
 
-reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options) {
-  try {
-    return reference::solve_exact(pair, options);
-  } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
-    reference::ExactResult r;
-    r.name = pair.name;
-    r.error = std::string("internal error in the reference engine: ") + ex.what();
-    return r;
-  }
-}
-
 int run_solve(const SolveArgs& args) {
   // The whole file is checked before anything is computed or written, so that a file that
   // cannot be read produces no output. A regular file is then read a second time in chunks;

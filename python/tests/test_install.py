@@ -10,15 +10,21 @@ import sys
 import pytest
 
 
-def test_install_where_python_finds_it(tmp_path):
+def install(component, tmp_path):
+    """`cmake --install` of one component of this build into a fresh prefix; the prefix."""
     build = os.environ.get("PDD_BUILD_DIR")
     cmake = os.environ.get("CMAKE_COMMAND", "cmake")
     if not build:
         pytest.skip("PDD_BUILD_DIR (the build tree) not set; CTest sets it")
     prefix = tmp_path / "prefix"
-    out = subprocess.run([cmake, "--install", build, "--component", "python", "--prefix", str(prefix)],
+    out = subprocess.run([cmake, "--install", build, "--component", component, "--prefix", str(prefix)],
                          capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
+    return prefix
+
+
+def test_install_where_python_finds_it(tmp_path):
+    prefix = install("python", tmp_path)
     installed = [p for p in prefix.rglob("pdd*.so")]
     assert len(installed) == 1, installed
     where = installed[0].parent
@@ -38,14 +44,7 @@ def test_install_where_python_finds_it(tmp_path):
 def test_install_puts_the_program_in_bin(tmp_path):
     """The `tools` component installs the `pdd` program into <prefix>/bin; it runs from there
     (no library of the build tree needed) and names the project's version."""
-    build = os.environ.get("PDD_BUILD_DIR")
-    cmake = os.environ.get("CMAKE_COMMAND", "cmake")
-    if not build:
-        pytest.skip("PDD_BUILD_DIR (the build tree) not set; CTest sets it")
-    prefix = tmp_path / "prefix"
-    out = subprocess.run([cmake, "--install", build, "--component", "tools", "--prefix", str(prefix)],
-                         capture_output=True, text=True)
-    assert out.returncode == 0, out.stdout + out.stderr
+    prefix = install("tools", tmp_path)
     program = prefix / "bin" / "pdd"
     assert program.is_file() and os.access(program, os.X_OK)
     run = subprocess.run([str(program), "--version"], capture_output=True, text=True, cwd=tmp_path)

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "pdd/compare/engine_comparison.h"
-#include "pdd/compare/fixture_io.h"
+#include "fixtures.h"
 #include "pdd/pdd.h"
 #include "pdd/reference/solve_exact.h"
 
@@ -24,14 +24,7 @@ using namespace pdd;
 
 namespace {
 std::vector<TetPair> near_coplanar_pairs() {
-  const auto f = compare::read_fixture_file(std::string(PDD_COMPARE_DATA_DIR) + "/near-coplanar.json");
-  if (f.error) throw std::runtime_error(*f.error);
-  std::vector<TetPair> out;
-  for (const auto& e : f.entries) {
-    if (e.error) throw std::runtime_error(e.pair.name + ": " + *e.error);
-    out.push_back(e.pair);
-  }
-  return out;
+  return test::load_pairs_at(std::string(PDD_COMPARE_DATA_DIR) + "/near-coplanar.json");
 }
 }  // namespace
 

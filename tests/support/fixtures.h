@@ -15,9 +15,10 @@ inline std::string fixture_path(const std::string& file) {
   return std::string(PDD_FIXTURES_DIR) + "/" + file;
 }
 
-// Every well-formed pair of a fixture file; throws if the file or an entry is malformed.
-inline std::vector<TetPair> load_pairs(const std::string& file) {
-  const auto f = compare::read_fixture_file(fixture_path(file));
+// Every well-formed pair of the fixture file at `path`; throws if the file or an entry is
+// malformed.
+inline std::vector<TetPair> load_pairs_at(const std::string& path) {
+  const auto f = compare::read_fixture_file(path);
   if (f.error) throw std::runtime_error(*f.error);
   std::vector<TetPair> out;
   for (const auto& e : f.entries) {
@@ -26,6 +27,9 @@ inline std::vector<TetPair> load_pairs(const std::string& file) {
   }
   return out;
 }
+
+// The same for a shipped fixture file (relative to fixtures/).
+inline std::vector<TetPair> load_pairs(const std::string& file) { return load_pairs_at(fixture_path(file)); }
 
 inline TetPair load_pair(const std::string& file, const std::string& name) {
   for (auto& p : load_pairs(file))

@@ -17,20 +17,22 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
   return out;
 }
 
+reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options) {
+  try {
+    return reference::solve_exact(pair, options);
+  } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
+    reference::ExactResult r;
+    r.name = pair.name;
+    r.error = std::string("internal error in the reference engine: ") + ex.what();
+    return r;
+  }
+}
+
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   Progress& progress) {
   return map_entries<reference::ExactResult>(
-      entries, progress, [&](const TetPair& pair, std::size_t) {
-        try {
-          return reference::solve_exact(pair, options);
-        } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
-          reference::ExactResult r;
-          r.name = pair.name;
-          r.error = std::string("internal error in the reference engine: ") + ex.what();
-          return r;
-        }
-      });
+      entries, progress, [&](const TetPair& pair, std::size_t) { return solve_reference(pair, options); });
 }
 
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,

@@ -48,6 +48,10 @@ std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::
   return out;
 }
 
+// reference::solve_exact on one pair, never throwing: an engine invariant that fails becomes
+// the record's error ("internal error in the reference engine: ...").
+reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options);
+
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   bool show_progress);
