@@ -76,6 +76,11 @@ int run_solve(const SolveArgs& args) {
   FixtureFile whole;
   std::size_t total = 0;
   if (regular) {
+    // A big file takes seconds to check (~12 s for 10^6 pairs): say so before the silence.
+    const auto bytes = std::filesystem::file_size(args.input, ec);
+    if (!args.quiet && !ec && bytes > (std::uintmax_t(16) << 20))
+      std::cerr << "pdd solve: checking '" << args.input << "' (" << (bytes >> 20)
+                << " MB) before computing anything\n";
     const FixtureCheck check = check_fixture_file(args.input);
     if (check.error) {
       std::cerr << "pdd solve: " << *check.error << '\n';
