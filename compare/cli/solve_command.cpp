@@ -20,6 +20,7 @@
 #include "exit_codes.h"
 #include "pdd/compare/output.h"
 #include "pdd/compare/progress.h"
+#include "pdd/compare/record_text.h"
 #include "pdd/compare/result_json.h"
 #include "pdd/compare/streaming.h"
 #include "pdd/pdd.h"
@@ -36,6 +37,7 @@ struct SolveArgs {
   int threads = 0;  // 0: all cores
   double global_gap = 1e-12;  // SPEC §9's target for pdd2_global - pdd2_global_lower
   bool no_global = false;     // skip SPEC §9: records without its keys
+  std::string format = "jsonl";
 };
 
 // Pairs are read this many at a time, so memory does not grow with the file; within a chunk
@@ -131,6 +133,10 @@ int run_solve(const SolveArgs& args) {
   std::atomic<std::size_t> slow_paths{0};  // fast engine: pairs that took its exact path (SPEC §8)
   std::atomic<std::size_t> refined{0};     // fast engine: pairs where a few candidates were evaluated exactly
   std::optional<std::string> write_error;
+  const RecordFormat format = args.format == "table" ? RecordFormat::Table
+                              : args.format == "csv" ? RecordFormat::Csv
+                                                     : RecordFormat::Jsonl;
+  if (format != RecordFormat::Jsonl) out << record_header(format) << '\n';
   InterruptGuard interrupts;
   OrderedLines lines(out);
   std::atomic<bool> stop{false};
@@ -150,7 +156,7 @@ int run_solve(const SolveArgs& args) {
         refined += ref;
       }
       code = r.error || r.pdd2_global_error ? kExitPairRejected : kExitOk;
-      lines.done(k, fast_record(r, global).dump(), record_note(r, args.global_gap));
+      lines.done(k, record_row(fast_record(r, global), format), record_note(r, args.global_gap));
     } else {
       reference::ExactResult r;
       r.name = e.pair.name;
@@ -159,7 +165,7 @@ int run_solve(const SolveArgs& args) {
       else
         r = solve_reference(e.pair, options);
       code = r.error ? kExitPairRejected : kExitOk;
-      lines.done(k, exact_record(r, global).dump(), record_note(r, args.global_gap));
+      lines.done(k, record_row(exact_record(r, global), format), record_note(r, args.global_gap));
     }
     for (int s = status.load(); code > s && !status.compare_exchange_weak(s, code);) {
     }
@@ -216,7 +222,14 @@ void add_solve_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"reference", "fast"}))
       ->capture_default_str();
   cmd->add_option("--input", args->input, "Fixture file (JSON, SPEC §1)")->required();
-  cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");
+  cmd->add_option("--output", args->output, "Write the records here instead of standard output");
+  cmd->add_option("--format", args->format,
+                  "Records as 'jsonl' (one JSON object a pair, every value exact or round-trip), "
+                  "'table' (aligned columns for people: values as decimals, exact ones correctly "
+                  "rounded to 17 digits and marked '~' where rounded) or 'csv' (a header row, one "
+                  "column per value, for pandas or a spreadsheet)")
+      ->check(CLI::IsMember({"jsonl", "table", "csv"}))
+      ->capture_default_str();
   cmd->add_option("--formulation", args->formulation,
                   "Reference QP formulation: 'full' (the paper's 27 variables) or 'reduced' "
                   "(SPEC §5 scalar form, same exact values, faster)")

@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
+#include "pdd/compare/record_text.h"
 #include "pdd/compare/stats.h"
 
 using namespace pdd::compare;
@@ -33,3 +35,32 @@ BOOST_AUTO_TEST_CASE(median_is_the_middle_or_the_mean_of_the_two_middles) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// decimal17 (record_text.h): a rational correctly rounded to 17 significant digits, half to
+// even, laid out as %.17g would (positional for exponents -5..16); values worked by hand.
+BOOST_AUTO_TEST_CASE(rationals_round_to_17_digits_half_to_even) {
+  struct Case {
+    const char* q;
+    const char* decimal;
+    bool exact;
+  };
+  const Case cases[] = {
+      {"16/3", "5.3333333333333333", false},        // 5.33333333333333333|3...: down
+      {"2/3", "0.66666666666666667", false},        // 0.66666666666666666|6...: up
+      {"1/12", "0.083333333333333333", false},
+      {"1/8", "0.125", true},
+      {"-7", "-7", true},
+      {"0", "0", true},
+      {"123456789012345678", "1.2345678901234568e+17", false},  // ...67|8: up, e = 17
+      {"1/100000000", "1e-08", true},                            // e = -8: scientific
+      {"100000000000000005/100000000000000000", "1", false},     // a tie, 1000...0 even: stays
+      {"100000000000000015/100000000000000000", "1.0000000000000002", false},  // a tie, odd: up
+  };
+  for (const auto& c : cases) {
+    bool exact = !c.exact;
+    BOOST_TEST(pdd::compare::decimal17(c.q, &exact) == c.decimal, c.q);
+    BOOST_TEST(exact == c.exact, c.q);
+  }
+  // 9999999999999999999.9 rounds up to 10^19 exactly: the carry moves the exponent.
+  BOOST_TEST(pdd::compare::decimal17("99999999999999999999/10") == "1e+19");
+}
