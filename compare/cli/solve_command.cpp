@@ -215,13 +215,15 @@ int run_solve(const SolveArgs& args) {
 void add_solve_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "solve", "Compute every SPEC §6 quantity for each pair of a fixture file; write JSON Lines.");
+      "solve", "Compute every quantity for each pair of a fixture file; write JSON Lines (or a table, or CSV).");
   cmd->add_option("--engine", args->engine,
                   "Engine: 'reference' (exact, numbers as \"p/q\" strings) or 'fast' (doubles, "
                   "JSON numbers that read back to the same double)")
       ->check(CLI::IsMember({"reference", "fast"}))
       ->capture_default_str();
-  cmd->add_option("--input", args->input, "Fixture file (JSON, SPEC §1)")->required();
+  cmd->add_option("--input", args->input,
+                  "Fixture file (JSON: {\"pairs\": [{\"name\", \"A\", \"B\"}, ...]}), or - for standard input")
+      ->required();
   cmd->add_option("--output", args->output, "Write the records here instead of standard output");
   cmd->add_option("--format", args->format,
                   "Records as 'jsonl' (one JSON object a pair, every value exact or round-trip), "
@@ -244,10 +246,9 @@ void add_solve_command(CLI::App& app, int& exit_code) {
       ->check(integer_in(0, 4096))
       ->capture_default_str();
   cmd->add_flag("--no-global", args->no_global,
-                 "Skip SPEC §9 (pdd2_global and its keys are left out of the records): faster "
-                 "(fast engine: ~6 of ~15 us a pair; reference: its branch and bound), and with "
-                 "the fast engine no pair is rejected for want of a double normal attaining "
-                 "pdd2_global (a depth below ~1e-7 of the pair's extent)");
+                 "Skip pdd2_global, the deformable depth over every separating plane (its keys are "
+                 "left out of the records): faster (fast engine: ~3.5 of ~13 us a pair; reference: "
+                 "its branch and bound)");
   cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
   cmd->callback([args, &exit_code] { exit_code = run_solve(*args); });
 }
