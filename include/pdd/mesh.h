@@ -59,6 +59,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pdd/pdd.h"
@@ -201,5 +202,100 @@ std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vect
 template <class R>
 void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Contacts<R>& contacts,
                unsigned variants);
+
+// ---------------------------------------------------------------------------------------------
+// Resolving interpenetration: new positions for the free vertices of A and B (or of one mesh
+// with itself) after which, decided exactly on the doubles:
+//   (R1) no element pair intersects (A x B; self-contact: pairs that share no vertex);
+//   (R2) every element keeps the sign of its rest volume and a non-zero volume;
+//   (R3) fixed vertices are bit-for-bit unchanged.
+// Cost: the mesh object norm, sigma_mesh = sum_e V_e sigma_e(P0, P1) / sum_e V_e (V_e the rest
+// volume of element e, sigma_e the per-tetrahedron object norm), the volume-weighted mean
+// squared displacement; a translation by t costs |t|^2. Reported per mesh and summed.
+// The method, its stopping argument and how it keeps elements from inverting: mesh/src/resolve.h.
+
+// Which per-pair solution drives the vertices.
+enum class ResolveVariant {
+  Global,  // pdd2_global: PD_d over every separating plane (q1_*_global); the default
+  Pdd2,    // pdd2: PD_d over the candidate directions (q1_A, q1_B)
+  Rigid,   // baseline: each pair pushed apart by its rigid translation (rigid_pd2's direction),
+           // split between the two elements as PD_d would split it
+};
+// "global" | "pdd2" | "rigid" <-> ResolveVariant; parse throws std::invalid_argument naming
+// the word.
+ResolveVariant parse_resolve_variant(const std::string& name);
+const char* resolve_variant_name(ResolveVariant v);
+
+struct ResolveRound {
+  std::size_t round = 0;       // 1, 2, ...
+  std::size_t pairs = 0;       // intersecting pairs found at the start of the round
+  double max_pd2 = 0;          // largest per-pair value of the variant (squared length)
+  double cost = 0;             // sigma_mesh of A plus B after the round
+  double seconds = 0;          // wall time of the round
+};
+
+struct ResolveOptions {
+  ResolveVariant variant = ResolveVariant::Global;
+  // Whole meshes kept bit for bit (the paper's case 1 at mesh level). fix_b is ignored for
+  // self-contact. At most one of the two may be set (both: std::invalid_argument).
+  bool fix_a = false, fix_b = false;
+  // Boundary conditions: per-vertex flags (1 = fixed), empty or of the mesh's vertex count.
+  std::vector<char> fixed_vertices_a, fixed_vertices_b;
+  std::size_t max_rounds = 200;  // rounds of contact solving before giving up (>= 1)
+  // Called after every round (thread-safe need not be: called from the calling thread).
+  std::function<void(const ResolveRound&)> progress;
+  // As ContactOptions::cancel: checked between rounds and stages; throws Cancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct ResolveReport {
+  ResolveVariant variant = ResolveVariant::Global;
+  bool resolved = false;       // r1 && r2 && r3, decided exactly on the final positions
+  bool r1 = false, r2 = false, r3 = false;
+  std::vector<ResolveRound> rounds;
+  double cost = 0, cost_a = 0, cost_b = 0;  // sigma_mesh (sum, A, B)
+  double max_displacement = 0;               // largest |p1 - p0| over all vertices
+  double min_volume_ratio = 0;               // smallest V1 / V0 over all elements (signed)
+  // What remains when not resolved: intersecting element pairs (a, b) of the final positions
+  // (complete, from a fresh broadphase and the exact decision), elements flattened or
+  // inverted ('A'/'B', index), fixed vertices that moved ('A'/'B', index).
+  std::vector<std::array<std::size_t, 2>> remaining_pairs;
+  std::vector<std::pair<char, std::size_t>> bad_elements;
+  std::vector<std::pair<char, std::size_t>> moved_fixed_vertices;
+  std::vector<SkippedElement> skipped;  // elements of the input that cannot be computed
+  // Wall time per stage over the whole run (seconds).
+  double seconds_contacts = 0, seconds_solve = 0, seconds_move = 0, seconds_verify = 0,
+         seconds_total = 0;
+};
+
+struct Resolution {
+  std::vector<Vec3d> a, b;  // new vertex positions of A and B (b empty for self-contact)
+  ResolveReport report;
+};
+
+// Throws std::invalid_argument for inconsistent options or a tetrahedron referring to a vertex
+// that does not exist; Cancelled when cancelled. A run that does not reach R1-R3 in max_rounds
+// returns normally with report.resolved == false.
+Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options = {});
+Resolution resolve_self(const Mesh& A, const ResolveOptions& options = {});
+
+// The exact verdict on given positions (the building block of report.resolved, for tests and
+// independent checks): R1 over every pair (fresh broadphase, exact decision), R2 per element
+// against its rest orientation (exact sign of the determinant), R3 for the fixed flags given.
+// B0 == nullptr: self-contact. Fills r1, r2, r3, resolved, remaining_pairs, bad_elements,
+// moved_fixed_vertices, min_volume_ratio.
+ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, const Mesh* B0,
+                               const std::vector<Vec3d>& b1,
+                               const std::vector<char>& fixed_a = {},
+                               const std::vector<char>& fixed_b = {});
+
+// The mesh object norm sigma_mesh(P0, P1) of one mesh (see above).
+double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1);
+
+// Writes m with its vertices replaced by `positions` (same count) as Gmsh 4.1 ASCII (.msh) or
+// legacy VTK ASCII (.vtk), chosen by the path's extension, tetrahedra in m's order, every
+// coordinate printed so that it reads back as the same double. Throws std::runtime_error when
+// the extension is neither or the file cannot be written (nothing partial is left).
+void write_mesh(const std::string& path, const Mesh& m, const std::vector<Vec3d>& positions);
 
 }  // namespace pdd::mesh
