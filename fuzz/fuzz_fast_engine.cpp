@@ -30,10 +30,10 @@
 #include <sstream>
 #include <string>
 
-#include "pdd/compare/engine_comparison.h"  // relative_error: exact |fast - exact| / |exact|
 #include "pdd/pdd.h"
-#include "pdd/rejection.h"
+#include "pdd/reference/relative_error.h"  // exact |fast - exact| / |exact|
 #include "pdd/reference/solve_exact.h"
+#include "pdd/rejection.h"
 
 namespace {
 
@@ -296,7 +296,7 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
   for (size_t i = 0; i < 7; ++i) {
     // relative_error is exact: 0 when both are 0, +inf when only the exact value is 0, 1 when
     // only the fast value is 0; so "<= 1e-9" also checks "0 exactly when the exact value is 0".
-    const double rel = pdd::compare::relative_error(vs[i], xs[i]);
+    const double rel = pdd::reference::relative_error(vs[i], xs[i]);
     if (!(rel <= kEps)) {
       std::ostringstream os;
       os.precision(17);

@@ -1,4 +1,4 @@
-// fuzz_fixture_reader — arbitrary bytes into the fixture reader (compare/io/pdd/compare/fixture_io.h,
+// fuzz_fixture_reader — arbitrary bytes into the fixture reader (io/pdd/io/fixture_io.h,
 // public functions only). Input format: the bytes of a fixture file, as `pdd` would read them.
 //
 // Must hold for every input (a violation aborts, which libFuzzer and the replay test report):
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "pdd/compare/fixture_io.h"
+#include "pdd/io/fixture_io.h"
 
 namespace {
 
@@ -41,7 +41,7 @@ bool same_bits(const pdd::TetVertices& a, const pdd::TetVertices& b) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  const pdd::compare::FixtureFile file = pdd::compare::parse_fixture_text(text);
+  const pdd::io::FixtureFile file = pdd::io::parse_fixture_text(text);
   if (file.error && !file.entries.empty()) fail("file error together with entries", *file.error);
 
   std::vector<pdd::TetPair> good;
@@ -49,8 +49,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!e.error && finite_pair(e.pair)) good.push_back(e.pair);
   if (good.empty()) return 0;
 
-  const std::string written = pdd::compare::fixture_json(good);
-  const pdd::compare::FixtureFile again = pdd::compare::parse_fixture_text(written);
+  const std::string written = pdd::io::fixture_json(good);
+  const pdd::io::FixtureFile again = pdd::io::parse_fixture_text(written);
   if (again.error) fail("fixture_json output does not read back", *again.error + "\n" + written);
   if (again.entries.size() != good.size()) fail("round trip changed the number of pairs", written);
   for (size_t i = 0; i < good.size(); ++i) {

@@ -4,15 +4,15 @@
 #include <cmath>
 #include <limits>
 
-#include "deformable_depth.h"
-#include "direction_geometry.h"
-#include "exact_candidate.h"
-#include "exact_predicates.h"
-#include "global_depth.h"
-#include "power_scale.h"
-#include "quick_candidates.h"
+#include "exact/exact_candidate.h"
+#include "exact/exact_predicates.h"
+#include "global/global_depth.h"
+#include "kernel/direction_geometry.h"
+#include "kernel/power_scale.h"
+#include "kernel/quick_candidates.h"
+#include "kernel/rigid_depth.h"
 #include "pdd/pdd.h"
-#include "rigid_depth.h"
+#include "qp/deformable_depth.h"
 
 namespace pdd::fast {
 namespace {

@@ -7,11 +7,11 @@
 #include <limits>
 #include <optional>
 
-#include "direction_geometry.h"
-#include "exact_path.h"
-#include "exact_predicates.h"
-#include "rigid_depth.h"
-#include "power_scale.h"
+#include "exact/exact_path.h"
+#include "exact/exact_predicates.h"
+#include "kernel/direction_geometry.h"
+#include "kernel/power_scale.h"
+#include "kernel/rigid_depth.h"
 
 namespace pdd::fast::detail {
 

@@ -10,17 +10,17 @@
 #include <string>
 #include <utility>
 
-#include "direction_geometry.h"
-#include "exact_candidate.h"
-#include "exact_path.h"
-#include "candidate_directions.h"
-#include "deformable_depth.h"
-#include "exact_predicates.h"
-#include "global_depth.h"
-#include "rigid_depth.h"
-#include "value_bounds.h"
-#include "power_scale.h"
+#include "certification/value_bounds.h"
+#include "exact/exact_candidate.h"
+#include "exact/exact_path.h"
+#include "exact/exact_predicates.h"
+#include "global/global_depth.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/direction_geometry.h"
+#include "kernel/power_scale.h"
+#include "kernel/rigid_depth.h"
 #include "pdd/rejection.h"
+#include "qp/deformable_depth.h"
 
 namespace pdd::fast {
 namespace {

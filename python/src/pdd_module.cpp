@@ -41,7 +41,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "pdd/compare/fixture_io.h"
+#include "pdd/io/fixture_io.h"
 #include "pdd/mesh.h"
 #include "pdd/pdd.h"
 
@@ -850,10 +850,10 @@ std::string path_arg(py::handle path_like) {
 
 py::list read_fixtures(py::handle path_like) {
   const std::string path = path_arg(path_like);
-  pdd::compare::FixtureFile file;
+  pdd::io::FixtureFile file;
   {
     py::gil_scoped_release release;
-    file = pdd::compare::read_fixture_file(path);
+    file = pdd::io::read_fixture_file(path);
   }
   if (file.error) value_error(*file.error);
   py::list out;

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "fixtures.h"
-#include "pdd/compare/engines.h"
 #include "pdd/compare/engine_comparison.h"
+#include "pdd/compare/engines.h"
 #include "pdd/compare/golden.h"
 #include "pdd/pdd.h"
 
@@ -18,7 +18,7 @@ using namespace pdd;
 BOOST_AUTO_TEST_CASE(golden_files_read_back_exactly) {
   // Reading a golden file and writing its records again gives the same bytes.
   for (const auto& file : test::property_fixture_files()) {
-    const std::string path = compare::golden_path(PDD_FIXTURES_DIR, file);
+    const std::string path = io::golden_path(PDD_FIXTURES_DIR, file);
     std::ifstream in(path);
     std::ostringstream text;
     text << in.rdbuf();
@@ -26,7 +26,7 @@ BOOST_AUTO_TEST_CASE(golden_files_read_back_exactly) {
     for (const auto& r : compare::read_golden(path)) again += compare::exact_record(r).dump() + "\n";
     BOOST_TEST(again == text.str(), file);
   }
-  const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, "smoke.json"));
+  const auto golden = compare::read_golden(io::golden_path(PDD_FIXTURES_DIR, "smoke.json"));
   BOOST_TEST(golden.size() == 6u);
   BOOST_TEST(golden[1].pdd2_static == reference::Rational(1, 64));
   BOOST_TEST(golden[1].rigid_dir->str() == "FV:3");
@@ -38,7 +38,7 @@ template <class Check>
 void for_each_fixture_pair(Check check) {
   for (const auto& file : test::property_fixture_files()) {
     const auto pairs = test::load_pairs(file);
-    const auto golden = compare::read_golden(compare::golden_path(PDD_FIXTURES_DIR, file));
+    const auto golden = compare::read_golden(io::golden_path(PDD_FIXTURES_DIR, file));
     BOOST_REQUIRE(golden.size() == pairs.size());
     const auto fast = fast::solve_batch(pairs);
     for (std::size_t k = 0; k < pairs.size(); ++k) check(pairs[k], golden[k], fast[k]);

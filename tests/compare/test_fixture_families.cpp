@@ -48,7 +48,7 @@ BOOST_AUTO_TEST_CASE(fixture_families_reproduce) {
   BOOST_TEST(rs.size() == compare::fixture_families().size());  // every family is shipped
   for (const auto& r : rs) {
     const std::string shipped = read_text(test::fixture_path("families/" + r.family + ".json"));
-    BOOST_TEST(compare::fixture_json(compare::generate_family(r.family, r.seed, r.count)) == shipped,
+    BOOST_TEST(io::fixture_json(compare::generate_family(r.family, r.seed, r.count)) == shipped,
                r.family);
   }
 }

@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include "pdd/compare/record_text.h"
 #include "pdd/compare/stats.h"
+#include "pdd/io/record_text.h"
 
 using namespace pdd::compare;
 
@@ -58,9 +58,9 @@ BOOST_AUTO_TEST_CASE(rationals_round_to_17_digits_half_to_even) {
   };
   for (const auto& c : cases) {
     bool exact = !c.exact;
-    BOOST_TEST(pdd::compare::decimal17(c.q, &exact) == c.decimal, c.q);
+    BOOST_TEST(pdd::io::decimal17(c.q, &exact) == c.decimal, c.q);
     BOOST_TEST(exact == c.exact, c.q);
   }
   // 9999999999999999999.9 rounds up to 10^19 exactly: the carry moves the exponent.
-  BOOST_TEST(pdd::compare::decimal17("99999999999999999999/10") == "1e+19");
+  BOOST_TEST(pdd::io::decimal17("99999999999999999999/10") == "1e+19");
 }

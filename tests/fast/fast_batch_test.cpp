@@ -10,7 +10,7 @@
 #include <random>
 
 #include "fast_test_util.h"
-#include "power_scale.h"
+#include "kernel/power_scale.h"
 #include "pdd/pdd.h"
 
 using namespace pdd;

@@ -3,10 +3,10 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 
+#include "exact/exact_predicates.h"
 #include "fast_test_util.h"
-#include "candidate_directions.h"
-#include "exact_predicates.h"
-#include "quick_candidates.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/quick_candidates.h"
 
 using namespace pdd;
 using namespace pdd::fast;

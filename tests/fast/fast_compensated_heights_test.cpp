@@ -19,15 +19,15 @@
 #include <cmath>
 #include <vector>
 
-#include "candidate_directions.h"
-#include "compensated_heights.h"
-#include "deformable_depth.h"
-#include "direction_geometry.h"
-#include "exact_candidate.h"
-#include "power_scale.h"
-#include "superset_depth.h"
+#include "certification/compensated_heights.h"
+#include "exact/exact_candidate.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/direction_geometry.h"
+#include "kernel/power_scale.h"
+#include "kernel/superset_depth.h"
 #include "pdd/compare/random.h"
 #include "pdd/pdd.h"
+#include "qp/deformable_depth.h"
 
 using namespace pdd;
 using namespace pdd::fast;

@@ -20,8 +20,8 @@
 #include <limits>
 #include <vector>
 
-#include "direction_qp.h"
 #include "pdd/compare/random.h"
+#include "qp/direction_qp.h"
 
 using namespace pdd::fast;
 

@@ -16,14 +16,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "deformable_depth.h"
-#include "rigid_depth.h"
-#include "pdd/compare/fixture_io.h"
-#include "pdd/compare/golden_files.h"
+#include "exact/exact_geometry.h"
+#include "global/global_depth.h"
+#include "kernel/rigid_depth.h"
+#include "pdd/io/fixture_io.h"
+#include "pdd/io/golden_files.h"
 #include "pdd/pdd.h"
 #include "pdd/rejection.h"
-#include "exact_geometry.h"
-#include "global_depth.h"
+#include "qp/deformable_depth.h"
 
 using namespace pdd;
 
@@ -33,7 +33,7 @@ const std::string kFixtures = PDD_FAST_FIXTURES_DIR;
 
 // Every pair of a fixture file, through io/'s reader (the one `pdd` uses).
 std::vector<TetPair> read_pairs(const std::string& file) {
-  const compare::FixtureFile f = compare::read_fixture_file(file);
+  const io::FixtureFile f = io::read_fixture_file(file);
   if (f.error) throw std::runtime_error(file + ": " + *f.error);
   std::vector<TetPair> out;
   for (const auto& e : f.entries) out.push_back(e.pair);  // malformed entries: engines reject
@@ -44,8 +44,8 @@ std::vector<TetPair> read_pairs(const std::string& file) {
 // and the labels are compared here).
 std::map<std::string, PairResult<std::string>> read_golden(const std::string& file) {
   std::map<std::string, PairResult<std::string>> out;
-  for (auto& r : compare::read_result_lines<std::string>(
-           file, [](const compare::Json& j) { return j.get<std::string>(); }))
+  for (auto& r : io::read_result_lines<std::string>(
+           file, [](const io::Json& j) { return j.get<std::string>(); }))
     out[r.name] = std::move(r);
   return out;
 }
@@ -140,8 +140,8 @@ void check_file(const std::string& fixture, const std::string& golden) {
 
 BOOST_AUTO_TEST_CASE(all_fixtures_with_golden_records) {
   int files = 0;
-  for (const std::string& rel : compare::golden_fixture_files(kFixtures)) {
-    const std::string golden = compare::golden_path(kFixtures, rel);
+  for (const std::string& rel : io::golden_fixture_files(kFixtures)) {
+    const std::string golden = io::golden_path(kFixtures, rel);
     BOOST_TEST_CONTEXT(rel) {
       BOOST_REQUIRE_MESSAGE(std::ifstream(golden).good(), "no golden file " << golden);
     }

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <vector>
 
-#include "piece_screen.h"
+#include "global/piece_screen.h"
 #include "pdd/compare/random.h"
 
 using namespace pdd::fast::detail;

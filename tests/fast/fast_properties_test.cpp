@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "exact/exact_path.h"
 #include "fast_test_util.h"
-#include "candidate_directions.h"
-#include "deformable_depth.h"
-#include "exact_path.h"
-#include "rigid_depth.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/rigid_depth.h"
 #include "pdd/pdd.h"
+#include "qp/deformable_depth.h"
 
 using namespace pdd;
 using namespace pdd::fast;

@@ -8,14 +8,14 @@
 #define BOOST_TEST_MODULE fast_qp_lower_bound
 #include <boost/test/unit_test.hpp>
 
+#include "certification/qp_lower_bound.h"
+#include "certification/value_bounds.h"
+#include "exact/exact_candidate.h"
+#include "exact/exact_path.h"
 #include "fast_test_util.h"
-#include "exact_candidate.h"
-#include "exact_path.h"
+#include "kernel/power_scale.h"
+#include "kernel/quick_candidates.h"
 #include "pdd/pdd.h"
-#include "power_scale.h"
-#include "qp_lower_bound.h"
-#include "quick_candidates.h"
-#include "value_bounds.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,15 +7,15 @@
 #define BOOST_TEST_MODULE fast_superset
 #include <boost/test/unit_test.hpp>
 
+#include "certification/filter_bounds.h"
+#include "certification/value_bounds.h"
+#include "exact/exact_path.h"
 #include "fast_test_util.h"
-#include "candidate_directions.h"
-#include "exact_path.h"
-#include "rigid_depth.h"
-#include "superset_depth.h"
-#include "superset_kernel.h"
-#include "filter_bounds.h"
-#include "power_scale.h"
-#include "value_bounds.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/power_scale.h"
+#include "kernel/rigid_depth.h"
+#include "kernel/superset_depth.h"
+#include "kernel/superset_kernel.h"
 
 #include <cmath>
 #include <cstddef>

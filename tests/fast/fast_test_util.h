@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "candidate_directions.h"
+#include "kernel/candidate_directions.h"
 #include "pdd/compare/random.h"
 #include "pdd/tet_pair.h"
 

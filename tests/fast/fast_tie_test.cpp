@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdint>
 
+#include "certification/tie_tolerance.h"
 #include "fast_test_util.h"
-#include "candidate_directions.h"
-#include "rigid_depth.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/rigid_depth.h"
 #include "pdd/pdd.h"
-#include "tie_tolerance.h"
 
 using namespace pdd;
 using namespace pdd::fast;

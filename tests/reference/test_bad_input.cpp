@@ -52,7 +52,7 @@ BOOST_AUTO_TEST_CASE(flat_tetrahedra_are_rejected_exactly) {
 }
 
 BOOST_AUTO_TEST_CASE(malformed_empty_and_shapeless_files) {
-  using compare::read_fixture_file;
+  using io::read_fixture_file;
   BOOST_TEST(contains(read_fixture_file(test::fixture_path("bad/malformed.json")).error,
                       "malformed JSON"));
   BOOST_TEST(contains(read_fixture_file(test::fixture_path("bad/empty.json")).error, "empty"));
@@ -63,7 +63,7 @@ BOOST_AUTO_TEST_CASE(malformed_empty_and_shapeless_files) {
 }
 
 BOOST_AUTO_TEST_CASE(batch_reports_every_bad_pair_and_computes_the_rest) {
-  const auto file = compare::read_fixture_file(test::fixture_path("bad/mixed.json"));
+  const auto file = io::read_fixture_file(test::fixture_path("bad/mixed.json"));
   BOOST_REQUIRE(!file.error);
   const auto results = compare::run_reference(file.entries, {QpFormulation::Reduced}, false);
   BOOST_REQUIRE(results.size() == 9u);
@@ -99,7 +99,7 @@ std::string one_pair(const std::string& name_json) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(numbers_beyond_the_double_range_are_infinite_coordinates) {
-  const auto f = compare::read_fixture_file(test::fixture_path("bad/overflow.json"));
+  const auto f = io::read_fixture_file(test::fixture_path("bad/overflow.json"));
   BOOST_REQUIRE(!f.error);
   BOOST_REQUIRE(f.entries.size() == 6u);
   BOOST_TEST(!f.entries[0].error.has_value());
@@ -116,7 +116,7 @@ BOOST_AUTO_TEST_CASE(numbers_beyond_the_double_range_are_infinite_coordinates) {
   BOOST_TEST(!f.entries[5].error.has_value());
   BOOST_TEST(f.entries[5].pair.A[1][0] == 4.0);
   // Other large and small numbers are read as the double they round to.
-  const auto g = compare::parse_fixture_text(
+  const auto g = io::parse_fixture_text(
       R"({"pairs": [{"name": "n", "A": [[1e308,-1.7976931348623157e308,1e-400],[4,0,0],[0,4,0],)"
       R"([0,0,184467440737095516160]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]})");
   BOOST_REQUIRE(!g.error);
@@ -131,45 +131,45 @@ BOOST_AUTO_TEST_CASE(malformed_numbers_make_the_file_unreadable_with_a_byte_posi
                         "--1", "0x10", "1e400.5", "Infinity", "NaN"}) {
     const std::string text = R"({"pairs": [{"name": "x", "A": [[0,0,0],[)" + std::string(n) +
                              R"(,0,0],[0,4,0],[0,0,4]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]})";
-    const auto f = compare::parse_fixture_text(text);
+    const auto f = io::parse_fixture_text(text);
     BOOST_TEST(contains(f.error, "malformed JSON at byte "), n << ": " << f.error.value_or("no error"));
     BOOST_TEST(f.entries.empty(), n);
   }
-  const auto f = compare::read_fixture_file(test::fixture_path("bad/number-dot-exponent.json"));
+  const auto f = io::read_fixture_file(test::fixture_path("bad/number-dot-exponent.json"));
   BOOST_TEST(contains(f.error, "malformed JSON at byte 46: '1.e400' is not a valid number"),
              f.error.value_or("no error"));
 }
 
 BOOST_AUTO_TEST_CASE(duplicate_keys_nul_bytes_and_trailing_garbage_are_unreadable) {
-  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/duplicate-pairs.json")).error,
+  BOOST_TEST(contains(io::read_fixture_file(test::fixture_path("bad/duplicate-pairs.json")).error,
                       "duplicate key \"pairs\" at byte 110"));
-  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/duplicate-name.json")).error,
+  BOOST_TEST(contains(io::read_fixture_file(test::fixture_path("bad/duplicate-name.json")).error,
                       "duplicate key \"name\" at byte 28"));
-  BOOST_TEST(contains(compare::parse_fixture_text(R"({"pairs": [], "x": {"a": 1, "a": 2}})").error,
+  BOOST_TEST(contains(io::parse_fixture_text(R"({"pairs": [], "x": {"a": 1, "a": 2}})").error,
                       "duplicate key \"a\""));
-  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/nul-byte.json")).error,
+  BOOST_TEST(contains(io::read_fixture_file(test::fixture_path("bad/nul-byte.json")).error,
                       "NUL byte at byte 110"));
-  BOOST_TEST(contains(compare::parse_fixture_text(std::string("{\"pairs\": [\0]}", 14)).error, "NUL byte at byte 11"));
-  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/trailing-garbage.json")).error,
+  BOOST_TEST(contains(io::parse_fixture_text(std::string("{\"pairs\": [\0]}", 14)).error, "NUL byte at byte 11"));
+  BOOST_TEST(contains(io::read_fixture_file(test::fixture_path("bad/trailing-garbage.json")).error,
                       "malformed JSON at byte "));
-  BOOST_TEST(contains(compare::parse_fixture_text(one_pair("\"a\"") + " x").error, "malformed JSON"));
-  BOOST_TEST(!compare::parse_fixture_text(one_pair("\"a\"") + " \n").error.has_value());
-  BOOST_TEST(contains(compare::parse_fixture_text(" \n\t").error, "file is empty"));
-  BOOST_TEST(contains(compare::parse_fixture_text(R"({"pairs": 3})").error, "array field 'pairs'"));
-  BOOST_TEST(contains(compare::parse_fixture_text(R"([{"pairs": []}])").error, "array field 'pairs'"));
+  BOOST_TEST(contains(io::parse_fixture_text(one_pair("\"a\"") + " x").error, "malformed JSON"));
+  BOOST_TEST(!io::parse_fixture_text(one_pair("\"a\"") + " \n").error.has_value());
+  BOOST_TEST(contains(io::parse_fixture_text(" \n\t").error, "file is empty"));
+  BOOST_TEST(contains(io::parse_fixture_text(R"({"pairs": 3})").error, "array field 'pairs'"));
+  BOOST_TEST(contains(io::parse_fixture_text(R"([{"pairs": []}])").error, "array field 'pairs'"));
   // Keys that look alike are different keys; the same key in sibling objects is fine.
-  BOOST_TEST(!compare::parse_fixture_text(R"({"pairs": [], "Pairs": 1, "y": [{"a": 1}, {"a": 2}]})").error.has_value());
+  BOOST_TEST(!io::parse_fixture_text(R"({"pairs": [], "Pairs": 1, "y": [{"a": 1}, {"a": 2}]})").error.has_value());
 }
 
 BOOST_AUTO_TEST_CASE(directories_and_missing_files_get_honest_messages) {
-  BOOST_TEST(contains(compare::read_fixture_file(PDD_FIXTURES_DIR).error, "is a directory"));
-  BOOST_TEST(contains(compare::read_fixture_file(test::fixture_path("bad/does-not-exist.json")).error,
+  BOOST_TEST(contains(io::read_fixture_file(PDD_FIXTURES_DIR).error, "is a directory"));
+  BOOST_TEST(contains(io::read_fixture_file(test::fixture_path("bad/does-not-exist.json")).error,
                       "No such file or directory"));
-  BOOST_TEST(contains(compare::check_fixture_file(PDD_FIXTURES_DIR).error, "is a directory"));
+  BOOST_TEST(contains(io::check_fixture_file(PDD_FIXTURES_DIR).error, "is a directory"));
 }
 
 BOOST_AUTO_TEST_CASE(mistyped_fields_reject_one_pair_by_name_or_index) {
-  const auto f = compare::read_fixture_file(test::fixture_path("bad/mistyped.json"));
+  const auto f = io::read_fixture_file(test::fixture_path("bad/mistyped.json"));
   BOOST_REQUIRE(!f.error);
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"good", ""},
@@ -189,15 +189,15 @@ BOOST_AUTO_TEST_CASE(mistyped_fields_reject_one_pair_by_name_or_index) {
 }
 
 BOOST_AUTO_TEST_CASE(streaming_hands_over_every_entry_in_order_in_chunks) {
-  const auto whole = compare::read_fixture_file(test::fixture_path("bad/mixed.json"));
+  const auto whole = io::read_fixture_file(test::fixture_path("bad/mixed.json"));
   BOOST_REQUIRE(!whole.error);
-  const auto check = compare::check_fixture_file(test::fixture_path("bad/mixed.json"));
+  const auto check = io::check_fixture_file(test::fixture_path("bad/mixed.json"));
   BOOST_TEST(!check.error.has_value());
   BOOST_TEST(check.entries == whole.entries.size());
-  std::vector<compare::FixtureEntry> got;
+  std::vector<io::FixtureEntry> got;
   std::vector<std::size_t> sizes, firsts;
-  const auto error = compare::stream_fixture_file(
-      test::fixture_path("bad/mixed.json"), 4, [&](std::vector<compare::FixtureEntry>& c, std::size_t first) {
+  const auto error = io::stream_fixture_file(
+      test::fixture_path("bad/mixed.json"), 4, [&](std::vector<io::FixtureEntry>& c, std::size_t first) {
         sizes.push_back(c.size());
         firsts.push_back(first);
         for (auto& e : c) got.push_back(e);
@@ -213,8 +213,8 @@ BOOST_AUTO_TEST_CASE(streaming_hands_over_every_entry_in_order_in_chunks) {
   }
   // The sink can stop the reading.
   std::size_t calls = 0;
-  compare::stream_fixture_file(test::fixture_path("bad/mixed.json"), 2,
-                               [&](std::vector<compare::FixtureEntry>&, std::size_t) { return ++calls < 2; });
+  io::stream_fixture_file(test::fixture_path("bad/mixed.json"), 2,
+                               [&](std::vector<io::FixtureEntry>&, std::size_t) { return ++calls < 2; });
   BOOST_TEST(calls == 2u);
 }
 
@@ -226,7 +226,7 @@ BOOST_AUTO_TEST_CASE(integer_literals_that_are_not_doubles_reject_their_entry) {
   auto entry = [](const std::string& x) {
     const std::string text = R"({"pairs": [{"name": "p", "A": [[0,0,0],[)" + x +
                              R"(,0,0],[0,4,0],[0,0,4]], "B": [[1,1,1],[2,1,1],[1,2,1],[1,1,2]]}]})";
-    const auto f = compare::parse_fixture_text(text);
+    const auto f = io::parse_fixture_text(text);
     BOOST_REQUIRE(!f.error);
     BOOST_REQUIRE(f.entries.size() == 1u);
     return f.entries[0];

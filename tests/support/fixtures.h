@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "pdd/compare/fixture_io.h"
-#include "pdd/compare/golden_files.h"
+#include "pdd/io/fixture_io.h"
+#include "pdd/io/golden_files.h"
 
 namespace pdd::test {
 
@@ -18,7 +18,7 @@ inline std::string fixture_path(const std::string& file) {
 // Every well-formed pair of the fixture file at `path`; throws if the file or an entry is
 // malformed.
 inline std::vector<TetPair> load_pairs_at(const std::string& path) {
-  const auto f = compare::read_fixture_file(path);
+  const auto f = io::read_fixture_file(path);
   if (f.error) throw std::runtime_error(*f.error);
   std::vector<TetPair> out;
   for (const auto& e : f.entries) {
@@ -40,7 +40,7 @@ inline TetPair load_pair(const std::string& file, const std::string& name) {
 // The fixture files every engine-wide property is checked on: all shipped fixtures with golden
 // files (smoke, degenerate, and every generated family).
 inline std::vector<std::string> property_fixture_files() {
-  return compare::golden_fixture_files(PDD_FIXTURES_DIR);
+  return io::golden_fixture_files(PDD_FIXTURES_DIR);
 }
 
 }  // namespace pdd::test

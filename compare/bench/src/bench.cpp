@@ -8,18 +8,19 @@
 #include <limits>
 #include <stdexcept>
 
+#include "kernel/superset_depth.h"  // fast/src (pdd_fast_internal): the uncertified baseline
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/generate.h"
 #include "pdd/compare/peer_ccd.h"
 #include "pdd/compare/peer_fcl.h"
-#include "pdd/compare/progress.h"
 #include "pdd/compare/stats.h"
+#include "pdd/io/progress.h"
 #include "pdd/pdd.h"
 #include "pdd/reference/minkowski_pd.h"
 #include "pdd/reference/solve_exact.h"
-#include "superset_depth.h"  // fast/src (pdd_fast_internal): the uncertified baseline
 
 namespace pdd::compare {
+using io::Progress;
 namespace {
 
 using Clock = std::chrono::steady_clock;

@@ -22,13 +22,6 @@ const char* to_string(LabelVerdict v) {
   return "?";
 }
 
-double relative_error(double fast, const Rational& exact) {
-  if (!std::isfinite(fast)) return std::numeric_limits<double>::infinity();
-  const Rational diff = CGAL::abs(Rational(fast) - exact);
-  if (exact == 0) return diff == 0 ? 0.0 : std::numeric_limits<double>::infinity();
-  return CGAL::to_double(diff / CGAL::abs(exact));
-}
-
 bool PairComparison::over_tolerance() const {
   if (!rejections_agree || !intersect_agree) return true;
   for (std::size_t k = 0; k < kValueCount; ++k)

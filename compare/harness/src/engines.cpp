@@ -3,10 +3,15 @@
 #include <exception>
 #include <string>
 
-#include "pdd/compare/progress.h"
+#include "pdd/io/progress.h"
 #include "pdd/pdd.h"
 
 namespace pdd::compare {
+using io::FixtureEntry;
+using io::Json;
+using io::NumberWriter;
+using io::Progress;
+using io::result_json;
 
 std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,

@@ -7,11 +7,18 @@
 #include <sstream>
 
 #include "pdd/compare/engines.h"
-#include "pdd/compare/golden_files.h"
-#include "pdd/compare/output.h"
-#include "pdd/compare/result_json.h"
+#include "pdd/io/golden_files.h"
+#include "pdd/io/output.h"
+#include "pdd/io/result_json.h"
 
 namespace pdd::compare {
+using io::FixtureFile;
+using io::Json;
+using io::golden_fixture_files;
+using io::golden_path;
+using io::read_fixture_file;
+using io::read_result_lines;
+using io::write_file;
 namespace fs = std::filesystem;
 
 ExactLines exact_json_lines(const std::string& fixture_path, QpFormulation f, bool progress) {

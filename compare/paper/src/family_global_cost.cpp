@@ -5,13 +5,17 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "pdd/compare/fixture_io.h"
 #include "pdd/compare/golden.h"
-#include "pdd/compare/golden_files.h"
+#include "pdd/io/fixture_io.h"
+#include "pdd/io/golden_files.h"
 #include "pdd/pdd.h"
 #include "pdd/reference/candidate_directions.h"
 
 namespace pdd::compare {
+using io::FixtureEntry;
+using io::FixtureFile;
+using io::golden_path;
+using io::read_fixture_file;
 
 std::vector<std::array<double, 3>> candidate_normals_rounded(const TetPair& pair) {
   std::vector<std::array<double, 3>> out;

@@ -7,12 +7,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "pdd/compare/output.h"
+#include "pdd/io/output.h"
 #include "pdd/reference/candidate_table.h"
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
+using io::close_error;
 namespace {
 
 TetVertices to_doubles(const reference::ExactTet& t) {

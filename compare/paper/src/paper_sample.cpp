@@ -7,11 +7,12 @@
 #include <random>
 
 #include "pdd/compare/engine_comparison.h"
-#include "pdd/compare/progress.h"
 #include "pdd/compare/stats.h"
 #include "pdd/compare/timing.h"
+#include "pdd/io/progress.h"
 
 namespace pdd::compare {
+using io::Progress;
 
 ExactSample run_exact_sample(const std::vector<TetPair>& pairs, const std::vector<PairResult<double>>& fast,
                              std::size_t m, std::uint64_t seed) {

@@ -30,6 +30,7 @@
 #include <string>
 
 #include "pdd/pair_result.h"
+#include "pdd/reference/relative_error.h"
 #include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
@@ -73,6 +74,6 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
                             const PairResult<double>& fast);
 
 // |fast - exact| / |exact|, computed exactly (0 when both are 0, +inf when only exact is 0).
-double relative_error(double fast, const reference::Rational& exact);
+using reference::relative_error;
 
 }  // namespace pdd::compare

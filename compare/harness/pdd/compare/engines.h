@@ -10,9 +10,9 @@
 
 #include <tbb/parallel_for.h>
 
-#include "pdd/compare/fixture_io.h"
-#include "pdd/compare/progress.h"
-#include "pdd/compare/result_json.h"
+#include "pdd/io/fixture_io.h"
+#include "pdd/io/progress.h"
+#include "pdd/io/result_json.h"
 #include "pdd/pair_result.h"
 #include "pdd/reference/solve_exact.h"
 
@@ -23,11 +23,11 @@ namespace pdd::compare {
 // T has members `name` and `error` (std::optional<std::string>).
 // This form ticks a caller's `progress` (one Progress over several calls, e.g. chunks).
 template <class T, class Compute>
-std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, Progress& progress,
+std::vector<T> map_entries(const std::vector<io::FixtureEntry>& entries, io::Progress& progress,
                            Compute compute) {
   std::vector<T> out(entries.size());
   tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
-    const FixtureEntry& e = entries[k];
+    const io::FixtureEntry& e = entries[k];
     if (e.error) {
       out[k].name = e.pair.name;
       out[k].error = *e.error;
@@ -40,9 +40,9 @@ std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, Progress& p
 }
 
 template <class T, class Compute>
-std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::string& what,
+std::vector<T> map_entries(const std::vector<io::FixtureEntry>& entries, const std::string& what,
                            bool show_progress, Compute compute) {
-  Progress progress(what, entries.size(), show_progress ? 2.0 : Progress::kNever);
+  io::Progress progress(what, entries.size(), show_progress ? 2.0 : io::Progress::kNever);
   std::vector<T> out = map_entries<T>(entries, progress, compute);
   progress.finish();
   return out;
@@ -52,29 +52,29 @@ std::vector<T> map_entries(const std::vector<FixtureEntry>& entries, const std::
 // the record's error ("internal error in the reference engine: ...").
 reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options);
 
-std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+std::vector<reference::ExactResult> run_reference(const std::vector<io::FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
                                                   bool show_progress);
 // The same, ticking the caller's `progress` once per entry.
-std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry>& entries,
+std::vector<reference::ExactResult> run_reference(const std::vector<io::FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
-                                                  Progress& progress);
+                                                  io::Progress& progress);
 
 // The fast engine over the same entries: malformed entries become error records, the rest go
 // through pdd::fast::solve_batch (all cores), results in input order.
 // `slow_paths` (optional): how many pairs took the fast engine's exact path (SPEC §8);
 // `refined` (optional): how many were refined instead (solve_pair's `refined`).
 // `global` false: SPEC §9 skipped (solve_pair's `global`).
-std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
+std::vector<PairResult<double>> run_fast(const std::vector<io::FixtureEntry>& entries,
                                          std::size_t* slow_paths = nullptr,
                                          std::size_t* refined = nullptr, bool global = true);
 
 // SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
 // `global` false: without SPEC §9's keys (pdd2_global, pdd2_global_normal, q1_A_global,
 // q1_B_global, pdd2_global_lower), for results computed without it.
-Json fast_record(const PairResult<double>& r, bool global = true);
+io::Json fast_record(const PairResult<double>& r, bool global = true);
 
 // SPEC §6 record of an exact result: every number as an exact "p/q" string.
-Json exact_record(const reference::ExactResult& r, bool global = true);
+io::Json exact_record(const reference::ExactResult& r, bool global = true);
 
 }  // namespace pdd::compare

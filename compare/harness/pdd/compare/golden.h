@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "pdd/compare/golden_files.h"
+#include "pdd/io/golden_files.h"
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/solve_exact.h"
 

@@ -1,0 +1,21 @@
+// commands.h — the product subcommands of the `pdd` program; each registers itself on the
+// CLI11 app. The research subcommands come from compare/ (pdd/compare/research_commands.h).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace pdd::compare {
+
+// `pdd solve --engine reference|fast --input FILE [--output FILE] [--formulation full|reduced]`
+void add_solve_command(CLI::App& app, int& exit_code);
+
+// `pdd generate --family NAME --seed S --count N [--output FILE] | --list`
+void add_generate_command(CLI::App& app, int& exit_code);
+
+// `pdd golden --check | --update [--fixtures DIR]`
+void add_golden_command(CLI::App& app, int& exit_code);
+
+// `pdd mesh --a A.msh (--b B.msh | --self) [--variants LIST] [--engine fast|reference] ...`
+void add_mesh_command(CLI::App& app, int& exit_code);
+
+}  // namespace pdd::compare

@@ -1,0 +1,265 @@
+// `pdd mesh --a A.msh [--b B.msh | --self] [--variants LIST] [--engine fast|reference]
+//           [--output pairs.jsonl] [--vtk out.vtk] [--summary] [--threads N] [--quiet]`
+// Every intersecting element pair of two tetrahedral meshes (or of one mesh with itself) and
+// its penetration depths (SPEC §10; library: include/pdd/mesh.h). One JSON Lines record per
+// pair, sorted by (a, b): {"a": i, "b": j, "intersecting", the requested values and their
+// labels, q1_A and q1_B when pdd2 is requested, "error", and with global SPEC §9's
+// pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global (and pdd2_global_lower with the
+// reference engine)} — SPEC §6's keys and order, with a and b in place of name (`--variants
+// all`: every key). Exit status as for `pdd solve`: 0,
+// 1 when an element was skipped (flat, non-finite) or a pair rejected, 2 when a mesh cannot be
+// read, the command line is wrong or an output cannot be written.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include <tbb/global_control.h>
+
+#include "commands.h"
+#include "pdd/cli/cli_checks.h"
+#include "pdd/cli/exit_codes.h"
+#include "pdd/io/output.h"
+#include "pdd/io/progress.h"
+#include "pdd/io/result_json.h"
+#include "pdd/io/streaming.h"
+#include "pdd/mesh.h"
+
+namespace pdd::compare {
+using io::InterruptGuard;
+using io::Json;
+using io::NumberWriter;
+using io::Progress;
+using io::close_error;
+using io::flush_error;
+using io::interrupted_exit;
+using io::pending_signal;
+using io::result_json;
+namespace {
+
+struct MeshArgs {
+  std::string a, b, variants = "rigid,static,pdd2,accel1", engine = "fast", output, vtk;
+  bool self = false, summary = false, quiet = false;
+  int threads = 0;
+};
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+double as_double(double x) { return x; }
+double as_double(const Rational& x) { return x.get_d(); }
+
+// The SPEC §6 record of one contact, keys of unrequested variants dropped, a and b first.
+template <class R>
+Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWriter<R>& number) {
+  const Json full = result_json(c.result, number);
+  Json j;
+  j["a"] = c.a;
+  j["b"] = c.b;
+  for (const auto& [key, value] : full.items()) {
+    if (key == "name") continue;
+    bool keep = true;
+    for (std::size_t k = 0; k < kValueCount; ++k) {
+      const bool on = variants & (1u << k);
+      if (key == kValueKeys[k] || (kLabelOfValue[k] >= 0 && key == kLabelKeys[kLabelOfValue[k]]))
+        keep = on;
+    }
+    if ((key == "q1_A" || key == "q1_B") && !(variants & mesh::kPdd2)) keep = false;
+    // SPEC §9: pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global, pdd2_global_lower
+    if (key.find("_global") != std::string::npos) keep = variants & mesh::kGlobal;
+    if (keep) j[key] = value;
+  }
+  return j;
+}
+
+template <class R>
+int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
+           const mesh::Contacts<R>& c, unsigned variants, const NumberWriter<R>& number,
+           double read_seconds) {
+  int status = kExitOk;
+  for (const auto& s : c.skipped) {
+    std::cerr << "pdd mesh: skipped " << s.reason << '\n';
+    status = kExitPairRejected;
+  }
+  // Records.
+  std::ofstream file_out;
+  if (!args.output.empty()) {
+    errno = 0;
+    file_out.open(args.output, std::ios::binary);
+    if (!file_out) {
+      std::cerr << "pdd mesh: cannot write '" << args.output << "'"
+                << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
+      return kExitFileError;
+    }
+  }
+  std::ostream& out = args.output.empty() ? std::cout : file_out;
+  std::size_t errors = 0, written = 0;
+  InterruptGuard interrupts;  // a signal while writing: the line is finished, then exit 128 + signal
+  for (const auto& p : c.pairs) {
+    if (const int sig = pending_signal()) {
+      out.flush();
+      std::cerr << "pdd mesh: interrupted (signal " << sig << "): " << written
+                << " records written, each complete, in (a, b) order\n";
+      return interrupted_exit(sig);
+    }
+    out << contact_json(p, variants, number).dump() << '\n';
+    ++written;
+    if (p.result.error) {
+      std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << ") rejected: " << *p.result.error << '\n';
+      status = kExitPairRejected;
+      ++errors;
+    } else if (p.result.pdd2_global_error && (variants & mesh::kGlobal)) {
+      std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << "): " << *p.result.pdd2_global_error
+                << " (its keys are null; the other values are reported)\n";
+      status = kExitPairRejected;
+    }
+  }
+  const std::string where = args.output.empty() ? "standard output" : "'" + args.output + "'";
+  if (auto why = args.output.empty() ? flush_error(out, where) : close_error(file_out, args.output)) {
+    std::cerr << "pdd mesh: " << *why << "; results lost\n";
+    return kExitFileError;
+  }
+  if (!args.vtk.empty()) {
+    try {
+      mesh::write_vtk(args.vtk, A, B, c, variants);
+    } catch (const std::exception& e) {
+      std::cerr << "pdd mesh: " << e.what() << '\n';
+      return kExitFileError;
+    }
+  }
+  if (args.summary) {
+    std::ostream& s = std::cerr;
+    s << "pdd mesh summary (" << (args.engine == "fast" ? "fast" : "reference") << " engine, "
+      << (B ? "A against B" : "self-contact of A") << ")\n"
+      << "  elements        A " << c.elements_a;
+    if (B) s << ", B " << c.elements_b;
+    s << "; skipped " << c.skipped.size() << "\n"
+      << "  box pairs       " << c.box_pairs << (B ? "" : " (sharing no vertex)") << "\n"
+      << "  intersecting    " << c.pairs.size() << (errors ? " (" + std::to_string(errors) + " rejected)" : "") << "\n"
+      << "  time (s)        read " << read_seconds << ", boxes " << c.seconds_boxes << ", broadphase "
+      << c.seconds_broadphase << ", exact decision " << c.seconds_decision << ", depth "
+      << c.seconds_depth << "\n";
+    for (std::size_t k = 0; k < mesh::kVariantCount; ++k) {
+      if (!(variants & (1u << k))) continue;
+      double sum = 0, best = -1;
+      const mesh::Contact<R>* arg = nullptr;
+      for (const auto& p : c.pairs) {
+        if (p.result.error) continue;
+        const double v = as_double(mesh::variant_value(p.result, k));
+        if (std::isnan(v)) continue;  // pdd2_global declined (named above)
+        sum += v;
+        if (v > best) best = v, arg = &p;
+      }
+      const char* key = mesh::kVariantKeys[k];
+      s << "  " << key << std::string(16 - std::min<std::size_t>(15, std::strlen(key)), ' ')
+        << "sum " << sum << ", max " << (arg ? best : 0.0);
+      if (arg) s << " at (" << arg->a << ", " << arg->b << ")";
+      s << "\n";
+    }
+  }
+  return status;
+}
+
+int run_mesh(const MeshArgs& args) {
+  if (args.self == !args.b.empty()) {
+    std::cerr << "pdd mesh: give either --b B or --self\n";
+    return kExitUsage;
+  }
+  for (const auto& [flag, path] : {std::pair{"--a", args.a}, std::pair{"--b", args.b}, std::pair{"--output", args.output}})
+    for (const auto& [oflag, opath] : {std::pair{"--output", args.output}, std::pair{"--vtk", args.vtk}})
+      if (std::string(flag) != oflag && same_file(path, opath)) {
+        std::cerr << "pdd mesh: " << oflag << " '" << opath << "' is the same file as " << flag
+                  << " (it would be overwritten)\n";
+        return kExitUsage;
+      }
+  unsigned variants = 0;
+  try {
+    variants = mesh::parse_variants(args.variants);
+  } catch (const std::exception& e) {
+    std::cerr << "pdd mesh: --variants: " << e.what() << '\n';
+    return kExitUsage;
+  }
+  std::optional<tbb::global_control> limit;
+  if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
+
+  const auto t0 = Clock::now();
+  mesh::Mesh A, B;
+  try {
+    A = mesh::read_mesh(args.a);
+    if (!args.self) B = mesh::read_mesh(args.b);
+  } catch (const mesh::ReadError& e) {
+    std::cerr << "pdd mesh: " << e.what() << '\n';
+    return kExitFileError;
+  }
+  const double read_seconds = since(t0);
+  const bool fast = args.engine == "fast";
+  std::cerr << "pdd mesh: A " << A.tets.size() << " tetrahedra";
+  if (!args.self) std::cerr << ", B " << B.tets.size() << " tetrahedra";
+  std::cerr << ", " << (fast ? "fast" : "reference") << " engine, variants " << mesh::variant_names(variants) << '\n';
+
+  std::once_flag once;
+  std::unique_ptr<Progress> progress;
+  mesh::ContactOptions options;
+  options.variants = variants;
+  options.progress = [&](std::size_t n, std::size_t total) {
+    std::call_once(once, [&] {
+      progress = std::make_unique<Progress>("pdd mesh: pairs", total, args.quiet ? 1e300 : 2.0);
+    });
+    progress->tick(n);
+  };
+  const mesh::Mesh* Bp = args.self ? nullptr : &B;
+  int status;
+  if (fast) {
+    const auto c = args.self ? mesh::self_contacts(A, options) : mesh::contacts(A, B, options);
+    if (progress) progress->finish();
+    static const NumberWriter<double> number = [](const double& x) { return Json(x); };
+    status = report(args, A, Bp, c, variants, number, read_seconds);
+  } else {
+    const auto c = args.self ? mesh::self_contacts_exact(A, options) : mesh::contacts_exact(A, B, options);
+    if (progress) progress->finish();
+    static const NumberWriter<Rational> number = [](const Rational& q) { return Json(q.get_str()); };
+    status = report(args, A, Bp, c, variants, number, read_seconds);
+  }
+  return status;
+}
+
+}  // namespace
+
+void add_mesh_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<MeshArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "mesh",
+      "Every intersecting element pair of two tetrahedral meshes (Gmsh .msh 2.2/4.1, legacy "
+      ".vtk) and its penetration depths (SPEC §10); JSON Lines sorted by (a, b).");
+  cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
+  cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
+  cmd->add_flag("--self", args->self, "Self-contact of A: element pairs a < b sharing no vertex");
+  cmd->add_option("--variants", args->variants,
+                  "Comma-separated: rigid, eq11, static, pdd2, relaxed, accel1, accel6, global "
+                  "(SPEC §9's pdd2_global; tens of microseconds a pair with the fast engine), or all")
+      ->capture_default_str();
+  cmd->add_option("--engine", args->engine,
+                  "'fast' (doubles, SPEC §8) or 'reference' (exact rationals as \"p/q\" strings; "
+                  "milliseconds per pair)")
+      ->check(CLI::IsMember({"fast", "reference"}))
+      ->capture_default_str();
+  cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");
+  cmd->add_option("--vtk", args->vtk,
+                  "Also write both meshes with per-element contact data and a per-vertex "
+                  "displacement field (legacy VTK, for ParaView)");
+  cmd->add_flag("--summary", args->summary,
+                "Counts and time per stage, sum and maximum of each variant (standard error)");
+  cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
+      ->check(integer_in(0, 4096))
+      ->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
+  cmd->callback([args, &exit_code] { exit_code = run_mesh(*args); });
+}
+
+}  // namespace pdd::compare

@@ -1,0 +1,544 @@
+// bench_command.cpp — `pdd bench`: the speed table (bench.h; the protocol: timing.h).
+//
+// pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]
+// pdd bench mesh [--a A --b B | --size N [--distance D] [--write-meshes DIR]]
+//                [--variants LIST] [--repeats R] [--json [FILE]]     (mesh_bench.h)
+// Table on standard output. --json FILE also writes the same numbers as one JSON object to
+// FILE; --json alone writes the JSON to standard output and the table to standard error.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "pdd/cli/cli_checks.h"
+#include "pdd/cli/exit_codes.h"
+#include "pdd/compare/bench.h"
+#include "pdd/compare/mesh_bench.h"
+#include "pdd/compare/research_commands.h"
+#include "pdd/io/output.h"
+#include "pdd/io/result_json.h"
+
+namespace pdd::compare {
+using io::Json;
+using io::check_writable;
+using io::write_file;
+namespace {
+
+struct BenchArgs {
+  BenchOptions options;
+  std::string json_path;
+  bool json = false;
+};
+
+std::string fmt(const char* f, double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (std::isnan(v)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string pad(std::string s, std::size_t w) {
+  // Width in code points, so that "²" and "µ" do not shift the columns.
+  std::size_t cps = 0;
+  for (unsigned char c : s) cps += (c & 0xC0) != 0x80;
+  if (cps < w) s.append(w - cps, ' ');
+  return s;
+}
+std::string rpad(const std::string& s, std::size_t w) {
+  std::size_t cps = 0;
+  for (unsigned char c : s) cps += (c & 0xC0) != 0x80;
+  return cps < w ? std::string(w - cps, ' ') + s : s;
+}
+
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json timing_json(const VariantTiming& t) {
+  Json j;
+  j["name"] = t.name;
+  j["median_ns_per_pair"] = number(t.median_ns_per_pair);
+  j["min_ns_per_pair"] = number(t.min_ns_per_pair);
+  j["max_ns_per_pair"] = number(t.max_ns_per_pair);
+  j["median_call_ns"] = number(t.median_call_ns);
+  j["repeats"] = t.repeats;
+  j["pairs"] = t.pairs;
+  return j;
+}
+
+Json report_json(const BenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench";
+  j["family"] = "paper";
+  j["count"] = r.options.count;
+  j["seed"] = r.options.seed;
+  j["repeats"] = r.options.repeats;
+  j["exact_sample"] = r.exact.sample;
+  j["pairs"] = r.pairs;
+  Json m;
+  m["cpu_model"] = r.machine.cpu_model;
+  m["logical_cpus"] = r.machine.logical_cpus;
+  m["compiler"] = r.machine.compiler;
+  m["assertions"] = r.machine.assertions;
+  m["loadavg_before"] = r.machine.load_before;
+  m["loadavg_after"] = r.machine.load_after;
+  m["fcl_version"] = r.machine.fcl_version;
+  m["ccd_cmake_config_version"] = r.machine.ccd_version;
+  j["machine"] = m;
+  j["fast"] = Json::array();
+  for (const auto& t : r.fast) j["fast"].push_back(timing_json(t));
+  Json b;
+  b["threads"] = r.batch.threads;
+  b["pairs"] = r.batch.pairs;
+  b["repeats"] = r.batch.repeats;
+  b["median_seconds"] = number(r.batch.median_seconds);
+  b["pairs_per_second"] = number(r.batch.pairs_per_second);
+  b["slow_paths"] = r.batch.slow_paths;
+  b["refined"] = r.batch.refined;
+  j["batch"] = b;
+  j["peers"] = Json::array();
+  for (const auto& p : r.peers) {
+    Json q;
+    q["name"] = p.name;
+    q["config"] = p.config;
+    q["judged"] = p.judged;
+    q["timing"] = timing_json(p.timing);
+    q["time_ratio_to_rigid_pd2"] = number(p.time_ratio);
+    q["call_ratio_to_rigid_pd2"] = number(p.call_ratio);
+    q["not_intersecting"] = p.not_intersecting;
+    q["failed"] = p.failed;
+    q["max_rel_dev_pd2_vs_fast_all_pairs"] = number(p.max_rel_dev_vs_fast);
+    q["pairs_dev_over_1e-6"] = p.off_1e6;
+    q["pairs_dev_over_1e-2"] = p.off_1e2;
+    q["worst_pair"] = p.worst_pair;
+    q["worst_pair_peer_pd2"] = number(p.worst_peer_pd2);
+    q["worst_pair_fast_pd2"] = number(p.worst_fast_pd2);
+    q["sample"] = p.sample;
+    q["max_rel_error_pd2"] = number(p.max_rel_error);
+    q["median_rel_error_pd2"] = number(p.median_rel_error);
+    j["peers"].push_back(q);
+  }
+  const auto& e = r.exact;
+  Json x;
+  x["sample"] = e.sample;
+  x["exact_minkowski_pd_median_ns"] = number(e.exact_rigid_median_ns);
+  x["fast_rigid_pd2_median_ns"] = number(e.fast_rigid_median_ns);
+  x["rigid_ratio"] = number(e.rigid_ratio);
+  x["exact_solve_pair_reduced_median_ns"] = number(e.exact_solve_median_ns);
+  x["fast_solve_pair_median_ns"] = number(e.fast_solve_median_ns);
+  x["solve_ratio"] = number(e.solve_ratio);
+  x["fast_rigid_max_rel_error_pd2"] = number(e.fast_max_rel_error);
+  x["fast_rigid_median_rel_error_pd2"] = number(e.fast_median_rel_error);
+  j["exact"] = x;
+  const auto& cc = r.certification;
+  Json c;
+  c["refined_pairs"] = cc.refined;
+  c["slow_path_pairs"] = cc.slow_paths;
+  c["refined_median_solve_pair_ns"] = number(cc.refined_median_ns);
+  c["slow_path_median_solve_pair_ns"] = number(cc.slow_median_ns);
+  c["share_of_solve_pair_time"] = number(cc.share_of_solve_pair);
+  c["rigid_pd2_ns"] = number(cc.rigid_certified_ns);
+  c["rigid_pd2_uncertified_ns"] = number(cc.rigid_uncertified_ns);
+  j["certification"] = c;
+  j["targets"] = Json::array();
+  for (const auto& t : r.targets) {
+    Json q;
+    q["what"] = t.what;
+    q["bound"] = t.bound;
+    q["measured"] = number(t.measured);
+    q["pass"] = t.pass;
+    j["targets"].push_back(q);
+  }
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_table(const BenchReport& r, std::ostream& s) {
+  const auto& m = r.machine;
+  s << "pdd bench: " << r.pairs << " pairs of the paper's protocol (family paper, seed "
+    << r.options.seed << "), " << r.options.repeats << " timed passes per row\n"
+    << "machine:   " << m.cpu_model << ", " << m.logical_cpus << " logical CPUs; " << m.compiler
+    << (m.assertions ? ", assertions ON" : ", NDEBUG") << "\n"
+    << "load avg:  before " << m.load_before << "; after " << m.load_after << "\n"
+    << "peers:     FCL " << m.fcl_version << ", libccd (its CMake config says " << m.ccd_version
+    << ")\n\n";
+
+  s << "Fast engine, one core, from raw vertices (ns per pair: median over passes of pass time /\n"
+       "pairs, with the fastest and slowest pass; per call: median of single-call timings, timer\n"
+       "overhead subtracted)\n";
+  s << "  " << pad("variant", 14) << rpad("ns/pair", 10) << rpad("min", 9) << rpad("max", 9)
+    << rpad("per call", 10) << "\n";
+  for (const auto& t : r.fast)
+    s << "  " << pad(t.name, 14) << rpad(fmt("%.1f", t.median_ns_per_pair), 10)
+      << rpad(fmt("%.1f", t.min_ns_per_pair), 9) << rpad(fmt("%.1f", t.max_ns_per_pair), 9)
+      << rpad(fmt("%.1f", t.median_call_ns), 10) << "\n";
+  const auto& b = r.batch;
+  double single = 0;
+  for (const auto& t : r.fast)
+    if (t.name == "solve_pair") single = 1e9 / t.median_ns_per_pair;
+  s << "  batch API (fast::solve_batch, every value, " << b.threads << " threads): "
+    << fmt("%.0f", b.pairs_per_second) << " pairs/s (median of " << b.repeats << " runs, "
+    << fmt("%.4f", b.median_seconds) << " s per " << b.pairs << " pairs); one core solve_pair: "
+    << fmt("%.0f", single) << " pairs/s; speed-up " << fmt("%.2f", b.pairs_per_second / single)
+    << "x\n"
+    << "  SPEC §8 slow path (exact rationals where an error bound is wider than 1e-9): "
+    << b.slow_paths << " of " << b.pairs << " pairs ("
+    << fmt("%.3g", b.pairs ? 100.0 * double(b.slow_paths) / double(b.pairs) : 0.0) << "%)\n"
+    << "  SPEC §8 refined (the few contending candidates evaluated exactly, no whole exact path): "
+    << b.refined << " of " << b.pairs << " pairs ("
+    << fmt("%.3g", b.pairs ? 100.0 * double(b.refined) / double(b.pairs) : 0.0) << "%)\n";
+  const auto& cc = r.certification;
+  s << "  their cost (solve_pair, one core, median call): refined " << fmt("%.1f", cc.refined_median_ns / 1e3)
+    << " us, exact path " << fmt("%.1f", cc.slow_median_ns / 1e3) << " us; together "
+    << fmt("%.2f", 100.0 * cc.share_of_solve_pair)
+    << "% of solve_pair's time over all pairs\n"
+    << "  certification on every pair (rigid_pd2 against the same kernel and pick with none: no "
+       "rescaling, no certify pass, no exact path; same passes): "
+    << fmt("%.1f", cc.rigid_certified_ns) << " vs " << fmt("%.1f", cc.rigid_uncertified_ns) << " ns per pair, "
+    << fmt("%.1f", cc.rigid_certified_ns - cc.rigid_uncertified_ns) << " ns ("
+    << fmt("%.0f", cc.rigid_certified_ns > 0 ? 100.0 * (cc.rigid_certified_ns - cc.rigid_uncertified_ns) /
+                                                   cc.rigid_certified_ns
+                                             : 0.0)
+    << "% of rigid_pd2; the kernel's bound lanes are in both)\n\n";
+
+  s << "Rigid PD by the peers, same pairs, same process, passes interleaved with ours\n";
+  s << "  " << pad("peer", 40) << rpad("ns/pair", 10) << rpad("min", 9) << rpad("max", 9)
+    << rpad("per call", 10) << rpad("ratio", 8) << rpad("call ratio", 11) << "\n";
+  for (const auto& p : r.peers)
+    s << "  " << pad(p.name + (p.judged ? " *" : ""), 40)
+      << rpad(fmt("%.1f", p.timing.median_ns_per_pair), 10)
+      << rpad(fmt("%.1f", p.timing.min_ns_per_pair), 9)
+      << rpad(fmt("%.1f", p.timing.max_ns_per_pair), 9)
+      << rpad(fmt("%.1f", p.timing.median_call_ns), 10) << rpad(fmt("%.1fx", p.time_ratio), 8)
+      << rpad(fmt("%.1fx", p.call_ratio), 11) << "\n";
+  s << "  (ratio = peer / our rigid_pd2; * = judged against the >= 10x target)\n\n";
+
+  s << "Peer accuracy: 'no isect' and 'failed' over all " << r.pairs
+    << " pairs (all intersect); rel. error of PD² against\n"
+       "the exact PD² on the first "
+    << r.exact.sample << " pairs (failures included: 'no isect' = 1, failed = inf); dev. vs\n"
+       "fast = max relative deviation of PD² from our fast rigid_pd2 over all pairs\n";
+  s << "  " << pad("peer", 40) << rpad("no isect", 9) << rpad("failed", 8)
+    << rpad("max err", 10) << rpad("med err", 10) << rpad("dev vs fast", 12)
+    << rpad(">1e-6", 7) << rpad(">1e-2", 7) << "\n";
+  for (const auto& p : r.peers)
+    s << "  " << pad(p.name, 40) << rpad(std::to_string(p.not_intersecting), 9)
+      << rpad(std::to_string(p.failed), 8) << rpad(fmt("%.2e", p.max_rel_error), 10)
+      << rpad(fmt("%.2e", p.median_rel_error), 10) << rpad(fmt("%.2e", p.max_rel_dev_vs_fast), 12)
+      << rpad(std::to_string(p.off_1e6), 7) << rpad(std::to_string(p.off_1e2), 7) << "\n";
+  const auto& e = r.exact;
+  s << "  " << pad("ours: fast rigid_pd2", 40) << rpad("0", 9) << rpad("0", 8)
+    << rpad(fmt("%.2e", e.fast_max_rel_error), 10) << rpad(fmt("%.2e", e.fast_median_rel_error), 10)
+    << "\n";
+  s << "  (>1e-6, >1e-2: pairs whose PD² deviates from ours by more than that, failures included)\n";
+  for (const auto& p : r.peers)
+    s << "    " << p.name << ": " << p.config << "; worst pair " << p.worst_pair << ": PD² "
+      << fmt("%.6g", p.worst_peer_pd2) << " vs ours " << fmt("%.6g", p.worst_fast_pd2) << "\n";
+  s << "\n";
+
+  if (e.sample == 0) {
+    s << "Exact engine against ours: not sampled (--exact-sample 0)\n\n";
+  } else {
+    s << "Exact engine against ours, one core, first " << e.sample << " pairs\n"
+      << "  rigid PD²: reference::minkowski_pd " << fmt("%.1f", e.exact_rigid_median_ns / 1e3)
+      << " us (median call, " << r.options.repeats << " passes) vs fast rigid_pd2 "
+      << fmt("%.1f", e.fast_rigid_median_ns) << " ns: ratio " << fmt("%.0f", e.rigid_ratio) << "x\n"
+      << "  every value: reference::solve_exact (Reduced) " << fmt("%.2f", e.exact_solve_median_ns / 1e6)
+      << " ms (median call, 1 pass) vs fast solve_pair " << fmt("%.1f", e.fast_solve_median_ns)
+      << " ns: ratio " << fmt("%.0f", e.solve_ratio) << "x\n\n";
+  }
+
+  s << "Targets (issues 8 and 10; time = median over passes of the time per pair, one core)\n";
+  for (const auto& t : r.targets) {
+    const bool ratio = t.bound.find('x') != std::string::npos;
+    s << "  " << pad(t.what, 62) << pad(t.bound, 11)
+      << rpad(ratio ? fmt("%.1fx", t.measured) : fmt("%.1f ns", t.measured), 11) << "  "
+      << (t.pass ? "pass" : "MISS") << "\n";
+  }
+  s << "(total " << fmt("%.1f", r.seconds) << " s)\n";
+}
+
+int run(const BenchArgs& a) {
+  if (a.json && !a.json_path.empty() && a.json_path != "-")
+    if (auto why = check_writable(a.json_path)) {  // before the run, not after it
+      std::cerr << "pdd bench: " << *why << "\n";
+      return kExitFileError;
+    }
+  BenchReport rep;
+  try {
+    rep = run_bench(a.options);
+  } catch (const std::invalid_argument& e) {  // bad options
+    std::cerr << "pdd bench: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
+  print_table(rep, json_stdout ? std::cerr : std::cout);
+  if (a.json) {
+    const std::string text = report_json(rep).dump(2) + "\n";
+    if (json_stdout) {
+      std::cout << text;
+    } else {
+      if (auto why = write_file(a.json_path, text)) {
+        std::cerr << "pdd bench: " << *why << "\n";
+        return kExitFileError;
+      }
+    }
+  }
+  return kExitOk;
+}
+
+// ---- pdd bench mesh ----------------------------------------------------------------
+
+struct MeshBenchArgs {
+  MeshBenchOptions options;
+  std::string variants = "rigid,accel1";
+  std::string json_path;
+  bool json = false;
+};
+
+Json stage_json(const MeshRun& r) {
+  Json j;
+  j["threads"] = r.threads;
+  j["read_s"] = number(r.median.read);
+  j["boxes_s"] = number(r.median.boxes);
+  j["broadphase_s"] = number(r.median.broadphase);
+  j["decision_s"] = number(r.median.decision);
+  j["depth_s"] = number(r.median.depth);
+  j["after_read_s"] = number(r.median.after_read);
+  j["box_pairs"] = r.box_pairs;
+  j["intersecting_pairs"] = r.intersecting;
+  j["intersecting_pairs_per_s"] = number(r.pairs_per_second);
+  j["box_pairs_decided_per_s"] = number(r.box_pairs_per_second);
+  return j;
+}
+
+Json broadphase_json(const std::vector<BroadphaseRow>& rows) {
+  Json a = Json::array();
+  for (const auto& r : rows) {
+    Json j;
+    j["name"] = r.name;
+    j["pairs"] = r.pairs;
+    j["setup_s"] = number(r.setup);
+    j["query_s"] = number(r.query);
+    j["total_s"] = number(r.total);
+    j["ratio_to_ours"] = number(r.ratio);
+    a.push_back(j);
+  }
+  return a;
+}
+
+Json mesh_report_json(const MeshBenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench mesh";
+  j["a"] = r.source_a;
+  j["b"] = r.source_b;
+  j["elements_a"] = r.elements_a;
+  j["elements_b"] = r.elements_b;
+  j["variants"] = mesh::variant_names(r.options.variants);
+  j["repeats"] = r.options.repeats;
+  j["generate_s"] = number(r.generate_seconds);
+  Json m;
+  m["cpu_model"] = r.machine.cpu_model;
+  m["logical_cpus"] = r.machine.logical_cpus;
+  m["compiler"] = r.machine.compiler;
+  m["assertions"] = r.machine.assertions;
+  m["loadavg_before"] = r.machine.load_before;
+  m["loadavg_after"] = r.machine.load_after;
+  m["fcl_version"] = r.machine.fcl_version;
+  j["machine"] = m;
+  j["one_core"] = stage_json(r.one_core);
+  j["all_cores"] = stage_json(r.all_cores);
+  Json d;
+  d["sample"] = r.decision.sample;
+  d["filter_disjoint"] = r.decision.disjoint;
+  d["filter_intersecting"] = r.decision.intersecting;
+  d["filter_unknown"] = r.decision.unknown;
+  d["overlap_filter_ns"] = number(r.decision.filter_ns);
+  d["interiors_intersect_ns"] = number(r.decision.decision_ns);
+  d["rigid_pd2_ns"] = number(r.decision.rigid_ns);
+  j["decision_one_core"] = d;
+  Json dp = Json::array();
+  for (const auto& c : r.depth) {
+    Json q;
+    q["name"] = c.name;
+    q["median_call_ns"] = number(c.median_ns);
+    q["mean_call_ns"] = number(c.mean_ns);
+    q["calls_over_50us"] = c.slow_calls;
+    q["share_of_time_over_50us"] = number(c.slow_share);
+    dp.push_back(q);
+  }
+  j["depth_calls_one_core"] = {{"pairs", r.depth_sample}, {"calls", dp}};
+  j["broadphase_all_boxes"] = broadphase_json(r.broadphase_all);
+  j["broadphase_pruned_boxes"] = broadphase_json(r.broadphase_pruned);
+  j["pruned_boxes_a"] = r.pruned_a;
+  j["pruned_boxes_b"] = r.pruned_b;
+  j["notes"] = r.notes;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
+  const auto& m = r.machine;
+  s << "pdd bench mesh: " << r.elements_a << " x " << r.elements_b << " tetrahedra, variants "
+    << mesh::variant_names(r.options.variants) << "; medians of " << r.options.repeats
+    << " runs (after a warm-up run)\n"
+    << "A:         " << r.source_a << "\nB:         " << r.source_b << "\n"
+    << "machine:   " << m.cpu_model << ", " << m.logical_cpus << " logical CPUs; " << m.compiler
+    << (m.assertions ? ", assertions ON" : ", NDEBUG") << "\n"
+    << "load avg:  before " << m.load_before << "; after " << m.load_after << "\n"
+    << "peer:      FCL " << m.fcl_version << "\n";
+  for (const auto& n : r.notes) s << "note:      " << n << "\n";
+  if (r.generate_seconds > 0) s << "generated in " << fmt("%.3f", r.generate_seconds) << " s\n";
+  s << "\nStages of pdd::mesh::contacts (seconds, median)\n  " << pad("", 12) << rpad("read", 9)
+    << rpad("boxes", 9) << rpad("broad", 9) << rpad("decision", 10) << rpad("depth", 9)
+    << rpad("after read", 12) << rpad("pairs/s", 12) << rpad("box pairs/s", 13) << "\n";
+  for (const MeshRun* run : {&r.one_core, &r.all_cores}) {
+    const auto& t = run->median;
+    s << "  " << pad(std::to_string(run->threads) + (run->threads == 1 ? " thread" : " threads"), 12)
+      << rpad(fmt("%.4f", t.read), 9) << rpad(fmt("%.4f", t.boxes), 9)
+      << rpad(fmt("%.4f", t.broadphase), 9) << rpad(fmt("%.4f", t.decision), 10)
+      << rpad(fmt("%.4f", t.depth), 9) << rpad(fmt("%.4f", t.after_read), 12)
+      << rpad(fmt("%.0f", run->pairs_per_second), 12) << rpad(fmt("%.3g", run->box_pairs_per_second), 13)
+      << "\n";
+  }
+  s << "  box pairs " << r.all_cores.box_pairs << ", intersecting pairs " << r.all_cores.intersecting
+    << " (pairs/s: intersecting pairs / after read; box pairs/s: box pairs / decision)\n\n";
+  const auto& d = r.decision;
+  s << "Decision per box pair, one core, " << d.sample << " box pairs (every k-th)\n"
+    << "  overlap_filter (certified SAT in doubles)   " << rpad(fmt("%.1f ns", d.filter_ns), 12)
+    << "  verdicts: " << d.disjoint << " disjoint, " << d.intersecting << " intersecting, "
+    << d.unknown << " unknown\n"
+    << "  interiors_intersect (filter + exact rest)   " << rpad(fmt("%.1f ns", d.decision_ns), 12) << "\n"
+    << "  rigid_pd2 > 0 (the decision before)         " << rpad(fmt("%.1f ns", d.rigid_ns), 12)
+    << "  ratio " << fmt("%.1fx", d.rigid_ns / d.decision_ns) << "\n\n";
+  s << "Depth stage, one call at a time, one core, on the " << r.depth_sample
+    << " intersecting pairs of that sample\n";
+  for (const auto& c : r.depth)
+    s << "  " << pad(c.name, 14) << "median " << rpad(fmt("%.0f ns", c.median_ns), 10) << "  mean "
+      << rpad(fmt("%.0f ns", c.mean_ns), 10) << "  " << c.slow_calls << " calls over 50 us: "
+      << fmt("%.0f", 100 * c.slow_share) << "% of the time\n";
+  s << "\n";
+  auto table = [&](const char* title, const std::vector<BroadphaseRow>& rows) {
+    s << title << "\n  " << pad("broadphase", 44) << rpad("pairs", 10) << rpad("setup s", 10)
+      << rpad("query s", 10) << rpad("total s", 10) << rpad("ratio", 9) << "\n";
+    for (const auto& b : rows)
+      s << "  " << pad(b.name, 44) << rpad(std::to_string(b.pairs), 10)
+        << rpad(fmt("%.4f", b.setup), 10) << rpad(fmt("%.4f", b.query), 10)
+        << rpad(fmt("%.4f", b.total), 10) << rpad(fmt("%.1fx", b.ratio), 9) << "\n";
+  };
+  table("Broadphase on all element boxes, one core (median; ratio = time / ours)", r.broadphase_all);
+  table(("Broadphase on the boxes left after pruning by the other mesh's bounding box (" +
+         std::to_string(r.pruned_a) + " + " + std::to_string(r.pruned_b) + "), one core")
+            .c_str(),
+        r.broadphase_pruned);
+  s << "  (ours: CGAL box_intersection_d, half-open boxes, boxes built inside the time; FCL: closed\n"
+       "   boxes, objects built outside the time, setup = registerObjects + setup)\n";
+  double best = 0;
+  for (std::size_t k = 1; k < r.broadphase_all.size(); ++k)
+    if (best == 0 || r.broadphase_all[k].ratio < best) best = r.broadphase_all[k].ratio;
+  s << "\nTargets (issue 11)\n"
+    << "  " << pad("everything after reading, all cores", 52) << pad("<= 0.100 s", 14)
+    << rpad(fmt("%.4f s", r.all_cores.median.after_read), 10) << "  "
+    << (r.all_cores.median.after_read <= 0.1 ? "pass" : "MISS") << "\n"
+    << "  " << pad("broadphase vs best FCL manager, all boxes, one core", 52) << pad(">= 2x", 14)
+    << rpad(fmt("%.1fx", best), 10) << "  " << (best >= 2 ? "pass" : "MISS") << "\n"
+    << "(total " << fmt("%.1f", r.seconds) << " s)\n";
+}
+
+int run_mesh(const MeshBenchArgs& a) {
+  if (a.json && !a.json_path.empty() && a.json_path != "-")
+    if (auto why = check_writable(a.json_path)) {  // before the run, not after it
+      std::cerr << "pdd bench mesh: " << *why << "\n";
+      return kExitFileError;
+    }
+  MeshBenchReport rep;
+  try {
+    MeshBenchOptions o = a.options;
+    o.variants = mesh::parse_variants(a.variants);
+    rep = run_mesh_bench(o);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "pdd bench mesh: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {  // mesh::ReadError, file system errors
+    std::cerr << "pdd bench mesh: " << e.what() << "\n";
+    return kExitFileError;
+  }
+  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
+  print_mesh_table(rep, json_stdout ? std::cerr : std::cout);
+  if (a.json) {
+    const std::string text = mesh_report_json(rep).dump(2) + "\n";
+    if (json_stdout) {
+      std::cout << text;
+    } else if (auto why = write_file(a.json_path, text)) {
+      std::cerr << "pdd bench mesh: " << *why << "\n";
+      return kExitFileError;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench",
+      "Time the fast engine, FCL and libccd (rigid PD) and the exact engine on the paper's "
+      "protocol; medians of repeated passes, ratios in the same run.");
+  cmd->add_option("--count", a->options.count, "Pairs of the paper's protocol")
+      ->check(integer_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--seed", a->options.seed, "Random seed of the pairs (0 to 2^64-1)")
+      ->check(seed_value())
+      ->capture_default_str();
+  cmd->add_option("--repeats", a->options.repeats, "Timed passes per row (median reported)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--exact-sample", a->options.exact_sample,
+                  "The first M pairs are also solved exactly (errors, exact-engine ratio)")
+      ->check(integer_in(0, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--json", a->json_path,
+                  "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                  "output, table on standard error)")
+      ->expected(0, 1);
+  auto ma = std::make_shared<MeshBenchArgs>();
+  CLI::App* mesh_cmd = cmd->add_subcommand(
+      "mesh",
+      "Time pdd mesh per stage (read, boxes, broadphase, decision, depth) on two overlapping "
+      "meshes, one core and all cores, and the broadphase against FCL's managers on the same "
+      "boxes; medians of repeated runs.");
+  mesh_cmd->add_option("--a", ma->options.a, "Mesh A (.msh or .vtk); with --b")->check(CLI::ExistingFile);
+  mesh_cmd->add_option("--b", ma->options.b, "Mesh B (.msh or .vtk); with --a")->check(CLI::ExistingFile);
+  mesh_cmd->add_option("--size", ma->options.size,
+                       "Without --a/--b: tetrahedra per generated ball (two balls of radius 1)")
+      ->check(integer_in(6, 20000000))
+      ->capture_default_str();
+  mesh_cmd->add_option("--distance", ma->options.distance,
+                       "Without --a/--b: distance of the balls' centres (overlap: 2 - distance)")
+      ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  mesh_cmd->add_option("--write-meshes", ma->options.write_meshes,
+                       "Without --a/--b: keep the generated balls in DIR (ball-a.vtk, ball-b.vtk)");
+  mesh_cmd->add_option("--variants", ma->variants, "Variants of the depth stage")->capture_default_str();
+  mesh_cmd->add_option("--repeats", ma->options.repeats, "Timed runs (median reported)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  mesh_cmd->add_option("--json", ma->json_path,
+                       "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                       "output, table on standard error)")
+      ->expected(0, 1);
+  mesh_cmd->callback([ma, mesh_cmd, &exit_code] {
+    ma->json = mesh_cmd->count("--json") > 0;
+    exit_code = run_mesh(*ma);
+  });
+  cmd->callback([a, cmd, mesh_cmd, &exit_code] {
+    if (mesh_cmd->parsed()) return;  // `pdd bench mesh`
+    a->json = cmd->count("--json") > 0;
+    exit_code = run(*a);
+  });
+}
+
+}  // namespace pdd::compare

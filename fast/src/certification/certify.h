@@ -1,0 +1,53 @@
+// certify.h — internal to fast/src: SPEC §8 bounds of the candidates of a list (CandidateSet
+// or QuickCandidates), from value_bounds.h. One place for "the root bound of candidate k".
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "certification/value_bounds.h"
+#include "kernel/candidate_directions.h"
+#include "kernel/quick_candidates.h"
+
+namespace pdd::fast::detail {
+
+inline bool is_parallel(const CandidateSet& s, int k) { return s.lane[k] < 0 && s.parallel[k]; }
+inline bool is_parallel(const QuickCandidates&, int) { return false; }  // quick declines them
+
+// Root bound of delta² of candidate k (value_bounds.h, rigid).
+template <class List>
+double rigid_rel(const List& s, int k) {
+  return rigid_root_rel(s.depth[k], s.nn[k], degree_bounds(s.fb, is_parallel(s, k)));
+}
+
+// Cheap test, products only: |D| >= 400 e_h and n.n >= (400 e_n)². Then rigid_rel(s, k) is
+// finite and <= 1.02 (2/400 + u + sqrt(3)/400 + 4u) < 0.00952 (value_bounds.h), so
+// lower_of(delta², rigid_rel) >= (1 − 0.00952)² (1 − 3u) delta² > 0.981 delta² (the three
+// roundings of lower_of included). Used to skip the division and square root of
+// rigid_rel for candidates far above a chosen value v (delta² > 2 v, or coeff delta² > 2 v):
+// their lower bound then exceeds 1.96 v >= the chosen candidate's own lower bound, so it can
+// never be the minimum of the lower bounds, and skipping it leaves that minimum unchanged.
+// Or, with kSmallRigidLower: a candidate with rigid_rel_small and
+// kSmallRigidLower · x > m (x = delta², or coeff delta² with coeff a power of two) has
+// lower bound >= 0.981 x > m: the computed product is <= 0.98 (1 + u)² x < 0.981 x.
+inline constexpr double kSmallRigidLower = 0.98;
+template <class List>
+bool rigid_rel_small(const List& s, int k) {
+  const DegreeBounds db = degree_bounds(s.fb, is_parallel(s, k));
+  const double D = s.depth[k], eh = 400 * db.e_h, en = 400 * db.e_n;
+  return (D * D >= eh * eh) & (s.nn[k] >= en * en);  // (no short-circuit: no branch)
+}
+
+// Largest |height| of a candidate (value_bounds.h: Hm).
+inline double max_height(const DirectionGeometry& c) {
+  double m = 0.0;
+  for (int i = 0; i < 4; ++i) m = std::max(m, std::max(std::fabs(c.hA[i]), std::fabs(c.hB[i])));
+  return m;
+}
+
+// Root bound of a QP value v = F/(20 n.n) along candidate c.
+inline double qp_rel(const Candidate& c, double v, const FilterBounds& fb) {
+  return qp_root_rel(v * 20.0 * c.nn, c.nn, max_height(c), degree_bounds(fb, c.parallel));
+}
+
+}  // namespace pdd::fast::detail

@@ -1,0 +1,192 @@
+// candidate_directions.cpp — SPEC §3 candidate set with filtered exact decisions (the full
+// path: any input, exact fallbacks). See the header; shared arithmetic in direction_geometry.h.
+#include "kernel/candidate_directions.h"
+
+#include <cmath>
+
+#include "certification/filter_bounds.h"
+#include "certification/tie_tolerance.h"
+#include "exact/exact_predicates.h"
+#include "kernel/direction_geometry.h"
+
+namespace pdd::fast {
+namespace {
+
+using namespace detail;
+
+Sign orientation(const TetVertices& T, double det, double bound3) {
+  if (det > bound3) return Sign::Positive;
+  if (det < -bound3) return Sign::Negative;
+  return orientation_sign_exact(T);
+}
+
+// Parallel edges: n = (e.e) w − (w.e) e (division-free form of SPEC §3), heights directly.
+void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, Draft& c) {
+  const int u = kEdges[a][0], x = kEdges[b][0];
+  const double* e = p.eA[a];
+  const double* w = p.d[u][x];
+  const double ee = dot(e, e), we = dot(w, e);
+  for (int k = 0; k < 3; ++k) c.n[k] = ee * w[k] - we * e[k];
+  for (int k = 0; k < 4; ++k) {
+    double sk[3];
+    sub(A[k], A[u], sk);
+    c.hA[k] = dot(c.n, sk);
+    c.hB[k] = dot(c.n, p.d[u][k]);
+  }
+  const int v = kEdges[a][1], y = kEdges[b][1];
+  c.hA[v] = c.hA[u] = 0.0;  // exactly: n.e = 0
+  c.hB[y] = c.hB[x];        // exactly: n.(r_y − r_x) = 0 (parallel to e)
+}
+
+struct Builder {
+  const TetVertices& A;
+  const TetVertices& B;
+  const FilterBounds& fb;
+  const Precomputed& p;
+  CandidateSet& out;
+
+  // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
+  bool depth_positive(int k, double bound) {
+    if (out.depth[k] > bound) return true;
+    if (out.depth[k] < -bound) return false;
+    return depth_sign_exact(A, B, label(out, k)) == Sign::Positive;
+  }
+
+  // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
+  bool emit(const Draft& d, double s, LabelCode code, double bound, bool parallel) {
+    const int k = out.count++;
+    out.parallel[k] = parallel;
+    DirectionGeometry& c = out.explicit_[k];
+    orient_draft(d, s, c);
+    out.code[k] = code;
+    out.depth[k] = c.depth;
+    out.nn[k] = c.nn;
+    out.delta_sq[k] = c.depth * c.depth / c.nn;
+    out.lane[k] = -1;
+    out.sign[k] = 1;
+    return depth_positive(k, bound);
+  }
+
+  EdgePairClass classify(int a, int b, const Draft& c) {
+    if (max_abs3(c.n) <= fb.deg2) return classify_edge_pair_exact(A, B, a, b);
+    EdgePairClass k;
+    int lo = 0, hi = 0;
+    for (int i : kOffEdge[a]) {
+      const double g = c.hA[i];
+      if (std::fabs(g) <= fb.deg3) return classify_edge_pair_exact(A, B, a, b);
+      lo += g < 0;
+      hi += g > 0;
+    }
+    k.side = hi == 0 ? EdgePairSide::Keep : lo == 0 ? EdgePairSide::Flip : EdgePairSide::Undecidable;
+    return k;
+  }
+
+  // Any edge pair, with the exact classification when the filter cannot decide (slow path).
+  bool edge_pair_general(int a, int b) {
+    Draft c;
+    lane_heights(out.edges, a, b, c);
+    const EdgePairClass k = classify(a, b, c);
+    if (k.kind == EdgePairKind::Colinear) return true;  // no direction (SPEC §3)
+    double bound = fb.deg3;
+    const bool parallel = k.kind == EdgePairKind::Parallel;
+    if (parallel) {
+      parallel_heights(A, p, a, b, c);
+      bound = fb.deg4;
+    }
+    const LabelCode decided = pack_label(ContactKind::EE, a, b, EdgeOrientation::Decided);
+    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, parallel);
+    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, parallel);
+    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, parallel) &&
+           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound,
+                parallel);
+  }
+
+  // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is
+  // written from its lane: the candidate and, branch-free, the ':-' one after it, the count
+  // advancing by 2 only for an undecidable pair; an unclear lane goes to edge_pair_general.
+  bool edge_pairs() {
+    const EdgeLanes& L = out.edges;
+    int k = out.count;
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        const int i = kLaneStride * a + b;
+        if (L.unclear[i] != 0.0) {
+          out.count = k;
+          if (!edge_pair_general(a, b)) return false;
+          k = out.count;
+          continue;
+        }
+        const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
+        const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
+        out.code[k] = pack_label(ContactKind::EE, a, b,
+                                 undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
+        out.code[k + 1] = pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus);
+        out.depth[k] = flip ? L.dminus[i] : L.dplus[i];
+        out.depth[k + 1] = L.dminus[i];
+        out.delta_sq[k] = L.first[i];
+        out.delta_sq[k + 1] = L.d2minus[i];
+        out.nn[k] = out.nn[k + 1] = L.nn[i];
+        out.sign[k] = flip ? -1 : 1;
+        out.sign[k + 1] = -1;
+        out.lane[k] = out.lane[k + 1] = std::int16_t(i);
+        k += 1 + undecidable;
+      }
+    out.count = k;
+    return true;
+  }
+
+  bool run() {
+    for (int f = 0; f < 8; ++f) {
+      const int k = out.count++;
+      DirectionGeometry& c = out.explicit_[k];
+      face_geometry(p, f, c);
+      out.code[k] = f < 4 ? pack_label(ContactKind::FV, f, 0, EdgeOrientation::Decided)
+                          : pack_label(ContactKind::VF, f - 4, 0, EdgeOrientation::Decided);
+      out.depth[k] = c.depth;
+      out.nn[k] = c.nn;
+      out.delta_sq[k] = c.depth * c.depth / c.nn;
+      out.lane[k] = -1;
+      out.sign[k] = 1;
+      out.parallel[k] = 0;
+      if (!depth_positive(k, fb.deg3)) return false;
+    }
+    edge_lanes(p, fb.deg2, fb.deg3, out.edges);
+    return edge_pairs();
+  }
+};
+
+}  // namespace
+
+BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, CandidateSet& out) {
+  out.count = 0;
+  out.intersecting = false;
+  out.A = &A;
+  out.B = &B;
+  if (!all_finite(A)) return BuildStatus::NonFiniteA;
+  if (!all_finite(B)) return BuildStatus::NonFiniteB;
+  const FilterBounds fb = filter_bounds(A, B);
+  out.tie_kappa = tie_kappa(A, B);
+  out.fb = fb;
+  Precomputed p;
+  precompute(A, B, p);
+  p.oA = orientation(A, p.detA, fb.deg3);
+  if (p.oA == Sign::Zero) return BuildStatus::DegenerateA;
+  p.oB = orientation(B, p.detB, fb.deg3);
+  if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
+  out.intersecting = Builder{A, B, fb, p, out}.run();
+  return BuildStatus::Ok;
+}
+
+Candidate candidate(const CandidateSet& set, int k) {
+  Candidate c;
+  c.label = label(set, k);
+  if (set.lane[k] < 0) {
+    static_cast<DirectionGeometry&>(c) = set.explicit_[k];
+    c.parallel = set.parallel[k] != 0;
+    return c;
+  }
+  detail::lane_candidate(set.edges, set.lane[k], set.sign[k], c);
+  return c;
+}
+
+}  // namespace pdd::fast

@@ -1,0 +1,114 @@
+// candidate_directions.h — the candidate separating directions of a pair (SPEC §3, paper eq. 6).
+//
+// Input:  tetrahedra A (s0..s3) and B (r0..r3), raw doubles.
+// Output: CandidateSet: the oriented directions in canonical order (FV:0..3, VF:0..3, EE:a:b with
+//         ':+' before ':-'); per candidate k
+//           label(set, k)  SPEC §3 label,
+//           depth[k]   D = max_i n.s_i − min_j n.r_j for the oriented unnormalised n, so that
+//                      delta(n) = D/|n| (SPEC §4),
+//           nn[k]      n.n,   delta_sq[k] = D²/(n.n) (edge lanes: D²·(1/n.n)),
+//         and, materialised on demand by candidate(set, k): n, the heights H = n.(x − o) of the 8
+//         vertices (o a point of the candidate's own choosing; only height differences are used)
+//         and the constrained masks C_A, C_B. `intersecting` = every D > 0 (min delta > 0).
+// Every combinatorial decision — orientation of A and B (sign of the volume, also the validity
+// test), parallel edges (n == 0), colinear edges, the signs of g_k (keep / flip / undecidable),
+// and the sign of each D (intersection) — is exact: a floating-point value is trusted only when
+// it exceeds the static bound of filter_bounds.h, otherwise exact_predicates.h decides.
+// Constrained vertices of one tetrahedron share one height by construction (they are exactly
+// on the plane orthogonal to n), so the solvers see exactly equal values.
+// Layout: the 36 edge pairs are computed as structure-of-arrays "lanes" (lane = 8a + b), so the
+// arithmetic vectorises; the set stores per candidate only its label, D, n.n and the lane.
+// No heap allocation: fixed-capacity arrays.
+#pragma once
+
+#include <cstdint>
+
+#include "certification/filter_bounds.h"
+#include "pdd/direction_label.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd::fast {
+
+// 8 face directions + 36 edge pairs, each edge pair at most twice (undecidable).
+inline constexpr int kMaxCandidates = 8 + 2 * 36;
+inline constexpr int kLaneStride = 8;  // lanes b = 6, 7 of each edge a are padding
+inline constexpr int kLanes = 6 * kLaneStride;
+
+// Geometry of one direction: everything the per-direction solvers need.
+struct DirectionGeometry {
+  double n[3];          // oriented A -> B, unnormalised
+  double nn;            // n.n
+  double depth;         // D
+  double hA[4], hB[4];  // heights n.(x − o)
+  std::uint8_t conA, conB;  // bit i: vertex i constrained (SPEC §3)
+};
+
+struct Candidate : DirectionGeometry {
+  DirectionLabel label;
+  bool parallel = false;  // a parallel edge pair: n of degree 3, heights of degree 4
+};
+
+// A label packed in 16 bits (kind | a << 2 | b << 5 | orientation << 8): plain integers keep
+// the set trivially constructible (DirectionLabel has member initialisers).
+using LabelCode = std::uint16_t;
+constexpr LabelCode pack_label(ContactKind k, int a, int b, EdgeOrientation o) {
+  return LabelCode(int(k) | a << 2 | b << 5 | int(o) << 8);
+}
+inline DirectionLabel unpack_label(LabelCode c) {
+  return {ContactKind(c & 3), (c >> 2) & 7, (c >> 5) & 7, EdgeOrientation((c >> 8) & 3)};
+}
+
+// Edge-pair lanes, unoriented n = eB × eA (SPEC §3), heights relative to s_u:
+// A: 0, 0, g1, g2 at (u, v, k1, k2); B: hx, hx, hx + q1, hx + q2 at (x, y, j1, j2), where
+// (k1 < k2) are the vertices off edge a and (j1 < j2) those off edge b.
+struct EdgeLanes {
+  alignas(64) double n0[kLanes], n1[kLanes], n2[kLanes], nn[kLanes], hx[kLanes];
+  alignas(64) double g1[kLanes], g2[kLanes], q1[kLanes], q2[kLanes];
+  alignas(64) double dplus[kLanes], dminus[kLanes];  // D for +n and for −n
+  alignas(64) double d2plus[kLanes], d2minus[kLanes];  // D²/(n.n) for +n and for −n
+  // Filter verdicts of the lane (SPEC §3 orientation rule on the signs of g1, g2):
+  //   unclear = 1 when a sign of n, g1, g2 or of a used depth is within its filter bound (the
+  //             lane then goes through the exact path), else 0;
+  //   first   = delta² of the lane's first candidate (+n, or −n when both g > 0);
+  //   second  = delta² of the ':-' candidate of an undecidable pair, +inf otherwise.
+  alignas(64) double unclear[kLanes], first[kLanes], second[kLanes];
+};
+
+struct CandidateSet {
+  int count = 0;
+  bool intersecting = false;  // valid only when build_candidates returned Ok
+  double tie_kappa = 0.0;     // the pair's tie band (tie_tolerance.h)
+  FilterBounds fb;            // the pair's error bounds (filter_bounds.h, value_bounds.h)
+  // The pair the set was built from (refine.h evaluates a few candidates exactly); valid as
+  // long as the caller's pair lives (every user keeps both in one scope).
+  const TetVertices* A = nullptr;
+  const TetVertices* B = nullptr;
+  LabelCode code[kMaxCandidates];  // label, see label(set, k)
+  double depth[kMaxCandidates];
+  double nn[kMaxCandidates];
+  double delta_sq[kMaxCandidates];  // D²/(n.n) = delta(n)²
+  // (16-bit, not 8-bit: char types alias everything and would pessimise the build loop)
+  std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
+  std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
+  std::uint8_t parallel[kMaxCandidates];  // explicit candidates: a parallel edge pair
+  EdgeLanes edges;
+  DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
+};
+
+enum class BuildStatus { Ok, NonFiniteA, NonFiniteB, DegenerateA, DegenerateB };
+
+// Fills `out`. When the pair does not intersect the set may be left incomplete (the scan stops
+// at the first exactly separating candidate): only `intersecting == false` is then meaningful.
+BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, CandidateSet& out);
+
+// Candidate k of the set with its heights (cheap: a few loads and sign flips).
+Candidate candidate(const CandidateSet& set, int k);
+
+// SPEC §3 label of candidate k.
+inline DirectionLabel label(const CandidateSet& set, int k) { return unpack_label(set.code[k]); }
+
+// delta(n)² of candidate k: D²/(n.n).
+inline double delta2(const CandidateSet& set, int k) { return set.delta_sq[k]; }
+inline LabelCode label_code(const CandidateSet& set, int k) { return set.code[k]; }
+
+}  // namespace pdd::fast

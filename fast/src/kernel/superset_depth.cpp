@@ -1,0 +1,246 @@
+// superset_depth.cpp — rigid PD² over the superset of candidate directions: the scan of the
+// tie band and the chosen candidate (the proof is in the header, the vector arithmetic in
+// superset_kernel.cpp).
+#include "kernel/superset_depth.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "certification/filter_bounds.h"
+#include "certification/tie_tolerance.h"
+#include "certification/value_bounds.h"
+#include "kernel/direction_geometry.h"
+#include "kernel/superset_kernel.h"
+
+namespace pdd::fast {
+namespace {
+
+using namespace detail;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// An entry of S near the minimum that is a real candidate: its value and label.
+struct Near {
+  double value;
+  LabelCode code;
+  int lane;      // 8a + b, or −1 for a face
+  int face;      // 0..7 for a face
+  double sign;   // orientation of a lane
+};
+
+// Entries with value <= t2 that are real candidates, in canonical order; false when an
+// orientation decision is unclear (filter) — then the caller declines.
+bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, int& count) {
+  const double t2 = K.t2;
+  count = 0;
+  for (unsigned bits = K.face_bits; bits; bits &= bits - 1) {
+    const int f = __builtin_ctz(bits);
+    out[count++] = {K.face_val[f],
+                    f < 4 ? pack_label(ContactKind::FV, f, 0, EdgeOrientation::Decided)
+                          : pack_label(ContactKind::VF, f - 4, 0, EdgeOrientation::Decided),
+                    -1, f, 1.0};
+  }
+  for (std::uint64_t bits = K.lane_bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    double m0, m1, m2;
+    edge_pair_normal(K.EA[0][a], K.EA[1][a], K.EA[2][a], K.EB[0][b], K.EB[1][b], K.EB[2][b], m0,
+                     m1, m2);
+    const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
+    const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
+    const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
+    if (nmax <= fb.deg2 || std::fabs(g1) <= fb.deg3 || std::fabs(g2) <= fb.deg3) return false;
+    const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
+    const bool flip = pos1 && pos2, undecidable = pos1 != pos2;
+    const double inv = K.inv[a][b];
+    const double d2p = K.dp[a][b] * K.dp[a][b] * inv, d2m = K.dm[a][b] * K.dm[a][b] * inv;
+    const EdgeOrientation plus = undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided;
+    const EdgeOrientation minus = undecidable ? EdgeOrientation::Minus : EdgeOrientation::Decided;
+    if (!flip && d2p <= t2)
+      out[count++] = {d2p, pack_label(ContactKind::EE, a, b, plus), lane, -1, 1.0};
+    if ((flip || undecidable) && d2m <= t2)
+      out[count++] = {d2m, pack_label(ContactKind::EE, a, b, minus), lane, -1, -1.0};
+  }
+  return true;
+}
+
+// The chosen edge-pair candidate, as lane_candidate builds it from the lanes.
+void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
+  const int a = c.lane / kLaneStride, b = c.lane % kLaneStride;
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  const int k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
+  const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
+  double m[3];
+  edge_pair_normal(eA[0], eA[1], eA[2], K.EB[0][b], K.EB[1][b], K.EB[2][b], m[0], m[1], m[2]);
+  double w[3];  // r_x − s_u (sub(B[x], A[u]) on the kernel's copy of the pair)
+  for (int k = 0; k < 3; ++k) w[k] = K.X[k][4 + x] - K.X[k][u];
+  const double h = edge_pair_dot(m[0], m[1], m[2], w[0], w[1], w[2]);
+  double q[2];
+  for (int j = 0; j < 2; ++j) {
+    const int f = 4 + kOffFaces.face[b][j];
+    const double nb[3] = {K.NAB[0][f], K.NAB[1][f], K.NAB[2][f]};
+    q[j] = off_sign_B(b, j) * dot(eA, nb);
+  }
+  const double s = c.sign;
+  const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
+  const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
+  for (int k = 0; k < 3; ++k) g.n[k] = s * m[k];
+  g.nn = edge_pair_nn(m[0], m[1], m[2]);
+  g.depth = s > 0 ? K.dp[a][b] : K.dm[a][b];
+  g.hA[u] = g.hA[v] = 0.0;
+  g.hA[k1] = s * g1;
+  g.hA[k2] = s * g2;
+  g.hB[x] = g.hB[y] = s * h;
+  g.hB[kOffEdge[b][0]] = s * (h + q[0]);
+  g.hB[kOffEdge[b][1]] = s * (h + q[1]);
+  g.conA = edge_mask(a);
+  g.conB = edge_mask(b);
+}
+
+// SPEC §8 (value_bounds.h) over the superset S: every entry's exact value is >= PD² (header),
+// so the minimum of the entries' certified lower bounds is a lower bound of PD². `unique`: every
+// entry other than the chosen one is certainly above the chosen one's exact value (the exact
+// rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
+// Cost: the root bound of an entry takes a division and a square root, so only the entries of
+// the kernel's bound bits are bounded: the others cannot change the verdict or `unique`,
+// whatever the pick (the proof is at tie_and_certify_bits in superset_kernel.cpp; tests/fast
+// checks the verdict against bounding every entry). The picked entry is always among them.
+// Most entries are far inside the filter range, where the root bound is tiny: a products-only
+// test (small_root in certify) then stands in a fixed bound kSmallRoot for value_bounds.h's r,
+// saving its chain of two divisions and a square root.
+// Proof that kSmallRoot >= the r that rigid_root_rel would compute. With D² >= 4.2e22 e_h²
+// up to a few roundings (computed: e_h² · 4.2e22 (1 − 2u) <= D² (1 + u); the double 4.2e22 is
+// 1e-16 below 4.2e22; faces: D = sqrt(fl(v·nn)), so D² >= 4.2e22 e_h² (1 − 5u) — every such
+// factor is ~1e-16 against the margin of 0.8% left below), 2 e_h/|D| <= 0.97590e-11 (1 + 4u),
+// so its a = ((2 e_h + u|D|)/|D|, three roundings) <= (0.9759e-11 + u)(1 + 7u) < 0.977e-11.
+// With n.n >= 3.2e22 e_n² (faces; lanes: e_n² · 3.2e22 · inv <= 1, inv = fl(1/(n.n)), so
+// 3.2e22 e_n² <= (1/inv)(1 + 3u) <= fl(1/inv)(1 + 4u), the nn rigid_root_rel is given),
+// rho = sqrt(3) e_n/sqrt(nn) <= sqrt(3/3.2e22)(1 + 2u) = 0.96825e-11 (1 + 2u), computed
+// < 0.97e-11. Both are <= 0.01, so r = 1.02 (a + rho + 4u) (three roundings)
+// < 1.02 (1.947e-11 + 4.5e-16)(1 + 3u) < 1.987e-11 < kSmallRoot. lower_of and upper_of are
+// monotone in r (every rounding is), so lower_of(v, kSmallRoot) <= lower_of(v, r) and
+// upper_of(v, kSmallRoot) >= upper_of(v, r): every verdict reached with it is one the exact
+// bound would reach too (certified_choice is monotone in both). The cost: a verdict needs
+// hi <= (1 + kCertifyRel) lo_all, and (1 + 2e-11)²/(1 − 2e-11)² < 1 + 8.1e-11, far inside
+// kCertifyRel = 9e-10; `unique` (hi < lo_other) can fail where the exact r would pass when
+// another entry is within ~8e-11 of the pick (2% of fast_superset_test's random pairs have
+// such a near-tie): certify() then redoes the verdict with the exact bounds, so its verdict
+// is always theirs. NaN: every test false, exact bound. Precondition, as for the kernel's bound
+// bits: a rescaled pair (power_scale.h), so that e_h² · 4.2e22 and e_n² · 3.2e22 are normal
+// (>= 2^-335; unscaled, they could underflow for L < 2^-167 and the test would be unsound).
+// (A review re-derived every constant, drove 4·10^7 inputs onto the tests' boundaries — the
+// largest rigid_root_rel found was 1.98309e-11 — and compared both verdicts on 874,930 calls.)
+constexpr double kSmallRoot = 2e-11;
+
+// with_small: substitute kSmallRoot where small_root holds (else every bound is rigid_root_rel's).
+inline __attribute__((always_inline)) void certify_pass(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
+                  bool* unique, bool with_small) {
+  const DegreeBounds db = degree_bounds(fb, false);
+  // small_root's thresholds: D² >= eh2k (faces: fl(v·nn), within 3u of the D² that
+  // rigid_root_rel's D = sqrt(v·nn) has, inside the margin above); n.n >= en2k (lanes:
+  // en2k · inv <= 1).
+  const double eh2k = db.e_h * db.e_h * 4.2e22, en2k = db.e_n * db.e_n * 3.2e22;
+  double lo_all = kInf, lo_other = kInf, r_pick = kInf;
+  auto entry = [&](double v, bool small_root, auto exact_root, bool picked) {
+    const double r = with_small && small_root ? kSmallRoot : exact_root();
+    double lo = lower_of(v, r);
+    if (!(lo >= 0.0)) lo = 0.0;
+    lo_all = lo < lo_all ? lo : lo_all;
+    if (picked)
+      r_pick = r;
+    else
+      lo_other = lo < lo_other ? lo : lo_other;
+  };
+  for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
+    const int f = __builtin_ctz(bits);
+    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
+                      K.NAB[2][f] * K.NAB[2][f];
+    const double v = K.face_val[f];
+    entry(v, (eh2k <= v * nn) & (en2k <= nn),
+          [&] { return rigid_root_rel(std::sqrt(v * nn), nn, db); }, c.lane < 0 && c.face == f);
+  }
+  for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
+    const bool picked_lane = c.lane == lane;
+    const bool small_n = en2k * inv <= 1.0;
+    entry(dp * dp * inv, small_n & (eh2k <= dp * dp),
+          [&] { return rigid_root_rel(dp, 1.0 / inv, db); }, picked_lane && c.sign > 0);
+    entry(dm * dm * inv, small_n & (eh2k <= dm * dm),
+          [&] { return rigid_root_rel(dm, 1.0 / inv, db); }, picked_lane && c.sign < 0);
+  }
+  ch.certified = certified_choice(upper_of(ch.value, r_pick), lo_all);
+  if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;
+}
+
+// The verdict with kSmallRoot, and where it fails (not certified, or not `unique` when asked)
+// the verdict with every bound exact: the same verdict as the exact bounds alone give (a pass
+// with kSmallRoot implies one without it, above).
+void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
+             bool* unique) {
+  certify_pass(K, fb, c, ch, unique, true);
+  if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false);
+}
+
+// The choice from the kernel's lanes K.
+bool choice_of_lanes(const SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
+                     bool with_certificate) {
+  if (!(K.finite == 0.0)) return false;
+  const FilterBounds fb = filter_bounds_of_extent(K.extent);
+  // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
+  if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
+  if (!(K.lo > fb.deg3)) return false;
+  Near near[kMaxCandidates];
+  int count = 0;
+  if (!near_candidates(K, fb, near, count)) return false;
+  double vmin = kInf;
+  for (int i = 0; i < count; ++i) vmin = min2(vmin, near[i].value);
+  if (!(vmin <= K.t1)) return false;
+  const double threshold = vmin == K.vmin ? K.t1 : tie_threshold(vmin, K.kappa);
+  int pick = 0;
+  while (!(near[pick].value <= threshold)) ++pick;
+  const Near& c = near[pick];
+  ch.value = c.value;
+  ch.index = -1;
+  ch.code = c.code;
+  if (with_certificate) certify(K, fb, c, ch, unique);
+  if (!geometry) return true;
+  if (c.lane >= 0)
+    lane_geometry(K, c, *geometry);
+  else
+  {
+    Draft d;
+    face_draft(K, c.face, d);
+    finish_face(d, *geometry);
+  }
+  geometry->label = unpack_label(c.code);
+  return true;
+}
+
+bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
+                     bool* unique, bool with_certificate) {
+  SupersetLanes K;
+  superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
+  return choice_of_lanes(K, ch, geometry, unique, with_certificate);
+}
+
+}  // namespace
+
+bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
+                           Candidate* geometry, bool* unique, double* extent) {
+  SupersetLanes K;
+  if (!superset_kernel_scaled(A, B, K, e)) return false;
+  if (extent) *extent = K.extent;
+  return choice_of_lanes(K, ch, geometry, unique, true);
+}
+
+bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
+                    bool* unique) {
+  return superset_choice(A, B, ch, geometry, unique, true);
+}
+
+bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch) {
+  return superset_choice(A, B, ch, nullptr, nullptr, false);
+}
+
+}  // namespace pdd::fast

@@ -1,0 +1,87 @@
+// superset_depth.h — rigid PD² and its label from a superset of the candidate directions
+// (SPEC §4), without the orientation rule of SPEC §3 except near the minimum. The hot path of
+// rigid_pd2(A, B) and pdd2_accel(A, B, 1).
+//
+// Input:  tetrahedra A (s0..s3), B (r0..r3), raw doubles.
+// Output: true, and Choice{value = PD², code = SPEC §3 label of the first candidate in canonical
+//         order attaining it (tie_tolerance.h), index = −1 (no candidate list is built)}, and
+//         optionally the chosen candidate's geometry (for the case-2 QP of pdd2_accel1); or
+//         false ("declined": the pair is invalid, not clearly intersecting, or a decision near
+//         the minimum needs the exact fallback) — the caller then uses the candidate list.
+//         Value, label and geometry are bit-identical to rigid_pd2(build_candidates(A, B)).
+//
+// ---- Why a superset suffices for the VALUE (proof).
+// Let M = A ⊕ (−B) = conv{s_i − r_j} and h(u) = max_{x in M} u.x = max_i u.s_i − min_j u.r_j =:
+// D(u), its support function. If the interiors intersect, the origin is interior to M and
+// PD = dist(0, ∂M) = min over facets F of M of h(u_F)/|u_F| (u_F the outward facet normal; a
+// point of ∂M nearest to 0 lies on a facet, and the facet's plane is at distance h(u_F)/|u_F|).
+// For EVERY u ≠ 0 the ball B(0, PD) ⊂ M gives h(u) >= PD |u|, i.e. D(u)²/(u.u) >= PD².
+// A facet of M is the Minkowski sum of faces of A and of −B with a common outward normal and
+// dimension 2: a facet of A (normal ∝ ±N_A,f), a facet of B (∝ ±N_B,f), or the sum of two
+// non-parallel edges (normal ∝ ±eB × eA). With its OUTWARD orientation it is a SPEC §3
+// candidate: FV/VF are oriented outward by construction; for an edge-edge facet with outward
+// normal u, A's support set in direction u is its edge (s_u, s_v), so u.(s_k − s_u) < 0 for
+// A's two other vertices — for n = u both g_k < 0 and the rule keeps n, for n = −u both
+// g_k > 0 and the rule flips to −n = u (such a pair is never undecidable). Hence over the superset
+//     S = { FV:0..3, VF:0..3 } ∪ { +n, −n : n = eB × eA, all 36 edge pairs }
+// we have   min_{u in S} D(u)²/(u.u) = PD²   — every element is >= PD², the outward facet
+// normals are in S and attain it. No orientation rule, no classification, no exact predicate is
+// needed for the value: per edge pair take min(D(n), D(−n)), where with the heights of
+// direction_geometry.h (A: 0, 0, g1, g2; B: hx, hx + q1, hx + q2)
+//     D(+n) = max(0, g1, g2) − hx − min(0, q1, q2),   D(−n) = −min(0, g1, g2) + hx + max(0, q1, q2).
+// Parallel edge pairs (n = 0) span no facet and are not needed for the value.
+// Intersection: the interiors intersect iff D(u) > 0 for every u in S (if not, the origin is
+// on or outside some facet plane, whose normal is in S). So min_S D > E3 (filter_bounds.h,
+// degree 3) decides "intersecting" exactly; otherwise we decline (exact fallback in the list).
+// An exactly parallel edge pair has D(±n) = 0 exactly, so its computed |D| <= E3: declined too.
+//
+// ---- The LABEL. The label is the first REAL candidate (SPEC §3 orientation rule) in canonical
+// order whose value ties with the minimum over the real candidates. Entries of S that are not
+// real candidates are the discarded orientation of decided edge pairs; their value is >= PD²,
+// and if one attains PD² then a real facet-normal candidate ties with it. So only the few
+// entries of S within the tie band of min_S need the orientation rule (filtered signs of
+// g1, g2; declined when unclear). The list path takes vmin_c = min over real candidates and
+// then the first real v <= tie_threshold(vmin_c); we reproduce it exactly: with
+// t1 = tie_threshold(min_S) and t2 >= tie_threshold(t1) (one square root, see
+// superset_kernel.cpp), every real candidate that can be the real minimum or tie with it has
+// v <= t2 (the threshold is monotone), so the entries of S with v <= t2 decide. If no real
+// candidate lies below t1 (impossible unless the tie band is below the rounding error), we
+// decline.
+//
+// ---- Cost. See src/kernel/superset_kernel.cpp for the flop count per pair (≈ 1900 flops, ≈ 115 ns).
+#pragma once
+
+#include "kernel/candidate_directions.h"
+#include "kernel/rigid_depth.h"
+
+namespace pdd::fast {
+
+// `geometry` (optional): filled with the chosen candidate (n, heights, masks, label), equal to
+// candidate(build_candidates(A, B), index of the label).
+// ch.certified: the SPEC §8 verdict (value_bounds.h). `unique` (optional): certified, and every
+// other entry of S is certainly above the chosen one (so it is the exact rigid direction).
+// Precondition for ch.certified and `unique` (not for the value and label): A and B rescaled by
+// power_scale.h (largest |coordinate| in [1, 2)), as hot_path.h does; the error bounds assume
+// that range (value_bounds.h), and so does the kernel's choice of entries to bound
+// (tie_and_certify_bits in superset_kernel.cpp: no underflow in its thresholds).
+bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
+                    Candidate* geometry = nullptr, bool* unique = nullptr);
+
+// rigid_superset(power_scaled(A, B)...) on the raw pair, the scaling fused into the kernel
+// (superset_kernel_scaled): the same choice, geometry and `unique` bit for bit (value and
+// geometry of the scaled pair, e the exponent: the value scales back by 2^-2e), and `extent`
+// (optional) the scaled pair's L of filter_bounds.h (filter_bounds(scaled pair) is
+// filter_bounds_of_extent(*extent): the same maxima, minima and differences). False when
+// power_scale.h's common exact case does not apply or the choice declines: the caller then
+// takes hot_path.h's general frame.
+bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
+                           Candidate* geometry = nullptr, bool* unique = nullptr,
+                           double* extent = nullptr);
+
+// A benchmark baseline only, NOT SPEC §8: the same kernel and pick on the pair as given, with
+// none of the certification (no power-of-two rescaling, no certify pass, no exact path;
+// ch.certified stays false). `pdd bench` times it beside rigid_pd2(A, B) to report what the
+// certification costs.
+bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch);
+
+}  // namespace pdd::fast

@@ -1,0 +1,702 @@
+// deformable_depth.cpp — SPEC §5 variants with exact pruning. See the header.
+#include "qp/deformable_depth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "certification/certify.h"
+#include "certification/compensated_heights.h"
+#include "certification/qp_lower_bound.h"
+#include "certification/refine.h"
+#include "certification/tie_tolerance.h"
+#include "certification/value_bounds.h"
+#include "hot_path.h"
+#include "kernel/superset_depth.h"
+
+namespace pdd::fast {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+inline bool usable(const CandidateSet& set) { return set.intersecting && set.count > 0; }
+inline bool usable(const QuickCandidates& q) { return q.count > 0; }  // intersecting by contract
+
+// The solver's displacement error of value_bounds.h for a computed solution, dT = coeff u H:
+// the tight one when every free vertex's KKT margin (A: C − H + S_A, B: C − H + S_B; its sign
+// is the vertex's status) exceeds twice the wide bound, so that no status can differ from the
+// exact solution's — then H = Ha, the largest of |C| and the heights that enter the closed form
+// (constrained vertices, active free ones: A's with margin < 0, B's with margin > 0); else the
+// wide one with H = Hm (every height). `below_free`/`above_free`: bit i set for a free vertex
+// that the solver moves (A's, B's).
+struct SolverBound {
+  double coeff, H;
+};
+SolverBound solver_bound(const Candidate& c, const DirectionSolution& s, unsigned below_free,
+                         unsigned above_free) {
+  const double Hm = detail::max_height(c);
+  const SolverBound wide{kSolverDisplacementCoeff, Hm};
+  const double margin = 2 * kSolverDisplacementCoeff * kUnitRoundoff * Hm;
+  double Ha = std::fabs(s.c);
+  for (int i = 0; i < 4; ++i) {
+    if (below_free >> i & 1u) {
+      const double m = s.c - c.hA[i] + s.sumA;
+      if (!(std::fabs(m) > margin)) return wide;
+      if (m < 0) Ha = std::max(Ha, std::fabs(c.hA[i]));
+    }
+    if (above_free >> i & 1u) {
+      const double m = s.c - c.hB[i] + s.sumB;
+      if (!(std::fabs(m) > margin)) return wide;
+      if (m > 0) Ha = std::max(Ha, std::fabs(c.hB[i]));
+    }
+    if (c.conA >> i & 1u) Ha = std::max(Ha, std::fabs(c.hA[i]));
+    if (c.conB >> i & 1u) Ha = std::max(Ha, std::fabs(c.hB[i]));
+  }
+  return {kSolverDisplacementCoeffTight, Ha};
+}
+
+struct Valued {
+  double v, r;  // value and its root bound (value_bounds.h); r = 0 when v = +inf
+};
+
+Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound& sb,
+              const FilterBounds& fb) {
+  const double v = s.cost / (20.0 * c.nn);
+  return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
+}
+
+// pdd2_accel(A, B, 1)'s value (only its own interval is used, so kTinyQpRoot may stand in for
+// the root bound where its products-only test passes: value_bounds.h; the wide solver bound
+// (kSolverDisplacementCoeff, Hm) covers whichever solver_bound would return).
+Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
+  const DirectionSolution s =
+      solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+  if (qp_root_rel_tiny(s.cost, c.nn, detail::max_height(c), degree_bounds(fb, c.parallel)))
+    return {s.cost / (20.0 * c.nn), kTinyQpRoot};  // valued()'s value
+  return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
+}
+
+// pdd2_accel(A, B, 1)'s value along c when c is the exact rigid direction and the double
+// heights cannot certify it (a shallow contact: their errors ~u L^3 beside a value ~|n| depth):
+// the case-2 QP on compensated_heights.h's heights (each within e_i of the exact one), certified
+// by value_bounds.h's tight case with the heights' errors restricted to the vertices that
+// matter. Argument: let H~ be those heights, H* the exact ones, e_act the largest e_i over
+// the constrained and the active free vertices. (1) As in solver_bound, a free vertex's
+// computed margin m_i is within 2 dT (wide: 2^12 u Hm) of the exact solution's for H~. (2)
+// Under one fixed status pattern C is a convex combination of the constrained and active
+// heights (direction_qp_impl.h: weights 5 - m_B and 5 - m_A summing to den), so H* moves it by
+// <= e_act; S = (m C - P)/(5 - m) by <= 2 m e_act/(5 - m) <= 8 e_act; a margin C - h_i + S by
+// <= 9 e_act + e_i. So |m_i| > 2 dT + 9 e_act + e_i for every free vertex keeps the pattern
+// optimal (KKT) for H~ and for H*, and for H'' (H* on the constrained and active vertices, H~
+// elsewhere); the closed form ignores the other heights, so Phi(H*) = Phi(H''), and
+// value_bounds.h's Lipschitz argument on H~ and H'' (which differ by <= e_act) gives
+// |Phi(H*) - Phi(H~)| <= 2 e_act (sqrt(2) e_act in case 2, C free): qp_root_rel's e_h. The
+// solver's own error is the tight dT (2^9 u Ha), the direction's e_n the compensated normal's.
+// Precondition: a pair rescaled by power_scale.h (every caller's); a cost or n.n below 2^-900
+// (an unscaled list of a tiny pair, where the solver's values underflow) is declined.
+// Returns the verdict (a review re-derived each step and found no failure on ~92 million
+// heights against rationals and ~39k pdd2_accel1 values against an exact case-2 solver).
+bool accel1_compensated(const TetVertices& A, const TetVertices& B, const Candidate& c, double& value) {
+  detail::CompensatedHeights h;
+  if (!detail::compensated_heights(A, B, c, h)) return false;
+  const DirectionSolution s = solve_deformable(side_of(h.hA, c.conA), side_of(h.hB, c.conB));
+  if (!(s.cost >= 0x1p-900) || !(h.nn >= 0x1p-900)) return false;  // (precondition, above)
+  double Hm = 0;
+  for (int i = 0; i < 4; ++i) Hm = std::max({Hm, std::fabs(h.hA[i]), std::fabs(h.hB[i])});
+  double Ha = std::fabs(s.c), e_act = 0;
+  double margin[8];
+  for (int i = 0; i < 4; ++i) {
+    margin[i] = s.c - h.hA[i] + s.sumA;      // free A vertex: < 0 active
+    margin[4 + i] = s.c - h.hB[i] + s.sumB;  // free B vertex: > 0 active
+    const bool conA = c.conA >> i & 1u, conB = c.conB >> i & 1u;
+    if (conA || margin[i] < 0) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
+    if (conB || margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
+  }
+  const double two_dT = 2 * kSolverDisplacementCoeff * kUnitRoundoff * Hm;
+  for (int i = 0; i < 4; ++i) {
+    if (!(c.conA >> i & 1u) && !(std::fabs(margin[i]) > (two_dT + 9 * e_act + h.eA[i]) * (1 + 0x1p-40))) return false;
+    if (!(c.conB >> i & 1u) && !(std::fabs(margin[4 + i]) > (two_dT + 9 * e_act + h.eB[i]) * (1 + 0x1p-40))) return false;
+  }
+  const double v = s.cost / (20.0 * h.nn);
+  const double r = qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight);
+  value = v;
+  return certified_choice(upper_of(v, r), lower_of(v, r));
+}
+
+// pdd2_accel(A, B, 1) from the superset's rigid choice and its candidate c: the case-2 value
+// along c, certified when the rigid direction is the exact one (`unique`, superset_depth.h)
+// and the value's own interval meets SPEC §8. Returns ch.certified.
+bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const FilterBounds& fb,
+                     Choice& ch) {
+  const Valued x = deformable_valued(c, fb);
+  ch = {x.v, -1, rigid.code};
+  ch.certified = unique && certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r));
+  return ch.certified;
+}
+
+}  // namespace
+
+bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
+                      Choice& accel1) {
+  bool unique = false;
+  if (!rigid_superset(As, Bs, rigid, &c, &unique)) return false;
+  if (accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), accel1)) return true;
+  double v = 0;
+  if (!unique || !accel1_compensated(As, Bs, c, v)) return false;
+  accel1 = {v, -1, rigid.code};
+  accel1.certified = true;
+  return true;
+}
+
+namespace {
+
+// The sweep's variants, as function objects (inlined): `solve` the QP (false: infeasible, not
+// in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
+struct StaticVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    if (c.label.orientation != EdgeOrientation::Decided) return false;  // SPEC §5
+    s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+    return true;
+  }
+  // C tied to A's constrained heights (FV, EE): only B's statuses; C_A empty (VF): wide.
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return c.conA ? solver_bound(c, s, 0u, 0xFu & ~c.conB)
+                  : SolverBound{kSolverDisplacementCoeff, detail::max_height(c)};
+  }
+};
+struct DeformableVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    s = solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+    return true;
+  }
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB);
+  }
+};
+struct RelaxedVariant {
+  bool solve(const Candidate& c, DirectionSolution& s) const {
+    s = solve_relaxed(c.hA, c.hB);
+    return true;
+  }
+  SolverBound bound(const Candidate& c, const DirectionSolution& s) const {
+    return solver_bound(c, s, 0xFu, 0xFu);
+  }
+};
+
+// The exact values of refine.h, per variant (false: not in the family).
+bool exact_static(const detail::ExactCandidate& c, detail::Q& v) {
+  if (c.label.orientation != EdgeOrientation::Decided) return false;  // infeasible (SPEC §5)
+  v = detail::exact_static_value(c);
+  return true;
+}
+bool exact_deformable(const detail::ExactCandidate& c, detail::Q& v) {
+  v = detail::exact_deformable_value(c);
+  return true;
+}
+bool exact_relaxed(const detail::ExactCandidate& c, detail::Q& v) {
+  v = detail::exact_relaxed_value(c);
+  return true;
+}
+
+// A lower bound of an exact value from a computed one (NaN or a failed bound: 0, i.e. nothing
+// can be certified against it).
+inline double safe_lower(double v, double r) {
+  const double lo = lower_of(v, r);
+  return lo >= 0.0 ? lo : 0.0;
+}
+
+// One evaluated candidate whose root bound is deferred: its solution and what the cheap bound
+// test needs (n.n, Hm, degree class). evaluate() gives valued()'s value, root_bound() its
+// root bound (0 when infeasible), deferred_small() qp_root_rel_small (value_bounds.h) with the
+// wide solver bound, which covers the tight one: when true, lower_of(v, root_bound) >
+// kSmallQpLower · v.
+struct Pending {
+  DirectionSolution s;
+  double nn, Hm;
+  bool feasible, parallel;
+};
+template <class Variant>
+double evaluate(const Candidate& c, const Variant& variant, Pending& e) {
+  e.feasible = variant.solve(c, e.s);
+  e.nn = c.nn;
+  e.Hm = detail::max_height(c);
+  e.parallel = c.parallel;
+  return e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
+}
+template <class List, class Variant>
+double evaluate(const List& set, int i, const Variant& variant, Pending& e) {
+  return evaluate(candidate(set, i), variant, e);
+}
+template <class Variant>
+double root_bound(const Candidate& c, const FilterBounds& fb, const Variant& variant, const Pending& e) {
+  if (!e.feasible) return 0.0;
+  const SolverBound sb = variant.bound(c, e.s);
+  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff);
+}
+template <class List, class Variant>
+double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
+  return e.feasible ? root_bound(candidate(set, i), set.fb, variant, e) : 0.0;
+}
+inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
+  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(fb, e.parallel));
+}
+
+// Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
+// the best value so far (header), then pick the first tied minimum. List: CandidateSet or
+// QuickCandidates (same candidates, same order, same values).
+// SPEC §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
+// bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
+// proven in the header, applied to the exact delta).
+template <class List, class Variant, class ExactValue>
+Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValue exact_value) {
+  if (!usable(set)) return {};
+  // r[i], the root bound valued() would give, only where it is used (below).
+  double v[kMaxCandidates], r[kMaxCandidates];
+  Pending p[kMaxCandidates];
+  bool done[kMaxCandidates];
+  int evaluated[kMaxCandidates], n_evaluated = 0;  // the indices with done[i], any order
+  double best = kInf, threshold = kInf;  // threshold = tie_threshold(best) >= the final one
+  auto evaluate_ = [&](int i) {
+    v[i] = evaluate(set, i, variant, p[i]);
+    done[i] = true;
+    evaluated[n_evaluated++] = i;
+  };
+  auto bound = [&](int i) { r[i] = root_bound(set, i, variant, p[i]); };
+  if (hint >= 0 && hint < set.count) {
+    evaluate_(hint);
+    best = v[hint];
+    threshold = tie_threshold(best, set.tie_kappa);
+  }
+  for (int i = 0; i < set.count; ++i) {
+    if (i == hint) continue;
+    const double bound = coeff * delta2(set, i);
+    if (!(bound <= threshold)) {
+      v[i] = kInf;
+      done[i] = false;
+      continue;
+    }
+    evaluate_(i);
+    if (v[i] < best) {
+      best = v[i];
+      threshold = tie_threshold(best, set.tie_kappa);
+    }
+  }
+  Choice ch;
+  ch.index = first_tied_minimum(v, set.count, set.tie_kappa);
+  if (ch.index < 0) return {};  // no finite value (NaN): not certified
+  ch.value = v[ch.index];
+  ch.code = label_code(set, ch.index);
+  auto lower = [&](int i) {
+    return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
+                   : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+  };
+  // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
+  // An evaluated candidate is left out, its bound not computed, when deferred_small shows
+  // lower(i) > kSmallQpLower · v > lo_min so far; a skipped one when certify.h's cheap test
+  // shows lower(i) > kSmallRigidLower · coeff delta² > lo_min so far. Either way lower(i)
+  // exceeds a value >= the final lo_min, so it cannot be the minimum, and the minimum is
+  // unchanged (min is exact in any order). Only the few others pay the divisions and square
+  // roots of their bounds. (v = +inf or NaN: lower = +inf, never the minimum.)
+  // (Without short-circuits where the test is almost always true: its branch predicts well.)
+  // (The choice is an evaluated candidate unless every evaluated value is NaN; then r = 0
+  // gives hi = +inf and no certificate, as any bound would.)
+  if (done[ch.index]) bound(ch.index); else r[ch.index] = 0.0;
+  double lo_min = lower(ch.index);
+  for (int j = 0; j < n_evaluated; ++j) {
+    const int i = evaluated[j];
+    if ((i == ch.index) | !(v[i] < kInf) ||
+        ((kSmallQpLower * v[i] > lo_min) & deferred_small(p[i], set.fb)))
+      continue;
+    bound(i);
+    const double lo = lower(i);
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
+  for (int i = 0; i < set.count; ++i) {
+    if (done[i] | (int(detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
+                   int(detail::rigid_rel_small(set, i))))  // (both evaluated: no branch)
+      continue;
+    const double lo = lower(i);
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
+  const double hi = upper_of(ch.value, r[ch.index]);
+  ch.certified = certified_choice(hi, lo_min);
+  // Not certified: the contenders exactly (refine.h), with every bound. A skipped candidate's
+  // exact value is >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the
+  // family.
+  if (!ch.certified) {
+    for (int j = 0; j < n_evaluated; ++j) bound(evaluated[j]);
+    detail::refine_minimum(set, lower, hi, exact_value, ch);
+  }
+  return ch;
+}
+
+// The sweep over a quick list's lanes, before its edge list exists (quick_lanes), pruned by the
+// dual lower bounds of qp_lower_bound.h: lo[e] <= the exact value of entry e (+inf: not a
+// candidate of the family). Entries are visited as in sweep(): first the one of smallest bound
+// (the hint), then in canonical order (entries ascend in it) every entry whose bound is <=
+// tie_threshold(best so far); the choice is the first tied minimum of the evaluated values in
+// canonical order, as sweep()'s. SPEC §8: an evaluated entry's exact value is >= lower_of(v, its
+// QP bound), a skipped one's >= lo[e]; certified as in sweep. Returns false (nothing decided)
+// when the choice is not certified or more than kMaxLaneEvaluated entries pass (B deep inside a
+// much larger A: many candidates of nearly equal value): the caller then builds the list and
+// runs sweep(), which can refine (refine.h).
+constexpr int kMaxLaneEvaluated = 40;  // (16 sent 3% of the nested family back to the list)
+template <class Variant>
+bool lane_sweep(const QuickCandidates& q, const detail::QpLowerBounds& bounds, Variant variant, Choice& ch) {
+  constexpr int kN = detail::kQpEntries;
+  const double* lo = bounds.lo;
+  int idx[kMaxLaneEvaluated], n = 0;
+  double v[kMaxLaneEvaluated];
+  Pending p[kMaxLaneEvaluated];
+  const double lmin = minimum(lo, kN);
+  if (!(lmin < kInf)) return false;  // (bounds are never NaN)
+  int first = 0;
+  while (!(lo[first] == lmin)) ++first;  // (lmin is one of them)
+  auto evaluate_ = [&](int e) {
+    v[n] = evaluate(entry_candidate(q, e), variant, p[n]);
+    idx[n++] = e;
+  };
+  evaluate_(first);
+  double best = v[0], threshold = tie_threshold(best, q.tie_kappa);
+  const double threshold0 = threshold;
+  // The entries with lo <= threshold0 (often only `first`), in canonical order; of those, the
+  // ones still <= the threshold when reached are evaluated. The others are skipped, their
+  // smallest lo is `split.above`.
+  const detail::QpSplit split = detail::split_at(bounds, threshold0);
+  int pass[kN], m = 0;
+  if (split.below > (lo[first] <= threshold0 ? 1 : 0))
+    for (int e = 0; e < kN; ++e)
+      if ((lo[e] <= threshold0) & (e != first)) pass[m++] = e;
+  for (int j = 0; j < m; ++j) {
+    const int e = pass[j];
+    if (!(lo[e] <= threshold)) continue;
+    if (n == kMaxLaneEvaluated) return false;
+    evaluate_(e);
+    if (v[n - 1] < best) {
+      best = v[n - 1];
+      threshold = tie_threshold(best, q.tie_kappa);
+    }
+  }
+  const double vmin = minimum(v, n), tie = tie_threshold(vmin, q.tie_kappa);
+  int b = -1;  // the first tied minimum in canonical order
+  for (int j = 0; j < n; ++j)
+    if (v[j] <= tie && (b < 0 || idx[j] < idx[b])) b = j;
+  if (b < 0 || !(v[b] < kInf)) return false;
+  const double r_b = root_bound(entry_candidate(q, idx[b]), q.fb, variant, p[b]);
+  double lo_min = safe_lower(v[b], r_b);
+  // the other evaluated entries (deferred_small as in sweep), then every skipped entry's lo:
+  // those above threshold0 (one vectorised pass), and those of `pass` not evaluated
+  for (int j = 0; j < n; ++j) {
+    if ((j == b) | !(v[j] < kInf) || ((kSmallQpLower * v[j] > lo_min) & deferred_small(p[j], q.fb)))
+      continue;
+    const double l = safe_lower(v[j], root_bound(entry_candidate(q, idx[j]), q.fb, variant, p[j]));
+    lo_min = l < lo_min ? l : lo_min;
+  }
+  lo_min = split.above < lo_min ? split.above : lo_min;
+  for (int j = 0; j < m; ++j) {
+    const int e = pass[j];
+    bool evaluated = false;
+    for (int t = 0; t < n; ++t) evaluated |= idx[t] == e;
+    if (!evaluated) lo_min = lo[e] < lo_min ? lo[e] : lo_min;
+  }
+  if (!certified_choice(upper_of(v[b], r_b), lo_min)) return false;
+  ch = Choice{v[b], -1, entry_label_code(q, idx[b])};
+  ch.certified = true;
+  return true;
+}
+
+// The first k candidates in ascending delta order (tie band); -1 entries never written: returns
+// the number found (< min(k, count) only on NaN input).
+template <class List>
+int accel_order_of(const List& set, int k, int* out) {
+  double d[kMaxCandidates];
+  for (int i = 0; i < set.count; ++i) d[i] = delta2(set, i);
+  const int m = k < set.count ? k : set.count;
+  for (int r = 0; r < m; ++r) {
+    const int i = first_tied_minimum(d, set.count, set.tie_kappa);
+    if (i < 0) return r;
+    out[r] = i;
+    d[i] = kInf;  // taken
+  }
+  return m;
+}
+
+// Case 3 refined (refine.h): the exact first k in ascending exact delta² (stable in canonical
+// order), then the exact minimum of their case-2 values. `order` (m entries): the double path's
+// first k when they are certainly the exact first k (separated), else nullptr: then the
+// contenders are the candidates whose certified lower bound of delta² is <= hi_chosen (the
+// largest certified upper bound among the double path's k choices). At least k candidates have
+// exact delta² <= hi_chosen, so the exact k-th smallest is <= hi_chosen and every non-contender
+// is strictly above it: the exact first k are the first k of the contenders in exact order.
+template <class List>
+void refine_accel(const List& set, int k, const int* order, int m, double hi_chosen,
+                  Choice& ch) {
+  constexpr int kMax = kAccelWide + detail::kMaxRefined;
+  int idx[kMax], n = 0;
+  if (order) {
+    for (int r = 0; r < m; ++r) idx[n++] = order[r];
+  } else {
+    for (int i = 0; i < set.count; ++i)
+      if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen)) {
+        if (n == kMax) return;
+        idx[n++] = i;
+      }
+  }
+  if (!set.A || n == 0) return;
+  const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
+  std::vector<detail::ExactCandidate> c;
+  c.reserve(n);
+  for (int j = 0; j < n; ++j) c.push_back(detail::exact_candidate(f, unpack_label(label_code(set, idx[j]))));
+  int pos[kMax];
+  for (int j = 0; j < n; ++j) pos[j] = j;
+  if (!order) {
+    std::vector<detail::Q> d(n);
+    for (int j = 0; j < n; ++j) d[j] = detail::exact_delta2(c[j]);
+    // idx ascends (canonical order), so a stable sort keeps exact ties in canonical order
+    std::stable_sort(pos, pos + n, [&d](int a, int b) { return d[a] < d[b]; });
+  }
+  const int kk = k < n ? k : n;
+  detail::Q best;
+  int bi = -1;
+  for (int r = 0; r < kk; ++r) {
+    const detail::Q v = detail::exact_deformable_value(c[pos[r]]);
+    if (bi < 0 || v < best || (v == best && idx[pos[r]] < idx[bi])) {
+      best = v;
+      bi = pos[r];
+    }
+  }
+  bool ok = true;
+  const double d = detail::rounded_value(detail::unscaled(f, best, 2), ok);
+  if (!ok || !(d > 0.0)) return;
+  ch.value = d;
+  ch.index = idx[bi];
+  ch.code = label_code(set, idx[bi]);
+  ch.certified = ch.refined = true;
+}
+
+// Case 3. SPEC §8: the chosen candidates must be exactly the first k of the exact order (every
+// chosen exact delta² strictly below every other one; exact ties are left to the exact path),
+// and the minimum of their QP values is certified as in sweep.
+template <class List>
+Choice accel_of(const List& set, int k) {
+  if (!usable(set) || k <= 0) return {};
+  int order[kMaxCandidates];
+  const int m = accel_order_of(set, k, order);
+  if (m <= 0) return {};
+  bool chosen[kMaxCandidates] = {};
+  double hi_chosen = 0.0;
+  for (int r = 0; r < m; ++r) {
+    chosen[order[r]] = true;
+    const double hi = upper_of(delta2(set, order[r]), detail::rigid_rel(set, order[r]));
+    hi_chosen = hi > hi_chosen ? hi : hi_chosen;
+  }
+  bool separated = hi_chosen < kInf;
+  // (certify.h: kSmallRigidLower delta² > hi_chosen with a small bound has lower bound
+  // > hi_chosen, so the exact test below would pass: it is skipped)
+  for (int i = 0; i < set.count && separated; ++i)
+    if (!chosen[i] &&
+        !(detail::kSmallRigidLower * delta2(set, i) > hi_chosen && detail::rigid_rel_small(set, i)) &&
+        !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
+      separated = false;
+  const DeformableVariant variant;
+  double v[kMaxCandidates];  // (k is any count on the lists' interface)
+  Pending p[kMaxCandidates];
+  for (int r = 0; r < m; ++r) v[r] = evaluate(set, order[r], variant, p[r]);
+  const double vmin = minimum(v, m);
+  int best = -1;  // among ties, the first in canonical order
+  for (int r = 0; r < m; ++r)
+    if (ties_with_min(v[r], vmin, set.tie_kappa) && (best < 0 || order[r] < order[best])) best = r;
+  if (best < 0) return {};
+  // lo_min = the minimum of safe_lower(v, root bound) over the k, as in sweep: the choice's
+  // own first; another one's bound only when deferred_small cannot show its lower bound above
+  // kSmallQpLower · v > lo_min so far (then it is not the minimum). (NaN v: never left out.)
+  const double rel_best = root_bound(set, order[best], variant, p[best]);
+  double lo_min = safe_lower(v[best], rel_best);
+  for (int r = 0; r < m; ++r) {
+    if ((r == best) | ((kSmallQpLower * v[r] > lo_min) & deferred_small(p[r], set.fb))) continue;
+    const double lo = safe_lower(v[r], root_bound(set, order[r], variant, p[r]));
+    lo_min = lo < lo_min ? lo : lo_min;
+  }
+  Choice ch{v[best], order[best], label_code(set, order[best])};
+  ch.certified = separated && certified_choice(upper_of(v[best], rel_best), lo_min);
+  // k = 1 along the exact rigid direction (separated): compensated heights before rationals
+  // (accel1_compensated; rigid_and_accel1 takes the same step, so both paths agree bit for bit)
+  if (!ch.certified && k == 1 && m == 1 && separated && set.A) {
+    const Candidate c = candidate(set, order[0]);
+    double value = 0;
+    if (accel1_compensated(*set.A, *set.B, c, value)) ch.value = value, ch.certified = true;
+  }
+  if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
+  return ch;
+}
+
+}  // namespace
+
+double static_value(const Candidate& c) {
+  if (c.label.orientation != EdgeOrientation::Decided) return kInf;  // infeasible (SPEC §5)
+  const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+  return s.cost / (20.0 * c.nn);
+}
+
+double deformable_value(const Candidate& c) {
+  const DirectionSolution s =
+      solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+  return s.cost / (20.0 * c.nn);
+}
+
+double relaxed_value(const Candidate& c) { return solve_relaxed(c.hA, c.hB).cost / (20.0 * c.nn); }
+
+Choice pdd2_static(const CandidateSet& set, int hint) {
+  return sweep(set, kStaticBoundCoeff, hint, StaticVariant{}, exact_static);
+}
+Choice pdd2(const CandidateSet& set, int hint) {
+  return sweep(set, kDeformableBoundCoeff, hint, DeformableVariant{}, exact_deformable);
+}
+Choice pdd2_relaxed(const CandidateSet& set, int hint) {
+  return sweep(set, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
+}
+Choice pdd2_static(const QuickCandidates& q, int hint) {
+  return sweep(q, kStaticBoundCoeff, hint, StaticVariant{}, exact_static);
+}
+Choice pdd2(const QuickCandidates& q, int hint) {
+  return sweep(q, kDeformableBoundCoeff, hint, DeformableVariant{}, exact_deformable);
+}
+Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
+  return sweep(q, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
+}
+
+Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
+Choice pdd2_accel(const QuickCandidates& q, int k) { return accel_of(q, k); }
+
+void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                        Positions<double>& qA, Positions<double>& qB) {
+  const DirectionSolution s =
+      solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
+  for (int i = 0; i < 4; ++i) {
+    const double tA = displacement_below(c.hA[i], c.conA >> i & 1u, s) / c.nn;
+    const double tB = displacement_above(c.hB[i], c.conB >> i & 1u, s) / c.nn;
+    for (int k = 0; k < 3; ++k) {
+      qA[i][k] = A[i][k] + tA * c.n[k];
+      qB[i][k] = B[i][k] + tB * c.n[k];
+    }
+  }
+}
+
+namespace {
+// The sweeps' hint: the rigid direction's index (first tied minimum of delta²). Only the index
+// is needed — the sweeps' results do not depend on the hint (header: it only seeds the
+// pruning) — so rigid_pd2's certification and refinement are not run for it.
+template <class List>
+int rigid_hint(const List& s) {
+  return s.count > 0 ? first_tied_minimum(s.delta_sq, s.count, s.tie_kappa) : -1;
+}
+
+// `lanes(q, ch)` on the quick lanes when it decides, else f on the quick list, else f on the full
+// candidate set (all on the stack), on the rescaled pair; the exact path when the choice is not
+// certified (hot_path.h).
+template <class F, class Pick, class Lanes>
+Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick, Lanes lanes) {
+  return detail::certified_hot_path(
+      A, B,
+      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        QuickCandidates q;
+        if (quick_lanes(As, Bs, q)) {
+          if (lanes(q, ch)) return true;
+          quick_edge_list(q);
+          ch = f(q);
+          return true;
+        }
+        CandidateSet set;
+        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        ch = f(set);
+        return true;
+      },
+      pick);
+}
+
+template <class Variant>
+bool lanes_of(const QuickCandidates& q, Variant variant, detail::QpCase which, Choice& ch) {
+  detail::QpLowerBounds lb;
+  detail::qp_lower_bounds(q, which, lb);
+  return lane_sweep(q, lb, variant, ch);
+}
+}  // namespace
+
+bool pdd2_static_lanes(const QuickCandidates& q, Choice& ch) {
+  return lanes_of(q, StaticVariant{}, detail::QpCase::Static, ch);
+}
+bool pdd2_lanes(const QuickCandidates& q, Choice& ch) {
+  return lanes_of(q, DeformableVariant{}, detail::QpCase::Deformable, ch);
+}
+bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch) {
+  return lanes_of(q, RelaxedVariant{}, detail::QpCase::Deformable, ch);
+}
+
+Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B) {
+  return on_list(
+      A, B, [](const auto& s) { return pdd2_static(s, rigid_hint(s)); },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.pdd2_static_dir;
+        return r.pdd2_static;
+      },
+      [](const QuickCandidates& q, Choice& ch) { return pdd2_static_lanes(q, ch); });
+}
+Choice pdd2_choice(const TetVertices& A, const TetVertices& B) {
+  return on_list(
+      A, B, [](const auto& s) { return pdd2(s, rigid_hint(s)); },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.pdd2_dir;
+        return r.pdd2;
+      },
+      [](const QuickCandidates& q, Choice& ch) { return pdd2_lanes(q, ch); });
+}
+Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
+  return on_list(
+      A, B, [](const auto& s) { return pdd2_relaxed(s, rigid_hint(s)); },
+      [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+        l = r.pdd2_relaxed_dir;
+        return r.pdd2_relaxed;
+      },
+      [](const QuickCandidates& q, Choice& ch) { return pdd2_relaxed_lanes(q, ch); });
+}
+Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
+  auto pick = [k](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+    l = std::nullopt;
+    return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;
+  };
+  if (k != 1 && k != kAccelWide) return {};  // the exact path reports the paper's k = 1 and 6
+  if (k == 1)
+    return detail::fused_hot_path(
+        A, B,
+        // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
+        // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
+        // of the kernel's extent: the same maxima, minima and differences)
+        [&A, &B](Choice& ch, int& e) {
+          Choice rigid;
+          Candidate c;
+          bool unique = false;
+          double extent = 0;
+          return rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent) &&
+                 accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch);
+        },
+        [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+          Choice rigid;
+          Candidate c;
+          if (rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
+          QuickCandidates q;
+          if (quick_candidates(As, Bs, q)) {
+            ch = pdd2_accel(q, 1);
+            return true;
+          }
+          CandidateSet set;
+          if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+          ch = pdd2_accel(set, 1);
+          return true;
+        },
+        pick);
+  return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick,
+                 [](const QuickCandidates&, Choice&) { return false; });
+}
+
+}  // namespace pdd::fast

@@ -1,0 +1,97 @@
+// deformable_depth.h — deformable penetration depth PD_d² over all candidates (SPEC §5).
+//
+// Input:  a CandidateSet of an intersecting pair (candidate_directions.h).
+// Output: Choice{value = PD_d², index and label of the argmin candidate, the first in canonical
+//         order among ties}:
+//   pdd2_static   case 1, A static (paper Sec. IV); undecidable EE directions are infeasible and
+//                 skipped (SPEC §5).
+//   pdd2          case 2, both deform (paper Sec. V, eq. 10).
+//   pdd2_relaxed  case 2 with every constraint an inequality.
+//   pdd2_accel    case 3 (paper Sec. VI): the case-2 optimum over the first k candidates in
+//                 ascending delta order (stable in canonical order; tie_tolerance.h).
+// Per direction the QP is solved in closed form by direction_qp.h: value = F / (20 n.n).
+//
+// Exact pruning (lower bounds, proven here). Dropping constraints can only lower a minimum, so
+// every variant's optimum along n is >= that of the relaxed problem restricted to the highest
+// vertex a of A and the lowest vertex b of B, D = a − b > 0. One tetrahedron whose single vertex
+// must move by x (others free) costs (1/20) min{t1² + 3 t² + (t1 + 3t)² : t1 >= x}: the free
+// optimum t = −S = −t1/4 gives (5/4) t1²/20 = x²/16 (n-scaled: x²/(16 n.n)).
+//   case 2 / relaxed:  split D = x + y between the two tets: min (x² + y²)/16 = D²/32
+//                      ==> value(n) >= D²/(32 n.n) = delta²/32.
+//   case 1:            A static, the plane is at or above a, so B's vertex moves by >= D
+//                      ==> value(n) >= D²/(16 n.n) = delta²/16.
+// The functions over raw tetrahedra (pdd2_static_choice, pdd2_choice, pdd2_relaxed_choice) prune
+// with much stronger bounds first: qp_lower_bound.h's dual bounds (the k = m = 1 case is the
+// bound above), computed for all candidates at once on the quick list's lanes, so that ~1.7
+// candidates per sweep are solved instead of ~8; the list and the sweeps below are their
+// fallback when that sweep cannot certify its choice.
+// A candidate is skipped when its bound exceeds tie_threshold(best value so far) (tie_tolerance.h),
+// so it can neither be the minimum nor tie with it (the threshold of the final minimum is lower). Starting from a good direction
+// (the rigid one, `hint`) makes most bounds bite.
+#pragma once
+
+#include "kernel/candidate_directions.h"
+#include "kernel/quick_candidates.h"
+#include "kernel/rigid_depth.h"
+#include "pdd/pair_result.h"
+#include "qp/direction_qp.h"
+
+namespace pdd::fast {
+
+inline constexpr int kAccelWide = 6;  // pdd2_accel6: the paper's "first six directions" (SPEC §5)
+inline constexpr double kDeformableBoundCoeff = 1.0 / 32.0;  // case 2 and relaxed, see above
+inline constexpr double kStaticBoundCoeff = 1.0 / 16.0;      // case 1, see above
+
+// PD_d² along one candidate; +inf when infeasible (case 1 on an undecidable EE direction).
+double static_value(const Candidate& c);
+double deformable_value(const Candidate& c);
+double relaxed_value(const Candidate& c);
+
+// `hint`: index evaluated first to seed the pruning (e.g. rigid_pd2(set).index), or −1.
+// The lists must be built on a pair rescaled by power_scale.h, as every caller in the engine
+// does: the `certified` verdicts assume it (a review showed a list of an unscaled pair ~2^-174
+// across, inside filter_bounds.h's range, certifying values 2e-4 off: the QP's values underflow).
+Choice pdd2_static(const CandidateSet& set, int hint = -1);
+Choice pdd2(const CandidateSet& set, int hint = -1);
+Choice pdd2_relaxed(const CandidateSet& set, int hint = -1);
+Choice pdd2_accel(const CandidateSet& set, int k);
+
+// The same over the hot-path list (quick_candidates): identical results.
+Choice pdd2_static(const QuickCandidates& q, int hint = -1);
+Choice pdd2(const QuickCandidates& q, int hint = -1);
+Choice pdd2_relaxed(const QuickCandidates& q, int hint = -1);
+Choice pdd2_accel(const QuickCandidates& q, int k);
+
+// The lane sweeps of the functions over raw tetrahedra below, on a quick_lanes result of a
+// rescaled pair (quick_candidates.h), pruned by qp_lower_bound.h's dual bounds: true with a
+// certified choice (index −1, label code set), false when they cannot decide (then the list's
+// or the set's sweeps above, which can refine). solve_pair uses them too, so that both report
+// the same values and labels.
+bool pdd2_static_lanes(const QuickCandidates& q, Choice& ch);
+bool pdd2_lanes(const QuickCandidates& q, Choice& ch);
+bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch);
+
+// The first try of pdd2_accel(A, B, 1) on a pair rescaled by power_scale.h (As, Bs):
+// rigid_superset's rigid choice and its candidate `c` (superset_depth.h), and `accel1`, the
+// case-2 value along c. True when both are certified (the rigid direction is the exact one,
+// `unique`, and accel1's own interval meets SPEC §8); false: the caller takes the candidate list.
+bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
+                      Choice& accel1);
+
+// Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
+void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                        Positions<double>& qA, Positions<double>& qB);
+
+// Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the full
+// candidate set (on the stack), on the pair rescaled by a power of two; value 0 when not
+// intersecting or invalid. The hot functions to time. SPEC §8: the choice is certified
+// (value_bounds.h) or comes from the exact path (certified = true either way); NaN with
+// certified = false when the value is not a normal double. pdd2_accel(A, B, k): k = 1 or 6.
+// pdd2_accel(A, B, 1) is the case-2 QP on the rigid direction of rigid_superset
+// (superset_depth.h, index −1) when it decides: rigid PD plus one direction solve.
+Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B);
+Choice pdd2_choice(const TetVertices& A, const TetVertices& B);
+Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B);
+Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k);
+
+}  // namespace pdd::fast

@@ -1,0 +1,126 @@
+// result_json.h — one SPEC §6 JSON Lines record from a PairResult of either engine, and back.
+//
+// Keys in SPEC order: name, intersecting, the seven values, the four labels, q1_A, q1_B,
+// error, then SPEC §9's pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global and (exact
+// engine) pdd2_global_lower or (fast engine) pdd2_global_error: null, or why the §9 keys are null
+// while the others are reported. A rejected pair is {"name", "error"} only. The number writer decides how R is
+// written: exact rationals as "p/q" strings, doubles as JSON numbers that read back to the
+// same double (nlohmann writes the shortest round-trip form). result_from_json reads such a
+// record back with a number reader (the inverse of the writer).
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "pdd/pair_result.h"
+
+namespace pdd::io {
+
+using Json = nlohmann::ordered_json;
+
+template <class R>
+using NumberWriter = std::function<Json(const R&)>;
+template <class R>
+using NumberReader = std::function<R(const Json&)>;
+
+template <class R>
+Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
+  Json j;
+  j["name"] = r.name;
+  if (r.error) {
+    j["error"] = *r.error;
+    return j;
+  }
+  j["intersecting"] = r.intersecting;
+  for (std::size_t k = 0; k < kValueCount; ++k) j[kValueKeys[k]] = number(record_value(r, k));
+  for (std::size_t k = 0; k < kLabelCount; ++k) {
+    const auto& l = record_label(r, k);
+    j[kLabelKeys[k]] = l ? Json(l->str()) : Json(nullptr);
+  }
+  auto positions = [&](const Positions<R>& q) {
+    Json a = Json::array();
+    for (const auto& v : q) a.push_back(Json::array({number(v[0]), number(v[1]), number(v[2])}));
+    return a;
+  };
+  j["q1_A"] = positions(r.q1_A);
+  j["q1_B"] = positions(r.q1_B);
+  j["error"] = nullptr;
+  // SPEC §9 (the table's order: after error); null keys where pdd2_global alone could not be had
+  // (fast engine: pdd2_global_error, written by the fast engine's records only)
+  const bool global_ok = !r.pdd2_global_error;
+  j["pdd2_global"] = global_ok ? number(r.pdd2_global) : Json(nullptr);
+  if (r.pdd2_global_normal && global_ok) {
+    const auto& n = *r.pdd2_global_normal;
+    j["pdd2_global_normal"] = Json::array({number(n[0]), number(n[1]), number(n[2])});
+  } else {
+    j["pdd2_global_normal"] = nullptr;
+  }
+  j["q1_A_global"] = global_ok ? positions(r.q1_A_global) : Json(nullptr);
+  j["q1_B_global"] = global_ok ? positions(r.q1_B_global) : Json(nullptr);
+  if (r.pdd2_global_lower) j["pdd2_global_lower"] = number(*r.pdd2_global_lower);
+  if constexpr (std::is_floating_point_v<R>)
+    j["pdd2_global_error"] = global_ok ? Json(nullptr) : Json(*r.pdd2_global_error);
+  return j;
+}
+
+// The record written by result_json, read back; throws (nlohmann::json's exceptions, or
+// std::runtime_error for a malformed label) when a key is missing or mistyped.
+template <class R>
+PairResult<R> result_from_json(const Json& j, const NumberReader<R>& number) {
+  PairResult<R> r;
+  r.name = j.at("name").template get<std::string>();
+  if (!j.at("error").is_null()) {
+    r.error = j.at("error").template get<std::string>();
+    return r;
+  }
+  auto label = [](const Json& l) -> std::optional<DirectionLabel> {
+    if (l.is_null()) return std::nullopt;
+    auto parsed = DirectionLabel::parse(l.template get<std::string>());
+    if (!parsed) throw std::runtime_error("bad label " + l.dump());
+    return parsed;
+  };
+  auto positions = [&](const Json& q) {
+    Positions<R> out;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) out[i][k] = number(q.at(i).at(k));
+    return out;
+  };
+  r.intersecting = j.at("intersecting").template get<bool>();
+  r.rigid_pd2 = number(j.at("rigid_pd2"));
+  r.eq11_pd2 = number(j.at("eq11_pd2"));
+  r.pdd2_static = number(j.at("pdd2_static"));
+  r.pdd2 = number(j.at("pdd2"));
+  r.pdd2_relaxed = number(j.at("pdd2_relaxed"));
+  r.pdd2_accel1 = number(j.at("pdd2_accel1"));
+  r.pdd2_accel6 = number(j.at("pdd2_accel6"));
+  r.rigid_dir = label(j.at("rigid_dir"));
+  r.pdd2_static_dir = label(j.at("pdd2_static_dir"));
+  r.pdd2_dir = label(j.at("pdd2_dir"));
+  r.pdd2_relaxed_dir = label(j.at("pdd2_relaxed_dir"));
+  r.q1_A = positions(j.at("q1_A"));
+  r.q1_B = positions(j.at("q1_B"));
+  if (const auto e = j.find("pdd2_global_error"); e != j.end() && !e->is_null()) {
+    r.pdd2_global_error = e->template get<std::string>();
+    if constexpr (std::is_floating_point_v<R>) {  // the fields' values for a declined pdd2_global
+      const R nan = std::numeric_limits<R>::quiet_NaN();
+      r.pdd2_global = nan;
+      for (Positions<R>* q : {&r.q1_A_global, &r.q1_B_global})
+        for (auto& x : *q) x = {nan, nan, nan};
+    }
+    return r;
+  }
+  r.pdd2_global = number(j.at("pdd2_global"));
+  if (const Json& n = j.at("pdd2_global_normal"); !n.is_null())
+    r.pdd2_global_normal = std::array<R, 3>{number(n.at(0)), number(n.at(1)), number(n.at(2))};
+  r.q1_A_global = positions(j.at("q1_A_global"));
+  r.q1_B_global = positions(j.at("q1_B_global"));
+  if (j.contains("pdd2_global_lower")) r.pdd2_global_lower = number(j.at("pdd2_global_lower"));
+  return r;
+}
+
+}  // namespace pdd::io
