@@ -266,10 +266,41 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
   return true;
 }
 
-// One active set's H (its entries within h_error, absolute; on the exact path H is the exact
-// one times 2^-pe, rounded once) and sign conditions (built only when an eigenpair survives):
-// prune by eigenvalue, evaluate the eigenvectors (or the eigen-plane's arc) that satisfy the
-// conditions (global_depth.h).
+// One active set's piece as consider_piece takes it: H, its entries within h_error (absolute;
+// on the exact path H is the exact one times 2^-pe, rounded once), and which path builds it.
+struct PieceMatrix {
+  const Eigen::Matrix3d& H;
+  double h_error;
+  bool exact;
+  long pe;
+};
+
+// What the enumeration offers to and prunes with: the evaluations' problem, the best so far,
+// and the lower bound on every G(u) (global_depth.h), in the pair's units.
+struct Search {
+  const Problem& P;
+  Best& best;
+  double lower;
+};
+
+// The piece's own operations: make_conditions() its sign conditions (built only when an
+// eigenpair survives), refine(v, mu) and ritz(e, f, out) on its H (refine and ritz below),
+// suspect(k) (exact path: eigenvector k held its signs, for unrepresented()).
+template <class MakeConditions, class Refine, class Ritz, class Suspect>
+struct PieceCalls {
+  MakeConditions make_conditions;
+  Refine refine;
+  Ritz ritz;
+  Suspect suspect;
+};
+template <class MakeConditions, class Refine, class Ritz, class Suspect>
+PieceCalls<MakeConditions, Refine, Ritz, Suspect> piece_calls(MakeConditions make_conditions, Refine refine,
+                                                              Ritz ritz, Suspect suspect) {
+  return {make_conditions, refine, ritz, suspect};
+}
+
+// One active set's H and sign conditions: prune by eigenvalue, evaluate the eigenvectors (or
+// the eigen-plane's arc) that satisfy the conditions (global_depth.h).
 // Pruning window: an eigenpair can hold the minimiser only if its exact eigenvalue mu (= G
 // there) lies in [lower, best): every G(u) >= lower (global_depth.h's bound), and a value at or
 // above the best cannot improve it. The computed eigenvalues of the rounded H are within
@@ -278,45 +309,77 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out) {
 // form's cubic roots: measured 2e-11 |H| at a gap of 4e-6 |H|, 4.5e-9 |H| below 1e-6 |H|), so
 // each eigenvalue's margin adds 8 u |H|^2 / max(gap to its neighbours, sqrt(u) |H|) (>= 1e-9
 // |H| at any gap). The window is widened by that margin on both sides (and kPrune above).
-template <class Refine, class Ritz, class MakeConditions, class Suspect>
-void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions make_conditions,
-                    const Problem& P, Best& best, double lower, Refine refine, Ritz ritz, bool exact,
-                    long pe, Suspect suspect) {
-  const double hnorm = H.norm();
-  const double margin = kEigen * hnorm + 3 * h_error;
-  const double best_here = best.value_in(pe);  // the best value in this piece's units
-  const double lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
-  const double threshold = best_here * (1 - kPrune) + margin;
-  const double floor = lower_here - margin;
+template <class Calls>
+class PieceVisit {
+ public:
+  PieceVisit(const PieceMatrix& piece, Calls& calls, const Search& search)
+      : H(piece.H), h_error(piece.h_error), exact(piece.exact), pe(piece.pe), calls(calls), P(search.P),
+        best(search.best), lower(search.lower) {}
+
+  void run() {
+    hnorm = H.norm();
+    margin = kEigen * hnorm + 3 * h_error;
+    best_here = best.value_in(pe);  // the best value in this piece's units
+    lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
+    threshold = best_here * (1 - kPrune) + margin;
+    floor = lower_here - margin;
+    if (outside_window_cheaply() || !solve()) return;
+    if (!exact && !double_path_accuracy()) return;
+    cond = calls.make_conditions();
+    if (exact) {
+      offer_smallest();
+      for (int k = 0; k < 8; ++k) offer_wall(k);
+      offer_ritz();
+    }
+    offer_eigenvectors();
+    if (exact)
+      for (int k = 0; k < 3; ++k)
+        if (held[k]) calls.suspect(k);
+  }
+
+ private:
   // Cheap tests first. mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
   // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and the
   // entries' own errors): 64 u |H|_F^3 + 6 |H|_F^2 (3 h_error). mu_max <= trace (H is PSD).
-  const double tr = H.trace();
-  const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm - 18 * hnorm * hnorm * h_error;
-  if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return;
-  if (tr + 3 * margin < floor) return;
+  bool outside_window_cheaply() const {
+    const double tr = H.trace();
+    const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm - 18 * hnorm * hnorm * h_error;
+    if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return true;
+    if (tr + 3 * margin < floor) return true;
+    return false;
+  }
+
+  // The eigenpairs and each eigenvalue's margin (above); false when none can matter.
   // Double path: the closed-form solver (fast; eigenvectors off by ~u |H| / gap, so the value
   // along one exceeds the stationary value by ~|H| (u |H| / gap)^2, below 1e-13 of any depth
   // this path takes, >= 1e-10 scale^2). Exact path: the iterative solver (Householder + QR),
   // whose vectors keep structure such as a zero row, then inverse iteration (refine).
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  if (exact) eig.compute(H);
-  else eig.computeDirect(H);
-  if (eig.info() != Eigen::Success) return;
-  Eigen::Vector3d mu = eig.eigenvalues();
-  double m[3];  // each eigenvalue's margin (above)
-  for (int k = 0; k < 3; ++k) {
-    double gap = INFINITY;
-    if (k > 0) gap = std::min(gap, mu(k) - mu(k - 1));
-    if (k < 2) gap = std::min(gap, mu(k + 1) - mu(k));
-    m[k] = margin + 8 * kU * hnorm * hnorm / std::max(gap, std::sqrt(kU) * hnorm);
+  bool solve() {
+    if (exact) eig.compute(H);
+    else eig.computeDirect(H);
+    if (eig.info() != Eigen::Success) return false;
+    mu = eig.eigenvalues();
+    for (int k = 0; k < 3; ++k) {
+      double gap = INFINITY;
+      if (k > 0) gap = std::min(gap, mu(k) - mu(k - 1));
+      if (k < 2) gap = std::min(gap, mu(k + 1) - mu(k));
+      m[k] = margin + 8 * kU * hnorm * hnorm / std::max(gap, std::sqrt(kU) * hnorm);
+    }
+    bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
+    for (int k = 0; k < 3; ++k) any = any || in_window(k);
+    return any;
   }
-  auto in_window = [&](int k) {
+
+  bool in_window(int k) const {
     return mu(k) >= lower_here - m[k] && mu(k) < best_here * (1 - kPrune) + m[k];
-  };
-  bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
-  for (int k = 0; k < 3; ++k) any = any || in_window(k);
-  if (!any) return;
+  }
+  double gap_of(int k) const {
+    double g = INFINITY;
+    for (int j = 0; j < 3; ++j)
+      if (j != k) g = std::min(g, std::fabs(mu(j) - mu(k)));
+    return g;
+  }
+
   // Near-double eigenvalues (double path). An eigenvector v~ off the exact one v* by small
   // components d_j along the other eigenvectors has a value off by sum_j (lambda_j - mu) d_j^2
   // (the quadratic form on the unit sphere), and d_j ~ E / |lambda_j - mu| for a matrix error
@@ -330,21 +393,15 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   // |H| + 3 h_error), and where its estimate 2 E^2 / gap, E = 3 h_error +
   // 8 u |H| (H's error and the solver's), exceeds 1e-11 of the eigenvalue (a tenth of the
   // budget kGlobalRel), the pair is redone on exact pieces (needs_exact), whose Ritz offers
-  // below do not depend on the gap.
-  if (!exact) {
-    auto gap_of = [&](int k) {
-      double g = INFINITY;
-      for (int j = 0; j < 3; ++j)
-        if (j != k) g = std::min(g, std::fabs(mu(j) - mu(k)));
-      return g;
-    };
+  // below do not depend on the gap. false: the iterative solver failed (needs_exact set).
+  bool double_path_accuracy() {
     bool near_double = false;
     for (int k = 0; k < 3; ++k) near_double = near_double || (in_window(k) && !(gap_of(k) >= kNearDouble * hnorm));
     if (near_double) {
       eig.compute(H);
       if (eig.info() != Eigen::Success) {
         best.needs_exact = true;
-        return;
+        return false;
       }
       mu = eig.eigenvalues();
       for (double& mk : m) mk = margin;
@@ -358,23 +415,29 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
     const double E = 3 * h_error + 8 * kU * hnorm;
     for (int k = 0; k < 3; ++k)
       if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here))) best.needs_exact = true;
+    return true;
   }
-  const Conditions cond = make_conditions();
-  bool held[3] = {false, false, false};  // exact path: eigenvector k held the signs
-  auto offer_if_held = [&](const V3& v, int k) {
+
+  V3 vector(int k) const {
+    const Eigen::Vector3d e = eig.eigenvectors().col(k);
+    return V3{e(0), e(1), e(2)};
+  }
+  void offer_if_held(const V3& v, int k) {  // k: the eigenvector's index, -1 for none
     if (!cond.hold(v)) return;
     if (k >= 0) held[k] = true;
     best.offer(P, v);
-  };
+  }
+
   // Generic minimisers are interior to their piece, hence the smallest eigenvalue's vector
   // (the Rayleigh quotient has no other local minimum). Its eigenvalue can be far below the
   // solver's resolution u |H| (a vertex 1e18 away makes |H| ~ 1e36 while the depth is ~1):
   // inverse iteration with shift 0 on the exact H (slow path) finds it regardless.
-  if (exact && !(mu(0) < lower_here - m[0])) {
-    const Eigen::Vector3d e = eig.eigenvectors().col(0);
-    const V3 v = refine(V3{e(0), e(1), e(2)}, 0.0);
+  void offer_smallest() {
+    if (mu(0) < lower_here - m[0]) return;
+    const V3 v = calls.refine(vector(0), 0.0);
     for (double s : {1.0, -1.0}) offer_if_held(mul(v, s), 0);
   }
+
   // A far vertex (exact path): a vertex 1e18 away from the others makes the H of every piece
   // where it is active the sum of a moderate part and a huge rank-one part ~ d d^T (d its
   // lever); the minimiser then sits on the wall l.v = 0 between a moderate piece (vertex free)
@@ -385,37 +448,37 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   // by 2^-49 rad into the piece: far above the normal's rounding (3 u of each component), so
   // the vertex stays free, and a change of the value of ~2^-49 |H| / G relative. Each offer is
   // evaluated exactly; offers only ever lower the result.
-  if (exact)
-    for (int k = 0; k < 8; ++k) {
-      const V3& l = cond.l[k];
-      const double ln = norm(l);
-      if (!(ln > 0)) continue;
-      const int axis = std::fabs(l[0]) <= std::fabs(l[1]) && std::fabs(l[0]) <= std::fabs(l[2]) ? 0
-                       : std::fabs(l[1]) <= std::fabs(l[2])                                     ? 1
-                                                                                                : 2;
-      V3 p = cross(l, V3{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0});
-      p = mul(p, 1 / norm(p));
-      const V3 q = mul(cross(l, p), 1 / ln);
-      auto form = [&](const V3& x, const V3& y) {
-        double f = 0;
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) f += x[r] * H(r, c) * y[c];
-        return f;
-      };
-      const double m00 = form(p, p), m01 = form(p, q), m11 = form(q, q);
-      const double mw = (m00 + m11) / 2 - std::hypot((m00 - m11) / 2, m01);
-      if (!(mw < threshold) || mw < floor) continue;
-      const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
-      const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
-      double ua = first ? a0 : a1, ub = first ? b0 : b1;
-      const double big = std::max(std::fabs(ua), std::fabs(ub));  // H-sized: may be ~1e-300
-      if (!(big > 0)) continue;
-      const V3 u = add(mul(p, ua / big), mul(q, ub / big));
-      const V3 nudge = mul(l, cond.sign[k] * 0x1p-49 / ln);
-      for (double s : {1.0, -1.0}) {
-        offer_if_held(add(mul(u, s / norm(u)), nudge), -1);  // (a wall: not an eigenvector)
-      }
+  void offer_wall(int k) {
+    const V3& l = cond.l[k];
+    const double ln = norm(l);
+    if (!(ln > 0)) return;
+    const int axis = std::fabs(l[0]) <= std::fabs(l[1]) && std::fabs(l[0]) <= std::fabs(l[2]) ? 0
+                     : std::fabs(l[1]) <= std::fabs(l[2])                                     ? 1
+                                                                                              : 2;
+    V3 p = cross(l, V3{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0});
+    p = mul(p, 1 / norm(p));
+    const V3 q = mul(cross(l, p), 1 / ln);
+    auto form = [&](const V3& x, const V3& y) {
+      double f = 0;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) f += x[r] * H(r, c) * y[c];
+      return f;
+    };
+    const double m00 = form(p, p), m01 = form(p, q), m11 = form(q, q);
+    const double mw = (m00 + m11) / 2 - std::hypot((m00 - m11) / 2, m01);
+    if (!(mw < threshold) || mw < floor) return;
+    const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
+    const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
+    double ua = first ? a0 : a1, ub = first ? b0 : b1;
+    const double big = std::max(std::fabs(ua), std::fabs(ub));  // H-sized: may be ~1e-300
+    if (!(big > 0)) return;
+    const V3 u = add(mul(p, ua / big), mul(q, ub / big));
+    const V3 nudge = mul(l, cond.sign[k] * 0x1p-49 / ln);
+    for (double s : {1.0, -1.0}) {
+      offer_if_held(add(mul(u, s / norm(u)), nudge), -1);  // (a wall: not an eigenvector)
     }
+  }
+
   // Exact path: near-double eigenvalues. On the plane of two computed eigenvectors e, f whose
   // eigenvalues are within 1e-2 of each other, the Rayleigh-Ritz vectors of the exact H (ritz:
   // the 2x2 matrix K = [e f]^T H [e f] in rationals, its eigenvectors by one atan2 of its
@@ -427,50 +490,72 @@ void consider_piece(const Eigen::Matrix3d& H, double h_error, MakeConditions mak
   // <= u mu; the atan2 of entries rounded once is good to a few u. The inverse iteration
   // (refine) alone cannot do this: its shift, 1e-6 of mu below, lies between two eigenvalues
   // that are closer than that.
-  if (exact)
+  void offer_ritz() {
     for (int k = 0; k < 2; ++k) {
       if (!(in_window(k) || in_window(k + 1))) continue;
       if (!(mu(k + 1) - mu(k) <= 1e-2 * std::max(std::fabs(mu(k + 1)), std::fabs(mu(k))) + 2 * m[k])) continue;
-      const Eigen::Vector3d e = eig.eigenvectors().col(k), f = eig.eigenvectors().col(k + 1);
       V3 r[2];
-      if (!ritz(V3{e(0), e(1), e(2)}, V3{f(0), f(1), f(2)}, r)) continue;
+      if (!calls.ritz(vector(k), vector(k + 1), r)) continue;
       for (const V3& v : r)
         for (double s : {1.0, -1.0}) offer_if_held(mul(v, s), -1);
     }
-  for (int k = 0; k < 3; ++k) {
-    if (!(mu(k) < best_here * (1 - kPrune) + m[k])) break;  // ascending
-    // A plane of eigenvectors: two eigenvalues within the solver's resolution of each other
-    // (relative to them, not to |H|: a far vertex's huge eigenvalue beside two moderate ones
-    // must not merge the moderate two). Its arc's middle is offered, and each computed vector.
-    const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * std::fabs(mu(k + 1)) + 2 * m[k];
-    if (mu(k) < lower_here - m[k] && !(plane && mu(k + 1) >= lower_here - m[k + 1])) continue;
-    const Eigen::Vector3d e = eig.eigenvectors().col(k);
-    if (plane) {
-      const Eigen::Vector3d f = eig.eigenvectors().col(k + 1);
-      V3 w;
-      if (arc_middle(cond, V3{e(0), e(1), e(2)}, {f(0), f(1), f(2)}, w)) {
-        held[k] = held[k + 1] = true;
-        best.offer(P, w);
+  }
+
+  // The eigenvectors in the window, ascending. A plane of eigenvectors: two eigenvalues within
+  // the solver's resolution of each other (relative to them, not to |H|: a far vertex's huge
+  // eigenvalue beside two moderate ones must not merge the moderate two). Its arc's middle is
+  // offered, and each computed vector.
+  void offer_eigenvectors() {
+    for (int k = 0; k < 3; ++k) {
+      if (!(mu(k) < best_here * (1 - kPrune) + m[k])) break;  // ascending
+      const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * std::fabs(mu(k + 1)) + 2 * m[k];
+      if (mu(k) < lower_here - m[k] && !(plane && mu(k + 1) >= lower_here - m[k + 1])) continue;
+      if (plane) {
+        offer_plane(k);
+        ++k;
+        continue;
       }
-      for (int j = 0; j < 2; ++j) {
-        const Eigen::Vector3d& g = j ? f : e;
-        const V3 u = refine(V3{g(0), g(1), g(2)}, mu(k));
-        for (double s : {1.0, -1.0}) offer_if_held(mul(u, s), k + j);
+      // The polish (refine) only for an orientation that holds its conditions as computed: the
+      // conditions' tolerance (kSign) is far above the polish's change of direction.
+      const V3 raw = vector(k);
+      for (double s : {1.0, -1.0}) {
+        if (!exact && !cond.hold(mul(raw, s))) continue;
+        offer_if_held(mul(calls.refine(raw, mu(k)), s), k);
       }
-      ++k;
-      continue;
-    }
-    // The polish (refine) only for an orientation that holds its conditions as computed: the
-    // conditions' tolerance (kSign) is far above the polish's change of direction.
-    const V3 raw{e(0), e(1), e(2)};
-    for (double s : {1.0, -1.0}) {
-      if (!exact && !cond.hold(mul(raw, s))) continue;
-      offer_if_held(mul(refine(raw, mu(k)), s), k);
     }
   }
-  if (exact)
-    for (int k = 0; k < 3; ++k)
-      if (held[k]) suspect(k);
+  void offer_plane(int k) {  // eigenvectors k and k + 1 span a plane
+    const V3 e = vector(k), f = vector(k + 1);
+    V3 w;
+    if (arc_middle(cond, e, f, w)) {
+      held[k] = held[k + 1] = true;
+      best.offer(P, w);
+    }
+    for (int j = 0; j < 2; ++j) {
+      const V3 u = calls.refine(j ? f : e, mu(k));
+      for (double s : {1.0, -1.0}) offer_if_held(mul(u, s), k + j);
+    }
+  }
+
+  const Eigen::Matrix3d& H;
+  const double h_error;
+  const bool exact;
+  const long pe;
+  Calls& calls;
+  const Problem& P;
+  Best& best;
+  const double lower;
+  double hnorm = 0, margin = 0, best_here = 0, lower_here = 0, threshold = 0, floor = 0;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  Eigen::Vector3d mu;
+  double m[3] = {0, 0, 0};  // each eigenvalue's margin (above)
+  Conditions cond;
+  bool held[3] = {false, false, false};  // exact path: eigenvector k held the signs
+};
+
+template <class Calls>
+void consider_piece(const PieceMatrix& piece, Calls& calls, const Search& search) {
+  PieceVisit<Calls>(piece, calls, search).run();
 }
 
 // The number of eigenvalues of the symmetric M below t, exactly. N = M - tI has the
@@ -627,28 +712,51 @@ void integer_normals(const detail::Q (&y)[3], int tries, int keep, std::vector<V
 // (the eigenvalue lies in the window), which no offer meets unless its value is as low as the
 // floor (0, or ~PD^2 / 32 <= G): in practice the pair is rejected as before. The offers are tried in order of cost (x itself; the 26 triples one ulp
 // away; integer normals along y) until q meets lo to kGlobalRel (below).
-bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bottom, detail::Q& lo) {
-  using detail::Q;
-  lo = bottom;
-  Q h[3][3];
-  long pe = LONG_MIN;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) h[r][c] = s.h[r][c], pe = std::max(pe, detail::log2_estimate(h[r][c]));
-  if (pe == LONG_MIN) return false;  // h = 0 (no eigenvalue in the window: not reached)
-  Eigen::Matrix3d H;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-      Q x = h[r][c];
-      detail::scale_pow2(x, -pe);
-      H(r, c) = x.get_d();
-    }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
-  if (eig.info() != Eigen::Success) return false;
-  const Eigen::Vector3d mu_d = eig.eigenvalues();  // in units of 2^pe
-  const Eigen::Vector3d e0 = eig.eigenvectors().col(s.k);
+// represent_suspect's exact arithmetic on one suspect (its argument above): the eigenvector x
+// (Eigen's, polished), y (one exact step more), the Rayleigh quotient rho of the last vector
+// given to rayleigh() with R2 = |h q - rho q|^2 / q.q and q.q, and what settle() proved.
+class SuspectProof {
+  using Q = detail::Q;
+
+ public:
+  explicit SuspectProof(const Best::Suspect& s) : s(s) {}
+
+  // h (exact), its double image H = h 2^-pe and Eigen's eigenpairs of H; false when h = 0 or
+  // the solver fails.
+  bool setup() {
+    pe = LONG_MIN;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) h[r][c] = s.h[r][c], pe = std::max(pe, detail::log2_estimate(h[r][c]));
+    if (pe == LONG_MIN) return false;  // h = 0 (no eigenvalue in the window: not reached)
+    Eigen::Matrix3d H;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        Q x = h[r][c];
+        detail::scale_pow2(x, -pe);
+        H(r, c) = x.get_d();
+      }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+    if (eig.info() != Eigen::Success) return false;
+    mu_d = eig.eigenvalues();  // in units of 2^pe
+    e0 = eig.eigenvectors().col(s.k);
+    return true;
+  }
+
+  // x: Eigen's vector polished by refine, shifted by its exact Rayleigh quotient; then rho and
+  // R2 of x. false when a vector vanishes.
+  bool polish() {
+    qx[0] = Q(e0(0)), qx[1] = Q(e0(1)), qx[2] = Q(e0(2));
+    if (sgn(qx[0]) == 0 && sgn(qx[1]) == 0 && sgn(qx[2]) == 0) return false;
+    rayleigh(qx);
+    x = refine(h, V3{e0(0), e0(1), e0(2)}, in_units(rho), pe);
+    if (!nonzero(x)) return false;
+    for (int c = 0; c < 3; ++c) qx[c] = Q(x[c]);
+    rayleigh(qx);
+    return true;
+  }
+
   // The Rayleigh quotient rho of q, R2 = |h q - rho q|^2 / q.q and q.q, exactly.
-  Q rho, R2, qq;
-  auto rayleigh = [&](const Q (&q)[3]) {
+  void rayleigh(const Q (&q)[3]) {
     Q hq[3];
     for (int r = 0; r < 3; ++r) hq[r] = h[r][0] * q[0] + h[r][1] * q[1] + h[r][2] * q[2];
     qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
@@ -659,26 +767,14 @@ bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bott
       R2 += res * res;
     }
     R2 /= qq;
-  };
-  auto in_units = [&](const Q& v) {  // v 2^-pe as a double
-    Q t = v;
-    detail::scale_pow2(t, -pe);
-    return t.get_d();
-  };
-  // x: Eigen's vector polished by refine, shifted by its exact Rayleigh quotient.
-  Q qx[3] = {Q(e0(0)), Q(e0(1)), Q(e0(2))};
-  if (sgn(qx[0]) == 0 && sgn(qx[1]) == 0 && sgn(qx[2]) == 0) return false;
-  rayleigh(qx);
-  const V3 x = refine(h, V3{e0(0), e0(1), e0(2)}, in_units(rho), pe);
-  if (!nonzero(x)) return false;
-  for (int c = 0; c < 3; ++c) qx[c] = Q(x[c]);
-  rayleigh(qx);
+  }
+
   // (a) and (b) above for the vector q of the last rayleigh(): which orientations are proved
-  // outside the cone, and the bound rho - R2 / (g (1 - s2)); false where g or s2 fails.
-  // g: half the distance from rho to the solver's nearest other eigenvalue (a guess; the counts
-  // decide).
-  auto settle = [&](const Q (&q)[3], bool& out_pos, bool& out_neg, Q& bound) {
-    out_pos = out_neg = false;
+  // outside the cone (excluded_pos, excluded_neg), and the bound rho - R2 / (g (1 - s2));
+  // false where g or s2 fails. g: half the distance from rho to the solver's nearest other
+  // eigenvalue (a guess; the counts decide).
+  bool settle(const Q (&q)[3]) {
+    excluded_pos = excluded_neg = false;
     const double rho_d = in_units(rho);
     double gap_d = INFINITY;
     for (int j = 0; j < 3; ++j)
@@ -694,23 +790,19 @@ bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bott
       const auto& l = s.l[c];
       const Q p = s.sign[c] * (l[0] * q[0] + l[1] * q[1] + l[2] * q[2]);
       const Q ll = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
-      if (p * p > 2 * ll * qq * s2) (sgn(p) < 0 ? out_pos : out_neg) = true;
+      if (p * p > 2 * ll * qq * s2) (sgn(p) < 0 ? excluded_pos : excluded_neg) = true;
     }
     bound = rho - R2 / (g * (1 - s2));
     return true;
-  };
-  bool excluded_pos = false, excluded_neg = false, bounded = false;
-  Q bound;
-  // x alone usually proves a spurious suspect outside its cone (its conditions are violated
-  // far beyond x's error, ~u): no exact step needed.
-  if (settle(qx, excluded_pos, excluded_neg, bound) && excluded_pos && excluded_neg) return true;
+  }
+  bool excluded() const { return excluded_pos && excluded_neg; }
+
   // y = adj(h - rho I) x: one more step of inverse iteration, exact, shifted by x's Rayleigh
   // quotient. It damps x's components along the other eigenvectors by |mu - rho| /
   // |lambda_j - rho| (rho is within ~|H| u^2 of mu), so y's direction is far more accurate than
   // x's (x is rounded to doubles: its Rayleigh quotient, and the bound from it, would miss mu
-  // by ~|H| u^2, not small beside a depth of 1e-26 |H|). Oriented as x.
-  Q y[3];
-  {
+  // by ~|H| u^2, not small beside a depth of 1e-26 |H|). Oriented as x. Then rho and R2 of y.
+  void exact_step() {
     Q m[3][3], adj[3][3];
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? rho : Q(0));
@@ -725,42 +817,76 @@ bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bott
       for (int c = 0; c < 3; ++c) y[c] = qx[c];  // (x orthogonal to adj's range: keep x)
     else if (sgn(yx) < 0)
       for (Q& c : y) c = -c;
+    rayleigh(y);
   }
-  rayleigh(y);
-  if (settle(y, excluded_pos, excluded_neg, bound)) {
-    if (excluded_pos && excluded_neg) return true;
-    if (eigenvalues_below(s.h, bound, true) <= s.k && bound > bottom) lo = bound, bounded = true;
-  }
-  // Offers, each stage only while the bound is not met (met() below): x in each orientation not
-  // excluded; integer normals along y (a generic direction); the 26 triples one ulp away from x
-  // in some components (nextafter each way: a direction near an axis, where x's small
+
+  // Offers, each stage only while the bound lo is not met (met() below): x in each orientation
+  // not excluded; integer normals along y (a generic direction); the 26 triples one ulp away
+  // from x in some components (nextafter each way: a direction near an axis, where x's small
   // components carry their own exponents and integer normals would round them coarsely).
-  Problem none;  // (the exact offers do not read it)
-  Q scale_top(1);
-  detail::scale_pow2(scale_top, -2 * best.unit);
-  // The offers go on until q (1 + 2^-53) <= lo (1 + kGlobalRel), q in the suspects' units: the
-  // double path's budget, a tenth of what unrepresented() accepts (SPEC §8's 1e-9), so that a
-  // value accepted there is not needlessly near the contract's edge where a better normal is
-  // cheap to find.
-  auto met = [&] {
-    return bounded && best.qvalue * scale_top * (Q(1) + Q(1, 1ul << 53)) <= lo * (Q(1) + Q(kGlobalRel));
-  };
-  auto offer = [&](const V3& v) {
-    for (double sg : {1.0, -1.0})
-      if (!(sg > 0 ? excluded_pos : excluded_neg)) best.offer(none, mul(v, sg));
-  };
-  offer(x);
-  if (!bounded || met()) return false;  // (unbounded: lo = bottom, which no offer meets)
-  std::vector<V3> normals;
-  integer_normals(y, 1 << 18, 4, normals);
-  for (const V3& v : normals) offer(v);
-  for (int m = 0; m < 27 && !met(); ++m) {
-    if (m == 13) continue;  // all three components as they are: x
-    V3 v = x;
-    for (int c = 0, mm = m; c < 3; ++c, mm /= 3)
-      if (mm % 3 != 1) v[c] = std::nextafter(v[c], mm % 3 == 0 ? -INFINITY : INFINITY);
-    offer(v);
+  // bounded: lo is a proved bound (else lo = bottom, which no offer meets).
+  void offer_near(Best& best, const Q& lo, bool bounded) const {
+    Problem none;  // (the exact offers do not read it)
+    Q scale_top(1);
+    detail::scale_pow2(scale_top, -2 * best.unit);
+    // The offers go on until q (1 + 2^-53) <= lo (1 + kGlobalRel), q in the suspects' units: the
+    // double path's budget, a tenth of what unrepresented() accepts (SPEC §8's 1e-9), so that a
+    // value accepted there is not needlessly near the contract's edge where a better normal is
+    // cheap to find.
+    auto met = [&] {
+      return bounded && best.qvalue * scale_top * (Q(1) + Q(1, 1ul << 53)) <= lo * (Q(1) + Q(kGlobalRel));
+    };
+    auto offer = [&](const V3& v) {
+      for (double sg : {1.0, -1.0})
+        if (!(sg > 0 ? excluded_pos : excluded_neg)) best.offer(none, mul(v, sg));
+    };
+    offer(x);
+    if (!bounded || met()) return;  // (unbounded: lo = bottom, which no offer meets)
+    std::vector<V3> normals;
+    integer_normals(y, 1 << 18, 4, normals);
+    for (const V3& v : normals) offer(v);
+    for (int m = 0; m < 27 && !met(); ++m) {
+      if (m == 13) continue;  // all three components as they are: x
+      V3 v = x;
+      for (int c = 0, mm = m; c < 3; ++c, mm /= 3)
+        if (mm % 3 != 1) v[c] = std::nextafter(v[c], mm % 3 == 0 ? -INFINITY : INFINITY);
+      offer(v);
+    }
   }
+
+  Q qx[3], y[3];
+  Q bound;  // settle()'s bound, when it succeeded
+
+ private:
+  double in_units(const Q& v) const {  // v 2^-pe as a double
+    Q t = v;
+    detail::scale_pow2(t, -pe);
+    return t.get_d();
+  }
+
+  const Best::Suspect& s;
+  Q h[3][3];
+  long pe = LONG_MIN;
+  Eigen::Vector3d mu_d, e0;
+  Q rho, R2, qq;
+  V3 x{};
+  bool excluded_pos = false, excluded_neg = false;
+};
+
+bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bottom, detail::Q& lo) {
+  lo = bottom;
+  SuspectProof p(s);
+  if (!p.setup() || !p.polish()) return false;
+  // x alone usually proves a spurious suspect outside its cone (its conditions are violated
+  // far beyond x's error, ~u): no exact step needed.
+  if (p.settle(p.qx) && p.excluded()) return true;
+  p.exact_step();
+  bool bounded = false;
+  if (p.settle(p.y)) {
+    if (p.excluded()) return true;
+    if (eigenvalues_below(s.h, p.bound, true) <= s.k && p.bound > bottom) lo = p.bound, bounded = true;
+  }
+  p.offer_near(best, lo, bounded);
   return false;
 }
 
@@ -924,10 +1050,7 @@ V3 refine(const double (&h)[3][3], const V3& v0, double mu, long) {
   return v;
 }
 
-// Visits every active set (both sides non-empty): H_S, its eigenpairs, the eigenvectors worth
-// evaluating (global_depth.h). T: double (positions about the centroid) or Q (exact positions
-// relative to A[0], scaled); H and the conditions are rounded to doubles once built.
-// H_S by moments: with S_A's sum SA and second moment QA = sum a a^T (and B's), the closed form's
+// H_S by moments (enumerate_pieces): with S_A's sum SA and second moment QA = sum a a^T (and B's), the closed form's
 //   20 H = sum_{S_A} (C - a)(C - a)^T + sum_{S_B} (C - b)(C - b)^T + k TA TA^T
 //        = QA + QB - C (SA + SB)^T - (SA + SB) C^T + (mA + mB) C C^T + k TA TA^T,
 // k = 2 + (4 - mA) + (4 - mB) (the free vertices' T_A^2 and T_B^2, and 2 T_A^2 for the centre),
@@ -955,21 +1078,52 @@ void subset_sums(const std::array<std::array<T, 3>, 4>& pA, const std::array<std
   }
 }
 
+template <class T>
+using Corners = std::array<std::array<T, 3>, 4>;
+
+// One piece's geometry (relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B), its
+// 20 H's moments' combination H (exact or in doubles), and (exact path) the power of two pe
+// its double matrix is scaled by.
+template <class T>
+struct PieceGeometry {
+  unsigned ma = 0, mb = 0;
+  int mA = 0, mB = 0;
+  std::array<T, 3> C, TA, S;
+  T h[3][3];
+  long pe = 0;
+};
+
+// The enumeration of enumerate_pieces (below) over one pair: the subset sums, the pieces that
+// survive the pruning, and each survivor's H and conditions for consider_piece.
 template <class T, class ToDouble>
-void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
-                      const Problem& P, Best& best, double lower, ToDouble to_d) {
-  constexpr bool kExact = !std::is_same_v<T, double>;
+class PieceEnumeration {
+  static constexpr bool kExact = !std::is_same_v<T, double>;
   using TV = std::array<T, 3>;
   using M6 = std::array<T, 6>;  // xx xy xz yy yz zz
-  constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
-  auto vadd = [](const TV& a, const TV& b) { return TV{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; };
-  auto vsub = [](const TV& a, const TV& b) { return TV{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
-  auto vmul = [](const TV& a, const T& s) { return TV{a[0] * s, a[1] * s, a[2] * s}; };
-  auto amax = [&](const auto& x) {
+  static constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
+  static TV vadd(const TV& a, const TV& b) { return TV{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+  static TV vsub(const TV& a, const TV& b) { return TV{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+  static TV vmul(const TV& a, const T& s) { return TV{a[0] * s, a[1] * s, a[2] * s}; }
+
+ public:
+  PieceEnumeration(const Corners<T>& pA, const Corners<T>& pB, const Search& search, ToDouble to_d)
+      : pA(pA), pB(pB), search(search), P(search.P), best(search.best), to_d(to_d) {}
+
+  void run() {
+    sums();
+    if constexpr (kExact) survivors_exact();
+    else survivors_double();
+    for (unsigned ma = 1; ma < 16; ++ma)
+      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) visit(ma, unsigned(__builtin_ctz(bits)));
+  }
+
+ private:
+  double amax(const TV& x) const {
     double m = 0;
     for (const T& c : x) m = std::max(m, std::fabs(to_d(c)));
     return m;
-  };
+  }
+
   // The pieces' double matrices N = 20 H by rows (surviving_pieces), with their eigenvalue
   // counts at the window's edges. Double path: on its own sums. Exact path: on the exact
   // positions rounded once (|x| < 4 here), each coordinate within u |x| of the exact one;
@@ -979,61 +1133,41 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
   // 640u L^2 (mA = 4: k <= 5, wA = 1)), inside the 2^14 u mag of n_error (piece_screen.h's
   // count, 10720u L^2 + 9u mag, leaves 5655u L^2 with mag >= L^2): the counts hold for the
   // exact H too.
-  std::array<std::array<double, 3>, 4> dA, dB;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) dA[i][k] = to_d(pA[i][k]), dB[i][k] = to_d(pB[i][k]);
-  std::array<double, 3> dSA[16], dSB[16];
-  std::array<double, 6> dQA[16], dQB[16];
-  subset_sums(dA, dB, dSA, dSB, dQA, dQB);
-  TV xSA[16], xSB[16];  // exact path: the exact sums
-  M6 xQA[16], xQB[16];
-  const TV *SA, *SB;
-  const M6 *QA, *QB;
-  if constexpr (kExact) {
-    subset_sums(pA, pB, xSA, xSB, xQA, xQB);
-    SA = xSA, SB = xSB, QA = xQA, QB = xQB;
-  } else {
-    SA = dSA, SB = dSB, QA = dQA, QB = dQB;  // (the double path's own: dA = pA)
+  void sums() {
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) dA[i][k] = to_d(pA[i][k]), dB[i][k] = to_d(pB[i][k]);
+    subset_sums(dA, dB, dSA, dSB, dQA, dQB);
+    if constexpr (kExact) {
+      subset_sums(pA, pB, xSA, xSB, xQA, xQB);
+      SA = xSA, SB = xSB, QA = xQA, QB = xQB;
+    } else {
+      SA = dSA, SB = dSB, QA = dQA, QB = dQB;  // (the double path's own: dA = pA)
+    }
+    for (unsigned m = 0; m < 16; ++m) {
+      qa[m] = qb[m] = 0;
+      for (int q = 0; q < 6; ++q) qa[m] = std::max(qa[m], std::fabs(dQA[m][q])), qb[m] = std::max(qb[m], std::fabs(dQB[m][q]));
+    }
+    for (unsigned mb = 0; mb < 16; ++mb) {
+      for (int k = 0; k < 3; ++k) cols.S[k][mb] = dSB[mb][k];
+      for (int q = 0; q < 6; ++q) cols.Q[q][mb] = dQB[mb][q];
+      cols.q[mb] = qb[mb];
+      cols.m[mb] = kPopcount[mb];
+      cols.w[mb] = 1.0 / (5 - kPopcount[mb]);
+    }
+    top = best.value_in(0) * (1 - kPrune);
   }
-  double qa[16], qb[16];  // max |QA|, |QB| (doubles)
-  for (unsigned m = 0; m < 16; ++m) {
-    qa[m] = qb[m] = 0;
-    for (int q = 0; q < 6; ++q) qa[m] = std::max(qa[m], std::fabs(dQA[m][q])), qb[m] = std::max(qb[m], std::fabs(dQB[m][q]));
-  }
-  ColumnsB cols{};  // B's sums as lanes (surviving_pieces)
-  for (unsigned mb = 0; mb < 16; ++mb) {
-    for (int k = 0; k < 3; ++k) cols.S[k][mb] = dSB[mb][k];
-    for (int q = 0; q < 6; ++q) cols.Q[q][mb] = dQB[mb][q];
-    cols.q[mb] = qb[mb];
-    cols.m[mb] = kPopcount[mb];
-    cols.w[mb] = 1.0 / (5 - kPopcount[mb]);
-  }
+
   // Double path: every row's pieces outside the window are dropped (surviving_pieces), the
   // rest gathered and screened side by side (screen); survivors[ma] keeps the bits of the
   // pieces left for consider_piece. Both use the best value offered so far (the start's): a
   // higher threshold than later ones, so nothing is dropped that a later one would keep.
-  // Exact path: only the pieces whose eigenvalues all lie certainly above the window's top
-  // edge or below its bottom one are dropped: such a piece holds no stationary value in the
-  // window, and no wall offer either (a wall's value lies between H's two smallest
-  // eigenvalues, Cauchy interlacing: above the top, or below the bottom edge); the pieces
-  // with eigenvalues on both sides of the window keep their wall offers (a far vertex's
-  // minimiser, consider_piece).
-  unsigned survivors[16];
-  const double top = best.value_in(0) * (1 - kPrune);
-  if constexpr (kExact) {
-    for (unsigned ma = 1; ma < 16; ++ma) {
-      RowLanes row;
-      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, lower, row);
-      survivors[ma] = 0;
-      for (unsigned mb = 1; mb < 16; ++mb)
-        if (!(row.below_top[mb] == 0 || row.below_low[mb] == 3)) survivors[ma] |= 1u << mb;
-    }
-  } else {
+  void survivors_double() {
     static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
     lanes.n = 0;
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
-      survivors[ma] = surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, lower, row);
+      survivors[ma] = surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top,
+                                       search.lower, row);
       for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {  // (set bits: no branch per piece)
         const unsigned mb = unsigned(__builtin_ctz(bits));
         const int p = lanes.n++;
@@ -1047,104 +1181,158 @@ void enumerate_pieces(const std::array<std::array<T, 3>, 4>& pA, const std::arra
     double qA[4][3], qB[4][3];
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) qA[i][k] = dA[i][k], qB[i][k] = dB[i][k];
-    screen(lanes, qA, qB, 1e-12 * P.scale, top, lower);
+    screen(lanes, qA, qB, 1e-12 * P.scale, top, search.lower);
     for (int p = 0; p < lanes.n; ++p) survivors[lanes.ma[p]] &= ~(unsigned(!lanes.keep[p]) << lanes.mb[p]);
   }
-  for (unsigned ma = 1; ma < 16; ++ma) {
-    const int mA = kPopcount[ma];
-    const T wA = T(1) / T(5 - mA);
-    for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
-      const unsigned mb = unsigned(__builtin_ctz(bits));
-      const int mB = kPopcount[mb];
-      const T wB = T(1) / T(5 - mB);
-      // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B.
-      const TV C = vmul(vadd(vmul(SA[ma], wA), vmul(SB[mb], wB)), T(1) / (T(mA) * wA + T(mB) * wB));
-      const TV TA = vmul(vsub(vmul(C, T(mA)), SA[ma]), wA);
-      const TV S = vadd(SA[ma], SB[mb]);
-      const T m = T(mA + mB), k = T(10 - mA - mB);
-      T h[3][3];
-      for (int q = 0; q < 6; ++q) {
-        const int r = kR[q], c = kC[q];
-        h[r][c] = (QA[ma][q] + QB[mb][q] - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
-                   k * TA[r] * TA[c]) / T(20);
-        h[c][r] = h[r][c];
-      }
-      // Exact path: H rounded after scaling by 2^-pe, its largest entry near 1 (a piece of the
-      // near vertices of a pair with a vertex 1e200 away has entries ~1e-400 in the pair's
-      // scaled units: they would underflow). Eigenvectors do not change; eigenvalues and the
-      // values they are compared with are taken in the piece's units (consider_piece).
-      long pe = 0;
-      if constexpr (kExact) {
-        pe = LONG_MIN;
-        for (int q = 0; q < 6; ++q) pe = std::max(pe, detail::log2_estimate(h[kR[q]][kC[q]]));
-        if (pe == LONG_MIN) pe = 0;
-      }
-      Eigen::Matrix3d H;
-      for (int q = 0; q < 6; ++q) {
-        const int r = kR[q], c = kC[q];
-        if constexpr (kExact) {
-          T x = h[r][c];
-          detail::scale_pow2(x, -pe);
-          H(r, c) = H(c, r) = to_d(x);
-        } else {
-          H(r, c) = H(c, r) = to_d(h[r][c]);
-        }
-      }
-      double h_error = 0;
-      if constexpr (!kExact) {
-        const double c = amax(C), t = amax(TA);
-        h_error = 0x1p-39 * (qa[ma] + qb[mb] + 2 * c * amax(S) + (mA + mB) * c * c + (10 - mA - mB) * t * t) / 20;
-      }
-      // The conditions' vectors: in doubles, with an absolute floor for their rounding (a few
-      // roundings of coordinates <= scale: far above); exact path, each scaled by its own power
-      // of two before rounding once (relative error u, no floor: a condition of the near
-      // vertices beside a far one would underflow or drown in an absolute floor).
-      auto rounded = [&](TV x) {
-        if constexpr (kExact) {
-          long top = LONG_MIN;
-          for (const T& y : x) top = std::max(top, detail::log2_estimate(y));
-          if (top != LONG_MIN)
-            for (T& y : x) detail::scale_pow2(y, -top);
-        }
-        return V3{to_d(x[0]), to_d(x[1]), to_d(x[2])};
-      };
-      auto make_conditions = [&] {
-        Conditions cond;
-        cond.floor = kExact ? 0.0 : 1e-12 * P.scale;
-        for (int i = 0; i < 4; ++i) {
-          const TV d = vsub(vsub(pA[i], C), TA), e = vsub(vsub(C, pB[i]), TA);
-          cond.l[i] = rounded(d);        // d_i = a_i - c - T_A
-          cond.sign[i] = ma >> i & 1u ? 1 : -1;
-          cond.l[4 + i] = rounded(e);    // e_j = c - b_j + T_B
-          cond.sign[4 + i] = mb >> i & 1u ? 1 : -1;
-        }
-        cond.finish();
-        return cond;
-      };
-      consider_piece(H, h_error, make_conditions, P, best, lower,
-                     [&](const V3& v, double mu) { return refine(h, v, mu, pe); },
-                     [&](const V3& e, const V3& f, V3 (&r)[2]) {
-                       if constexpr (kExact) return ritz(h, e, f, r);
-                       else return false;
-                     },
-                     kExact, pe, [&](int k) {
-                       if constexpr (kExact) {
-                         Best::Suspect x{{{{h[0][0], h[0][1], h[0][2]},
-                                           {h[1][0], h[1][1], h[1][2]},
-                                           {h[2][0], h[2][1], h[2][2]}}},
-                                         k, {}, {}};
-                         // make_conditions' vectors, exact: d_i = a_i - c - T_A, e_j = c - b_j + T_B
-                         for (int i = 0; i < 4; ++i) {
-                           const TV d = vsub(vsub(pA[i], C), TA), e = vsub(vsub(C, pB[i]), TA);
-                           for (int q = 0; q < 3; ++q) x.l[i][q] = d[q], x.l[4 + i][q] = e[q];
-                           x.sign[i] = ma >> i & 1u ? 1 : -1;
-                           x.sign[4 + i] = mb >> i & 1u ? 1 : -1;
-                         }
-                         best.suspects.push_back(std::move(x));
-                       }
-                     });
+
+  // Exact path: only the pieces whose eigenvalues all lie certainly above the window's top
+  // edge or below its bottom one are dropped: such a piece holds no stationary value in the
+  // window, and no wall offer either (a wall's value lies between H's two smallest
+  // eigenvalues, Cauchy interlacing: above the top, or below the bottom edge); the pieces
+  // with eigenvalues on both sides of the window keep their wall offers (a far vertex's
+  // minimiser, consider_piece).
+  void survivors_exact() {
+    for (unsigned ma = 1; ma < 16; ++ma) {
+      RowLanes row;
+      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
+      survivors[ma] = 0;
+      for (unsigned mb = 1; mb < 16; ++mb)
+        if (!(row.below_top[mb] == 0 || row.below_low[mb] == 3)) survivors[ma] |= 1u << mb;
     }
   }
+
+  // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B; 20 H by moments (above).
+  void build(PieceGeometry<T>& g) const {
+    const unsigned ma = g.ma, mb = g.mb;
+    const int mA = g.mA = kPopcount[ma], mB = g.mB = kPopcount[mb];
+    const T wA = T(1) / T(5 - mA), wB = T(1) / T(5 - mB);
+    g.C = vmul(vadd(vmul(SA[ma], wA), vmul(SB[mb], wB)), T(1) / (T(mA) * wA + T(mB) * wB));
+    g.TA = vmul(vsub(vmul(g.C, T(mA)), SA[ma]), wA);
+    g.S = vadd(SA[ma], SB[mb]);
+    const TV &C = g.C, &TA = g.TA, &S = g.S;
+    const T m = T(mA + mB), k = T(10 - mA - mB);
+    for (int q = 0; q < 6; ++q) {
+      const int r = kR[q], c = kC[q];
+      g.h[r][c] = (QA[ma][q] + QB[mb][q] - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
+                   k * TA[r] * TA[c]) / T(20);
+      g.h[c][r] = g.h[r][c];
+    }
+  }
+
+  // Exact path: H rounded after scaling by 2^-pe, its largest entry near 1 (a piece of the
+  // near vertices of a pair with a vertex 1e200 away has entries ~1e-400 in the pair's
+  // scaled units: they would underflow). Eigenvectors do not change; eigenvalues and the
+  // values they are compared with are taken in the piece's units (consider_piece).
+  void rounded_matrix(PieceGeometry<T>& g, Eigen::Matrix3d& H) const {
+    if constexpr (kExact) {
+      g.pe = LONG_MIN;
+      for (int q = 0; q < 6; ++q) g.pe = std::max(g.pe, detail::log2_estimate(g.h[kR[q]][kC[q]]));
+      if (g.pe == LONG_MIN) g.pe = 0;
+    }
+    for (int q = 0; q < 6; ++q) {
+      const int r = kR[q], c = kC[q];
+      if constexpr (kExact) {
+        T x = g.h[r][c];
+        detail::scale_pow2(x, -g.pe);
+        H(r, c) = H(c, r) = to_d(x);
+      } else {
+        H(r, c) = H(c, r) = to_d(g.h[r][c]);
+      }
+    }
+  }
+
+  double h_error(const PieceGeometry<T>& g) const {
+    if constexpr (kExact) return 0;
+    const double c = amax(g.C), t = amax(g.TA);
+    return 0x1p-39 * (qa[g.ma] + qb[g.mb] + 2 * c * amax(g.S) + (g.mA + g.mB) * c * c + (10 - g.mA - g.mB) * t * t) /
+           20;
+  }
+
+  // The conditions' vectors: in doubles, with an absolute floor for their rounding (a few
+  // roundings of coordinates <= scale: far above); exact path, each scaled by its own power
+  // of two before rounding once (relative error u, no floor: a condition of the near
+  // vertices beside a far one would underflow or drown in an absolute floor).
+  V3 rounded(TV x) const {
+    if constexpr (kExact) {
+      long top = LONG_MIN;
+      for (const T& y : x) top = std::max(top, detail::log2_estimate(y));
+      if (top != LONG_MIN)
+        for (T& y : x) detail::scale_pow2(y, -top);
+    }
+    return V3{to_d(x[0]), to_d(x[1]), to_d(x[2])};
+  }
+  Conditions conditions(const PieceGeometry<T>& g) const {
+    Conditions cond;
+    cond.floor = kExact ? 0.0 : 1e-12 * P.scale;
+    for (int i = 0; i < 4; ++i) {
+      const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
+      cond.l[i] = rounded(d);        // d_i = a_i - c - T_A
+      cond.sign[i] = g.ma >> i & 1u ? 1 : -1;
+      cond.l[4 + i] = rounded(e);    // e_j = c - b_j + T_B
+      cond.sign[4 + i] = g.mb >> i & 1u ? 1 : -1;
+    }
+    cond.finish();
+    return cond;
+  }
+
+  // Exact path: eigenvector k of the piece held its signs (unrepresented()): its exact H and
+  // conditions (conditions()' vectors, exact: d_i = a_i - c - T_A, e_j = c - b_j + T_B).
+  void suspect(const PieceGeometry<T>& g, int k) {
+    if constexpr (kExact) {
+      const auto& h = g.h;
+      Best::Suspect x{{{{h[0][0], h[0][1], h[0][2]}, {h[1][0], h[1][1], h[1][2]}, {h[2][0], h[2][1], h[2][2]}}},
+                      k, {}, {}};
+      for (int i = 0; i < 4; ++i) {
+        const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
+        for (int q = 0; q < 3; ++q) x.l[i][q] = d[q], x.l[4 + i][q] = e[q];
+        x.sign[i] = g.ma >> i & 1u ? 1 : -1;
+        x.sign[4 + i] = g.mb >> i & 1u ? 1 : -1;
+      }
+      best.suspects.push_back(std::move(x));
+    }
+  }
+
+  void visit(unsigned ma, unsigned mb) {
+    PieceGeometry<T> g;
+    g.ma = ma, g.mb = mb;
+    build(g);
+    Eigen::Matrix3d H;
+    rounded_matrix(g, H);
+    auto calls = piece_calls([&] { return conditions(g); },
+                             [&](const V3& v, double mu) { return refine(g.h, v, mu, g.pe); },
+                             [&](const V3& e, const V3& f, V3 (&r)[2]) {
+                               if constexpr (kExact) return ritz(g.h, e, f, r);
+                               else return false;
+                             },
+                             [&](int k) { suspect(g, k); });
+    consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);
+  }
+
+  const Corners<T>& pA;
+  const Corners<T>& pB;
+  const Search& search;
+  const Problem& P;
+  Best& best;
+  ToDouble to_d;
+  std::array<std::array<double, 3>, 4> dA, dB;
+  std::array<double, 3> dSA[16], dSB[16];
+  std::array<double, 6> dQA[16], dQB[16];
+  TV xSA[16], xSB[16];  // exact path: the exact sums
+  M6 xQA[16], xQB[16];
+  const TV *SA = nullptr, *SB = nullptr;
+  const M6 *QA = nullptr, *QB = nullptr;
+  double qa[16], qb[16];  // max |QA|, |QB| (doubles)
+  ColumnsB cols{};        // B's sums as lanes (surviving_pieces)
+  unsigned survivors[16];
+  double top = 0;         // the window's top edge: the best value so far, less kPrune
+};
+
+// Visits every active set (both sides non-empty): H_S, its eigenpairs, the eigenvectors worth
+// evaluating (global_depth.h). T: double (positions about the centroid) or Q (exact positions
+// relative to A[0], scaled); H and the conditions are rounded to doubles once built.
+template <class T, class ToDouble>
+void enumerate_pieces(const Corners<T>& pA, const Corners<T>& pB, const Search& search, ToDouble to_d) {
+  PieceEnumeration<T, ToDouble>(pA, pB, search, to_d).run();
 }
 
 // The relaxed value along v (a double normal, A -> B) with a certified relative error bound,
@@ -1189,20 +1377,26 @@ Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Prob
   return ev;
 }
 
-}  // namespace
 
-double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& n,
-                           bool& ok) {
-  detail::Q hA[4], hB[4];
-  Solution<detail::Q> s;
-  return detail::rounded_value(relaxed_exact(A, B, n, hA, hB, s), ok);
-}
-
-GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           double start_value, const ExactStart& exact_start, double rigid_pd2) {
-  // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
-  const double lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
+// One global_depth() call: the pair, the evaluations' problem, the offers and the bounds.
+struct GlobalRun {
+  GlobalRun(const TetVertices& A, const TetVertices& B) : A(A), B(B) {}
+  const TetVertices& A;
+  const TetVertices& B;
   Problem P;
+  Best best;
+  double lower = 0;          // every G(u) >= lower (the pair's units)
+  double lower_scaled = 0;   // the exact path's floor in its units
+  bool exact_pieces = false;  // the pieces were built exactly
+};
+
+// The problem (coordinates relative to A[0] and about the centroid), the lower bound, and the
+// start's offer.
+void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
+  // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
+  g.lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
+  const TetVertices &A = g.A, &B = g.B;
+  Problem& P = g.P;
   V3 centroid{0, 0, 0};
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
@@ -1211,136 +1405,154 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
       centroid[k] += (P.relA[i][k] + P.relB[i][k]) / 8;
     }
   for (int i = 0; i < 4; ++i) P.pA[i] = sub(P.relA[i], centroid), P.pB[i] = sub(P.relB[i], centroid);
+  g.best.value = INFINITY;
+  g.best.n = {start_normal[0], start_normal[1], start_normal[2]};
+  g.best.offer(P, g.best.n);
+}
 
-  Best best;
-  best.value = INFINITY;
-  best.n = {start_normal[0], start_normal[1], start_normal[2]};
-  best.offer(P, best.n);
-
-  // Doubles or rationals for the pieces (the enumeration is the same). H's entries carry
-  // absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off by an angle
-  // ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about gap * angle^2 ~
-  // 1e-28 scale^4 / gap: negligible while the depth is far above 1e-16 scale^2. A far vertex
-  // (depth ~1e-11 scale^2 with a vertex 3e4 away) can also put the minimiser on the wall of a
-  // steep piece, which only the exact path's wall offers reach (the fuzzer found a miss of
-  // 1.6e-8 there). Below 1e-10 scale^2 (far vertices, contacts of 1e-5 of the pair's size) the
-  // pieces are built exactly, with the wall offers, and their eigenvectors polished. A compact
-  // pair (the smaller tetrahedron's extent >= scale / 16: no vertex far from the others, so
-  // every piece's |H| <= 12 L^2 with centred |coordinates| L <= 2 scale, <= 12288 near^2: no
-  // steep piece) keeps the doubles down to kCompactTiny = 1e-14 scale^2: the paper's shallow
-  // contacts (1 pair in 10^4 below 1e-10 scale^2, each ~3 ms exactly). The argument above
-  // takes gap ~ |H| ~ scale^2; a piece whose active vertices form a small cluster far from the
-  // centroid has |H| << scale^2 while H's error stays ~2^-39 of the moments: consider_piece's
-  // estimate 2 E^2 / gap <= 1e-11 mu, checked for every in-window eigenvalue, sends such a pair
-  // to the exact pieces (a review's shallow "tip" contacts: 10-25% stayed in doubles, all
-  // between 1e-12 and 1e-10 scale^2, all within the exact intervals).
-  //
-  // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
-  // 2^unit the largest of them (a pair spanning 1e-302..1e308 reaches this branch unscaled,
-  // through solve_pair's exact path; its H would overflow in doubles). A uniform scale leaves
-  // the normals unchanged and multiplies every value by 2^-2unit (Best::unit). The near
-  // vertices' pieces beside a far vertex are still ~(size / R)^2: each piece's H and each
-  // condition is scaled again by its own power of two before rounding (enumerate_pieces).
-  // The double pieces also need the pair's own scale within [2^-100, 2^100] (solve_pair and
-  // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
-  // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
-  // determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
-  // finds a depth below that (1e-10 or, compact, 1e-14 scale^2), it is done again exactly.
-  const double tiny_rel = near_extent_sq(A, B) >= P.scale * P.scale / 256 ? kCompactTiny : 1e-10;
+// Doubles or rationals for the pieces (the enumeration is the same). H's entries carry
+// absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off by an angle
+// ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about gap * angle^2 ~
+// 1e-28 scale^4 / gap: negligible while the depth is far above 1e-16 scale^2. A far vertex
+// (depth ~1e-11 scale^2 with a vertex 3e4 away) can also put the minimiser on the wall of a
+// steep piece, which only the exact path's wall offers reach (the fuzzer found a miss of
+// 1.6e-8 there). Below 1e-10 scale^2 (far vertices, contacts of 1e-5 of the pair's size) the
+// pieces are built exactly, with the wall offers, and their eigenvectors polished. A compact
+// pair (the smaller tetrahedron's extent >= scale / 16: no vertex far from the others, so
+// every piece's |H| <= 12 L^2 with centred |coordinates| L <= 2 scale, <= 12288 near^2: no
+// steep piece) keeps the doubles down to kCompactTiny = 1e-14 scale^2: the paper's shallow
+// contacts (1 pair in 10^4 below 1e-10 scale^2, each ~3 ms exactly). The argument above
+// takes gap ~ |H| ~ scale^2; a piece whose active vertices form a small cluster far from the
+// centroid has |H| << scale^2 while H's error stays ~2^-39 of the moments: consider_piece's
+// estimate 2 E^2 / gap <= 1e-11 mu, checked for every in-window eigenvalue, sends such a pair
+// to the exact pieces (a review's shallow "tip" contacts: 10-25% stayed in doubles, all
+// between 1e-12 and 1e-10 scale^2, all within the exact intervals).
+// The double pieces also need the pair's own scale within [2^-100, 2^100] (solve_pair and
+// pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
+// than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
+// determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
+// finds a depth below that (1e-10 or, compact, 1e-14 scale^2), it is done again exactly.
+// Returns whether the pieces must be built exactly (then the double offers are dropped).
+bool needs_exact_pieces(GlobalRun& g, double start_value) {
+  const Problem& P = g.P;
+  Best& best = g.best;
+  const double tiny_rel = near_extent_sq(g.A, g.B) >= P.scale * P.scale / 256 ? kCompactTiny : 1e-10;
   auto tiny = [&](double value) { return !(value >= tiny_rel * P.scale * P.scale); };
-  bool exact_pieces = !(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value);
-  if (!exact_pieces) {
-    if (nonzero(best.n) && std::isfinite(best.value)) best.offer(P, descent_step(P, best.n, best.last));
-    std::array<std::array<double, 3>, 4> dA, dB;
-    for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
-    enumerate_pieces(dA, dB, P, best, lower, [](double x) { return x; });
-    // A result above the start's certified value means the doubles could not evaluate even the
-    // start's normal (its components are not accurate enough beside a far vertex): exactly.
-    if (tiny(best.value) || best.value > start_value * (1 + 1e-9) || best.needs_exact)
-      exact_pieces = true, best.offers.clear();
+  if (!(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value)) return true;
+  if (nonzero(best.n) && std::isfinite(best.value)) best.offer(P, descent_step(P, best.n, best.last));
+  std::array<std::array<double, 3>, 4> dA, dB;
+  for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
+  enumerate_pieces(dA, dB, Search{P, best, g.lower}, [](double x) { return x; });
+  // A result above the start's certified value means the doubles could not evaluate even the
+  // start's normal (its components are not accurate enough beside a far vertex): exactly.
+  if (tiny(best.value) || best.value > start_value * (1 + 1e-9) || best.needs_exact) {
+    best.offers.clear();
+    return true;
   }
-  double lower_scaled = 0;  // the exact path's floor in its units
-  if (exact_pieces) {
-    using detail::Q;
-    std::array<std::array<Q, 3>, 4> qA, qB;
-    long unit = LONG_MIN;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) {
-        qA[i][k] = Q(A[i][k]) - Q(A[0][k]), qB[i][k] = Q(B[i][k]) - Q(A[0][k]);
-        unit = std::max({unit, detail::log2_estimate(qA[i][k]), detail::log2_estimate(qB[i][k])});
-      }
-    if (unit == LONG_MIN) unit = 0;  // not reached: a valid pair has a non-zero edge
-    for (auto* side : {&qA, &qB})
-      for (auto& x : *side)
-        for (Q& c : x) detail::scale_pow2(c, -unit);
-    Problem Ps = P;  // the conditions' floor in the scaled units
-    Ps.scale = 4.0;  // |x| 2^-unit < 4 (bit lengths give log2 |x| within 1)
-    best.A = &A, best.B = &B, best.unit = unit;
-    best.value = INFINITY;
-    best.offer(Ps, best.n);
-    if (exact_start) best.offer(Ps, exact_start());
-    lower_scaled = std::ldexp(lower, int(std::clamp(-2 * unit, -4000L, 4000L)));
-    enumerate_pieces(qA, qB, Ps, best, lower_scaled, [](const Q& x) { return x.get_d(); });
-    // (lower is in the pair's units; each piece takes it, and the best value, in its own)
-  }
+  return false;
+}
 
-  // Which offer wins. Each double value carries value_error's loose bound; offers whose
-  // intervals meet the winner's are contenders (every other offer is certainly above the
-  // winner). When every contender's bounds together stay below kCompare, the double winner is
-  // within kCompare of the true best offer; otherwise the same test on the contenders with
-  // evaluate_tight's values and bounds (its winner, likewise, is within kCompare of the best
-  // contender), and where that fails too the contenders are compared exactly.
-  GlobalOptimum out;
-  constexpr double kCompare = 4e-10;
-  if (!exact_pieces) {
-    double win_err = INFINITY;
-    for (const auto& o : best.offers)
-      if (o.n == best.n) win_err = std::min(win_err, o.error);
-    bool separated = true;
-    for (const auto& o : best.offers)
-      if (o.n != best.n && !(o.value > best.value * (1 + 2 * (win_err + o.error))) &&
-          !(win_err + o.error <= kCompare))
-        separated = false;
-    if (!separated) {
-      // evaluate_tight's bounds first (doubles): value_error's are wider than kCompare where the
-      // depth is far below the pair's size, and two offers of one stationary point (the
-      // descent's and the enumeration's) tie within them.
-      std::vector<std::pair<Evaluation, V3>> contenders;
-      for (const auto& o : best.offers)
-        if (!(o.value > best.value * (1 + 2 * (win_err + o.error))))  // inf band (or NaN): every offer
-          contenders.push_back({evaluate_tight(A, B, P, o.n), o.n});
-      std::size_t w = 0;
-      for (std::size_t i = 1; i < contenders.size(); ++i)
-        if (contenders[i].first.value < contenders[w].first.value) w = i;
-      separated = !contenders.empty();
-      for (std::size_t i = 0; i < contenders.size(); ++i) {
-        const Evaluation &x = contenders[w].first, &y = contenders[i].first;
-        if (i != w && !(y.value > x.value * (1 + 2 * (x.error + y.error))) && !(x.error + y.error <= kCompare))
-          separated = false;
-      }
-      if (separated) best.n = contenders[w].second;
+// The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
+// 2^unit the largest of them (a pair spanning 1e-302..1e308 reaches this branch unscaled,
+// through solve_pair's exact path; its H would overflow in doubles). A uniform scale leaves
+// the normals unchanged and multiplies every value by 2^-2unit (Best::unit). The near
+// vertices' pieces beside a far vertex are still ~(size / R)^2: each piece's H and each
+// condition is scaled again by its own power of two before rounding (enumerate_pieces).
+void enumerate_exact(GlobalRun& g, const ExactStart& exact_start) {
+  using detail::Q;
+  const TetVertices &A = g.A, &B = g.B;
+  Best& best = g.best;
+  std::array<std::array<Q, 3>, 4> qA, qB;
+  long unit = LONG_MIN;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      qA[i][k] = Q(A[i][k]) - Q(A[0][k]), qB[i][k] = Q(B[i][k]) - Q(A[0][k]);
+      unit = std::max({unit, detail::log2_estimate(qA[i][k]), detail::log2_estimate(qB[i][k])});
     }
-    if (!separated) {
-      detail::Q bestq;
-      bool have = false;
-      for (const auto& o : best.offers) {
-        const double band = 2 * (win_err + o.error);
-        if (o.value > best.value * (1 + band)) continue;  // inf band (or NaN): every offer
-        detail::Q hA[4], hB[4];
-        Solution<detail::Q> sq;
-        const detail::Q x = relaxed_exact(A, B, o.n, hA, hB, sq);
-        if (!have || x < bestq) bestq = x, best.n = o.n, have = true;
-      }
-    }
+  if (unit == LONG_MIN) unit = 0;  // not reached: a valid pair has a non-zero edge
+  for (auto* side : {&qA, &qB})
+    for (auto& x : *side)
+      for (Q& c : x) detail::scale_pow2(c, -unit);
+  Problem Ps = g.P;  // the conditions' floor in the scaled units
+  Ps.scale = 4.0;    // |x| 2^-unit < 4 (bit lengths give log2 |x| within 1)
+  best.A = &A, best.B = &B, best.unit = unit;
+  best.value = INFINITY;
+  best.offer(Ps, best.n);
+  if (exact_start) best.offer(Ps, exact_start());
+  g.lower_scaled = std::ldexp(g.lower, int(std::clamp(-2 * unit, -4000L, 4000L)));
+  enumerate_pieces(qA, qB, Search{Ps, best, g.lower_scaled}, [](const Q& x) { return x.get_d(); });
+  // (lower is in the pair's units; each piece takes it, and the best value, in its own)
+}
+
+// Which offer wins (double path). Each double value carries value_error's loose bound; offers
+// whose intervals meet the winner's are contenders (every other offer is certainly above the
+// winner). When every contender's bounds together stay below kCompare, the double winner is
+// within kCompare of the true best offer; otherwise the same test on the contenders with
+// evaluate_tight's values and bounds (its winner, likewise, is within kCompare of the best
+// contender), and where that fails too the contenders are compared exactly.
+constexpr double kCompare = 4e-10;
+
+// evaluate_tight's bounds (doubles): value_error's are wider than kCompare where the depth is
+// far below the pair's size, and two offers of one stationary point (the descent's and the
+// enumeration's) tie within them. True (best.n set) when they separate the winner.
+bool tight_winner(GlobalRun& g, double win_err) {
+  Best& best = g.best;
+  std::vector<std::pair<Evaluation, V3>> contenders;
+  for (const auto& o : best.offers)
+    if (!(o.value > best.value * (1 + 2 * (win_err + o.error))))  // inf band (or NaN): every offer
+      contenders.push_back({evaluate_tight(g.A, g.B, g.P, o.n), o.n});
+  std::size_t w = 0;
+  for (std::size_t i = 1; i < contenders.size(); ++i)
+    if (contenders[i].first.value < contenders[w].first.value) w = i;
+  bool separated = !contenders.empty();
+  for (std::size_t i = 0; i < contenders.size(); ++i) {
+    const Evaluation &x = contenders[w].first, &y = contenders[i].first;
+    if (i != w && !(y.value > x.value * (1 + 2 * (x.error + y.error))) && !(x.error + y.error <= kCompare))
+      separated = false;
   }
-  out.normal = best.n;
-  const V3& v = best.n;
-  double vv = dot(v, v);
-  // No normal at all (no start and no stationary point passed: coordinates spanning the whole
-  // double range, the caller's exact-path branch): not certified; the caller reports it
-  // (found by the fast_engine fuzzer: the exact evaluation along a zero normal divided by 0).
-  if (!nonzero(v) || !std::isfinite(vv)) return out;
-  auto place = [&](const auto& s, const auto& heights_A, const auto& heights_B, auto to_d) {
+  if (separated) best.n = contenders[w].second;
+  return separated;
+}
+
+// The contenders compared exactly.
+void exact_winner(GlobalRun& g, double win_err) {
+  Best& best = g.best;
+  detail::Q bestq;
+  bool have = false;
+  for (const auto& o : best.offers) {
+    const double band = 2 * (win_err + o.error);
+    if (o.value > best.value * (1 + band)) continue;  // inf band (or NaN): every offer
+    detail::Q hA[4], hB[4];
+    Solution<detail::Q> sq;
+    const detail::Q x = relaxed_exact(g.A, g.B, o.n, hA, hB, sq);
+    if (!have || x < bestq) bestq = x, best.n = o.n, have = true;
+  }
+}
+
+void choose_offer(GlobalRun& g) {
+  Best& best = g.best;
+  double win_err = INFINITY;
+  for (const auto& o : best.offers)
+    if (o.n == best.n) win_err = std::min(win_err, o.error);
+  bool separated = true;
+  for (const auto& o : best.offers)
+    if (o.n != best.n && !(o.value > best.value * (1 + 2 * (win_err + o.error))) &&
+        !(win_err + o.error <= kCompare))
+      separated = false;
+  if (!separated) separated = tight_winner(g, win_err);
+  if (!separated) exact_winner(g, win_err);
+}
+
+// The deformed positions along the normal v (A -> B; a reference: it follows the best normal)
+// from a solution s of the relaxed QP with heights hA, hB: q1 = x + t / v.v v.
+struct Placement {
+  const TetVertices& A;
+  const TetVertices& B;
+  const V3& v;
+  double vv;
+  GlobalOptimum& out;
+  template <class S, class Heights, class ToDouble>
+  void operator()(const S& s, const Heights& heights_A, const Heights& heights_B, ToDouble to_d) const {
     for (int i = 0; i < 4; ++i) {
       const double tA = to_d(displacement_below(heights_A[i], false, s));
       const double tB = to_d(displacement_above(heights_B[i], false, s));
@@ -1349,39 +1561,51 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
         out.q1_B[i][k] = B[i][k] + tB / vv * v[k];
       }
     }
-  };
-  if (!exact_pieces) {
-    // The reported value: the offer's own when value_error's bound meets the budget (the
-    // common case: ~3e-11 on the paper's pairs), else evaluate_tight's when its bound does.
-    if (best.win.n == v && best.win.error <= kGlobalRel) {
-      out.value = best.value;
-      place(best.win.sol, best.win.hA, best.win.hB, [](double x) { return x; });
-      out.certified = true;
-      return out;
-    }
-    const Evaluation ev = evaluate_tight(A, B, P, v);
-    if (ev.error <= kGlobalRel) {
-      out.value = ev.value;
-      place(ev.sol, ev.hA, ev.hB, [](double x) { return x; });
-      out.certified = true;
-      return out;
-    }
   }
-  // Slow path: the same closed form in rationals along the same (exact) normal.
+};
+
+// The reported value (double path): the offer's own when value_error's bound meets the budget
+// (the common case: ~3e-11 on the paper's pairs), else evaluate_tight's when its bound does.
+// False when neither does.
+bool report_double(const GlobalRun& g, const Placement& place) {
+  const Best& best = g.best;
+  GlobalOptimum& out = place.out;
+  const V3& v = best.n;
+  if (best.win.n == v && best.win.error <= kGlobalRel) {
+    out.value = best.value;
+    place(best.win.sol, best.win.hA, best.win.hB, [](double x) { return x; });
+    out.certified = true;
+    return true;
+  }
+  const Evaluation ev = evaluate_tight(g.A, g.B, g.P, v);
+  if (ev.error <= kGlobalRel) {
+    out.value = ev.value;
+    place(ev.sol, ev.hA, ev.hB, [](double x) { return x; });
+    out.certified = true;
+    return true;
+  }
+  return false;
+}
+
+// Slow path: the same closed form in rationals along the same (exact) normal.
+void report_exact(GlobalRun& g, Placement& place, double start_value) {
   using detail::Q;
+  Best& best = g.best;
+  GlobalOptimum& out = place.out;
+  const V3& v = best.n;
   Q hA[4], hB[4];
   Solution<Q> qs;
-  Q value = relaxed_exact(A, B, v, hA, hB, qs);
+  Q value = relaxed_exact(g.A, g.B, v, hA, hB, qs);
   // A depth below unrepresented()'s class on the exact pieces: its suspects are settled, and the
   // offers that settle them may lower the best (a new normal: value and positions along it).
   bool missed = false;
-  if (exact_pieces && value.get_d() < kUnrepresentedDepth * near_extent_sq(A, B)) {
+  if (g.exact_pieces && value.get_d() < kUnrepresentedDepth * near_extent_sq(g.A, g.B)) {
     const V3 before = best.n;
-    missed = unrepresented(best, lower_scaled);
+    missed = unrepresented(best, g.lower_scaled);
     if (best.n != before) {
       out.normal = best.n;
-      vv = dot(v, v);
-      value = relaxed_exact(A, B, v, hA, hB, qs);
+      place.vv = dot(v, v);
+      value = relaxed_exact(g.A, g.B, v, hA, hB, qs);
     }
   }
   out.value = value.get_d();
@@ -1393,7 +1617,39 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   out.certified = std::isfinite(out.value) &&
                   !(std::isfinite(start_value) && value > detail::Q(start_value) * detail::Q(1 + 1e-9)) &&
                   !missed;
+}
+
+GlobalOptimum report(GlobalRun& g, double start_value) {
+  GlobalOptimum out;
+  out.normal = g.best.n;
+  const V3& v = g.best.n;
+  Placement place{g.A, g.B, v, dot(v, v), out};
+  // No normal at all (no start and no stationary point passed: coordinates spanning the whole
+  // double range, the caller's exact-path branch): not certified; the caller reports it
+  // (found by the fast_engine fuzzer: the exact evaluation along a zero normal divided by 0).
+  if (!nonzero(v) || !std::isfinite(place.vv)) return out;
+  if (!g.exact_pieces && report_double(g, place)) return out;
+  report_exact(g, place, start_value);
   return out;
+}
+
+}  // namespace
+
+double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& n,
+                           bool& ok) {
+  detail::Q hA[4], hB[4];
+  Solution<detail::Q> s;
+  return detail::rounded_value(relaxed_exact(A, B, n, hA, hB, s), ok);
+}
+
+GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
+                           double start_value, const ExactStart& exact_start, double rigid_pd2) {
+  GlobalRun g(A, B);
+  set_up(g, start_normal, rigid_pd2);
+  g.exact_pieces = needs_exact_pieces(g, start_value);
+  if (g.exact_pieces) enumerate_exact(g, exact_start);
+  else choose_offer(g);
+  return report(g, start_value);
 }
 
 }  // namespace pdd::fast
