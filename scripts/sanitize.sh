@@ -7,7 +7,10 @@
 # Compiler: clang++-14 (installed by setup.sh), so that CI builds the project with both
 # compilers: GCC 12 in the Release build, clang 14 here. Without clang: g++.
 # Override with PDD_SAN_CXX=clang++-14 or PDD_SAN_CXX=g++.
-# Extra CTest arguments are passed through, e.g. `bash scripts/sanitize.sh -R fast_`.
+# Extra CTest arguments are passed through and also decide what is built: with none, the whole
+# project; with a selection (e.g. `bash scripts/sanitize.sh -L fast`, CTest labels in
+# cmake/pddTesting.cmake), only the targets its tests run: the selected tests' labels, as
+# CTest lists them, each built by its target pdd_tests_<label>.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -28,11 +31,22 @@ cmake -S . -B build-san \
   -DCMAKE_CXX_FLAGS="$SAN_FLAGS" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DPDD_SANITIZE=ON >/dev/null
-# PDD_SAN_TARGETS (optional): build only these targets (CI builds the fast engine's tests; see
-# .ci/run), with the matching `-R` passed through to CTest.
-if [ -n "${PDD_SAN_TARGETS:-}" ]; then
+if (($#)); then
+  # The labels of the tests this selection runs (CTest reads them from the configured tree).
+  labels=$(ctest --test-dir build-san --show-only=json-v1 "$@" | python3 -c '
+import json, sys
+labels = set()
+for t in json.load(sys.stdin)["tests"]:
+    for p in t.get("properties", []):
+        if p["name"] == "LABELS": labels.update(p["value"])
+print(" ".join("pdd_tests_" + l for l in sorted(labels)))')
+  if [ -z "$labels" ]; then
+    echo "sanitize: no test matches: $*" >&2
+    exit 2
+  fi
+  echo "sanitize: building $labels"
   # shellcheck disable=SC2086
-  nice cmake --build build-san -j"${PDD_JOBS:-$(nproc)}" --target ${PDD_SAN_TARGETS}
+  nice cmake --build build-san -j"${PDD_JOBS:-$(nproc)}" --target $labels
 else
   nice cmake --build build-san -j"${PDD_JOBS:-$(nproc)}"
 fi
