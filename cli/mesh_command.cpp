@@ -236,16 +236,18 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "mesh",
       "Every intersecting element pair of two tetrahedral meshes (Gmsh .msh 2.2/4.1, legacy "
-      ".vtk) and its penetration depths (SPEC §10); JSON Lines sorted by (a, b).");
+      ".vtk) and its penetration depths (docs/definitions.md §10); JSON Lines sorted by (a, b).");
   cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs a < b sharing no vertex");
   cmd->add_option("--variants", args->variants,
                   "Comma-separated: rigid, eq11, static, pdd2, relaxed, accel1, accel6, global "
-                  "(SPEC §9's pdd2_global; tens of microseconds a pair with the fast engine), or all")
+                  "(pdd2_global, PD_d² over every separating plane; tens of microseconds a pair "
+                  "with the fast engine), or all")
       ->capture_default_str();
   cmd->add_option("--engine", args->engine,
-                  "'fast' (doubles, SPEC §8) or 'reference' (exact rationals as \"p/q\" strings; "
+                  "'fast' (doubles within the accuracy contract of docs/definitions.md §8) or "
+                  "'reference' (exact rationals as \"p/q\" strings; "
                   "milliseconds per pair)")
       ->check(CLI::IsMember({"fast", "reference"}))
       ->capture_default_str();

@@ -215,7 +215,8 @@ int run_solve(const SolveArgs& args) {
   progress.finish();
   if (fast && !args.quiet)
     std::cerr << "pdd solve: " << slow_paths << " of " << total
-              << " pairs took the exact path (SPEC §8: error bound wider than 1e-9); " << refined
+              << " pairs took the exact path (an error bound wider than the accuracy contract's "
+                 "1e-9); " << refined
               << " were refined (a few candidates evaluated exactly)\n";
   if (!write_error)
     write_error = args.output.empty() ? flush_error(out, where) : close_error(file_out, args.output);
@@ -250,11 +251,11 @@ void add_solve_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--formulation", args->formulation,
                   "Reference QP formulation: 'full' (the paper's 27 variables) or 'reduced' "
-                  "(SPEC §5 scalar form, same exact values, faster)")
+                  "(the scalar form of docs/definitions.md §5: same exact values, faster)")
       ->check(CLI::IsMember({"full", "reduced"}))
       ->capture_default_str();
   cmd->add_option("--global-gap", args->global_gap,
-                  "Reference engine, SPEC §9: prove pdd2_global to this relative gap "
+                  "Reference engine: prove pdd2_global (docs/definitions.md §9) to this relative gap "
                   "(pdd2_global - pdd2_global_lower <= gap * pdd2_global)")
       ->check(finite_number(0, true) & CLI::Range(0.0, 0.5))
       ->capture_default_str();

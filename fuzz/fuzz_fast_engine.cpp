@@ -185,7 +185,8 @@ void check_le(const TetPair& p, const char* lhs, double a, const char* rhs, doub
   if (!(a <= b * kSlack)) {
     std::ostringstream os;
     os.precision(17);
-    os << "SPEC §5 inequality violated beyond the §8 slack: " << lhs << " = " << a << " > " << rhs
+    os << "inequality of docs/definitions.md §5 violated beyond the accuracy contract's slack: " << lhs
+       << " = " << a << " > " << rhs
        << " = " << b << " (ratio - 1 = " << a / b - 1 << ")";
     fail(p, os.str());
   }
@@ -217,7 +218,7 @@ void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
     if (hot[i].status != pdd::fast::DepthStatus::Ok || !(std::fabs(hot[i].pd2 - ref[i]) <= 2.1e-9 * ref[i])) {
       std::ostringstream os;
       os.precision(17);
-      os << "SPEC §8: the hot " << names[i] << "(A, B) gives " << hot[i].pd2 << " (status "
+      os << "accuracy contract: the hot " << names[i] << "(A, B) gives " << hot[i].pd2 << " (status "
          << int(hot[i].status) << "), solve_pair " << ref[i];
       fail(p, os.str());
     }
@@ -287,7 +288,7 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
     if (!(g >= *exact.pdd2_global_lower * (1 - e) && g <= exact.pdd2_global * (1 + e))) {
       std::ostringstream os;
       os.precision(17);
-      os << "SPEC §9: pdd2_global fast " << fast.pdd2_global << " outside the exact interval ["
+      os << "pdd2_global fast " << fast.pdd2_global << " outside the exact interval ["
          << CGAL::to_double(*exact.pdd2_global_lower) << ", " << CGAL::to_double(exact.pdd2_global) << "]";
       fail(p, os.str());
     }
@@ -300,7 +301,7 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
     if (!(rel <= kEps)) {
       std::ostringstream os;
       os.precision(17);
-      os << "SPEC §8: " << pdd::kValueKeys[i] << " fast " << vs[i] << ", exact "
+      os << "accuracy contract: " << pdd::kValueKeys[i] << " fast " << vs[i] << ", exact "
          << pdd::reference::to_string(xs[i]) << " (~" << CGAL::to_double(xs[i])
          << "), relative error " << rel;
       fail(p, os.str());
@@ -330,14 +331,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const long every = exact_every();
   if (force_exact || (every > 0 && count++ % every == 0)) compare_with_exact(p, r);
 
-  if (!finite_input(p) && !r.error) fail(p, "SPEC §1: a non-finite coordinate is not rejected");
+  if (!finite_input(p) && !r.error) fail(p, "a non-finite coordinate is not rejected");
   check_hot(p, r);
   if (!r.error) {
     const auto vs = values(r);
     for (size_t i = 0; i < 7; ++i) {
       const double v = vs[i];
       if (std::isnan(v) || v < 0 || !(v == 0 || std::isnormal(v)))
-        fail(p, std::string("SPEC §6/§8: ") + pdd::kValueKeys[i] + " = " +
+        fail(p, std::string("output record / accuracy contract: ") + pdd::kValueKeys[i] + " = " +
                     std::to_string(v) + " is NaN, negative, infinite or subnormal");
     }
     for (const auto* q : {&r.q1_A, &r.q1_B})
@@ -352,7 +353,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (std::memcmp(&r.q1_A, &p.A, sizeof p.A) || std::memcmp(&r.q1_B, &p.B, sizeof p.B))
         fail(p, "not intersecting but q1 is not the rest pose");
       if (r.pdd2_global != 0 || r.pdd2_global_normal)
-        fail(p, "not intersecting but pdd2_global or its normal is set (SPEC §9)");
+        fail(p, "not intersecting but pdd2_global or its normal is set");
     } else {
       if (!(r.rigid_pd2 > 0 && r.pdd2 > 0 && r.pdd2_static > 0 && r.pdd2_relaxed > 0))
         fail(p, "intersecting but a depth is 0");

@@ -47,7 +47,8 @@ inline std::optional<std::string> pair_rejection(const std::optional<std::string
 }
 
 inline constexpr const char* kNotRepresentable =
-    "not representable: a result is outside the normal double range (SPEC §8)";
+    "not representable: a result is outside the normal double range (the fast engine's "
+    "accuracy contract, docs/definitions.md §8)";
 // The fast engine's pdd2_global_error (the record's other values stay): no normal in doubles
 // was certified to attain pdd2_global, or pdd2_global or its positions are outside the normal
 // double range.

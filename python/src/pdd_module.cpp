@@ -118,7 +118,8 @@ double coordinate(py::handle x, const char* which, std::size_t i, std::size_t k)
   if (same < 0) throw py::error_already_set();
   if (!same)
     value_error(where(which, i, k) + " = " + short_repr(x) +
-                " is not exactly a double: pdd reads coordinates as IEEE doubles (SPEC §1); "
+                " is not exactly a double: pdd reads coordinates as IEEE doubles "
+                "(docs/definitions.md §1); "
                 "round it yourself with float() if that is what you mean");
   return v;
 }
@@ -1049,8 +1050,8 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
 
 constexpr const char* kModuleDoc = R"doc(Penetration depth between two tetrahedra (pdd), from Python.
 
-Two senses of depth (SPEC.md; Kim & Kim, "A Penetration Metric for Deforming Tetrahedra
-using Object Norm"):
+Two senses of depth (Kim & Kim, "A Penetration Metric for Deforming Tetrahedra using
+Object Norm", arXiv:1911.06144; every quantity is defined in docs/definitions.md):
   PD    the rigid penetration depth: the shortest translation of B that leaves the
         interiors of A and B disjoint;
   PD_d  the deformable penetration depth: the smallest object-norm cost (mean squared
@@ -1059,7 +1060,8 @@ Every value is SQUARED (rigid_pd2 = PD², pdd2 = PD_d², ...), which keeps it ra
 
 Two engines:
   "fast"       doubles, certified: every value within 1e-9 relative of the exact one
-               (0 exactly when it is 0), labels within that of the exact minimum (SPEC §8);
+               (0 exactly when it is 0), labels within that of the exact minimum
+               (the fast engine's accuracy contract, docs/definitions.md §8);
   "reference"  exact: every value a fractions.Fraction (CGAL, GMP); about 0.1 s a pair.
 
 Functions:
@@ -1070,7 +1072,8 @@ Functions:
   mesh_contacts(VA, TA, VB=None, TB=None, variants=..., engine="fast", threads=None,
                 progress=None)
                                        every intersecting element pair of two tetrahedral
-                                       meshes (numpy arrays; SPEC §10) and its depths
+                                       meshes (numpy arrays; docs/definitions.md §10)
+                                       and its depths
   read_mesh(path)                      a .msh or .vtk file -> (V, T) numpy arrays
 
 Example:
@@ -1087,20 +1090,24 @@ KEYS is the tuple of a record's keys, in the order `pdd solve` writes them.
 constexpr const char* kSolveDoc = R"doc(solve(A, B, engine='fast', formulation='reduced', name='', with_global=True)
 --
 
-One pair -> dict: every SPEC §6 quantity, as `pdd solve` writes it (one JSON record).
+One pair -> dict: every quantity of the output record (docs/definitions.md §6), as
+`pdd solve` writes it (one JSON record).
 
 A, B     the tetrahedra: 4 vertices x 3 coordinates, anything array-like (nested lists,
          tuples, a numpy array of shape (4, 3)). A is the paper's T1 (static in case 1), B is
-         T2. Coordinates are IEEE doubles (SPEC §1): floats, ints, or any number (Fraction,
-         Decimal, numpy scalar) whose value is exactly a double; anything else raises
-         ValueError naming the coordinate. Vertex order and orientation are free.
-engine   "fast" (doubles, certified to SPEC §8) or "reference" (exact rationals).
-formulation  the reference engine's per-direction QP: "reduced" (SPEC §5's 9-variable form,
-         about 7x faster) or "full" (the paper's 27 variables); both give the same exact
-         result. Ignored by the fast engine.
+         T2. Coordinates are IEEE doubles (docs/definitions.md §1): floats, ints, or any
+         number (Fraction, Decimal, numpy scalar) whose value is exactly a double; anything
+         else raises ValueError naming the coordinate. Vertex order and orientation are
+         free.
+engine   "fast" (doubles, certified to the accuracy contract of docs/definitions.md §8)
+         or "reference" (exact rationals).
+formulation  the reference engine's per-direction QP: "reduced" (the 9-variable scalar
+         form of docs/definitions.md §5, about 7x faster) or "full" (the paper's 27
+         variables); both give the same exact result. Ignored by the fast engine.
 name     copied to the record's "name".
-with_global  False: skip SPEC §9 (the record has no pdd2_global, pdd2_global_normal,
-         q1_A_global, q1_B_global, pdd2_global_lower keys). Faster (fast engine: about 6 of
+with_global  False: skip pdd2_global, PD_d² over every separating plane
+         (docs/definitions.md §9): the record has no pdd2_global, pdd2_global_normal,
+         q1_A_global, q1_B_global, pdd2_global_lower keys. Faster (fast engine: about 6 of
          15 us a pair; reference: its branch and bound of 5 to 50 ms).
 
 Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that order:
@@ -1162,7 +1169,8 @@ A, B     arrays of shape (N, 4, 3) of real numbers (converted to float64 as
          a different N, or a non-numeric dtype raises ValueError.
 threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
          call only), as `pdd solve --threads`. Anything else raises ValueError.
-with_global  False: skip SPEC §9, as in solve() (no pdd2_global* / q1_*_global arrays).
+with_global  False: skip pdd2_global (PD_d² over every separating plane), as in solve()
+         (no pdd2_global* / q1_*_global arrays).
 progress None (the default) or False: silent. A callable progress(done, total): called
          from the calling thread with the GIL held, about every 0.05 s while pairs are
          computed when `done` (pairs computed so far) has grown, and once at the end with
@@ -1178,13 +1186,15 @@ Returns a dict:
                              (N,) numpy str arrays ('<U8'); "" where solve() gives None
   q1_A, q1_B                 (N, 4, 3) float64
   pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global
-                             SPEC §9: (N,), (N, 3) (NaN where solve() gives None), (N, 4, 3)
+                             PD_d² over every separating plane (docs/definitions.md §9):
+                             (N,), (N, 3) (NaN where solve() gives None), (N, 4, 3)
                              float64
   pdd2_global_error          list of N entries (with_global only): None, or why the engine
-                             declined pdd2_global alone for pair k (its SPEC §9 row is NaN, the
-                             other values are reported)
+                             declined pdd2_global alone for pair k (its pdd2_global row is
+                             NaN, the other values are reported)
   error                      list of N entries: None, or why pair k was rejected
-  slow_paths                 int: how many pairs took the engine's exact path (SPEC §8)
+  slow_paths                 int: how many pairs took the engine's exact path (to keep
+                             its accuracy contract)
 A rejected pair never stops the batch: its error is set, its values and positions are NaN,
 its labels "" and intersecting False.
 
@@ -1203,8 +1213,9 @@ Example:
 constexpr const char* kReadFixturesDoc = R"doc(read_fixtures(path)
 --
 
-A fixture file -> list of dicts: the pairs of a fixture file (SPEC §1; fixtures/*.json), read by the same reader as
-`pdd solve`:  {"pairs": [{"name": ..., "tags": [...], "A": [[x,y,z] x 4], "B": ...}, ...]}.
+A fixture file -> list of dicts: the pairs of a fixture file (docs/definitions.md §1;
+fixtures/*.json), read by the same reader as `pdd solve`:
+   {"pairs": [{"name": ..., "tags": [...], "A": [[x,y,z] x 4], "B": ...}, ...]}.
 
 Returns one dict per entry, in file order:
   {"name": str, "tags": [str, ...], "A": 4 x [x, y, z] floats, "B": ..., "error": None}
@@ -1222,8 +1233,8 @@ constexpr const char* kMeshContactsDoc = R"doc(mesh_contacts(VA, TA, VB=None, TB
 --
 
 Two tetrahedral meshes (or one, with itself) -> every intersecting element pair and its
-depths, as numpy arrays: `pdd mesh` (SPEC §10) from Python, on the C++ library
-include/pdd/mesh.h, on all cores with the GIL released.
+depths, as numpy arrays: `pdd mesh` (docs/definitions.md §10) from Python, on the C++
+library include/pdd/mesh.h, on all cores with the GIL released.
 
 VA, TA   mesh A: VA its vertices, shape (n, 3), real numbers (read as float64); TA its
          tetrahedra, shape (m, 4), integers: four indices into VA each, any orientation.
@@ -1233,11 +1244,12 @@ VB, TB   mesh B, the same way; both None (the default): self-contact of A, the p
          of A's elements that share no vertex index.
 variants comma-separated, which values to compute: rigid (rigid_pd2), eq11 (eq11_pd2),
          static (pdd2_static), pdd2, relaxed (pdd2_relaxed), accel1, accel6 (pdd2_accel1/6),
-         global (SPEC §9's pdd2_global over every separating plane: tens of microseconds
+         global (pdd2_global, PD_d² over every separating plane: tens of microseconds
          a pair with the fast engine), or all. Default: "rigid,static,pdd2,accel1", as
          `pdd mesh`.
-engine   "fast" (doubles, certified to SPEC §8) or "reference" (exact rationals,
-         fractions.Fraction; about 0.1 s a pair on one core: for small meshes).
+engine   "fast" (doubles, certified to the accuracy contract of docs/definitions.md §8)
+         or "reference" (exact rationals, fractions.Fraction; about 0.1 s a pair on one
+         core: for small meshes).
 threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
          call only), as `pdd mesh --threads`. Anything else raises ValueError.
 progress None (the default) or False: silent; a callable progress(done, total) or True (a
@@ -1261,7 +1273,8 @@ by (a, b) as `pdd mesh` writes its records:
   q1_A, q1_B    when pdd2 is requested: the deformed positions attaining pdd2; fast
                 (k, 4, 3) float64, reference k nested 4 x 3 lists of Fractions
   pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global   when global is requested
-                (SPEC §9), as solve_batch gives them: fast (k,), (k, 3), (k, 4, 3) float64;
+                (docs/definitions.md §9), as solve_batch gives them: fast (k,), (k, 3),
+                (k, 4, 3) float64;
                 reference lists of Fractions, of [x, y, z] Fractions, of nested lists, and
                 then pdd2_global_lower, the proved lower bound (a list of Fractions)
   error         list of k entries: None, or why the pair was rejected (fast engine: a

@@ -45,7 +45,7 @@ def test_module_surface():
         assert words in text, words
     text = pydoc.render_doc(pdd.solve, renderer=pydoc.plaintext)
     for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True)", "fractions.Fraction",
-                  "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "SPEC §8", "GIL"):
+                  "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "definitions.md §8", "GIL"):
         assert words in text, words
 
 

@@ -533,7 +533,7 @@ def test_docstrings_read_like_the_readme():
     text = pydoc.render_doc(pdd.mesh_contacts, renderer=pydoc.plaintext)
     for words in ("mesh_contacts(VA, TA, VB=None, TB=None, variants='rigid,static,pdd2,accel1', "
                   "engine='fast', threads=None, progress=None)", "self-contact", "skipped",
-                  "fractions.Fraction", "sorted", "q1_A", "ValueError", "GIL", "SPEC §10", "read_mesh",
+                  "fractions.Fraction", "sorted", "q1_A", "ValueError", "GIL", "definitions.md §10", "read_mesh",
                   "meshio", "progress(done, total)", "tqdm", "Ctrl-C", "KeyboardInterrupt"):
         assert words in text, words
     text = pydoc.render_doc(pdd.read_mesh, renderer=pydoc.plaintext)

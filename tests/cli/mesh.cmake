@@ -23,7 +23,7 @@ if(NOT out_err MATCHES "intersecting    ${n}\n" OR NOT out_err MATCHES "pdd2    
   message(FATAL_ERROR "summary:\n${out_err}")
 endif()
 if(out MATCHES "_global" OR out_err MATCHES "pdd2_global")  # SPEC §9: only when asked for
-  message(FATAL_ERROR "default variants wrote SPEC §9 keys:\n${out_err}")
+  message(FATAL_ERROR "default variants wrote pdd2_global keys:\n${out_err}")
 endif()
 
 # --variants global (SPEC §9): the keys of `pdd solve` after "error", in its order, and nothing

@@ -183,10 +183,10 @@ void print_table(const BenchReport& r, std::ostream& s) {
     << fmt("%.4f", b.median_seconds) << " s per " << b.pairs << " pairs); one core solve_pair: "
     << fmt("%.0f", single) << " pairs/s; speed-up " << fmt("%.2f", b.pairs_per_second / single)
     << "x\n"
-    << "  SPEC §8 slow path (exact rationals where an error bound is wider than 1e-9): "
+    << "  slow path (exact rationals where an error bound is wider than 1e-9): "
     << b.slow_paths << " of " << b.pairs << " pairs ("
     << fmt("%.3g", b.pairs ? 100.0 * double(b.slow_paths) / double(b.pairs) : 0.0) << "%)\n"
-    << "  SPEC §8 refined (the few contending candidates evaluated exactly, no whole exact path): "
+    << "  refined (the few contending candidates evaluated exactly, no whole exact path): "
     << b.refined << " of " << b.pairs << " pairs ("
     << fmt("%.3g", b.pairs ? 100.0 * double(b.refined) / double(b.pairs) : 0.0) << "%)\n";
   const auto& cc = r.certification;

@@ -126,7 +126,8 @@ int run_compare(const CompareArgs& a) {
   }
   std::ostream& s = a.json ? std::cerr : std::cout;
   s << "\nfast vs exact on " << compared << " pairs (" << rejected << " rejected by an engine), "
-    << "contract SPEC §8: relative error <= 1e-9, labels by exact value\n"
+    << "the fast engine's accuracy contract (docs/definitions.md §8): relative error <= 1e-9, "
+       "labels by exact value\n"
     << "intersecting agrees on " << intersect_agree << " of " << compared << "\n\n"
     << std::left << std::setw(18) << "quantity" << std::setw(14) << "max rel err" << std::setw(14) << "median" << "\n";
   for (std::size_t k = 0; k < kValueCount; ++k) {

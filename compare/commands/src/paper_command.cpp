@@ -133,10 +133,12 @@ int run_paper_checked(const PaperArgs& a) {
   md << std::fixed << std::setprecision(2);
   md << "# pdd paper: Kim & Kim, Sec. VI, reproduced\n\n"
      << "Run: `pdd paper --seed " << a.seed << " --count " << a.count << " --exact-sample " << a.exact_sample
-     << " --repeats " << a.repeats << "`. Protocol (SPEC §7): vertices uniform in a cube of side 10; each "
+     << " --repeats " << a.repeats << "`. Protocol (docs/definitions.md §7): vertices uniform "
+     << "in a cube of side 10; each "
      << "tetrahedron's volume in [" << a.min_volume << ", " << a.max_volume << "] (the paper's reported range); "
      << "intersecting pairs only. Machine: " << machine_description() << ".\n\n"
-     << "PD_d/PD is sqrt(pdd2_x / rigid_pd2) per pair, PD the exact Minkowski-difference depth (SPEC §4); "
+     << "PD_d/PD is sqrt(pdd2_x / rigid_pd2) per pair, PD the exact Minkowski-difference depth "
+     << "(docs/definitions.md §4); "
      << "mean (sample standard deviation) over the pairs.\n\n"
      << "## Table I\n\n"
      << "| | STAT/DEF | DEF/DEF | DEF/DEF (ACCEL, first 1) | DEF/DEF (first 6) | DEF/DEF relaxed |\n"
@@ -171,7 +173,7 @@ int run_paper_checked(const PaperArgs& a) {
        << quantile(f.values, 0.5) << " | " << quantile(f.values, 1.0) << " | " << e.mean << " ("
        << e.std << ") | " << quantile(e.values, 0.5) << " | " << quantile(e.values, 1.0) << " |\n";
   };
-  md << "## What the paper's 44 directions cost (eq. 5 over every plane, SPEC §9)\n\n"
+  md << "## What the paper's 44 directions cost (eq. 5 over every plane, docs/definitions.md §9)\n\n"
      << "pdd2_global is the minimum of the relaxed QP over every unit normal: the deformable depth "
      << "the paper defines in eq. 5 (its Sec. IV restricts the normal to the candidate directions). "
      << "The exact engine proves it to 1e-12 (a rational witness normal and a certified lower bound); "
@@ -287,7 +289,8 @@ void add_paper_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   CLI::Option* fixtures = cmd->add_option(
       "--fixtures", a->fixtures,
-      "Fixtures folder whose families/*.json (with their golden files) get the SPEC §9 cost table too")
+      "Fixtures folder whose families/*.json (with their golden files) get the table of what "
+      "the candidate directions cost against every plane too")
       ->capture_default_str();
   cmd->callback([a, fixtures, &exit_code] {
     a->fixtures_given = fixtures->count() > 0;

@@ -506,7 +506,8 @@ struct Family {
 
 std::vector<Family> family_table(const PaperProtocol& pp) {
   return {
-      {{"paper", "the paper's protocol (SPEC §7): uniform in a 10-cube, volumes in [0.1, 130], intersecting"},
+      {{"paper", "the paper's protocol (docs/definitions.md §7): uniform in a 10-cube, volumes in "
+                 "[0.1, 130], intersecting"},
        [pp](Rng& r, std::size_t) { return paper_pair(r, pp); }},
       {{"nested", "B (size 0.2 to 1) strictly inside A (volume >= 50)"},
        [](Rng& r, std::size_t) { return nested_pair(r); }},
