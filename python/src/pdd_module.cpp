@@ -1107,8 +1107,8 @@ formulation  the reference engine's per-direction QP: "reduced" (the 9-variable 
 name     copied to the record's "name".
 with_global  False: skip pdd2_global, PD_d² over every separating plane
          (docs/definitions.md §9): the record has no pdd2_global, pdd2_global_normal,
-         q1_A_global, q1_B_global, pdd2_global_lower keys. Faster (fast engine: about 6 of
-         15 us a pair; reference: its branch and bound of 5 to 50 ms).
+         q1_A_global, q1_B_global, pdd2_global_lower keys. Faster (fast engine: about 3.5 of
+         13 us a pair; reference: its branch and bound of 5 to 50 ms).
 
 Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that order:
   name          the name given
