@@ -46,8 +46,8 @@ export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTION
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 # -rss_limit_mb=4096: under ASan the merge process that replays the corpus sits at 1–1.6 GB after
 # a few dozen inputs (allocator caches and quarantine: 1.0 GB after 20 inputs, 1.1 GB after 60,
-# not a leak), so an input that alone peaks at 0.3 GB (oom-1399db4c..., 1.8 s, 296 MB) crossed
-# libFuzzer's default 2048 MB and was reported as an out-of-memory.
+# not a leak), so an input that alone peaks at 0.3 GB (oom-1399db4c..., 1.8 s, 296 MB) crosses
+# libFuzzer's default 2048 MB and would be reported as an out-of-memory.
 MODE=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -rss_limit_mb=4096)
 [ "${PDD_FUZZ_STOP_ON_CRASH:-0}" = 1 ] && MODE=()
 MAXLEN=()
