@@ -41,15 +41,15 @@
 // (the paper's eq. 5 as defined: the minimum over unit normals of the relaxed QP, so
 // pdd2_global <= pdd2_relaxed), with pdd2_global_normal (the normal attaining it, A -> B, not
 // necessarily of unit length) and q1_A_global / q1_B_global (the deformed positions attaining
-// it, every vertex moved along that normal). Fast engine: the fields of one pdd::fast::solve_pair (bit for bit),
-// not the hot path pdd::fast::pdd2_global, which gives no positions and, starting without the
-// relaxed candidate's normal, was slower on mesh pairs (51 against 46 µs a pair, mean over the
-// 2639 pairs of the shipped balls). The search is most of solve_pair's time (rigid_pd2 alone:
-// 1.1 µs there), and solve_pair computes it whether asked or not: with kPdd2 or kEq11 (which
-// take one solve_pair anyway) kGlobal costs nothing more. Reference engine: the exact witness
-// value, normal and positions and pdd2_global_lower, the proved lower bound (pdd2_global −
-// pdd2_global_lower <= 1e-12 · pdd2_global); the search runs only with kGlobal. Without
-// kGlobal these fields are 0, no normal, the rest pose and (reference) no lower bound.
+// it, every vertex moved along that normal). Fast engine: the fields of one
+// pdd::fast::solve_pair (bit for bit), not the hot path pdd::fast::pdd2_global, which gives no
+// positions and, starting without the relaxed candidate's normal, is slower on mesh pairs. The
+// search is most of solve_pair's time, and solve_pair runs it only when asked (its `global`
+// argument, set from kGlobal): kGlobal costs the search even with kPdd2 or kEq11, which take one
+// solve_pair anyway. Reference engine: the exact witness value, normal and positions and
+// pdd2_global_lower, the proved lower bound (pdd2_global − pdd2_global_lower <= 1e-12 ·
+// pdd2_global); the search runs only with kGlobal. Without kGlobal these fields are 0, no
+// normal, the rest pose and (reference) no lower bound.
 #pragma once
 
 #include <array>
