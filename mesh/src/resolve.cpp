@@ -1,0 +1,409 @@
+// resolve.cpp — pdd::mesh::resolve and resolve_self (mesh.h): rounds of contact-space
+// projection with the deformable metric; the method and its arguments are in resolve.h.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "resolve.h"
+
+namespace pdd::mesh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3d scaled(const Vec3d& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+void add_to(Vec3d& a, const Vec3d& b) {
+  for (int k = 0; k < 3; ++k) a[k] += b[k];
+}
+bool finite(const Vec3d& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+// a / |a|, or nullopt when a is zero or not finite.
+std::optional<Vec3d> unit(const Vec3d& a) {
+  const double n = std::sqrt(dot(a, a));
+  if (!(n > 0) || !std::isfinite(n)) return std::nullopt;
+  return scaled(a, 1 / n);
+}
+
+// How far B must move along the unit u for its projections to clear A's: max u.s - min u.r.
+double clearance(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
+  double hi = -HUGE_VAL, lo = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    hi = std::max(hi, dot(u, A[i]));
+    lo = std::min(lo, dot(u, B[i]));
+  }
+  return hi - lo;
+}
+
+// The axis of a candidate direction (SPEC §3's vectors, up to sign).
+Vec3d label_axis(const DirectionLabel& l, const TetVertices& A, const TetVertices& B) {
+  auto face = [](const TetVertices& T, int i) {
+    const auto& f = kFace[i];
+    return cross(sub(T[f[1]], T[f[0]]), sub(T[f[2]], T[f[0]]));
+  };
+  switch (l.kind) {
+    case ContactKind::FV: return face(A, l.a);
+    case ContactKind::VF: return face(B, l.a);
+    case ContactKind::EE: break;
+  }
+  const Vec3d e = sub(A[kEdges[l.a][1]], A[kEdges[l.a][0]]);
+  const Vec3d f = sub(B[kEdges[l.b][1]], B[kEdges[l.b][0]]);
+  const Vec3d n = cross(f, e);
+  if (dot(n, n) > 0) return n;
+  const Vec3d w = sub(B[kEdges[l.b][0]], A[kEdges[l.a][0]]);  // parallel edges
+  return sub(w, scaled(e, dot(w, e) / dot(e, e)));
+}
+
+// One pair's local step: target displacements of its eight vertices, all along u (A -> B).
+struct PairMove {
+  std::array<Vec3d, 4> da{}, db{};
+  Vec3d u{};
+  double value = 0;  // the variant's squared depth used (max_pd2)
+  bool ok = false;
+};
+
+// The rigid translation along the unit u that clears the pair, half to each side.
+PairMove translation(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
+  PairMove m;
+  const double d = std::max(0.0, clearance(u, A, B));
+  for (int i = 0; i < 4; ++i) {
+    m.da[i] = scaled(u, -d / 2);
+    m.db[i] = scaled(u, d / 2);
+  }
+  m.u = u;
+  m.value = d * d;
+  m.ok = std::isfinite(d);
+  return m;
+}
+
+PairMove rigid_move(const TetVertices& A, const TetVertices& B) {
+  const fast::Depth r = fast::rigid_pd2(A, B);
+  if (r.status == fast::DepthStatus::Ok && r.dir) {
+    if (const auto u = unit(label_axis(*r.dir, A, B))) {
+      // The label fixes the axis; of its two signs the one with the smaller clearance is the
+      // rigid direction (the other would push B through A). Decided in doubles: the value is
+      // only a target, the next round's exact decision judges the outcome.
+      const Vec3d v = scaled(*u, -1);
+      PairMove m = translation(clearance(*u, A, B) <= clearance(v, A, B) ? *u : v, A, B);
+      m.value = r.pd2;
+      if (m.ok) return m;
+    }
+  }
+  // No certified rigid value: any direction separates after its clearance; use the centroids'.
+  Vec3d c = {0, 0, 0};
+  for (int i = 0; i < 4; ++i) add_to(c, sub(B[i], A[i]));
+  if (const auto u = unit(c)) return translation(*u, A, B);
+  return translation({1, 0, 0}, A, B);
+}
+
+PairMove from_positions(const Positions<double>& qa, const Positions<double>& qb, const TetVertices& A,
+                        const TetVertices& B, double value, const std::optional<std::array<double, 3>>& normal) {
+  PairMove m;
+  Vec3d sa = {0, 0, 0}, sb = {0, 0, 0};
+  for (int i = 0; i < 4; ++i) {
+    m.da[i] = sub(qa[i], A[i]);
+    m.db[i] = sub(qb[i], B[i]);
+    if (!finite(m.da[i]) || !finite(m.db[i])) return m;
+    add_to(sa, m.da[i]);
+    add_to(sb, m.db[i]);
+  }
+  // The normal (A -> B): given, or the direction of sum d_B - sum d_A (every displacement of a
+  // per-direction solution is along its normal, B's sum forward, A's backward).
+  const auto u = unit(normal ? Vec3d{(*normal)[0], (*normal)[1], (*normal)[2]} : sub(sb, sa));
+  if (!u) return m;
+  m.u = *u;
+  m.value = value;
+  m.ok = true;
+  return m;
+}
+
+PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
+  if (variant == ResolveVariant::Rigid) return rigid_move(A, B);
+  const bool global = variant == ResolveVariant::Global;
+  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, nullptr, nullptr, global);
+  if (!r.error) {
+    if (global && !r.pdd2_global_error && r.pdd2_global_normal) {
+      PairMove m = from_positions(r.q1_A_global, r.q1_B_global, A, B, r.pdd2_global, r.pdd2_global_normal);
+      if (m.ok) return m;
+    }
+    PairMove m = from_positions(r.q1_A, r.q1_B, A, B, r.pdd2, std::nullopt);  // pdd2's positions
+    if (m.ok) return m;
+  }
+  return rigid_move(A, B);
+}
+
+// One mesh's state during the rounds.
+struct Side {
+  const Mesh* rest = nullptr;
+  char which = 'A';
+  Mesh cur;
+  std::vector<char> fixed;          // per vertex
+  std::vector<std::size_t> elems;   // valid at rest
+  std::vector<signed char> sign;    // rest orientation per element (0: not valid)
+  std::vector<double> volume;       // |rest volume| per element
+  std::vector<Vec3d> acc;           // per vertex: sum of w * displacement this round
+  std::vector<double> weight;       // per vertex: sum of w this round
+};
+
+void check_indices(const Mesh& m, char which) {
+  for (std::size_t i = 0; i < m.tets.size(); ++i)
+    for (std::size_t v : m.tets[i])
+      if (v >= m.vertices.size()) {
+        std::ostringstream o;
+        o << "element " << i << " of mesh " << which << " refers to vertex " << v << ", but the mesh has "
+          << m.vertices.size() << " vertices";
+        throw std::invalid_argument(o.str());
+      }
+}
+
+void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vector<char>& flags,
+               std::vector<SkippedElement>& skipped) {
+  check_indices(m, which);
+  if (!flags.empty() && flags.size() != m.vertices.size()) {
+    std::ostringstream o;
+    o << "fixed-vertex flags of mesh " << which << ": " << flags.size() << " flags for " << m.vertices.size()
+      << " vertices";
+    throw std::invalid_argument(o.str());
+  }
+  s.rest = &m;
+  s.which = which;
+  s.cur = m;
+  s.fixed = fix_all ? std::vector<char>(m.vertices.size(), 1)
+                    : flags.empty() ? std::vector<char>(m.vertices.size(), 0) : flags;
+  s.elems = detail::valid_elements(m, which, &skipped);
+  s.sign.assign(m.tets.size(), 0);
+  s.volume.assign(m.tets.size(), 0);
+  tbb::parallel_for(std::size_t{0}, s.elems.size(), [&](std::size_t k) {
+    const std::size_t e = s.elems[k];
+    const TetVertices t = element(m, e);
+    s.sign[e] = (signed char)detail::orientation(t[0], t[1], t[2], t[3]);
+    const Vec3d u = sub(t[1], t[0]), v = sub(t[2], t[0]), w = sub(t[3], t[0]);
+    s.volume[e] = std::abs(dot(u, cross(v, w))) / 6;
+  });
+  s.acc.assign(m.vertices.size(), {0, 0, 0});
+  s.weight.assign(m.vertices.size(), 0);
+}
+
+// Adds one element's share of a pair's move (fixed vertices take no displacement).
+void accumulate(Side& s, std::size_t e, const std::array<Vec3d, 4>& d) {
+  const double w = s.volume[e];
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t v = s.rest->tets[e][i];
+    if (s.fixed[v]) continue;
+    add_to(s.acc[v], scaled(d[i], w));
+    s.weight[v] += w;
+  }
+}
+
+// Fixed vertices and the margin (resolve.h): the fixed vertices' retreat along u goes to the
+// other side as a translation, and the two sides are pushed mu further apart.
+void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::array<char, 4>& fixed_b,
+                 const TetVertices& A, const TetVertices& B, const detail::ResolveTuning& t) {
+  double retreat_a = 0, retreat_b = 0, edge = 0, coord = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (fixed_a[i]) retreat_a = std::max(retreat_a, -dot(m.da[i], m.u));
+    if (fixed_b[i]) retreat_b = std::max(retreat_b, dot(m.db[i], m.u));
+    for (int k = 0; k < 3; ++k) coord = std::max({coord, std::abs(A[i][k]), std::abs(B[i][k])});
+  }
+  for (const auto& e : kEdges) {
+    edge = std::max(edge, dot(sub(A[e[1]], A[e[0]]), sub(A[e[1]], A[e[0]])));
+    edge = std::max(edge, dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]])));
+  }
+  const double mu = t.margin * std::sqrt(edge) + t.margin_ulp * coord;
+  for (int i = 0; i < 4; ++i) {
+    if (fixed_a[i])
+      m.da[i] = {0, 0, 0};
+    else
+      add_to(m.da[i], scaled(m.u, -(retreat_b + mu / 2)));
+    if (fixed_b[i])
+      m.db[i] = {0, 0, 0};
+    else
+      add_to(m.db[i], scaled(m.u, retreat_a + mu / 2));
+  }
+}
+
+std::array<char, 4> fixed_of(const Side& s, std::size_t e) {
+  std::array<char, 4> f;
+  for (int i = 0; i < 4; ++i) f[i] = s.fixed[s.rest->tets[e][i]];
+  return f;
+}
+
+// The global step and the step limit on one side (resolve.h, steps 3 and 4): moves the
+// vertices with a displacement, then clears the accumulators.
+void move_side(Side& s, const detail::ResolveTuning& t) {
+  const std::size_t nv = s.cur.vertices.size();
+  std::vector<Vec3d> D(nv, {0, 0, 0});
+  std::vector<double> alpha(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v)
+    if (s.weight[v] > 0) {
+      D[v] = scaled(s.acc[v], 1 / s.weight[v]);
+      if (finite(D[v])) alpha[v] = t.overshoot;
+    }
+  // Elements with a moved vertex: the only ones whose orientation can change.
+  std::vector<std::size_t> affected;
+  for (std::size_t e : s.elems)
+    for (std::size_t v : s.rest->tets[e])
+      if (alpha[v] > 0) {
+        affected.push_back(e);
+        break;
+      }
+  const std::vector<Vec3d> before = s.cur.vertices;
+  auto place = [&](std::size_t v) {
+    s.cur.vertices[v] = alpha[v] > 0 ? Vec3d{before[v][0] + alpha[v] * D[v][0], before[v][1] + alpha[v] * D[v][1],
+                                             before[v][2] + alpha[v] * D[v][2]}
+                                     : before[v];
+  };
+  for (std::size_t v = 0; v < nv; ++v)
+    if (alpha[v] > 0) place(v);
+  std::vector<char> bad(affected.size());
+  for (int pass = 0;; ++pass) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, affected.size(), 512),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          const TetVertices q = element(s.cur, affected[k]);
+                          bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[affected[k]];
+                        }
+                      });
+    bool any = false;
+    for (std::size_t k = 0; k < affected.size(); ++k)
+      if (bad[k])
+        for (std::size_t v : s.rest->tets[affected[k]])
+          if (alpha[v] > 0) {
+            alpha[v] = pass < t.max_halvings ? alpha[v] / 2 : 0;
+            place(v);
+            any = true;
+          }
+    if (!any) break;  // every affected element keeps its rest orientation
+  }
+  std::fill(s.acc.begin(), s.acc.end(), Vec3d{0, 0, 0});
+  std::fill(s.weight.begin(), s.weight.end(), 0.0);
+}
+
+double side_cost(const Side& s) { return mesh_cost(*s.rest, s.cur.vertices); }
+
+}  // namespace
+
+namespace detail {
+
+Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, const ResolveTuning& tuning) {
+  const auto t_all = Clock::now();
+  if (B && o.fix_a && o.fix_b) throw std::invalid_argument("resolve: fix_a and fix_b are both set; at most one mesh can be fixed");
+  if (o.max_rounds < 1) throw std::invalid_argument("resolve: max_rounds must be at least 1");
+  const auto stop_if_cancelled = [&] {
+    if (o.cancel && o.cancel->load(std::memory_order_relaxed)) throw Cancelled();
+  };
+  Resolution out;
+  ResolveReport& rep = out.report;
+  rep.variant = o.variant;
+  Side sa, sb;
+  init_side(sa, A, 'A', o.fix_a, o.fixed_vertices_a, rep.skipped);
+  if (B) init_side(sb, *B, 'B', o.fix_b, o.fixed_vertices_b, rep.skipped);
+  Side& sB = B ? sb : sa;  // the side of a pair's second element
+
+  for (std::size_t round = 1; round <= o.max_rounds; ++round) {
+    stop_if_cancelled();
+    const auto t_round = Clock::now();
+    auto t = Clock::now();
+    const std::vector<std::array<std::size_t, 2>> pairs =
+        intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
+    rep.seconds_contacts += since(t);
+    if (pairs.empty()) break;
+    stop_if_cancelled();
+
+    t = Clock::now();
+    std::vector<PairMove> moves(pairs.size());
+    tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+      const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
+      PairMove m = solve_move(Ta, Tb, o.variant);
+      if (m.ok) finish_move(m, fixed_of(sa, pairs[k][0]), fixed_of(sB, pairs[k][1]), Ta, Tb, tuning);
+      moves[k] = m;
+    });
+    rep.seconds_solve += since(t);
+    stop_if_cancelled();
+
+    t = Clock::now();
+    ResolveRound rr;
+    rr.round = round;
+    rr.pairs = pairs.size();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      if (!moves[k].ok) continue;
+      rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
+      accumulate(sa, pairs[k][0], moves[k].da);
+      accumulate(sB, pairs[k][1], moves[k].db);
+    }
+    move_side(sa, tuning);
+    if (B) move_side(sb, tuning);
+    rep.seconds_move += since(t);
+    rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
+    rr.seconds = since(t_round);
+    rep.rounds.push_back(rr);
+    if (o.progress) o.progress(rr);
+  }
+  stop_if_cancelled();
+
+  auto t = Clock::now();
+  ResolveReport v = check_resolution(A, sa.cur.vertices, B, B ? sb.cur.vertices : std::vector<Vec3d>{}, sa.fixed,
+                                     B ? sb.fixed : std::vector<char>{});
+  rep.seconds_verify = since(t);
+  rep.r1 = v.r1;
+  rep.r2 = v.r2;
+  rep.r3 = v.r3;
+  rep.resolved = v.resolved;
+  rep.remaining_pairs = std::move(v.remaining_pairs);
+  rep.bad_elements = std::move(v.bad_elements);
+  rep.moved_fixed_vertices = std::move(v.moved_fixed_vertices);
+  rep.min_volume_ratio = v.min_volume_ratio;
+  rep.cost_a = side_cost(sa);
+  rep.cost_b = B ? side_cost(sb) : 0;
+  rep.cost = rep.cost_a + rep.cost_b;
+  auto max_disp = [](const Mesh& m0, const std::vector<Vec3d>& p) {
+    double d = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec3d x = sub(p[i], m0.vertices[i]);
+      if (finite(x)) d = std::max(d, std::sqrt(dot(x, x)));
+    }
+    return d;
+  };
+  rep.max_displacement = max_disp(A, sa.cur.vertices);
+  if (B) rep.max_displacement = std::max(rep.max_displacement, max_disp(*B, sb.cur.vertices));
+  out.a = std::move(sa.cur.vertices);
+  if (B) out.b = std::move(sb.cur.vertices);
+  rep.seconds_total = since(t_all);
+  return out;
+}
+
+}  // namespace detail
+
+ResolveVariant parse_resolve_variant(const std::string& name) {
+  if (name == "global") return ResolveVariant::Global;
+  if (name == "pdd2") return ResolveVariant::Pdd2;
+  if (name == "rigid") return ResolveVariant::Rigid;
+  throw std::invalid_argument("unknown resolve variant '" + name + "' (global, pdd2, rigid)");
+}
+
+const char* resolve_variant_name(ResolveVariant v) {
+  switch (v) {
+    case ResolveVariant::Global: return "global";
+    case ResolveVariant::Pdd2: return "pdd2";
+    case ResolveVariant::Rigid: return "rigid";
+  }
+  return "?";
+}
+
+Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options) {
+  return detail::resolve_tuned(A, &B, options, {});
+}
+
+Resolution resolve_self(const Mesh& A, const ResolveOptions& options) {
+  return detail::resolve_tuned(A, nullptr, options, {});
+}
+
+}  // namespace pdd::mesh

@@ -1,0 +1,106 @@
+// resolve.h — internals of pdd::mesh::resolve / resolve_self / check_resolution (mesh.h):
+// pushing two interpenetrating tetrahedral meshes (or one self-intersecting mesh) apart until
+// no element pair intersects, no element is inverted and fixed vertices have not moved, all
+// three decided exactly.
+//
+// The method: rounds of contact-space projection with the deformable metric PD_d.
+//   round k:  1. contacts: every element pair whose interiors intersect at the current
+//                positions P_k: a fresh broadphase (box_pairs, over every valid element) and
+//                the exact decision (fast::interiors_intersect);
+//             2. local step: each pair (a, b) is projected, in the object norm, onto the set of
+//                configurations in which a plane separates its two tetrahedra: the per-pair
+//                solution of the chosen variant (SPEC §9's pdd2_global: q1_A_global,
+//                q1_B_global; pdd2: q1_A, q1_B; rigid: the rigid translation along rigid_dir
+//                split half and half) gives target displacements d_i along the pair's unit
+//                normal u (A -> B) for its eight vertices;
+//             3. global step (lumped): each free vertex v moves by
+//                    D_v = omega * sum_p w_p d_{p,v} / sum_p w_p
+//                over the pairs p it belongs to, w_p the rest volume of v's element in p (the
+//                element's weight in the mesh object norm sigma_mesh), omega the overshoot;
+//             4. step limit (R2): the new position of v is P_v + alpha_v D_v with alpha_v = 1
+//                first; every element with a moved vertex whose exact orientation (CGAL's
+//                filtered exact orientation predicate on the doubles) differs from its rest
+//                orientation or is zero halves alpha of its moved vertices, and after
+//                kMaxHalvings halvings sets them to 0 (that vertex does not move this round).
+//   It stops at the first round whose contact stage finds no pair (that contact stage is the
+//   exact verdict R1 on the final positions, over all pairs), or after max_rounds rounds (then
+//   one more contact stage lists what remains). It cannot claim what is not there: the report's
+//   resolved is r1 && r2 && r3 from check_resolution's exact decisions on the final doubles.
+//
+// Why elements never invert (R2 is an invariant, not a hope): P_0 is the rest pose, where
+// every valid element has its rest orientation. If P_k has it, every element at P_{k+1} has
+// been checked exactly, and an element that fails has its moved vertices' alphas halved until
+// it passes or they reach 0; with all its alphas 0 its vertices are bit for bit at P_k
+// (P + 0 * D == P for finite D), where it was valid. Lowering alpha of a vertex can break
+// another element that shares it, which is then checked and halved too; each pass lowers some
+// alpha, and after kMaxHalvings passes every offending vertex is at 0, so the loop ends with
+// every element of P_{k+1} valid.
+//
+// Why it stops: at most max_rounds rounds, each finite (the step limit ends as argued above).
+// Why it usually resolves shallow overlaps quickly: the per-pair projection is the exact
+// separating move of that pair, and the lumped global step is the Jacobi iteration of the
+// projective-dynamics solve; where a vertex belongs to several pairs the average under-moves it
+// by roughly the share of pairs that do not push it, which the overshoot omega > 1 makes up
+// (measured in `pdd bench resolve`).
+//
+// Strict separation without inflating the cost: a per-pair solution makes the pair touch
+// (touching is not intersecting), but rounding the moved coordinates to doubles can leave it
+// intersecting by a few units in the last place; a pair that shallow would then stay
+// intersecting round after round, as overshoot scales its tiny depth by 1.5 only. Each pair's
+// displacement is therefore lengthened by a gap mu along u (A by mu/2 away from B, B by mu/2
+// away from A), mu = kMargin * (the pair's longest edge) + kMarginUlp * (the largest |coordinate|
+// of the pair): far above the rounding of the coordinates (2^-52 |x|), and so small against the
+// element that its cost, at most mu^2 per pair and mesh, is below 10^-12 of an element layer's.
+//
+// Fixed vertices (fix_a, fix_b, per-vertex flags) are never written. In a pair where one side
+// has fixed vertices, the displacement those vertices were given (their retreat along u) is
+// given to the other side instead, as a translation of its free vertices along u by the largest
+// such retreat: the fixed side then lies in u.x <= c + m and the free side in u.x >= c + m (the
+// plane of the solution shifted by m), so the pair is still separated, at the cost of a
+// translation by m of the free side; for a whole fixed element this is the static case (the
+// paper's case 1) restricted to the solution's normal. Where both elements of a pair have fixed
+// vertices, each side takes the other's retreat; that can fail to separate, and the rounds then
+// report the pair as remaining.
+//
+// A pair whose per-pair solve fails (pdd2_global_error, a record error, no direction) falls back
+// to pdd2's positions, then to the rigid translation; when every variant fails the pair does not
+// move this round (it stays in the contact set and is reported if it remains).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "pdd/mesh.h"
+
+namespace pdd::mesh::detail {
+
+// Tuning of the rounds (defaults: the measured choice of `pdd bench resolve`).
+struct ResolveTuning {
+  double overshoot = 1.5;         // omega
+  double margin = 1e-6;           // kMargin: gap mu per pair relative to its longest edge
+  double margin_ulp = 1e-12;      // kMarginUlp: relative to the pair's largest |coordinate|
+  int max_halvings = 24;          // kMaxHalvings: then alpha = 0
+};
+
+// Stage 1 of a round, and check_resolution's R1: every pair of the given elements of A (and of
+// B; B == nullptr: self-contact, pairs a < b sharing no vertex) whose interiors intersect at
+// the meshes' positions, sorted by (a, b). Fresh broadphase (box_pairs) and the exact decision.
+std::vector<std::array<std::size_t, 2>> intersecting_pairs(const Mesh& A,
+                                                           const std::vector<std::size_t>& ea,
+                                                           const Mesh* B,
+                                                           const std::vector<std::size_t>& eb);
+
+// The exact orientation of the four points (CGAL's exact predicate): +1, -1 or 0 (flat).
+int orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3);
+
+// The elements of m that are valid at its positions (element_problem: finite and not flat),
+// in order; the others appended to `skipped` (unless null) with the reason.
+std::vector<std::size_t> valid_elements(const Mesh& m, char which,
+                                        std::vector<SkippedElement>* skipped);
+
+// resolve / resolve_self with explicit tuning (B == nullptr: self-contact).
+Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& options,
+                         const ResolveTuning& tuning);
+
+}  // namespace pdd::mesh::detail
