@@ -1,0 +1,366 @@
+// tests/mesh/test_resolve.cpp — pdd::mesh::resolve / resolve_self / check_resolution /
+// mesh_cost (include/pdd/mesh.h; mesh/src/resolve.h) on the shipped meshes (fixtures/meshes),
+// moved into shallow overlaps of known depth, and on deep overlaps.
+//
+// Every final configuration is judged independently of the library:
+//   R1  every element pair (A x B; self: i < j sharing no vertex), no broadphase: closed boxes
+//       compared exactly in doubles (disjoint closed boxes: disjoint tetrahedra), then the exact
+//       separating-axis judge on GMP integers (tests/support/exact_overlap.h);
+//   R2  every element's volume sign at the final positions against its rest sign, on GMP
+//       integers;
+//   R3  fixed vertices compared bit for bit;
+//   cost  recomputed from SPEC §2's first form (1/10) sum_{i>=j} d_i.d_j per element, weighted
+//       by the rest volume, in long double.
+// The report must agree: resolved == (R1 && R2 && R3), remaining_pairs == the judge's pairs.
+#define BOOST_TEST_MODULE resolve
+#include <boost/test/unit_test.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <string>
+
+#include "exact_overlap.h"
+#include "pdd/mesh.h"
+
+using namespace pdd;
+using namespace pdd::mesh;
+
+namespace {
+
+const std::string kDir = std::string(PDD_FIXTURES_DIR) + "/meshes/";
+Mesh load(const std::string& name) { return read_mesh(kDir + name); }
+
+Mesh translated(Mesh m, const Vec3d& t) {
+  for (Vec3d& v : m.vertices)
+    for (int k = 0; k < 3; ++k) v[k] += t[k];
+  return m;
+}
+
+TetVertices at(const Mesh& m, const std::vector<Vec3d>& p, std::size_t e) {
+  TetVertices t;
+  for (int i = 0; i < 4; ++i) t[i] = p[m.tets[e][i]];
+  return t;
+}
+
+bool rest_valid(const Mesh& m, std::size_t e) {
+  const TetVertices t = element(m, e);
+  return test::finite(t) && test::exact_orientation(t) != 0;
+}
+
+using PairSet = std::vector<std::array<std::size_t, 2>>;
+
+// R1 by brute force (header). B null: self-contact.
+PairSet judge_pairs(const Mesh& A, const std::vector<Vec3d>& a, const Mesh* B, const std::vector<Vec3d>& b) {
+  const Mesh& BB = B ? *B : A;
+  const std::vector<Vec3d>& bb = B ? b : a;
+  std::vector<PairSet> hits(A.tets.size());
+  tbb::parallel_for(std::size_t{0}, A.tets.size(), [&](std::size_t i) {
+    if (!rest_valid(A, i)) return;
+    const TetVertices Ti = at(A, a, i);
+    for (std::size_t j = B ? 0 : i + 1; j < BB.tets.size(); ++j) {
+      if (!B) {
+        bool share = false;
+        for (auto u : A.tets[i])
+          for (auto v : A.tets[j]) share |= u == v;
+        if (share) continue;
+      }
+      const TetVertices Tj = at(BB, bb, j);
+      bool apart = false;  // closed boxes disjoint on some axis (exact comparisons)
+      for (int k = 0; k < 3 && !apart; ++k) {
+        double lo_i = Ti[0][k], hi_i = lo_i, lo_j = Tj[0][k], hi_j = lo_j;
+        for (int v = 1; v < 4; ++v) {
+          lo_i = std::min(lo_i, Ti[v][k]), hi_i = std::max(hi_i, Ti[v][k]);
+          lo_j = std::min(lo_j, Tj[v][k]), hi_j = std::max(hi_j, Tj[v][k]);
+        }
+        apart = hi_i < lo_j || hi_j < lo_i;
+      }
+      if (!apart && rest_valid(BB, j) && test::exact_interiors_intersect(Ti, Tj)) hits[i].push_back({i, j});
+    }
+  });
+  PairSet out;
+  for (const PairSet& h : hits) out.insert(out.end(), h.begin(), h.end());
+  return out;
+}
+
+// R2 by GMP integers: elements (valid at rest) whose sign changed or vanished.
+std::size_t judge_inverted(const Mesh& m, const std::vector<Vec3d>& p) {
+  std::atomic<std::size_t> bad{0};
+  tbb::parallel_for(std::size_t{0}, m.tets.size(), [&](std::size_t e) {
+    if (!rest_valid(m, e)) return;
+    const TetVertices t = at(m, p, e);
+    if (!test::finite(t) || test::exact_orientation(t) != test::exact_orientation(element(m, e))) ++bad;
+  });
+  return bad;
+}
+
+// SPEC §2's first form, (1/10) sum_{i>=j} d_i.d_j, weighted by |rest volume|, long double.
+long double judge_cost(const Mesh& m, const std::vector<Vec3d>& p) {
+  long double num = 0, den = 0;
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    const TetVertices t = element(m, e);
+    long double x[4][3], d[4][3];
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) x[i][k] = t[i][k], d[i][k] = (long double)p[m.tets[e][i]][k] - t[i][k];
+    long double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) u[k] = x[1][k] - x[0][k], v[k] = x[2][k] - x[0][k], w[k] = x[3][k] - x[0][k];
+    const long double vol = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                                      u[2] * (v[0] * w[1] - v[1] * w[0])) / 6;
+    long double s = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j <= i; ++j) s += d[i][0] * d[j][0] + d[i][1] * d[j][1] + d[i][2] * d[j][2];
+    num += vol * s / 10;
+    den += vol;
+  }
+  return num / den;
+}
+
+std::size_t judge_moved(const Mesh& m, const std::vector<Vec3d>& p, const std::vector<char>& fixed) {
+  std::size_t n = 0;
+  for (std::size_t v = 0; v < fixed.size(); ++v)
+    if (fixed[v] && std::memcmp(m.vertices[v].data(), p[v].data(), sizeof(Vec3d)) != 0) ++n;
+  return n;
+}
+
+// Relative agreement of two sums of N non-negative terms in double (mesh_cost) and long
+// double (judge_cost): each term carries a relative rounding error of a few tens of units in
+// the last place (2^-53), the double sum of N terms at most N more; N < 10^5 here, so 1e-9
+// is above both.
+constexpr double kCostTolerance = 1e-9;
+
+struct Judged {
+  bool r1, r2, r3;
+  PairSet pairs;
+  double cost;
+};
+
+// Judges r independently and checks the report against the verdicts.
+Judged judge(const Mesh& A, const Mesh* B, const Resolution& r, const std::vector<char>& fixed_a,
+             const std::vector<char>& fixed_b) {
+  Judged j;
+  j.pairs = judge_pairs(A, r.a, B, r.b);
+  const std::size_t inverted = judge_inverted(A, r.a) + (B ? judge_inverted(*B, r.b) : 0);
+  const std::size_t moved = judge_moved(A, r.a, fixed_a) + (B ? judge_moved(*B, r.b, fixed_b) : 0);
+  j.r1 = j.pairs.empty();
+  j.r2 = inverted == 0;
+  j.r3 = moved == 0;
+  j.cost = double(judge_cost(A, r.a) + (B ? judge_cost(*B, r.b) : 0));
+  const ResolveReport& rep = r.report;
+  BOOST_TEST(rep.r1 == j.r1);
+  BOOST_TEST(rep.r2 == j.r2);
+  BOOST_TEST(rep.r3 == j.r3);
+  BOOST_TEST(rep.resolved == (j.r1 && j.r2 && j.r3));
+  BOOST_TEST((rep.remaining_pairs == j.pairs));
+  BOOST_TEST(rep.bad_elements.size() == inverted);
+  BOOST_TEST(rep.moved_fixed_vertices.size() == moved);
+  BOOST_TEST(std::abs(rep.cost - j.cost) <= kCostTolerance * j.cost);
+  BOOST_TEST(std::abs(rep.cost - (rep.cost_a + rep.cost_b)) <= kCostTolerance * rep.cost);
+  return j;
+}
+
+std::vector<char> all(const Mesh& m) { return std::vector<char>(m.vertices.size(), 1); }
+
+void log_report(const std::string& what, const Resolution& r) {
+  const ResolveReport& p = r.report;
+  BOOST_TEST_MESSAGE(what << " [" << resolve_variant_name(p.variant) << "]: resolved " << p.resolved << " in "
+                          << p.rounds.size() << " rounds (first " << (p.rounds.empty() ? 0 : p.rounds[0].pairs)
+                          << " pairs), cost " << p.cost << ", max displacement " << p.max_displacement
+                          << ", min volume ratio " << p.min_volume_ratio << ", " << p.remaining_pairs.size()
+                          << " pairs and " << p.bad_elements.size() << " elements left, " << p.seconds_total
+                          << " s");
+}
+
+// Two boxes meeting at the plane x = 1 (touching-a: [0,1]^3, touching-b: [1,2]x[0,1]^2) with B
+// moved by -delta in x: a slab of overlap of known depth. The cheapest rigid motion of the two
+// meshes that separates them translates along x by delta in total (along y or z it would take
+// 1, the slab's width): split as PD_d splits it, delta/2 each, cost 2 (delta/2)^2 = delta^2/2;
+// with A fixed, B takes all, cost delta^2.
+constexpr double kDelta = 0.1;  // a quarter of touching-a's element size (0.4)
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(resolve_variant_names) {
+  for (ResolveVariant v : {ResolveVariant::Global, ResolveVariant::Pdd2, ResolveVariant::Rigid})
+    BOOST_TEST((parse_resolve_variant(resolve_variant_name(v)) == v));
+  BOOST_CHECK_THROW(parse_resolve_variant("static"), std::invalid_argument);
+}
+
+BOOST_AUTO_TEST_CASE(boxes_of_known_depth) {
+  const Mesh A = load("touching-a.msh"), B = translated(load("touching-b.msh"), {-kDelta, 0, 0});
+  double cost[3];
+  int k = 0;
+  for (ResolveVariant v : {ResolveVariant::Global, ResolveVariant::Pdd2, ResolveVariant::Rigid}) {
+    ResolveOptions o;
+    o.variant = v;
+    const Resolution r = resolve(A, B, o);
+    log_report("boxes overlapping by 0.1", r);
+    const Judged j = judge(A, &B, r, {}, {});
+    BOOST_TEST(r.report.resolved);
+    BOOST_TEST(!r.report.rounds.empty());
+    // Below the cheapest separating rigid motion (header of kDelta).
+    BOOST_TEST(j.cost < kDelta * kDelta / 2);
+    cost[k++] = j.cost;
+  }
+  BOOST_TEST_MESSAGE("costs global " << cost[0] << ", pdd2 " << cost[1] << ", rigid " << cost[2]
+                                     << "; rigid separation " << kDelta * kDelta / 2);
+}
+
+BOOST_AUTO_TEST_CASE(fixed_mesh_and_fixed_vertices) {
+  const Mesh A = load("touching-a.msh"), B = translated(load("touching-b.msh"), {-kDelta, 0, 0});
+  {
+    ResolveOptions o;
+    o.fix_a = true;
+    const Resolution r = resolve(A, B, o);
+    log_report("boxes, A fixed", r);
+    const Judged j = judge(A, &B, r, all(A), {});
+    BOOST_TEST(r.report.resolved);
+    BOOST_TEST(r.report.cost_a == 0.0);
+    BOOST_TEST(j.cost < kDelta * kDelta);  // B translated by delta alone
+  }
+  {
+    // Boundary conditions: B's vertices on its far face x = 2 - delta are fixed.
+    ResolveOptions o;
+    o.fixed_vertices_b.assign(B.vertices.size(), 0);
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < B.vertices.size(); ++v)
+      if (B.vertices[v][0] == 2 - kDelta) o.fixed_vertices_b[v] = 1, ++n;
+    BOOST_TEST(n > 0u);
+    const Resolution r = resolve(A, B, o);
+    log_report("boxes, B's far face fixed", r);
+    judge(A, &B, r, {}, o.fixed_vertices_b);
+    BOOST_TEST(r.report.resolved);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(shallow_curved_contacts) {
+  // Ball B moved along the line of the centres to a depth of 0.08 (centres 1.82 apart, radii
+  // 1 and 0.9); the torus (ring 1, tube 0.25) under the box lifted to z >= 0.2 (the tube's top
+  // at 0.25); slivers' box [0.5,1.5]x[-0.4,0.6]^2 moved to x >= 0.95 against ball A (x <= 1).
+  const Mesh a = load("sphere-a.msh"), b0 = load("sphere-b.msh");
+  const Vec3d c = {1.1, 0.35, 0.2};
+  const double len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), s = 1.82 / len - 1;
+  const Mesh b = translated(b0, {c[0] * s, c[1] * s, c[2] * s});
+  const Mesh torus = load("torus.msh"), box = translated(load("box.vtk"), {0, 0, 0.7});
+  const Mesh slivers = translated(load("slivers.msh"), {0.45, 0, 0});
+  const struct {
+    const char* name;
+    const Mesh *A, *B;
+  } cases[] = {{"balls", &a, &b}, {"torus and box", &torus, &box}, {"ball and slivers", &a, &slivers}};
+  for (const auto& k : cases) {
+    const Resolution r = resolve(*k.A, *k.B);
+    log_report(k.name, r);
+    judge(*k.A, k.B, r, {}, {});
+    BOOST_TEST(r.report.resolved, k.name);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(self_contact) {
+  // two-spheres.msh: balls of radius 1 at the origin and 0.8 at (1.3, 0.2, 0.1), meshed
+  // independently in one file (two connected components). The second ball's vertices are moved
+  // along the centres' line to centres 1.72 apart: a self-intersection 0.08 deep.
+  Mesh m = load("two-spheres.msh");
+  std::vector<std::size_t> root(m.vertices.size());
+  for (std::size_t v = 0; v < root.size(); ++v) root[v] = v;
+  std::function<std::size_t(std::size_t)> find = [&](std::size_t v) {
+    return root[v] == v ? v : root[v] = find(root[v]);
+  };
+  for (const auto& t : m.tets)
+    for (int i = 1; i < 4; ++i) root[find(t[i])] = find(t[0]);
+  // The component of the vertex nearest to the second centre.
+  const Vec3d c = {1.3, 0.2, 0.1};
+  std::size_t near = 0;
+  double best = HUGE_VAL;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d += (m.vertices[v][k] - c[k]) * (m.vertices[v][k] - c[k]);
+    if (d < best) best = d, near = v;
+  }
+  const double len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), s = 1.72 / len - 1;
+  std::size_t moved = 0;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v)
+    if (find(v) == find(near)) {
+      for (int k = 0; k < 3; ++k) m.vertices[v][k] += c[k] * s;
+      ++moved;
+    }
+  BOOST_TEST(moved > 0u);
+  BOOST_TEST(moved < m.vertices.size());
+  const Resolution r = resolve_self(m);
+  log_report("two-spheres 0.08 deep (self)", r);
+  judge(m, nullptr, r, {}, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(r.b.empty());
+  // The shipped, deeper self-intersection (0.48, about 1.4 elements of 0.35) within 5 rounds:
+  // whatever the outcome, the report agrees with the judge.
+  ResolveOptions o;
+  o.max_rounds = 5;
+  const Mesh deep = load("two-spheres.msh");
+  const Resolution d = resolve_self(deep, o);
+  log_report("two-spheres as shipped (self), 5 rounds", d);
+  judge(deep, nullptr, d, {}, {});
+}
+
+BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
+  // The shipped balls overlap by 0.73 (about 2.4 elements of size 0.3): one round cannot end it.
+  const Mesh A = load("sphere-a.msh"), B = load("sphere-b.msh");
+  ResolveOptions o;
+  o.max_rounds = 1;
+  const Resolution r = resolve(A, B, o);
+  log_report("deep balls, one round", r);
+  const Judged j = judge(A, &B, r, {}, {});
+  BOOST_TEST(!r.report.resolved);
+  BOOST_TEST(!j.pairs.empty());
+  BOOST_TEST(r.report.rounds.size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
+  const Mesh A = load("touching-a.msh"), B = load("touching-b.msh");
+  // Touching meshes at rest: resolved, cost 0.
+  ResolveReport rep = check_resolution(A, A.vertices, &B, B.vertices);
+  BOOST_TEST(rep.resolved);
+  BOOST_TEST(rep.min_volume_ratio == 1.0);
+  BOOST_TEST(mesh_cost(A, A.vertices) == 0.0);
+  // A translation by t costs |t|^2 (SPEC §2), up to rounding of the moved coordinates.
+  const Mesh At = translated(A, {0.3, -0.4, 0});
+  BOOST_TEST(std::abs(mesh_cost(A, At.vertices) - 0.25) <= 1e-12);
+  // Overlapping by delta: R1 fails with the judge's pairs; moving a fixed vertex fails R3;
+  // flipping one vertex through the opposite face fails R2.
+  const Mesh Bt = translated(B, {-kDelta, 0, 0});
+  rep = check_resolution(A, A.vertices, &Bt, Bt.vertices);
+  BOOST_TEST(!rep.r1);
+  BOOST_TEST((rep.remaining_pairs == judge_pairs(A, A.vertices, &Bt, Bt.vertices)));
+  std::vector<Vec3d> a1 = A.vertices;
+  a1[0][0] = std::nextafter(a1[0][0], 10.0);
+  std::vector<char> fixed(A.vertices.size(), 0);
+  fixed[0] = 1;
+  rep = check_resolution(A, a1, &B, B.vertices, fixed);
+  BOOST_TEST(!rep.r3);
+  BOOST_TEST(rep.moved_fixed_vertices.size() == 1u);
+  const auto& t = A.tets[0];
+  std::vector<Vec3d> a2 = A.vertices;
+  for (int k = 0; k < 3; ++k)  // vertex 0 mirrored through the centroid of the opposite face
+    a2[t[0]][k] = 2 * (A.vertices[t[1]][k] + A.vertices[t[2]][k] + A.vertices[t[3]][k]) / 3 - A.vertices[t[0]][k];
+  rep = check_resolution(A, a2, &B, B.vertices);
+  BOOST_TEST(!rep.r2);
+  BOOST_TEST(rep.min_volume_ratio < 0.0);
+  BOOST_TEST(rep.bad_elements.size() == judge_inverted(A, a2));
+}
+
+BOOST_AUTO_TEST_CASE(bad_options_and_cancel) {
+  const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
+  ResolveOptions o;
+  o.fix_a = o.fix_b = true;
+  BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
+  o = {};
+  o.max_rounds = 0;
+  BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
+  o = {};
+  o.fixed_vertices_a.assign(A.vertices.size() + 1, 0);
+  BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
+  o = {};
+  std::atomic<bool> cancel{true};
+  o.cancel = &cancel;
+  BOOST_CHECK_THROW(resolve(A, B, o), Cancelled);
+}
