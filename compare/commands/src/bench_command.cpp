@@ -3,6 +3,9 @@
 // pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]
 // pdd bench mesh [--a A --b B | --size N [--distance D] [--write-meshes DIR]]
 //                [--variants LIST] [--repeats R] [--json [FILE]]     (mesh_bench.h)
+// pdd bench resolve [--cases LIST] [--size N] [--shallow-distance D] [--deep-distance D]
+//                   [--meshes DIR] [--max-rounds K] [--repeats R] [--json [FILE]]
+//                                                                   (resolve_bench.h)
 // Table on standard output. --json FILE also writes the same numbers as one JSON object to
 // FILE; --json alone writes the JSON to standard output and the table to standard error.
 #include <cmath>
@@ -20,6 +23,7 @@
 #include "pdd/compare/research_commands.h"
 #include "pdd/io/output.h"
 #include "pdd/io/result_json.h"
+#include "pdd/compare/resolve_bench.h"
 
 namespace pdd::compare {
 using io::Json;
@@ -480,6 +484,137 @@ int run_mesh(const MeshBenchArgs& a) {
   return kExitOk;
 }
 
+// ---- pdd bench resolve -------------------------------------------------------------
+
+struct ResolveBenchArgs {
+  ResolveBenchOptions options;
+  std::string json_path;
+  bool json = false;
+};
+
+Json resolve_report_json(const ResolveBenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench resolve";
+  j["size"] = r.options.size;
+  j["shallow_distance"] = r.options.shallow_distance;
+  j["deep_distance"] = r.options.deep_distance;
+  j["max_rounds"] = r.options.max_rounds;
+  j["repeats"] = r.options.repeats;
+  Json m;
+  m["cpu_model"] = r.machine.cpu_model;
+  m["logical_cpus"] = r.machine.logical_cpus;
+  m["compiler"] = r.machine.compiler;
+  m["assertions"] = r.machine.assertions;
+  m["loadavg_before"] = r.machine.load_before;
+  j["machine"] = m;
+  Json cases = Json::array();
+  for (const auto& c : r.cases) {
+    Json q;
+    q["name"] = c.name;
+    q["description"] = c.description;
+    q["elements_a"] = c.elements_a;
+    q["elements_b"] = c.elements_b;
+    q["skipped"] = c.skipped;
+    q["read_s"] = number(c.read_seconds);
+    q["rigid_separation_cost"] = c.rigid_separation >= 0 ? Json(c.rigid_separation) : Json(nullptr);
+    q["rigid_separation_t"] = number(c.rigid_t);
+    Json rows = Json::array();
+    for (const auto& w : c.rows) {
+      Json x;
+      x["variant"] = w.variant;
+      x["resolved"] = w.resolved;
+      x["r1"] = w.r1;
+      x["r2"] = w.r2;
+      x["r3"] = w.r3;
+      x["rounds"] = w.rounds;
+      x["first_pairs"] = w.first_pairs;
+      x["remaining_pairs"] = w.remaining_pairs;
+      x["bad_elements"] = w.bad_elements;
+      x["cost"] = number(w.cost);
+      x["max_displacement"] = number(w.max_displacement);
+      x["min_volume_ratio"] = number(w.min_volume_ratio);
+      x["total_s"] = number(w.total);
+      x["contacts_s"] = number(w.contacts);
+      x["solve_s"] = number(w.solve);
+      x["move_s"] = number(w.move);
+      x["verify_s"] = number(w.verify);
+      x["per_round_s"] = number(w.per_round);
+      Json rounds = Json::array();
+      for (const auto& k : w.round_log)
+        rounds.push_back({{"round", k.round}, {"pairs", k.pairs}, {"max_pd2", number(k.max_pd2)},
+                          {"cost", number(k.cost)}, {"seconds", number(k.seconds)}});
+      x["rounds_log"] = rounds;
+      rows.push_back(x);
+    }
+    q["variants"] = rows;
+    cases.push_back(q);
+  }
+  j["cases"] = cases;
+  j["notes"] = r.notes;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
+  s << "pdd bench resolve: medians of " << r.options.repeats << " runs per row; " << r.machine.logical_cpus
+    << " logical CPUs (" << r.machine.cpu_model << "), load " << r.machine.load_before << "\n";
+  for (const auto& c : r.cases) {
+    s << "\n" << c.name << ": " << c.description;
+    if (c.read_seconds > 0) s << "; read " << fmt("%.3f s", c.read_seconds);
+    if (c.skipped) s << "; " << c.skipped << " elements skipped";
+    s << "\n";
+    if (c.rigid_separation >= 0)
+      s << "  rigid separation along the line: t = " << fmt("%.5g", c.rigid_t) << ", cost t^2/2 = "
+        << fmt("%.4g", c.rigid_separation) << "\n";
+    s << "  " << pad("variant", 8) << rpad("resolved", 9) << rpad("rounds", 7) << rpad("pairs", 7)
+      << rpad("left", 6) << rpad("cost", 11) << rpad("vs rigid", 9) << rpad("max disp", 10)
+      << rpad("min V1/V0", 10) << rpad("total s", 9) << rpad("contacts", 9) << rpad("solve", 8)
+      << rpad("move", 8) << rpad("verify", 8) << rpad("s/round", 9) << "\n";
+    for (const auto& w : c.rows)
+      s << "  " << pad(w.variant, 8) << rpad(w.resolved ? "yes" : "NO", 9) << rpad(std::to_string(w.rounds), 7)
+        << rpad(std::to_string(w.first_pairs), 7) << rpad(std::to_string(w.remaining_pairs), 6)
+        << rpad(fmt("%.3e", w.cost), 11)
+        << rpad(c.rigid_separation > 0 ? fmt("%.4f", w.cost / c.rigid_separation) : "-", 9)
+        << rpad(fmt("%.4f", w.max_displacement), 10) << rpad(fmt("%.3f", w.min_volume_ratio), 10)
+        << rpad(fmt("%.3f", w.total), 9) << rpad(fmt("%.3f", w.contacts), 9) << rpad(fmt("%.3f", w.solve), 8)
+        << rpad(fmt("%.3f", w.move), 8) << rpad(fmt("%.3f", w.verify), 8) << rpad(fmt("%.4f", w.per_round), 9)
+        << "\n";
+  }
+  s << "(pairs: intersecting pairs at the start; left: intersecting pairs at the end; vs rigid: cost "
+       "over the rigid separation's; total s after reading, the final exact check included; total "
+    << fmt("%.1f", r.seconds) << " s)\n";
+}
+
+int run_resolve(const ResolveBenchArgs& a) {
+  if (a.json && !a.json_path.empty() && a.json_path != "-")
+    if (auto why = check_writable(a.json_path)) {
+      std::cerr << "pdd bench resolve: " << *why << "\n";
+      return kExitFileError;
+    }
+  ResolveBenchReport rep;
+  try {
+    rep = run_resolve_bench(a.options);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "pdd bench resolve: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "pdd bench resolve: " << e.what() << "\n";
+    return kExitFileError;
+  }
+  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
+  print_resolve_table(rep, json_stdout ? std::cerr : std::cout);
+  if (a.json) {
+    const std::string text = resolve_report_json(rep).dump(2) + "\n";
+    if (json_stdout) {
+      std::cout << text;
+    } else if (auto why = write_file(a.json_path, text)) {
+      std::cerr << "pdd bench resolve: " << *why << "\n";
+      return kExitFileError;
+    }
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, int& exit_code) {
@@ -535,8 +670,42 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     ma->json = mesh_cmd->count("--json") > 0;
     exit_code = run_mesh(*ma);
   });
-  cmd->callback([a, cmd, mesh_cmd, &exit_code] {
-    if (mesh_cmd->parsed()) return;  // `pdd bench mesh`
+  auto ra = std::make_shared<ResolveBenchArgs>();
+  CLI::App* resolve_cmd = cmd->add_subcommand(
+      "resolve",
+      "Resolve interpenetrating meshes with every variant (global, pdd2, rigid) side by side: "
+      "rounds, time per stage, cost, largest displacement, exact verdict; shallow and deep "
+      "overlaps of generated balls, self-contact and the shipped meshes.");
+  resolve_cmd->add_option("--cases", ra->options.cases, "Cases, comma-separated: shallow, deep, self, shipped")
+      ->capture_default_str();
+  resolve_cmd->add_option("--size", ra->options.size, "Tetrahedra per generated ball")
+      ->check(integer_in(6, 20000000))
+      ->capture_default_str();
+  resolve_cmd->add_option("--shallow-distance", ra->options.shallow_distance,
+                          "Centre distance of the balls of the shallow case (overlap: about 2 - distance)")
+      ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  resolve_cmd->add_option("--deep-distance", ra->options.deep_distance, "Centre distance of the deep case")
+      ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  resolve_cmd->add_option("--meshes", ra->options.meshes, "Directory of the shipped meshes (self, shipped)")
+      ->capture_default_str();
+  resolve_cmd->add_option("--max-rounds", ra->options.max_rounds, "Rounds before giving up")
+      ->check(integer_in(1, 100000))
+      ->capture_default_str();
+  resolve_cmd->add_option("--repeats", ra->options.repeats, "Runs per case and variant (median of the times)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  resolve_cmd->add_option("--json", ra->json_path,
+                          "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                          "output, table on standard error)")
+      ->expected(0, 1);
+  resolve_cmd->callback([ra, resolve_cmd, &exit_code] {
+    ra->json = resolve_cmd->count("--json") > 0;
+    exit_code = run_resolve(*ra);
+  });
+  cmd->callback([a, cmd, mesh_cmd, resolve_cmd, &exit_code] {
+    if (mesh_cmd->parsed() || resolve_cmd->parsed()) return;  // `pdd bench mesh` / `resolve`
     a->json = cmd->count("--json") > 0;
     exit_code = run(*a);
   });

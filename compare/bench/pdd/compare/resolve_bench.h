@@ -1,0 +1,71 @@
+// resolve_bench.h — `pdd bench resolve`: pdd::mesh::resolve / resolve_self (include/pdd/mesh.h)
+// with every variant side by side on the same inputs: rounds, time per stage and per round,
+// cost, largest displacement, smallest volume ratio, whether R1–R3 hold (the library's exact
+// verdict), and, where it can be computed, the cost of the cheapest rigid separation along a
+// given line for comparison.
+//
+// Cases:
+//   shallow  two generated balls (make_bench_ball, mesh_bench.h) of about `size` tetrahedra
+//            whose overlap is about one element layer (centres `shallow_distance` apart),
+//            written as legacy VTK and read back (the read is timed);
+//   deep     the same balls at `deep_distance` (the lens of `pdd bench mesh`);
+//   self     two-spheres.msh of `meshes` (one mesh intersecting itself);
+//   shipped  the small meshes of `meshes`, moved into shallow overlaps of known depth as in
+//            tests/mesh/test_resolve.cpp, and the shipped deep pairs as they are.
+// Rigid comparison ("rigid separation"): B translated along the line of the balls' centres
+// (boxes: along x) by the smallest t after which no element pair intersects (bisection on t
+// with check_resolution's exact R1, to 1e-4 relative), split half and half between the meshes as
+// PD_d splits a translation: cost 2 (t/2)^2 = t^2 / 2 (the cheapest rigid motion along that line).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "pdd/compare/timing.h"
+#include "pdd/mesh.h"
+
+namespace pdd::compare {
+
+struct ResolveBenchOptions {
+  std::size_t size = 100000;        // tetrahedra per generated ball
+  double shallow_distance = 1.94;   // centre distance, shallow case (about one layer at 10^5)
+  double deep_distance = 1.88;      // centre distance, deep case (the lens of `pdd bench mesh`)
+  std::string meshes = "fixtures/meshes";  // directory of the shipped meshes
+  std::string cases = "shallow,deep,self,shipped";
+  std::size_t max_rounds = 200;
+  int repeats = 3;                  // runs per case and variant (median of the times)
+};
+
+struct ResolveBenchRow {
+  std::string variant;
+  bool resolved = false, r1 = false, r2 = false, r3 = false;
+  std::size_t rounds = 0, first_pairs = 0, remaining_pairs = 0, bad_elements = 0;
+  double cost = 0, max_displacement = 0, min_volume_ratio = 0;
+  // Medians over the repeats (seconds).
+  double total = 0, contacts = 0, solve = 0, move = 0, verify = 0, per_round = 0;
+  std::vector<mesh::ResolveRound> round_log;  // of the first run
+};
+
+struct ResolveBenchCase {
+  std::string name, description;
+  std::size_t elements_a = 0, elements_b = 0, skipped = 0;
+  double read_seconds = 0;      // generated balls: reading both files
+  double rigid_separation = -1; // t^2 / 2 (header); -1: not computed
+  double rigid_t = 0;
+  std::vector<ResolveBenchRow> rows;  // global, pdd2, rigid
+};
+
+struct ResolveBenchReport {
+  ResolveBenchOptions options;
+  MachineInfo machine;
+  std::vector<ResolveBenchCase> cases;
+  std::vector<std::string> notes;
+  double seconds = 0;
+};
+
+// Runs the cases (progress on stderr). Throws std::invalid_argument on bad options and
+// mesh::ReadError when a shipped mesh cannot be read.
+ResolveBenchReport run_resolve_bench(const ResolveBenchOptions& options);
+
+}  // namespace pdd::compare
