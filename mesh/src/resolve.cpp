@@ -140,6 +140,10 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
   return rigid_move(A, B);
 }
 
+double volume6(const TetVertices& t) {
+  return dot(sub(t[1], t[0]), cross(sub(t[2], t[0]), sub(t[3], t[0])));
+}
+
 // One mesh's state during the rounds.
 struct Side {
   const Mesh* rest = nullptr;
@@ -151,7 +155,57 @@ struct Side {
   std::vector<double> volume;       // |rest volume| per element
   std::vector<Vec3d> acc;           // per vertex: sum of w * displacement this round
   std::vector<double> weight;       // per vertex: sum of w this round
+  std::vector<char> blocked;        // per vertex: the step limit cut its last step
+  // Vertex adjacency (edges of the valid elements), CSR; built when smoothing is on.
+  std::vector<std::size_t> adj_start, adj;
 };
+
+void build_adjacency(Side& s) {
+  const std::size_t nv = s.cur.vertices.size();
+  std::vector<std::vector<std::size_t>> nb(nv);
+  for (std::size_t e : s.elems)
+    for (const auto& ed : kEdges) {
+      const std::size_t u = s.rest->tets[e][ed[0]], v = s.rest->tets[e][ed[1]];
+      nb[u].push_back(v);
+      nb[v].push_back(u);
+    }
+  s.adj_start.assign(nv + 1, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    std::sort(nb[v].begin(), nb[v].end());
+    nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
+    s.adj_start[v + 1] = s.adj_start[v] + nb[v].size();
+  }
+  s.adj.reserve(s.adj_start[nv]);
+  for (std::size_t v = 0; v < nv; ++v) s.adj.insert(s.adj.end(), nb[v].begin(), nb[v].end());
+}
+
+// Harmonic extension (ResolveTuning::smooth_sweeps): Jacobi sweeps of D_v = mean of D over
+// v's neighbours for the free vertices that are in no pair, starting from D = 0 there.
+void smooth(const Side& s, std::vector<Vec3d>& D, std::vector<char>& moving, int sweeps) {
+  const std::size_t nv = D.size();
+  std::vector<char> contact(moving);
+  std::vector<std::size_t> region;  // free non-contact vertices next to a moving one
+  std::vector<char> in_region(nv, 0);
+  for (int it = 0; it < sweeps; ++it) {
+    std::vector<std::size_t> grow;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (moving[v])
+        for (std::size_t k = s.adj_start[v]; k < s.adj_start[v + 1]; ++k) {
+          const std::size_t u = s.adj[k];
+          if (!in_region[u] && !contact[u] && !s.fixed[u]) in_region[u] = 1, grow.push_back(u);
+        }
+    region.insert(region.end(), grow.begin(), grow.end());
+    std::vector<Vec3d> next(region.size());
+    for (std::size_t r = 0; r < region.size(); ++r) {
+      const std::size_t v = region[r];
+      Vec3d m = {0, 0, 0};
+      const std::size_t deg = s.adj_start[v + 1] - s.adj_start[v];
+      for (std::size_t k = s.adj_start[v]; k < s.adj_start[v + 1]; ++k) add_to(m, D[s.adj[k]]);
+      next[r] = deg ? scaled(m, 1.0 / double(deg)) : m;
+    }
+    for (std::size_t r = 0; r < region.size(); ++r) D[region[r]] = next[r], moving[region[r]] = 1;
+  }
+}
 
 void check_indices(const Mesh& m, char which) {
   for (std::size_t i = 0; i < m.tets.size(); ++i)
@@ -190,14 +244,20 @@ void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vect
   });
   s.acc.assign(m.vertices.size(), {0, 0, 0});
   s.weight.assign(m.vertices.size(), 0);
+  s.blocked.assign(m.vertices.size(), 0);
 }
 
 // Adds one element's share of a pair's move (fixed vertices take no displacement).
-void accumulate(Side& s, std::size_t e, const std::array<Vec3d, 4>& d) {
+void accumulate(Side& s, std::size_t e, const std::array<Vec3d, 4>& d, bool longest) {
   const double w = s.volume[e];
   for (int i = 0; i < 4; ++i) {
     const std::size_t v = s.rest->tets[e][i];
     if (s.fixed[v]) continue;
+    if (longest) {  // acc holds the longest target, weight 1 once set
+      if (s.weight[v] == 0 || dot(d[i], d[i]) > dot(s.acc[v], s.acc[v])) s.acc[v] = d[i];
+      s.weight[v] = 1;
+      continue;
+    }
     add_to(s.acc[v], scaled(d[i], w));
     s.weight[v] += w;
   }
@@ -218,6 +278,12 @@ void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::arr
     edge = std::max(edge, dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]])));
   }
   const double mu = t.margin * std::sqrt(edge) + t.margin_ulp * coord;
+  if (t.retreat_only)
+    for (int i = 0; i < 4; ++i) {
+      const double ta = dot(m.da[i], m.u), tb = dot(m.db[i], m.u);
+      m.da[i] = scaled(m.u, std::min(0.0, ta));
+      m.db[i] = scaled(m.u, std::max(0.0, tb));
+    }
   for (int i = 0; i < 4; ++i) {
     if (fixed_a[i])
       m.da[i] = {0, 0, 0};
@@ -230,9 +296,12 @@ void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::arr
   }
 }
 
-std::array<char, 4> fixed_of(const Side& s, std::size_t e) {
+std::array<char, 4> fixed_of(const Side& s, std::size_t e, bool blocked) {
   std::array<char, 4> f;
-  for (int i = 0; i < 4; ++i) f[i] = s.fixed[s.rest->tets[e][i]];
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t v = s.rest->tets[e][i];
+    f[i] = s.fixed[v] || (blocked && s.blocked[v]);
+  }
   return f;
 }
 
@@ -242,11 +311,16 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
   const std::size_t nv = s.cur.vertices.size();
   std::vector<Vec3d> D(nv, {0, 0, 0});
   std::vector<double> alpha(nv, 0);
+  std::vector<char> moving(nv, 0);
   for (std::size_t v = 0; v < nv; ++v)
     if (s.weight[v] > 0) {
       D[v] = scaled(s.acc[v], 1 / s.weight[v]);
-      if (finite(D[v])) alpha[v] = t.overshoot;
+      moving[v] = finite(D[v]);
+      if (!moving[v]) D[v] = {0, 0, 0};
     }
+  if (t.smooth_sweeps > 0) smooth(s, D, moving, t.smooth_sweeps);
+  for (std::size_t v = 0; v < nv; ++v)
+    if (moving[v]) alpha[v] = t.overshoot;
   // Elements with a moved vertex: the only ones whose orientation can change.
   std::vector<std::size_t> affected;
   for (std::size_t e : s.elems)
@@ -270,6 +344,13 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const TetVertices q = element(s.cur, affected[k]);
                           bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[affected[k]];
+                          if (!bad[k] && t.min_ratio > 0 && pass < t.max_halvings) {
+                            TetVertices p;
+                            for (int i = 0; i < 4; ++i) p[i] = before[s.rest->tets[affected[k]][i]];
+                            const double r0 = s.volume[affected[k]] * 6 * s.sign[affected[k]];
+                            const double r1 = volume6(q) / r0;
+                            bad[k] = r1 < t.min_ratio && r1 < volume6(p) / r0;
+                          }
                         }
                       });
     bool any = false;
@@ -283,6 +364,7 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
           }
     if (!any) break;  // every affected element keeps its rest orientation
   }
+  for (std::size_t v = 0; v < nv; ++v) s.blocked[v] = moving[v] && alpha[v] < t.overshoot;
   std::fill(s.acc.begin(), s.acc.end(), Vec3d{0, 0, 0});
   std::fill(s.weight.begin(), s.weight.end(), 0.0);
 }
@@ -292,6 +374,16 @@ double side_cost(const Side& s) { return mesh_cost(*s.rest, s.cur.vertices); }
 }  // namespace
 
 namespace detail {
+
+ResolveTuning default_tuning(ResolveVariant variant) {
+  ResolveTuning t;
+  if (variant != ResolveVariant::Rigid) {
+    t.longest = true;
+    t.overshoot = 1.2;
+    t.rigid_after = 2;
+  }
+  return t;
+}
 
 Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, const ResolveTuning& tuning) {
   const auto t_all = Clock::now();
@@ -306,27 +398,44 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   Side sa, sb;
   init_side(sa, A, 'A', o.fix_a, o.fixed_vertices_a, rep.skipped);
   if (B) init_side(sb, *B, 'B', o.fix_b, o.fixed_vertices_b, rep.skipped);
+  if (tuning.smooth_sweeps > 0) {
+    build_adjacency(sa);
+    if (B) build_adjacency(sb);
+  }
   Side& sB = B ? sb : sa;  // the side of a pair's second element
 
+  std::vector<std::array<std::size_t, 2>> last_pairs;
+  std::vector<int> last_age;
   for (std::size_t round = 1; round <= o.max_rounds; ++round) {
     stop_if_cancelled();
     const auto t_round = Clock::now();
     auto t = Clock::now();
-    const std::vector<std::array<std::size_t, 2>> pairs =
+    std::vector<std::array<std::size_t, 2>> pairs =
         intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
     rep.seconds_contacts += since(t);
     if (pairs.empty()) break;
     stop_if_cancelled();
 
     t = Clock::now();
+    // Consecutive rounds each pair has been found in (ResolveTuning::rigid_after).
+    std::vector<int> age(pairs.size(), 1);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const auto it = std::lower_bound(last_pairs.begin(), last_pairs.end(), pairs[k]);
+      if (it != last_pairs.end() && *it == pairs[k]) age[k] = last_age[std::size_t(it - last_pairs.begin())] + 1;
+    }
     std::vector<PairMove> moves(pairs.size());
     tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
       const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
-      PairMove m = solve_move(Ta, Tb, o.variant);
-      if (m.ok) finish_move(m, fixed_of(sa, pairs[k][0]), fixed_of(sB, pairs[k][1]), Ta, Tb, tuning);
+      const bool rigid = tuning.rigid_after > 0 && age[k] > tuning.rigid_after;
+      PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : o.variant);
+      if (m.ok)
+        finish_move(m, fixed_of(sa, pairs[k][0], tuning.pass_blocked), fixed_of(sB, pairs[k][1], tuning.pass_blocked),
+                    Ta, Tb, tuning);
       moves[k] = m;
     });
     rep.seconds_solve += since(t);
+    last_pairs = pairs;
+    last_age = age;
     stop_if_cancelled();
 
     t = Clock::now();
@@ -336,8 +445,8 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       if (!moves[k].ok) continue;
       rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
-      accumulate(sa, pairs[k][0], moves[k].da);
-      accumulate(sB, pairs[k][1], moves[k].db);
+      accumulate(sa, pairs[k][0], moves[k].da, tuning.longest);
+      accumulate(sB, pairs[k][1], moves[k].db, tuning.longest);
     }
     move_side(sa, tuning);
     if (B) move_side(sb, tuning);
@@ -399,11 +508,11 @@ const char* resolve_variant_name(ResolveVariant v) {
 }
 
 Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options) {
-  return detail::resolve_tuned(A, &B, options, {});
+  return detail::resolve_tuned(A, &B, options, detail::default_tuning(options.variant));
 }
 
 Resolution resolve_self(const Mesh& A, const ResolveOptions& options) {
-  return detail::resolve_tuned(A, nullptr, options, {});
+  return detail::resolve_tuned(A, nullptr, options, detail::default_tuning(options.variant));
 }
 
 }  // namespace pdd::mesh

@@ -75,13 +75,43 @@
 
 namespace pdd::mesh::detail {
 
-// Tuning of the rounds (defaults: the measured choice of `pdd bench resolve`).
+// Tuning of the rounds. The defaults are default_tuning(variant)'s, the measured choice of
+// `pdd bench resolve` (two generated balls of 10^5 elements overlapping by one to two element
+// layers; see default_tuning below for the numbers).
 struct ResolveTuning {
   double overshoot = 1.5;         // omega
   double margin = 1e-6;           // kMargin: gap mu per pair relative to its longest edge
   double margin_ulp = 1e-12;      // kMarginUlp: relative to the pair's largest |coordinate|
   int max_halvings = 24;          // kMaxHalvings: then alpha = 0
+  // Combine a vertex's targets by the longest one instead of the weighted mean (step 3).
+  bool longest = false;
+  // A pair found intersecting in more than this many consecutive rounds is pushed by its rigid
+  // translation instead of the variant's solution (0: never). A pair that survives rounds is
+  // one whose deformable targets the step limit keeps cutting (an element of it nearly flat);
+  // its translation moves the element as a whole instead of squeezing it further.
+  int rigid_after = 0;
+  // Sweeps of harmonic extension of the contact vertices' displacements to the vertices
+  // around them (each sweep: D_v = mean of D over v's neighbours, for free vertices in no
+  // pair; one more ring per sweep); 0: only contact vertices move.
+  int smooth_sweeps = 0;
+  // Drop the components of a pair's displacements that move a vertex towards the other
+  // element (A's along +u, B's along -u): the pair stays separated (a vertex only retreats
+  // further from the plane).
+  bool retreat_only = false;
+  // A vertex whose step the limit cut in a round counts as fixed in the next round's pairs
+  // (its retreat goes to the other element).
+  bool pass_blocked = false;
+  // The step limit also halves where an element's volume would fall below this share of its
+  // rest volume and below its volume before the step (in doubles; the exact sign test stays).
+  double min_ratio = 0;
 };
+
+// The defaults per variant. global and pdd2: the longest target, omega 1.2, rigid after 2
+// rounds: on the balls 1.99 apart (693 pairs) 9 rounds (global) and 7 (pdd2); 1.97 apart (1420
+// pairs) 20 and 15 rounds; with the weighted mean and omega 1.5 both stalled with a few pairs
+// left after 100 rounds, elements nearly flat. rigid (the baseline): the weighted mean, omega
+// 1.5 (18 and 59 rounds; with the longest target it diverged at 1.97).
+ResolveTuning default_tuning(ResolveVariant variant);
 
 // Stage 1 of a round, and check_resolution's R1: every pair of the given elements of A (and of
 // B; B == nullptr: self-contact, pairs a < b sharing no vertex) whose interiors intersect at
