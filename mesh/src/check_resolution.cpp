@@ -113,7 +113,9 @@ double check_orientation(const Mesh& m0, const Mesh& m1, char which, const std::
       const int s0 = detail::orientation(t0[0], t0[1], t0[2], t0[3]);
       const int s1 = detail::orientation(t1[0], t1[1], t1[2], t1[3]);
       flag[k] = s1 != s0;  // s0 != 0: e holds the elements valid at rest
-      ratio[k] = signed_volume6(t1) / signed_volume6(t0);
+      // |V1| / |V0| in doubles, signed by the exact verdict (a nearly flat element's volume
+      // in doubles can have the wrong sign).
+      ratio[k] = std::abs(signed_volume6(t1) / signed_volume6(t0)) * (s1 == s0 ? 1 : s1 == 0 ? 0 : -1);
     }
   });
   double lo = HUGE_VAL;

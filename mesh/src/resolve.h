@@ -13,19 +13,23 @@
 //                q1_B_global; pdd2: q1_A, q1_B; rigid: the rigid translation along rigid_dir
 //                split half and half) gives target displacements d_i along the pair's unit
 //                normal u (A -> B) for its eight vertices;
-//             3. global step (lumped): each free vertex v moves by
-//                    D_v = omega * sum_p w_p d_{p,v} / sum_p w_p
-//                over the pairs p it belongs to, w_p the rest volume of v's element in p (the
-//                element's weight in the mesh object norm sigma_mesh), omega the overshoot;
-//             4. step limit (R2): the new position of v is P_v + alpha_v D_v with alpha_v = 1
-//                first; every element with a moved vertex whose exact orientation (CGAL's
-//                filtered exact orientation predicate on the doubles) differs from its rest
-//                orientation or is zero halves alpha of its moved vertices, and after
-//                kMaxHalvings halvings sets them to 0 (that vertex does not move this round).
-//   It stops at the first round whose contact stage finds no pair (that contact stage is the
-//   exact verdict R1 on the final positions, over all pairs), or after max_rounds rounds (then
-//   one more contact stage lists what remains). It cannot claim what is not there: the report's
-//   resolved is r1 && r2 && r3 from check_resolution's exact decisions on the final doubles.
+//             3. global step (lumped): each free vertex v moves by omega times one combination
+//                of the targets d_{p,v} of the pairs p it belongs to: for global and pdd2 the
+//                longest of them (the vertex satisfies its most demanding pair; overshoot
+//                omega = 1.2), for rigid the weighted mean sum_p w_p d_{p,v} / sum_p w_p, w_p
+//                the rest volume of v's element in p (its weight in sigma_mesh; omega = 1.5).
+//                A pair found intersecting in more than two consecutive rounds is pushed by its
+//                rigid translation instead (default_tuning below has the measurements);
+//             4. step limit (R2): the new position of v is P_v + alpha_v D_v (D_v the
+//                combination of step 3) with alpha_v = omega first; every element with a
+//                moved vertex whose exact orientation (CGAL's filtered exact orientation
+//                predicate on the doubles) differs from its rest orientation or is zero halves
+//                alpha of its moved vertices, and after kMaxHalvings halvings sets them to 0
+//                (that vertex does not move this round).
+//   It stops at the first round whose contact stage finds no pair, or after max_rounds
+//   rounds. Then check_resolution decides R1-R3 afresh on the final doubles (R1 over every
+//   pair: a full broadphase and the exact decision), and the report's resolved is its
+//   r1 && r2 && r3: a run cannot claim what is not there.
 //
 // Why elements never invert (R2 is an invariant, not a hope): P_0 is the rest pose, where
 // every valid element has its rest orientation. If P_k has it, every element at P_{k+1} has
@@ -38,15 +42,17 @@
 //
 // Why it stops: at most max_rounds rounds, each finite (the step limit ends as argued above).
 // Why it usually resolves shallow overlaps quickly: the per-pair projection is the exact
-// separating move of that pair, and the lumped global step is the Jacobi iteration of the
-// projective-dynamics solve; where a vertex belongs to several pairs the average under-moves it
-// by roughly the share of pairs that do not push it, which the overshoot omega > 1 makes up
-// (measured in `pdd bench resolve`).
+// separating move of that pair, and the lumped global step is a Jacobi iteration of the
+// projective-dynamics solve; where a vertex belongs to several pairs a mean under-moves it,
+// which the overshoot omega > 1 makes up, and the longest target over-satisfies the others.
+// What it does not do: deep overlaps (several element layers) stall, with elements squeezed
+// nearly flat by the step limit (`pdd bench resolve`, case deep); only pairs move, and the
+// vertices behind a contact do not follow it.
 //
 // Strict separation without inflating the cost: a per-pair solution makes the pair touch
 // (touching is not intersecting), but rounding the moved coordinates to doubles can leave it
 // intersecting by a few units in the last place; a pair that shallow would then stay
-// intersecting round after round, as overshoot scales its tiny depth by 1.5 only. Each pair's
+// intersecting round after round, as the overshoot scales its tiny depth by omega only. Each pair's
 // displacement is therefore lengthened by a gap mu along u (A by mu/2 away from B, B by mu/2
 // away from A), mu = kMargin * (the pair's longest edge) + kMarginUlp * (the largest |coordinate|
 // of the pair): far above the rounding of the coordinates (2^-52 |x|), and so small against the
