@@ -371,12 +371,114 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
 
 double side_cost(const Side& s) { return mesh_cost(*s.rest, s.cur.vertices); }
 
+// ResolveTuning::descend (resolve.h). Returns true when it ends at a resolved state (R1 by
+// the contact stage, R2 kept by the step limit); false, with the positions unchanged, when it
+// does not apply (both meshes have fixed vertices, no separating translation found, or the
+// translated rest pose flips an element by rounding).
+template <class Rounds, class Stop>
+bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budget, const detail::ResolveTuning& tuning,
+             ResolveReport& rep, const Rounds& run_rounds, const Stop& stop) {
+  const bool fixed_a = std::find(sa.fixed.begin(), sa.fixed.end(), 1) != sa.fixed.end();
+  const bool fixed_b = std::find(sb.fixed.begin(), sb.fixed.end(), 1) != sb.fixed.end();
+  if (fixed_a && fixed_b) return false;
+  const double share_a = fixed_a ? 0 : fixed_b ? -1 : -0.5, share_b = fixed_b ? 0 : fixed_a ? 1 : 0.5;
+  auto centroid = [](const Mesh& m, Vec3d& lo, Vec3d& hi) {
+    Vec3d c = {0, 0, 0};
+    std::size_t n = 0;
+    for (const Vec3d& v : m.vertices)
+      if (finite(v)) {
+        add_to(c, v);
+        ++n;
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+      }
+    return n ? scaled(c, 1.0 / double(n)) : c;
+  };
+  Vec3d lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  const Vec3d ca = centroid(A, lo, hi), cb = centroid(B, lo, hi);
+  const Vec3d u = unit(sub(cb, ca)).value_or(Vec3d{1, 0, 0});
+  const std::vector<Vec3d> keep_a = sa.cur.vertices, keep_b = sb.cur.vertices;
+  auto place = [&](double t) {
+    for (std::size_t v = 0; v < A.vertices.size(); ++v)
+      sa.cur.vertices[v] = sa.fixed[v] ? A.vertices[v] : Vec3d{A.vertices[v][0] + share_a * t * u[0],
+                                                                A.vertices[v][1] + share_a * t * u[1],
+                                                                A.vertices[v][2] + share_a * t * u[2]};
+    for (std::size_t v = 0; v < B.vertices.size(); ++v)
+      sb.cur.vertices[v] = sb.fixed[v] ? B.vertices[v] : Vec3d{B.vertices[v][0] + share_b * t * u[0],
+                                                                B.vertices[v][1] + share_b * t * u[1],
+                                                                B.vertices[v][2] + share_b * t * u[2]};
+  };
+  auto separated = [&] {
+    stop();
+    const auto t0 = Clock::now();
+    const bool ok = detail::intersecting_pairs(sa.cur, sa.elems, &sb.cur, sb.elems).empty();
+    rep.seconds_contacts += since(t0);
+    return ok;
+  };
+  auto valid = [&](const Side& s) {
+    for (std::size_t e : s.elems) {
+      const TetVertices q = element(s.cur, e);
+      if (detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[e]) return false;
+    }
+    return true;
+  };
+  auto restore = [&] {
+    sa.cur.vertices = keep_a;
+    sb.cur.vertices = keep_b;
+  };
+  double t_hi = 0;
+  for (int k = 0; k < 3; ++k) t_hi += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  t_hi = 2 * std::sqrt(t_hi);  // more than the extent of both meshes along any line
+  place(t_hi);
+  if (!(t_hi > 0) || !separated()) return restore(), false;
+  double t_lo = 0;
+  while (t_hi - t_lo > 1e-3 * t_hi) {
+    const double mid = (t_lo + t_hi) / 2;
+    place(mid);
+    (separated() ? t_hi : t_lo) = mid;
+  }
+  place(t_hi);
+  if (!valid(sa) || !valid(sb)) return restore(), false;
+  double cost = side_cost(sa) + side_cost(sb);
+  detail::ResolveTuning step = tuning;
+  step.overshoot = 1;
+  step.smooth_sweeps = 0;
+  double gamma = 0.5;
+  std::size_t used = 0;
+  while (used < budget && gamma >= 1.0 / 64) {
+    stop();
+    const std::vector<Vec3d> save_a = sa.cur.vertices, save_b = sb.cur.vertices;
+    for (Side* s : {&sa, &sb})
+      for (std::size_t v = 0; v < s->cur.vertices.size(); ++v)
+        if (!s->fixed[v]) {
+          const Vec3d d = scaled(sub(s->rest->vertices[v], s->cur.vertices[v]), gamma);
+          if (finite(d) && dot(d, d) > 0) s->acc[v] = d, s->weight[v] = 1;
+        }
+    const auto t0 = Clock::now();
+    move_side(sa, step);
+    move_side(sb, step);
+    rep.seconds_move += since(t0);
+    const std::size_t before = rep.rounds.size();
+    const bool ok = run_rounds(std::min(tuning.descend_inner, budget - used), tuning, false);
+    used += rep.rounds.size() - before + 1;
+    const double c = side_cost(sa) + side_cost(sb);
+    if (ok && c < cost) {
+      cost = c;
+    } else {
+      sa.cur.vertices = save_a;
+      sb.cur.vertices = save_b;
+      gamma /= 2;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 namespace detail {
 
 ResolveTuning default_tuning(ResolveVariant variant) {
   ResolveTuning t;
+  t.descend = true;
   if (variant != ResolveVariant::Rigid) {
     t.longest = true;
     t.overshoot = 1.2;
@@ -404,16 +506,24 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   }
   Side& sB = B ? sb : sa;  // the side of a pair's second element
 
+  // Rounds (resolve.h, steps 1-4) from the current positions, at most `budget`; true when a
+  // contact stage found no pair.
+  const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit) {
   std::vector<std::array<std::size_t, 2>> last_pairs;
+  std::size_t first_pairs = 0;
   std::vector<int> last_age;
-  for (std::size_t round = 1; round <= o.max_rounds; ++round) {
+  for (std::size_t r = 0; r < budget; ++r) {
+    const std::size_t round = rep.rounds.size() + 1;
     stop_if_cancelled();
     const auto t_round = Clock::now();
     auto t = Clock::now();
     std::vector<std::array<std::size_t, 2>> pairs =
         intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
     rep.seconds_contacts += since(t);
-    if (pairs.empty()) break;
+    if (pairs.empty()) return true;
+    // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's pairs.
+    if (r == 0) first_pairs = pairs.size();
+    if (stall_exit && r >= 10 && 2 * pairs.size() >= first_pairs) return false;
     stop_if_cancelled();
 
     t = Clock::now();
@@ -455,6 +565,16 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
     rr.seconds = since(t_round);
     rep.rounds.push_back(rr);
     if (o.progress) o.progress(rr);
+  }
+  return false;
+  };
+
+  // Deep overlaps (ResolveTuning::descend_steps): when the rounds did not clear the contacts,
+  // start again from a separated configuration and walk back towards the rest pose.
+  const std::size_t first_budget = tuning.descend && B ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
+  bool clear = run_rounds(first_budget, tuning, tuning.descend && B);
+  if (!clear && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
+    clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
   }
   stop_if_cancelled();
 

@@ -110,6 +110,16 @@ struct ResolveTuning {
   // The step limit also halves where an element's volume would fall below this share of its
   // rest volume and below its volume before the step (in doubles; the exact sign test stays).
   double min_ratio = 0;
+  // Deep overlaps: when half of max_rounds did not clear the contacts, or 10 rounds left half
+  // of the first round's pairs (two meshes, at most one of them with fixed vertices), restart from the rest pose with the meshes translated apart
+  // along the line of their vertex centroids by the smallest separating distance (bisection
+  // with the exact contact stage), then walk back towards the rest pose: a step moves every
+  // free vertex by gamma of its way back (step limit as in step 4), then up to descend_inner
+  // rounds resolve the shallow contacts it made; a step that does not end resolved and cheaper
+  // is undone and gamma halved (from 1/2 down to 1/64). Every accepted state is resolved, so
+  // the run ends resolved. It may use the rounds of max_rounds the first attempt left.
+  bool descend = false;
+  std::size_t descend_inner = 20;
 };
 
 // The defaults per variant. global and pdd2: the longest target, omega 1.2, rigid after 2
