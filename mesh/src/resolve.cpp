@@ -509,64 +509,64 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   // Rounds (resolve.h, steps 1-4) from the current positions, at most `budget`; true when a
   // contact stage found no pair.
   const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit) {
-  std::vector<std::array<std::size_t, 2>> last_pairs;
-  std::size_t first_pairs = 0;
-  std::vector<int> last_age;
-  for (std::size_t r = 0; r < budget; ++r) {
-    const std::size_t round = rep.rounds.size() + 1;
-    stop_if_cancelled();
-    const auto t_round = Clock::now();
-    auto t = Clock::now();
-    std::vector<std::array<std::size_t, 2>> pairs =
-        intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
-    rep.seconds_contacts += since(t);
-    if (pairs.empty()) return true;
-    // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's pairs.
-    if (r == 0) first_pairs = pairs.size();
-    if (stall_exit && r >= 10 && 2 * pairs.size() >= first_pairs) return false;
-    stop_if_cancelled();
+    std::vector<std::array<std::size_t, 2>> last_pairs;
+    std::size_t first_pairs = 0;
+    std::vector<int> last_age;
+    for (std::size_t r = 0; r < budget; ++r) {
+      const std::size_t round = rep.rounds.size() + 1;
+      stop_if_cancelled();
+      const auto t_round = Clock::now();
+      auto t = Clock::now();
+      std::vector<std::array<std::size_t, 2>> pairs =
+          intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
+      rep.seconds_contacts += since(t);
+      if (pairs.empty()) return true;
+      // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's pairs.
+      if (r == 0) first_pairs = pairs.size();
+      if (stall_exit && r >= 10 && 2 * pairs.size() >= first_pairs) return false;
+      stop_if_cancelled();
 
-    t = Clock::now();
-    // Consecutive rounds each pair has been found in (ResolveTuning::rigid_after).
-    std::vector<int> age(pairs.size(), 1);
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const auto it = std::lower_bound(last_pairs.begin(), last_pairs.end(), pairs[k]);
-      if (it != last_pairs.end() && *it == pairs[k]) age[k] = last_age[std::size_t(it - last_pairs.begin())] + 1;
-    }
-    std::vector<PairMove> moves(pairs.size());
-    tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
-      const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
-      const bool rigid = tuning.rigid_after > 0 && age[k] > tuning.rigid_after;
-      PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : o.variant);
-      if (m.ok)
-        finish_move(m, fixed_of(sa, pairs[k][0], tuning.pass_blocked), fixed_of(sB, pairs[k][1], tuning.pass_blocked),
-                    Ta, Tb, tuning);
-      moves[k] = m;
-    });
-    rep.seconds_solve += since(t);
-    last_pairs = pairs;
-    last_age = age;
-    stop_if_cancelled();
+      t = Clock::now();
+      // Consecutive rounds each pair has been found in (ResolveTuning::rigid_after).
+      std::vector<int> age(pairs.size(), 1);
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto it = std::lower_bound(last_pairs.begin(), last_pairs.end(), pairs[k]);
+        if (it != last_pairs.end() && *it == pairs[k]) age[k] = last_age[std::size_t(it - last_pairs.begin())] + 1;
+      }
+      std::vector<PairMove> moves(pairs.size());
+      tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+        const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
+        const bool rigid = tuning.rigid_after > 0 && age[k] > tuning.rigid_after;
+        PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : o.variant);
+        if (m.ok)
+          finish_move(m, fixed_of(sa, pairs[k][0], tuning.pass_blocked), fixed_of(sB, pairs[k][1], tuning.pass_blocked),
+                      Ta, Tb, tuning);
+        moves[k] = m;
+      });
+      rep.seconds_solve += since(t);
+      last_pairs = pairs;
+      last_age = age;
+      stop_if_cancelled();
 
-    t = Clock::now();
-    ResolveRound rr;
-    rr.round = round;
-    rr.pairs = pairs.size();
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      if (!moves[k].ok) continue;
-      rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
-      accumulate(sa, pairs[k][0], moves[k].da, tuning.longest);
-      accumulate(sB, pairs[k][1], moves[k].db, tuning.longest);
+      t = Clock::now();
+      ResolveRound rr;
+      rr.round = round;
+      rr.pairs = pairs.size();
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        if (!moves[k].ok) continue;
+        rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
+        accumulate(sa, pairs[k][0], moves[k].da, tuning.longest);
+        accumulate(sB, pairs[k][1], moves[k].db, tuning.longest);
+      }
+      move_side(sa, tuning);
+      if (B) move_side(sb, tuning);
+      rep.seconds_move += since(t);
+      rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
+      rr.seconds = since(t_round);
+      rep.rounds.push_back(rr);
+      if (o.progress) o.progress(rr);
     }
-    move_side(sa, tuning);
-    if (B) move_side(sb, tuning);
-    rep.seconds_move += since(t);
-    rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
-    rr.seconds = since(t_round);
-    rep.rounds.push_back(rr);
-    if (o.progress) o.progress(rr);
-  }
-  return false;
+    return false;
   };
 
   // Deep overlaps (ResolveTuning::descend_steps): when the rounds did not clear the contacts,

@@ -45,9 +45,13 @@
 // separating move of that pair, and the lumped global step is a Jacobi iteration of the
 // projective-dynamics solve; where a vertex belongs to several pairs a mean under-moves it,
 // which the overshoot omega > 1 makes up, and the longest target over-satisfies the others.
-// What it does not do: deep overlaps (several element layers) stall, with elements squeezed
-// nearly flat by the step limit (`pdd bench resolve`, case deep); only pairs move, and the
-// vertices behind a contact do not follow it.
+// Deep overlaps (several element layers) stall: only pairs move, the vertices behind a
+// contact do not follow it, and the step limit squeezes elements nearly flat. For two meshes
+// resolve then descends instead (ResolveTuning::descend): from the smallest separating
+// translation along the line of the meshes' centroids, which is resolved, back towards the
+// rest pose by steps each followed by a few rounds on the shallow contacts it makes, keeping
+// only resolved and cheaper states. It ends resolved, at a cost below that translation's.
+// Self-contact has no such start (one mesh cannot be translated apart from itself).
 //
 // Strict separation without inflating the cost: a per-pair solution makes the pair touch
 // (touching is not intersecting), but rounding the moved coordinates to doubles can leave it
@@ -122,7 +126,7 @@ struct ResolveTuning {
   std::size_t descend_inner = 20;
 };
 
-// The defaults per variant. global and pdd2: the longest target, omega 1.2, rigid after 2
+// The defaults per variant: descend on for all. global and pdd2: the longest target, omega 1.2, rigid after 2
 // rounds: on the balls 1.99 apart (693 pairs) 9 rounds (global) and 7 (pdd2); 1.97 apart (1420
 // pairs) 20 and 15 rounds; with the weighted mean and omega 1.5 both stalled with a few pairs
 // left after 100 rounds, elements nearly flat. rigid (the baseline): the weighted mean, omega
