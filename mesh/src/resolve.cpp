@@ -458,7 +458,7 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
     move_side(sb, step);
     rep.seconds_move += since(t0);
     const std::size_t before = rep.rounds.size();
-    const bool ok = run_rounds(std::min(tuning.descend_inner, budget - used), tuning, false);
+    const bool ok = run_rounds(std::min(tuning.descend_inner, budget - used), tuning, false, rep.variant);
     used += rep.rounds.size() - before + 1;
     const double c = side_cost(sa) + side_cost(sb);
     if (ok && c < cost) {
@@ -508,7 +508,8 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
 
   // Rounds (resolve.h, steps 1-4) from the current positions, at most `budget`; true when a
   // contact stage found no pair.
-  const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit) {
+  const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit,
+                              ResolveVariant variant) {
     std::vector<std::array<std::size_t, 2>> last_pairs;
     std::size_t first_pairs = 0;
     std::vector<int> last_age;
@@ -537,7 +538,7 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
       tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
         const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
         const bool rigid = tuning.rigid_after > 0 && age[k] > tuning.rigid_after;
-        PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : o.variant);
+        PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : variant);
         if (m.ok)
           finish_move(m, fixed_of(sa, pairs[k][0], tuning.pass_blocked), fixed_of(sB, pairs[k][1], tuning.pass_blocked),
                       Ta, Tb, tuning);
@@ -571,10 +572,18 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
 
   // Deep overlaps (ResolveTuning::descend_steps): when the rounds did not clear the contacts,
   // start again from a separated configuration and walk back towards the rest pose.
-  const std::size_t first_budget = tuning.descend && B ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
-  bool clear = run_rounds(first_budget, tuning, tuning.descend && B);
+  const std::size_t first_budget = tuning.descend ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
+  bool clear = run_rounds(first_budget, tuning, tuning.descend, o.variant);
   if (!clear && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
     clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
+  }
+  // Self-contact has no separated start: stalled deformable rounds restart from the rest pose
+  // with the rigid variant's rounds (which move elements as a whole and do not squeeze them).
+  if (!clear && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
+    sa.cur.vertices = A.vertices;
+    std::fill(sa.blocked.begin(), sa.blocked.end(), 0);
+    clear = run_rounds(o.max_rounds - rep.rounds.size(), default_tuning(ResolveVariant::Rigid), false,
+                       ResolveVariant::Rigid);
   }
   stop_if_cancelled();
 

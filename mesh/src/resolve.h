@@ -51,7 +51,9 @@
 // translation along the line of the meshes' centroids, which is resolved, back towards the
 // rest pose by steps each followed by a few rounds on the shallow contacts it makes, keeping
 // only resolved and cheaper states. It ends resolved, at a cost below that translation's.
-// Self-contact has no such start (one mesh cannot be translated apart from itself).
+// Self-contact has no such start (one mesh cannot be translated apart from itself): stalled
+// global or pdd2 rounds restart from the rest pose with the rigid variant's rounds, which move
+// each pair's elements as a whole (two-spheres.msh: 38 rounds, where global diverged).
 //
 // Strict separation without inflating the cost: a per-pair solution makes the pair touch
 // (touching is not intersecting), but rounding the moved coordinates to doubles can leave it
@@ -115,7 +117,8 @@ struct ResolveTuning {
   // rest volume and below its volume before the step (in doubles; the exact sign test stays).
   double min_ratio = 0;
   // Deep overlaps: when half of max_rounds did not clear the contacts, or 10 rounds left half
-  // of the first round's pairs (two meshes, at most one of them with fixed vertices), restart from the rest pose with the meshes translated apart
+  // of the first round's pairs (two meshes, at most one of them with fixed vertices; for
+  // self-contact see the header's top comment), restart from the rest pose with the meshes translated apart
   // along the line of their vertex centroids by the smallest separating distance (bisection
   // with the exact contact stage), then walk back towards the rest pose: a step moves every
   // free vertex by gamma of its way back (step limit as in step 4), then up to descend_inner

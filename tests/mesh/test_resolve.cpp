@@ -300,6 +300,14 @@ BOOST_AUTO_TEST_CASE(self_contact) {
   const Resolution d = resolve_self(deep, o);
   log_report("two-spheres as shipped (self), 5 rounds", d);
   judge(deep, nullptr, d, {}, {});
+  // With the default rounds: the stalled deformable rounds restart with the rigid variant's
+  // (mesh/src/resolve.h) and resolve it.
+  o = {};
+  o.variant = ResolveVariant::Pdd2;
+  const Resolution full = resolve_self(deep, o);
+  log_report("two-spheres as shipped (self)", full);
+  judge(deep, nullptr, full, {}, {});
+  BOOST_TEST(full.report.resolved);
 }
 
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
