@@ -1,6 +1,7 @@
 // tests/mesh/test_overlap_filter.cpp — pdd::fast::overlap_filter and interiors_intersect
 // (pdd.h; fast/src/overlap_filter.cpp), the decision stage of pdd::mesh::contacts, against an
-// independent exact judge: a separating-axis test on GMP integers written here.
+// independent exact judge: a separating-axis test on GMP integers
+// (tests/support/exact_overlap.h, shared with test_resolve.cpp).
 //
 // The judge (SPEC §4: touching is not intersecting): for non-flat tetrahedra A and B the
 // interiors are disjoint iff the origin is not interior to M = A ⊕ (−B), iff some facet normal
@@ -37,6 +38,7 @@
 #include <numeric>
 #include <string>
 
+#include "exact_overlap.h"
 #include "fixtures.h"
 #include "pdd/compare/generate.h"
 #include "pdd/mesh.h"
@@ -46,85 +48,8 @@ using namespace pdd::mesh;
 
 namespace {
 
-// Exact integers: every coordinate of the pair times 2^-s (s the smallest exponent of a unit in
-// the last place among the non-zero coordinates) is an integer, and the judge's signs are
-// invariant under that common positive scaling. mpz_class: no gcd per operation as with mpq.
-using Q = mpz_class;
-using QV = std::array<Q, 3>;
-
-QV sub(const QV& a, const QV& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-QV cross(const QV& a, const QV& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Q dot(const QV& a, const QV& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-bool is_zero(const QV& a) { return sgn(a[0]) == 0 && sgn(a[1]) == 0 && sgn(a[2]) == 0; }
-
-// The pair as integers (header); precondition: finite coordinates.
-void to_integers(const TetVertices& A, const TetVertices& B, std::array<QV, 4>& a, std::array<QV, 4>& b) {
-  int s = 0;
-  bool any = false;
-  for (const auto* T : {&A, &B})
-    for (const auto& v : *T)
-      for (double x : v)
-        if (x != 0.0) {
-          int e;
-          std::frexp(x, &e);  // x = f 2^e, |f| in [0.5, 1): x = (f 2^53) 2^(e - 53)
-          if (!any || e - 53 < s) s = e - 53;
-          any = true;
-        }
-  auto conv = [&](double x) {
-    if (x == 0.0) return Q(0);
-    int e;
-    const double f = std::frexp(x, &e);
-    Q m(std::ldexp(f, 53));  // an integer below 2^53 in magnitude: exact
-    const int shift = e - 53 - s;
-    return Q(m << shift);
-  };
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) a[i][k] = conv(A[i][k]), b[i][k] = conv(B[i][k]);
-}
-
-bool finite(const TetVertices& T) {
-  for (const auto& v : T)
-    for (double x : v)
-      if (!std::isfinite(x)) return false;
-  return true;
-}
-
-// The judge (header).
-bool exact_interiors_intersect(const TetVertices& A, const TetVertices& B) {
-  if (!finite(A) || !finite(B)) return false;
-  std::array<QV, 4> a, b;
-  to_integers(A, B, a, b);
-  for (const auto* t : {&a, &b}) {
-    const auto& x = *t;
-    if (sgn(dot(cross(sub(x[1], x[0]), sub(x[2], x[0])), sub(x[3], x[0]))) == 0) return false;  // flat
-  }
-  auto separates = [&](const QV& u) {
-    Q amax = dot(u, a[0]), amin = amax, bmax = dot(u, b[0]), bmin = bmax;
-    for (int i = 1; i < 4; ++i) {
-      const Q ha = dot(u, a[i]), hb = dot(u, b[i]);
-      if (ha > amax) amax = ha;
-      if (ha < amin) amin = ha;
-      if (hb > bmax) bmax = hb;
-      if (hb < bmin) bmin = hb;
-    }
-    return amax <= bmin || bmax <= amin;
-  };
-  static const int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  static const int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  for (const auto* t : {&a, &b})
-    for (const auto& f : kFaces) {
-      const auto& x = *t;
-      if (separates(cross(sub(x[f[1]], x[f[0]]), sub(x[f[2]], x[f[0]])))) return false;
-    }
-  for (const auto& ea : kEdges)
-    for (const auto& eb : kEdges) {
-      const QV u = cross(sub(a[ea[1]], a[ea[0]]), sub(b[eb[1]], b[eb[0]]));
-      if (!is_zero(u) && separates(u)) return false;
-    }
-  return true;
-}
+// The judge (header): tests/support/exact_overlap.h.
+using pdd::test::exact_interiors_intersect;
 
 struct Tally {
   std::atomic<std::size_t> pairs{0}, intersecting{0}, unknown{0}, wrong_filter{0}, wrong_decision{0};
