@@ -511,7 +511,7 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit,
                               ResolveVariant variant) {
     std::vector<std::array<std::size_t, 2>> last_pairs;
-    std::size_t first_pairs = 0;
+    std::size_t first_pairs = 0, best_pairs = 0, best_round = 0;
     std::vector<int> last_age;
     for (std::size_t r = 0; r < budget; ++r) {
       const std::size_t round = rep.rounds.size() + 1;
@@ -522,9 +522,11 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
           intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
       rep.seconds_contacts += since(t);
       if (pairs.empty()) return true;
-      // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's pairs.
-      if (r == 0) first_pairs = pairs.size();
-      if (stall_exit && r >= 10 && 2 * pairs.size() >= first_pairs) return false;
+      // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's
+      // pairs, or 10 rounds without fewer pairs than before.
+      if (r == 0) first_pairs = best_pairs = pairs.size();
+      if (pairs.size() < best_pairs) best_pairs = pairs.size(), best_round = r;
+      if (stall_exit && ((r >= 10 && 2 * pairs.size() >= first_pairs) || r >= best_round + 10)) return false;
       stop_if_cancelled();
 
       t = Clock::now();

@@ -117,7 +117,7 @@ struct ResolveTuning {
   // rest volume and below its volume before the step (in doubles; the exact sign test stays).
   double min_ratio = 0;
   // Deep overlaps: when half of max_rounds did not clear the contacts, or 10 rounds left half
-  // of the first round's pairs (two meshes, at most one of them with fixed vertices; for
+  // of the first round's pairs, or 10 rounds found no fewer pairs than an earlier round (two meshes, at most one of them with fixed vertices; for
   // self-contact see the header's top comment), restart from the rest pose with the meshes translated apart
   // along the line of their vertex centroids by the smallest separating distance (bisection
   // with the exact contact stage), then walk back towards the rest pose: a step moves every

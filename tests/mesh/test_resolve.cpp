@@ -339,6 +339,14 @@ BOOST_AUTO_TEST_CASE(deep_overlap) {
   BOOST_TEST(r.report.resolved);
   const double t = 1.9 - std::sqrt(1.1 * 1.1 + 0.35 * 0.35 + 0.2 * 0.2);
   BOOST_TEST(j.cost < t * t / 2);
+  // A fixed: B alone is translated (cost t^2) and walks back.
+  o.fix_a = true;
+  const Resolution f = resolve(A, B, o);
+  log_report("deep balls, A fixed", f);
+  const Judged jf = judge(A, &B, f, all(A), {});
+  BOOST_TEST(f.report.resolved);
+  BOOST_TEST(f.report.cost_a == 0.0);
+  BOOST_TEST(jf.cost < t * t);
 }
 
 BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
