@@ -295,7 +295,19 @@ double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1);
 // Writes m with its vertices replaced by `positions` (same count) as Gmsh 4.1 ASCII (.msh) or
 // legacy VTK ASCII (.vtk), chosen by the path's extension, tetrahedra in m's order, every
 // coordinate printed so that it reads back as the same double. Throws std::runtime_error when
-// the extension is neither or the file cannot be written (nothing partial is left).
+// the extension is neither or the file cannot be written (nothing partial is left: a new or
+// regular file is written under a temporary name beside it and renamed; a device is written
+// in place), std::invalid_argument when `positions` does not have one entry per vertex.
 void write_mesh(const std::string& path, const Mesh& m, const std::vector<Vec3d>& positions);
+
+// Writes a resolution for ParaView: A at positions a1 and B at b1 (B == nullptr: self-contact)
+// as one legacy VTK ASCII file, points of A then of B, cells of A then of B, with point data
+// `displacement` (p1 - p0) and cell data `mesh` (0 A, 1 B), `element` (its number in its mesh),
+// `volume_ratio` (V1 / V0, signed; doubles, for display), `remaining` (how many of
+// report.remaining_pairs it is in) and `bad` (1: in report.bad_elements). A vertex with a
+// non-finite coordinate is written at the origin (VTK readers reject nan). Written whole or
+// not at all, as write_mesh; throws std::runtime_error when the file cannot be written.
+void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
+                          const Mesh* B, const std::vector<Vec3d>& b1, const ResolveReport& report);
 
 }  // namespace pdd::mesh

@@ -1,11 +1,14 @@
-// write_vtk.cpp — both meshes and their contacts in one legacy VTK file (mesh.h, write_vtk).
+// write_vtk.cpp — both meshes and their contacts (write_vtk), or a resolution's new positions
+// (write_resolution_vtk), in one legacy VTK file for ParaView (mesh.h).
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
+#include "atomic_file.h"
 #include "pdd/mesh.h"
 
 namespace pdd::mesh {
@@ -109,6 +112,83 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
   }
   out.flush();
   if (!out) throw std::runtime_error("cannot write to '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : ""));
+}
+
+void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
+                          const Mesh* B, const std::vector<Vec3d>& b1, const ResolveReport& report) {
+  if (a1.size() != A.vertices.size() || (B && b1.size() != B->vertices.size()))
+    throw std::invalid_argument("write_resolution_vtk '" + path +
+                                "': not one new position per vertex");
+  const std::size_t na = A.vertices.size(), nb = B ? B->vertices.size() : 0;
+  const std::size_t ta = A.tets.size(), tb = B ? B->tets.size() : 0;
+  std::ostringstream out;
+  out.precision(17);
+  out << "# vtk DataFile Version 3.0\n"
+      << (B ? "pdd resolve: meshes A and B at their new positions\n"
+            : "pdd resolve --self: mesh A at its new positions\n")
+      << "ASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS " << na + nb << " double\n";
+  auto finite = [](const Vec3d& p) {
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  };
+  auto point = [&](const Vec3d& p) {
+    if (finite(p)) out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    else out << "0 0 0\n";
+  };
+  for (const Vec3d& p : a1) point(p);
+  if (B)
+    for (const Vec3d& p : b1) point(p);
+  out << "CELLS " << ta + tb << ' ' << 5 * (ta + tb) << '\n';
+  for (const auto& t : A.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
+  if (B)
+    for (const auto& t : B->tets)
+      out << "4 " << na + t[0] << ' ' << na + t[1] << ' ' << na + t[2] << ' ' << na + t[3] << '\n';
+  out << "CELL_TYPES " << ta + tb << '\n';
+  for (std::size_t i = 0; i < ta + tb; ++i) out << "10\n";
+  out << "CELL_DATA " << ta + tb << "\nSCALARS mesh int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? 0 : 1) << '\n';
+  out << "SCALARS element int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
+  // V1 / V0 from the doubles (display only: report.bad_elements is the exact verdict).
+  auto volume6 = [](const std::vector<Vec3d>& p, const std::array<std::size_t, 4>& t) {
+    double e[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) e[r][k] = p[t[r + 1]][k] - p[t[0]][k];
+    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+           e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  };
+  out << "SCALARS volume_ratio double 1\nLOOKUP_TABLE default\n";
+  auto ratios = [&](const Mesh& m, const std::vector<Vec3d>& p1) {
+    for (const auto& t : m.tets) {
+      const double v0 = volume6(m.vertices, t), v1 = volume6(p1, t), r = v1 / v0;
+      out << (std::isfinite(r) ? r : 0.0) << '\n';
+    }
+  };
+  ratios(A, a1);
+  if (B) ratios(*B, b1);
+  std::vector<int> remaining(ta + tb, 0), bad(ta + tb, 0);
+  const std::size_t b_cell0 = B ? ta : 0;
+  for (const auto& [a, b] : report.remaining_pairs) {
+    if (a < ta) ++remaining[a];
+    if (b_cell0 + b < ta + tb) ++remaining[b_cell0 + b];
+  }
+  for (const auto& [which, i] : report.bad_elements) {
+    const std::size_t cell = (which == 'B' ? b_cell0 : 0) + i;
+    if (cell < ta + tb) bad[cell] = 1;
+  }
+  out << "SCALARS remaining int 1\nLOOKUP_TABLE default\n";
+  for (int k : remaining) out << k << '\n';
+  out << "SCALARS bad int 1\nLOOKUP_TABLE default\n";
+  for (int k : bad) out << k << '\n';
+  out << "POINT_DATA " << na + nb << "\nVECTORS displacement double\n";
+  auto displacement = [&](const Vec3d& p0, const Vec3d& p1) {
+    if (finite(p0) && finite(p1)) out << p1[0] - p0[0] << ' ' << p1[1] - p0[1] << ' ' << p1[2] - p0[2] << '\n';
+    else out << "0 0 0\n";
+  };
+  for (std::size_t i = 0; i < na; ++i) displacement(A.vertices[i], a1[i]);
+  if (B)
+    for (std::size_t i = 0; i < nb; ++i) displacement(B->vertices[i], b1[i]);
+  detail::write_whole_file(path, out.str());
 }
 
 template void write_vtk<double>(const std::string&, const Mesh&, const Mesh*, const Contacts<double>&, unsigned);
