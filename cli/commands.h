@@ -18,4 +18,7 @@ void add_golden_command(CLI::App& app, int& exit_code);
 // `pdd mesh --a A.msh (--b B.msh | --self) [--variants LIST] [--engine fast|reference] ...`
 void add_mesh_command(CLI::App& app, int& exit_code);
 
+// `pdd resolve --a A.msh (--b B.msh | --self) --out-a A1.msh [--out-b B1.msh] [--fix a|b] ...`
+void add_resolve_command(CLI::App& app, int& exit_code);
+
 }  // namespace pdd::compare

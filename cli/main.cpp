@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   add_paper_command(app, exit_code);
   add_bench_command(app, exit_code);
   add_mesh_command(app, exit_code);
+  add_resolve_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
