@@ -29,6 +29,7 @@
 #include "pdd/io/progress.h"
 #include "pdd/io/result_json.h"
 #include "pdd/io/streaming.h"
+#include "pdd/io/summary_text.h"
 #include "pdd/mesh.h"
 
 namespace pdd::compare {
@@ -41,6 +42,8 @@ using io::flush_error;
 using io::interrupted_exit;
 using io::pending_signal;
 using io::result_json;
+using io::summary_line;
+using io::summary_number;
 namespace {
 
 struct MeshArgs {
@@ -133,18 +136,30 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
       return kExitFileError;
     }
   }
-  if (args.summary) {
+  if (args.summary) {  // standard error: standard output may hold the records
     std::ostream& s = std::cerr;
-    s << "pdd mesh summary (" << (args.engine == "fast" ? "fast" : "reference") << " engine, "
-      << (B ? "A against B" : "self-contact of A") << ")\n"
-      << "  elements        A " << c.elements_a;
-    if (B) s << ", B " << c.elements_b;
-    s << "; skipped " << c.skipped.size() << "\n"
-      << "  box pairs       " << c.box_pairs << (B ? "" : " (sharing no vertex)") << "\n"
-      << "  intersecting    " << c.pairs.size() << (errors ? " (" + std::to_string(errors) + " rejected)" : "") << "\n"
-      << "  time (s)        read " << read_seconds << ", boxes " << c.seconds_boxes << ", broadphase "
-      << c.seconds_broadphase << ", exact decision " << c.seconds_decision << ", depth "
-      << c.seconds_depth << "\n";
+    s << "pdd mesh: " << (B ? "A against B" : "self-contact of A") << " ("
+      << (args.engine == "fast" ? "fast" : "reference") << " engine, variants "
+      << mesh::variant_names(variants) << ")\n"
+      << summary_line("mesh A", args.a + ": " + std::to_string(c.elements_a) + " tetrahedra");
+    if (B) s << summary_line("mesh B", args.b + ": " + std::to_string(c.elements_b) + " tetrahedra");
+    std::string skipped = std::to_string(c.skipped.size()) + " elements";
+    for (std::size_t k = 0; k < std::min<std::size_t>(c.skipped.size(), 3); ++k) skipped += "\n" + c.skipped[k].reason;
+    s << summary_line("skipped", skipped)
+      << summary_line("box pairs", std::to_string(c.box_pairs) + (B ? "" : " (sharing no vertex)"))
+      << summary_line("intersecting", std::to_string(c.pairs.size()) + " pairs" +
+                                          (errors ? " (" + std::to_string(errors) + " rejected)" : ""))
+      << summary_line("time (s)", summary_number(read_seconds + c.seconds_boxes + c.seconds_broadphase +
+                                                 c.seconds_decision + c.seconds_depth) +
+                                      " total: read " + summary_number(read_seconds) + ", boxes " +
+                                      summary_number(c.seconds_boxes) + ", broadphase " +
+                                      summary_number(c.seconds_broadphase) + ", exact decision " +
+                                      summary_number(c.seconds_decision) + ", depth " +
+                                      summary_number(c.seconds_depth));
+    // One row per requested value: its sum and maximum over the pairs, and the pair attaining it.
+    const std::string indent(2 + kSummaryLabel, ' ');
+    s << "  " << std::string("value") << std::string(kSummaryLabel - 5, ' ') << padded_left("sum", 12) << "  "
+      << padded_left("max", 12) << "  at (a, b)\n";
     for (std::size_t k = 0; k < mesh::kVariantCount; ++k) {
       if (!(variants & (1u << k))) continue;
       double sum = 0, best = -1;
@@ -156,10 +171,10 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
         sum += v;
         if (v > best) best = v, arg = &p;
       }
-      const char* key = mesh::kVariantKeys[k];
-      s << "  " << key << std::string(16 - std::min<std::size_t>(15, std::strlen(key)), ' ')
-        << "sum " << sum << ", max " << (arg ? best : 0.0);
-      if (arg) s << " at (" << arg->a << ", " << arg->b << ")";
+      const std::string key = mesh::kVariantKeys[k];
+      s << "  " << key << std::string(key.size() < kSummaryLabel ? kSummaryLabel - key.size() : 1, ' ')
+        << padded_left(summary_number(sum), 12) << "  " << padded_left(summary_number(arg ? best : 0.0), 12);
+      if (arg) s << "  (" << arg->a << ", " << arg->b << ")";
       s << "\n";
     }
   }
@@ -256,7 +271,8 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
                   "Also write both meshes with per-element contact data and a per-vertex "
                   "displacement field (legacy VTK, for ParaView)");
   cmd->add_flag("--summary", args->summary,
-                "Counts and time per stage, sum and maximum of each variant (standard error)");
+                "A readable summary on standard error: elements, pairs, time per stage, and the "
+                "sum and maximum of each value with the pair attaining it");
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
       ->check(integer_in(0, 4096))
       ->capture_default_str();
