@@ -5,13 +5,15 @@
 //   pdd.read_fixtures(path)                                        -> list of dicts
 //   pdd.mesh_contacts(VA, TA, VB=None, TB=None, variants, engine, threads, progress) -> dict
 //   pdd.read_mesh(path)                                            -> (V, T) numpy arrays
+//   pdd.resolve(VA, TA, VB=None, TB=None, fix, variant, max_rounds, threads, progress,
+//               fixed_a, fixed_b)                                   -> (VA1, VB1, report dict)
 //
 // Built only on the public C++ interface (<pdd/pdd.h>: pdd::fast, pdd::reference; <pdd/mesh.h>:
 // pdd::mesh) and on compare/'s fixture reader (the one `pdd solve` uses, so messages are the
 // CLI's). Many records become columns in one place (RecordColumns). Numbers:
 // the fast engine's are Python floats, the reference engine's fractions.Fraction, built from
 // GMP's integers exactly (never through a float). Every engine call runs with the GIL released;
-// the long ones (solve_batch, mesh_contacts) stop on Ctrl-C (LongCall).
+// the long ones (solve_batch, mesh_contacts, resolve) stop on Ctrl-C (LongCall).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -42,6 +44,7 @@
 #include <vector>
 
 #include "pdd/io/fixture_io.h"
+#include "pdd/io/resolve_report.h"
 #include "pdd/mesh.h"
 #include "pdd/pdd.h"
 
@@ -404,7 +407,8 @@ class Workers {
 // fails before any work). Used with the GIL held.
 class Progress {
  public:
-  Progress(py::handle arg, const char* what) : what_(what) {
+  // `unit`: what done and total count, for the bar ("pair", "round").
+  Progress(py::handle arg, const char* what, const char* unit = "pair") : what_(what), unit_(unit) {
     if (arg.is_none() || arg.ptr() == Py_False) return;
     if (arg.ptr() == Py_True) {
       try {
@@ -426,12 +430,16 @@ class Progress {
 
   bool active() const { return bool(callable_) || bool(tqdm_); }
 
-  // `done` of `total` pairs are computed: calls progress(done, total) or moves the bar, unless
-  // that is what it last said. Throws py::error_already_set when the callable raises.
-  void report(std::size_t done, std::size_t total) {
+  // `done` of `total` pairs (rounds) are computed: calls progress(done, total) or moves the
+  // bar, unless that is what it last said. `postfix`, if not empty, is shown after the bar
+  // ("pairs=120"; not passed to a callable). Throws py::error_already_set when the callable
+  // raises.
+  void report(std::size_t done, std::size_t total, const std::string& postfix = {}) {
     if (!active() || (said_ && done == done_ && total == total_)) return;
     if (tqdm_) {
-      if (!bar_) bar_ = tqdm_(py::arg("total") = total, py::arg("desc") = what_, py::arg("unit") = "pair");
+      if (!bar_) bar_ = tqdm_(py::arg("total") = total, py::arg("desc") = what_, py::arg("unit") = unit_);
+      if (total != total_ && said_) bar_.attr("total") = total;  // a run that stopped early
+      if (!postfix.empty()) bar_.attr("set_postfix_str")(postfix, py::arg("refresh") = false);
       bar_.attr("update")(done - done_);
     } else {
       callable_(done, total);
@@ -448,6 +456,7 @@ class Progress {
 
  private:
   const char* what_;
+  const char* unit_;
   py::object callable_, tqdm_, bar_;
   bool said_ = false;
   std::size_t done_ = 0, total_ = 0;
@@ -470,8 +479,9 @@ class LongCall {
 
   // Set by the calling thread; the computation starts no more pairs once it is.
   std::atomic<bool> cancel{false};
-  // Set by the computation: pairs computed, of `total` (kUnknown until it is known).
-  std::atomic<std::size_t> done{0}, total{kUnknown};
+  // Set by the computation: pairs computed, of `total` (kUnknown until it is known); `pairs`
+  // (resolve: intersecting pairs at the last round's start) is shown after a tqdm bar.
+  std::atomic<std::size_t> done{0}, total{kUnknown}, pairs{kUnknown};
 
   bool cancelled() const { return cancel.load(std::memory_order_relaxed); }
   void add_done(std::size_t n) { done.fetch_add(n, std::memory_order_relaxed); }
@@ -535,7 +545,9 @@ class LongCall {
         try {  // nothing may leave this scope while the worker runs
           python_error = PyErr_CheckSignals() != 0;
           const std::size_t t = total.load();
-          if (!python_error && t != kUnknown) progress_.report(done.load(), t);
+          const std::size_t p = pairs.load();
+          if (!python_error && t != kUnknown)
+            progress_.report(done.load(), t, p == kUnknown ? std::string() : "pairs=" + std::to_string(p));
         } catch (py::error_already_set& e) {
           e.restore();
           python_error = true;
@@ -1046,6 +1058,119 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
 }
 
 // ---------------------------------------------------------------------------------------------
+// pdd.resolve (the library's pdd::mesh::resolve / resolve_self; `pdd resolve`)
+
+// A boolean vertex mask of `vertices` entries (fixed_a, fixed_b) -> the library's flags.
+std::vector<char> vertex_mask(py::handle obj, const char* which, std::size_t vertices) {
+  if (obj.is_none()) return {};
+  py::array a = cached->asarray(obj);
+  if (a.dtype().kind() != 'b' || a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != vertices)
+    value_error(std::string(which) + " must be a boolean array of shape (" + std::to_string(vertices) +
+                ",), one entry per vertex (True: kept bit for bit); got dtype " +
+                py::str(a.dtype()).cast<std::string>() + ", shape " + shape_str(a));
+  const auto d = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  std::vector<char> out(vertices);
+  for (std::size_t i = 0; i < vertices; ++i) out[i] = d.data()[i] ? 1 : 0;
+  return out;
+}
+
+py::array_t<double> vertices_array(const std::vector<pdd::Vec3d>& v) {
+  py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+  double* o = out.mutable_data();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int k = 0; k < 3; ++k) o[i * 3 + k] = v[i][k];
+  return out;
+}
+
+py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py::handle fix_in,
+                  py::handle variant_in, py::handle max_rounds_in, py::handle threads_in,
+                  py::handle progress_arg, py::handle fixed_a_in, py::handle fixed_b_in) {
+  pdd::mesh::ResolveOptions options;
+  try {
+    options.variant = pdd::mesh::parse_resolve_variant(text_arg(variant_in, "variant"));
+  } catch (const std::invalid_argument& e) {
+    value_error(std::string("variant: ") + e.what());
+  }
+  if (VB.is_none() != TB.is_none())
+    value_error("give both VB and TB (A against B), or neither (self-contact of A)");
+  const bool self = VB.is_none();
+  std::string fix;
+  if (!fix_in.is_none()) {
+    fix = PyUnicode_Check(fix_in.ptr()) ? fix_in.cast<std::string>() : std::string("?");
+    if (fix != "a" && fix != "b")
+      value_error("fix must be None, 'a' or 'b' (the mesh kept bit for bit); got " + short_repr(fix_in));
+    if (self && fix == "b") value_error("fix='b': with self-contact (VB, TB None) there is no mesh B");
+  }
+  if (self && !fixed_b_in.is_none())
+    value_error("fixed_b: with self-contact (VB, TB None) there is no mesh B");
+  const PyObject* mr = max_rounds_in.ptr();
+  if (PyBool_Check(mr) || !PyLong_Check(mr))
+    value_error("max_rounds must be an int >= 1; got " + short_repr(max_rounds_in));
+  int overflow = 0;
+  const long long rounds = PyLong_AsLongLongAndOverflow(max_rounds_in.ptr(), &overflow);
+  if (overflow > 0 || rounds < 1 || rounds > 1000000)
+    value_error("max_rounds must be an int from 1 to 1000000; got " + short_repr(max_rounds_in));
+  options.max_rounds = static_cast<std::size_t>(rounds);
+  const std::optional<int> threads = threads_arg(threads_in);
+  Progress progress(progress_arg, "pdd.resolve", "round");
+
+  pdd::mesh::Mesh A, B;
+  A.vertices = mesh_vertices(VA, "VA");
+  A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
+  if (!self) {
+    B.vertices = mesh_vertices(VB, "VB");
+    B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
+  }
+  options.fix_a = fix == "a";
+  options.fix_b = fix == "b";
+  options.fixed_vertices_a = vertex_mask(fixed_a_in, "fixed_a", A.vertices.size());
+  if (!self) options.fixed_vertices_b = vertex_mask(fixed_b_in, "fixed_b", B.vertices.size());
+
+  std::optional<pdd::mesh::Resolution> result;
+  std::optional<std::string> bad_input;
+  LongCall call(progress);
+  options.cancel = &call.cancel;
+  call.total.store(options.max_rounds);
+  options.progress = [&call](const pdd::mesh::ResolveRound& r) {
+    call.pairs.store(r.pairs, std::memory_order_relaxed);
+    call.done.store(r.round, std::memory_order_relaxed);
+  };
+  call.run(true, [&] {
+    with_threads(threads, [&] {
+      try {
+        result = self ? pdd::mesh::resolve_self(A, options) : pdd::mesh::resolve(A, B, options);
+        call.total.store(result->report.rounds.size());  // the last report: rounds run of rounds run
+        call.done.store(result->report.rounds.size());
+      } catch (const std::invalid_argument& e) {
+        bad_input = e.what();
+      } catch (const pdd::mesh::Cancelled&) {  // call.run raises why
+      }
+    });
+  });
+  if (bad_input) value_error(*bad_input);
+  if (!result) throw std::runtime_error("pdd.resolve: stopped without a result");
+
+  auto count = [](const std::vector<char>& f) {
+    return static_cast<std::size_t>(std::count(f.begin(), f.end(), 1));
+  };
+  pdd::io::ResolveInputs in;
+  in.files = false;
+  in.self = self;
+  in.fix = fix.empty() ? 0 : fix[0];
+  in.max_rounds = options.max_rounds;
+  in.elements_a = A.tets.size(), in.vertices_a = A.vertices.size();
+  in.elements_b = B.tets.size(), in.vertices_b = B.vertices.size();
+  in.fixed_vertices_a = options.fix_a ? A.vertices.size() : count(options.fixed_vertices_a);
+  in.fixed_vertices_b = options.fix_b ? B.vertices.size() : count(options.fixed_vertices_b);
+  const std::string report = pdd::io::resolve_report_json(result->report, in).dump();
+  py::object report_dict = py::module_::import("json").attr("loads")(report);
+  return py::make_tuple(vertices_array(result->a),
+                        self ? py::object(py::none()) : py::object(vertices_array(result->b)),
+                        report_dict);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Docstrings: help(pdd), help(pdd.solve) read like the README.
 
 constexpr const char* kModuleDoc = R"doc(Penetration depth between two tetrahedra (pdd), from Python.
@@ -1075,6 +1200,9 @@ Functions:
                                        meshes (numpy arrays; docs/definitions.md §10)
                                        and its depths
   read_mesh(path)                      a .msh or .vtk file -> (V, T) numpy arrays
+  resolve(VA, TA, VB=None, TB=None, fix=None, variant="global", max_rounds=200, ...)
+                                       move the meshes' vertices until no element pair
+                                       intersects, checked exactly -> (VA1, VB1, report)
 
 Example:
   >>> import pdd
@@ -1329,6 +1457,92 @@ that is not in the file, an unknown element type) raises ValueError with the mes
 refers to node 999, which is not in the file".
 )doc";
 
+constexpr const char* kResolveDoc = R"doc(resolve(VA, TA, VB=None, TB=None, fix=None, variant='global', max_rounds=200, threads=None, progress=None, fixed_a=None, fixed_b=None)
+--
+
+Two tetrahedral meshes that interpenetrate (or one that intersects itself) -> new vertex
+positions after which, each decided exactly on the returned doubles:
+  R1  no element pair intersects (A against B; self-contact: the pairs of A that share no
+      vertex; touching is not intersecting),
+  R2  every element keeps the sign of its volume and a non-zero volume (none inverted or
+      flattened),
+  R3  fixed vertices are bit-for-bit unchanged.
+`pdd resolve` from Python, on the C++ library include/pdd/mesh.h (pdd::mesh::resolve), on all
+cores with the GIL released. The connectivity is unchanged: element i is still TA[i].
+
+VA, TA   mesh A: VA its vertices, shape (n, 3), real numbers (read as float64); TA its
+         tetrahedra, shape (m, 4), integers (indices into VA, any orientation), as for
+         mesh_contacts(). pdd.read_mesh(path) or meshio give them from a file.
+VB, TB   mesh B, the same way; both None (the default): self-contact of A.
+fix      None (the default): every vertex may move; "a" or "b": that whole mesh is kept bit
+         for bit and only the other one moves ("b" needs B).
+fixed_a, fixed_b   boundary conditions: None, or a numpy bool array of shape (n,) per mesh,
+         True where the vertex is kept bit for bit (with fix, the union is fixed).
+variant  which per-pair solution drives the vertices: "global" (the default: the deformable
+         penetration depth over every separating plane, its deformed positions), "pdd2" (the
+         deformable depth over the candidate directions) or "rigid" (the baseline: each pair
+         pushed apart by its rigid translation, split between the two elements).
+max_rounds   rounds of contact solving before giving up, an int from 1 to 1000000. A run
+         that reaches it without R1-R3 returns normally with report["resolved"] False.
+threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
+         call only), as `pdd resolve --threads`. Anything else raises ValueError.
+progress None (the default) or False: silent. A callable progress(done, total): called from
+         the calling thread with the GIL held, about every 0.05 s while the rounds run when
+         `done` (rounds finished) has grown, total being max_rounds; once at the end with
+         done == total == the rounds run. An exception it raises stops the call (as Ctrl-C
+         does) and propagates. True: a tqdm bar on standard error (Debian python3-tqdm), in
+         rounds, with the intersecting pairs of the last round after it.
+
+Cost: the mesh object norm, the volume-weighted mean squared displacement
+  sigma_mesh = sum_e V_e sigma_e / sum_e V_e    (V_e rest volume, sigma_e the per-tetrahedron
+                                                 object norm of docs/definitions.md)
+so that a translation by t costs |t|^2; reported per mesh and summed.
+
+Returns (VA1, VB1, report):
+  VA1       (n, 3) float64: A's new vertices (equal to VA where fixed, bit for bit)
+  VB1       (n_B, 3) float64, or None for self-contact
+  report    dict, the keys of `pdd resolve --report` (JSON), in that order:
+    variant               "global", "pdd2" or "rigid"
+    inputs                {self, fix, max_rounds, elements_a, vertices_a, elements_b,
+                           vertices_b, fixed_vertices_a, fixed_vertices_b} (the CLI adds the
+                           file names a and b)
+    resolved              r1 and r2 and r3: the exact verdict on VA1, VB1 over every pair (a
+                          fresh broadphase, not only the pairs of the last round)
+    r1, r2, r3            each condition above
+    rounds                list of {round, pairs, max_pd2, cost, seconds}: per round the
+                          intersecting pairs at its start, the largest per-pair squared depth
+                          of the variant, the cost after it, its wall time
+    cost, cost_a, cost_b  sigma_mesh of A plus B, of A, of B
+    max_displacement      largest |p1 - p0| over every vertex
+    min_volume_ratio      smallest V1 / V0 over every element (signed: < 0 is inverted)
+    remaining_pairs       [[a, b], ...]: element pairs still intersecting ([] when r1)
+    bad_elements          [["A" or "B", i], ...]: elements inverted or flat ([] when r2)
+    moved_fixed_vertices  [["A" or "B", i], ...]: fixed vertices that moved ([] when r3)
+    skipped               [{mesh, index, reason}, ...]: input elements that cannot be
+                          computed (flat, non-finite), e.g. "element 12 of mesh A is flat: ...";
+                          they are in no pair and no check (`pdd resolve` exits 1 then)
+    seconds_contacts, seconds_solve, seconds_move, seconds_verify, seconds_total
+                          wall time per stage over the run
+Write the result with meshio (meshio.Mesh(VA1, [("tetra", TA)]).write("a1.msh")) or with
+`pdd resolve`, which writes .msh / .vtk files whose coordinates read back bit for bit.
+
+Ctrl-C stops a call from the main thread: KeyboardInterrupt (or whatever a signal handler
+raises) once the stage being computed ends (a round has a few stages: contacts, per-pair
+solutions, the move, the exact check); nothing is returned.
+
+Malformed arguments raise ValueError: a wrong shape or dtype, a vertex index out of range,
+an unknown variant or fix, fix="b" or fixed_b without B, a mask of the wrong length,
+max_rounds < 1, VB without TB.
+
+Example:
+  >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
+  >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
+  >>> VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a")
+  >>> r["resolved"], len(r["rounds"]), (VA1 == VA).all()
+  (True, 11, True)
+  >>> V1, _, r = pdd.resolve(V, T)                  # self-contact of one mesh (V, T)
+)doc";
+
 }  // namespace
 
 PYBIND11_MODULE(pdd, m) {
@@ -1358,4 +1572,9 @@ PYBIND11_MODULE(pdd, m) {
         py::arg("variants") = "rigid,static,pdd2,accel1", py::arg("engine") = "fast",
         py::arg("threads") = py::none(), py::arg("progress") = py::none());
   m.def("read_mesh", &read_mesh, kReadMeshDoc, py::arg("path"));
+  m.def("resolve", &resolve, kResolveDoc, py::arg("VA"), py::arg("TA"), py::arg("VB") = py::none(),
+        py::arg("TB") = py::none(), py::arg("fix") = py::none(), py::arg("variant") = "global",
+        py::arg("max_rounds") = 200, py::arg("threads") = py::none(),
+        py::arg("progress") = py::none(), py::arg("fixed_a") = py::none(),
+        py::arg("fixed_b") = py::none());
 }
