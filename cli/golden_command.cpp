@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "pdd/cli/exit_codes.h"
 #include "pdd/compare/golden.h"
+#include "pdd/pdd.h"
 
 namespace pdd::compare {
 using io::golden_fixture_files;
@@ -13,7 +14,7 @@ namespace {
 struct GoldenArgs {
   bool check = false, update = false;
   std::string fixtures = "fixtures";
-  std::string formulation = "reduced";
+  std::string formulation = to_string(reference::SolveOptions{}.formulation);  // pdd.h's default
   bool quiet = false;
 };
 

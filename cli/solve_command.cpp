@@ -48,11 +48,12 @@ struct SolveArgs {
   std::string engine = "reference";
   std::string input;
   std::string output;
-  std::string formulation = "full";
+  std::string formulation = to_string(reference::SolveOptions{}.formulation);  // pdd.h's default
   bool quiet = false;
   int threads = 0;  // 0: all cores
   double global_gap = 1e-12;  // SPEC §9's target for pdd2_global - pdd2_global_lower
   bool no_global = false;     // skip SPEC §9: records without its keys
+  bool gradient = false;      // add pdd2_global_grad
   std::string format = "jsonl";
 };
 
@@ -132,9 +133,14 @@ int run_solve(const SolveArgs& args) {
   reference::SolveOptions options;
   options.formulation = args.formulation == "reduced" ? QpFormulation::Reduced
                                                       : QpFormulation::Full;
-  options.global_gap = reference::Rational(args.global_gap);
-  options.global = !args.no_global;
-  const bool global = !args.no_global;
+  options.with_global = !args.no_global;
+  options.gradient = args.gradient;
+  reference::GlobalOptions budget;
+  budget.gap = reference::Rational(args.global_gap);
+  fast::SolveOptions fast_options;
+  fast_options.with_global = options.with_global;
+  fast_options.gradient = options.gradient;
+  const bool global = options.with_global;
   if (!args.quiet) {
     if (fast)
       std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
@@ -165,11 +171,10 @@ int run_solve(const SolveArgs& args) {
       if (e.error) {
         r.error = *e.error;
       } else {
-        bool slow = false, ref = false;
-        r = fast::solve_pair(e.pair, &slow, &ref, global);
+        r = fast::solve_pair(e.pair, fast_options);
         r.name = e.pair.name;
-        slow_paths += slow;
-        refined += ref;
+        slow_paths += r.stats.slow_path;
+        refined += r.stats.refined;
       }
       code = r.error || r.pdd2_global_error ? kExitPairRejected : kExitOk;
       lines.done(k, record_row(fast_record(r, global), format), record_note(r, args.global_gap));
@@ -179,7 +184,7 @@ int run_solve(const SolveArgs& args) {
       if (e.error)
         r.error = *e.error;
       else
-        r = solve_reference(e.pair, options);
+        r = solve_reference(e.pair, options, budget);
       code = r.error ? kExitPairRejected : kExitOk;
       lines.done(k, record_row(exact_record(r, global), format), record_note(r, args.global_gap));
     }
@@ -250,8 +255,9 @@ void add_solve_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"jsonl", "table", "csv"}))
       ->capture_default_str();
   cmd->add_option("--formulation", args->formulation,
-                  "Reference QP formulation: 'full' (the paper's 27 variables) or 'reduced' "
-                  "(the scalar form of docs/definitions.md §5: same exact values, faster)")
+                  "Reference QP formulation: 'reduced' (the displacement along the separating "
+                  "direction only; the default: about 7 times faster) or 'full' (the paper's 27 "
+                  "variables); both give exactly the same values")
       ->check(CLI::IsMember({"full", "reduced"}))
       ->capture_default_str();
   cmd->add_option("--global-gap", args->global_gap,
@@ -266,6 +272,11 @@ void add_solve_command(CLI::App& app, int& exit_code) {
                  "Skip pdd2_global, the deformable depth over every separating plane (its keys are "
                  "left out of the records): faster (fast engine: ~3.5 of ~13 us a pair; reference: "
                  "its branch and bound)");
+  CLI::Option* gradient =
+      cmd->add_flag("--gradient", args->gradient,
+                    "Add pdd2_global_grad: the gradient of pdd2_global with respect to the eight "
+                    "rest vertices (A's four, then B's), 8 x [x, y, z]; null where pdd2_global is");
+  gradient->excludes("--no-global");
   cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
   cmd->callback([args, &exit_code] { exit_code = run_solve(*args); });
 }

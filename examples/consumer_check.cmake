@@ -26,6 +26,7 @@ endforeach()
 file(GLOB_RECURSE headers RELATIVE ${WORK}/prefix/include ${WORK}/prefix/include/*)
 list(SORT headers)
 set(expected pdd/direction_label.h pdd/mesh.h pdd/pair_result.h pdd/pdd.h pdd/qp_formulation.h
+    pdd/solve_options.h
     pdd/tet_pair.h pdd/tet_tables.h)
 if(NOT headers STREQUAL expected)
   message(FATAL_ERROR "installed headers: ${headers}; expected ${expected}")

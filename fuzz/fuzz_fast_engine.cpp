@@ -225,15 +225,14 @@ void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
 }
 
 pdd::reference::ExactResult exact_answer(const TetPair& p) {
-  pdd::reference::SolveOptions options;
-  options.formulation = pdd::QpFormulation::Reduced;
+  pdd::reference::GlobalOptions budget;
   // SPEC §9's patches below the doubles' grid cost ~100 ms each under ASan + UBSan + coverage
   // (~2 ms in Release); the default budget (1000) made the fuzzer time out (60 s) on pairs that
   // do not close. 50 of them: the fast value is judged against a wider (still proved) interval.
-  options.global_max_exact_patches = 50;
+  budget.max_exact_patches = 50;
   // The same for bound (Q)'s exact QPs (global_pdd.h; the far-vertex pairs need up to ~120).
-  options.global_max_hull_bounds = 50;
-  return pdd::reference::solve_exact(p, options);
+  budget.max_hull_bounds = 50;
+  return pdd::reference::solve_exact(p, {}, budget);
 }
 // ---------------------------------------------------------------------------------------------
 

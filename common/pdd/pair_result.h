@@ -17,6 +17,17 @@ namespace pdd {
 template <class R>
 using Positions = std::array<std::array<R, 3>, 4>;  // 4 vertices x [x, y, z]
 
+// A derivative with respect to the pair's eight vertices: A's s0..s3, then B's r0..r3.
+template <class R>
+using PairGradient = std::array<std::array<R, 3>, 8>;
+
+// How the fast engine computed a record (its accuracy contract, pdd.h): diagnostics, not values.
+// The exact engine leaves both false.
+struct SolveStats {
+  bool slow_path = false;  // the whole pair was recomputed on the engine's exact path
+  bool refined = false;    // a few candidates were evaluated exactly instead (not slow_path)
+};
+
 template <class R>
 struct PairResult {
   std::string name;
@@ -41,6 +52,12 @@ struct PairResult {
   // above are still reported; pdd2_global and q1_*_global are then NaN and there is no normal,
   // so that none of them can be read as a depth. Written as null keys in a record.
   std::optional<std::string> pdd2_global_error;
+  // The gradient of pdd2_global with respect to the eight rest vertices (pdd.h, "The gradient
+  // of pdd2_global"): set only when the options asked for it (SolveOptions::gradient); NaN
+  // where pdd2_global is declined (pdd2_global_error), 0 when not intersecting.
+  std::optional<PairGradient<R>> pdd2_global_grad;
+
+  SolveStats stats;  // fast engine only
 };
 
 // The record's values and labels by name (the candidate-based values of SPEC §5–§6; the §9

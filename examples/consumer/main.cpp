@@ -17,6 +17,18 @@ int main() {
   pdd::fast::Depth d = pdd::fast::rigid_pd2(p.A, p.B);  // the hot path: value and label
   std::cout << "rigid: pd2 = " << d.pd2 << " along " << *d.dir << " (exact " << exact.rigid_pd2
             << ")\n";
+  pdd::fast::SolveOptions options;  // defaults in pdd.h
+  options.gradient = true;
+  const pdd::PairResult<double> g = pdd::fast::solve_pair(p, options);
+  // Euler's relation for the degree-2 norm: sum_i d_i . d sigma/d d_i = 2 sigma, so the
+  // gradient's dot product with the displacements to q1_*_global is -2 pdd2_global.
+  double dot = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int k = 0; k < 3; ++k)
+      dot += (*g.pdd2_global_grad)[i][k] * ((i < 4 ? g.q1_A_global[i][k] - p.A[i][k]
+                                                   : g.q1_B_global[i - 4][k] - p.B[i - 4][k]));
+  std::cout << "pdd2_global = " << g.pdd2_global << ", gradient . displacement = " << dot << "\n";
+  if (!(std::fabs(dot + 2 * g.pdd2_global) <= 1e-12 * g.pdd2_global)) return 1;
   // SPEC §8: the fast value is within 1e-9 relative of the exact one.
   const double e = exact.pdd2.get_d();
   return std::fabs(fast.pdd2 - e) <= 1e-9 * e && fast.pdd2_dir == exact.pdd2_dir ? 0 : 1;

@@ -5,6 +5,8 @@
 //   pdd::TetPair p{"name", {}, A, B};               // A, B: 4 vertices x {x, y, z}, doubles
 //   pdd::PairResult<double> r = pdd::fast::solve_pair(p);
 //   if (r.error) ...;  else r.pdd2, r.pdd2_dir->str(), r.q1_A, ...
+//   pdd::fast::SolveOptions o;  o.gradient = true;       // options: pdd/solve_options.h
+//   r = pdd::fast::solve_pair(p, o);
 //
 // What is computed (../SPEC.md of the source tree; Kim & Kim's paper):
 //   rigid_pd2      PD², the squared rigid penetration depth (SPEC §4), and its direction label;
@@ -37,9 +39,53 @@
 #include "pdd/direction_label.h"
 #include "pdd/pair_result.h"
 #include "pdd/qp_formulation.h"
+#include "pdd/solve_options.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd {
+
+// Options: each engine's solve_pair and solve_batch take one struct, pdd::fast::SolveOptions or
+// pdd::reference::SolveOptions (pdd/solve_options.h: with_global, gradient, formulation), set
+// once with the recommended defaults; `pdd solve` and the Python module use the same names and
+// defaults. How the fast engine computed a pair is in its record (PairResult::stats).
+
+// The gradient of pdd2_global (SolveOptions::gradient, PairResult::pdd2_global_grad).
+// pdd2_global(P) = min over separated configurations Q of sigma(Q - P): the squared
+// object-norm distance from the rest pose P (the eight vertices) to the set S of
+// configurations whose interiors a plane separates. With d_i = q_i - p_i per tetrahedron and
+// sigma = 1/20 (sum_i |d_i|^2 + |sum_k d_k|^2) summed over A and B,
+//     d sigma / d d_i = (d_i + sum_k d_k) / 10,
+// and where the minimiser Q* = (q1_A_global, q1_B_global) is unique, pdd2_global is
+// differentiable with
+//     grad_P pdd2_global = - d sigma / d d  at d = Q* - P         (A's s0..s3 first, then B's)
+// (S does not depend on P: Danskin's theorem; Euler: sum_i d_i . d sigma/d d_i = 2 sigma, so
+// <grad, Q* - P> = -2 pdd2_global). For every separated Q (minimiser or not) and every
+// displacement W of the rest pose, with g = - d sigma/d d at Q - P,
+//     pdd2_global(P + W) <= sigma(Q - P - W) = sigma(Q - P) + <g, W> + sigma(W)          (*)
+// exactly (sigma is quadratic): g is the slope of a quadratic majorant touching pdd2_global at
+// P (up to sigma(Q - P) - pdd2_global(P)). pdd2_global(P) - sigma(P) (P's own norm, as if a
+// displacement) = min over Q of sigma(Q) - 2 <Q, P>_sigma is a minimum of functions affine in
+// P, so concave: pdd2_global is semiconcave, C^1 where the minimiser is unique, with concave
+// kinks where it is not.
+// Ties. Where two minimisers tie (a symmetric pair where two mirror-image planes are both
+// optimal), the gradient returned is that of the branch of the returned minimiser: one
+// element of the Clarke generalized gradient (the convex hull of the minimisers' gradients),
+// and the one-sided derivatives differ. By (*), whichever minimiser is returned, the one-sided
+// difference quotients bracket it: for h > 0,
+//     (f(P + hV) - f(P)) / h <= <g, V> + h sigma(V),  (f(P) - f(P - hV)) / h >= <g, V> - h sigma(V).
+// Not intersecting: 0 (pdd2_global is 0 at P and at most sigma(W) at P + W: (*) with Q = P).
+// Declined pdd2_global (fast engine, pdd2_global_error): NaN, as the other SPEC §9 fields.
+// Accuracy: at each engine's `gradient` option (pdd/solve_options.h).
+// As a contact energy. An implicit step (backward Euler; projective dynamics) minimising
+//     Phi(x) = E(x) + k * sum over intersecting element pairs of pdd2_global(x_pair)
+// takes k g per pair, scattered to the pair's eight vertices, as the contact term's gradient;
+// -g/2 = M (Q* - P) (M the object norm's matrix) pulls each vertex towards its separated
+// position. pdd2_global is not convex and has no Hessian at a tie; use (*) instead: around the
+// current x each pair's term is majorized by sigma(Q* - x - W), the squared object-norm
+// distance to the fixed target Q*, a convex quadratic in W with the constant positive definite
+// Hessian 2M. Minimising Phi with every pair's term replaced by it never increases Phi
+// (majorize-minimize: Phi <= the model, equal at x); it is the local/global step of projective
+// dynamics with Q* as the local projection. Recompute pairs and Q* at the new x and repeat.
 
 // The reference engine's numbers: exact rationals (GMP's mpq_class, in lowest terms);
 // `r.pdd2.get_str()` and `std::cout << r.pdd2` print "p/q" (or "p" for an integer).
@@ -61,29 +107,23 @@ namespace pdd::fast {
 // double gives an error record that starts "not representable".
 
 // Every SPEC §6 quantity of one pair.
-//   pair       the two tetrahedra; A is the paper's T1 (static in case 1), B is T2.
-//   slow_path  optional out: set to true when the pair took the exact path.
-//   refined    optional out: set to true when some quantity was refined (a few candidates
-//              evaluated exactly) and the pair did not need the exact path for it.
-//   global     false: skip SPEC §9 (pdd2_global 0, no normal, q1_*_global the rest pose); it
-//              is about 3.5 of the call's 13 us on the paper's protocol.
+//   pair     the two tetrahedra; A is the paper's T1 (static in case 1), B is T2.
+//   options  with_global, gradient (pdd/solve_options.h).
 // Returns the record; `error` set when the pair is rejected (SPEC §1) or a candidate-based
 // value is not representable (then nothing else is set). pdd2_global alone may be declined:
 // where the depth is far below the pair's extent no normal in doubles may be certified to
 // attain it (kGlobalNotRepresentable), or it may lie outside the double range
 // (kGlobalOutOfRange); then `pdd2_global_error` says so, pdd2_global and q1_*_global are NaN,
 // there is no normal, and every other value of the record is reported as usual.
-PairResult<double> solve_pair(const TetPair& pair, bool* slow_path = nullptr,
-                              bool* refined = nullptr, bool global = true);
+// r.stats.slow_path: the pair took the exact path; r.stats.refined: some quantity was refined (a
+// few candidates evaluated exactly) and the pair did not need the exact path for it.
+PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options = {});
 
 // solve_pair on every pair, on all cores (TBB), results in input order; bit-identical to
-// solve_pair one at a time. `slow_paths` (optional out): how many pairs took the exact path;
-// `refined` (optional out): how many were refined (solve_pair's `refined`); `global` as for
-// solve_pair.
-// A rejected pair is an error record; it never stops the batch.
+// solve_pair one at a time (stats included). A rejected pair is an error record; it never stops
+// the batch.
 std::vector<PairResult<double>> solve_batch(const std::vector<TetPair>& pairs,
-                                            std::size_t* slow_paths = nullptr,
-                                            std::size_t* refined = nullptr, bool global = true);
+                                            const SolveOptions& options = {});
 
 // One quantity over raw vertices: the hot path for contact handling (no record, no positions).
 enum class DepthStatus {
@@ -147,15 +187,9 @@ namespace pdd::reference {
 
 // Every SPEC §6 quantity of one pair, exactly: each input double is taken as the rational it
 // denotes and every value is an exact rational; labels are the first minimising candidate in
-// the canonical order of SPEC §3; q1 are exact rationals attaining pdd2.
-//   formulation  of the per-direction QP (pdd/qp_formulation.h): both give the same result;
-//                Reduced is faster, Full solves the paper's own variables.
-//   global       SPEC §9 (pdd2_global, its normal, positions and proved lower bound, to the
-//                gap 1e-12): a branch and bound of 5 to 50 ms more per pair. false skips it:
-//                then pdd2_global = pdd2_global_lower = 0, no normal, q1_*_global = the rest pose.
+// the canonical order of SPEC §3; q1 are exact rationals attaining pdd2. `options`:
+// formulation, with_global, gradient (pdd/solve_options.h).
 // Returns the record; `error` set when the pair is rejected (SPEC §1).
-PairResult<Rational> solve_pair(const TetPair& pair,
-                                QpFormulation formulation = QpFormulation::Reduced,
-                                bool global = true);
+PairResult<pdd::Rational> solve_pair(const TetPair& pair, const SolveOptions& options = {});
 
 }  // namespace pdd::reference

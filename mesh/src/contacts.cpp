@@ -118,7 +118,9 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
                             __builtin_popcount(variants & ~unsigned(kRigid)) >= 2;
   if (needs_record) {
     // SPEC §9's search only when asked: it is most of solve_pair's time
-    r = fast::solve_pair(TetPair{"", {}, A, B}, nullptr, nullptr, (variants & kGlobal) != 0);
+    fast::SolveOptions options;
+    options.with_global = (variants & kGlobal) != 0;
+    r = fast::solve_pair(TetPair{"", {}, A, B}, options);
     if (r.error) return r;
     for (std::size_t k = 0; k < kValueCount; ++k)
       if (!(variants & (1u << k))) {
@@ -212,9 +214,10 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
     if constexpr (std::is_same_v<R, double>) {
       c.result = fast_record(Ta, Tb, options.variants);
     } else {
-      const bool global = options.variants & kGlobal;
-      c.result = reference::solve_pair(TetPair{"", {}, Ta, Tb}, QpFormulation::Reduced, global);
-      if (!global && !c.result.error) clear_global(c.result, Ta, Tb);
+      reference::SolveOptions solve;
+      solve.with_global = options.variants & kGlobal;
+      c.result = reference::solve_pair(TetPair{"", {}, Ta, Tb}, solve);
+      if (!solve.with_global && !c.result.error) clear_global(c.result, Ta, Tb);
     }
     if (options.progress) options.progress(1, hits.size());
   });

@@ -1,7 +1,9 @@
 // pdd_module.cpp — the Python module `pdd` (pybind11): both engines from Python.
 //
-//   pdd.solve(A, B, engine="fast", formulation="reduced", name="", with_global=True) -> dict
-//   pdd.solve_batch(A, B, threads=None, with_global=True, progress=None) -> dict of arrays
+//   pdd.solve(A, B, engine="fast", formulation="reduced", name="", with_global=True,
+//             gradient=False) -> dict
+//   pdd.solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None)
+//             -> dict of arrays
 //   pdd.read_fixtures(path)                                        -> list of dicts
 //   pdd.mesh_contacts(VA, TA, VB=None, TB=None, variants, engine, threads, progress) -> dict
 //   pdd.read_mesh(path)                                            -> (V, T) numpy arrays
@@ -200,7 +202,20 @@ py::list positions(const pdd::Positions<R>& q) {
   return out;
 }
 
-// `global` false: without SPEC §9's keys (the result was computed without it).
+// pdd2_global_grad: 8 x [x, y, z], A's vertices first.
+template <class R>
+py::list gradient_list(const pdd::PairGradient<R>& g) {
+  py::list out;
+  for (const auto& v : g) {
+    py::list p;
+    for (const auto& c : v) p.append(number(c));
+    out.append(p);
+  }
+  return out;
+}
+
+// `global` false: without SPEC §9's keys (the result was computed without it). The key
+// pdd2_global_grad is there when the result has the gradient (gradient=True).
 template <class R>
 py::dict record(const pdd::PairResult<R>& r, bool global) {
   py::dict d;
@@ -220,6 +235,7 @@ py::dict record(const pdd::PairResult<R>& r, bool global) {
   if (r.pdd2_global_error) {
     for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global"}) d[key] = py::none();
     d["pdd2_global_error"] = *r.pdd2_global_error;
+    if (r.pdd2_global_grad) d["pdd2_global_grad"] = py::none();
     return d;
   }
   d["pdd2_global"] = number(r.pdd2_global);
@@ -235,6 +251,7 @@ py::dict record(const pdd::PairResult<R>& r, bool global) {
   d["q1_B_global"] = positions(r.q1_B_global);
   if (r.pdd2_global_lower) d["pdd2_global_lower"] = number(*r.pdd2_global_lower);
   if constexpr (std::is_same_v<R, double>) d["pdd2_global_error"] = py::none();
+  if (r.pdd2_global_grad) d["pdd2_global_grad"] = gradient_list(*r.pdd2_global_grad);
   return d;
 }
 
@@ -254,9 +271,17 @@ bool bool_arg(py::handle o, const char* what) {
   return o.ptr() == Py_True;
 }
 
+// with_global=False with gradient=True: the gradient is that of pdd2_global, which is not computed.
+void check_gradient_needs_global(bool global, bool gradient) {
+  if (gradient && !global)
+    value_error("gradient=True needs with_global=True (it is the gradient of pdd2_global)");
+}
+
 py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle formulation_arg,
-               py::handle name_arg, py::handle global_arg) {
+               py::handle name_arg, py::handle global_arg, py::handle gradient_arg) {
   const bool global = bool_arg(global_arg, "with_global");
+  const bool gradient = bool_arg(gradient_arg, "gradient");
+  check_gradient_needs_global(global, gradient);
   const std::string engine = text_arg(engine_arg, "engine");
   const std::string formulation = text_arg(formulation_arg, "formulation");
   const std::string name = text_arg(name_arg, "name");
@@ -269,17 +294,20 @@ py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle for
     pdd::PairResult<double> r;
     {
       py::gil_scoped_release release;
-      r = pdd::fast::solve_pair(pair, nullptr, nullptr, global);
+      r = pdd::fast::solve_pair(pair, pdd::fast::SolveOptions{global, gradient});
     }
     r.name = name;
     return record(r, global);
   }
-  const auto f = formulation == "full" ? pdd::QpFormulation::Full : pdd::QpFormulation::Reduced;
+  pdd::reference::SolveOptions options;
+  options.formulation = formulation == "full" ? pdd::QpFormulation::Full : pdd::QpFormulation::Reduced;
+  options.with_global = global;
+  options.gradient = gradient;
   pdd::PairResult<pdd::Rational> r;
   {
     py::gil_scoped_release release;
     try {
-      r = pdd::reference::solve_pair(pair, f, global);
+      r = pdd::reference::solve_pair(pair, options);
     } catch (const std::exception& ex) {  // an engine invariant failed: reported as `pdd solve` does
       r = {};
       r.error = std::string("internal error in the reference engine: ") + ex.what();
@@ -583,6 +611,8 @@ class LongCall {
 //                               nested lists of Fractions, and pdd2_global_lower (Fractions);
 //                               fast: pdd2_global_error, a list of n entries, None or why the
 //                               engine declined pdd2_global alone (then its row is NaN)
+//   pdd2_global_grad            (if `gradient`, fast only) (n, 8, 3) float64, A's vertices first;
+//                               NaN where pdd2_global is
 //   error                       a list of n entries, None or why record j was rejected
 // A rejected record's row: values and positions NaN (exact: None), labels "", intersecting
 // False. Construct and add_to() with the GIL held; put() of a double record touches only the
@@ -590,9 +620,14 @@ class LongCall {
 // put by one thread at a time.
 class RecordColumns {
  public:
-  RecordColumns(std::size_t n, bool exact, unsigned values, bool positions, bool global = false)
+  RecordColumns(std::size_t n, bool exact, unsigned values, bool positions, bool global = false,
+                bool gradient = false)
       : n_(static_cast<py::ssize_t>(n)), exact_(exact), values_(values), positions_(positions),
         intersecting_(n_) {
+    if (gradient && !exact_) {
+      global_grad_ = py::array_t<double>({n_, py::ssize_t{8}, py::ssize_t{3}});
+      out_global_grad_ = global_grad_->mutable_data();
+    }
     if (global && exact_) {
       for (auto* l : {&exact_global_, &exact_global_normal_, &exact_global_q1_[0], &exact_global_q1_[1],
                        &exact_global_lower_})
@@ -657,6 +692,10 @@ class RecordColumns {
           for (int c = 0; c < 3; ++c) out_global_q1_[s][(j * 4 + i) * 3 + c] = r.error ? nan : (*g[s])[i][c];
       if (!r.error && r.pdd2_global_error) global_errors_.emplace_back(j, *r.pdd2_global_error);
     }
+    if (out_global_grad_)
+      for (int i = 0; i < 8; ++i)
+        for (int c = 0; c < 3; ++c)
+          out_global_grad_[(j * 8 + i) * 3 + c] = (r.error || !r.pdd2_global_grad) ? nan : (*r.pdd2_global_grad)[i][c];
   }
 
   void put(std::size_t j, const pdd::PairResult<pdd::Rational>& r) {  // GIL held
@@ -704,6 +743,7 @@ class RecordColumns {
       d["q1_B_global"] = *global_q1_[1];
       d["pdd2_global_error"] = error_column(global_errors_);
     }
+    if (global_grad_) d["pdd2_global_grad"] = *global_grad_;
     if (exact_global_) {  // in the order `pdd solve` writes them
       d["pdd2_global"] = *exact_global_;
       d["pdd2_global_normal"] = *exact_global_normal_;
@@ -759,6 +799,8 @@ class RecordColumns {
   double* out_global_ = nullptr;
   double* out_global_normal_ = nullptr;
   std::array<double*, 2> out_global_q1_{};
+  std::optional<py::array_t<double>> global_grad_;
+  double* out_global_grad_ = nullptr;
   std::optional<py::list> exact_global_, exact_global_normal_, exact_global_lower_;
   std::array<std::optional<py::list>, 2> exact_global_q1_;
 };
@@ -785,8 +827,10 @@ constexpr std::size_t kChunk = 1 << 15;
 constexpr std::size_t kWatchedPairs = 256;
 
 py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py::handle global_arg,
-                     py::handle progress_arg) {
+                     py::handle gradient_arg, py::handle progress_arg) {
   const bool global = bool_arg(global_arg, "with_global");
+  const bool gradient = bool_arg(gradient_arg, "gradient");
+  check_gradient_needs_global(global, gradient);
   const std::optional<int> threads = threads_arg(threads_in);
   Progress progress(progress_arg, "pdd.solve_batch");
   const auto A = batch_input(A_in, "A");
@@ -798,7 +842,8 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
   const std::size_t n = static_cast<std::size_t>(A.shape(0));
 
   // Outputs, allocated with the GIL held, filled without it.
-  RecordColumns out(n, /*exact=*/false, (1u << pdd::kValueCount) - 1, /*positions=*/true, global);
+  RecordColumns out(n, /*exact=*/false, (1u << pdd::kValueCount) - 1, /*positions=*/true, global, gradient);
+  const pdd::fast::SolveOptions options{global, gradient};
   const double* a = A.data();
   const double* b = B.data();
   std::size_t slow_paths = 0;
@@ -812,7 +857,6 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
     with_threads(threads, [&] {
       std::vector<pdd::TetPair> chunk;
       std::vector<pdd::PairResult<double>> res;
-      std::vector<char> slow;
       for (std::size_t first = 0; first < n; first += kChunk) {
         const std::size_t m = std::min(kChunk, n - first);
         chunk.resize(m);
@@ -823,19 +867,16 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
               chunk[k].B[i][c] = b[((first + k) * 4 + i) * 3 + c];
             }
         res.resize(m);
-        slow.assign(m, 0);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m), [&](const tbb::blocked_range<std::size_t>& r) {
           for (std::size_t k = r.begin(); k != r.end(); ++k) {
             if (call.cancelled()) return;
-            bool s = false;
-            res[k] = pdd::fast::solve_pair(chunk[k], &s, nullptr, global);
-            slow[k] = s;
+            res[k] = pdd::fast::solve_pair(chunk[k], options);
           }
           call.add_done(r.size());
         });
         if (call.cancelled()) return;
         for (std::size_t k = 0; k < m; ++k) {
-          slow_paths += slow[k] != 0;
+          slow_paths += res[k].stats.slow_path;
           out.put(first + k, res[k]);
         }
       }
@@ -1190,8 +1231,9 @@ Two engines:
   "reference"  exact: every value a fractions.Fraction (CGAL, GMP); about 0.1 s a pair.
 
 Functions:
-  solve(A, B, engine="fast", formulation="reduced", name="")  one pair -> dict
-  solve_batch(A, B, threads=None, progress=None)
+  solve(A, B, engine="fast", formulation="reduced", name="", with_global=True, gradient=False)
+                                       one pair -> dict
+  solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None)
                                        (N, 4, 3) numpy arrays, fast engine, all cores
   read_fixtures(path)                  a fixture file (fixtures/*.json) -> list of dicts
   mesh_contacts(VA, TA, VB=None, TB=None, variants=..., engine="fast", threads=None,
@@ -1215,7 +1257,7 @@ Example:
 KEYS is the tuple of a record's keys, in the order `pdd solve` writes them.
 )doc";
 
-constexpr const char* kSolveDoc = R"doc(solve(A, B, engine='fast', formulation='reduced', name='', with_global=True)
+constexpr const char* kSolveDoc = R"doc(solve(A, B, engine='fast', formulation='reduced', name='', with_global=True, gradient=False)
 --
 
 One pair -> dict: every quantity of the output record (docs/definitions.md §6), as
@@ -1223,20 +1265,25 @@ One pair -> dict: every quantity of the output record (docs/definitions.md §6),
 
 A, B     the tetrahedra: 4 vertices x 3 coordinates, anything array-like (nested lists,
          tuples, a numpy array of shape (4, 3)). A is the paper's T1 (static in case 1), B is
-         T2. Coordinates are IEEE doubles (docs/definitions.md §1): floats, ints, or any
-         number (Fraction, Decimal, numpy scalar) whose value is exactly a double; anything
-         else raises ValueError naming the coordinate. Vertex order and orientation are
-         free.
-engine   "fast" (doubles, certified to the accuracy contract of docs/definitions.md §8)
-         or "reference" (exact rationals).
-formulation  the reference engine's per-direction QP: "reduced" (the 9-variable scalar
-         form of docs/definitions.md §5, about 7x faster) or "full" (the paper's 27
-         variables); both give the same exact result. Ignored by the fast engine.
+         T2. Coordinates are IEEE doubles (docs/definitions.md §1): floats, ints, or any number (Fraction,
+         Decimal, numpy scalar) whose value is exactly a double; anything else raises
+         ValueError naming the coordinate. Vertex order and orientation are free.
+engine   "fast" (doubles, certified to the accuracy contract of
+         docs/definitions.md §8) or "reference" (exact rationals).
+formulation  the reference engine's per-direction QP: "reduced" (the default: the
+         displacement along the separating direction only, about 7x faster) or "full" (the
+         paper's 27 variables); both give the same exact result. Ignored by the fast engine.
+         The same option as `pdd solve --formulation` and pdd.h's SolveOptions::formulation.
 name     copied to the record's "name".
 with_global  False: skip pdd2_global, PD_d² over every separating plane
          (docs/definitions.md §9): the record has no pdd2_global, pdd2_global_normal,
-         q1_A_global, q1_B_global, pdd2_global_lower keys. Faster (fast engine: about 3.5 of
-         13 us a pair; reference: its branch and bound of 5 to 50 ms).
+         q1_A_global, q1_B_global, pdd2_global_lower keys. Faster (fast engine: about 6 of
+         15 us a pair; reference: its branch and bound of 5 to 50 ms). `pdd solve --no-global`.
+gradient True: add "pdd2_global_grad", the gradient of pdd2_global with respect to the
+         eight rest vertices, 8 x [x, y, z] (A's s0..s3, then B's r0..r3): minus the object
+         norm's derivative at the displacement to q1_A_global, q1_B_global (pdd.h says why and
+         how exact). None where pdd2_global is None; 0 when not intersecting. Needs
+         with_global=True (ValueError otherwise). `pdd solve --gradient`.
 
 Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that order:
   name          the name given
@@ -1286,7 +1333,7 @@ Example:
   (Fraction(4, 5), 'VF:0', [Fraction(7, 3), Fraction(11, 6), Fraction(11, 6)])
 )doc";
 
-constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None, with_global=True, progress=None)
+constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None)
 --
 
 N pairs -> dict of numpy arrays: the fast engine on all cores, with the GIL released; the
@@ -1299,6 +1346,8 @@ threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena 
          call only), as `pdd solve --threads`. Anything else raises ValueError.
 with_global  False: skip pdd2_global (PD_d² over every separating plane), as in solve()
          (no pdd2_global* / q1_*_global arrays).
+gradient True: add "pdd2_global_grad", (N, 8, 3) float64, as in solve() (NaN where solve()
+         gives None).
 progress None (the default) or False: silent. A callable progress(done, total): called
          from the calling thread with the GIL held, about every 0.05 s while pairs are
          computed when `done` (pairs computed so far) has grown, and once at the end with
@@ -1561,11 +1610,14 @@ PYBIND11_MODULE(pdd, m) {
                                   "q1_A", "q1_B", "error", "pdd2_global", "pdd2_global_normal",
                                   "q1_A_global", "q1_B_global", "pdd2_global_lower",
                                   "pdd2_global_error");
+  // The defaults of pdd.h's SolveOptions (the CLI's too)
+  const pdd::reference::SolveOptions defaults;
   m.def("solve", &solve, kSolveDoc, py::arg("A"), py::arg("B"), py::arg("engine") = "fast",
-        py::arg("formulation") = "reduced", py::arg("name") = "", py::arg("with_global") = true);
+        py::arg("formulation") = pdd::to_string(defaults.formulation), py::arg("name") = "",
+        py::arg("with_global") = defaults.with_global, py::arg("gradient") = defaults.gradient);
   m.def("solve_batch", &solve_batch, kSolveBatchDoc, py::arg("A"), py::arg("B"),
-        py::arg("threads") = py::none(), py::arg("with_global") = true,
-        py::arg("progress") = py::none());
+        py::arg("threads") = py::none(), py::arg("with_global") = defaults.with_global,
+        py::arg("gradient") = defaults.gradient, py::arg("progress") = py::none());
   m.def("read_fixtures", &read_fixtures, kReadFixturesDoc, py::arg("path"));
   m.def("mesh_contacts", &mesh_contacts, kMeshContactsDoc, py::arg("VA"), py::arg("TA"),
         py::arg("VB") = py::none(), py::arg("TB") = py::none(),

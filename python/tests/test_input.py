@@ -34,17 +34,21 @@ def test_module_surface():
     assert isinstance(pdd.__version__, str)
     for f in (pdd, pdd.solve, pdd.solve_batch, pdd.read_fixtures):
         assert f.__doc__ and len(f.__doc__) > 400, f
-    assert list(inspect.signature(pdd.solve).parameters) == ["A", "B", "engine", "formulation", "name",
-                                                             "with_global"]
+    single = inspect.signature(pdd.solve).parameters
+    assert list(single) == ["A", "B", "engine", "formulation", "name", "with_global", "gradient"]
+    # pdd.h's SolveOptions defaults, as `pdd solve` has them
+    assert (single["formulation"].default, single["with_global"].default, single["gradient"].default) == \
+        ("reduced", True, False)
     batch = inspect.signature(pdd.solve_batch).parameters
-    assert list(batch) == ["A", "B", "threads", "with_global", "progress"]
+    assert list(batch) == ["A", "B", "threads", "with_global", "gradient", "progress"]
     assert batch["threads"].default is None and batch["progress"].default is None
+    assert batch["with_global"].default is True and batch["gradient"].default is False
     text = pydoc.render_doc(pdd.solve_batch, renderer=pydoc.plaintext)
-    for words in ("solve_batch(A, B, threads=None, with_global=True, progress=None)", "None or 0: all cores",
+    for words in ("solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None)", "None or 0: all cores",
                   "progress(done, total)", "tqdm", "Ctrl-C", "KeyboardInterrupt", "bit for bit"):
         assert words in text, words
     text = pydoc.render_doc(pdd.solve, renderer=pydoc.plaintext)
-    for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True)", "fractions.Fraction",
+    for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True, gradient=False)", "fractions.Fraction",
                   "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "definitions.md §8", "GIL"):
         assert words in text, words
 
@@ -104,6 +108,8 @@ def test_malformed_tetrahedra_raise_value_error(bad, message, engine):
     ({"engine": None}, "engine must be a str; got None"),
     ({"formulation": "partial"}, "formulation must be 'reduced' or 'full'; got 'partial'"),
     ({"name": 3}, "name must be a str; got 3"),
+    ({"gradient": 1}, "gradient must be True or False; got 1"),
+    ({"with_global": False, "gradient": True}, r"gradient=True needs with_global=True"),
 ])
 def test_bad_arguments_raise_value_error(kwargs, message):
     with pytest.raises(ValueError, match=message):

@@ -18,10 +18,7 @@ Positions<pdd::Rational> to_public(const Positions<Rational>& p) {
 
 }  // namespace
 
-PairResult<pdd::Rational> solve_pair(const TetPair& pair, QpFormulation formulation, bool global) {
-  SolveOptions options;
-  options.formulation = formulation;
-  options.global = global;
+PairResult<pdd::Rational> solve_pair(const TetPair& pair, const SolveOptions& options) {
   const ExactResult e = solve_exact(pair, options);
   PairResult<pdd::Rational> r;
   r.name = e.name;
@@ -48,6 +45,12 @@ PairResult<pdd::Rational> solve_pair(const TetPair& pair, QpFormulation formulat
   r.q1_A_global = to_public(e.q1_A_global);
   r.q1_B_global = to_public(e.q1_B_global);
   if (e.pdd2_global_lower) r.pdd2_global_lower = to_public(*e.pdd2_global_lower);
+  if (e.pdd2_global_grad) {
+    PairGradient<pdd::Rational> g;
+    for (int i = 0; i < 8; ++i)
+      for (int k = 0; k < 3; ++k) g[i][k] = to_public((*e.pdd2_global_grad)[i][k]);
+    r.pdd2_global_grad = g;
+  }
   return r;
 }
 

@@ -63,15 +63,11 @@ void fill_intersecting(const ExactPair& exact, const std::vector<CandidateDirect
 
 // SPEC §9, starting from the best relaxed candidate (so pdd2_global <= pdd2_relaxed).
 void fill_global(const ExactPair& exact, const std::vector<CandidateRow>& rows,
-                 const SolveOptions& options, ExactResult& out) {
+                 GlobalOptions global, ExactResult& out) {
   std::size_t best = 0;
   for (std::size_t k = 1; k < rows.size(); ++k)
     if (rows[k].relaxed.value < rows[best].relaxed.value) best = k;
   const CandidateRow& row = rows[best];
-  GlobalOptions global;
-  global.gap = options.global_gap;
-  global.max_exact_patches = options.global_max_exact_patches;
-  global.max_hull_bounds = options.global_max_hull_bounds;
   global.floor = out.rigid_pd2 / 32;  // every relaxed value is >= PD^2/32 (global_pdd.h)
   const GlobalPdd g = global_pdd(exact, row.direction.n, row.relaxed.value, row.relaxed.q1_A,
                                  row.relaxed.q1_B, global);
@@ -82,9 +78,26 @@ void fill_global(const ExactPair& exact, const std::vector<CandidateRow>& rows,
   out.q1_B_global = to_positions(g.q1_B);
 }
 
+// pdd.h's gradient of pdd2_global, exactly, at the witness positions: -d sigma/d d at
+// d = q1_global - rest, per tetrahedron d sigma/d d_i = (d_i + sum_k d_k) / 10 (object_norm.h's
+// sigma = 1/20 (sum_i |d_i|^2 + |sum_k d_k|^2)). 0 at the rest pose (not intersecting).
+PairGradient<Rational> global_gradient(const ExactPair& exact, const ExactResult& r) {
+  PairGradient<Rational> g;
+  for (int t = 0; t < 2; ++t) {
+    const ExactTet& P = t ? exact.B : exact.A;
+    const Positions<Rational>& Q = t ? r.q1_B_global : r.q1_A_global;
+    for (int k = 0; k < 3; ++k) {
+      Rational sum = 0;
+      for (int i = 0; i < 4; ++i) sum += Q[i][k] - P[i][k];
+      for (int i = 0; i < 4; ++i) g[4 * t + i][k] = -(Q[i][k] - P[i][k] + sum) / Rational(10);
+    }
+  }
+  return g;
+}
+
 }  // namespace
 
-ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
+ExactResult solve_exact(const TetPair& pair, const SolveOptions& options, const GlobalOptions& budget) {
   ExactResult out;
   out.name = pair.name;
   if (auto why = validate_pair(pair)) {
@@ -98,12 +111,14 @@ ExactResult solve_exact(const TetPair& pair, const SolveOptions& options) {
   out.pdd2_global_lower = Rational(0);
   const MinkowskiPd mink = minkowski_pd(exact);
   out.intersecting = mink.intersecting;
+  if (options.with_global && options.gradient) out.pdd2_global_grad = global_gradient(exact, out);
   if (!mink.intersecting) return out;  // SPEC §6: every value 0, labels null, rest pose
 
   const auto candidates = candidate_directions(exact);
   const auto rows = candidate_table(exact, candidates, {options.formulation});
   fill_intersecting(exact, candidates, rows, mink, out);
-  if (options.global) fill_global(exact, rows, options, out);
+  if (options.with_global) fill_global(exact, rows, budget, out);
+  if (options.with_global && options.gradient) out.pdd2_global_grad = global_gradient(exact, out);
   return out;
 }
 

@@ -79,7 +79,10 @@ BOOST_AUTO_TEST_CASE(batch_equals_single) {
   BOOST_REQUIRE(batch.size() == pairs.size());
   int intersecting = 0, errors = 0;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    BOOST_TEST(same(batch[i], solve_pair(pairs[i])), "pair " << i);
+    const PairResult<double> one = solve_pair(pairs[i]);
+    BOOST_TEST(same(batch[i], one), "pair " << i);
+    BOOST_TEST((batch[i].stats.slow_path == one.stats.slow_path && batch[i].stats.refined == one.stats.refined),
+               "pair " << i);
     intersecting += batch[i].intersecting;
     errors += bool(batch[i].error);
   }
@@ -88,7 +91,7 @@ BOOST_AUTO_TEST_CASE(batch_equals_single) {
   BOOST_TEST(solve_batch({}).empty());
 }
 
-// solve_pair(..., global = false) (pdd.h): SPEC §9 skipped, every other field bit for bit the
+// solve_pair with SolveOptions::with_global = false (pdd.h): SPEC §9 skipped, every other field bit for bit the
 // same as with it; pdd2_global 0, no normal, q1_*_global the rest pose. Also on scaled pairs,
 // where the positions are rescaled (a skipped search must not leave rescaled rest poses).
 BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
@@ -102,7 +105,7 @@ BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
   }
   int intersecting = 0;
   for (const TetPair& p : pairs) {
-    PairResult<double> with = solve_pair(p), without = solve_pair(p, nullptr, nullptr, false);
+    PairResult<double> with = solve_pair(p), without = solve_pair(p, SolveOptions{false});
     BOOST_TEST(without.pdd2_global == 0.0);
     BOOST_TEST(!without.pdd2_global_normal);
     BOOST_TEST((without.q1_A_global == p.A && without.q1_B_global == p.B));

@@ -209,10 +209,9 @@ BenchReport run_bench(const BenchOptions& o) {
     CertificationCost& cc = rep.certification;
     std::vector<std::size_t> refined, slow;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      bool s = false, f = false;
-      (void)fast::solve_pair(pairs[k], &s, &f);
-      if (s) slow.push_back(k);
-      else if (f) refined.push_back(k);
+      const SolveStats s = fast::solve_pair(pairs[k]).stats;
+      if (s.slow_path) slow.push_back(k);
+      else if (s.refined) refined.push_back(k);
     }
     cc.refined = refined.size();
     cc.slow_paths = slow.size();

@@ -117,7 +117,11 @@ BatchTiming time_batch(const std::vector<TetPair>& pairs, int repeats) {
   b.repeats = repeats;
   std::vector<double> s;
   {
-    auto warm = fast::solve_batch(pairs, &b.slow_paths, &b.refined);
+    auto warm = fast::solve_batch(pairs);
+    for (const auto& r : warm) {
+      b.slow_paths += r.stats.slow_path;
+      b.refined += r.stats.refined;
+    }
     do_not_optimize(warm.data());
   }
   for (int r = 0; r < repeats; ++r) {

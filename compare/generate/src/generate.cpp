@@ -299,8 +299,8 @@ Attempt sliver_pair(Rng& r) {
 Attempt undecidable_optimum_pair(Rng& r, const PaperProtocol& pp) {
   Attempt p = paper_pair(r, pp);
   if (!p) return p;
-  reference::SolveOptions options{QpFormulation::Reduced};
-  options.global = false;  // the candidates' optimum only
+  reference::SolveOptions options;
+  options.with_global = false;  // the candidates' optimum only
   const auto res = reference::solve_exact(*p, options);
   if (!res.pdd2_dir || res.pdd2_dir->orientation == EdgeOrientation::Decided) return std::nullopt;
   return p;
@@ -367,8 +367,8 @@ bool normal_or_zero(const Rational& v) {
 }
 // Every squared value of SPEC §6 is 0 or a normal double (exact, reduced formulation).
 bool squared_outputs_normal(const TetPair& p) {
-  reference::SolveOptions options{QpFormulation::Reduced};
-  options.global = false;  // the seven values below only
+  reference::SolveOptions options;
+  options.with_global = false;  // the seven values below only
   const auto r = reference::solve_exact(p, options);
   if (r.error) return false;
   for (const Rational* v : {&r.rigid_pd2, &r.eq11_pd2, &r.pdd2_static, &r.pdd2, &r.pdd2_relaxed,

@@ -22,9 +22,10 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
   return out;
 }
 
-reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options) {
+reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options,
+                                       const reference::GlobalOptions& budget) {
   try {
-    return reference::solve_exact(pair, options);
+    return reference::solve_exact(pair, options, budget);
   } catch (const std::exception& ex) {  // an engine invariant failed: report, never crash
     reference::ExactResult r;
     r.name = pair.name;
@@ -41,11 +42,11 @@ std::vector<reference::ExactResult> run_reference(const std::vector<FixtureEntry
 }
 
 std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entries,
-                                         std::size_t* slow_paths, std::size_t* refined, bool global) {
+                                         const fast::SolveOptions& options) {
   std::vector<TetPair> valid;
   for (const auto& e : entries)
     if (!e.error) valid.push_back(e.pair);
-  std::vector<PairResult<double>> computed = fast::solve_batch(valid, slow_paths, refined, global);
+  std::vector<PairResult<double>> computed = fast::solve_batch(valid, options);
   std::vector<PairResult<double>> out(entries.size());
   for (std::size_t k = 0, v = 0; k < entries.size(); ++k) {
     if (entries[k].error) {
@@ -63,7 +64,7 @@ namespace {
 Json without_global(Json j, bool global) {
   if (!global)
     for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower",
-                            "pdd2_global_error"})
+                            "pdd2_global_error", "pdd2_global_grad"})
       j.erase(key);
   return j;
 }

@@ -3,7 +3,8 @@
 // Keys in SPEC order: name, intersecting, the seven values, the four labels, q1_A, q1_B,
 // error, then SPEC §9's pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global and (exact
 // engine) pdd2_global_lower or (fast engine) pdd2_global_error: null, or why the §9 keys are null
-// while the others are reported. A rejected pair is {"name", "error"} only. The number writer decides how R is
+// while the others are reported; last pdd2_global_grad (8 x [x, y, z], A's vertices first) when
+// the record has it. A rejected pair is {"name", "error"} only. The number writer decides how R is
 // written: exact rationals as "p/q" strings, doubles as JSON numbers that read back to the
 // same double (nlohmann writes the shortest round-trip form). result_from_json reads such a
 // record back with a number reader (the inverse of the writer).
@@ -65,6 +66,11 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
   if (r.pdd2_global_lower) j["pdd2_global_lower"] = number(*r.pdd2_global_lower);
   if constexpr (std::is_floating_point_v<R>)
     j["pdd2_global_error"] = global_ok ? Json(nullptr) : Json(*r.pdd2_global_error);
+  if (r.pdd2_global_grad) {  // asked for (SolveOptions::gradient); null with pdd2_global
+    Json g = Json::array();
+    for (const auto& v : *r.pdd2_global_grad) g.push_back(Json::array({number(v[0]), number(v[1]), number(v[2])}));
+    j["pdd2_global_grad"] = global_ok ? g : Json(nullptr);
+  }
   return j;
 }
 
@@ -120,6 +126,12 @@ PairResult<R> result_from_json(const Json& j, const NumberReader<R>& number) {
   r.q1_A_global = positions(j.at("q1_A_global"));
   r.q1_B_global = positions(j.at("q1_B_global"));
   if (j.contains("pdd2_global_lower")) r.pdd2_global_lower = number(j.at("pdd2_global_lower"));
+  if (const auto g = j.find("pdd2_global_grad"); g != j.end() && !g->is_null()) {
+    PairGradient<R> grad;
+    for (int i = 0; i < 8; ++i)
+      for (int k = 0; k < 3; ++k) grad[i][k] = number(g->at(i).at(k));
+    r.pdd2_global_grad = grad;
+  }
   return r;
 }
 

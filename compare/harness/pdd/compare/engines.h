@@ -14,6 +14,7 @@
 #include "pdd/io/progress.h"
 #include "pdd/io/result_json.h"
 #include "pdd/pair_result.h"
+#include "pdd/solve_options.h"
 #include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
@@ -49,8 +50,9 @@ std::vector<T> map_entries(const std::vector<io::FixtureEntry>& entries, const s
 }
 
 // reference::solve_exact on one pair, never throwing: an engine invariant that fails becomes
-// the record's error ("internal error in the reference engine: ...").
-reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options);
+// the record's error ("internal error in the reference engine: ..."). `budget`: solve_exact's.
+reference::ExactResult solve_reference(const TetPair& pair, const reference::SolveOptions& options,
+                                       const reference::GlobalOptions& budget = {});
 
 std::vector<reference::ExactResult> run_reference(const std::vector<io::FixtureEntry>& entries,
                                                   const reference::SolveOptions& options,
@@ -61,17 +63,14 @@ std::vector<reference::ExactResult> run_reference(const std::vector<io::FixtureE
                                                   io::Progress& progress);
 
 // The fast engine over the same entries: malformed entries become error records, the rest go
-// through pdd::fast::solve_batch (all cores), results in input order.
-// `slow_paths` (optional): how many pairs took the fast engine's exact path (SPEC §8);
-// `refined` (optional): how many were refined instead (solve_pair's `refined`).
-// `global` false: SPEC §9 skipped (solve_pair's `global`).
+// through pdd::fast::solve_batch (all cores) with `options`, results in input order.
 std::vector<PairResult<double>> run_fast(const std::vector<io::FixtureEntry>& entries,
-                                         std::size_t* slow_paths = nullptr,
-                                         std::size_t* refined = nullptr, bool global = true);
+                                         const fast::SolveOptions& options = {});
 
 // SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
 // `global` false: without SPEC §9's keys (pdd2_global, pdd2_global_normal, q1_A_global,
-// q1_B_global, pdd2_global_lower), for results computed without it.
+// q1_B_global, pdd2_global_lower, pdd2_global_grad), for results computed without it.
+// pdd2_global_grad is written when the result has it (the options asked for it).
 io::Json fast_record(const PairResult<double>& r, bool global = true);
 
 // SPEC §6 record of an exact result: every number as an exact "p/q" string.

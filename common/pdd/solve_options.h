@@ -1,0 +1,62 @@
+// solve_options.h — the options of pdd.h's solve_pair and solve_batch, one struct per engine,
+// set once with the recommended defaults (plain data; included by pdd.h). `pdd solve` and the
+// Python module use the same names and defaults:
+//   with_global  (--no-global, with_global=False)  compute pdd2_global and its keys (default).
+//                Not `global`: that is a Python keyword.
+//   gradient     (--gradient, gradient=True)        also pdd2_global's gradient with respect to
+//                the eight rest vertices (PairResult::pdd2_global_grad; pdd.h says what it is).
+//                Off by default; it needs with_global (without it the field stays empty; the
+//                CLI and Python reject the combination).
+//   formulation  (--formulation, formulation=)      reference engine: the per-direction QP.
+//                Default Reduced: exactly the values of Full (tested on every shipped pair: the
+//                golden files are the same bytes either way), about 7 times faster; Full solves
+//                the paper's own 27 variables, for checking.
+// How the fast engine computed a pair (exact path, refinement) is part of its record
+// (PairResult::stats), not an out-parameter: a batch's counts are a sum over its records, with
+// no counter shared between threads.
+#pragma once
+
+#include "pdd/qp_formulation.h"
+
+namespace pdd::fast {
+
+struct SolveOptions {
+  // false: skip SPEC §9 (pdd2_global 0, no normal, q1_*_global the rest pose); it is about 3.5
+  // of the call's 13 us on the paper's protocol.
+  bool with_global = true;
+  // true (with with_global): fill pdd2_global_grad, from q1_*_global in doubles. Accuracy
+  // (derived at global_gradient in fast/src/solve_pair.cpp): the positions attain the value to
+  // 2e-9, which bounds the gradient's error by sqrt((1 + K) 2e-9) of its size in the dual
+  // object norm, 4.5e-5 where the separated set is locally convex (K = 0; K measures how
+  // sharply it bends). Measured: within 1.4e-14 of the exact engine's on the paper's pairs
+  // (both polish the same minimiser), inside its certified intervals. Where minimisers tie the
+  // two engines may return different ones (smoke.json's nested-1, B symmetric in A's corner),
+  // hence different gradients: each is valid (pdd.h, "Ties").
+  bool gradient = false;
+};
+
+}  // namespace pdd::fast
+
+namespace pdd::reference {
+
+struct SolveOptions {
+  // of the per-direction QP (pdd/qp_formulation.h): both give the same result; Reduced is
+  // faster, Full solves the paper's own variables.
+  QpFormulation formulation = QpFormulation::Reduced;
+  // SPEC §9 (pdd2_global, its normal, positions and proved lower bound, to the gap 1e-12): a
+  // branch and bound of 5 to 50 ms more per pair. false skips it: then pdd2_global =
+  // pdd2_global_lower = 0, no normal, q1_*_global = the rest pose.
+  bool with_global = true;
+  // true (with with_global): fill pdd2_global_grad exactly: -d sigma/d d at the exact witness
+  // positions q1_*_global. "Exact" is the slope of pdd.h's majorant (*), exactly; the true
+  // minimiser is in general irrational (an eigenvector), and the witness pins the value, not
+  // the minimiser: its value is within 1e-12 of the minimum, so near a nondegenerate minimum
+  // the witness, hence the gradient, is within about sqrt(1e-12) = 1e-6 (relative) of the true
+  // one. A certified bound on the true gradient costs more global solves: by (*) applied at
+  // P and P -/+ h e_k, each component lies in [(lower(P + h e_k) - value(P)) / h - h sigma(e_k),
+  // (value(P) - lower(P - h e_k)) / h + h sigma(e_k)] (tests/reference/test_global_gradient.cpp
+  // computes these intervals).
+  bool gradient = false;
+};
+
+}  // namespace pdd::reference
