@@ -6,7 +6,8 @@
 
 namespace pdd::compare {
 
-// `pdd solve --engine reference|fast --input FILE [--output FILE] [--formulation full|reduced]`
+// `pdd solve --engine reference|fast --input FILE [--output FILE] [--formulation reduced|full]
+//   [--no-global | --gradient]`
 void add_solve_command(CLI::App& app, int& exit_code);
 
 // `pdd generate --family NAME --seed S --count N [--output FILE] | --list`
