@@ -44,6 +44,8 @@ using io::pending_signal;
 using io::result_json;
 using io::summary_line;
 using io::summary_number;
+using io::padded_left;
+using io::kSummaryLabel;
 namespace {
 
 struct MeshArgs {

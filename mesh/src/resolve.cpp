@@ -128,7 +128,9 @@ PairMove from_positions(const Positions<double>& qa, const Positions<double>& qb
 PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
   if (variant == ResolveVariant::Rigid) return rigid_move(A, B);
   const bool global = variant == ResolveVariant::Global;
-  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, nullptr, nullptr, global);
+  fast::SolveOptions options;
+  options.with_global = global;
+  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
   if (!r.error) {
     if (global && !r.pdd2_global_error && r.pdd2_global_normal) {
       PairMove m = from_positions(r.q1_A_global, r.q1_B_global, A, B, r.pdd2_global, r.pdd2_global_normal);
