@@ -13,6 +13,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "check_indices.h"
 #include "pdd/mesh.h"
 #include "pdd/rejection.h"
 
@@ -35,17 +36,6 @@ struct Box : CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d
   std::size_t info() const { return index; }
   ID id() const { return uid; }
 };
-
-void check_indices(const Mesh& m, char which) {
-  for (std::size_t i = 0; i < m.tets.size(); ++i)
-    for (std::size_t v : m.tets[i])
-      if (v >= m.vertices.size()) {
-        std::ostringstream o;
-        o << "element " << i << " of mesh " << which << " refers to vertex " << v << ", but the mesh has "
-          << m.vertices.size() << " vertices";
-        throw std::invalid_argument(o.str());
-      }
-}
 
 Box box_of(const Mesh& m, std::size_t i, std::size_t id_offset) {
   const TetVertices t = element(m, i);
@@ -154,8 +144,8 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
 
 template <class R>
 Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
-  check_indices(A, 'A');
-  if (B) check_indices(*B, 'B');
+  detail::check_indices(A, 'A');
+  if (B) detail::check_indices(*B, 'B');
   const Mesh& BB = B ? *B : A;
   const auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
   const auto stop_if_cancelled = [&] {
@@ -399,4 +389,18 @@ Contacts<Rational> self_contacts_exact(const Mesh& A, const ContactOptions& o) {
   return run<Rational>(A, nullptr, o);
 }
 
+namespace detail {
+
+void check_indices(const Mesh& m, char which) {
+  for (std::size_t i = 0; i < m.tets.size(); ++i)
+    for (std::size_t v : m.tets[i])
+      if (v >= m.vertices.size()) {
+        std::ostringstream o;
+        o << "element " << i << " of mesh " << which << " refers to vertex " << v << ", but the mesh has "
+          << m.vertices.size() << " vertices";
+        throw std::invalid_argument(o.str());
+      }
+}
+
+}  // namespace detail
 }  // namespace pdd::mesh

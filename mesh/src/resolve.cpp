@@ -8,6 +8,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "check_indices.h"
 #include "resolve.h"
 
 namespace pdd::mesh {
@@ -209,20 +210,9 @@ void smooth(const Side& s, std::vector<Vec3d>& D, std::vector<char>& moving, int
   }
 }
 
-void check_indices(const Mesh& m, char which) {
-  for (std::size_t i = 0; i < m.tets.size(); ++i)
-    for (std::size_t v : m.tets[i])
-      if (v >= m.vertices.size()) {
-        std::ostringstream o;
-        o << "element " << i << " of mesh " << which << " refers to vertex " << v << ", but the mesh has "
-          << m.vertices.size() << " vertices";
-        throw std::invalid_argument(o.str());
-      }
-}
-
 void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vector<char>& flags,
                std::vector<SkippedElement>& skipped) {
-  check_indices(m, which);
+  detail::check_indices(m, which);
   if (!flags.empty() && flags.size() != m.vertices.size()) {
     std::ostringstream o;
     o << "fixed-vertex flags of mesh " << which << ": " << flags.size() << " flags for " << m.vertices.size()

@@ -17,6 +17,24 @@ namespace {
 double to_double(double x) { return x; }
 double to_double(const Rational& x) { return x.get_d(); }
 
+// The cells of A then of B (B's point indices shifted by A's point count na), their types
+// (10: tetrahedron) and the first two cell fields: `mesh` (0 A, 1 B) and `element` (its number
+// in its mesh). Shared by both writers below.
+void write_cells(std::ostream& out, const Mesh& A, const Mesh* B, std::size_t na) {
+  const std::size_t ta = A.tets.size(), tb = B ? B->tets.size() : 0;
+  out << "CELLS " << ta + tb << ' ' << 5 * (ta + tb) << '\n';
+  for (const auto& t : A.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
+  if (B)
+    for (const auto& t : B->tets)
+      out << "4 " << na + t[0] << ' ' << na + t[1] << ' ' << na + t[2] << ' ' << na + t[3] << '\n';
+  out << "CELL_TYPES " << ta + tb << '\n';
+  for (std::size_t i = 0; i < ta + tb; ++i) out << "10\n";
+  out << "CELL_DATA " << ta + tb << "\nSCALARS mesh int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? 0 : 1) << '\n';
+  out << "SCALARS element int 1\nLOOKUP_TABLE default\n";
+  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
+}
+
 }  // namespace
 
 template <class R>
@@ -81,17 +99,7 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
   for (std::size_t i = 0; i < na; ++i) write_point(A.vertices[i], i);
   if (B)
     for (std::size_t i = 0; i < nb; ++i) write_point(B->vertices[i], na + i);
-  out << "CELLS " << ta + tb << ' ' << 5 * (ta + tb) << '\n';
-  for (const auto& t : A.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
-  if (B)
-    for (const auto& t : B->tets)
-      out << "4 " << na + t[0] << ' ' << na + t[1] << ' ' << na + t[2] << ' ' << na + t[3] << '\n';
-  out << "CELL_TYPES " << ta + tb << '\n';
-  for (std::size_t i = 0; i < ta + tb; ++i) out << "10\n";
-  out << "CELL_DATA " << ta + tb << "\nSCALARS mesh int 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? 0 : 1) << '\n';
-  out << "SCALARS element int 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
+  write_cells(out, A, B, na);
   out << "SCALARS partners int 1\nLOOKUP_TABLE default\n";
   for (int p : partners) out << p << '\n';
   // 1: the element was skipped (flat, or a vertex not finite; contacts' `skipped`), no values
@@ -137,17 +145,7 @@ void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vec
   for (const Vec3d& p : a1) point(p);
   if (B)
     for (const Vec3d& p : b1) point(p);
-  out << "CELLS " << ta + tb << ' ' << 5 * (ta + tb) << '\n';
-  for (const auto& t : A.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
-  if (B)
-    for (const auto& t : B->tets)
-      out << "4 " << na + t[0] << ' ' << na + t[1] << ' ' << na + t[2] << ' ' << na + t[3] << '\n';
-  out << "CELL_TYPES " << ta + tb << '\n';
-  for (std::size_t i = 0; i < ta + tb; ++i) out << "10\n";
-  out << "CELL_DATA " << ta + tb << "\nSCALARS mesh int 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? 0 : 1) << '\n';
-  out << "SCALARS element int 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < ta + tb; ++i) out << (i < ta ? i : i - ta) << '\n';
+  write_cells(out, A, B, na);
   // V1 / V0 from the doubles (display only: report.bad_elements is the exact verdict).
   auto volume6 = [](const std::vector<Vec3d>& p, const std::array<std::size_t, 4>& t) {
     double e[3][3];

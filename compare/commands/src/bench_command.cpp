@@ -265,33 +265,46 @@ void print_table(const BenchReport& r, std::ostream& s) {
   s << "(total " << fmt("%.1f", r.seconds) << " s)\n";
 }
 
-int run(const BenchArgs& a) {
-  if (a.json && !a.json_path.empty() && a.json_path != "-")
-    if (auto why = check_writable(a.json_path)) {  // before the run, not after it
-      std::cerr << "pdd bench: " << *why << "\n";
+// One bench subcommand's run: check the JSON destination before the run, run, print the table
+// (to standard error when the JSON goes to standard output), then write the JSON. `who` names
+// the command in messages; run() throws std::invalid_argument for bad options (exit 2, usage)
+// and other exceptions for files that cannot be read or written (exit 2, file error).
+template <class Run, class Print, class ToJson>
+int run_and_report(const char* who, bool json, const std::string& json_path, Run run, Print print,
+                   ToJson to_json) {
+  const bool json_stdout = json && (json_path.empty() || json_path == "-");
+  if (json && !json_stdout)
+    if (auto why = check_writable(json_path)) {  // before the run, not after it
+      std::cerr << who << ": " << *why << "\n";
       return kExitFileError;
     }
-  BenchReport rep;
+  decltype(run()) rep;
   try {
-    rep = run_bench(a.options);
+    rep = run();
   } catch (const std::invalid_argument& e) {  // bad options
-    std::cerr << "pdd bench: " << e.what() << "\n";
+    std::cerr << who << ": " << e.what() << "\n";
     return kExitUsage;
+  } catch (const std::exception& e) {  // mesh::ReadError, file system errors
+    std::cerr << who << ": " << e.what() << "\n";
+    return kExitFileError;
   }
-  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
-  print_table(rep, json_stdout ? std::cerr : std::cout);
-  if (a.json) {
-    const std::string text = report_json(rep).dump(2) + "\n";
+  print(rep, json_stdout ? std::cerr : std::cout);
+  if (json) {
+    const std::string text = to_json(rep).dump(2) + "\n";
     if (json_stdout) {
       std::cout << text;
-    } else {
-      if (auto why = write_file(a.json_path, text)) {
-        std::cerr << "pdd bench: " << *why << "\n";
-        return kExitFileError;
-      }
+    } else if (auto why = write_file(json_path, text)) {
+      std::cerr << who << ": " << *why << "\n";
+      return kExitFileError;
     }
   }
   return kExitOk;
+}
+
+int run(const BenchArgs& a) {
+  return run_and_report(
+      "pdd bench", a.json, a.json_path, [&] { return run_bench(a.options); },
+      [](const BenchReport& r, std::ostream& os) { print_table(r, os); }, report_json);
 }
 
 // ---- pdd bench mesh ----------------------------------------------------------------
@@ -453,35 +466,14 @@ void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
 }
 
 int run_mesh(const MeshBenchArgs& a) {
-  if (a.json && !a.json_path.empty() && a.json_path != "-")
-    if (auto why = check_writable(a.json_path)) {  // before the run, not after it
-      std::cerr << "pdd bench mesh: " << *why << "\n";
-      return kExitFileError;
-    }
-  MeshBenchReport rep;
-  try {
-    MeshBenchOptions o = a.options;
-    o.variants = mesh::parse_variants(a.variants);
-    rep = run_mesh_bench(o);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "pdd bench mesh: " << e.what() << "\n";
-    return kExitUsage;
-  } catch (const std::exception& e) {  // mesh::ReadError, file system errors
-    std::cerr << "pdd bench mesh: " << e.what() << "\n";
-    return kExitFileError;
-  }
-  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
-  print_mesh_table(rep, json_stdout ? std::cerr : std::cout);
-  if (a.json) {
-    const std::string text = mesh_report_json(rep).dump(2) + "\n";
-    if (json_stdout) {
-      std::cout << text;
-    } else if (auto why = write_file(a.json_path, text)) {
-      std::cerr << "pdd bench mesh: " << *why << "\n";
-      return kExitFileError;
-    }
-  }
-  return kExitOk;
+  return run_and_report(
+      "pdd bench mesh", a.json, a.json_path,
+      [&] {
+        MeshBenchOptions o = a.options;
+        o.variants = mesh::parse_variants(a.variants);
+        return run_mesh_bench(o);
+      },
+      [](const MeshBenchReport& r, std::ostream& os) { print_mesh_table(r, os); }, mesh_report_json);
 }
 
 // ---- pdd bench resolve -------------------------------------------------------------
@@ -586,33 +578,10 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
 }
 
 int run_resolve(const ResolveBenchArgs& a) {
-  if (a.json && !a.json_path.empty() && a.json_path != "-")
-    if (auto why = check_writable(a.json_path)) {
-      std::cerr << "pdd bench resolve: " << *why << "\n";
-      return kExitFileError;
-    }
-  ResolveBenchReport rep;
-  try {
-    rep = run_resolve_bench(a.options);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "pdd bench resolve: " << e.what() << "\n";
-    return kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << "pdd bench resolve: " << e.what() << "\n";
-    return kExitFileError;
-  }
-  const bool json_stdout = a.json && (a.json_path.empty() || a.json_path == "-");
-  print_resolve_table(rep, json_stdout ? std::cerr : std::cout);
-  if (a.json) {
-    const std::string text = resolve_report_json(rep).dump(2) + "\n";
-    if (json_stdout) {
-      std::cout << text;
-    } else if (auto why = write_file(a.json_path, text)) {
-      std::cerr << "pdd bench resolve: " << *why << "\n";
-      return kExitFileError;
-    }
-  }
-  return kExitOk;
+  return run_and_report(
+      "pdd bench resolve", a.json, a.json_path, [&] { return run_resolve_bench(a.options); },
+      [](const ResolveBenchReport& r, std::ostream& os) { print_resolve_table(r, os); },
+      [](const ResolveBenchReport& r) { return resolve_report_json(r); });
 }
 
 }  // namespace
