@@ -571,6 +571,10 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   if (!clear && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
     clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
   }
+  // descend declined (both meshes with fixed vertices, or no usable translation; it leaves the
+  // positions as they were): the rounds go on from there up to max_rounds, without the stall exit.
+  if (!clear && B && o.max_rounds > rep.rounds.size())
+    clear = run_rounds(o.max_rounds - rep.rounds.size(), tuning, false, o.variant);
   // Self-contact has no separated start: stalled deformable rounds restart from the rest pose
   // with the rigid variant's rounds (which move elements as a whole and do not squeeze them).
   if (!clear && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
