@@ -44,6 +44,7 @@ using io::pending_signal;
 using io::result_json;
 using io::summary_line;
 using io::summary_number;
+using io::tetrahedra;
 using io::padded_left;
 using io::kSummaryLabel;
 namespace {
@@ -143,8 +144,8 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
     s << "pdd mesh: " << (B ? "A against B" : "self-contact of A") << " ("
       << (args.engine == "fast" ? "fast" : "reference") << " engine, variants "
       << mesh::variant_names(variants) << ")\n"
-      << summary_line("mesh A", args.a + ": " + std::to_string(c.elements_a) + " tetrahedra");
-    if (B) s << summary_line("mesh B", args.b + ": " + std::to_string(c.elements_b) + " tetrahedra");
+      << summary_line("mesh A", args.a + ": " + tetrahedra(c.elements_a));
+    if (B) s << summary_line("mesh B", args.b + ": " + tetrahedra(c.elements_b));
     std::string skipped = std::to_string(c.skipped.size()) + " elements";
     for (std::size_t k = 0; k < std::min<std::size_t>(c.skipped.size(), 3); ++k) skipped += "\n" + c.skipped[k].reason;
     s << summary_line("skipped", skipped)
@@ -216,8 +217,8 @@ int run_mesh(const MeshArgs& args) {
   }
   const double read_seconds = since(t0);
   const bool fast = args.engine == "fast";
-  std::cerr << "pdd mesh: A " << A.tets.size() << " tetrahedra";
-  if (!args.self) std::cerr << ", B " << B.tets.size() << " tetrahedra";
+  std::cerr << "pdd mesh: A " << tetrahedra(A.tets.size());
+  if (!args.self) std::cerr << ", B " << tetrahedra(B.tets.size());
   std::cerr << ", " << (fast ? "fast" : "reference") << " engine, variants " << mesh::variant_names(variants) << '\n';
 
   std::once_flag once;

@@ -183,8 +183,8 @@ int run_resolve(const ResolveArgs& args) {
   std::optional<tbb::global_control> limit;
   if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
   if (!args.quiet) {
-    std::cerr << kName << ": A " << A.tets.size() << " tetrahedra";
-    if (!args.self) std::cerr << ", B " << B.tets.size() << " tetrahedra";
+    std::cerr << kName << ": A " << tetrahedra(A.tets.size());
+    if (!args.self) std::cerr << ", B " << tetrahedra(B.tets.size());
     else std::cerr << " (self-contact)";
     std::cerr << ", variant " << args.variant;
     if (!args.fix.empty()) std::cerr << ", " << char(std::toupper(args.fix[0])) << " fixed";

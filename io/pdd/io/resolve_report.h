@@ -119,7 +119,7 @@ inline std::string resolve_summary(const Json& j) {
     const std::string w(which), lw = w == "A" ? "a" : "b";
     std::string t;
     if (in.contains(lw) && in.at(lw).is_string()) t += in.at(lw).get<std::string>() + ": ";
-    t += std::to_string(in.at("elements_" + lw).get<std::size_t>()) + " tetrahedra, " +
+    t += tetrahedra(in.at("elements_" + lw).get<std::size_t>()) + ", " +
          std::to_string(in.at("vertices_" + lw).get<std::size_t>()) + " vertices";
     if (fix == lw) t += ", all fixed";
     else if (const auto f = in.at("fixed_vertices_" + lw).get<std::size_t>()) t += ", " + std::to_string(f) + " fixed";

@@ -31,6 +31,11 @@ inline std::string summary_line(const std::string& label, const std::string& tex
   return out + '\n';
 }
 
+// "1 tetrahedron", "n tetrahedra".
+inline std::string tetrahedra(std::size_t n) {
+  return std::to_string(n) + (n == 1 ? " tetrahedron" : " tetrahedra");
+}
+
 // `s` right-aligned in `width` characters (a table cell).
 inline std::string padded_left(const std::string& s, std::size_t width) {
   return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
