@@ -1,6 +1,6 @@
 // pdd — penetration depth between tetrahedra: rigid PD and deformable PD_d (Kim & Kim).
-// See README.md and SPEC.md. Exit status (exit_codes.h): 0 success, 1 some pair rejected or
-// over tolerance, 2 unreadable input, usage error, failed write or unexpected error.
+// See README.md and docs/definitions.md. Exit status (exit_codes.h): 0 success, 1 some pair
+// rejected or over tolerance, 2 unreadable input, usage error, failed write or unexpected error.
 #include <CLI/CLI.hpp>
 
 #include <exception>

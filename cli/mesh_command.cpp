@@ -1,11 +1,11 @@
 // `pdd mesh --a A.msh [--b B.msh | --self] [--variants LIST] [--engine fast|reference]
 //           [--output pairs.jsonl] [--vtk out.vtk] [--summary] [--threads N] [--quiet]`
 // Every intersecting element pair of two tetrahedral meshes (or of one mesh with itself) and
-// its penetration depths (SPEC §10; library: include/pdd/mesh.h). One JSON Lines record per
+// its penetration depths (definitions §10; library: include/pdd/mesh.h). One JSON Lines record per
 // pair, sorted by (a, b): {"a": i, "b": j, "intersecting", the requested values and their
-// labels, q1_A and q1_B when pdd2 is requested, "error", and with global SPEC §9's
+// labels, q1_A and q1_B when pdd2 is requested, "error", and with global definitions §9's
 // pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global (and pdd2_global_lower with the
-// reference engine)} — SPEC §6's keys and order, with a and b in place of name (`--variants
+// reference engine)} — definitions §6's keys and order, with a and b in place of name (`--variants
 // all`: every key). Exit status as for `pdd solve`: 0,
 // 1 when an element was skipped (flat, non-finite) or a pair rejected, 2 when a mesh cannot be
 // read, the command line is wrong or an output cannot be written.
@@ -61,7 +61,7 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 double as_double(double x) { return x; }
 double as_double(const Rational& x) { return x.get_d(); }
 
-// The SPEC §6 record of one contact, keys of unrequested variants dropped, a and b first.
+// The definitions §6 record of one contact, keys of unrequested variants dropped, a and b first.
 template <class R>
 Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWriter<R>& number) {
   const Json full = result_json(c.result, number);
@@ -77,7 +77,7 @@ Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWrit
         keep = on;
     }
     if ((key == "q1_A" || key == "q1_B") && !(variants & mesh::kPdd2)) keep = false;
-    // SPEC §9: pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global, pdd2_global_lower
+    // definitions §9: pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global, pdd2_global_lower
     if (key.find("_global") != std::string::npos) keep = variants & mesh::kGlobal;
     if (keep) j[key] = value;
   }

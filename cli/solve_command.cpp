@@ -51,8 +51,8 @@ struct SolveArgs {
   std::string formulation = to_string(reference::SolveOptions{}.formulation);  // pdd.h's default
   bool quiet = false;
   int threads = 0;  // 0: all cores
-  double global_gap = 1e-12;  // SPEC §9's target for pdd2_global - pdd2_global_lower
-  bool no_global = false;     // skip SPEC §9: records without its keys
+  double global_gap = 1e-12;  // definitions §9's target for pdd2_global - pdd2_global_lower
+  bool no_global = false;     // skip definitions §9: records without its keys
   bool gradient = false;      // add pdd2_global_grad
   std::string format = "jsonl";
 };
@@ -72,7 +72,7 @@ std::string record_note(const PairResult<R>& r, double gap) {
     note << "pdd solve: pair '" << printable(r.name) << "': " << *r.pdd2_global_error
          << " (its keys are null; the other values are reported)\n";
   }
-  if constexpr (!std::is_same_v<R, double>) {  // SPEC §9: say when the proof fell short
+  if constexpr (!std::is_same_v<R, double>) {  // definitions §9: say when the proof fell short
     if (r.pdd2_global_lower && r.pdd2_global > 0 && *r.pdd2_global_lower < r.pdd2_global * (1 - R(gap)))
       note << "pdd solve: pair '" << printable(r.name) << "': pdd2_global - pdd2_global_lower = "
            << CGAL::to_double((r.pdd2_global - *r.pdd2_global_lower) / r.pdd2_global)
@@ -152,7 +152,7 @@ int run_solve(const SolveArgs& args) {
                     args.quiet ? Progress::kNever : 2.0);
 
   std::atomic<int> status{kExitOk};
-  std::atomic<std::size_t> slow_paths{0};  // fast engine: pairs that took its exact path (SPEC §8)
+  std::atomic<std::size_t> slow_paths{0};  // fast engine: pairs that took its exact path (definitions §8)
   std::atomic<std::size_t> refined{0};     // fast engine: pairs where a few candidates were evaluated exactly
   std::optional<std::string> write_error;
   const RecordFormat format = args.format == "table" ? RecordFormat::Table

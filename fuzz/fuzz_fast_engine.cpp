@@ -1,5 +1,6 @@
-// fuzz_fast_engine — pairs of tetrahedra into pdd::fast::solve_pair, checked against SPEC §5's
-// inequalities and §6/§8's contract, and every N-th input against the exact engine.
+// fuzz_fast_engine — pairs of tetrahedra into pdd::fast::solve_pair, checked against
+// definitions §5's inequalities and §6/§8's contract, and every N-th input against the exact
+// engine.
 //
 // Input format (fuzz/README.md has the same):
 //   byte 0      header: bits 0-1 mode (0 = raw, otherwise structured);
@@ -171,12 +172,12 @@ bool finite_input(const TetPair& p) {
   return true;
 }
 
-// Slack of the SPEC §5 inequalities as the fast engine reports them. SPEC §8 lets each reported
-// value v be off its exact value by 1e-9 relative: |v - x| <= eps x, eps = 1e-9. If x_a <= x_b
-// holds exactly, then v_a <= (1 + eps) x_a <= (1 + eps) x_b <= (1 + eps) / (1 - eps) v_b. So the
-// only slack SPEC §8 grants is v_a <= v_b (1 + eps) / (1 - eps) = v_b (1 + 2 eps + O(eps^2)):
-// 1e-9 on each side, both sides wrong in opposite directions. A tighter check (1e-9 in total)
-// could flag a correct engine. The test's own rounding (one multiply, 2^-53 relative) is
+// Slack of the definitions §5 inequalities as the fast engine reports them. definitions §8 lets
+// each reported value v be off its exact value by 1e-9 relative: |v - x| <= eps x, eps = 1e-9. If
+// x_a <= x_b holds exactly, then v_a <= (1 + eps) x_a <= (1 + eps) x_b <= (1 + eps) / (1 - eps)
+// v_b. So the only slack definitions §8 grants is v_a <= v_b (1 + eps) / (1 - eps) = v_b (1 + 2 eps
+// + O(eps^2)): 1e-9 on each side, both sides wrong in opposite directions. A tighter check (1e-9 in
+// total) could flag a correct engine. The test's own rounding (one multiply, 2^-53 relative) is
 // negligible against it; the halving in pdd2 <= PD^2 / 2 is exact.
 constexpr double kEps = 1e-9;
 constexpr double kSlack = (1 + kEps) / (1 - kEps) * (1 + 1e-15);
@@ -200,8 +201,8 @@ void check_le(const TetPair& p, const char* lhs, double a, const char* rhs, doub
 // with each other (they must be equal) as well as the double one against them.
 // The hot functions over raw tetrahedra (pdd.h: rigid_superset, and deformable_depth.cpp's
 // lane sweeps pruned by qp_lower_bound.h, not solve_pair's candidate set): each is certified on
-// its own (SPEC §8), so each is within 1e-9 (1 + 1e-9) of the exact value, as solve_pair's is:
-// the two differ by < 2.1e-9 relative, and are 0 together.
+// its own (definitions §8), so each is within 1e-9 (1 + 1e-9) of the exact value, as solve_pair's
+// is: the two differ by < 2.1e-9 relative, and are 0 together.
 void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
   if (r.error) {  // rejected (flat, non-finite): no hot path may give a number that reads as a depth
     if (r.error->rfind("not representable", 0) == 0) return;  // some value only: others may be had
@@ -226,9 +227,10 @@ void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
 
 pdd::reference::ExactResult exact_answer(const TetPair& p) {
   pdd::reference::GlobalOptions budget;
-  // SPEC §9's patches below the doubles' grid cost ~100 ms each under ASan + UBSan + coverage
-  // (~2 ms in Release); the default budget (1000) made the fuzzer time out (60 s) on pairs that
-  // do not close. 50 of them: the fast value is judged against a wider (still proved) interval.
+  // definitions §9's patches below the doubles' grid cost ~100 ms each under ASan + UBSan +
+  // coverage (~2 ms in Release); the default budget (1000) made the fuzzer time out (60 s) on pairs
+  // that do not close. 50 of them: the fast value is judged against a wider (still proved)
+  // interval.
   budget.max_exact_patches = 50;
   // The same for bound (Q)'s exact QPs (global_pdd.h; the far-vertex pairs need up to ~120).
   budget.max_hull_bounds = 50;
@@ -236,8 +238,8 @@ pdd::reference::ExactResult exact_answer(const TetPair& p) {
 }
 // ---------------------------------------------------------------------------------------------
 
-// Whether an exact value has a normal double near it (SPEC §8: otherwise the fast engine must
-// reject the pair, and may).
+// Whether an exact value has a normal double near it (definitions §8: otherwise the fast engine
+// must reject the pair, and may).
 bool representable(const pdd::reference::Rational& x) {
   if (x == 0) return true;
   const double d = CGAL::to_double(x);
@@ -281,7 +283,7 @@ void compare_with_exact(const TetPair& p, const pdd::PairResult<double>& fast) {
   if (fast.intersecting != exact.intersecting)
     fail(p, std::string("intersecting: fast ") + (fast.intersecting ? "true" : "false") +
                 ", exact " + (exact.intersecting ? "true" : "false"));
-  // SPEC §9: inside the exact engine's proved interval [lower, witness], with §8's 1e-9.
+  // definitions §9: inside the exact engine's proved interval [lower, witness], with §8's 1e-9.
   if (!fast.pdd2_global_error && exact.intersecting && exact.pdd2_global_lower) {
     const pdd::reference::Rational g(fast.pdd2_global), e(kEps);
     if (!(g >= *exact.pdd2_global_lower * (1 - e) && g <= exact.pdd2_global * (1 + e))) {
@@ -326,7 +328,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const pdd::PairResult<double> r = pdd::fast::solve_pair(p);
   g_fast = &r;
 
-  // The exact comparison first when it is due: its verdict (SPEC §8) is the most informative.
+  // The exact comparison first when it is due: its verdict (definitions §8) is the most
+  // informative.
   const long every = exact_every();
   if (force_exact || (every > 0 && count++ % every == 0)) compare_with_exact(p, r);
 
@@ -358,7 +361,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         fail(p, "intersecting but a depth is 0");
       if (!r.rigid_dir || !r.pdd2_dir || !r.pdd2_relaxed_dir)
         fail(p, "intersecting but a label is missing");
-      // SPEC §5: pdd2 <= pdd2_static <= PD^2; pdd2 <= PD^2 / 2;
+      // definitions §5: pdd2 <= pdd2_static <= PD^2; pdd2 <= PD^2 / 2;
       //          pdd2_relaxed <= pdd2 <= pdd2_accel6 <= pdd2_accel1.
       check_le(p, "pdd2", r.pdd2, "pdd2_static", r.pdd2_static);
       check_le(p, "pdd2_static", r.pdd2_static, "rigid_pd2", r.rigid_pd2);
@@ -366,8 +369,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       check_le(p, "pdd2_relaxed", r.pdd2_relaxed, "pdd2", r.pdd2);
       check_le(p, "pdd2", r.pdd2, "pdd2_accel6", r.pdd2_accel6);
       check_le(p, "pdd2_accel6", r.pdd2_accel6, "pdd2_accel1", r.pdd2_accel1);
-      // SPEC §9: 0 < pdd2_global <= pdd2_relaxed, a non-zero finite normal, finite positions;
-      // or, declined (pdd2_global_error), NaN value and positions and no normal
+      // definitions §9: 0 < pdd2_global <= pdd2_relaxed, a non-zero finite normal, finite
+      // positions; or, declined (pdd2_global_error), NaN value and positions and no normal
       if (r.pdd2_global_error) {
         if (!std::isnan(r.pdd2_global) || r.pdd2_global_normal || !std::isnan(r.q1_A_global[0][0]))
           fail(p, "pdd2_global declined but its value, normal or positions are set");

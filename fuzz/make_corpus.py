@@ -109,7 +109,7 @@ def main():
         for i, p in enumerate(sp):
             write(os.path.join(OUT_F, "seed-smoke-x%s-%02d-%s" % (tag, i, slug(p["name"]))), raw(p))
 
-    # Non-finite input to the engine (SPEC §1: rejected): NaN and inf coordinates.
+    # Non-finite input to the engine (definitions §1: rejected): NaN and inf coordinates.
     nested = smoke[0]
     for tag, bad in (("nan", float("nan")), ("inf", float("inf")), ("minus-inf", float("-inf"))):
         for k in (0, 23):

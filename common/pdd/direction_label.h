@@ -1,4 +1,4 @@
-// direction_label.h — labels of candidate separating directions (SPEC §3), plain data.
+// direction_label.h — labels of candidate separating directions (definitions §3), plain data.
 //
 //   FV:i      face of A opposite s_i           (i = 0..3)
 //   VF:j      face of B opposite r_j           (j = 0..3)
@@ -41,7 +41,7 @@ struct DirectionLabel {
     return s;
   }
 
-  // Position in canonical order; a strict weak order consistent with SPEC §3.
+  // Position in canonical order; a strict weak order consistent with definitions §3.
   auto key() const { return std::make_tuple(int(kind), a, b, int(orientation)); }
   bool operator==(const DirectionLabel& o) const { return key() == o.key(); }
   bool operator!=(const DirectionLabel& o) const { return !(*this == o); }

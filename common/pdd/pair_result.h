@@ -1,4 +1,4 @@
-// pair_result.h — one output record of SPEC §6, for either engine.
+// pair_result.h — one output record of definitions §6, for either engine.
 //
 // R is the engine's number type: an exact rational in the reference engine, double in the
 // fast one. A rejected pair has `error` set and nothing else meaningful. A pair whose
@@ -31,14 +31,14 @@ struct SolveStats {
 template <class R>
 struct PairResult {
   std::string name;
-  std::optional<std::string> error;  // set when the pair was rejected (SPEC §1)
+  std::optional<std::string> error;  // set when the pair was rejected (definitions §1)
 
   bool intersecting = false;
   R rigid_pd2{}, eq11_pd2{}, pdd2_static{}, pdd2{}, pdd2_relaxed{}, pdd2_accel1{}, pdd2_accel6{};
   std::optional<DirectionLabel> rigid_dir, pdd2_static_dir, pdd2_dir, pdd2_relaxed_dir;
   Positions<R> q1_A{}, q1_B{};  // case-2 deformed positions attaining pdd2
 
-  // SPEC §9: PD_d^2 over every separating plane (paper eq. 5). pdd2_global is the relaxed
+  // definitions §9: PD_d^2 over every separating plane (paper eq. 5). pdd2_global is the relaxed
   // optimum along pdd2_global_normal (A -> B; nullopt when not intersecting), attained by the
   // deformed positions q1_A_global, q1_B_global (the rest pose when not intersecting). The
   // normal's scale: pdd.h (fast engine: largest |component| in [1, 2); exact: as found).
@@ -60,8 +60,8 @@ struct PairResult {
   SolveStats stats;  // fast engine only
 };
 
-// The record's values and labels by name (the candidate-based values of SPEC §5–§6; the §9
-// keys are fields of their own above), in SPEC §6 order, for code that treats them alike
+// The record's values and labels by name (the candidate-based values of definitions §5–§6; the §9
+// keys are fields of their own above), in definitions §6 order, for code that treats them alike
 // (comparisons, tables, bindings): record_value(r, k) is the field named kValueKeys[k],
 // record_label(r, k) the one named kLabelKeys[k]; kLabelOfValue[k] is the label of value k
 // (-1: it has none).

@@ -1,4 +1,4 @@
-// rejection.h — why SPEC §1 rejects a pair, worded once for both engines (plain data).
+// rejection.h — why definitions §1 rejects a pair, worded once for both engines (plain data).
 //
 // A tetrahedron is rejected when a coordinate is not finite, or when its volume is exactly 0
 // ("flat"). Each engine decides flatness with its own exact arithmetic (reference: CGAL's
@@ -7,7 +7,7 @@
 //   "tetrahedron A: vertex 2 coordinate y is not finite (inf)"
 //   "tetrahedron B is flat: its four vertices are coplanar (volume 0)"
 // Both tetrahedra invalid: both reasons, A first, joined by "; ".
-// A result outside the normal double range (fast engine only, SPEC §8): kNotRepresentable.
+// A result outside the normal double range (fast engine only, definitions §8): kNotRepresentable.
 #pragma once
 
 #include <cmath>

@@ -21,8 +21,8 @@
 namespace pdd::fast {
 
 struct SolveOptions {
-  // false: skip SPEC §9 (pdd2_global 0, no normal, q1_*_global the rest pose); it is about 3.5
-  // of the call's 13 us on the paper's protocol.
+  // false: skip definitions §9 (pdd2_global 0, no normal, q1_*_global the rest pose); it is about
+  // 3.5 of the call's 13 us on the paper's protocol.
   bool with_global = true;
   // true (with with_global): fill pdd2_global_grad, from q1_*_global in doubles. Accuracy
   // (derived at global_gradient in fast/src/solve_pair.cpp): the positions attain the value to
@@ -43,7 +43,7 @@ struct SolveOptions {
   // of the per-direction QP (pdd/qp_formulation.h): both give the same result; Reduced is
   // faster, Full solves the paper's own variables.
   QpFormulation formulation = QpFormulation::Reduced;
-  // SPEC §9 (pdd2_global, its normal, positions and proved lower bound, to the gap 1e-12): a
+  // definitions §9 (pdd2_global, its normal, positions and proved lower bound, to the gap 1e-12): a
   // branch and bound of 5 to 50 ms more per pair. false skips it: then pdd2_global =
   // pdd2_global_lower = 0, no normal, q1_*_global = the rest pose.
   bool with_global = true;

@@ -1,4 +1,4 @@
-// tet_pair.h — the input of every engine: a named pair (A, B) of tetrahedra (SPEC §1).
+// tet_pair.h — the input of every engine: a named pair (A, B) of tetrahedra (definitions §1).
 //
 // A is the paper's T1 (vertices s0..s3), B is T2 (rest vertices r0..r3). Coordinates are
 // IEEE-754 doubles exactly as read; the exact engine takes each double as the rational it

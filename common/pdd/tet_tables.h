@@ -1,10 +1,10 @@
-// tet_tables.h — the SPEC §3 tables of a tetrahedron's faces and edges, for both engines
+// tet_tables.h — the definitions §3 tables of a tetrahedron's faces and edges, for both engines
 // (plain data, no arithmetic).
 //
 //   kEdges[k]   edge k joins vertices kEdges[k][0] < kEdges[k][1]   (the order of EE:a:b labels)
 //   kFace[i]    the face opposite vertex i, its vertices in increasing order (FV:i, VF:j)
 //   kOffEdge[k] the two vertices not on edge k, in increasing order
-//   EdgePairKind  how an edge pair resolves (SPEC §3): Generic (e_a x e_b != 0: one direction),
+//   EdgePairKind  how an edge pair resolves (definitions §3): Generic (e_a x e_b != 0: one direction),
 //                 Parallel (e_a x e_b = 0, the edges' lines distinct: the direction is the
 //                 common perpendicular), Colinear (one line: no direction).
 #pragma once

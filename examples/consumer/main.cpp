@@ -29,7 +29,7 @@ int main() {
                                                    : g.q1_B_global[i - 4][k] - p.B[i - 4][k]));
   std::cout << "pdd2_global = " << g.pdd2_global << ", gradient . displacement = " << dot << "\n";
   if (!(std::fabs(dot + 2 * g.pdd2_global) <= 1e-12 * g.pdd2_global)) return 1;
-  // SPEC §8: the fast value is within 1e-9 relative of the exact one.
+  // definitions §8: the fast value is within 1e-9 relative of the exact one.
   const double e = exact.pdd2.get_d();
   return std::fabs(fast.pdd2 - e) <= 1e-9 * e && fast.pdd2_dir == exact.pdd2_dir ? 0 : 1;
 }

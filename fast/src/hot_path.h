@@ -1,4 +1,4 @@
-// hot_path.h — internal to fast/src: the SPEC §8 frame of the functions over raw tetrahedra
+// hot_path.h — internal to fast/src: the definitions §8 frame of the functions over raw tetrahedra
 // (rigid_pd2(A, B), pdd2_static(A, B), ...): power-of-two rescaling (power_scale.h), the double
 // path when its choice is certified (value_bounds.h), else the exact path (exact_path.h).
 #pragma once

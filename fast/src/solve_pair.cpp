@@ -1,5 +1,5 @@
-// solve_pair.cpp — SPEC §6 record of one pair, certified (SPEC §8), and the parallel batch.
-// See the header.
+// solve_pair.cpp — definitions §6 record of one pair, certified (definitions §8), and the parallel
+// batch. See the header.
 #include "pdd/pdd.h"
 
 #include <tbb/parallel_for.h>
@@ -25,7 +25,7 @@
 namespace pdd::fast {
 namespace {
 
-// SPEC §1 with the shared wording (pdd/rejection.h); flatness decided exactly here.
+// definitions §1 with the shared wording (pdd/rejection.h); flatness decided exactly here.
 std::optional<std::string> rejection_of(const TetVertices& T, char which) {
   if (auto reason = non_finite_reason(T, which)) return reason;
   if (orientation_sign_exact(T) == Sign::Zero) return flat_reason(which);
@@ -40,7 +40,7 @@ std::optional<DirectionLabel> label_of(const CandidateSet& s, const Choice& c) {
   return label(s, c.index);
 }
 
-// The deformed positions attain `value` (SPEC §8): their object norm, evaluated from the
+// The deformed positions attain `value` (definitions §8): their object norm, evaluated from the
 // computed displacements (each difference q − x exact to u|q − x|, the norm to 12 u), must be
 // within kContractRel − kCertifyRel − 1e-11 of the certified value.
 bool positions_attain(const TetPair& pair, const PairResult<double>& r, double value) {
@@ -60,7 +60,7 @@ bool positions_attain(const TetPair& pair, const PairResult<double>& r, double v
   return std::fabs(sigma - value) <= (kContractRel - kCertifyRel - 1e-11) * value;
 }
 
-// Which quantities of a record the double path could not certify (SPEC §8).
+// Which quantities of a record the double path could not certify (definitions §8).
 constexpr unsigned kRigid = 1;
 constexpr unsigned kEq11 = 2;
 constexpr unsigned kStatic = 4;
@@ -71,8 +71,8 @@ constexpr unsigned kRelaxed = 64;
 constexpr unsigned kPositions = 128;
 constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_depth.h)
 
-// SPEC §9 from the relaxed choice `rel` (its candidate's normal and label, when the double path
-// has one): value, normal, positions. Returns false when the value is not certified (not
+// definitions §9 from the relaxed choice `rel` (its candidate's normal and label, when the double
+// path has one): value, normal, positions. Returns false when the value is not certified (not
 // representable).
 bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set, double rigid_pd2,
                  PairResult<double>& r, bool* slow) {
@@ -165,7 +165,7 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   return missing;
 }
 
-// q1 of SPEC §8 for the reported pdd2 label: the exact case-2 solution of that candidate
+// q1 of definitions §8 for the reported pdd2 label: the exact case-2 solution of that candidate
 // (exact_candidate.h), which attains its exact value — the reported value's to the contract
 // (exactly so when the choice was refined). False when a coordinate is not representable.
 bool exact_positions_of(const TetPair& pair, const DirectionLabel& l, PairResult<double>& r) {
@@ -231,8 +231,8 @@ bool global_representable(const PairResult<double>& r) {
   return true;
 }
 
-// pdd2_global alone cannot be had: the record keeps its other values; the SPEC §9 fields become
-// NaN (no normal), so that none of them reads as a depth, and `why` is recorded.
+// pdd2_global alone cannot be had: the record keeps its other values; the definitions §9 fields
+// become NaN (no normal), so that none of them reads as a depth, and `why` is recorded.
 void decline_global(PairResult<double>& r, const char* why) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   r.pdd2_global = nan;
@@ -251,7 +251,7 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r, bool gl
   e.result.name = r.name;
   PairResult<double>& x = e.result;
   x.q1_A_global = pair.A, x.q1_B_global = pair.B;
-  if (x.intersecting && global) {  // SPEC §9, started at pdd2_relaxed's normal
+  if (x.intersecting && global) {  // definitions §9, started at pdd2_relaxed's normal
     const GlobalOptimum g = global_depth(pair.A, pair.B, e.relaxed_normal.data(), x.pdd2_relaxed, {}, x.rigid_pd2);
     x.pdd2_global = g.value, x.pdd2_global_normal = g.normal;
     x.q1_A_global = g.q1_A, x.q1_B_global = g.q1_B;
@@ -307,7 +307,7 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   const bool global_exact = global_slow && !(missing & kGlobal) && r.pdd2_global_normal;
   if (global_exact) r.pdd2_global = 0;
   if (!unscale(r, -sp.e, missing | kGlobal)) return bad;  // pdd2_global: checked below
-  if (!global) r.q1_A_global = pair.A, r.q1_B_global = pair.B;  // SPEC §9 skipped: rest pose
+  if (!global) r.q1_A_global = pair.A, r.q1_B_global = pair.B;  // definitions §9 skipped: rest pose
   if (missing & kGlobal) {
     decline_global(r, kGlobalNotRepresentable);  // no double normal found (global_depth.h)
     missing &= ~kGlobal;  // the exact path below replaces candidate-based values only

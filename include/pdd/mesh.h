@@ -1,5 +1,5 @@
-// mesh.h — pdd on tetrahedral meshes (SPEC §10): every intersecting element pair of two meshes
-// (or of one mesh with itself) and its penetration depths.
+// mesh.h — pdd on tetrahedral meshes (definitions §10): every intersecting element pair of two
+// meshes (or of one mesh with itself) and its penetration depths.
 //
 //   #include <pdd/mesh.h>             // CMake: target_link_libraries(app PRIVATE pdd::mesh)
 //   pdd::mesh::Mesh A = pdd::mesh::read_mesh("a.msh"), B = pdd::mesh::read_mesh("b.vtk");
@@ -20,7 +20,7 @@
 //                   after dropping the boxes that miss the other mesh's bounding box; CGAL's
 //                   parallel version (TBB) for two meshes, the sequential one for self-contact
 //                   (faster there);
-//   3. decision     the exact decision of SPEC §4 per box pair, on all cores:
+//   3. decision     the exact decision of definitions §4 per box pair, on all cores:
 //                   pdd::fast::interiors_intersect (a certified separating-axis filter in
 //                   doubles, then rigid_pd2's exact decision for the pairs it cannot decide:
 //                   touching or nearly touching, parallel edges); touching is not intersecting;
@@ -35,9 +35,9 @@
 // are set when kPdd2 is requested and are the rest pose otherwise. With the fast engine each
 // value equals the field of the same name of pdd::fast::solve_pair on the pair
 // (A = element a, B = element b); contacts_exact gives pdd::reference::solve_pair's exact record
-// (every value; SPEC §9's search only with kGlobal).
+// (every value; definitions §9's search only with kGlobal).
 //
-// kGlobal (SPEC §9, "global"; not a default): pdd2_global, PD_d² over every separating plane
+// kGlobal (definitions §9, "global"; not a default): pdd2_global, PD_d² over every separating plane
 // (the paper's eq. 5 as defined: the minimum over unit normals of the relaxed QP, so
 // pdd2_global <= pdd2_relaxed), with pdd2_global_normal (the normal attaining it, A -> B, not
 // necessarily of unit length) and q1_A_global / q1_B_global (the deformed positions attaining
@@ -88,8 +88,8 @@ struct ReadError : std::runtime_error {
 // uses them is skipped by contacts(), with its index). Throws ReadError.
 Mesh read_mesh(const std::string& path);
 
-// Variants, one bit per SPEC §6 value; bit k < kValueCount is the value kValueKeys[k] of
-// pair_result.h, bit kValueCount (kGlobal) SPEC §9's pdd2_global and its keys.
+// Variants, one bit per definitions §6 value; bit k < kValueCount is the value kValueKeys[k] of
+// pair_result.h, bit kValueCount (kGlobal) definitions §9's pdd2_global and its keys.
 enum Variant : unsigned {
   kRigid = 1u << 0,    // rigid_pd2 (+ rigid_dir)
   kEq11 = 1u << 1,     // eq11_pd2
@@ -139,7 +139,7 @@ struct Cancelled : std::runtime_error {
   Cancelled() : std::runtime_error("pdd::mesh: cancelled") {}
 };
 
-// An element that was not computed (SPEC §10): `mesh` is 'A' or 'B', `index` its number.
+// An element that was not computed (definitions §10): `mesh` is 'A' or 'B', `index` its number.
 struct SkippedElement {
   char mesh = 'A';
   std::size_t index = 0;

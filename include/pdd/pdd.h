@@ -8,8 +8,8 @@
 //   pdd::fast::SolveOptions o;  o.gradient = true;       // options: pdd/solve_options.h
 //   r = pdd::fast::solve_pair(p, o);
 //
-// What is computed (../SPEC.md of the source tree; Kim & Kim's paper):
-//   rigid_pd2      PD², the squared rigid penetration depth (SPEC §4), and its direction label;
+// What is computed (docs/definitions.md; Kim & Kim's paper):
+//   rigid_pd2      PD², the squared rigid penetration depth (definitions §4), and its direction label;
 //   eq11_pd2       the paper's eq. 11 (an estimate, not a bound: it can be below PD²);
 //   pdd2_static    PD_d² with A static (paper case 1);  pdd2  PD_d² with both deforming (case 2,
 //                  eq. 3 with the constraints of eq. 10); pdd2_relaxed  case 2 with every
@@ -18,14 +18,14 @@
 //   q1_A, q1_B     deformed vertex positions that attain pdd2 and are separated by its plane.
 // Every value is a squared length in the squared units of the coordinates. A pair whose
 // interiors do not intersect has every value 0, no labels, and q1 = the rest pose.
-// Labels (DirectionLabel, SPEC §3): "FV:i" face of A opposite s_i, "VF:j" face of B opposite
+// Labels (DirectionLabel, definitions §3): "FV:i" face of A opposite s_i, "VF:j" face of B opposite
 // r_j, "EE:a:b" edge a of A against edge b of B (":+"/":-" for the two sides of an undecidable
 // edge pair).
-// Rejected pairs (SPEC §1): a non-finite coordinate or a tetrahedron of volume exactly 0. The
-// record's `error` says which tetrahedron and why, in the same words for both engines.
+// Rejected pairs (definitions §1): a non-finite coordinate or a tetrahedron of volume exactly 0.
+// The record's `error` says which tetrahedron and why, in the same words for both engines.
 //
 // Two engines, sharing no arithmetic:
-//   pdd::fast       doubles, certified (SPEC §8, below); target pdd::fast (needs TBB and GMP).
+//   pdd::fast       doubles, certified (definitions §8, below); target pdd::fast (needs TBB and GMP).
 //   pdd::reference  exact rationals (CGAL, GMP); target pdd::reference. Slow (milliseconds to
 //                   seconds a pair): the judge, and the source of counterexamples.
 #pragma once
@@ -74,7 +74,7 @@ namespace pdd {
 // difference quotients bracket it: for h > 0,
 //     (f(P + hV) - f(P)) / h <= <g, V> + h sigma(V),  (f(P) - f(P - hV)) / h >= <g, V> - h sigma(V).
 // Not intersecting: 0 (pdd2_global is 0 at P and at most sigma(W) at P + W: (*) with Q = P).
-// Declined pdd2_global (fast engine, pdd2_global_error): NaN, as the other SPEC §9 fields.
+// Declined pdd2_global (fast engine, pdd2_global_error): NaN, as the other definitions §9 fields.
 // Accuracy: at each engine's `gradient` option (pdd/solve_options.h).
 // As a contact energy. An implicit step (backward Euler; projective dynamics) minimising
 //     Phi(x) = E(x) + k * sum over intersecting element pairs of pdd2_global(x_pair)
@@ -95,8 +95,8 @@ using Rational = mpq_class;
 
 namespace pdd::fast {
 
-// The SPEC §8 contract of every fast value: on every valid pair, whatever its scale, shape or
-// position, every reported squared value v satisfies |v − exact| ≤ 1e-9 · exact, v = 0 exactly
+// The definitions §8 contract of every fast value: on every valid pair, whatever its scale, shape
+// or position, every reported squared value v satisfies |v − exact| ≤ 1e-9 · exact, v = 0 exactly
 // when the exact value is 0; `intersecting` is the exact decision; every label names a
 // candidate whose exact value is within that bound of the exact minimum; q1 attains pdd2 for
 // its label to the same accuracy. The engine enforces it itself: each value carries an error
@@ -106,10 +106,10 @@ namespace pdd::fast {
 // exact path (rare, about 100x slower). A result that is not a normal
 // double gives an error record that starts "not representable".
 
-// Every SPEC §6 quantity of one pair.
+// Every definitions §6 quantity of one pair.
 //   pair     the two tetrahedra; A is the paper's T1 (static in case 1), B is T2.
 //   options  with_global, gradient (pdd/solve_options.h).
-// Returns the record; `error` set when the pair is rejected (SPEC §1) or a candidate-based
+// Returns the record; `error` set when the pair is rejected (definitions §1) or a candidate-based
 // value is not representable (then nothing else is set). pdd2_global alone may be declined:
 // where the depth is far below the pair's extent no normal in doubles may be certified to
 // attain it (kGlobalNotRepresentable), or it may lie outside the double range
@@ -133,26 +133,27 @@ enum class DepthStatus {
   NotRepresentable,  // the exact value is not a normal double after scaling back; pd2 = NaN
 };
 struct Depth {
-  double pd2 = 0.0;                   // the squared depth, SPEC §8 contract; NaN unless Ok
+  double pd2 = 0.0;                   // the squared depth, definitions §8 contract; NaN unless Ok
   std::optional<DirectionLabel> dir;  // the minimising direction; none when pd2 == 0 and
-                                      // for pdd2_accel (SPEC §6 prints no label for it)
+                                      // for pdd2_accel (definitions §6 prints no label for it)
   DepthStatus status = DepthStatus::Ok;
 };
 
 // A, B: the tetrahedra's vertices s0..s3 and r0..r3 (any orientation). Same values and labels
 // as the fields of solve_pair's record of the same name (the same certified computation on the
 // same rescaled pair; the one exception: where solve_pair cannot certify pdd2's deformed
-// positions it reports the exact path's pdd2, which may differ from this one within SPEC §8).
-Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², SPEC §4
-Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, SPEC §5
+// positions it reports the exact path's pdd2, which may differ from this one within
+// definitions §8).
+Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², definitions §4
+Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, definitions §5
 Depth pdd2(const TetVertices& A, const TetVertices& B);          // PD_d², case 2 (eq. 3, 10)
 Depth pdd2_relaxed(const TetVertices& A, const TetVertices& B);  // case 2, inequalities only
 // The paper's acceleration: case 2 on the k shallowest candidates; k = 1 or 6 (pdd2_accel1,
 // pdd2_accel6), any other k is DepthStatus::Rejected.
 Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
 
-// SPEC §9: PD_d² over every separating plane (the paper's eq. 5 as defined, not restricted to
-// the candidate directions): the minimum over unit normals of the relaxed QP, with the normal
+// definitions §9: PD_d² over every separating plane (the paper's eq. 5 as defined, not restricted
+// to the candidate directions): the minimum over unit normals of the relaxed QP, with the normal
 // attaining it (A -> B; zero when pd2 == 0). Same contract as solve_pair's pdd2_global (within
 // 1e-9 of the exact minimum, the normal reproducing the value).
 // The fast engine's normal (here and solve_pair's pdd2_global_normal) is a direction, scaled by
@@ -169,7 +170,7 @@ struct NormalDepth {
 };
 NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B);
 
-// The exact intersection decision of SPEC §4 alone: do the interiors of A and B intersect
+// The exact intersection decision of definitions §4 alone: do the interiors of A and B intersect
 // (touching is not intersecting)? For the many pairs of a mesh broadphase, most of them
 // disjoint. overlap_filter is a certified separating-axis test in doubles over the 44 axes (the
 // 8 face normals, the 36 edge-pair cross products) with a static forward error bound: Disjoint
@@ -185,11 +186,11 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B);
 
 namespace pdd::reference {
 
-// Every SPEC §6 quantity of one pair, exactly: each input double is taken as the rational it
+// Every definitions §6 quantity of one pair, exactly: each input double is taken as the rational it
 // denotes and every value is an exact rational; labels are the first minimising candidate in
-// the canonical order of SPEC §3; q1 are exact rationals attaining pdd2. `options`:
+// the canonical order of definitions §3; q1 are exact rationals attaining pdd2. `options`:
 // formulation, with_global, gradient (pdd/solve_options.h).
-// Returns the record; `error` set when the pair is rejected (SPEC §1).
+// Returns the record; `error` set when the pair is rejected (definitions §1).
 PairResult<pdd::Rational> solve_pair(const TetPair& pair, const SolveOptions& options = {});
 
 }  // namespace pdd::reference

@@ -26,7 +26,7 @@ using nlohmann::json;
 // The bytes the JSON lexer sees.
 //
 // nlohmann::json refuses a document holding a number beyond the double range (1e400), but
-// SPEC §1 wants only that pair rejected, as non-finite. So the bytes pass through this
+// definitions §1 wants only that pair rejected, as non-finite. So the bytes pass through this
 // filter on their way to the lexer: outside strings, each maximal run of number characters
 // [-+.0-9eE] is checked against the JSON number grammar; a valid number that overflows a
 // double is handed to the lexer as a zero of the same length ("1e400" -> "0e000") and its
@@ -56,7 +56,7 @@ class FilteredInput {
   std::size_t last_string_start = 0;                    // offset of the last '"' opening a string
   std::size_t last_open = 0;                            // offset of the last '{' or '['
   std::size_t last_scalar = 0;                          // offset of the last scalar token
-  // Integer literals that are not exactly a double (SPEC §1 reads coordinates as doubles; an
+  // Integer literals that are not exactly a double (definitions §1 reads coordinates as doubles; an
   // integer such as 9007199254740993 would silently become another integer): (ordinal among
   // the numbers, byte offset, text), in order. The entry holding one is rejected, naming it.
   std::deque<std::tuple<std::size_t, std::size_t, std::string>> inexact;

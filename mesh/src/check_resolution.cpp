@@ -168,7 +168,7 @@ double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1) {
   struct Sum {
     double weighted = 0, volume = 0;
   };
-  // sigma_e = (sum_i |d_i|^2 + |sum_i d_i|^2) / 20 (SPEC §2), weighted by |V_e| at rest;
+  // sigma_e = (sum_i |d_i|^2 + |sum_i d_i|^2) / 20 (definitions §2), weighted by |V_e| at rest;
   // elements with a non-finite rest coordinate are left out (flat ones weigh 0).
   const Sum s = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::size_t>(0, m.tets.size(), 4096), Sum{},

@@ -87,8 +87,8 @@ Positions<R> rest(const TetVertices& T) {
   return p;
 }
 
-// SPEC §9's fields as when kGlobal is not requested (mesh.h): 0, no normal, the rest pose, no
-// lower bound.
+// definitions §9's fields as when kGlobal is not requested (mesh.h): 0, no normal, the rest pose,
+// no lower bound.
 template <class R>
 void clear_global(PairResult<R>& r, const TetVertices& A, const TetVertices& B) {
   r.pdd2_global = R(0);
@@ -107,7 +107,7 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
   const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal)) ||
                             __builtin_popcount(variants & ~unsigned(kRigid)) >= 2;
   if (needs_record) {
-    // SPEC §9's search only when asked: it is most of solve_pair's time
+    // definitions §9's search only when asked: it is most of solve_pair's time
     fast::SolveOptions options;
     options.with_global = (variants & kGlobal) != 0;
     r = fast::solve_pair(TetPair{"", {}, A, B}, options);
@@ -172,7 +172,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   out.seconds_broadphase = since(t);
   stop_if_cancelled();
 
-  // Stage 3: the exact decision (SPEC §4): fast::interiors_intersect, a certified
+  // Stage 3: the exact decision (definitions §4): fast::interiors_intersect, a certified
   // separating-axis filter in doubles that decides almost every box pair in about 100 ns, and
   // rigid_pd2's exact decision for the rest (touching or nearly touching pairs, parallel edges).
   t = Clock::now();

@@ -1,11 +1,11 @@
 // read_mesh.cpp — Gmsh MSH (2.2 and 4.1, ASCII and binary) and legacy VTK unstructured grid
-// readers (SPEC §10), written by hand.
+// readers (definitions §10), written by hand.
 //
 // Why not Gmsh's own reader (Debian's libgmsh-dev, the Gmsh SDK): it is GPL, and linking it
 // would make the pdd library and tool GPL too; it keeps one global model behind
 // gmsh::initialize/finalize (not reentrant, not thread-safe, prints to the terminal); and its
-// messages do not name the line or the element of a bad file, which SPEC §10 asks for. It does
-// not read legacy VTK into tetrahedra either. The formats read here are small and documented
+// messages do not name the line or the element of a bad file, which definitions §10 asks for. It
+// does not read legacy VTK into tetrahedra either. The formats read here are small and documented
 // (Gmsh reference manual, "MSH file format"; VTK "File Formats", legacy section). The readers
 // are tested against files Gmsh 4.8.4 wrote (scripts/make-meshes.sh, fixtures/meshes/: the
 // same ball in all six encodings must read to the same tetrahedra) and against hand-made bad

@@ -44,7 +44,7 @@ double clearance(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
   return hi - lo;
 }
 
-// The axis of a candidate direction (SPEC §3's vectors, up to sign).
+// The axis of a candidate direction (definitions §3's vectors, up to sign).
 Vec3d label_axis(const DirectionLabel& l, const TetVertices& A, const TetVertices& B) {
   auto face = [](const TetVertices& T, int i) {
     const auto& f = kFace[i];

@@ -9,7 +9,7 @@
 //                the exact decision (fast::interiors_intersect);
 //             2. local step: each pair (a, b) is projected, in the object norm, onto the set of
 //                configurations in which a plane separates its two tetrahedra: the per-pair
-//                solution of the chosen variant (SPEC §9's pdd2_global: q1_A_global,
+//                solution of the chosen variant (definitions §9's pdd2_global: q1_A_global,
 //                q1_B_global; pdd2: q1_A, q1_B; rigid: the rigid translation along rigid_dir
 //                split half and half) gives target displacements d_i along the pair's unit
 //                normal u (A -> B) for its eight vertices;

@@ -91,7 +91,7 @@ bool is_numpy_bool(py::handle x) { return py::isinstance(x, cached->numpy_bool);
 // One coordinate. Accepted: float, int, and any real number type whose value is exactly a
 // double (fractions.Fraction, decimal.Decimal, numpy scalars). Refused with ValueError: str,
 // bytes, bool, complex, None, anything that is not a number, and a number that is not exactly
-// a double (the engines read IEEE doubles, SPEC §1; rounding it silently would solve another
+// a double (the engines read IEEE doubles, definitions §1; rounding it silently would solve another
 // pair). A number beyond the double range becomes +-inf, which the engines reject as
 // non-finite, as `pdd solve` does with 1e999 in a file.
 // The name of a coordinate in messages, "A[i][k]" (built only for a message).
@@ -170,7 +170,7 @@ pdd::TetVertices tetrahedron(py::handle obj, const char* which) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Output: one SPEC §6 record as a dict, keys in the order of `pdd solve`'s JSON records.
+// Output: one definitions §6 record as a dict, keys in the order of `pdd solve`'s JSON records.
 
 py::object exact_integer(const mpz_class& z) {
   const std::string hex = z.get_str(16);
@@ -214,7 +214,7 @@ py::list gradient_list(const pdd::PairGradient<R>& g) {
   return out;
 }
 
-// `global` false: without SPEC §9's keys (the result was computed without it). The key
+// `global` false: without definitions §9's keys (the result was computed without it). The key
 // pdd2_global_grad is there when the result has the gradient (gradient=True).
 template <class R>
 py::dict record(const pdd::PairResult<R>& r, bool global) {
@@ -231,7 +231,7 @@ py::dict record(const pdd::PairResult<R>& r, bool global) {
   d["q1_B"] = positions(r.q1_B);
   d["error"] = py::none();
   if (!global) return d;
-  // SPEC §9, in the order `pdd solve` writes them; None where the fast engine declined it
+  // definitions §9, in the order `pdd solve` writes them; None where the fast engine declined it
   if (r.pdd2_global_error) {
     for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global"}) d[key] = py::none();
     d["pdd2_global_error"] = *r.pdd2_global_error;
@@ -598,14 +598,14 @@ class LongCall {
   Progress& progress_;
 };
 
-// n records as columns, keyed as SPEC §6 (pair_result.h's kValueKeys / kLabelKeys):
+// n records as columns, keyed as definitions §6 (pair_result.h's kValueKeys / kLabelKeys):
 //   intersecting                (n,) bool
 //   the values of `values`      bit k of `values` selects kValueKeys[k] (the bits of
 //                               pdd::mesh::Variant); fast: (n,) float64, exact: a list of n
 //                               fractions.Fraction
 //   their labels                (n,) numpy str arrays ('<U8'), "" for no label
 //   q1_A, q1_B (if `positions`) fast: (n, 4, 3) float64; exact: n nested lists of Fractions
-//   SPEC §9 (if `global`)       pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global:
+//   definitions §9 (if `global`)       pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global:
 //                               fast (n,), (n, 3) (NaN where no normal), (n, 4, 3) float64;
 //                               exact lists of n Fractions, [x, y, z] Fractions or None,
 //                               nested lists of Fractions, and pdd2_global_lower (Fractions);
@@ -633,7 +633,7 @@ class RecordColumns {
                        &exact_global_lower_})
         *l = py::list(n_);
     }
-    if (global && !exact_) {  // SPEC §9: value (n,), normal (n, 3), positions (n, 4, 3)
+    if (global && !exact_) {  // definitions §9: value (n,), normal (n, 3), positions (n, 4, 3)
       global_value_ = py::array_t<double>(n_);
       global_normal_ = py::array_t<double>({n_, py::ssize_t{3}});
       global_q1_[0] = py::array_t<double>({n_, py::ssize_t{4}, py::ssize_t{3}});
@@ -936,7 +936,7 @@ py::list read_fixtures(py::handle path_like) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// pdd.read_mesh, pdd.mesh_contacts (SPEC §10; the library include/pdd/mesh.h)
+// pdd.read_mesh, pdd.mesh_contacts (definitions §10; the library include/pdd/mesh.h)
 
 py::tuple read_mesh(py::handle path_like) {
   const std::string path = path_arg(path_like);

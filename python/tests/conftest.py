@@ -23,8 +23,8 @@ FIXTURES = SOURCE_DIR / "fixtures"
 VALUE_KEYS = ("rigid_pd2", "eq11_pd2", "pdd2_static", "pdd2", "pdd2_relaxed", "pdd2_accel1",
               "pdd2_accel6")
 LABEL_KEYS = ("rigid_dir", "pdd2_static_dir", "pdd2_dir", "pdd2_relaxed_dir")
-GLOBAL_VALUE_KEYS = ("pdd2_global", "pdd2_global_lower")  # SPEC §9 (lower: exact engine only)
-CONTRACT = Fraction(1, 10**9)  # SPEC §8: 1e-9 relative
+GLOBAL_VALUE_KEYS = ("pdd2_global", "pdd2_global_lower")  # definitions §9 (lower: exact engine only)
+CONTRACT = Fraction(1, 10**9)  # definitions §8: 1e-9 relative
 
 
 def golden_fixture_files():
@@ -77,7 +77,7 @@ def golden_cases():
 
 
 def object_norm(rest, moved):
-    """SPEC §2 object norm of one tetrahedron moved from `rest` to `moved`, exactly."""
+    """The object norm (definitions §2) of one tetrahedron moved from `rest` to `moved`, exactly."""
     sq = Fraction(0)
     total = [Fraction(0)] * 3
     for r, m in zip(rest, moved):

@@ -52,7 +52,7 @@ def assert_batch_equals_single(A, B, res):
             assert res[k][j] == (r[k] or ""), (j, k)
         assert (bits(res["q1_A"][j]) == bits(r["q1_A"])).all(), j
         assert (bits(res["q1_B"][j]) == bits(r["q1_B"])).all(), j
-        # SPEC §9 columns
+        # definitions §9 columns
         assert bits(res["pdd2_global"][j]) == bits(r["pdd2_global"]), j
         if r["pdd2_global_normal"] is None:
             assert np.isnan(res["pdd2_global_normal"][j]).all(), j

@@ -3,7 +3,7 @@ engine's output, checked digit for digit by `pdd golden --check`).
 
 - reference engine: every record equal to the golden one, key for key and in the same order,
   every number an exact fractions.Fraction equal to the golden rational;
-- fast engine: SPEC §8 checked exactly (with Fractions): every value within 1e-9 relative of
+- fast engine: definitions §8 checked exactly (with Fractions): every value within 1e-9 relative of
   the golden value and 0 exactly when it is 0, `intersecting` equal, q1 attaining pdd2; labels
   equal to the golden ones. §8 also allows a tied label (a candidate within 1e-9 of the exact
   minimum); the golden files do not carry per-candidate values, so a differing label is
@@ -63,7 +63,7 @@ def test_reference_full_formulation_equals_golden(rel):
 
 
 def within_contract(value, exact):
-    """SPEC §8: |v - exact| <= 1e-9 exact, computed exactly; so v == 0 iff exact == 0."""
+    """definitions §8: |v - exact| <= 1e-9 exact, computed exactly; so v == 0 iff exact == 0."""
     return abs(Fraction(value) - exact) <= CONTRACT * exact
 
 
@@ -102,7 +102,7 @@ def test_fast_engine_within_contract_of_golden(request):
         declined = r["pdd2_global_error"] is not None
         # allowed where the C++ judge allows it (adversarial-1-3, -13, -23); the rest is checked
         assert not declined or global_unresolvable(p, g), (where, r["pdd2_global_error"])
-        # SPEC §9: inside the exact engine's certified interval, widened by the contract
+        # definitions §9: inside the exact engine's certified interval, widened by the contract
         if declined:
             assert r["pdd2_global"] is None and r["pdd2_global_normal"] is None, where
         elif g["intersecting"]:
@@ -120,7 +120,7 @@ def test_fast_engine_within_contract_of_golden(request):
                 cli = request.getfixturevalue("pdd_cli")  # skips when the tool is not built
                 verdict = cli_label_verdict(cli, rel, p["name"], k)
                 assert verdict in ("tie", "near-tie"), (where, k, r[k], g[k], verdict)
-        # q1 attains pdd2 (SPEC §8), up to the rounding of the coordinates themselves
+        # q1 attains pdd2 (definitions §8), up to the rounding of the coordinates themselves
         # (engine_comparison.cpp's allowance: 4u·Q per vertex on sqrt(sigma)).
         if g["intersecting"]:
             assert all(type(c) is float for v in r["q1_A"] + r["q1_B"] for c in v)

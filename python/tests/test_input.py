@@ -144,7 +144,7 @@ def test_fractions_are_exact_beyond_the_double_range():
         assert r["pdd2"] == Fraction(4, 5) * s * s
         assert r["q1_B"][1] == [Fraction(7, 3) * s, Fraction(11, 6) * s, Fraction(11, 6) * s]
         assert all(type(r[k]) is Fraction for k in VALUE_KEYS)
-        fast = pdd.solve(a, b)  # SPEC §8: not a normal double, so rejected with a message
+        fast = pdd.solve(a, b)  # definitions §8: not a normal double, so rejected with a message
         assert fast["error"].startswith("not representable")
 
 
@@ -228,9 +228,9 @@ def test_fixture_pairs_solve_to_the_cli_records(engine, name, pdd_cli):
 # adversarial-1-3 of fixtures/families (a vertex of B 1e-18 inside a face of A): its exact
 # pdd2_relaxed is below 1e-14 of its extent squared, where no double normal need attain
 # pdd2_global, and the fast engine declines that value alone: its keys are None,
-# pdd2_global_error says why, and every other value is reported. with_global=False skips SPEC §9:
-# the pair's values come back, within SPEC §8 of the exact engine's, and no record carries §9's
-# keys.
+# pdd2_global_error says why, and every other value is reported. with_global=False skips
+# definitions §9: the pair's values come back, within definitions §8 of the exact engine's, and no
+# record carries §9's keys.
 NEAR_A = [[1.484375, 0.0390625, -2.0625], [-2.390625, -0.8359375, 1.3125], [-2.640625, 1.4765625, 7.6875], [-4.765625, 1.7890625, 7.125]]
 NEAR_B = [[3.125, -0.875, -4.59375], [1.1875, -1.3125, -2.90625], [1.0625, -0.15625, 0.28125], [-4.133520782600986e-18, 1.5517643593698782e-18, 6.179952383167375e-18]]
 GLOBAL_KEYS = {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower",

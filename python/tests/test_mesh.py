@@ -1,7 +1,7 @@
-"""pdd.mesh_contacts and pdd.read_mesh (SPEC §10; the C++ library include/pdd/mesh.h):
+"""pdd.mesh_contacts and pdd.read_mesh (definitions §10; the C++ library include/pdd/mesh.h):
 the same pairs and values as the `pdd mesh` tool on the shipped meshes (fixtures/meshes),
 each pair's values those of pdd.solve on that element pair (fast: bit for bit; reference:
-equal Fractions), SPEC §9's global variant (its four columns, and the exact engine's lower
+equal Fractions), definitions §9's global variant (its four columns, and the exact engine's lower
 bound), self-contact, skipped elements, bad input raising ValueError with the
 library's words, and meshes read by Debian's python3-meshio giving the same arrays and
 contacts (on our files, and on formats only meshio reads)."""
@@ -22,7 +22,8 @@ VARIANT_OF_KEY = dict(zip(VALUE_KEYS, ("rigid", "eq11", "static", "pdd2", "relax
 LABEL_OF_KEY = {"rigid_pd2": "rigid_dir", "pdd2_static": "pdd2_static_dir", "pdd2": "pdd2_dir",
                 "pdd2_relaxed": "pdd2_relaxed_dir"}
 DEFAULT = ("rigid_pd2", "pdd2_static", "pdd2", "pdd2_accel1")  # "rigid,static,pdd2,accel1"
-# SPEC §9's columns with variant "global" (as solve_batch gives them); reference: and the bound.
+# definitions §9's columns with variant "global" (as solve_batch gives them); reference: and the
+# bound.
 GLOBAL_COLUMNS = ("pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global")
 STATS = ("skipped", "elements_a", "elements_b", "box_pairs", "seconds_boxes", "seconds_broadphase",
          "seconds_decision", "seconds_depth")
@@ -50,19 +51,19 @@ def wants_global(variants):
 
 
 def global_keys(glob, exact):
-    """SPEC §9's keys: the exact engine adds its lower bound, the fast one pdd2_global_error."""
+    """The keys of definitions §9: the exact engine adds its lower bound, the fast one pdd2_global_error."""
     return (GLOBAL_COLUMNS + (("pdd2_global_lower",) if exact else ("pdd2_global_error",))) if glob else ()
 
 
 def column_keys(keys, glob=False, exact=False):
-    """The row columns mesh_contacts returns for value keys `keys` (in SPEC §6 order) and, with
-    `glob`, SPEC §9's (before "error", as solve_batch places them)."""
+    """The row columns mesh_contacts returns for value keys `keys` (in definitions §6 order) and, with
+    `glob`, definitions §9's (before "error", as solve_batch places them)."""
     out = ("a", "b", "intersecting") + keys + tuple(LABEL_OF_KEY[k] for k in keys if k in LABEL_OF_KEY)
     return out + (("q1_A", "q1_B") if "pdd2" in keys else ()) + global_keys(glob, exact) + ("error",)
 
 
 def record_keys(keys, glob=False, exact=False):
-    """The keys of the CLI's records: `pdd solve`'s order, SPEC §9's after "error"."""
+    """The keys of the CLI's records: `pdd solve`'s order, definitions §9's after "error"."""
     out = column_keys(keys)
     return out + global_keys(glob, exact)
 
@@ -130,7 +131,7 @@ def assert_same_as_cli(res, records, keys, exact, glob=False):
 
 
 def assert_global_row(res, j, r, exact):
-    """Row j's SPEC §9 columns == the record r (a CLI record or a pdd.solve dict): the same
+    """Row j's definitions §9 columns == the record r (a CLI record or a pdd.solve dict): the same
     doubles bit for bit (fast), equal Fractions (reference; the CLI's "p/q" strings read)."""
     if exact:
         F = Fraction
@@ -197,7 +198,7 @@ def test_fast_all_variants_are_the_cli_records(pdd_cli, tmp_path):
 
 
 def test_fast_global_columns():
-    """Variant "global" (SPEC §9): pdd2_global, its normal and positions as columns of
+    """Variant "global" (definitions §9): pdd2_global, its normal and positions as columns of
     solve_batch's shapes, each row pdd.solve's on that pair bit for bit (the library takes them
     from the same solve_pair), strictly positive and at most the pair's pdd2_relaxed (a minimum
     over every separating plane, the candidates' included); NaN-free. Without it, no such column."""
@@ -218,9 +219,9 @@ def test_fast_global_columns():
 
 
 def test_reference_global_is_the_cli_records_and_single_solves(pdd_cli, tmp_path):
-    """The exact engine with "rigid,global" on the tiny cubes (51 pairs): SPEC §9's witness,
+    """The exact engine with "rigid,global" on the tiny cubes (51 pairs): definitions §9's witness,
     normal, positions and proved lower bound as Fractions, equal to the CLI's records and to
-    pdd.solve(engine="reference"); the fast pdd2_global lies in [lower, witness] up to SPEC §8."""
+    pdd.solve(engine="reference"); the fast pdd2_global lies in [lower, witness] up to definitions §8."""
     res = contacts_of("tiny-a.msh", "tiny-b.msh", engine="reference", variants="rigid,global")
     keys = ("rigid_pd2",)
     records = cli_records(pdd_cli, tmp_path, "tiny-a.msh", "tiny-b.msh", "--engine", "reference",
@@ -248,7 +249,7 @@ def test_reference_contacts_are_the_cli_records_and_single_solves(pdd_cli, tmp_p
     assert len(records) == (51 if b else 0)
     assert all(isinstance(res[k][j], Fraction) for k in keys for j in range(len(records)))
     assert_rows_are_single_solves(res, "tiny-a.msh", b, keys, engine="reference")
-    # the fast engine on the same pairs is within SPEC §8 (1e-9 relative) of these values
+    # the fast engine on the same pairs is within definitions §8 (1e-9 relative) of these values
     fast = contacts_of("tiny-a.msh", b, variants="rigid,pdd2,relaxed")
     assert fast["a"].tolist() == res["a"].tolist() and fast["b"].tolist() == res["b"].tolist()
     for k in keys:
@@ -274,7 +275,7 @@ def test_fast_rows_are_single_solves(variants):
 def test_self_contact_is_brute_force_and_contacts_of_the_parts():
     """Self-contact of one mesh made of tiny-a and tiny-b (B's indices shifted by 14): every pair
     a < b sharing no vertex whose interiors intersect, by brute force over all 1128 pairs
-    (solve_batch, rigid_pd2 > 0 — SPEC §4); they are A–B pairs only (each part is a valid mesh)
+    (solve_batch, rigid_pd2 > 0 — definitions §4); they are A–B pairs only (each part is a valid mesh)
     and equal mesh_contacts(A, B) shifted, value for value."""
     VA, TA = mesh("tiny-a.msh")
     VB, TB = mesh("tiny-b.msh")
@@ -322,7 +323,7 @@ def write_legacy_vtk(path, V, T):
 
 
 def test_rejected_pairs_are_error_rows(pdd_cli, tmp_path):
-    """A pair whose values leave the normal double range (SPEC §8: the tiny cubes scaled by
+    """A pair whose values leave the normal double range (definitions §8: the tiny cubes scaled by
     1e-160 have squared depths near 1e-323) is an error row — NaN values and positions, ""
     labels, intersecting False, the engine's message — never an exception; the other rows are
     computed. Each mesh is the tiny cube twice, as it is and scaled, so both kinds of row occur.
@@ -397,7 +398,7 @@ def test_empty_meshes():
 
 @pytest.mark.parametrize("engine", ["fast", "reference"])
 def test_flat_and_non_finite_elements_are_skipped(engine):
-    """SPEC §10: a flat element (zero volume, decided exactly) or one with a non-finite
+    """definitions §10: a flat element (zero volume, decided exactly) or one with a non-finite
     coordinate is listed with the library's reason and skipped; the other pairs are computed."""
     V = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4], [1, 1, 0]], dtype=float)
     W = V + 0.5

@@ -19,7 +19,7 @@ CandidateDirection face_candidate(const DirectionLabel& label, const Vector& n, 
   return c;
 }
 
-// SPEC §3 edge-pair normal before orientation; the zero vector for colinear edges.
+// definitions §3 edge-pair normal before orientation; the zero vector for colinear edges.
 Vector edge_pair_normal(const ExactPair& p, int a, int b, EdgePairKind& kind) {
   const Point& su = p.A[kEdges[a][0]];
   const Vector e = p.A[kEdges[a][1]] - su;
@@ -28,7 +28,7 @@ Vector edge_pair_normal(const ExactPair& p, int a, int b, EdgePairKind& kind) {
   kind = EdgePairKind::Generic;
   if (n != CGAL::NULL_VECTOR) return n;
   const Vector w = p.B[kEdges[b][0]] - su;
-  n = (e * e) * w - (w * e) * e;  // (e.e) times SPEC's w - (w.e / e.e) e
+  n = (e * e) * w - (w * e) * e;  // (e.e) times the definitions' w - (w.e / e.e) e
   kind = (n == CGAL::NULL_VECTOR) ? EdgePairKind::Colinear : EdgePairKind::Parallel;
   return n;
 }

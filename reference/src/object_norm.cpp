@@ -2,7 +2,7 @@
 
 namespace pdd::reference {
 
-// Paper eq. 3 in the closed form of SPEC §2.
+// Paper eq. 3 in the closed form of definitions §2.
 Rational object_norm(const ExactTet& rest, const ExactTet& deformed) {
   Vector sum = CGAL::NULL_VECTOR;
   Rational squares = 0;

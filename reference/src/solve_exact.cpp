@@ -27,7 +27,7 @@ struct FirstMinimum {
   }
 };
 
-// Rigid direction: the first candidate whose oriented depth equals PD (SPEC §4).
+// Rigid direction: the first candidate whose oriented depth equals PD (definitions §4).
 std::size_t rigid_direction(const std::vector<CandidateRow>& rows, const Rational& pd2) {
   for (std::size_t k = 0; k < rows.size(); ++k)
     if (rows[k].depth_signed_square == pd2) return k;
@@ -61,7 +61,7 @@ void fill_intersecting(const ExactPair& exact, const std::vector<CandidateDirect
   out.pdd2_accel6 = accel6.value;
 }
 
-// SPEC §9, starting from the best relaxed candidate (so pdd2_global <= pdd2_relaxed).
+// definitions §9, starting from the best relaxed candidate (so pdd2_global <= pdd2_relaxed).
 void fill_global(const ExactPair& exact, const std::vector<CandidateRow>& rows,
                  GlobalOptions global, ExactResult& out) {
   std::size_t best = 0;
@@ -112,7 +112,7 @@ ExactResult solve_exact(const TetPair& pair, const SolveOptions& options, const 
   const MinkowskiPd mink = minkowski_pd(exact);
   out.intersecting = mink.intersecting;
   if (options.with_global && options.gradient) out.pdd2_global_grad = global_gradient(exact, out);
-  if (!mink.intersecting) return out;  // SPEC §6: every value 0, labels null, rest pose
+  if (!mink.intersecting) return out;  // definitions §6: every value 0, labels null, rest pose
 
   const auto candidates = candidate_directions(exact);
   const auto rows = candidate_table(exact, candidates, {options.formulation});

@@ -23,12 +23,12 @@ if(NOT out_err MATCHES "\n  intersecting      ${n} pairs\n" OR NOT out_err MATCH
    OR NOT out_err MATCHES "\n  value                      sum           max  at \\(a, b\\)\n")
   message(FATAL_ERROR "summary:\n${out_err}")
 endif()
-if(out MATCHES "_global" OR out_err MATCHES "pdd2_global")  # SPEC §9: only when asked for
+if(out MATCHES "_global" OR out_err MATCHES "pdd2_global")  # definitions §9: only when asked for
   message(FATAL_ERROR "default variants wrote pdd2_global keys:\n${out_err}")
 endif()
 
-# --variants global (SPEC §9): the keys of `pdd solve` after "error", in its order, and nothing
-# of the other variants; the summary's sum and maximum.
+# --variants global (definitions §9): the keys of `pdd solve` after "error", in its order, and
+# nothing of the other variants; the summary's sum and maximum.
 expect_exit(0 glob --a ${M}/tiny-a.msh --b ${M}/tiny-b.msh --variants global --summary)
 string(REGEX MATCHALL "\n" lines "${glob}")
 list(LENGTH lines n)

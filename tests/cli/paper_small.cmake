@@ -61,8 +61,8 @@ foreach(what "| rigid direction = optimal case-2 direction |"
   endif()
 endforeach()
 
-# SPEC §9 on the fixture families: a row per shipped family file, and on every family where both
-# engines count the same pairs the fast pdd2_relaxed / pdd2_global column prints what the exact
+# definitions §9 on the fixture families: a row per shipped family file, and on every family where
+# both engines count the same pairs the fast pdd2_relaxed / pdd2_global column prints what the exact
 # one (read from the golden files) does (within 2e-9 of each other, far below 5 digits).
 file(GLOB family_files RELATIVE ${FIXTURES}/families ${FIXTURES}/families/*.json)
 list(LENGTH family_files n_families)

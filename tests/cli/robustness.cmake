@@ -174,13 +174,13 @@ if(NOT h1 STREQUAL h2)
   message(FATAL_ERROR "solve from a file and from a pipe differ")
 endif()
 
-# ---- --no-global: SPEC §9 skipped; pdd2_global declined alone ---------------------------------
+# ---- --no-global: definitions §9 skipped; pdd2_global declined alone --------------------------
 # A near-touching pair (an independent review's near-touching-4: a vertex ~1e-12 inside a face)
 # is computed whole, pdd2_global included. adversarial-1-3 of fixtures/families (a vertex 1e-18
 # inside a face) has its exact pdd2_relaxed below 1e-14 of its extent squared, where no double
 # normal need attain pdd2_global: the fast engine declines that value alone (the allowed class):
-# exit 1, the pair named on standard error, its SPEC §9 keys null and every other value in the
-# record; with --no-global no record carries SPEC §9's keys and the exit status is 0.
+# exit 1, the pair named on standard error, its definitions §9 keys null and every other value in
+# the record; with --no-global no record carries definitions §9's keys and the exit status is 0.
 file(WRITE ${WORK}/near.json "{\"pairs\":[{\"name\":\"near\",\"A\":[[9.037675410932524,1.693031294904751,5.424321574712652],[3.8210777667020013,4.148092997056115,6.978517449636188],[4.607158911182355,0.6403846042413175,9.325503552447756],[5.179261075285503,1.4998039580173883,4.764574921655386]],\"B\":[[5.095298979210175,2.44263248876802,7.508522662217512],[6.694381701516087,5.585622012955357,10.846255457025519],[7.076930292266666,1.7370670768927319,8.261623391742717],[4.324619576096192,4.561418815077989,10.29440907742961]]}]}")
 run(0 "" solve --engine fast --quiet --input ${WORK}/near.json)
 if(NOT out MATCHES "\"pdd2_global\":[0-9][^,]*,\"pdd2_global_normal\":\\[" OR NOT out MATCHES "\"pdd2_global_error\":null")

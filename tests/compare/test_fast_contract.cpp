@@ -1,4 +1,4 @@
-// SPEC §8 on inputs that break naive double arithmetic: the fast engine against the exact
+// definitions §8 on inputs that break naive double arithmetic: the fast engine against the exact
 // engine (the judge of compare/pdd/compare/engine_comparison.h), pair by pair. The pairs are
 // paper-protocol pairs (reproducible family) put through one transformation each — power-of-two
 // scales across the double range, far translations, 1-ulp slivers and needles, a vertex a tiny
@@ -91,7 +91,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           {{{1.9663812704481612e-321, -10, 0}, {0, 0, 0}, {0, 0, 0.30000000000000498}, {0.01, 1, 0}}},
                           {{{1.1798287622688967e-320, 0, 0}, {9, 6.6698862188568283e-322, 9},
                             {1.0000000000000002, 1, 1}, {1, 1, 1}}}));
-  // SPEC §9 where the depth is ~1e-36 of the size squared (a vertex ~1e18 away): the double
+  // definitions §9 where the depth is ~1e-36 of the size squared (a vertex ~1e18 away): the double
   // normal of pdd2_relaxed has no accurate digit where it matters, and pdd2_global was above
   // the exact witness on these two (global_depth.h: the exact start, rounded componentwise).
   const auto far = compare::generate_family("adversarial", 78, 40);

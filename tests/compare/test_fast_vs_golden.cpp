@@ -1,4 +1,4 @@
-// The fast engine against the golden files (the exact engine's output) under SPEC §8 (1e-9
+// The fast engine against the golden files (the exact engine's output) under definitions §8 (1e-9
 // relative, checked exactly; compare/pdd/compare/engine_comparison.h), on every shipped fixture;
 // labels agree wherever the exact minimum is unique (a tie or a near tie within 1e-9 is the only
 // accepted difference); q1 attains pdd2 and is separated by its plane.
@@ -53,7 +53,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
     BOOST_TEST(c.rejections_agree, pair.name);
     BOOST_TEST(c.position_error <= c.position_tolerance, pair.name << " q1");
     BOOST_TEST(c.separated, pair.name << " q1 separated");
-    // SPEC §9: inside the exact interval and reproduced by its normal
+    // definitions §9: inside the exact interval and reproduced by its normal
     const bool global_ok = c.global_error <= compare::kContractRel &&
                            c.global_normal_error <= compare::kContractRel;
     BOOST_TEST(global_ok, pair.name << " pdd2_global " << c.global_fast << " exact [" << c.global_lower << ", "
@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
   BOOST_TEST(compared >= 85);
 }
 
-// SPEC §9 on the public hot path: pdd::fast::pdd2_global(A, B) (depth.cpp: started from
+// definitions §9 on the public hot path: pdd::fast::pdd2_global(A, B) (depth.cpp: started from
 // rigid_and_accel1's rigid direction, not from pdd2_relaxed's as in solve_pair) inside the
 // golden exact interval, its normal reproducing the value, on every shipped fixture. (A review
 // found `pdd compare` and the test above judge only solve_pair's pdd2_global.) A rejection

@@ -95,7 +95,7 @@ BOOST_AUTO_TEST_CASE(families_have_their_property) {
 
 // The adversarial family and the hand-made fixtures/adversarial.json: every pair valid, the
 // promised intersection status and feature per kind (tag 1), and every exact squared output
-// 0 or a normal double (so SPEC §8 applies to the fast engine on all of them).
+// 0 or a normal double (so definitions §8 applies to the fast engine on all of them).
 BOOST_AUTO_TEST_CASE(adversarial_pairs_have_their_property) {
   using namespace reference;
   const Rational dbl_min(std::numeric_limits<double>::min()), dbl_max(std::numeric_limits<double>::max());

@@ -1,13 +1,13 @@
-// SPEC §9 on near-coplanar contacts (data/near-coplanar.json, written by data/near-coplanar.py):
-// a face of B 1e-15 to 1e-11 inside a face of A, tetrahedra of size ~8, B's face parallel or
-// tilted by ~1e-12 rad, along coordinate planes and not. The depth is ~1e-25 of the size squared,
-// far below global_depth.cpp's kUnrepresentedDepth, so the fast engine's pdd2_global is decided
-// on exact pieces with suspects (a piece's eigenvector that held its signs within tolerance, its
-// eigenvalue below the best offer); on the 11 pairs along coordinate planes the exact engine's
-// witness normals are themselves double triples that attain pdd2_global. Each suspect is
-// settled (represent_suspect): the pairs are computed, every value within SPEC §8 of the exact engine's, pdd2_global inside
-// [pdd2_global_lower, pdd2_global] to 1e-9 and reproduced by its normal; so is the public
-// pdd::fast::pdd2_global's.
+// definitions §9 on near-coplanar contacts (data/near-coplanar.json, written by
+// data/near-coplanar.py): a face of B 1e-15 to 1e-11 inside a face of A, tetrahedra of size ~8, B's
+// face parallel or tilted by ~1e-12 rad, along coordinate planes and not. The depth is ~1e-25 of
+// the size squared, far below global_depth.cpp's kUnrepresentedDepth, so the fast engine's
+// pdd2_global is decided on exact pieces with suspects (a piece's eigenvector that held its signs
+// within tolerance, its eigenvalue below the best offer); on the 11 pairs along coordinate planes
+// the exact engine's witness normals are themselves double triples that attain pdd2_global. Each
+// suspect is settled (represent_suspect): the pairs are computed, every value within definitions §8
+// of the exact engine's, pdd2_global inside [pdd2_global_lower, pdd2_global] to 1e-9 and reproduced
+// by its normal; so is the public pdd::fast::pdd2_global's.
 #include <boost/test/unit_test.hpp>
 
 #include <chrono>

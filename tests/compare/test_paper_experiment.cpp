@@ -119,7 +119,7 @@ BOOST_AUTO_TEST_CASE(candidate_normals_survive_extreme_scales) {
 
 BOOST_AUTO_TEST_CASE(family_global_costs_of_the_shipped_families) {
   // Every family file with its golden file; the fast engine's statistics against the exact
-  // ones read from the golden files. Where both engines count the same pairs, SPEC §8 puts
+  // ones read from the golden files. Where both engines count the same pairs, definitions §8 puts
   // each fast value within 1e-9 of the exact one, so each squared ratio within ~2e-9 and so
   // their means and maxima; the same pairs have their optimum at a candidate's.
   const auto costs = family_global_costs(PDD_FIXTURES_DIR);
@@ -129,7 +129,7 @@ BOOST_AUTO_TEST_CASE(family_global_costs_of_the_shipped_families) {
   for (const FamilyGlobalCost& f : costs) {
     BOOST_TEST_CONTEXT(f.family) {
       BOOST_TEST(f.exact.pairs <= f.intersecting);
-      BOOST_TEST(f.fast.pairs <= f.exact.pairs);  // the fast engine may reject (SPEC §8), never add
+      BOOST_TEST(f.fast.pairs <= f.exact.pairs);  // the fast engine may reject (definitions §8), never add
       if (f.family == "disjoint" || f.family == "touching") BOOST_TEST(f.exact.pairs == 0u);
       if (f.fast.pairs != f.exact.pairs || f.fast.pairs == 0) continue;
       auto close = [](double x, double y) { return std::abs(x - y) <= 1e-8 * y; };

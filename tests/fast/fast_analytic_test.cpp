@@ -21,12 +21,13 @@ const TetVertices kCorner10 = {{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}};
 bool is(const std::optional<DirectionLabel>& l, const char* s) { return l && l->str() == s; }
 }  // namespace
 
-// nested-1 of SPEC §1: B = corner tet of side 1/2 at (2,2,2), inside A = corner tet of side 10.
+// nested-1 of definitions §1: B = corner tet of side 1/2 at (2,2,2), inside A = corner tet of side
+// 10.
 // Rigid: A's faces x=0, y=0, z=0 give delta = 2.5; the slanted face FV:0 (n = (1,1,1), A's max
 // n.s = 10, B's min n.r = 6) gives 4/sqrt3 < 2.5, and B must leave A through some face plane,
 // so PD² = 16/3 along FV:0 (the first candidate with that direction).
 // E11: B inside A, so every overlap is B's width; B's least width over the candidates is its
-// altitude on the slanted face, 0.5/sqrt3: E11² = 1/12 < PD² (SPEC §4 counterexample kind).
+// altitude on the slanted face, 0.5/sqrt3: E11² = 1/12 < PD² (definitions §4 counterexample kind).
 // Static along FV:0 (c = 10, B heights 6, 6.5, 6.5, 6.5 all free): all four active, T = 4, 3.5,
 // 3.5, 3.5, S = 14.5 (−S below every bound, KKT ok): F = 16 + 3·12.25 + 14.5² = 263,
 // PD_d² = 263/60; the axis faces give F = 4+6.25+4+4+8.5² = 90.5, /20 = 4.525 > 263/60.
@@ -140,7 +141,7 @@ BOOST_AUTO_TEST_CASE(disjoint_pair) {
 
 // Touching: B shares A's face s0 s1 s2 exactly and lies on the other side. Decimal
 // coordinates make the floating-point depth along FV:3 a rounding residue around the exact 0,
-// so the exact fallback must decide: interiors disjoint, not intersecting (SPEC §4).
+// so the exact fallback must decide: interiors disjoint, not intersecting (definitions §4).
 BOOST_AUTO_TEST_CASE(touching_shared_face_decimal_coordinates) {
   const TetVertices A = {{{0.1, 0.2, 0.3}, {1.7, 0.4, 0.9}, {0.3, 1.9, 0.7}, {0.9, 0.8, 2.1}}};
   TetVertices B = A;

@@ -91,9 +91,10 @@ BOOST_AUTO_TEST_CASE(batch_equals_single) {
   BOOST_TEST(solve_batch({}).empty());
 }
 
-// solve_pair with SolveOptions::with_global = false (pdd.h): SPEC §9 skipped, every other field bit for bit the
-// same as with it; pdd2_global 0, no normal, q1_*_global the rest pose. Also on scaled pairs,
-// where the positions are rescaled (a skipped search must not leave rescaled rest poses).
+// solve_pair with SolveOptions::with_global = false (pdd.h): definitions §9 skipped, every other
+// field bit for bit the same as with it; pdd2_global 0, no normal, q1_*_global the rest pose. Also
+// on scaled pairs, where the positions are rescaled (a skipped search must not leave rescaled rest
+// poses).
 BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
   std::vector<TetPair> pairs = random_pairs(200, 77, false);
   for (int k = 0; k < 40; ++k) {  // the same pairs far from unit scale
@@ -163,7 +164,7 @@ BOOST_AUTO_TEST_CASE(hot_paths_scale_back_exactly) {
           if (want == 0.0 || std::fabs(want) >= DBL_MIN) {  // a normal double: exactly it
             BOOST_TEST((d1.status == DepthStatus::Ok));
             BOOST_TEST(d1.pd2 == want);
-          } else {  // below the normal range: SPEC §8's error record, never a rounded value
+          } else {  // below the normal range: definitions §8's error record, never a rounded value
             BOOST_TEST((d1.status == DepthStatus::NotRepresentable));
           }
         }

@@ -1,4 +1,4 @@
-// fast_candidates_test — the candidate set of SPEC §3 against exact (GMP) decisions.
+// fast_candidates_test — the candidate set of definitions §3 against exact (GMP) decisions.
 #define BOOST_TEST_MODULE fast_candidates
 #include <boost/test/unit_test.hpp>
 #include <cmath>
@@ -61,7 +61,7 @@ BOOST_AUTO_TEST_CASE(random_pairs_match_exact_decisions) {
 
 // Crafted: A = unit corner tet; B has edge r0r1 on A's edge line s0s1 (the x axis: colinear,
 // EE:0:0 has no direction) and edge r2r3 parallel to A's edge s2s3 (direction (0,−1,1)).
-// Parallel normal (SPEC §3): e = s3 − s2 = (0,−1,1), w = r2 − s2 = (1/4,−3/4,1/4),
+// Parallel normal (definitions §3): e = s3 − s2 = (0,−1,1), w = r2 − s2 = (1/4,−3/4,1/4),
 // n = (e.e) w − (w.e) e = 2w − e = (1/2,−1/2,−1/2); g for s0: n.(s0 − s2) = 1/2, for s1: 1
 // (both >= 0: flip), so EE:5:5 uses n = (−1/2, 1/2, 1/2).
 BOOST_AUTO_TEST_CASE(parallel_and_colinear_edges) {

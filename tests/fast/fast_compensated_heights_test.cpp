@@ -6,7 +6,7 @@
 //    non-parallel candidate of random pairs, 1-ulp slivers, nearly parallel edges, scaled pairs
 //    and shallow contacts; and the bounds are not vacuous (the worst error reaches a sizeable
 //    fraction of its bound on some input, so a bound scaled down would fail);
-//  - on shallow contacts (depth 10^-2.5 .. 10^-12 of the size) pdd2_accel1 is within SPEC §8's
+//  - on shallow contacts (depth 10^-2.5 .. 10^-12 of the size) pdd2_accel1 is within definitions §8's
 //    1e-9 of the exact case-2 value along the exact rigid label; where the rigid direction is
 //    certified in doubles (to ~1e-4 of the size) but the double heights cannot certify
 //    pdd2_accel1, rigid_and_accel1 now does (>= 95% of those pairs; ~75% at 1e-3 and none at

@@ -133,7 +133,7 @@ void all_heights(const SideProblem& s, double* h) {
   for (int i = 0; i < s.nfree; ++i) h[k++] = s.hfree[i];
 }
 
-// (ncon, nfree) of A and B for FV, VF, EE (SPEC §3).
+// (ncon, nfree) of A and B for FV, VF, EE (definitions §3).
 constexpr int kPatterns[3][4] = {{3, 1, 0, 4}, {0, 4, 3, 1}, {2, 2, 2, 2}};
 
 bool agree(double closed, double dense) {

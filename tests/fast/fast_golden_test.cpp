@@ -5,7 +5,7 @@
 // exact predicates or by exact ties, see tie_tolerance.h); the hot-path overloads (rigid_pd2,
 // pdd2_accel over raw vertices) equal to solve_pair bit for bit, pdd2_global over raw vertices
 // within the contract of solve_pair's. The VALUES and q1 are held to
-// the project's argued tolerance (SPEC §8, compare/harness/pdd/compare/
+// the project's argued tolerance (definitions §8, compare/harness/pdd/compare/
 // engine_comparison.h) by tests/compare/test_fast_vs_golden.cpp, not repeated here.
 #define BOOST_TEST_MODULE fast_golden
 #include <boost/test/unit_test.hpp>
@@ -115,9 +115,9 @@ void check_file(const std::string& fixture, const std::string& golden) {
         if (r.intersecting) BOOST_TEST((hot[i].dir && hot[i].dir->str() == label(*gl[i])));
       }
       // pdd2_global over raw vertices (its own start and screen, depth.cpp): both values are
-      // within 1e-9 of the exact minimum (SPEC §8), so within 2e-9 of each other (the normals
-      // may differ among ties), and its normal reproduces its value: the exact relaxed value
-      // along it (global_depth.h) within 1e-9.
+      // within 1e-9 of the exact minimum (definitions §8), so within 2e-9 of each other (the
+      // normals may differ among ties), and its normal reproduces its value: the exact relaxed
+      // value along it (global_depth.h) within 1e-9.
       const fast::NormalDepth gd = fast::pdd2_global(p.A, p.B);
       if (declined) {  // the hot path declines it too, never with a number
         BOOST_TEST((gd.status == fast::DepthStatus::NotRepresentable && std::isnan(gd.pd2)));

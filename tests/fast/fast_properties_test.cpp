@@ -1,4 +1,4 @@
-// fast_properties_test — invariants, SPEC §5 inequalities, pruning and q1 on random pairs
+// fast_properties_test — invariants, definitions §5 inequalities, pruning and q1 on random pairs
 // (paper Sec. VI protocol: vertices uniform in a 10-cube, intersecting pairs, fixed seeds).
 #define BOOST_TEST_MODULE fast_properties
 #include <boost/test/unit_test.hpp>
@@ -30,7 +30,7 @@ std::vector<PairResult<double>> solve_all(const std::vector<TetPair>& ps) {
 }
 }  // namespace
 
-// SPEC §5: pdd2 <= pdd2_static <= PD²; pdd2 <= PD²/2; relaxed <= pdd2 <= accel6 <= accel1.
+// definitions §5: pdd2 <= pdd2_static <= PD²; pdd2 <= PD²/2; relaxed <= pdd2 <= accel6 <= accel1.
 // Also E11 <= PD (the overlap never exceeds delta along a candidate).
 BOOST_AUTO_TEST_CASE(spec_inequalities_on_random_pairs) {
   double ratio_sum = 0.0, ratio_sq = 0.0;
@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(pruning_is_exact) {
   }
 }
 
-// q1 attains pdd2 (SPEC §2 object norm of the deformed positions) and resolves the
+// q1 attains pdd2 (definitions §2 object norm of the deformed positions) and resolves the
 // penetration along pdd2_dir: every deformed A vertex at or below, every B vertex at or above
 // the plane, constrained ones on it. Tolerance 1e-9 relative to the pair's scale (10): the
 // positions are x + (T/n.n) n with O(1e-15) relative rounding.

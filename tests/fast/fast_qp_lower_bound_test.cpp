@@ -154,7 +154,7 @@ BOOST_AUTO_TEST_CASE(split_matches_a_plain_loop) {
 // certify its pdd2 minimum in doubles (its pruning bound coeff·delta² is too weak) and evaluates
 // it exactly (refine.h), while the lane sweep's dual bounds certify it in doubles: the two
 // values differed in the last digits (6.5e-16 apart) until solve_pair ran the lane sweeps too.
-// Now: the same values bit for bit and labels, each within SPEC §8 of the exact value.
+// Now: the same values bit for bit and labels, each within definitions §8 of the exact value.
 BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
   const double z = -0x1.6cb49ed376162p-4;
   TetPair p;

@@ -1,5 +1,5 @@
 // fast_test_util.h — shared helpers of the fast-engine tests: random pairs (paper Sec. VI
-// protocol, fixed seeds), the object norm of SPEC §2, plain constructors.
+// protocol, fixed seeds), the object norm of definitions §2, plain constructors.
 #pragma once
 
 #include <cmath>
@@ -41,7 +41,7 @@ inline std::vector<TetPair> random_pairs(int count, unsigned seed, bool intersec
   return out;
 }
 
-// SPEC §2: sigma = 1/20 (sum |d_i|² + |sum d_i|²), d_i = q1_i − q0_i.
+// definitions §2: sigma = 1/20 (sum |d_i|² + |sum d_i|²), d_i = q1_i − q0_i.
 template <class P>
 double sigma(const TetVertices& q0, const P& q1) {
   double sq = 0.0, s[3] = {0, 0, 0};

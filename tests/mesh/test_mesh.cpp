@@ -1,13 +1,13 @@
-// tests/mesh — pdd::mesh (include/pdd/mesh.h, SPEC §10) on the meshes Gmsh wrote
+// tests/mesh — pdd::mesh (include/pdd/mesh.h, definitions §10) on the meshes Gmsh wrote
 // (fixtures/meshes/, scripts/make-meshes.sh):
 //   readers: the same ball in MSH 2.2 / 4.1, ASCII / binary and legacy VTK ASCII / binary
 //            reads to the same tetrahedra; bad files give messages naming the line or element;
 //   pairs:   the pair set equals brute force over all N·M (self: all i < j sharing no vertex)
 //            element pairs with the exact decision: nothing missed, nothing extra;
 //   values:  each pair's record equals pdd::fast::solve_pair on that pair, for every variant
-//            subset path, SPEC §9's global keys included (and cleared when not requested);
+//            subset path, definitions §9's global keys included (and cleared when not requested);
 //            the exact engine on a tiny mesh gives pdd::reference::solve_pair's exact record
-//            and the fast values are within SPEC §8 of it (pdd2_global: of the exact interval
+//            and the fast values are within definitions §8 of it (pdd2_global: of the exact interval
 //            [pdd2_global_lower, pdd2_global]);
 //   touching meshes (a shared plane, a conforming curved interface) give no pair.
 #define BOOST_TEST_MODULE mesh
@@ -95,8 +95,8 @@ void check_values(const Contacts<double>& c, const Mesh& A, const Mesh& B, unsig
       }
     }
     if (variants & kPdd2) BOOST_TEST((p.result.q1_A == r.q1_A && p.result.q1_B == r.q1_B));
-    // SPEC §9: solve_pair's fields bit for bit (mesh.h: the same call), below pdd2_relaxed
-    // (SPEC §9: a minimum over every normal, the candidates' included); else cleared.
+    // definitions §9: solve_pair's fields bit for bit (mesh.h: the same call), below pdd2_relaxed
+    // (definitions §9: a minimum over every normal, the candidates' included); else cleared.
     const TetVertices Ta = element(A, p.a), Tb = element(B, p.b);
     if (variants & kGlobal) {
       BOOST_TEST(p.result.pdd2_global > 0.0);
@@ -315,13 +315,13 @@ BOOST_AUTO_TEST_CASE(touching_meshes_report_no_pair) {
 BOOST_AUTO_TEST_CASE(reference_engine_on_a_tiny_mesh_is_exact) {
   const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
   const Contacts<Rational> e = contacts_exact(A, B, {kAllVariants, {}});
-  const Contacts<Rational> plain = contacts_exact(A, B);  // default variants: no SPEC §9 search
+  const Contacts<Rational> plain = contacts_exact(A, B);  // default variants: no definitions §9 search
   const Contacts<double> f = contacts(A, B, {kAllVariants, {}});
   BOOST_TEST(!e.pairs.empty());
   BOOST_TEST((pairs_of(e) == pairs_of(f)));
   BOOST_TEST((pairs_of(plain) == pairs_of(f)));
   BOOST_TEST((pairs_of(e) == brute_force(A, &B)));
-  const Rational contract(1, 1000000000);  // SPEC §8: 1e-9 relative
+  const Rational contract(1, 1000000000);  // definitions §8: 1e-9 relative
   std::size_t strictly_inside = 0;
   for (std::size_t i = 0; i < e.pairs.size(); ++i) {
     const auto& x = e.pairs[i].result;
@@ -332,15 +332,15 @@ BOOST_AUTO_TEST_CASE(reference_engine_on_a_tiny_mesh_is_exact) {
     for (std::size_t k = 0; k < kValueCount; ++k) {
       BOOST_TEST(record_value(x, k) == record_value(r, k));
       BOOST_TEST(record_value(plain.pairs[i].result, k) == record_value(r, k));
-      // SPEC §8 for the fast engine on the same pair, checked exactly.
+      // definitions §8 for the fast engine on the same pair, checked exactly.
       const Rational fast_value(record_value(f.pairs[i].result, k));
       const Rational err = abs(fast_value - record_value(x, k));
       BOOST_TEST(err <= contract * record_value(x, k), kValueKeys[k]);
     }
     BOOST_TEST((x.q1_A == r.q1_A && x.q1_B == r.q1_B));
-    // SPEC §9 with kGlobal: pdd::reference::solve_pair's exact witness and proved bound, an
+    // definitions §9 with kGlobal: pdd::reference::solve_pair's exact witness and proved bound, an
     // interval below pdd2_relaxed no wider than 1e-12 of it, and the fast value inside it up
-    // to SPEC §8 (the fast engine's §9 contract).
+    // to definitions §8 (the fast engine's §9 contract).
     BOOST_REQUIRE(x.pdd2_global_lower);
     BOOST_REQUIRE(x.pdd2_global_normal);
     BOOST_TEST(x.pdd2_global == r.pdd2_global);

@@ -3,13 +3,13 @@
 // independent exact judge: a separating-axis test on GMP integers
 // (tests/support/exact_overlap.h, shared with test_resolve.cpp).
 //
-// The judge (SPEC §4: touching is not intersecting): for non-flat tetrahedra A and B the
+// The judge (definitions §4: touching is not intersecting): for non-flat tetrahedra A and B the
 // interiors are disjoint iff the origin is not interior to M = A ⊕ (−B), iff some facet normal
 // u of M has max_i u.s_i <= min_j u.r_j (u or −u). Every facet normal of M is parallel to a
 // face normal of A or of B or to eA × eB for non-parallel edges (a facet is the sum of faces of
 // A and −B of total dimension 2). So: disjoint iff one of those 44 exact axes (zero ones
 // skipped) weakly separates the vertex sets. Flat or non-finite tetrahedra: no interior, so
-// never intersecting (SPEC §1 rejects them; interiors_intersect returns false).
+// never intersecting (definitions §1 rejects them; interiors_intersect returns false).
 //
 // What is checked, on every pair below: a Disjoint or Intersecting verdict of the filter equals
 // the judge's (Unknown is always allowed), and interiors_intersect equals the judge. Pairs:

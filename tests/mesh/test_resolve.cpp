@@ -9,7 +9,7 @@
 //   R2  every element's volume sign at the final positions against its rest sign, on GMP
 //       integers;
 //   R3  fixed vertices compared bit for bit;
-//   cost  recomputed from SPEC §2's first form (1/10) sum_{i>=j} d_i.d_j per element, weighted
+//   cost  recomputed from definitions §2's first form (1/10) sum_{i>=j} d_i.d_j per element, weighted
 //       by the rest volume, in long double.
 // The report must agree: resolved == (R1 && R2 && R3), remaining_pairs == the judge's pairs.
 #define BOOST_TEST_MODULE resolve
@@ -97,7 +97,7 @@ std::size_t judge_inverted(const Mesh& m, const std::vector<Vec3d>& p) {
   return bad;
 }
 
-// SPEC §2's first form, (1/10) sum_{i>=j} d_i.d_j, weighted by |rest volume|, long double.
+// definitions §2's first form, (1/10) sum_{i>=j} d_i.d_j, weighted by |rest volume|, long double.
 long double judge_cost(const Mesh& m, const std::vector<Vec3d>& p) {
   long double num = 0, den = 0;
   for (std::size_t e = 0; e < m.tets.size(); ++e) {
@@ -376,7 +376,7 @@ BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
   BOOST_TEST(rep.resolved);
   BOOST_TEST(rep.min_volume_ratio == 1.0);
   BOOST_TEST(mesh_cost(A, A.vertices) == 0.0);
-  // A translation by t costs |t|^2 (SPEC §2), up to rounding of the moved coordinates.
+  // A translation by t costs |t|^2 (definitions §2), up to rounding of the moved coordinates.
   const Mesh At = translated(A, {0.3, -0.4, 0});
   BOOST_TEST(std::abs(mesh_cost(A, At.vertices) - 0.25) <= 1e-12);
   // Overlapping by delta: R1 fails with the judge's pairs; moving a fixed vertex fails R3;

@@ -1,4 +1,4 @@
-// Bad input (SPEC §1): one test per kind; a batch keeps going and reports every bad pair.
+// Bad input (definitions §1): one test per kind; a batch keeps going and reports every bad pair.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -44,7 +44,7 @@ BOOST_AUTO_TEST_CASE(flat_tetrahedra_are_rejected_exactly) {
   p.A[3] = {0.25, 0.25, 0};  // in the plane z = 0 of the other three
   BOOST_TEST(contains(validate_pair(p), "tetrahedron A is flat"));
   p = unit_pair();
-  p.B[3] = {0.25, 0.25, 1e-300};  // tiny but non-zero volume: valid (SPEC §1)
+  p.B[3] = {0.25, 0.25, 1e-300};  // tiny but non-zero volume: valid (definitions §1)
   BOOST_TEST(!validate_pair(p).has_value());
   p.A[1] = p.A[0];  // A repeated vertex, B valid: only A named
   BOOST_TEST(contains(validate_pair(p), "tetrahedron A is flat"));

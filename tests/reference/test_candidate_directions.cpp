@@ -1,4 +1,4 @@
-// Candidate directions (SPEC §3): count, canonical order, orientation, degenerate edges.
+// Candidate directions (definitions §3): count, canonical order, orientation, degenerate edges.
 #include <boost/test/unit_test.hpp>
 
 #include "fixtures.h"

@@ -79,7 +79,7 @@ BOOST_AUTO_TEST_CASE(nested_pair_breaks_the_appendix_theorem) {
 }
 
 // Interiors disjoint (far apart) or only touching (a shared face): not intersecting, every
-// value 0, no labels, q1 = the rest pose (SPEC §4, §6).
+// value 0, no labels, q1 = the rest pose (definitions §4, §6).
 BOOST_AUTO_TEST_CASE(disjoint_and_touching_pairs_report_zero) {
   for (const std::string name : {"disjoint-1", "touching-face-1"}) {
     const TetPair pair = test::load_pair("smoke.json", name);

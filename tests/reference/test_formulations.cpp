@@ -1,4 +1,4 @@
-// The paper's full QP (27 variables) and the SPEC §5 reduced QP (9 variables) agree exactly,
+// The paper's full QP (27 variables) and the definitions §5 reduced QP (9 variables) agree exactly,
 // value and deformed positions, for every case, on every candidate of every property fixture
 // (these cover FV, VF, generic, parallel and undecidable EE directions, colinear edges,
 // coplanar faces, shared features, identical pairs, slivers and scaled coordinates).

@@ -1,5 +1,5 @@
-// SPEC §9 in the exact engine: pdd2_global with its witness normal, positions and proved lower
-// bound (reference/pdd/reference/global_pdd.h, relaxed_pieces.h).
+// definitions §9 in the exact engine: pdd2_global with its witness normal, positions and proved
+// lower bound (reference/pdd/reference/global_pdd.h, relaxed_pieces.h).
 //
 // What is asserted, and where each expected value comes from:
 // - a hand-derived pair whose optimum is a candidate direction (derivation below), and the
@@ -30,7 +30,7 @@ using namespace pdd::reference;
 
 namespace {
 const SolveOptions kReduced{QpFormulation::Reduced};
-const Rational kGap = Rational(1) / Rational(1000000000000LL);  // SPEC §9's 1e-12
+const Rational kGap = Rational(1) / Rational(1000000000000LL);  // definitions §9's 1e-12
 
 // Pairs on which the branch and bound does not close the gap within its budget (the lower
 // bound stays valid, but short of the witness). Empty since bound (Q) (global_pdd.cpp's

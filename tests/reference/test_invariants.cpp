@@ -1,4 +1,4 @@
-// Exact invariants of every reported value (SPEC §4–§6), on every property fixture:
+// Exact invariants of every reported value (definitions §4–§6), on every property fixture:
 // translating both tetrahedra changes nothing; scaling by 2 multiplies every squared value by
 // exactly 4; permuting vertex order keeps every value. The reduced formulation is used for
 // speed; test_formulations shows it equals the full one exactly.

@@ -1,4 +1,4 @@
-// Object norm (paper eq. 3, SPEC §2) against hand derivations.
+// Object norm (paper eq. 3, definitions §2) against hand derivations.
 #include <boost/test/unit_test.hpp>
 
 #include "pdd/reference/object_norm.h"
@@ -43,7 +43,7 @@ BOOST_AUTO_TEST_CASE(one_vertex_moved) {
 }
 
 BOOST_AUTO_TEST_CASE(closed_form_equals_eq3_sum) {
-  // SPEC §2's two forms agree: sum_{i>=j} d_i.d_j = (sum |d_i|^2 + |sum d_i|^2) / 2.
+  // definitions §2's two forms agree: sum_{i>=j} d_i.d_j = (sum |d_i|^2 + |sum d_i|^2) / 2.
   const ExactTet q0 = tet({{0.5, 1, -2}, {3, 0.25, 1}, {-1, 2, 0}, {0, 0, 7}});
   const ExactTet q1 = tet({{1.5, -1, 2}, {3, 4.25, 1}, {0.125, 2, -3}, {9, 0, 7}});
   BOOST_TEST(object_norm(q0, q1) == eq3_literal(q0, q1));

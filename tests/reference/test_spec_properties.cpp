@@ -1,4 +1,4 @@
-// SPEC §5's inequalities and the meaning of the answer, exactly, on every property fixture:
+// definitions §5's inequalities and the meaning of the answer, exactly, on every property fixture:
 //   pdd2 <= pdd2_static <= PD^2,  pdd2 <= PD^2 / 2,
 //   pdd2_relaxed <= pdd2 <= pdd2_accel6 <= pdd2_accel1,  E11^2 <= PD^2;
 // the deformed positions attain pdd2 (object norm, eq. 3) and really separate along pdd2_dir,

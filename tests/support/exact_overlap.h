@@ -1,5 +1,5 @@
 // exact_overlap.h — independent exact judges for tests, on GMP integers, sharing no code with
-// the engines: do two tetrahedra's interiors intersect (SPEC §4: touching is not
+// the engines: do two tetrahedra's interiors intersect (definitions §4: touching is not
 // intersecting), and the sign of a tetrahedron's volume.
 //
 // Exact integers: every coordinate times 2^-s (s the smallest exponent of a unit in the last

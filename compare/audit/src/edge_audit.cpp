@@ -95,7 +95,7 @@ void audit_colinear(const ExactPair& p, const Minima& m, EdgeAudit& out) {
         d.constrained_A[i] = (i == u || i == v);
         d.constrained_B[i] = (i == kEdges[ab[1]][0] || i == kEdges[ab[1]][1]);
       }
-      bool pos = false, neg = false;  // SPEC §3's orientation rule on A's other two vertices
+      bool pos = false, neg = false;  // definitions §3's orientation rule on A's other two vertices
       for (int k = 0; k < 4; ++k) {
         if (k == u || k == v) continue;
         const auto s = CGAL::sign(n * (p.A[k] - p.A[u]));

@@ -204,7 +204,7 @@ BenchReport run_bench(const BenchOptions& o) {
     ex.solve_ratio = ex.exact_solve_median_ns / ex.fast_solve_median_ns;
   }
 
-  // ---- the cost of the pairs that needed more than the double path (SPEC §8) ----
+  // ---- the cost of the pairs that needed more than the double path (definitions §8) ----
   {
     CertificationCost& cc = rep.certification;
     std::vector<std::size_t> refined, slow;

@@ -110,7 +110,7 @@ int run_paper_checked(const PaperArgs& a) {
   const ExactSample sample = run_exact_sample(pairs, fast, a.exact_sample, a.seed);
   const PaperStats ex_stats = paper_statistics(sample.results, [](const reference::Rational& q) { return CGAL::to_double(q); });
 
-  // SPEC §9: the minimum over every plane, against the candidates.
+  // definitions §9: the minimum over every plane, against the candidates.
   const GlobalStats fs_global = global_statistics(pairs, fast, [](double x) { return x; }, candidate_normals_rounded);
   std::vector<TetPair> sample_pairs;
   for (std::size_t i : sample.indices) sample_pairs.push_back(pairs[i]);

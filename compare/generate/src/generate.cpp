@@ -336,7 +336,7 @@ Attempt closed_form_pair(Rng& r) {
 // operations (or by one correctly rounded addition, for the translated kind: the pair is
 // then what the rounded doubles say); validity (non-zero volume) and every promised property
 // are decided with the exact engine, and every exact squared output must be 0 or a normal
-// double (SPEC §8), else the draw is repeated.
+// double (definitions §8), else the draw is repeated.
 constexpr int kAdversarialKinds = 10;
 const char* const kAdversarialKind[kAdversarialKinds] = {
     "ulp-sliver", "ulp-needle",     "nearly-flat",   "near-touching-in", "near-touching-out",
@@ -365,7 +365,7 @@ bool normal_or_zero(const Rational& v) {
   return a >= Rational(std::numeric_limits<double>::min()) &&
          a <= Rational(std::numeric_limits<double>::max());
 }
-// Every squared value of SPEC §6 is 0 or a normal double (exact, reduced formulation).
+// Every squared value of definitions §6 is 0 or a normal double (exact, reduced formulation).
 bool squared_outputs_normal(const TetPair& p) {
   reference::SolveOptions options;
   options.with_global = false;  // the seven values below only

@@ -71,7 +71,7 @@ double largest_coordinate(const TetPair& pair) {
   return r;
 }
 
-// Some non-zero exact value is outside the normal double range (SPEC §8's reason to reject).
+// Some non-zero exact value is outside the normal double range (definitions §8's reason to reject).
 bool unrepresentable(const reference::ExactResult& e) {
   for (const Rational* v : {&e.rigid_pd2, &e.eq11_pd2, &e.pdd2_static, &e.pdd2, &e.pdd2_relaxed,
                             &e.pdd2_accel1, &e.pdd2_accel6}) {
@@ -111,7 +111,7 @@ bool representable_global(const reference::ExactResult& e) {
   return true;
 }
 
-// Object norm (SPEC §2) of both tetrahedra moved from the pair to q1, exactly.
+// Object norm (definitions §2) of both tetrahedra moved from the pair to q1, exactly.
 Rational object_norm_of(const TetPair& pair, const PairResult<double>& fast) {
   Rational total = 0;
   for (int t = 0; t < 2; ++t) {
@@ -151,7 +151,7 @@ bool separated_by(const reference::ExactPair& p, const DirectionLabel& label,
   return false;
 }
 
-// SPEC §9: the fast pdd2_global against the exact interval, and its normal re-evaluated exactly.
+// definitions §9: the fast pdd2_global against the exact interval, its normal re-evaluated exactly.
 void judge_global(const reference::ExactPair& p, const reference::ExactResult& exact,
                   const PairResult<double>& fast, PairComparison& c) {
   using namespace reference;

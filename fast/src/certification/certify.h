@@ -1,4 +1,4 @@
-// certify.h — internal to fast/src: SPEC §8 bounds of the candidates of a list (CandidateSet
+// certify.h — internal to fast/src: definitions §8 bounds of the candidates of a list (CandidateSet
 // or QuickCandidates), from value_bounds.h. One place for "the root bound of candidate k".
 #pragma once
 

@@ -60,7 +60,7 @@ bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candi
     }
     default: {
       const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
-      o = A[u], p1 = B[y], q1 = B[x], p2 = A[v], q2 = A[u];  // eB x eA (SPEC §3)
+      o = A[u], p1 = B[y], q1 = B[x], p2 = A[v], q2 = A[u];  // eB x eA (definitions §3)
       break;
     }
   }

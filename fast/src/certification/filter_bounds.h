@@ -1,6 +1,6 @@
 // filter_bounds.h — static error bounds that make floating-point signs exact (filter stage).
 //
-// Input:  the two tetrahedra A, B (raw doubles, SPEC §1).
+// Input:  the two tetrahedra A, B (raw doubles, definitions §1).
 // Output: absolute bounds E2, E3, E4 such that, for every polynomial predicate P of degree
 //         k = 2, 3, 4 that the fast engine evaluates (see list below), the computed value P~
 //         satisfies |P~ − P| < E_k, where P is the exact value on the input doubles.

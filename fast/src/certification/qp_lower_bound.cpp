@@ -91,7 +91,7 @@ PDD_QP_CLONES void lane_bounds(const EdgeLanes& L, double e_h, double e_n, doubl
     const double b0 = mn(M, hx), b1 = mn(P, hx), b2 = mx(M, hx), b3 = mx(P, hx);
     const double up = dual_bound<K>(a0, a1, a2, b0, b1, b2, b3, eps);
     const double down = dual_bound<K>(-a3, -a2, -a1, -b3, -b2, -b1, -b0, eps);
-    // the orientation rule (SPEC §3; signs clear in a quick list): +n is a candidate unless
+    // the orientation rule (definitions §3; signs clear in a quick list): +n is a candidate unless
     // both g > 0 (flip), −n when flipped or undecidable; case 1 skips undecidable pairs
     const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0, pad = kPadding.is_pad[i] != 0.0;
     const bool und = pos1 ^ pos2, skip = pad | (K == QpCase::Static && und);

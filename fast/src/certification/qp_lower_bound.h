@@ -1,6 +1,6 @@
 // qp_lower_bound.h — internal to fast/src: certified lower bounds of the per-direction QP value
-// (SPEC §5, direction_qp.h) of every candidate of a quick list, from its heights alone, by weak
-// duality. They prune the sweeps of deformable_depth.cpp: on the paper's pairs a sweep then
+// (definitions §5, direction_qp.h) of every candidate of a quick list, from its heights alone, by
+// weak duality. They prune the sweeps of deformable_depth.cpp: on the paper's pairs a sweep then
 // solves ~1.7 QPs instead of ~8 (the old bound, coeff·delta², is the k = m = 1 case below).
 //
 // Input:  a quick list's lanes (quick_lanes, quick_candidates.h): the 8 faces' heights and the
@@ -9,7 +9,7 @@
 //         [s = −1], the quick list's `src`, so entries ascend in canonical order),
 //         lo[e] <= the EXACT value of that candidate's QP:
 //           QpCase::Static      case 1 (A static); +inf on an undecidable edge pair (infeasible,
-//                               SPEC §5);
+//                               definitions §5);
 //           QpCase::Deformable  case 2 and the relaxed case 2 (the same bound serves both);
 //         +inf for an entry that is not a candidate (the discarded orientation of a decided
 //         edge pair, padding lanes); 0 when nothing can be certified (never NaN).

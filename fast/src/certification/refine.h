@@ -1,6 +1,6 @@
 // refine.h — internal to fast/src: when a minimum over candidates cannot be certified in doubles
-// (SPEC §8, value_bounds.h), evaluate exactly only the candidates that can still be the minimum
-// ("contenders") instead of the whole pair on the exact path.
+// (definitions §8, value_bounds.h), evaluate exactly only the candidates that can still be the
+// minimum ("contenders") instead of the whole pair on the exact path.
 //
 // Input:  a candidate list (CandidateSet or QuickCandidates, which know their pair), for each
 //         candidate i a certified lower bound lo(i) of its exact value (value_bounds.h; +inf for

@@ -1,4 +1,4 @@
-// tie_tolerance.h — when two floating-point candidate values count as a tie (SPEC §3/§5 labels).
+// tie_tolerance.h — when two floating-point candidate values tie (labels of definitions §3/§5).
 //
 // Input:  a value v, the minimum vmin >= 0 of its family (rigid delta², or one PD_d variant)
 //         and the pair's scale kappa = tie_kappa(R), R = the largest |coordinate| of the pair.

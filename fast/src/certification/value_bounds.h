@@ -1,10 +1,10 @@
-// value_bounds.h — certified error bounds on the fast engine's values, and the SPEC §8 test.
+// value_bounds.h — certified error bounds on the fast engine's values, and the definitions §8 test.
 //
 // Input:  one candidate as the engine computed it (heights H~, D~, n~, n~.n~, its degree class),
 //         the pair's filter bounds (filter_bounds.h) and a computed value.
 // Output: r, a bound on the relative error of sqrt(value) against the exact value of the exact
 //         candidate:  |sqrt(v~) − sqrt(v)| <= r sqrt(v~); hence v lies in [v~(1−r)², v~(1+r)²].
-//         certified_choice() turns such intervals into the SPEC §8 verdict for a minimum.
+//         certified_choice() turns such intervals into the definitions §8 verdict for a minimum.
 //
 // Every value is root(v) = Phi / |n| with Phi = |D| (rigid) or Phi = sqrt(F/20) (a QP, F its
 // n-scaled cost, direction_qp.h), both functions of the unnormalised heights H = n.(x − o).
@@ -67,7 +67,7 @@
 
 namespace pdd::fast {
 
-inline constexpr double kContractRel = 1e-9;  // SPEC §8
+inline constexpr double kContractRel = 1e-9;  // definitions §8
 // Certified values must sit in an interval of relative width kCertifyRel: the reported value
 // v~ and the exact minimum then differ by <= kCertifyRel (1 + kCertifyRel) < kContractRel.
 inline constexpr double kCertifyRel = 0.9e-9;
@@ -151,7 +151,7 @@ inline bool qp_root_rel_tiny(double F, double nn, double H, const DegreeBounds& 
 inline double lower_of(double v, double r) { return r >= 1 ? 0.0 : v * (1 - r) * (1 - r); }
 inline double upper_of(double v, double r) { return v * (1 + r) * (1 + r); }
 
-// SPEC §8 for a minimum over candidates: the reported candidate's exact value lies in
+// definitions §8 for a minimum over candidates: the reported candidate's exact value lies in
 // [lo_k, hi_k] and every candidate's exact value is >= lo_min (lo_min <= lo_k). If
 // hi_k <= (1 + kCertifyRel) lo_min, the reported v~ (lo_k <= v~ <= hi_k) and the exact minimum
 // x* (lo_min <= x* <= hi_k) differ by <= kCertifyRel (1 + kCertifyRel) x*, and the reported

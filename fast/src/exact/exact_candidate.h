@@ -1,15 +1,15 @@
-// exact_candidate.h — internal to fast/src: one SPEC §3 candidate on exact rationals and its
-// SPEC §4/§5 values, written once for the two exact users: the exact slow path (exact_path.cpp,
-// every candidate) and the refinement of the double path (refine.h, the one or few candidates
-// whose certified error intervals the double path could not separate).
+// exact_candidate.h — internal to fast/src: one definitions §3 candidate on exact rationals and its
+// definitions §4/§5 values, written once for the two exact users: the exact slow path
+// (exact_path.cpp, every candidate) and the refinement of the double path (refine.h, the one or few
+// candidates whose certified error intervals the double path could not separate).
 //
 // Input:  a valid pair (finite, both volumes non-zero), as an ExactFrame: every coordinate taken
 //         as the rational it denotes, minus s_0, times 2^shift so that all are integers (every
 //         double is an integer times a power of two; integer rationals make GMP skip the gcd
 //         work of power-of-two denominators). Values of the frame are those of the pair times
 //         2^(2 shift) (squared lengths), displacements times 2^shift; unscaled() undoes it.
-// Output: ExactCandidate — n (SPEC §3, oriented), n.n, heights n.(x − s_0) of the 8 vertices,
-//         D = max hA − min hB and the constrained masks; and its exact delta², eq. 11 overlap
+// Output: ExactCandidate — n (definitions §3, oriented), n.n, heights n.(x − s_0) of the 8
+//         vertices, D = max hA − min hB and the constrained masks; and its exact delta², eq. 11 overlap
 //         and QP values (direction_qp_impl.h on mpq_class), rounded once by rounded_value().
 #pragma once
 
@@ -44,14 +44,14 @@ struct ExactCandidate {
 // The candidate with normal n (already oriented) and masks: heights, D.
 ExactCandidate exact_candidate(const ExactFrame& f, const DirectionLabel& l, const QV& n,
                                unsigned conA, unsigned conB);
-// The candidate a SPEC §3 label names (the label of an existing candidate of the pair: an EE
+// The candidate a definitions §3 label names (the label of an existing candidate of the pair: an EE
 // label is not colinear, its orientation is the rule's, or ':+'/':-' of an undecidable pair).
 ExactCandidate exact_candidate(const ExactFrame& f, const DirectionLabel& l);
 
-// SPEC §4: delta² = D²/(n.n); eq. 11: overlap = L_n(A) + L_n(B) − L_n(A ∪ B) (unnormalised).
+// definitions §4: delta² = D²/(n.n); eq. 11: overlap = L_n(A) + L_n(B) − L_n(A ∪ B) (unnormalised).
 Q exact_delta2(const ExactCandidate& c);
 Q exact_overlap(const ExactCandidate& c);
-// SPEC §5 per-direction values, F/(20 n.n) (direction_qp.h). Static: the caller skips
+// definitions §5 per-direction values, F/(20 n.n) (direction_qp.h). Static: the caller skips
 // undecidable EE candidates (infeasible). `sol` (optional): the case-2 solution.
 Q exact_static_value(const ExactCandidate& c);
 Q exact_deformable_value(const ExactCandidate& c, Solution<Q>* sol = nullptr);
@@ -59,7 +59,7 @@ Q exact_relaxed_value(const ExactCandidate& c);
 
 // The deformed positions x + (T/n.n) n of the case-2 solution `sol` of candidate c (of frame f,
 // of the pair A, B), rounded once; `ok` cleared when a coordinate overflows (a subnormal one is
-// a fine position: its absolute error <= 2^-1075 is far below the 1e-9 R of SPEC §8).
+// a fine position: its absolute error <= 2^-1075 is far below the 1e-9 R of definitions §8).
 void exact_positions(const TetVertices& A, const TetVertices& B, const ExactFrame& f,
                      const ExactCandidate& c, const Solution<Q>& sol, Positions<double>& qA,
                      Positions<double>& qB, bool& ok);

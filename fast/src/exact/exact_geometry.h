@@ -1,6 +1,6 @@
 // exact_geometry.h — internal to fast/src: the fast engine's exact arithmetic on GMP rationals,
-// and the SPEC §3 direction rules written once on it for both exact users: the predicates that
-// back the filters (exact_predicates.cpp) and the exact slow path (exact_path.cpp).
+// and the definitions §3 direction rules written once on it for both exact users: the predicates
+// that back the filters (exact_predicates.cpp) and the exact slow path (exact_path.cpp).
 // Each input double is taken as the rational it denotes (mpq_class from a double is exact).
 // Written on gmpxx rather than on reference/'s CGAL kernel on purpose: this engine must stay
 // independent of reference/ so that the two can check each other.
@@ -52,16 +52,16 @@ inline QTet exact_tet(const TetVertices& T) {
   return {exact_point(T[0]), exact_point(T[1]), exact_point(T[2]), exact_point(T[3])};
 }
 
-// FV:i — the normal of A's face opposite s_i, pointing out of A (SPEC §3 item 1).
+// FV:i — the normal of A's face opposite s_i, pointing out of A (definitions §3 item 1).
 inline QV face_normal_out_of(const QTet& A, int i) {
   const auto& f = kFace[i];
   QV n = cross(A[f[1]] - A[f[0]], A[f[2]] - A[f[0]]);
   return sgn(dot(n, A[i] - A[f[0]])) > 0 ? negated(n) : n;
 }
-// VF:j — the normal of B's face opposite r_j, pointing into B (SPEC §3 item 2).
+// VF:j — the normal of B's face opposite r_j, pointing into B (definitions §3 item 2).
 inline QV face_normal_into(const QTet& B, int j) { return negated(face_normal_out_of(B, j)); }
 
-// EE:a:b — the unoriented normal of SPEC §3 item 3: eB × eA, else (parallel edges)
+// EE:a:b — the unoriented normal of definitions §3 item 3: eB × eA, else (parallel edges)
 // (e.e) w − (w.e) e with w = r_x − s_u; colinear edges: zero (no direction).
 inline QV edge_pair_normal(const QTet& A, const QTet& B, int a, int b, EdgePairKind* kind) {
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];

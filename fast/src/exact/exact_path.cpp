@@ -1,7 +1,8 @@
 // exact_path.cpp — the fast engine's exact slow path (see exact_path.h). Written by hand on
 // GMP's mpq_class rather than on reference/'s CGAL kernel on purpose: the point of the slow path
-// is to be this engine's own algorithms (the closed forms of direction_qp_impl.h, the SPEC §3
-// rules as this engine reads them), so that reference/ still checks them independently.
+// is to be this engine's own algorithms (the closed forms of direction_qp_impl.h, the
+// definitions §3 rules as this engine reads them), so that reference/ still checks them
+// independently.
 #include "exact/exact_path.h"
 
 #include <algorithm>
@@ -18,7 +19,7 @@
 namespace pdd::fast::detail {
 namespace {
 
-// Every candidate of SPEC §3 in canonical order (exact_candidate.h).
+// Every candidate of definitions §3 in canonical order (exact_candidate.h).
 struct Builder {
   const ExactFrame& f;
   std::vector<ExactCandidate> out;
@@ -37,7 +38,7 @@ struct Builder {
       for (int b = 0; b < 6; ++b) {
         EdgePairKind kind;
         const QV n = edge_pair_normal(f.s, f.r, a, b, &kind);
-        if (kind == EdgePairKind::Colinear) continue;  // no direction (SPEC §3)
+        if (kind == EdgePairKind::Colinear) continue;  // no direction (definitions §3)
         const unsigned ca = edge_mask(a), cb = edge_mask(b);
         switch (side_rule(f.s, n, a)) {
           case EdgePairSide::Keep: emit(DirectionLabel::ee(a, b), n, ca, cb); break;
@@ -66,7 +67,7 @@ ExactPathResult solve_pair_exact_path(const TetVertices& A, const TetVertices& B
   const std::vector<ExactCandidate>& C = bld.out;
   const int n = int(C.size());
   for (const ExactCandidate& c : C)
-    if (sgn(c.D) <= 0) return er;  // a separating candidate: not intersecting (SPEC §4)
+    if (sgn(c.D) <= 0) return er;  // a separating candidate: not intersecting (definitions §4)
   r.intersecting = true;
   bool& ok = er.representable;
 

@@ -1,8 +1,8 @@
-// exact_path.h — internal to fast/src: the fast engine's slow path (SPEC §8).
+// exact_path.h — internal to fast/src: the fast engine's slow path (definitions §8).
 //
 // Input:  a valid pair (finite coordinates, both volumes non-zero; the caller has checked).
-// Output: every SPEC §6 quantity, computed by this engine's own closed-form algorithms (SPEC §3
-//         candidates, §4 depths, §5 per-direction QPs of src/qp/direction_qp_impl.h) on exact
+// Output: every definitions §6 quantity, computed by this engine's own closed-form
+//         algorithms (definitions §3 candidates, §4 depths, §5 per-direction QPs of src/qp/direction_qp_impl.h) on exact
 //         rationals (GMP mpq_class: every input double is the rational it denotes), with exact
 //         ties broken by canonical order, then rounded once to double (mpq_get_d: truncation,
 //         relative error < 2^-52). `representable` is false when a non-zero value or a

@@ -1,4 +1,4 @@
-// exact_predicates.cpp — GMP (mpq) evaluation of the SPEC §3 decisions. See the header; the
+// exact_predicates.cpp — GMP (mpq) evaluation of the definitions §3 decisions. See the header; the
 // arithmetic and the rules are exact_geometry.h's.
 #include "exact/exact_predicates.h"
 

@@ -1,8 +1,8 @@
 // exact_predicates.h — exact signs (GMP rationals) for the rare inputs the filter cannot decide.
 //
 // Inputs are the raw doubles of the pair; each double is taken as the rational it denotes
-// (SPEC §1), so these functions agree with the exact engine by construction. They allocate and
-// are slow (microseconds); the fast path calls them only when |value| <= filter bound
+// (definitions §1), so these functions agree with the exact engine by construction. They allocate
+// and are slow (microseconds); the fast path calls them only when |value| <= filter bound
 // (filter_bounds.h), which for generic inputs never happens.
 #pragma once
 
@@ -16,7 +16,7 @@ namespace pdd::fast {
 // sign of det[t1 − t0, t2 − t0, t3 − t0] (6 × signed volume).
 Sign orientation_sign_exact(const TetVertices& T);
 
-// Classification of the edge pair EE:a:b by SPEC §3, decided exactly.
+// Classification of the edge pair EE:a:b by definitions §3, decided exactly.
 enum class EdgePairSide { Keep, Flip, Undecidable };  // orientation rule on g_k
 struct EdgePairClass {
   EdgePairKind kind = EdgePairKind::Generic;
@@ -24,7 +24,8 @@ struct EdgePairClass {
 };
 EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& B, int a, int b);
 
-// sign of max_i n.s_i − min_j n.r_j for the exact oriented candidate n of `label` (SPEC §3–4).
+// sign of max_i n.s_i − min_j n.r_j for the exact oriented candidate n of `label`
+// (definitions §3–4).
 // Precondition: the label is a candidate of the pair (not a colinear edge pair).
 Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
 

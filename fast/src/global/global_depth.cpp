@@ -32,7 +32,7 @@ using detail::surviving_pieces;
 using V3 = std::array<double, 3>;
 
 constexpr double kU = 0x1p-53;         // unit roundoff
-constexpr double kGlobalRel = 1e-10;   // value error budget (SPEC §8's 1e-9, with room)
+constexpr double kGlobalRel = 1e-10;   // value error budget (definitions §8's 1e-9, with room)
 constexpr double kPrune = 1e-10;       // an eigenvalue must beat the best by this, relative
 constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
 constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
@@ -592,10 +592,10 @@ int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const de
   return changes;
 }
 
-// Exact path: whether the best offer may miss the minimum by more than SPEC §8 allows because
-// no double normal represents a better stationary point. An offered normal is an eigenvector
-// rounded to doubles; along it the value exceeds the eigenvalue mu by up to ~|H| (u |v|)^2 /
-// |v|^2, which is not small beside mu when the depth is far below the pair's size (a vertex
+// Exact path: whether the best offer may miss the minimum by more than definitions §8 allows
+// because no double normal represents a better stationary point. An offered normal is an
+// eigenvector rounded to doubles; along it the value exceeds the eigenvalue mu by up to
+// ~|H| (u |v|)^2 / |v|^2, which is not small beside mu when the depth is far below the pair's size (a vertex
 // 1e-18 inside a face: mu ~1e-37 beside |H| ~ 25). So every eigenvector that held its piece's
 // signs when offered (the minimum may be there) is a suspect, and one whose exact eigenvalue
 // lies in (floor, top), top = best (1 + 2^-53) / (1 + 1e-9), may be a stationary value (if the
@@ -611,9 +611,9 @@ int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const de
 // normal that attains pdd2_global on a generic near-coplanar contact is found by trying such
 // triples, not excluded by a ratio of depth to size). The pair is kept when the
 // best exact value q after those offers satisfies q (1 + 2^-53) <= lo (1 + 1e-9) for every
-// suspect kept. Why that certifies SPEC §8: the true minimum m* is G(u*) with u* an eigenvector
-// of the H_S of a piece S whose cone holds u* (global_depth.h); q >= m* (q is G along a normal).
-// If m* is a suspect's eigenvalue: at or below the floor it cannot be; at or above top,
+// suspect kept. Why that certifies definitions §8: the true minimum m* is G(u*) with u* an
+// eigenvector of the H_S of a piece S whose cone holds u* (global_depth.h); q >= m* (q is G along a
+// normal). If m* is a suspect's eigenvalue: at or below the floor it cannot be; at or above top,
 // q (1 + 2^-53) <= q0 (1 + 2^-53) = top (1 + 1e-9) <= m* (1 + 1e-9) with q0 the best before the
 // new offers (they only lower it); in the window, settled: not discarded (its eigenvector is in
 // the cone), so m* >= lo and q (1 + 2^-53) <= lo (1 + 1e-9) <= m* (1 + 1e-9). Otherwise the
@@ -830,9 +830,9 @@ class SuspectProof {
     Q scale_top(1);
     detail::scale_pow2(scale_top, -2 * best.unit);
     // The offers go on until q (1 + 2^-53) <= lo (1 + kGlobalRel), q in the suspects' units: the
-    // double path's budget, a tenth of what unrepresented() accepts (SPEC §8's 1e-9), so that a
-    // value accepted there is not needlessly near the contract's edge where a better normal is
-    // cheap to find.
+    // double path's budget, a tenth of what unrepresented() accepts (definitions §8's 1e-9), so
+    // that a value accepted there is not needlessly near the contract's edge where a better normal
+    // is cheap to find.
     auto met = [&] {
       return bounded && best.qvalue * scale_top * (Q(1) + Q(1, 1ul << 53)) <= lo * (Q(1) + Q(kGlobalRel));
     };

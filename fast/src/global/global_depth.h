@@ -1,5 +1,5 @@
-// global_depth.h — SPEC §9 in the fast engine: PD_d^2 over every separating plane (paper eq. 5),
-// by enumerating the stationary points of the relaxed value on the unit sphere.
+// global_depth.h — definitions §9 in the fast engine: PD_d^2 over every separating plane (paper
+// eq. 5), by enumerating the stationary points of the relaxed value on the unit sphere.
 //
 // Input : a pair (in the engine's rescaled range, solve_pair.cpp, or as given on the exact
 //         path), a start normal (the best candidate of pdd2_relaxed: the answer when nothing
@@ -7,7 +7,7 @@
 //         size (the exact pieces below), the double normal has no accurate digit in the
 //         direction that matters, so the exact one is offered, rounded componentwise.
 // Output: pdd2_global = relaxed(v) for the returned normal v (double components, A -> B), the
-//         deformed positions attaining it, and whether the value is certified to SPEC §8
+//         deformed positions attaining it, and whether the value is certified to definitions §8
 //         (relative error <= kGlobalRel of the exact relaxed value along v).
 //
 // Math (the exact engine's reference/pdd/reference/relaxed_pieces.h proves the closed form;

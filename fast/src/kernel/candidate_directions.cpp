@@ -1,4 +1,4 @@
-// candidate_directions.cpp — SPEC §3 candidate set with filtered exact decisions (the full
+// candidate_directions.cpp — definitions §3 candidate set with filtered exact decisions (the full
 // path: any input, exact fallbacks). See the header; shared arithmetic in direction_geometry.h.
 #include "kernel/candidate_directions.h"
 
@@ -20,7 +20,7 @@ Sign orientation(const TetVertices& T, double det, double bound3) {
   return orientation_sign_exact(T);
 }
 
-// Parallel edges: n = (e.e) w − (w.e) e (division-free form of SPEC §3), heights directly.
+// Parallel edges: n = (e.e) w − (w.e) e (division-free form of definitions §3), heights directly.
 void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, Draft& c) {
   const int u = kEdges[a][0], x = kEdges[b][0];
   const double* e = p.eA[a];
@@ -86,7 +86,7 @@ struct Builder {
     Draft c;
     lane_heights(out.edges, a, b, c);
     const EdgePairClass k = classify(a, b, c);
-    if (k.kind == EdgePairKind::Colinear) return true;  // no direction (SPEC §3)
+    if (k.kind == EdgePairKind::Colinear) return true;  // no direction (definitions §3)
     double bound = fb.deg3;
     const bool parallel = k.kind == EdgePairKind::Parallel;
     if (parallel) {

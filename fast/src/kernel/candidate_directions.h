@@ -1,11 +1,12 @@
-// candidate_directions.h — the candidate separating directions of a pair (SPEC §3, paper eq. 6).
+// candidate_directions.h — the candidate separating directions of a pair (definitions §3,
+// paper eq. 6).
 //
 // Input:  tetrahedra A (s0..s3) and B (r0..r3), raw doubles.
 // Output: CandidateSet: the oriented directions in canonical order (FV:0..3, VF:0..3, EE:a:b with
 //         ':+' before ':-'); per candidate k
-//           label(set, k)  SPEC §3 label,
+//           label(set, k)  definitions §3 label,
 //           depth[k]   D = max_i n.s_i − min_j n.r_j for the oriented unnormalised n, so that
-//                      delta(n) = D/|n| (SPEC §4),
+//                      delta(n) = D/|n| (definitions §4),
 //           nn[k]      n.n,   delta_sq[k] = D²/(n.n) (edge lanes: D²·(1/n.n)),
 //         and, materialised on demand by candidate(set, k): n, the heights H = n.(x − o) of the 8
 //         vertices (o a point of the candidate's own choosing; only height differences are used)
@@ -40,7 +41,7 @@ struct DirectionGeometry {
   double nn;            // n.n
   double depth;         // D
   double hA[4], hB[4];  // heights n.(x − o)
-  std::uint8_t conA, conB;  // bit i: vertex i constrained (SPEC §3)
+  std::uint8_t conA, conB;  // bit i: vertex i constrained (definitions §3)
 };
 
 struct Candidate : DirectionGeometry {
@@ -58,7 +59,7 @@ inline DirectionLabel unpack_label(LabelCode c) {
   return {ContactKind(c & 3), (c >> 2) & 7, (c >> 5) & 7, EdgeOrientation((c >> 8) & 3)};
 }
 
-// Edge-pair lanes, unoriented n = eB × eA (SPEC §3), heights relative to s_u:
+// Edge-pair lanes, unoriented n = eB × eA (definitions §3), heights relative to s_u:
 // A: 0, 0, g1, g2 at (u, v, k1, k2); B: hx, hx, hx + q1, hx + q2 at (x, y, j1, j2), where
 // (k1 < k2) are the vertices off edge a and (j1 < j2) those off edge b.
 struct EdgeLanes {
@@ -66,7 +67,7 @@ struct EdgeLanes {
   alignas(64) double g1[kLanes], g2[kLanes], q1[kLanes], q2[kLanes];
   alignas(64) double dplus[kLanes], dminus[kLanes];  // D for +n and for −n
   alignas(64) double d2plus[kLanes], d2minus[kLanes];  // D²/(n.n) for +n and for −n
-  // Filter verdicts of the lane (SPEC §3 orientation rule on the signs of g1, g2):
+  // Filter verdicts of the lane (definitions §3 orientation rule on the signs of g1, g2):
   //   unclear = 1 when a sign of n, g1, g2 or of a used depth is within its filter bound (the
   //             lane then goes through the exact path), else 0;
   //   first   = delta² of the lane's first candidate (+n, or −n when both g > 0);
@@ -104,7 +105,7 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 // Candidate k of the set with its heights (cheap: a few loads and sign flips).
 Candidate candidate(const CandidateSet& set, int k);
 
-// SPEC §3 label of candidate k.
+// definitions §3 label of candidate k.
 inline DirectionLabel label(const CandidateSet& set, int k) { return unpack_label(set.code[k]); }
 
 // delta(n)² of candidate k: D²/(n.n).

@@ -1,5 +1,5 @@
-// edge_pair_formula.h — internal to fast/src: the arithmetic of one edge pair (SPEC §3), written
-// once for every place that evaluates it — a scalar lane (double: direction_geometry.cpp's
+// edge_pair_formula.h — internal to fast/src: the arithmetic of one edge pair (definitions §3),
+// written once for every place that evaluates it — a scalar lane (double: direction_geometry.cpp's
 // candidate lanes, superset_depth.cpp's chosen candidate) and the kernel's 8-wide vectors (v8:
 // superset_kernel.cpp). The same expressions in the same order give bit-identical results in
 // every instantiation (no FMA: -ffp-contract=off; no reassociation), which tests/fast check.
@@ -10,7 +10,7 @@
 //   g_m = n.(s_k − s_u) = eps(u,v,k) eB.NA_f               A's off-edge vertex k = kOffEdge[a][m],
 //                                                           f = 6 − u − v − k (kOffA below)
 //   q_m = n.(r_j − r_x) = −eps(x,y,j) eA.NB_f'             B's off-edge vertex j = kOffEdge[b][m]
-//   D(+n) = max(0, g1, g2) − h − min(0, q1, q2)           depth along +n (SPEC §4)
+//   D(+n) = max(0, g1, g2) − h − min(0, q1, q2)           depth along +n (definitions §4)
 //   D(−n) = −min(0, g1, g2) + h + max(0, q1, q2)          depth along −n
 //   n.n, and the value D²/(n.n).
 // Error bounds of these quantities: filter_bounds.h (degrees 2 and 3 in the coordinates) and

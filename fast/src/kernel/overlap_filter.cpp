@@ -1,11 +1,11 @@
 // overlap_filter.cpp — pdd::fast::overlap_filter and pdd::fast::interiors_intersect (pdd.h): the
-// exact intersection decision of SPEC §4 (touching is not intersecting), with a certified
+// exact intersection decision of definitions §4 (touching is not intersecting), with a certified
 // separating-axis filter in doubles first. Meant for the many mostly disjoint pairs of a mesh
 // broadphase (mesh/), where rigid_pd2 would build the candidate list of every disjoint pair.
 //
 // Input:  tetrahedra A (s0..s3), B (r0..r3), raw doubles (no rescaling needed, see below).
 // Output: overlap_filter: Disjoint / Intersecting when certain, Unknown otherwise;
-//         interiors_intersect: the exact decision (false for a rejected pair, SPEC §1).
+//         interiors_intersect: the exact decision (false for a rejected pair, definitions §1).
 //
 // ---- Stage 1: the 8 face axes, scalar, stopping at the first that separates (most disjoint
 // pairs of a broadphase are separated by a face plane; about 1/10 of the kernel's work).

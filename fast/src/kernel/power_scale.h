@@ -1,4 +1,4 @@
-// power_scale.h — internal to fast/src: exact power-of-two rescaling of a pair (SPEC §8).
+// power_scale.h — internal to fast/src: exact power-of-two rescaling of a pair (definitions §8).
 //
 // Input:  a pair with finite coordinates.
 // Output: the pair multiplied by 2^e, with e chosen so that the largest |coordinate| R lies in

@@ -1,5 +1,5 @@
-// quick_candidates.h — the candidate list of the hot path (SPEC §3), when no exact decision is
-// needed.
+// quick_candidates.h — the candidate list of the hot path (definitions §3), when no exact decision
+// is needed.
 //
 // Input:  tetrahedra A, B (raw doubles).
 // Output: QuickCandidates: the same candidates as build_candidates (candidate_directions.h), in

@@ -1,4 +1,4 @@
-// rigid_depth.cpp — SPEC §4. See the header.
+// rigid_depth.cpp — definitions §4. See the header.
 #include "kernel/rigid_depth.h"
 
 #include <algorithm>
@@ -55,7 +55,7 @@ Choice rigid_pd2(const CandidateSet& set) {
 
 Choice rigid_pd2(const QuickCandidates& q) { return rigid_of(q); }
 
-// SPEC §8 (value_bounds.h): the overlap combines six heights (error <= e_h each) in five
+// definitions §8 (value_bounds.h): the overlap combines six heights (error <= e_h each) in five
 // roundings of values <= 4 Hm, so |overlap~ − overlap| <= eO = 6 e_h + 21 u Hm; its sign is
 // certain beyond eO, and its root bound is finish_root_rel(eO/|overlap~|).
 // Not certified: refined (refine.h) over the contenders = the candidates whose overlap sign is

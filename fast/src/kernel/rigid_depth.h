@@ -1,4 +1,4 @@
-// rigid_depth.h — rigid penetration depth and the paper's eq. 11 value (SPEC §4).
+// rigid_depth.h — rigid penetration depth and the paper's eq. 11 value (definitions §4).
 //
 // Input:  a CandidateSet (candidate_directions.h) of an intersecting pair.
 // Output: rigid_pd2   PD² = (min_n delta(n))², delta(n) = D(n)/|n|, D = max_i n.s_i − min_j n.r_j,
@@ -7,8 +7,8 @@
 //         eq11_pd2    E11² = (min_n overlap(n)/|n|)², overlap = L_n(A) + L_n(B) − L_n(A ∪ B),
 //                     L_n the width of the projection (paper eq. 11); 0 if some overlap <= 0.
 // Both return 0 (index −1) for a non-intersecting set. Hot path: no allocation, no strings.
-// SPEC §8: a choice the double bounds cannot certify is refined (refine.h): its contenders are
-// evaluated exactly; `certified` stays false only when that is not possible (then the caller
+// definitions §8: a choice the double bounds cannot certify is refined (refine.h): its contenders
+// are evaluated exactly; `certified` stays false only when that is not possible (then the caller
 // takes the exact path).
 #pragma once
 
@@ -20,8 +20,8 @@ namespace pdd::fast {
 struct Choice {
   double value = 0.0;  // squared depth
   int index = -1;      // index of the candidate in the set, −1 when none or no set was built
-  LabelCode code = 0;  // packed SPEC §3 label of the choice (valid when value > 0)
-  // SPEC §8 verdict (value_bounds.h): value within kCertifyRel of the exact minimum and the
+  LabelCode code = 0;  // packed definitions §3 label of the choice (valid when value > 0)
+  // definitions §8 verdict (value_bounds.h): value within kCertifyRel of the exact minimum and the
   // label's exact value too. False: the caller must take the exact path.
   bool certified = false;
   // Certified by evaluating the contenders exactly (refine.h) rather than in doubles alone.
@@ -31,8 +31,8 @@ struct Choice {
 
 Choice rigid_pd2(const CandidateSet& set);
 Choice rigid_pd2(const QuickCandidates& q);  // same candidates, same result
-// `certified` (optional): the SPEC §8 verdict (value_bounds.h; exact 0 is certified only when
-// some overlap is surely <= 0). Not certified in doubles: the contenders are evaluated exactly
+// `certified` (optional): the definitions §8 verdict (value_bounds.h; exact 0 is certified only
+// when some overlap is surely <= 0). Not certified in doubles: the contenders are evaluated exactly
 // (refine.h), `refined` (optional) then set.
 double eq11_pd2(const CandidateSet& set, bool* certified = nullptr, bool* refined = nullptr);
 

@@ -97,10 +97,10 @@ void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
   g.conB = edge_mask(b);
 }
 
-// SPEC §8 (value_bounds.h) over the superset S: every entry's exact value is >= PD² (header),
-// so the minimum of the entries' certified lower bounds is a lower bound of PD². `unique`: every
-// entry other than the chosen one is certainly above the chosen one's exact value (the exact
-// rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
+// definitions §8 (value_bounds.h) over the superset S: every entry's exact value is >= PD²
+// (header), so the minimum of the entries' certified lower bounds is a lower bound of PD².
+// `unique`: every entry other than the chosen one is certainly above the chosen one's exact value
+// (the exact rigid direction is then the chosen candidate: what pdd2_accel(A, B, 1) needs).
 // Cost: the root bound of an entry takes a division and a square root, so only the entries of
 // the kernel's bound bits are bounded: the others cannot change the verdict or `unique`,
 // whatever the pick (the proof is at tie_and_certify_bits in superset_kernel.cpp; tests/fast

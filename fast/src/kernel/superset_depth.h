@@ -1,10 +1,10 @@
 // superset_depth.h — rigid PD² and its label from a superset of the candidate directions
-// (SPEC §4), without the orientation rule of SPEC §3 except near the minimum. The hot path of
-// rigid_pd2(A, B) and pdd2_accel(A, B, 1).
+// (definitions §4), without the orientation rule of definitions §3 except near the minimum. The hot
+// path of rigid_pd2(A, B) and pdd2_accel(A, B, 1).
 //
 // Input:  tetrahedra A (s0..s3), B (r0..r3), raw doubles.
-// Output: true, and Choice{value = PD², code = SPEC §3 label of the first candidate in canonical
-//         order attaining it (tie_tolerance.h), index = −1 (no candidate list is built)}, and
+// Output: true, and Choice{value = PD², code = definitions §3 label of the first candidate
+//         in canonical order attaining it (tie_tolerance.h), index = −1 (no candidate list is built)}, and
 //         optionally the chosen candidate's geometry (for the case-2 QP of pdd2_accel1); or
 //         false ("declined": the pair is invalid, not clearly intersecting, or a decision near
 //         the minimum needs the exact fallback) — the caller then uses the candidate list.
@@ -18,7 +18,7 @@
 // For EVERY u ≠ 0 the ball B(0, PD) ⊂ M gives h(u) >= PD |u|, i.e. D(u)²/(u.u) >= PD².
 // A facet of M is the Minkowski sum of faces of A and of −B with a common outward normal and
 // dimension 2: a facet of A (normal ∝ ±N_A,f), a facet of B (∝ ±N_B,f), or the sum of two
-// non-parallel edges (normal ∝ ±eB × eA). With its OUTWARD orientation it is a SPEC §3
+// non-parallel edges (normal ∝ ±eB × eA). With its OUTWARD orientation it is a definitions §3
 // candidate: FV/VF are oriented outward by construction; for an edge-edge facet with outward
 // normal u, A's support set in direction u is its edge (s_u, s_v), so u.(s_k − s_u) < 0 for
 // A's two other vertices — for n = u both g_k < 0 and the rule keeps n, for n = −u both
@@ -35,9 +35,9 @@
 // degree 3) decides "intersecting" exactly; otherwise we decline (exact fallback in the list).
 // An exactly parallel edge pair has D(±n) = 0 exactly, so its computed |D| <= E3: declined too.
 //
-// ---- The LABEL. The label is the first REAL candidate (SPEC §3 orientation rule) in canonical
-// order whose value ties with the minimum over the real candidates. Entries of S that are not
-// real candidates are the discarded orientation of decided edge pairs; their value is >= PD²,
+// ---- The LABEL. The label is the first REAL candidate (definitions §3 orientation rule) in
+// canonical order whose value ties with the minimum over the real candidates. Entries of S that are
+// not real candidates are the discarded orientation of decided edge pairs; their value is >= PD²,
 // and if one attains PD² then a real facet-normal candidate ties with it. So only the few
 // entries of S within the tie band of min_S need the orientation rule (filtered signs of
 // g1, g2; declined when unclear). The list path takes vmin_c = min over real candidates and
@@ -58,8 +58,8 @@ namespace pdd::fast {
 
 // `geometry` (optional): filled with the chosen candidate (n, heights, masks, label), equal to
 // candidate(build_candidates(A, B), index of the label).
-// ch.certified: the SPEC §8 verdict (value_bounds.h). `unique` (optional): certified, and every
-// other entry of S is certainly above the chosen one (so it is the exact rigid direction).
+// ch.certified: the definitions §8 verdict (value_bounds.h). `unique` (optional): certified, and
+// every other entry of S is certainly above the chosen one (so it is the exact rigid direction).
 // Precondition for ch.certified and `unique` (not for the value and label): A and B rescaled by
 // power_scale.h (largest |coordinate| in [1, 2)), as hot_path.h does; the error bounds assume
 // that range (value_bounds.h), and so does the kernel's choice of entries to bound
@@ -78,8 +78,8 @@ bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& c
                            Candidate* geometry = nullptr, bool* unique = nullptr,
                            double* extent = nullptr);
 
-// A benchmark baseline only, NOT SPEC §8: the same kernel and pick on the pair as given, with
-// none of the certification (no power-of-two rescaling, no certify pass, no exact path;
+// A benchmark baseline only, NOT definitions §8: the same kernel and pick on the pair as given,
+// with none of the certification (no power-of-two rescaling, no certify pass, no exact path;
 // ch.certified stays false). `pdd bench` times it beside rigid_pd2(A, B) to report what the
 // certification costs.
 bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch);

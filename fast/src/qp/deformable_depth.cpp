@@ -1,4 +1,4 @@
-// deformable_depth.cpp — SPEC §5 variants with exact pruning. See the header.
+// deformable_depth.cpp — definitions §5 variants with exact pruning. See the header.
 #include "qp/deformable_depth.h"
 
 #include <algorithm>
@@ -126,7 +126,7 @@ bool accel1_compensated(const TetVertices& A, const TetVertices& B, const Candid
 
 // pdd2_accel(A, B, 1) from the superset's rigid choice and its candidate c: the case-2 value
 // along c, certified when the rigid direction is the exact one (`unique`, superset_depth.h)
-// and the value's own interval meets SPEC §8. Returns ch.certified.
+// and the value's own interval meets definitions §8. Returns ch.certified.
 bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const FilterBounds& fb,
                      Choice& ch) {
   const Valued x = deformable_valued(c, fb);
@@ -155,7 +155,7 @@ namespace {
 // in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
 struct StaticVariant {
   bool solve(const Candidate& c, DirectionSolution& s) const {
-    if (c.label.orientation != EdgeOrientation::Decided) return false;  // SPEC §5
+    if (c.label.orientation != EdgeOrientation::Decided) return false;  // definitions §5
     s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
     return true;
   }
@@ -186,7 +186,7 @@ struct RelaxedVariant {
 
 // The exact values of refine.h, per variant (false: not in the family).
 bool exact_static(const detail::ExactCandidate& c, detail::Q& v) {
-  if (c.label.orientation != EdgeOrientation::Decided) return false;  // infeasible (SPEC §5)
+  if (c.label.orientation != EdgeOrientation::Decided) return false;  // infeasible (definitions §5)
   v = detail::exact_static_value(c);
   return true;
 }
@@ -245,7 +245,7 @@ inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
 // the best value so far (header), then pick the first tied minimum. List: CandidateSet or
 // QuickCandidates (same candidates, same order, same values).
-// SPEC §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
+// definitions §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
 // bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
 // proven in the header, applied to the exact delta).
 template <class List, class Variant, class ExactValue>
@@ -336,8 +336,8 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
 // candidate of the family). Entries are visited as in sweep(): first the one of smallest bound
 // (the hint), then in canonical order (entries ascend in it) every entry whose bound is <=
 // tie_threshold(best so far); the choice is the first tied minimum of the evaluated values in
-// canonical order, as sweep()'s. SPEC §8: an evaluated entry's exact value is >= lower_of(v, its
-// QP bound), a skipped one's >= lo[e]; certified as in sweep. Returns false (nothing decided)
+// canonical order, as sweep()'s. definitions §8: an evaluated entry's exact value is >= lower_of(v,
+// its QP bound), a skipped one's >= lo[e]; certified as in sweep. Returns false (nothing decided)
 // when the choice is not certified or more than kMaxLaneEvaluated entries pass (B deep inside a
 // much larger A: many candidates of nearly equal value): the caller then builds the list and
 // runs sweep(), which can refine (refine.h).
@@ -475,9 +475,9 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
   ch.certified = ch.refined = true;
 }
 
-// Case 3. SPEC §8: the chosen candidates must be exactly the first k of the exact order (every
-// chosen exact delta² strictly below every other one; exact ties are left to the exact path),
-// and the minimum of their QP values is certified as in sweep.
+// Case 3. definitions §8: the chosen candidates must be exactly the first k of the exact order
+// (every chosen exact delta² strictly below every other one; exact ties are left to the exact
+// path), and the minimum of their QP values is certified as in sweep.
 template <class List>
 Choice accel_of(const List& set, int k) {
   if (!usable(set) || k <= 0) return {};
@@ -534,7 +534,7 @@ Choice accel_of(const List& set, int k) {
 }  // namespace
 
 double static_value(const Candidate& c) {
-  if (c.label.orientation != EdgeOrientation::Decided) return kInf;  // infeasible (SPEC §5)
+  if (c.label.orientation != EdgeOrientation::Decided) return kInf;  // infeasible (definitions §5)
   const DirectionSolution s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
   return s.cost / (20.0 * c.nn);
 }

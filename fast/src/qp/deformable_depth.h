@@ -1,10 +1,10 @@
-// deformable_depth.h — deformable penetration depth PD_d² over all candidates (SPEC §5).
+// deformable_depth.h — deformable penetration depth PD_d² over all candidates (definitions §5).
 //
 // Input:  a CandidateSet of an intersecting pair (candidate_directions.h).
 // Output: Choice{value = PD_d², index and label of the argmin candidate, the first in canonical
 //         order among ties}:
 //   pdd2_static   case 1, A static (paper Sec. IV); undecidable EE directions are infeasible and
-//                 skipped (SPEC §5).
+//                 skipped (definitions §5).
 //   pdd2          case 2, both deform (paper Sec. V, eq. 10).
 //   pdd2_relaxed  case 2 with every constraint an inequality.
 //   pdd2_accel    case 3 (paper Sec. VI): the case-2 optimum over the first k candidates in
@@ -38,7 +38,7 @@
 
 namespace pdd::fast {
 
-inline constexpr int kAccelWide = 6;  // pdd2_accel6: the paper's "first six directions" (SPEC §5)
+inline constexpr int kAccelWide = 6;  // pdd2_accel6: the paper's "first six directions" (definitions §5)
 inline constexpr double kDeformableBoundCoeff = 1.0 / 32.0;  // case 2 and relaxed, see above
 inline constexpr double kStaticBoundCoeff = 1.0 / 16.0;      // case 1, see above
 
@@ -74,7 +74,8 @@ bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch);
 // The first try of pdd2_accel(A, B, 1) on a pair rescaled by power_scale.h (As, Bs):
 // rigid_superset's rigid choice and its candidate `c` (superset_depth.h), and `accel1`, the
 // case-2 value along c. True when both are certified (the rigid direction is the exact one,
-// `unique`, and accel1's own interval meets SPEC §8); false: the caller takes the candidate list.
+// `unique`, and accel1's own interval meets definitions §8); false: the caller takes the candidate
+// list.
 bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
                       Choice& accel1);
 
@@ -84,7 +85,7 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 
 // Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the full
 // candidate set (on the stack), on the pair rescaled by a power of two; value 0 when not
-// intersecting or invalid. The hot functions to time. SPEC §8: the choice is certified
+// intersecting or invalid. The hot functions to time. definitions §8: the choice is certified
 // (value_bounds.h) or comes from the exact path (certified = true either way); NaN with
 // certified = false when the value is not a normal double. pdd2_accel(A, B, k): k = 1 or 6.
 // pdd2_accel(A, B, 1) is the case-2 QP on the rigid direction of rigid_superset

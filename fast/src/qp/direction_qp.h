@@ -1,15 +1,15 @@
-// direction_qp.h — the per-direction QP of SPEC §5 (paper eq. 10) in closed form.
+// direction_qp.h — the per-direction QP of definitions §5 (paper eq. 10) in closed form.
 //
 // Inputs:  for one oriented candidate n, each tetrahedron as a SideProblem: heights H_i = n.x_i
 //          (n unnormalised, any common origin) of its constrained vertices (all at one height
 //          hcon) and of its free vertices. A is the "below" side, B the "above" side.
 // Outputs: DirectionSolution with cost F = sum over both tets of (sum_i T_i² + (sum_i T_i)²),
 //          where T_i = displacement along n in the same n-scaled units, the plane offset c and
-//          the displacement sums S_A, S_B. The SPEC value is PD_d²(n) = F / (20 n.n), and the
+//          the displacement sums S_A, S_B. The defined value is PD_d²(n) = F / (20 n.n), and the
 //          deformed vertex is x_i + (T_i / n.n) n.
 //
-// ---- Reduction (SPEC §5 "facts"). sigma = (1/20)(sum |d_i|² + |sum d_i|²) is a sum over the
-// three coordinates of an orthonormal frame (u = n/|n|, u⊥1, u⊥2); the constraints only involve
+// ---- Reduction (definitions §5 "facts"). sigma = (1/20)(sum |d_i|² + |sum d_i|²) is a sum over
+// the three coordinates of an orthonormal frame (u = n/|n|, u⊥1, u⊥2); the constraints only involve
 // the u-components. The orthogonal components thus enter the cost alone and are optimally 0.
 // Writing t_i = u.d_i and scaling by |n| (T = |n| t, H = |n| h, C = |n| c) gives, per direction,
 //     min  sum_tets (1/20) (sum_i t_i² + (sum_i t_i)²)              [= F / (20 n.n)]
@@ -91,7 +91,7 @@ Side<T> side_of(const T h[4], unsigned constrained) {
 DirectionSolution solve_deformable(const SideProblem& A, const SideProblem& B);
 
 // Case 1 (A static). Precondition: feasible, i.e. when A.ncon > 0 no free A vertex is above
-// hcon (SPEC §5: only undecidable EE directions are infeasible; the caller skips those).
+// hcon (definitions §5: only undecidable EE directions are infeasible; the caller skips those).
 DirectionSolution solve_static(const SideProblem& A, const SideProblem& B);
 
 // Relaxed case 2: hA, hB the four heights of each tetrahedron, every constraint an inequality.

@@ -1,4 +1,4 @@
-// fixture_io.h — reading fixture files (SPEC §1) without losing a single pair.
+// fixture_io.h — reading fixture files (definitions §1) without losing a single pair.
 //
 // Input : a path to a JSON file {"pairs": [{"name", "tags"?, "A", "B"}, ...]}.
 // Output: every entry of "pairs" in order, each either a TetPair or the reason it could not

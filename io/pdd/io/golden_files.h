@@ -1,7 +1,7 @@
 // golden_files.h — where the golden files live and how to read them back.
 //
 // fixtures/X.json has its golden file fixtures/golden/X.jsonl (same relative path): the exact
-// engine's SPEC §6 JSON Lines for that file. Checking and rewriting them needs the exact
+// engine's definitions §6 JSON Lines for that file. Checking and rewriting them needs the exact
 // engine and lives in harness/ (golden.h); finding and reading them needs neither engine.
 #pragma once
 
@@ -22,7 +22,7 @@ std::vector<std::string> golden_fixture_files(const std::string& fixtures_dir);
 // fixtures_dir/golden/<relative path with .jsonl>.
 std::string golden_path(const std::string& fixtures_dir, const std::string& relative);
 
-// Reads a JSON Lines file of SPEC §6 records (a golden file) in file order, numbers read by
+// Reads a JSON Lines file of definitions §6 records (a golden file) in file order, numbers read by
 // `number` (golden numbers are exact "p/q" strings); throws std::runtime_error naming the file
 // when it cannot be opened or a record is malformed.
 template <class R>

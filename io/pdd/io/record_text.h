@@ -1,5 +1,5 @@
-// record_text.h — a SPEC §6 record as a row for people (an aligned table) or for spreadsheets
-// (CSV), from the same JSON record that `pdd solve` writes as JSON Lines.
+// record_text.h — a definitions §6 record as a row for people (an aligned table) or for
+// spreadsheets (CSV), from the same JSON record that `pdd solve` writes as JSON Lines.
 //
 // Input : a record (result_json.h: exact values as "p/q" strings, fast values as numbers).
 // Output: one line, no newline. Columns: name, intersecting, the seven values, pdd2_global,

@@ -1,13 +1,14 @@
-// result_json.h — one SPEC §6 JSON Lines record from a PairResult of either engine, and back.
+// result_json.h — one JSON Lines record (definitions §6) from a PairResult of either engine, and
+// back.
 //
-// Keys in SPEC order: name, intersecting, the seven values, the four labels, q1_A, q1_B,
-// error, then SPEC §9's pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global and (exact
-// engine) pdd2_global_lower or (fast engine) pdd2_global_error: null, or why the §9 keys are null
-// while the others are reported; last pdd2_global_grad (8 x [x, y, z], A's vertices first) when
-// the record has it. A rejected pair is {"name", "error"} only. The number writer decides how R is
-// written: exact rationals as "p/q" strings, doubles as JSON numbers that read back to the
-// same double (nlohmann writes the shortest round-trip form). result_from_json reads such a
-// record back with a number reader (the inverse of the writer).
+// Keys in the record's order (definitions §6): name, intersecting, the seven values, the four
+// labels, q1_A, q1_B, error, then definitions §9's pdd2_global, pdd2_global_normal, q1_A_global,
+// q1_B_global and (exact engine) pdd2_global_lower or (fast engine) pdd2_global_error: null, or why
+// the §9 keys are null while the others are reported; last pdd2_global_grad (8 x [x, y, z], A's
+// vertices first) when the record has it. A rejected pair is {"name", "error"} only. The number
+// writer decides how R is written: exact rationals as "p/q" strings, doubles as JSON numbers that
+// read back to the same double (nlohmann writes the shortest round-trip form). result_from_json
+// reads such a record back with a number reader (the inverse of the writer).
 #pragma once
 
 #include <functional>
@@ -51,8 +52,8 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
   j["q1_A"] = positions(r.q1_A);
   j["q1_B"] = positions(r.q1_B);
   j["error"] = nullptr;
-  // SPEC §9 (the table's order: after error); null keys where pdd2_global alone could not be had
-  // (fast engine: pdd2_global_error, written by the fast engine's records only)
+  // definitions §9 (the table's order: after error); null keys where pdd2_global alone could not be
+  // had (fast engine: pdd2_global_error, written by the fast engine's records only)
   const bool global_ok = !r.pdd2_global_error;
   j["pdd2_global"] = global_ok ? number(r.pdd2_global) : Json(nullptr);
   if (r.pdd2_global_normal && global_ok) {

@@ -1,5 +1,5 @@
 // candidate_directions.h — the candidate separating directions of paper Sec. IV-A (eq. 6 and
-// its orientation rules), exactly as SPEC §3 fixes them, in canonical order.
+// its orientation rules), exactly as definitions §3 fixes them, in canonical order.
 //
 // Input : an exact pair (A = s0..s3, B = r0..r3).
 // Output: every candidate direction n (exact, unnormalised, pointing from A to B) with its

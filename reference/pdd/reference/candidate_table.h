@@ -1,4 +1,4 @@
-// candidate_table.h — every quantity of SPEC §4–§5 evaluated on every candidate direction.
+// candidate_table.h — every quantity of definitions §4–§5 evaluated on every candidate direction.
 //
 // Input : an exact pair and its candidates (candidate_directions), a QP formulation.
 // Output: one row per candidate, in canonical order: the oriented depth (as its exact signed
@@ -17,7 +17,7 @@ namespace pdd::reference {
 
 struct CandidateRow {
   CandidateDirection direction;
-  Rational depth;                 // D = max n.s_i − min n.r_j (n unnormalised), SPEC §4
+  Rational depth;                 // D = max n.s_i − min n.r_j (n unnormalised), definitions §4
   Rational depth_signed_square;  // sign(delta) delta^2 = sign(D) D² / n.n
   std::optional<DirectionOptimum> static_case;  // paper case 1
   DirectionOptimum deformable;                  // paper case 2

@@ -1,5 +1,5 @@
 // direction_qp.h — PD_d^2 along one candidate direction: the QP of paper Secs. IV-B and V
-// (objective eq. 3, constraints eq. 10), solved exactly by CGAL's QP solver (SPEC §5).
+// (objective eq. 3, constraints eq. 10), solved exactly by CGAL's QP solver (definitions §5).
 //
 // Input : an exact pair, one oriented candidate n with its constrained/free vertex sets, the
 //         case and the formulation.
@@ -14,8 +14,8 @@
 //        Relaxed   case 2 with every constraint an inequality.
 // Formulations:
 //   Full     the paper's variables: q1_A (12, not in Static), q1_B (12), p_s (3); minimise
-//            20 (sigma_A + sigma_B) as a quadratic in q1 (SPEC §2 closed form).
-//   Reduced  SPEC §5: orthogonal displacement components never help, so with mu_i = n.d_i
+//            20 (sigma_A + sigma_B) as a quadratic in q1 (definitions §2 closed form).
+//   Reduced  definitions §5: orthogonal displacement components never help, so with mu_i = n.d_i
 //            (the displacement along n, scaled by |n|^2's unit) and C = n.p_s the problem is
 //            minimise sum_T mu_T^T (I + J) mu_T / (20 n.n)  s.t.  n.x_i + mu_i - C {=,<=,>=} 0.
 //            Deformed positions are x_i + (mu_i / n.n) n. The two formulations agree exactly
@@ -47,7 +47,7 @@ bool full_qp_uses_frame(const Vector& n);
 std::optional<DirectionOptimum> direction_qp(const ExactPair& pair, const CandidateDirection& dir,
                                              PddCase pdd_case, QpFormulation formulation);
 
-// SPEC §9, a lower bound for a whole cone of normals. With G(n) = (the Reduced Relaxed QP's
+// definitions §9, a lower bound for a whole cone of normals. With G(n) = (the Reduced Relaxed QP's
 // optimum for the unnormalised n) · n.n = the minimum of sum_T mu_T^T (I + J) mu_T / 20 subject
 // to n.x_i + mu_i <= C (A), >= C (B), returns
 //     min { G(n) : n in conv(normals) },

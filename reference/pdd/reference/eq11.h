@@ -1,4 +1,4 @@
-// eq11.h — the paper's eq. 11 (and its appendix Theorem 1), as SPEC §4 states it.
+// eq11.h — the paper's eq. 11 (and its appendix Theorem 1), as definitions §4 states it.
 //
 //   E11 = min over candidates n of (L_n(A) + L_n(B) - L_n(A u B)) / |n|,
 //   L_n(T) = max_{x in T} n.x - min_{x in T} n.x   (the width of T's projection on n),

@@ -1,7 +1,7 @@
 // exact_kernel.h — the number types of the exact engine: the one place they are decided.
 //
 // Rational  GMP rational (CGAL::Gmpq). Every input double is taken as the rational it denotes
-//           (SPEC §1); every construction (cross products, dot products, squared lengths,
+//           (definitions §1); every construction (cross products, dot products, squared lengths,
 //           QP optima) stays exact.
 // Kernel    CGAL Cartesian kernel over Rational: predicates and constructions exact.
 // QpNumber  CGAL::Gmpzf, arbitrary-precision dyadic floats, the type CGAL's QP solver is
@@ -28,7 +28,7 @@ using QpNumber = CGAL::Gmpzf;
 
 using ExactTet = std::array<Point, 4>;
 
-// The pair of SPEC §1 with every coordinate converted exactly.
+// The pair of definitions §1 with every coordinate converted exactly.
 struct ExactPair {
   ExactTet A;  // s0..s3
   ExactTet B;  // r0..r3
@@ -38,7 +38,7 @@ struct ExactPair {
 ExactTet to_exact(const TetVertices& tet);
 ExactPair to_exact(const TetPair& pair);
 
-// "p/q" in lowest terms, or "p" for an integer (SPEC §6).
+// "p/q" in lowest terms, or "p" for an integer (definitions §6).
 std::string to_string(const Rational& q);
 
 // Exact conversions between the geometry and QP number types. to_qp_number throws

@@ -1,4 +1,4 @@
-// global_pdd.h — PD_d^2 over every separating plane (the paper's eq. 5; SPEC §9), exactly
+// global_pdd.h — PD_d^2 over every separating plane (the paper's eq. 5; definitions §9), exactly
 // certified: an exact witness (upper bound) and a proved lower bound.
 //
 // Input : an exact intersecting pair; a starting witness (a normal and its exact relaxed
@@ -67,7 +67,7 @@ struct GlobalPdd {
 };
 
 struct GlobalOptions {
-  Rational gap = Rational(1) / Rational(1000000000000LL);  // 1e-12 (SPEC §9)
+  Rational gap = Rational(1) / Rational(1000000000000LL);  // 1e-12 (definitions §9)
   std::size_t max_patches = 100000;  // a few seconds at most; see kGapNotClosed in the tests
   // Patches below the doubles' grid (2^-52 wide) go on in exact rationals, at ~1-3 ms each
   // (Release): a pair that does not close spends at most ~3 s here. The shipped pairs that need

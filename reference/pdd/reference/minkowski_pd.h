@@ -1,4 +1,4 @@
-// minkowski_pd.h — rigid penetration depth through the Minkowski difference (SPEC §4).
+// minkowski_pd.h — rigid penetration depth through the Minkowski difference (definitions §4).
 //
 // Input : an exact pair (A, B).
 // Output: M = A (+) (-B) = conv{ s_i - r_j } as CGAL's exact 3D convex hull of the 16

@@ -1,4 +1,4 @@
-// oriented_depth.h — the oriented depth of SPEC §4 along one candidate direction.
+// oriented_depth.h — the oriented depth of definitions §4 along one candidate direction.
 //
 //   delta(n) = (max_i n.s_i - min_j n.r_j) / |n|
 //

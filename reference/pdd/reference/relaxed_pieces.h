@@ -1,5 +1,6 @@
-// relaxed_pieces.h — the relaxed QP of SPEC §5 along ANY normal n (SPEC §9), in closed form per
-// active set, and the dual bound that certifies a lower bound of it on a whole cone of normals.
+// relaxed_pieces.h — the relaxed QP of definitions §5 along ANY normal n (definitions §9), in
+// closed form per active set, and the dual bound that certifies a lower bound of it on a whole cone
+// of normals.
 //
 // Input : an exact pair (A = s0..s3, B = r0..r3), an active set, normals n (exact vectors).
 // Output: the piece of G on which that active set is optimal: G(n) = n^T H n there, the
@@ -9,12 +10,13 @@
 // The function. For n != 0 let a_i = n.s_i, b_j = n.r_j and
 //   G(n) = min over t_A, t_B in R^4, c in R of  t_A^T M t_A + t_B^T M t_B,   M = (I + J) / 20,
 //          subject to  a_i + t_i <= c  (every vertex of A),   b_j + t_j >= c  (every vertex of B).
-// A vertex x displaced by t along a unit vector u has sigma = t^T M t (SPEC §2), so for |u| = 1
-// G(u) is the relaxed QP of SPEC §5 with normal u and no constrained vertex: the quantity whose
-// minimum over the unit sphere is pdd2_global (SPEC §9). The right-hand sides are linear in n,
-// so G(s n) = s^2 G(n) for s > 0 (substitute t = s t', c = s c'), and G(n)/|n|^2 = G(n/|n|).
+// A vertex x displaced by t along a unit vector u has sigma = t^T M t (definitions §2), so for |u|
+// = 1 G(u) is the relaxed QP of definitions §5 with normal u and no constrained vertex: the
+// quantity whose minimum over the unit sphere is pdd2_global (definitions §9). The right-hand sides
+// are linear in n, so G(s n) = s^2 G(n) for s > 0 (substitute t = s t', c = s c'), and G(n)/|n|^2 =
+// G(n/|n|).
 //
-// Convexity (SPEC §9 asks for the proof). Write the QP as min Q(z) s.t. E z <= F n with z =
+// Convexity (definitions §9 asks for the proof). Write the QP as min Q(z) s.t. E z <= F n with z =
 // (t_A, t_B, c), Q convex. For n1, n2 with optima z1, z2 and 0 <= w <= 1, z = w z1 + (1-w) z2
 // satisfies E z <= F (w n1 + (1-w) n2) and Q(z) <= w Q(z1) + (1-w) Q(z2): G is convex on R^3.
 //

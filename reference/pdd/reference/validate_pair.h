@@ -1,4 +1,4 @@
-// validate_pair.h — input validation of SPEC §1, decided exactly.
+// validate_pair.h — input validation of definitions §1, decided exactly.
 //
 // A tetrahedron is valid when its 12 coordinates are finite and its volume is non-zero
 // (either orientation); the volume sign is CGAL's exact orientation predicate on the

@@ -6,8 +6,8 @@ namespace pdd::compare {
 
 // Every pair was computed (and every check passed).
 constexpr int kExitOk = 0;
-// Some pair was rejected (SPEC §1: named on standard error, the others computed), or one value
-// of a pair could not be had (the fast engine's pdd2_global_error: named on standard error,
+// Some pair was rejected (definitions §1: named on standard error, the others computed), or one
+// value of a pair could not be had (the fast engine's pdd2_global_error: named on standard error,
 // the pair's other values written), or a
 // check the command makes failed (`pdd compare` over tolerance, `pdd golden --check`
 // mismatch, a `pdd theorem` or `pdd paper` self-check): the same code, two names.

@@ -7,7 +7,7 @@
 //                      constrained/free sets) is solved too, in every case: how often its
 //                      optimum is smaller than the kept one, and whether it would lower the
 //                      pair's result (static, deformable, relaxed);
-//   colinear pairs     skipped by SPEC §3; the paper calls them redundant and suggests the
+//   colinear pairs     skipped by definitions §3; the paper calls them redundant and suggests the
 //                      normals of the faces incident to the two edges. Those directions, with
 //                      the edge pair's constrained sets and the EE orientation rule, are
 //                      solved: does any lower the pair's result?

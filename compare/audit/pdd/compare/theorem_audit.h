@@ -1,7 +1,7 @@
 // theorem_audit.h — the paper's appendix Theorem 1 (eq. 11 = PD) settled exactly, per pair.
 //
 // For one valid pair:
-//   eq11_holds       E11^2 == PD^2 (both exact, SPEC §4);
+//   eq11_holds       E11^2 == PD^2 (both exact, definitions §4);
 //   axis, nested     eq. 11's minimising candidate and whether A's and B's projections on it
 //                    nest (one interval inside the other);
 //   witness          when E11 < PD: the translation v = (o / n.n) n of length E11 along the

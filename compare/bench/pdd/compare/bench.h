@@ -51,7 +51,7 @@ struct ExactComparison {
   double exact_rigid_median_ns = 0;  // median single call, over `repeats` passes of the sample
   double fast_rigid_median_ns = 0;   // our rigid_pd2 on the same sample (median_ns_per_pair)
   double rigid_ratio = 0;            // exact / fast
-  // Every SPEC §6 value: reference::solve_exact (Reduced formulation, one pass) vs
+  // Every definitions §6 value: reference::solve_exact (Reduced formulation, one pass) vs
   // fast::solve_pair on the same sample.
   double exact_solve_median_ns = 0;
   double fast_solve_median_ns = 0;
@@ -60,8 +60,8 @@ struct ExactComparison {
   double fast_max_rel_error = 0, fast_median_rel_error = 0;
 };
 
-// SPEC §8 certification: how many pairs needed more than the double path, and what they cost.
-// Refined pairs evaluate a few candidates exactly; slow-path pairs take the whole exact path.
+// definitions §8 certification: how many pairs needed more than the double path, and what they
+// cost. Refined pairs evaluate a few candidates exactly; slow-path pairs take the whole exact path.
 // Their time is measured per call (fast::solve_pair, one core) and set against the time of
 // solve_pair over all pairs (median pass time × pairs): the share of the total they take.
 // The bound checks of the double path itself run on every pair, inside the same functions, and

@@ -1,6 +1,6 @@
 // mesh_bench.h — `pdd bench mesh`: the speed of pdd::mesh::contacts (include/pdd/mesh.h,
-// SPEC §10) on two overlapping tetrahedral meshes, per stage, on one core and on all cores, and
-// its broadphase side by side with FCL's broadphase managers on the same element boxes in the
+// definitions §10) on two overlapping tetrahedral meshes, per stage, on one core and on all cores,
+// and its broadphase side by side with FCL's broadphase managers on the same element boxes in the
 // same process (issue 11, item 5). FCL is linked here only (compare/bench).
 //
 // Input:  two mesh files (--a, --b), or two generated balls (make_bench_ball below) of about
@@ -77,7 +77,7 @@ struct DecisionCosts {     // one core, on a sample of the box pairs
 // sample: per requested variant (eq11 excepted; global: "solve_pair", the call the depth
 // stage makes for it) the median and the mean single-call time, and the share of the time
 // spent in calls over 50 µs (for the single variants, the fast engine's refined or exact
-// path, SPEC §8; most solve_pair calls take about that long).
+// path, definitions §8; most solve_pair calls take about that long).
 struct DepthCost {
   std::string name;
   double median_ns = 0, mean_ns = 0;

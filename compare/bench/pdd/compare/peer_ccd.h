@@ -8,7 +8,7 @@
 // function: the vertex of the 4 maximising the dot product with the direction, for A; for B
 // libccd queries the support along −d and subtracts), then EPA (expanding polytope) from the
 // terminal simplex; depth = distance from the origin to the nearest element of the final
-// polytope. That is the rigid PD of SPEC §4 up to EPA's stopping rule.
+// polytope. That is the rigid PD of definitions §4 up to EPA's stopping rule.
 // Why GJK+EPA and not ccdMPRPenetration: MPR (Minkowski portal refinement) follows the ray
 // from an interior point of the difference (the difference of the centres) through the origin
 // and returns the distance from the origin to the plane of the boundary facet that ray crosses:

@@ -11,7 +11,7 @@
 //                     GJK, then EPA on the Minkowski difference (FCL's port of Bullet's
 //                     GJK/EPA, fcl/narrowphase/detail/convexity_based_algorithm/{gjk,epa}.h);
 //                     the contact's penetration_depth is the EPA depth, i.e. the rigid PD of
-//                     SPEC §4 up to EPA's stopping rule. FCL 0.7 reports it NEGATED on this
+//                     definitions §4 up to EPA's stopping rule. FCL 0.7 reports it NEGATED on this
 //                     path (`depth = -epa.depth` in gjk_solver_indep-inl.h; observed −0.5 on
 //                     a PD = 0.5 pair); we return its magnitude.
 //   FclSolver::Libccd (GST_LIBCCD, FCL's default): FCL calls libccd's ccdMPRPenetration, whose

@@ -56,7 +56,7 @@ std::vector<VariantTiming> time_functions(std::size_t count, const std::vector<T
 std::vector<TimedFunction> fast_timed_functions(const std::vector<TetPair>& pairs);
 
 // The fast engine from raw vertices, one core: rigid_pd2, pdd2_static, pdd2, pdd2_relaxed,
-// pdd2_accel1, pdd2_accel6 (pdd::fast convenience overloads), and solve_pair (every SPEC §6
+// pdd2_accel1, pdd2_accel6 (pdd::fast convenience overloads), and solve_pair (every definitions §6
 // value of the pair), in that order, named so.
 std::vector<VariantTiming> time_fast_variants(const std::vector<TetPair>& pairs, int repeats);
 
@@ -67,7 +67,7 @@ struct BatchTiming {
   int repeats = 0;
   double median_seconds = 0;     // one solve_batch call over all pairs, median over repeats
   double pairs_per_second = 0;   // pairs / median_seconds
-  std::size_t slow_paths = 0;    // pairs that took the fast engine's exact path (SPEC §8)
+  std::size_t slow_paths = 0;    // pairs that took the fast engine's exact path (definitions §8)
   std::size_t refined = 0;       // pairs refined instead (a few candidates evaluated exactly)
 };
 BatchTiming time_batch(const std::vector<TetPair>& pairs, int repeats);

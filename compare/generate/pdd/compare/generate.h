@@ -28,7 +28,7 @@ struct FamilyInfo {
 // The families, in a fixed order.
 const std::vector<FamilyInfo>& fixture_families();
 
-// Parameters of the paper's random protocol (SPEC §7). Volumes outside [min_volume,
+// Parameters of the paper's random protocol (definitions §7). Volumes outside [min_volume,
 // max_volume] are redrawn: the paper reports volumes "from 0.1 to 130".
 struct PaperProtocol {
   double cube_side = 10.0;

@@ -4,7 +4,8 @@
 // Output: intersect agreement, the exact relative error of each squared value and of the
 //         deformed positions, a verdict on each label, and whether anything is over tolerance.
 //
-// The judge is SPEC §8, the fast engine's contract, checked exactly (nothing grows with R/PD):
+// The judge is definitions §8, the fast engine's contract, checked exactly (nothing
+// grows with R/PD):
 // - the two engines reject the same pairs, except that the fast engine may reject a pair as
 //   "not representable" when some non-zero exact value is outside the normal double range
 //   (checked here on the exact values);
@@ -17,7 +18,7 @@
 //   coordinates of size Q cannot be closer than u·Q: allowance 4 u Q per vertex, which moves
 //   sqrt(sigma) by <= sqrt(6) · 4 u Q, see value_bounds.h's norm argument), and the positions
 //   are separated by the plane of the fast pdd2 label's exact direction up to 1e-9 · R;
-// - pdd2_global (SPEC §9): the fast value lies in the exact engine's certified interval
+// - pdd2_global (definitions §9): the fast value lies in the exact engine's certified interval
 //   [pdd2_global_lower, pdd2_global] widened by 1e-9 relative, and the fast normal reproduces
 //   it: the exact relaxed optimum along the fast normal (CGAL's QP) is within 1e-9 of it; the
 //   fast engine may decline pdd2_global alone (pdd2_global_error) only where no double normal
@@ -35,12 +36,12 @@
 
 namespace pdd::compare {
 
-inline constexpr double kContractRel = 1e-9;  // SPEC §8
+inline constexpr double kContractRel = 1e-9;  // definitions §8
 
 enum class LabelVerdict { Same, Tie, NearTie, Differ, None };
 const char* to_string(LabelVerdict v);
 
-// Values and labels in SPEC §6 order: kValueKeys, kLabelKeys (pdd/pair_result.h).
+// Values and labels in definitions §6 order: kValueKeys, kLabelKeys (pdd/pair_result.h).
 
 struct PairComparison {
   std::string name;
@@ -57,7 +58,7 @@ struct PairComparison {
   // |sigma(q1_fast) − pdd2_exact| / pdd2_exact, exactly, and its allowance (see above)
   double position_error = 0, position_tolerance = 0;
   bool separated = true;  // q1 separated by the fast label's plane up to 1e-9 R
-  // SPEC §9: distance of the fast pdd2_global outside [lower, witness] (relative; 0 inside),
+  // definitions §9: distance of the fast pdd2_global outside [lower, witness] (relative; 0 inside),
   // and |exact relaxed value along the fast normal − fast value| / that exact value.
   double global_error = 0, global_normal_error = 0;
   double global_exact = 0, global_lower = 0, global_fast = 0;

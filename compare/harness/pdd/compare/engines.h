@@ -1,7 +1,7 @@
 // engines.h — running an engine over the entries of a fixture file, in input order.
 //
 // Malformed entries become error records without reaching an engine; every other pair is
-// computed even when some are rejected (SPEC §1). The reference engine runs pairs in
+// computed even when some are rejected (definitions §1). The reference engine runs pairs in
 // parallel with TBB (GMP and CGAL's exact types are thread-safe per object).
 #pragma once
 
@@ -67,13 +67,14 @@ std::vector<reference::ExactResult> run_reference(const std::vector<io::FixtureE
 std::vector<PairResult<double>> run_fast(const std::vector<io::FixtureEntry>& entries,
                                          const fast::SolveOptions& options = {});
 
-// SPEC §6 record of a fast result: numbers as JSON numbers that read back to the same double.
-// `global` false: without SPEC §9's keys (pdd2_global, pdd2_global_normal, q1_A_global,
+// The definitions §6 record of a fast result: numbers as JSON numbers that read back to the
+// same double.
+// `global` false: without definitions §9's keys (pdd2_global, pdd2_global_normal, q1_A_global,
 // q1_B_global, pdd2_global_lower, pdd2_global_grad), for results computed without it.
 // pdd2_global_grad is written when the result has it (the options asked for it).
 io::Json fast_record(const PairResult<double>& r, bool global = true);
 
-// SPEC §6 record of an exact result: every number as an exact "p/q" string.
+// definitions §6 record of an exact result: every number as an exact "p/q" string.
 io::Json exact_record(const reference::ExactResult& r, bool global = true);
 
 }  // namespace pdd::compare

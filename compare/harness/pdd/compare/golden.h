@@ -1,4 +1,4 @@
-// golden.h — golden files: the exact engine's SPEC §6 output for every shipped fixture file.
+// golden.h — golden files: the exact engine's definitions §6 output for every shipped fixture file.
 //
 // fixtures/X.json has its golden file fixtures/golden/X.jsonl (same relative path; finding and
 // reading them: io/'s golden_files.h). Checking re-runs the exact engine and compares the

@@ -1,5 +1,5 @@
 // family_global_cost.h — what the paper's restriction to the candidate directions costs
-// (SPEC §9; issue 10, item 4) on the shipped fixture families, beside `pdd paper`'s numbers
+// (definitions §9; issue 10, item 4) on the shipped fixture families, beside `pdd paper`'s numbers
 // for the paper's protocol.
 //
 // Input : a fixtures folder (the repository's `fixtures/`): every `families/*.json` in it and
@@ -31,7 +31,7 @@ struct FamilyGlobalCost {
 
 std::vector<FamilyGlobalCost> family_global_costs(const std::string& fixtures_dir);
 
-// The pair's oriented candidate directions (SPEC §3), rounded to doubles, for
+// The pair's oriented candidate directions (definitions §3), rounded to doubles, for
 // global_statistics' angle to the nearest candidate.
 std::vector<std::array<double, 3>> candidate_normals_rounded(const TetPair& pair);
 

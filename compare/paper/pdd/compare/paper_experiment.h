@@ -70,12 +70,12 @@ PaperStats paper_statistics(const std::vector<PairResult<R>>& results, ToDouble 
   return s;
 }
 
-// SPEC §9: what the paper's restriction to the candidate directions costs. Per intersecting
+// definitions §9: what the paper's restriction to the candidate directions costs. Per intersecting
 // pair: PD_d_global / PD = sqrt(pdd2_global / rigid_pd2); the squared ratios pdd2 / pdd2_global
 // and pdd2_relaxed / pdd2_global (>= 1; the values of RatioStats hold them for medians,
 // maxima and histograms); whether the global optimum is a candidate's (pdd2_relaxed within
 // 1e-9 of pdd2_global: the best relaxed candidate attains it); and the angle, in degrees,
-// between pdd2_global_normal and the nearest oriented candidate direction (SPEC §3).
+// between pdd2_global_normal and the nearest oriented candidate direction (definitions §3).
 struct GlobalStats {
   std::size_t pairs = 0;
   RatioStats global_over_pd, pdd2_over_global, relaxed_over_global, angle_degrees;

@@ -27,7 +27,7 @@ PairConfigurations pair_configurations(const TetPair& pair);
 bool write_fig3(const std::string& dir, const PaperStats& stats, std::string& why);
 
 // Writes DIR/global_cost.{dat,gp,png}: histograms of pdd2_relaxed / pdd2_global and
-// pdd2 / pdd2_global (SPEC §9); returns false (with `why`) when gnuplot fails.
+// pdd2 / pdd2_global (definitions §9); returns false (with `why`) when gnuplot fails.
 bool write_global_figure(const std::string& dir, const GlobalStats& stats, std::string& why);
 
 // Writes DIR/fig2_pair.{dat,gp,png}; returns false (with `why`) when gnuplot fails.

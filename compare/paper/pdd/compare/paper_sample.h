@@ -1,6 +1,7 @@
 // paper_sample.h — the exact side of `pdd paper` (the paper's Sec. VI experiment): the paper's
 // own Table I for the side-by-side columns, the exact engine on a random sample of the pairs
-// (values, SPEC §8 verdicts of the fast engine, single-call timings), and the pair drawn in Fig. 2.
+// (values, definitions §8 verdicts of the fast engine, single-call timings), and the pair
+// drawn in Fig. 2.
 #pragma once
 
 #include <array>
