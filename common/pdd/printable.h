@@ -1,7 +1,7 @@
 // printable.h — text from an input file (a pair's name, a mesh's section name) as a message
 // shows it: control characters (NUL, a newline, a terminal escape) as \xNN, so that the text
-// can neither cut the message short nor forge or garble the lines around it (found by a
-// review: a NUL cut a mesh message at "section $No", a name printed a newline and an escape).
+// can neither cut the message short nor forge or garble the lines around it (a NUL would cut
+// a mesh message at "section $No", a name would print a newline and an escape).
 #pragma once
 
 #include <string>

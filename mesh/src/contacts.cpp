@@ -102,7 +102,7 @@ void clear_global(PairResult<R>& r, const TetVertices& A, const TetVertices& B) 
 PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsigned variants) {
   PairResult<double> r;
   // One solve_pair: for pdd2 and global (their positions come only from it; global's hot path
-  // was also slower than solve_pair on mesh pairs, mesh.h), eq11 (no separate call), and two
+  // is also slower than solve_pair on mesh pairs, mesh.h), eq11 (no separate call), and two
   // or more variants besides rigid.
   const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal)) ||
                             __builtin_popcount(variants & ~unsigned(kRigid)) >= 2;

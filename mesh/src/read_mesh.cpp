@@ -104,8 +104,8 @@ class Cursor {
     const long long v = integer(what, on_line);
     if (v < 0 || v > (1ll << 40)) fail(std::string(what) + ": " + std::to_string(v) + " is out of range", at);
     // Every counted item takes at least a byte of the file: a larger count is a lie, and the
-    // reader would allocate for it before finding out (a review's 300-byte "POINTS 1000000000
-    // double" asked for 24 GB).
+    // reader would allocate for it before finding out (a 300-byte file saying "POINTS
+    // 1000000000 double" would ask for 24 GB).
     if (static_cast<unsigned long long>(v) > s_.size() - std::min(pos_, s_.size()))
       fail(std::string(what) + ": " + std::to_string(v) + " is more than the " +
                std::to_string(s_.size() - std::min(pos_, s_.size())) + " bytes left in the file",
@@ -571,7 +571,7 @@ Mesh read_vtk(Cursor& c) {
           cell_where.push_back(cat);
           listed += 1 + k;
         }
-        if (listed != size)  // (a review's file: "CELLS 2 3" over two tetrahedra, read as fine)
+        if (listed != size)  // (e.g. "CELLS 2 3" over two tetrahedra)
           c.fail("the cell list has " + std::to_string(listed) + " numbers, not the " + std::to_string(size) +
                      " its header says",
                  at);

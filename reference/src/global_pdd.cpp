@@ -347,7 +347,7 @@ class Search {
   // Bound (Q), for patches that no single multiplier vector closes: around a vertex 1e15 to
   // 1e18 away from the others, its walls (where its status changes) stack within ~1e-14 rad,
   // the corners of one patch fall in up to four active sets, and bound (D) with any one
-  // piece's multipliers gives nothing there (adversarial kind 9: gaps of 1e-9 to 53% before).
+  // piece's multipliers gives nothing there (adversarial kind 9: gaps of 1e-9 to 53% without bound (Q)).
   // The patch is the cone spanned by its four corners c_k; scaled by dyadic s_k with
   // |s_k c_k| <= 1 (checked exactly), every unit u of the patch is p/|p| with p in
   // conv{s_k c_k}, |p| <= 1, so relaxed(u) = G(p)/|p|² >= G(p) >= the minimum of G over the hull,

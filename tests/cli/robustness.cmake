@@ -175,8 +175,7 @@ if(NOT h1 STREQUAL h2)
 endif()
 
 # ---- --no-global: definitions §9 skipped; pdd2_global declined alone --------------------------
-# A near-touching pair (an independent review's near-touching-4: a vertex ~1e-12 inside a face)
-# is computed whole, pdd2_global included. adversarial-1-3 of fixtures/families (a vertex 1e-18
+# A near-touching pair (a vertex ~1e-12 inside a face) is computed whole, pdd2_global included. adversarial-1-3 of fixtures/families (a vertex 1e-18
 # inside a face) has its exact pdd2_relaxed below 1e-14 of its extent squared, where no double
 # normal need attain pdd2_global: the fast engine declines that value alone (the allowed class):
 # exit 1, the pair named on standard error, its definitions §9 keys null and every other value in
@@ -215,8 +214,8 @@ if(out MATCHES "_global" OR NOT out MATCHES "\"pdd2\":\"4/5\"")
   message(FATAL_ERROR "solve --no-global (reference): wrong records\n${out}")
 endif()
 
-# ---- a review's finds (2026-11-24) ---------------------------------------------------------
-# An output that is an input would be emptied before it is read (solve left the input empty).
+# ---- outputs that are inputs, and other hostile command lines ------------------------------
+# An output that is an input would be emptied before it is read: refused, the input untouched.
 file(COPY ${FIXTURES}/smoke.json DESTINATION ${WORK}/same)
 file(SHA256 ${WORK}/same/smoke.json before)
 run(2 "--output '.*smoke.json' is the input file" solve --engine fast --quiet --input ${WORK}/same/smoke.json --output ${WORK}/same/../same/smoke.json)
@@ -227,13 +226,13 @@ endif()
 file(COPY ${FIXTURES}/meshes/tiny-a.msh DESTINATION ${WORK}/same)
 run(2 "--output '.*tiny-a.msh' is the same file as --a" mesh --a ${WORK}/same/tiny-a.msh --b ${FIXTURES}/meshes/tiny-b.msh --output ${WORK}/same/tiny-a.msh)
 run(2 "--vtk '.*o.txt' is the same file as --output" mesh --a ${FIXTURES}/meshes/tiny-a.msh --b ${FIXTURES}/meshes/tiny-b.msh --output ${WORK}/same/o.txt --vtk ${WORK}/same/o.txt)
-# A header that claims more items than the file has bytes (it was allocated first: 24 GB for a
-# 300-byte file); a device and a directory as a mesh.
+# A header that claims more items than the file has bytes (refused before allocating: 24 GB for
+# a 300-byte file); a device and a directory as a mesh.
 file(WRITE ${WORK}/same/lie.vtk "# vtk DataFile Version 3.0\nlie\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1000000000 double\n0 0 0\n")
 run(2 "lie.vtk:5: the number of points: 1000000000 is more than the [0-9]+ bytes left in the file" mesh --a ${WORK}/same/lie.vtk --b ${FIXTURES}/meshes/tiny-b.msh)
 run(2 "'/dev/zero' is not a regular file" mesh --a /dev/zero --b ${FIXTURES}/meshes/tiny-b.msh)
 run(2 "is a directory, not a mesh file" mesh --a ${WORK}/same --b ${FIXTURES}/meshes/tiny-b.msh)
-# A folder without fixtures passed the golden check (0 of 0 match, exit 0).
+# A folder without fixtures fails the golden check (not "0 of 0 match", exit 0).
 file(MAKE_DIRECTORY ${WORK}/empty)
 run(2 "no fixture files under" golden --check --fixtures ${WORK}/empty)
 # A golden file holds computed records only: a flat pair makes --update write nothing (exit 1,
@@ -251,10 +250,10 @@ if(NOT out MATCHES "MISMATCH flat.json: pair 'flat': tetrahedron A is flat[^\n]*
 endif()
 run(2 "no fixture folder '${WORK}/nowhere'" golden --check --fixtures ${WORK}/nowhere)
 run(2 "not a finite number" bench mesh --size 200 --distance nan)
-# bench --json to a path that cannot be written: said before the run (it was said after it).
+# bench --json to a path that cannot be written: said before the run, not after it.
 run(2 "cannot write '/nonexistent-dir/b.json'" bench --count 10 --repeats 1 --json /nonexistent-dir/b.json)
 run(2 "cannot write '/nonexistent-dir/m.json'" bench mesh --size 200 --repeats 1 --json /nonexistent-dir/m.json)
-# Mesh headers that contradict their contents (accepted before): a point type that is no VTK
+# Mesh headers that contradict their contents (refused): a point type that is no VTK
 # type, a legacy CELLS size that is not the list's length, an MSH 4.1 node tag outside the
 # $Nodes header's range.
 file(WRITE ${WORK}/same/type.vtk "# vtk DataFile Version 2.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 quaternion\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n")
@@ -263,6 +262,6 @@ file(WRITE ${WORK}/same/size.vtk "# vtk DataFile Version 2.0\nx\nASCII\nDATASET 
 run(2 "size.vtk:10: the cell list has 5 numbers, not the 3 its header says" mesh --a ${WORK}/same/size.vtk --b ${FIXTURES}/meshes/tiny-b.msh)
 file(WRITE ${WORK}/same/tag.msh "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 3\n3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n")
 run(2 "tag.msh:[0-9]+: node tag 4 is outside the \\$Nodes header's range \\[1, 3\\]" mesh --a ${WORK}/same/tag.msh --b ${FIXTURES}/meshes/tiny-b.msh)
-# A pair name with a newline and a terminal escape: shown as \xNN in messages (it was printed raw).
+# A pair name with a newline and a terminal escape: shown as \xNN in messages, never raw.
 file(WRITE ${WORK}/same/esc.json "{\"pairs\":[{\"name\":\"bad\\nname\\u001b[31m\",\"A\":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]],\"B\":[[0,0,0],[1,0,0],[0,1,0],[0,0,1]]}]}")
 run(1 "pair 'bad\\\\x0aname\\\\x1b\\[31m' rejected: tetrahedron A is flat" solve --engine fast --quiet --input ${WORK}/same/esc.json)

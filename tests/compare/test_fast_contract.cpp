@@ -2,7 +2,7 @@
 // engine (the judge of compare/pdd/compare/engine_comparison.h), pair by pair. The pairs are
 // paper-protocol pairs (reproducible family) put through one transformation each — power-of-two
 // scales across the double range, far translations, 1-ulp slivers and needles, a vertex a tiny
-// step inside a face, a vertex 1e15 away — plus the literal reproductions of issue 8. Every pair
+// step inside a face, a vertex 1e15 away — plus literal hard pairs (below). Every pair
 // must be within the contract, or rejected by the fast engine as not representable where the
 // exact values confirm it.
 #include <boost/test/unit_test.hpp>
@@ -74,7 +74,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
   std::vector<TetPair> pairs;
   const auto base = compare::generate_family("paper", 2026, 50);
   for (std::size_t k = 0; k < base.size(); ++k) pairs.push_back(transformed(base[k], int(k % 10)));
-  // issue 8's reproductions
+  // a needle and a sliver 1 ulp from flat, and a tetrahedron 1e18 wide
   pairs.push_back(literal("needle", {{{0, 0, 0}, {9, 0, 9}, {1.0000000000000002, 1, 1}, {1, 1, 1}}},
                           {{{0, -10, 0}, {0, 0, 0}, {0, 0, 0.3}, {0.01, 1, 0}}}));
   pairs.push_back(literal("sliver", {{{9, 5, 9}, {0, 9, 0}, {1, 1, 1}, {1.0000000000000002, 1, 1}}},
@@ -92,8 +92,9 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           {{{1.1798287622688967e-320, 0, 0}, {9, 6.6698862188568283e-322, 9},
                             {1.0000000000000002, 1, 1}, {1, 1, 1}}}));
   // definitions §9 where the depth is ~1e-36 of the size squared (a vertex ~1e18 away): the double
-  // normal of pdd2_relaxed has no accurate digit where it matters, and pdd2_global was above
-  // the exact witness on these two (global_depth.h: the exact start, rounded componentwise).
+  // normal of pdd2_relaxed has no accurate digit where it matters, and pdd2_global started from
+  // it lands above the exact witness on these two (global_depth.h: the exact start, rounded
+  // componentwise).
   const auto far = compare::generate_family("adversarial", 78, 40);
   pairs.push_back(far[29]);
   pairs.push_back(far[39]);
@@ -120,9 +121,9 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                             {1.5495325739710195e-18, 6.9469722445301342e-18, 7.0795386101003494e-18},
                             {3.2834170918216976e-18, 3.7745084273024319e-19, 2.0425652625649374e-18},
                             {0, 0, 0}}}));
-  // a review's finds (one vertex 1e100 to 1e300 away): the fast pdd2_global was 5%, 3.8%, 61%
-  // and 24% above exact witnesses (wall offers lost to underflow, H of the near pieces rounded
-  // to 0, the start's normal unevaluable in doubles)
+  // one vertex 1e100 to 1e300 away: a naive fast pdd2_global comes out 5%, 3.8%, 61% and 24%
+  // above exact witnesses (wall offers lost to underflow, H of the near pieces rounded to 0,
+  // the start's normal unevaluable in doubles)
   pairs.push_back(literal("review-F1", {{{7.337351763128489, 5.638439545927295, 1.0313324489907016}, {5.877587699635476, 0.049012785669239056, 1.4351836022712494}, {7.743040203204269, 0.4431286101942056, 0.9179887596012393}, {-5.992997299781062e+160, 6.761152187848012e+160, 6.63367779215839e+159}}},
                           {{{0.23487369280188686, 8.41535574587439, 1.2128347177406729}, {8.4394325401706, 6.735347694301687, 8.361819512870102}, {9.52411318454853, 5.790764190210559, 7.987472496091215}, {0.3626926985565859, 7.674185377630392, 5.11325743265501}}}));
   pairs.push_back(literal("review-F2", {{{5.585272464959346, 6.277671085211685, 6.2622645893278595}, {6.806641760808205, 4.892943148597545, 0.0331432712784796}, {7.976975520708526, 7.482653702237058, 5.029710523624537}, {-1.4376317731943154e+100, 3.75238914361403e+99, -3.114535899188773e+100}}},
@@ -131,10 +132,10 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
                           {{{4.435765563058341, 9.13145005203284, 7.282478447867935}, {6.062599043956083, 2.6198403134488704, 5.265923229048832}, {1.3861974163698576, 1.3809799323879335, 7.157497662356597}, {3.6108976833344886, 7.513763114866316, 2.404936039137613}}}));
   pairs.push_back(literal("review-F4", {{{1.8527280720823103e-21, 2.4538570014774315e-20, 7.513081811127259e-20}, {2.0548842125944053e-20, 9.492424899080275e-20, 8.194391520150944e-21}, {2.706284155045202e-20, 8.787173255722638e-20, 6.433379820663967e-20}, {1e+300, -1.3400951527526401e+299, -7.190496849657287e+299}}},
                           {{{1.4919707667216176e-20, 4.149598103211293e-20, 1.2999399660886023e-20}, {7.091693335729348e-20, 8.130771338908327e-21, 3.6430839221002095e-20}, {2.59813460488989e-22, 8.805419173267027e-20, 1.5578144418112328e-20}, {4.119209733173353e-20, 2.1505588177096534e-20, 2.981184682562333e-20}}}));
-  // a review's finds (2026-11-24): nearly collinear edges in shallow contact, the optimal
-  // piece's two smallest eigenvalues 1.5e-9 (first), ~1e-15 (second) or untuned apart: Eigen's
-  // closed-form solver merged them and gave vectors anywhere in their plane, so the fast
-  // pdd2_global was 4.1e-2, 2.5e-9, 1.3e-3 and 8e-4 above the exact interval (global_depth.cpp:
+  // nearly collinear edges in shallow contact, the optimal piece's two smallest eigenvalues
+  // 1.5e-9 (first), ~1e-15 (second) or untuned apart: Eigen's closed-form solver merges them
+  // and gives vectors anywhere in their plane, so a fast pdd2_global from it comes out 4.1e-2,
+  // 2.5e-9, 1.3e-3 and 8e-4 above the exact interval (what handles them, global_depth.cpp:
   // the iterative solver near a double eigenvalue, the exact pieces where its estimate is
   // too wide, and there the Ritz vectors of the plane)
   const TetVertices collinear_A = {{{-1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.1, 0.6882917236212551, -0.9829824531467902},

@@ -69,8 +69,8 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_of_golden) {
 
 // definitions §9 on the public hot path: pdd::fast::pdd2_global(A, B) (depth.cpp: started from
 // rigid_and_accel1's rigid direction, not from pdd2_relaxed's as in solve_pair) inside the
-// golden exact interval, its normal reproducing the value, on every shipped fixture. (A review
-// found `pdd compare` and the test above judge only solve_pair's pdd2_global.) A rejection
+// golden exact interval, its normal reproducing the value, on every shipped fixture
+// (`pdd compare` and the test above judge only solve_pair's pdd2_global). A rejection
 // (NotRepresentable) is accepted only where solve_pair rejects the pair or declines pdd2_global too.
 BOOST_AUTO_TEST_CASE(public_pdd2_global_within_contract_of_golden) {
   int compared = 0;

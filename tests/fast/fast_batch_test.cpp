@@ -173,7 +173,7 @@ BOOST_AUTO_TEST_CASE(hot_paths_scale_back_exactly) {
     }
 }
 
-// power_scaled's exactness test (a review's case): R = 1000 gives e = -9; a coordinate
+// power_scaled's exactness test: R = 1000 gives e = -9; a coordinate
 // m = (2 - 2^-52) 2^-1014 has m 2^-9 = 2^-1022 - 2^-1075 exactly, which rounds (to even) up
 // to DBL_MIN: a normal result, but not x 2^e, so the pair is not "exactly" rescaled. One ulp
 // above, m 2^-9 = 2^-1022 exactly: exact.

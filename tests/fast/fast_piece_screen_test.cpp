@@ -106,7 +106,7 @@ BOOST_AUTO_TEST_CASE(certain_counts_are_exact) {
   BOOST_TEST(count(d, 2.5) == 2);
   BOOST_TEST(count(d, 0.5) == 0);
   BOOST_TEST(count(d, 3.5) == 3);
-  // a review's matrix (PSD): h01 h12 underflows, then is multiplied by h02; exact count 1
+  // a PSD matrix whose h01 h12 underflows, then is multiplied by h02; exact count 1
   const double under[6] = {1, 3.487961642486959e-162, 6.615855428177285, 1, 1.372229031336404e-161,
                            53.056013317976664};
   BOOST_TEST(exact_below(under, 1.0) == 1);

@@ -150,11 +150,12 @@ BOOST_AUTO_TEST_CASE(split_matches_a_plain_loop) {
   }
 }
 
-// A review's pair (nearly parallel edges, a shallow contact): solve_pair's set sweep cannot
-// certify its pdd2 minimum in doubles (its pruning bound coeff·delta² is too weak) and evaluates
-// it exactly (refine.h), while the lane sweep's dual bounds certify it in doubles: the two
-// values differed in the last digits (6.5e-16 apart) until solve_pair ran the lane sweeps too.
-// Now: the same values bit for bit and labels, each within definitions §8 of the exact value.
+// A pair with nearly parallel edges in a shallow contact: the set sweep cannot certify its pdd2
+// minimum in doubles (its pruning bound coeff·delta² is too weak) and evaluates it exactly
+// (refine.h), while the lane sweep's dual bounds certify it in doubles. The two values would
+// differ in the last digits (6.5e-16 apart), so solve_pair runs the lane sweeps too: solve_pair
+// and the hot path give the same values bit for bit and labels, each within definitions §8 of
+// the exact value.
 BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
   const double z = -0x1.6cb49ed376162p-4;
   TetPair p;

@@ -135,7 +135,7 @@ BOOST_AUTO_TEST_CASE(degenerate_pairs_decline_or_agree) {
 // that rigid_superset reports equals the one computed by bounding all 8 faces and both
 // orientations of all 36 edge pairs (value_bounds.h's bounds, no entry skipped), for the
 // entry it picked; every entry left out has a lower bound above any hi a certified verdict
-// can have (the lemma itself, per entry; a review's check); every entry a pick can be
+// can have (the lemma itself, per entry); every entry a pick can be
 // (value <= t2) is kept; and entries are left out (the test would be vacuous otherwise). On every pair where certify() runs: random pairs,
 // shallow pairs, and slivers / near-touching reflections with subnormal-scale offsets.
 BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {

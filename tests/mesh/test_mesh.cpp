@@ -176,7 +176,7 @@ BOOST_AUTO_TEST_CASE(bad_files_name_the_line_or_element) {
   BOOST_TEST(contains(read_error("bad/bad-index.vtk"), "bad-index.vtk:12: cell 1 (tetrahedron 1) refers to point 9"));
   BOOST_TEST(contains(read_error("bad/README.md"), "neither a Gmsh mesh"));
   BOOST_TEST(contains(read_error("does-not-exist.msh"), "cannot read"));
-  // A NUL in a section name (a review's file): the message shows it as \x00 instead of ending
+  // A NUL in a section name: the message shows it as \x00 instead of ending
   // there ("section $No").
   const std::string path = (std::filesystem::temp_directory_path() / "pdd-nul-section.msh").string();
   {

@@ -229,7 +229,7 @@ BOOST_AUTO_TEST_CASE(hull_minimum_bounds_the_cone) {
 // Nearly coplanar faces (pdd generate --family adversarial --seed 101, pair 6: B's face 2^-40
 // out of the plane of A's face; not a shipped fixture): pdd2_global ~ 3.06e-27 beside a size of
 // ~10, so the minimising piece's H has entries ~1 and an eigenvalue ~1e-27. Two limits of the
-// doubles used to hold the gap at 1e-4: the certified eigenvalue (H - mu I checked exactly for
+// doubles would hold the gap at 1e-4: the certified eigenvalue (H - mu I checked exactly for
 // mu = the Rayleigh quotient shrunk by 1e-15 .. 1e-4; the quotient of a double vector carries a
 // relative error ~u^2 |H| / mu ~ 1e-6, so only the 1e-4 shrink passed) and the witness (a double
 // normal, off by an angle ~u, sits ~1.4e-6 above the minimum). Newton's method on the exact

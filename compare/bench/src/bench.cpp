@@ -237,7 +237,7 @@ BenchReport run_bench(const BenchOptions& o) {
   std::cerr << "pdd bench: batch API on all cores\n";
   rep.batch = time_batch(pairs, o.repeats);
 
-  // ---- targets (the speed targets pdd was built to): median per pair, one core ----
+  // ---- targets (pdd's speed targets): median per pair, one core ----
   auto add = [&](std::string what, std::string bound, double measured, bool pass) {
     rep.targets.push_back({std::move(what), std::move(bound), measured, pass});
   };
@@ -252,7 +252,7 @@ BenchReport run_bench(const BenchOptions& o) {
   add("pdd2 time per pair", "<= 1500 ns", d2, d2 <= 1500);
   const double a1 = find_timing(rep.fast, "pdd2_accel1").median_ns_per_pair;
   add("pdd2_accel1 time per pair", "<= 350 ns", a1, a1 <= 350);
-  const double gl = find_timing(rep.fast, "pdd2_global").median_ns_per_pair;  // issue 10
+  const double gl = find_timing(rep.fast, "pdd2_global").median_ns_per_pair;
   add("pdd2_global time per pair", "<= 5000 ns", gl, gl <= 5000);
 
   rep.machine.load_after = read_first_line("/proc/loadavg");

@@ -1,6 +1,5 @@
-// mesh_bench.cpp — `pdd bench mesh` (mesh_bench.h). Moved here from tests/mesh/mesh_bench.cpp
-// (the hand-run benchmark of the first mesh session): the FCL broadphase runs and the stage
-// timings, now with medians, one core and all cores, and the decision costs.
+// mesh_bench.cpp — `pdd bench mesh` (mesh_bench.h): the FCL broadphase runs and the stage
+// timings (medians, one core and all cores), and the decision costs.
 //
 // FCL's managers test closed boxes (boxes that only touch overlap), CGAL's box_intersection_d
 // is run with half-open boxes as in contacts(): FCL's pair counts may exceed ours by boxes that

@@ -1,7 +1,7 @@
 // qp_lower_bound.h — internal to fast/src: certified lower bounds of the per-direction QP value
 // (definitions §5, direction_qp.h) of every candidate of a quick list, from its heights alone, by
 // weak duality. They prune the sweeps of deformable_depth.cpp: on the paper's pairs a sweep then
-// solves ~1.7 QPs instead of ~8 (the old bound, coeff·delta², is the k = m = 1 case below).
+// solves ~1.7 QPs instead of ~8 (the plain bound coeff·delta² is the k = m = 1 case below).
 //
 // Input:  a quick list's lanes (quick_lanes, quick_candidates.h): the 8 faces' heights and the
 //         36 edge pairs' lanes, every filter verdict clear (so no parallel pair).
@@ -55,8 +55,8 @@
 // division's, the last product's, d's own (1 + δ) squared, and the three of the dot product
 // n~.n~ (its rounded value is also what the rho_n test sees: a relative 3u, absorbed as well):
 // lo <= 0.999 (1 + 12u) c d'² / n~.n~ < (1 − 6.92e-4) c d'² / n~.n~ <= the exact value.
-// (A review measured the largest lo / exact value at 0.999000000 on ~670k entries of
-// adversarial families: in the tight cases the safety factor is the whole margin.)
+// (The largest lo / exact value measured on ~670k entries of adversarial families is
+// 0.999000000: in the tight cases the safety factor is the whole margin.)
 // Range: the quick list only exists on the rescaled pair (power_scale.h: |coordinates| < 2, so
 // no overflow: heights < 2^10, n.n < 2^12). Underflow: ε also carries + 2^-1000, which covers
 // every absolute error of a subnormal result in ε and in the means (each <= 2^-1075); and d is

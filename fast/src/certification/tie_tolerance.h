@@ -22,8 +22,8 @@
 //       whose exact value is within K u R/sqrt(vmin) of the exact minimum, so c <= K − 2E = 176.
 // kTieCoeff = 128, the power of two between, leaves a factor 1.6 on (1) and 1.4 on (2).
 // For a well-conditioned pair (R/sqrt(v) ~ 20 on the paper's protocol) the band is ~3e-13
-// relative: two values whose true gap is 1e-11 are no longer taken for a tie (the fixed 1e-9 of
-// earlier versions did, and the harness could not accept the resulting label).
+// relative: two values whose true gap is 1e-11 are not taken for a tie (a fixed 1e-9 would take
+// them for one, and the harness could not accept the resulting label).
 // The threshold grows with vmin, so a threshold computed from any upper bound of the final
 // minimum is >= the final one (used by the pruned sweeps of deformable_depth.h).
 #pragma once

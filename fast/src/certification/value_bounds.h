@@ -38,7 +38,7 @@
 //   Tight case: when every free vertex's KKT margin at the computed solution (C − H + S, whose
 //   sign is its status) exceeds 2 dT, the exact solution's margins (within 2 dT of these) have
 //   the same signs (and no branch went the other way: one that did leaves the flipped vertex's
-//   margin within about 20 · 5600/25 = 4480 u Hm < 2 dT of zero, as a review derived), so the
+//   margin within about 20 · 5600/25 = 4480 u Hm < 2 dT of zero), so the
 //   statuses are the exact ones and only the fixed closed form of that
 //   region is rounded. That closed form involves only the heights of the constrained and the
 //   active free vertices (the final sums P are added afresh over them, not carried through the

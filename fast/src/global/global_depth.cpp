@@ -385,8 +385,8 @@ class PieceVisit {
   // (the quadratic form on the unit sphere), and d_j ~ E / |lambda_j - mu| for a matrix error
   // E: so about E^2 / gap, which is not small beside a shallow mu when the gap is small. The
   // closed-form solver is worse there (its eigenvalues err by up to ~4.5e-9 |H| near a double
-  // root, so its vectors can be anywhere in the plane: a review's pairs of nearly collinear
-  // edges in shallow contact, two eigenvalues 1e-9 apart, came out 4% above the minimum).
+  // root, so its vectors can be anywhere in the plane: on pairs of nearly collinear edges in
+  // shallow contact, two eigenvalues 1e-9 apart, its values come out 4% above the minimum).
   // So an in-window eigenvalue within kNearDouble |H| of another is taken from the iterative
   // solver (vectors off by ~u |H| / gap; eigenvalues backward stable, within a few u |H| of
   // H's whatever the gap, so the margin drops the closed form's loss term and keeps kEigen
@@ -410,7 +410,7 @@ class PieceVisit {
     // solver's vectors are off by ~u |H| / gap too): H's error E is absolute, ~2^-39 of the
     // moments' magnitude, so a piece whose active vertices form a small cluster far from the
     // centroid (|H| << mag) in a shallow contact can have E^2 / gap near the eigenvalue
-    // itself (a review's estimate: ~1e-8 of it for |H| ~ 1e-8 R^2, gap ~ 1e-2 |H|). Such a
+    // itself (estimated: ~1e-8 of it for |H| ~ 1e-8 R^2, gap ~ 1e-2 |H|). Such a
     // piece sends the pair to the exact pieces. On the paper's pairs it never triggers.
     const double E = 3 * h_error + 8 * kU * hnorm;
     for (int k = 0; k < 3; ++k)
@@ -595,8 +595,8 @@ int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const de
 // Exact path: whether the best offer may miss the minimum by more than definitions §8 allows
 // because no double normal represents a better stationary point. An offered normal is an
 // eigenvector rounded to doubles; along it the value exceeds the eigenvalue mu by up to
-// ~|H| (u |v|)^2 / |v|^2, which is not small beside mu when the depth is far below the pair's size (a vertex
-// 1e-18 inside a face: mu ~1e-37 beside |H| ~ 25). So every eigenvector that held its piece's
+// ~|H| (u |v|)^2 / |v|^2, which is not small beside mu when the depth is far below the pair's
+// size (a vertex 1e-18 inside a face: mu ~1e-37 beside |H| ~ 25). So every eigenvector that held its piece's
 // signs when offered (the minimum may be there) is a suspect, and one whose exact eigenvalue
 // lies in (floor, top), top = best (1 + 2^-53) / (1 + 1e-9), may be a stationary value (if the
 // exact vector lies in the piece's cone, which the tolerant signs cannot tell) that beats every
@@ -617,7 +617,8 @@ int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const de
 // q (1 + 2^-53) <= q0 (1 + 2^-53) = top (1 + 1e-9) <= m* (1 + 1e-9) with q0 the best before the
 // new offers (they only lower it); in the window, settled: not discarded (its eigenvector is in
 // the cone), so m* >= lo and q (1 + 2^-53) <= lo (1 + 1e-9) <= m* (1 + 1e-9). Otherwise the
-// enumeration offered m*'s own vector, as before this check. The reported value is q rounded
+// enumeration itself offered m*'s own vector, and the bound holds without this check. The
+// reported value is q rounded
 // once (here by get_d, or again on the pair as given: within [q (1 - 2^-52), q (1 + 2^-53)]),
 // so it lies within [m* (1 - 2^-52), m* (1 + 1e-9)].
 // An unsettled suspect makes the caller reject the pair (kGlobalNotRepresentable), never
@@ -710,8 +711,9 @@ void integer_normals(const detail::Q (&y)[3], int tries, int keep, std::vector<V
 // checked once more by counting (#at_or_below(lo) <= k, i.e. mu > lo), when above `bottom`.
 // Where a step fails (no gap, s2 >= 1, a count disagrees), lo = bottom: still a lower bound
 // (the eigenvalue lies in the window), which no offer meets unless its value is as low as the
-// floor (0, or ~PD^2 / 32 <= G): in practice the pair is rejected as before. The offers are tried in order of cost (x itself; the 26 triples one ulp
-// away; integer normals along y) until q meets lo to kGlobalRel (below).
+// floor (0, or ~PD^2 / 32 <= G): in practice the pair is then rejected. The offers are tried
+// in order of cost (x itself; the 26 triples one ulp away; integer normals along y) until q
+// meets lo to kGlobalRel (below).
 // represent_suspect's exact arithmetic on one suspect (its argument above): the eigenvector x
 // (Eigen's, polished), y (one exact step more), the Rayleigh quotient rho of the last vector
 // given to rayleigh() with R2 = |h q - rho q|^2 / q.q and q.q, and what settle() proved.
@@ -942,7 +944,7 @@ bool unrepresented(Best& best, double floor_scaled) {
 // kGlobalRel: the offers (eigenvectors polished exactly, rounded componentwise) represent it.
 // Below that, unrepresented() decides. L is taken as the SMALLER tetrahedron's extent: a
 // contact much shallower than both tetrahedra (a vertex 1e-18 inside a face: adversarial-1-3,
-// -13, -23, whose fast values were 13%, 7% and 22% above the exact minimum before this rule)
+// -13, -23, whose fast values would be 13%, 7% and 22% above the exact minimum without this rule)
 // is rejected. Not proved: a pair whose one tetrahedron is far larger than the other (a vertex
 // 1e18 away: the pieces with it active have |H| ~ 1e36) is not covered by the bound above;
 // there the minimiser lies on the walls of the far vertex, offered from the near side, and
@@ -1057,8 +1059,8 @@ V3 refine(const double (&h)[3][3], const V3& v0, double mu, long) {
 // with the 16 subsets' sums and moments computed once. In doubles each entry of 20 H errs by
 // at most 2^-39 mag, mag the sum of the terms' bounds (|QA| + |QB| + 2 |C| |SA + SB| +
 // (mA + mB) |C|^2 + k |TA|^2, max norms): the derivation is piece_screen.h's (the inputs' own
-// errors, C's and T_A's above all, included; 16u mag, used before, counted only the last
-// expression's roundings). The /20 adds u relative, inside that bound's margin.
+// errors, C's and T_A's above all, included; 16u mag would count only the last expression's
+// roundings). The /20 adds u relative, inside that bound's margin.
 // The 16 subsets' sums and second moments (xx xy xz yy yz zz) of A's and B's positions, each
 // from the subset without its highest vertex i: the terms added in increasing i, from 0 (the
 // same roundings as summing each subset on its own).
@@ -1425,8 +1427,8 @@ void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
 // takes gap ~ |H| ~ scale^2; a piece whose active vertices form a small cluster far from the
 // centroid has |H| << scale^2 while H's error stays ~2^-39 of the moments: consider_piece's
 // estimate 2 E^2 / gap <= 1e-11 mu, checked for every in-window eigenvalue, sends such a pair
-// to the exact pieces (a review's shallow "tip" contacts: 10-25% stayed in doubles, all
-// between 1e-12 and 1e-10 scale^2, all within the exact intervals).
+// to the exact pieces (of shallow "tip" contacts 10-25% stay in doubles, all between 1e-12
+// and 1e-10 scale^2, all within the exact intervals).
 // The double pieces also need the pair's own scale within [2^-100, 2^100] (solve_pair and
 // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
 // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its

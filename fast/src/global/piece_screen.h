@@ -51,8 +51,8 @@ inline constexpr double kSignOf[16][4] = {
 // terms errs by <= 2^-871 more, under 2^-868 in
 // all, while the spare 5u P is >= 2^-851 when P >= 2^-800 (checked): a smaller P (a piece whose
 // entries are ~1e-80, vertices ~1e-40 apart beside a vertex at 1) or a larger entry is
-// undecided. (A review found the count wrong on a matrix whose products underflowed before
-// these checks.) Overflow gives inf or NaN, which fail every comparison: undecided. Sums and
+// undecided. (Without these checks a matrix whose products underflow gets a wrong count.)
+// Overflow gives inf or NaN, which fail every comparison: undecided. Sums and
 // differences are exact when subnormal. Branch-free (the lanes of surviving_pieces vectorise).
 inline int eigenvalues_below_certain(double h00, double h01, double h02, double h11, double h12,
                                      double h22, double t) {
@@ -92,9 +92,9 @@ inline int eigenvalues_below_certain(double h00, double h01, double h02, double 
 // each, 432u L^2; m C C (m <= 8) 2 8 21 = 336u L^2; k TA TA: 2 k |TA| |dTA| = 1984 k wA^2 u L^2
 // with k wA^2 <= 5 (mA = 4: k <= 5, wA = 1; mA = 3, 2, 1: 6/4, 7/9, 8/16): 9920u L^2; each
 // term's own roundings and the sum's, <= 9u mag. In all <= 10720u L^2 + 9u mag < 2^14 u mag:
-// n_error = 2^-39 mag (2^14 u mag), second-order terms far inside the rest. (A review showed
-// the 16u mag first used here left out the inputs' own errors; measured errors stay below
-// 0.3 of that.) So (Weyl, |E|_2 <= |E|_F <= 3 n_error) each exact eigenvalue of 20 H is
+// n_error = 2^-39 mag (2^14 u mag), second-order terms far inside the rest. (16u mag, the
+// last expression's roundings alone, would leave out the inputs' own errors; measured errors
+// stay below 0.3 of that.) So (Weyl, |E|_2 <= |E|_F <= 3 n_error) each exact eigenvalue of 20 H is
 // within 3 n_error of one of the double N's own. The window of global_depth.cpp's
 // consider_piece, [lower, top) with top = best (1 - kPrune), becomes [20 lower, 20 top) for
 // 20 H, and window_edges() widens it by 4 n_error (3 for Weyl, the rest and a relative 2^-40
@@ -162,8 +162,7 @@ struct ScreenLanes {
 //    outside [lo, hi): with rho = mu~ in (lo, hi), delta >= min(mu~ - lo, hi - mu~) - 3 n_error,
 //    required > 0. So the angle t to the exact piece's eigenvector (the one whose eigenvalue
 //    is within 3 n_error of mu, the only one that can lie in the window) has sin t <= (r + 3
-//    n_error) / delta. (A review showed that N's own angle, used first, is not the exact H's:
-//    their gap is ~u mag / delta.) The relative bounds need normal results: decided only when
+//    n_error) / delta. (N's own angle is not the exact H's: their gap is ~u mag / delta.) The relative bounds need normal results: decided only when
 //    the sum above and |v~|'s square are >= 2^-900 (as for eigenvalues_below_certain).
 //  - For the orientation of v nearer v~ (angle t <= pi / 2), |v~ / |v~| - v| = 2 sin(t / 2) <=
 //    sqrt(2) sin t. A condition's computed l.v~ is within 3u |l|_1 (1 + 4u) of the exact one,

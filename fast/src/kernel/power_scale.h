@@ -71,7 +71,7 @@ inline bool common_scale(double hs, double ls, int& e, double& p, bool& exact) {
   double m;  // least non-zero |x|; +inf when all are 0
   std::memcpy(&m, &mb, sizeof m);
   // (m p rounded up to exactly DBL_MIN is not exact: m p / p == m tells, as division by a
-  // power of two is exact in the normal range; a review found that case. A computed m p >=
+  // power of two is exact in the normal range. A computed m p >=
   // 2 DBL_MIN comes from an exact product >= 2 DBL_MIN (1 − u) > DBL_MIN, which is exact:
   // the division, a long latency on every call, runs only below that.)
   const double mp = m * p;

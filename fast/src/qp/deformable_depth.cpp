@@ -95,8 +95,8 @@ Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
 // solver's own error is the tight dT (2^9 u Ha), the direction's e_n the compensated normal's.
 // Precondition: a pair rescaled by power_scale.h (every caller's); a cost or n.n below 2^-900
 // (an unscaled list of a tiny pair, where the solver's values underflow) is declined.
-// Returns the verdict (a review re-derived each step and found no failure on ~92 million
-// heights against rationals and ~39k pdd2_accel1 values against an exact case-2 solver).
+// Returns the verdict (checked: no failure on ~92 million heights against rationals and ~39k
+// pdd2_accel1 values against an exact case-2 solver).
 bool accel1_compensated(const TetVertices& A, const TetVertices& B, const Candidate& c, double& value) {
   detail::CompensatedHeights h;
   if (!detail::compensated_heights(A, B, c, h)) return false;

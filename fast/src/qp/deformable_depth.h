@@ -49,8 +49,8 @@ double relaxed_value(const Candidate& c);
 
 // `hint`: index evaluated first to seed the pruning (e.g. rigid_pd2(set).index), or −1.
 // The lists must be built on a pair rescaled by power_scale.h, as every caller in the engine
-// does: the `certified` verdicts assume it (a review showed a list of an unscaled pair ~2^-174
-// across, inside filter_bounds.h's range, certifying values 2e-4 off: the QP's values underflow).
+// does: the `certified` verdicts assume it (a list of an unscaled pair ~2^-174 across, inside
+// filter_bounds.h's range, would certify values 2e-4 off: the QP's values underflow).
 Choice pdd2_static(const CandidateSet& set, int hint = -1);
 Choice pdd2(const CandidateSet& set, int hint = -1);
 Choice pdd2_relaxed(const CandidateSet& set, int hint = -1);

@@ -16,7 +16,7 @@ namespace pdd::fast::detail {
 // Doubles take selects and counts in T (no branch on the data: the sorting network's branches
 // mispredicted; measured on the paper's rigid candidates, solve_deformable 55 -> 45 ns).
 // Exact types (mpq_class) keep branches and int counts: a select evaluates both sides, and a
-// rational count turns integer arithmetic into rational (the exact path was 10% slower so).
+// rational count turns integer arithmetic into rational (the exact path is 10% slower with them).
 template <class T>
 inline constexpr bool kSelects = std::is_floating_point_v<T>;
 template <class T>

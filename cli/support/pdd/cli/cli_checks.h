@@ -22,7 +22,7 @@ namespace pdd::compare {
 
 // Whether two paths name one file: the same existing file, or the same path once normalised
 // (an output that does not exist yet). An output that is also an input would be emptied before
-// it is read (found by a review: `pdd solve --input f --output f` left f empty); two outputs
+// it is read (`pdd solve --input f --output f` would leave f empty); two outputs
 // that are one file would overwrite each other.
 inline bool same_file(const std::string& a, const std::string& b) {
   if (a.empty() || b.empty()) return false;

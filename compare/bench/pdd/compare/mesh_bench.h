@@ -1,7 +1,7 @@
 // mesh_bench.h — `pdd bench mesh`: the speed of pdd::mesh::contacts (include/pdd/mesh.h,
 // definitions §10) on two overlapping tetrahedral meshes, per stage, on one core and on all cores,
 // and its broadphase side by side with FCL's broadphase managers on the same element boxes in the
-// same process (issue 11, item 5). FCL is linked here only (compare/bench).
+// same process. FCL is linked here only (compare/bench).
 //
 // Input:  two mesh files (--a, --b), or two generated balls (make_bench_ball below) of about
 //         `size` tetrahedra each, written to a temporary legacy VTK file each and read back so
@@ -10,7 +10,7 @@
 //         stage's wall time (read; then contacts()'s boxes, broadphase, decision, depth), on one
 //         core (a tbb::task_arena of 1 thread) and on all cores (an arena of TBB's default
 //         concurrency), runs interleaved; the decision stage's filter alone against the
-//         rigid_pd2 decision it replaced (one core, per box pair); the depth calls one at a
+//         a decision by rigid_pd2 > 0 (one core, per box pair); the depth calls one at a
 //         time on the sample's intersecting pairs (median, mean, exact-path share); every broadphase (CGAL's
 //         box_intersection_d as contacts() runs it, and FCL's managers) on the same boxes.
 #pragma once
@@ -70,7 +70,7 @@ struct DecisionCosts {     // one core, on a sample of the box pairs
   std::size_t disjoint = 0, intersecting = 0, unknown = 0;  // overlap_filter's verdicts
   double filter_ns = 0;     // fast::overlap_filter, median ns per pair over passes
   double decision_ns = 0;   // fast::interiors_intersect (filter + exact fallback)
-  double rigid_ns = 0;      // fast::rigid_pd2 (the decision before the filter)
+  double rigid_ns = 0;      // fast::rigid_pd2 > 0 (the decision without the filter)
 };
 
 // The depth stage's calls one at a time, one core, on the intersecting pairs of the decision

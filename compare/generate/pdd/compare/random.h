@@ -19,8 +19,7 @@ class ReproducibleRng {
   double uniform01() { return double(g_() >> 11) * 0x1.0p-53; }  // [0, 1), 53 random bits
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
   // An integer in [lo, hi] (modulo bias below 2^-40 for the small ranges used here).
-  // (The range's size in 64 bits: hi − lo + 1 overflowed an int for [0, INT_MAX]; the same
-  // values as before for every range that fit.)
+  // (The range's size is taken in 64 bits: hi − lo + 1 overflows an int for [0, INT_MAX].)
   int integer(int lo, int hi) {
     return int(lo + std::int64_t(g_() % std::uint64_t(std::int64_t(hi) - lo + 1)));
   }

@@ -1,5 +1,5 @@
 // family_global_cost.h — what the paper's restriction to the candidate directions costs
-// (definitions §9; issue 10, item 4) on the shipped fixture families, beside `pdd paper`'s numbers
+// (definitions §9) on the shipped fixture families, beside `pdd paper`'s numbers
 // for the paper's protocol.
 //
 // Input : a fixtures folder (the repository's `fixtures/`): every `families/*.json` in it and
