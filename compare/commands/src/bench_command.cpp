@@ -429,7 +429,7 @@ void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
     << "  verdicts: " << d.disjoint << " disjoint, " << d.intersecting << " intersecting, "
     << d.unknown << " unknown\n"
     << "  interiors_intersect (filter + exact rest)   " << rpad(fmt("%.1f ns", d.decision_ns), 12) << "\n"
-    << "  rigid_pd2 > 0 (the decision before)         " << rpad(fmt("%.1f ns", d.rigid_ns), 12)
+    << "  rigid_pd2 > 0 (the decision without filter) " << rpad(fmt("%.1f ns", d.rigid_ns), 12)
     << "  ratio " << fmt("%.1fx", d.rigid_ns / d.decision_ns) << "\n\n";
   s << "Depth stage, one call at a time, one core, on the " << r.depth_sample
     << " intersecting pairs of that sample\n";
