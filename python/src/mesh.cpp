@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common.h"
@@ -98,6 +99,21 @@ std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* wh
   return out;
 }
 
+// Meshes A and (unless self) B from the caller's arrays, checked as mesh_vertices and
+// mesh_tets check them; B is empty for self-contact.
+std::pair<pdd::mesh::Mesh, pdd::mesh::Mesh> meshes_from_arrays(py::handle VA, py::handle TA,
+                                                               py::handle VB, py::handle TB,
+                                                               bool self) {
+  pdd::mesh::Mesh A, B;
+  A.vertices = mesh_vertices(VA, "VA");
+  A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
+  if (!self) {
+    B.vertices = mesh_vertices(VB, "VB");
+    B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
+  }
+  return {std::move(A), std::move(B)};
+}
+
 template <class R>
 py::dict contacts_dict(const pdd::mesh::Contacts<R>& c, unsigned variants, bool exact) {
   const std::size_t n = c.pairs.size();
@@ -146,13 +162,8 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
     value_error("give both VB and TB (contacts of A with B), or neither (self-contact of A)");
   const bool self = VB.is_none();
 
-  pdd::mesh::Mesh A, B;
-  A.vertices = mesh_vertices(VA, "VA");
-  A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
-  if (!self) {
-    B.vertices = mesh_vertices(VB, "VB");
-    B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
-  }
+  const auto meshes = meshes_from_arrays(VA, TA, VB, TB, self);
+  const pdd::mesh::Mesh &A = meshes.first, &B = meshes.second;
 
   pdd::mesh::ContactOptions options;
   options.variants = variants;
@@ -241,13 +252,8 @@ py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py
   const std::optional<int> threads = threads_arg(threads_in);
   Progress progress(progress_arg, "pdd.resolve", "round");
 
-  pdd::mesh::Mesh A, B;
-  A.vertices = mesh_vertices(VA, "VA");
-  A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
-  if (!self) {
-    B.vertices = mesh_vertices(VB, "VB");
-    B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
-  }
+  const auto meshes = meshes_from_arrays(VA, TA, VB, TB, self);
+  const pdd::mesh::Mesh &A = meshes.first, &B = meshes.second;
   options.fix_a = fix == "a";
   options.fix_b = fix == "b";
   options.fixed_vertices_a = vertex_mask(fixed_a_in, "fixed_a", A.vertices.size());
