@@ -1,0 +1,468 @@
+#!/usr/bin/python3
+"""check-resolution.py — an independent exact judge of `pdd resolve`'s output (SPEC §10, §11).
+
+Reads the rest meshes (A, and B or --self) and the written meshes (.msh / .vtk, through meshio)
+and decides, exactly on the doubles as written:
+  R1  no pair intersects: A x B, or with --self the element pairs i < j that share no vertex.
+      Two tetrahedra's interiors intersect iff no separating axis exists among the 4 + 4 face
+      normals and the 36 edge x edge cross products (non-zero ones) of the pair: for convex
+      polytopes with non-empty interiors, disjoint interiors <=> a plane weakly separates them
+      <=> 0 is not inside the Minkowski difference A - B, whose facet normals are exactly those
+      axes. Touching (max_A n.x == min_B n.x) is separated, so touching is not intersecting.
+      Flat elements (zero volume) have no interior and take part in no pair (they fail R2).
+  R2  every element keeps the sign of its volume, and a non-zero volume.
+  R3  fixed vertices (--fix a|b, --fixed-a/--fixed-b index files) are bit-for-bit unchanged.
+  R4  V1/V0 in [rho, 1/rho]:  q V1 V0 >= p V0^2  and  p V1 V0 <= q V0^2   (rho = p/q), and
+      eta1/eta0 >= kappa:     q^3 V1^2 (sum l0^2)^3 >= p^3 V0^2 (sum l1^2)^3 (kappa = p/q),
+      eta = 12 (3|V|)^(2/3) / sum of the six squared edge lengths (SPEC §11).
+Number type: every double is a dyadic rational m 2^e; all coordinates of all meshes are scaled by
+one power of two 2^-emin (emin: the smallest exponent among them) to Python integers, exactly. The
+predicates above are homogeneous polynomials in the coordinate differences, so their signs are the
+signs over the rationals; rho and kappa are Fractions. Nothing is rounded. numpy (doubles) only
+finds candidate pairs: axis-aligned boxes whose interiors overlap (a tetrahedron's interior lies in
+its box's interior, and the boxes of doubles are exact, so no intersecting pair is missed).
+
+Also reported (doubles, not verdicts): the cost, SPEC §11's mesh object norm summed over the meshes
+(per element sigma = (sum |d_i|^2 + |sum d_i|^2) / 20, weighted by |rest volume|), the largest
+vertex displacement, the smallest V1/V0 and eta1/eta0, the bodies (vertex-connected components);
+with --rigid-dir, the smallest translation t along that direction of B (with --self: of the body
+named by --rigid-body) that separates, by bisection with the exact R1, and its cost (t^2 when the
+other side is fixed, t^2/2 when both move half of it).
+
+Usage:
+  check-resolution.py --a A0 --a-out A1 [--b B0 --b-out B1 | --self] [--fix a|b]
+                      [--fixed-a FILE] [--fixed-b FILE] [--rho 1/4] [--kappa 1/2]
+                      [--rigid-dir x,y,z [--rigid-hi H] [--rigid-body K]] [--max-list N]
+Prints JSON; exit 0 when R1-R4 hold, 1 when one fails, 2 on bad input.
+"""
+import argparse
+import json
+import math
+import sys
+import time
+from fractions import Fraction
+
+import numpy as np
+
+
+def fail_input(msg):
+    print(f"check-resolution: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+# ---------------------------------------------------------------- reading
+def read_mesh(path):
+    """Vertices (n x 3 doubles) and tetrahedra (m x 4 indices, file order among tetra blocks)."""
+    import contextlib
+    import meshio
+    try:
+        with contextlib.redirect_stdout(sys.stderr):  # meshio may print warnings; stdout is JSON
+            m = meshio.read(path)
+    except Exception as e:  # meshio raises many kinds
+        fail_input(f"{path}: cannot read: {e}")
+    tets = [c.data for c in m.cells if c.type == "tetra"]
+    if not tets:
+        fail_input(f"{path}: no tetrahedra")
+    T = np.concatenate(tets).astype(np.int64)
+    V = np.ascontiguousarray(m.points[:, :3], dtype=np.float64)
+    if not np.all(np.isfinite(V)):
+        fail_input(f"{path}: a coordinate is not finite")
+    if T.min() < 0 or T.max() >= len(V):
+        fail_input(f"{path}: a vertex index is out of range")
+    return V, T
+
+
+def read_indices(path):
+    with open(path) as f:
+        return sorted({int(w) for w in f.read().split()})
+
+
+# ---------------------------------------------------------------- exact numbers
+def min_exponent(arrays):
+    """Smallest e such that every double of `arrays` is an integer multiple of 2^e."""
+    e = 0
+    for X in arrays:
+        x = X[X != 0]
+        if x.size:
+            _, ex = np.frexp(x)  # x = m 2^ex, 0.5 <= |m| < 1: m has 53 bits -> lsb 2^(ex - 53)
+            e = min(e, int(ex.min()) - 53)
+    return e
+
+
+def to_ints(V, emin):
+    """Exact integer coordinates V * 2^-emin, as a list of 3-tuples of Python ints."""
+    out = []
+    for row in V.tolist():
+        t = []
+        for x in row:
+            n, d = x.as_integer_ratio()  # exact; d a power of two
+            t.append(n * ((1 << -emin) // d))  # d <= 2^-emin by the choice of emin
+        out.append(tuple(t))
+    return out
+
+
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def vol6(p):
+    """6 x signed volume of the tetrahedron p[0..3] (exact)."""
+    return dot(sub(p[1], p[0]), cross(sub(p[2], p[0]), sub(p[3], p[0])))
+
+
+def sum_sq_edges(p):
+    s = 0
+    for i in range(4):
+        for j in range(i + 1, 4):
+            d = sub(p[i], p[j])
+            s += dot(d, d)
+    return s
+
+
+EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
+FACES = ((1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2))
+
+
+def separated_on(n, P, Q):
+    a = [dot(n, x) for x in P]
+    b = [dot(n, x) for x in Q]
+    return max(a) <= min(b) or max(b) <= min(a)
+
+
+def interiors_intersect(P, Q):
+    """Exact: do the interiors of the non-flat tetrahedra P and Q (4 integer points each) meet?"""
+    for T in (P, Q):
+        for f in FACES:
+            n = cross(sub(T[f[1]], T[f[0]]), sub(T[f[2]], T[f[0]]))
+            if separated_on(n, P, Q):
+                return False
+    ep = [sub(P[j], P[i]) for i, j in EDGES]
+    eq = [sub(Q[j], Q[i]) for i, j in EDGES]
+    for u in ep:
+        for v in eq:
+            n = cross(u, v)
+            if n == (0, 0, 0):
+                continue  # parallel edges: no axis (the face normals cover that case)
+            if separated_on(n, P, Q):
+                return False
+    return True
+
+
+# ---------------------------------------------------------------- broadphase (doubles, exact boxes)
+def boxes(V, T, keep):
+    X = V[T[keep]]  # k x 4 x 3
+    return X.min(axis=1), X.max(axis=1)
+
+
+def candidate_pairs(loA, hiA, loB, hiB, same):
+    """Index pairs (i, j) into the two box lists whose open boxes overlap; same: i < j of one list.
+    Grouped by size class (log2 of the largest extent), so a few large boxes do not widen the
+    search radius of all the small ones; within two classes, a k-d tree over box centres in the
+    max-norm with the classes' largest half extents, then the exact per-axis overlap test."""
+    from scipy.spatial import cKDTree
+    cA, hA = (loA + hiA) / 2, (hiA - loA) / 2
+    cB, hB = (loB + hiB) / 2, (hiB - loB) / 2
+    kA = np.ceil(np.log2(np.maximum(hA.max(axis=1), 1e-300))).astype(int)
+    kB = np.ceil(np.log2(np.maximum(hB.max(axis=1), 1e-300))).astype(int)
+    out = []
+    for ka in np.unique(kA):
+        ia = np.nonzero(kA == ka)[0]
+        ta = cKDTree(cA[ia])
+        for kb in np.unique(kB):
+            if same and kb < ka:
+                continue
+            ib = np.nonzero(kB == kb)[0]
+            r = hA[ia].max() + hB[ib].max()
+            r = r * (1 + 1e-12) + 1e-300  # the tree's distance is rounded: widen, then test exactly
+            if same and kb == ka:
+                pr = ta.query_pairs(r, p=np.inf, output_type="ndarray")
+                if len(pr) == 0:
+                    continue
+                i, j = ia[pr[:, 0]], ia[pr[:, 1]]
+            else:
+                tb = cKDTree(cB[ib])
+                sm = ta.sparse_distance_matrix(tb, r, p=np.inf, output_type="ndarray")
+                if len(sm) == 0:
+                    continue
+                i, j = ia[sm["i"]], ib[sm["j"]]
+            ok = np.all((loA[i] < hiB[j]) & (loB[j] < hiA[i]), axis=1)
+            out.append(np.stack([i[ok], j[ok]], axis=1))
+    if not out:
+        return np.zeros((0, 2), dtype=np.int64)
+    P = np.concatenate(out)
+    if same:
+        P = np.sort(P, axis=1)
+    P = np.unique(P, axis=0)
+    return P
+
+
+# ---------------------------------------------------------------- the checks
+class Side:
+    """One mesh: rest and written positions, exact integers, volumes."""
+
+    def __init__(self, name, V0, T, V1, fixed):
+        self.name, self.V0, self.T, self.V1, self.fixed = name, V0, T, V1, fixed
+
+    def exact(self, emin):
+        self.I0 = to_ints(self.V0, emin)
+        self.I1 = to_ints(self.V1, emin)
+        T = self.T.tolist()
+        self.v0 = [vol6([self.I0[k] for k in t]) for t in T]
+        self.v1 = [vol6([self.I1[k] for k in t]) for t in T]
+
+
+def elements_checks(s, rho, kappa, max_list):
+    """R2 and R4 of one side; the smallest ratios (doubles) and the worst elements."""
+    rp, rq = rho.numerator, rho.denominator
+    kp3, kq3 = kappa.numerator ** 3, kappa.denominator ** 3
+    r2_bad, r4_bad, flat_rest = [], [], []
+    vol_ratios, shape3 = [], []
+    T = s.T.tolist()
+    for e, t in enumerate(T):
+        a, b = s.v0[e], s.v1[e]
+        if a == 0:
+            flat_rest.append(e)
+            continue
+        if b == 0 or (a > 0) != (b > 0):
+            r2_bad.append(e)
+        ok_v = rq * b * a >= rp * a * a and rp * b * a <= rq * a * a
+        S0 = sum_sq_edges([s.I0[k] for k in t])
+        S1 = sum_sq_edges([s.I1[k] for k in t])
+        lhs, rhs = b * b * S0 ** 3, a * a * S1 ** 3  # (eta1/eta0)^3 = lhs / rhs
+        ok_s = kq3 * lhs >= kp3 * rhs
+        vr = Fraction(b, a)
+        sr = Fraction(lhs, rhs) if rhs else Fraction(0)
+        vol_ratios.append((vr, e))
+        shape3.append((sr, e))
+        if not (ok_v and ok_s):
+            r4_bad.append({"mesh": s.name, "element": e, "volume_ratio": float(vr),
+                           "shape_ratio": float(sr) ** (1 / 3), "volume_ok": ok_v, "shape_ok": ok_s})
+    vol_ratios.sort()
+    shape3.sort()
+    return {
+        "r2_bad": r2_bad, "r4_bad": r4_bad, "flat_rest": flat_rest,
+        "min_volume_ratio": float(vol_ratios[0][0]) if vol_ratios else None,
+        "max_volume_ratio": float(vol_ratios[-1][0]) if vol_ratios else None,
+        "min_shape_ratio": float(shape3[0][0]) ** (1 / 3) if shape3 else None,
+        "worst_volume": [{"element": e, "volume_ratio": float(r)} for r, e in vol_ratios[:max_list]],
+        "worst_shape": [{"element": e, "shape_ratio": float(r) ** (1 / 3)} for r, e in shape3[:max_list]],
+    }
+
+
+def cost_of(s):
+    """SPEC §11: sum_e |V_e| sigma_e / sum_e |V_e|, doubles (a reported number, not a verdict)."""
+    D = (s.V1 - s.V0)[s.T]  # m x 4 x 3
+    sig = (np.einsum("mij,mij->m", D, D) + np.einsum("mj,mj->m", D.sum(1), D.sum(1))) / 20
+    X = s.V0[s.T]
+    w = np.abs(np.einsum("mj,mj->m", X[:, 1] - X[:, 0], np.cross(X[:, 2] - X[:, 0], X[:, 3] - X[:, 0])))
+    disp = np.sqrt(((s.V1 - s.V0) ** 2).sum(axis=1))
+    return float((w * sig).sum() / w.sum()), float(disp.max())
+
+
+def components(T, n):
+    """Bodies: connected components of the elements by shared vertices; label per element."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    m = len(T)
+    rows = np.repeat(np.arange(m), 4)
+    g = coo_matrix((np.ones(4 * m), (rows, T.ravel() + m)), shape=(m + n, m + n))
+    k, lab = connected_components(g, directed=False)
+    el = lab[:m]
+    _, el = np.unique(el, return_inverse=True)
+    return int(el.max()) + 1, el
+
+
+def intersecting(PA, TA, volA, PB, TB, volB, same, first_only=False):
+    """Exact R1 over the candidate pairs. PA/PB: double positions (broadphase) and integer ones."""
+    VA, IA = PA
+    VB, IB = PB
+    ka = np.array([i for i, v in enumerate(volA) if v != 0], dtype=np.int64)
+    kb = ka if same else np.array([i for i, v in enumerate(volB) if v != 0], dtype=np.int64)
+    loA, hiA = boxes(VA, TA, ka)
+    loB, hiB = (loA, hiA) if same else boxes(VB, TB, kb)
+    C = candidate_pairs(loA, hiA, loB, hiB, same)
+    TAl, TBl = TA.tolist(), TB.tolist()
+    hits = []
+    tested = 0
+    for ci, cj in C.tolist():
+        i, j = int(ka[ci]), int(kb[cj])
+        if same:
+            if i > j:
+                i, j = j, i
+            if set(TAl[i]) & set(TAl[j]):
+                continue
+        tested += 1
+        P = [IA[k] for k in TAl[i]]
+        Q = [IB[k] for k in TBl[j]]
+        if interiors_intersect(P, Q):
+            hits.append((i, j))
+            if first_only:
+                break
+    hits.sort()
+    return hits, len(C), tested
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--a", required=True)
+    ap.add_argument("--a-out", required=True)
+    ap.add_argument("--b")
+    ap.add_argument("--b-out")
+    ap.add_argument("--self", action="store_true")
+    ap.add_argument("--fix", choices=["a", "b"])
+    ap.add_argument("--fixed-a")
+    ap.add_argument("--fixed-b")
+    ap.add_argument("--rho", default="1/4")
+    ap.add_argument("--kappa", default="1/2")
+    ap.add_argument("--rigid-dir")
+    ap.add_argument("--rigid-hi", type=float, default=1.0)
+    ap.add_argument("--rigid-body", type=int, default=1)
+    ap.add_argument("--max-list", type=int, default=20)
+    o = ap.parse_args(argv)
+    if o.self == bool(o.b) or bool(o.b) != bool(o.b_out):
+        fail_input("give --b and --b-out, or --self")
+    try:
+        rho, kappa = Fraction(o.rho), Fraction(o.kappa)
+    except (ValueError, ZeroDivisionError):
+        fail_input("--rho and --kappa are rationals such as 1/4 or 0.5")
+    if not (0 < rho <= 1 and 0 < kappa <= 1):
+        fail_input("--rho and --kappa lie in (0, 1]")
+    t_start = time.perf_counter()
+
+    sides = []
+    for name, p0, p1, fx, ff in (("a", o.a, o.a_out, o.fix == "a", o.fixed_a),
+                                 ("b", o.b, o.b_out, o.fix == "b", o.fixed_b)):
+        if p0 is None:
+            continue
+        V0, T0 = read_mesh(p0)
+        V1, T1 = read_mesh(p1)
+        if T0.shape != T1.shape or not np.array_equal(T0, T1) or V0.shape != V1.shape:
+            fail_input(f"mesh {name}: {p1} does not have the connectivity of {p0}")
+        fixed = list(range(len(V0))) if fx else (read_indices(ff) if ff else [])
+        if fixed and (fixed[0] < 0 or fixed[-1] >= len(V0)):
+            fail_input(f"mesh {name}: a fixed vertex index is out of range")
+        sides.append(Side(name, V0, T0, V1, fixed))
+    t_read = time.perf_counter()
+
+    emin = min_exponent([a for s in sides for a in (s.V0, s.V1)])
+    for s in sides:
+        s.exact(emin)
+    t_exact = time.perf_counter()
+
+    out = {"inputs": {"a": o.a, "a_out": o.a_out, "b": o.b, "b_out": o.b_out, "self": o.self,
+                      "fix": o.fix, "rho": str(rho), "kappa": str(kappa)}}
+    # R3
+    moved = []
+    for s in sides:
+        for k in s.fixed:
+            if s.V0[k].tobytes() != s.V1[k].tobytes():  # bit for bit (the doubles as written)
+                moved.append({"mesh": s.name, "vertex": k})
+    # R2, R4
+    el = {s.name: elements_checks(s, rho, kappa, o.max_list) for s in sides}
+    t_el = time.perf_counter()
+    # R1
+    A = sides[0]
+    B = A if o.self else sides[1]
+    hits, ncand, ntested = intersecting((A.V1, A.I1), A.T, A.v1, (B.V1, B.I1), B.T, B.v1, o.self)
+    t_r1 = time.perf_counter()
+    # bodies
+    nb, lab = components(A.T, len(A.V0))
+    bodies = {"a": nb}
+    if not o.self:
+        bodies["b"] = components(B.T, len(B.V0))[0]
+
+    r1 = not hits
+    r2 = all(not el[s.name]["r2_bad"] for s in sides)
+    r3 = not moved
+    r4 = all(not el[s.name]["r4_bad"] for s in sides)
+    flat_rest = [{"mesh": s.name, "element": e} for s in sides for e in el[s.name]["flat_rest"]]
+    costs = {s.name: cost_of(s) for s in sides}
+    pairs = [{"a": i, "b": j} for i, j in hits]
+    if o.self:
+        for p in pairs:
+            p["bodies"] = [int(lab[p["a"]]), int(lab[p["b"]])]
+    out.update({
+        "resolved": r1 and r2 and r3 and r4 and not flat_rest,
+        "r1": r1, "r2": r2, "r3": r3, "r4": r4,
+        "intersecting_pairs": len(hits), "intersecting": pairs[:o.max_list],
+        "inverted_or_flat": [{"mesh": s.name, "element": e} for s in sides for e in el[s.name]["r2_bad"]][:o.max_list],
+        "inverted_or_flat_count": sum(len(el[s.name]["r2_bad"]) for s in sides),
+        "moved_fixed_vertices": moved[:o.max_list], "moved_fixed_count": len(moved),
+        "r4_failing_count": sum(len(el[s.name]["r4_bad"]) for s in sides),
+        "r4_failing": [x for s in sides for x in el[s.name]["r4_bad"]][:o.max_list],
+        "flat_at_rest": flat_rest[:o.max_list],
+        "min_volume_ratio": min(el[s.name]["min_volume_ratio"] for s in sides),
+        "max_volume_ratio": max(el[s.name]["max_volume_ratio"] for s in sides),
+        "min_shape_ratio": min(el[s.name]["min_shape_ratio"] for s in sides),
+        "per_mesh": {s.name: {"elements": len(s.T), "vertices": len(s.V0), "fixed": len(s.fixed),
+                              "cost": costs[s.name][0], "max_displacement": costs[s.name][1],
+                              "min_volume_ratio": el[s.name]["min_volume_ratio"],
+                              "min_shape_ratio": el[s.name]["min_shape_ratio"],
+                              "worst_volume": el[s.name]["worst_volume"][:5],
+                              "worst_shape": el[s.name]["worst_shape"][:5]} for s in sides},
+        "cost": sum(c[0] for c in costs.values()),
+        "bodies": bodies,
+        "candidate_pairs": ncand, "exact_pair_tests": ntested,
+    })
+    t_end = time.perf_counter()
+    if o.rigid_dir:
+        out["rigid"] = rigid(o, sides, lab)
+    out["seconds"] = {"read": t_read - t_start, "exact_coordinates": t_exact - t_read,
+                      "r2_r4": t_el - t_exact, "r1": t_r1 - t_el, "total": t_end - t_start}
+    if o.rigid_dir:
+        out["seconds"]["rigid"] = time.perf_counter() - t_end
+    print(json.dumps(out, indent=1))
+    return 0 if out["resolved"] else 1
+
+
+def rigid(o, sides, lab):
+    """Smallest t (bisection to 1e-3 relative) such that moving B (--self: body --rigid-body of A)
+    by t * dir at rest leaves no intersecting pair, each step decided with the exact R1."""
+    u = np.array([float(x) for x in o.rigid_dir.split(",")])
+    u = u / np.linalg.norm(u)
+    A = sides[0]
+    if o.self:
+        move_v = np.zeros(len(A.V0), bool)
+        move_v[np.unique(A.T[lab == o.rigid_body])] = True
+
+    def separated(t):
+        if o.self:
+            V = A.V0.copy()
+            V[move_v] += t * u
+            I = to_ints(V, min_exponent([V]))
+            v = [vol6([I[k] for k in tt]) for tt in A.T.tolist()]
+            h, _, _ = intersecting((V, I), A.T, v, (V, I), A.T, v, True, first_only=True)
+        else:
+            B = sides[1]
+            VB = B.V0 + t * u
+            e = min_exponent([A.V0, VB])
+            IA, IB = to_ints(A.V0, e), to_ints(VB, e)
+            va = [vol6([IA[k] for k in tt]) for tt in A.T.tolist()]
+            vb = [vol6([IB[k] for k in tt]) for tt in B.T.tolist()]
+            h, _, _ = intersecting((A.V0, IA), A.T, va, (VB, IB), B.T, vb, False, first_only=True)
+        return not h
+
+    hi, lo = o.rigid_hi, 0.0
+    if not separated(hi):
+        return {"dir": u.tolist(), "t": None, "note": "--rigid-hi does not separate"}
+    while hi - lo > 1e-3 * hi:
+        mid = (lo + hi) / 2
+        if separated(mid):
+            hi = mid
+        else:
+            lo = mid
+    one_fixed = o.fix is not None
+    return {"dir": u.tolist(), "t": hi, "cost_one_moves": hi * hi, "cost_split": hi * hi / 2,
+            "cost": hi * hi if one_fixed else hi * hi / 2}
+
+
+if __name__ == "__main__":
+    sys.exit(main())
