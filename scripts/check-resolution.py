@@ -26,8 +26,8 @@ Also reported (doubles, not verdicts): the cost, SPEC §11's mesh object norm su
 (per element sigma = (sum |d_i|^2 + |sum d_i|^2) / 20, weighted by |rest volume|), the largest
 vertex displacement, the smallest V1/V0 and eta1/eta0, the bodies (vertex-connected components);
 with --rigid-dir, the smallest translation t along that direction of B (with --self: of the body
-named by --rigid-body) that separates, by bisection with the exact R1, and its cost (t^2 when the
-other side is fixed, t^2/2 when both move half of it).
+named by --rigid-body, against the other bodies) that separates, by bisection with the exact R1,
+and the cost of that motion split the cheapest way between the two sides (rigid()).
 
 Usage:
   check-resolution.py --a A0 --a-out A1 [--b B0 --b-out B1 | --self] [--fix a|b]
@@ -423,31 +423,43 @@ def main(argv=None):
     return 0 if out["resolved"] else 1
 
 
+def abs_volume(V, T):
+    X = V[T]
+    return float(np.abs(np.einsum("mj,mj->m", X[:, 1] - X[:, 0],
+                                  np.cross(X[:, 2] - X[:, 0], X[:, 3] - X[:, 0]))).sum() / 6)
+
+
+def submesh(V, T):
+    """The vertices used by the elements T, renumbered."""
+    used, inv = np.unique(T, return_inverse=True)
+    return V[used], inv.reshape(T.shape)
+
+
 def rigid(o, sides, lab):
     """Smallest t (bisection to 1e-3 relative) such that moving B (--self: body --rigid-body of A)
     by t * dir at rest leaves no intersecting pair, each step decided with the exact R1."""
     u = np.array([float(x) for x in o.rigid_dir.split(",")])
     u = u / np.linalg.norm(u)
     A = sides[0]
+
+    # The pairs a translation can change: with --self, those of the moving body with the others
+    # (as two meshes: bodies share no vertex); pairs inside one body stay as they are.
     if o.self:
-        move_v = np.zeros(len(A.V0), bool)
-        move_v[np.unique(A.T[lab == o.rigid_body])] = True
+        mv = lab == o.rigid_body
+        if not mv.any():
+            fail_input(f"--rigid-body {o.rigid_body}: there are {lab.max() + 1} bodies")
+        VA, TA = submesh(A.V0, A.T[~mv])
+        VB, TB = submesh(A.V0, A.T[mv])
+    else:
+        VA, TA, VB, TB = A.V0, A.T, sides[1].V0, sides[1].T
 
     def separated(t):
-        if o.self:
-            V = A.V0.copy()
-            V[move_v] += t * u
-            I = to_ints(V, min_exponent([V]))
-            v = [vol6([I[k] for k in tt]) for tt in A.T.tolist()]
-            h, _, _ = intersecting((V, I), A.T, v, (V, I), A.T, v, True, first_only=True)
-        else:
-            B = sides[1]
-            VB = B.V0 + t * u
-            e = min_exponent([A.V0, VB])
-            IA, IB = to_ints(A.V0, e), to_ints(VB, e)
-            va = [vol6([IA[k] for k in tt]) for tt in A.T.tolist()]
-            vb = [vol6([IB[k] for k in tt]) for tt in B.T.tolist()]
-            h, _, _ = intersecting((A.V0, IA), A.T, va, (VB, IB), B.T, vb, False, first_only=True)
+        VBt = VB + t * u  # the doubles a program would write for the translated body
+        e = min_exponent([VA, VBt])
+        IA, IB = to_ints(VA, e), to_ints(VBt, e)
+        va = [vol6([IA[k] for k in tt]) for tt in TA.tolist()]
+        vb = [vol6([IB[k] for k in tt]) for tt in TB.tolist()]
+        h, _, _ = intersecting((VA, IA), TA, va, (VBt, IB), TB, vb, False, first_only=True)
         return not h
 
     hi, lo = o.rigid_hi, 0.0
@@ -459,9 +471,16 @@ def rigid(o, sides, lab):
             hi = mid
         else:
             lo = mid
-    one_fixed = o.fix is not None
-    return {"dir": u.tolist(), "t": hi, "cost_one_moves": hi * hi, "cost_split": hi * hi / 2,
-            "cost": hi * hi if one_fixed else hi * hi / 2}
+    # The cheapest split of t between the two sides: A by -s, B by t - s costs, in the mesh object
+    # norm, s^2 + (t - s)^2 for two meshes (s = t/2: t^2/2; A fixed: t^2), and for two bodies of
+    # one mesh (volumes wa, wb; the norm is over the whole mesh) (wa s^2 + wb (t - s)^2) / (wa + wb),
+    # least at s = wb t / (wa + wb): t^2 wa wb / (wa + wb)^2.
+    if o.self:
+        wa, wb = abs_volume(VA, TA), abs_volume(VB, TB)
+        cost = hi * hi * wa * wb / (wa + wb) ** 2
+    else:
+        cost = hi * hi if o.fix is not None else hi * hi / 2
+    return {"dir": u.tolist(), "t": hi, "cost": cost}
 
 
 if __name__ == "__main__":

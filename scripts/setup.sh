@@ -22,6 +22,7 @@ PACKAGES=(
   python3-tqdm                            # its progress bars (progress=True)
   python3-matplotlib                      # scripts/render-resolve.py (pictures of pdd resolve)
   gmsh                                    # scripts/make-meshes.sh only (test meshes; GPL, never linked)
+  tetgen                                  # scripts/make-resolve-cases.sh only (thin plates; never linked)
 )
 
 missing=()
