@@ -37,7 +37,6 @@ Prints JSON; exit 0 when R1-R4 hold, 1 when one fails, 2 on bad input.
 """
 import argparse
 import json
-import math
 import sys
 import time
 from fractions import Fraction
@@ -89,16 +88,53 @@ def min_exponent(arrays):
     return e
 
 
-def to_ints(V, emin):
-    """Exact integer coordinates V * 2^-emin, as a list of 3-tuples of Python ints."""
-    out = []
-    for row in V.tolist():
-        t = []
-        for x in row:
-            n, d = x.as_integer_ratio()  # exact; d a power of two
-            t.append(n * ((1 << -emin) // d))  # d <= 2^-emin by the choice of emin
-        out.append(tuple(t))
-    return out
+def exact_point(row, emin):
+    t = []
+    for x in row:
+        n, d = x.as_integer_ratio()  # exact; d a power of two
+        t.append(n * ((1 << -emin) // d))  # d <= 2^-emin by the choice of emin
+    return tuple(t)
+
+
+class ExactPoints:
+    """The integer coordinates of the vertices of V, converted when first asked for."""
+
+    def __init__(self, V, emin):
+        self.V, self.emin, self.cache = V, emin, {}
+
+    def __getitem__(self, k):
+        p = self.cache.get(k)
+        if p is None:
+            p = self.cache[k] = exact_point(self.V[k].tolist(), self.emin)
+        return p
+
+
+U = 2.0 ** -53  # the unit roundoff of doubles
+
+
+def float_volumes(V, T):
+    """6V of each element in doubles and a bound on its error: Shewchuk's orient3d bound
+    (7 + 56u) u * permanent, which covers the rounded differences too; taken as 8u * permanent,
+    the permanent computed in doubles (its own rounding is inside the slack)."""
+    X = V[T]
+    d1, d2, d3 = X[:, 1] - X[:, 0], X[:, 2] - X[:, 0], X[:, 3] - X[:, 0]
+    det = np.einsum("mj,mj->m", d1, np.cross(d2, d3))
+    a1, a2, a3 = np.abs(d1), np.abs(d2), np.abs(d3)
+    perm = (a1[:, 0] * (a2[:, 1] * a3[:, 2] + a2[:, 2] * a3[:, 1])
+            + a1[:, 1] * (a2[:, 2] * a3[:, 0] + a2[:, 0] * a3[:, 2])
+            + a1[:, 2] * (a2[:, 0] * a3[:, 1] + a2[:, 1] * a3[:, 0]))
+    return det, 8 * U * perm
+
+
+def float_sum_sq_edges(V, T):
+    """Sum of the six squared edge lengths in doubles; relative error <= 32u (a rounded difference
+    u, its square 3u, a sum of 18 non-negative terms 17u: 21u, with slack)."""
+    X = V[T]
+    s = np.zeros(len(T))
+    for i, j in EDGES:
+        d = X[:, i] - X[:, j]
+        s += np.einsum("mj,mj->m", d, d)
+    return s
 
 
 def sub(a, b):
@@ -200,60 +236,92 @@ def candidate_pairs(loA, hiA, loB, hiB, same):
     P = np.concatenate(out)
     if same:
         P = np.sort(P, axis=1)
-    P = np.unique(P, axis=0)
-    return P
+    # each (class, class) query yields each pair once: sorting by (i, j) is all that is left
+    key = np.sort(P[:, 0] * np.int64(len(loB)) + P[:, 1])
+    return np.stack([key // len(loB), key % len(loB)], axis=1)
 
 
 # ---------------------------------------------------------------- the checks
 class Side:
-    """One mesh: rest and written positions, exact integers, volumes."""
+    """One mesh: rest and written positions (doubles), their exact integers when asked for."""
 
     def __init__(self, name, V0, T, V1, fixed):
         self.name, self.V0, self.T, self.V1, self.fixed = name, V0, T, V1, fixed
 
     def exact(self, emin):
-        self.I0 = to_ints(self.V0, emin)
-        self.I1 = to_ints(self.V1, emin)
-        T = self.T.tolist()
-        self.v0 = [vol6([self.I0[k] for k in t]) for t in T]
-        self.v1 = [vol6([self.I1[k] for k in t]) for t in T]
+        self.I0, self.I1 = ExactPoints(self.V0, emin), ExactPoints(self.V1, emin)
+
+
+def certain_volumes(V, T, I):
+    """6V in doubles, its relative error bound (inf where the sign is not certain), and the exact
+    signs: from the doubles where |6V| > 2 bound, else from the exact integers I."""
+    det, bound = float_volumes(V, T)
+    with np.errstate(all="ignore"):
+        sure = np.isfinite(det) & np.isfinite(bound) & (np.abs(det) > 2 * bound) & (bound > 1e-250)
+        rel = np.where(sure, bound / (np.abs(det) - bound), np.inf)
+    sign = np.sign(det).astype(np.int64)
+    exact = {}
+    for e in np.nonzero(~sure)[0].tolist():
+        v = vol6([I[k] for k in T[e].tolist()])
+        exact[e] = v
+        sign[e] = (v > 0) - (v < 0)
+    return det, rel, sign, exact
 
 
 def elements_checks(s, rho, kappa, max_list):
-    """R2 and R4 of one side; the smallest ratios (doubles) and the worst elements."""
+    """R2 and R4 of one side; the smallest ratios (doubles) and the worst elements.
+    Each element is decided in doubles where the forward error bounds (float_volumes,
+    float_sum_sq_edges) put the float ratio on one side of the bound with room to spare, and
+    exactly (integers: the polynomial forms of the module's header) otherwise."""
+    det0, rel0, sg0, ex0 = certain_volumes(s.V0, s.T, s.I0)
+    det1, rel1, sg1, ex1 = certain_volumes(s.V1, s.T, s.I1)
+    flat_rest = np.nonzero(sg0 == 0)[0]
+    r2_bad = np.nonzero((sg0 != 0) & (sg1 != sg0))[0]
+    S0, S1 = float_sum_sq_edges(s.V0, s.T), float_sum_sq_edges(s.V1, s.T)
+    with np.errstate(all="ignore"):
+        x = det1 / det0
+        ex = 1.01 * (rel0 + rel1) + 2 * U
+        y = x * x * (S0 / S1) ** 3
+        ey = 2.05 * ex + 250 * U
+        rl, rh = float(rho) * (1 - 2 * U), float(rho) * (1 + 2 * U)
+        il, ih = float(1 / rho) * (1 - 2 * U), float(1 / rho) * (1 + 2 * U)
+        kl, kh = float(kappa ** 3) * (1 - 2 * U), float(kappa ** 3) * (1 + 2 * U)
+        xl, xh, yl, yh = x * (1 - ex), x * (1 + ex), y * (1 - ey), y * (1 + ey)
+        v_pass, v_fail = (xl > rh) & (xh < il), (xh < rl) | (xl > ih)
+        s_pass, s_fail = yl > kh, yh < kl
+    fin = np.isfinite(ex) & np.isfinite(ey) & np.isfinite(y) & np.isfinite(x)
+    decided = fin & (v_pass | v_fail) & (s_pass | s_fail)
+    ok_v, ok_s = v_pass.copy(), s_pass.copy()
+    vr, sr = x.copy(), np.cbrt(y)
     rp, rq = rho.numerator, rho.denominator
     kp3, kq3 = kappa.numerator ** 3, kappa.denominator ** 3
-    r2_bad, r4_bad, flat_rest = [], [], []
-    vol_ratios, shape3 = [], []
-    T = s.T.tolist()
-    for e, t in enumerate(T):
-        a, b = s.v0[e], s.v1[e]
-        if a == 0:
-            flat_rest.append(e)
-            continue
-        if b == 0 or (a > 0) != (b > 0):
-            r2_bad.append(e)
-        ok_v = rq * b * a >= rp * a * a and rp * b * a <= rq * a * a
-        S0 = sum_sq_edges([s.I0[k] for k in t])
-        S1 = sum_sq_edges([s.I1[k] for k in t])
-        lhs, rhs = b * b * S0 ** 3, a * a * S1 ** 3  # (eta1/eta0)^3 = lhs / rhs
-        ok_s = kq3 * lhs >= kp3 * rhs
-        vr = Fraction(b, a)
-        sr = Fraction(lhs, rhs) if rhs else Fraction(0)
-        vol_ratios.append((vr, e))
-        shape3.append((sr, e))
-        if not (ok_v and ok_s):
-            r4_bad.append({"mesh": s.name, "element": e, "volume_ratio": float(vr),
-                           "shape_ratio": float(sr) ** (1 / 3), "volume_ok": ok_v, "shape_ok": ok_s})
-    vol_ratios.sort()
-    shape3.sort()
+    undecided = np.nonzero(~decided & (sg0 != 0))[0]
+    for e in undecided.tolist():
+        t = s.T[e].tolist()
+        p0, p1 = [s.I0[k] for k in t], [s.I1[k] for k in t]
+        a = ex0[e] if e in ex0 else vol6(p0)
+        b = ex1[e] if e in ex1 else vol6(p1)
+        ok_v[e] = rq * b * a >= rp * a * a and rp * b * a <= rq * a * a
+        A0, A1 = sum_sq_edges(p0), sum_sq_edges(p1)
+        lhs, rhs = b * b * A0 ** 3, a * a * A1 ** 3  # (eta1/eta0)^3 = lhs / rhs
+        ok_s[e] = kq3 * lhs >= kp3 * rhs
+        vr[e] = b / a  # Python's int / int: correctly rounded
+        sr[e] = (lhs / rhs) ** (1 / 3) if rhs else 0.0
+    live = sg0 != 0
+    bad = np.nonzero(live & ~(ok_v & ok_s))[0]
+    r4_bad = [{"mesh": s.name, "element": int(e), "volume_ratio": float(vr[e]),
+               "shape_ratio": float(sr[e]), "volume_ok": bool(ok_v[e]), "shape_ok": bool(ok_s[e])}
+              for e in bad.tolist()]
+    idx = np.nonzero(live)[0]
+    ov, os_ = idx[np.argsort(vr[idx], kind="stable")], idx[np.argsort(sr[idx], kind="stable")]
     return {
-        "r2_bad": r2_bad, "r4_bad": r4_bad, "flat_rest": flat_rest,
-        "min_volume_ratio": float(vol_ratios[0][0]) if vol_ratios else None,
-        "max_volume_ratio": float(vol_ratios[-1][0]) if vol_ratios else None,
-        "min_shape_ratio": float(shape3[0][0]) ** (1 / 3) if shape3 else None,
-        "worst_volume": [{"element": e, "volume_ratio": float(r)} for r, e in vol_ratios[:max_list]],
-        "worst_shape": [{"element": e, "shape_ratio": float(r) ** (1 / 3)} for r, e in shape3[:max_list]],
+        "r2_bad": r2_bad.tolist(), "r4_bad": r4_bad, "flat_rest": flat_rest.tolist(),
+        "volume_signs": sg1, "rest_signs": sg0, "exact_elements": len(undecided),
+        "min_volume_ratio": float(vr[ov[0]]) if len(ov) else None,
+        "max_volume_ratio": float(vr[ov[-1]]) if len(ov) else None,
+        "min_shape_ratio": float(sr[os_[0]]) if len(os_) else None,
+        "worst_volume": [{"element": int(e), "volume_ratio": float(vr[e])} for e in ov[:max_list]],
+        "worst_shape": [{"element": int(e), "shape_ratio": float(sr[e])} for e in os_[:max_list]],
     }
 
 
@@ -280,34 +348,57 @@ def components(T, n):
     return int(el.max()) + 1, el
 
 
-def intersecting(PA, TA, volA, PB, TB, volB, same, first_only=False):
-    """Exact R1 over the candidate pairs. PA/PB: double positions (broadphase) and integer ones."""
-    VA, IA = PA
-    VB, IB = PB
-    ka = np.array([i for i, v in enumerate(volA) if v != 0], dtype=np.int64)
-    kb = ka if same else np.array([i for i, v in enumerate(volB) if v != 0], dtype=np.int64)
+def certainly_separated(PA, PB):
+    """For k pairs of tetrahedra (k x 4 x 3 doubles each): True where one of the 8 face normals,
+    taken as computed in doubles (any vector is a valid axis), separates them with a margin above
+    the rounding of the projections: |fl(n.x) - n.x| <= 4u sum_i |n_i| |x_i| (gamma_3 with slack),
+    so fl(min_B) - fl(max_A) > 2 (errA + errB) proves min_B n.x > max_A n.x exactly (the factor
+    2 covers the rounded subtraction). False means: not proved here, decide exactly."""
+    out = np.zeros(len(PA), dtype=bool)
+    if not len(PA):
+        return out
+    for T in (PA, PB):
+        for f in FACES:
+            n = np.cross(T[:, f[1]] - T[:, f[0]], T[:, f[2]] - T[:, f[0]])
+            pa, pb = np.einsum("kij,kj->ki", PA, n), np.einsum("kij,kj->ki", PB, n)
+            an = np.abs(n)
+            ea = 4 * U * np.einsum("kij,kj->ki", np.abs(PA), an).max(axis=1)
+            eb = 4 * U * np.einsum("kij,kj->ki", np.abs(PB), an).max(axis=1)
+            m = 2 * (ea + eb)
+            with np.errstate(invalid="ignore"):
+                out |= (pb.min(axis=1) - pa.max(axis=1) > m) | (pa.min(axis=1) - pb.max(axis=1) > m)
+    return out
+
+
+def intersecting(VA, TA, IA, liveA, VB, TB, IB, liveB, same, first_only=False):
+    """Exact R1: the pairs (i, j) of non-flat elements (live) whose interiors intersect; with same,
+    the pairs i < j of one mesh that share no vertex. Candidates from the boxes, then those the
+    doubles prove separated (certainly_separated) are dropped, the rest decided exactly."""
+    ka = np.nonzero(liveA)[0]
+    kb = ka if same else np.nonzero(liveB)[0]
     loA, hiA = boxes(VA, TA, ka)
     loB, hiB = (loA, hiA) if same else boxes(VB, TB, kb)
     C = candidate_pairs(loA, hiA, loB, hiB, same)
-    TAl, TBl = TA.tolist(), TB.tolist()
+    i, j = ka[C[:, 0]], kb[C[:, 1]]
+    ncand = len(i)
+    if same:
+        shared = (TA[i][:, :, None] == TA[j][:, None, :]).any(axis=(1, 2))
+        i, j = i[~shared], j[~shared]
+    nonadjacent = len(i)
     hits = []
-    tested = 0
-    for ci, cj in C.tolist():
-        i, j = int(ka[ci]), int(kb[cj])
-        if same:
-            if i > j:
-                i, j = j, i
-            if set(TAl[i]) & set(TAl[j]):
-                continue
-        tested += 1
-        P = [IA[k] for k in TAl[i]]
-        Q = [IB[k] for k in TBl[j]]
-        if interiors_intersect(P, Q):
-            hits.append((i, j))
-            if first_only:
-                break
+    step = 1 << 16
+    exact_tests = 0
+    for s0 in range(0, len(i), step):
+        ii, jj = i[s0:s0 + step], j[s0:s0 + step]
+        sep = certainly_separated(VA[TA[ii]], VB[TB[jj]])
+        for a, b in zip(ii[~sep].tolist(), jj[~sep].tolist()):
+            exact_tests += 1
+            if interiors_intersect([IA[k] for k in TA[a].tolist()], [IB[k] for k in TB[b].tolist()]):
+                hits.append((a, b))
+                if first_only:
+                    return hits, (ncand, nonadjacent, exact_tests)
     hits.sort()
-    return hits, len(C), tested
+    return hits, (ncand, nonadjacent, exact_tests)
 
 
 def main(argv=None):
@@ -371,7 +462,8 @@ def main(argv=None):
     # R1
     A = sides[0]
     B = A if o.self else sides[1]
-    hits, ncand, ntested = intersecting((A.V1, A.I1), A.T, A.v1, (B.V1, B.I1), B.T, B.v1, o.self)
+    hits, counts = intersecting(A.V1, A.T, A.I1, el["a"]["volume_signs"] != 0, B.V1, B.T, B.I1,
+                                el[B.name]["volume_signs"] != 0, o.self)
     t_r1 = time.perf_counter()
     # bodies
     nb, lab = components(A.T, len(A.V0))
@@ -410,7 +502,9 @@ def main(argv=None):
                               "worst_shape": el[s.name]["worst_shape"][:5]} for s in sides},
         "cost": sum(c[0] for c in costs.values()),
         "bodies": bodies,
-        "candidate_pairs": ncand, "exact_pair_tests": ntested,
+        "candidate_pairs": counts[0], "pairs_sharing_no_vertex": counts[1],
+        "exact_pair_tests": counts[2],
+        "exact_element_checks": sum(el[s.name]["exact_elements"] for s in sides),
     })
     t_end = time.perf_counter()
     if o.rigid_dir:
@@ -453,13 +547,14 @@ def rigid(o, sides, lab):
     else:
         VA, TA, VB, TB = A.V0, A.T, sides[1].V0, sides[1].T
 
+    liveA = certain_volumes(VA, TA, ExactPoints(VA, min_exponent([VA])))[2] != 0
+
     def separated(t):
         VBt = VB + t * u  # the doubles a program would write for the translated body
         e = min_exponent([VA, VBt])
-        IA, IB = to_ints(VA, e), to_ints(VBt, e)
-        va = [vol6([IA[k] for k in tt]) for tt in TA.tolist()]
-        vb = [vol6([IB[k] for k in tt]) for tt in TB.tolist()]
-        h, _, _ = intersecting((VA, IA), TA, va, (VBt, IB), TB, vb, False, first_only=True)
+        IB = ExactPoints(VBt, e)
+        liveB = certain_volumes(VBt, TB, IB)[2] != 0
+        h, _ = intersecting(VA, TA, ExactPoints(VA, e), liveA, VBt, TB, IB, liveB, False, first_only=True)
         return not h
 
     hi, lo = o.rigid_hi, 0.0

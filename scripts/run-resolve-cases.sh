@@ -4,13 +4,15 @@
 #   bash scripts/run-resolve-cases.sh DIR [PDD]     (PDD: the program, default build/bin/pdd)
 # Environment: RESOLVE_OPTS extra options for `pdd resolve` (e.g. --max-rounds 50),
 #              CHECK_OPTS extra options for the checker (e.g. --rho 1/4 --kappa 1/2),
-#              CASES a space-separated subset of the case names.
+#              CASES a space-separated subset of the case names,
+#              CHECK_ONLY=1 judge the meshes already written in DIR/out (no pdd run).
 # Writes DIR/out/<case>-{a,b}.msh, <case>.report.json (pdd's), <case>.check.json (the checker's),
 # <case>.log, and DIR/out/table.txt. Columns: elements (A + B), pdd's exit code, rounds (rows of
 # the report's rounds table), cost (the checker's SPEC §11 mesh object norm, summed over A and B),
 # rigid (the cost of the smallest separating translation of B, or of body 1 with --self, along
 # the case's direction: t^2 when A is fixed, t^2/2 split between both), cost/rigid, the smallest
-# V1/V0 and eta1/eta0, the checker's R1-R4 verdicts, whether pdd's own r1-r3 agree with them,
+# V1/V0 and eta1/eta0, the checker's R1-R4 verdicts, whether pdd's own verdicts (r1-r3, and r4
+# when its report has one) agree with them,
 # pdd's time and the checker's time (R1-R4 and cost; the rigid bisection apart).
 set -uo pipefail
 D=${1:?usage: run-resolve-cases.sh DIR [PDD]}
@@ -25,12 +27,14 @@ while IFS=$'\t' read -r name ropts copts; do
   cin=$(echo "$ropts" | sed 's/--fix [ab]//')
   if [[ "$ropts" == *"--b "* ]]; then outs="$outs --out-b $O/$name-b.msh"; couts="$couts --b-out $O/$name-b.msh"; fi
   echo "run-resolve-cases: $name" >&2
-  t0=$(date +%s.%N)
-  # shellcheck disable=SC2086
-  $PDD resolve $ropts $outs --report "$O/$name.report.json" --quiet ${RESOLVE_OPTS:-} > "$O/$name.log" 2>&1
-  rc=$?
-  t1=$(date +%s.%N)
-  echo "{\"exit\": $rc, \"seconds\": $(awk "BEGIN {printf \"%.3f\", $t1 - $t0}")}" > "$O/$name.run.json"
+  if [ -z "${CHECK_ONLY:-}" ]; then
+    t0=$(date +%s.%N)
+    # shellcheck disable=SC2086
+    $PDD resolve $ropts $outs --report "$O/$name.report.json" --quiet ${RESOLVE_OPTS:-} > "$O/$name.log" 2>&1
+    rc=$?
+    t1=$(date +%s.%N)
+    echo "{\"exit\": $rc, \"seconds\": $(awk "BEGIN {printf \\"%.3f\\", $t1 - $t0}")}" > "$O/$name.run.json"
+  fi
   # shellcheck disable=SC2086
   /usr/bin/python3 scripts/check-resolution.py $cin $couts $copts ${CHECK_OPTS:-} \
     > "$O/$name.check.json" 2>> "$O/$name.log"
@@ -47,7 +51,7 @@ def load(p):
     except (OSError, ValueError):
         return None
 cols = ["case", "elements", "exit", "rounds", "cost", "rigid", "cost/rigid", "min V1/V0",
-        "min eta1/eta0", "R1", "R2", "R3", "R4", "pdd r1-r3 agree", "pdd s", "check s", "rigid s"]
+        "min eta1/eta0", "R1", "R2", "R3", "R4", "pdd agrees", "pdd s", "check s", "rigid s"]
 rows = []
 for line in open(os.path.join(D, "cases.tsv")):
     name = line.split("\t")[0]
@@ -57,7 +61,9 @@ for line in open(os.path.join(D, "cases.tsv")):
     el = "+".join(str(m["elements"]) for m in c["per_mesh"].values())
     rig = c.get("rigid", {}).get("cost")
     f = lambda x, d=3: "-" if x is None else f"{x:.{d}g}"
-    agree = "-" if r is None else ("yes" if all(r.get(k) == c[k] for k in ("r1", "r2", "r3")) else "NO")
+    # pdd's own verdicts (r4 once it reports one) against the checker's
+    keys = [k for k in ("r1", "r2", "r3", "r4") if r is not None and k in r]
+    agree = "-" if r is None else ("yes" if all(r[k] == c[k] for k in keys) else "NO")
     rows.append([name, el, str(run["exit"]), "-" if r is None else str(len(r.get("rounds", []))),
                  f(c["cost"]), f(rig), f(c["cost"] / rig if rig else None),
                  f(c["min_volume_ratio"]), f(c["min_shape_ratio"]),
