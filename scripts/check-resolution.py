@@ -33,6 +33,8 @@ Usage:
   check-resolution.py --a A0 --a-out A1 [--b B0 --b-out B1 | --self] [--fix a|b]
                       [--fixed-a FILE] [--fixed-b FILE] [--rho 1/4] [--kappa 1/2]
                       [--rigid-dir x,y,z [--rigid-hi H] [--rigid-body K]] [--max-list N]
+                      [--all-exact]   (every element and candidate pair exactly: audits the
+                                       double-precision filters, same verdicts, slower)
 Prints JSON; exit 0 when R1-R4 hold, 1 when one fails, 2 on bad input.
 """
 import argparse
@@ -110,6 +112,7 @@ class ExactPoints:
 
 
 U = 2.0 ** -53  # the unit roundoff of doubles
+ALL_EXACT = False  # --all-exact: no decision in doubles (to audit the filters; slow)
 
 
 def float_volumes(V, T):
@@ -290,7 +293,7 @@ def elements_checks(s, rho, kappa, max_list):
         v_pass, v_fail = (xl > rh) & (xh < il), (xh < rl) | (xl > ih)
         s_pass, s_fail = yl > kh, yh < kl
     fin = np.isfinite(ex) & np.isfinite(ey) & np.isfinite(y) & np.isfinite(x)
-    decided = fin & (v_pass | v_fail) & (s_pass | s_fail)
+    decided = fin & (v_pass | v_fail) & (s_pass | s_fail) & (not ALL_EXACT)
     ok_v, ok_s = v_pass.copy(), s_pass.copy()
     vr, sr = x.copy(), np.cbrt(y)
     rp, rq = rho.numerator, rho.denominator
@@ -309,10 +312,21 @@ def elements_checks(s, rho, kappa, max_list):
         sr[e] = (lhs / rhs) ** (1 / 3) if rhs else 0.0
     live = sg0 != 0
     bad = np.nonzero(live & ~(ok_v & ok_s))[0]
+    # The printed ratios of the failing and the worst elements: correctly rounded from the exact
+    # integers (the doubles of a crushed element lose digits to cancellation).
+    idx = np.nonzero(live)[0]
+    worst = set(bad.tolist()) | set(idx[np.argsort(vr[idx])[:max_list]].tolist()) \
+        | set(idx[np.argsort(sr[idx])[:max_list]].tolist())
+    for e in worst - set(undecided.tolist()):
+        t = s.T[e].tolist()
+        p0, p1 = [s.I0[k] for k in t], [s.I1[k] for k in t]
+        a, b = vol6(p0), vol6(p1)
+        lhs, rhs = b * b * sum_sq_edges(p0) ** 3, a * a * sum_sq_edges(p1) ** 3
+        vr[e] = b / a
+        sr[e] = (lhs / rhs) ** (1 / 3) if rhs else 0.0
     r4_bad = [{"mesh": s.name, "element": int(e), "volume_ratio": float(vr[e]),
                "shape_ratio": float(sr[e]), "volume_ok": bool(ok_v[e]), "shape_ok": bool(ok_s[e])}
               for e in bad.tolist()]
-    idx = np.nonzero(live)[0]
     ov, os_ = idx[np.argsort(vr[idx], kind="stable")], idx[np.argsort(sr[idx], kind="stable")]
     return {
         "r2_bad": r2_bad.tolist(), "r4_bad": r4_bad, "flat_rest": flat_rest.tolist(),
@@ -390,7 +404,7 @@ def intersecting(VA, TA, IA, liveA, VB, TB, IB, liveB, same, first_only=False):
     exact_tests = 0
     for s0 in range(0, len(i), step):
         ii, jj = i[s0:s0 + step], j[s0:s0 + step]
-        sep = certainly_separated(VA[TA[ii]], VB[TB[jj]])
+        sep = np.zeros(len(ii), bool) if ALL_EXACT else certainly_separated(VA[TA[ii]], VB[TB[jj]])
         for a, b in zip(ii[~sep].tolist(), jj[~sep].tolist()):
             exact_tests += 1
             if interiors_intersect([IA[k] for k in TA[a].tolist()], [IB[k] for k in TB[b].tolist()]):
@@ -417,6 +431,7 @@ def main(argv=None):
     ap.add_argument("--rigid-hi", type=float, default=1.0)
     ap.add_argument("--rigid-body", type=int, default=1)
     ap.add_argument("--max-list", type=int, default=20)
+    ap.add_argument("--all-exact", action="store_true")
     o = ap.parse_args(argv)
     if o.self == bool(o.b) or bool(o.b) != bool(o.b_out):
         fail_input("give --b and --b-out, or --self")
@@ -426,6 +441,8 @@ def main(argv=None):
         fail_input("--rho and --kappa are rationals such as 1/4 or 0.5")
     if not (0 < rho <= 1 and 0 < kappa <= 1):
         fail_input("--rho and --kappa lie in (0, 1]")
+    global ALL_EXACT
+    ALL_EXACT = o.all_exact
     t_start = time.perf_counter()
 
     sides = []

@@ -230,3 +230,22 @@ def test_agrees_with_pdd_resolve_report(tmp_path, fix):
     assert out["min_volume_ratio"] == pytest.approx(report["min_volume_ratio"], rel=1e-12)
     if fix:
         assert out["per_mesh"]["a"]["cost"] == 0
+
+
+@pytest.mark.parametrize("a,b", [("sphere-a.msh", "sphere-b.msh"), ("sphere-a.msh", "slivers.msh")])
+def test_double_filters_change_no_verdict(tmp_path, a, b):
+    # The doubles decide only under proved error bounds; --all-exact decides everything with the
+    # integers. Same verdicts, pairs and failing elements (squashing B by 0.3 in z makes R4 fail
+    # on all of B and lets the filters meet both outcomes).
+    V, T = meshio.read(FIX / b).points, [c.data for c in meshio.read(FIX / b).cells if c.type == "tetra"]
+    V1 = V.copy()
+    V1[:, 2] *= 0.3
+    b1 = write(tmp_path / "b1.msh", V1, np.concatenate(T))
+    b0 = write(tmp_path / "b0.msh", V, np.concatenate(T))
+    args = ["--a", FIX / a, "--a-out", FIX / a, "--b", b0, "--b-out", b1, "--max-list", "100000"]
+    fast, exact = check(*args), check(*args, "--all-exact")
+    assert exact["exact_pair_tests"] == exact["pairs_sharing_no_vertex"] > fast["exact_pair_tests"]
+    for k in ("r1", "r2", "r3", "r4", "intersecting", "inverted_or_flat", "r4_failing", "min_volume_ratio",
+              "min_shape_ratio", "cost"):
+        assert fast[k] == exact[k], k
+    assert not fast["r1"] and not fast["r4"]
