@@ -28,12 +28,12 @@ while IFS=$'\t' read -r name ropts copts; do
   if [[ "$ropts" == *"--b "* ]]; then outs="$outs --out-b $O/$name-b.msh"; couts="$couts --b-out $O/$name-b.msh"; fi
   echo "run-resolve-cases: $name" >&2
   if [ -z "${CHECK_ONLY:-}" ]; then
-    t0=$(date +%s.%N)
+    t0=$(date +%s%N)
     # shellcheck disable=SC2086
     $PDD resolve $ropts $outs --report "$O/$name.report.json" --quiet ${RESOLVE_OPTS:-} > "$O/$name.log" 2>&1
     rc=$?
-    t1=$(date +%s.%N)
-    echo "{\"exit\": $rc, \"seconds\": $(awk "BEGIN {printf \\"%.3f\\", $t1 - $t0}")}" > "$O/$name.run.json"
+    ms=$(( ($(date +%s%N) - t0) / 1000000 ))
+    printf '{"exit": %d, "seconds": %d.%03d}\n' "$rc" $((ms / 1000)) $((ms % 1000)) > "$O/$name.run.json"
   fi
   # shellcheck disable=SC2086
   /usr/bin/python3 scripts/check-resolution.py $cin $couts $copts ${CHECK_OPTS:-} \
