@@ -415,6 +415,92 @@ def intersecting(VA, TA, IA, liveA, VB, TB, IB, liveB, same, first_only=False):
     return hits, (ncand, nonadjacent, exact_tests)
 
 
+def judge(sides, self_contact, rho, kappa, max_list=20):
+    """R1-R4, cost and ratios of the Sides (A, and B unless self_contact): the verdict dict printed
+    by main (without inputs and rigid), the body label of each element of A, and the seconds."""
+    t_read = time.perf_counter()
+    emin = min_exponent([a for s in sides for a in (s.V0, s.V1)])
+    for s in sides:
+        s.exact(emin)
+    t_exact = time.perf_counter()
+
+    out = {}
+    # R3
+    moved = []
+    for s in sides:
+        for k in s.fixed:
+            if s.V0[k].tobytes() != s.V1[k].tobytes():  # bit for bit (the doubles as written)
+                moved.append({"mesh": s.name, "vertex": k})
+    # R2, R4
+    el = {s.name: elements_checks(s, rho, kappa, max_list) for s in sides}
+    t_el = time.perf_counter()
+    # R1
+    A = sides[0]
+    B = A if self_contact else sides[1]
+    hits, counts = intersecting(A.V1, A.T, A.I1, el["a"]["volume_signs"] != 0, B.V1, B.T, B.I1,
+                                el[B.name]["volume_signs"] != 0, self_contact)
+    t_r1 = time.perf_counter()
+    # bodies
+    nb, lab = components(A.T, len(A.V0))
+    bodies = {"a": nb}
+    if not self_contact:
+        bodies["b"] = components(B.T, len(B.V0))[0]
+
+    r1 = not hits
+    r2 = all(not el[s.name]["r2_bad"] for s in sides)
+    r3 = not moved
+    r4 = all(not el[s.name]["r4_bad"] for s in sides)
+    flat_rest = [{"mesh": s.name, "element": e} for s in sides for e in el[s.name]["flat_rest"]]
+    costs = {s.name: cost_of(s) for s in sides}
+    pairs = [{"a": i, "b": j} for i, j in hits]
+    if self_contact:
+        for p in pairs:
+            p["bodies"] = [int(lab[p["a"]]), int(lab[p["b"]])]
+    out.update({
+        "resolved": r1 and r2 and r3 and r4 and not flat_rest,
+        "r1": r1, "r2": r2, "r3": r3, "r4": r4,
+        "intersecting_pairs": len(hits), "intersecting": pairs[:max_list],
+        "inverted_or_flat": [{"mesh": s.name, "element": e} for s in sides for e in el[s.name]["r2_bad"]][:max_list],
+        "inverted_or_flat_count": sum(len(el[s.name]["r2_bad"]) for s in sides),
+        "moved_fixed_vertices": moved[:max_list], "moved_fixed_count": len(moved),
+        "r4_failing_count": sum(len(el[s.name]["r4_bad"]) for s in sides),
+        "r4_failing": [x for s in sides for x in el[s.name]["r4_bad"]][:max_list],
+        "flat_at_rest": flat_rest[:max_list],
+        "min_volume_ratio": min(el[s.name]["min_volume_ratio"] for s in sides),
+        "max_volume_ratio": max(el[s.name]["max_volume_ratio"] for s in sides),
+        "min_shape_ratio": min(el[s.name]["min_shape_ratio"] for s in sides),
+        "per_mesh": {s.name: {"elements": len(s.T), "vertices": len(s.V0), "fixed": len(s.fixed),
+                              "cost": costs[s.name][0], "max_displacement": costs[s.name][1],
+                              "min_volume_ratio": el[s.name]["min_volume_ratio"],
+                              "min_shape_ratio": el[s.name]["min_shape_ratio"],
+                              "worst_volume": el[s.name]["worst_volume"][:5],
+                              "worst_shape": el[s.name]["worst_shape"][:5]} for s in sides},
+        "cost": sum(c[0] for c in costs.values()),
+        "bodies": bodies,
+        "candidate_pairs": counts[0], "pairs_sharing_no_vertex": counts[1],
+        "exact_pair_tests": counts[2],
+        "exact_element_checks": sum(el[s.name]["exact_elements"] for s in sides),
+    })
+    return out, lab, {"exact_coordinates": t_exact - t_read, "r2_r4": t_el - t_exact, "r1": t_r1 - t_el}
+
+
+def check_arrays(VA0, TA, VA1, VB0=None, TB=None, VB1=None, self_contact=False, fixed_a=(),
+                 fixed_b=(), rho=Fraction(1, 4), kappa=Fraction(1, 2), max_list=20):
+    """The same verdict on arrays (e.g. pdd.resolve's outputs): vertices n x 3 doubles,
+    tetrahedra m x 4 indices, rest and new positions; fixed_*: vertex indices or bool masks. Import with
+    importlib (the file name has a dash); see tests/compare/test_check_resolution.py."""
+    def ids(f):  # indices, or a bool mask as pdd.resolve's fixed_a
+        f = np.asarray(list(f) if not hasattr(f, "dtype") else f)
+        return sorted(np.nonzero(f)[0].tolist() if f.dtype == bool else f.astype(np.int64).tolist())
+
+    sides = [Side("a", np.asarray(VA0, np.float64), np.asarray(TA, np.int64),
+                  np.asarray(VA1, np.float64), ids(fixed_a))]
+    if not self_contact:
+        sides.append(Side("b", np.asarray(VB0, np.float64), np.asarray(TB, np.int64),
+                          np.asarray(VB1, np.float64), ids(fixed_b)))
+    return judge(sides, self_contact, Fraction(rho), Fraction(kappa), max_list)[0]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--a", required=True)
@@ -460,74 +546,14 @@ def main(argv=None):
         sides.append(Side(name, V0, T0, V1, fixed))
     t_read = time.perf_counter()
 
-    emin = min_exponent([a for s in sides for a in (s.V0, s.V1)])
-    for s in sides:
-        s.exact(emin)
-    t_exact = time.perf_counter()
-
     out = {"inputs": {"a": o.a, "a_out": o.a_out, "b": o.b, "b_out": o.b_out, "self": o.self,
                       "fix": o.fix, "rho": str(rho), "kappa": str(kappa)}}
-    # R3
-    moved = []
-    for s in sides:
-        for k in s.fixed:
-            if s.V0[k].tobytes() != s.V1[k].tobytes():  # bit for bit (the doubles as written)
-                moved.append({"mesh": s.name, "vertex": k})
-    # R2, R4
-    el = {s.name: elements_checks(s, rho, kappa, o.max_list) for s in sides}
-    t_el = time.perf_counter()
-    # R1
-    A = sides[0]
-    B = A if o.self else sides[1]
-    hits, counts = intersecting(A.V1, A.T, A.I1, el["a"]["volume_signs"] != 0, B.V1, B.T, B.I1,
-                                el[B.name]["volume_signs"] != 0, o.self)
-    t_r1 = time.perf_counter()
-    # bodies
-    nb, lab = components(A.T, len(A.V0))
-    bodies = {"a": nb}
-    if not o.self:
-        bodies["b"] = components(B.T, len(B.V0))[0]
-
-    r1 = not hits
-    r2 = all(not el[s.name]["r2_bad"] for s in sides)
-    r3 = not moved
-    r4 = all(not el[s.name]["r4_bad"] for s in sides)
-    flat_rest = [{"mesh": s.name, "element": e} for s in sides for e in el[s.name]["flat_rest"]]
-    costs = {s.name: cost_of(s) for s in sides}
-    pairs = [{"a": i, "b": j} for i, j in hits]
-    if o.self:
-        for p in pairs:
-            p["bodies"] = [int(lab[p["a"]]), int(lab[p["b"]])]
-    out.update({
-        "resolved": r1 and r2 and r3 and r4 and not flat_rest,
-        "r1": r1, "r2": r2, "r3": r3, "r4": r4,
-        "intersecting_pairs": len(hits), "intersecting": pairs[:o.max_list],
-        "inverted_or_flat": [{"mesh": s.name, "element": e} for s in sides for e in el[s.name]["r2_bad"]][:o.max_list],
-        "inverted_or_flat_count": sum(len(el[s.name]["r2_bad"]) for s in sides),
-        "moved_fixed_vertices": moved[:o.max_list], "moved_fixed_count": len(moved),
-        "r4_failing_count": sum(len(el[s.name]["r4_bad"]) for s in sides),
-        "r4_failing": [x for s in sides for x in el[s.name]["r4_bad"]][:o.max_list],
-        "flat_at_rest": flat_rest[:o.max_list],
-        "min_volume_ratio": min(el[s.name]["min_volume_ratio"] for s in sides),
-        "max_volume_ratio": max(el[s.name]["max_volume_ratio"] for s in sides),
-        "min_shape_ratio": min(el[s.name]["min_shape_ratio"] for s in sides),
-        "per_mesh": {s.name: {"elements": len(s.T), "vertices": len(s.V0), "fixed": len(s.fixed),
-                              "cost": costs[s.name][0], "max_displacement": costs[s.name][1],
-                              "min_volume_ratio": el[s.name]["min_volume_ratio"],
-                              "min_shape_ratio": el[s.name]["min_shape_ratio"],
-                              "worst_volume": el[s.name]["worst_volume"][:5],
-                              "worst_shape": el[s.name]["worst_shape"][:5]} for s in sides},
-        "cost": sum(c[0] for c in costs.values()),
-        "bodies": bodies,
-        "candidate_pairs": counts[0], "pairs_sharing_no_vertex": counts[1],
-        "exact_pair_tests": counts[2],
-        "exact_element_checks": sum(el[s.name]["exact_elements"] for s in sides),
-    })
+    verdict, lab, sec = judge(sides, o.self, rho, kappa, o.max_list)
+    out.update(verdict)
     t_end = time.perf_counter()
     if o.rigid_dir:
         out["rigid"] = rigid(o, sides, lab)
-    out["seconds"] = {"read": t_read - t_start, "exact_coordinates": t_exact - t_read,
-                      "r2_r4": t_el - t_exact, "r1": t_r1 - t_el, "total": t_end - t_start}
+    out["seconds"] = {"read": t_read - t_start, **sec, "total": t_end - t_start}
     if o.rigid_dir:
         out["seconds"]["rigid"] = time.perf_counter() - t_end
     print(json.dumps(out, indent=1))

@@ -249,3 +249,26 @@ def test_double_filters_change_no_verdict(tmp_path, a, b):
               "min_shape_ratio", "cost"):
         assert fast[k] == exact[k], k
     assert not fast["r1"] and not fast["r4"]
+
+
+def test_check_arrays_judges_pdd_resolve_in_python(tmp_path):
+    # pdd.resolve's arrays judged without files (check_arrays), equal to its own r1-r3.
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("check_resolution", CHECK)
+    cr = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cr)
+    build = os.environ.get("PDD_PYTHON")
+    if not build:
+        pytest.skip("PDD_PYTHON (the build's python/ directory) not set")
+    sys.path.insert(0, build)
+    import pdd
+    a, b = meshio.read(FIX / "tiny-a.msh"), meshio.read(FIX / "tiny-b.msh")
+    VA, TA = a.points, np.concatenate([c.data for c in a.cells if c.type == "tetra"])
+    VB, TB = b.points, np.concatenate([c.data for c in b.cells if c.type == "tetra"])
+    for fix in (None, "a"):
+        VA1, VB1, rep = pdd.resolve(VA, TA, VB, TB, fix=fix)
+        out = cr.check_arrays(VA, TA, VA1, VB, TB, VB1, fixed_a=range(len(VA)) if fix else ())
+        for k in ("r1", "r2", "r3"):
+            assert out[k] == rep[k]
+        assert out["cost"] == pytest.approx(rep["cost"], rel=1e-12)
+        assert out["intersecting_pairs"] == len(rep["remaining_pairs"])
