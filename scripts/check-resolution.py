@@ -367,7 +367,9 @@ def certainly_separated(PA, PB):
     taken as computed in doubles (any vector is a valid axis), separates them with a margin above
     the rounding of the projections: |fl(n.x) - n.x| <= 4u sum_i |n_i| |x_i| (gamma_3 with slack),
     so fl(min_B) - fl(max_A) > 2 (errA + errB) proves min_B n.x > max_A n.x exactly (the factor
-    2 covers the rounded subtraction). False means: not proved here, decide exactly."""
+    2 covers the rounded subtraction; an absolute 1e-300 covers products in the subnormal range,
+    whose error is absolute, at most 2^-1074 an operation). False means: not proved here, decide
+    exactly."""
     out = np.zeros(len(PA), dtype=bool)
     if not len(PA):
         return out
@@ -378,7 +380,7 @@ def certainly_separated(PA, PB):
             an = np.abs(n)
             ea = 4 * U * np.einsum("kij,kj->ki", np.abs(PA), an).max(axis=1)
             eb = 4 * U * np.einsum("kij,kj->ki", np.abs(PB), an).max(axis=1)
-            m = 2 * (ea + eb)
+            m = 2 * (ea + eb) + 1e-300  # + an absolute term: gradual underflow's errors
             with np.errstate(invalid="ignore"):
                 out |= (pb.min(axis=1) - pa.max(axis=1) > m) | (pa.min(axis=1) - pb.max(axis=1) > m)
     return out
@@ -418,6 +420,12 @@ def intersecting(VA, TA, IA, liveA, VB, TB, IB, liveB, same, first_only=False):
 def judge(sides, self_contact, rho, kappa, max_list=20):
     """R1-R4, cost and ratios of the Sides (A, and B unless self_contact): the verdict dict printed
     by main (without inputs and rigid), the body label of each element of A, and the seconds."""
+    # The double-precision filters treat overflow and NaN as "not decided" (exact path): quiet.
+    with np.errstate(all="ignore"):
+        return judge_(sides, self_contact, rho, kappa, max_list)
+
+
+def judge_(sides, self_contact, rho, kappa, max_list):
     t_read = time.perf_counter()
     emin = min_exponent([a for s in sides for a in (s.V0, s.V1)])
     for s in sides:

@@ -272,3 +272,20 @@ def test_check_arrays_judges_pdd_resolve_in_python(tmp_path):
             assert out[k] == rep[k]
         assert out["cost"] == pytest.approx(rep["cost"], rel=1e-12)
         assert out["intersecting_pairs"] == len(rep["remaining_pairs"])
+
+
+@pytest.mark.parametrize("scale", [2.0 ** -1000, 2.0 ** 900])
+def test_extreme_scales_keep_the_verdicts(scale):
+    # The wedges of test_edge_edge_separation_and_touching times a power of two (exact): the same
+    # verdicts, where the doubles underflow (2^-1000: products of coordinates are subnormal or
+    # zero) or overflow (2^900), so the exact path decides.
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("check_resolution", CHECK)
+    cr = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cr)
+    T = np.array([[0, 1, 2, 3]])
+    A = np.array(wedge(0.0, False)) * scale
+    for d, hit in ((2.0 ** -40, False), (0.0, False), (-(2.0 ** -40), True)):
+        B = np.array(wedge(d, True)) * scale
+        out = cr.check_arrays(A, T, A, B, T, B)
+        assert out["r1"] == (not hit) and out["r2"] and out["r4"]
