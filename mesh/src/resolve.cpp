@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "check_indices.h"
+#include "element_quality.h"
 #include "resolve.h"
 
 namespace pdd::mesh {
@@ -143,8 +144,15 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
   return rigid_move(A, B);
 }
 
-double volume6(const TetVertices& t) {
-  return dot(sub(t[1], t[0]), cross(sub(t[2], t[0]), sub(t[3], t[0])));
+// R4 with a safety margin, in doubles (the step limit's test): the ratios in doubles carry a
+// relative error of a few ulps times the element's condition, far below kQualityMargin for
+// every element that is not nearly flat at rest, so a state that passes this test passes the
+// exact R4 verdict too (which stays the judge: check_resolution decides it afresh).
+constexpr double kQualityMargin = 1.0 / 64;
+bool usable_with_margin(const QualityLimits& q, const detail::Ratios& r) {
+  const double m = 1 + kQualityMargin;
+  return r.volume >= q.min_volume_ratio * m && r.volume * q.min_volume_ratio * m <= 1 &&
+         r.shape >= q.min_shape_ratio * m;
 }
 
 // One mesh's state during the rounds.
@@ -154,7 +162,9 @@ struct Side {
   Mesh cur;
   std::vector<char> fixed;          // per vertex
   std::vector<std::size_t> elems;   // valid at rest
-  std::vector<signed char> sign;    // rest orientation per element (0: not valid)
+  QualityLimits limits;             // R4's bounds, kept by the step limit
+  std::vector<Sign> sign;           // rest orientation per element (Zero: not valid)
+  std::vector<double> d0, s0;       // per element: rest 6V and sum of squared edge lengths
   std::vector<double> volume;       // |rest volume| per element
   std::vector<Vec3d> acc;           // per vertex: sum of w * displacement this round
   std::vector<double> weight;       // per vertex: sum of w this round
@@ -225,12 +235,16 @@ void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vect
   s.fixed = fix_all ? std::vector<char>(m.vertices.size(), 1)
                     : flags.empty() ? std::vector<char>(m.vertices.size(), 0) : flags;
   s.elems = detail::valid_elements(m, which, &skipped);
-  s.sign.assign(m.tets.size(), 0);
+  s.sign.assign(m.tets.size(), Sign::Zero);
+  s.d0.assign(m.tets.size(), 0);
+  s.s0.assign(m.tets.size(), 0);
   s.volume.assign(m.tets.size(), 0);
   tbb::parallel_for(std::size_t{0}, s.elems.size(), [&](std::size_t k) {
     const std::size_t e = s.elems[k];
     const TetVertices t = element(m, e);
-    s.sign[e] = (signed char)detail::orientation(t[0], t[1], t[2], t[3]);
+    s.sign[e] = detail::orientation(t[0], t[1], t[2], t[3]);
+    s.d0[e] = detail::volume6(t);
+    s.s0[e] = detail::edge_square_sum(t);
     const Vec3d u = sub(t[1], t[0]), v = sub(t[2], t[0]), w = sub(t[3], t[0]);
     s.volume[e] = std::abs(dot(u, cross(v, w))) / 6;
   });
@@ -335,14 +349,9 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const TetVertices q = element(s.cur, affected[k]);
-                          bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[affected[k]];
-                          if (!bad[k] && t.min_ratio > 0 && pass < t.max_halvings) {
-                            TetVertices p;
-                            for (int i = 0; i < 4; ++i) p[i] = before[s.rest->tets[affected[k]][i]];
-                            const double r0 = s.volume[affected[k]] * 6 * s.sign[affected[k]];
-                            const double r1 = volume6(q) / r0;
-                            bad[k] = r1 < t.min_ratio && r1 < volume6(p) / r0;
-                          }
+                          const std::size_t e = affected[k];
+                          bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[e] ||
+                                   !usable_with_margin(s.limits, detail::ratios(s.d0[e], s.s0[e], q));
                         }
                       });
     bool any = false;
@@ -490,8 +499,10 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   ResolveReport& rep = out.report;
   rep.variant = o.variant;
   Side sa, sb;
+  detail::check_limits(o);
   init_side(sa, A, 'A', o.fix_a, o.fixed_vertices_a, rep.skipped);
   if (B) init_side(sb, *B, 'B', o.fix_b, o.fixed_vertices_b, rep.skipped);
+  sa.limits = sb.limits = o;
   if (tuning.smooth_sweeps > 0) {
     build_adjacency(sa);
     if (B) build_adjacency(sb);
@@ -568,13 +579,17 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   // start again from a separated configuration and walk back towards the rest pose.
   const std::size_t first_budget = tuning.descend ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
   bool clear = run_rounds(first_budget, tuning, tuning.descend, o.variant);
+  if (clear) rep.method = ResolveMethod::Rounds;
   if (!clear && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
     clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
+    if (clear) rep.method = ResolveMethod::Translation;
   }
   // descend declined (both meshes with fixed vertices, or no usable translation; it leaves the
   // positions as they were): the rounds go on from there up to max_rounds, without the stall exit.
-  if (!clear && B && o.max_rounds > rep.rounds.size())
+  if (!clear && B && o.max_rounds > rep.rounds.size()) {
     clear = run_rounds(o.max_rounds - rep.rounds.size(), tuning, false, o.variant);
+    if (clear) rep.method = ResolveMethod::Rounds;
+  }
   // Self-contact has no separated start: stalled deformable rounds restart from the rest pose
   // with the rigid variant's rounds (which move elements as a whole and do not squeeze them).
   if (!clear && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
@@ -582,17 +597,27 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
     std::fill(sa.blocked.begin(), sa.blocked.end(), 0);
     clear = run_rounds(o.max_rounds - rep.rounds.size(), default_tuning(ResolveVariant::Rigid), false,
                        ResolveVariant::Rigid);
+    if (clear) rep.method = ResolveMethod::RigidRounds;
   }
   stop_if_cancelled();
 
   auto t = Clock::now();
   ResolveReport v = check_resolution(A, sa.cur.vertices, B, B ? sb.cur.vertices : std::vector<Vec3d>{}, sa.fixed,
-                                     B ? sb.fixed : std::vector<char>{});
+                                     B ? sb.fixed : std::vector<char>{}, o);
   rep.seconds_verify = since(t);
   rep.r1 = v.r1;
   rep.r2 = v.r2;
   rep.r3 = v.r3;
+  rep.r4 = v.r4;
+  rep.limits = v.limits;
   rep.resolved = v.resolved;
+  rep.poor_elements = std::move(v.poor_elements);
+  rep.max_volume_ratio = v.max_volume_ratio;
+  rep.min_shape_ratio = v.min_shape_ratio;
+  rep.volume_ratio_a = std::move(v.volume_ratio_a);
+  rep.volume_ratio_b = std::move(v.volume_ratio_b);
+  rep.shape_ratio_a = std::move(v.shape_ratio_a);
+  rep.shape_ratio_b = std::move(v.shape_ratio_b);
   rep.remaining_pairs = std::move(v.remaining_pairs);
   rep.bad_elements = std::move(v.bad_elements);
   rep.moved_fixed_vertices = std::move(v.moved_fixed_vertices);
@@ -623,6 +648,16 @@ ResolveVariant parse_resolve_variant(const std::string& name) {
   if (name == "pdd2") return ResolveVariant::Pdd2;
   if (name == "rigid") return ResolveVariant::Rigid;
   throw std::invalid_argument("unknown resolve variant '" + name + "' (global, pdd2, rigid)");
+}
+
+const char* resolve_method_name(ResolveMethod m) {
+  switch (m) {
+    case ResolveMethod::Rounds: return "rounds";
+    case ResolveMethod::Translation: return "translation";
+    case ResolveMethod::RigidRounds: return "rigid rounds";
+    case ResolveMethod::None: return "none";
+  }
+  return "?";
 }
 
 const char* resolve_variant_name(ResolveVariant v) {

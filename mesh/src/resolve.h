@@ -84,6 +84,7 @@
 #include <vector>
 
 #include "pdd/mesh.h"
+#include "pdd/sign.h"
 
 namespace pdd::mesh::detail {
 
@@ -144,8 +145,8 @@ std::vector<std::array<std::size_t, 2>> intersecting_pairs(const Mesh& A,
                                                            const Mesh* B,
                                                            const std::vector<std::size_t>& eb);
 
-// The exact orientation of the four points (CGAL's exact predicate): +1, -1 or 0 (flat).
-int orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3);
+// The exact orientation of the four points (CGAL's exact predicate); Zero: flat.
+Sign orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3);
 
 // The elements of m that are valid at its positions (element_problem: finite and not flat),
 // in order; the others appended to `skipped` (unless null) with the reason.
