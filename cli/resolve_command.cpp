@@ -317,6 +317,7 @@ int run_resolve(const ResolveArgs& args) {
     return kExitOk;
   }
   // Not resolved: what remains, always (also with --quiet).
+  if (!rep.stopped_because.empty()) std::cerr << kName << ": stopped at once: " << rep.stopped_because << '\n';
   std::cerr << kName << ": NOT resolved after " << rep.rounds.size()
             << (rep.rounds.size() == 1 ? " round" : " rounds") << " (--max-rounds "
             << args.max_rounds << "); the meshes are written as they are\n";

@@ -272,6 +272,10 @@ struct ResolveOptions : QualityLimits {
 struct ResolveReport {
   ResolveVariant variant = ResolveVariant::Global;
   ResolveMethod method = ResolveMethod::None;
+  // Why the run stopped before its round limit without resolving (empty otherwise): every
+  // vertex fixed, or no intersecting pair with a finite per-pair solution (coordinates beyond
+  // what doubles can square).
+  std::string stopped_because;
   QualityLimits limits;        // the R4 bounds the verdict used
   bool resolved = false;       // r1 && r2 && r3 && r4, decided exactly on the final positions
   bool r1 = false, r2 = false, r3 = false, r4 = false;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "check_indices.h"
+#include "elastic_step.h"
 #include "element_quality.h"
 #include "resolve.h"
 
@@ -372,6 +373,119 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
 
 double side_cost(const Side& s) { return mesh_cost(*s.rest, s.cur.vertices); }
 
+// ---------------------------------------------------------------------------------------------
+// Projective-dynamics rounds (resolve.h): contacts, local step, global step, step limit.
+
+// Rounds without fewer intersecting pairs than the best round before the rounds count as
+// stalled: the pair count falls unevenly (planes of neighbouring pairs disagree for a few
+// rounds), and on the one-layer Gmsh balls plateaus of up to 6 rounds end resolved.
+constexpr std::size_t kStallRounds = 20;
+// A vertex is pulled kOvershoot times the way to its half-spaces: the elastic step moves a
+// contact vertex only part of its pull (elastic_step.h), and the overshoot makes up for it
+// (the step limit cuts where it would break R2 or R4). 1.5 against 1 on the one-layer Gmsh
+// balls: 22 rounds instead of 28 with both free, 18 instead of 22 with A fixed (at kAnchor 0.1);
+// 2 overshoots the plane of the pair by more than its gap and chatters.
+constexpr double kOvershoot = 1.5;
+
+// A half-space n.x >= b that a vertex must reach (n of unit length).
+struct HalfSpace {
+  Vec3d n{};
+  double b = 0;
+};
+struct VertexTarget {
+  std::size_t vertex = 0;
+  HalfSpace h;
+};
+
+// The gap between the two sides of a pair's plane, relative to the pair's longest edge: far above
+// the rounding of the moved coordinates, small against the element (its cost per pair is at most
+// (1e-3 h)^2, a millionth of an element layer's).
+constexpr double kPlaneGap = 1e-3;
+
+// The local step of one pair: its separating plane u.x = c from the variant's solution (the plane
+// midway between q1_A and q1_B along the solution's normal u, A -> B), opened by the gap and
+// shifted past the fixed vertices of either side, and a half-space for each free vertex on the
+// wrong side (A's: u.x <= c - gap/2, B's: u.x >= c + gap/2). Returns the variant's squared depth.
+double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, ResolveVariant variant,
+                    std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b) {
+  const TetVertices A = element(sa.cur, ea), B = element(sb.cur, eb);
+  const PairMove m = solve_move(A, B, variant);
+  if (!m.ok) return 0;
+  double a_hi = -HUGE_VAL, b_lo = HUGE_VAL, edge = 0, fixed_a = -HUGE_VAL, fixed_b = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    a_hi = std::max(a_hi, dot(m.u, A[i]) + dot(m.u, m.da[i]));
+    b_lo = std::min(b_lo, dot(m.u, B[i]) + dot(m.u, m.db[i]));
+    if (sa.fixed[sa.rest->tets[ea][i]]) fixed_a = std::max(fixed_a, dot(m.u, A[i]));
+    if (sb.fixed[sb.rest->tets[eb][i]]) fixed_b = std::min(fixed_b, dot(m.u, B[i]));
+  }
+  for (const auto& e : kEdges)
+    edge = std::max({edge, dot(sub(A[e[1]], A[e[0]]), sub(A[e[1]], A[e[0]])),
+                     dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]]))});
+  const double gap = kPlaneGap * std::sqrt(edge);
+  double lo = (a_hi + b_lo) / 2 - gap / 2, hi = lo + gap;
+  if (fixed_a > lo) hi += fixed_a - lo, lo = fixed_a;  // A's fixed vertices stay: B takes it all
+  if (fixed_b < hi) lo -= hi - fixed_b, hi = fixed_b;
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return 0;
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t va = sa.rest->tets[ea][i], vb = sb.rest->tets[eb][i];
+    if (!sa.fixed[va] && dot(m.u, A[i]) > lo) out_a.push_back({va, {scaled(m.u, -1), -lo}});
+    if (!sb.fixed[vb] && dot(m.u, B[i]) < hi) out_b.push_back({vb, {m.u, hi}});
+  }
+  return m.value;
+}
+
+// y = x projected in turn onto every half-space it violates (one sweep).
+Vec3d project(Vec3d y, const HalfSpace& h) {
+  const double d = h.b - dot(h.n, y);
+  if (d > 0) add_to(y, scaled(h.n, d));
+  return y;
+}
+
+// The pulls y_v - x_v of one side from this round's targets and the half-spaces its vertices
+// hold from earlier rounds (a vertex once in contact stays constrained by its latest plane).
+std::vector<Vec3d> pulls(const Side& s, std::vector<VertexTarget>& targets, std::vector<std::optional<HalfSpace>>& held) {
+  std::sort(targets.begin(), targets.end(), [](const VertexTarget& x, const VertexTarget& y) { return x.vertex < y.vertex; });
+  std::vector<Vec3d> pull(s.cur.vertices.size(), Vec3d{0, 0, 0});
+  std::vector<char> touched(s.cur.vertices.size(), 0);
+  for (std::size_t k = 0; k < targets.size();) {
+    const std::size_t v = targets[k].vertex;
+    Vec3d y = s.cur.vertices[v];
+    double worst = 0;
+    for (; k < targets.size() && targets[k].vertex == v; ++k) {
+      const double d = targets[k].h.b - dot(targets[k].h.n, s.cur.vertices[v]);
+      if (d >= worst) worst = d, held[v] = targets[k].h;
+      y = project(y, targets[k].h);
+    }
+    pull[v] = scaled(sub(y, s.cur.vertices[v]), kOvershoot);
+    touched[v] = 1;
+  }
+  for (std::size_t v = 0; v < pull.size(); ++v)
+    if (!touched[v] && held[v]) pull[v] = sub(project(s.cur.vertices[v], *held[v]), s.cur.vertices[v]);
+  return pull;
+}
+
+// The elastic displacement decays away from the contacts but is nowhere zero; a vertex whose
+// displacement is below this share of the largest one stays where it is (bit for bit, so its
+// elements keep the state the last step limit accepted). It saves the step limit from checking
+// every element of the mesh each round; the jump it leaves at the edge of the moved region, at
+// most 1e-4 of the largest move, is inside elements the step limit checks.
+constexpr double kNegligibleShare = 1e-4;
+
+// The global step (elastic_step.h) and the step limit (move_side) of one side.
+void elastic_move(Side& s, const detail::ElasticStep& elastic, const std::vector<Vec3d>& pull) {
+  std::vector<Vec3d> delta;
+  if (!elastic.solve(pull, delta)) return;
+  double largest = 0;
+  for (const Vec3d& d : delta)
+    if (finite(d)) largest = std::max(largest, dot(d, d));
+  const double negligible = kNegligibleShare * kNegligibleShare * largest;
+  for (std::size_t v = 0; v < delta.size(); ++v)
+    if (dot(delta[v], delta[v]) > negligible && finite(delta[v])) s.acc[v] = delta[v], s.weight[v] = 1;
+  detail::ResolveTuning step;
+  step.overshoot = 1;
+  move_side(s, step);
+}
+
 // ResolveTuning::descend (resolve.h). Returns true when it ends at a resolved state (R1 by
 // the contact stage, R2 kept by the step limit); false, with the positions unchanged, when it
 // does not apply (both meshes have fixed vertices, no separating translation found, or the
@@ -509,6 +623,66 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   }
   Side& sB = B ? sb : sa;  // the side of a pair's second element
 
+  // Projective-dynamics rounds (resolve.h) from the current positions, at most `budget`; true
+  // when a contact stage found no pair; false when they stall (kStallRounds rounds without fewer
+  // pairs than the best round) or the budget ends.
+  std::optional<detail::ElasticStep> elastic_a, elastic_b;
+  const auto run_pd_rounds = [&](std::size_t budget) {
+    auto t = Clock::now();
+    if (!elastic_a) elastic_a.emplace(A, sa.elems, sa.fixed);
+    if (B && !elastic_b) elastic_b.emplace(*B, sb.elems, sb.fixed);
+    rep.seconds_solve += since(t);
+    std::vector<std::optional<HalfSpace>> held_a(A.vertices.size()), held_b(B ? B->vertices.size() : 0);
+    std::size_t best = SIZE_MAX, best_round = 0;
+    for (std::size_t r = 0; r < budget; ++r) {
+      stop_if_cancelled();
+      const auto t_round = Clock::now();
+      t = Clock::now();
+      const std::vector<std::array<std::size_t, 2>> pairs =
+          intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
+      rep.seconds_contacts += since(t);
+      if (pairs.empty()) return true;
+      if (pairs.size() < best) best = pairs.size(), best_round = r;
+      if (r >= best_round + kStallRounds) return false;
+      stop_if_cancelled();
+      t = Clock::now();
+      std::vector<std::vector<VertexTarget>> ta(pairs.size()), tb(pairs.size());
+      std::vector<double> value(pairs.size(), 0);
+      tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+        if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
+        value[k] = pair_targets(sa, pairs[k][0], sB, pairs[k][1], o.variant, ta[k], tb[k]);
+      });
+      stop_if_cancelled();
+      if (std::none_of(value.begin(), value.end(), [](double x) { return x > 0; })) {
+        rep.stopped_because = "none of the " + std::to_string(pairs.size()) +
+                              " intersecting pairs has a finite per-pair solution (coordinates too large to square in doubles?)";
+        return false;
+      }
+      std::vector<VertexTarget> targets_a, targets_b;
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        targets_a.insert(targets_a.end(), ta[k].begin(), ta[k].end());
+        (B ? targets_b : targets_a).insert((B ? targets_b : targets_a).end(), tb[k].begin(), tb[k].end());
+      }
+      const std::vector<Vec3d> pull_a = pulls(sa, targets_a, held_a);
+      const std::vector<Vec3d> pull_b = B ? pulls(sb, targets_b, held_b) : std::vector<Vec3d>{};
+      rep.seconds_solve += since(t);
+      t = Clock::now();
+      elastic_move(sa, *elastic_a, pull_a);
+      stop_if_cancelled();
+      if (B) elastic_move(sb, *elastic_b, pull_b);
+      rep.seconds_move += since(t);
+      ResolveRound rr;
+      rr.round = rep.rounds.size() + 1;
+      rr.pairs = pairs.size();
+      rr.max_pd2 = *std::max_element(value.begin(), value.end());
+      rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
+      rr.seconds = since(t_round);
+      rep.rounds.push_back(rr);
+      if (o.progress) o.progress(rr);
+    }
+    return false;
+  };
+
   // Rounds (resolve.h, steps 1-4) from the current positions, at most `budget`; true when a
   // contact stage found no pair.
   const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit,
@@ -578,21 +752,31 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   // Deep overlaps (ResolveTuning::descend_steps): when the rounds did not clear the contacts,
   // start again from a separated configuration and walk back towards the rest pose.
   const std::size_t first_budget = tuning.descend ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
-  bool clear = run_rounds(first_budget, tuning, tuning.descend, o.variant);
+  const auto all_fixed = [](const Side& s) { return std::find(s.fixed.begin(), s.fixed.end(), 0) == s.fixed.end(); };
+  if (all_fixed(sa) && (!B || all_fixed(sb))) rep.stopped_because = "every vertex is fixed: nothing can move";
+  bool clear = rep.stopped_because.empty() && run_pd_rounds(first_budget);
   if (clear) rep.method = ResolveMethod::Rounds;
-  if (!clear && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
+  const auto go_on = [&] { return !clear && rep.stopped_because.empty(); };
+  // Stalled: the per-pair rounds from the rest pose, within what is left of the first budget.
+  if (go_on() && first_budget > rep.rounds.size()) {
+    sa.cur.vertices = A.vertices;
+    if (B) sb.cur.vertices = B->vertices;
+    clear = run_rounds(first_budget - rep.rounds.size(), tuning, tuning.descend, o.variant);
+    if (clear) rep.method = ResolveMethod::Rounds;
+  }
+  if (go_on() && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
     clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
     if (clear) rep.method = ResolveMethod::Translation;
   }
   // descend declined (both meshes with fixed vertices, or no usable translation; it leaves the
   // positions as they were): the rounds go on from there up to max_rounds, without the stall exit.
-  if (!clear && B && o.max_rounds > rep.rounds.size()) {
+  if (go_on() && B && o.max_rounds > rep.rounds.size()) {
     clear = run_rounds(o.max_rounds - rep.rounds.size(), tuning, false, o.variant);
     if (clear) rep.method = ResolveMethod::Rounds;
   }
   // Self-contact has no separated start: stalled deformable rounds restart from the rest pose
   // with the rigid variant's rounds (which move elements as a whole and do not squeeze them).
-  if (!clear && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
+  if (go_on() && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
     sa.cur.vertices = A.vertices;
     std::fill(sa.blocked.begin(), sa.blocked.end(), 0);
     clear = run_rounds(o.max_rounds - rep.rounds.size(), default_tuning(ResolveVariant::Rigid), false,

@@ -479,6 +479,8 @@ Returns (VA1, VB1, report):
   report    dict, the keys of `pdd resolve --report` (JSON), in that order:
     variant               "global", "pdd2" or "rigid"
     method                "rounds", "translation", "rigid rounds" or "none": what produced it
+    stopped_because       why the run stopped at once without resolving (every vertex fixed,
+                          no finite per-pair solution), or None
     inputs                {self, fix, max_rounds, min_volume_ratio, min_shape_ratio,
                            elements_a, vertices_a, elements_b,
                            vertices_b, fixed_vertices_a, fixed_vertices_b} (the CLI adds the
@@ -525,7 +527,7 @@ Example:
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a")
   >>> r["resolved"], len(r["rounds"]), (VA1 == VA).all()
-  (True, 11, True)
+  (True, 14, True)
   >>> V1, _, r = pdd.resolve(V, T)                  # self-contact of one mesh (V, T)
 )doc";
 

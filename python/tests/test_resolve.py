@@ -24,7 +24,7 @@ import pdd
 from conftest import FIXTURES
 
 MESHES = FIXTURES / "meshes"
-REPORT_KEYS = ["variant", "method", "inputs", "resolved", "r1", "r2", "r3", "r4", "rounds", "cost",
+REPORT_KEYS = ["variant", "method", "stopped_because", "inputs", "resolved", "r1", "r2", "r3", "r4", "rounds", "cost",
                "cost_a", "cost_b", "max_displacement", "min_volume_ratio", "max_volume_ratio",
                "min_shape_ratio", "volume_ratio_histogram", "shape_ratio_histogram", "worst_elements",
                "remaining_pairs", "bad_elements", "poor_elements", "moved_fixed_vertices", "skipped",

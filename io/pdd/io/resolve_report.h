@@ -6,6 +6,8 @@
 //   variant                "global" | "pdd2" | "rigid": the per-pair solution that drove the vertices
 //   method                 "rounds" | "translation" | "rigid rounds" | "none": what produced the
 //                          result (mesh.h's ResolveMethod)
+//   stopped_because        why the run stopped early without resolving (every vertex fixed,
+//                          no finite per-pair solution), or null
 //   inputs                 {a, b: the files (CLI only; b null for self-contact), self, fix ("a",
 //                          "b" or null), max_rounds, min_volume_ratio, min_shape_ratio,
 //                          elements_a, vertices_a, elements_b, vertices_b (0 for self-contact),
@@ -106,6 +108,7 @@ inline Json resolve_report_json(const mesh::ResolveReport& r, const ResolveInput
   Json j;
   j["variant"] = mesh::resolve_variant_name(r.variant);
   j["method"] = mesh::resolve_method_name(r.method);
+  j["stopped_because"] = r.stopped_because.empty() ? Json(nullptr) : Json(r.stopped_because);
   Json inputs;
   if (in.files) {
     inputs["a"] = in.a;
@@ -189,6 +192,7 @@ inline std::string resolve_summary(const Json& j) {
     else if (const auto f = in.at("fixed_vertices_" + lw).get<std::size_t>()) t += ", " + std::to_string(f) + " fixed";
     return summary_line("mesh " + w, t);
   };
+  if (j.at("stopped_because").is_string()) s += summary_line("stopped", j.at("stopped_because").get<std::string>());
   s += mesh_line("A");
   if (!self) s += mesh_line("B");
   auto listed = [](const Json& items, bool pairs) {
