@@ -170,6 +170,8 @@ struct Side {
   std::vector<Vec3d> acc;           // per vertex: sum of w * displacement this round
   std::vector<double> weight;       // per vertex: sum of w this round
   std::vector<char> blocked;        // per vertex: the step limit cut its last step
+  // The valid elements of each vertex (CSR: vertex_elems[vertex_start[v] .. vertex_start[v+1])).
+  std::vector<std::size_t> vertex_start, vertex_elems;
   // Vertex adjacency (edges of the valid elements), CSR; built when smoothing is on.
   std::vector<std::size_t> adj_start, adj;
 };
@@ -249,6 +251,14 @@ void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vect
     const Vec3d u = sub(t[1], t[0]), v = sub(t[2], t[0]), w = sub(t[3], t[0]);
     s.volume[e] = std::abs(dot(u, cross(v, w))) / 6;
   });
+  s.vertex_start.assign(m.vertices.size() + 1, 0);
+  for (std::size_t e : s.elems)
+    for (std::size_t v : m.tets[e]) ++s.vertex_start[v + 1];
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) s.vertex_start[v + 1] += s.vertex_start[v];
+  s.vertex_elems.resize(s.vertex_start.back());
+  std::vector<std::size_t> fill(s.vertex_start.begin(), s.vertex_start.end() - 1);
+  for (std::size_t e : s.elems)
+    for (std::size_t v : m.tets[e]) s.vertex_elems[fill[v]++] = e;
   s.acc.assign(m.vertices.size(), {0, 0, 0});
   s.weight.assign(m.vertices.size(), 0);
   s.blocked.assign(m.vertices.size(), 0);
@@ -344,27 +354,37 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
   };
   for (std::size_t v = 0; v < nv; ++v)
     if (alpha[v] > 0) place(v);
-  std::vector<char> bad(affected.size());
-  for (int pass = 0;; ++pass) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, affected.size(), 512),
+  // Passes of the limit: check the elements in `check` (first every affected one, then those
+  // with a vertex whose alpha the last pass lowered: the others are as they were when they passed).
+  std::vector<std::size_t> check = affected;
+  std::vector<char> bad, changed(nv, 0);
+  for (int pass = 0; !check.empty(); ++pass) {
+    bad.assign(check.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, check.size(), 512),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                          const TetVertices q = element(s.cur, affected[k]);
-                          const std::size_t e = affected[k];
+                          const std::size_t e = check[k];
+                          const TetVertices q = element(s.cur, e);
                           bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[e] ||
                                    !usable_with_margin(s.limits, detail::ratios(s.d0[e], s.s0[e], q));
                         }
                       });
-    bool any = false;
-    for (std::size_t k = 0; k < affected.size(); ++k)
+    std::vector<std::size_t> lowered;
+    for (std::size_t k = 0; k < check.size(); ++k)
       if (bad[k])
-        for (std::size_t v : s.rest->tets[affected[k]])
-          if (alpha[v] > 0) {
+        for (std::size_t v : s.rest->tets[check[k]])
+          if (alpha[v] > 0 && !changed[v]) {
             alpha[v] = pass < t.max_halvings ? alpha[v] / 2 : 0;
             place(v);
-            any = true;
+            changed[v] = 1;
+            lowered.push_back(v);
           }
-    if (!any) break;  // every affected element keeps its rest orientation
+    check.clear();
+    for (std::size_t v : lowered)
+      for (std::size_t k = s.vertex_start[v]; k < s.vertex_start[v + 1]; ++k) check.push_back(s.vertex_elems[k]);
+    std::sort(check.begin(), check.end());
+    check.erase(std::unique(check.begin(), check.end()), check.end());
+    for (std::size_t v : lowered) changed[v] = 0;
   }
   for (std::size_t v = 0; v < nv; ++v) s.blocked[v] = moving[v] && alpha[v] < t.overshoot;
   std::fill(s.acc.begin(), s.acc.end(), Vec3d{0, 0, 0});
