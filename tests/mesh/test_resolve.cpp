@@ -481,6 +481,28 @@ BOOST_AUTO_TEST_CASE(r4_exact_at_the_boundary) {
   BOOST_CHECK_THROW(check_resolution(m, q, nullptr, {}, {}, {}, {0.25, 1.5}), std::invalid_argument);
 }
 
+// Runs that cannot move anything stop at once and say why: every vertex fixed; coordinates so
+// large (1e300) that no per-pair solution is finite (the squared lengths overflow).
+BOOST_AUTO_TEST_CASE(hopeless_runs_stop_at_once) {
+  const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
+  ResolveOptions o;
+  o.fixed_vertices_a = all(A);
+  o.fixed_vertices_b = all(B);
+  const Resolution fixed = resolve(A, B, o);
+  BOOST_TEST(!fixed.report.resolved);
+  BOOST_TEST(fixed.report.rounds.empty());
+  BOOST_TEST(fixed.report.stopped_because == "every vertex is fixed: nothing can move");
+  Mesh Ah = A, Bh = B;
+  for (Mesh* m : {&Ah, &Bh})
+    for (Vec3d& v : m->vertices)
+      for (double& x : v) x *= 1e300;
+  const Resolution huge = resolve(Ah, Bh);
+  BOOST_TEST(!huge.report.resolved);
+  BOOST_TEST(huge.report.rounds.empty());
+  BOOST_TEST(huge.report.stopped_because.find("finite per-pair solution") != std::string::npos);
+  BOOST_TEST(!huge.report.remaining_pairs.empty());
+}
+
 BOOST_AUTO_TEST_CASE(bad_options_and_cancel) {
   const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
   ResolveOptions o;
