@@ -250,10 +250,13 @@ enum class ResolveMethod {
   Rounds,       // the rounds alone cleared every contact
   Translation,  // the deep-overlap fallback: the smallest separating translation of a body
                 // pair along its centroids' line, then walked back towards the rest pose
+  Bodies,       // self-contact of several bodies: each contacting body pair resolved as two
+                // meshes (any of the above per pair)
   RigidRounds,  // self-contact fallback: rounds of the rigid variant from the rest pose
   None,         // nothing cleared the contacts (the report says what remains)
 };
-const char* resolve_method_name(ResolveMethod m);  // "rounds" | "translation" | "rigid rounds" | "none"
+// "rounds" | "translation" | "bodies" | "rigid rounds" | "none"
+const char* resolve_method_name(ResolveMethod m);
 
 struct ResolveOptions : QualityLimits {
   ResolveVariant variant = ResolveVariant::Global;

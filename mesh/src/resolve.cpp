@@ -607,9 +607,94 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
   return true;
 }
 
+// Bodies (definitions §11): the connected components of the valid elements, vertices shared
+// between elements joining them (union-find). Returns the body of each vertex (-1: in no valid
+// element) and the number of bodies.
+std::pair<std::vector<std::ptrdiff_t>, std::size_t> bodies(const Mesh& m, const std::vector<std::size_t>& elems) {
+  std::vector<std::size_t> parent(m.vertices.size());
+  for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  const auto root = [&](std::size_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t e : elems)
+    for (int i = 1; i < 4; ++i) parent[root(m.tets[e][i])] = root(m.tets[e][0]);
+  std::vector<std::ptrdiff_t> body(m.vertices.size(), -1), id(m.vertices.size(), -1);
+  std::size_t n = 0;
+  for (std::size_t e : elems)
+    for (std::size_t v : m.tets[e]) {
+      const std::size_t r = root(v);
+      if (id[r] < 0) id[r] = std::ptrdiff_t(n++);
+      body[v] = id[r];
+    }
+  return {body, n};
+}
+
 }  // namespace
 
 namespace detail {
+
+// resolve_tuned's body fallback (self-contact): at the rest pose, the intersecting pairs must
+// all join two different bodies, and each body may touch at most one other (then the body pairs
+// are independent: resolving one moves no body of another). Each contacting pair of bodies is cut
+// out as two meshes (its vertices, elements and fixed flags) and resolved from rest as A x B, and
+// its positions written back; every other body stays at rest. True when every body pair ended
+// resolved (the caller's exact verdict on the whole mesh judges the result); false, positions
+// unchanged, otherwise.
+bool resolve_bodies(const Mesh& A, Side& sa, const ResolveOptions& o, const ResolveTuning& tuning, ResolveReport& rep) {
+  const auto [body, count] = bodies(A, sa.elems);
+  if (count < 2) return false;
+  const auto pairs = intersecting_pairs(A, sa.elems, nullptr, {});
+  std::vector<std::ptrdiff_t> partner(count, -1);
+  for (const auto& p : pairs) {
+    const std::ptrdiff_t i = body[A.tets[p[0]][0]], j = body[A.tets[p[1]][0]];
+    if (i == j) return false;  // a body against itself
+    for (auto [x, y] : {std::pair{i, j}, std::pair{j, i}}) {
+      if (partner[std::size_t(x)] >= 0 && partner[std::size_t(x)] != y) return false;  // three bodies meet
+      partner[std::size_t(x)] = y;
+    }
+  }
+  std::vector<Vec3d> result = A.vertices;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::ptrdiff_t j = partner[i];
+    if (j < std::ptrdiff_t(i)) continue;  // no partner, or done as (j, i)
+    // Body k as a mesh of its own: `index` maps its vertices to A's.
+    const auto cut = [&](std::size_t k, std::vector<std::size_t>& index, std::vector<char>& fixed) {
+      Mesh m;
+      std::vector<std::size_t> local(A.vertices.size(), SIZE_MAX);
+      for (std::size_t v = 0; v < A.vertices.size(); ++v)
+        if (body[v] == std::ptrdiff_t(k)) local[v] = index.size(), index.push_back(v), m.vertices.push_back(A.vertices[v]),
+                                           fixed.push_back(sa.fixed[v]);
+      for (std::size_t e : sa.elems)
+        if (body[A.tets[e][0]] == std::ptrdiff_t(k))
+          m.tets.push_back({local[A.tets[e][0]], local[A.tets[e][1]], local[A.tets[e][2]], local[A.tets[e][3]]});
+      return m;
+    };
+    std::vector<std::size_t> index_a, index_b;
+    ResolveOptions sub = o;
+    sub.fix_a = sub.fix_b = false;
+    sub.fixed_vertices_a.clear();
+    sub.fixed_vertices_b.clear();
+    const Mesh ma = cut(i, index_a, sub.fixed_vertices_a), mb = cut(std::size_t(j), index_b, sub.fixed_vertices_b);
+    sub.max_rounds = std::max<std::size_t>(1, o.max_rounds - std::min(o.max_rounds - 1, rep.rounds.size()));
+    const std::size_t before = rep.rounds.size();
+    sub.progress = [&](const ResolveRound& r) {
+      ResolveRound q = r;
+      q.round = before + r.round;
+      if (o.progress) o.progress(q);
+    };
+    const Resolution r = resolve_tuned(ma, &mb, sub, tuning);
+    for (ResolveRound q : r.report.rounds) q.round += before, rep.rounds.push_back(q);
+    rep.seconds_contacts += r.report.seconds_contacts;
+    rep.seconds_solve += r.report.seconds_solve;
+    rep.seconds_move += r.report.seconds_move + r.report.seconds_verify;
+    if (!r.report.resolved) return false;
+    for (std::size_t v = 0; v < index_a.size(); ++v) result[index_a[v]] = r.a[v];
+    for (std::size_t v = 0; v < index_b.size(); ++v) result[index_b[v]] = r.b[v];
+  }
+  sa.cur.vertices = result;
+  return true;
+}
 
 ResolveTuning default_tuning(ResolveVariant variant) {
   ResolveTuning t;
@@ -777,6 +862,12 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   bool clear = rep.stopped_because.empty() && run_pd_rounds(first_budget);
   if (clear) rep.method = ResolveMethod::Rounds;
   const auto go_on = [&] { return !clear && rep.stopped_because.empty(); };
+  // Bodies: two bodies of one mesh in contact are resolved as two meshes (every fallback of
+  // A x B, the translation included), each contacting body pair on its own.
+  if (go_on() && !B && o.max_rounds > rep.rounds.size()) {
+    stop_if_cancelled();
+    if (resolve_bodies(A, sa, o, tuning, rep)) clear = true, rep.method = ResolveMethod::Bodies;
+  }
   // Stalled: the per-pair rounds from the rest pose, within what is left of the first budget.
   if (go_on() && first_budget > rep.rounds.size()) {
     sa.cur.vertices = A.vertices;
@@ -859,6 +950,7 @@ const char* resolve_method_name(ResolveMethod m) {
     case ResolveMethod::Rounds: return "rounds";
     case ResolveMethod::Translation: return "translation";
     case ResolveMethod::RigidRounds: return "rigid rounds";
+    case ResolveMethod::Bodies: return "bodies";
     case ResolveMethod::None: return "none";
   }
   return "?";

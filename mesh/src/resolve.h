@@ -48,6 +48,9 @@
 //     the rest pose by steps of gamma (1/2 down to 1/64) of every free vertex's way back, each
 //     followed by a few per-pair rounds; a step that does not end resolved and cheaper is undone
 //     (method "translation");
+//   - self-contact of several bodies (connected components by shared vertices), when every
+//     intersecting pair at rest joins two bodies and no body meets two others: each contacting
+//     body pair cut out and resolved as two meshes, all of the above included (method "bodies");
 //   - self-contact: the rigid variant's per-pair rounds from the rest pose (method "rigid rounds").
 // A run stops at once (report.stopped_because) when every vertex is fixed or no intersecting pair
 // has a finite per-pair solution.

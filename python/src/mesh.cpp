@@ -478,7 +478,8 @@ Returns (VA1, VB1, report):
   VB1       (n_B, 3) float64, or None for self-contact
   report    dict, the keys of `pdd resolve --report` (JSON), in that order:
     variant               "global", "pdd2" or "rigid"
-    method                "rounds", "translation", "rigid rounds" or "none": what produced it
+    method                "rounds", "translation", "bodies", "rigid rounds" or "none": what
+                          produced it
     stopped_because       why the run stopped at once without resolving (every vertex fixed,
                           no finite per-pair solution), or None
     inputs                {self, fix, max_rounds, min_volume_ratio, min_shape_ratio,

@@ -292,16 +292,19 @@ def test_ctrl_c_stops_resolve():
     """A real SIGINT to a child interpreter one second into a long run: KeyboardInterrupt out of
     the call within test_long_calls.PROMPT seconds (the solver checks the cancel flag between
     rounds and between their stages). The run: the shipped balls, 0.73 deep, as ONE mesh
-    (self-contact), which the rounds do not resolve (self-contact has no separating-translation
-    fallback), so max_rounds=100000 keeps it going far past the signal (each round 0.05 to 0.5
-    s); two separate meshes would be resolved by that fallback in about a second."""
+    (self-contact of two bodies), one vertex of each ball fixed: the rounds do not resolve it,
+    and the separating-translation fallback of the body pair declines (both bodies have fixed
+    vertices), so max_rounds=100000 keeps it going far past the signal (each round 0.05 to 0.5
+    s); without the fixed vertices the fallback resolves it in a few seconds."""
     from test_long_calls import assert_keyboard_interrupt, interrupt
     delay, status, err = interrupt(f"""
         VA, TA = pdd.read_mesh({str(MESHES / "sphere-a.msh")!r})
         VB, TB = pdd.read_mesh({str(MESHES / "sphere-b.msh")!r})
         V, T = np.vstack([VA, VB]), np.vstack([TA, TB + len(VA)])
+        fixed = np.zeros(len(V), dtype=bool)
+        fixed[TA[0, 0]] = fixed[len(VA) + TB[0, 0]] = True
         """,
-        "pdd.resolve(V, T, max_rounds=100000, threads=2)")
+        "pdd.resolve(V, T, max_rounds=100000, threads=2, fixed_a=fixed)")
     assert_keyboard_interrupt(delay, status, err)
 
 
