@@ -920,6 +920,17 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   rep.cost_a = side_cost(sa);
   rep.cost_b = B ? side_cost(sb) : 0;
   rep.cost = rep.cost_a + rep.cost_b;
+  // The rounds table ends with the state written: when a fallback undid its last rounds (the
+  // last row's cost is not the cost written), a closing row gives that state's intersecting
+  // pairs (0 when resolved) and cost, with max_pd2 0 and the verdict's time.
+  if (!rep.rounds.empty() && rep.rounds.back().cost != rep.cost) {
+    ResolveRound last;
+    last.round = rep.rounds.size() + 1;
+    last.pairs = rep.remaining_pairs.size();
+    last.cost = rep.cost;
+    last.seconds = rep.seconds_verify;
+    rep.rounds.push_back(last);
+  }
   auto max_disp = [](const Mesh& m0, const std::vector<Vec3d>& p) {
     double d = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {

@@ -389,6 +389,8 @@ BOOST_AUTO_TEST_CASE(two_bodies_in_one_mesh_deep) {
   judge(m, nullptr, r, {}, {});
   BOOST_TEST(r.report.resolved);
   BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+  BOOST_TEST(r.report.rounds.back().pairs == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
@@ -402,6 +404,7 @@ BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
   BOOST_TEST(!r.report.resolved);
   BOOST_TEST(!j.pairs.empty());
   BOOST_TEST(r.report.rounds.size() == 1u);
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
 }
 
 BOOST_AUTO_TEST_CASE(deep_overlap) {

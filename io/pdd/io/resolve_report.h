@@ -18,7 +18,9 @@
 //                          and eta1/eta0 >= kappa
 //   rounds                 [{round, pairs, max_pd2, cost, seconds}, ...]: per round the
 //                          intersecting pairs at its start, the largest per-pair squared depth
-//                          of the variant, the cost after it, its wall time
+//                          of the variant, the cost after it, its wall time; when a fallback
+//                          undid the last rounds, a closing row gives the state written (its
+//                          intersecting pairs, 0 when resolved; max_pd2 0)
 //   cost, cost_a, cost_b   the mesh object norm of the displacement (volume-weighted mean squared
 //                          displacement; a translation by t costs |t|^2): A + B, A, B
 //   max_displacement       largest |p1 - p0| over all vertices
