@@ -169,59 +169,9 @@ struct Side {
   std::vector<double> volume;       // |rest volume| per element
   std::vector<Vec3d> acc;           // per vertex: sum of w * displacement this round
   std::vector<double> weight;       // per vertex: sum of w this round
-  std::vector<char> blocked;        // per vertex: the step limit cut its last step
   // The valid elements of each vertex (CSR: vertex_elems[vertex_start[v] .. vertex_start[v+1])).
   std::vector<std::size_t> vertex_start, vertex_elems;
-  // Vertex adjacency (edges of the valid elements), CSR; built when smoothing is on.
-  std::vector<std::size_t> adj_start, adj;
 };
-
-void build_adjacency(Side& s) {
-  const std::size_t nv = s.cur.vertices.size();
-  std::vector<std::vector<std::size_t>> nb(nv);
-  for (std::size_t e : s.elems)
-    for (const auto& ed : kEdges) {
-      const std::size_t u = s.rest->tets[e][ed[0]], v = s.rest->tets[e][ed[1]];
-      nb[u].push_back(v);
-      nb[v].push_back(u);
-    }
-  s.adj_start.assign(nv + 1, 0);
-  for (std::size_t v = 0; v < nv; ++v) {
-    std::sort(nb[v].begin(), nb[v].end());
-    nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
-    s.adj_start[v + 1] = s.adj_start[v] + nb[v].size();
-  }
-  s.adj.reserve(s.adj_start[nv]);
-  for (std::size_t v = 0; v < nv; ++v) s.adj.insert(s.adj.end(), nb[v].begin(), nb[v].end());
-}
-
-// Harmonic extension (ResolveTuning::smooth_sweeps): Jacobi sweeps of D_v = mean of D over
-// v's neighbours for the free vertices that are in no pair, starting from D = 0 there.
-void smooth(const Side& s, std::vector<Vec3d>& D, std::vector<char>& moving, int sweeps) {
-  const std::size_t nv = D.size();
-  std::vector<char> contact(moving);
-  std::vector<std::size_t> region;  // free non-contact vertices next to a moving one
-  std::vector<char> in_region(nv, 0);
-  for (int it = 0; it < sweeps; ++it) {
-    std::vector<std::size_t> grow;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (moving[v])
-        for (std::size_t k = s.adj_start[v]; k < s.adj_start[v + 1]; ++k) {
-          const std::size_t u = s.adj[k];
-          if (!in_region[u] && !contact[u] && !s.fixed[u]) in_region[u] = 1, grow.push_back(u);
-        }
-    region.insert(region.end(), grow.begin(), grow.end());
-    std::vector<Vec3d> next(region.size());
-    for (std::size_t r = 0; r < region.size(); ++r) {
-      const std::size_t v = region[r];
-      Vec3d m = {0, 0, 0};
-      const std::size_t deg = s.adj_start[v + 1] - s.adj_start[v];
-      for (std::size_t k = s.adj_start[v]; k < s.adj_start[v + 1]; ++k) add_to(m, D[s.adj[k]]);
-      next[r] = deg ? scaled(m, 1.0 / double(deg)) : m;
-    }
-    for (std::size_t r = 0; r < region.size(); ++r) D[region[r]] = next[r], moving[region[r]] = 1;
-  }
-}
 
 void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vector<char>& flags,
                std::vector<SkippedElement>& skipped) {
@@ -261,7 +211,6 @@ void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vect
     for (std::size_t v : m.tets[e]) s.vertex_elems[fill[v]++] = e;
   s.acc.assign(m.vertices.size(), {0, 0, 0});
   s.weight.assign(m.vertices.size(), 0);
-  s.blocked.assign(m.vertices.size(), 0);
 }
 
 // Adds one element's share of a pair's move (fixed vertices take no displacement).
@@ -280,10 +229,17 @@ void accumulate(Side& s, std::size_t e, const std::array<Vec3d, 4>& d, bool long
   }
 }
 
+// The per-pair rounds' gap mu between a pair's two sides: kMargin of its longest edge plus
+// kMarginUlp of its largest |coordinate|: far above the rounding of the moved coordinates
+// (2^-52 |x|), and so small against the element that its cost, at most mu^2 per pair and
+// mesh, is below 1e-12 of an element layer's.
+constexpr double kMargin = 1e-6;
+constexpr double kMarginUlp = 1e-12;
+
 // Fixed vertices and the margin (resolve.h): the fixed vertices' retreat along u goes to the
 // other side as a translation, and the two sides are pushed mu further apart.
 void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::array<char, 4>& fixed_b,
-                 const TetVertices& A, const TetVertices& B, const detail::ResolveTuning& t) {
+                 const TetVertices& A, const TetVertices& B) {
   double retreat_a = 0, retreat_b = 0, edge = 0, coord = 0;
   for (int i = 0; i < 4; ++i) {
     if (fixed_a[i]) retreat_a = std::max(retreat_a, -dot(m.da[i], m.u));
@@ -294,13 +250,7 @@ void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::arr
     edge = std::max(edge, dot(sub(A[e[1]], A[e[0]]), sub(A[e[1]], A[e[0]])));
     edge = std::max(edge, dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]])));
   }
-  const double mu = t.margin * std::sqrt(edge) + t.margin_ulp * coord;
-  if (t.retreat_only)
-    for (int i = 0; i < 4; ++i) {
-      const double ta = dot(m.da[i], m.u), tb = dot(m.db[i], m.u);
-      m.da[i] = scaled(m.u, std::min(0.0, ta));
-      m.db[i] = scaled(m.u, std::max(0.0, tb));
-    }
+  const double mu = kMargin * std::sqrt(edge) + kMarginUlp * coord;
   for (int i = 0; i < 4; ++i) {
     if (fixed_a[i])
       m.da[i] = {0, 0, 0};
@@ -313,18 +263,22 @@ void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::arr
   }
 }
 
-std::array<char, 4> fixed_of(const Side& s, std::size_t e, bool blocked) {
+std::array<char, 4> fixed_of(const Side& s, std::size_t e) {
   std::array<char, 4> f;
   for (int i = 0; i < 4; ++i) {
     const std::size_t v = s.rest->tets[e][i];
-    f[i] = s.fixed[v] || (blocked && s.blocked[v]);
+    f[i] = s.fixed[v];
   }
   return f;
 }
 
+// Halvings of a vertex's step before the step limit sets it to 0 (resolve.h: the limit then ends
+// with every element valid): 2^-24 of a step is below any displacement that matters.
+constexpr int kMaxHalvings = 24;
+
 // The global step and the step limit on one side (resolve.h, steps 3 and 4): moves the
 // vertices with a displacement, then clears the accumulators.
-void move_side(Side& s, const detail::ResolveTuning& t) {
+void move_side(Side& s, double overshoot) {
   const std::size_t nv = s.cur.vertices.size();
   std::vector<Vec3d> D(nv, {0, 0, 0});
   std::vector<double> alpha(nv, 0);
@@ -335,9 +289,8 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
       moving[v] = finite(D[v]);
       if (!moving[v]) D[v] = {0, 0, 0};
     }
-  if (t.smooth_sweeps > 0) smooth(s, D, moving, t.smooth_sweeps);
   for (std::size_t v = 0; v < nv; ++v)
-    if (moving[v]) alpha[v] = t.overshoot;
+    if (moving[v]) alpha[v] = overshoot;
   // Elements with a moved vertex: the only ones whose orientation can change.
   std::vector<std::size_t> affected;
   for (std::size_t e : s.elems)
@@ -374,7 +327,7 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
       if (bad[k])
         for (std::size_t v : s.rest->tets[check[k]])
           if (alpha[v] > 0 && !changed[v]) {
-            alpha[v] = pass < t.max_halvings ? alpha[v] / 2 : 0;
+            alpha[v] = pass < kMaxHalvings ? alpha[v] / 2 : 0;
             place(v);
             changed[v] = 1;
             lowered.push_back(v);
@@ -386,7 +339,6 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
     check.erase(std::unique(check.begin(), check.end()), check.end());
     for (std::size_t v : lowered) changed[v] = 0;
   }
-  for (std::size_t v = 0; v < nv; ++v) s.blocked[v] = moving[v] && alpha[v] < t.overshoot;
   std::fill(s.acc.begin(), s.acc.end(), Vec3d{0, 0, 0});
   std::fill(s.weight.begin(), s.weight.end(), 0.0);
 }
@@ -501,17 +453,22 @@ void elastic_move(Side& s, const detail::ElasticStep& elastic, const std::vector
   const double negligible = kNegligibleShare * kNegligibleShare * largest;
   for (std::size_t v = 0; v < delta.size(); ++v)
     if (dot(delta[v], delta[v]) > negligible && finite(delta[v])) s.acc[v] = delta[v], s.weight[v] = 1;
-  detail::ResolveTuning step;
-  step.overshoot = 1;
-  move_side(s, step);
+  move_side(s, 1);  // the elastic step's own overshoot is in its pull (kOvershoot)
 }
 
-// ResolveTuning::descend (resolve.h). Returns true when it ends at a resolved state (R1 by
+// The translation fallback (resolve.h): after the translation, steps back towards rest of
+// gamma (from kFirstGamma, halved on every rejected step, down to kLastGamma) of every free
+// vertex's way back, each followed by at most kDescendInner per-pair rounds; the separating
+// distance is bisected to kBisection of its bracket.
+constexpr double kFirstGamma = 0.5, kLastGamma = 1.0 / 64, kBisection = 1e-3;
+constexpr std::size_t kDescendInner = 20;
+
+// Returns true when it ends at a resolved state (R1 by
 // the contact stage, R2 kept by the step limit); false, with the positions unchanged, when it
 // does not apply (both meshes have fixed vertices, no separating translation found, or the
 // translated rest pose flips an element by rounding).
 template <class Rounds, class Stop>
-bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budget, const detail::ResolveTuning& tuning,
+bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budget, const detail::RoundRule& rule,
              ResolveReport& rep, const Rounds& run_rounds, const Stop& stop) {
   const bool fixed_a = std::find(sa.fixed.begin(), sa.fixed.end(), 1) != sa.fixed.end();
   const bool fixed_b = std::find(sb.fixed.begin(), sb.fixed.end(), 1) != sb.fixed.end();
@@ -566,7 +523,7 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
   place(t_hi);
   if (!(t_hi > 0) || !separated()) return restore(), false;
   double t_lo = 0;
-  while (t_hi - t_lo > 1e-3 * t_hi) {
+  while (t_hi - t_lo > kBisection * t_hi) {
     const double mid = (t_lo + t_hi) / 2;
     place(mid);
     (separated() ? t_hi : t_lo) = mid;
@@ -574,12 +531,9 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
   place(t_hi);
   if (!valid(sa) || !valid(sb)) return restore(), false;
   double cost = side_cost(sa) + side_cost(sb);
-  detail::ResolveTuning step = tuning;
-  step.overshoot = 1;
-  step.smooth_sweeps = 0;
-  double gamma = 0.5;
+  double gamma = kFirstGamma;
   std::size_t used = 0;
-  while (used < budget && gamma >= 1.0 / 64) {
+  while (used < budget && gamma >= kLastGamma) {
     stop();
     const std::vector<Vec3d> save_a = sa.cur.vertices, save_b = sb.cur.vertices;
     for (Side* s : {&sa, &sb})
@@ -589,11 +543,11 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
           if (finite(d) && dot(d, d) > 0) s->acc[v] = d, s->weight[v] = 1;
         }
     const auto t0 = Clock::now();
-    move_side(sa, step);
-    move_side(sb, step);
+    move_side(sa, 1);
+    move_side(sb, 1);
     rep.seconds_move += since(t0);
     const std::size_t before = rep.rounds.size();
-    const bool ok = run_rounds(std::min(tuning.descend_inner, budget - used), tuning, false, rep.variant);
+    const bool ok = run_rounds(std::min(kDescendInner, budget - used), rule, false, rep.variant);
     used += rep.rounds.size() - before + 1;
     const double c = side_cost(sa) + side_cost(sb);
     if (ok && c < cost) {
@@ -641,7 +595,7 @@ namespace detail {
 // its positions written back; every other body stays at rest. True when every body pair ended
 // resolved (the caller's exact verdict on the whole mesh judges the result); false, positions
 // unchanged, otherwise.
-bool resolve_bodies(const Mesh& A, Side& sa, const ResolveOptions& o, const ResolveTuning& tuning, ResolveReport& rep) {
+bool resolve_bodies(const Mesh& A, Side& sa, const ResolveOptions& o, ResolveReport& rep) {
   const auto [body, count] = bodies(A, sa.elems);
   if (count < 2) return false;
   const auto pairs = intersecting_pairs(A, sa.elems, nullptr, {});
@@ -683,7 +637,7 @@ bool resolve_bodies(const Mesh& A, Side& sa, const ResolveOptions& o, const Reso
       q.round = before + r.round;
       if (o.progress) o.progress(q);
     };
-    const Resolution r = resolve_tuned(ma, &mb, sub, tuning);
+    const Resolution r = resolve_tuned(ma, &mb, sub);
     for (ResolveRound q : r.report.rounds) q.round += before, rep.rounds.push_back(q);
     rep.seconds_contacts += r.report.seconds_contacts;
     rep.seconds_solve += r.report.seconds_solve;
@@ -696,18 +650,16 @@ bool resolve_bodies(const Mesh& A, Side& sa, const ResolveOptions& o, const Reso
   return true;
 }
 
-ResolveTuning default_tuning(ResolveVariant variant) {
-  ResolveTuning t;
-  t.descend = true;
-  if (variant != ResolveVariant::Rigid) {
-    t.longest = true;
-    t.overshoot = 1.2;
-    t.rigid_after = 2;
-  }
-  return t;
+RoundRule round_rule(ResolveVariant variant) {
+  if (variant == ResolveVariant::Rigid) return {1.5, false, 0};
+  return {1.2, true, 2};
 }
 
-Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, const ResolveTuning& tuning) {
+// The per-pair rounds' stall rule (as kStallRounds for the projective-dynamics rounds).
+constexpr std::size_t kPairStallRounds = 10;
+
+Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o) {
+  const RoundRule rule = round_rule(o.variant);
   const auto t_all = Clock::now();
   if (B && o.fix_a && o.fix_b) throw std::invalid_argument("resolve: fix_a and fix_b are both set; at most one mesh can be fixed");
   if (o.max_rounds < 1) throw std::invalid_argument("resolve: max_rounds must be at least 1");
@@ -722,10 +674,6 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   init_side(sa, A, 'A', o.fix_a, o.fixed_vertices_a, rep.skipped);
   if (B) init_side(sb, *B, 'B', o.fix_b, o.fixed_vertices_b, rep.skipped);
   sa.limits = sb.limits = o;
-  if (tuning.smooth_sweeps > 0) {
-    build_adjacency(sa);
-    if (B) build_adjacency(sb);
-  }
   Side& sB = B ? sb : sa;  // the side of a pair's second element
 
   // Projective-dynamics rounds (resolve.h) from the current positions, at most `budget`; true
@@ -790,7 +738,7 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
 
   // Rounds (resolve.h, steps 1-4) from the current positions, at most `budget`; true when a
   // contact stage found no pair.
-  const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit,
+  const auto run_rounds = [&](std::size_t budget, const RoundRule& rule, bool stall_exit,
                               ResolveVariant variant) {
     std::vector<std::array<std::size_t, 2>> last_pairs;
     std::size_t first_pairs = 0, best_pairs = 0, best_round = 0;
@@ -804,15 +752,16 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
           intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
       rep.seconds_contacts += since(t);
       if (pairs.empty()) return true;
-      // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's
-      // pairs, or 10 rounds without fewer pairs than before.
+      // Stalled: after kPairStallRounds rounds still half of the first round's pairs, or
+      // kPairStallRounds rounds without fewer pairs than before.
       if (r == 0) first_pairs = best_pairs = pairs.size();
       if (pairs.size() < best_pairs) best_pairs = pairs.size(), best_round = r;
-      if (stall_exit && ((r >= 10 && 2 * pairs.size() >= first_pairs) || r >= best_round + 10)) return false;
+      if (stall_exit && ((r >= kPairStallRounds && 2 * pairs.size() >= first_pairs) || r >= best_round + kPairStallRounds))
+        return false;
       stop_if_cancelled();
 
       t = Clock::now();
-      // Consecutive rounds each pair has been found in (ResolveTuning::rigid_after).
+      // Consecutive rounds each pair has been found in (RoundRule::rigid_after).
       std::vector<int> age(pairs.size(), 1);
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto it = std::lower_bound(last_pairs.begin(), last_pairs.end(), pairs[k]);
@@ -821,11 +770,10 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
       std::vector<PairMove> moves(pairs.size());
       tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
         const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
-        const bool rigid = tuning.rigid_after > 0 && age[k] > tuning.rigid_after;
+        const bool rigid = rule.rigid_after > 0 && age[k] > rule.rigid_after;
         PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : variant);
         if (m.ok)
-          finish_move(m, fixed_of(sa, pairs[k][0], tuning.pass_blocked), fixed_of(sB, pairs[k][1], tuning.pass_blocked),
-                      Ta, Tb, tuning);
+          finish_move(m, fixed_of(sa, pairs[k][0]), fixed_of(sB, pairs[k][1]), Ta, Tb);
         moves[k] = m;
       });
       rep.seconds_solve += since(t);
@@ -840,11 +788,11 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         if (!moves[k].ok) continue;
         rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
-        accumulate(sa, pairs[k][0], moves[k].da, tuning.longest);
-        accumulate(sB, pairs[k][1], moves[k].db, tuning.longest);
+        accumulate(sa, pairs[k][0], moves[k].da, rule.longest);
+        accumulate(sB, pairs[k][1], moves[k].db, rule.longest);
       }
-      move_side(sa, tuning);
-      if (B) move_side(sb, tuning);
+      move_side(sa, rule.overshoot);
+      if (B) move_side(sb, rule.overshoot);
       rep.seconds_move += since(t);
       rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
       rr.seconds = since(t_round);
@@ -854,9 +802,9 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
     return false;
   };
 
-  // Deep overlaps (ResolveTuning::descend_steps): when the rounds did not clear the contacts,
+  // Deep overlaps (the translation fallback): when the rounds did not clear the contacts,
   // start again from a separated configuration and walk back towards the rest pose.
-  const std::size_t first_budget = tuning.descend ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
+  const std::size_t first_budget = std::max<std::size_t>(1, o.max_rounds / 2);
   const auto all_fixed = [](const Side& s) { return std::find(s.fixed.begin(), s.fixed.end(), 0) == s.fixed.end(); };
   if (all_fixed(sa) && (!B || all_fixed(sb))) rep.stopped_because = "every vertex is fixed: nothing can move";
   bool clear = rep.stopped_because.empty() && run_pd_rounds(first_budget);
@@ -866,31 +814,30 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   // A x B, the translation included), each contacting body pair on its own.
   if (go_on() && !B && o.max_rounds > rep.rounds.size()) {
     stop_if_cancelled();
-    if (resolve_bodies(A, sa, o, tuning, rep)) clear = true, rep.method = ResolveMethod::Bodies;
+    if (resolve_bodies(A, sa, o, rep)) clear = true, rep.method = ResolveMethod::Bodies;
   }
   // Stalled: the per-pair rounds from the rest pose, within what is left of the first budget.
   if (go_on() && first_budget > rep.rounds.size()) {
     sa.cur.vertices = A.vertices;
     if (B) sb.cur.vertices = B->vertices;
-    clear = run_rounds(first_budget - rep.rounds.size(), tuning, tuning.descend, o.variant);
+    clear = run_rounds(first_budget - rep.rounds.size(), rule, true, o.variant);
     if (clear) rep.method = ResolveMethod::Rounds;
   }
-  if (go_on() && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
-    clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
+  if (go_on() && B && o.max_rounds > rep.rounds.size()) {
+    clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), rule, rep, run_rounds, stop_if_cancelled);
     if (clear) rep.method = ResolveMethod::Translation;
   }
   // descend declined (both meshes with fixed vertices, or no usable translation; it leaves the
   // positions as they were): the rounds go on from there up to max_rounds, without the stall exit.
   if (go_on() && B && o.max_rounds > rep.rounds.size()) {
-    clear = run_rounds(o.max_rounds - rep.rounds.size(), tuning, false, o.variant);
+    clear = run_rounds(o.max_rounds - rep.rounds.size(), rule, false, o.variant);
     if (clear) rep.method = ResolveMethod::Rounds;
   }
   // Self-contact has no separated start: stalled deformable rounds restart from the rest pose
   // with the rigid variant's rounds (which move elements as a whole and do not squeeze them).
-  if (go_on() && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
+  if (go_on() && !B && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
     sa.cur.vertices = A.vertices;
-    std::fill(sa.blocked.begin(), sa.blocked.end(), 0);
-    clear = run_rounds(o.max_rounds - rep.rounds.size(), default_tuning(ResolveVariant::Rigid), false,
+    clear = run_rounds(o.max_rounds - rep.rounds.size(), round_rule(ResolveVariant::Rigid), false,
                        ResolveVariant::Rigid);
     if (clear) rep.method = ResolveMethod::RigidRounds;
   }
@@ -977,11 +924,11 @@ const char* resolve_variant_name(ResolveVariant v) {
 }
 
 Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options) {
-  return detail::resolve_tuned(A, &B, options, detail::default_tuning(options.variant));
+  return detail::resolve_tuned(A, &B, options);
 }
 
 Resolution resolve_self(const Mesh& A, const ResolveOptions& options) {
-  return detail::resolve_tuned(A, nullptr, options, detail::default_tuning(options.variant));
+  return detail::resolve_tuned(A, nullptr, options);
 }
 
 }  // namespace pdd::mesh

@@ -75,54 +75,18 @@
 
 namespace pdd::mesh::detail {
 
-// Tuning of the rounds. The defaults are default_tuning(variant)'s, the measured choice of
-// `pdd bench resolve` (two generated balls of 10^5 elements overlapping by one to two element
-// layers; see default_tuning below for the numbers).
-struct ResolveTuning {
-  double overshoot = 1.5;         // omega
-  double margin = 1e-6;           // kMargin: gap mu per pair relative to its longest edge
-  double margin_ulp = 1e-12;      // kMarginUlp: relative to the pair's largest |coordinate|
-  int max_halvings = 24;          // kMaxHalvings: then alpha = 0
-  // Combine a vertex's targets by the longest one instead of the weighted mean (step 3).
-  bool longest = false;
-  // A pair found intersecting in more than this many consecutive rounds is pushed by its rigid
-  // translation instead of the variant's solution (0: never). A pair that survives rounds is
-  // one whose deformable targets the step limit keeps cutting (an element of it nearly flat);
-  // its translation moves the element as a whole instead of squeezing it further.
-  int rigid_after = 0;
-  // Sweeps of harmonic extension of the contact vertices' displacements to the vertices
-  // around them (each sweep: D_v = mean of D over v's neighbours, for free vertices in no
-  // pair; one more ring per sweep); 0: only contact vertices move.
-  int smooth_sweeps = 0;
-  // Drop the components of a pair's displacements that move a vertex towards the other
-  // element (A's along +u, B's along -u): the pair stays separated (a vertex only retreats
-  // further from the plane).
-  bool retreat_only = false;
-  // A vertex whose step the limit cut in a round counts as fixed in the next round's pairs
-  // (its retreat goes to the other element).
-  bool pass_blocked = false;
-  // The step limit also halves where an element's volume would fall below this share of its
-  // rest volume and below its volume before the step (in doubles; the exact sign test stays).
-  double min_ratio = 0;
-  // Deep overlaps: when half of max_rounds did not clear the contacts, or 10 rounds left half
-  // of the first round's pairs, or 10 rounds found no fewer pairs than an earlier round (two meshes, at most one of them with fixed vertices; for
-  // self-contact see the header's top comment), restart from the rest pose with the meshes translated apart
-  // along the line of their vertex centroids by the smallest separating distance (bisection
-  // with the exact contact stage), then walk back towards the rest pose: a step moves every
-  // free vertex by gamma of its way back (step limit as in step 4), then up to descend_inner
-  // rounds resolve the shallow contacts it made; a step that does not end resolved and cheaper
-  // is undone and gamma halved (from 1/2 down to 1/64). Every accepted state is resolved, so
-  // the run ends resolved. It may use the rounds of max_rounds the first attempt left.
-  bool descend = false;
-  std::size_t descend_inner = 20;
+// How the per-pair rounds (the fallback) combine a vertex's targets, per variant (round_rule):
+// global and pdd2 take the longest target with overshoot omega = 1.2 and push a pair found in
+// more than two consecutive rounds by its rigid translation (on the balls 1.99 apart, 693
+// pairs: 9 rounds (global) and 7 (pdd2); with the weighted mean and omega 1.5 both stalled
+// with a few pairs left after 100 rounds, elements nearly flat); rigid (the baseline) takes the
+// rest-volume-weighted mean with omega = 1.5 (with the longest target it diverged).
+struct RoundRule {
+  double overshoot;  // omega
+  bool longest;      // the longest target, else the weighted mean
+  int rigid_after;   // rounds before a pair is pushed by its rigid translation (0: never)
 };
-
-// The defaults per variant: descend on for all. global and pdd2: the longest target, omega 1.2, rigid after 2
-// rounds: on the balls 1.99 apart (693 pairs) 9 rounds (global) and 7 (pdd2); 1.97 apart (1420
-// pairs) 20 and 15 rounds; with the weighted mean and omega 1.5 both stalled with a few pairs
-// left after 100 rounds, elements nearly flat. rigid (the baseline): the weighted mean, omega
-// 1.5 (18 and 59 rounds; with the longest target it diverged at 1.97).
-ResolveTuning default_tuning(ResolveVariant variant);
+RoundRule round_rule(ResolveVariant variant);
 
 // Stage 1 of a round, and check_resolution's R1: every pair of the given elements of A (and of
 // B; B == nullptr: self-contact, pairs a < b sharing no vertex) whose interiors intersect at
@@ -140,8 +104,7 @@ Sign orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d&
 std::vector<std::size_t> valid_elements(const Mesh& m, char which,
                                         std::vector<SkippedElement>* skipped);
 
-// resolve / resolve_self with explicit tuning (B == nullptr: self-contact).
-Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& options,
-                         const ResolveTuning& tuning);
+// resolve / resolve_self (B == nullptr: self-contact).
+Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& options);
 
 }  // namespace pdd::mesh::detail
