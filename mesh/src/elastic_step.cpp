@@ -11,10 +11,11 @@ namespace {
 // Poisson kernel of K + W spreads a pull over about 1/sqrt(kAnchor) rings of elements per round
 // (each round anchors at the positions the last one reached, so the spread grows over the
 // rounds), and a patch of contact vertices pulled together moves most of its pull. Measured on
-// two Gmsh balls of 1.6e5 elements overlapping by one layer (h = 0.1; overshoot 1.5, see
-// kOvershoot): kAnchor 1: 17 pairs left for ever (the contact layer is squeezed to the R4 bound
-// before the interior follows); 0.2: 16 rounds free, stalled with A fixed; 0.1: 22 and 18 rounds,
-// min V1/V0 0.54 and 0.37; 0.05: slower (41 rounds with A fixed, stalled with both free).
+// two Gmsh balls (h = 0.1, about 2.5e4 elements each) overlapping by one layer, both free /
+// A fixed: kAnchor 1 (overshoot 1): 19 rounds, min V1/V0 0.254 (the contact layer squeezed to
+// the R4 bound before the interior follows) / stalled at 400 pairs; 0.2 (overshoot 1): 23 / 22
+// rounds, min V1/V0 0.35 / 0.29; 0.1 (overshoot 1.5): 22 / 18 rounds, 0.54 / 0.37; 0.05
+// (overshoot 1): stalled / 41 rounds.
 constexpr double kAnchor = 0.1;
 // Conjugate gradients: relative residual 1e-6 (the displacement to about 1e-6 of the pull, far
 // below the plane gap of the local step), at most 500 iterations (the conditioning argued in

@@ -354,9 +354,10 @@ double side_cost(const Side& s) { return mesh_cost(*s.rest, s.cur.vertices); }
 constexpr std::size_t kStallRounds = 20;
 // A vertex is pulled kOvershoot times the way to its half-spaces: the elastic step moves a
 // contact vertex only part of its pull (elastic_step.h), and the overshoot makes up for it
-// (the step limit cuts where it would break R2 or R4). 1.5 against 1 on the one-layer Gmsh
-// balls: 22 rounds instead of 28 with both free, 18 instead of 22 with A fixed (at kAnchor 0.1);
-// 2 overshoots the plane of the pair by more than its gap and chatters.
+// (the step limit cuts where it would break R2 or R4). Measured on the one-layer Gmsh balls
+// (both free / A fixed): at kAnchor 0.2, overshoot 1: 23 / 22 rounds; 1.5: 16 rounds / stalled;
+// 2: 11 rounds / stalled (it overshoots the pair's plane and chatters); at kAnchor 0.1 (the
+// value used), 1.5: 22 / 18 rounds.
 constexpr double kOvershoot = 1.5;
 
 // A half-space n.x >= b that a vertex must reach (n of unit length).
