@@ -1,13 +1,14 @@
 // `pdd resolve --a A.msh [--b B.msh | --self] [--fix a|b] [--variant global|pdd2|rigid]
-//              [--max-rounds N] --out-a A1.msh|A1.vtk [--out-b B1.msh|B1.vtk]
+//              [--max-rounds N] [--min-volume-ratio RHO] [--min-shape-ratio KAPPA] --out-a A1.msh|A1.vtk [--out-b B1.msh|B1.vtk]
 //              [--report report.json] [--vtk both.vtk] [--summary] [--threads N] [--quiet]`
 // New positions for the vertices of two tetrahedral meshes (or of one mesh with itself) after
-// which no element pair intersects (R1), no element is inverted or flat (R2) and fixed vertices
-// are bit-for-bit unchanged (R3), each decided exactly on the doubles written out (library:
+// which no element pair intersects (R1), no element is inverted or flat (R2), fixed vertices
+// are bit-for-bit unchanged (R3) and every element stays usable (R4: V1/V0 in [rho, 1/rho],
+// eta1/eta0 >= kappa), each decided exactly on the doubles written out (library:
 // pdd::mesh::resolve, include/pdd/mesh.h). The meshes are written with their connectivity
 // unchanged (write_mesh: Gmsh 4.1 or legacy VTK by extension, every coordinate round-trip).
 //
-// Exit status: 0 when R1-R3 hold; 1 when the round limit was reached without them (the meshes
+// Exit status: 0 when R1-R4 hold; 1 when the round limit was reached without them (the meshes
 // are still written; standard error and the report name what remains), or when an input
 // element was skipped (flat or non-finite: no check covers it; as `pdd mesh`); 2 when the command line
 // is wrong, a mesh cannot be read or an output cannot be written (checked before the
@@ -33,6 +34,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <tuple>
 
 #include <tbb/global_control.h>
 
@@ -52,6 +54,7 @@ struct ResolveArgs {
   std::string a, b, fix, variant = "global", out_a, out_b, report, vtk;
   bool self = false, summary = false, quiet = false;
   std::size_t max_rounds = 200;
+  mesh::QualityLimits limits;  // --min-volume-ratio, --min-shape-ratio
   int threads = 0;
 };
 
@@ -163,6 +166,7 @@ int run_resolve(const ResolveArgs& args) {
   options.fix_a = args.fix == "a";
   options.fix_b = args.fix == "b";
   options.max_rounds = args.max_rounds;
+  static_cast<mesh::QualityLimits&>(options) = args.limits;
 
   mesh::Mesh A, B;
   try {
@@ -297,9 +301,12 @@ int run_resolve(const ResolveArgs& args) {
   if (rep.resolved) {
     if (!args.quiet)
       std::cerr << kName << ": resolved in " << rep.rounds.size()
-                << (rep.rounds.size() == 1 ? " round" : " rounds") << " (checked exactly: no pair intersects, "
-                << "no element inverted or flat, fixed vertices unchanged); cost " << summary_number(rep.cost)
-                << ", max displacement " << summary_number(rep.max_displacement) << "\n";
+                << (rep.rounds.size() == 1 ? " round" : " rounds") << " (method " << mesh::resolve_method_name(rep.method)
+                << "; checked exactly: no pair intersects, no element inverted or flat, fixed vertices unchanged, "
+                << "every element usable); cost " << summary_number(rep.cost) << ", max displacement "
+                << summary_number(rep.max_displacement) << ", volume ratio " << summary_number(rep.min_volume_ratio)
+                << " to " << summary_number(rep.max_volume_ratio) << ", min shape ratio "
+                << summary_number(rep.min_shape_ratio) << "\n";
     // As `pdd mesh`: a skipped element (flat or non-finite in the input) was in no pair and no
     // check, so the result is not vouched for there: exit 1, the elements named above.
     if (!rep.skipped.empty()) {
@@ -310,6 +317,7 @@ int run_resolve(const ResolveArgs& args) {
     return kExitOk;
   }
   // Not resolved: what remains, always (also with --quiet).
+  if (!rep.stopped_because.empty()) std::cerr << kName << ": stopped at once: " << rep.stopped_because << '\n';
   std::cerr << kName << ": NOT resolved after " << rep.rounds.size()
             << (rep.rounds.size() == 1 ? " round" : " rounds") << " (--max-rounds "
             << args.max_rounds << "); the meshes are written as they are\n";
@@ -328,6 +336,12 @@ int run_resolve(const ResolveArgs& args) {
               << '\n';
   if (!rep.r2)
     std::cerr << kName << ": " << rep.bad_elements.size() << " elements inverted or flat: " << first(rep.bad_elements, tagged) << '\n';
+  if (!rep.r4)
+    std::cerr << kName << ": " << rep.poor_elements.size() << " elements short of R4 (V1/V0 outside ["
+              << summary_number(rep.limits.min_volume_ratio) << ", 1/" << summary_number(rep.limits.min_volume_ratio)
+              << "] or eta1/eta0 below " << summary_number(rep.limits.min_shape_ratio)
+              << "; smallest V1/V0 " << summary_number(rep.min_volume_ratio) << ", smallest eta1/eta0 "
+              << summary_number(rep.min_shape_ratio) << "): " << first(rep.poor_elements, tagged) << '\n';
   if (!rep.r3)
     std::cerr << kName << ": " << rep.moved_fixed_vertices.size() << " fixed vertices moved: "
               << first(rep.moved_fixed_vertices, tagged) << '\n';
@@ -360,6 +374,24 @@ void add_resolve_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-rounds", args->max_rounds, "Rounds of contact solving before giving up (exit 1)")
       ->check(integer_in(1, 1000000))
       ->capture_default_str();
+  for (auto [flag, value, what] :
+       {std::tuple{"--min-volume-ratio", &args->limits.min_volume_ratio,
+                   "R4: every element keeps V1/V0 in [rho, 1/rho]; rho in (0, 1]"},
+        std::tuple{"--min-shape-ratio", &args->limits.min_shape_ratio,
+                   "R4: every element keeps its mean-ratio shape quality eta1/eta0 >= kappa; kappa in (0, 1]"}})
+    cmd->add_option(flag, *value, what)
+        ->check(CLI::Validator(
+            [](std::string& v) {
+              double x = 0;
+              std::size_t used = 0;
+              try {
+                x = std::stod(v, &used);
+              } catch (const std::exception&) {
+              }
+              return used == v.size() && x > 0 && x <= 1 ? std::string() : "must be a number in (0, 1]; got " + v;
+            },
+            "(0, 1]", "ratio"))
+        ->capture_default_str();
   cmd->add_option("--out-a", args->out_a, "Write the new mesh A here (.msh: Gmsh 4.1 ASCII, .vtk: legacy VTK)")
       ->required();
   cmd->add_option("--out-b", args->out_b, "Write the new mesh B here (.msh or .vtk); required with --b");

@@ -208,7 +208,12 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
 // with itself) after which, decided exactly on the doubles:
 //   (R1) no element pair intersects (A x B; self-contact: pairs that share no vertex);
 //   (R2) every element keeps the sign of its rest volume and a non-zero volume;
-//   (R3) fixed vertices are bit-for-bit unchanged.
+//   (R3) fixed vertices are bit-for-bit unchanged;
+//   (R4) every element stays usable by a simulator: its volume ratio V1/V0 lies in
+//        [rho, 1/rho] and its mean-ratio shape quality eta = 12 (3|V|)^(2/3) / (sum of its six
+//        squared edge lengths) keeps eta1/eta0 >= kappa (QualityLimits below), decided exactly
+//        by the polynomial forms V1 >= rho V0, V1 <= V0/rho and
+//        |V1|^2 (sum l0^2)^3 >= kappa^3 |V0|^2 (sum l1^2)^3 (rho, kappa read as exact rationals).
 // Cost: the mesh object norm, sigma_mesh = sum_e V_e sigma_e(P0, P1) / sum_e V_e (V_e the rest
 // volume of element e, sigma_e the per-tetrahedron object norm), the volume-weighted mean
 // squared displacement; a translation by t costs |t|^2. Reported per mesh and summed.
@@ -234,7 +239,26 @@ struct ResolveRound {
   double seconds = 0;          // wall time of the round
 };
 
-struct ResolveOptions {
+// R4's bounds (definitions §11): rho = min_volume_ratio, kappa = min_shape_ratio, each in (0, 1].
+struct QualityLimits {
+  double min_volume_ratio = 0.25;  // rho: every element keeps V1/V0 in [rho, 1/rho]
+  double min_shape_ratio = 0.5;    // kappa: every element keeps eta1/eta0 >= kappa
+};
+
+// How the result was produced (ResolveReport::method).
+enum class ResolveMethod {
+  Rounds,       // the rounds alone cleared every contact
+  Translation,  // the deep-overlap fallback: the smallest separating translation of a body
+                // pair along its centroids' line, then walked back towards the rest pose
+  Bodies,       // self-contact of several bodies: each contacting body pair resolved as two
+                // meshes (any of the above per pair)
+  RigidRounds,  // self-contact fallback: rounds of the rigid variant from the rest pose
+  None,         // nothing cleared the contacts (the report says what remains)
+};
+// "rounds" | "translation" | "bodies" | "rigid rounds" | "none"
+const char* resolve_method_name(ResolveMethod m);
+
+struct ResolveOptions : QualityLimits {
   ResolveVariant variant = ResolveVariant::Global;
   // Whole meshes kept bit for bit (the paper's case 1 at mesh level). fix_b is ignored for
   // self-contact. At most one of the two may be set (both: std::invalid_argument).
@@ -250,17 +274,30 @@ struct ResolveOptions {
 
 struct ResolveReport {
   ResolveVariant variant = ResolveVariant::Global;
-  bool resolved = false;       // r1 && r2 && r3, decided exactly on the final positions
-  bool r1 = false, r2 = false, r3 = false;
+  ResolveMethod method = ResolveMethod::None;
+  // Why the run stopped before its round limit without resolving (empty otherwise): every
+  // vertex fixed, or no intersecting pair with a finite per-pair solution (coordinates beyond
+  // what doubles can square).
+  std::string stopped_because;
+  QualityLimits limits;        // the R4 bounds the verdict used
+  bool resolved = false;       // r1 && r2 && r3 && r4, decided exactly on the final positions
+  bool r1 = false, r2 = false, r3 = false, r4 = false;
   std::vector<ResolveRound> rounds;
   double cost = 0, cost_a = 0, cost_b = 0;  // sigma_mesh (sum, A, B)
   double max_displacement = 0;               // largest |p1 - p0| over all vertices
   double min_volume_ratio = 0;               // smallest V1 / V0 over all elements (signed)
+  double max_volume_ratio = 0;               // largest V1 / V0 over all elements
+  double min_shape_ratio = 0;                // smallest eta1 / eta0 over all elements
+  // Per element of A and of B (doubles, for display; the verdict is exact): V1 / V0 (signed)
+  // and eta1 / eta0; NaN for an element skipped at rest or non-finite at P1.
+  std::vector<double> volume_ratio_a, volume_ratio_b, shape_ratio_a, shape_ratio_b;
   // What remains when not resolved: intersecting element pairs (a, b) of the final positions
   // (complete, from a fresh broadphase and the exact decision), elements flattened or
   // inverted ('A'/'B', index), fixed vertices that moved ('A'/'B', index).
   std::vector<std::array<std::size_t, 2>> remaining_pairs;
   std::vector<std::pair<char, std::size_t>> bad_elements;
+  // Elements that fall short of R4 ('A'/'B', index; inverted and flat ones included), in order.
+  std::vector<std::pair<char, std::size_t>> poor_elements;
   std::vector<std::pair<char, std::size_t>> moved_fixed_vertices;
   std::vector<SkippedElement> skipped;  // elements of the input that cannot be computed
   // Wall time per stage over the whole run (seconds).
@@ -273,21 +310,24 @@ struct Resolution {
   ResolveReport report;
 };
 
-// Throws std::invalid_argument for inconsistent options or a tetrahedron referring to a vertex
-// that does not exist; Cancelled when cancelled. A run that does not reach R1-R3 in max_rounds
+// Throws std::invalid_argument for inconsistent options (limits outside (0, 1] included) or a
+// tetrahedron referring to a vertex that does not exist; Cancelled when cancelled. A run that
+// does not reach R1-R4 in max_rounds
 // returns normally with report.resolved == false.
 Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options = {});
 Resolution resolve_self(const Mesh& A, const ResolveOptions& options = {});
 
 // The exact verdict on given positions (the building block of report.resolved, for tests and
 // independent checks): R1 over every pair (fresh broadphase, exact decision), R2 per element
-// against its rest orientation (exact sign of the determinant), R3 for the fixed flags given.
-// B0 == nullptr: self-contact. Fills r1, r2, r3, resolved, remaining_pairs, bad_elements,
-// moved_fixed_vertices, min_volume_ratio.
+// against its rest orientation (exact sign of the determinant), R3 for the fixed flags given,
+// R4 per element for `limits` (exact). B0 == nullptr: self-contact. Fills r1 to r4, resolved,
+// limits, remaining_pairs, bad_elements, poor_elements, moved_fixed_vertices, skipped and the
+// volume and shape ratios. Throws std::invalid_argument for limits outside (0, 1].
 ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, const Mesh* B0,
                                const std::vector<Vec3d>& b1,
                                const std::vector<char>& fixed_a = {},
-                               const std::vector<char>& fixed_b = {});
+                               const std::vector<char>& fixed_b = {},
+                               const QualityLimits& limits = {});
 
 // The mesh object norm sigma_mesh(P0, P1) of one mesh (see above).
 double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1);
@@ -303,8 +343,9 @@ void write_mesh(const std::string& path, const Mesh& m, const std::vector<Vec3d>
 // Writes a resolution for ParaView: A at positions a1 and B at b1 (B == nullptr: self-contact)
 // as one legacy VTK ASCII file, points of A then of B, cells of A then of B, with point data
 // `displacement` (p1 - p0) and cell data `mesh` (0 A, 1 B), `element` (its number in its mesh),
-// `volume_ratio` (V1 / V0, signed; doubles, for display), `remaining` (how many of
-// report.remaining_pairs it is in) and `bad` (1: in report.bad_elements). A vertex with a
+// `volume_ratio` (V1 / V0, signed; doubles, for display), `shape_ratio` (eta1 / eta0 from
+// the report; 0 where it has none), `remaining` (how many of report.remaining_pairs it is
+// in), `bad` (1: in report.bad_elements) and `poor` (1: in report.poor_elements). A vertex with a
 // non-finite coordinate is written at the origin (VTK readers reject nan). Written whole or
 // not at all, as write_mesh; throws std::runtime_error when the file cannot be written.
 void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,

@@ -1,4 +1,4 @@
-// check_resolution.cpp — the exact verdict R1–R3 on given positions (mesh.h), the mesh object
+// check_resolution.cpp — the exact verdict R1–R4 on given positions (mesh.h), the mesh object
 // norm mesh_cost, and the contact stage the rounds of resolve share with the verdict
 // (resolve.h).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -11,15 +11,16 @@
 #include <cstring>
 #include <sstream>
 
+#include "element_quality.h"
 #include "resolve.h"
 
 namespace pdd::mesh {
 namespace detail {
 
-int orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3) {
+Sign orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3) {
   using P = CGAL::Epick::Point_3;
   auto p = [](const Vec3d& v) { return P(v[0], v[1], v[2]); };
-  return int(CGAL::orientation(p(p0), p(p1), p(p2), p(p3)));  // exact (filtered) predicate
+  return sign_of(int(CGAL::orientation(p(p0), p(p1), p(p2), p(p3))));  // exact (filtered) predicate
 }
 
 std::vector<std::size_t> valid_elements(const Mesh& m, char which, std::vector<SkippedElement>* skipped) {
@@ -61,14 +62,6 @@ std::vector<std::array<std::size_t, 2>> intersecting_pairs(const Mesh& A, const 
 
 namespace {
 
-double signed_volume6(const TetVertices& t) {
-  const Vec3d u = {t[1][0] - t[0][0], t[1][1] - t[0][1], t[1][2] - t[0][2]};
-  const Vec3d v = {t[2][0] - t[0][0], t[2][1] - t[0][1], t[2][2] - t[0][2]};
-  const Vec3d w = {t[3][0] - t[0][0], t[3][1] - t[0][1], t[3][2] - t[0][2]};
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-         u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-
 Mesh moved(const Mesh& m, const std::vector<Vec3d>& p, const char* what) {
   if (p.size() != m.vertices.size()) {
     std::ostringstream o;
@@ -97,34 +90,39 @@ bool is_finite(const TetVertices& t) {
   return true;
 }
 
-// R2 over the rest-valid elements `e` of one mesh: appends bad ones, returns the smallest
-// V1 / V0 and the elements usable for the broadphase (finite at P1).
-double check_orientation(const Mesh& m0, const Mesh& m1, char which, const std::vector<std::size_t>& e,
-                         std::vector<std::pair<char, std::size_t>>& bad, std::vector<std::size_t>& finite) {
-  std::vector<char> flag(e.size());  // 0 ok, 1 inverted or flat, 2 non-finite
-  std::vector<double> ratio(e.size(), HUGE_VAL);
+// R2 and R4 over the rest-valid elements `e` of one mesh (element_quality, exact): appends the
+// inverted or flat ones to `bad`, every one that falls short of R4 to `poor`, the elements
+// usable for the broadphase (finite at P1) to `finite`; fills the per-element ratios (doubles)
+// and the report's extremes.
+void check_elements(const Mesh& m0, const Mesh& m1, char which, const std::vector<std::size_t>& e,
+                    const QualityLimits& limits, ResolveReport& rep, std::vector<std::size_t>& finite,
+                    std::vector<double>& volume_ratio, std::vector<double>& shape_ratio) {
+  using detail::Quality;
+  std::vector<Quality> verdict(e.size());
+  volume_ratio.assign(m0.tets.size(), std::nan(""));
+  shape_ratio.assign(m0.tets.size(), std::nan(""));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, e.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       const TetVertices t0 = element(m0, e[k]), t1 = element(m1, e[k]);
-      if (!is_finite(t1)) {
-        flag[k] = 2;
-        continue;
-      }
-      const int s0 = detail::orientation(t0[0], t0[1], t0[2], t0[3]);
-      const int s1 = detail::orientation(t1[0], t1[1], t1[2], t1[3]);
-      flag[k] = s1 != s0;  // s0 != 0: e holds the elements valid at rest
-      // |V1| / |V0| in doubles, signed by the exact verdict (a nearly flat element's volume
-      // in doubles can have the wrong sign).
-      ratio[k] = std::abs(signed_volume6(t1) / signed_volume6(t0)) * (s1 == s0 ? 1 : s1 == 0 ? 0 : -1);
+      verdict[k] = detail::element_quality(t0, t1, limits);
+      if (verdict[k] == Quality::NonFinite) continue;
+      const detail::Ratios q = detail::ratios(detail::volume6(t0), detail::edge_square_sum(t0), t1);
+      // The sign of V1/V0 from the exact verdict (a nearly flat element's volume in doubles can
+      // have the wrong sign).
+      volume_ratio[e[k]] = verdict[k] == Quality::Inverted ? -std::abs(q.volume) : std::abs(q.volume);
+      shape_ratio[e[k]] = q.shape;
     }
   });
-  double lo = HUGE_VAL;
   for (std::size_t k = 0; k < e.size(); ++k) {
-    if (flag[k]) bad.push_back({which, e[k]});
-    if (flag[k] != 2) finite.push_back(e[k]);
-    lo = std::min(lo, ratio[k]);
+    const std::size_t i = e[k];
+    if (verdict[k] == Quality::Inverted || verdict[k] == Quality::NonFinite) rep.bad_elements.push_back({which, i});
+    if (verdict[k] != Quality::Usable) rep.poor_elements.push_back({which, i});
+    if (verdict[k] == Quality::NonFinite) continue;
+    finite.push_back(i);
+    rep.min_volume_ratio = std::min(rep.min_volume_ratio, volume_ratio[i]);
+    rep.max_volume_ratio = std::max(rep.max_volume_ratio, volume_ratio[i]);
+    rep.min_shape_ratio = std::min(rep.min_shape_ratio, shape_ratio[i]);
   }
-  return lo;
 }
 
 void check_fixed(const Mesh& m0, const std::vector<Vec3d>& p1, const std::vector<char>& f, char which,
@@ -137,25 +135,30 @@ void check_fixed(const Mesh& m0, const std::vector<Vec3d>& p1, const std::vector
 
 ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, const Mesh* B0,
                                const std::vector<Vec3d>& b1, const std::vector<char>& fixed_a,
-                               const std::vector<char>& fixed_b) {
+                               const std::vector<char>& fixed_b, const QualityLimits& limits) {
+  detail::check_limits(limits);
   check_flags(fixed_a, A0, 'A');
   if (B0) check_flags(fixed_b, *B0, 'B');
   const Mesh A1 = moved(A0, a1, "check_resolution, mesh A");
   const Mesh B1 = B0 ? moved(*B0, b1, "check_resolution, mesh B") : Mesh{};
   ResolveReport rep;
+  rep.limits = limits;
   const std::vector<std::size_t> ea = detail::valid_elements(A0, 'A', &rep.skipped);
   const std::vector<std::size_t> eb = B0 ? detail::valid_elements(*B0, 'B', &rep.skipped) : std::vector<std::size_t>{};
   std::vector<std::size_t> fa, fb;
-  rep.min_volume_ratio = check_orientation(A0, A1, 'A', ea, rep.bad_elements, fa);
-  if (B0) rep.min_volume_ratio = std::min(rep.min_volume_ratio, check_orientation(*B0, B1, 'B', eb, rep.bad_elements, fb));
-  if (rep.min_volume_ratio == HUGE_VAL) rep.min_volume_ratio = 1;  // no element
+  rep.min_volume_ratio = rep.min_shape_ratio = HUGE_VAL;
+  rep.max_volume_ratio = -HUGE_VAL;
+  check_elements(A0, A1, 'A', ea, limits, rep, fa, rep.volume_ratio_a, rep.shape_ratio_a);
+  if (B0) check_elements(*B0, B1, 'B', eb, limits, rep, fb, rep.volume_ratio_b, rep.shape_ratio_b);
+  if (rep.min_volume_ratio == HUGE_VAL) rep.min_volume_ratio = rep.max_volume_ratio = rep.min_shape_ratio = 1;  // no element
   check_fixed(A0, a1, fixed_a, 'A', rep.moved_fixed_vertices);
   if (B0) check_fixed(*B0, b1, fixed_b, 'B', rep.moved_fixed_vertices);
   rep.remaining_pairs = detail::intersecting_pairs(A1, fa, B0 ? &B1 : nullptr, fb);
   rep.r1 = rep.remaining_pairs.empty();
   rep.r2 = rep.bad_elements.empty();
   rep.r3 = rep.moved_fixed_vertices.empty();
-  rep.resolved = rep.r1 && rep.r2 && rep.r3;
+  rep.r4 = rep.poor_elements.empty();
+  rep.resolved = rep.r1 && rep.r2 && rep.r3 && rep.r4;
   return rep;
 }
 
@@ -176,7 +179,7 @@ double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1) {
         for (std::size_t e = r.begin(); e != r.end(); ++e) {
           const TetVertices t0 = element(m, e);
           if (!is_finite(t0)) continue;
-          const double v = std::abs(signed_volume6(t0)) / 6;
+          const double v = std::abs(detail::volume6(t0)) / 6;
           double sq = 0;
           Vec3d sum = {0, 0, 0};
           for (int i = 0; i < 4; ++i) {

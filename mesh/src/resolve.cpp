@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "check_indices.h"
+#include "elastic_step.h"
+#include "element_quality.h"
 #include "resolve.h"
 
 namespace pdd::mesh {
@@ -143,8 +145,15 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
   return rigid_move(A, B);
 }
 
-double volume6(const TetVertices& t) {
-  return dot(sub(t[1], t[0]), cross(sub(t[2], t[0]), sub(t[3], t[0])));
+// R4 with a safety margin, in doubles (the step limit's test): the ratios in doubles carry a
+// relative error of a few ulps times the element's condition, far below kQualityMargin for
+// every element that is not nearly flat at rest, so a state that passes this test passes the
+// exact R4 verdict too (which stays the judge: check_resolution decides it afresh).
+constexpr double kQualityMargin = 1.0 / 64;
+bool usable_with_margin(const QualityLimits& q, const detail::Ratios& r) {
+  const double m = 1 + kQualityMargin;
+  return r.volume >= q.min_volume_ratio * m && r.volume * q.min_volume_ratio * m <= 1 &&
+         r.shape >= q.min_shape_ratio * m;
 }
 
 // One mesh's state during the rounds.
@@ -154,61 +163,15 @@ struct Side {
   Mesh cur;
   std::vector<char> fixed;          // per vertex
   std::vector<std::size_t> elems;   // valid at rest
-  std::vector<signed char> sign;    // rest orientation per element (0: not valid)
+  QualityLimits limits;             // R4's bounds, kept by the step limit
+  std::vector<Sign> sign;           // rest orientation per element (Zero: not valid)
+  std::vector<double> d0, s0;       // per element: rest 6V and sum of squared edge lengths
   std::vector<double> volume;       // |rest volume| per element
   std::vector<Vec3d> acc;           // per vertex: sum of w * displacement this round
   std::vector<double> weight;       // per vertex: sum of w this round
-  std::vector<char> blocked;        // per vertex: the step limit cut its last step
-  // Vertex adjacency (edges of the valid elements), CSR; built when smoothing is on.
-  std::vector<std::size_t> adj_start, adj;
+  // The valid elements of each vertex (CSR: vertex_elems[vertex_start[v] .. vertex_start[v+1])).
+  std::vector<std::size_t> vertex_start, vertex_elems;
 };
-
-void build_adjacency(Side& s) {
-  const std::size_t nv = s.cur.vertices.size();
-  std::vector<std::vector<std::size_t>> nb(nv);
-  for (std::size_t e : s.elems)
-    for (const auto& ed : kEdges) {
-      const std::size_t u = s.rest->tets[e][ed[0]], v = s.rest->tets[e][ed[1]];
-      nb[u].push_back(v);
-      nb[v].push_back(u);
-    }
-  s.adj_start.assign(nv + 1, 0);
-  for (std::size_t v = 0; v < nv; ++v) {
-    std::sort(nb[v].begin(), nb[v].end());
-    nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
-    s.adj_start[v + 1] = s.adj_start[v] + nb[v].size();
-  }
-  s.adj.reserve(s.adj_start[nv]);
-  for (std::size_t v = 0; v < nv; ++v) s.adj.insert(s.adj.end(), nb[v].begin(), nb[v].end());
-}
-
-// Harmonic extension (ResolveTuning::smooth_sweeps): Jacobi sweeps of D_v = mean of D over
-// v's neighbours for the free vertices that are in no pair, starting from D = 0 there.
-void smooth(const Side& s, std::vector<Vec3d>& D, std::vector<char>& moving, int sweeps) {
-  const std::size_t nv = D.size();
-  std::vector<char> contact(moving);
-  std::vector<std::size_t> region;  // free non-contact vertices next to a moving one
-  std::vector<char> in_region(nv, 0);
-  for (int it = 0; it < sweeps; ++it) {
-    std::vector<std::size_t> grow;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (moving[v])
-        for (std::size_t k = s.adj_start[v]; k < s.adj_start[v + 1]; ++k) {
-          const std::size_t u = s.adj[k];
-          if (!in_region[u] && !contact[u] && !s.fixed[u]) in_region[u] = 1, grow.push_back(u);
-        }
-    region.insert(region.end(), grow.begin(), grow.end());
-    std::vector<Vec3d> next(region.size());
-    for (std::size_t r = 0; r < region.size(); ++r) {
-      const std::size_t v = region[r];
-      Vec3d m = {0, 0, 0};
-      const std::size_t deg = s.adj_start[v + 1] - s.adj_start[v];
-      for (std::size_t k = s.adj_start[v]; k < s.adj_start[v + 1]; ++k) add_to(m, D[s.adj[k]]);
-      next[r] = deg ? scaled(m, 1.0 / double(deg)) : m;
-    }
-    for (std::size_t r = 0; r < region.size(); ++r) D[region[r]] = next[r], moving[region[r]] = 1;
-  }
-}
 
 void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vector<char>& flags,
                std::vector<SkippedElement>& skipped) {
@@ -225,18 +188,29 @@ void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vect
   s.fixed = fix_all ? std::vector<char>(m.vertices.size(), 1)
                     : flags.empty() ? std::vector<char>(m.vertices.size(), 0) : flags;
   s.elems = detail::valid_elements(m, which, &skipped);
-  s.sign.assign(m.tets.size(), 0);
+  s.sign.assign(m.tets.size(), Sign::Zero);
+  s.d0.assign(m.tets.size(), 0);
+  s.s0.assign(m.tets.size(), 0);
   s.volume.assign(m.tets.size(), 0);
   tbb::parallel_for(std::size_t{0}, s.elems.size(), [&](std::size_t k) {
     const std::size_t e = s.elems[k];
     const TetVertices t = element(m, e);
-    s.sign[e] = (signed char)detail::orientation(t[0], t[1], t[2], t[3]);
+    s.sign[e] = detail::orientation(t[0], t[1], t[2], t[3]);
+    s.d0[e] = detail::volume6(t);
+    s.s0[e] = detail::edge_square_sum(t);
     const Vec3d u = sub(t[1], t[0]), v = sub(t[2], t[0]), w = sub(t[3], t[0]);
     s.volume[e] = std::abs(dot(u, cross(v, w))) / 6;
   });
+  s.vertex_start.assign(m.vertices.size() + 1, 0);
+  for (std::size_t e : s.elems)
+    for (std::size_t v : m.tets[e]) ++s.vertex_start[v + 1];
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) s.vertex_start[v + 1] += s.vertex_start[v];
+  s.vertex_elems.resize(s.vertex_start.back());
+  std::vector<std::size_t> fill(s.vertex_start.begin(), s.vertex_start.end() - 1);
+  for (std::size_t e : s.elems)
+    for (std::size_t v : m.tets[e]) s.vertex_elems[fill[v]++] = e;
   s.acc.assign(m.vertices.size(), {0, 0, 0});
   s.weight.assign(m.vertices.size(), 0);
-  s.blocked.assign(m.vertices.size(), 0);
 }
 
 // Adds one element's share of a pair's move (fixed vertices take no displacement).
@@ -255,10 +229,17 @@ void accumulate(Side& s, std::size_t e, const std::array<Vec3d, 4>& d, bool long
   }
 }
 
+// The per-pair rounds' gap mu between a pair's two sides: kMargin of its longest edge plus
+// kMarginUlp of its largest |coordinate|: far above the rounding of the moved coordinates
+// (2^-52 |x|), and so small against the element that its cost, at most mu^2 per pair and
+// mesh, is below 1e-12 of an element layer's.
+constexpr double kMargin = 1e-6;
+constexpr double kMarginUlp = 1e-12;
+
 // Fixed vertices and the margin (resolve.h): the fixed vertices' retreat along u goes to the
 // other side as a translation, and the two sides are pushed mu further apart.
 void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::array<char, 4>& fixed_b,
-                 const TetVertices& A, const TetVertices& B, const detail::ResolveTuning& t) {
+                 const TetVertices& A, const TetVertices& B) {
   double retreat_a = 0, retreat_b = 0, edge = 0, coord = 0;
   for (int i = 0; i < 4; ++i) {
     if (fixed_a[i]) retreat_a = std::max(retreat_a, -dot(m.da[i], m.u));
@@ -269,13 +250,7 @@ void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::arr
     edge = std::max(edge, dot(sub(A[e[1]], A[e[0]]), sub(A[e[1]], A[e[0]])));
     edge = std::max(edge, dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]])));
   }
-  const double mu = t.margin * std::sqrt(edge) + t.margin_ulp * coord;
-  if (t.retreat_only)
-    for (int i = 0; i < 4; ++i) {
-      const double ta = dot(m.da[i], m.u), tb = dot(m.db[i], m.u);
-      m.da[i] = scaled(m.u, std::min(0.0, ta));
-      m.db[i] = scaled(m.u, std::max(0.0, tb));
-    }
+  const double mu = kMargin * std::sqrt(edge) + kMarginUlp * coord;
   for (int i = 0; i < 4; ++i) {
     if (fixed_a[i])
       m.da[i] = {0, 0, 0};
@@ -288,18 +263,22 @@ void finish_move(PairMove& m, const std::array<char, 4>& fixed_a, const std::arr
   }
 }
 
-std::array<char, 4> fixed_of(const Side& s, std::size_t e, bool blocked) {
+std::array<char, 4> fixed_of(const Side& s, std::size_t e) {
   std::array<char, 4> f;
   for (int i = 0; i < 4; ++i) {
     const std::size_t v = s.rest->tets[e][i];
-    f[i] = s.fixed[v] || (blocked && s.blocked[v]);
+    f[i] = s.fixed[v];
   }
   return f;
 }
 
+// Halvings of a vertex's step before the step limit sets it to 0 (resolve.h: the limit then ends
+// with every element valid): 2^-24 of a step is below any displacement that matters.
+constexpr int kMaxHalvings = 24;
+
 // The global step and the step limit on one side (resolve.h, steps 3 and 4): moves the
 // vertices with a displacement, then clears the accumulators.
-void move_side(Side& s, const detail::ResolveTuning& t) {
+void move_side(Side& s, double overshoot) {
   const std::size_t nv = s.cur.vertices.size();
   std::vector<Vec3d> D(nv, {0, 0, 0});
   std::vector<double> alpha(nv, 0);
@@ -310,9 +289,8 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
       moving[v] = finite(D[v]);
       if (!moving[v]) D[v] = {0, 0, 0};
     }
-  if (t.smooth_sweeps > 0) smooth(s, D, moving, t.smooth_sweeps);
   for (std::size_t v = 0; v < nv; ++v)
-    if (moving[v]) alpha[v] = t.overshoot;
+    if (moving[v]) alpha[v] = overshoot;
   // Elements with a moved vertex: the only ones whose orientation can change.
   std::vector<std::size_t> affected;
   for (std::size_t e : s.elems)
@@ -329,46 +307,169 @@ void move_side(Side& s, const detail::ResolveTuning& t) {
   };
   for (std::size_t v = 0; v < nv; ++v)
     if (alpha[v] > 0) place(v);
-  std::vector<char> bad(affected.size());
-  for (int pass = 0;; ++pass) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, affected.size(), 512),
+  // Passes of the limit: check the elements in `check` (first every affected one, then those
+  // with a vertex whose alpha the last pass lowered: the others are as they were when they passed).
+  std::vector<std::size_t> check = affected;
+  std::vector<char> bad, changed(nv, 0);
+  for (int pass = 0; !check.empty(); ++pass) {
+    bad.assign(check.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, check.size(), 512),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                          const TetVertices q = element(s.cur, affected[k]);
-                          bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[affected[k]];
-                          if (!bad[k] && t.min_ratio > 0 && pass < t.max_halvings) {
-                            TetVertices p;
-                            for (int i = 0; i < 4; ++i) p[i] = before[s.rest->tets[affected[k]][i]];
-                            const double r0 = s.volume[affected[k]] * 6 * s.sign[affected[k]];
-                            const double r1 = volume6(q) / r0;
-                            bad[k] = r1 < t.min_ratio && r1 < volume6(p) / r0;
-                          }
+                          const std::size_t e = check[k];
+                          const TetVertices q = element(s.cur, e);
+                          bad[k] = detail::orientation(q[0], q[1], q[2], q[3]) != s.sign[e] ||
+                                   !usable_with_margin(s.limits, detail::ratios(s.d0[e], s.s0[e], q));
                         }
                       });
-    bool any = false;
-    for (std::size_t k = 0; k < affected.size(); ++k)
+    std::vector<std::size_t> lowered;
+    for (std::size_t k = 0; k < check.size(); ++k)
       if (bad[k])
-        for (std::size_t v : s.rest->tets[affected[k]])
-          if (alpha[v] > 0) {
-            alpha[v] = pass < t.max_halvings ? alpha[v] / 2 : 0;
+        for (std::size_t v : s.rest->tets[check[k]])
+          if (alpha[v] > 0 && !changed[v]) {
+            alpha[v] = pass < kMaxHalvings ? alpha[v] / 2 : 0;
             place(v);
-            any = true;
+            changed[v] = 1;
+            lowered.push_back(v);
           }
-    if (!any) break;  // every affected element keeps its rest orientation
+    check.clear();
+    for (std::size_t v : lowered)
+      for (std::size_t k = s.vertex_start[v]; k < s.vertex_start[v + 1]; ++k) check.push_back(s.vertex_elems[k]);
+    std::sort(check.begin(), check.end());
+    check.erase(std::unique(check.begin(), check.end()), check.end());
+    for (std::size_t v : lowered) changed[v] = 0;
   }
-  for (std::size_t v = 0; v < nv; ++v) s.blocked[v] = moving[v] && alpha[v] < t.overshoot;
   std::fill(s.acc.begin(), s.acc.end(), Vec3d{0, 0, 0});
   std::fill(s.weight.begin(), s.weight.end(), 0.0);
 }
 
 double side_cost(const Side& s) { return mesh_cost(*s.rest, s.cur.vertices); }
 
-// ResolveTuning::descend (resolve.h). Returns true when it ends at a resolved state (R1 by
+// ---------------------------------------------------------------------------------------------
+// Projective-dynamics rounds (resolve.h): contacts, local step, global step, step limit.
+
+// Rounds without fewer intersecting pairs than the best round before the rounds count as
+// stalled: the pair count falls unevenly (planes of neighbouring pairs disagree for a few
+// rounds), and on the one-layer Gmsh balls plateaus of up to 6 rounds end resolved.
+constexpr std::size_t kStallRounds = 20;
+// A vertex is pulled kOvershoot times the way to its half-spaces: the elastic step moves a
+// contact vertex only part of its pull (elastic_step.h), and the overshoot makes up for it
+// (the step limit cuts where it would break R2 or R4). Measured on the one-layer Gmsh balls
+// (both free / A fixed): at kAnchor 0.2, overshoot 1: 23 / 22 rounds; 1.5: 16 rounds / stalled;
+// 2: 11 rounds / stalled (it overshoots the pair's plane and chatters); at kAnchor 0.1 (the
+// value used), 1.5: 22 / 18 rounds.
+constexpr double kOvershoot = 1.5;
+
+// A half-space n.x >= b that a vertex must reach (n of unit length).
+struct HalfSpace {
+  Vec3d n{};
+  double b = 0;
+};
+struct VertexTarget {
+  std::size_t vertex = 0;
+  HalfSpace h;
+};
+
+// The gap between the two sides of a pair's plane, relative to the pair's longest edge: far above
+// the rounding of the moved coordinates, small against the element (its cost per pair is at most
+// (1e-3 h)^2, a millionth of an element layer's).
+constexpr double kPlaneGap = 1e-3;
+
+// The local step of one pair: its separating plane u.x = c from the variant's solution (the plane
+// midway between q1_A and q1_B along the solution's normal u, A -> B), opened by the gap and
+// shifted past the fixed vertices of either side, and a half-space for each free vertex on the
+// wrong side (A's: u.x <= c - gap/2, B's: u.x >= c + gap/2). Returns the variant's squared depth.
+double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, ResolveVariant variant,
+                    std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b) {
+  const TetVertices A = element(sa.cur, ea), B = element(sb.cur, eb);
+  const PairMove m = solve_move(A, B, variant);
+  if (!m.ok) return 0;
+  double a_hi = -HUGE_VAL, b_lo = HUGE_VAL, edge = 0, fixed_a = -HUGE_VAL, fixed_b = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    a_hi = std::max(a_hi, dot(m.u, A[i]) + dot(m.u, m.da[i]));
+    b_lo = std::min(b_lo, dot(m.u, B[i]) + dot(m.u, m.db[i]));
+    if (sa.fixed[sa.rest->tets[ea][i]]) fixed_a = std::max(fixed_a, dot(m.u, A[i]));
+    if (sb.fixed[sb.rest->tets[eb][i]]) fixed_b = std::min(fixed_b, dot(m.u, B[i]));
+  }
+  for (const auto& e : kEdges)
+    edge = std::max({edge, dot(sub(A[e[1]], A[e[0]]), sub(A[e[1]], A[e[0]])),
+                     dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]]))});
+  const double gap = kPlaneGap * std::sqrt(edge);
+  double lo = (a_hi + b_lo) / 2 - gap / 2, hi = lo + gap;
+  if (fixed_a > lo) hi += fixed_a - lo, lo = fixed_a;  // A's fixed vertices stay: B takes it all
+  if (fixed_b < hi) lo -= hi - fixed_b, hi = fixed_b;
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return 0;
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t va = sa.rest->tets[ea][i], vb = sb.rest->tets[eb][i];
+    if (!sa.fixed[va] && dot(m.u, A[i]) > lo) out_a.push_back({va, {scaled(m.u, -1), -lo}});
+    if (!sb.fixed[vb] && dot(m.u, B[i]) < hi) out_b.push_back({vb, {m.u, hi}});
+  }
+  return m.value;
+}
+
+// y = x projected in turn onto every half-space it violates (one sweep).
+Vec3d project(Vec3d y, const HalfSpace& h) {
+  const double d = h.b - dot(h.n, y);
+  if (d > 0) add_to(y, scaled(h.n, d));
+  return y;
+}
+
+// The pulls y_v - x_v of one side from this round's targets and the half-spaces its vertices
+// hold from earlier rounds (a vertex once in contact stays constrained by its latest plane).
+std::vector<Vec3d> pulls(const Side& s, std::vector<VertexTarget>& targets, std::vector<std::optional<HalfSpace>>& held) {
+  std::sort(targets.begin(), targets.end(), [](const VertexTarget& x, const VertexTarget& y) { return x.vertex < y.vertex; });
+  std::vector<Vec3d> pull(s.cur.vertices.size(), Vec3d{0, 0, 0});
+  std::vector<char> touched(s.cur.vertices.size(), 0);
+  for (std::size_t k = 0; k < targets.size();) {
+    const std::size_t v = targets[k].vertex;
+    Vec3d y = s.cur.vertices[v];
+    double worst = 0;
+    for (; k < targets.size() && targets[k].vertex == v; ++k) {
+      const double d = targets[k].h.b - dot(targets[k].h.n, s.cur.vertices[v]);
+      if (d >= worst) worst = d, held[v] = targets[k].h;
+      y = project(y, targets[k].h);
+    }
+    pull[v] = scaled(sub(y, s.cur.vertices[v]), kOvershoot);
+    touched[v] = 1;
+  }
+  for (std::size_t v = 0; v < pull.size(); ++v)
+    if (!touched[v] && held[v]) pull[v] = sub(project(s.cur.vertices[v], *held[v]), s.cur.vertices[v]);
+  return pull;
+}
+
+// The elastic displacement decays away from the contacts but is nowhere zero; a vertex whose
+// displacement is below this share of the largest one stays where it is (bit for bit, so its
+// elements keep the state the last step limit accepted). It saves the step limit from checking
+// every element of the mesh each round; the jump it leaves at the edge of the moved region, at
+// most 1e-4 of the largest move, is inside elements the step limit checks.
+constexpr double kNegligibleShare = 1e-4;
+
+// The global step (elastic_step.h) and the step limit (move_side) of one side.
+void elastic_move(Side& s, const detail::ElasticStep& elastic, const std::vector<Vec3d>& pull) {
+  std::vector<Vec3d> delta;
+  if (!elastic.solve(pull, delta)) return;
+  double largest = 0;
+  for (const Vec3d& d : delta)
+    if (finite(d)) largest = std::max(largest, dot(d, d));
+  const double negligible = kNegligibleShare * kNegligibleShare * largest;
+  for (std::size_t v = 0; v < delta.size(); ++v)
+    if (dot(delta[v], delta[v]) > negligible && finite(delta[v])) s.acc[v] = delta[v], s.weight[v] = 1;
+  move_side(s, 1);  // the elastic step's own overshoot is in its pull (kOvershoot)
+}
+
+// The translation fallback (resolve.h): after the translation, steps back towards rest of
+// gamma (from kFirstGamma, halved on every rejected step, down to kLastGamma) of every free
+// vertex's way back, each followed by at most kDescendInner per-pair rounds; the separating
+// distance is bisected to kBisection of its bracket.
+constexpr double kFirstGamma = 0.5, kLastGamma = 1.0 / 64, kBisection = 1e-3;
+constexpr std::size_t kDescendInner = 20;
+
+// Returns true when it ends at a resolved state (R1 by
 // the contact stage, R2 kept by the step limit); false, with the positions unchanged, when it
 // does not apply (both meshes have fixed vertices, no separating translation found, or the
 // translated rest pose flips an element by rounding).
 template <class Rounds, class Stop>
-bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budget, const detail::ResolveTuning& tuning,
+bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budget, const detail::RoundRule& rule,
              ResolveReport& rep, const Rounds& run_rounds, const Stop& stop) {
   const bool fixed_a = std::find(sa.fixed.begin(), sa.fixed.end(), 1) != sa.fixed.end();
   const bool fixed_b = std::find(sb.fixed.begin(), sb.fixed.end(), 1) != sb.fixed.end();
@@ -423,7 +524,7 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
   place(t_hi);
   if (!(t_hi > 0) || !separated()) return restore(), false;
   double t_lo = 0;
-  while (t_hi - t_lo > 1e-3 * t_hi) {
+  while (t_hi - t_lo > kBisection * t_hi) {
     const double mid = (t_lo + t_hi) / 2;
     place(mid);
     (separated() ? t_hi : t_lo) = mid;
@@ -431,12 +532,9 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
   place(t_hi);
   if (!valid(sa) || !valid(sb)) return restore(), false;
   double cost = side_cost(sa) + side_cost(sb);
-  detail::ResolveTuning step = tuning;
-  step.overshoot = 1;
-  step.smooth_sweeps = 0;
-  double gamma = 0.5;
+  double gamma = kFirstGamma;
   std::size_t used = 0;
-  while (used < budget && gamma >= 1.0 / 64) {
+  while (used < budget && gamma >= kLastGamma) {
     stop();
     const std::vector<Vec3d> save_a = sa.cur.vertices, save_b = sb.cur.vertices;
     for (Side* s : {&sa, &sb})
@@ -446,11 +544,11 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
           if (finite(d) && dot(d, d) > 0) s->acc[v] = d, s->weight[v] = 1;
         }
     const auto t0 = Clock::now();
-    move_side(sa, step);
-    move_side(sb, step);
+    move_side(sa, 1);
+    move_side(sb, 1);
     rep.seconds_move += since(t0);
     const std::size_t before = rep.rounds.size();
-    const bool ok = run_rounds(std::min(tuning.descend_inner, budget - used), tuning, false, rep.variant);
+    const bool ok = run_rounds(std::min(kDescendInner, budget - used), rule, false, rep.variant);
     used += rep.rounds.size() - before + 1;
     const double c = side_cost(sa) + side_cost(sb);
     if (ok && c < cost) {
@@ -464,22 +562,105 @@ bool descend(const Mesh& A, const Mesh& B, Side& sa, Side& sb, std::size_t budge
   return true;
 }
 
+// Bodies (definitions §11): the connected components of the valid elements, vertices shared
+// between elements joining them (union-find). Returns the body of each vertex (-1: in no valid
+// element) and the number of bodies.
+std::pair<std::vector<std::ptrdiff_t>, std::size_t> bodies(const Mesh& m, const std::vector<std::size_t>& elems) {
+  std::vector<std::size_t> parent(m.vertices.size());
+  for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  const auto root = [&](std::size_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t e : elems)
+    for (int i = 1; i < 4; ++i) parent[root(m.tets[e][i])] = root(m.tets[e][0]);
+  std::vector<std::ptrdiff_t> body(m.vertices.size(), -1), id(m.vertices.size(), -1);
+  std::size_t n = 0;
+  for (std::size_t e : elems)
+    for (std::size_t v : m.tets[e]) {
+      const std::size_t r = root(v);
+      if (id[r] < 0) id[r] = std::ptrdiff_t(n++);
+      body[v] = id[r];
+    }
+  return {body, n};
+}
+
 }  // namespace
 
 namespace detail {
 
-ResolveTuning default_tuning(ResolveVariant variant) {
-  ResolveTuning t;
-  t.descend = true;
-  if (variant != ResolveVariant::Rigid) {
-    t.longest = true;
-    t.overshoot = 1.2;
-    t.rigid_after = 2;
+// resolve_tuned's body fallback (self-contact): at the rest pose, the intersecting pairs must
+// all join two different bodies, and each body may touch at most one other (then the body pairs
+// are independent: resolving one moves no body of another). Each contacting pair of bodies is cut
+// out as two meshes (its vertices, elements and fixed flags) and resolved from rest as A x B, and
+// its positions written back; every other body stays at rest. True when every body pair ended
+// resolved (the caller's exact verdict on the whole mesh judges the result); false, positions
+// unchanged, otherwise.
+bool resolve_bodies(const Mesh& A, Side& sa, const ResolveOptions& o, ResolveReport& rep) {
+  const auto [body, count] = bodies(A, sa.elems);
+  if (count < 2) return false;
+  const auto pairs = intersecting_pairs(A, sa.elems, nullptr, {});
+  std::vector<std::ptrdiff_t> partner(count, -1);
+  for (const auto& p : pairs) {
+    const std::ptrdiff_t i = body[A.tets[p[0]][0]], j = body[A.tets[p[1]][0]];
+    if (i == j) return false;  // a body against itself
+    for (auto [x, y] : {std::pair{i, j}, std::pair{j, i}}) {
+      if (partner[std::size_t(x)] >= 0 && partner[std::size_t(x)] != y) return false;  // three bodies meet
+      partner[std::size_t(x)] = y;
+    }
   }
-  return t;
+  std::vector<Vec3d> result = A.vertices;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::ptrdiff_t j = partner[i];
+    if (j < std::ptrdiff_t(i)) continue;  // no partner, or done as (j, i)
+    // Body k as a mesh of its own: `index` maps its vertices to A's.
+    const auto cut = [&](std::size_t k, std::vector<std::size_t>& index, std::vector<char>& fixed) {
+      Mesh m;
+      std::vector<std::size_t> local(A.vertices.size(), SIZE_MAX);
+      for (std::size_t v = 0; v < A.vertices.size(); ++v)
+        if (body[v] == std::ptrdiff_t(k)) local[v] = index.size(), index.push_back(v), m.vertices.push_back(A.vertices[v]),
+                                           fixed.push_back(sa.fixed[v]);
+      for (std::size_t e : sa.elems)
+        if (body[A.tets[e][0]] == std::ptrdiff_t(k))
+          m.tets.push_back({local[A.tets[e][0]], local[A.tets[e][1]], local[A.tets[e][2]], local[A.tets[e][3]]});
+      return m;
+    };
+    std::vector<std::size_t> index_a, index_b;
+    ResolveOptions sub = o;
+    sub.fix_a = sub.fix_b = false;
+    sub.fixed_vertices_a.clear();
+    sub.fixed_vertices_b.clear();
+    const Mesh ma = cut(i, index_a, sub.fixed_vertices_a), mb = cut(std::size_t(j), index_b, sub.fixed_vertices_b);
+    sub.max_rounds = std::max<std::size_t>(1, o.max_rounds - std::min(o.max_rounds - 1, rep.rounds.size()));
+    const std::size_t before = rep.rounds.size();
+    sub.progress = [&](const ResolveRound& r) {
+      ResolveRound q = r;
+      q.round = before + r.round;
+      if (o.progress) o.progress(q);
+    };
+    const Resolution r = resolve_tuned(ma, &mb, sub);
+    for (ResolveRound q : r.report.rounds) q.round += before, rep.rounds.push_back(q);
+    rep.seconds_contacts += r.report.seconds_contacts;
+    rep.seconds_solve += r.report.seconds_solve;
+    rep.seconds_move += r.report.seconds_move + r.report.seconds_verify;
+    if (!r.report.resolved) return false;
+    for (std::size_t v = 0; v < index_a.size(); ++v) result[index_a[v]] = r.a[v];
+    for (std::size_t v = 0; v < index_b.size(); ++v) result[index_b[v]] = r.b[v];
+  }
+  sa.cur.vertices = result;
+  return true;
 }
 
-Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, const ResolveTuning& tuning) {
+RoundRule round_rule(ResolveVariant variant) {
+  if (variant == ResolveVariant::Rigid) return {1.5, false, 0};
+  return {1.2, true, 2};
+}
+
+// The per-pair rounds' stall rule (as kStallRounds for the projective-dynamics rounds).
+constexpr std::size_t kPairStallRounds = 10;
+
+Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o) {
+  const RoundRule rule = round_rule(o.variant);
   const auto t_all = Clock::now();
   if (B && o.fix_a && o.fix_b) throw std::invalid_argument("resolve: fix_a and fix_b are both set; at most one mesh can be fixed");
   if (o.max_rounds < 1) throw std::invalid_argument("resolve: max_rounds must be at least 1");
@@ -490,17 +671,75 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   ResolveReport& rep = out.report;
   rep.variant = o.variant;
   Side sa, sb;
+  detail::check_limits(o);
   init_side(sa, A, 'A', o.fix_a, o.fixed_vertices_a, rep.skipped);
   if (B) init_side(sb, *B, 'B', o.fix_b, o.fixed_vertices_b, rep.skipped);
-  if (tuning.smooth_sweeps > 0) {
-    build_adjacency(sa);
-    if (B) build_adjacency(sb);
-  }
+  sa.limits = sb.limits = o;
   Side& sB = B ? sb : sa;  // the side of a pair's second element
+
+  // Projective-dynamics rounds (resolve.h) from the current positions, at most `budget`; true
+  // when a contact stage found no pair; false when they stall (kStallRounds rounds without fewer
+  // pairs than the best round) or the budget ends.
+  std::optional<detail::ElasticStep> elastic_a, elastic_b;
+  const auto run_pd_rounds = [&](std::size_t budget) {
+    auto t = Clock::now();
+    if (!elastic_a) elastic_a.emplace(A, sa.elems, sa.fixed);
+    if (B && !elastic_b) elastic_b.emplace(*B, sb.elems, sb.fixed);
+    rep.seconds_solve += since(t);
+    std::vector<std::optional<HalfSpace>> held_a(A.vertices.size()), held_b(B ? B->vertices.size() : 0);
+    std::size_t best = SIZE_MAX, best_round = 0;
+    for (std::size_t r = 0; r < budget; ++r) {
+      stop_if_cancelled();
+      const auto t_round = Clock::now();
+      t = Clock::now();
+      const std::vector<std::array<std::size_t, 2>> pairs =
+          intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
+      rep.seconds_contacts += since(t);
+      if (pairs.empty()) return true;
+      if (pairs.size() < best) best = pairs.size(), best_round = r;
+      if (r >= best_round + kStallRounds) return false;
+      stop_if_cancelled();
+      t = Clock::now();
+      std::vector<std::vector<VertexTarget>> ta(pairs.size()), tb(pairs.size());
+      std::vector<double> value(pairs.size(), 0);
+      tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+        if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
+        value[k] = pair_targets(sa, pairs[k][0], sB, pairs[k][1], o.variant, ta[k], tb[k]);
+      });
+      stop_if_cancelled();
+      if (std::none_of(value.begin(), value.end(), [](double x) { return x > 0; })) {
+        rep.stopped_because = "none of the " + std::to_string(pairs.size()) +
+                              " intersecting pairs has a finite per-pair solution (coordinates too large to square in doubles?)";
+        return false;
+      }
+      std::vector<VertexTarget> targets_a, targets_b;
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        targets_a.insert(targets_a.end(), ta[k].begin(), ta[k].end());
+        (B ? targets_b : targets_a).insert((B ? targets_b : targets_a).end(), tb[k].begin(), tb[k].end());
+      }
+      const std::vector<Vec3d> pull_a = pulls(sa, targets_a, held_a);
+      const std::vector<Vec3d> pull_b = B ? pulls(sb, targets_b, held_b) : std::vector<Vec3d>{};
+      rep.seconds_solve += since(t);
+      t = Clock::now();
+      elastic_move(sa, *elastic_a, pull_a);
+      stop_if_cancelled();
+      if (B) elastic_move(sb, *elastic_b, pull_b);
+      rep.seconds_move += since(t);
+      ResolveRound rr;
+      rr.round = rep.rounds.size() + 1;
+      rr.pairs = pairs.size();
+      rr.max_pd2 = *std::max_element(value.begin(), value.end());
+      rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
+      rr.seconds = since(t_round);
+      rep.rounds.push_back(rr);
+      if (o.progress) o.progress(rr);
+    }
+    return false;
+  };
 
   // Rounds (resolve.h, steps 1-4) from the current positions, at most `budget`; true when a
   // contact stage found no pair.
-  const auto run_rounds = [&](std::size_t budget, const ResolveTuning& tuning, bool stall_exit,
+  const auto run_rounds = [&](std::size_t budget, const RoundRule& rule, bool stall_exit,
                               ResolveVariant variant) {
     std::vector<std::array<std::size_t, 2>> last_pairs;
     std::size_t first_pairs = 0, best_pairs = 0, best_round = 0;
@@ -514,15 +753,16 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
           intersecting_pairs(sa.cur, sa.elems, B ? &sb.cur : nullptr, sb.elems);
       rep.seconds_contacts += since(t);
       if (pairs.empty()) return true;
-      // Stalled (ResolveTuning::descend): after 10 rounds still half of the first round's
-      // pairs, or 10 rounds without fewer pairs than before.
+      // Stalled: after kPairStallRounds rounds still half of the first round's pairs, or
+      // kPairStallRounds rounds without fewer pairs than before.
       if (r == 0) first_pairs = best_pairs = pairs.size();
       if (pairs.size() < best_pairs) best_pairs = pairs.size(), best_round = r;
-      if (stall_exit && ((r >= 10 && 2 * pairs.size() >= first_pairs) || r >= best_round + 10)) return false;
+      if (stall_exit && ((r >= kPairStallRounds && 2 * pairs.size() >= first_pairs) || r >= best_round + kPairStallRounds))
+        return false;
       stop_if_cancelled();
 
       t = Clock::now();
-      // Consecutive rounds each pair has been found in (ResolveTuning::rigid_after).
+      // Consecutive rounds each pair has been found in (RoundRule::rigid_after).
       std::vector<int> age(pairs.size(), 1);
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         const auto it = std::lower_bound(last_pairs.begin(), last_pairs.end(), pairs[k]);
@@ -531,11 +771,10 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
       std::vector<PairMove> moves(pairs.size());
       tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
         const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
-        const bool rigid = tuning.rigid_after > 0 && age[k] > tuning.rigid_after;
+        const bool rigid = rule.rigid_after > 0 && age[k] > rule.rigid_after;
         PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : variant);
         if (m.ok)
-          finish_move(m, fixed_of(sa, pairs[k][0], tuning.pass_blocked), fixed_of(sB, pairs[k][1], tuning.pass_blocked),
-                      Ta, Tb, tuning);
+          finish_move(m, fixed_of(sa, pairs[k][0]), fixed_of(sB, pairs[k][1]), Ta, Tb);
         moves[k] = m;
       });
       rep.seconds_solve += since(t);
@@ -550,11 +789,11 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         if (!moves[k].ok) continue;
         rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
-        accumulate(sa, pairs[k][0], moves[k].da, tuning.longest);
-        accumulate(sB, pairs[k][1], moves[k].db, tuning.longest);
+        accumulate(sa, pairs[k][0], moves[k].da, rule.longest);
+        accumulate(sB, pairs[k][1], moves[k].db, rule.longest);
       }
-      move_side(sa, tuning);
-      if (B) move_side(sb, tuning);
+      move_side(sa, rule.overshoot);
+      if (B) move_side(sb, rule.overshoot);
       rep.seconds_move += since(t);
       rr.cost = side_cost(sa) + (B ? side_cost(sb) : 0);
       rr.seconds = since(t_round);
@@ -564,35 +803,64 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
     return false;
   };
 
-  // Deep overlaps (ResolveTuning::descend_steps): when the rounds did not clear the contacts,
+  // Deep overlaps (the translation fallback): when the rounds did not clear the contacts,
   // start again from a separated configuration and walk back towards the rest pose.
-  const std::size_t first_budget = tuning.descend ? std::max<std::size_t>(1, o.max_rounds / 2) : o.max_rounds;
-  bool clear = run_rounds(first_budget, tuning, tuning.descend, o.variant);
-  if (!clear && B && tuning.descend && o.max_rounds > rep.rounds.size()) {
-    clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), tuning, rep, run_rounds, stop_if_cancelled);
+  const std::size_t first_budget = std::max<std::size_t>(1, o.max_rounds / 2);
+  const auto all_fixed = [](const Side& s) { return std::find(s.fixed.begin(), s.fixed.end(), 0) == s.fixed.end(); };
+  if (all_fixed(sa) && (!B || all_fixed(sb))) rep.stopped_because = "every vertex is fixed: nothing can move";
+  bool clear = rep.stopped_because.empty() && run_pd_rounds(first_budget);
+  if (clear) rep.method = ResolveMethod::Rounds;
+  const auto go_on = [&] { return !clear && rep.stopped_because.empty(); };
+  // Bodies: two bodies of one mesh in contact are resolved as two meshes (every fallback of
+  // A x B, the translation included), each contacting body pair on its own.
+  if (go_on() && !B && o.max_rounds > rep.rounds.size()) {
+    stop_if_cancelled();
+    if (resolve_bodies(A, sa, o, rep)) clear = true, rep.method = ResolveMethod::Bodies;
+  }
+  // Stalled: the per-pair rounds from the rest pose, within what is left of the first budget.
+  if (go_on() && first_budget > rep.rounds.size()) {
+    sa.cur.vertices = A.vertices;
+    if (B) sb.cur.vertices = B->vertices;
+    clear = run_rounds(first_budget - rep.rounds.size(), rule, true, o.variant);
+    if (clear) rep.method = ResolveMethod::Rounds;
+  }
+  if (go_on() && B && o.max_rounds > rep.rounds.size()) {
+    clear = descend(A, *B, sa, sb, o.max_rounds - rep.rounds.size(), rule, rep, run_rounds, stop_if_cancelled);
+    if (clear) rep.method = ResolveMethod::Translation;
   }
   // descend declined (both meshes with fixed vertices, or no usable translation; it leaves the
   // positions as they were): the rounds go on from there up to max_rounds, without the stall exit.
-  if (!clear && B && o.max_rounds > rep.rounds.size())
-    clear = run_rounds(o.max_rounds - rep.rounds.size(), tuning, false, o.variant);
+  if (go_on() && B && o.max_rounds > rep.rounds.size()) {
+    clear = run_rounds(o.max_rounds - rep.rounds.size(), rule, false, o.variant);
+    if (clear) rep.method = ResolveMethod::Rounds;
+  }
   // Self-contact has no separated start: stalled deformable rounds restart from the rest pose
   // with the rigid variant's rounds (which move elements as a whole and do not squeeze them).
-  if (!clear && !B && tuning.descend && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
+  if (go_on() && !B && o.variant != ResolveVariant::Rigid && o.max_rounds > rep.rounds.size()) {
     sa.cur.vertices = A.vertices;
-    std::fill(sa.blocked.begin(), sa.blocked.end(), 0);
-    clear = run_rounds(o.max_rounds - rep.rounds.size(), default_tuning(ResolveVariant::Rigid), false,
+    clear = run_rounds(o.max_rounds - rep.rounds.size(), round_rule(ResolveVariant::Rigid), false,
                        ResolveVariant::Rigid);
+    if (clear) rep.method = ResolveMethod::RigidRounds;
   }
   stop_if_cancelled();
 
   auto t = Clock::now();
   ResolveReport v = check_resolution(A, sa.cur.vertices, B, B ? sb.cur.vertices : std::vector<Vec3d>{}, sa.fixed,
-                                     B ? sb.fixed : std::vector<char>{});
+                                     B ? sb.fixed : std::vector<char>{}, o);
   rep.seconds_verify = since(t);
   rep.r1 = v.r1;
   rep.r2 = v.r2;
   rep.r3 = v.r3;
+  rep.r4 = v.r4;
+  rep.limits = v.limits;
   rep.resolved = v.resolved;
+  rep.poor_elements = std::move(v.poor_elements);
+  rep.max_volume_ratio = v.max_volume_ratio;
+  rep.min_shape_ratio = v.min_shape_ratio;
+  rep.volume_ratio_a = std::move(v.volume_ratio_a);
+  rep.volume_ratio_b = std::move(v.volume_ratio_b);
+  rep.shape_ratio_a = std::move(v.shape_ratio_a);
+  rep.shape_ratio_b = std::move(v.shape_ratio_b);
   rep.remaining_pairs = std::move(v.remaining_pairs);
   rep.bad_elements = std::move(v.bad_elements);
   rep.moved_fixed_vertices = std::move(v.moved_fixed_vertices);
@@ -600,6 +868,17 @@ Resolution resolve_tuned(const Mesh& A, const Mesh* B, const ResolveOptions& o, 
   rep.cost_a = side_cost(sa);
   rep.cost_b = B ? side_cost(sb) : 0;
   rep.cost = rep.cost_a + rep.cost_b;
+  // The rounds table ends with the state written: when a fallback undid its last rounds (the
+  // last row's cost is not the cost written), a closing row gives that state's intersecting
+  // pairs (0 when resolved) and cost, with max_pd2 0 and the verdict's time.
+  if (!rep.rounds.empty() && rep.rounds.back().cost != rep.cost) {
+    ResolveRound last;
+    last.round = rep.rounds.size() + 1;
+    last.pairs = rep.remaining_pairs.size();
+    last.cost = rep.cost;
+    last.seconds = rep.seconds_verify;
+    rep.rounds.push_back(last);
+  }
   auto max_disp = [](const Mesh& m0, const std::vector<Vec3d>& p) {
     double d = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -625,6 +904,17 @@ ResolveVariant parse_resolve_variant(const std::string& name) {
   throw std::invalid_argument("unknown resolve variant '" + name + "' (global, pdd2, rigid)");
 }
 
+const char* resolve_method_name(ResolveMethod m) {
+  switch (m) {
+    case ResolveMethod::Rounds: return "rounds";
+    case ResolveMethod::Translation: return "translation";
+    case ResolveMethod::RigidRounds: return "rigid rounds";
+    case ResolveMethod::Bodies: return "bodies";
+    case ResolveMethod::None: return "none";
+  }
+  return "?";
+}
+
 const char* resolve_variant_name(ResolveVariant v) {
   switch (v) {
     case ResolveVariant::Global: return "global";
@@ -635,11 +925,11 @@ const char* resolve_variant_name(ResolveVariant v) {
 }
 
 Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options) {
-  return detail::resolve_tuned(A, &B, options, detail::default_tuning(options.variant));
+  return detail::resolve_tuned(A, &B, options);
 }
 
 Resolution resolve_self(const Mesh& A, const ResolveOptions& options) {
-  return detail::resolve_tuned(A, nullptr, options, detail::default_tuning(options.variant));
+  return detail::resolve_tuned(A, nullptr, options);
 }
 
 }  // namespace pdd::mesh

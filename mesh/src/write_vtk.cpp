@@ -164,7 +164,15 @@ void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vec
   };
   ratios(A, a1);
   if (B) ratios(*B, b1);
-  std::vector<int> remaining(ta + tb, 0), bad(ta + tb, 0);
+  // eta1 / eta0 from the report (doubles, display only: report.poor_elements is the verdict);
+  // 0 where the report has none (an element skipped or non-finite).
+  out << "SCALARS shape_ratio double 1\nLOOKUP_TABLE default\n";
+  auto shapes = [&](const std::vector<double>& r, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) out << (i < r.size() && std::isfinite(r[i]) ? r[i] : 0.0) << '\n';
+  };
+  shapes(report.shape_ratio_a, ta);
+  if (B) shapes(report.shape_ratio_b, tb);
+  std::vector<int> remaining(ta + tb, 0), bad(ta + tb, 0), poor(ta + tb, 0);
   const std::size_t b_cell0 = B ? ta : 0;
   for (const auto& [a, b] : report.remaining_pairs) {
     if (a < ta) ++remaining[a];
@@ -174,10 +182,16 @@ void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vec
     const std::size_t cell = (which == 'B' ? b_cell0 : 0) + i;
     if (cell < ta + tb) bad[cell] = 1;
   }
+  for (const auto& [which, i] : report.poor_elements) {
+    const std::size_t cell = (which == 'B' ? b_cell0 : 0) + i;
+    if (cell < ta + tb) poor[cell] = 1;
+  }
   out << "SCALARS remaining int 1\nLOOKUP_TABLE default\n";
   for (int k : remaining) out << k << '\n';
   out << "SCALARS bad int 1\nLOOKUP_TABLE default\n";
   for (int k : bad) out << k << '\n';
+  out << "SCALARS poor int 1\nLOOKUP_TABLE default\n";
+  for (int k : poor) out << k << '\n';
   out << "POINT_DATA " << na + nb << "\nVECTORS displacement double\n";
   auto displacement = [&](const Vec3d& p0, const Vec3d& p1) {
     if (finite(p0) && finite(p1)) out << p1[0] - p0[0] << ' ' << p1[1] - p0[1] << ' ' << p1[2] - p0[2] << '\n';

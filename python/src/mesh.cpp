@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -222,8 +223,19 @@ py::array_t<double> vertices_array(const std::vector<pdd::Vec3d>& v) {
 
 py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py::handle fix_in,
                   py::handle variant_in, py::handle max_rounds_in, py::handle threads_in,
-                  py::handle progress_arg, py::handle fixed_a_in, py::handle fixed_b_in) {
+                  py::handle progress_arg, py::handle fixed_a_in, py::handle fixed_b_in,
+                  py::handle min_volume_ratio_in, py::handle min_shape_ratio_in) {
   pdd::mesh::ResolveOptions options;
+  // R4's limits: None keeps ResolveOptions' default; a real number in (0, 1] otherwise.
+  for (auto [name, in, value] : {std::tuple{"min_volume_ratio", min_volume_ratio_in, &options.min_volume_ratio},
+                                 std::tuple{"min_shape_ratio", min_shape_ratio_in, &options.min_shape_ratio}}) {
+    if (in.is_none()) continue;
+    const PyObject* p = in.ptr();
+    const double x = !PyBool_Check(p) && (PyFloat_Check(p) || PyLong_Check(p)) ? PyFloat_AsDouble(in.ptr()) : -1.0;
+    if (PyErr_Occurred()) PyErr_Clear();
+    if (!(x > 0 && x <= 1)) value_error(std::string(name) + " must be a real number in (0, 1]; got " + short_repr(in));
+    *value = x;
+  }
   try {
     options.variant = pdd::mesh::parse_resolve_variant(text_arg(variant_in, "variant"));
   } catch (const std::invalid_argument& e) {
@@ -297,6 +309,16 @@ py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py
   in.fixed_vertices_b = options.fix_b ? B.vertices.size() : count(options.fixed_vertices_b);
   const std::string report = pdd::io::resolve_report_json(result->report, in).dump();
   py::object report_dict = py::module_::import("json").attr("loads")(report);
+  // Per element ratios as numpy arrays (NaN: element skipped, or non-finite at the result).
+  auto array = [](const std::vector<double>& v) {
+    py::array_t<double> out(static_cast<py::ssize_t>(v.size()));
+    std::copy(v.begin(), v.end(), out.mutable_data());
+    return out;
+  };
+  report_dict["volume_ratio_a"] = array(result->report.volume_ratio_a);
+  report_dict["shape_ratio_a"] = array(result->report.shape_ratio_a);
+  report_dict["volume_ratio_b"] = self ? py::object(py::none()) : py::object(array(result->report.volume_ratio_b));
+  report_dict["shape_ratio_b"] = self ? py::object(py::none()) : py::object(array(result->report.shape_ratio_b));
   return py::make_tuple(vertices_array(result->a),
                         self ? py::object(py::none()) : py::object(vertices_array(result->b)),
                         report_dict);
@@ -405,7 +427,7 @@ that is not in the file, an unknown element type) raises ValueError with the mes
 refers to node 999, which is not in the file".
 )doc";
 
-constexpr const char* kResolveDoc = R"doc(resolve(VA, TA, VB=None, TB=None, fix=None, variant='global', max_rounds=200, threads=None, progress=None, fixed_a=None, fixed_b=None)
+constexpr const char* kResolveDoc = R"doc(resolve(VA, TA, VB=None, TB=None, fix=None, variant='global', max_rounds=200, threads=None, progress=None, fixed_a=None, fixed_b=None, min_volume_ratio=None, min_shape_ratio=None)
 --
 
 Two tetrahedral meshes that interpenetrate (or one that intersects itself) -> new vertex
@@ -414,7 +436,10 @@ positions after which, each decided exactly on the returned doubles:
       vertex; touching is not intersecting),
   R2  every element keeps the sign of its volume and a non-zero volume (none inverted or
       flattened),
-  R3  fixed vertices are bit-for-bit unchanged.
+  R3  fixed vertices are bit-for-bit unchanged,
+  R4  every element stays usable by a simulator: V1/V0 in [rho, 1/rho] and its mean-ratio
+      shape quality eta = 12 (3|V|)^(2/3) / (sum of squared edge lengths) keeps
+      eta1/eta0 >= kappa.
 `pdd resolve` from Python, on the C++ library include/pdd/mesh.h (pdd::mesh::resolve), on all
 cores with the GIL released. The connectivity is unchanged: element i is still TA[i].
 
@@ -431,7 +456,9 @@ variant  which per-pair solution drives the vertices: "global" (the default: the
          deformable depth over the candidate directions) or "rigid" (the baseline: each pair
          pushed apart by its rigid translation, split between the two elements).
 max_rounds   rounds of contact solving before giving up, an int from 1 to 1000000. A run
-         that reaches it without R1-R3 returns normally with report["resolved"] False.
+         that reaches it without R1-R4 returns normally with report["resolved"] False.
+min_volume_ratio, min_shape_ratio   R4's rho and kappa, real numbers in (0, 1]; None: the
+         library's defaults (1/4 and 1/2), as `pdd resolve --min-volume-ratio/--min-shape-ratio`.
 threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
          call only), as `pdd resolve --threads`. Anything else raises ValueError.
 progress None (the default) or False: silent. A callable progress(done, total): called from
@@ -451,26 +478,40 @@ Returns (VA1, VB1, report):
   VB1       (n_B, 3) float64, or None for self-contact
   report    dict, the keys of `pdd resolve --report` (JSON), in that order:
     variant               "global", "pdd2" or "rigid"
-    inputs                {self, fix, max_rounds, elements_a, vertices_a, elements_b,
+    method                "rounds", "translation", "bodies", "rigid rounds" or "none": what
+                          produced it
+    stopped_because       why the run stopped at once without resolving (every vertex fixed,
+                          no finite per-pair solution), or None
+    inputs                {self, fix, max_rounds, min_volume_ratio, min_shape_ratio,
+                           elements_a, vertices_a, elements_b,
                            vertices_b, fixed_vertices_a, fixed_vertices_b} (the CLI adds the
                            file names a and b)
-    resolved              r1 and r2 and r3: the exact verdict on VA1, VB1 over every pair (a
+    resolved              r1 and r2 and r3 and r4: the exact verdict on VA1, VB1 over every pair (a
                           fresh broadphase, not only the pairs of the last round)
-    r1, r2, r3            each condition above
+    r1, r2, r3, r4        each condition above
     rounds                list of {round, pairs, max_pd2, cost, seconds}: per round the
                           intersecting pairs at its start, the largest per-pair squared depth
                           of the variant, the cost after it, its wall time
     cost, cost_a, cost_b  sigma_mesh of A plus B, of A, of B
     max_displacement      largest |p1 - p0| over every vertex
     min_volume_ratio      smallest V1 / V0 over every element (signed: < 0 is inverted)
+    max_volume_ratio      largest V1 / V0
+    min_shape_ratio       smallest eta1 / eta0
+    volume_ratio_histogram, shape_ratio_histogram   {edges, counts} of the ratios
+    worst_elements        [{mesh, index, volume_ratio, shape_ratio}, ...]: the ten elements
+                          closest to (or furthest past) R4's bounds
     remaining_pairs       [[a, b], ...]: element pairs still intersecting ([] when r1)
     bad_elements          [["A" or "B", i], ...]: elements inverted or flat ([] when r2)
+    poor_elements         [["A" or "B", i], ...]: elements short of R4 ([] when r4)
     moved_fixed_vertices  [["A" or "B", i], ...]: fixed vertices that moved ([] when r3)
     skipped               [{mesh, index, reason}, ...]: input elements that cannot be
                           computed (flat, non-finite), e.g. "element 12 of mesh A is flat: ...";
                           they are in no pair and no check (`pdd resolve` exits 1 then)
     seconds_contacts, seconds_solve, seconds_move, seconds_verify, seconds_total
                           wall time per stage over the run
+    volume_ratio_a, shape_ratio_a, volume_ratio_b, shape_ratio_b   (not in the JSON): numpy
+                          float64 arrays, one entry per element (NaN: skipped), V1/V0 and
+                          eta1/eta0; the B ones None for self-contact
 Write the result with meshio (meshio.Mesh(VA1, [("tetra", TA)]).write("a1.msh")) or with
 `pdd resolve`, which writes .msh / .vtk files whose coordinates read back bit for bit.
 
@@ -487,7 +528,7 @@ Example:
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a")
   >>> r["resolved"], len(r["rounds"]), (VA1 == VA).all()
-  (True, 11, True)
+  (True, 14, True)
   >>> V1, _, r = pdd.resolve(V, T)                  # self-contact of one mesh (V, T)
 )doc";
 
@@ -503,7 +544,8 @@ void bind_mesh(py::module_& m) {
         py::arg("TB") = py::none(), py::arg("fix") = py::none(), py::arg("variant") = "global",
         py::arg("max_rounds") = 200, py::arg("threads") = py::none(),
         py::arg("progress") = py::none(), py::arg("fixed_a") = py::none(),
-        py::arg("fixed_b") = py::none());
+        py::arg("fixed_b") = py::none(), py::arg("min_volume_ratio") = py::none(),
+        py::arg("min_shape_ratio") = py::none());
 }
 
 }  // namespace pdd_python

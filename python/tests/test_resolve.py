@@ -24,10 +24,13 @@ import pdd
 from conftest import FIXTURES
 
 MESHES = FIXTURES / "meshes"
-REPORT_KEYS = ["variant", "inputs", "resolved", "r1", "r2", "r3", "rounds", "cost", "cost_a", "cost_b",
-               "max_displacement", "min_volume_ratio", "remaining_pairs", "bad_elements",
-               "moved_fixed_vertices", "skipped", "seconds_contacts", "seconds_solve", "seconds_move",
-               "seconds_verify", "seconds_total"]
+REPORT_KEYS = ["variant", "method", "stopped_because", "inputs", "resolved", "r1", "r2", "r3", "r4", "rounds", "cost",
+               "cost_a", "cost_b", "max_displacement", "min_volume_ratio", "max_volume_ratio",
+               "min_shape_ratio", "volume_ratio_histogram", "shape_ratio_histogram", "worst_elements",
+               "remaining_pairs", "bad_elements", "poor_elements", "moved_fixed_vertices", "skipped",
+               "seconds_contacts", "seconds_solve", "seconds_move", "seconds_verify", "seconds_total"]
+# Added by the module to the JSON report's keys: per-element ratios as numpy arrays.
+ARRAY_KEYS = ["volume_ratio_a", "shape_ratio_a", "volume_ratio_b", "shape_ratio_b"]
 ROUND_KEYS = ["round", "pairs", "max_pd2", "cost", "seconds"]
 
 
@@ -75,13 +78,20 @@ def tiny_as_one_mesh():
 def test_pair_with_a_fixed():
     VA, TA, VB, TB = shallow_balls()
     VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a")
-    assert list(r) == REPORT_KEYS
-    assert r["resolved"] and r["r1"] and r["r2"] and r["r3"]
+    assert list(r) == REPORT_KEYS + ARRAY_KEYS
+    assert r["resolved"] and r["r1"] and r["r2"] and r["r3"] and r["r4"]
+    assert r["poor_elements"] == []
+    for m, T in (("a", TA), ("b", TB)):  # R4 per element: V1/V0 in [1/4, 4], eta1/eta0 >= 1/2
+        vr, sr = r["volume_ratio_" + m], r["shape_ratio_" + m]
+        assert vr.dtype == np.float64 and vr.shape == (len(T),) and sr.shape == (len(T),)
+        assert (vr >= 0.25).all() and (vr <= 4).all() and (sr >= 0.5).all()
+    assert r["min_volume_ratio"] == min(r["volume_ratio_a"].min(), r["volume_ratio_b"].min())
     assert r["remaining_pairs"] == [] and r["bad_elements"] == [] and r["moved_fixed_vertices"] == []
     assert (bits(VA1) == bits(VA)).all()  # R3: A bit for bit
     assert not (bits(VB1) == bits(VB)).all()
     assert_resolved(VA, TA, VA1, VB, TB, VB1)
-    assert r["inputs"] == {"self": False, "fix": "a", "max_rounds": 200, "elements_a": len(TA),
+    assert r["inputs"] == {"self": False, "fix": "a", "max_rounds": 200, "min_volume_ratio": 0.25,
+                           "min_shape_ratio": 0.5, "elements_a": len(TA),
                            "vertices_a": len(VA), "elements_b": len(TB), "vertices_b": len(VB),
                            "fixed_vertices_a": len(VA), "fixed_vertices_b": 0}
     assert r["variant"] == "global" and r["cost_a"] == 0 and r["cost"] == r["cost_b"] > 0
@@ -156,10 +166,13 @@ def test_cli_and_python_give_the_same_positions(pdd_cli, tmp_path):
     assert out.returncode == (0 if r["resolved"] else 1), out.stderr
     cli = json.loads((tmp_path / "r.json").read_text())
     assert list(cli) == REPORT_KEYS
+    assert list(r) == REPORT_KEYS + ARRAY_KEYS
     assert cli["inputs"].pop("a") == str(a) and cli["inputs"].pop("b") == str(b)
     assert cli["inputs"] == r["inputs"]
-    for k in ("resolved", "r1", "r2", "r3", "cost", "cost_a", "cost_b", "max_displacement",
-              "min_volume_ratio", "remaining_pairs", "bad_elements", "moved_fixed_vertices"):
+    for k in ("method", "resolved", "r1", "r2", "r3", "r4", "cost", "cost_a", "cost_b", "max_displacement",
+              "min_volume_ratio", "max_volume_ratio", "min_shape_ratio", "volume_ratio_histogram",
+              "shape_ratio_histogram", "worst_elements", "remaining_pairs", "bad_elements",
+              "poor_elements", "moved_fixed_vertices"):
         assert cli[k] == r[k], k
     assert [{k: v for k, v in x.items() if k != "seconds"} for x in cli["rounds"]] == \
            [{k: v for k, v in x.items() if k != "seconds"} for x in r["rounds"]]
@@ -243,6 +256,11 @@ def test_cli_interrupted_writes_nothing(pdd_cli, tmp_path, sig, code):
     ({"max_rounds": True}, "max_rounds must be an int"),
     ({"threads": -1}, "threads must be"),
     ({"progress": 3}, "progress must be"),
+    ({"min_volume_ratio": 0}, r"min_volume_ratio must be a real number in \(0, 1\]; got 0"),
+    ({"min_volume_ratio": True}, "min_volume_ratio must be a real number"),
+    ({"min_shape_ratio": 1.5}, r"min_shape_ratio must be a real number in \(0, 1\]; got 1.5"),
+    ({"min_shape_ratio": float("nan")}, "min_shape_ratio must be a real number"),
+    ({"min_shape_ratio": "half"}, "min_shape_ratio must be a real number"),
 ])
 def test_bad_arguments(kwargs, message):
     VA, TA = load("tiny-a.msh")
@@ -260,10 +278,10 @@ def test_docstring():
     import pydoc
     sig = inspect.signature(pdd.resolve).parameters
     assert list(sig) == ["VA", "TA", "VB", "TB", "fix", "variant", "max_rounds", "threads", "progress",
-                         "fixed_a", "fixed_b"]
+                         "fixed_a", "fixed_b", "min_volume_ratio", "min_shape_ratio"]
     assert sig["variant"].default == "global" and sig["max_rounds"].default == 200
     text = pydoc.render_doc(pdd.resolve, renderer=pydoc.plaintext)
-    for words in ("R1", "R2", "R3", "bit for bit", "fix", "fixed_a", "variant", "max_rounds",
+    for words in ("R1", "R2", "R3", "R4", "min_volume_ratio", "min_shape_ratio", "bit for bit", "fix", "fixed_a", "variant", "max_rounds",
                   "progress(done, total)", "tqdm", "Ctrl-C", "KeyboardInterrupt", "ValueError",
                   "GIL", "report", "remaining_pairs", "pdd resolve", "meshio"):
         assert words in text, words
@@ -274,16 +292,19 @@ def test_ctrl_c_stops_resolve():
     """A real SIGINT to a child interpreter one second into a long run: KeyboardInterrupt out of
     the call within test_long_calls.PROMPT seconds (the solver checks the cancel flag between
     rounds and between their stages). The run: the shipped balls, 0.73 deep, as ONE mesh
-    (self-contact), which the rounds do not resolve (self-contact has no separating-translation
-    fallback), so max_rounds=100000 keeps it going far past the signal (each round 0.05 to 0.5
-    s); two separate meshes would be resolved by that fallback in about a second."""
+    (self-contact of two bodies), one vertex of each ball fixed: the rounds do not resolve it,
+    and the separating-translation fallback of the body pair declines (both bodies have fixed
+    vertices), so max_rounds=100000 keeps it going far past the signal (each round 0.05 to 0.5
+    s); without the fixed vertices the fallback resolves it in a few seconds."""
     from test_long_calls import assert_keyboard_interrupt, interrupt
     delay, status, err = interrupt(f"""
         VA, TA = pdd.read_mesh({str(MESHES / "sphere-a.msh")!r})
         VB, TB = pdd.read_mesh({str(MESHES / "sphere-b.msh")!r})
         V, T = np.vstack([VA, VB]), np.vstack([TA, TB + len(VA)])
+        fixed = np.zeros(len(V), dtype=bool)
+        fixed[TA[0, 0]] = fixed[len(VA) + TB[0, 0]] = True
         """,
-        "pdd.resolve(V, T, max_rounds=100000, threads=2)")
+        "pdd.resolve(V, T, max_rounds=100000, threads=2, fixed_a=fixed)")
     assert_keyboard_interrupt(delay, status, err)
 
 

@@ -27,8 +27,10 @@ endfunction()
 # The report's verdict keys; `expect` TRUE: resolved with nothing remaining.
 function(check_report path expect)
   file(READ ${path} json)
-  foreach(key variant inputs resolved r1 r2 r3 rounds cost cost_a cost_b max_displacement
-          min_volume_ratio remaining_pairs bad_elements moved_fixed_vertices skipped
+  foreach(key variant method stopped_because inputs resolved r1 r2 r3 r4 rounds cost cost_a cost_b max_displacement
+          min_volume_ratio max_volume_ratio min_shape_ratio volume_ratio_histogram
+          shape_ratio_histogram worst_elements remaining_pairs bad_elements poor_elements
+          moved_fixed_vertices skipped
           seconds_contacts seconds_solve seconds_move seconds_verify seconds_total)
     string(JSON ignored ERROR_VARIABLE missing GET "${json}" ${key})
     if(missing)
@@ -39,17 +41,18 @@ function(check_report path expect)
   string(JSON remaining LENGTH "${json}" remaining_pairs)
   string(JSON bad LENGTH "${json}" bad_elements)
   string(JSON moved LENGTH "${json}" moved_fixed_vertices)
+  string(JSON poor LENGTH "${json}" poor_elements)
   if(expect)
-    if(NOT resolved OR NOT remaining EQUAL 0 OR NOT bad EQUAL 0 OR NOT moved EQUAL 0)
+    if(NOT resolved OR NOT remaining EQUAL 0 OR NOT bad EQUAL 0 OR NOT moved EQUAL 0 OR NOT poor EQUAL 0)
       message(FATAL_ERROR "${path}: not resolved as expected:\n${json}")
     endif()
-    foreach(r r1 r2 r3)
+    foreach(r r1 r2 r3 r4)
       string(JSON v GET "${json}" ${r})
       if(NOT v)
         message(FATAL_ERROR "${path}: ${r} false in a resolved report")
       endif()
     endforeach()
-  elseif(resolved OR (remaining EQUAL 0 AND bad EQUAL 0))
+  elseif(resolved OR (remaining EQUAL 0 AND bad EQUAL 0 AND poor EQUAL 0))
     message(FATAL_ERROR "${path}: reported resolved, or unresolved with nothing remaining:\n${json}")
   endif()
 endfunction()
@@ -81,6 +84,9 @@ foreach(case
     "${AB};--out-a;${W}/a1.obj;--out-b;${W}/b1.msh|--out-a '${W}/a1.obj': unknown extension"
     "${AB};${OUT};--variant;bogus|--variant: bogus not in"
     "${AB};${OUT};--max-rounds;0|--max-rounds: 0 is out of range"
+    "${AB};${OUT};--min-volume-ratio;0|--min-volume-ratio: must be a number in \\(0, 1\\]; got 0"
+    "${AB};${OUT};--min-shape-ratio;1.5|--min-shape-ratio: must be a number in \\(0, 1\\]; got 1.5"
+    "${AB};${OUT};--min-shape-ratio;half|--min-shape-ratio: must be a number in \\(0, 1\\]; got half"
     "${AB};--out-a;${M}/sphere-a.msh;--out-b;${W}/b1.msh|--out-a '.*sphere-a.msh' is the same file as --a"
     "${AB};--out-a;${W}/a1.msh;--out-b;${W}/a1.msh|--out-b '.*a1.msh' is the same file as --out-a"
     "${AB};--out-a;${W}/a1.msh;--out-b;${W}/b1.msh;--report;${W}/no/such/dir/r.json|--report: cannot write '.*r.json': No such file or directory \\(nothing computed, nothing written\\)"
@@ -109,11 +115,15 @@ set(TINY --a ${M}/tiny-a.msh --b ${M}/tiny-b.msh)
 run_resolve(0 sum ${TINY} --fix a --out-a ${W}/a1.msh --out-b ${W}/b1.vtk --report ${W}/r.json
             --vtk ${W}/both.vtk --summary)
 check_report(${W}/r.json TRUE)
-if(NOT sum MATCHES "^pdd resolve: resolved after [0-9]+ rounds? \\(variant global, A against B\\)\n"
+if(NOT sum MATCHES "^pdd resolve: resolved after [0-9]+ rounds? \\(variant global, method [a-z ]+, A against B\\)\n"
    OR NOT sum MATCHES "\n  mesh A            .*tiny-a.msh: [0-9]+ tetrahedra, [0-9]+ vertices, all fixed\n"
    OR NOT sum MATCHES "\n  R1 no overlap     yes"
    OR NOT sum MATCHES "\n  R2 no inversion   yes"
    OR NOT sum MATCHES "\n  R3 fixed kept     yes"
+   OR NOT sum MATCHES "\n  R4 usable         yes: every element V1/V0 in \\[0.25, 1/0.25\\], eta1/eta0 >= 0.5"
+   OR NOT sum MATCHES "\n  min shape ratio   [0-9.e+-]+"
+   OR NOT sum MATCHES "\n  volume ratios     < 0: 0, "
+   OR NOT sum MATCHES "\n  worst elements    [AB] [0-9]+ "
    OR NOT sum MATCHES "\n  cost              [0-9.e+-]+  \\(A 0, B [0-9.e+-]+\\)"
    OR NOT sum MATCHES "\n                     round    pairs       max pd2          cost    seconds\n")
   message(FATAL_ERROR "--summary:\n${sum}")

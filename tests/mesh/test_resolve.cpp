@@ -9,9 +9,11 @@
 //   R2  every element's volume sign at the final positions against its rest sign, on GMP
 //       integers;
 //   R3  fixed vertices compared bit for bit;
+//   R4  every element's V1/V0 in [rho, 1/rho] and eta1/eta0 >= kappa by SPEC §11's polynomial
+//       forms on GMP rationals (no filter);
 //   cost  recomputed from definitions §2's first form (1/10) sum_{i>=j} d_i.d_j per element, weighted
 //       by the rest volume, in long double.
-// The report must agree: resolved == (R1 && R2 && R3), remaining_pairs == the judge's pairs.
+// The report must agree: resolved == (R1 && R2 && R3 && R4), remaining_pairs == the judge's pairs.
 #define BOOST_TEST_MODULE resolve
 #include <boost/test/unit_test.hpp>
 
@@ -118,6 +120,42 @@ long double judge_cost(const Mesh& m, const std::vector<Vec3d>& p) {
   return num / den;
 }
 
+// R4 on GMP rationals (SPEC §11): with D = 6V and S = sum of squared edge lengths, an element
+// valid at rest is usable when sign D1 == sign D0, |D1| >= rho |D0|, rho |D1| <= |D0| and
+// |D1|^2 S0^3 >= kappa^3 |D0|^2 S1^3.
+bool judge_usable(const TetVertices& t0, const TetVertices& t1, const QualityLimits& q) {
+  if (!test::finite(t1)) return false;
+  auto d6 = [](const TetVertices& t) {
+    mpq_class e[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) e[i][k] = mpq_class(t[i + 1][k]) - mpq_class(t[0][k]);
+    return mpq_class(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]));
+  };
+  auto s = [](const TetVertices& t) {
+    mpq_class sum = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        for (int k = 0; k < 3; ++k) {
+          const mpq_class d = mpq_class(t[i][k]) - mpq_class(t[j][k]);
+          sum += d * d;
+        }
+    return sum;
+  };
+  const mpq_class D0 = d6(t0), D1 = d6(t1), S0 = s(t0), S1 = s(t1);
+  if (sgn(D1) != sgn(D0) || sgn(D0) == 0) return false;
+  const mpq_class a0 = abs(D0), a1 = abs(D1), rho(q.min_volume_ratio), kappa(q.min_shape_ratio);
+  return a1 >= rho * a0 && rho * a1 <= a0 && a1 * a1 * S0 * S0 * S0 >= kappa * kappa * kappa * a0 * a0 * S1 * S1 * S1;
+}
+
+std::size_t judge_poor(const Mesh& m, const std::vector<Vec3d>& p, const QualityLimits& q = {}) {
+  std::atomic<std::size_t> poor{0};
+  tbb::parallel_for(std::size_t{0}, m.tets.size(), [&](std::size_t e) {
+    if (rest_valid(m, e) && !judge_usable(element(m, e), at(m, p, e), q)) ++poor;
+  });
+  return poor;
+}
+
 std::size_t judge_moved(const Mesh& m, const std::vector<Vec3d>& p, const std::vector<char>& fixed) {
   std::size_t n = 0;
   for (std::size_t v = 0; v < fixed.size(); ++v)
@@ -132,7 +170,7 @@ std::size_t judge_moved(const Mesh& m, const std::vector<Vec3d>& p, const std::v
 constexpr double kCostTolerance = 1e-9;
 
 struct Judged {
-  bool r1, r2, r3;
+  bool r1, r2, r3, r4;
   PairSet pairs;
   double cost;
 };
@@ -147,12 +185,16 @@ Judged judge(const Mesh& A, const Mesh* B, const Resolution& r, const std::vecto
   j.r1 = j.pairs.empty();
   j.r2 = inverted == 0;
   j.r3 = moved == 0;
+  const std::size_t poor = judge_poor(A, r.a, r.report.limits) + (B ? judge_poor(*B, r.b, r.report.limits) : 0);
+  j.r4 = poor == 0;
   j.cost = double(judge_cost(A, r.a) + (B ? judge_cost(*B, r.b) : 0));
   const ResolveReport& rep = r.report;
   BOOST_TEST(rep.r1 == j.r1);
   BOOST_TEST(rep.r2 == j.r2);
   BOOST_TEST(rep.r3 == j.r3);
-  BOOST_TEST(rep.resolved == (j.r1 && j.r2 && j.r3));
+  BOOST_TEST(rep.r4 == j.r4);
+  BOOST_TEST(rep.poor_elements.size() == poor);
+  BOOST_TEST(rep.resolved == (j.r1 && j.r2 && j.r3 && j.r4));
   BOOST_TEST((rep.remaining_pairs == j.pairs));
   BOOST_TEST(rep.bad_elements.size() == inverted);
   BOOST_TEST(rep.moved_fixed_vertices.size() == moved);
@@ -320,14 +362,35 @@ BOOST_AUTO_TEST_CASE(self_contact) {
   const Resolution d = resolve_self(deep, o);
   log_report("two-spheres as shipped (self), 5 rounds", d);
   judge(deep, nullptr, d, {}, {});
-  // With the default rounds: the stalled deformable rounds restart with the rigid variant's
-  // (mesh/src/resolve.h) and resolve it.
+  // With the default rounds it is resolved (the rounds, or a fallback of mesh/src/resolve.h).
   o = {};
   o.variant = ResolveVariant::Pdd2;
   const Resolution full = resolve_self(deep, o);
   log_report("two-spheres as shipped (self)", full);
   judge(deep, nullptr, full, {}, {});
   BOOST_TEST(full.report.resolved);
+}
+
+BOOST_AUTO_TEST_CASE(two_bodies_in_one_mesh_deep) {
+  // The shipped balls (0.73 deep, about 2.4 element layers) as ONE mesh: two bodies. The rounds
+  // stall as they do for A x B, and the body pair is resolved as two meshes are (its translation
+  // fallback included); the judge checks R1-R4 on the whole mesh.
+  const Mesh a = load("sphere-a.msh"), b = load("sphere-b.msh");
+  Mesh m = a;
+  m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (auto t : b.tets) {
+    for (auto& v : t) v += a.vertices.size();
+    m.tets.push_back(t);
+  }
+  ResolveOptions o;
+  o.variant = ResolveVariant::Rigid;  // as deep_overlap: keeps the test short
+  const Resolution r = resolve_self(m, o);
+  log_report("deep balls as one mesh (self)", r);
+  judge(m, nullptr, r, {}, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+  BOOST_TEST(r.report.rounds.back().pairs == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
@@ -341,6 +404,7 @@ BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
   BOOST_TEST(!r.report.resolved);
   BOOST_TEST(!j.pairs.empty());
   BOOST_TEST(r.report.rounds.size() == 1u);
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
 }
 
 BOOST_AUTO_TEST_CASE(deep_overlap) {
@@ -402,6 +466,65 @@ BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
   BOOST_TEST(rep.bad_elements.size() == judge_inverted(A, a2));
 }
 
+// R4 at its boundaries, decided exactly (element_quality's interval filter cannot decide an
+// equality, so these take its exact path). One element, rest t0 = the corner tetrahedron of
+// edge 4 (D0 = 6 V0 = 64, S0 = sum of squared edges = 9 * 16 = 144).
+BOOST_AUTO_TEST_CASE(r4_exact_at_the_boundary) {
+  const Mesh m{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}}, {{0, 1, 2, 3}}, {}};
+  auto verdict = [&](const std::vector<Vec3d>& p, const QualityLimits& q) {
+    const ResolveReport r = check_resolution(m, p, nullptr, {}, {}, {}, q);
+    BOOST_TEST(r.r4 == judge_usable(element(m, 0), at(m, p, 0), q));
+    BOOST_TEST(r.r4 == r.poor_elements.empty());
+    return r.r4;
+  };
+  // Apex lowered to z: D1 = 16 z, V1/V0 = z/4. z = 1: V1/V0 = 1/4 = rho exactly; S1 = 96 + 3 z^2
+  // = 99, eta1/eta0 = (1/16)^(1/3) * 144/99 = 0.577 >= 1/2. One ulp lower: below rho.
+  std::vector<Vec3d> p = m.vertices;
+  p[3][2] = 1;
+  BOOST_TEST(verdict(p, {}));
+  p[3][2] = std::nextafter(1.0, 0.0);
+  BOOST_TEST(!verdict(p, {}));
+  // Apex raised to z = 16: V1/V0 = 4 = 1/rho exactly; S1 = 96 + 768 = 864, eta1/eta0 =
+  // 16^(1/3) * 144/864 = 0.42, so kappa 1/4 here. One ulp higher: above 1/rho.
+  p[3][2] = 16;
+  BOOST_TEST(verdict(p, {0.25, 0.25}));
+  BOOST_TEST(!verdict(p, {0.25, 0.5}));
+  p[3][2] = std::nextafter(16.0, 20.0);
+  BOOST_TEST(!verdict(p, {0.25, 0.25}));
+  // t1 = (0,0,0), (2,-6,-2), (3,0,-2), (3,-4,-2): D1 = 8, S1 = 144 = S0, same orientation, so
+  // V1/V0 = 1/8 and (eta1/eta0)^3 = (8/64)^2 = 1/64: eta1/eta0 = 1/4 exactly. Both at their
+  // bounds pass; either bound one ulp stricter fails.
+  const std::vector<Vec3d> q = {{0, 0, 0}, {2, -6, -2}, {3, 0, -2}, {3, -4, -2}};
+  BOOST_TEST(verdict(q, {0.125, 0.25}));
+  BOOST_TEST(!verdict(q, {std::nextafter(0.125, 1.0), 0.25}));
+  BOOST_TEST(!verdict(q, {0.125, std::nextafter(0.25, 1.0)}));
+  // Limits outside (0, 1] are refused.
+  BOOST_CHECK_THROW(check_resolution(m, q, nullptr, {}, {}, {}, {0, 0.5}), std::invalid_argument);
+  BOOST_CHECK_THROW(check_resolution(m, q, nullptr, {}, {}, {}, {0.25, 1.5}), std::invalid_argument);
+}
+
+// Runs that cannot move anything stop at once and say why: every vertex fixed; coordinates so
+// large (1e300) that no per-pair solution is finite (the squared lengths overflow).
+BOOST_AUTO_TEST_CASE(hopeless_runs_stop_at_once) {
+  const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
+  ResolveOptions o;
+  o.fixed_vertices_a = all(A);
+  o.fixed_vertices_b = all(B);
+  const Resolution fixed = resolve(A, B, o);
+  BOOST_TEST(!fixed.report.resolved);
+  BOOST_TEST(fixed.report.rounds.empty());
+  BOOST_TEST(fixed.report.stopped_because == "every vertex is fixed: nothing can move");
+  Mesh Ah = A, Bh = B;
+  for (Mesh* m : {&Ah, &Bh})
+    for (Vec3d& v : m->vertices)
+      for (double& x : v) x *= 1e300;
+  const Resolution huge = resolve(Ah, Bh);
+  BOOST_TEST(!huge.report.resolved);
+  BOOST_TEST(huge.report.rounds.empty());
+  BOOST_TEST(huge.report.stopped_because.find("finite per-pair solution") != std::string::npos);
+  BOOST_TEST(!huge.report.remaining_pairs.empty());
+}
+
 BOOST_AUTO_TEST_CASE(bad_options_and_cancel) {
   const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
   ResolveOptions o;
@@ -412,6 +535,12 @@ BOOST_AUTO_TEST_CASE(bad_options_and_cancel) {
   BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
   o = {};
   o.fixed_vertices_a.assign(A.vertices.size() + 1, 0);
+  BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
+  o = {};
+  o.min_volume_ratio = 0;
+  BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
+  o = {};
+  o.min_shape_ratio = std::nan("");
   BOOST_CHECK_THROW(resolve(A, B, o), std::invalid_argument);
   o = {};
   std::atomic<bool> cancel{true};

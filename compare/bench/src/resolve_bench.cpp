@@ -78,7 +78,11 @@ ResolveBenchCase run_case(const Input& in, const ResolveBenchOptions& o) {
       verify.push_back(p.seconds_verify);
       per_round.push_back(p.rounds.empty() ? 0 : (p.seconds_total - p.seconds_verify) / p.rounds.size());
       if (r == 0) {
-        row.resolved = p.resolved, row.r1 = p.r1, row.r2 = p.r2, row.r3 = p.r3;
+        row.resolved = p.resolved, row.r1 = p.r1, row.r2 = p.r2, row.r3 = p.r3, row.r4 = p.r4;
+        row.method = mesh::resolve_method_name(p.method);
+        row.poor_elements = p.poor_elements.size();
+        row.max_volume_ratio = p.max_volume_ratio;
+        row.min_shape_ratio = p.min_shape_ratio;
         row.rounds = p.rounds.size();
         row.first_pairs = p.rounds.empty() ? 0 : p.rounds[0].pairs;
         row.remaining_pairs = p.remaining_pairs.size();

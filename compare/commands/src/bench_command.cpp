@@ -518,6 +518,8 @@ Json resolve_report_json(const ResolveBenchReport& r) {
       x["r1"] = w.r1;
       x["r2"] = w.r2;
       x["r3"] = w.r3;
+      x["r4"] = w.r4;
+      x["method"] = w.method;
       x["rounds"] = w.rounds;
       x["first_pairs"] = w.first_pairs;
       x["remaining_pairs"] = w.remaining_pairs;
@@ -525,6 +527,9 @@ Json resolve_report_json(const ResolveBenchReport& r) {
       x["cost"] = number(w.cost);
       x["max_displacement"] = number(w.max_displacement);
       x["min_volume_ratio"] = number(w.min_volume_ratio);
+      x["max_volume_ratio"] = number(w.max_volume_ratio);
+      x["min_shape_ratio"] = number(w.min_shape_ratio);
+      x["poor_elements"] = w.poor_elements;
       x["total_s"] = number(w.total);
       x["contacts_s"] = number(w.contacts);
       x["solve_s"] = number(w.solve);
@@ -560,7 +565,7 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
         << fmt("%.4g", c.rigid_separation) << "\n";
     s << "  " << pad("variant", 8) << rpad("resolved", 9) << rpad("rounds", 7) << rpad("pairs", 7)
       << rpad("left", 6) << rpad("cost", 11) << rpad("vs rigid", 9) << rpad("max disp", 10)
-      << rpad("min V1/V0", 10) << rpad("total s", 9) << rpad("contacts", 9) << rpad("solve", 8)
+      << rpad("min V1/V0", 10) << rpad("max V1/V0", 10) << rpad("min eta", 8) << rpad("method", 12) << rpad("total s", 9) << rpad("contacts", 9) << rpad("solve", 8)
       << rpad("move", 8) << rpad("verify", 8) << rpad("s/round", 9) << "\n";
     for (const auto& w : c.rows)
       s << "  " << pad(w.variant, 8) << rpad(w.resolved ? "yes" : "NO", 9) << rpad(std::to_string(w.rounds), 7)
@@ -568,12 +573,15 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
         << rpad(fmt("%.3e", w.cost), 11)
         << rpad(c.rigid_separation > 0 ? fmt("%.4f", w.cost / c.rigid_separation) : "-", 9)
         << rpad(fmt("%.4f", w.max_displacement), 10) << rpad(fmt("%.3f", w.min_volume_ratio), 10)
-        << rpad(fmt("%.3f", w.total), 9) << rpad(fmt("%.3f", w.contacts), 9) << rpad(fmt("%.3f", w.solve), 8)
+        << rpad(fmt("%.3f", w.max_volume_ratio), 10) << rpad(fmt("%.3f", w.min_shape_ratio), 8)
+        << rpad(w.method, 12) << rpad(fmt("%.3f", w.total), 9) << rpad(fmt("%.3f", w.contacts), 9) << rpad(fmt("%.3f", w.solve), 8)
         << rpad(fmt("%.3f", w.move), 8) << rpad(fmt("%.3f", w.verify), 8) << rpad(fmt("%.4f", w.per_round), 9)
         << "\n";
   }
   s << "(pairs: intersecting pairs at the start; left: intersecting pairs at the end; vs rigid: cost "
-       "over the rigid separation's; total s after reading, the final exact check included; total "
+       "over the rigid separation's; V1/V0 and eta: element volume and mean-ratio shape ratios, final "
+       "over rest (resolved includes R4: V1/V0 in [1/4, 4], eta >= 1/2); method: what produced the "
+       "result; total s after reading, the final exact check included; total "
     << fmt("%.1f", r.seconds) << " s)\n";
 }
 

@@ -4,21 +4,38 @@
 //
 // Keys, in this order:
 //   variant                "global" | "pdd2" | "rigid": the per-pair solution that drove the vertices
+//   method                 "rounds" | "translation" | "bodies" | "rigid rounds" | "none": what produced the
+//                          result (mesh.h's ResolveMethod)
+//   stopped_because        why the run stopped early without resolving (every vertex fixed,
+//                          no finite per-pair solution), or null
 //   inputs                 {a, b: the files (CLI only; b null for self-contact), self, fix ("a",
-//                          "b" or null), max_rounds, elements_a, vertices_a, elements_b,
-//                          vertices_b (0 for self-contact), fixed_vertices_a, fixed_vertices_b}
-//   resolved               r1 && r2 && r3, decided exactly on the positions written out
-//   r1, r2, r3             no element pair intersects; no element inverted or flat; every fixed
-//                          vertex bit-for-bit unchanged
+//                          "b" or null), max_rounds, min_volume_ratio, min_shape_ratio,
+//                          elements_a, vertices_a, elements_b, vertices_b (0 for self-contact),
+//                          fixed_vertices_a, fixed_vertices_b}
+//   resolved               r1 && r2 && r3 && r4, decided exactly on the positions written out
+//   r1, r2, r3, r4         no element pair intersects; no element inverted or flat; every fixed
+//                          vertex bit-for-bit unchanged; every element's V1/V0 in [rho, 1/rho]
+//                          and eta1/eta0 >= kappa
 //   rounds                 [{round, pairs, max_pd2, cost, seconds}, ...]: per round the
 //                          intersecting pairs at its start, the largest per-pair squared depth
-//                          of the variant, the cost after it, its wall time
+//                          of the variant, the cost after it, its wall time; when a fallback
+//                          undid the last rounds, a closing row gives the state written (its
+//                          intersecting pairs, 0 when resolved; max_pd2 0)
 //   cost, cost_a, cost_b   the mesh object norm of the displacement (volume-weighted mean squared
 //                          displacement; a translation by t costs |t|^2): A + B, A, B
 //   max_displacement       largest |p1 - p0| over all vertices
 //   min_volume_ratio       smallest V1 / V0 over all elements (signed)
+//   max_volume_ratio       largest V1 / V0 over all elements
+//   min_shape_ratio        smallest eta1 / eta0 over all elements
+//   volume_ratio_histogram {edges, counts}: counts[0] elements below edges[0], counts[k]
+//                          in [edges[k-1], edges[k]), the last above edges' last
+//   shape_ratio_histogram  the same for eta1 / eta0
+//   worst_elements         [{mesh, index, volume_ratio, shape_ratio}, ...]: the ten elements
+//                          of smallest quality margin min(V1/V0 / rho, rho^-1 V0/V1, (eta1/eta0) / kappa)
+//                          (below 1: short of R4), smallest first
 //   remaining_pairs        [[a, b], ...]: element pairs that still intersect (empty when r1)
 //   bad_elements           [["A" | "B", index], ...]: elements inverted or flat (empty when r2)
+//   poor_elements          [["A" | "B", index], ...]: elements short of R4 (empty when r4)
 //   moved_fixed_vertices   [["A" | "B", index], ...]: fixed vertices that moved (empty when r3)
 //   skipped                [{mesh, index, reason}, ...]: input elements that cannot be computed
 //   seconds_contacts, seconds_solve, seconds_move, seconds_verify, seconds_total
@@ -27,6 +44,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -48,9 +66,51 @@ struct ResolveInputs {
   bool files = true;  // whether a and b are file names (the CLI) or absent (Python)
 };
 
+// {edges, counts} of the finite values of a and b (see the keys above).
+inline Json ratio_histogram(const std::vector<double>& edges, const std::vector<double>& a,
+                            const std::vector<double>& b) {
+  std::vector<std::size_t> counts(edges.size() + 1, 0);
+  for (const std::vector<double>* v : {&a, &b})
+    for (double x : *v)
+      if (!std::isnan(x)) ++counts[std::upper_bound(edges.begin(), edges.end(), x) - edges.begin()];
+  return Json{{"edges", edges}, {"counts", counts}};
+}
+
+// The n elements of smallest quality margin (see worst_elements above).
+inline Json worst_elements(const mesh::ResolveReport& r, std::size_t n) {
+  struct Item {
+    double margin;
+    char mesh;
+    std::size_t index;
+    double volume, shape;
+  };
+  std::vector<Item> items;
+  const double rho = r.limits.min_volume_ratio, kappa = r.limits.min_shape_ratio;
+  auto add = [&](char m, const std::vector<double>& vr, const std::vector<double>& sr) {
+    for (std::size_t i = 0; i < vr.size(); ++i) {
+      if (std::isnan(vr[i])) continue;
+      const double margin = vr[i] > 0 ? std::min({vr[i] / rho, 1 / (vr[i] * rho), sr[i] / kappa}) : vr[i] / rho;
+      items.push_back({margin, m, i, vr[i], sr[i]});
+    }
+  };
+  add('A', r.volume_ratio_a, r.shape_ratio_a);
+  add('B', r.volume_ratio_b, r.shape_ratio_b);
+  const std::size_t k = std::min(n, items.size());
+  std::partial_sort(items.begin(), items.begin() + std::ptrdiff_t(k), items.end(), [](const Item& x, const Item& y) {
+    return x.margin < y.margin || (x.margin == y.margin && (x.mesh < y.mesh || (x.mesh == y.mesh && x.index < y.index)));
+  });
+  Json out = Json::array();
+  for (std::size_t i = 0; i < k; ++i)
+    out.push_back({{"mesh", std::string(1, items[i].mesh)}, {"index", items[i].index},
+                   {"volume_ratio", items[i].volume}, {"shape_ratio", items[i].shape}});
+  return out;
+}
+
 inline Json resolve_report_json(const mesh::ResolveReport& r, const ResolveInputs& in) {
   Json j;
   j["variant"] = mesh::resolve_variant_name(r.variant);
+  j["method"] = mesh::resolve_method_name(r.method);
+  j["stopped_because"] = r.stopped_because.empty() ? Json(nullptr) : Json(r.stopped_because);
   Json inputs;
   if (in.files) {
     inputs["a"] = in.a;
@@ -59,6 +119,8 @@ inline Json resolve_report_json(const mesh::ResolveReport& r, const ResolveInput
   inputs["self"] = in.self;
   inputs["fix"] = in.fix ? Json(std::string(1, in.fix)) : Json(nullptr);
   inputs["max_rounds"] = in.max_rounds;
+  inputs["min_volume_ratio"] = r.limits.min_volume_ratio;
+  inputs["min_shape_ratio"] = r.limits.min_shape_ratio;
   inputs["elements_a"] = in.elements_a;
   inputs["vertices_a"] = in.vertices_a;
   inputs["elements_b"] = in.elements_b;
@@ -70,6 +132,7 @@ inline Json resolve_report_json(const mesh::ResolveReport& r, const ResolveInput
   j["r1"] = r.r1;
   j["r2"] = r.r2;
   j["r3"] = r.r3;
+  j["r4"] = r.r4;
   Json rounds = Json::array();
   for (const mesh::ResolveRound& k : r.rounds)
     rounds.push_back({{"round", k.round}, {"pairs", k.pairs}, {"max_pd2", k.max_pd2},
@@ -80,6 +143,11 @@ inline Json resolve_report_json(const mesh::ResolveReport& r, const ResolveInput
   j["cost_b"] = r.cost_b;
   j["max_displacement"] = r.max_displacement;
   j["min_volume_ratio"] = r.min_volume_ratio;
+  j["max_volume_ratio"] = r.max_volume_ratio;
+  j["min_shape_ratio"] = r.min_shape_ratio;
+  j["volume_ratio_histogram"] = ratio_histogram({0, 0.125, 0.25, 0.5, 1, 2, 4, 8}, r.volume_ratio_a, r.volume_ratio_b);
+  j["shape_ratio_histogram"] = ratio_histogram({0.125, 0.25, 0.5, 0.75, 1, 1.5}, r.shape_ratio_a, r.shape_ratio_b);
+  j["worst_elements"] = worst_elements(r, 10);
   Json pairs = Json::array();
   for (const auto& p : r.remaining_pairs) pairs.push_back({p[0], p[1]});
   j["remaining_pairs"] = pairs;
@@ -89,6 +157,7 @@ inline Json resolve_report_json(const mesh::ResolveReport& r, const ResolveInput
     return out;
   };
   j["bad_elements"] = tagged(r.bad_elements);
+  j["poor_elements"] = tagged(r.poor_elements);
   j["moved_fixed_vertices"] = tagged(r.moved_fixed_vertices);
   Json skipped = Json::array();
   for (const mesh::SkippedElement& s : r.skipped)
@@ -113,7 +182,7 @@ inline std::string resolve_summary(const Json& j) {
   std::string s = "pdd resolve: ";
   s += j.at("resolved").get<bool>() ? "resolved" : "NOT resolved";
   s += " after " + std::to_string(rounds) + (rounds == 1 ? " round" : " rounds");
-  s += " (variant " + j.at("variant").get<std::string>() + ", " +
+  s += " (variant " + j.at("variant").get<std::string>() + ", method " + j.at("method").get<std::string>() + ", " +
        (self ? "self-contact of A" : "A against B") + ")\n";
   auto mesh_line = [&](const char* which) {
     const std::string w(which), lw = w == "A" ? "a" : "b";
@@ -125,6 +194,7 @@ inline std::string resolve_summary(const Json& j) {
     else if (const auto f = in.at("fixed_vertices_" + lw).get<std::size_t>()) t += ", " + std::to_string(f) + " fixed";
     return summary_line("mesh " + w, t);
   };
+  if (j.at("stopped_because").is_string()) s += summary_line("stopped", j.at("stopped_because").get<std::string>());
   s += mesh_line("A");
   if (!self) s += mesh_line("B");
   auto listed = [](const Json& items, bool pairs) {
@@ -151,6 +221,12 @@ inline std::string resolve_summary(const Json& j) {
                                                               : "NO: " + std::to_string(be.size()) + " elements inverted or flat" + listed(be, false));
   s += summary_line("R3 fixed kept", j.at("r3").get<bool>() ? "yes: every fixed vertex bit-for-bit unchanged"
                                                             : "NO: " + std::to_string(mf.size()) + " fixed vertices moved" + listed(mf, false));
+  const Json& pe = j.at("poor_elements");
+  const std::string limits = "V1/V0 in [" + summary_number(in.at("min_volume_ratio").get<double>()) + ", 1/" +
+                             summary_number(in.at("min_volume_ratio").get<double>()) + "], eta1/eta0 >= " +
+                             summary_number(in.at("min_shape_ratio").get<double>());
+  s += summary_line("R4 usable", j.at("r4").get<bool>() ? "yes: every element " + limits + " (checked exactly)" + except
+                                                        : "NO: " + std::to_string(pe.size()) + " elements short of " + limits + listed(pe, false));
   if (!j.at("skipped").empty()) {
     std::string t = std::to_string(j.at("skipped").size()) + " input elements cannot be computed";
     for (std::size_t k = 0; k < std::min<std::size_t>(j.at("skipped").size(), 3); ++k)
@@ -162,7 +238,32 @@ inline std::string resolve_summary(const Json& j) {
                                                             summary_number(j.at("cost_b").get<double>()) + ")") +
                                 "  volume-weighted mean squared displacement");
   s += summary_line("max displacement", summary_number(j.at("max_displacement").get<double>()));
-  s += summary_line("min volume ratio", summary_number(j.at("min_volume_ratio").get<double>()) + "  (V1 / V0 over the elements)");
+  s += summary_line("volume ratio", summary_number(j.at("min_volume_ratio").get<double>()) + " to " +
+                                        summary_number(j.at("max_volume_ratio").get<double>()) + "  (V1 / V0 over the elements)");
+  s += summary_line("min shape ratio", summary_number(j.at("min_shape_ratio").get<double>()) + "  (eta1 / eta0, mean-ratio quality)");
+  auto histogram = [](const Json& h) {
+    const Json& e = h.at("edges");
+    const Json& c = h.at("counts");
+    std::string t;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const std::string range = k == 0 ? "< " + summary_number(e[0].get<double>())
+                                : k == e.size() ? ">= " + summary_number(e[k - 1].get<double>())
+                                                : summary_number(e[k - 1].get<double>()) + "-" + summary_number(e[k].get<double>());
+      t += (k ? ", " : "") + range + ": " + std::to_string(c[k].get<std::size_t>());
+    }
+    return t;
+  };
+  s += summary_line("volume ratios", histogram(j.at("volume_ratio_histogram")));
+  s += summary_line("shape ratios", histogram(j.at("shape_ratio_histogram")));
+  {
+    std::string t;
+    const Json& w = j.at("worst_elements");
+    for (std::size_t k = 0; k < std::min<std::size_t>(w.size(), 5); ++k)
+      t += (k ? ", " : "") + w[k].at("mesh").get<std::string>() + " " + std::to_string(w[k].at("index").get<std::size_t>()) +
+           " (" + summary_number(w[k].at("volume_ratio").get<double>()) + ", " +
+           summary_number(w[k].at("shape_ratio").get<double>()) + ")";
+    s += summary_line("worst elements", t + "  (volume ratio, shape ratio)");
+  }
   s += summary_line("time (s)", summary_number(j.at("seconds_total").get<double>()) + " total: contacts " +
                                     summary_number(j.at("seconds_contacts").get<double>()) + ", solve " +
                                     summary_number(j.at("seconds_solve").get<double>()) + ", move " +

@@ -39,9 +39,10 @@ struct ResolveBenchOptions {
 
 struct ResolveBenchRow {
   std::string variant;
-  bool resolved = false, r1 = false, r2 = false, r3 = false;
-  std::size_t rounds = 0, first_pairs = 0, remaining_pairs = 0, bad_elements = 0;
-  double cost = 0, max_displacement = 0, min_volume_ratio = 0;
+  bool resolved = false, r1 = false, r2 = false, r3 = false, r4 = false;
+  std::string method;  // resolve_method_name of the report
+  std::size_t rounds = 0, first_pairs = 0, remaining_pairs = 0, bad_elements = 0, poor_elements = 0;
+  double cost = 0, max_displacement = 0, min_volume_ratio = 0, max_volume_ratio = 0, min_shape_ratio = 0;
   // Medians over the repeats (seconds).
   double total = 0, contacts = 0, solve = 0, move = 0, verify = 0, per_round = 0;
   std::vector<mesh::ResolveRound> round_log;  // of the first run

@@ -1,0 +1,51 @@
+// elastic_step.h — the global step of resolve's projective-dynamics rounds (resolve.h): the
+// displacement of every free vertex of one mesh that pulls its contact vertices towards their
+// targets while the rest of the mesh follows elastically.
+//
+// Inputs:  the rest mesh, its valid elements, the fixed flags; per round the pull y_v - x_v of
+//          each vertex (zero for a vertex with no target: it is anchored where it is).
+// Outputs: the displacement Delta (per vertex; 0 for fixed vertices and vertices in no valid
+//          element) minimising, over the free vertices,
+//              E(Delta) = 1/2 sum_e V_e |grad Delta|_e^2  +  1/2 sum_v w_v |Delta_v - pull_v|^2,
+//          the Dirichlet energy of the displacement over the rest mesh (linear P1 elements:
+//          K_ij = sum_e V_e grad phi_i . grad phi_j, the vector Laplacian form of linear
+//          elasticity) plus a weighted anchor to the targets, fixed vertices as Dirichlet
+//          conditions (Delta = 0). Normal equations, one per coordinate:
+//              (K + W) Delta = W pull,        W = diag(w_v),  w_v = kAnchor * K_vv.
+// W is the same for every round (a vertex without target is pulled to where it is), so K + W is
+// assembled once per run. It is symmetric positive definite (K positive semi-definite, W
+// positive on every unknown) and well conditioned: with w_v = kAnchor K_vv its Jacobi-scaled
+// eigenvalues lie in [kAnchor / (1 + kAnchor), (2 + kAnchor) / (1 + kAnchor)] up to the
+// mesh's valence spread (Gershgorin), so conjugate gradients with the diagonal preconditioner
+// (Eigen's ConjugateGradient) converge in a few tens of iterations whatever the mesh size. A
+// sparse Cholesky factorisation (SimplicialLDLT) was measured at 19 s for a 10^5-element ball
+// (fill of a 3D mesh), against 0.1 s per round for these iterations. The solution need not be
+// exact: the step limit and the exact verdict judge the positions, not the solve.
+#pragma once
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <cstddef>
+#include <vector>
+
+#include "pdd/mesh.h"
+
+namespace pdd::mesh::detail {
+
+class ElasticStep {
+ public:
+  ElasticStep(const Mesh& rest, const std::vector<std::size_t>& elements, const std::vector<char>& fixed);
+  // Delta for the given pulls (both of the mesh's vertex count). False when the iterations
+  // did not converge (then Delta is zero).
+  bool solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delta) const;
+  bool ok() const { return ok_; }
+
+ private:
+  std::vector<std::ptrdiff_t> unknown_;  // per vertex: its unknown, -1 when it does not move
+  std::vector<double> weight_;           // per unknown: w_v
+  Eigen::SparseMatrix<double> matrix_;  // K + W over the unknowns
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver_;
+  bool ok_ = false;
+};
+
+}  // namespace pdd::mesh::detail
