@@ -210,8 +210,11 @@ int run_resolve(const ResolveArgs& args) {
   options.cancel = &cancel;
 
   // The solver runs on a thread of its own; this thread turns SIGINT / SIGTERM into `cancel`
-  // (the solver stops at its next check, between stages) and waits for it.
+  // (the solver stops at its next check) and waits for it. The scope lasts to the end: a signal
+  // while the outputs are written lets them be written whole (write_outputs), then exits
+  // 128 + signal (main).
   InterruptGuard interrupts;
+  const InterruptScope polled = InterruptScope::Polled();
   std::optional<mesh::Resolution> result;
   std::exception_ptr failure;
   bool cancelled = false;
@@ -293,7 +296,19 @@ int run_resolve(const ResolveArgs& args) {
   }
 
   for (const mesh::SkippedElement& s : rep.skipped) std::cerr << kName << ": skipped " << s.reason << '\n';
-  if (args.summary) std::cout << resolve_summary(report);
+  if (args.summary) {
+    // The meshes (and the report, the VTK) are complete on disk by now: a summary that cannot
+    // be written is an output that could not be written (exit 2), and the message says the
+    // files are whole so that nothing is recomputed for nothing.
+    std::cout << resolve_summary(report);
+    if (auto why = flush_error(std::cout, "standard output")) {
+      std::string written;
+      for (const Output& f : files) written += (written.empty() ? "'" : ", '") + f.path + "'";
+      std::cerr << kName << ": the summary (--summary) could not be written: " << *why << "; "
+                << written << " are written, each complete\n";
+      return kExitFileError;
+    }
+  }
   if (rep.resolved) {
     if (!args.quiet)
       std::cerr << kName << ": resolved in " << rep.rounds.size()

@@ -59,6 +59,7 @@ std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which) {
                 py::str(a.dtype()).cast<std::string>());
   if (a.ndim() != 2 || a.shape(1) != 3)
     value_error(std::string(which) + " must have shape (n, 3); got " + shape_str(a));
+  check_integers_exact(a, which);
   const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!d) throw py::error_already_set();
   std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
