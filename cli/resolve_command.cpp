@@ -358,7 +358,10 @@ void add_resolve_command(CLI::App& app, int& exit_code) {
       "Move the vertices of two tetrahedral meshes (or of one, with itself) until no element pair "
       "intersects, no element is inverted or flat and fixed vertices are unchanged, each checked "
       "exactly on the numbers written; write the meshes with the same connectivity. Exit 0 "
-      "resolved, 1 round limit reached (meshes still written, what remains named), 2 bad input.");
+      "resolved, 1 round limit reached (meshes still written, what remains named), 2 bad input "
+      "or an output that could not be written (a mesh, the report or the VTK file: none is "
+      "left; the --summary on standard output: the files are written whole and the message "
+      "says so).");
   cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs sharing no vertex");
