@@ -267,7 +267,8 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "mesh",
       "Every intersecting element pair of two tetrahedral meshes (Gmsh .msh 2.2/4.1, legacy "
-      ".vtk) and its penetration depths (docs/definitions.md §10); JSON Lines sorted by (a, b).");
+      ".vtk) and its penetration depths (docs/definitions.md §10); JSON Lines sorted by (a, b), each written as soon as it and those before it are computed "
+      "(Ctrl-C keeps them: exit 130).");
   cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs a < b sharing no vertex");
