@@ -98,12 +98,20 @@ std::optional<std::string> write_outputs(std::vector<Output>& outputs) {
   std::optional<std::string> why;
   // Files first, devices and pipes last: a failure before the devices leaves nothing anywhere.
   std::stable_partition(outputs.begin(), outputs.end(), [](const Output& o) { return replaced_by_rename(o.path); });
+  // A second signal (which ends the process at once) removes the staged files and the
+  // temporaries they are themselves written through (atomic_file.h, output.h): no partial file
+  // is left behind.
+  std::vector<std::unique_ptr<PartialFile>> partial;
   std::size_t k = 0;
   for (; k < outputs.size() && !why; ++k) {
     Output& o = outputs[k];
     o.stage = replaced_by_rename(o.path)
                   ? o.path + ".partial-" + std::to_string(::getpid()) + extension_of(o.path)
                   : o.path;
+    if (o.stage != o.path) {
+      partial.push_back(std::make_unique<PartialFile>(o.stage));
+      partial.push_back(std::make_unique<PartialFile>(o.stage + ".partial-" + std::to_string(::getpid())));
+    }
     try {
       o.write(o.stage);
     } catch (const std::exception& e) {
