@@ -17,6 +17,8 @@
 
 namespace pdd::compare {
 using io::InterruptGuard;
+using io::InterruptScope;
+using io::PartialFile;
 using io::Progress;
 using io::check_writable;
 using io::close_error;
@@ -50,11 +52,17 @@ int run_generate(const GenerateArgs& a) {
     std::cerr << "pdd generate: unknown family '" << a.family << "' (see pdd generate --list)\n";
     return kExitUsage;
   }
-  // Pairs are written as they are made (memory does not grow with --count); a new or regular
-  // file is written under a temporary name and renamed when complete (output.h). Interrupted
-  // (SIGINT, SIGTERM), the output is closed as a valid fixture file holding the pairs made so far.
+  // Pairs are written as they are made (memory does not grow with --count). A new or regular
+  // --output file is written under a temporary name and renamed when complete (output.h).
+  // Interrupted (SIGINT, SIGTERM): an existing file is left as it was (the temporary removed);
+  // a new file, or standard output, is closed as a valid fixture file holding the pairs made
+  // so far. A second signal removes the temporary (PartialFile).
   const std::string tmp = a.output.empty() || !replaced_by_rename(a.output)
                               ? "" : a.output + ".partial-" + std::to_string(::getpid());
+  std::error_code exists_ec;
+  const bool existed = !tmp.empty() && std::filesystem::exists(a.output, exists_ec);
+  const PartialFile partial(tmp);
+  const InterruptScope polled = InterruptScope::Polled();
   std::ofstream file;
   if (!a.output.empty()) {
     if (auto why = check_writable(a.output)) {
@@ -88,6 +96,12 @@ int run_generate(const GenerateArgs& a) {
   progress.finish();
   std::optional<std::string> why = a.output.empty() ? flush_error(out, where) : close_error(file, a.output);
   std::error_code ec;
+  if (const int sig = pending_signal(); sig && existed) {
+    std::remove(tmp.c_str());
+    std::cerr << "pdd generate: interrupted (signal " << sig << "): " << written << " of " << a.count
+              << " pairs made; " << where << " left as it was (an existing file is replaced whole or not at all)\n";
+    return interrupted_exit(sig);
+  }
   if (!why && !tmp.empty()) {
     std::filesystem::rename(tmp, a.output, ec);
     if (ec) why = "cannot write " + where + ": " + ec.message();
@@ -99,7 +113,7 @@ int run_generate(const GenerateArgs& a) {
   }
   if (const int sig = pending_signal()) {
     std::cerr << "pdd generate: interrupted (signal " << sig << "): " << written << " of " << a.count
-              << " pairs written, as a complete fixture file\n";
+              << " pairs written, as a complete fixture file (" << where << ")\n";
     return interrupted_exit(sig);
   }
   return kExitOk;

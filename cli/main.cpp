@@ -32,8 +32,20 @@ int main(int argc, char** argv) {
   add_bench_command(app, exit_code);
   add_mesh_command(app, exit_code);
   add_resolve_command(app, exit_code);
+  // The command runs under run_watched (streaming.h): SIGINT or SIGTERM is answered by the
+  // command's InterruptScope (what it kept), or ends a command that writes its results at its
+  // end with a word on standard error; either way the status is 128 + the signal.
+  std::string command = "pdd";
+  for (int k = 1; k < argc; ++k)
+    if (argv[k][0] != '-') {
+      command += std::string(" ") + argv[k];
+      break;
+    }
   try {
-    app.parse(argc, argv);
+    run_watched(command, [&] {
+      app.parse(argc, argv);
+      return 0;
+    });
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitUsage;

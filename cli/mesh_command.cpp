@@ -19,6 +19,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 
 #include <tbb/global_control.h>
 
@@ -33,14 +34,13 @@
 #include "pdd/mesh.h"
 
 namespace pdd::compare {
-using io::InterruptGuard;
+using io::OrderedLines;
+using io::run_interruptible;
 using io::Json;
 using io::NumberWriter;
 using io::Progress;
 using io::close_error;
 using io::flush_error;
-using io::interrupted_exit;
-using io::pending_signal;
 using io::result_json;
 using io::summary_line;
 using io::summary_number;
@@ -84,52 +84,32 @@ Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWrit
   return j;
 }
 
+// The note on standard error that goes with a record (written when the record is).
+template <class R>
+std::string contact_note(const mesh::Contact<R>& p, unsigned variants) {
+  std::ostringstream note;
+  if (p.result.error)
+    note << "pdd mesh: pair (" << p.a << ", " << p.b << ") rejected: " << *p.result.error << '\n';
+  else if (p.result.pdd2_global_error && (variants & mesh::kGlobal))
+    note << "pdd mesh: pair (" << p.a << ", " << p.b << "): " << *p.result.pdd2_global_error
+         << " (its keys are null; the other values are reported)\n";
+  return note.str();
+}
+
+// What follows the records: the skipped elements, the VTK file and the summary. The records
+// were written as they were computed (run_mesh).
 template <class R>
 int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
-           const mesh::Contacts<R>& c, unsigned variants, const NumberWriter<R>& number,
-           double read_seconds) {
+           const mesh::Contacts<R>& c, unsigned variants, double read_seconds) {
   int status = kExitOk;
   for (const auto& s : c.skipped) {
     std::cerr << "pdd mesh: skipped " << s.reason << '\n';
     status = kExitPairRejected;
   }
-  // Records.
-  std::ofstream file_out;
-  if (!args.output.empty()) {
-    errno = 0;
-    file_out.open(args.output, std::ios::binary);
-    if (!file_out) {
-      std::cerr << "pdd mesh: cannot write '" << args.output << "'"
-                << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
-      return kExitFileError;
-    }
-  }
-  std::ostream& out = args.output.empty() ? std::cout : file_out;
-  std::size_t errors = 0, written = 0;
-  InterruptGuard interrupts;  // a signal while writing: the line is finished, then exit 128 + signal
+  std::size_t errors = 0;
   for (const auto& p : c.pairs) {
-    if (const int sig = pending_signal()) {
-      out.flush();
-      std::cerr << "pdd mesh: interrupted (signal " << sig << "): " << written
-                << " records written, each complete, in (a, b) order\n";
-      return interrupted_exit(sig);
-    }
-    out << contact_json(p, variants, number).dump() << '\n';
-    ++written;
-    if (p.result.error) {
-      std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << ") rejected: " << *p.result.error << '\n';
-      status = kExitPairRejected;
-      ++errors;
-    } else if (p.result.pdd2_global_error && (variants & mesh::kGlobal)) {
-      std::cerr << "pdd mesh: pair (" << p.a << ", " << p.b << "): " << *p.result.pdd2_global_error
-                << " (its keys are null; the other values are reported)\n";
-      status = kExitPairRejected;
-    }
-  }
-  const std::string where = args.output.empty() ? "standard output" : "'" + args.output + "'";
-  if (auto why = args.output.empty() ? flush_error(out, where) : close_error(file_out, args.output)) {
-    std::cerr << "pdd mesh: " << *why << "; results lost\n";
-    return kExitFileError;
+    if (p.result.error) ++errors;
+    if (p.result.error || (p.result.pdd2_global_error && (variants & mesh::kGlobal))) status = kExitPairRejected;
   }
   if (!args.vtk.empty()) {
     try {
@@ -225,25 +205,58 @@ int run_mesh(const MeshArgs& args) {
   std::unique_ptr<Progress> progress;
   mesh::ContactOptions options;
   options.variants = variants;
+  const mesh::Mesh* Bp = args.self ? nullptr : &B;
+
+  // Records are written as they are computed, in (a, b) order (streaming.h): an interrupted
+  // run leaves whole records, a prefix of the complete output.
+  std::ofstream file_out;
+  if (!args.output.empty()) {
+    errno = 0;
+    file_out.open(args.output, std::ios::binary);
+    if (!file_out) {
+      std::cerr << "pdd mesh: cannot write '" << args.output << "'"
+                << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
+      return kExitFileError;
+    }
+  }
+  std::ostream& out = args.output.empty() ? std::cout : file_out;
+  OrderedLines lines(out);
+  std::atomic<bool> stop{false};
+  options.cancel = &stop;
   options.progress = [&](std::size_t n, std::size_t total) {
     std::call_once(once, [&] {
+      lines.start(total);  // n = 0 comes first, before any pair
       progress = std::make_unique<Progress>("pdd mesh: pairs", total, args.quiet ? 1e300 : 2.0);
     });
     progress->tick(n);
   };
-  const mesh::Mesh* Bp = args.self ? nullptr : &B;
-  int status;
-  if (fast) {
-    const auto c = args.self ? mesh::self_contacts(A, options) : mesh::contacts(A, B, options);
-    if (progress) progress->finish();
-    static const NumberWriter<double> number = [](const double& x) { return Json(x); };
-    status = report(args, A, Bp, c, variants, number, read_seconds);
-  } else {
-    const auto c = args.self ? mesh::self_contacts_exact(A, options) : mesh::contacts_exact(A, B, options);
-    if (progress) progress->finish();
-    static const NumberWriter<Rational> number = [](const Rational& q) { return Json(q.get_str()); };
-    status = report(args, A, Bp, c, variants, number, read_seconds);
+  static const NumberWriter<double> fast_number = [](const double& x) { return Json(x); };
+  static const NumberWriter<Rational> exact_number = [](const Rational& q) { return Json(q.get_str()); };
+  options.fast_pair = [&](std::size_t h, const mesh::Contact<double>& c) {
+    lines.done(h, contact_json(c, variants, fast_number).dump(), contact_note(c, variants));
+  };
+  options.exact_pair = [&](std::size_t h, const mesh::Contact<Rational>& c) {
+    lines.done(h, contact_json(c, variants, exact_number).dump(), contact_note(c, variants));
+  };
+  std::optional<mesh::Contacts<double>> fast_result;
+  std::optional<mesh::Contacts<Rational>> exact_result;
+  run_interruptible(
+      [&] {
+        if (fast)
+          fast_result = args.self ? mesh::self_contacts(A, options) : mesh::contacts(A, B, options);
+        else
+          exact_result = args.self ? mesh::self_contacts_exact(A, options) : mesh::contacts_exact(A, B, options);
+      },
+      lines, stop, "(a, b) order");
+  lines.flush();
+  if (progress) progress->finish();
+  const std::string where = args.output.empty() ? "standard output" : "'" + args.output + "'";
+  if (auto why = args.output.empty() ? flush_error(out, where) : close_error(file_out, args.output)) {
+    std::cerr << "pdd mesh: " << *why << "; results lost\n";
+    return kExitFileError;
   }
+  const int status = fast ? report(args, A, Bp, *fast_result, variants, read_seconds)
+                          : report(args, A, Bp, *exact_result, variants, read_seconds);
   return status;
 }
 
@@ -254,7 +267,8 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "mesh",
       "Every intersecting element pair of two tetrahedral meshes (Gmsh .msh 2.2/4.1, legacy "
-      ".vtk) and its penetration depths (docs/definitions.md §10); JSON Lines sorted by (a, b).");
+      ".vtk) and its penetration depths (docs/definitions.md §10); JSON Lines sorted by (a, b), each written as soon as it and those before it are computed "
+      "(Ctrl-C keeps them: exit 130).");
   cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs a < b sharing no vertex");

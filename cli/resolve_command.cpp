@@ -101,12 +101,20 @@ std::optional<std::string> write_outputs(std::vector<Output>& outputs) {
   std::optional<std::string> why;
   // Files first, devices and pipes last: a failure before the devices leaves nothing anywhere.
   std::stable_partition(outputs.begin(), outputs.end(), [](const Output& o) { return replaced_by_rename(o.path); });
+  // A second signal (which ends the process at once) removes the staged files and the
+  // temporaries they are themselves written through (atomic_file.h, output.h): no partial file
+  // is left behind.
+  std::vector<std::unique_ptr<PartialFile>> partial;
   std::size_t k = 0;
   for (; k < outputs.size() && !why; ++k) {
     Output& o = outputs[k];
     o.stage = replaced_by_rename(o.path)
                   ? o.path + ".partial-" + std::to_string(::getpid()) + extension_of(o.path)
                   : o.path;
+    if (o.stage != o.path) {
+      partial.push_back(std::make_unique<PartialFile>(o.stage));
+      partial.push_back(std::make_unique<PartialFile>(o.stage + ".partial-" + std::to_string(::getpid())));
+    }
     try {
       o.write(o.stage);
     } catch (const std::exception& e) {
@@ -214,8 +222,11 @@ int run_resolve(const ResolveArgs& args) {
   options.cancel = &cancel;
 
   // The solver runs on a thread of its own; this thread turns SIGINT / SIGTERM into `cancel`
-  // (the solver stops at its next check, between stages) and waits for it.
+  // (the solver stops at its next check) and waits for it. The scope lasts to the end: a signal
+  // while the outputs are written lets them be written whole (write_outputs), then exits
+  // 128 + signal (main).
   InterruptGuard interrupts;
+  const InterruptScope polled = InterruptScope::Polled();
   std::optional<mesh::Resolution> result;
   std::exception_ptr failure;
   bool cancelled = false;
@@ -297,7 +308,19 @@ int run_resolve(const ResolveArgs& args) {
   }
 
   for (const mesh::SkippedElement& s : rep.skipped) std::cerr << kName << ": skipped " << s.reason << '\n';
-  if (args.summary) std::cout << resolve_summary(report);
+  if (args.summary) {
+    // The meshes (and the report, the VTK) are complete on disk by now: a summary that cannot
+    // be written is an output that could not be written (exit 2), and the message says the
+    // files are whole so that nothing is recomputed for nothing.
+    std::cout << resolve_summary(report);
+    if (auto why = flush_error(std::cout, "standard output")) {
+      std::string written;
+      for (const Output& f : files) written += (written.empty() ? "'" : ", '") + f.path + "'";
+      std::cerr << kName << ": the summary (--summary) could not be written: " << *why << "; "
+                << written << " are written, each complete\n";
+      return kExitFileError;
+    }
+  }
   if (rep.resolved) {
     if (!args.quiet)
       std::cerr << kName << ": resolved in " << rep.rounds.size()
@@ -357,7 +380,10 @@ void add_resolve_command(CLI::App& app, int& exit_code) {
       "Move the vertices of two tetrahedral meshes (or of one, with itself) until no element pair "
       "intersects, no element is inverted or flat and fixed vertices are unchanged, each checked "
       "exactly on the numbers written; write the meshes with the same connectivity. Exit 0 "
-      "resolved, 1 round limit reached (meshes still written, what remains named), 2 bad input.");
+      "resolved, 1 round limit reached (meshes still written, what remains named), 2 bad input "
+      "or an output that could not be written (a mesh, the report or the VTK file: none is "
+      "left; the --summary on standard output: the files are written whole and the message "
+      "says so).");
   cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs sharing no vertex");

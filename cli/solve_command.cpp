@@ -30,7 +30,6 @@ using io::FixtureCheck;
 using io::FixtureEntry;
 using io::FixtureFile;
 using io::FixtureSink;
-using io::InterruptGuard;
 using io::OrderedLines;
 using io::Progress;
 using io::RecordFormat;
@@ -100,6 +99,7 @@ int run_solve(const SolveArgs& args) {
     if (!args.quiet && !ec && bytes > (std::uintmax_t(16) << 20))
       std::cerr << "pdd solve: checking '" << args.input << "' (" << (bytes >> 20)
                 << " MB) before computing anything\n";
+    const io::InterruptScope checking([] { return std::string("nothing written: the input was still being checked"); });
     const FixtureCheck check = check_fixture_file(args.input);
     if (check.error) {
       std::cerr << "pdd solve: " << *check.error << '\n';
@@ -107,6 +107,7 @@ int run_solve(const SolveArgs& args) {
     }
     total = check.entries;
   } else {
+    const io::InterruptScope reading([] { return std::string("nothing written: the input was still being read"); });
     whole = read_fixture_file(args.input);
     if (whole.error) {
       std::cerr << "pdd solve: " << *whole.error << '\n';
@@ -159,7 +160,6 @@ int run_solve(const SolveArgs& args) {
                               : args.format == "csv" ? RecordFormat::Csv
                                                      : RecordFormat::Jsonl;
   if (format != RecordFormat::Jsonl) out << record_header(format) << '\n';
-  InterruptGuard interrupts;
   OrderedLines lines(out);
   std::atomic<bool> stop{false};
   // One record: computed, its line and note handed to `lines` (any thread).
@@ -200,7 +200,7 @@ int run_solve(const SolveArgs& args) {
             if (!stop) solve_one(chunk[k], k);
           });
         },
-        lines, stop, "pdd solve");
+        lines, stop);
     lines.flush();
     if (!out) write_error = flush_error(out, where).value_or("cannot write to " + where);
     return !write_error;  // stop early: the results would be lost

@@ -121,6 +121,12 @@ const R& variant_value(const PairResult<R>& r, std::size_t k) {
 unsigned parse_variants(const std::string& list);
 std::string variant_names(unsigned variants);  // the inverse, comma-separated
 
+template <class R>
+struct Contact {
+  std::size_t a = 0, b = 0;  // element of A (of the mesh, for self-contact), element of B
+  PairResult<R> result;      // error set only when a value is not representable (fast engine)
+};
+
 struct ContactOptions {
   unsigned variants = kDefaultVariants;
   // Stage 4 progress: progress(n, total) says n more of the `total` intersecting pairs are
@@ -132,6 +138,12 @@ struct ContactOptions {
   // block of box pairs in stage 3 and before each pair in stage 4; stage 2 (CGAL's
   // broadphase) and the pairs already being computed run to their end.
   const std::atomic<bool>* cancel = nullptr;
+  // Stage 4's pairs as they are computed, for callers that stream them: pair(h, c) says that
+  // `c` is pairs[h] of the result (h in its sorted (a, b) order, 0 <= h < the `total` given to
+  // `progress`); called from worker threads (must be thread-safe), in any order. The fast
+  // engine calls fast_pair, the reference one exact_pair. May be empty.
+  std::function<void(std::size_t h, const Contact<double>& c)> fast_pair;
+  std::function<void(std::size_t h, const Contact<Rational>& c)> exact_pair;
 };
 
 // What contacts() throws when ContactOptions::cancel stopped it.
@@ -144,12 +156,6 @@ struct SkippedElement {
   char mesh = 'A';
   std::size_t index = 0;
   std::string reason;  // "element 12 of mesh A is flat: its four vertices are coplanar (volume 0)"
-};
-
-template <class R>
-struct Contact {
-  std::size_t a = 0, b = 0;  // element of A (of the mesh, for self-contact), element of B
-  PairResult<R> result;      // error set only when a value is not representable (fast engine)
 };
 
 template <class R>

@@ -112,7 +112,7 @@ class FilteredInput {
   // Whether the integer literal `text` (JSON grammar, no fraction or exponent) denotes exactly
   // the double `value` it was read as: glibc prints a double's exact decimal expansion.
   static bool integer_is_exact(const std::string& text, double value) {
-    if (!std::isfinite(value)) return true;  // an overflow: rejected as non-finite instead
+    if (!std::isfinite(value)) return false;  // beyond the double range (10^400): named too
     char buf[400];
     std::snprintf(buf, sizeof buf, "%.0f", std::fabs(value));
     const std::string digits = text[0] == '-' ? text.substr(1) : text;
@@ -356,10 +356,13 @@ class FixtureHandler {
     while (!in_.inexact.empty() && std::get<0>(in_.inexact.front()) < numbers_) in_.inexact.pop_front();
     const bool inexact = !in_.inexact.empty() && std::get<0>(in_.inexact.front()) == numbers_;
     if (inexact && building_ && !inexact_)
-      inexact_ = "the integer " + std::get<2>(in_.inexact.front()) + " at byte " +
+      inexact_ = "the integer " + std::get<2>(in_.inexact.front()) +
+                 (std::get<2>(in_.inexact.front()).size() >= 60 ? "..." : "") + " at byte " +
                  std::to_string(std::get<1>(in_.inexact.front())) +
-                 " is not exactly a double (coordinates are doubles; write it as one, e.g. " +
-                 nearest(value) + ")";
+                 (in_.overflows.empty() || in_.overflows.front().first != numbers_
+                      ? " is not exactly a double (coordinates are doubles; write it as one, e.g. " +
+                            nearest(value) + ")"
+                      : " is beyond the largest double (not finite)");
     if (inexact) in_.inexact.pop_front();
     if (!in_.overflows.empty() && in_.overflows.front().first == numbers_) {
       value = in_.overflows.front().second ? -std::numeric_limits<double>::infinity()

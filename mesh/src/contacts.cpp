@@ -209,6 +209,11 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
       c.result = reference::solve_pair(TetPair{"", {}, Ta, Tb}, solve);
       if (!solve.with_global && !c.result.error) clear_global(c.result, Ta, Tb);
     }
+    if constexpr (std::is_same_v<R, double>) {
+      if (options.fast_pair) options.fast_pair(h, c);
+    } else {
+      if (options.exact_pair) options.exact_pair(h, c);
+    }
     if (options.progress) options.progress(1, hits.size());
   });
   stop_if_cancelled();

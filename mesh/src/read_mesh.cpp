@@ -18,9 +18,12 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -121,7 +124,27 @@ class Cursor {
     const double v = std::strtod(w.c_str(), &end);
     if (w.empty() || end != w.c_str() + w.size())
       fail(std::string(what) + ": '" + w + "' is not a number", at);
+    if (const auto why = inexact_integer(w, v)) fail(std::string(what) + ": " + *why, at);
     return v;
+  }
+  // The fixture reader's rule (io/fixture_io.cpp), the same for every reader: an integer
+  // literal (an optional sign and digits only) must be exactly the double it is read as
+  // (9007199254740993 = 2^53 + 1 is not: it would silently become 9007199254740992), and
+  // within the double range; a literal with a fraction or an exponent is read as the nearest
+  // double, as everywhere. glibc prints a double's exact decimal expansion with "%.0f".
+  static std::optional<std::string> inexact_integer(const std::string& w, double v) {
+    std::size_t i = (w[0] == '-' || w[0] == '+') ? 1 : 0;
+    if (i == w.size() || w.find_first_not_of("0123456789", i) != std::string::npos) return std::nullopt;
+    while (i + 1 < w.size() && w[i] == '0') ++i;  // leading zeros
+    const std::string shown = w.size() > 60 ? w.substr(0, 60) + "..." : w;
+    if (!std::isfinite(v)) return "the integer " + shown + " is beyond the largest double (not finite)";
+    char buf[400];
+    std::snprintf(buf, sizeof buf, "%.0f", std::fabs(v));
+    if (w.compare(i, std::string::npos, buf) == 0) return std::nullopt;
+    char nearest[40];
+    std::snprintf(nearest, sizeof nearest, "%.17g", v);  // as the fixture reader's message
+    return "the integer " + shown + " is not exactly a double (coordinates are doubles; write it as one, e.g. " +
+           nearest + ")";
   }
   // The rest of the current line and the newline.
   void next_line() {

@@ -4,7 +4,10 @@
 #include <pybind11/numpy.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <string>
+#include <type_traits>
 
 namespace pdd_python {
 
@@ -33,6 +36,16 @@ double coordinate(py::handle x, const char* which, std::size_t i, std::size_t k)
   if (PyBool_Check(x.ptr()) || PyUnicode_Check(x.ptr()) || PyBytes_Check(x.ptr()) ||
       PyComplex_Check(x.ptr()) || x.is_none() || is_numpy_bool(x))
     value_error(where(which, i, k) + " is not a real number: " + short_repr(x));
+  // An integer of any kind (int, numpy.int64, numpy.uint64, anything with __index__) is read
+  // through its exact Python int: numpy compares its own integers with a float after rounding
+  // them to a double, so np.int64(2**53 + 1) == 2.0**53 would pass the check below.
+  py::object as_int;
+  if (!PyLong_Check(x.ptr()) && PyIndex_Check(x.ptr())) {
+    PyObject* i = PyNumber_Index(x.ptr());
+    if (!i) throw py::error_already_set();
+    as_int = py::reinterpret_steal<py::object>(i);
+    x = as_int;
+  }
   PyObject* f = PyNumber_Float(x.ptr());
   if (!f) {
     if (PyErr_ExceptionMatches(PyExc_OverflowError)) {  // e.g. 10**400: beyond the double range
@@ -56,6 +69,42 @@ double coordinate(py::handle x, const char* which, std::size_t i, std::size_t k)
                 "(docs/definitions.md §1); "
                 "round it yourself with float() if that is what you mean");
   return v;
+}
+
+namespace {
+// "[i][j]..." of the flat C-order index `flat` in an array of `shape`.
+std::string index_str(std::size_t flat, const py::array& a) {
+  std::string s;
+  for (py::ssize_t d = a.ndim() - 1; d >= 0; --d) {
+    const auto n = static_cast<std::size_t>(a.shape(d));
+    s = "[" + std::to_string(flat % n) + "]" + s;
+    flat /= n;
+  }
+  return s;
+}
+
+template <class I>
+void check_exact(const py::array& a, const char* which) {
+  const auto d = py::array_t<I, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  // 2^63 and 2^64 as doubles: a value that rounds to one of them is out of I's range, hence
+  // not the double it would become.
+  const double top = std::is_signed_v<I> ? 9223372036854775808.0 : 18446744073709551616.0;
+  for (py::ssize_t k = 0; k < d.size(); ++k) {
+    const I v = d.data()[k];
+    const double x = static_cast<double>(v);
+    if (x < top && (x >= -top || !std::is_signed_v<I>) && static_cast<I>(x) == v) continue;
+    value_error(std::string(which) + index_str(static_cast<std::size_t>(k), a) + " = " + std::to_string(v) +
+                " is not exactly a double: pdd reads coordinates as IEEE doubles "
+                "(docs/definitions.md §1); round it yourself with float() if that is what you mean");
+  }
+}
+}  // namespace
+
+void check_integers_exact(const py::array& a, const char* which) {
+  const char kind = a.dtype().kind();
+  if (kind == 'i') check_exact<std::int64_t>(a, which);
+  if (kind == 'u') check_exact<std::uint64_t>(a, which);
 }
 
 bool is_sequence(py::handle o) {

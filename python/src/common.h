@@ -56,6 +56,10 @@ bool is_numpy_bool(py::handle x);
 // pair). A number beyond the double range becomes +-inf, which the engines reject as
 // non-finite, as `pdd solve` does with 1e999 in a file.
 double coordinate(py::handle x, const char* which, std::size_t i, std::size_t k);
+// The same rule for a numpy array of coordinates: an integer array (dtype kind 'i' or 'u') whose
+// element is not exactly a double raises ValueError naming it ("VA[3][0] = 9007199254740993 is
+// not exactly a double: ..."); any other array passes.
+void check_integers_exact(const py::array& a, const char* which);
 // The name of a coordinate in messages, "A[i][k]" (built only for a message).
 std::string where(const char* which, std::size_t i, std::size_t k);
 

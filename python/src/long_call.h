@@ -136,8 +136,12 @@ class Workers {
 // fails before any work). Used with the GIL held.
 class Progress {
  public:
-  // `unit`: what done and total count, for the bar ("pair", "round").
-  Progress(py::handle arg, const char* what, const char* unit = "pair") : what_(what), unit_(unit) {
+  // `unit`: what done and total count, for the bar ("pair", "round"). `open_ended`: `total` is
+  // only a limit the call usually stops well before (resolve's max_rounds): the tqdm bar is
+  // then a counter ("7 round [00:02, pairs=0]") rather than a bar whose length jumps from the
+  // limit to the rounds run; a callable gets (done, total) all the same.
+  Progress(py::handle arg, const char* what, const char* unit = "pair", bool open_ended = false)
+      : what_(what), unit_(unit), open_ended_(open_ended) {
     if (arg.is_none() || arg.ptr() == Py_False) return;
     if (arg.ptr() == Py_True) {
       try {
@@ -164,16 +168,19 @@ class Progress {
   // ("pairs=120"; not passed to a callable). Throws py::error_already_set when the callable
   // raises.
   void report(std::size_t done, std::size_t total, const std::string& postfix = {}) {
-    if (!active() || (said_ && done == done_ && total == total_)) return;
+    if (!active() || (said_ && done == done_ && total == total_ && postfix == postfix_)) return;
     if (tqdm_) {
-      if (!bar_) bar_ = tqdm_(py::arg("total") = total, py::arg("desc") = what_, py::arg("unit") = unit_);
-      if (total != total_ && said_) bar_.attr("total") = total;  // a run that stopped early
+      if (!bar_)
+        bar_ = tqdm_(py::arg("total") = open_ended_ ? py::object(py::none()) : py::object(py::int_(total)),
+                     py::arg("desc") = what_, py::arg("unit") = unit_);
+      if (!open_ended_ && total != total_ && said_) bar_.attr("total") = total;  // a run that stopped early
       if (!postfix.empty()) bar_.attr("set_postfix_str")(postfix, py::arg("refresh") = false);
       bar_.attr("update")(done - done_);
+      if (done == done_) bar_.attr("refresh")();  // only the postfix changed
     } else {
       callable_(done, total);
     }
-    said_ = true, done_ = done, total_ = total;
+    said_ = true, done_ = done, total_ = total, postfix_ = postfix;
   }
 
   // The call ended: closes the bar.
@@ -186,9 +193,11 @@ class Progress {
  private:
   const char* what_;
   const char* unit_;
+  bool open_ended_ = false;
   py::object callable_, tqdm_, bar_;
   bool said_ = false;
   std::size_t done_ = 0, total_ = 0;
+  std::string postfix_;
 };
 
 // The pairs are computed on a thread of Workers (TBB's loops inside, in the call's arena)
@@ -228,8 +237,11 @@ class LongCall {
         py::gil_scoped_release release;
         compute();
       }
+      // The last word: every pair (round) done, and `pairs` as the computation left it (resolve:
+      // the pairs that still intersect), not as the last round found it.
       const std::size_t t = total.load();
-      if (t != kUnknown) progress_.report(t, t);
+      const std::size_t p = pairs.load();
+      if (t != kUnknown) progress_.report(t, t, p == kUnknown ? std::string() : "pairs=" + std::to_string(p));
     } catch (...) {
       try {
         progress_.close();

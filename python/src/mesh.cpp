@@ -60,6 +60,7 @@ std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which) {
                 py::str(a.dtype()).cast<std::string>());
   if (a.ndim() != 2 || a.shape(1) != 3)
     value_error(std::string(which) + " must have shape (n, 3); got " + shape_str(a));
+  check_integers_exact(a, which);
   const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!d) throw py::error_already_set();
   std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
@@ -105,12 +106,19 @@ std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* wh
 std::pair<pdd::mesh::Mesh, pdd::mesh::Mesh> meshes_from_arrays(py::handle VA, py::handle TA,
                                                                py::handle VB, py::handle TB,
                                                                bool self) {
+  // A mesh without tetrahedra is an error, as `pdd mesh` and `pdd resolve` reject a file
+  // without them (read_mesh): an empty result would look like "no contact" or "resolved".
+  auto no_tets = [](const char* which) {
+    value_error(std::string(which) + " has no tetrahedra (shape (0, 4)): a mesh needs at least one");
+  };
   pdd::mesh::Mesh A, B;
   A.vertices = mesh_vertices(VA, "VA");
   A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
+  if (A.tets.empty()) no_tets("TA");
   if (!self) {
     B.vertices = mesh_vertices(VB, "VB");
     B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
+    if (B.tets.empty()) no_tets("TB");
   }
   return {std::move(A), std::move(B)};
 }
@@ -262,7 +270,7 @@ py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py
     value_error("max_rounds must be an int from 1 to 1000000; got " + short_repr(max_rounds_in));
   options.max_rounds = static_cast<std::size_t>(rounds);
   const std::optional<int> threads = threads_arg(threads_in);
-  Progress progress(progress_arg, "pdd.resolve", "round");
+  Progress progress(progress_arg, "pdd.resolve", "round", /*open_ended=*/true);
 
   const auto meshes = meshes_from_arrays(VA, TA, VB, TB, self);
   const pdd::mesh::Mesh &A = meshes.first, &B = meshes.second;
@@ -286,6 +294,7 @@ py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py
         result = self ? pdd::mesh::resolve_self(A, options) : pdd::mesh::resolve(A, B, options);
         call.total.store(result->report.rounds.size());  // the last report: rounds run of rounds run
         call.done.store(result->report.rounds.size());
+        call.pairs.store(result->report.remaining_pairs.size());  // what intersects at the end
       } catch (const std::invalid_argument& e) {
         bad_input = e.what();
       } catch (const pdd::mesh::Cancelled&) {  // call.run raises why
@@ -397,7 +406,9 @@ second for 10^5 elements).
 A flat or non-finite element is skipped and listed, never an exception. Malformed
 arguments raise ValueError: a wrong shape or dtype, a vertex index out of range ("element
 3 of mesh A refers to vertex 99, but the mesh has 20 vertices"), an unknown variant
-("variants: unknown variant 'pd' (rigid, eq11, ...)"), an unknown engine, VB without TB.
+("variants: unknown variant 'pd' (rigid, eq11, ...)"), an unknown engine, VB without TB, a
+mesh without tetrahedra ("TA has no tetrahedra"; `pdd mesh` refuses such a file too), an integer
+coordinate that is not exactly a double.
 
 Example:
   >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
@@ -465,8 +476,10 @@ progress None (the default) or False: silent. A callable progress(done, total): 
          the calling thread with the GIL held, about every 0.05 s while the rounds run when
          `done` (rounds finished) has grown, total being max_rounds; once at the end with
          done == total == the rounds run. An exception it raises stops the call (as Ctrl-C
-         does) and propagates. True: a tqdm bar on standard error (Debian python3-tqdm), in
-         rounds, with the intersecting pairs of the last round after it.
+         does) and propagates. True: a tqdm counter of rounds on standard error (Debian
+         python3-tqdm; max_rounds is a limit, not a length), with "pairs=" after it: the
+         intersecting pairs at the start of the latest round, and at the end the pairs that
+         still intersect (0 when resolved).
 
 Cost: the mesh object norm, the volume-weighted mean squared displacement
   sigma_mesh = sum_e V_e sigma_e / sum_e V_e    (V_e rest volume, sigma_e the per-tetrahedron
@@ -521,7 +534,8 @@ solutions, the move, the exact check); nothing is returned.
 
 Malformed arguments raise ValueError: a wrong shape or dtype, a vertex index out of range,
 an unknown variant or fix, fix="b" or fixed_b without B, a mask of the wrong length,
-max_rounds < 1, VB without TB.
+max_rounds < 1, VB without TB, a mesh without tetrahedra (TA or TB of shape (0, 4)), as
+`pdd resolve` refuses one.
 
 Example:
   >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")

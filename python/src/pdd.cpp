@@ -72,6 +72,7 @@ py::array_t<double, py::array::c_style> batch_input(py::handle obj, const char* 
                 py::str(a.dtype()).cast<std::string>());
   if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 3)
     value_error(std::string(which) + " must have shape (N, 4, 3); got " + shape_str(a));
+  check_integers_exact(a, which);
   return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
 }
 

@@ -94,6 +94,14 @@ def test_array_likes_and_exact_numbers_are_the_same_pair(engine):
     ([[Decimal("0.1"), 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]],
      r"A\[0\]\[0\] = Decimal\('0.1'\) is not exactly a double"),
     ([[2**53 + 1, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[0\] = 9007199254740993 is not exactly a double"),
+    # numpy integers: compared with a float, numpy rounds them first (np.int64(2**53 + 1) ==
+    # 2.0**53 is True), so they are read through their exact Python int
+    ([[np.int64(2**53 + 1), 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[0\] = 9007199254740993 is not exactly a double"),
+    ([[0, np.uint64(2**64 - 1), 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]], r"A\[0\]\[1\] = 18446744073709551615 is not exactly a double"),
+    (np.array([[0, 0, -(2**53 + 1)], [10, 0, 0], [0, 10, 0], [0, 0, 10]], dtype=np.int64),
+     r"A\[0\]\[2\] = -9007199254740993 is not exactly a double"),
+    (np.array([[0, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 2**63 + 1]], dtype=np.uint64),
+     r"A\[3\]\[2\] = 9223372036854775809 is not exactly a double"),
 ])
 @pytest.mark.parametrize("engine", ENGINES)
 def test_malformed_tetrahedra_raise_value_error(bad, message, engine):
@@ -263,3 +271,26 @@ def test_with_global_false():
     for bad in (1, None, "no"):
         with pytest.raises(ValueError, match="with_global must be True or False"):
             pdd.solve(A, B, with_global=bad)
+
+
+# The same rule for the array readers: solve_batch's (N, 4, 3) arrays, mesh_contacts' and
+# resolve's vertex arrays (the index names the element); integers that are doubles pass.
+@pytest.mark.parametrize("dtype, value, shown", [(np.int64, 2**53 + 1, "9007199254740993"),
+                                                 (np.int64, -(2**62 + 1), "-4611686018427387905"),
+                                                 (np.uint64, 2**64 - 1, "18446744073709551615")])
+def test_integer_arrays_that_are_not_doubles_raise_value_error(dtype, value, shown):
+    a = np.array([A, A], dtype=dtype)
+    a[1, 2, 0] = value
+    b = np.array([B, B])
+    with pytest.raises(ValueError, match=rf"A\[1\]\[2\]\[0\] = {shown} is not exactly a double"):
+        pdd.solve_batch(a, b)
+    V = np.array(A + [[1, 1, 1]], dtype=dtype)
+    V[4, 1] = value
+    with pytest.raises(ValueError, match=rf"VA\[4\]\[1\] = {shown} is not exactly a double"):
+        pdd.mesh_contacts(V, [[0, 1, 2, 3]], np.array(B), [[0, 1, 2, 3]])
+    with pytest.raises(ValueError, match=rf"VA\[4\]\[1\] = {shown} is not exactly a double"):
+        pdd.resolve(V, [[0, 1, 2, 3]], np.array(B), [[0, 1, 2, 3]])
+    exact = np.array([A, A], dtype=dtype)
+    exact[1, 2, 0] = 2**53  # a double: read as it is
+    r = pdd.solve_batch(exact, b)
+    assert r["pdd2"][0] == pdd.solve(A, B, engine="fast")["pdd2"]

@@ -2,6 +2,7 @@
 output (whole JSON lines, in input order), and the exit status is 128 + the signal (130 for
 SIGINT, 143 for SIGTERM)."""
 import json
+import pathlib
 import signal
 import subprocess
 import time
@@ -103,3 +104,126 @@ def test_generate_closes_a_valid_fixture_file(pdd_cli, tmp_path):
                     "--output", str(again)], check=True)
     assert again.read_bytes() == out.read_bytes()
     assert not list(tmp_path.glob("*.partial-*"))
+
+
+def test_generate_over_an_existing_file_leaves_it_as_it_was(pdd_cli, tmp_path):
+    """An existing --output is replaced whole or not at all: interrupted, the old bytes stay and
+    no temporary file is left, also after two quick signals."""
+    out = tmp_path / "old.json"
+    old = b'{"pairs": []}\n'
+    for signals in ([signal.SIGINT], [signal.SIGTERM, signal.SIGINT]):
+        out.write_bytes(old)
+        proc = subprocess.Popen([pdd_cli, "generate", "--family", "paper", "--count", "100000000", "--quiet",
+                                 "--output", str(out)], stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while not list(tmp_path.glob("old.json.partial-*")) and time.monotonic() < deadline:
+            time.sleep(0.02)
+        time.sleep(0.5)
+        for s in signals:
+            proc.send_signal(s)
+        code = proc.wait(timeout=30)
+        err = proc.stderr.read()
+        # one signal: the command answers (130); two: the first is answered or the second ends
+        # the process at once (killed by it, or 128 + the first)
+        assert code in ((130,) if len(signals) == 1 else (130, 143, -signal.SIGINT)), err
+        if len(signals) == 1:
+            assert "left as it was" in err
+        assert out.read_bytes() == old
+        assert not list(tmp_path.glob("*.partial-*"))
+
+
+def interrupt_when_stdout_written(cmd, out, sig, min_lines=1, timeout=300):
+    """Runs cmd with standard output to the file `out`; sends `sig` once it holds min_lines lines."""
+    with open(out, "wb") as sink:
+        proc = subprocess.Popen(cmd, stdout=sink, stderr=subprocess.PIPE, text=True)
+        try:
+            deadline = time.monotonic() + timeout
+            while out.read_bytes().count(b"\n") < min_lines:
+                if proc.poll() is not None:
+                    pytest.fail("the run ended before it could be interrupted: " + proc.stderr.read())
+                assert time.monotonic() < deadline, "nothing written in time"
+                time.sleep(0.02)
+            proc.send_signal(sig)
+            return proc.wait(timeout=30), proc.stderr.read()
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_mesh_keeps_each_finished_record(pdd_cli, tmp_path, sig, code):
+    """pdd mesh writes each contact as soon as it and every one before it are computed (the
+    exact engine: milliseconds a pair on the shipped spheres, hundreds of pairs); interrupted,
+    the file holds whole records in (a, b) order and standard error says how many."""
+    meshes = pathlib.Path(__file__).resolve().parents[2] / "fixtures" / "meshes"
+    out = tmp_path / "pairs.jsonl"
+    status, err = interrupt_when_written([pdd_cli, "mesh", "--engine", "reference", "--quiet", "--threads", "1",
+                                          "--a", str(meshes / "sphere-a.msh"), "--b", str(meshes / "sphere-b.msh"),
+                                          "--output", str(out)], out, sig, min_lines=2)
+    assert status == code, err
+    text = out.read_text()
+    assert text.endswith("\n")
+    records = [json.loads(line) for line in text.splitlines()]
+    keys = [(r["a"], r["b"]) for r in records]
+    assert len(records) >= 2 and keys == sorted(keys) and len(set(keys)) == len(keys)
+    assert all(r["intersecting"] is True for r in records)
+    assert f"pdd mesh: interrupted (signal {int(sig)}): {len(records)} records written" in err
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_compare_json_keeps_each_finished_object(pdd_cli, tmp_path, sig, code):
+    names = write_pairs(tmp_path / "in.json", 200)
+    out = tmp_path / "out.jsonl"
+    status, err = interrupt_when_stdout_written([pdd_cli, "compare", "--json", "--input", str(tmp_path / "in.json")],
+                                                out, sig)
+    assert status == code, err
+    records = assert_valid_prefix(out, names)
+    assert 1 <= len(records) < len(names)
+    assert f"{len(records)} records written" in err
+
+
+def test_solve_interrupted_while_checking_its_input(pdd_cli, tmp_path):
+    """A big input is checked whole before anything is computed; a signal then ends the run at
+    once, saying nothing was written, and leaves no output file."""
+    write_pairs(tmp_path / "in.json", 400000)
+    assert (tmp_path / "in.json").stat().st_size > 16 << 20  # the size at which solve says "checking"
+    out = tmp_path / "out.jsonl"
+    proc = subprocess.Popen([pdd_cli, "solve", "--engine", "fast", "--input", str(tmp_path / "in.json"),
+                             "--output", str(out)], stderr=subprocess.PIPE, text=True)
+    try:
+        assert "checking" in proc.stderr.readline()
+        proc.send_signal(signal.SIGINT)
+        assert proc.wait(timeout=30) == 130
+        err = proc.stderr.read()
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    if "pairs, fast engine" in err:  # the check ended before the signal arrived: nothing to see
+        pytest.skip("the check finished before the signal")
+    assert "pdd solve: interrupted (signal 2): nothing written: the input was still being checked" in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["golden", "--check", "--quiet", "--formulation", "full"],
+    ["paper", "--count", "100000", "--exact-sample", "20000"],
+    ["bench", "--count", "100000", "--exact-sample", "20000"],
+])
+def test_commands_that_print_at_the_end_say_so_when_stopped(pdd_cli, tmp_path, args):
+    if args[0] == "golden":
+        args += ["--fixtures", str(pathlib.Path(__file__).resolve().parents[2] / "fixtures")]
+    if args[0] == "paper":
+        args += ["--out", str(tmp_path / "paper")]
+    proc = subprocess.Popen([pdd_cli] + args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            cwd=tmp_path)
+    try:
+        time.sleep(1.0)
+        assert proc.poll() is None, "the run ended before it could be interrupted"
+        proc.send_signal(signal.SIGTERM)
+        assert proc.wait(timeout=30) == 143
+        err = proc.stderr.read()
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert f"pdd {args[0]}: interrupted (signal 15): nothing was kept" in err
+    assert not list(tmp_path.rglob("*.partial-*"))

@@ -387,13 +387,19 @@ def test_inputs_converted_like_numpy():
     assert res["a"].tolist() == [0] and bits(res["pdd2"][0]) == bits(r["pdd2"])
 
 
-def test_empty_meshes():
-    res = pdd.mesh_contacts(np.zeros((0, 3)), np.zeros((0, 4), dtype=np.int64))
-    assert res["a"].shape == (0,) and res["pdd2"].shape == (0,) and res["q1_A"].shape == (0, 4, 3)
-    assert res["error"] == [] and res["skipped"] == [] and res["elements_a"] == 0
+def test_meshes_without_tetrahedra_are_errors():
+    """As `pdd mesh` and `pdd resolve` refuse a mesh file without tetrahedra (exit 2), the module
+    refuses an empty tetrahedron array: an empty result would read as "no contact" or
+    "resolved"."""
     VA, TA = mesh("tiny-a.msh")
-    res = pdd.mesh_contacts(VA, TA, np.zeros((0, 3)), np.zeros((0, 4), dtype=np.int64), engine="reference")
-    assert res["a"].shape == (0,) and res["pdd2"] == [] and res["q1_A"] == []
+    empty_v, empty_t = np.zeros((0, 3)), np.zeros((0, 4), dtype=np.int64)
+    for call in (pdd.mesh_contacts, pdd.resolve):
+        with pytest.raises(ValueError, match=r"TA has no tetrahedra \(shape \(0, 4\)\)"):
+            call(empty_v, empty_t)
+        with pytest.raises(ValueError, match=r"TA has no tetrahedra"):
+            call(VA, empty_t)
+        with pytest.raises(ValueError, match=r"TB has no tetrahedra"):
+            call(VA, TA, empty_v, empty_t)
 
 
 @pytest.mark.parametrize("engine", ["fast", "reference"])

@@ -152,6 +152,22 @@ def test_progress_callable():
     assert all(t == 200 for _, t in calls[:-1]) and [d for d, _ in calls] == sorted(d for d, _ in calls)
 
 
+def test_progress_bar_counts_rounds_and_ends_with_what_remains(capsys):
+    """progress=True: a tqdm counter of rounds (max_rounds is only a limit: no bar of length 200
+    that jumps to the rounds run), whose last postfix is the pairs that still intersect at the
+    end (0 when resolved), not those the last round started from."""
+    pytest.importorskip("tqdm")
+    VA, TA = load("tiny-a.msh")
+    VB, TB = load("tiny-b.msh")
+    _, _, r = pdd.resolve(VA, TA, VB, TB, fix="a", progress=True)
+    assert r["resolved"]
+    err = capsys.readouterr().err
+    last = err.replace("\r", "\n").strip().splitlines()[-1]
+    n = len(r["rounds"])
+    assert last.startswith(f"pdd.resolve: {n}round [") and "/200" not in err, err
+    assert last.endswith("pairs=0]"), err
+
+
 def test_cli_and_python_give_the_same_positions(pdd_cli, tmp_path):
     """One thread on both sides; the CLI's files read back bit for bit, its report has the same
     keys plus the file names."""

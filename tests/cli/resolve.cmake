@@ -181,6 +181,24 @@ if(EXISTS /dev/full)
   endif()
 endif()
 
+# The summary (standard output) cannot be written, after the meshes were: exit 2 (an output
+# could not be written), and the message says which part failed and that the meshes are whole.
+if(EXISTS /dev/full)
+  file(REMOVE_RECURSE ${W})
+  file(MAKE_DIRECTORY ${W})
+  execute_process(COMMAND ${PDD} resolve ${TINY} --out-a ${W}/a1.msh --out-b ${W}/b1.msh --summary --quiet
+                  OUTPUT_FILE /dev/full RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "the summary \\(--summary\\) could not be written: cannot write to standard output[^\n]*; '[^']*/a1.msh', '[^']*/b1.msh' are written, each complete\n")
+    message(FATAL_ERROR "--summary > /dev/full: exit ${rc}\n${err}")
+  endif()
+  foreach(f a1.msh b1.msh)
+    execute_process(COMMAND ${PDD} mesh --quiet --a ${W}/${f} --self --variants rigid RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "${f}, written before the summary failed, does not read back:\n${err}")
+    endif()
+  endforeach()
+endif()
+
 # A flat element in the input: skipped, named, and the run exits 1 even when the rest is
 # resolved (no check covers that element), as `pdd mesh` does.
 run_resolve(1 flat --a ${M}/bad/flat.msh --b ${M}/tiny-b.msh --out-a ${W}/f1.msh --out-b ${W}/f2.msh --quiet --summary)

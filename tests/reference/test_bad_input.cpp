@@ -237,6 +237,13 @@ BOOST_AUTO_TEST_CASE(integer_literals_that_are_not_doubles_reject_their_entry) {
              "doubles; write it as one, e.g. 9007199254740992)");
   BOOST_TEST(contains(entry("-123456789012345678901234567890").error,
                       "the integer -123456789012345678901234567890 at byte 40 is not exactly a double"));
+  // 10^400 as an integer literal: beyond the double range, named with its byte (its first 60
+  // digits shown); 1e400 (an exponent) is read as infinity, which the engines reject as
+  // non-finite (the tests above).
+  BOOST_TEST(entry("1" + std::string(400, '0')).error.value_or("") ==
+             "the integer 1" + std::string(59, '0') + "... at byte 40 is beyond the largest double (not finite)");
+  BOOST_TEST(!entry("1e400").error.has_value());
+  BOOST_TEST(std::isinf(entry("1e400").pair.A[1][0]));
   for (const char* ok : {"9007199254740992", "100000000000000000000", "-0", "9007199254740993.0",
                          "9007199254740993e0", "0.1"}) {
     const auto e = entry(ok);

@@ -1,8 +1,11 @@
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+
+#include <tbb/parallel_for.h>
 
 #include "pdd/cli/exit_codes.h"
 #include "pdd/compare/engine_comparison.h"
@@ -10,6 +13,8 @@
 #include "pdd/compare/research_commands.h"
 #include "pdd/compare/stats.h"
 #include "pdd/io/output.h"
+#include "pdd/io/progress.h"
+#include "pdd/io/streaming.h"
 
 namespace pdd::compare {
 using io::FixtureFile;
@@ -85,18 +90,42 @@ int run_compare(const CompareArgs& a) {
     std::cerr << "pdd compare: " << *file.error << "\n";
     return kExitFileError;
   }
-  const auto exact = run_reference(file.entries, {QpFormulation::Reduced}, true);
+  // The fast engine first (microseconds a pair), then the exact one pair by pair; with --json
+  // each pair's object is written as soon as it and every one before it are compared
+  // (streaming.h), so an interrupted run leaves whole objects in input order.
   const auto fast = run_fast(file.entries);
-  std::vector<PairComparison> cs;
-  for (std::size_t k = 0; k < file.entries.size(); ++k)
-    cs.push_back(compare_pair(file.entries[k].pair, exact[k], fast[k]));
+  const std::size_t n = file.entries.size();
+  std::vector<PairComparison> cs(n);
+  io::Progress progress("pdd: reference engine", n, 2.0);
+  io::OrderedLines lines(std::cout);
+  lines.start(n);
+  std::atomic<bool> stop{false};
+  const auto compare_all = [&] {
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t k) {
+      if (stop) return;
+      const io::FixtureEntry& e = file.entries[k];
+      reference::ExactResult exact;
+      exact.name = e.pair.name;
+      if (e.error)
+        exact.error = *e.error;
+      else
+        exact = solve_reference(e.pair, {QpFormulation::Reduced});
+      cs[k] = compare_pair(e.pair, exact, fast[k]);
+      if (a.json) lines.done(k, comparison_json(cs[k]).dump());
+      progress.tick();
+    });
+  };
+  if (a.json)
+    io::run_interruptible(compare_all, lines, stop);
+  else
+    compare_all();  // the report is printed at the end
+  progress.finish();
 
   std::array<std::vector<double>, kValueCount> errs;
   std::vector<double> pos, global, global_normal;
   std::array<std::array<int, 5>, kLabelCount> verdicts{};  // per label, per LabelVerdict (5)
   int over = 0, intersect_agree = 0, compared = 0, rejected = 0;
   for (const auto& c : cs) {
-    if (a.json) std::cout << comparison_json(c).dump() << "\n";
     if (c.over_tolerance()) {
       ++over;
       if (!a.json) print_over(c);

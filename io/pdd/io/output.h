@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "pdd/io/streaming.h"
 #include "pdd/printable.h"
 
 namespace pdd::io {
@@ -72,6 +73,7 @@ inline std::optional<std::string> write_file(const std::string& path, const std:
   std::error_code ec;
   const bool replace = replaced_by_rename(path);
   const std::string target = replace ? path + ".partial-" + std::to_string(::getpid()) : path;
+  const PartialFile partial(replace ? target : std::string());  // removed if a signal ends the run
   errno = 0;
   std::ofstream out(target, std::ios::binary);
   if (!out)
