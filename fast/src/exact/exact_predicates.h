@@ -1,4 +1,5 @@
-// exact_predicates.h — exact signs (GMP rationals) for the rare inputs the filter cannot decide.
+// exact_predicates.h — exact signs for the inputs the filter cannot decide (floating-point
+// expansions, expansion.h, in their exact range; GMP rationals otherwise).
 //
 // Inputs are the raw doubles of the pair; each double is taken as the rational it denotes
 // (definitions §1), so these functions agree with the exact engine by construction. They allocate

@@ -6,7 +6,9 @@
 
 #include "certification/filter_bounds.h"
 #include "certification/tie_tolerance.h"
+#include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
+#include "exact/expansion.h"
 #include "kernel/direction_geometry.h"
 
 namespace pdd::fast {
@@ -44,6 +46,7 @@ struct Builder {
   const FilterBounds& fb;
   const Precomputed& p;
   CandidateSet& out;
+  double extent;  // L (filter_bounds.h)
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   bool depth_positive(int k, double bound) {
@@ -53,9 +56,12 @@ struct Builder {
   }
 
   // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
-  bool emit(const Draft& d, double s, LabelCode code, double bound, bool parallel) {
+  // cls: 0 generic, 1 parallel, 2 nearly parallel with its own bounds `own` (CandidateSet).
+  bool emit(const Draft& d, double s, LabelCode code, double bound, int cls, const DegreeBounds& own) {
     const int k = out.count++;
-    out.parallel[k] = parallel;
+    out.parallel[k] = std::uint8_t(cls);
+    out.own_eh[k] = own.e_h;
+    out.own_en[k] = own.e_n;
     DirectionGeometry& c = out.explicit_[k];
     orient_draft(d, s, c);
     out.code[k] = code;
@@ -67,13 +73,40 @@ struct Builder {
     return depth_positive(k, bound);
   }
 
-  EdgePairClass classify(int a, int b, const Draft& c) {
-    if (max_abs3(c.n) <= fb.deg2) return classify_edge_pair_exact(A, B, a, b);
+  // Nearly parallel edges (n~ below the degree-2 filter): n = eB × eA exactly (expansion.h);
+  // when it is not 0, the draft is redone along n rounded (n~_k within 3u|n_k|) with heights
+  // along it, and `own` gets their bounds (value_bounds.h, own_degree_bounds). False when n is
+  // exactly 0 (parallel or colinear) or the pair is outside the expansions' exact range.
+  bool near_parallel_normal(int a, int b, Draft& c, DegreeBounds& own) {
+    if (!in_exact_range(A, B)) return false;
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+    const ExpVec n = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));
+    if (n.is_zero()) return false;
+    for (int k = 0; k < 3; ++k) c.n[k] = n.x[k].approx();
+    for (int k = 0; k < 4; ++k) {
+      double sk[3];
+      sub(A[k], A[u], sk);
+      c.hA[k] = dot(c.n, sk);
+      c.hB[k] = dot(c.n, p.d[u][k]);
+    }
+    c.hA[u] = c.hA[v] = 0.0;  // exactly: n.eA = 0
+    c.hB[y] = c.hB[x];        // exactly: n.eB = 0
+    own = own_degree_bounds(c.n, extent);
+    return true;
+  }
+
+  // own.e_h > 0: the draft was redone by near_parallel_normal and its heights have error
+  // <= own.e_h; else the filter bounds apply.
+  EdgePairClass classify(int a, int b, Draft& c, DegreeBounds& own) {
+    own = DegreeBounds{0.0, 0.0};
+    if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own))
+      return classify_edge_pair_exact(A, B, a, b);
+    const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
     EdgePairClass k;
     int lo = 0, hi = 0;
     for (int i : kOffEdge[a]) {
       const double g = c.hA[i];
-      if (std::fabs(g) <= fb.deg3) return classify_edge_pair_exact(A, B, a, b);
+      if (std::fabs(g) <= eg) return classify_edge_pair_exact(A, B, a, b);
       lo += g < 0;
       hi += g > 0;
     }
@@ -85,20 +118,25 @@ struct Builder {
   bool edge_pair_general(int a, int b) {
     Draft c;
     lane_heights(out.edges, a, b, c);
-    const EdgePairClass k = classify(a, b, c);
+    DegreeBounds own;
+    const EdgePairClass k = classify(a, b, c, own);
     if (k.kind == EdgePairKind::Colinear) return true;  // no direction (definitions §3)
     double bound = fb.deg3;
-    const bool parallel = k.kind == EdgePairKind::Parallel;
-    if (parallel) {
+    int cls = 0;
+    if (k.kind == EdgePairKind::Parallel) {
       parallel_heights(A, p, a, b, c);
       bound = fb.deg4;
+      cls = 1;
+    } else if (own.e_h > 0.0) {
+      // |D~ − D| <= 2 e_h + u|D| (value_bounds.h) < |D~| when |D~| > 4 e_h
+      bound = 4 * own.e_h;
+      cls = 2;
     }
     const LabelCode decided = pack_label(ContactKind::EE, a, b, EdgeOrientation::Decided);
-    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, parallel);
-    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, parallel);
-    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, parallel) &&
-           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound,
-                parallel);
+    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, cls, own);
+    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, cls, own);
+    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, cls, own) &&
+           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound, cls, own);
   }
 
   // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is
@@ -148,6 +186,7 @@ struct Builder {
       out.lane[k] = -1;
       out.sign[k] = 1;
       out.parallel[k] = 0;
+      out.own_eh[k] = out.own_en[k] = 0.0;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     edge_lanes(p, fb.deg2, fb.deg3, out.edges);
@@ -173,7 +212,7 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (p.oA == Sign::Zero) return BuildStatus::DegenerateA;
   p.oB = orientation(B, p.detB, fb.deg3);
   if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
-  out.intersecting = Builder{A, B, fb, p, out}.run();
+  out.intersecting = Builder{A, B, fb, p, out, pair_extent(A, B)}.run();
   return BuildStatus::Ok;
 }
 
@@ -182,7 +221,9 @@ Candidate candidate(const CandidateSet& set, int k) {
   c.label = label(set, k);
   if (set.lane[k] < 0) {
     static_cast<DirectionGeometry&>(c) = set.explicit_[k];
-    c.parallel = set.parallel[k] != 0;
+    c.parallel = set.parallel[k] == 1;
+    c.own_bounds = set.parallel[k] == 2;
+    if (c.own_bounds) c.own_eh = set.own_eh[k], c.own_en = set.own_en[k];
     return c;
   }
   detail::lane_candidate(set.edges, set.lane[k], set.sign[k], c);

@@ -22,11 +22,13 @@
 // ---- Stage 2: the superset kernel (superset_kernel.h), reused as is: no second SAT.
 #include "certification/filter_bounds.h"
 #include "kernel/candidate_directions.h"
+#include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
 #include "kernel/superset_kernel.h"
 #include "pdd/pdd.h"
 
 #include <cmath>
+#include <memory>
 
 namespace pdd::fast {
 
@@ -85,6 +87,14 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
       return true;
     case Overlap::Unknown:
       break;
+  }
+  // The decision alone (no depth to certify): the candidate set's exact depth signs on the pair
+  // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
+  const detail::ScaledPair sp = detail::power_scaled(A, B);
+  if (sp.finite && sp.exact) {
+    std::unique_ptr<CandidateSet> set(new CandidateSet);  // (~20 KB: off the stack)
+    if (build_candidates(sp.A, sp.B, *set) == BuildStatus::Ok) return set->intersecting;
+    return false;  // flat (decided exactly): rejected, definitions §1
   }
   return rigid_pd2_choice(A, B).value != 0.0;  // NaN (not representable) != 0: intersecting
 }

@@ -63,7 +63,7 @@ struct Valued {
 Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound& sb,
               const FilterBounds& fb) {
   const double v = s.cost / (20.0 * c.nn);
-  return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
+  return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds_of(fb, c), sb.coeff)};
 }
 
 // pdd2_accel(A, B, 1)'s value (only its own interval is used, so kTinyQpRoot may stand in for
@@ -72,7 +72,7 @@ Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound&
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
       solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
-  if (qp_root_rel_tiny(s.cost, c.nn, detail::max_height(c), degree_bounds(fb, c.parallel)))
+  if (qp_root_rel_tiny(s.cost, c.nn, detail::max_height(c), degree_bounds_of(fb, c)))
     return {s.cost / (20.0 * c.nn), kTinyQpRoot};  // valued()'s value
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
@@ -214,7 +214,8 @@ inline double safe_lower(double v, double r) {
 struct Pending {
   DirectionSolution s;
   double nn, Hm;
-  bool feasible, parallel;
+  bool feasible, parallel, own_bounds;  // the candidate's class (degree_bounds_of)
+  double own_eh, own_en;
 };
 template <class Variant>
 double evaluate(const Candidate& c, const Variant& variant, Pending& e) {
@@ -222,6 +223,9 @@ double evaluate(const Candidate& c, const Variant& variant, Pending& e) {
   e.nn = c.nn;
   e.Hm = detail::max_height(c);
   e.parallel = c.parallel;
+  e.own_bounds = c.own_bounds;
+  e.own_eh = c.own_eh;
+  e.own_en = c.own_en;
   return e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
 }
 template <class List, class Variant>
@@ -232,14 +236,14 @@ template <class Variant>
 double root_bound(const Candidate& c, const FilterBounds& fb, const Variant& variant, const Pending& e) {
   if (!e.feasible) return 0.0;
   const SolverBound sb = variant.bound(c, e.s);
-  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff);
+  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds_of(fb, c), sb.coeff);
 }
 template <class List, class Variant>
 double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
   return e.feasible ? root_bound(candidate(set, i), set.fb, variant, e) : 0.0;
 }
 inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
-  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(fb, e.parallel));
+  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds_of(fb, e));
 }
 
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
