@@ -47,6 +47,9 @@ struct Builder {
   const Precomputed& p;
   CandidateSet& out;
   double extent;  // L (filter_bounds.h)
+  bool in_range = in_exact_range(A, B);  // expansion.h's exact range
+  int face_edge_sign[6][4] = {{2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2},
+                              {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   bool depth_positive(int k, double bound) {
@@ -77,11 +80,14 @@ struct Builder {
   // when it is not 0, the draft is redone along n rounded (n~_k within 3u|n_k|) with heights
   // along it, and `own` gets their bounds (value_bounds.h, own_degree_bounds). False when n is
   // exactly 0 (parallel or colinear) or the pair is outside the expansions' exact range.
-  bool near_parallel_normal(int a, int b, Draft& c, DegreeBounds& own) {
-    if (!in_exact_range(A, B)) return false;
+  // `parallel` is set when n is exactly 0.
+  bool near_parallel_normal(int a, int b, Draft& c, DegreeBounds& own, bool& parallel) {
+    parallel = false;
+    if (!in_range) return false;
     const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
     const ExpVec n = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));
-    if (n.is_zero()) return false;
+    parallel = n.is_zero();
+    if (parallel) return false;
     for (int k = 0; k < 3; ++k) c.n[k] = n.x[k].approx();
     for (int k = 0; k < 4; ++k) {
       double sk[3];
@@ -95,18 +101,66 @@ struct Builder {
     return true;
   }
 
+  // Exact sign of g_i = n.(s_i − s_u), n = eB × eA, for an off-edge vertex i of edge a (u, v):
+  // n.(s_i − s_u) = eB.((s_v − s_u) × (s_i − s_u)) and that cross product is ±N, N the raw
+  // normal of A's face {u, v, i} (kFace order; + for an even permutation of it, a cross
+  // product of a triangle's edges being invariant under cyclic shifts), so sign(g_i) =
+  // ±sign(eB.N). The 24 signs eB.N (6 edges of B, 4 faces of A) are cached: aligned pairs
+  // ask for the same few many times. Precondition: the pair is in the expansions' range.
+  int g_sign_exact(int a, int b, int i) {
+    const int u = kEdges[a][0], v = kEdges[a][1];
+    const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
+    int& s = face_edge_sign[b][f];
+    if (s == 2) {
+      const auto& F = kFace[f];
+      const ExpVec N = detail::cross(difference(A[F[1]], A[F[0]]), difference(A[F[2]], A[F[0]]));
+      s = dot(difference(B[kEdges[b][1]], B[kEdges[b][0]]), N).sign();
+    }
+    // parity of (u, v, i) against the increasing order (u < v always): inversions of i
+    const int inversions = (i < u) + (i < v);
+    return inversions == 1 ? -s : s;
+  }
+
   // own.e_h > 0: the draft was redone by near_parallel_normal and its heights have error
   // <= own.e_h; else the filter bounds apply.
+  // Exactly parallel edges (n = 0, in the expansions' range): colinear iff w × e = 0 exactly
+  // (the parallel normal (e.e) w − (w.e) e = e × (w × e) has length |e| |w × e|); else the
+  // orientation rule on the parallel heights (error <= E4/4, value_bounds.h) when they clear it.
+  EdgePairClass exactly_parallel(int a, int b) {
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
+    EdgePairClass k;
+    if (detail::cross(difference(B[x], A[u]), difference(A[v], A[u])).is_zero()) {
+      k.kind = EdgePairKind::Colinear;
+      return k;
+    }
+    k.kind = EdgePairKind::Parallel;
+    Draft d;
+    parallel_heights(A, p, a, b, d);
+    int lo = 0, hi = 0;
+    for (int i : kOffEdge[a]) {
+      const double g = d.hA[i];
+      if (std::fabs(g) <= fb.deg4 / 4) return classify_edge_pair_exact(A, B, a, b);
+      lo += g < 0;
+      hi += g > 0;
+    }
+    k.side = hi == 0 ? EdgePairSide::Keep : lo == 0 ? EdgePairSide::Flip : EdgePairSide::Undecidable;
+    return k;
+  }
+
   EdgePairClass classify(int a, int b, Draft& c, DegreeBounds& own) {
     own = DegreeBounds{0.0, 0.0};
-    if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own))
-      return classify_edge_pair_exact(A, B, a, b);
+    bool parallel = false;
+    if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own, parallel))
+      return parallel ? exactly_parallel(a, b) : classify_edge_pair_exact(A, B, a, b);
     const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
     EdgePairClass k;
     int lo = 0, hi = 0;
     for (int i : kOffEdge[a]) {
-      const double g = c.hA[i];
-      if (std::fabs(g) <= eg) return classify_edge_pair_exact(A, B, a, b);
+      int g = c.hA[i] > 0.0 ? 1 : -1;
+      if (std::fabs(c.hA[i]) <= eg) {
+        if (!in_range) return classify_edge_pair_exact(A, B, a, b);
+        g = g_sign_exact(a, b, i);
+      }
       lo += g < 0;
       hi += g > 0;
     }
