@@ -482,6 +482,33 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
 // Case 3. definitions §8: the chosen candidates must be exactly the first k of the exact order
 // (every chosen exact delta² strictly below every other one; exact ties are left to the exact
 // path), and the minimum of their QP values is certified as in sweep.
+// Case 3 when the first k are not certainly known (exact or near ties in delta², common on
+// aligned pairs): the exact first k lie among the contenders P = {i : certified lower bound of
+// delta²_i <= hi_chosen} (refine_accel's argument), so the exact value min over the first k of
+// the case-2 values lies in [min over P of their lower bounds, max over P of their upper
+// bounds]. When that interval passes certified_choice, any value in it meets definitions §8:
+// the computed choice's value (itself in it) is reported. (No label is reported for case 3.)
+template <class List>
+void accel_over_ties(const List& set, double hi_chosen, Choice& ch) {
+  if (!(hi_chosen < kInf)) return;
+  const DeformableVariant variant;
+  double lo_min = kInf, hi_max = 0.0;
+  int n = 0;
+  for (int i = 0; i < set.count; ++i) {
+    if (safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen) continue;
+    if (++n > kAccelWide + detail::kMaxRefined) return;
+    Pending p;
+    const double v = evaluate(set, i, variant, p);
+    if (!p.feasible || !(v > 0.0)) return;
+    const double r = root_bound(set, i, variant, p);
+    const double lo = safe_lower(v, r), hi = upper_of(v, r);
+    lo_min = lo < lo_min ? lo : lo_min;
+    hi_max = hi > hi_max ? hi : hi_max;
+    if (!certified_choice(hi_max, lo_min)) return;
+  }
+  if (n > 0 && ch.value >= lo_min && ch.value <= hi_max) ch.certified = true;
+}
+
 template <class List>
 Choice accel_of(const List& set, int k) {
   if (!usable(set) || k <= 0) return {};
@@ -531,6 +558,7 @@ Choice accel_of(const List& set, int k) {
     double value = 0;
     if (accel1_compensated(*set.A, *set.B, c, value)) ch.value = value, ch.certified = true;
   }
+  if (!ch.certified && !separated) accel_over_ties(set, hi_chosen, ch);
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }
