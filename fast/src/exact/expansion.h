@@ -7,7 +7,8 @@
 //         magnitude, whose exact sum is the exact value; sign() is the sign of the largest
 //         component, hence of the value (a nonoverlapping expansion's smaller components sum to
 //         less than its largest in magnitude); approx() the components added in increasing
-//         order (relative error <= 2u once the expansion is compressed by that sum).
+//         order (relative error <= 2u once the expansion is compressed by that sum); ok = false
+//         when a result would exceed the fixed capacity (then nothing about it may be used).
 //
 // Exactness. two_sum and two_product (Knuth, Dekker; round-to-nearest, no FMA contraction:
 // fast/CMakeLists.txt builds with -ffp-contract=off) return the rounded result and its exact
@@ -26,7 +27,6 @@
 #pragma once
 
 #include <cmath>
-#include <boost/container/small_vector.hpp>
 
 #include "pdd/tet_pair.h"
 
@@ -42,20 +42,41 @@ inline bool in_exact_range(const TetVertices& A, const TetVertices& B) {
   return true;
 }
 
+// Fixed capacity, on the stack (no allocation): an operation whose result would not fit sets
+// ok = false (propagated), and the callers then take GMP rationals (exact_predicates.cpp).
+// Aligned inputs give short expansions (most terms are exact zeros and vanish).
+inline constexpr int kExpansionCapacity = 48;
 struct Expansion {
-  // increasing magnitude, no zeros; empty = 0. Inline storage: no allocation for the short
-  // expansions of aligned inputs (most terms cancel or vanish there).
-  boost::container::small_vector<double, 16> c;
+  double c[kExpansionCapacity];  // increasing magnitude, no zeros; n = 0: the value 0
+  int n = 0;
+  bool ok = true;
 
-  int sign() const { return c.empty() ? 0 : (c.back() > 0 ? 1 : -1); }
+  Expansion() = default;
+  Expansion(const Expansion& o) : n(o.n), ok(o.ok) {
+    for (int i = 0; i < n; ++i) c[i] = o.c[i];
+  }
+  Expansion& operator=(const Expansion& o) {
+    n = o.n;
+    ok = o.ok;
+    for (int i = 0; i < n; ++i) c[i] = o.c[i];
+    return *this;
+  }
+  void push(double x) {
+    if (n == kExpansionCapacity) {
+      ok = false;
+      return;
+    }
+    c[n++] = x;
+  }
+  int sign() const { return n == 0 ? 0 : (c[n - 1] > 0 ? 1 : -1); }
   double approx() const {
     double s = 0.0;
-    for (double x : c) s += x;
+    for (int i = 0; i < n; ++i) s += c[i];
     return s;
   }
 };
 
-// a + b = x + y exactly, x = fl(a + b) (Knuth).
+// a + b = x + y exactly (Knuth).
 inline void two_sum(double a, double b, double& x, double& y) {
   x = a + b;
   const double bv = x - a, av = x - bv;
@@ -86,8 +107,8 @@ inline Expansion difference(double a, double b) {
   Expansion e;
   double x, y;
   two_sum(a, -b, x, y);
-  if (y != 0.0) e.c.push_back(y);
-  if (x != 0.0) e.c.push_back(x);
+  if (y != 0.0) e.push(y);
+  if (x != 0.0) e.push(x);
   return e;
 }
 
@@ -95,22 +116,23 @@ inline Expansion difference(double a, double b) {
 // m <= i is written.
 inline void grow(Expansion& e, double b) {
   double q = b, x, y;
-  std::size_t m = 0;
-  for (std::size_t i = 0; i < e.c.size(); ++i) {
+  int m = 0;
+  for (int i = 0; i < e.n; ++i) {
     two_sum(q, e.c[i], x, y);
     q = x;
     if (y != 0.0) e.c[m++] = y;
   }
-  e.c.resize(m);
-  if (q != 0.0) e.c.push_back(q);
+  e.n = m;
+  if (q != 0.0) e.push(q);
 }
 
 inline Expansion sum(Expansion e, const Expansion& f) {
-  for (double c : f.c) grow(e, c);
+  e.ok = e.ok && f.ok;
+  for (int i = 0; i < f.n; ++i) grow(e, f.c[i]);
   return e;
 }
 inline Expansion negated(Expansion e) {
-  for (double& c : e.c) c = -c;
+  for (int i = 0; i < e.n; ++i) e.c[i] = -e.c[i];
   return e;
 }
 inline Expansion difference(const Expansion& e, const Expansion& f) { return sum(e, negated(f)); }
@@ -118,33 +140,35 @@ inline Expansion difference(const Expansion& e, const Expansion& f) { return sum
 // e · b (Shewchuk's scale_expansion_zeroelim).
 inline Expansion scaled(const Expansion& e, double b) {
   Expansion h;
-  if (e.c.empty() || b == 0.0) return h;
-  h.c.reserve(2 * e.c.size());
+  h.ok = e.ok;
+  if (e.n == 0 || b == 0.0) return h;
   double q, hh;
   two_product(e.c[0], b, q, hh);
-  if (hh != 0.0) h.c.push_back(hh);
-  for (std::size_t i = 1; i < e.c.size(); ++i) {
+  if (hh != 0.0) h.push(hh);
+  for (int i = 1; i < e.n; ++i) {
     double p1, p0, s;
     two_product(e.c[i], b, p1, p0);
     two_sum(q, p0, s, hh);
-    if (hh != 0.0) h.c.push_back(hh);
+    if (hh != 0.0) h.push(hh);
     fast_two_sum(p1, s, q, hh);
-    if (hh != 0.0) h.c.push_back(hh);
+    if (hh != 0.0) h.push(hh);
   }
-  if (q != 0.0) h.c.push_back(q);
+  if (q != 0.0) h.push(q);
   return h;
 }
 
 inline Expansion product(const Expansion& e, const Expansion& f) {
   Expansion r;
-  for (double c : f.c) r = sum(r, scaled(e, c));
+  r.ok = e.ok && f.ok;
+  for (int i = 0; i < f.n; ++i) r = sum(r, scaled(e, f.c[i]));
   return r;
 }
 
 // Exact 3-vectors.
 struct ExpVec {
   Expansion x[3];
-  bool is_zero() const { return x[0].c.empty() && x[1].c.empty() && x[2].c.empty(); }
+  bool is_zero() const { return x[0].n == 0 && x[1].n == 0 && x[2].n == 0; }
+  bool ok() const { return x[0].ok && x[1].ok && x[2].ok; }
 };
 inline ExpVec difference(const Vec3d& p, const Vec3d& q) {
   ExpVec v;

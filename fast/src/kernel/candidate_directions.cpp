@@ -49,7 +49,7 @@ struct Builder {
   double extent;  // L (filter_bounds.h)
   bool in_range = in_exact_range(A, B);  // expansion.h's exact range
   int face_edge_sign[6][4] = {{2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2},
-                              {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet
+                              {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet, 3: too long
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   bool depth_positive(int k, double bound) {
@@ -86,6 +86,7 @@ struct Builder {
     if (!in_range) return false;
     const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
     const ExpVec n = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));
+    if (!n.ok()) return false;  // (expansion.h's capacity: the exact classification decides)
     parallel = n.is_zero();
     if (parallel) return false;
     for (int k = 0; k < 3; ++k) c.n[k] = n.x[k].approx();
@@ -107,6 +108,7 @@ struct Builder {
   // product of a triangle's edges being invariant under cyclic shifts), so sign(g_i) =
   // ±sign(eB.N). The 24 signs eB.N (6 edges of B, 4 faces of A) are cached: aligned pairs
   // ask for the same few many times. Precondition: the pair is in the expansions' range.
+  // Returns 3 when the expansions exceed their capacity (expansion.h).
   int g_sign_exact(int a, int b, int i) {
     const int u = kEdges[a][0], v = kEdges[a][1];
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
@@ -114,8 +116,10 @@ struct Builder {
     if (s == 2) {
       const auto& F = kFace[f];
       const ExpVec N = detail::cross(difference(A[F[1]], A[F[0]]), difference(A[F[2]], A[F[0]]));
-      s = dot(difference(B[kEdges[b][1]], B[kEdges[b][0]]), N).sign();
+      const Expansion g = dot(difference(B[kEdges[b][1]], B[kEdges[b][0]]), N);
+      s = g.ok ? g.sign() : 3;  // 3: beyond the expansions' capacity
     }
+    if (s == 3) return 3;
     // parity of (u, v, i) against the increasing order (u < v always): inversions of i
     const int inversions = (i < u) + (i < v);
     return inversions == 1 ? -s : s;
@@ -129,7 +133,9 @@ struct Builder {
   EdgePairClass exactly_parallel(int a, int b) {
     const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
     EdgePairClass k;
-    if (detail::cross(difference(B[x], A[u]), difference(A[v], A[u])).is_zero()) {
+    const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
+    if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
+    if (m.is_zero()) {
       k.kind = EdgePairKind::Colinear;
       return k;
     }
@@ -160,6 +166,7 @@ struct Builder {
       if (std::fabs(c.hA[i]) <= eg) {
         if (!in_range) return classify_edge_pair_exact(A, B, a, b);
         g = g_sign_exact(a, b, i);
+        if (g == 3) return classify_edge_pair_exact(A, B, a, b);
       }
       lo += g < 0;
       hi += g > 0;

@@ -28,7 +28,6 @@
 #include "pdd/pdd.h"
 
 #include <cmath>
-#include <memory>
 
 namespace pdd::fast {
 
@@ -92,8 +91,8 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
   // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   if (sp.finite && sp.exact) {
-    std::unique_ptr<CandidateSet> set(new CandidateSet);  // (~20 KB: off the stack)
-    if (build_candidates(sp.A, sp.B, *set) == BuildStatus::Ok) return set->intersecting;
+    thread_local CandidateSet set;  // (~20 KB: off the stack, allocated once per thread)
+    if (build_candidates(sp.A, sp.B, set) == BuildStatus::Ok) return set.intersecting;
     return false;  // flat (decided exactly): rejected, definitions §1
   }
   return rigid_pd2_choice(A, B).value != 0.0;  // NaN (not representable) != 0: intersecting

@@ -1,6 +1,8 @@
 // deformable_depth.cpp — definitions §5 variants with exact pruning. See the header.
 #include "qp/deformable_depth.h"
 
+#include "exact/exact_predicates.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -509,6 +511,78 @@ void accel_over_ties(const List& set, double hi_chosen, Choice& ch) {
   if (n > 0 && ch.value >= lo_min && ch.value <= hi_max) ch.certified = true;
 }
 
+// Case 3 when the first k are not certainly known, by exact directions: the contenders P (as
+// in accel_over_ties) sorted by their computed delta² are split into a prefix S whose certified
+// upper bounds all lie below the certified lower bounds of the rest T, and T, whose oriented
+// normals all point exactly the same way (same_direction_exact): their exact delta are then
+// equal, so the exact order (stable in canonical order) puts S first, then T in canonical order.
+// When |S| < k <= |P|, the exact first k are S and the first k − |S| of T in canonical order, and
+// their case-2 minimum is certified as in accel_of. (Aligned pairs: a face and the edge pairs
+// of its plane give one direction exactly.)
+template <class List>
+void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
+  if (!set.A || !(hi_chosen < kInf)) return;
+  constexpr int kMax = kAccelWide + detail::kMaxRefined;
+  int P[kMax], n = 0;
+  double lo[kMaxCandidates], hi[kMaxCandidates];
+  for (int i = 0; i < set.count; ++i) {
+    const double r = detail::rigid_rel(set, i);
+    lo[i] = safe_lower(delta2(set, i), r);
+    hi[i] = upper_of(delta2(set, i), r);
+    if (lo[i] > hi_chosen) continue;
+    if (n == kMax) return;
+    P[n++] = i;
+  }
+  if (n < k) return;
+  int sorted[kMax];
+  for (int j = 0; j < n; ++j) sorted[j] = P[j];
+  std::stable_sort(sorted, sorted + n, [&set](int a, int b) { return delta2(set, a) < delta2(set, b); });
+  for (int s = 0; s < k; ++s) {
+    // prefix S = sorted[0..s): certainly below the rest
+    double hi_s = 0.0, lo_t = kInf;
+    for (int j = 0; j < s; ++j) hi_s = hi[sorted[j]] > hi_s ? hi[sorted[j]] : hi_s;
+    for (int j = s; j < n; ++j) lo_t = lo[sorted[j]] < lo_t ? lo[sorted[j]] : lo_t;
+    if (s > 0 && !(hi_s < lo_t)) continue;
+    // T = sorted[s..n) in canonical order (P ascends): one exact direction?
+    int T[kMax], m = 0;
+    for (int j = 0; j < n; ++j) {
+      bool in_s = false;
+      for (int q = 0; q < s; ++q) in_s = in_s || sorted[q] == P[j];
+      if (!in_s) T[m++] = P[j];
+    }
+    bool one = true;
+    const DirectionLabel first = unpack_label(label_code(set, T[0]));
+    for (int j = 1; j < m && one; ++j) {
+      const std::optional<bool> same =
+          same_direction_exact(*set.A, *set.B, first, unpack_label(label_code(set, T[j])));
+      one = same.value_or(false);
+    }
+    if (!one) continue;
+    int chosen[kMax], c = 0;
+    for (int j = 0; j < s; ++j) chosen[c++] = sorted[j];
+    for (int j = 0; c < k; ++j) chosen[c++] = T[j];
+    const DeformableVariant variant;
+    double v[kMax];
+    Pending p[kMax];
+    int best = -1;
+    for (int j = 0; j < k; ++j) {
+      v[j] = evaluate(set, chosen[j], variant, p[j]);
+      if (!p[j].feasible || !(v[j] > 0.0)) return;
+      if (best < 0 || v[j] < v[best]) best = j;
+    }
+    const double rel_best = root_bound(set, chosen[best], variant, p[best]);
+    double lo_min = safe_lower(v[best], rel_best);
+    for (int j = 0; j < k; ++j) {
+      const double l = safe_lower(v[j], root_bound(set, chosen[j], variant, p[j]));
+      lo_min = l < lo_min ? l : lo_min;
+    }
+    if (!certified_choice(upper_of(v[best], rel_best), lo_min)) return;
+    ch = Choice{v[best], chosen[best], label_code(set, chosen[best])};
+    ch.certified = true;
+    return;
+  }
+}
+
 template <class List>
 Choice accel_of(const List& set, int k) {
   if (!usable(set) || k <= 0) return {};
@@ -559,6 +633,7 @@ Choice accel_of(const List& set, int k) {
     if (accel1_compensated(*set.A, *set.B, c, value)) ch.value = value, ch.certified = true;
   }
   if (!ch.certified && !separated) accel_over_ties(set, hi_chosen, ch);
+  if (!ch.certified && !separated) accel_by_directions(set, k, hi_chosen, ch);
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }
