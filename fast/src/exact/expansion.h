@@ -175,8 +175,33 @@ inline ExpVec difference(const Vec3d& p, const Vec3d& q) {
   for (int k = 0; k < 3; ++k) v.x[k] = difference(p[k], q[k]);
   return v;
 }
+// x·y − z·w for doubles: two exact products, their exact difference (at most 4 terms).
+inline Expansion two_by_two(double x, double y, double z, double w) {
+  Expansion e;
+  double h, l;
+  two_product(x, y, h, l);
+  if (l != 0.0) e.push(l);
+  if (h != 0.0) e.push(h);
+  two_product(z, w, h, l);
+  grow(e, -l);
+  grow(e, -h);
+  return e;
+}
+inline double value_of_short(const Expansion& e) { return e.n == 0 ? 0.0 : e.c[0]; }  // n <= 1
+
 inline ExpVec cross(const ExpVec& a, const ExpVec& b) {
   ExpVec n;
+  bool exact_inputs = true;  // every component a single double (differences exact in doubles)
+  for (int k = 0; k < 3; ++k) exact_inputs = exact_inputs && a.x[k].n <= 1 && b.x[k].n <= 1;
+  if (exact_inputs) {  // the common case on aligned inputs: 2x2 determinants of doubles
+    double av[3], bv[3];
+    for (int k = 0; k < 3; ++k) av[k] = value_of_short(a.x[k]), bv[k] = value_of_short(b.x[k]);
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      n.x[k] = two_by_two(av[i], bv[j], av[j], bv[i]);
+    }
+    return n;
+  }
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     n.x[k] = difference(product(a.x[i], b.x[j]), product(a.x[j], b.x[i]));

@@ -50,6 +50,8 @@ struct Builder {
   bool in_range = in_exact_range(A, B);  // expansion.h's exact range
   int face_edge_sign[6][4] = {{2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2},
                               {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet, 3: too long
+  ExpVec face_normal[4];  // A's raw face normals, exactly, as g_sign_exact needs them
+  bool face_normal_known[4] = {false, false, false, false};
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   bool depth_positive(int k, double bound) {
@@ -114,8 +116,12 @@ struct Builder {
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
     int& s = face_edge_sign[b][f];
     if (s == 2) {
-      const auto& F = kFace[f];
-      const ExpVec N = detail::cross(difference(A[F[1]], A[F[0]]), difference(A[F[2]], A[F[0]]));
+      if (!face_normal_known[f]) {
+        const auto& F = kFace[f];
+        face_normal[f] = detail::cross(difference(A[F[1]], A[F[0]]), difference(A[F[2]], A[F[0]]));
+        face_normal_known[f] = true;
+      }
+      const ExpVec& N = face_normal[f];
       const Expansion g = dot(difference(B[kEdges[b][1]], B[kEdges[b][0]]), N);
       s = g.ok ? g.sign() : 3;  // 3: beyond the expansions' capacity
     }
