@@ -42,7 +42,7 @@ struct MeshBenchOptions {
   unsigned variants = mesh::kRigid | mesh::kAccel1;
   int repeats = 5;
   std::string write_meshes;    // non-empty: keep the generated meshes in this directory
-  int aligned_cells = 8;       // cells per axis of the aligned cases' blocks; 0: no aligned cases
+  int aligned_cells = 4;       // cells per axis of the aligned cases' blocks; 0: no aligned cases
 };
 
 struct StageTimes {
