@@ -29,4 +29,5 @@ undecidable-optimum 2 3
 closed-form 1 6
 near-coplanar 1 8
 adversarial 1 30
+aligned 1 24
 LIST

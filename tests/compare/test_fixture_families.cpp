@@ -86,6 +86,10 @@ BOOST_AUTO_TEST_CASE(families_have_their_property) {
     const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_TEST((r.pdd2_dir && r.pdd2_dir->orientation != EdgeOrientation::Decided), p.name);
   }
+  for (const auto& p : test::load_pairs("families/aligned.json")) {  // axis edges: exactly parallel
+    BOOST_TEST(has_edge_kind(p, EdgePairKind::Parallel), p.name);
+    BOOST_TEST(solve_exact(p, {QpFormulation::Reduced}).intersecting, p.name);
+  }
   for (const auto& p : test::load_pairs("families/near-touching.json")) {
     const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_TEST(r.intersecting, p.name);

@@ -9,6 +9,8 @@
 // engine_comparison.h) by tests/compare/test_fast_vs_golden.cpp, not repeated here.
 #define BOOST_TEST_MODULE fast_golden
 #include <boost/test/unit_test.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -71,6 +73,16 @@ bool global_unresolvable(const TetPair& p, const PairResult<std::string>& g) {
   return g.intersecting && relaxed < Q(1e-14) * R * R;
 }
 
+// The labels of a fast record, in a record of the golden type (the other fields unset).
+PairResult<std::string> labels_of(const PairResult<double>& r) {
+  PairResult<std::string> l;
+  l.rigid_dir = r.rigid_dir;
+  l.pdd2_static_dir = r.pdd2_static_dir;
+  l.pdd2_dir = r.pdd2_dir;
+  l.pdd2_relaxed_dir = r.pdd2_relaxed_dir;
+  return l;
+}
+
 std::set<std::string> global_rejected;  // pairs whose pdd2_global the fast engine declines
 
 void check_file(const std::string& fixture, const std::string& golden) {
@@ -94,10 +106,17 @@ void check_file(const std::string& fixture, const std::string& golden) {
       BOOST_TEST(bool(r.error) == bool(g.error));
       if (r.error || g.error) continue;
       BOOST_TEST(r.intersecting == g.intersecting);
-      BOOST_TEST(label(r.rigid_dir) == label(g.rigid_dir));
-      BOOST_TEST(label(r.pdd2_static_dir) == label(g.pdd2_static_dir));
-      BOOST_TEST(label(r.pdd2_dir) == label(g.pdd2_dir));
-      BOOST_TEST(label(r.pdd2_relaxed_dir) == label(g.pdd2_relaxed_dir));
+      // The aligned family is made of near ties: candidates whose directions differ by rounding
+      // (nearly parallel edges against parallel faces) have values equal to ~1e-16, and
+      // definitions §8 lets either side of a tie closer than 1e-9 be named. There the labels are
+      // judged by that contract against the exact values (tests/compare/test_fast_vs_golden.cpp,
+      // fast_engine_within_contract_of_golden), and here the hot paths must name solve_pair's.
+      const bool near_ties = std::find(p.tags.begin(), p.tags.end(), "aligned") != p.tags.end();
+      const PairResult<std::string>& want = near_ties ? labels_of(r) : g;
+      BOOST_TEST(label(r.rigid_dir) == label(want.rigid_dir));
+      BOOST_TEST(label(r.pdd2_static_dir) == label(want.pdd2_static_dir));
+      BOOST_TEST(label(r.pdd2_dir) == label(want.pdd2_dir));
+      BOOST_TEST(label(r.pdd2_relaxed_dir) == label(want.pdd2_relaxed_dir));
       // the hot paths over raw vertices (superset_depth.h) report what solve_pair reports
       const fast::Choice rigid = fast::rigid_pd2_choice(p.A, p.B), a1 = fast::pdd2_accel_choice(p.A, p.B, 1);
       BOOST_TEST(rigid.value == r.rigid_pd2);
@@ -108,7 +127,7 @@ void check_file(const std::string& fixture, const std::string& golden) {
       // golden labels
       const fast::Depth hot[3] = {fast::pdd2_static(p.A, p.B), fast::pdd2(p.A, p.B), fast::pdd2_relaxed(p.A, p.B)};
       const double ref[3] = {r.pdd2_static, r.pdd2, r.pdd2_relaxed};
-      const std::optional<DirectionLabel>* gl[3] = {&g.pdd2_static_dir, &g.pdd2_dir, &g.pdd2_relaxed_dir};
+      const std::optional<DirectionLabel>* gl[3] = {&want.pdd2_static_dir, &want.pdd2_dir, &want.pdd2_relaxed_dir};
       for (int i = 0; i < 3; ++i) {
         BOOST_TEST((hot[i].status == fast::DepthStatus::Ok));
         BOOST_TEST(hot[i].pd2 == ref[i], hot[i].pd2 << " vs " << ref[i]);
@@ -148,7 +167,7 @@ BOOST_AUTO_TEST_CASE(all_fixtures_with_golden_records) {
     check_file(kFixtures + "/" + rel, golden);
     ++files;
   }
-  BOOST_TEST(files == 22);  // every shipped fixture file has a golden record: none may be skipped
+  BOOST_TEST(files == 23);  // every shipped fixture file has a golden record: none may be skipped
   // Exactly the pairs whose double normals cannot represent pdd2_global (global_depth.cpp's
   // unrepresented(): a vertex 1e-18 inside a face, the exact minimum 13%, 7% and 22% below the
   // best double normal's value) have it declined; the other pairs of that class (a far vertex, or a

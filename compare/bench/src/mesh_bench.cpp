@@ -261,7 +261,137 @@ void pruned(const mesh::Mesh& A, const mesh::Mesh& B, std::vector<std::size_t>& 
   for (const Bx& x : bb) eb.push_back(x.i);
 }
 
+// Rotation matrix (Rodrigues) by `angle` about `axis`.
+std::array<std::array<double, 3>, 3> rotation(const std::array<double, 3>& axis, double angle) {
+  const double an = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  const double x = axis[0] / an, y = axis[1] / an, z = axis[2] / an, c = std::cos(angle),
+               s = std::sin(angle), C = 1 - c;
+  return {{{c + x * x * C, x * y * C - z * s, x * z * C + y * s},
+           {y * x * C + z * s, c + y * y * C, y * z * C - x * s},
+           {z * x * C - y * s, z * y * C + x * s, c + z * z * C}}};
+}
+
+// m translated by t, then rotated by `angle` about `axis` through its centre (angle 0: only
+// translated, each coordinate rounded once).
+mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double angle,
+                 const std::array<double, 3>& axis = {1, 2, 3}) {
+  mesh::Mesh out = m;
+  double c[3] = {0, 0, 0};
+  for (const Vec3d& v : m.vertices)
+    for (int k = 0; k < 3; ++k) c[k] += v[k] / double(m.vertices.size());
+  const auto R = rotation(axis, angle);
+  for (Vec3d& v : out.vertices) {
+    if (angle == 0) {
+      for (int k = 0; k < 3; ++k) v[k] += t[k];
+      continue;
+    }
+    const double p[3] = {v[0] - c[0], v[1] - c[1], v[2] - c[2]};
+    for (int r = 0; r < 3; ++r) v[r] = c[r] + t[r] + R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+  }
+  return out;
+}
+
+// One aligned case's meshes (A, B) on one core: contacts() `repeats` times (medians per stage),
+// then solve_pair's record statistics on up to 2000 intersecting pairs.
+AlignedRun aligned_run(const mesh::Mesh& A, const mesh::Mesh& B, unsigned variants, int repeats) {
+  tbb::task_arena one(1);
+  AlignedRun a;
+  a.elements_a = A.tets.size();
+  a.elements_b = B.tets.size();
+  std::vector<double> dec, dep;
+  mesh::Contacts<double> c;
+  for (int r = 0; r < repeats; ++r)
+    one.execute([&] {
+      c = mesh::contacts(A, B, {variants, {}});
+      dec.push_back(c.seconds_decision);
+      dep.push_back(c.seconds_depth);
+    });
+  a.box_pairs = c.box_pairs;
+  a.intersecting = c.pairs.size();
+  a.decision_ns = a.box_pairs ? median(dec) * 1e9 / double(a.box_pairs) : 0;
+  a.depth_ns = a.intersecting ? median(dep) * 1e9 / double(a.intersecting) : 0;
+  fast::SolveOptions so;
+  so.with_global = (variants & mesh::kGlobal) != 0;
+  const std::size_t step = std::max<std::size_t>(1, c.pairs.size() / 2000);
+  for (std::size_t k = 0; k < c.pairs.size(); k += step) {
+    const auto r = fast::solve_pair(TetPair{"", {}, mesh::element(A, c.pairs[k].a), mesh::element(B, c.pairs[k].b)}, so);
+    ++a.sampled;
+    a.slow_path += r.stats.slow_path;
+    a.refined += r.stats.refined;
+  }
+  return a;
+}
+
+std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
+  std::vector<AlignedCase> out;
+  const int n = o.aligned_cells;
+  if (n <= 0) return out;
+  const double h = 1.0 / n;
+  const std::array<double, 3> shift = {0.37 * h, 0.21 * h, 0.13 * h};  // not on the grid
+  auto run = [&](const std::string& name, const mesh::Mesh& A, const mesh::Mesh& B, const mesh::Mesh& Brot) {
+    std::cerr << "pdd bench mesh: aligned case: " << name << "\n";
+    AlignedCase c;
+    c.name = name;
+    c.aligned = aligned_run(A, B, o.variants, o.repeats);
+    c.rotated = aligned_run(A, Brot, o.variants, o.repeats);
+    out.push_back(c);
+  };
+  for (CubeSplit split : {CubeSplit::Kuhn6, CubeSplit::Five}) {
+    const mesh::Mesh A = make_structured_block({n, n, n}, h, {0, 0, 0}, split);
+    const mesh::Mesh B = make_structured_block({n, n, n}, h, shift, split);
+    run(std::string(split == CubeSplit::Kuhn6 ? "Kuhn grids" : "5-tetrahedra grids") + ", one shifted by a non-grid offset",
+        A, B, moved(B, {0, 0, 0}, 0.3));
+  }
+  {  // a jittered (unstructured-looking) mesh against a copy of itself shifted off the grid
+    const mesh::Mesh A = make_bench_ball(std::size_t(6) * n * n * n, {0, 0, 0}, 1, {1, 2, 3}, 0.3, 7);
+    run("a jittered mesh against its shifted copy", A, moved(A, {0.061, 0.043, 0.029}, 0),
+        moved(A, {0.061, 0.043, 0.029}, 0.3));
+  }
+  {  // blocks stacked along z, a third of a cell deep, faces parallel across the whole contact
+    const int nz = std::max(1, n / 2);
+    const mesh::Mesh A = make_structured_block({n, n, nz}, h, {0, 0, 0}, CubeSplit::Five);
+    const mesh::Mesh B = make_structured_block({n, n, nz}, h, {shift[0], shift[1], nz * h - h / 3}, CubeSplit::Five);
+    run("5-tetrahedra blocks stacked a third of a cell deep", A, B, moved(B, {0, 0, 0}, 0.3));
+  }
+  return out;
+}
+
 }  // namespace
+
+mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
+                                 CubeSplit split, double angle, const std::array<double, 3>& axis) {
+  mesh::Mesh out;
+  auto id = [&](int i, int j, int k) { return (std::size_t(i) * (n[1] + 1) + j) * (n[2] + 1) + k; };
+  for (int i = 0; i <= n[0]; ++i)
+    for (int j = 0; j <= n[1]; ++j)
+      for (int k = 0; k <= n[2]; ++k)
+        out.vertices.push_back({origin[0] + i * h, origin[1] + j * h, origin[2] + k * h});
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  // corners: bit 0 x, bit 1 y, bit 2 z; five tetrahedra: four corners cut off and the centre one
+  static const int kEven[5][4] = {{0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}, {1, 2, 4, 7}};
+  static const int kOdd[5][4] = {{1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}, {0, 3, 5, 6}};
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) {
+        auto corner = [&](int c) { return id(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1)); };
+        if (split == CubeSplit::Kuhn6) {
+          for (const auto& p : kPerm) {  // the path (0,0,0) -> +e_p0 -> +e_p1 -> +e_p2
+            int d[3] = {0, 0, 0};
+            std::array<std::size_t, 4> t;
+            t[0] = id(i, j, k);
+            for (int q = 0; q < 3; ++q) {
+              d[p[q]] = 1;
+              t[q + 1] = id(i + d[0], j + d[1], k + d[2]);
+            }
+            out.tets.push_back(t);
+          }
+        } else {
+          const auto& T = ((i + j + k) & 1) ? kOdd : kEven;
+          for (const auto& c : T) out.tets.push_back({corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])});
+        }
+      }
+  return angle == 0 ? out : moved(out, {0, 0, 0}, angle, axis);
+}
 
 mesh::Mesh make_bench_ball(std::size_t target, const std::array<double, 3>& centre, double radius,
                            const std::array<double, 3>& axis, double angle, std::uint64_t seed) {
@@ -453,6 +583,7 @@ MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
   std::cerr << "pdd bench mesh: broadphase against FCL (pruned boxes)\n";
   rep.broadphase_pruned = broadphase_rows(A, pa_el, B, pb_el, o.repeats);
   rep.ours_all_cores_pruned = rep.all_cores.median.broadphase;
+  rep.aligned = aligned_cases(o);
   rep.seconds = since(t_all);
   rep.machine.load_after = read_first_line("/proc/loadavg");
   return rep;

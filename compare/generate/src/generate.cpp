@@ -496,6 +496,63 @@ Attempt adversarial_pair(Rng& r, std::size_t k) {
   return p;
 }
 
+// ---- aligned: elements of structured meshes, the way FEM meshes are made (a block cut into
+// cubes, each cube into tetrahedra), one mesh against a shifted copy. Kind k % 3:
+//   0  Kuhn cells (6 tetrahedra a cube, the path 0 -> e_p0 -> e_p0 + e_p1 -> 1) of two grids of
+//      cell size h, the second shifted by a random non-grid offset;
+//   1  cells cut into 5 tetrahedra (a corner cut off at each of 4 alternate corners, the
+//      central one), the two grids shifted as in 0;
+//   2  two blocks stacked along z a third of a cell deep (offset (dx, dy, h − h/3), dx, dy
+//      random): the faces of the layers touch across their whole extent, parallel exactly.
+// The grid origin and h are random decimals, so the coordinates are rounded doubles: edge
+// directions are parallel exactly along the axes (two coordinates equal) and parallel up to
+// rounding otherwise — the near-parallel pairs doubles cannot tell from parallel ones.
+TetVertices kuhn_cell_tet(const Vec3d& o, double h, int perm) {
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  TetVertices t;
+  int d[3] = {0, 0, 0};
+  t[0] = o;
+  for (int q = 0; q < 3; ++q) {
+    d[kPerm[perm][q]] = 1;
+    t[q + 1] = {o[0] + d[0] * h, o[1] + d[1] * h, o[2] + d[2] * h};
+  }
+  return t;
+}
+TetVertices five_cell_tet(const Vec3d& o, double h, int which, bool odd) {
+  auto corner = [&](int c) -> Vec3d {  // bit 0: x, bit 1: y, bit 2: z
+    return {o[0] + (c & 1) * h, o[1] + (c >> 1 & 1) * h, o[2] + (c >> 2 & 1) * h};
+  };
+  static const int kEven[5][4] = {{0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}, {1, 2, 4, 7}};
+  static const int kOdd[5][4] = {{1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}, {0, 3, 5, 6}};
+  const int* c = odd ? kOdd[which] : kEven[which];
+  return {corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])};
+}
+Attempt aligned_pair(Rng& r, std::size_t k) {
+  const int kind = int(k % 3);
+  const double h = r.uniform(0.5, 2.0);
+  const Vec3d origin = {r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5)};
+  auto cell = [&](const Vec3d& base, int i, int j, int l) -> Vec3d {
+    return {base[0] + i * h, base[1] + j * h, base[2] + l * h};
+  };
+  auto tet_at = [&](const Vec3d& base, int i, int j, int l) {
+    const Vec3d o = cell(base, i, j, l);
+    if (kind == 1) return five_cell_tet(o, h, r.integer(0, 4), ((i + j + l) & 1) != 0);
+    return kuhn_cell_tet(o, h, r.integer(0, 5));
+  };
+  const TetVertices a = tet_at(origin, 0, 0, 0);
+  Vec3d shift = {r.uniform(-1, 1) * h, r.uniform(-1, 1) * h, r.uniform(-1, 1) * h};
+  if (kind == 2) shift = {r.uniform(-1, 1) * h, r.uniform(-1, 1) * h, h - h / 3};
+  const Vec3d base_b = add(origin, shift);
+  // B's cell: one whose box meets A's cell (cells -1..0 of B's grid along each axis; the stacked
+  // block's bottom layer along z)
+  const int bi = r.integer(-1, 0), bj = r.integer(-1, 0), bl = kind == 2 ? -1 : r.integer(-1, 0);
+  const TetVertices b = tet_at(base_b, bi, bj, bl);
+  if (!valid(b)) return std::nullopt;
+  Attempt p = if_intersecting(a, b);
+  if (p) p->tags.push_back(kind == 0 ? "kuhn-shifted" : kind == 1 ? "five-shifted" : "stacked");
+  return p;
+}
+
 // One attempt at a pair of a family; nullopt when the draw does not have the property.
 using Maker = std::function<std::optional<TetPair>(Rng&, std::size_t)>;
 
@@ -540,6 +597,11 @@ std::vector<Family> family_table(const PaperProtocol& pp) {
         "a face of B 2^-50..2^-37 inside a face of A (sizes ~8), flat or tilted 2^-43..2^-37 rad, "
         "in z = 0, y = 0 or a generic plane: resting contacts"},
        [](Rng& r, std::size_t k) { return near_coplanar_pair(r, k); }},
+      {{"aligned",
+        "elements of structured meshes against a shifted copy, kind k % 3: Kuhn cells (6 a cube) "
+        "and 5-tetrahedra cells shifted by a non-grid offset, blocks stacked a third of a cell "
+        "deep; parallel faces and edges, exactly or up to rounding"},
+       [](Rng& r, std::size_t k) { return aligned_pair(r, k); }},
       {{"adversarial",
         "valid pairs that break naive doubles, kind k % 10: 1-ulp sliver, 1-ulp needle, nearly flat "
         "(2^-40), vertex 2^-60 inside / outside a face, nearly parallel edges, nearly coplanar faces "

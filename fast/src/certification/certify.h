@@ -11,13 +11,19 @@
 
 namespace pdd::fast::detail {
 
-inline bool is_parallel(const CandidateSet& s, int k) { return s.lane[k] < 0 && s.parallel[k]; }
+inline bool is_parallel(const CandidateSet& s, int k) { return s.lane[k] < 0 && s.parallel[k] == 1; }
 inline bool is_parallel(const QuickCandidates&, int) { return false; }  // quick declines them
+// Candidate k's degree bounds (value_bounds.h): its class's, or its own (nearly parallel).
+inline DegreeBounds bounds_of(const CandidateSet& s, int k) {
+  if (s.lane[k] < 0 && s.parallel[k] == 2) return DegreeBounds{s.own_eh[k], s.own_en[k]};
+  return degree_bounds(s.fb, is_parallel(s, k));
+}
+inline DegreeBounds bounds_of(const QuickCandidates& s, int) { return degree_bounds(s.fb, false); }
 
 // Root bound of delta² of candidate k (value_bounds.h, rigid).
 template <class List>
 double rigid_rel(const List& s, int k) {
-  return rigid_root_rel(s.depth[k], s.nn[k], degree_bounds(s.fb, is_parallel(s, k)));
+  return rigid_root_rel(s.depth[k], s.nn[k], bounds_of(s, k));
 }
 
 // Cheap test, products only: |D| >= 400 e_h and n.n >= (400 e_n)². Then rigid_rel(s, k) is
@@ -33,7 +39,7 @@ double rigid_rel(const List& s, int k) {
 inline constexpr double kSmallRigidLower = 0.98;
 template <class List>
 bool rigid_rel_small(const List& s, int k) {
-  const DegreeBounds db = degree_bounds(s.fb, is_parallel(s, k));
+  const DegreeBounds db = bounds_of(s, k);
   const double D = s.depth[k], eh = 400 * db.e_h, en = 400 * db.e_n;
   return (D * D >= eh * eh) & (s.nn[k] >= en * en);  // (no short-circuit: no branch)
 }
@@ -47,7 +53,7 @@ inline double max_height(const DirectionGeometry& c) {
 
 // Root bound of a QP value v = F/(20 n.n) along candidate c.
 inline double qp_rel(const Candidate& c, double v, const FilterBounds& fb) {
-  return qp_root_rel(v * 20.0 * c.nn, c.nn, max_height(c), degree_bounds(fb, c.parallel));
+  return qp_root_rel(v * 20.0 * c.nn, c.nn, max_height(c), degree_bounds_of(fb, c));
 }
 
 }  // namespace pdd::fast::detail

@@ -63,7 +63,8 @@ inline FilterBounds filter_bounds_of_extent(double L) {
   return fb;
 }
 
-inline FilterBounds filter_bounds(const TetVertices& A, const TetVertices& B) {
+// L of the header: the largest per-axis extent of the 8 vertices.
+inline double pair_extent(const TetVertices& A, const TetVertices& B) {
   double L = 0.0;
   for (int k = 0; k < 3; ++k) {
     double lo = A[0][k], hi = A[0][k];
@@ -73,7 +74,11 @@ inline FilterBounds filter_bounds(const TetVertices& A, const TetVertices& B) {
     }
     L = std::max(L, hi - lo);
   }
-  return filter_bounds_of_extent(L);
+  return L;
+}
+
+inline FilterBounds filter_bounds(const TetVertices& A, const TetVertices& B) {
+  return filter_bounds_of_extent(pair_extent(A, B));
 }
 
 }  // namespace pdd::fast

@@ -14,6 +14,14 @@
 //   (n ⟂ the constrained edge or face), so their common error is one error. Parallel edge pairs
 //   (n = (e.e)w − (w.e)e, degree 3): heights of degree 4, error <= 270 u L⁴ (filter_bounds.h).
 //   So every height has error <= e_h = E3/4 (E4/4 for a parallel pair).
+//   Nearly parallel edge pairs (n~ below the degree-2 filter, n exactly non-zero): n is taken
+//   exactly (expansion.h) and rounded, n~_k within 3u|n_k| (a nonoverlapping expansion summed in
+//   increasing order: its tail is below 2u of its largest term), and the heights are computed
+//   along n~ (candidate_directions.cpp, near_parallel_normal): with L the pair's extent, each
+//   difference within u of itself and <= L, the dot product within 3.01u |n~|_1 L, the change
+//   from n to n~ within 3u(1 + 4u)|n~|_1 L: error <= 7.1 u |n~|_1 L <= e_h = 16 u |n~|_1 L, and
+//   e_n = 4 u max|n~_k| (own_degree_bounds). These bounds are relative to |n|, where E2, E3
+//   are absolute: they certify the direction that rounding noise dominates in doubles.
 // ---- Direction. Components of n~ have error <= e_n = E2 (E3 for a parallel pair), so
 //   | |n~| − |n| | <= sqrt(3) e_n and |n|/|n~| lies in 1 ± rho_n, rho_n = sqrt(3) e_n/|n~|.
 // ---- Rigid. D = max hA − min hB (one rounding): |D~ − D| <= 2 e_h + u|D~|.
@@ -80,6 +88,18 @@ struct DegreeBounds {
 };
 inline DegreeBounds degree_bounds(const FilterBounds& fb, bool parallel) {
   return parallel ? DegreeBounds{fb.deg4 / 4, fb.deg3} : DegreeBounds{fb.deg3 / 4, fb.deg2};
+}
+// A candidate's class: generic, parallel, or nearly parallel with its own bounds.
+template <class C>
+inline DegreeBounds degree_bounds_of(const FilterBounds& fb, const C& c) {
+  return c.own_bounds ? DegreeBounds{c.own_eh, c.own_en} : degree_bounds(fb, c.parallel);
+}
+
+// The nearly parallel edge pair's bounds (see above): n~ its rounded exact normal, L the extent.
+inline DegreeBounds own_degree_bounds(const double* n, double L) {
+  const double a0 = std::fabs(n[0]), a1 = std::fabs(n[1]), a2 = std::fabs(n[2]);
+  const double mx = a0 > a1 ? (a0 > a2 ? a0 : a2) : (a1 > a2 ? a1 : a2);
+  return DegreeBounds{16 * kUnitRoundoff * ((a0 + a1 + a2) * L), 4 * kUnitRoundoff * mx};
 }
 
 inline double finish_root_rel(double a, double nn, double e_n) {

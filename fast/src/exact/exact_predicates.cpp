@@ -1,27 +1,116 @@
-// exact_predicates.cpp — GMP (mpq) evaluation of the definitions §3 decisions. See the header; the
-// arithmetic and the rules are exact_geometry.h's.
+// exact_predicates.cpp — exact evaluation of the definitions §3 decisions: floating-point
+// expansions (expansion.h) when the pair is in their exact range, GMP rationals (mpq) otherwise.
+// Both evaluate the same polynomials with the same rules (exact_geometry.h's), so they agree with
+// each other and with the exact engine by construction.
 #include "exact/exact_predicates.h"
 
+#include <cmath>
+
 #include "exact/exact_geometry.h"
+#include "exact/expansion.h"
 
 namespace pdd::fast {
 
 using namespace detail;
 
+namespace {
+
+// ---- Expansions: exact_geometry.h's constructions, term for term.
+
+// ok: cleared when an expansion exceeded its capacity (expansion.h); nothing is then decided.
+ExpVec face_normal_out_of_exp(const TetVertices& A, int i, bool& ok) {
+  const auto& f = kFace[i];
+  const ExpVec n = cross(difference(A[f[1]], A[f[0]]), difference(A[f[2]], A[f[0]]));
+  const Expansion h = dot(n, difference(A[i], A[f[0]]));
+  ok = ok && h.ok;
+  return h.sign() > 0 ? negated(n) : n;
+}
+
+ExpVec edge_pair_normal_exp(const TetVertices& A, const TetVertices& B, int a, int b,
+                            EdgePairKind* kind, bool& ok) {
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  const ExpVec e = difference(A[v], A[u]);
+  ExpVec n = cross(difference(B[y], B[x]), e);
+  ok = ok && n.ok();
+  *kind = EdgePairKind::Generic;
+  if (!n.is_zero()) return n;
+  const ExpVec w = difference(B[x], A[u]);
+  n = difference(scaled(w, dot(e, e)), scaled(e, dot(w, e)));
+  ok = ok && n.ok();
+  *kind = n.is_zero() ? EdgePairKind::Colinear : EdgePairKind::Parallel;
+  return n;
+}
+
+EdgePairSide side_rule_exp(const TetVertices& A, const ExpVec& n, int a, bool& ok) {
+  const int u = kEdges[a][0];
+  const Expansion h1 = dot(n, difference(A[kOffEdge[a][0]], A[u]));
+  const Expansion h2 = dot(n, difference(A[kOffEdge[a][1]], A[u]));
+  ok = ok && h1.ok && h2.ok;
+  const int g1 = h1.sign(), g2 = h2.sign();
+  if (g1 <= 0 && g2 <= 0) return EdgePairSide::Keep;
+  if (g1 >= 0 && g2 >= 0) return EdgePairSide::Flip;
+  return EdgePairSide::Undecidable;
+}
+
+// sign(max_i n.s_i − min_j n.r_j) = the largest sign of n.(s_i − r_j) over the 16 pairs.
+Sign depth_sign_exp(const TetVertices& A, const TetVertices& B, const ExpVec& n, bool& ok) {
+  int best = -1;
+  for (int i = 0; i < 4 && best < 1; ++i)
+    for (int j = 0; j < 4 && best < 1; ++j) {
+      const Expansion h = dot(n, difference(A[i], B[j]));
+      ok = ok && h.ok;
+      const int s = h.sign();
+      best = s > best ? s : best;
+    }
+  return sign_of(best);
+}
+
+ExpVec oriented_normal_exp(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                           bool& ok) {
+  if (label.kind == ContactKind::FV) return face_normal_out_of_exp(A, label.a, ok);
+  if (label.kind == ContactKind::VF) return negated(face_normal_out_of_exp(B, label.a, ok));
+  EdgePairKind kind;
+  const ExpVec n = edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
+  const EdgePairSide side = side_rule_exp(A, n, label.a, ok);
+  const bool flip = side == EdgePairSide::Flip ||
+                    (side == EdgePairSide::Undecidable && label.orientation == EdgeOrientation::Minus);
+  return flip ? negated(n) : n;
+}
+
+}  // namespace
+
 Sign orientation_sign_exact(const TetVertices& T) {
+  if (in_exact_range(T, T)) {
+    const ExpVec n = cross(difference(T[1], T[0]), difference(T[2], T[0]));
+    const Expansion d = dot(n, difference(T[3], T[0]));
+    if (d.ok) return sign_of(d.sign());
+  }
   const QTet q = exact_tet(T);
   return sign_of(sgn(dot(cross(q[1] - q[0], q[2] - q[0]), q[3] - q[0])));
 }
 
 EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& B, int a, int b) {
-  const QTet qa = exact_tet(A), qb = exact_tet(B);
   EdgePairClass c;
+  if (in_exact_range(A, B)) {
+    bool ok = true;
+    const ExpVec n = edge_pair_normal_exp(A, B, a, b, &c.kind, ok);
+    if (ok && c.kind != EdgePairKind::Colinear) c.side = side_rule_exp(A, n, a, ok);
+    if (ok) return c;
+    c = EdgePairClass{};
+  }
+  const QTet qa = exact_tet(A), qb = exact_tet(B);
   const QV n = edge_pair_normal(qa, qb, a, b, &c.kind);
   if (c.kind != EdgePairKind::Colinear) c.side = side_rule(qa, n, a);
   return c;
 }
 
 Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
+  if (in_exact_range(A, B)) {
+    bool ok = true;
+    const ExpVec n = oriented_normal_exp(A, B, label, ok);
+    const Sign s = ok ? depth_sign_exp(A, B, n, ok) : Sign::Zero;
+    if (ok) return s;
+  }
   const QTet qa = exact_tet(A), qb = exact_tet(B);
   QV n;
   if (label.kind == ContactKind::FV) {
@@ -43,6 +132,28 @@ Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const Directio
     if (hb < lo) lo = hb;
   }
   return sign_of(sgn(Q(hi - lo)));
+}
+
+std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
+                                         const DirectionLabel& l1, const DirectionLabel& l2) {
+  // Granularity: coordinates multiples of 2^-152, products of 6 differences of 2^-912 (normal);
+  // magnitudes below (2^101)^6 · 2^40 (no overflow). See expansion.h.
+  for (const TetVertices* T : {&A, &B})
+    for (const Vec3d& p : *T)
+      for (double x : p) {
+        const double a = std::fabs(x);
+        if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return std::nullopt;
+      }
+  bool ok = true;
+  const ExpVec n1 = oriented_normal_exp(A, B, l1, ok);
+  const ExpVec n2 = oriented_normal_exp(A, B, l2, ok);
+  if (!ok || !n1.ok() || !n2.ok()) return std::nullopt;
+  const ExpVec c = cross(n1, n2);
+  if (!c.ok()) return std::nullopt;
+  if (!c.is_zero()) return false;
+  const Expansion d = dot(n1, n2);
+  if (!d.ok) return std::nullopt;
+  return d.sign() > 0;
 }
 
 }  // namespace pdd::fast

@@ -1,10 +1,13 @@
-// exact_predicates.h — exact signs (GMP rationals) for the rare inputs the filter cannot decide.
+// exact_predicates.h — exact signs for the inputs the filter cannot decide (floating-point
+// expansions, expansion.h, in their exact range; GMP rationals otherwise).
 //
 // Inputs are the raw doubles of the pair; each double is taken as the rational it denotes
 // (definitions §1), so these functions agree with the exact engine by construction. They allocate
 // and are slow (microseconds); the fast path calls them only when |value| <= filter bound
 // (filter_bounds.h), which for generic inputs never happens.
 #pragma once
+
+#include <optional>
 
 #include "pdd/direction_label.h"
 #include "pdd/sign.h"
@@ -28,5 +31,13 @@ EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& 
 // (definitions §3–4).
 // Precondition: the label is a candidate of the pair (not a colinear edge pair).
 Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
+
+// Whether the exact oriented candidates of labels l1 and l2 point the same way (n1 × n2 = 0 and
+// n1.n2 > 0), so that their depths delta are exactly equal (delta depends on the direction
+// only). nullopt when the expansions cannot decide it (every non-zero |coordinate| must lie in
+// [2^-100, 2^100]: n1 × n2 has degree up to 6 in coordinate differences; or an expansion
+// exceeds its capacity).
+std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
+                                         const DirectionLabel& l1, const DirectionLabel& l2);
 
 }  // namespace pdd::fast

@@ -6,7 +6,9 @@
 
 #include "certification/filter_bounds.h"
 #include "certification/tie_tolerance.h"
+#include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
+#include "exact/expansion.h"
 #include "kernel/direction_geometry.h"
 
 namespace pdd::fast {
@@ -44,6 +46,12 @@ struct Builder {
   const FilterBounds& fb;
   const Precomputed& p;
   CandidateSet& out;
+  double extent;  // L (filter_bounds.h)
+  bool in_range = in_exact_range(A, B);  // expansion.h's exact range
+  int face_edge_sign[6][4] = {{2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2},
+                              {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet, 3: too long
+  ExpVec face_normal[4];  // A's raw face normals, exactly, as g_sign_exact needs them
+  bool face_normal_known[4] = {false, false, false, false};
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   bool depth_positive(int k, double bound) {
@@ -53,9 +61,12 @@ struct Builder {
   }
 
   // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
-  bool emit(const Draft& d, double s, LabelCode code, double bound, bool parallel) {
+  // cls: 0 generic, 1 parallel, 2 nearly parallel with its own bounds `own` (CandidateSet).
+  bool emit(const Draft& d, double s, LabelCode code, double bound, int cls, const DegreeBounds& own) {
     const int k = out.count++;
-    out.parallel[k] = parallel;
+    out.parallel[k] = std::uint8_t(cls);
+    out.own_eh[k] = own.e_h;
+    out.own_en[k] = own.e_n;
     DirectionGeometry& c = out.explicit_[k];
     orient_draft(d, s, c);
     out.code[k] = code;
@@ -67,13 +78,102 @@ struct Builder {
     return depth_positive(k, bound);
   }
 
-  EdgePairClass classify(int a, int b, const Draft& c) {
-    if (max_abs3(c.n) <= fb.deg2) return classify_edge_pair_exact(A, B, a, b);
+  // Nearly parallel edges (n~ below the degree-2 filter): n = eB × eA exactly (expansion.h);
+  // when it is not 0, the draft is redone along n rounded (n~_k within 3u|n_k|) with heights
+  // along it, and `own` gets their bounds (value_bounds.h, own_degree_bounds). False when n is
+  // exactly 0 (parallel or colinear) or the pair is outside the expansions' exact range.
+  // `parallel` is set when n is exactly 0.
+  bool near_parallel_normal(int a, int b, Draft& c, DegreeBounds& own, bool& parallel) {
+    parallel = false;
+    if (!in_range) return false;
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+    const ExpVec n = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));
+    if (!n.ok()) return false;  // (expansion.h's capacity: the exact classification decides)
+    parallel = n.is_zero();
+    if (parallel) return false;
+    for (int k = 0; k < 3; ++k) c.n[k] = n.x[k].approx();
+    for (int k = 0; k < 4; ++k) {
+      double sk[3];
+      sub(A[k], A[u], sk);
+      c.hA[k] = dot(c.n, sk);
+      c.hB[k] = dot(c.n, p.d[u][k]);
+    }
+    c.hA[u] = c.hA[v] = 0.0;  // exactly: n.eA = 0
+    c.hB[y] = c.hB[x];        // exactly: n.eB = 0
+    own = own_degree_bounds(c.n, extent);
+    return true;
+  }
+
+  // Exact sign of g_i = n.(s_i − s_u), n = eB × eA, for an off-edge vertex i of edge a (u, v):
+  // n.(s_i − s_u) = eB.((s_v − s_u) × (s_i − s_u)) and that cross product is ±N, N the raw
+  // normal of A's face {u, v, i} (kFace order; + for an even permutation of it, a cross
+  // product of a triangle's edges being invariant under cyclic shifts), so sign(g_i) =
+  // ±sign(eB.N). The 24 signs eB.N (6 edges of B, 4 faces of A) are cached: aligned pairs
+  // ask for the same few many times. Precondition: the pair is in the expansions' range.
+  // Returns 3 when the expansions exceed their capacity (expansion.h).
+  int g_sign_exact(int a, int b, int i) {
+    const int u = kEdges[a][0], v = kEdges[a][1];
+    const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
+    int& s = face_edge_sign[b][f];
+    if (s == 2) {
+      if (!face_normal_known[f]) {
+        const auto& F = kFace[f];
+        face_normal[f] = detail::cross(difference(A[F[1]], A[F[0]]), difference(A[F[2]], A[F[0]]));
+        face_normal_known[f] = true;
+      }
+      const ExpVec& N = face_normal[f];
+      const Expansion g = dot(difference(B[kEdges[b][1]], B[kEdges[b][0]]), N);
+      s = g.ok ? g.sign() : 3;  // 3: beyond the expansions' capacity
+    }
+    if (s == 3) return 3;
+    // parity of (u, v, i) against the increasing order (u < v always): inversions of i
+    const int inversions = (i < u) + (i < v);
+    return inversions == 1 ? -s : s;
+  }
+
+  // own.e_h > 0: the draft was redone by near_parallel_normal and its heights have error
+  // <= own.e_h; else the filter bounds apply.
+  // Exactly parallel edges (n = 0, in the expansions' range): colinear iff w × e = 0 exactly
+  // (the parallel normal (e.e) w − (w.e) e = e × (w × e) has length |e| |w × e|); else the
+  // orientation rule on the parallel heights (error <= E4/4, value_bounds.h) when they clear it.
+  EdgePairClass exactly_parallel(int a, int b) {
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
+    EdgePairClass k;
+    const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
+    if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
+    if (m.is_zero()) {
+      k.kind = EdgePairKind::Colinear;
+      return k;
+    }
+    k.kind = EdgePairKind::Parallel;
+    Draft d;
+    parallel_heights(A, p, a, b, d);
+    int lo = 0, hi = 0;
+    for (int i : kOffEdge[a]) {
+      const double g = d.hA[i];
+      if (std::fabs(g) <= fb.deg4 / 4) return classify_edge_pair_exact(A, B, a, b);
+      lo += g < 0;
+      hi += g > 0;
+    }
+    k.side = hi == 0 ? EdgePairSide::Keep : lo == 0 ? EdgePairSide::Flip : EdgePairSide::Undecidable;
+    return k;
+  }
+
+  EdgePairClass classify(int a, int b, Draft& c, DegreeBounds& own) {
+    own = DegreeBounds{0.0, 0.0};
+    bool parallel = false;
+    if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own, parallel))
+      return parallel ? exactly_parallel(a, b) : classify_edge_pair_exact(A, B, a, b);
+    const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
     EdgePairClass k;
     int lo = 0, hi = 0;
     for (int i : kOffEdge[a]) {
-      const double g = c.hA[i];
-      if (std::fabs(g) <= fb.deg3) return classify_edge_pair_exact(A, B, a, b);
+      int g = c.hA[i] > 0.0 ? 1 : -1;
+      if (std::fabs(c.hA[i]) <= eg) {
+        if (!in_range) return classify_edge_pair_exact(A, B, a, b);
+        g = g_sign_exact(a, b, i);
+        if (g == 3) return classify_edge_pair_exact(A, B, a, b);
+      }
       lo += g < 0;
       hi += g > 0;
     }
@@ -85,20 +185,25 @@ struct Builder {
   bool edge_pair_general(int a, int b) {
     Draft c;
     lane_heights(out.edges, a, b, c);
-    const EdgePairClass k = classify(a, b, c);
+    DegreeBounds own;
+    const EdgePairClass k = classify(a, b, c, own);
     if (k.kind == EdgePairKind::Colinear) return true;  // no direction (definitions §3)
     double bound = fb.deg3;
-    const bool parallel = k.kind == EdgePairKind::Parallel;
-    if (parallel) {
+    int cls = 0;
+    if (k.kind == EdgePairKind::Parallel) {
       parallel_heights(A, p, a, b, c);
       bound = fb.deg4;
+      cls = 1;
+    } else if (own.e_h > 0.0) {
+      // |D~ − D| <= 2 e_h + u|D| (value_bounds.h) < |D~| when |D~| > 4 e_h
+      bound = 4 * own.e_h;
+      cls = 2;
     }
     const LabelCode decided = pack_label(ContactKind::EE, a, b, EdgeOrientation::Decided);
-    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, parallel);
-    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, parallel);
-    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, parallel) &&
-           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound,
-                parallel);
+    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, cls, own);
+    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, cls, own);
+    return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, cls, own) &&
+           emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound, cls, own);
   }
 
   // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is
@@ -148,6 +253,7 @@ struct Builder {
       out.lane[k] = -1;
       out.sign[k] = 1;
       out.parallel[k] = 0;
+      out.own_eh[k] = out.own_en[k] = 0.0;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     edge_lanes(p, fb.deg2, fb.deg3, out.edges);
@@ -173,7 +279,7 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (p.oA == Sign::Zero) return BuildStatus::DegenerateA;
   p.oB = orientation(B, p.detB, fb.deg3);
   if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
-  out.intersecting = Builder{A, B, fb, p, out}.run();
+  out.intersecting = Builder{A, B, fb, p, out, pair_extent(A, B)}.run();
   return BuildStatus::Ok;
 }
 
@@ -182,7 +288,9 @@ Candidate candidate(const CandidateSet& set, int k) {
   c.label = label(set, k);
   if (set.lane[k] < 0) {
     static_cast<DirectionGeometry&>(c) = set.explicit_[k];
-    c.parallel = set.parallel[k] != 0;
+    c.parallel = set.parallel[k] == 1;
+    c.own_bounds = set.parallel[k] == 2;
+    if (c.own_bounds) c.own_eh = set.own_eh[k], c.own_en = set.own_en[k];
     return c;
   }
   detail::lane_candidate(set.edges, set.lane[k], set.sign[k], c);

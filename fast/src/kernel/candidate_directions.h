@@ -47,6 +47,10 @@ struct DirectionGeometry {
 struct Candidate : DirectionGeometry {
   DirectionLabel label;
   bool parallel = false;  // a parallel edge pair: n of degree 3, heights of degree 4
+  // A nearly parallel edge pair: n rounded from its exact value, error bounds of its own
+  // (value_bounds.h, own_degree_bounds): per-height own_eh, per-component own_en.
+  bool own_bounds = false;
+  double own_eh = 0.0, own_en = 0.0;
 };
 
 // A label packed in 16 bits (kind | a << 2 | b << 5 | orientation << 8): plain integers keep
@@ -91,7 +95,9 @@ struct CandidateSet {
   // (16-bit, not 8-bit: char types alias everything and would pessimise the build loop)
   std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
   std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
-  std::uint8_t parallel[kMaxCandidates];  // explicit candidates: a parallel edge pair
+  // explicit candidates: 1 a parallel edge pair, 2 a nearly parallel one (own_eh, own_en), else 0
+  std::uint8_t parallel[kMaxCandidates];
+  double own_eh[kMaxCandidates], own_en[kMaxCandidates];  // set where parallel[k] == 2
   EdgeLanes edges;
   DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
 };

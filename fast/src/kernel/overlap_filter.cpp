@@ -22,6 +22,7 @@
 // ---- Stage 2: the superset kernel (superset_kernel.h), reused as is: no second SAT.
 #include "certification/filter_bounds.h"
 #include "kernel/candidate_directions.h"
+#include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
 #include "kernel/superset_kernel.h"
 #include "pdd/pdd.h"
@@ -85,6 +86,14 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
       return true;
     case Overlap::Unknown:
       break;
+  }
+  // The decision alone (no depth to certify): the candidate set's exact depth signs on the pair
+  // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
+  const detail::ScaledPair sp = detail::power_scaled(A, B);
+  if (sp.finite && sp.exact) {
+    thread_local CandidateSet set;  // (~20 KB: off the stack, allocated once per thread)
+    if (build_candidates(sp.A, sp.B, set) == BuildStatus::Ok) return set.intersecting;
+    return false;  // flat (decided exactly): rejected, definitions §1
   }
   return rigid_pd2_choice(A, B).value != 0.0;  // NaN (not representable) != 0: intersecting
 }

@@ -76,7 +76,7 @@ double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
     const double loA = *std::min_element(c.hA, c.hA + 4), hiA = *std::max_element(c.hA, c.hA + 4);
     const double loB = *std::min_element(c.hB, c.hB + 4), hiB = *std::max_element(c.hB, c.hB + 4);
     const double overlap = (hiA - loA) + (hiB - loB) - (std::max(hiA, hiB) - std::min(loA, loB));
-    const DegreeBounds db = degree_bounds(set.fb, c.parallel);
+    const DegreeBounds db = degree_bounds_of(set.fb, c);
     const double eO = 6 * db.e_h + 21 * kUnitRoundoff * detail::max_height(c);
     if (overlap <= -eO) return 0.0;  // exactly <= 0: E11 = 0, certified
     lo[i] = -1.0;

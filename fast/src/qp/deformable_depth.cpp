@@ -1,6 +1,8 @@
 // deformable_depth.cpp — definitions §5 variants with exact pruning. See the header.
 #include "qp/deformable_depth.h"
 
+#include "exact/exact_predicates.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -63,7 +65,7 @@ struct Valued {
 Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound& sb,
               const FilterBounds& fb) {
   const double v = s.cost / (20.0 * c.nn);
-  return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff)};
+  return {v, qp_root_rel(s.cost, c.nn, sb.H, degree_bounds_of(fb, c), sb.coeff)};
 }
 
 // pdd2_accel(A, B, 1)'s value (only its own interval is used, so kTinyQpRoot may stand in for
@@ -72,7 +74,7 @@ Valued valued(const Candidate& c, const DirectionSolution& s, const SolverBound&
 Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   const DirectionSolution s =
       solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
-  if (qp_root_rel_tiny(s.cost, c.nn, detail::max_height(c), degree_bounds(fb, c.parallel)))
+  if (qp_root_rel_tiny(s.cost, c.nn, detail::max_height(c), degree_bounds_of(fb, c)))
     return {s.cost / (20.0 * c.nn), kTinyQpRoot};  // valued()'s value
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
@@ -214,7 +216,8 @@ inline double safe_lower(double v, double r) {
 struct Pending {
   DirectionSolution s;
   double nn, Hm;
-  bool feasible, parallel;
+  bool feasible, parallel, own_bounds;  // the candidate's class (degree_bounds_of)
+  double own_eh, own_en;
 };
 template <class Variant>
 double evaluate(const Candidate& c, const Variant& variant, Pending& e) {
@@ -222,6 +225,9 @@ double evaluate(const Candidate& c, const Variant& variant, Pending& e) {
   e.nn = c.nn;
   e.Hm = detail::max_height(c);
   e.parallel = c.parallel;
+  e.own_bounds = c.own_bounds;
+  e.own_eh = c.own_eh;
+  e.own_en = c.own_en;
   return e.feasible ? e.s.cost / (20.0 * c.nn) : kInf;  // valued()'s value
 }
 template <class List, class Variant>
@@ -232,14 +238,14 @@ template <class Variant>
 double root_bound(const Candidate& c, const FilterBounds& fb, const Variant& variant, const Pending& e) {
   if (!e.feasible) return 0.0;
   const SolverBound sb = variant.bound(c, e.s);
-  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds(fb, c.parallel), sb.coeff);
+  return qp_root_rel(e.s.cost, c.nn, sb.H, degree_bounds_of(fb, c), sb.coeff);
 }
 template <class List, class Variant>
 double root_bound(const List& set, int i, const Variant& variant, const Pending& e) {
   return e.feasible ? root_bound(candidate(set, i), set.fb, variant, e) : 0.0;
 }
 inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
-  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds(fb, e.parallel));
+  return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds_of(fb, e));
 }
 
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
@@ -478,6 +484,105 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
 // Case 3. definitions §8: the chosen candidates must be exactly the first k of the exact order
 // (every chosen exact delta² strictly below every other one; exact ties are left to the exact
 // path), and the minimum of their QP values is certified as in sweep.
+// Case 3 when the first k are not certainly known (exact or near ties in delta², common on
+// aligned pairs): the exact first k lie among the contenders P = {i : certified lower bound of
+// delta²_i <= hi_chosen} (refine_accel's argument), so the exact value min over the first k of
+// the case-2 values lies in [min over P of their lower bounds, max over P of their upper
+// bounds]. When that interval passes certified_choice, any value in it meets definitions §8:
+// the computed choice's value (itself in it) is reported. (No label is reported for case 3.)
+template <class List>
+void accel_over_ties(const List& set, double hi_chosen, Choice& ch) {
+  if (!(hi_chosen < kInf)) return;
+  const DeformableVariant variant;
+  double lo_min = kInf, hi_max = 0.0;
+  int n = 0;
+  for (int i = 0; i < set.count; ++i) {
+    if (safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen) continue;
+    if (++n > kAccelWide + detail::kMaxRefined) return;
+    Pending p;
+    const double v = evaluate(set, i, variant, p);
+    if (!p.feasible || !(v > 0.0)) return;
+    const double r = root_bound(set, i, variant, p);
+    const double lo = safe_lower(v, r), hi = upper_of(v, r);
+    lo_min = lo < lo_min ? lo : lo_min;
+    hi_max = hi > hi_max ? hi : hi_max;
+    if (!certified_choice(hi_max, lo_min)) return;
+  }
+  if (n > 0 && ch.value >= lo_min && ch.value <= hi_max) ch.certified = true;
+}
+
+// Case 3 when the first k are not certainly known, by exact directions: the contenders P (as
+// in accel_over_ties) sorted by their computed delta² are split into a prefix S whose certified
+// upper bounds all lie below the certified lower bounds of the rest T, and T, whose oriented
+// normals all point exactly the same way (same_direction_exact): their exact delta are then
+// equal, so the exact order (stable in canonical order) puts S first, then T in canonical order.
+// When |S| < k <= |P|, the exact first k are S and the first k − |S| of T in canonical order, and
+// their case-2 minimum is certified as in accel_of. (Aligned pairs: a face and the edge pairs
+// of its plane give one direction exactly.)
+template <class List>
+void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
+  if (!set.A || !(hi_chosen < kInf)) return;
+  constexpr int kMax = kAccelWide + detail::kMaxRefined;
+  int P[kMax], n = 0;
+  double lo[kMaxCandidates], hi[kMaxCandidates];
+  for (int i = 0; i < set.count; ++i) {
+    const double r = detail::rigid_rel(set, i);
+    lo[i] = safe_lower(delta2(set, i), r);
+    hi[i] = upper_of(delta2(set, i), r);
+    if (lo[i] > hi_chosen) continue;
+    if (n == kMax) return;
+    P[n++] = i;
+  }
+  if (n < k) return;
+  int sorted[kMax];
+  for (int j = 0; j < n; ++j) sorted[j] = P[j];
+  std::stable_sort(sorted, sorted + n, [&set](int a, int b) { return delta2(set, a) < delta2(set, b); });
+  for (int s = 0; s < k; ++s) {
+    // prefix S = sorted[0..s): certainly below the rest
+    double hi_s = 0.0, lo_t = kInf;
+    for (int j = 0; j < s; ++j) hi_s = hi[sorted[j]] > hi_s ? hi[sorted[j]] : hi_s;
+    for (int j = s; j < n; ++j) lo_t = lo[sorted[j]] < lo_t ? lo[sorted[j]] : lo_t;
+    if (s > 0 && !(hi_s < lo_t)) continue;
+    // T = sorted[s..n) in canonical order (P ascends): one exact direction?
+    int T[kMax], m = 0;
+    for (int j = 0; j < n; ++j) {
+      bool in_s = false;
+      for (int q = 0; q < s; ++q) in_s = in_s || sorted[q] == P[j];
+      if (!in_s) T[m++] = P[j];
+    }
+    bool one = true;
+    const DirectionLabel first = unpack_label(label_code(set, T[0]));
+    for (int j = 1; j < m && one; ++j) {
+      const std::optional<bool> same =
+          same_direction_exact(*set.A, *set.B, first, unpack_label(label_code(set, T[j])));
+      one = same.value_or(false);
+    }
+    if (!one) continue;
+    int chosen[kMax], c = 0;
+    for (int j = 0; j < s; ++j) chosen[c++] = sorted[j];
+    for (int j = 0; c < k; ++j) chosen[c++] = T[j];
+    const DeformableVariant variant;
+    double v[kMax];
+    Pending p[kMax];
+    int best = -1;
+    for (int j = 0; j < k; ++j) {
+      v[j] = evaluate(set, chosen[j], variant, p[j]);
+      if (!p[j].feasible || !(v[j] > 0.0)) return;
+      if (best < 0 || v[j] < v[best]) best = j;
+    }
+    const double rel_best = root_bound(set, chosen[best], variant, p[best]);
+    double lo_min = safe_lower(v[best], rel_best);
+    for (int j = 0; j < k; ++j) {
+      const double l = safe_lower(v[j], root_bound(set, chosen[j], variant, p[j]));
+      lo_min = l < lo_min ? l : lo_min;
+    }
+    if (!certified_choice(upper_of(v[best], rel_best), lo_min)) return;
+    ch = Choice{v[best], chosen[best], label_code(set, chosen[best])};
+    ch.certified = true;
+    return;
+  }
+}
+
 template <class List>
 Choice accel_of(const List& set, int k) {
   if (!usable(set) || k <= 0) return {};
@@ -527,6 +632,8 @@ Choice accel_of(const List& set, int k) {
     double value = 0;
     if (accel1_compensated(*set.A, *set.B, c, value)) ch.value = value, ch.certified = true;
   }
+  if (!ch.certified && !separated) accel_over_ties(set, hi_chosen, ch);
+  if (!ch.certified && !separated) accel_by_directions(set, k, hi_chosen, ch);
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
   return ch;
 }

@@ -42,6 +42,7 @@ struct MeshBenchOptions {
   unsigned variants = mesh::kRigid | mesh::kAccel1;
   int repeats = 5;
   std::string write_meshes;    // non-empty: keep the generated meshes in this directory
+  int aligned_cells = 4;       // cells per axis of the aligned cases' blocks; 0: no aligned cases
 };
 
 struct StageTimes {
@@ -85,6 +86,28 @@ struct DepthCost {
   double slow_share = 0;        // their share of the total time
 };
 
+// The aligned and structured cases (run_mesh_bench, --aligned-cells): meshes whose faces and
+// edges are parallel to the other's, each beside the same meshes with B rotated by a generic
+// angle (0.3 rad about (1, 2, 3) through B's centre), one core, in the same run.
+struct AlignedRun {
+  std::size_t elements_a = 0, elements_b = 0, box_pairs = 0, intersecting = 0;
+  double decision_ns = 0;  // contacts()' decision stage / box pairs (median over repeats)
+  double depth_ns = 0;     // contacts()' depth stage / intersecting pairs (median)
+  // solve_pair (the options' variants) on up to 2000 intersecting pairs: its record statistics
+  std::size_t sampled = 0, slow_path = 0, refined = 0;
+};
+struct AlignedCase {
+  std::string name;
+  AlignedRun aligned, rotated;
+};
+
+// Structured blocks: n[0] x n[1] x n[2] cubes of side h from `origin`, each cut into six Kuhn
+// tetrahedra or five (alternating by cell parity), then rotated by `angle` about `axis` through
+// the block's centre (angle 0: coordinates origin + index·h, rounded once).
+enum class CubeSplit { Kuhn6, Five };
+mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
+                                 CubeSplit split, double angle = 0, const std::array<double, 3>& axis = {1, 2, 3});
+
 struct MeshBenchReport {
   MeshBenchOptions options;
   MachineInfo machine;
@@ -100,6 +123,7 @@ struct MeshBenchReport {
   std::vector<BroadphaseRow> broadphase_all, broadphase_pruned;
   std::size_t pruned_a = 0, pruned_b = 0;  // boxes left after pruning
   double ours_all_cores_pruned = 0;        // contacts()'s broadphase (pruned, all cores), median
+  std::vector<AlignedCase> aligned;
   std::vector<std::string> notes;
   double seconds = 0;
 };

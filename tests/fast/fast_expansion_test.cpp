@@ -1,0 +1,154 @@
+// Floating-point expansions (fast/src/exact/expansion.h) against GMP rationals
+// (exact_geometry.h) on the inputs they are there for: aligned pairs whose edges are parallel
+// exactly or up to rounding, whose faces are coplanar or parallel. Every exact predicate of
+// exact_predicates.h (which takes expansions in their range) must give the rational answer.
+#define BOOST_TEST_MODULE fast_expansion
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "exact/exact_geometry.h"
+#include "exact/exact_predicates.h"
+#include "exact/expansion.h"
+#include "pdd/compare/random.h"
+
+using namespace pdd;
+using namespace pdd::fast;
+using detail::Q;
+
+namespace {
+
+// A cell tetrahedron of a grid of side h at a random decimal origin (coordinates rounded): Kuhn
+// path `perm`, or with one vertex nudged by a few ulps (nearly parallel edges, nearly coplanar
+// faces).
+TetVertices cell_tet(compare::ReproducibleRng& r, const Vec3d& origin, double h, int perm, bool nudge) {
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  TetVertices t;
+  int d[3] = {0, 0, 0};
+  t[0] = origin;
+  for (int q = 0; q < 3; ++q) {
+    d[kPerm[perm][q]] = 1;
+    t[q + 1] = {origin[0] + d[0] * h, origin[1] + d[1] * h, origin[2] + d[2] * h};
+  }
+  if (nudge) {
+    double& x = t[r.integer(0, 3)][r.integer(0, 2)];
+    x = std::nextafter(x, r.integer(0, 1) ? HUGE_VAL : -HUGE_VAL);
+  }
+  return t;
+}
+
+std::pair<TetVertices, TetVertices> aligned_pair(compare::ReproducibleRng& r) {
+  const double h = r.uniform(0.5, 2.0);
+  const Vec3d o = {r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5)};
+  // B's origin: a non-grid shift, or an exact grid multiple (coplanar faces, colinear edges)
+  const bool on_grid = r.integer(0, 2) == 0;
+  Vec3d ob;
+  for (int k = 0; k < 3; ++k) ob[k] = o[k] + (on_grid ? r.integer(-1, 1) * h : r.uniform(-1, 1) * h);
+  return {cell_tet(r, o, h, r.integer(0, 5), r.integer(0, 3) == 0),
+          cell_tet(r, ob, h, r.integer(0, 5), r.integer(0, 3) == 0)};
+}
+
+int sign_of_q(const Q& q) { return sgn(q); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
+  compare::ReproducibleRng r(38);
+  int parallel = 0, colinear = 0, zero_g = 0, zero_depth = 0, same_direction = 0;
+  for (int it = 0; it < 3000; ++it) {
+    const auto [A, B] = aligned_pair(r);
+    BOOST_REQUIRE(detail::in_exact_range(A, B));
+    const detail::QTet qa = detail::exact_tet(A), qb = detail::exact_tet(B);
+    for (const auto* T : {&A, &B}) {
+      const detail::QTet q = detail::exact_tet(*T);
+      const Sign s = sign_of(sign_of_q(dot(cross(q[1] - q[0], q[2] - q[0]), q[3] - q[0])));
+      BOOST_TEST((orientation_sign_exact(*T) == s));
+    }
+    if (orientation_sign_exact(A) == Sign::Zero || orientation_sign_exact(B) == Sign::Zero) continue;
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        EdgePairKind kind;
+        const detail::QV n = detail::edge_pair_normal(qa, qb, a, b, &kind);
+        const EdgePairClass c = classify_edge_pair_exact(A, B, a, b);
+        BOOST_TEST((c.kind == kind), "kind " << a << ":" << b);
+        parallel += kind == EdgePairKind::Parallel;
+        colinear += kind == EdgePairKind::Colinear;
+        if (kind == EdgePairKind::Colinear) continue;
+        BOOST_TEST((c.side == detail::side_rule(qa, n, a)), "side " << a << ":" << b);
+        for (int i : kOffEdge[a]) zero_g += sgn(dot(n, qa[i] - qa[kEdges[a][0]])) == 0;
+      }
+    // depth signs of every candidate label, and same_direction_exact against rational cross
+    // products of the oriented normals
+    std::vector<DirectionLabel> labels;
+    for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::FV, f, 0, EdgeOrientation::Decided});
+    for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::VF, f, 0, EdgeOrientation::Decided});
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        const EdgePairClass c = classify_edge_pair_exact(A, B, a, b);
+        if (c.kind == EdgePairKind::Colinear) continue;
+        if (c.side == EdgePairSide::Undecidable) {
+          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Plus});
+          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Minus});
+        } else {
+          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Decided});
+        }
+      }
+    auto exact_normal = [&](const DirectionLabel& l) {
+      if (l.kind == ContactKind::FV) return detail::face_normal_out_of(qa, l.a);
+      if (l.kind == ContactKind::VF) return detail::face_normal_into(qb, l.a);
+      EdgePairKind kind;
+      detail::QV n = detail::edge_pair_normal(qa, qb, l.a, l.b, &kind);
+      const EdgePairSide side = detail::side_rule(qa, n, l.a);
+      if (side == EdgePairSide::Flip ||
+          (side == EdgePairSide::Undecidable && l.orientation == EdgeOrientation::Minus))
+        n = detail::negated(n);
+      return n;
+    };
+    for (const auto& l : labels) {
+      const detail::QV n = exact_normal(l);
+      Q hi = dot(n, qa[0]), lo = dot(n, qb[0]);
+      for (int i = 1; i < 4; ++i) {
+        const Q ha = dot(n, qa[i]), hb = dot(n, qb[i]);
+        if (ha > hi) hi = ha;
+        if (hb < lo) lo = hb;
+      }
+      const int want = sgn(Q(hi - lo));
+      zero_depth += want == 0;
+      BOOST_TEST((depth_sign_exact(A, B, l) == sign_of(want)), l.str());
+    }
+    for (std::size_t k = 1; k < labels.size(); k += 7) {
+      const detail::QV n1 = exact_normal(labels[0]), n2 = exact_normal(labels[k]);
+      const bool want = detail::is_zero(detail::cross(n1, n2)) && sgn(dot(n1, n2)) > 0;
+      same_direction += want;
+      const std::optional<bool> got = same_direction_exact(A, B, labels[0], labels[k]);
+      if (got) BOOST_TEST(*got == want, labels[0].str() << " " << labels[k].str());
+    }
+  }
+  // the degeneracies the draws are made for do occur
+  BOOST_TEST(parallel > 1000);
+  BOOST_TEST(colinear > 100);
+  BOOST_TEST(zero_g > 1000);
+  BOOST_TEST(zero_depth > 10);
+  BOOST_TEST(same_direction > 100);
+  BOOST_TEST_MESSAGE("parallel " << parallel << ", colinear " << colinear << ", zero g " << zero_g
+                                 << ", zero depths " << zero_depth << ", same directions " << same_direction);
+}
+
+// Expansion arithmetic on sums that cancel exactly in doubles' rounding: (a + b) − a − b = 0,
+// products of differences against rationals.
+BOOST_AUTO_TEST_CASE(expansion_arithmetic_is_exact) {
+  compare::ReproducibleRng r(7);
+  for (int it = 0; it < 20000; ++it) {
+    const double x[6] = {r.uniform(-10, 10), r.uniform(-1e-8, 1e-8), r.uniform(-1e5, 1e5),
+                         r.uniform(-10, 10),  r.uniform(-3, 3),       r.uniform(-1e-3, 1e-3)};
+    const detail::Expansion p = detail::product(detail::difference(x[0], x[1]), detail::difference(x[2], x[3]));
+    const detail::Expansion e = detail::difference(p, detail::scaled(detail::difference(x[4], x[5]), x[0]));
+    const Q want = (Q(x[0]) - Q(x[1])) * (Q(x[2]) - Q(x[3])) - (Q(x[4]) - Q(x[5])) * Q(x[0]);
+    Q got = 0;
+    for (int i = 0; i < e.n; ++i) got += Q(e.c[i]);
+    BOOST_TEST(e.ok);
+    BOOST_TEST((got == want));
+    BOOST_TEST(e.sign() == sgn(want));
+    for (int i = 1; i < e.n; ++i) BOOST_TEST(std::fabs(e.c[i - 1]) < std::fabs(e.c[i]));  // increasing
+  }
+}
