@@ -51,7 +51,7 @@ namespace {
 
 struct MeshArgs {
   std::string a, b, variants = "rigid,static,pdd2,accel1", engine = "fast", output, vtk;
-  bool self = false, summary = false, quiet = false;
+  bool self = false, summary = false, quiet = false, energy = false;
   int threads = 0;
 };
 
@@ -164,6 +164,39 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
   return status;
 }
 
+// --energy: the contact energy (definitions §12) at the meshes' positions, one JSON object:
+// energy, pairs, max_pdd2_global, max_force (largest |dE/dp| over the vertices), max_force_vertex
+// (its index, A's vertices first), seconds (docs/definitions.md "Contact energy").
+int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
+  mesh::ContactEnergyOptions o;
+  o.engine = args.engine == "fast" ? mesh::EnergyEngine::Fast : mesh::EnergyEngine::Exact;
+  const auto t0 = Clock::now();
+  const mesh::ContactEnergy e = B ? mesh::contact_energy(A, *B, A.vertices, B->vertices, o)
+                                  : mesh::self_contact_energy(A, A.vertices, o);
+  double max_force = 0;
+  std::size_t at = 0;
+  for (std::size_t v = 0; v < e.gradient.size(); ++v) {
+    const auto& g = e.gradient[v];
+    const double f = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    if (f > max_force) max_force = f, at = v;
+  }
+  Json j = {{"energy", e.energy}, {"pairs", e.pair_count}, {"max_pdd2_global", e.max_pdd2_global},
+            {"max_force", max_force}, {"max_force_vertex", e.pair_count ? Json(at) : Json(nullptr)},
+            {"seconds", since(t0)}};
+  for (const auto& s : e.skipped) std::cerr << "pdd mesh: skipped: " << s.reason << '\n';
+  if (args.output.empty()) {
+    std::cout << j.dump() << '\n';
+  } else {
+    std::ofstream out(args.output);
+    out << j.dump() << '\n';
+    if (!out) {
+      std::cerr << "pdd mesh: cannot write " << args.output << '\n';
+      return kExitFileError;
+    }
+  }
+  return 0;
+}
+
 int run_mesh(const MeshArgs& args) {
   if (args.self == !args.b.empty()) {
     std::cerr << "pdd mesh: give either --b B or --self\n";
@@ -200,6 +233,8 @@ int run_mesh(const MeshArgs& args) {
   std::cerr << "pdd mesh: A " << tetrahedra(A.tets.size());
   if (!args.self) std::cerr << ", B " << tetrahedra(B.tets.size());
   std::cerr << ", " << (fast ? "fast" : "reference") << " engine, variants " << mesh::variant_names(variants) << '\n';
+
+  if (args.energy) return run_energy(args, A, args.self ? nullptr : &B);
 
   std::once_flag once;
   std::unique_ptr<Progress> progress;
@@ -294,6 +329,10 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       ->check(integer_in(0, 4096))
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
+  cmd->add_flag("--energy", args->energy,
+                "Instead of the pairs, the contact energy E = sum (V_a V_b)^(1/3) pdd2_global "
+                "(docs/definitions.md \"Contact energy\") as one JSON object: energy, pairs, "
+                "max_pdd2_global, max_force (largest |dE/dp| of a vertex), max_force_vertex");
   cmd->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }
 

@@ -20,6 +20,7 @@ PACKAGES=(
   python3-pytest python3-distributed      # its tests; the dask example
   python3-meshio                          # its mesh tests: meshes read by meshio (test_mesh.py)
   python3-tqdm                            # its progress bars (progress=True)
+  python3-scipy                           # pdd.contact_energy's Hessian (scipy.sparse), examples/soft_body.py
   python3-matplotlib                      # scripts/render-resolve.py (pictures of pdd resolve)
   gmsh                                    # scripts/make-meshes.sh only (test meshes; GPL, never linked)
   tetgen                                  # scripts/make-resolve-cases.sh only (thin plates; never linked)

@@ -358,3 +358,5 @@ void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vec
                           const Mesh* B, const std::vector<Vec3d>& b1, const ResolveReport& report);
 
 }  // namespace pdd::mesh
+
+#include "pdd/mesh/contact_energy.h"  // contact_energy: E, its gradient and Hessian (definitions §12)

@@ -22,6 +22,7 @@ namespace py = pybind11;
 void bind_pdd(py::module_& m);   // pdd.cpp:  solve, solve_batch (<pdd/pdd.h>)
 void bind_io(py::module_& m);    // io.cpp:   read_fixtures (pdd::io's fixture reader)
 void bind_mesh(py::module_& m);  // mesh.cpp: mesh_contacts, read_mesh, resolve (<pdd/mesh.h>)
+void bind_energy(py::module_& m);  // energy.cpp: contact_energy (<pdd/mesh.h>)
 
 // ---------------------------------------------------------------------------------------------
 // Input: one tetrahedron from anything array-like 4 x 3.

@@ -100,4 +100,5 @@ PYBIND11_MODULE(pdd, m) {
   bind_pdd(m);
   bind_io(m);
   bind_mesh(m);
+  bind_energy(m);
 }

@@ -1,0 +1,168 @@
+// contact_energy.h — a contact energy for simulators (definitions §12): at the current positions
+// P of two tetrahedral meshes (or of one, self-contact),
+//
+//     E(P) = sum over intersecting element pairs (a, b) of  w_ab * pdd2_global(a, b; P)
+//
+// with its gradient per vertex and, on request, a sparse positive semi-definite Hessian.
+//
+//   #include <pdd/mesh.h>     // includes this header; CMake: pdd::mesh
+//   pdd::mesh::ContactEnergyOptions o;  o.hessian = true;
+//   pdd::mesh::ContactEnergy e = pdd::mesh::contact_energy(A, B, pa, pb, o);
+//   e.energy, e.gradient[v] (A's vertices, then B's), e.hessian (3n x 3n, row 3v + k)
+//
+// Inputs
+//   A, B     meshes at REST (their `vertices` give the weights, below); the tetrahedra.
+//   pa, pb   current positions, one per vertex of A / of B (same counts).
+//   options  ContactEnergyOptions (defaults in the struct).
+// Outputs (ContactEnergy)
+//   energy    E(P), squared length times the weight's units (length^4 with the default weight).
+//   gradient  dE/dP per vertex, A's vertices first (n = nA + nB rows; nA for self-contact).
+//   hessian   (options.hessian) 3n x 3n, symmetric, positive semi-definite (Gauss–Newton, below).
+//   pairs     (options.per_pair) each intersecting pair: a, b, weight, pdd2_global, w * pdd2_global.
+//
+// Pairs. Those of definitions §10 at P: every (a, b) of A x B whose interiors intersect (exact
+// decision), or for self-contact every a < b sharing no vertex index (so two bodies of one file,
+// and a body folded onto itself, both count, as definitions §11 asks). A flat element (zero
+// volume at P, or at rest for the weight) or one with a non-finite coordinate is skipped and
+// listed in `skipped`, as contacts() does.
+//
+// Weights. w_ab = (V_a V_b)^(1/3), V the REST volumes (|det| / 6 of A's / B's `vertices`), held
+// constant: E is a function of P alone, and the gradient and Hessian below are exactly its
+// derivatives (weights from the current volumes would add a non-convex term per pair). Why this
+// weight: for a shallow contact (depth delta << element size h) across an area S, each
+// intersecting pair costs pdd2_global ~ delta^2 (a few vertices moved by about delta: the
+// object norm is a MEAN squared displacement, independent of the element's size), and there
+// are ~ S / h^2 such pairs; so the unweighted sum grows like S delta^2 / h^2 when the mesh is
+// refined. (V_a V_b)^(1/3) ~ h^2 is an area, making E ~ S delta^2 = the integral of the squared
+// depth over the contact area, a penalty independent of the resolution. Measured (two Gmsh
+// boxes overlapping by a fixed depth, meshed at h, h/2, h/4; compare/research/
+// contact_energy_resolution.py): E(h/2)/E(h) and E(h/4)/E(h) are reported in the commit and in
+// docs/definitions.md "Contact energy", beside the same ratios for w = 1 (growing like 4x per
+// halving) and w = (V_a + V_b)/2 (shrinking like h). Weight::Unit gives w = 1.
+//
+// Gradient (definitions §11/§12). Per pair, with Q* = (q1_A_global, q1_B_global) the separated
+// positions attaining pdd2_global and d = Q* - P per tetrahedron,
+//     grad_p pdd2_global = -d sigma / d d = -(d_i + sum_k d_k) / 10   (vertex i of that element)
+// where the minimiser is unique; at a tie, the gradient of the returned minimiser's branch (one
+// element of the Clarke generalized gradient, pdd.h "Ties"). Scattered with weight w_ab onto the
+// pair's eight vertices. Not intersecting: 0.
+//
+// Hessian (Gauss–Newton of the fixed-plane QP). Hold the unit normal u of the pair's minimiser.
+// Definitions §9: the cheapest separation across a plane of normal u moves every vertex along u
+// only, so with s = (u.p_0, ..., u.p_7) (A's four vertices, then B's) and displacements t along u
+//     V_u(s) = min over t in R^8, c in R of  t_A^T M t_A + t_B^T M t_B,   M = (I + J) / 20,
+//              subject to s_i + t_i <= c (i in A),  s_j + t_j >= c (j in B),
+// a convex QP whose right-hand side is linear in s; pdd2_global(P) = V_u(s(P)) at the held u.
+// On the current active set S (the vertices on the plane at the minimiser: A's with
+// u.q_i = c, B's with u.q_j = c) the constraints are equalities t_k - c = -s_k (k in S). With
+// x = (t, c), H = 2 blockdiag(M, M, 0) and C the |S| x 9 matrix of rows e_k - e_c, the KKT system
+//     [H C^T; C 0] [x; lambda] = [0; -S s]           (S: the |S| x 8 selection)
+// has x = X (-S s) (X: the first 9 rows of the inverse's last |S| columns), so the value is
+//     V_S(s) = 1/2 x^T H x = 1/2 s^T (S^T X^T H X S) s =: 1/2 s^T Qs s,
+// a quadratic in s (Qs = S^T X^T H X S is 8 x 8, positive semi-definite as X^T H X is, and
+// Qs 1 = 0: shifting all eight along u shifts c). The KKT matrix is invertible when S is not
+// empty: C has full row rank (each row has its own t_k) and H is positive definite on the null
+// space of C (t = 0 there forces c = t_k = 0). With N the 8 x 24 matrix of rows u^T (s = N p),
+//     Hessian_p = N^T Qs N = Qs (x) u u^T            (24 x 24, entry (3i+a, 3j+b) = Qs_ij u_a u_b)
+// positive semi-definite, and its gradient Qs s (x) u equals the gradient above on the piece.
+// Summed with the weights over all pairs into one sparse 3n x 3n matrix (row 3v + k). It omits
+// the curvature of the normal's motion (pdd2_global is semiconcave: that part is concave), so it
+// is the Hessian of the majorizer: V_u(s(P')) >= pdd2_global(P') for every P' (pdd2_global is the
+// minimum over normals), with equality at P. A step that lowers sum w V_u lowers E
+// (majorization–minimization). The active set is read from the engine's positions: a vertex is
+// on the plane when its distance to it is <= kActiveTolerance times the pair's extent along u
+// (the positions attain the value to 2e-9 relative: definitions §8; vertices off the plane by less
+// are at a kink of V_u, where either piece is a one-sided Hessian).
+//
+// Engine. Fast (default): mesh contacts with definitions §9 (pdd::fast::solve_pair per pair); a
+// pair whose fast pdd2_global is declined (pdd2_global_error) is recomputed by the exact engine.
+// Exact: contacts_exact (pdd::reference::solve_pair; exact witness positions, rounded to double
+// here), milliseconds a pair: the judge for small meshes.
+//
+// Errors: std::invalid_argument when positions do not have one entry per vertex or a
+// tetrahedron refers to a missing vertex; Cancelled when options.cancel is set.
+#pragma once
+
+#include <Eigen/Sparse>
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <vector>
+
+#include "pdd/pdd.h"
+
+namespace pdd::mesh {
+
+struct Mesh;
+struct SkippedElement;
+
+enum class EnergyEngine { Fast, Exact };
+enum class EnergyWeight {
+  Area,  // w_ab = (V_a V_b)^(1/3), rest volumes (the default; see "Weights")
+  Unit,  // w_ab = 1 (for comparison: grows with refinement)
+};
+
+struct ContactEnergyOptions {
+  EnergyEngine engine = EnergyEngine::Fast;
+  EnergyWeight weight = EnergyWeight::Area;
+  bool hessian = false;   // fill ContactEnergy::hessian
+  bool per_pair = false;  // fill ContactEnergy::pairs
+  // As ContactOptions::cancel (checked between stages and per pair); throws Cancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct EnergyPair {
+  std::size_t a = 0, b = 0;  // element of A (of the mesh, self-contact), element of B
+  double weight = 0;         // w_ab
+  double pdd2_global = 0;    // definitions §9 at the current positions
+  double energy = 0;         // weight * pdd2_global
+};
+
+struct ContactEnergy {
+  double energy = 0;
+  std::vector<Vec3d> gradient;         // one row per vertex, A's first
+  Eigen::SparseMatrix<double> hessian;  // 3n x 3n when asked, else 0 x 0
+  std::vector<EnergyPair> pairs;        // when asked, sorted by (a, b)
+  std::size_t pair_count = 0;           // intersecting pairs
+  double max_pdd2_global = 0;           // largest pdd2_global over them (0 if none)
+  std::vector<SkippedElement> skipped;
+  double seconds_contacts = 0, seconds_assembly = 0;
+};
+
+// Two meshes: pa / pb the current positions of A's / B's vertices.
+ContactEnergy contact_energy(const Mesh& A, const Mesh& B, const std::vector<Vec3d>& pa,
+                             const std::vector<Vec3d>& pb, const ContactEnergyOptions& options = {});
+// Self-contact of one mesh (definitions §10's pairs: a < b sharing no vertex).
+ContactEnergy self_contact_energy(const Mesh& A, const std::vector<Vec3d>& pa,
+                                  const ContactEnergyOptions& options = {});
+
+// ---------------------------------------------------------------------------------------------
+// Building blocks (one pair; for tests and for callers with their own pair lists).
+
+// Distance to the plane, relative to the pair's extent along u, below which a vertex counts as
+// on the plane (see "Hessian").
+inline constexpr double kActiveTolerance = 1e-7;
+
+// One pair's terms at positions P = (A's s0..s3, B's r0..r3), from its global minimiser
+// Q = (q1_A_global, q1_B_global) and normal (any length, A -> B).
+struct PairTerms {
+  std::array<Vec3d, 8> gradient{};             // grad_P pdd2_global
+  std::array<std::array<double, 8>, 8> qs{};   // Qs of "Hessian" (Hessian_P = Qs (x) u u^T)
+  Vec3d unit_normal{};                         // u
+  std::array<bool, 8> active{};                // the active set S
+  double piece_value = 0;                      // V_S(s(P)) = 1/2 s^T Qs s (= pdd2_global)
+};
+PairTerms pair_terms(const TetVertices& A, const TetVertices& B, const TetVertices& qA,
+                     const TetVertices& qB, const Vec3d& normal);
+
+// V_u of "Hessian" with the normal u held (any length, A -> B), solved exactly as a QP by
+// enumerating the 255 non-empty active sets (the feasible one of least value): for tests.
+// gradient: its gradient with respect to the eight positions on the optimal piece.
+struct FixedPlane {
+  double value = 0;
+  std::array<Vec3d, 8> gradient{};
+};
+FixedPlane fixed_plane(const TetVertices& A, const TetVertices& B, const Vec3d& normal);
+
+}  // namespace pdd::mesh

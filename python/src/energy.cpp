@@ -1,0 +1,213 @@
+// energy.cpp — pdd.contact_energy: the contact energy of two tetrahedral meshes (or of one,
+// self-contact), its gradient and Hessian, through <pdd/mesh.h> (pdd::mesh::contact_energy;
+// definitions §12 and docs/definitions.md "Contact energy").
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common.h"
+#include "long_call.h"
+#include "pdd/mesh.h"
+
+namespace pdd_python {
+namespace {
+
+// (n, 3) real numbers -> vertices (float64, as numpy.asarray converts).
+std::vector<pdd::Vec3d> vertices_arg(py::handle obj, const char* which) {
+  py::array a = cached->asarray(obj);
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    value_error(std::string(which) + " must be an array of real numbers of shape (n, 3); got dtype " +
+                py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 2 || a.shape(1) != 3) value_error(std::string(which) + " must have shape (n, 3); got " + shape_str(a));
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 3; ++k) out[i][k] = d.data()[i * 3 + k];
+  return out;
+}
+
+// (m, 4) integers -> tetrahedra; negative indices reported here, those past the end by the library.
+std::vector<std::array<std::size_t, 4>> tets_arg(py::handle obj, const char* which, char mesh,
+                                                 std::size_t vertices) {
+  py::array a = cached->asarray(obj);
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    value_error(std::string(which) + " must be an array of integers (vertex indices) of shape (m, 4); got dtype " +
+                py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 2 || a.shape(1) != 4) value_error(std::string(which) + " must have shape (m, 4); got " + shape_str(a));
+  const auto d = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  std::vector<std::array<std::size_t, 4>> out(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const std::int64_t v = d.data()[i * 4 + k];
+      if (v < 0)
+        value_error("element " + std::to_string(i) + " of mesh " + mesh + " refers to vertex " +
+                    std::to_string(v) + ", but the mesh has " + std::to_string(vertices) + " vertices");
+      out[i][k] = static_cast<std::size_t>(v);
+    }
+  return out;
+}
+
+// Mesh `which` at rest (rest given, or the positions) with the positions given.
+pdd::mesh::Mesh mesh_arg(py::handle V, py::handle T, py::handle rest, char which,
+                         std::vector<pdd::Vec3d>& positions) {
+  const std::string v = std::string("V") + which, t = std::string("T") + which,
+                    r = std::string("rest_") + which;
+  positions = vertices_arg(V, v.c_str());
+  pdd::mesh::Mesh m;
+  m.vertices = rest.is_none() ? positions : vertices_arg(rest, r.c_str());
+  if (m.vertices.size() != positions.size())
+    value_error(r + " must have the shape of " + v + " (one rest position per vertex); got " +
+                std::to_string(m.vertices.size()) + " rows for " + std::to_string(positions.size()));
+  m.tets = tets_arg(T, t.c_str(), which, positions.size());
+  return m;
+}
+
+py::object hessian_csr(const Eigen::SparseMatrix<double>& H) {
+  // Eigen's default storage is column-major (CSC); H is symmetric, so its CSC arrays read as CSR
+  // are H^T = H.
+  const auto nnz = static_cast<py::ssize_t>(H.nonZeros());
+  py::array_t<double> data(nnz);
+  py::array_t<std::int64_t> indices(nnz), indptr(H.outerSize() + 1);
+  for (py::ssize_t k = 0; k < nnz; ++k) {
+    data.mutable_data()[k] = H.valuePtr()[k];
+    indices.mutable_data()[k] = H.innerIndexPtr()[k];
+  }
+  for (Eigen::Index k = 0; k <= H.outerSize(); ++k) indptr.mutable_data()[k] = H.outerIndexPtr()[k];
+  py::module_ sparse;
+  try {
+    sparse = py::module_::import("scipy.sparse");
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_ImportError)) throw;
+    py::raise_from(e, PyExc_ImportError,
+                   "hessian=True returns a scipy.sparse matrix, but scipy cannot be imported "
+                   "(Debian: apt install python3-scipy; pip: pip install scipy)");
+    throw py::error_already_set();
+  }
+  return sparse.attr("csr_matrix")(py::make_tuple(data, indices, indptr),
+                                   py::arg("shape") = py::make_tuple(H.rows(), H.cols()));
+}
+
+py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle TB, bool hessian,
+                        bool per_pair, py::handle engine_in, py::handle weight_in,
+                        py::handle threads_in, py::handle rest_A, py::handle rest_B) {
+  const std::string engine = text_arg(engine_in, "engine");
+  if (engine != "fast" && engine != "exact" && engine != "reference")  // as mesh_contacts' 'reference'
+    value_error("engine must be 'fast' or 'exact' ('reference'); got '" + engine + "'");
+  const std::string weight = text_arg(weight_in, "weight");
+  if (weight != "area" && weight != "unit")
+    value_error("weight must be 'area' or 'unit'; got '" + weight + "'");
+  const std::optional<int> threads = threads_arg(threads_in);
+  if (VB.is_none() != TB.is_none())
+    value_error("give both VB and TB (contact of A with B), or neither (self-contact of A)");
+  const bool self = VB.is_none();
+  if (self && !rest_B.is_none()) value_error("rest_B is for two meshes; self-contact has rest_A only");
+  if (hessian) py::module_::import("scipy.sparse");  // fail before the work when scipy is missing
+
+  std::vector<pdd::Vec3d> pa, pb;
+  const pdd::mesh::Mesh A = mesh_arg(VA, TA, rest_A, 'A', pa);
+  pdd::mesh::Mesh B;
+  if (!self) B = mesh_arg(VB, TB, rest_B, 'B', pb);
+
+  pdd::mesh::ContactEnergyOptions o;
+  o.engine = engine == "fast" ? pdd::mesh::EnergyEngine::Fast : pdd::mesh::EnergyEngine::Exact;
+  o.weight = weight == "area" ? pdd::mesh::EnergyWeight::Area : pdd::mesh::EnergyWeight::Unit;
+  o.hessian = hessian;
+  o.per_pair = per_pair;
+  Progress progress(py::none(), "pdd.contact_energy");
+  LongCall call(progress);
+  o.cancel = &call.cancel;
+  std::optional<pdd::mesh::ContactEnergy> e;
+  std::optional<std::string> bad_input;
+  call.run(true, [&] {
+    with_threads(threads, [&] {
+      try {
+        e = self ? pdd::mesh::self_contact_energy(A, pa, o) : pdd::mesh::contact_energy(A, B, pa, pb, o);
+      } catch (const std::invalid_argument& x) {
+        bad_input = x.what();
+      } catch (const pdd::mesh::Cancelled&) {  // call.run raises why
+      }
+    });
+  });
+  if (bad_input) value_error(*bad_input);
+
+  py::dict d;
+  d["energy"] = e->energy;
+  const auto n = static_cast<py::ssize_t>(e->gradient.size());
+  py::array_t<double> g({n, py::ssize_t{3}});
+  for (std::size_t i = 0; i < e->gradient.size(); ++i)
+    for (int k = 0; k < 3; ++k) g.mutable_data()[i * 3 + k] = e->gradient[i][k];
+  d["gradient"] = g;
+  d["hessian"] = hessian ? hessian_csr(e->hessian) : py::object(py::none());
+  d["pairs"] = e->pair_count;
+  d["max_pdd2_global"] = e->max_pdd2_global;
+  if (per_pair) {
+    const auto m = static_cast<py::ssize_t>(e->pairs.size());
+    py::array_t<std::int64_t> a(m), b(m);
+    py::array_t<double> w(m), v(m), en(m);
+    for (py::ssize_t j = 0; j < m; ++j) {
+      const auto& p = e->pairs[static_cast<std::size_t>(j)];
+      a.mutable_data()[j] = static_cast<std::int64_t>(p.a);
+      b.mutable_data()[j] = static_cast<std::int64_t>(p.b);
+      w.mutable_data()[j] = p.weight;
+      v.mutable_data()[j] = p.pdd2_global;
+      en.mutable_data()[j] = p.energy;
+    }
+    d["a"] = a;
+    d["b"] = b;
+    d["weight"] = w;
+    d["pdd2_global"] = v;
+    d["pair_energy"] = en;
+  }
+  py::list skipped;
+  for (const auto& s : e->skipped)
+    skipped.append(py::make_tuple(py::str(std::string(1, s.mesh)), s.index, py::str(s.reason)));
+  d["skipped"] = skipped;
+  d["seconds_contacts"] = e->seconds_contacts;
+  d["seconds_assembly"] = e->seconds_assembly;
+  return d;
+}
+
+constexpr const char* kDoc = R"doc(contact_energy(VA, TA, VB=None, TB=None, hessian=False, per_pair=False, engine='fast', weight='area', threads=None, rest_A=None, rest_B=None)
+
+The contact energy of two tetrahedral meshes at their current positions (docs/definitions.md
+"Contact energy"; SPEC §12):  E = sum over intersecting element pairs of w_ab * pdd2_global.
+Without VB and TB: self-contact of A (element pairs sharing no vertex).
+
+VA, VB     (n, 3) current vertex positions; TA, TB (m, 4) vertex indices.
+rest_A/B   (n, 3) rest positions, for the weights w_ab = (V_a V_b)^(1/3) (rest volumes; held
+           constant, so gradient and hessian are E's derivatives at fixed rest). Default: the
+           positions given, i.e. the weights of this configuration.
+hessian    also the Gauss-Newton Hessian (positive semi-definite, symmetric).
+per_pair   also each pair's a, b, weight, pdd2_global and pair_energy.
+engine     'fast' (certified doubles) or 'exact' (= 'reference', the exact engine; slow:
+           small meshes).
+weight     'area' ((V_a V_b)^(1/3), resolution-independent) or 'unit' (w = 1).
+threads    None or 0: all cores; k from 1 to 4096: at most k threads.
+
+Returns a dict: energy (float), gradient ((nA + nB, 3), A's vertices first), hessian
+(scipy.sparse.csr_matrix of size 3(nA + nB), row 3v + k for coordinate k of vertex v; None
+unless asked), pairs (int), max_pdd2_global (float), skipped (list of (mesh, index, reason)),
+seconds_contacts, seconds_assembly, and with per_pair: a, b, weight, pdd2_global, pair_energy.
+The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).)doc";
+
+}  // namespace
+
+void bind_energy(py::module_& m) {
+  m.def("contact_energy", &contact_energy, kDoc, py::arg("VA"), py::arg("TA"), py::arg("VB") = py::none(),
+        py::arg("TB") = py::none(), py::arg("hessian") = false, py::arg("per_pair") = false,
+        py::arg("engine") = "fast", py::arg("weight") = "area", py::arg("threads") = py::none(),
+        py::arg("rest_A") = py::none(), py::arg("rest_B") = py::none());
+}
+
+}  // namespace pdd_python

@@ -1,0 +1,103 @@
+"""pdd.contact_energy (docs/definitions.md "Contact energy"): the dict, the gradient against
+central differences of E, the Hessian symmetric and positive semi-definite, the per-pair terms
+against pdd.mesh_contacts, the exact engine against the fast one, self-contact, bad input."""
+import os
+
+import numpy as np
+import pytest
+
+import pdd
+
+scipy_sparse = pytest.importorskip("scipy.sparse")
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+MESHES = os.path.join(HERE, "..", "..", "fixtures", "meshes")
+
+
+def scene():
+    """tiny-a / tiny-b with B turned and moved into general position (73 intersecting pairs;
+    the axis-aligned original sends most pairs to the engine's exact path)."""
+    VA, TA = pdd.read_mesh(os.path.join(MESHES, "tiny-a.msh"))
+    VB, TB = pdd.read_mesh(os.path.join(MESHES, "tiny-b.msh"))
+    cz, sz, cx, sx = np.cos(0.3), np.sin(0.3), np.cos(0.2), np.sin(0.2)
+    R = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]]) @ np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
+    return VA, TA, VB @ R.T + np.array([0.013, 0.021, 0.007]), TB
+
+
+def test_dict_and_pairs():
+    VA, TA, VB, TB = scene()
+    e = pdd.contact_energy(VA, TA, VB, TB, per_pair=True)
+    assert isinstance(e["energy"], float)
+    assert e["gradient"].shape == (len(VA) + len(VB), 3)
+    assert e["hessian"] is None
+    c = pdd.mesh_contacts(VA, TA, VB, TB, variants="global")
+    assert e["pairs"] == len(c["a"]) > 0
+    assert np.array_equal(e["a"], c["a"]) and np.array_equal(e["b"], c["b"])
+    assert np.array_equal(e["pdd2_global"], np.asarray(c["pdd2_global"]))
+    # w = (V_a V_b)^(1/3), rest volumes |det| / 6 (rest = the positions here)
+    vol = lambda V, T: np.abs(np.linalg.det(V[T[:, 1:]] - V[T[:, :1]])) / 6
+    w = np.cbrt(vol(VA, TA)[e["a"]] * vol(VB, TB)[e["b"]])
+    np.testing.assert_allclose(e["weight"], w, rtol=1e-12)
+    np.testing.assert_array_equal(e["pair_energy"], e["weight"] * e["pdd2_global"])
+    assert e["energy"] == pytest.approx(e["pair_energy"].sum(), rel=1e-12)
+    assert e["max_pdd2_global"] == e["pdd2_global"].max()
+
+
+def test_gradient_central_differences():
+    # The weights come from rest_A / rest_B (held), so E is a function of the positions alone.
+    # Away from kinks (one-sided quotients agreeing) the central quotient matches to O(h^2)
+    # plus the engine's 1e-9 relative error over h (test_contact_energy.cpp argues 1e-5).
+    VA, TA, VB, TB = scene()
+    e = pdd.contact_energy(VA, TA, VB, TB, rest_A=VA, rest_B=VB)
+    g = e["gradient"]
+    gmax = np.abs(g).max()
+    h = 1e-6
+    n_a = len(VA)
+    smooth = 0
+    for v in np.flatnonzero(np.abs(g).sum(axis=1) > 0)[::3]:
+        for k in range(3):
+            def E(d):
+                A, B = VA.copy(), VB.copy()
+                (A if v < n_a else B)[v if v < n_a else v - n_a, k] += d
+                return pdd.contact_energy(A, TA, B, TB, rest_A=VA, rest_B=VB)["energy"]
+            ep, em = E(h), E(-h)
+            fwd, bwd = (ep - e["energy"]) / h, (e["energy"] - em) / h
+            if abs(fwd - bwd) <= 1e-6 * gmax:
+                smooth += 1
+                assert abs((ep - em) / (2 * h) - g[v, k]) <= 1e-5 * gmax
+    assert smooth > 0
+
+
+def test_hessian_symmetric_psd():
+    VA, TA, VB, TB = scene()
+    e = pdd.contact_energy(VA, TA, VB, TB, hessian=True)
+    H = e["hessian"]
+    n = 3 * (len(VA) + len(VB))
+    assert scipy_sparse.issparse(H) and H.shape == (n, n)
+    D = H.toarray()
+    assert np.array_equal(D, D.T)
+    ev = np.linalg.eigvalsh(D)
+    assert ev.min() >= -1e-12 * np.abs(ev).max()  # rounding of w Qs (x) u u^T (contact_energy.h)
+
+
+def test_exact_engine_agrees():
+    VA, TA, VB, TB = scene()
+    f = pdd.contact_energy(VA, TA, VB, TB)
+    x = pdd.contact_energy(VA, TA, VB, TB, engine="exact")
+    assert f["pairs"] == x["pairs"]
+    assert f["energy"] == pytest.approx(x["energy"], rel=1e-8)
+    assert np.abs(f["gradient"] - x["gradient"]).max() <= 1e-4 * np.abs(x["gradient"]).max()
+
+
+def test_self_contact_and_errors():
+    V, T = pdd.read_mesh(os.path.join(MESHES, "two-spheres.msh"))
+    e = pdd.contact_energy(V, T)
+    assert e["gradient"].shape == (len(V), 3)
+    assert e["pairs"] == len(pdd.mesh_contacts(V, T, variants="global")["a"])
+    VA, TA, VB, TB = scene()
+    with pytest.raises(ValueError, match="engine"):
+        pdd.contact_energy(VA, TA, VB, TB, engine="slow")
+    with pytest.raises(ValueError, match="rest_A"):
+        pdd.contact_energy(VA, TA, VB, TB, rest_A=VA[:-1])
+    with pytest.raises(ValueError, match="both VB and TB"):
+        pdd.contact_energy(VA, TA, VB)

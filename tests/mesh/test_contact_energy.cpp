@@ -1,0 +1,275 @@
+// test_contact_energy.cpp — pdd::mesh::contact_energy (include/pdd/mesh/contact_energy.h;
+// definitions §12) on the shipped meshes: the gradient against central differences of E, the
+// Hessian symmetric, positive semi-definite and equal to finite differences of the fixed-plane
+// gradient, the majorizer property, and the exact engine against the fast one.
+#define BOOST_TEST_MODULE contact_energy
+#include <boost/test/unit_test.hpp>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "pdd/mesh.h"
+
+using namespace pdd;
+using namespace pdd::mesh;
+
+namespace {
+
+const std::string kDir = std::string(PDD_FIXTURES_DIR) + "/meshes/";
+Mesh load(const std::string& name) { return read_mesh(kDir + name); }
+
+struct Scene {
+  Mesh A, B;
+};
+// tiny-a / tiny-b (24 elements each, unit cubes, B shifted by (0.6, 0.3, 0.2)) with B turned
+// by 0.3 about z after 0.2 about x and moved by (0.013, 0.021, 0.007): 73 intersecting pairs
+// in general position (the axis-aligned original has coplanar faces, which send most pairs to
+// the engine's exact path, tens of milliseconds each).
+Scene tiny() {
+  Scene s{load("tiny-a.msh"), load("tiny-b.msh")};
+  const double cz = std::cos(0.3), sz = std::sin(0.3), cx = std::cos(0.2), sx = std::sin(0.2);
+  const double R[3][3] = {{cz, -sz * cx, sz * sx}, {sz, cz * cx, -cz * sx}, {0, sx, cx}};
+  const Vec3d t{0.013, 0.021, 0.007};
+  for (Vec3d& v : s.B.vertices) {
+    Vec3d w{};
+    for (int i = 0; i < 3; ++i) w[i] = R[i][0] * v[0] + R[i][1] * v[1] + R[i][2] * v[2] + t[i];
+    v = w;
+  }
+  return s;
+}
+
+double energy_at(const Scene& s, const std::vector<Vec3d>& pa, const std::vector<Vec3d>& pb,
+                 EnergyEngine engine = EnergyEngine::Fast) {
+  ContactEnergyOptions o;
+  o.engine = engine;
+  return contact_energy(s.A, s.B, pa, pb, o).energy;
+}
+
+double max_abs(const std::vector<Vec3d>& g) {
+  double m = 0;
+  for (const auto& v : g)
+    for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+TetVertices at(const Mesh& m, const std::vector<Vec3d>& p, std::size_t e) {
+  TetVertices t;
+  for (int i = 0; i < 4; ++i) t[i] = p[m.tets[e][i]];
+  return t;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(energy_is_the_weighted_sum_of_the_pairs) {
+  const Scene s = tiny();
+  ContactEnergyOptions o;
+  o.per_pair = true;
+  const ContactEnergy e = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+  BOOST_REQUIRE_GT(e.pair_count, 0u);
+  BOOST_TEST(e.pairs.size() == e.pair_count);
+  ContactOptions co;
+  co.variants = kGlobal;
+  const auto c = contacts(s.A, s.B, co);
+  BOOST_REQUIRE_EQUAL(c.pairs.size(), e.pairs.size());
+  double sum = 0;
+  for (std::size_t j = 0; j < c.pairs.size(); ++j) {
+    const auto& p = e.pairs[j];
+    BOOST_TEST(p.a == c.pairs[j].a);
+    BOOST_TEST(p.b == c.pairs[j].b);
+    BOOST_TEST(p.pdd2_global == c.pairs[j].result.pdd2_global);
+    // w = (V_a V_b)^(1/3) from the rest volumes (|det| / 6).
+    auto vol = [](const TetVertices& t) {
+      Eigen::Matrix3d m;
+      for (int k = 0; k < 3; ++k)
+        for (int c2 = 0; c2 < 3; ++c2) m(k, c2) = t[k + 1][c2] - t[0][c2];
+      return std::abs(m.determinant()) / 6;
+    };
+    const double w = std::cbrt(vol(element(s.A, p.a)) * vol(element(s.B, p.b)));
+    BOOST_TEST(p.weight == w, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(p.energy == p.weight * p.pdd2_global);
+    sum += p.energy;
+  }
+  BOOST_TEST(e.energy == sum, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(e.gradient.size() == s.A.vertices.size() + s.B.vertices.size());
+}
+
+// Central differences of E along every coordinate of every vertex in contact. Where the
+// one-sided quotients agree (no tie, no pair appearing or vanishing inside [-h, h]) the
+// central quotient matches the gradient to O(h^2) plus the engine's error: values within 1e-9
+// relative (definitions §8), so the quotient is off by at most 1e-9 E / h; with h = 1e-6 of the
+// mesh's extent and E ~ w depth^2 that is far below 1e-5 of the largest gradient entry, the
+// tolerance used. Elsewhere, pdd.h's bracket: forward <= g + h C and backward >= g - h C, with C
+// = sigma(e_k) summed over the pairs with weights (0.1 per tetrahedron containing the vertex),
+// bounded here by 0.2 times the sum of all weights.
+BOOST_AUTO_TEST_CASE(gradient_matches_central_differences) {
+  const Scene s = tiny();
+  ContactEnergyOptions o;
+  o.per_pair = true;
+  const ContactEnergy e = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+  const double g_max = max_abs(e.gradient);
+  BOOST_REQUIRE_GT(g_max, 0);
+  double wsum = 0;
+  for (const auto& p : e.pairs) wsum += p.weight;
+  const std::size_t nA = s.A.vertices.size();
+  const double h = 1e-6;  // the meshes span about 1
+  int smooth = 0, kinks = 0;
+  for (std::size_t v = 0; v < e.gradient.size(); ++v) {
+    if (e.gradient[v] == Vec3d{0, 0, 0}) continue;
+    for (int k = 0; k < 3; ++k) {
+      auto E = [&](double d) {
+        std::vector<Vec3d> pa = s.A.vertices, pb = s.B.vertices;
+        (v < nA ? pa[v] : pb[v - nA])[k] += d;
+        return energy_at(s, pa, pb);
+      };
+      const double ep = E(h), em = E(-h), e0 = e.energy;
+      const double fwd = (ep - e0) / h, bwd = (e0 - em) / h, g = e.gradient[v][k];
+      if (std::abs(fwd - bwd) <= 1e-6 * g_max) {
+        ++smooth;
+        BOOST_TEST(std::abs((ep - em) / (2 * h) - g) <= 1e-5 * g_max, "vertex " << v << " coord " << k);
+      } else {
+        ++kinks;
+        BOOST_TEST(fwd <= g + 0.2 * h * wsum + 1e-5 * g_max);
+        BOOST_TEST(bwd >= g - 0.2 * h * wsum - 1e-5 * g_max);
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("smooth coordinates " << smooth << ", kinks " << kinks);
+  BOOST_TEST(smooth > 0);
+}
+
+// Symmetric by construction (blocks w Qs_ij u u^T with Qs symmetrised); positive semi-definite:
+// each block is w (Qs (x) u u^T), Qs = X^T H X in doubles, so its negative eigenvalues are
+// rounding, below 1e-12 of the largest in size.
+BOOST_AUTO_TEST_CASE(hessian_symmetric_psd) {
+  const Scene s = tiny();
+  ContactEnergyOptions o;
+  o.hessian = true;
+  const ContactEnergy e = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+  const auto n = static_cast<Eigen::Index>(3 * e.gradient.size());
+  BOOST_REQUIRE_EQUAL(e.hessian.rows(), n);
+  BOOST_REQUIRE_EQUAL(e.hessian.cols(), n);
+  const Eigen::MatrixXd H(e.hessian);
+  BOOST_TEST((H - H.transpose()).cwiseAbs().maxCoeff() == 0);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+  const double top = es.eigenvalues().cwiseAbs().maxCoeff();
+  BOOST_REQUIRE_GT(top, 0);
+  BOOST_TEST(es.eigenvalues().minCoeff() >= -1e-12 * top);
+}
+
+// Per pair, with the normal held: the piece's value equals pdd2_global (the engine's positions
+// attain it to 2e-9 relative; the tolerance 1e-7 covers the rounding of Qs), the fixed-plane QP
+// (solved independently by enumeration) gives the same value, its gradient equals the pair's
+// gradient, and its finite differences (h = 1e-7: inside the piece unless a vertex is within h
+// of the plane, which the piece test excludes) equal Qs (x) u u^T.
+BOOST_AUTO_TEST_CASE(hessian_is_the_fixed_plane_second_derivative) {
+  const Scene s = tiny();
+  ContactOptions co;
+  co.variants = kGlobal;
+  const auto c = contacts(s.A, s.B, co);
+  BOOST_REQUIRE(!c.pairs.empty());
+  int checked = 0;
+  for (const auto& k : c.pairs) {
+    const auto& r = k.result;
+    const TetVertices A = element(s.A, k.a), B = element(s.B, k.b);
+    TetVertices qA, qB;
+    for (int i = 0; i < 4; ++i) qA[i] = r.q1_A_global[i], qB[i] = r.q1_B_global[i];
+    const Vec3d n = *r.pdd2_global_normal;
+    const PairTerms t = pair_terms(A, B, qA, qB, n);
+    BOOST_TEST(t.piece_value == r.pdd2_global, boost::test_tools::tolerance(1e-7));
+    const FixedPlane f = fixed_plane(A, B, n);
+    BOOST_TEST(f.value == r.pdd2_global, boost::test_tools::tolerance(1e-7));
+    double gscale = 0;
+    for (const auto& g : t.gradient)
+      for (double x : g) gscale = std::max(gscale, std::abs(x));
+    for (int i = 0; i < 8; ++i)
+      for (int a = 0; a < 3; ++a)
+        BOOST_TEST(std::abs(f.gradient[i][a] - t.gradient[i][a]) <= 1e-6 * gscale);
+    const double h = 1e-7;
+    for (int j = 0; j < 8; ++j)
+      for (int b = 0; b < 3; ++b) {
+        TetVertices Ap = A, Am = A, Bp = B, Bm = B;
+        (j < 4 ? Ap[j] : Bp[j - 4])[b] += h;
+        (j < 4 ? Am[j] : Bm[j - 4])[b] -= h;
+        const FixedPlane fp = fixed_plane(Ap, Bp, n), fm = fixed_plane(Am, Bm, n);
+        for (int i = 0; i < 8; ++i)
+          for (int a = 0; a < 3; ++a) {
+            const double fd = (fp.gradient[i][a] - fm.gradient[i][a]) / (2 * h);
+            const double hess = t.qs[i][j] * t.unit_normal[a] * t.unit_normal[b];
+            BOOST_TEST(std::abs(fd - hess) <= 1e-6, "pair " << k.a << "," << k.b);
+          }
+      }
+    ++checked;
+  }
+  BOOST_TEST(checked > 0);
+}
+
+// The majorizer: with the normal held at P's minimiser, V_u(P + W) >= pdd2_global(P + W) for
+// random W (pdd2_global is the minimum over normals; tolerance: both values to 1e-9 relative),
+// and equal at P (previous test).
+BOOST_AUTO_TEST_CASE(fixed_plane_majorizes) {
+  const Scene s = tiny();
+  ContactOptions co;
+  co.variants = kGlobal;
+  const auto c = contacts(s.A, s.B, co);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> gauss(0, 1);
+  int checked = 0;
+  for (const auto& k : c.pairs) {
+    const TetVertices A = element(s.A, k.a), B = element(s.B, k.b);
+    const Vec3d n = *k.result.pdd2_global_normal;
+    const double scale = std::sqrt(k.result.pdd2_global);
+    for (int trial = 0; trial < 20; ++trial) {
+      TetVertices Ap = A, Bp = B;
+      for (int i = 0; i < 4; ++i)
+        for (int a = 0; a < 3; ++a) {
+          Ap[i][a] += 0.5 * scale * gauss(rng);
+          Bp[i][a] += 0.5 * scale * gauss(rng);
+        }
+      const auto r = fast::solve_pair(TetPair{"", {}, Ap, Bp});
+      if (r.error || r.pdd2_global_error) continue;
+      const double V = fixed_plane(Ap, Bp, n).value;
+      BOOST_TEST(V >= r.pdd2_global * (1 - 2e-9) - 1e-300);
+      ++checked;
+    }
+  }
+  BOOST_TEST(checked > 0);
+}
+
+// The exact engine against the fast one: the energies within 1e-8 (values within 1e-9
+// relative, definitions §8) and the gradients within 1e-4 of the largest entry (the fast
+// gradient's bound, pdd/solve_options.h: 4.5e-5 of its size where the separated set is
+// locally convex).
+BOOST_AUTO_TEST_CASE(exact_engine_agrees) {
+  const Scene s = tiny();
+  ContactEnergyOptions o;
+  o.hessian = true;
+  const ContactEnergy f = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+  o.engine = EnergyEngine::Exact;
+  const ContactEnergy x = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+  BOOST_TEST(f.pair_count == x.pair_count);
+  BOOST_TEST(f.energy == x.energy, boost::test_tools::tolerance(1e-8));
+  const double g = max_abs(x.gradient);
+  for (std::size_t v = 0; v < f.gradient.size(); ++v)
+    for (int k = 0; k < 3; ++k) BOOST_TEST(std::abs(f.gradient[v][k] - x.gradient[v][k]) <= 1e-4 * g);
+}
+
+BOOST_AUTO_TEST_CASE(self_contact_of_two_bodies_equals_two_meshes) {
+  // two-spheres.msh: two bodies in one file; its self-contact energy counts the pairs between
+  // the bodies (and a body's own non-adjacent pairs, none here when it does not fold).
+  const Mesh m = load("two-spheres.msh");
+  const ContactEnergy e = self_contact_energy(m, m.vertices);
+  BOOST_TEST(e.gradient.size() == m.vertices.size());
+  ContactOptions co;
+  co.variants = kGlobal;
+  BOOST_TEST(e.pair_count == self_contacts(m, co).pairs.size());
+}
+
+BOOST_AUTO_TEST_CASE(positions_must_match_the_mesh) {
+  const Scene s = tiny();
+  std::vector<Vec3d> pa = s.A.vertices;
+  pa.pop_back();
+  BOOST_CHECK_THROW(contact_energy(s.A, s.B, pa, s.B.vertices), std::invalid_argument);
+}
