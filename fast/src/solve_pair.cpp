@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "certification/value_bounds.h"
+#include "certification/value_relations.h"
 #include "exact/exact_candidate.h"
 #include "exact/exact_path.h"
 #include "exact/exact_predicates.h"
@@ -367,6 +368,7 @@ PairGradient<double> global_gradient(const TetPair& pair, const PairResult<doubl
 PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options) {
   bool slow = false, refined = false;
   PairResult<double> r = solve_record(pair, &slow, &refined, options.with_global);
+  if (!r.error && r.intersecting) keep_exact_relations(r);
   r.stats.slow_path = slow;
   r.stats.refined = refined;
   if (options.gradient && options.with_global && !r.error) r.pdd2_global_grad = global_gradient(pair, r);

@@ -141,9 +141,12 @@ struct Depth {
 
 // A, B: the tetrahedra's vertices s0..s3 and r0..r3 (any orientation). Same values and labels
 // as the fields of solve_pair's record of the same name (the same certified computation on the
-// same rescaled pair; the one exception: where solve_pair cannot certify pdd2's deformed
+// same rescaled pair; the exceptions: where solve_pair cannot certify pdd2's deformed
 // positions it reports the exact path's pdd2, which may differ from this one within
-// definitions §8).
+// definitions §8; and solve_pair lowers a value that rounded above a value it is exactly at
+// most (definitions §5: pdd2 <= pdd2_static <= rigid_pd2, pdd2 <= rigid_pd2 / 2,
+// pdd2_global <= pdd2_relaxed <= pdd2 <= pdd2_accel6 <= pdd2_accel1) to that bound, which
+// keeps definitions §8; rigid_pd2 and pdd2_accel(k = 1) are never lowered).
 Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², definitions §4
 Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, definitions §5
 Depth pdd2(const TetVertices& A, const TetVertices& B);          // PD_d², case 2 (eq. 3, 10)
