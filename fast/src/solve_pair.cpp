@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "certification/value_bounds.h"
+#include "certification/value_relations.h"
 #include "exact/exact_candidate.h"
 #include "exact/exact_path.h"
 #include "exact/exact_predicates.h"
@@ -329,7 +330,7 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   return r;
 }
 
-// pdd.h's gradient of pdd2_global: -d sigma/d d at d = q1_global - rest, per tetrahedron
+// The gradient of pdd2_global (definitions §9): -d sigma/d d at d = q1_global - rest, per tetrahedron
 // (d sigma/d d_i = (d_i + sum_k d_k) / 10); NaN where pdd2_global is declined (q1_*_global are
 // NaN then), 0 when not intersecting (q1_*_global is the rest pose).
 // Accuracy. The arithmetic here adds little: d_i = q_i - p_i is within u |d_i| (u = 2^-53), the
@@ -340,9 +341,12 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
 // gradients in the dual object norm |g|_* = max over W of <g, W> / sqrt(sigma(W)) (|g|_* =
 // 2 sqrt(f) for the true gradient g). If pdd2_global lies above its tangent model minus
 // K sigma(W) around P (K >= 0: 0 where the separated set is locally convex, larger where its
-// boundary bends sharply), then (*) of pdd.h at Q against that lower model gives, minimising
+// boundary bends sharply), then (*) of definitions §9 ("The gradient of pdd2_global") at Q against that lower model gives, minimising
 // over W, |g_Q - g|_*^2 <= 4 (1 + K) eps f, that is |g_Q - g|_* <= sqrt((1 + K) eps) |g|_*:
-// 4.5e-5 |g|_* for K <= 0 at the contract's worst, 6.3e-5 for K <= 1. In practice the
+// 4.5e-5 |g|_* for K <= 0 at the contract's worst, 6.3e-5 for K <= 1. The positions are
+// separated only up to tau = 1e-9 R (definitions §8): translating B by tau along the normal
+// separates them and adds at most 2 sqrt(f) tau + tau^2 to sigma, so eps f becomes
+// eps f + 2 sqrt(f) tau + tau^2 above, which dominates on contacts far shallower than R. In practice the
 // positions come from a normal polished to about 1e-16 and the gradient agrees with the exact
 // engine's far closer (tests/fast/fast_global_gradient_test.cpp).
 PairGradient<double> global_gradient(const TetPair& pair, const PairResult<double>& r) {
@@ -367,6 +371,7 @@ PairGradient<double> global_gradient(const TetPair& pair, const PairResult<doubl
 PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options) {
   bool slow = false, refined = false;
   PairResult<double> r = solve_record(pair, &slow, &refined, options.with_global);
+  if (!r.error && r.intersecting) keep_exact_relations(r);
   r.stats.slow_path = slow;
   r.stats.refined = refined;
   if (options.gradient && options.with_global && !r.error) r.pdd2_global_grad = global_gradient(pair, r);

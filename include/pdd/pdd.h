@@ -49,43 +49,10 @@ namespace pdd {
 // once with the recommended defaults; `pdd solve` and the Python module use the same names and
 // defaults. How the fast engine computed a pair is in its record (PairResult::stats).
 
-// The gradient of pdd2_global (SolveOptions::gradient, PairResult::pdd2_global_grad).
-// pdd2_global(P) = min over separated configurations Q of sigma(Q - P): the squared
-// object-norm distance from the rest pose P (the eight vertices) to the set S of
-// configurations whose interiors a plane separates. With d_i = q_i - p_i per tetrahedron and
-// sigma = 1/20 (sum_i |d_i|^2 + |sum_k d_k|^2) summed over A and B,
-//     d sigma / d d_i = (d_i + sum_k d_k) / 10,
-// and where the minimiser Q* = (q1_A_global, q1_B_global) is unique, pdd2_global is
-// differentiable with
-//     grad_P pdd2_global = - d sigma / d d  at d = Q* - P         (A's s0..s3 first, then B's)
-// (S does not depend on P: Danskin's theorem; Euler: sum_i d_i . d sigma/d d_i = 2 sigma, so
-// <grad, Q* - P> = -2 pdd2_global). For every separated Q (minimiser or not) and every
-// displacement W of the rest pose, with g = - d sigma/d d at Q - P,
-//     pdd2_global(P + W) <= sigma(Q - P - W) = sigma(Q - P) + <g, W> + sigma(W)          (*)
-// exactly (sigma is quadratic): g is the slope of a quadratic majorant touching pdd2_global at
-// P (up to sigma(Q - P) - pdd2_global(P)). pdd2_global(P) - sigma(P) (P's own norm, as if a
-// displacement) = min over Q of sigma(Q) - 2 <Q, P>_sigma is a minimum of functions affine in
-// P, so concave: pdd2_global is semiconcave, C^1 where the minimiser is unique, with concave
-// kinks where it is not.
-// Ties. Where two minimisers tie (a symmetric pair where two mirror-image planes are both
-// optimal), the gradient returned is that of the branch of the returned minimiser: one
-// element of the Clarke generalized gradient (the convex hull of the minimisers' gradients),
-// and the one-sided derivatives differ. By (*), whichever minimiser is returned, the one-sided
-// difference quotients bracket it: for h > 0,
-//     (f(P + hV) - f(P)) / h <= <g, V> + h sigma(V),  (f(P) - f(P - hV)) / h >= <g, V> - h sigma(V).
-// Not intersecting: 0 (pdd2_global is 0 at P and at most sigma(W) at P + W: (*) with Q = P).
-// Declined pdd2_global (fast engine, pdd2_global_error): NaN, as the other definitions §9 fields.
-// Accuracy: at each engine's `gradient` option (pdd/solve_options.h).
-// As a contact energy. An implicit step (backward Euler; projective dynamics) minimising
-//     Phi(x) = E(x) + k * sum over intersecting element pairs of pdd2_global(x_pair)
-// takes k g per pair, scattered to the pair's eight vertices, as the contact term's gradient;
-// -g/2 = M (Q* - P) (M the object norm's matrix) pulls each vertex towards its separated
-// position. pdd2_global is not convex and has no Hessian at a tie; use (*) instead: around the
-// current x each pair's term is majorized by sigma(Q* - x - W), the squared object-norm
-// distance to the fixed target Q*, a convex quadratic in W with the constant positive definite
-// Hessian 2M. Minimising Phi with every pair's term replaced by it never increases Phi
-// (majorize-minimize: Phi <= the model, equal at x); it is the local/global step of projective
-// dynamics with Q* as the local projection. Recompute pairs and Q* at the new x and repeat.
+// The gradient of pdd2_global (SolveOptions::gradient, PairResult::pdd2_global_grad): what it
+// is, where two minimisers tie, why (*) majorizes pdd2_global, and how an implicit solver uses
+// it as a contact energy are in docs/definitions.md §9, "The gradient of pdd2_global"; its
+// accuracy at each engine's `gradient` option (pdd/solve_options.h).
 
 // The reference engine's numbers: exact rationals (GMP's mpq_class, in lowest terms);
 // `r.pdd2.get_str()` and `std::cout << r.pdd2` print "p/q" (or "p" for an integer).
@@ -141,9 +108,12 @@ struct Depth {
 
 // A, B: the tetrahedra's vertices s0..s3 and r0..r3 (any orientation). Same values and labels
 // as the fields of solve_pair's record of the same name (the same certified computation on the
-// same rescaled pair; the one exception: where solve_pair cannot certify pdd2's deformed
+// same rescaled pair; the exceptions: where solve_pair cannot certify pdd2's deformed
 // positions it reports the exact path's pdd2, which may differ from this one within
-// definitions §8).
+// definitions §8; and solve_pair lowers a value that rounded above a value it is exactly at
+// most (definitions §5: pdd2 <= pdd2_static <= rigid_pd2, pdd2 <= rigid_pd2 / 2,
+// pdd2_global <= pdd2_relaxed <= pdd2 <= pdd2_accel6 <= pdd2_accel1) to that bound, which
+// keeps definitions §8; rigid_pd2 and pdd2_accel(k = 1) are never lowered).
 Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², definitions §4
 Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, definitions §5
 Depth pdd2(const TetVertices& A, const TetVertices& B);          // PD_d², case 2 (eq. 3, 10)

@@ -104,7 +104,8 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
   // One solve_pair: for pdd2 and global (their positions come only from it; global's hot path
   // is also slower than solve_pair on mesh pairs, mesh.h), eq11 (no separate call), and two
   // or more variants besides rigid.
-  const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal)) ||
+  // pdd2_relaxed too: solve_pair keeps it at most pdd2 (definitions §5), which needs pdd2.
+  const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal | kRelaxed)) ||
                             __builtin_popcount(variants & ~unsigned(kRigid)) >= 2;
   if (needs_record) {
     // definitions §9's search only when asked: it is most of solve_pair's time
@@ -131,10 +132,19 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
     if (label) *label = d.dir;
   };
   if (variants & kRigid) put(fast::rigid_pd2(A, B), r.rigid_pd2, &r.rigid_dir);
-  if (variants & kStatic) put(fast::pdd2_static(A, B), r.pdd2_static, &r.pdd2_static_dir);
-  if (variants & kRelaxed) put(fast::pdd2_relaxed(A, B), r.pdd2_relaxed, &r.pdd2_relaxed_dir);
   if (variants & kAccel1) put(fast::pdd2_accel(A, B, 1), r.pdd2_accel1, nullptr);
-  if (variants & kAccel6) put(fast::pdd2_accel(A, B, 6), r.pdd2_accel6, nullptr);
+  // solve_pair keeps pdd2_static <= rigid_pd2 and pdd2_accel6 <= pdd2_accel1 (definitions §5,
+  // fast/src/solve_pair.cpp): the same here, against the same bounds, for the same doubles.
+  if (variants & kStatic) {
+    put(fast::pdd2_static(A, B), r.pdd2_static, &r.pdd2_static_dir);
+    const double bound = (variants & kRigid) ? r.rigid_pd2 : fast::rigid_pd2(A, B).pd2;
+    if (r.pdd2_static > bound) r.pdd2_static = bound;
+  }
+  if (variants & kAccel6) {
+    put(fast::pdd2_accel(A, B, 6), r.pdd2_accel6, nullptr);
+    const double bound = (variants & kAccel1) ? r.pdd2_accel1 : fast::pdd2_accel(A, B, 1).pd2;
+    if (r.pdd2_accel6 > bound) r.pdd2_accel6 = bound;
+  }
   return r;
 }
 

@@ -414,7 +414,7 @@ Example:
   >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> c = pdd.mesh_contacts(VA, TA, VB, TB)
-  >>> len(c["a"]), c["a"][0], c["b"][0], c["pdd2"][0], c["pdd2_dir"][0], c["skipped"]
+  >>> len(c["a"]), int(c["a"][0]), int(c["b"][0]), float(c["pdd2"][0]), c["pdd2_dir"][0], c["skipped"]
   (51, 0, 8, 0.0034615384615384608, 'EE:2:1', [])
   >>> s = pdd.mesh_contacts(VA, TA)       # self-contact of A
 )doc";
@@ -541,9 +541,9 @@ Example:
   >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a")
-  >>> r["resolved"], len(r["rounds"]), (VA1 == VA).all()
+  >>> r["resolved"], len(r["rounds"]), bool((VA1 == VA).all())
   (True, 14, True)
-  >>> V1, _, r = pdd.resolve(V, T)                  # self-contact of one mesh (V, T)
+  >>> V1, _, r = pdd.resolve(VA, TA)                # self-contact of one mesh
 )doc";
 
 }  // namespace

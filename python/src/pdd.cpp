@@ -172,8 +172,8 @@ with_global  False: skip pdd2_global, PD_d² over every separating plane
          15 us a pair; reference: its branch and bound of 5 to 50 ms). `pdd solve --no-global`.
 gradient True: add "pdd2_global_grad", the gradient of pdd2_global with respect to the
          eight rest vertices, 8 x [x, y, z] (A's s0..s3, then B's r0..r3): minus the object
-         norm's derivative at the displacement to q1_A_global, q1_B_global (pdd.h says why and
-         how exact). None where pdd2_global is None; 0 when not intersecting. Needs
+         norm's derivative at the displacement to q1_A_global, q1_B_global (docs/definitions.md §9 says why;
+         how exact: §8). None where pdd2_global is None; 0 when not intersecting. Needs
          with_global=True (ValueError otherwise). `pdd solve --gradient`.
 
 Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that order:
@@ -273,9 +273,10 @@ calling thread watches for signals.
 
 Example:
   >>> rng = numpy.random.default_rng(1)
-  >>> A, B = rng.uniform(0, 10, (2, 100000, 4, 3))
+  >>> A, B = rng.uniform(0, 10, (2, 10000, 4, 3))
   >>> r = pdd.solve_batch(A, B)
-  >>> r["pdd2"][r["intersecting"]].mean()
+  >>> print(f'{r["pdd2"][r["intersecting"]].mean():.6g}')
+  0.181549
 )doc";
 
 }  // namespace

@@ -197,3 +197,69 @@ def test_finite_differences_random_and_shallow():
             done += 1
     for t in (1e-2, 1e-4):  # B's apex through A's face z = 0 by t
         check_pair(POKE_A, [[1, 1, -5], [4, 1.25, -5], [1.5, 4, -5], [2, 2, t]], rng)
+
+
+def dual_norm_sq(g):
+    """|g|_*^2 = max over W of <g, W>^2 / sigma(W) = g^T M^-1 g, M the object norm's matrix: per
+    tetrahedron (I + J)/20 per coordinate (definitions §2), whose inverse is 20 (I - J/5) since
+    J^2 = 4J. For the true gradient |g|_* = 2 sqrt(pdd2_global) (definitions §9)."""
+    total = Fraction(0)
+    for t in (0, 4):
+        for k in range(3):
+            col = [Fraction(g[t + i][k]) for i in range(4)]
+            total += 20 * (sum(c * c for c in col) - sum(col) ** 2 / 5)
+    return total
+
+
+def test_fast_gradient_within_its_stated_bound_of_the_exact_one():
+    """The contract of pdd::fast::SolveOptions::gradient (common/pdd/solve_options.h): within
+    4.5e-5 of the true gradient in the dual object norm where the separated set is locally convex.
+    Checked on every golden pair against the exact engine's gradient at its witness positions
+    (golden q1_*_global; formula exact in Fractions), itself within about 1e-6 relative of the true
+    one (sqrt of the 1e-12 gap): |g_fast - g_exact|_* <= (4.5e-5 + 2e-6) |g_exact|_*. Where two
+    minimisers tie the engines may return different ones (each gradient valid for its branch,
+    definitions §9, "Ties"); those pairs are recognised by normals more than 1e-3 rad apart and
+    counted, not compared."""
+    from conftest import golden_cases
+    compared = tied = 0
+    worst = 0.0
+    over = []
+    for rel, p, gold in golden_cases():
+        if p["error"] or gold.get("error") or not gold["intersecting"] or gold.get("pdd2_global") is None:
+            continue
+        r = pdd.solve(p["A"], p["B"], gradient=True)
+        if r["pdd2_global"] is None:  # declined (pdd2_global_error): no gradient to hold
+            continue
+        ge = formula(displacement(p["A"], p["B"], {"q1_A_global": gold["q1_A_global"],
+                                                   "q1_B_global": gold["q1_B_global"]}))
+        ne, nf = gold["pdd2_global_normal"], [Fraction(c) for c in r["pdd2_global_normal"]]
+        dot_n = sum(a * b for a, b in zip(ne, nf))
+        cos_sq = dot_n * dot_n / (sum(a * a for a in ne) * sum(b * b for b in nf))
+        if dot_n <= 0 or cos_sq < Fraction(1) - Fraction(1, 10**6):  # over 1e-3 rad apart: another minimiser
+            tied += 1
+            continue
+        ref = dual_norm_sq(ge)
+        assert abs(ref / (4 * gold["pdd2_global"]) - 1) < Fraction(1, 10**5), (rel, p["name"])
+        diff = dual_norm_sq([[Fraction(a) - b for a, b in zip(u, v)] for u, v in zip(r["pdd2_global_grad"], ge)])
+        try:
+            ratio = float(diff / ref) ** 0.5
+        except OverflowError:
+            ratio = float("inf")
+        worst = max(worst, ratio)
+        # the stated bound: 2 sqrt(eps f + 2 sqrt(f) tau + tau^2), eps = 2e-9, tau = 1e-9 R, plus the
+        # exact witness's own distance to the true gradient, 2e-6 |g|_*; in Fractions (f may be
+        # 1e-300): the square of (bound - 2e-6 |g|) against |g_fast - g_exact|_*
+        f = gold["pdd2_global"]
+        R = max(abs(Fraction(c)) for v in list(p["A"]) + list(p["B"]) for c in v)
+        tau = R / 10**9
+        budget_sq = 4 * (Fraction(2, 10**9) * f + 2 * Fraction(float(f) ** 0.5 * (1 + 1e-9)) * tau + tau * tau)
+        gap = diff ** 0.5 if isinstance(diff, float) else float(diff) ** 0.5 if diff < 10**300 else float("inf")
+        allowed = float(budget_sq) ** 0.5 + 2e-6 * float(ref) ** 0.5
+        if not diff <= Fraction(allowed) ** 2 * (1 + Fraction(1, 10**6)):
+            over.append((rel, p["name"], ratio, float(f), gap, allowed))
+        compared += 1
+    print(f"compared {compared} pairs, {tied} with another minimiser; worst relative {worst:.3g}")
+    for o in over:
+        print("OVER", o)
+    assert not over
+    assert compared > 100 and tied <= compared // 10

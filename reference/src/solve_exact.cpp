@@ -78,7 +78,7 @@ void fill_global(const ExactPair& exact, const std::vector<CandidateRow>& rows,
   out.q1_B_global = to_positions(g.q1_B);
 }
 
-// pdd.h's gradient of pdd2_global, exactly, at the witness positions: -d sigma/d d at
+// The gradient of pdd2_global (definitions §9), exactly, at the witness positions: -d sigma/d d at
 // d = q1_global - rest, per tetrahedron d sigma/d d_i = (d_i + sum_k d_k) / 10 (object_norm.h's
 // sigma = 1/20 (sum_i |d_i|^2 + |sum_k d_k|^2)). 0 at the rest pose (not intersecting).
 PairGradient<Rational> global_gradient(const ExactPair& exact, const ExactResult& r) {

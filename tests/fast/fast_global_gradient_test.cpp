@@ -1,4 +1,4 @@
-// The fast engine's gradient of pdd2_global (pdd.h, "The gradient of pdd2_global";
+// The fast engine's gradient of pdd2_global (definitions §9, "The gradient of pdd2_global";
 // SolveOptions::gradient), against finite differences of pdd2_global itself.
 //
 // Notation: f = pdd2_global, P the rest pose (8 vertices), W a displacement of P, sigma(W) the
@@ -7,7 +7,7 @@
 // - the gradient is -d sigma/d d at d = q1_global - P: Euler's relation <g, d> = -2 f (to the
 //   rounding of 24 products), and sum_i g_i = 0 (the relaxed optimum along a normal cannot be
 //   improved by translating both tetrahedra along it, so the displacements of A and B sum to 0);
-// - (*) of pdd.h with the returned positions Q: for every W,
+// - (*) of definitions §9 with the returned positions Q: for every W,
 //       f(P + W) <= s(W) := sigma(Q - P - W) = U + <g, W> + sigma(W),  U = sigma(Q - P),
 //   exactly when Q is separated. The fast Q is separated up to tau = 1e-9 R (the accuracy
 //   contract, R the largest coordinate magnitude): translating B by tau along the normal

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "certification/value_relations.h"
 #include "exact/exact_path.h"
 #include "fast_test_util.h"
 #include "kernel/candidate_directions.h"
@@ -192,7 +193,7 @@ BOOST_AUTO_TEST_CASE(vertex_permutation_invariance) {
 }
 
 // The hot-path overloads over raw tetrahedra (what a benchmark times) return exactly what
-// solve_pair reports: same values bit for bit, same labels (both run the lane sweeps of
+// solve_pair reports: same values bit for bit once the exact relations are kept, same labels (both run the lane sweeps of
 // deformable_depth.h first; fast_qp_lower_bound_test and fast_golden_test check it on harder
 // pairs).
 BOOST_AUTO_TEST_CASE(hot_path_overloads_match_solve_pair) {
@@ -201,12 +202,18 @@ BOOST_AUTO_TEST_CASE(hot_path_overloads_match_solve_pair) {
     const Choice rigid = rigid_pd2_choice(p.A, p.B), st = pdd2_static_choice(p.A, p.B), def = pdd2_choice(p.A, p.B),
                  rel = pdd2_relaxed_choice(p.A, p.B), a1 = pdd2_accel_choice(p.A, p.B, 1),
                  a6 = pdd2_accel_choice(p.A, p.B, 6);
-    BOOST_TEST(rigid.value == r.rigid_pd2);
-    BOOST_TEST(st.value == r.pdd2_static);
-    BOOST_TEST(def.value == r.pdd2);
-    BOOST_TEST(rel.value == r.pdd2_relaxed);
-    BOOST_TEST(a1.value == r.pdd2_accel1);
-    BOOST_TEST(a6.value == r.pdd2_accel6);
+    // solve_pair's values are the hot values with the exact relations of definitions §5 kept
+    // (value_relations.h): bit for bit after the same lowering
+    PairResult<double> h;
+    h.rigid_pd2 = rigid.value, h.pdd2_static = st.value, h.pdd2 = def.value;
+    h.pdd2_relaxed = rel.value, h.pdd2_accel1 = a1.value, h.pdd2_accel6 = a6.value;
+    if (r.intersecting) keep_exact_relations(h);
+    BOOST_TEST(h.rigid_pd2 == r.rigid_pd2);
+    BOOST_TEST(h.pdd2_static == r.pdd2_static);
+    BOOST_TEST(h.pdd2 == r.pdd2);
+    BOOST_TEST(h.pdd2_relaxed == r.pdd2_relaxed);
+    BOOST_TEST(h.pdd2_accel1 == r.pdd2_accel1);
+    BOOST_TEST(h.pdd2_accel6 == r.pdd2_accel6);
     if (!r.intersecting) continue;
     BOOST_TEST((rigid.label() == *r.rigid_dir && st.label() == *r.pdd2_static_dir &&
                 def.label() == *r.pdd2_dir && rel.label() == *r.pdd2_relaxed_dir));

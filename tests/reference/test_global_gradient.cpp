@@ -9,7 +9,7 @@
 // - the formula at the witness: <g, d> = -2 U (Euler, d = q1_global - P) and sum_i g_i = 0 (the
 //   relaxed optimum along a normal is not improved by translating both tetrahedra along it);
 //   not intersecting: 0; no gradient unless asked; asking changes no other field.
-// - (*) of pdd.h with the witness Q: f(P + W) <= U + <g, W> + sigma(W) for every W, and
+// - (*) of definitions §9 with the witness Q: f(P + W) <= U + <g, W> + sigma(W) for every W, and
 //   L(P + W) <= f(P + W). So, exactly, for steps W and -W of the rest pose (both doubles):
 //       L(P + W) - U - sigma(W) <= <g, W> <= U + sigma(W) - L(P - W).            (box)
 //   The same box holds for the true gradient (any minimiser's: (*) with that minimiser), so
