@@ -82,6 +82,13 @@ std::string record_note(const PairResult<R>& r, double gap) {
 }
 
 int run_solve(const SolveArgs& args) {
+  // The table and CSV formats have one column per scalar value; the gradient (8 x 3 numbers a
+  // pair) has no column there, so the combination is refused rather than dropped.
+  if (args.gradient && args.format != "jsonl") {
+    std::cerr << "pdd solve: --gradient needs --format jsonl (the '" << args.format
+              << "' format has no pdd2_global_grad column)\n";
+    return kExitUsage;
+  }
   // The whole file is checked before anything is computed or written, so that a file that
   // cannot be read produces no output. A regular file is then read a second time in chunks;
   // anything else (a pipe) can be read only once and is held in memory.
