@@ -327,15 +327,15 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
                   "with the fast engine), or all")
       ->capture_default_str();
   cmd->add_option("--engine", args->engine,
-                  "'fast' (doubles within the accuracy contract of docs/definitions.md §8) or "
-                  "'reference' (exact rationals as \"p/q\" strings; "
-                  "milliseconds per pair)")
+                  "'fast' (doubles within the accuracy contract of docs/definitions.md §8; the "
+                  "default here, as in Python) or 'reference' (exact rationals as \"p/q\" strings; "
+                  "milliseconds per pair; the default of pdd solve)")
       ->check(CLI::IsMember({"fast", "reference"}))
       ->capture_default_str();
   cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");
   cmd->add_option("--vtk", args->vtk,
                   "Also write both meshes with per-element contact data and a per-vertex "
-                  "displacement field (legacy VTK, for ParaView)");
+                  "displacement field (legacy VTK, for ParaView; fields: docs/definitions.md §10)");
   cmd->add_flag("--summary", args->summary,
                 "A readable summary: elements, pairs, time per stage, and the sum and maximum of "
                 "each value with the pair attaining it; on standard output with --output, else "

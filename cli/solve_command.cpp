@@ -246,8 +246,9 @@ void add_solve_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "solve", "Compute every quantity for each pair of a fixture file; write JSON Lines (or a table, or CSV).");
   cmd->add_option("--engine", args->engine,
-                  "Engine: 'reference' (exact, numbers as \"p/q\" strings) or 'fast' (doubles, "
-                  "JSON numbers that read back to the same double)")
+                  "Engine: 'reference' (exact, numbers as \"p/q\" strings; the default here) or "
+                  "'fast' (doubles, JSON numbers that read back to the same double; the default of "
+                  "pdd mesh and of Python's pdd.solve)")
       ->check(CLI::IsMember({"reference", "fast"}))
       ->capture_default_str();
   cmd->add_option("--input", args->input,

@@ -38,3 +38,9 @@ foreach(f table csv)
     message(FATAL_ERROR "--gradient --format ${f}: output '${out}', message '${out_err}'")
   endif()
 endforeach()
+
+# --help names the default engine in words (not only CLI11's "=reference").
+execute_process(COMMAND ${PDD} solve --help RESULT_VARIABLE rc OUTPUT_VARIABLE help)
+if(NOT rc EQUAL 0 OR NOT help MATCHES "'reference' \\(exact[^)]*; the default here\\)")
+  message(FATAL_ERROR "pdd solve --help does not name the default engine:\n${help}")
+endif()

@@ -68,6 +68,13 @@ if(EXISTS /dev/full)  # the summary cannot be written after the records were: ex
   endif()
 endif()
 
+# --help names the default engine and the summary's stream.
+expect_exit(0 help --help)
+if(NOT help MATCHES "'fast' \\(doubles[^)]*; the default here, as in Python\\)"
+   OR NOT help MATCHES "on standard output with --output, else on standard error")
+  message(FATAL_ERROR "pdd mesh --help:\n${help}")
+endif()
+
 expect_exit(0 self --a ${M}/two-spheres.msh --self --variants rigid,accel1)
 if(NOT self MATCHES "\"pdd2_accel1\"" OR self MATCHES "\"pdd2\"")
   message(FATAL_ERROR "--variants rigid,accel1:\n${self}")
