@@ -119,8 +119,10 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
       return kExitFileError;
     }
   }
-  if (args.summary) {  // standard error: standard output may hold the records
-    std::ostream& s = std::cerr;
+  if (args.summary) {
+    // One rule for every command: the summary goes to standard output unless standard output
+    // holds the records (no --output), then to standard error.
+    std::ostringstream s;
     s << "pdd mesh: " << (B ? "A against B" : "self-contact of A") << " ("
       << (args.engine == "fast" ? "fast" : "reference") << " engine, variants "
       << mesh::variant_names(variants) << ")\n"
@@ -159,6 +161,18 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
         << padded_left(summary_number(sum), 12) << "  " << padded_left(summary_number(arg ? best : 0.0), 12);
       if (arg) s << "  (" << arg->a << ", " << arg->b << ")";
       s << "\n";
+    }
+    if (args.output.empty()) {
+      std::cerr << s.str();
+    } else {
+      // The records (and the VTK file) are complete on disk by now: say so if the summary fails.
+      std::cout << s.str();
+      if (auto why = flush_error(std::cout, "standard output")) {
+        std::cerr << "pdd mesh: the summary (--summary) could not be written: " << *why << "; '"
+                  << args.output << "'" << (args.vtk.empty() ? "" : ", '" + args.vtk + "'")
+                  << " written, complete\n";
+        return kExitFileError;
+      }
     }
   }
   return status;
@@ -313,18 +327,19 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
                   "with the fast engine), or all")
       ->capture_default_str();
   cmd->add_option("--engine", args->engine,
-                  "'fast' (doubles within the accuracy contract of docs/definitions.md §8) or "
-                  "'reference' (exact rationals as \"p/q\" strings; "
-                  "milliseconds per pair)")
+                  "'fast' (doubles within the accuracy contract of docs/definitions.md §8; the "
+                  "default here, as in Python) or 'reference' (exact rationals as \"p/q\" strings; "
+                  "milliseconds per pair; the default of pdd solve)")
       ->check(CLI::IsMember({"fast", "reference"}))
       ->capture_default_str();
   cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");
   cmd->add_option("--vtk", args->vtk,
                   "Also write both meshes with per-element contact data and a per-vertex "
-                  "displacement field (legacy VTK, for ParaView)");
+                  "displacement field (legacy VTK, for ParaView; fields: docs/definitions.md §10)");
   cmd->add_flag("--summary", args->summary,
-                "A readable summary on standard error: elements, pairs, time per stage, and the "
-                "sum and maximum of each value with the pair attaining it");
+                "A readable summary: elements, pairs, time per stage, and the sum and maximum of "
+                "each value with the pair attaining it; on standard output with --output, else "
+                "on standard error (standard output holds the records)");
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
       ->check(integer_in(0, 4096))
       ->capture_default_str();

@@ -427,7 +427,9 @@ void add_resolve_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--vtk", args->vtk,
                   "Also write both new meshes in one legacy VTK file for ParaView, with the point "
                   "field 'displacement' and the cell fields mesh, element, volume_ratio, remaining, bad");
-  cmd->add_flag("--summary", args->summary, "Print the report as a readable summary on standard output");
+  cmd->add_flag("--summary", args->summary,
+                "Print the report as a readable summary on standard output (the command writes "
+                "nothing else there: its results are files)");
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
       ->check(integer_in(0, 4096))
       ->capture_default_str();

@@ -82,6 +82,13 @@ std::string record_note(const PairResult<R>& r, double gap) {
 }
 
 int run_solve(const SolveArgs& args) {
+  // The table and CSV formats have one column per scalar value; the gradient (8 x 3 numbers a
+  // pair) has no column there, so the combination is refused rather than dropped.
+  if (args.gradient && args.format != "jsonl") {
+    std::cerr << "pdd solve: --gradient needs --format jsonl (the '" << args.format
+              << "' format has no pdd2_global_grad column)\n";
+    return kExitUsage;
+  }
   // The whole file is checked before anything is computed or written, so that a file that
   // cannot be read produces no output. A regular file is then read a second time in chunks;
   // anything else (a pipe) can be read only once and is held in memory.
@@ -239,8 +246,9 @@ void add_solve_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "solve", "Compute every quantity for each pair of a fixture file; write JSON Lines (or a table, or CSV).");
   cmd->add_option("--engine", args->engine,
-                  "Engine: 'reference' (exact, numbers as \"p/q\" strings) or 'fast' (doubles, "
-                  "JSON numbers that read back to the same double)")
+                  "Engine: 'reference' (exact, numbers as \"p/q\" strings; the default here) or "
+                  "'fast' (doubles, JSON numbers that read back to the same double; the default of "
+                  "pdd mesh and of Python's pdd.solve)")
       ->check(CLI::IsMember({"reference", "fast"}))
       ->capture_default_str();
   cmd->add_option("--input", args->input,

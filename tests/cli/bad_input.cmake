@@ -29,3 +29,18 @@ foreach(f empty malformed no-pairs does-not-exist)
   endif()
 endforeach()
 expect_exit(2 out --input ${FIXTURES}/smoke.json --engine nonsense)
+
+# --gradient with a format that has no gradient column is refused (exit 2, nothing written)
+# rather than the gradient being dropped.
+foreach(f table csv)
+  expect_exit(2 out --input ${FIXTURES}/smoke.json --gradient --format ${f})
+  if(NOT out STREQUAL "" OR NOT out_err MATCHES "--gradient needs --format jsonl")
+    message(FATAL_ERROR "--gradient --format ${f}: output '${out}', message '${out_err}'")
+  endif()
+endforeach()
+
+# --help names the default engine in words (not only CLI11's "=reference").
+execute_process(COMMAND ${PDD} solve --help RESULT_VARIABLE rc OUTPUT_VARIABLE help)
+if(NOT rc EQUAL 0 OR NOT help MATCHES "'reference' \\(exact[^)]*; the default here\\)")
+  message(FATAL_ERROR "pdd solve --help does not name the default engine:\n${help}")
+endif()

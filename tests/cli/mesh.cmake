@@ -51,6 +51,30 @@ if(NOT EXISTS ${WORK}/spheres.vtk)
   message(FATAL_ERROR "no VTK file written")
 endif()
 
+# The summary stream: standard output unless the records are there. With --output the records
+# go to the file, the summary to standard output and nothing of it to standard error.
+expect_exit(0 sum --a ${M}/tiny-a.msh --b ${M}/tiny-b.msh --summary --output ${WORK}/tiny.jsonl)
+file(READ ${WORK}/tiny.jsonl tiny_records)
+if(NOT sum MATCHES "^pdd mesh: A against B" OR NOT sum MATCHES "\n  value  +sum  +max  at \\(a, b\\)\n"
+   OR sum MATCHES "\"a\":" OR sum_err MATCHES "value  +sum" OR NOT tiny_records MATCHES "^{\"a\":")
+  message(FATAL_ERROR "--summary with --output: stdout\n${sum}\nstderr\n${sum_err}")
+endif()
+if(EXISTS /dev/full)  # the summary cannot be written after the records were: exit 2, files named
+  execute_process(COMMAND ${PDD} mesh --quiet --a ${M}/tiny-a.msh --b ${M}/tiny-b.msh --summary
+                          --output ${WORK}/tiny.jsonl
+                  RESULT_VARIABLE rc OUTPUT_FILE /dev/full ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "the summary \\(--summary\\) could not be written: [^\n]*; '[^']*/tiny.jsonl' written, complete\n")
+    message(FATAL_ERROR "--summary > /dev/full: exit ${rc}\n${err}")
+  endif()
+endif()
+
+# --help names the default engine and the summary's stream.
+expect_exit(0 help --help)
+if(NOT help MATCHES "'fast' \\(doubles[^)]*; the default here, as in Python\\)"
+   OR NOT help MATCHES "on standard output with --output, else on standard error")
+  message(FATAL_ERROR "pdd mesh --help:\n${help}")
+endif()
+
 expect_exit(0 self --a ${M}/two-spheres.msh --self --variants rigid,accel1)
 if(NOT self MATCHES "\"pdd2_accel1\"" OR self MATCHES "\"pdd2\"")
   message(FATAL_ERROR "--variants rigid,accel1:\n${self}")
