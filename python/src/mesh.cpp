@@ -410,12 +410,13 @@ arguments raise ValueError: a wrong shape or dtype, a vertex index out of range 
 mesh without tetrahedra ("TA has no tetrahedra"; `pdd mesh` refuses such a file too), an integer
 coordinate that is not exactly a double.
 
-Example:
+Example (pair (0, 8) has candidates within 1e-9 of each other: the exact engine names EE:2:1,
+the fast one FV:1; docs/definitions.md §8 allows either):
   >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> c = pdd.mesh_contacts(VA, TA, VB, TB)
   >>> len(c["a"]), int(c["a"][0]), int(c["b"][0]), float(c["pdd2"][0]), c["pdd2_dir"][0], c["skipped"]
-  (51, 0, 8, 0.0034615384615384608, 'EE:2:1', [])
+  (51, 0, 8, 0.0034615384615384608, 'FV:1', [])
   >>> s = pdd.mesh_contacts(VA, TA)       # self-contact of A
 )doc";
 
