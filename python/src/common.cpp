@@ -189,4 +189,54 @@ std::string path_arg(py::handle path_like) {
   }
 }
 
+// Vertices: (n, 3) real numbers -> the mesh's vertices (float64, as numpy.asarray would convert).
+std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which) {
+  py::array a = cached->asarray(obj);
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    value_error(std::string(which) + " must be an array of real numbers of shape (n, 3); got dtype " +
+                py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    value_error(std::string(which) + " must have shape (n, 3); got " + shape_str(a));
+  check_integers_exact(a, which);
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 3; ++k) out[i][k] = d.data()[i * 3 + k];
+  return out;
+}
+
+// Tetrahedra: (m, 4) integers -> vertex indices. Indices past the end are left to the library
+// (its message); a negative one has no size_t, so it is reported here in the same words.
+std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* which, char mesh,
+                                                  std::size_t vertices) {
+  py::array a = cached->asarray(obj);
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    value_error(std::string(which) + " must be an array of integers (vertex indices) of shape (m, 4); got dtype " +
+                py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 2 || a.shape(1) != 4)
+    value_error(std::string(which) + " must have shape (m, 4); got " + shape_str(a));
+  std::vector<std::array<std::size_t, 4>> out(static_cast<std::size_t>(a.shape(0)));
+  if (kind == 'u') {
+    const auto d = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+    if (!d) throw py::error_already_set();
+    for (std::size_t i = 0; i < out.size(); ++i)
+      for (int k = 0; k < 4; ++k) out[i][k] = static_cast<std::size_t>(d.data()[i * 4 + k]);
+    return out;
+  }
+  const auto d = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw py::error_already_set();
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const std::int64_t v = d.data()[i * 4 + k];
+      if (v < 0)
+        value_error("element " + std::to_string(i) + " of mesh " + mesh + " refers to vertex " +
+                    std::to_string(v) + ", but the mesh has " + std::to_string(vertices) + " vertices");
+      out[i][k] = static_cast<std::size_t>(v);
+    }
+  return out;
+}
+
 }  // namespace pdd_python

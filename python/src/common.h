@@ -61,6 +61,14 @@ double coordinate(py::handle x, const char* which, std::size_t i, std::size_t k)
 // element is not exactly a double raises ValueError naming it ("VA[3][0] = 9007199254740993 is
 // not exactly a double: ..."); any other array passes.
 void check_integers_exact(const py::array& a, const char* which);
+// A mesh's arrays, the rule of every mesh call (mesh_contacts, resolve, contact_energy):
+// vertices (n, 3) real numbers -> float64, an integer array checked by check_integers_exact;
+// tetrahedra (m, 4) integers -> vertex indices, a negative one raising ValueError in the
+// library's words ("element i of mesh A refers to vertex -1, ..."), those past the end left to
+// the library.
+std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which);
+std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* which, char mesh,
+                                                  std::size_t vertices);
 // The name of a coordinate in messages, "A[i][k]" (built only for a message).
 std::string where(const char* which, std::size_t i, std::size_t k);
 

@@ -19,57 +19,18 @@
 namespace pdd_python {
 namespace {
 
-// (n, 3) real numbers -> vertices (float64, as numpy.asarray converts).
-std::vector<pdd::Vec3d> vertices_arg(py::handle obj, const char* which) {
-  py::array a = cached->asarray(obj);
-  const char kind = a.dtype().kind();
-  if (kind != 'f' && kind != 'i' && kind != 'u')
-    value_error(std::string(which) + " must be an array of real numbers of shape (n, 3); got dtype " +
-                py::str(a.dtype()).cast<std::string>());
-  if (a.ndim() != 2 || a.shape(1) != 3) value_error(std::string(which) + " must have shape (n, 3); got " + shape_str(a));
-  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!d) throw py::error_already_set();
-  std::vector<pdd::Vec3d> out(static_cast<std::size_t>(a.shape(0)));
-  for (std::size_t i = 0; i < out.size(); ++i)
-    for (int k = 0; k < 3; ++k) out[i][k] = d.data()[i * 3 + k];
-  return out;
-}
-
-// (m, 4) integers -> tetrahedra; negative indices reported here, those past the end by the library.
-std::vector<std::array<std::size_t, 4>> tets_arg(py::handle obj, const char* which, char mesh,
-                                                 std::size_t vertices) {
-  py::array a = cached->asarray(obj);
-  const char kind = a.dtype().kind();
-  if (kind != 'i' && kind != 'u')
-    value_error(std::string(which) + " must be an array of integers (vertex indices) of shape (m, 4); got dtype " +
-                py::str(a.dtype()).cast<std::string>());
-  if (a.ndim() != 2 || a.shape(1) != 4) value_error(std::string(which) + " must have shape (m, 4); got " + shape_str(a));
-  const auto d = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!d) throw py::error_already_set();
-  std::vector<std::array<std::size_t, 4>> out(static_cast<std::size_t>(a.shape(0)));
-  for (std::size_t i = 0; i < out.size(); ++i)
-    for (int k = 0; k < 4; ++k) {
-      const std::int64_t v = d.data()[i * 4 + k];
-      if (v < 0)
-        value_error("element " + std::to_string(i) + " of mesh " + mesh + " refers to vertex " +
-                    std::to_string(v) + ", but the mesh has " + std::to_string(vertices) + " vertices");
-      out[i][k] = static_cast<std::size_t>(v);
-    }
-  return out;
-}
-
 // Mesh `which` at rest (rest given, or the positions) with the positions given.
 pdd::mesh::Mesh mesh_arg(py::handle V, py::handle T, py::handle rest, char which,
                          std::vector<pdd::Vec3d>& positions) {
   const std::string v = std::string("V") + which, t = std::string("T") + which,
                     r = std::string("rest_") + which;
-  positions = vertices_arg(V, v.c_str());
+  positions = mesh_vertices(V, v.c_str());
   pdd::mesh::Mesh m;
-  m.vertices = rest.is_none() ? positions : vertices_arg(rest, r.c_str());
+  m.vertices = rest.is_none() ? positions : mesh_vertices(rest, r.c_str());
   if (m.vertices.size() != positions.size())
     value_error(r + " must have the shape of " + v + " (one rest position per vertex); got " +
                 std::to_string(m.vertices.size()) + " rows for " + std::to_string(positions.size()));
-  m.tets = tets_arg(T, t.c_str(), which, positions.size());
+  m.tets = mesh_tets(T, t.c_str(), which, positions.size());
   return m;
 }
 

@@ -273,8 +273,9 @@ def test_with_global_false():
             pdd.solve(A, B, with_global=bad)
 
 
-# The same rule for the array readers: solve_batch's (N, 4, 3) arrays, mesh_contacts' and
-# resolve's vertex arrays (the index names the element); integers that are doubles pass.
+# The same rule for the array readers: solve_batch's (N, 4, 3) arrays, mesh_contacts',
+# resolve's and contact_energy's vertex arrays (the index names the element); integers that are
+# doubles pass.
 @pytest.mark.parametrize("dtype, value, shown", [(np.int64, 2**53 + 1, "9007199254740993"),
                                                  (np.int64, -(2**62 + 1), "-4611686018427387905"),
                                                  (np.uint64, 2**64 - 1, "18446744073709551615")])
@@ -290,6 +291,8 @@ def test_integer_arrays_that_are_not_doubles_raise_value_error(dtype, value, sho
         pdd.mesh_contacts(V, [[0, 1, 2, 3]], np.array(B), [[0, 1, 2, 3]])
     with pytest.raises(ValueError, match=rf"VA\[4\]\[1\] = {shown} is not exactly a double"):
         pdd.resolve(V, [[0, 1, 2, 3]], np.array(B), [[0, 1, 2, 3]])
+    with pytest.raises(ValueError, match=rf"VA\[4\]\[1\] = {shown} is not exactly a double"):
+        pdd.contact_energy(V, [[0, 1, 2, 3]], np.array(B), [[0, 1, 2, 3]])
     exact = np.array([A, A], dtype=dtype)
     exact[1, 2, 0] = 2**53  # a double: read as it is
     r = pdd.solve_batch(exact, b)
