@@ -1,0 +1,251 @@
+// fallbacks.cpp — the translation and body-pair fallbacks of resolve (fallbacks.h).
+#include "fallbacks.h"
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <utility>
+
+#include "../resolve.h"
+#include "geometry.h"
+#include "rounds.h"
+#include "step_limit.h"
+
+namespace pdd::mesh::detail {
+namespace {
+
+// ---- the translation fallback
+
+// After the translation, steps back towards rest of gamma (from kFirstGamma, halved on every
+// rejected step, down to kLastGamma) of every free vertex's way back, each followed by at most
+// kRelaxRounds per-pair rounds: half the way first (a step that keeps the pairs apart is kept, so
+// halving converges on the closest state the rounds can hold), and below 1/64 of the way a step
+// saves at most 1/32 of the translation's cost (cost ~ distance^2), not worth its rounds.
+constexpr double kFirstGamma = 0.5, kLastGamma = 1.0 / 64;
+constexpr std::size_t kRelaxRounds = 20;
+// The separating distance is bisected until its bracket is below kBisection of the upper end:
+// the translation's cost is then within 0.2% of the smallest along the line.
+constexpr double kBisection = 1e-3;
+
+// How each mesh shares a translation t u: the fixed one stays, else half each way.
+struct Shares {
+  double a = -0.5, b = 0.5;
+};
+
+// The vertex centroid of m (finite vertices), growing the box [lo, hi] by its vertices.
+Vec3d centroid(const Mesh& m, Vec3d& lo, Vec3d& hi) {
+  Vec3d c = {0, 0, 0};
+  std::size_t n = 0;
+  for (const Vec3d& v : m.vertices)
+    if (finite(v)) {
+      add_to(c, v);
+      ++n;
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+    }
+  return n ? scaled(c, 1.0 / double(n)) : c;
+}
+
+// Side s at its rest pose translated by share * t * u (fixed vertices at rest).
+void translate(Side& s, double share_t, const Vec3d& u) {
+  const Mesh& m = *s.rest;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v)
+    s.cur.vertices[v] = s.is_fixed(v) ? m.vertices[v] : moved_by(m.vertices[v], share_t, u);
+}
+
+// Every valid element of s keeps its rest orientation (exact).
+bool oriented(const Side& s) {
+  for (std::size_t e : s.elems) {
+    const TetVertices q = element(s.cur, e);
+    if (orientation(q[0], q[1], q[2], q[3]) != s.sign[e]) return false;
+  }
+  return true;
+}
+
+// The smallest t in (0, t_hi] (to kBisection) at which the rest pose translated by t u
+// separates (contact stage), placed; false when t_hi does not separate.
+bool separating_translation(Run& run, const Vec3d& u, const Shares& share, double t_hi) {
+  const auto place = [&](double t) {
+    translate(run.sa, share.a * t, u);
+    translate(run.sb, share.b * t, u);
+  };
+  const auto separated = [&] {
+    run.stop_if_cancelled();
+    return contacts(run).empty();
+  };
+  place(t_hi);
+  if (!(t_hi > 0) || !separated()) return false;
+  double t_lo = 0;
+  while (t_hi - t_lo > kBisection * t_hi) {
+    const double mid = (t_lo + t_hi) / 2;
+    place(mid);
+    (separated() ? t_hi : t_lo) = mid;
+  }
+  place(t_hi);
+  return true;
+}
+
+// Steps back towards rest (above) from a resolved state, within `budget` rounds.
+void relax_towards_rest(Run& run, std::size_t budget) {
+  double cost = run.cost();
+  double gamma = kFirstGamma;
+  std::size_t used = 0;
+  while (used < budget && gamma >= kLastGamma) {
+    run.stop_if_cancelled();
+    const std::vector<Vec3d> save_a = run.sa.cur.vertices, save_b = run.sb.cur.vertices;
+    for (Side* s : {&run.sa, &run.sb})
+      for (std::size_t v = 0; v < s->cur.vertices.size(); ++v)
+        if (!s->is_fixed(v)) {
+          const Vec3d d = scaled(sub(s->rest->vertices[v], s->cur.vertices[v]), gamma);
+          if (finite(d) && dot(d, d) > 0) propose(*s, v, d);
+        }
+    const auto t0 = Clock::now();
+    move_side(run.sa, 1);
+    move_side(run.sb, 1);
+    run.rep.seconds_move += since(t0);
+    const std::size_t before = run.rep.rounds.size();
+    const bool ok = run_pair_rounds(run, std::min(kRelaxRounds, budget - used), run.rep.variant, OnStall::Continue);
+    used += run.rep.rounds.size() - before + 1;
+    const double c = run.cost();
+    if (ok && c < cost) {
+      cost = c;
+    } else {
+      run.place(save_a, save_b);
+      gamma /= 2;
+    }
+  }
+}
+
+// ---- the body fallback
+
+// Bodies (definitions §11): the connected components of the valid elements, vertices shared
+// between elements joining them (union-find). Returns the body of each vertex (-1: in no valid
+// element) and the number of bodies.
+std::pair<std::vector<std::ptrdiff_t>, std::size_t> bodies(const Mesh& m, const std::vector<std::size_t>& elems) {
+  std::vector<std::size_t> parent(m.vertices.size());
+  for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  const auto root = [&](std::size_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t e : elems)
+    for (int i = 1; i < 4; ++i) parent[root(m.tets[e][i])] = root(m.tets[e][0]);
+  std::vector<std::ptrdiff_t> body(m.vertices.size(), -1), id(m.vertices.size(), -1);
+  std::size_t n = 0;
+  for (std::size_t e : elems)
+    for (std::size_t v : m.tets[e]) {
+      const std::size_t r = root(v);
+      if (id[r] < 0) id[r] = std::ptrdiff_t(n++);
+      body[v] = id[r];
+    }
+  return {body, n};
+}
+
+// The partner of each body among the intersecting pairs at rest (-1: none); nullopt when a
+// body meets itself or two others.
+std::optional<std::vector<std::ptrdiff_t>> partners(const Mesh& A, const std::vector<std::ptrdiff_t>& body,
+                                                    std::size_t count,
+                                                    const std::vector<std::array<std::size_t, 2>>& pairs) {
+  std::vector<std::ptrdiff_t> partner(count, -1);
+  for (const auto& p : pairs) {
+    const std::ptrdiff_t i = body[A.tets[p[0]][0]], j = body[A.tets[p[1]][0]];
+    if (i == j) return std::nullopt;  // a body against itself
+    for (auto [x, y] : {std::pair{i, j}, std::pair{j, i}}) {
+      if (partner[std::size_t(x)] >= 0 && partner[std::size_t(x)] != y) return std::nullopt;  // three bodies meet
+      partner[std::size_t(x)] = y;
+    }
+  }
+  return partner;
+}
+
+// Body k of the side as a mesh of its own: `index` maps its vertices to the side's, `fixed`
+// gets their flags.
+Mesh cut_body(const Side& s, const std::vector<std::ptrdiff_t>& body, std::size_t k, std::vector<std::size_t>& index,
+              std::vector<char>& fixed) {
+  const Mesh& A = *s.rest;
+  Mesh m;
+  std::vector<std::size_t> local(A.vertices.size(), SIZE_MAX);
+  for (std::size_t v = 0; v < A.vertices.size(); ++v)
+    if (body[v] == std::ptrdiff_t(k)) {
+      local[v] = index.size();
+      index.push_back(v);
+      m.vertices.push_back(A.vertices[v]);
+      fixed.push_back(s.fixed[v]);
+    }
+  for (std::size_t e : s.elems)
+    if (body[A.tets[e][0]] == std::ptrdiff_t(k))
+      m.tets.push_back({local[A.tets[e][0]], local[A.tets[e][1]], local[A.tets[e][2]], local[A.tets[e][3]]});
+  return m;
+}
+
+// Bodies i and j resolved from rest as two meshes, within what is left of the run's rounds;
+// their positions written into `result` when resolved.
+bool resolve_body_pair(Run& run, const std::vector<std::ptrdiff_t>& body, std::size_t i, std::size_t j,
+                       std::vector<Vec3d>& result) {
+  const ResolveOptions& o = run.o;
+  ResolveReport& rep = run.rep;
+  std::vector<std::size_t> index_a, index_b;
+  ResolveOptions sub = o;
+  sub.fix_a = sub.fix_b = false;
+  sub.fixed_vertices_a.clear();
+  sub.fixed_vertices_b.clear();
+  const Mesh ma = cut_body(run.sa, body, i, index_a, sub.fixed_vertices_a);
+  const Mesh mb = cut_body(run.sa, body, j, index_b, sub.fixed_vertices_b);
+  sub.max_rounds = std::max<std::size_t>(1, o.max_rounds - std::min(o.max_rounds - 1, rep.rounds.size()));
+  const std::size_t before = rep.rounds.size();
+  sub.progress = [&](const ResolveRound& r) {
+    ResolveRound q = r;
+    q.round = before + r.round;
+    if (o.progress) o.progress(q);
+  };
+  const Resolution r = resolve_meshes(ma, &mb, sub);
+  for (ResolveRound q : r.report.rounds) q.round += before, rep.rounds.push_back(q);
+  rep.seconds_contacts += r.report.seconds_contacts;
+  rep.seconds_solve += r.report.seconds_solve;
+  rep.seconds_move += r.report.seconds_move + r.report.seconds_verify;
+  if (!r.report.resolved) return false;
+  for (std::size_t v = 0; v < index_a.size(); ++v) result[index_a[v]] = r.a[v];
+  for (std::size_t v = 0; v < index_b.size(); ++v) result[index_b[v]] = r.b[v];
+  return true;
+}
+
+}  // namespace
+
+bool translate_and_relax(Run& run, std::size_t budget) {
+  Side &sa = run.sa, &sb = run.sb;
+  const bool fixed_a = sa.any_fixed(), fixed_b = sb.any_fixed();
+  if (fixed_a && fixed_b) return false;
+  Shares share;
+  if (fixed_a) share = {0, 1};
+  if (fixed_b) share = {-1, 0};
+  Vec3d lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  const Vec3d ca = centroid(run.A, lo, hi), cb = centroid(*run.B, lo, hi);
+  const Vec3d u = unit(sub(cb, ca)).value_or(Vec3d{1, 0, 0});
+  const std::vector<Vec3d> keep_a = sa.cur.vertices, keep_b = sb.cur.vertices;
+  double t_hi = 0;
+  for (int k = 0; k < 3; ++k) t_hi += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  t_hi = 2 * std::sqrt(t_hi);  // more than the extent of both meshes along any line
+  if (!separating_translation(run, u, share, t_hi) || !oriented(sa) || !oriented(sb)) {
+    run.place(keep_a, keep_b);
+    return false;
+  }
+  relax_towards_rest(run, budget);
+  return true;
+}
+
+bool resolve_bodies(Run& run) {
+  const Mesh& A = run.A;
+  const auto [body, count] = bodies(A, run.sa.elems);
+  if (count < 2) return false;
+  const auto partner = partners(A, body, count, intersecting_pairs(A, run.sa.elems, nullptr, {}));
+  if (!partner) return false;
+  std::vector<Vec3d> result = A.vertices;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::ptrdiff_t j = (*partner)[i];
+    if (j < std::ptrdiff_t(i)) continue;  // no partner, or done as (j, i)
+    if (!resolve_body_pair(run, body, i, std::size_t(j), result)) return false;
+  }
+  run.sa.cur.vertices = result;
+  return true;
+}
+
+}  // namespace pdd::mesh::detail
