@@ -37,8 +37,9 @@
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;
-//   - two meshes (deep overlaps): the smallest separating rigid translation, then walked back
-//     towards the rest pose with per-pair rounds in between (method "translation");
+//   - two meshes (deep overlaps): the cheapest separating rigid translation over a few
+//     directions, then walked back towards the rest pose with projective-dynamics rounds in
+//     between (method "translation");
 //   - two meshes that the translation cannot move (both with fixed vertices): per-pair rounds on
 //     to max_rounds;
 //   - self-contact: the rigid variant's per-pair rounds from the rest pose (method "rigid rounds").

@@ -6,8 +6,12 @@
 #include <cstdint>
 #include <utility>
 
+#include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
 #include "../resolve.h"
 #include "geometry.h"
+#include "local_step.h"
 #include "rounds.h"
 #include "step_limit.h"
 
@@ -18,7 +22,7 @@ namespace {
 
 // After the translation, steps back towards rest of gamma (from kFirstGamma, halved on every
 // rejected step, down to kLastGamma) of every free vertex's way back, each followed by at most
-// kRelaxRounds per-pair rounds: half the way first (a step that keeps the pairs apart is kept, so
+// kRelaxRounds projective-dynamics rounds: half the way first (a step that keeps the pairs apart is kept, so
 // halving converges on the closest state the rounds can hold), and below 1/64 of the way a step
 // saves at most 1/32 of the translation's cost (cost ~ distance^2), not worth its rounds.
 constexpr double kFirstGamma = 0.5, kLastGamma = 1.0 / 64;
@@ -61,26 +65,86 @@ bool oriented(const Side& s) {
   return true;
 }
 
+// Both sides at the rest pose translated by t u, shared as `share` says.
+void place_translation(Run& run, const Vec3d& u, const Shares& share, double t) {
+  translate(run.sa, share.a * t, u);
+  translate(run.sb, share.b * t, u);
+}
+
 // The smallest t in (0, t_hi] (to kBisection) at which the rest pose translated by t u
-// separates (contact stage), placed; false when t_hi does not separate.
-bool separating_translation(Run& run, const Vec3d& u, const Shares& share, double t_hi) {
-  const auto place = [&](double t) {
-    translate(run.sa, share.a * t, u);
-    translate(run.sb, share.b * t, u);
-  };
-  const auto separated = [&] {
+// separates (contact stage: exact), placed; nullopt when t_hi does not separate.
+std::optional<double> separating_translation(Run& run, const Vec3d& u, const Shares& share, double t_hi) {
+  const auto separated_at = [&](double t) {
+    place_translation(run, u, share, t);
     run.stop_if_cancelled();
     return contacts(run).empty();
   };
-  place(t_hi);
-  if (!(t_hi > 0) || !separated()) return false;
+  if (!(t_hi > 0) || !separated_at(t_hi)) return std::nullopt;
   double t_lo = 0;
   while (t_hi - t_lo > kBisection * t_hi) {
     const double mid = (t_lo + t_hi) / 2;
-    place(mid);
-    (separated() ? t_hi : t_lo) = mid;
+    (separated_at(mid) ? t_hi : t_lo) = mid;
   }
-  place(t_hi);
+  place_translation(run, u, share, t_hi);
+  return t_hi;
+}
+
+// The candidate directions of the translation (B's way, A's the opposite), in the order tried:
+//   - the line of the meshes' vertex centroids (A -> B);
+//   - the mean of the per-pair pdd2 normals (A -> B) of the pairs intersecting at rest: where
+//     the contact region as a whole wants B to go;
+//   - both signs of the three principal axes of the contact region (the vertices of the
+//     elements in intersecting pairs at rest), smallest variance first: for a body pushed
+//     through a plate the contact region is a slab of the plate and its thinnest axis the plate
+//     normal, the short way out.
+// Each is only a candidate: the bisection's contact stage (exact) decides which separate.
+std::vector<Vec3d> candidate_directions(Run& run, const Vec3d& centroid_line) {
+  std::vector<Vec3d> dirs = {centroid_line};
+  run.place(run.A.vertices, run.B->vertices);
+  const std::vector<std::array<std::size_t, 2>> pairs = contacts(run);
+  if (pairs.empty()) return dirs;
+  std::vector<Vec3d> normal(pairs.size(), Vec3d{0, 0, 0});
+  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+    const PairMove m = solve_move(element(run.A, pairs[k][0]), element(*run.B, pairs[k][1]), ResolveVariant::Pdd2);
+    if (m.ok) normal[k] = m.u;
+  });
+  Vec3d mean = {0, 0, 0};
+  for (const Vec3d& n : normal) add_to(mean, n);
+  if (const auto u = unit(mean)) dirs.push_back(*u);
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  std::size_t n = 0;
+  for (const auto& p : pairs)
+    for (const TetVertices& t : {element(run.A, p[0]), element(*run.B, p[1])})
+      for (const Vec3d& v : t) {
+        const Eigen::Vector3d x(v[0], v[1], v[2]);
+        c += x, second += x * x.transpose(), ++n;
+      }
+  c /= double(n);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(second / double(n) - c * c.transpose());
+  if (eig.info() != Eigen::Success) return dirs;
+  for (int k = 0; k < 3; ++k) {  // eigenvalues in increasing order
+    const Eigen::Vector3d a = eig.eigenvectors().col(k);
+    if (const auto u = unit(Vec3d{a[0], a[1], a[2]})) {
+      dirs.push_back(*u);
+      dirs.push_back(scaled(*u, -1));
+    }
+  }
+  return dirs;
+}
+
+// The cheapest separating translation over the candidate directions (a translation by t costs
+// t^2 times the shares' squares along any direction, so the shortest t wins), placed; false
+// when none separates within t_hi. A direction is bisected only when it separates at the best
+// t so far (else it cannot be shorter, up to the bisection's bracket).
+bool cheapest_translation(Run& run, const std::vector<Vec3d>& dirs, const Shares& share, double t_hi) {
+  std::optional<std::pair<Vec3d, double>> best;
+  for (const Vec3d& u : dirs) {
+    const std::optional<double> t = separating_translation(run, u, share, best ? best->second : t_hi);
+    if (t && (!best || *t < best->second)) best = {u, *t};
+  }
+  if (!best) return false;
+  place_translation(run, best->first, share, best->second);  // separated: seen by the bisection
   return true;
 }
 
@@ -103,7 +167,7 @@ void relax_towards_rest(Run& run, std::size_t budget) {
     move_side(run.sb, 1);
     run.rep.seconds_move += since(t0);
     const std::size_t before = run.rep.rounds.size();
-    const bool ok = run_pair_rounds(run, std::min(kRelaxRounds, budget - used), run.rep.variant, OnStall::Continue);
+    const bool ok = run_pd_rounds(run, std::min(kRelaxRounds, budget - used));
     used += run.rep.rounds.size() - before + 1;
     const double c = run.cost();
     if (ok && c < cost) {
@@ -224,7 +288,7 @@ bool translate_and_relax(Run& run, std::size_t budget) {
   double t_hi = 0;
   for (int k = 0; k < 3; ++k) t_hi += (hi[k] - lo[k]) * (hi[k] - lo[k]);
   t_hi = 2 * std::sqrt(t_hi);  // more than the extent of both meshes along any line
-  if (!separating_translation(run, u, share, t_hi) || !oriented(sa) || !oriented(sb)) {
+  if (!cheapest_translation(run, candidate_directions(run, u), share, t_hi) || !oriented(sa) || !oriented(sb)) {
     run.place(keep_a, keep_b);
     return false;
   }

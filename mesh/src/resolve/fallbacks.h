@@ -1,13 +1,15 @@
 // fallbacks.h — what resolve does when its rounds stall (resolve.h, "Fallbacks").
 //
-// translate_and_relax (two meshes; deep overlaps): the smallest separating translation along
-//   the line of the meshes' vertex centroids (bisection with the exact contact stage; a rigid
-//   translation keeps R2 and R4 up to rounding, which is checked), then walked back towards the
-//   rest pose by steps of gamma (kFirstGamma down to kLastGamma) of every free vertex's way back,
-//   each followed by a few per-pair rounds; a step that does not end resolved and cheaper is
-//   undone. True when it ends resolved (R1 by the contact stage, R2 and R4 by the step limit);
-//   false, positions unchanged, when it does not apply (both meshes have fixed vertices, no
-//   separating translation found, or the translated rest pose flips an element by rounding).
+// translate_and_relax (two meshes; deep overlaps): the cheapest separating rigid translation
+//   over a few candidate directions (the centroid line, the mean per-pair pdd2 normal, the
+//   principal axes of the contact region; each bisected with the exact contact stage, the
+//   shortest kept; a rigid translation keeps R2 and R4 up to rounding, which is checked), then
+//   walked back towards the rest pose by steps of gamma (kFirstGamma down to kLastGamma) of
+//   every free vertex's way back, each followed by a few projective-dynamics rounds (which keep
+//   R2 and R4); a step that does not end resolved and cheaper is undone. True when it ends
+//   resolved (R1 by the contact stage); false, positions unchanged, when it does not apply
+//   (both meshes have fixed vertices, no separating translation found, or the translated rest
+//   pose flips an element by rounding).
 // resolve_bodies (self-contact of several bodies, the connected components by shared vertices):
 //   when every intersecting pair at rest joins two bodies and no body meets two others, each
 //   contacting body pair is cut out as two meshes and resolved from rest as A x B (every
