@@ -32,8 +32,8 @@
 // Fallbacks, in order, when the rounds stall (report.method says which produced the result;
 // fallbacks.h):
 //   - self-contact of several bodies, when every intersecting pair at rest joins two bodies and
-//     no body meets two others: each contacting body pair resolved as two meshes, all of the
-//     below included (method "bodies");
+//     the bodies in contact split into two colours (no three meet pairwise): each contacting
+//     group resolved as two meshes, one colour each, all of the below included (method "bodies");
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;

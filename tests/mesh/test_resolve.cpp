@@ -393,6 +393,31 @@ BOOST_AUTO_TEST_CASE(two_bodies_in_one_mesh_deep) {
   BOOST_TEST(r.report.rounds.back().pairs == 0u);
 }
 
+BOOST_AUTO_TEST_CASE(three_bodies_in_a_chain) {
+  // Three copies of sphere-a.msh (radius 1) in one mesh, centred at x = 0, 1.4 and 2.8: the
+  // middle body overlaps each outer one by 0.6 (about two element layers) and meets two bodies,
+  // the outer ones do not meet. The rounds stall; the bodies split into two colours (outer /
+  // middle) resolved as two meshes (method "bodies"), judged on the whole mesh.
+  const Mesh a = load("sphere-a.msh");
+  Mesh m;
+  for (double x : {0.0, 1.4, 2.8}) {
+    const std::size_t base = m.vertices.size();
+    for (const Vec3d& v : a.vertices) m.vertices.push_back({v[0] + x, v[1], v[2]});
+    for (auto t : a.tets) {
+      for (auto& v : t) v += base;
+      m.tets.push_back(t);
+    }
+  }
+  ResolveOptions o;
+  o.variant = ResolveVariant::Rigid;  // as deep_overlap: keeps the test short
+  const Resolution r = resolve_self(m, o);
+  log_report("three deep balls in a chain (self)", r);
+  judge(m, nullptr, r, {}, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+}
+
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
   // The shipped balls overlap by 0.73 (about 2.4 elements of size 0.3): one round cannot end it.
   const Mesh A = load("sphere-a.msh"), B = load("sphere-b.msh");

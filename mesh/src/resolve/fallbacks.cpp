@@ -204,47 +204,73 @@ std::pair<std::vector<std::ptrdiff_t>, std::size_t> bodies(const Mesh& m, const 
   return {body, n};
 }
 
-// The partner of each body among the intersecting pairs at rest (-1: none); nullopt when a
-// body meets itself or two others.
-std::optional<std::vector<std::ptrdiff_t>> partners(const Mesh& A, const std::vector<std::ptrdiff_t>& body,
-                                                    std::size_t count,
-                                                    const std::vector<std::array<std::size_t, 2>>& pairs) {
-  std::vector<std::ptrdiff_t> partner(count, -1);
+// The contact graph of the bodies (an edge per pair of bodies with an intersecting element pair
+// at rest), 2-coloured: side[k] is 0 or 1 for a body in contact (its group), -1 for a body in no
+// contact; group[k] numbers the connected components of the graph. nullopt when a body meets
+// itself or the graph has an odd cycle (three bodies meeting pairwise): no two groups hold it.
+struct BodyGroups {
+  std::vector<int> side;
+  std::vector<std::ptrdiff_t> group;
+  std::size_t groups = 0;
+};
+std::optional<BodyGroups> body_groups(const Mesh& A, const std::vector<std::ptrdiff_t>& body, std::size_t count,
+                                      const std::vector<std::array<std::size_t, 2>>& pairs) {
+  std::vector<std::vector<std::size_t>> next(count);
   for (const auto& p : pairs) {
-    const std::ptrdiff_t i = body[A.tets[p[0]][0]], j = body[A.tets[p[1]][0]];
+    const std::size_t i = std::size_t(body[A.tets[p[0]][0]]), j = std::size_t(body[A.tets[p[1]][0]]);
     if (i == j) return std::nullopt;  // a body against itself
-    for (auto [x, y] : {std::pair{i, j}, std::pair{j, i}}) {
-      if (partner[std::size_t(x)] >= 0 && partner[std::size_t(x)] != y) return std::nullopt;  // three bodies meet
-      partner[std::size_t(x)] = y;
-    }
+    next[i].push_back(j);
+    next[j].push_back(i);
   }
-  return partner;
+  BodyGroups g;
+  g.side.assign(count, -1);
+  g.group.assign(count, -1);
+  for (std::size_t start = 0; start < count; ++start) {
+    if (g.side[start] >= 0 || next[start].empty()) continue;
+    std::vector<std::size_t> todo = {start};
+    g.side[start] = 0;
+    g.group[start] = std::ptrdiff_t(g.groups);
+    while (!todo.empty()) {
+      const std::size_t k = todo.back();
+      todo.pop_back();
+      for (std::size_t m : next[k]) {
+        if (g.side[m] == g.side[k]) return std::nullopt;  // odd cycle
+        if (g.side[m] < 0) g.side[m] = 1 - g.side[k], g.group[m] = g.group[k], todo.push_back(m);
+      }
+    }
+    ++g.groups;
+  }
+  return g;
 }
 
-// Body k of the side as a mesh of its own: `index` maps its vertices to the side's, `fixed`
-// gets their flags.
-Mesh cut_body(const Side& s, const std::vector<std::ptrdiff_t>& body, std::size_t k, std::vector<std::size_t>& index,
-              std::vector<char>& fixed) {
+// The bodies of group `group` on side `side` as one mesh: `index` maps its vertices to the
+// side's, `fixed` gets their flags.
+Mesh cut_bodies(const Side& s, const std::vector<std::ptrdiff_t>& body, const BodyGroups& g, std::size_t group,
+                int side, std::vector<std::size_t>& index, std::vector<char>& fixed) {
   const Mesh& A = *s.rest;
+  const auto in = [&](std::size_t v) {
+    const std::ptrdiff_t k = body[v];
+    return k >= 0 && g.group[std::size_t(k)] == std::ptrdiff_t(group) && g.side[std::size_t(k)] == side;
+  };
   Mesh m;
   std::vector<std::size_t> local(A.vertices.size(), SIZE_MAX);
   for (std::size_t v = 0; v < A.vertices.size(); ++v)
-    if (body[v] == std::ptrdiff_t(k)) {
+    if (in(v)) {
       local[v] = index.size();
       index.push_back(v);
       m.vertices.push_back(A.vertices[v]);
       fixed.push_back(s.fixed[v]);
     }
   for (std::size_t e : s.elems)
-    if (body[A.tets[e][0]] == std::ptrdiff_t(k))
+    if (in(A.tets[e][0]))
       m.tets.push_back({local[A.tets[e][0]], local[A.tets[e][1]], local[A.tets[e][2]], local[A.tets[e][3]]});
   return m;
 }
 
-// Bodies i and j resolved from rest as two meshes, within what is left of the run's rounds;
-// their positions written into `result` when resolved.
-bool resolve_body_pair(Run& run, const std::vector<std::ptrdiff_t>& body, std::size_t i, std::size_t j,
-                       std::vector<Vec3d>& result) {
+// The two sides of one group resolved from rest as two meshes, within what is left of the run's
+// rounds; their positions written into `result` when resolved.
+bool resolve_group(Run& run, const std::vector<std::ptrdiff_t>& body, const BodyGroups& g, std::size_t group,
+                   std::vector<Vec3d>& result) {
   const ResolveOptions& o = run.o;
   ResolveReport& rep = run.rep;
   std::vector<std::size_t> index_a, index_b;
@@ -252,8 +278,8 @@ bool resolve_body_pair(Run& run, const std::vector<std::ptrdiff_t>& body, std::s
   sub.fix_a = sub.fix_b = false;
   sub.fixed_vertices_a.clear();
   sub.fixed_vertices_b.clear();
-  const Mesh ma = cut_body(run.sa, body, i, index_a, sub.fixed_vertices_a);
-  const Mesh mb = cut_body(run.sa, body, j, index_b, sub.fixed_vertices_b);
+  const Mesh ma = cut_bodies(run.sa, body, g, group, 0, index_a, sub.fixed_vertices_a);
+  const Mesh mb = cut_bodies(run.sa, body, g, group, 1, index_b, sub.fixed_vertices_b);
   sub.max_rounds = std::max<std::size_t>(1, o.max_rounds - std::min(o.max_rounds - 1, rep.rounds.size()));
   const std::size_t before = rep.rounds.size();
   sub.progress = [&](const ResolveRound& r) {
@@ -300,14 +326,11 @@ bool resolve_bodies(Run& run) {
   const Mesh& A = run.A;
   const auto [body, count] = bodies(A, run.sa.elems);
   if (count < 2) return false;
-  const auto partner = partners(A, body, count, intersecting_pairs(A, run.sa.elems, nullptr, {}));
-  if (!partner) return false;
+  const auto g = body_groups(A, body, count, intersecting_pairs(A, run.sa.elems, nullptr, {}));
+  if (!g) return false;
   std::vector<Vec3d> result = A.vertices;
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::ptrdiff_t j = (*partner)[i];
-    if (j < std::ptrdiff_t(i)) continue;  // no partner, or done as (j, i)
-    if (!resolve_body_pair(run, body, i, std::size_t(j), result)) return false;
-  }
+  for (std::size_t k = 0; k < g->groups; ++k)
+    if (!resolve_group(run, body, *g, k, result)) return false;
   run.sa.cur.vertices = result;
   return true;
 }

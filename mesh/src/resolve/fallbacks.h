@@ -11,10 +11,12 @@
 //   (both meshes have fixed vertices, no separating translation found, or the translated rest
 //   pose flips an element by rounding).
 // resolve_bodies (self-contact of several bodies, the connected components by shared vertices):
-//   when every intersecting pair at rest joins two bodies and no body meets two others, each
-//   contacting body pair is cut out as two meshes and resolved from rest as A x B (every
-//   fallback of two meshes included). True when every body pair ended resolved; false,
-//   positions unchanged, otherwise.
+//   when every intersecting pair at rest joins two different bodies and the bodies' contact
+//   graph is 2-colourable (no three bodies meet pairwise: a chain or a star of bodies is), each
+//   connected group of contacting bodies is cut out as two meshes, one colour each, and resolved
+//   from rest as A x B (every fallback of two meshes included). True when every group ended
+//   resolved (the caller's exact verdict on the whole mesh judges the result); false, positions
+//   unchanged, otherwise.
 #pragma once
 
 #include <cstddef>
