@@ -14,6 +14,19 @@ namespace pdd::mesh {
 namespace detail {
 namespace {
 
+// Positions with the number of pairs intersecting there (contact stage).
+struct Snapshot {
+  std::vector<Vec3d> a, b;
+  std::size_t pairs = 0;
+};
+Snapshot snapshot(Run& run) { return {run.sa.cur.vertices, run.sb.cur.vertices, contacts(run).size()}; }
+
+// When nothing cleared the contacts: back to `s` if it leaves fewer pairs than the positions
+// reached (the report then names what remains of the better state).
+void keep_fewer_pairs(Run& run, const Snapshot& s) {
+  if (s.pairs < contacts(run).size()) run.place(s.a, s.b);
+}
+
 // The rounds and the fallbacks (resolve.h) from the rest pose; sets rep.method when one of them
 // cleared the contacts (the verdict judges the result either way).
 void run_phases(Run& run) {
@@ -30,6 +43,8 @@ void run_phases(Run& run) {
     return;
   }
   const auto go_on = [&] { return rep.stopped_because.empty(); };
+  // Where the rounds stopped: the state written when no fallback does better (fewer pairs).
+  const Snapshot rounds_end = snapshot(run);
   if (go_on() && !run.B && rounds_left()) {
     run.stop_if_cancelled();
     if (resolve_bodies(run)) return void(rep.method = ResolveMethod::Bodies);
@@ -53,6 +68,7 @@ void run_phases(Run& run) {
     if (run_pair_rounds(run, o.max_rounds - rep.rounds.size(), ResolveVariant::Rigid, OnStall::Continue))
       rep.method = ResolveMethod::RigidRounds;
   }
+  if (rep.method == ResolveMethod::None && go_on()) keep_fewer_pairs(run, rounds_end);
 }
 
 // The largest |p - m0.vertices| over finite displacements.
