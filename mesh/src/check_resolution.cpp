@@ -13,6 +13,7 @@
 
 #include "element_quality.h"
 #include "resolve.h"
+#include "resolve/state.h"
 
 namespace pdd::mesh {
 namespace detail {
@@ -74,15 +75,6 @@ Mesh moved(const Mesh& m, const std::vector<Vec3d>& p, const char* what) {
   return out;
 }
 
-void check_flags(const std::vector<char>& f, const Mesh& m, char which) {
-  if (!f.empty() && f.size() != m.vertices.size()) {
-    std::ostringstream o;
-    o << "fixed-vertex flags of mesh " << which << ": " << f.size() << " flags for " << m.vertices.size()
-      << " vertices";
-    throw std::invalid_argument(o.str());
-  }
-}
-
 bool is_finite(const TetVertices& t) {
   for (const Vec3d& v : t)
     for (double x : v)
@@ -137,8 +129,8 @@ ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, con
                                const std::vector<Vec3d>& b1, const std::vector<char>& fixed_a,
                                const std::vector<char>& fixed_b, const QualityLimits& limits) {
   detail::check_limits(limits);
-  check_flags(fixed_a, A0, 'A');
-  if (B0) check_flags(fixed_b, *B0, 'B');
+  detail::check_fixed_flags(fixed_a, A0, 'A');
+  if (B0) detail::check_fixed_flags(fixed_b, *B0, 'B');
   const Mesh A1 = moved(A0, a1, "check_resolution, mesh A");
   const Mesh B1 = B0 ? moved(*B0, b1, "check_resolution, mesh B") : Mesh{};
   ResolveReport rep;

@@ -393,6 +393,31 @@ BOOST_AUTO_TEST_CASE(two_bodies_in_one_mesh_deep) {
   BOOST_TEST(r.report.rounds.back().pairs == 0u);
 }
 
+BOOST_AUTO_TEST_CASE(three_bodies_in_a_chain) {
+  // Three copies of sphere-a.msh (radius 1) in one mesh, centred at x = 0, 1.4 and 2.8: the
+  // middle body overlaps each outer one by 0.6 (about two element layers) and meets two bodies,
+  // the outer ones do not meet. The rounds stall; the bodies split into two colours (outer /
+  // middle) resolved as two meshes (method "bodies"), judged on the whole mesh.
+  const Mesh a = load("sphere-a.msh");
+  Mesh m;
+  for (double x : {0.0, 1.4, 2.8}) {
+    const std::size_t base = m.vertices.size();
+    for (const Vec3d& v : a.vertices) m.vertices.push_back({v[0] + x, v[1], v[2]});
+    for (auto t : a.tets) {
+      for (auto& v : t) v += base;
+      m.tets.push_back(t);
+    }
+  }
+  ResolveOptions o;
+  o.variant = ResolveVariant::Rigid;  // as deep_overlap: keeps the test short
+  const Resolution r = resolve_self(m, o);
+  log_report("three deep balls in a chain (self)", r);
+  judge(m, nullptr, r, {}, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+}
+
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
   // The shipped balls overlap by 0.73 (about 2.4 elements of size 0.3): one round cannot end it.
   const Mesh A = load("sphere-a.msh"), B = load("sphere-b.msh");
@@ -431,6 +456,34 @@ BOOST_AUTO_TEST_CASE(deep_overlap) {
   BOOST_TEST(f.report.resolved);
   BOOST_TEST(f.report.cost_a == 0.0);
   BOOST_TEST(jf.cost < t * t);
+}
+
+BOOST_AUTO_TEST_CASE(deep_through_a_plate) {
+  // A ball pushed through the middle of a fixed thin plate, off the plate's centre: the plate is
+  // box.vtk ([0.7,1.3] x [-0.3,0.3] x [-0.5,0.5]) mapped to [-1,1]^2 x [-0.05,0.05] (x' =
+  // (x - 1) / 0.3, y' = y / 0.3, z' = z / 10: positive scales keep every element's orientation),
+  // the ball sphere-a.msh (radius 1, surface vertices on the sphere) scaled by 0.3 and centred
+  // at (0.4, 0, 0). Bounds from containment: lifted by 0.36 along the plate normal the ball
+  // (z >= 0.06) clears the plate (z <= 0.05), a translation costing 0.36^2 with A fixed; along
+  // the line of the vertex centroids (about x) it must clear the plate's x <= 1 from its
+  // x >= 0.4 - 0.3 * 0.9895 (sphere-a's smallest x), t >= 0.8968, cost >= 0.80. The rounds alone
+  // cannot resolve it (the plate spans the ball); the translation fallback must find the
+  // plate normal among its directions, and its walk back only lowers the cost.
+  Mesh plate = load("box.vtk");
+  for (Vec3d& v : plate.vertices) v = {(v[0] - 1) / 0.3, v[1] / 0.3, v[2] / 10};
+  Mesh ball = load("sphere-a.msh");
+  for (Vec3d& v : ball.vertices) v = {0.4 + 0.3 * v[0], 0.3 * v[1], 0.3 * v[2]};
+  ResolveOptions o;
+  o.fix_a = true;
+  o.variant = ResolveVariant::Rigid;  // as deep_overlap: keeps the test short
+  const Resolution r = resolve(plate, ball, o);
+  log_report("ball through a fixed plate", r);
+  const Judged j = judge(plate, &ball, r, all(plate), {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "translation");
+  BOOST_TEST(r.report.cost_a == 0.0);
+  BOOST_TEST(j.cost <= 0.36 * 0.36);
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
 }
 
 BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {

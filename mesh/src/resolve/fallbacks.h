@@ -1,0 +1,32 @@
+// fallbacks.h — what resolve does when its rounds stall (resolve.h, "Fallbacks").
+//
+// translate_and_relax (two meshes; deep overlaps): the cheapest separating rigid translation
+//   over a few candidate directions (the centroid line, the mean per-pair pdd2 normal, the
+//   principal axes of the contact region; each bisected with the exact contact stage, the
+//   shortest kept; a rigid translation keeps R2 and R4 up to rounding, which is checked), then
+//   walked back towards the rest pose by steps of gamma (kFirstGamma down to kLastGamma) of
+//   every free vertex's way back, each followed by a few projective-dynamics rounds (which keep
+//   R2 and R4); a step that does not end resolved and cheaper is undone. True when it ends
+//   resolved (R1 by the contact stage); false, positions unchanged, when it does not apply
+//   (both meshes have fixed vertices, no separating translation found, or the translated rest
+//   pose flips an element by rounding).
+// resolve_bodies (self-contact of several bodies, the connected components by shared vertices):
+//   when every intersecting pair at rest joins two different bodies and the bodies' contact
+//   graph is 2-colourable (no three bodies meet pairwise: a chain or a star of bodies is), each
+//   connected group of contacting bodies is cut out as two meshes, one colour each, and resolved
+//   from rest as A x B (every fallback of two meshes included). True when every group ended
+//   resolved (the caller's exact verdict on the whole mesh judges the result); false, positions
+//   unchanged, otherwise.
+#pragma once
+
+#include <cstddef>
+
+#include "state.h"
+
+namespace pdd::mesh::detail {
+
+bool translate_and_relax(Run& run, std::size_t budget);
+
+bool resolve_bodies(Run& run);
+
+}  // namespace pdd::mesh::detail

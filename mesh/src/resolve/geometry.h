@@ -1,0 +1,45 @@
+// geometry.h — the small vector arithmetic of the resolver (doubles, component-wise as
+// written: every function rounds exactly as its one-line body says) and its stopwatch.
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "pdd/mesh.h"
+
+namespace pdd::mesh::detail {
+
+inline Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3d scaled(const Vec3d& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline void add_to(Vec3d& a, const Vec3d& b) {
+  for (int k = 0; k < 3; ++k) a[k] += b[k];
+}
+// p + s d, component-wise (one rounding per component).
+inline Vec3d moved_by(const Vec3d& p, double s, const Vec3d& d) {
+  return {p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]};
+}
+inline bool finite(const Vec3d& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+// a / |a|, or nullopt when a is zero or not finite.
+inline std::optional<Vec3d> unit(const Vec3d& a) {
+  const double n = std::sqrt(dot(a, a));
+  if (!(n > 0) || !std::isfinite(n)) return std::nullopt;
+  return scaled(a, 1 / n);
+}
+// The largest squared edge length of the two tetrahedra.
+inline double longest_edge2(const TetVertices& A, const TetVertices& B) {
+  double edge = 0;
+  for (const auto& e : kEdges)
+    edge = std::max({edge, dot(sub(A[e[1]], A[e[0]]), sub(A[e[1]], A[e[0]])),
+                     dot(sub(B[e[1]], B[e[0]]), sub(B[e[1]], B[e[0]]))});
+  return edge;
+}
+
+using Clock = std::chrono::steady_clock;
+inline double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+}  // namespace pdd::mesh::detail

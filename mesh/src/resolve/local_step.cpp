@@ -1,0 +1,176 @@
+// local_step.cpp — the per-pair projection of a round (local_step.h).
+#include "local_step.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry.h"
+
+namespace pdd::mesh::detail {
+namespace {
+
+// How far B must move along the unit u for its projections to clear A's: max u.s - min u.r.
+double clearance(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
+  double hi = -HUGE_VAL, lo = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    hi = std::max(hi, dot(u, A[i]));
+    lo = std::min(lo, dot(u, B[i]));
+  }
+  return hi - lo;
+}
+
+// The axis of a candidate direction (definitions §3's vectors, up to sign).
+Vec3d label_axis(const DirectionLabel& l, const TetVertices& A, const TetVertices& B) {
+  auto face = [](const TetVertices& T, int i) {
+    const auto& f = kFace[i];
+    return cross(sub(T[f[1]], T[f[0]]), sub(T[f[2]], T[f[0]]));
+  };
+  switch (l.kind) {
+    case ContactKind::FV: return face(A, l.a);
+    case ContactKind::VF: return face(B, l.a);
+    case ContactKind::EE: break;
+  }
+  const Vec3d e = sub(A[kEdges[l.a][1]], A[kEdges[l.a][0]]);
+  const Vec3d f = sub(B[kEdges[l.b][1]], B[kEdges[l.b][0]]);
+  const Vec3d n = cross(f, e);
+  if (dot(n, n) > 0) return n;
+  const Vec3d w = sub(B[kEdges[l.b][0]], A[kEdges[l.a][0]]);  // parallel edges
+  return sub(w, scaled(e, dot(w, e) / dot(e, e)));
+}
+
+// The rigid translation along the unit u that clears the pair, half to each side.
+PairMove translation(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
+  PairMove m;
+  const double d = std::max(0.0, clearance(u, A, B));
+  for (int i = 0; i < 4; ++i) {
+    m.da[i] = scaled(u, -d / 2);
+    m.db[i] = scaled(u, d / 2);
+  }
+  m.u = u;
+  m.value = d * d;
+  m.ok = std::isfinite(d);
+  return m;
+}
+
+PairMove rigid_move(const TetVertices& A, const TetVertices& B) {
+  const fast::Depth r = fast::rigid_pd2(A, B);
+  if (r.status == fast::DepthStatus::Ok && r.dir) {
+    if (const auto u = unit(label_axis(*r.dir, A, B))) {
+      // The label fixes the axis; of its two signs the one with the smaller clearance is the
+      // rigid direction (the other would push B through A). Decided in doubles: the value is
+      // only a target, the next round's exact decision judges the outcome.
+      const Vec3d v = scaled(*u, -1);
+      PairMove m = translation(clearance(*u, A, B) <= clearance(v, A, B) ? *u : v, A, B);
+      m.value = r.pd2;
+      if (m.ok) return m;
+    }
+  }
+  // No certified rigid value: any direction separates after its clearance; use the centroids'.
+  Vec3d c = {0, 0, 0};
+  for (int i = 0; i < 4; ++i) add_to(c, sub(B[i], A[i]));
+  if (const auto u = unit(c)) return translation(*u, A, B);
+  return translation({1, 0, 0}, A, B);
+}
+
+PairMove from_positions(const Positions<double>& qa, const Positions<double>& qb, const TetVertices& A,
+                        const TetVertices& B, double value, const std::optional<std::array<double, 3>>& normal) {
+  PairMove m;
+  Vec3d sa = {0, 0, 0}, sb = {0, 0, 0};
+  for (int i = 0; i < 4; ++i) {
+    m.da[i] = sub(qa[i], A[i]);
+    m.db[i] = sub(qb[i], B[i]);
+    if (!finite(m.da[i]) || !finite(m.db[i])) return m;
+    add_to(sa, m.da[i]);
+    add_to(sb, m.db[i]);
+  }
+  // The normal (A -> B): given, or the direction of sum d_B - sum d_A (every displacement of a
+  // per-direction solution is along its normal, B's sum forward, A's backward).
+  const auto u = unit(normal ? Vec3d{(*normal)[0], (*normal)[1], (*normal)[2]} : sub(sb, sa));
+  if (!u) return m;
+  m.u = *u;
+  m.value = value;
+  m.ok = true;
+  return m;
+}
+
+// The gap between the two sides of a pair's plane, relative to the pair's longest edge: far above
+// the rounding of the moved coordinates, small against the element (its cost per pair is at most
+// (1e-3 h)^2, a millionth of an element layer's).
+constexpr double kPlaneGap = 1e-3;
+
+// The per-pair rounds' gap mu between a pair's two sides: kMargin of its longest edge plus
+// kMarginUlp of its largest |coordinate|: far above the rounding of the moved coordinates
+// (2^-52 |x|), and so small against the element that its cost, at most mu^2 per pair and
+// mesh, is below 1e-12 of an element layer's.
+constexpr double kMargin = 1e-6;
+constexpr double kMarginUlp = 1e-12;
+
+}  // namespace
+
+PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
+  if (variant == ResolveVariant::Rigid) return rigid_move(A, B);
+  const bool global = variant == ResolveVariant::Global;
+  fast::SolveOptions options;
+  options.with_global = global;
+  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
+  if (!r.error) {
+    if (global && !r.pdd2_global_error && r.pdd2_global_normal) {
+      PairMove m = from_positions(r.q1_A_global, r.q1_B_global, A, B, r.pdd2_global, r.pdd2_global_normal);
+      if (m.ok) return m;
+    }
+    PairMove m = from_positions(r.q1_A, r.q1_B, A, B, r.pdd2, std::nullopt);  // pdd2's positions
+    if (m.ok) return m;
+  }
+  return rigid_move(A, B);
+}
+
+double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, ResolveVariant variant,
+                    std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b) {
+  const TetVertices A = element(sa.cur, ea), B = element(sb.cur, eb);
+  const PairMove m = solve_move(A, B, variant);
+  if (!m.ok) return 0;
+  double a_hi = -HUGE_VAL, b_lo = HUGE_VAL, fixed_a = -HUGE_VAL, fixed_b = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    a_hi = std::max(a_hi, dot(m.u, A[i]) + dot(m.u, m.da[i]));
+    b_lo = std::min(b_lo, dot(m.u, B[i]) + dot(m.u, m.db[i]));
+    if (sa.is_fixed(sa.rest->tets[ea][i])) fixed_a = std::max(fixed_a, dot(m.u, A[i]));
+    if (sb.is_fixed(sb.rest->tets[eb][i])) fixed_b = std::min(fixed_b, dot(m.u, B[i]));
+  }
+  const double gap = kPlaneGap * std::sqrt(longest_edge2(A, B));
+  double lo = (a_hi + b_lo) / 2 - gap / 2, hi = lo + gap;
+  if (fixed_a > lo) hi += fixed_a - lo, lo = fixed_a;  // A's fixed vertices stay: B takes it all
+  if (fixed_b < hi) lo -= hi - fixed_b, hi = fixed_b;
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return 0;
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t va = sa.rest->tets[ea][i], vb = sb.rest->tets[eb][i];
+    if (!sa.is_fixed(va) && dot(m.u, A[i]) > lo) out_a.push_back({va, {scaled(m.u, -1), -lo}});
+    if (!sb.is_fixed(vb) && dot(m.u, B[i]) < hi) out_b.push_back({vb, {m.u, hi}});
+  }
+  return m.value;
+}
+
+void finish_move(PairMove& m, const Side& sa, std::size_t ea, const Side& sb, std::size_t eb,
+                 const TetVertices& A, const TetVertices& B) {
+  std::array<bool, 4> fixed_a, fixed_b;
+  double retreat_a = 0, retreat_b = 0, coord = 0;
+  for (int i = 0; i < 4; ++i) {
+    fixed_a[i] = sa.is_fixed(sa.rest->tets[ea][i]);
+    fixed_b[i] = sb.is_fixed(sb.rest->tets[eb][i]);
+    if (fixed_a[i]) retreat_a = std::max(retreat_a, -dot(m.da[i], m.u));
+    if (fixed_b[i]) retreat_b = std::max(retreat_b, dot(m.db[i], m.u));
+    for (int k = 0; k < 3; ++k) coord = std::max({coord, std::abs(A[i][k]), std::abs(B[i][k])});
+  }
+  const double mu = kMargin * std::sqrt(longest_edge2(A, B)) + kMarginUlp * coord;
+  for (int i = 0; i < 4; ++i) {
+    if (fixed_a[i])
+      m.da[i] = {0, 0, 0};
+    else
+      add_to(m.da[i], scaled(m.u, -(retreat_b + mu / 2)));
+    if (fixed_b[i])
+      m.db[i] = {0, 0, 0};
+    else
+      add_to(m.db[i], scaled(m.u, retreat_a + mu / 2));
+  }
+}
+
+}  // namespace pdd::mesh::detail

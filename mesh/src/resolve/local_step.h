@@ -1,0 +1,58 @@
+// local_step.h — the local step of a round: one intersecting element pair projected, in the
+// object norm, onto the configurations in which a plane separates its two tetrahedra.
+//
+// Inputs:  the pair's tetrahedra A (element a of side sa) and B (element b of side sb) at the
+//          current positions, which of their vertices are fixed, the variant.
+// Outputs: solve_move: the variant's per-pair solution as displacements of the eight vertices,
+//            all along the solution's unit normal u (A -> B), and its squared depth;
+//          pair_targets (the projective-dynamics rounds): the plane u.x = c midway between q1_A
+//            and q1_B, opened by the gap g = kPlaneGap (longest edge of the pair) and shifted past
+//            the fixed vertices of either side, as a half-space for every free vertex on the
+//            wrong side:  u.x <= c - g/2 (A's),  u.x >= c + g/2 (B's);
+//          finish_move (the per-pair rounds): the fixed vertices' share of a move handed to the
+//            other side and the two sides pushed mu = kMargin edge + kMarginUlp |x| apart.
+// A pair whose per-pair solve fails (pdd2_global_error, a record error, no direction) falls back
+// to pdd2's positions, then to the rigid translation along the rigid direction (or the centroid
+// line when the rigid depth is not certified).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "pdd/mesh.h"
+#include "state.h"
+
+namespace pdd::mesh::detail {
+
+// One pair's local step: target displacements of its eight vertices, all along u (A -> B).
+struct PairMove {
+  std::array<Vec3d, 4> da{}, db{};
+  Vec3d u{};
+  double value = 0;  // the variant's squared depth used (ResolveRound::max_pd2)
+  bool ok = false;
+};
+
+PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant);
+
+// A half-space n.x >= b that a vertex must reach (n of unit length), and the vertex it binds.
+struct HalfSpace {
+  Vec3d n{};
+  double b = 0;
+};
+struct VertexTarget {
+  std::size_t vertex = 0;
+  HalfSpace h;
+};
+
+// The projective-dynamics local step of pair (ea of sa, eb of sb): appends the half-spaces of
+// its free vertices to out_a / out_b; returns the variant's squared depth (0: no solution).
+double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, ResolveVariant variant,
+                    std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b);
+
+// The per-pair rounds' local step of pair (ea of sa, eb of sb): the variant's move with the fixed
+// vertices' share moved to the other side and the margin mu added (m.ok must hold).
+void finish_move(PairMove& m, const Side& sa, std::size_t ea, const Side& sb, std::size_t eb,
+                 const TetVertices& A, const TetVertices& B);
+
+}  // namespace pdd::mesh::detail

@@ -1,0 +1,266 @@
+// rounds.cpp — the rounds of resolve (rounds.h).
+#include "rounds.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+
+#include "../resolve.h"
+#include "geometry.h"
+#include "local_step.h"
+#include "step_limit.h"
+
+namespace pdd::mesh::detail {
+namespace {
+
+// ---- the projective-dynamics rounds
+
+// kStallRounds rounds without progress on the best round before count as stalled: the pair
+// count falls unevenly (planes of neighbouring pairs disagree for a few rounds), and on the
+// one-layer Gmsh balls plateaus of up to 6 rounds end resolved. Progress is a count below
+// (1 - kMinProgress) of the best: one pair fewer below 100 pairs, 1% above. A count that falls
+// by less than 1% in 20 rounds would still be at 90% of itself after 200 rounds (the default
+// budget): on the deep plate case (15k pairs shrinking by a few a round) the rounds gave way to
+// the fallbacks after 94 rounds instead of 44, and no case the rounds resolve has such a plateau.
+constexpr std::size_t kStallRounds = 20;
+constexpr double kMinProgress = 0.01;
+// A vertex is pulled kOvershoot times the way to its half-spaces: the elastic step moves a
+// contact vertex only part of its pull (elastic_step.h), and the overshoot makes up for it
+// (the step limit cuts where it would break R2 or R4). Measured on the one-layer Gmsh balls
+// (both free / A fixed): at kAnchor 0.2, overshoot 1: 23 / 22 rounds; 1.5: 16 rounds / stalled;
+// 2: 11 rounds / stalled (it overshoots the pair's plane and chatters); at kAnchor 0.1 (the
+// value used), 1.5: 22 / 18 rounds.
+constexpr double kOvershoot = 1.5;
+// The elastic displacement decays away from the contacts but is nowhere zero; a vertex whose
+// displacement is below this share of the largest one stays where it is (bit for bit, so its
+// elements keep the state the last step limit accepted). It saves the step limit from checking
+// every element of the mesh each round; the jump it leaves at the edge of the moved region, at
+// most 1e-4 of the largest move, is inside elements the step limit checks.
+constexpr double kNegligibleShare = 1e-4;
+
+// The latest half-space each vertex of a side held (a vertex once in contact stays constrained).
+using Held = std::vector<std::optional<HalfSpace>>;
+
+// y projected onto the half-space h when it violates it.
+Vec3d project(Vec3d y, const HalfSpace& h) {
+  const double d = h.b - dot(h.n, y);
+  if (d > 0) add_to(y, scaled(h.n, d));
+  return y;
+}
+
+// The pulls y_v - x_v of one side: a vertex with targets this round is projected onto each in
+// turn (one sweep) and pulled kOvershoot times the way, keeping the most violated half-space as
+// the one it holds; a vertex without targets is pulled back into the half-space it holds.
+std::vector<Vec3d> pulls(const Side& s, std::vector<VertexTarget>& targets, Held& held) {
+  std::sort(targets.begin(), targets.end(), [](const VertexTarget& x, const VertexTarget& y) { return x.vertex < y.vertex; });
+  std::vector<Vec3d> pull(s.cur.vertices.size(), Vec3d{0, 0, 0});
+  std::vector<char> touched(s.cur.vertices.size(), 0);
+  for (std::size_t k = 0; k < targets.size();) {
+    const std::size_t v = targets[k].vertex;
+    Vec3d y = s.cur.vertices[v];
+    double worst = 0;
+    for (; k < targets.size() && targets[k].vertex == v; ++k) {
+      const double d = targets[k].h.b - dot(targets[k].h.n, s.cur.vertices[v]);
+      if (d >= worst) worst = d, held[v] = targets[k].h;
+      y = project(y, targets[k].h);
+    }
+    pull[v] = scaled(sub(y, s.cur.vertices[v]), kOvershoot);
+    touched[v] = 1;
+  }
+  for (std::size_t v = 0; v < pull.size(); ++v)
+    if (!touched[v] && held[v]) pull[v] = sub(project(s.cur.vertices[v], *held[v]), s.cur.vertices[v]);
+  return pull;
+}
+
+// The global step (elastic_step.h) and the step limit of one side.
+void elastic_move(Side& s, const ElasticStep& elastic, const std::vector<Vec3d>& pull) {
+  std::vector<Vec3d> delta;
+  if (!elastic.solve(pull, delta)) return;
+  double largest = 0;
+  for (const Vec3d& d : delta)
+    if (finite(d)) largest = std::max(largest, dot(d, d));
+  const double negligible = kNegligibleShare * kNegligibleShare * largest;
+  for (std::size_t v = 0; v < delta.size(); ++v)
+    if (dot(delta[v], delta[v]) > negligible && finite(delta[v])) propose(s, v, delta[v]);
+  move_side(s, 1);  // the elastic step's own overshoot is in its pull (kOvershoot)
+}
+
+// The local step over all pairs: their half-space targets per side (self-contact: all in a) and
+// each pair's squared depth (0: no solution).
+std::vector<double> local_step(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs,
+                               std::vector<VertexTarget>& targets_a, std::vector<VertexTarget>& targets_b) {
+  std::vector<std::vector<VertexTarget>> ta(pairs.size()), tb(pairs.size());
+  std::vector<double> value(pairs.size(), 0);
+  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+    if (run.cancelled()) return;
+    value[k] = pair_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], run.o.variant, ta[k], tb[k]);
+  });
+  auto& into_b = run.B ? targets_b : targets_a;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    targets_a.insert(targets_a.end(), ta[k].begin(), ta[k].end());
+    into_b.insert(into_b.end(), tb[k].begin(), tb[k].end());
+  }
+  return value;
+}
+
+// One projective-dynamics round on the given pairs; false (with rep.stopped_because) when no
+// pair has a solution.
+bool pd_round(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs, Held& held_a, Held& held_b,
+              ResolveRound& rr) {
+  auto t = Clock::now();
+  std::vector<VertexTarget> targets_a, targets_b;
+  const std::vector<double> value = local_step(run, pairs, targets_a, targets_b);
+  run.stop_if_cancelled();
+  if (std::none_of(value.begin(), value.end(), [](double x) { return x > 0; })) {
+    run.rep.stopped_because = "none of the " + std::to_string(pairs.size()) +
+                              " intersecting pairs has a finite per-pair solution (coordinates too large to square in doubles?)";
+    return false;
+  }
+  const std::vector<Vec3d> pull_a = pulls(run.sa, targets_a, held_a);
+  const std::vector<Vec3d> pull_b = run.B ? pulls(run.sb, targets_b, held_b) : std::vector<Vec3d>{};
+  run.rep.seconds_solve += since(t);
+  t = Clock::now();
+  elastic_move(run.sa, *run.elastic_a, pull_a);
+  run.stop_if_cancelled();
+  if (run.B) elastic_move(run.sb, *run.elastic_b, pull_b);
+  run.rep.seconds_move += since(t);
+  rr.pairs = pairs.size();
+  rr.max_pd2 = *std::max_element(value.begin(), value.end());
+  return true;
+}
+
+// ---- the per-pair rounds
+
+// How the per-pair rounds combine a vertex's targets, per variant: global and pdd2 take the
+// longest target with overshoot omega = 1.2 and push a pair found in more than two consecutive
+// rounds by its rigid translation (on the balls 1.99 apart, 693 pairs: 9 rounds (global) and
+// 7 (pdd2); with the weighted mean and omega 1.5 both stalled with a few pairs left after 100
+// rounds, elements nearly flat); rigid (the baseline) takes the rest-volume-weighted mean with
+// omega = 1.5 (with the longest target it diverged).
+struct RoundRule {
+  double overshoot;  // omega
+  Combine combine;
+  int rigid_after;   // rounds before a pair is pushed by its rigid translation (0: never)
+};
+RoundRule round_rule(ResolveVariant variant) {
+  if (variant == ResolveVariant::Rigid) return {1.5, Combine::WeightedMean, 0};
+  return {1.2, Combine::Longest, 2};
+}
+
+// The per-pair rounds' stall rule: after kPairStallRounds rounds still half of the first round's
+// pairs, or kPairStallRounds rounds without fewer pairs than the best round before.
+constexpr std::size_t kPairStallRounds = 10;
+
+struct StallWatch {
+  std::size_t first = 0, best = 0, best_round = 0;
+  // Takes round r's pair count; true when the rounds count as stalled.
+  bool stalled(std::size_t r, std::size_t pairs) {
+    if (r == 0) first = best = pairs;
+    if (pairs < best) best = pairs, best_round = r;
+    return (r >= kPairStallRounds && 2 * pairs >= first) || r >= best_round + kPairStallRounds;
+  }
+};
+
+// Consecutive rounds each pair has been found in (RoundRule::rigid_after), from last round's.
+struct PairAges {
+  std::vector<std::array<std::size_t, 2>> pairs;
+  std::vector<int> age;
+  std::vector<int> next(const std::vector<std::array<std::size_t, 2>>& now) const {
+    std::vector<int> a(now.size(), 1);
+    for (std::size_t k = 0; k < now.size(); ++k) {
+      const auto it = std::lower_bound(pairs.begin(), pairs.end(), now[k]);
+      if (it != pairs.end() && *it == now[k]) a[k] = age[std::size_t(it - pairs.begin())] + 1;
+    }
+    return a;
+  }
+};
+
+// One per-pair round on the given pairs (their ages as PairAges::next).
+void pair_round(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs, const std::vector<int>& age,
+                ResolveVariant variant, ResolveRound& rr) {
+  const RoundRule rule = round_rule(variant);
+  auto t = Clock::now();
+  Side &sa = run.sa, &sB = run.second();
+  std::vector<PairMove> moves(pairs.size());
+  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+    const TetVertices Ta = element(sa.cur, pairs[k][0]), Tb = element(sB.cur, pairs[k][1]);
+    const bool rigid = rule.rigid_after > 0 && age[k] > rule.rigid_after;
+    PairMove m = solve_move(Ta, Tb, rigid ? ResolveVariant::Rigid : variant);
+    if (m.ok) finish_move(m, sa, pairs[k][0], sB, pairs[k][1], Ta, Tb);
+    moves[k] = m;
+  });
+  run.rep.seconds_solve += since(t);
+  run.stop_if_cancelled();
+  t = Clock::now();
+  rr.pairs = pairs.size();
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (!moves[k].ok) continue;
+    rr.max_pd2 = std::max(rr.max_pd2, moves[k].value);
+    accumulate(sa, pairs[k][0], moves[k].da, rule.combine);
+    accumulate(sB, pairs[k][1], moves[k].db, rule.combine);
+  }
+  move_side(sa, rule.overshoot);
+  if (run.B) move_side(run.sb, rule.overshoot);
+  run.rep.seconds_move += since(t);
+}
+
+}  // namespace
+
+std::vector<std::array<std::size_t, 2>> contacts(Run& run) {
+  const auto t = Clock::now();
+  auto pairs = intersecting_pairs(run.sa.cur, run.sa.elems, run.B ? &run.sb.cur : nullptr, run.sb.elems);
+  run.rep.seconds_contacts += since(t);
+  return pairs;
+}
+
+bool run_pd_rounds(Run& run, std::size_t budget) {
+  const auto t = Clock::now();
+  if (!run.elastic_a) run.elastic_a.emplace(run.A, run.sa.elems, run.sa.fixed);
+  if (run.B && !run.elastic_b) run.elastic_b.emplace(*run.B, run.sb.elems, run.sb.fixed);
+  run.rep.seconds_solve += since(t);
+  Held held_a(run.A.vertices.size()), held_b(run.B ? run.B->vertices.size() : 0);
+  std::size_t best = 0, best_round = 0;
+  for (std::size_t r = 0; r < budget; ++r) {
+    run.stop_if_cancelled();
+    const auto t_round = Clock::now();
+    const std::vector<std::array<std::size_t, 2>> pairs = contacts(run);
+    if (pairs.empty()) return true;
+    if (r == 0 || double(pairs.size()) < double(best) * (1 - kMinProgress)) best = pairs.size(), best_round = r;
+    if (r >= best_round + kStallRounds) return false;
+    run.stop_if_cancelled();
+    ResolveRound rr;
+    if (!pd_round(run, pairs, held_a, held_b, rr)) return false;
+    rr.round = run.rep.rounds.size() + 1;
+    rr.cost = run.cost();
+    rr.seconds = since(t_round);
+    run.record(rr);
+  }
+  return false;
+}
+
+bool run_pair_rounds(Run& run, std::size_t budget, ResolveVariant variant, OnStall on_stall) {
+  PairAges last;
+  StallWatch watch;
+  for (std::size_t r = 0; r < budget; ++r) {
+    run.stop_if_cancelled();
+    const auto t_round = Clock::now();
+    std::vector<std::array<std::size_t, 2>> pairs = contacts(run);
+    if (pairs.empty()) return true;
+    if (watch.stalled(r, pairs.size()) && on_stall == OnStall::Exit) return false;
+    run.stop_if_cancelled();
+    std::vector<int> age = last.next(pairs);
+    ResolveRound rr;
+    rr.round = run.rep.rounds.size() + 1;
+    pair_round(run, pairs, age, variant, rr);
+    last.pairs = std::move(pairs);
+    last.age = std::move(age);
+    rr.cost = run.cost();
+    rr.seconds = since(t_round);
+    run.record(rr);
+  }
+  return false;
+}
+
+}  // namespace pdd::mesh::detail

@@ -1,0 +1,38 @@
+// rounds.h — the rounds of resolve (resolve.h): from the current positions, each round finds the
+// contacts afresh, projects every intersecting pair (local step, local_step.h), moves the
+// vertices (the elastic global step, or the per-pair combination) and limits the step so that R2
+// and R4 hold (step_limit.h).
+//
+// Inputs:  the run (its sides at the current positions), a budget of rounds.
+// Outputs: the sides moved, one ResolveRound per round in run.rep; returns true when a contact
+//          stage found no pair (R1 at the positions reached), false when the rounds stalled,
+//          the budget ended or no pair had a solution (then rep.stopped_because says so).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "state.h"
+
+namespace pdd::mesh::detail {
+
+// The contact stage (timed into rep.seconds_contacts): every intersecting pair at the current
+// positions, by a fresh broadphase and the exact decision (intersecting_pairs).
+std::vector<std::array<std::size_t, 2>> contacts(Run& run);
+
+// The projective-dynamics rounds: half-space targets (pair_targets), the elastic global step
+// (elastic_step.h) and the step limit. They stall after kStallRounds rounds without fewer pairs
+// than the best round.
+bool run_pd_rounds(Run& run, std::size_t budget);
+
+// Whether the per-pair rounds end when they stall (the first try after the projective-dynamics
+// rounds) or use the whole budget (the rounds of the fallbacks).
+enum class OnStall { Exit, Continue };
+
+// The per-pair rounds: each free vertex moves by the variant's rule (round_rule: the longest or
+// the volume-weighted mean of its pairs' moves, finish_move, times the overshoot), step limit
+// as above.
+bool run_pair_rounds(Run& run, std::size_t budget, ResolveVariant variant, OnStall on_stall);
+
+}  // namespace pdd::mesh::detail
