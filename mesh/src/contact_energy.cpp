@@ -135,6 +135,7 @@ Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which)
   out.vertices = p;
   out.tets = m.tets;
   out.source_ids = m.source_ids;
+  out.vertex_sources = m.vertex_sources;  // messages name a non-finite vertex where it was read
   return out;
 }
 

@@ -27,6 +27,10 @@ pdd::mesh::Mesh mesh_arg(py::handle V, py::handle T, py::handle rest, char which
   positions = mesh_vertices(V, v.c_str());
   pdd::mesh::Mesh m;
   m.vertices = rest.is_none() ? positions : mesh_vertices(rest, r.c_str());
+  // The energy is taken at the positions: their rows first, then the rest rows (a non-finite
+  // rest coordinate is named where the rest shape is used).
+  m.vertex_sources = vertex_sources(positions, v.c_str());
+  if (!rest.is_none()) m.vertex_sources.merge(vertex_sources(m.vertices, r.c_str()));
   if (m.vertices.size() != positions.size())
     value_error(r + " must have the shape of " + v + " (one rest position per vertex); got " +
                 std::to_string(m.vertices.size()) + " rows for " + std::to_string(positions.size()));

@@ -63,10 +63,12 @@ std::pair<pdd::mesh::Mesh, pdd::mesh::Mesh> meshes_from_arrays(py::handle VA, py
   };
   pdd::mesh::Mesh A, B;
   A.vertices = mesh_vertices(VA, "VA");
+  A.vertex_sources = vertex_sources(A.vertices, "VA");
   A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
   if (A.tets.empty()) no_tets("TA");
   if (!self) {
     B.vertices = mesh_vertices(VB, "VB");
+    B.vertex_sources = vertex_sources(B.vertices, "VB");
     B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
     if (B.tets.empty()) no_tets("TB");
   }
