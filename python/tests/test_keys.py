@@ -12,8 +12,9 @@ The keys are collected by running things on small fixtures, not by reading the s
     pdd.contact_energy.
 A key is defined when definitions.md writes it as a code span (`key`, or inside an object's span
 `{key, other}`); a VTK field `max_<key>` when `max_<key>` is written there and <key> is defined.
-Nested JSON keys are checked by name. Not collected: the timing reports of `pdd bench --json`
-(measurements, described with their tables in docs/performance.md)."""
+  - `pdd bench --json`, `pdd bench mesh --json` (with an aligned case), `pdd bench resolve --json`
+    on small inputs.
+Nested JSON keys are checked by name."""
 import json
 import re
 import subprocess
@@ -145,6 +146,15 @@ def cli_keys(pdd_cli, tmp_path_factory):
             r = run(pdd_cli, command, "--input", fixture, "--json", *extra, ok=(0, 1))
             add(jsonl_keys(r.stdout, set()), f"pdd {command} --json")
 
+    bench = [["bench", "--count", "20", "--repeats", "1", "--exact-sample", "2"],
+             ["bench", "mesh", *TINY, "--repeats", "1", "--aligned-cells", "1"],
+             ["bench", "resolve", "--cases", "self", "--size", "200", "--repeats", "1", "--max-rounds", "3",
+              "--meshes", MESHES]]
+    for k, args in enumerate(bench):
+        out = tmp / f"bench-{k}.json"
+        run(pdd_cli, *args, "--json", out)
+        add(json_keys(json.loads(out.read_text()), set()), "pdd " + " ".join(map(str, args[:2])) + " --json")
+
     for variant in ("global", "rigid"):
         rep, vtk = tmp / f"report-{variant}.json", tmp / f"resolve-{variant}.vtk"
         r = run(pdd_cli, "resolve", "--quiet", *TINY, "--variant", variant, "--out-a", tmp / "a1.msh",
@@ -200,7 +210,8 @@ def undefined(keys):
 def test_collected_enough(cli_keys, module_keys):
     # A collector that silently finds nothing would pass the tests below.
     for k in ("pdd2_global_grad", "pdd2_global_lower", "pdd2_global_error", "max_pdd2_global",
-              "displacement", "partners", "remaining_pairs", "seconds_total", "max_force", "sum"):
+              "displacement", "partners", "remaining_pairs", "seconds_total", "max_force", "sum",
+              "pairs_dev_over_1e-6", "decision_ratio", "rounds_log", "verdict", "nef_equal"):
         assert k in cli_keys, k
     for k in ("pdd2_global_grad", "slow_paths", "skipped", "hessian", "volume_ratio_a"):
         assert k in module_keys, k
