@@ -164,7 +164,15 @@ Returns a dict: energy (float), gradient ((nA + nB, 3), A's vertices first), hes
 (scipy.sparse.csr_matrix of size 3(nA + nB), row 3v + k for coordinate k of vertex v; None
 unless asked), pairs (int), max_pdd2_global (float), skipped (list of (mesh, index, reason)),
 seconds_contacts, seconds_assembly, and with per_pair: a, b, weight, pdd2_global, pair_energy.
-The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).)doc";
+The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).
+
+  >>> import pdd
+  >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
+  >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
+  >>> e = pdd.contact_energy(VA, TA, VB, TB)
+  >>> e["pairs"], f"{e['energy']:.6g}", e["gradient"].shape, e["skipped"], e["hessian"]
+  (51, '0.0137533', (28, 3), [], None)
+)doc";
 
 }  // namespace
 

@@ -187,6 +187,7 @@ def module_keys():
     for kw in ({}, {"gradient": True}, {"with_global": False}):
         add(pdd.solve_batch(np.array([A, flat]), np.array([B, B]), **kw).keys(), f"pdd.solve_batch({kw})")
     add(json_keys(pdd.read_fixtures(FIXTURES / "smoke.json"), set()), "pdd.read_fixtures")
+    add(pdd.KEYS, "pdd.KEYS")
 
     VA, TA = pdd.read_mesh(MESHES / "tiny-a.msh")
     VB, TB = pdd.read_mesh(MESHES / "tiny-b.msh")
@@ -231,3 +232,14 @@ def test_an_undefined_key_is_reported():
         "'max_no_such' (printed by w)", "'no_such_key' (printed by z)"]
     assert is_defined("rigid_pd2", words) and not is_defined("rigid_pd", words)
     assert is_defined("reason", words)  # from `{mesh, index, reason}`
+
+
+def test_module_keys_tuple_lists_every_record_key():
+    """pdd.KEYS holds every key a record of pdd.solve can have, in the order of the records."""
+    A = [[0, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]]
+    B = [[2, 2, 2], [2.5, 2, 2], [2, 2.5, 2], [2, 2, 2.5]]
+    for engine in ("fast", "reference"):
+        for kw in ({}, {"gradient": True}, {"with_global": False}):
+            keys = list(pdd.solve(A, B, engine=engine, **kw))
+            assert set(keys) <= set(pdd.KEYS), (engine, kw)
+            assert keys == sorted(keys, key=pdd.KEYS.index), (engine, kw)
