@@ -1,19 +1,15 @@
 #include "pdd/compare/paper_figures.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdlib>
-#include <filesystem>
+#include <cstdio>
+#include <optional>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include "pdd/io/output.h"
-#include "pdd/io/streaming.h"
 #include "pdd/reference/candidate_table.h"
 #include "pdd/reference/direction_qp.h"
 #include "pdd/reference/solve_exact.h"
@@ -28,39 +24,38 @@ TetVertices to_doubles(const reference::ExactTet& t) {
   return out;
 }
 
-// Runs `command` with /bin/sh and waits for it; its exit status (-1 when it could not start).
-// Not std::system: that ignores SIGINT in pdd while it waits, so Ctrl-C during a picture would
-// stop gnuplot and be lost to pdd (streaming.h answers signals).
-int run_shell(const std::string& command) {
-  const char* argv[] = {"sh", "-c", command.c_str(), nullptr};
-  pid_t pid = 0;
-  if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// Runs `command` with /bin/sh; its standard output, or nullopt when it could not start or did
+// not exit with 0. Not std::system: that ignores SIGINT in pdd while it waits, so Ctrl-C during
+// a picture would stop gnuplot and be lost to pdd (streaming.h answers signals). popen and
+// pclose leave the signal dispositions alone.
+std::optional<std::string> shell_output(const std::string& command) {
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return std::nullopt;
+  std::string out;
+  char buf[1 << 16];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
+  const int status = ::pclose(pipe);
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
+  return out;
 }
 
-// gnuplot on DIR/SCRIPT, whose picture PNG (in DIR) is drawn under a temporary name and renamed
-// over PNG once gnuplot succeeded, as io::write_file does for text (the script reads that name
-// from its variable `out`, PNG itself when it is run by hand). An interrupted or failed run
-// leaves the old picture or the whole new one, and no temporary file.
+// gnuplot on DIR/SCRIPT, its picture read from its standard output (the script's variable
+// `out`, set to /dev/stdout here, PNG itself when the script is run by hand) and written to
+// DIR/PNG as io::write_file writes text: whole or not at all. A gnuplot that fails or is stopped
+// leaves the old picture; nothing of it reaches the disk before it has finished.
 bool run_gnuplot(const std::string& dir, const std::string& script, const std::string& png, std::string& why) {
   const std::string log = script.substr(0, script.find('.')) + ".log";
-  const bool rename = io::replaced_by_rename(dir + "/" + png);
-  const std::string drawn = rename ? png + ".partial-" + std::to_string(::getpid()) : png;
-  const io::PartialFile partial(rename ? dir + "/" + drawn : std::string());
-  const std::string cmd = "cd '" + dir + "' && gnuplot -e \"out='" + drawn + "'\" '" + script + "' 2> '" + log + "'";
-  std::error_code ec;
-  if (run_shell(cmd) == 0) {
-    if (rename) std::filesystem::rename(dir + "/" + drawn, dir + "/" + png, ec);
-    if (!ec) return true;
-    why = "cannot write '" + dir + "/" + png + "': " + ec.message();
-  } else {
+  const std::string cmd = "cd '" + dir + "' && gnuplot -e \"out='/dev/stdout'\" '" + script + "' 2> '" + log + "'";
+  const std::optional<std::string> picture = shell_output(cmd);
+  if (!picture || picture->empty()) {
     why = "gnuplot failed on " + dir + "/" + script + " (see " + dir + "/" + log + "; is gnuplot installed?)";
+    return false;
   }
-  if (rename) std::filesystem::remove(dir + "/" + drawn, ec);
-  return false;
+  if (auto failed = io::write_file(dir + "/" + png, *picture)) {
+    why = *failed;
+    return false;
+  }
+  return true;
 }
 
 // The whole text to `path` or nothing (io::write_file: a temporary file and a rename). A file
