@@ -6,6 +6,8 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "pdd/cli/exit_codes.h"
@@ -32,6 +34,34 @@ int main(int argc, char** argv) {
   add_bench_command(app, exit_code);
   add_mesh_command(app, exit_code);
   add_resolve_command(app, exit_code);
+  // Examples at the end of each command's --help, run as written from the source tree by the
+  // test python_help_examples (python/tests/test_help_examples.py).
+  const std::vector<std::pair<std::vector<std::string>, std::string>> examples = {
+      {{"solve"},
+       "pdd solve --input fixtures/smoke.json --engine fast --format table\n"
+       "  pdd solve --input fixtures/smoke.json --gradient --output smoke.jsonl"},
+      {{"generate"}, "pdd generate --list\n  pdd generate --family paper --seed 7 --count 100 --output paper-7.json"},
+      {{"golden"}, "pdd golden --check --fixtures fixtures"},
+      {{"theorem"}, "pdd theorem --input fixtures/smoke.json --json"},
+      {{"audit-ee"}, "pdd audit-ee --input fixtures/adversarial.json"},
+      {{"compare"}, "pdd compare --input fixtures/adversarial.json"},
+      {{"paper"}, "pdd paper --seed 7 --count 120 --exact-sample 120 --repeats 1 --out paper-out"},
+      {{"bench"}, "pdd bench --count 1000 --exact-sample 20 --repeats 1 --json bench.json"},
+      {{"bench", "mesh"},
+       "pdd bench mesh --a fixtures/meshes/sphere-a.msh --b fixtures/meshes/sphere-b.msh --repeats 1"},
+      {{"bench", "resolve"}, "pdd bench resolve --cases shipped --repeats 1"},
+      {{"mesh"},
+       "pdd mesh --a fixtures/meshes/sphere-a.msh --b fixtures/meshes/sphere-b.msh --output pairs.jsonl --summary\n"
+       "  pdd mesh --a fixtures/meshes/two-spheres.msh --self --variants global --energy"},
+      {{"resolve"},
+       "pdd resolve --a fixtures/meshes/tiny-a.msh --b fixtures/meshes/tiny-b.msh --fix a --out-a a1.msh \\\n"
+       "      --out-b b1.vtk --report report.json --summary"},
+  };
+  for (const auto& [path, text] : examples) {
+    CLI::App* sub = &app;
+    for (const auto& name : path) sub = sub->get_subcommand(name);
+    sub->footer("\nExamples (from the source tree; docs/definitions.md defines every key printed):\n  " + text);
+  }
   // The command runs under run_watched (streaming.h): SIGINT or SIGTERM is answered by the
   // command's InterruptScope (what it kept), or ends a command that writes its results at its
   // end with a word on standard error; either way the status is 128 + the signal.

@@ -56,6 +56,7 @@
 #include <atomic>
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,11 @@ struct Mesh {
   // Where each tetrahedron came from, for messages: the element tag of a Gmsh file, the cell
   // index of a VTK file (same length as `tets`; may be empty for meshes built in code).
   std::vector<long long> source_ids;
+  // Where each vertex with a non-finite coordinate came from, by vertex index, for the message
+  // that skips its elements (element_problem): "node 5 at a.msh:12" (a Gmsh file's own node
+  // tag and line), "point 4 at b.vtk:30" (a VTK file's point number), "VA[4]" (Python's array
+  // and row). Empty for meshes built in code (the message then names the vertex index alone).
+  std::map<std::size_t, std::string> vertex_sources;
 };
 
 // A mesh file that cannot be read: missing, truncated, malformed, an element referring to a
@@ -85,7 +91,8 @@ struct ReadError : std::runtime_error {
 // Reads a Gmsh .msh file (versions 2.2 and 4.1, ASCII and binary) or a legacy VTK unstructured
 // grid (.vtk, ASCII or BINARY, cell type 10), chosen by content ("$MeshFormat" or
 // "# vtk DataFile"). Coordinates are read as written (non-finite ones too: the element that
-// uses them is skipped by contacts(), with its index). Throws ReadError.
+// uses them is skipped by contacts(), with its index and the vertex's node tag, file and line
+// from vertex_sources). Throws ReadError.
 Mesh read_mesh(const std::string& path);
 
 // Variants, one bit per definitions §6 value; bit k < kValueCount is the value kValueKeys[k] of

@@ -135,6 +135,7 @@ Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which)
   out.vertices = p;
   out.tets = m.tets;
   out.source_ids = m.source_ids;
+  out.vertex_sources = m.vertex_sources;  // messages name a non-finite vertex where it was read
   return out;
 }
 
@@ -229,20 +230,27 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   auto weight = [&](const PairSolution& s) {
     return o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(wa[s.a] * wb[s.b]);
   };
-  auto flat_at_rest = [&](std::vector<double>& w, std::size_t i, char which) {
-    if (w[i] != 0) return false;
-    w[i] = -2;  // listed once
-    e.skipped.push_back({which, i,
-                         "element " + std::to_string(i) + " of mesh " + which +
-                             " is flat at rest (volume 0): it has no contact weight"});
-    return true;
+  // No weight: flat at rest, or a rest volume that is not finite (a non-finite rest coordinate,
+  // or one whose products overflow); -2 marks an element already listed.
+  const auto unweighted = [](double w) { return w == 0 || w == -2 || !std::isfinite(w); };
+  auto list_unweighted = [&](std::vector<double>& w, const Mesh& rest, std::size_t i, char which) {
+    if (w[i] == -2 || !unweighted(w[i])) return;
+    const std::string element_i = "element " + std::to_string(i) + " of mesh " + which;
+    std::string why = element_i + " is flat at rest (volume 0): it has no contact weight";
+    if (!std::isfinite(w[i])) {
+      const auto problem = element_problem(rest, i, which);
+      why = (problem ? *problem + " at rest" : element_i + ": its rest volume is not finite") +
+            ": it has no contact weight";
+    }
+    w[i] = -2;
+    e.skipped.push_back({which, i, why});
   };
   std::vector<PairSolution> kept;
   kept.reserve(sol.size());
   for (auto& s : sol) {
-    const bool fa = wa[s.a] == 0 || wa[s.a] == -2, fb = wb[s.b] == 0 || wb[s.b] == -2;
-    if (wa[s.a] == 0) flat_at_rest(wa, s.a, 'A');
-    if (wb[s.b] == 0) flat_at_rest(wb, s.b, B ? 'B' : 'A');
+    const bool fa = unweighted(wa[s.a]), fb = unweighted(wb[s.b]);
+    list_unweighted(wa, A, s.a, 'A');
+    list_unweighted(wb, Bm, s.b, B ? 'B' : 'A');
     if (!fa && !fb) kept.push_back(s);
   }
   sol.swap(kept);

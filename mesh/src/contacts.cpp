@@ -245,8 +245,10 @@ std::optional<std::string> element_problem(const Mesh& m, std::size_t i, char wh
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(t[v][k])) {
         std::ostringstream o;
+        const auto source = m.vertex_sources.find(m.tets[i][v]);
         o << "element " << i << " of mesh " << which << ": vertex " << v << " (mesh vertex "
-          << m.tets[i][v] << ") coordinate " << "xyz"[k] << " is not finite (" << t[v][k] << ")";
+          << m.tets[i][v] << (source == m.vertex_sources.end() ? "" : ": " + source->second)
+          << ") coordinate " << "xyz"[k] << " is not finite (" << t[v][k] << ")";
         return o.str();
       }
   using P = CGAL::Epick::Point_3;

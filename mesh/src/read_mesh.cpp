@@ -23,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -50,6 +51,18 @@ class Cursor {
     throw ReadError(printable(o.str()));  // the file's control characters as \xNN
   }
   [[noreturn]] void fail(const std::string& msg) const { fail(msg, pos_); }
+
+  // Where offset `at` is, for a vertex's message: "PATH:LINE" in text, "PATH, byte N" in binary
+  // data. Lines are counted on from the previous call's offset when `at` lies after it (the
+  // readers ask in file order), so a file of many non-finite vertices is still read in linear time.
+  std::string location(std::size_t at, bool binary) {
+    at = std::min(at, s_.size());
+    if (binary) return printable(path_ + ", byte " + std::to_string(at));
+    if (at < counted_to_) counted_to_ = 0, counted_lines_ = 1;
+    counted_lines_ += std::count(s_.begin() + counted_to_, s_.begin() + at, '\n');
+    counted_to_ = at;
+    return printable(path_ + ":" + std::to_string(counted_lines_));
+  }
 
   bool at_end() {
     skip_space();
@@ -169,6 +182,7 @@ class Cursor {
   std::string path_;
   std::string s_;
   std::size_t pos_ = 0;
+  std::size_t counted_to_ = 0, counted_lines_ = 1;  // location(): line of offset counted_to_
 };
 
 std::string read_file(const std::string& path) {
@@ -216,12 +230,15 @@ struct MshState {
   Cursor& c;
   bool binary = false;
   std::vector<Vec3d> vertices;
+  std::map<std::size_t, std::string> sources;  // Mesh::vertex_sources
   std::unordered_map<long long, std::size_t> index_of;
   std::vector<PendingTet> tets;
 
   void add_node(long long tag, const Vec3d& x, std::size_t where) {
     if (!index_of.emplace(tag, vertices.size()).second)
       c.fail("node " + std::to_string(tag) + " is defined twice", where, binary);
+    if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])))
+      sources.emplace(vertices.size(), "node " + std::to_string(tag) + " at " + c.location(where, binary));
     vertices.push_back(x);
   }
   Vec3d coords_text() {
@@ -444,6 +461,7 @@ struct MshState {
   Mesh finish() {
     Mesh m;
     m.vertices = std::move(vertices);
+    m.vertex_sources = std::move(sources);
     m.tets.reserve(tets.size());
     m.source_ids.reserve(tets.size());
     for (std::size_t i = 0; i < tets.size(); ++i) {
@@ -548,11 +566,16 @@ Mesh read_vtk(Cursor& c) {
         c.fail("binary point type '" + type + "' is not supported (float, double are)", at);
       if (binary) c.next_line();
       m.vertices.resize(n);
-      for (long long i = 0; i < n; ++i)
+      for (long long i = 0; i < n; ++i) {
+        const std::size_t pat = binary ? c.pos() : (c.skip_space(), c.pos());
         for (int k = 0; k < 3; ++k)
           m.vertices[i][k] = !binary ? c.number("a point coordinate")
                              : type == "float" ? c.raw<float>("point coordinates", true)
                                                : c.raw<double>("point coordinates", true);
+        const Vec3d& x = m.vertices[i];
+        if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])))  // the file's own numbering
+          m.vertex_sources.emplace(i, "point " + std::to_string(i) + " at " + c.location(pat, binary));
+      }
       have_points = true;
     } else if (key == "CELLS") {
       const long long n = c.count("the number of cells", true);

@@ -207,6 +207,14 @@ std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which) {
   return out;
 }
 
+std::map<std::size_t, std::string> vertex_sources(const std::vector<pdd::Vec3d>& vertices, const char* which) {
+  std::map<std::size_t, std::string> out;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    if (!(std::isfinite(vertices[i][0]) && std::isfinite(vertices[i][1]) && std::isfinite(vertices[i][2])))
+      out.emplace_hint(out.end(), i, std::string(which) + "[" + std::to_string(i) + "]");
+  return out;
+}
+
 // Tetrahedra: (m, 4) integers -> vertex indices. Indices past the end are left to the library
 // (its message); a negative one has no size_t, so it is reported here in the same words.
 std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* which, char mesh,

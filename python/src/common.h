@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -67,6 +68,10 @@ void check_integers_exact(const py::array& a, const char* which);
 // library's words ("element i of mesh A refers to vertex -1, ..."), those past the end left to
 // the library.
 std::vector<pdd::Vec3d> mesh_vertices(py::handle obj, const char* which);
+// pdd::mesh::Mesh::vertex_sources of an array's rows, for the message that skips an element
+// with a non-finite vertex: "VA[4]" for each row of `vertices` (read from the argument `which`)
+// with a non-finite coordinate.
+std::map<std::size_t, std::string> vertex_sources(const std::vector<pdd::Vec3d>& vertices, const char* which);
 std::vector<std::array<std::size_t, 4>> mesh_tets(py::handle obj, const char* which, char mesh,
                                                   std::size_t vertices);
 // The name of a coordinate in messages, "A[i][k]" (built only for a message).

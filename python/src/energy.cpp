@@ -27,6 +27,10 @@ pdd::mesh::Mesh mesh_arg(py::handle V, py::handle T, py::handle rest, char which
   positions = mesh_vertices(V, v.c_str());
   pdd::mesh::Mesh m;
   m.vertices = rest.is_none() ? positions : mesh_vertices(rest, r.c_str());
+  // The energy is taken at the positions: their rows first, then the rest rows (a non-finite
+  // rest coordinate is named where the rest shape is used).
+  m.vertex_sources = vertex_sources(positions, v.c_str());
+  if (!rest.is_none()) m.vertex_sources.merge(vertex_sources(m.vertices, r.c_str()));
   if (m.vertices.size() != positions.size())
     value_error(r + " must have the shape of " + v + " (one rest position per vertex); got " +
                 std::to_string(m.vertices.size()) + " rows for " + std::to_string(positions.size()));
@@ -160,7 +164,15 @@ Returns a dict: energy (float), gradient ((nA + nB, 3), A's vertices first), hes
 (scipy.sparse.csr_matrix of size 3(nA + nB), row 3v + k for coordinate k of vertex v; None
 unless asked), pairs (int), max_pdd2_global (float), skipped (list of (mesh, index, reason)),
 seconds_contacts, seconds_assembly, and with per_pair: a, b, weight, pdd2_global, pair_energy.
-The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).)doc";
+The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).
+
+  >>> import pdd
+  >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
+  >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
+  >>> e = pdd.contact_energy(VA, TA, VB, TB)
+  >>> e["pairs"], f"{e['energy']:.6g}", e["gradient"].shape, e["skipped"], e["hessian"]
+  (51, '0.0137533', (28, 3), [], None)
+)doc";
 
 }  // namespace
 

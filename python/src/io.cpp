@@ -60,6 +60,13 @@ Non-finite coordinates (1e999) are read as +-inf: solve() then reports them.
 A file that cannot be read at all (missing, a directory, empty, not JSON, malformed numbers,
 a NUL byte, a repeated key, no "pairs" array) raises ValueError with the message `pdd solve`
 prints after "pdd solve: ", e.g. "malformed JSON at byte 12: ...".
+
+  >>> import pdd
+  >>> pairs = pdd.read_fixtures("fixtures/smoke.json")
+  >>> len(pairs), pairs[0]["name"], pairs[0]["tags"], pairs[0]["A"][1], pairs[0]["error"]
+  (6, 'nested-1', ['nested'], [10.0, 0.0, 0.0], None)
+  >>> pdd.solve(pairs[0]["A"], pairs[0]["B"], engine="reference")["rigid_pd2"]
+  Fraction(16, 3)
 )doc";
 
 }  // namespace

@@ -63,10 +63,12 @@ std::pair<pdd::mesh::Mesh, pdd::mesh::Mesh> meshes_from_arrays(py::handle VA, py
   };
   pdd::mesh::Mesh A, B;
   A.vertices = mesh_vertices(VA, "VA");
+  A.vertex_sources = vertex_sources(A.vertices, "VA");
   A.tets = mesh_tets(TA, "TA", 'A', A.vertices.size());
   if (A.tets.empty()) no_tets("TA");
   if (!self) {
     B.vertices = mesh_vertices(VB, "VB");
+    B.vertex_sources = vertex_sources(B.vertices, "VB");
     B.tets = mesh_tets(TB, "TB", 'B', B.vertices.size());
     if (B.tets.empty()) no_tets("TB");
   }
@@ -381,12 +383,18 @@ versions 2.2 and 4.1 (ASCII and binary) and legacy VTK unstructured grids (.vtk,
 BINARY, cell type 10), chosen by content. Tetrahedra are numbered in file order among the
 file's tetrahedral elements; other elements (points, lines, triangles, ...) are ignored.
 Gmsh node tags become indices 0, 1, ... in the file's node order. Coordinates are read as
-written, non-finite ones too (mesh_contacts() then skips the element that uses them).
+written, non-finite ones too (mesh_contacts() then skips the element that uses them, naming
+the array and row, "VA[3]"; `pdd mesh` names the file's node tag and line).
 
 A file that cannot be read (missing, truncated, malformed, an element referring to a node
 that is not in the file, an unknown element type) raises ValueError with the message
 `pdd mesh` prints, naming the file and the line or byte, e.g. "a.msh:42: element 17
 refers to node 999, which is not in the file".
+
+  >>> import pdd
+  >>> V, T = pdd.read_mesh("fixtures/meshes/tiny-a.msh")
+  >>> V.shape, V.dtype, T.shape, T.dtype
+  ((14, 3), dtype('float64'), (24, 4), dtype('int64'))
 )doc";
 
 constexpr const char* kResolveDoc = R"doc(resolve(VA, TA, VB=None, TB=None, fix=None, variant='global', max_rounds=200, threads=None, progress=None, fixed_a=None, fixed_b=None, min_volume_ratio=None, min_shape_ratio=None)

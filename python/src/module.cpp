@@ -74,7 +74,9 @@ Example:
   >>> r["rigid_pd2"], r["eq11_pd2"], r["pdd2"], r["pdd2_dir"]
   (Fraction(16, 3), Fraction(1, 12), Fraction(4, 5), 'VF:0')
 
-KEYS is the tuple of a record's keys, in the order `pdd solve` writes them.
+KEYS is the tuple of every key a record can have, in the order `pdd solve` writes them
+(pdd2_global_lower: exact engine only; pdd2_global_error: fast engine only; pdd2_global_grad:
+with gradient=True).
 )doc";
 
 }  // namespace
@@ -96,7 +98,7 @@ PYBIND11_MODULE(pdd, m) {
                                   "rigid_dir", "pdd2_static_dir", "pdd2_dir", "pdd2_relaxed_dir",
                                   "q1_A", "q1_B", "error", "pdd2_global", "pdd2_global_normal",
                                   "q1_A_global", "q1_B_global", "pdd2_global_lower",
-                                  "pdd2_global_error");
+                                  "pdd2_global_error", "pdd2_global_grad");
   bind_pdd(m);
   bind_io(m);
   bind_mesh(m);

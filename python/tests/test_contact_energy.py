@@ -101,3 +101,27 @@ def test_self_contact_and_errors():
         pdd.contact_energy(VA, TA, VB, TB, rest_A=VA[:-1])
     with pytest.raises(ValueError, match="both VB and TB"):
         pdd.contact_energy(VA, TA, VB)
+
+
+def test_elements_without_a_rest_weight_are_skipped_and_named():
+    """An element whose rest shape has no finite volume (a non-finite rest coordinate, or one
+    whose products overflow) gets no weight, as a flat one: skipped with the reason, its pairs
+    left out, the energy finite. B's element 1 uses vertex 4; element 0 does not."""
+    V = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4], [1, 1, 1]], dtype=float)
+    T = np.array([[0, 1, 2, 3], [0, 1, 2, 4]])
+    P = V + 0.5
+    whole = pdd.contact_energy(V, T, P, T, per_pair=True)
+    assert whole["pairs"] == 4 and whole["skipped"] == []
+    rest = P.copy()
+    rest[4] = [np.nan, 0, 0]
+    e = pdd.contact_energy(V, T, P, T, rest_B=rest, per_pair=True)
+    assert e["skipped"] == [("B", 1, "element 1 of mesh B: vertex 3 (mesh vertex 4: rest_B[4]) coordinate x "
+                                     "is not finite (nan) at rest: it has no contact weight")]
+    assert list(e["b"]) == [0, 0] and np.isfinite(e["energy"])
+    # the same pairs of element 0, with the same weights: the same energy, term by term
+    keep = whole["b"] == 0
+    assert list(e["pair_energy"]) == list(whole["pair_energy"][keep])
+    huge = pdd.contact_energy(V, T, P, T, rest_B=P * 1e300)  # volumes overflow to inf
+    assert huge["pairs"] == 0 and huge["energy"] == 0
+    assert [s[2] for s in huge["skipped"]] == [
+        f"element {i} of mesh B: its rest volume is not finite: it has no contact weight" for i in (0, 1)]

@@ -25,12 +25,15 @@ ENGINES = ("fast", "reference")
 def test_module_surface():
     assert pdd.KEYS == ("name", "intersecting") + VALUE_KEYS + LABEL_KEYS + (
         "q1_A", "q1_B", "error", "pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global",
-        "pdd2_global_lower", "pdd2_global_error")
+        "pdd2_global_lower", "pdd2_global_error", "pdd2_global_grad")
     # the keys of `pdd solve`'s records: the exact engine's (golden) end with pdd2_global_lower, the
-    # fast engine's with pdd2_global_error instead
-    assert pdd.KEYS[:-1] == tuple(golden_records("smoke.json")[0])
+    # fast engine's with pdd2_global_error instead; pdd2_global_grad only with gradient=True
+    assert pdd.KEYS[:-2] == tuple(golden_records("smoke.json")[0])
     first = pdd.read_fixtures(str(FIXTURES / "smoke.json"))[0]
-    assert tuple(pdd.solve(first["A"], first["B"])) == tuple(k for k in pdd.KEYS if k != "pdd2_global_lower")
+    assert tuple(pdd.solve(first["A"], first["B"])) == tuple(
+        k for k in pdd.KEYS if k not in ("pdd2_global_lower", "pdd2_global_grad"))
+    assert tuple(pdd.solve(first["A"], first["B"], gradient=True)) == tuple(
+        k for k in pdd.KEYS if k != "pdd2_global_lower")
     assert isinstance(pdd.__version__, str)
     for f in (pdd, pdd.solve, pdd.solve_batch, pdd.read_fixtures):
         assert f.__doc__ and len(f.__doc__) > 400, f

@@ -6,6 +6,7 @@ bound), self-contact, skipped elements, bad input raising ValueError with the
 library's words, and meshes read by Debian's python3-meshio giving the same arrays and
 contacts (on our files, and on formats only meshio reads)."""
 import json
+import re
 import math
 import subprocess
 import warnings
@@ -414,14 +415,43 @@ def test_flat_and_non_finite_elements_are_skipped(engine):
     res = pdd.mesh_contacts(V, T, W, U, engine=engine)
     assert res["skipped"] == [
         ("A", 1, "element 1 of mesh A is flat: its four vertices are coplanar (volume 0)"),
-        ("B", 1, "element 1 of mesh B: vertex 3 (mesh vertex 4) coordinate x is not finite (inf)")]
+        ("B", 1, "element 1 of mesh B: vertex 3 (mesh vertex 4: VB[4]) coordinate x is not finite (inf)")]
     assert res["a"].tolist() == [0] and res["b"].tolist() == [0]
     assert res["pdd2"][0] == pdd.solve(V[:4], W[:4], engine=engine)["pdd2"]
 
 
+def test_non_finite_vertex_named_by_array_and_row():
+    """Every mesh call names a non-finite vertex by the argument and row it came from (the files
+    read by `pdd mesh` name the node tag and line instead): mesh_contacts, resolve,
+    contact_energy."""
+    V = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4], [1, 1, 1]], dtype=float)
+    T = np.array([[0, 1, 2, 3], [0, 1, 2, 4]])
+    W = V + 0.5
+    W[4] = [np.nan, 0, 0]
+    reason = "element 1 of mesh B: vertex 3 (mesh vertex 4: {}) coordinate x is not finite (nan)"
+    assert pdd.mesh_contacts(V, T, W, T)["skipped"] == [("B", 1, reason.format("VB[4]"))]
+    assert pdd.mesh_contacts(W, T)["skipped"] == [("A", 1, reason.format("VA[4]").replace("mesh B", "mesh A"))]
+    _, _, report = pdd.resolve(V, T, W, T, max_rounds=1)
+    assert report["skipped"] == [{"mesh": "B", "index": 1, "reason": reason.format("VB[4]")}]
+    assert pdd.contact_energy(V, T, W, T)["skipped"] == [("B", 1, reason.format("VB[4]"))]
+    U = V.copy()
+    U[0, 2] = np.inf  # row 0 of A, used by both elements
+    skipped = pdd.mesh_contacts(U, T, W, T)["skipped"]
+    assert skipped[0] == ("A", 0, "element 0 of mesh A: vertex 0 (mesh vertex 0: VA[0]) coordinate z is not finite (inf)")
+
+
 def test_skipped_elements_are_the_cli_messages(pdd_cli, tmp_path):
     """fixtures/meshes/bad/flat.msh and nan.msh: the reasons `pdd mesh` prints after
-    "pdd mesh: skipped " (it exits 1 for them), in the same order."""
+    "pdd mesh: skipped " (it exits 1 for them), in the same order; a non-finite vertex is named
+    where each caller sees it: the file's node tag and line by `pdd mesh`, the array and row by
+    the module."""
+    def vertex_source(reason):
+        m = re.search(r"\(mesh vertex \d+: ([^)]*)\)", reason)
+        return m and m.group(1)
+
+    def without_source(reason):
+        return re.sub(r"\(mesh vertex (\d+): [^)]*\)", r"(mesh vertex \1)", reason)
+
     for name in ("flat.msh", "nan.msh"):
         V, T = pdd.read_mesh(MESHES / "bad" / name)
         res = pdd.mesh_contacts(V, T, V, T)
@@ -431,7 +461,11 @@ def test_skipped_elements_are_the_cli_messages(pdd_cli, tmp_path):
         assert run.returncode == 1
         said = [l[len("pdd mesh: skipped "):] for l in run.stderr.splitlines()
                 if l.startswith("pdd mesh: skipped ")]
-        assert said and [s[2] for s in res["skipped"]] == said, name
+        assert said and [without_source(s[2]) for s in res["skipped"]] == [without_source(w) for w in said], name
+        if name == "nan.msh":  # node 4 (line 9) is mesh vertex 3, the NaN row of the arrays
+            path = str(MESHES / "bad" / name)
+            assert [vertex_source(w) for w in said] == [f"node 4 at {path}:9", None, f"node 4 at {path}:9", None]
+            assert [vertex_source(s[2]) for s in res["skipped"]] == ["VA[3]", None, "VB[3]", None]
         assert [s[:2] for s in res["skipped"]] == [(w[w.index("mesh ") + 5], int(w.split()[1])) for w in said]
 
 

@@ -3,9 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "fixtures.h"
 #include "pdd/compare/family_global_cost.h"
@@ -178,4 +183,75 @@ BOOST_AUTO_TEST_CASE(pair_vtk_cells_follow_vtk_orientation) {
                        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
     BOOST_TEST(det > 0, "cell " << k);
   }
+}
+
+namespace {
+std::string file_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+// A PNG file ends with its IEND chunk: length 0, "IEND", CRC ae 42 60 82 (PNG specification).
+bool complete_png(const std::string& bytes) {
+  static const std::string iend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+  return bytes.size() > 12 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 &&
+         bytes.compare(bytes.size() - 12, 12, iend) == 0;
+}
+std::vector<std::string> partial_files(const std::filesystem::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().filename().string().find(".partial-") != std::string::npos) out.push_back(e.path().string());
+  return out;
+}
+}  // namespace
+
+// The pictures of `pdd paper` replace old ones whole: written under a temporary name and renamed
+// when gnuplot succeeded; when it fails (here: not found on PATH) the old picture stays byte for
+// byte (also when gnuplot dies while writing it), and no temporary file is left either way. The script still draws to its own name when
+// run by hand (its variable `out` defaults to it).
+BOOST_AUTO_TEST_CASE(paper_figures_replace_old_files_whole) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("pdd-paper-figures-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* name : {"fig3_histograms.png", "fig3_histograms.dat", "fig3_histograms.gp"})
+    std::ofstream(dir / name) << "old " << name;
+  std::vector<PairResult<double>> rs = {result(4, 1, 1, 0.25, 0.25, 0.25, 0.25, "FV:0", "FV:0"),
+                                        result(16, 16, 4, 9, 16, 9, 9, "FV:1", "EE:0:1")};
+  const PaperStats s = paper_statistics(rs, [](double x) { return x; });
+  std::string why;
+
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", (dir / "no-programs-here").c_str(), 1);
+  const bool drawn_without_gnuplot = write_fig3(dir.string(), s, why);
+  setenv("PATH", path.c_str(), 1);
+  BOOST_TEST(!drawn_without_gnuplot);
+  BOOST_TEST(why.find("gnuplot failed") != std::string::npos, why);
+  BOOST_TEST(file_text(dir / "fig3_histograms.png") == "old fig3_histograms.png");
+  BOOST_TEST(file_text(dir / "fig3_histograms.dat").rfind("# bin_center", 0) == 0u);  // the data is new
+  BOOST_TEST(partial_files(dir).empty());
+
+  // gnuplot stopped while writing its picture: a stand-in runs the real one, passes on the
+  // first 100 bytes of what it drew (to its output, a file or standard output) and fails. The
+  // picture under the final name is still the old one.
+  const fs::path bin = dir / "bin";
+  fs::create_directories(bin);
+  std::ofstream(bin / "gnuplot") << "#!/bin/sh\nPATH='" << path << "' gnuplot \"$@\" | head -c 100\n"
+                                 << "exit 1\n";
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+  const bool drawn_cut = write_fig3(dir.string(), s, why);
+  setenv("PATH", path.c_str(), 1);
+  BOOST_TEST(!drawn_cut);
+  BOOST_TEST(file_text(dir / "fig3_histograms.png") == "old fig3_histograms.png");
+  BOOST_TEST(partial_files(dir).empty());
+
+  BOOST_REQUIRE(write_fig3(dir.string(), s, why));
+  BOOST_TEST(complete_png(file_text(dir / "fig3_histograms.png")));
+  BOOST_TEST(partial_files(dir).empty());
+
+  fs::remove(dir / "fig3_histograms.png");
+  const std::string by_hand = "cd '" + dir.string() + "' && gnuplot fig3_histograms.gp 2>/dev/null";
+  BOOST_REQUIRE(std::system(by_hand.c_str()) == 0);
+  BOOST_TEST(complete_png(file_text(dir / "fig3_histograms.png")));
+  fs::remove_all(dir);
 }

@@ -523,7 +523,7 @@ BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
 // equality, so these take its exact path). One element, rest t0 = the corner tetrahedron of
 // edge 4 (D0 = 6 V0 = 64, S0 = sum of squared edges = 9 * 16 = 144).
 BOOST_AUTO_TEST_CASE(r4_exact_at_the_boundary) {
-  const Mesh m{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}}, {{0, 1, 2, 3}}, {}};
+  const Mesh m{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}}, {{0, 1, 2, 3}}, {}, {}};
   auto verdict = [&](const std::vector<Vec3d>& p, const QualityLimits& q) {
     const ResolveReport r = check_resolution(m, p, nullptr, {}, {}, {}, q);
     BOOST_TEST(r.r4 == judge_usable(element(m, 0), at(m, p, 0), q));

@@ -1,11 +1,13 @@
 #include "pdd/compare/paper_figures.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <fstream>
+#include <cstdio>
+#include <optional>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+
+#include <sys/wait.h>
 
 #include "pdd/io/output.h"
 #include "pdd/reference/candidate_table.h"
@@ -13,7 +15,6 @@
 #include "pdd/reference/solve_exact.h"
 
 namespace pdd::compare {
-using io::close_error;
 namespace {
 
 TetVertices to_doubles(const reference::ExactTet& t) {
@@ -23,17 +24,50 @@ TetVertices to_doubles(const reference::ExactTet& t) {
   return out;
 }
 
-bool run_gnuplot(const std::string& dir, const std::string& script, std::string& why) {
-  const std::string log = script.substr(0, script.find('.')) + ".log";
-  const std::string cmd = "cd '" + dir + "' && gnuplot '" + script + "' 2> '" + log + "'";
-  if (std::system(cmd.c_str()) == 0) return true;
-  why = "gnuplot failed on " + dir + "/" + script + " (see " + dir + "/" + log + "; is gnuplot installed?)";
-  return false;
+// Runs `command` with /bin/sh; its standard output, or nullopt when it could not start or did
+// not exit with 0. Not std::system: that ignores SIGINT in pdd while it waits, so Ctrl-C during
+// a picture would stop gnuplot and be lost to pdd (streaming.h answers signals). popen and
+// pclose leave the signal dispositions alone.
+std::optional<std::string> shell_output(const std::string& command) {
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return std::nullopt;
+  std::string out;
+  char buf[1 << 16];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
+  const int status = ::pclose(pipe);
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
+  return out;
 }
 
-// A file that could not be written in full is an error of the whole run, not a missing picture.
-void finish(std::ofstream& o, const std::string& path) {
-  if (auto why = close_error(o, path)) throw std::runtime_error(*why);
+// gnuplot on DIR/SCRIPT, its picture read from its standard output (the script's variable
+// `out`, set to /dev/stdout here, PNG itself when the script is run by hand) and written to
+// DIR/PNG as io::write_file writes text: whole or not at all. A gnuplot that fails or is stopped
+// leaves the old picture; nothing of it reaches the disk before it has finished.
+bool run_gnuplot(const std::string& dir, const std::string& script, const std::string& png, std::string& why) {
+  const std::string log = script.substr(0, script.find('.')) + ".log";
+  const std::string cmd = "cd '" + dir + "' && gnuplot -e \"out='/dev/stdout'\" '" + script + "' 2> '" + log + "'";
+  const std::optional<std::string> picture = shell_output(cmd);
+  if (!picture || picture->empty()) {
+    why = "gnuplot failed on " + dir + "/" + script + " (see " + dir + "/" + log + "; is gnuplot installed?)";
+    return false;
+  }
+  if (auto failed = io::write_file(dir + "/" + png, *picture)) {
+    why = *failed;
+    return false;
+  }
+  return true;
+}
+
+// The whole text to `path` or nothing (io::write_file: a temporary file and a rename). A file
+// that could not be written in full is an error of the whole run, not a missing picture.
+void write_whole(const std::string& path, const std::ostringstream& text) {
+  if (auto why = io::write_file(path, text.str())) throw std::runtime_error(*why);
+}
+
+// The script's first lines: the terminal and the picture's name (`out`, see run_gnuplot).
+std::string png_output(const std::string& size, const std::string& png, int font = 11) {
+  return "set terminal pngcairo size " + size + " font 'Sans," + std::to_string(font) + "'\nif (!exists('out')) out = '" + png +
+         "'\nset output out\n";
 }
 
 // The six edges of a tetrahedron as gnuplot line segments (blank line between segments).
@@ -74,7 +108,7 @@ PairConfigurations pair_configurations(const TetPair& pair) {
 bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
   constexpr int kBins = 60;
   constexpr double kMax = 1.2;  // PD_d / PD <= 1 for static (<= 1/sqrt 2 for case 2); margin
-  std::ofstream dat(dir + "/fig3_histograms.dat");
+  std::ostringstream dat;
   dat << "# bin_center";
   for (const char* v : kPaperVariants) dat << " \"" << v << "\"";
   dat << "\n";
@@ -89,9 +123,9 @@ bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
     for (int k = 0; k < 5; ++k) dat << ' ' << counts[b][k];
     dat << "\n";
   }
-  finish(dat, dir + "/fig3_histograms.dat");  // gnuplot reads it below
-  std::ofstream gp(dir + "/fig3_histograms.gp");
-  gp << "set terminal pngcairo size 1500,420 font 'Sans,11'\nset output 'fig3_histograms.png'\n"
+  write_whole(dir + "/fig3_histograms.dat", dat);  // gnuplot reads it below
+  std::ostringstream gp;
+  gp << png_output("1500,420", "fig3_histograms.png")
      << "set multiplot layout 1,3 title 'PD_d / PD over " << s.pairs << " random intersecting pairs (cf. paper Fig. 3)'\n"
      << "set style fill solid 0.6 border -1\nset boxwidth " << kMax / kBins << "\nset xrange [0:1]\n"
      << "set xlabel 'PD_d / PD'\nset ylabel '% of pairs'\nset grid ytics\n";
@@ -105,8 +139,8 @@ bool write_fig3(const std::string& dir, const PaperStats& s, std::string& why) {
        << "' notitle\n";
   }
   gp << "unset multiplot\n";
-  finish(gp, dir + "/fig3_histograms.gp");
-  return run_gnuplot(dir, "fig3_histograms.gp", why);
+  write_whole(dir + "/fig3_histograms.gp", gp);
+  return run_gnuplot(dir, "fig3_histograms.gp", "fig3_histograms.png", why);
 }
 
 bool write_global_figure(const std::string& dir, const GlobalStats& s, std::string& why) {
@@ -115,7 +149,7 @@ bool write_global_figure(const std::string& dir, const GlobalStats& s, std::stri
   for (const RatioStats* r : {&s.relaxed_over_global, &s.pdd2_over_global})
     for (double x : r->values) top = std::max(top, x);
   top = std::min(top, 4.0);  // the tail beyond 4 is counted in the last bin
-  std::ofstream dat(dir + "/global_cost.dat");
+  std::ostringstream dat;
   dat << "# bin_center \"pdd2_relaxed / pdd2_global\" \"pdd2 / pdd2_global\" (% of pairs)\n";
   std::vector<std::array<double, 2>> counts(kBins);
   const RatioStats* cols[2] = {&s.relaxed_over_global, &s.pdd2_over_global};
@@ -126,9 +160,9 @@ bool write_global_figure(const std::string& dir, const GlobalStats& s, std::stri
     }
   for (int b = 0; b < kBins; ++b)
     dat << 1.0 + (b + 0.5) * (top - 1.0) / kBins << ' ' << counts[b][0] << ' ' << counts[b][1] << "\n";
-  finish(dat, dir + "/global_cost.dat");
-  std::ofstream gp(dir + "/global_cost.gp");
-  gp << "set terminal pngcairo size 1000,420 font 'Sans,11'\nset output 'global_cost.png'\n"
+  write_whole(dir + "/global_cost.dat", dat);
+  std::ostringstream gp;
+  gp << png_output("1000,420", "global_cost.png")
      << "set multiplot layout 1,2 title 'What the 44 candidate directions cost: squared PD_d over the "
      << "minimum over every plane (eq. 5), " << s.pairs << " pairs'\n"
      << "set style fill solid 0.6 border -1\nset boxwidth " << (top - 1.0) / kBins << "\nset xrange [1:"
@@ -138,12 +172,12 @@ bool write_global_figure(const std::string& dir, const GlobalStats& s, std::stri
      << s.relaxed_over_global.mean << "'\nplot 'global_cost.dat' using 1:2 with boxes lc rgb '#4477aa' notitle\n"
      << "set xlabel 'pdd2 / pdd2\\_global'\nset title 'paper case 2: mean " << s.pdd2_over_global.mean
      << "'\nplot 'global_cost.dat' using 1:3 with boxes lc rgb '#cc3311' notitle\nunset multiplot\n";
-  finish(gp, dir + "/global_cost.gp");
-  return run_gnuplot(dir, "global_cost.gp", why);
+  write_whole(dir + "/global_cost.gp", gp);
+  return run_gnuplot(dir, "global_cost.gp", "global_cost.png", why);
 }
 
 bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string& why) {
-  std::ofstream dat(dir + "/fig2_pair.dat");
+  std::ostringstream dat;
   dat << std::setprecision(17);
   // index 0..7: A rest, B rest, A rest, B static, A def, B def, A rest, B rigid
   const TetVertices* blocks[8] = {&c.A_rest, &c.B_rest, &c.A_rest, &c.B_static,
@@ -152,7 +186,7 @@ bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string
     write_edges(dat, *t);
     dat << "\n";  // two blank lines end a gnuplot index block
   }
-  finish(dat, dir + "/fig2_pair.dat");  // gnuplot reads it below
+  write_whole(dir + "/fig2_pair.dat", dat);  // gnuplot reads it below
   std::ostringstream titles[4];
   titles[0] << "(a) penetration state";
   titles[1] << std::setprecision(4) << "(b) static / deformable, PD_d = " << c.pdd_static;
@@ -165,8 +199,8 @@ bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
   double span = 0;
   for (int k = 0; k < 3; ++k) span = std::max(span, hi[k] - lo[k]);
-  std::ofstream gp(dir + "/fig2_pair.gp");
-  gp << "set terminal pngcairo size 1400,1200 font 'Sans,12'\nset output 'fig2_pair.png'\n"
+  std::ostringstream gp;
+  gp << png_output("1400,1200", "fig2_pair.png", 12)
      << "set multiplot layout 2,2 title 'pair " << c.name << ": A (blue) and B (red), rest pose dashed (cf. paper Fig. 2)'\n"
      << "set view 65,35\nset view equal xyz\nset xyplane 0\nunset key\nset format '%.1f'\n";
   const char axes[3] = {'x', 'y', 'z'};
@@ -183,13 +217,13 @@ bool write_fig2(const std::string& dir, const PairConfigurations& c, std::string
     gp << "\n";
   }
   gp << "unset multiplot\n";
-  finish(gp, dir + "/fig2_pair.gp");
-  return run_gnuplot(dir, "fig2_pair.gp", why);
+  write_whole(dir + "/fig2_pair.gp", gp);
+  return run_gnuplot(dir, "fig2_pair.gp", "fig2_pair.png", why);
 }
 
 void write_vtk(const std::string& path, const PairConfigurations& c) {
   const TetVertices* cells[6] = {&c.A_rest, &c.B_rest, &c.B_static, &c.A_deformable, &c.B_deformable, &c.B_rigid};
-  std::ofstream o(path);
+  std::ostringstream o;
   o << std::setprecision(17) << "# vtk DataFile Version 3.0\n"
     << "pdd pair " << c.name << ": 0 A rest, 1 B rest, 2 B static/def, 3 A def/def, 4 B def/def, 5 B rigid\n"
     << "ASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 24 double\n";
@@ -215,7 +249,7 @@ void write_vtk(const std::string& path, const PairConfigurations& c) {
   o << "CELL_TYPES 6\n";
   for (int k = 0; k < 6; ++k) o << "10\n";  // VTK_TETRA
   o << "CELL_DATA 6\nSCALARS configuration int 1\nLOOKUP_TABLE default\n0\n1\n2\n3\n4\n5\n";
-  finish(o, path);
+  write_whole(path, o);
 }
 
 }  // namespace pdd::compare

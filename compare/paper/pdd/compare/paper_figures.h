@@ -21,7 +21,9 @@ struct PairConfigurations {
 
 PairConfigurations pair_configurations(const TetPair& pair);
 
-// The writers below throw std::runtime_error when a file cannot be written in full.
+// The writers below throw std::runtime_error when a file cannot be written in full. Every file
+// (data, script, picture, VTK) is written under a temporary name beside it and renamed over it
+// when complete: an interrupted or failed run leaves the old file or the whole new one.
 
 // Writes DIR/fig3_histograms.{dat,gp,png}; returns false (with `why`) when gnuplot fails.
 bool write_fig3(const std::string& dir, const PaperStats& stats, std::string& why);
