@@ -281,6 +281,9 @@ Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const 
   });
   for (std::size_t x = 0; x < n; ++x) degree[x + 1] += degree[x];  // blocks before vertex x
   using Index = Eigen::SparseMatrix<double>::StorageIndex;
+  if (9 * degree[n] > std::size_t(std::numeric_limits<Index>::max()) ||
+      3 * n > std::size_t(std::numeric_limits<Index>::max()))
+    throw std::length_error("contact_energy: the Hessian has more entries than Eigen's index type holds");
   Eigen::SparseMatrix<double> H(Eigen::Index(3 * n), Eigen::Index(3 * n));
   H.resizeNonZeros(Eigen::Index(9 * degree[n]));
   Index* outer = H.outerIndexPtr();

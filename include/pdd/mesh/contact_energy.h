@@ -85,7 +85,8 @@
 // here), milliseconds a pair: the judge for small meshes.
 //
 // Errors: std::invalid_argument when positions do not have one entry per vertex or a
-// tetrahedron refers to a missing vertex; Cancelled when options.cancel is set.
+// tetrahedron refers to a missing vertex; Cancelled when options.cancel is set;
+// std::length_error when the Hessian would have more than 2^31 - 1 entries (Eigen's int index).
 #pragma once
 
 #include <Eigen/Sparse>
