@@ -111,7 +111,7 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
       d << "jittered Kuhn balls of radius 1, centres " << options.ball_distance << " apart";
       c.description = d.str();
     } else {
-      throw std::invalid_argument("pdd bench energy: unknown case '" + name + "' (grids, balls)");
+      throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls)");
     }
     std::cerr << "pdd bench energy: " << name << "...\n";
     c.elements_a = A.tets.size();
