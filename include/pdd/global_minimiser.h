@@ -17,11 +17,14 @@
 // §5; every value of that chain is certified to 1e-9 of an exact value >= the exact relaxed
 // value e, so each is >= (1 - 1e-9) e >= (1 - 1e-9) / (1 + 1e-9) pdd2_relaxed > (1 - 2.1e-9)
 // pdd2_relaxed. A value below (1 - kClampMargin) pdd2_relaxed is therefore never lowered; above
-// that the record's own chain decides, and this function declines.
+// that (a tie: the best plane is pdd2_relaxed's candidate, common where faces are nearly
+// parallel) the chain's other values are computed as solve_pair computes them and the same
+// relations applied.
 // Declined (std::nullopt): whenever the common double path does not apply as a whole — a pair
 // that is not valid, not intersecting, or whose lane sweeps or candidate choices are not
 // certified in doubles; an enumeration not certified or computed in rationals; a value or a
-// position outside the double range; a value within kClampMargin of pdd2_relaxed. The caller
+// position outside the double range; at a tie, a value of the chain not certified in doubles
+// or outside the double range (solve_pair's exact path). The caller
 // then takes solve_pair (which gives the same fields, or declines pdd2_global itself).
 #pragma once
 
