@@ -22,11 +22,11 @@ foreach(line "exact: pdd2 = 3/224 along FV:3" "fast:  pdd2 = 0.0133929 along FV:
     message(FATAL_ERROR "consumer output lacks \"${line}\"")
   endif()
 endforeach()
-# Only the public headers (pdd.h, mesh.h with mesh/contact_energy.h) and the plain types they
-# include are installed.
+# Only the public headers (pdd.h, global_minimiser.h, mesh.h with mesh/contact_energy.h) and the
+# plain types they include are installed.
 file(GLOB_RECURSE headers RELATIVE ${WORK}/prefix/include ${WORK}/prefix/include/*)
 list(SORT headers)
-set(expected pdd/direction_label.h pdd/mesh.h pdd/mesh/contact_energy.h pdd/pair_result.h pdd/pdd.h pdd/qp_formulation.h
+set(expected pdd/direction_label.h pdd/global_minimiser.h pdd/mesh.h pdd/mesh/contact_energy.h pdd/pair_result.h pdd/pdd.h pdd/qp_formulation.h
     pdd/solve_options.h
     pdd/tet_pair.h pdd/tet_tables.h)
 if(NOT headers STREQUAL expected)

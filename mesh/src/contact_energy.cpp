@@ -2,6 +2,7 @@
 // derives every formula used here).
 #include "pdd/mesh/contact_energy.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
@@ -14,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "pdd/global_minimiser.h"
 #include "pdd/mesh.h"
 
 namespace pdd::mesh {
@@ -38,9 +40,38 @@ double rest_volume(const Mesh& m, std::size_t i) {
   return std::abs(det) / 6;
 }
 
+// The header's Qs in closed form. On an active set S = (S_A, S_B) with n_g = |S_g| (g = A, B),
+// the free vertices of a tetrahedron share one displacement t = -D_g / (5 - n_g) (stationarity
+// of (|t|^2 + (sum t)^2) / 20 in them, D_g = sum over S_g of d_k, d_k = c - s_k), which leaves
+//     V_S = 1/20 sum_g [ sum_{k in S_g} d_k^2 + alpha_g D_g^2 ],   alpha_g = 1 / (5 - n_g),
+// minimised over c at c = sum_g alpha_g sum_{S_g} s_k / W, W = sum_g alpha_g n_g. Its gradient
+// in s is -(d_k + alpha_g D_g) / 10 (k in S_g; 0 off S), and differentiating once more
+//     Qs_km = ( [k = m] + alpha_g [g(m) = g] - 5 alpha_g alpha_g(m) / W ) / 10   (k, m in S)
+// and 0 in a row or column off S. qs_kkt (below) solves the KKT system instead: the
+// tests hold the two equal on all 225 active sets. Symmetric bit for bit (a_k a_m = a_m a_k).
+Eigen::Matrix<double, 8, 8> qs_closed(const std::array<bool, 8>& active) {
+  int n[2] = {0, 0};
+  for (int k = 0; k < 8; ++k) n[k / 4] += active[k];
+  const double alpha[2] = {1.0 / (5 - n[0]), 1.0 / (5 - n[1])};
+  const double W = alpha[0] * n[0] + alpha[1] * n[1];
+  double a[8];
+  for (int k = 0; k < 8; ++k) a[k] = active[k] ? alpha[k / 4] : 0.0;
+  Eigen::Matrix<double, 8, 8> Qs = Eigen::Matrix<double, 8, 8>::Zero();
+  if (!(W > 0)) return Qs;
+  for (int k = 0; k < 8; ++k) {
+    if (!active[k]) continue;
+    for (int m = 0; m < 8; ++m) {
+      if (!active[m]) continue;
+      const double same = (k / 4 == m / 4) ? a[k] : 0.0;
+      Qs(k, m) = ((k == m ? 1.0 : 0.0) + same - 5 * (a[k] * a[m]) / W) / 10;
+    }
+  }
+  return Qs;
+}
+
 // The KKT solve of the header's "Hessian" for the active set `active` (not empty): the 8 x 8
-// matrix Qs = S^T X^T H X S.
-Eigen::Matrix<double, 8, 8> piece_matrix(const std::array<bool, 8>& active) {
+// matrix Qs = S^T X^T H X S (fixed_plane's independent route).
+Eigen::Matrix<double, 8, 8> qs_kkt(const std::array<bool, 8>& active) {
   int m = 0;
   for (bool a : active) m += a;
   const int n = 9 + m;
@@ -139,68 +170,159 @@ Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which)
   return out;
 }
 
-// The intersecting pairs at the current positions, each with its global minimiser.
+// One pair's global minimiser by the fast engine: fast::global_minimiser (solve_pair's
+// definitions §9 fields alone, bit for bit), else the whole solve_pair where that declines, else
+// (pdd2_global declined: no certified normal in doubles) the exact engine's witness.
+PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, const TetVertices& Tb) {
+  if (const auto m = fast::global_minimiser(Ta, Tb)) {
+    PairSolution s;
+    s.a = a;
+    s.b = b;
+    s.value = m->pd2;
+    s.qA = m->q1_A;
+    s.qB = m->q1_B;
+    s.normal = m->normal;
+    return s;
+  }
+  fast::SolveOptions fo;
+  fo.with_global = true;
+  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, Ta, Tb}, fo);
+  if (!r.error && !r.pdd2_global_error) return solution_of(a, b, r);
+  reference::SolveOptions so;
+  return solution_of(a, b, reference::solve_pair(TetPair{"", {}, Ta, Tb}, so));
+}
+
+// The intersecting pairs at the current positions (definitions §10's decision, no variant),
+// each with its global minimiser; `seconds_found`: the time to find them.
 std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactEnergyOptions& o,
-                                    std::vector<SkippedElement>& skipped) {
+                                    std::vector<SkippedElement>& skipped, double& seconds_found) {
+  const auto t0 = Clock::now();
+  const auto cancelled = [&] { return o.cancel && o.cancel->load(std::memory_order_relaxed); };
   ContactOptions co;
-  co.variants = kGlobal;
   co.cancel = o.cancel;
   std::vector<PairSolution> out;
-  const Mesh& Bm = B ? *B : A;
   if (o.engine == EnergyEngine::Exact) {
+    co.variants = kGlobal;
     const Contacts<Rational> c = B ? contacts_exact(A, *B, co) : self_contacts_exact(A, co);
     skipped = c.skipped;
     for (const auto& k : c.pairs) out.push_back(solution_of(k.a, k.b, k.result));
+    seconds_found = seconds_since(t0);
     return out;
   }
+  co.variants = 0;  // the pairs only (contacts(): an intersecting pair's record is then empty)
   const Contacts<double> c = B ? contacts(A, *B, co) : self_contacts(A, co);
   skipped = c.skipped;
+  seconds_found = seconds_since(t0);
+  const Mesh& Bm = B ? *B : A;
   out.resize(c.pairs.size());
-  tbb::parallel_for(std::size_t(0), c.pairs.size(), [&](std::size_t j) {
-    const auto& k = c.pairs[j];
-    if (!k.result.pdd2_global_error && !k.result.error) {
-      out[j] = solution_of(k.a, k.b, k.result);
-      return;
-    }
-    // Declined by the fast engine (no certified normal in doubles): the exact engine's witness.
-    reference::SolveOptions so;
-    const auto r = reference::solve_pair(TetPair{"", {}, element(A, k.a), element(Bm, k.b)}, so);
-    out[j] = solution_of(k.a, k.b, r);
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.pairs.size(), 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      if (cancelled()) return;
+                      for (std::size_t j = range.begin(); j != range.end(); ++j) {
+                        const auto& k = c.pairs[j];
+                        out[j] = fast_solution(k.a, k.b, element(A, k.a), element(Bm, k.b));
+                      }
+                    });
+  if (cancelled()) throw Cancelled();
   return out;
 }
 
-// Symmetric 3x3 blocks (vi, vj) of the Hessian, summed over pairs, then expanded to CSR.
-struct Block {
-  std::size_t i, j;
-  std::array<double, 9> v;
+// One kept pair's share: its eight vertices (A's, then B's, as gradient rows), weight, terms.
+struct PairShare {
+  std::array<std::size_t, 8> v{};
+  double w = 0;
+  PairTerms terms;
 };
 
-Eigen::SparseMatrix<double> assemble(std::vector<Block>& blocks, std::size_t n) {
-  std::stable_sort(blocks.begin(), blocks.end(),  // stable: (i,j) and (j,i) summed in one order
-            [](const Block& x, const Block& y) { return x.i != y.i ? x.i < y.i : x.j < y.j; });
-  std::vector<Block> merged;
-  merged.reserve(blocks.size());
-  for (const Block& b : blocks) {
-    if (!merged.empty() && merged.back().i == b.i && merged.back().j == b.j) {
-      for (int k = 0; k < 9; ++k) merged.back().v[k] += b.v[k];
-    } else {
-      merged.push_back(b);
+// The pairs incident to each vertex, in pair order (CSR: pairs of vertex x are
+// at[start[x] .. start[x + 1]), each as 8 * pair + local index): every per-vertex sum below
+// runs over them in that order, so that the gradient and the Hessian are the sums over pairs
+// in pair order, independent of the threads, and entries (v, x) and (x, v) are the same sum.
+struct Incidence {
+  std::vector<std::size_t> start, at;
+};
+Incidence incidence(const std::vector<PairShare>& shares, std::size_t n) {
+  Incidence inc;
+  inc.start.assign(n + 1, 0);
+  for (const PairShare& p : shares)
+    for (std::size_t x : p.v) ++inc.start[x + 1];
+  for (std::size_t x = 0; x < n; ++x) inc.start[x + 1] += inc.start[x];
+  inc.at.resize(8 * shares.size());
+  std::vector<std::size_t> fill(inc.start.begin(), inc.start.end() - 1);
+  for (std::size_t j = 0; j < shares.size(); ++j)
+    for (int i = 0; i < 8; ++i) inc.at[fill[shares[j].v[i]]++] = 8 * j + i;
+  return inc;
+}
+
+// The sparse Hessian sum over pairs of w Qs (x) u u^T, built row by row in parallel: vertex x's
+// rows 3x..3x+2 hold a 3x3 block per vertex y sharing a pair with x through a non-zero Qs entry
+// (y ascending), each entry summed over the pairs in pair order (starting from 0). The matrix is
+// symmetric bit for bit (Qs is, u_a u_b = u_b u_a, the same pairs in the same order), so its
+// compressed rows are its compressed columns: written straight into the column-major storage.
+Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const Incidence& inc,
+                                    std::size_t n) {
+  auto neighbours = [&](std::size_t x, std::vector<std::size_t>& ys) {
+    ys.clear();
+    for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
+      const PairShare& p = shares[inc.at[e] / 8];
+      const int i = int(inc.at[e] % 8);
+      for (int k = 0; k < 8; ++k)
+        if (p.w * p.terms.qs[i][k] != 0) ys.push_back(p.v[k]);
     }
-  }
-  // Row-major by vertex rows: CSR rows 3i+a hold, for each block (i, j) in j order, 3 entries.
-  Eigen::SparseMatrix<double, Eigen::RowMajor> H(3 * n, 3 * n);
-  std::vector<int> per_row(3 * n, 0);
-  for (const Block& b : merged)
-    for (int a = 0; a < 3; ++a) per_row[3 * b.i + a] += 3;
-  H.reserve(per_row);
-  for (const Block& b : merged)
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c)
-        H.insert(static_cast<Eigen::Index>(3 * b.i + a), static_cast<Eigen::Index>(3 * b.j + c)) =
-            b.v[3 * a + c];
-  H.makeCompressed();
-  return Eigen::SparseMatrix<double>(H);
+    std::sort(ys.begin(), ys.end());
+    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  };
+  std::vector<std::size_t> degree(n + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::size_t> ys;
+    for (std::size_t x = r.begin(); x != r.end(); ++x) {
+      neighbours(x, ys);
+      degree[x + 1] = ys.size();
+    }
+  });
+  for (std::size_t x = 0; x < n; ++x) degree[x + 1] += degree[x];  // blocks before vertex x
+  using Index = Eigen::SparseMatrix<double>::StorageIndex;
+  if (9 * degree[n] > std::size_t(std::numeric_limits<Index>::max()) ||
+      3 * n > std::size_t(std::numeric_limits<Index>::max()))
+    throw std::length_error("contact_energy: the Hessian has more entries than Eigen's index type holds");
+  Eigen::SparseMatrix<double> H(Eigen::Index(3 * n), Eigen::Index(3 * n));
+  H.resizeNonZeros(Eigen::Index(9 * degree[n]));
+  Index* outer = H.outerIndexPtr();
+  Index* inner = H.innerIndexPtr();
+  double* value = H.valuePtr();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::size_t> ys;
+    std::vector<double> block;
+    for (std::size_t x = r.begin(); x != r.end(); ++x) {
+      neighbours(x, ys);
+      const std::size_t m = ys.size();
+      block.assign(9 * m, 0.0);
+      for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
+        const PairShare& p = shares[inc.at[e] / 8];
+        const int i = int(inc.at[e] % 8);
+        const Vec3d& u = p.terms.unit_normal;
+        for (int k = 0; k < 8; ++k) {
+          const double q = p.w * p.terms.qs[i][k];
+          if (q == 0) continue;
+          const std::size_t c = std::size_t(std::lower_bound(ys.begin(), ys.end(), p.v[k]) - ys.begin());
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) block[9 * c + 3 * a + b] += q * (u[a] * u[b]);
+        }
+      }
+      // rows 3x + a: for each neighbour y (ascending), columns 3y, 3y + 1, 3y + 2
+      for (int a = 0; a < 3; ++a) {
+        const std::size_t row = 3 * x + a, first = 9 * degree[x] + 3 * m * a;
+        outer[row] = Index(first);
+        for (std::size_t c = 0; c < m; ++c)
+          for (int b = 0; b < 3; ++b) {
+            inner[first + 3 * c + b] = Index(3 * ys[c] + b);
+            value[first + 3 * c + b] = block[9 * c + 3 * a + b];
+          }
+      }
+    }
+  });
+  outer[3 * n] = Index(9 * degree[n]);
+  return H;
 }
 
 ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
@@ -210,7 +332,7 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   std::optional<Mesh> Bp;
   if (B) Bp = at_positions(*B, *pb, "B");
   ContactEnergy e;
-  std::vector<PairSolution> sol = solutions(Ap, B ? &*Bp : nullptr, o, e.skipped);
+  std::vector<PairSolution> sol = solutions(Ap, B ? &*Bp : nullptr, o, e.skipped, e.seconds_found);
   e.seconds_contacts = seconds_since(t0);
   const auto t1 = Clock::now();
 
@@ -255,44 +377,40 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   }
   sol.swap(kept);
 
-  std::vector<PairTerms> terms(sol.size());
-  tbb::parallel_for(std::size_t(0), sol.size(), [&](std::size_t j) {
+  std::vector<PairShare> shares(sol.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
     if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
-    const auto& s = sol[j];
-    terms[j] = pair_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const auto& s = sol[j];
+      PairShare& p = shares[j];
+      for (int k = 0; k < 4; ++k) {
+        p.v[k] = A.tets[s.a][k];
+        p.v[4 + k] = offset_b + Bm.tets[s.b][k];
+      }
+      p.w = weight(s);
+      p.terms = pair_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+    }
   });
   if (o.cancel && o.cancel->load()) throw Cancelled();
 
-  e.gradient.assign(n, Vec3d{0, 0, 0});
   e.pair_count = sol.size();
-  std::vector<Block> blocks;
-  if (o.hessian) blocks.reserve(64 * sol.size());
-  for (std::size_t j = 0; j < sol.size(); ++j) {
+  for (std::size_t j = 0; j < sol.size(); ++j) {  // in pair order (one sum, its order fixed)
     const auto& s = sol[j];
-    const double w = weight(s);
-    e.energy += w * s.value;
+    e.energy += shares[j].w * s.value;
     e.max_pdd2_global = std::max(e.max_pdd2_global, s.value);
-    if (o.per_pair) e.pairs.push_back({s.a, s.b, w, s.value, w * s.value});
-    std::array<std::size_t, 8> v{};
-    for (int k = 0; k < 4; ++k) {
-      v[k] = A.tets[s.a][k];
-      v[4 + k] = offset_b + Bm.tets[s.b][k];
-    }
-    for (int k = 0; k < 8; ++k)
-      for (int c = 0; c < 3; ++c) e.gradient[v[k]][c] += w * terms[j].gradient[k][c];
-    if (!o.hessian) continue;
-    const Vec3d& u = terms[j].unit_normal;
-    for (int i = 0; i < 8; ++i)
-      for (int k = 0; k < 8; ++k) {
-        const double q = w * terms[j].qs[i][k];
-        if (q == 0) continue;
-        Block b{v[i], v[k], {}};
-        for (int x = 0; x < 3; ++x)
-          for (int y = 0; y < 3; ++y) b.v[3 * x + y] = q * (u[x] * u[y]);  // u_x u_y = u_y u_x: blocks (i,k), (k,i) transposes bit for bit
-        blocks.push_back(b);
-      }
+    if (o.per_pair) e.pairs.push_back({s.a, s.b, shares[j].w, s.value, shares[j].w * s.value});
   }
-  if (o.hessian) e.hessian = assemble(blocks, n);
+  const Incidence inc = incidence(shares, n);
+  e.gradient.assign(n, Vec3d{0, 0, 0});
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t x = r.begin(); x != r.end(); ++x)
+      for (std::size_t k = inc.start[x]; k < inc.start[x + 1]; ++k) {
+        const PairShare& p = shares[inc.at[k] / 8];
+        const Vec3d& g = p.terms.gradient[inc.at[k] % 8];
+        for (int c = 0; c < 3; ++c) e.gradient[x][c] += p.w * g[c];
+      }
+  });
+  if (o.hessian) e.hessian = hessian(shares, inc, n);
   e.seconds_assembly = seconds_since(t1);
   return e;
 }
@@ -324,7 +442,7 @@ PairTerms pair_terms(const TetVertices& A, const TetVertices& B, const TetVertic
     any = any || t.active[i];
   }
   if (!any) return t;  // not reached for an intersecting pair (both sides touch the plane)
-  const Eigen::Matrix<double, 8, 8> Qs = piece_matrix(t.active);
+  const Eigen::Matrix<double, 8, 8> Qs = qs_closed(t.active);
   Eigen::Matrix<double, 8, 1> sv;
   for (int i = 0; i < 8; ++i) sv[i] = s[i];
   t.piece_value = 0.5 * sv.dot(Qs * sv);
@@ -373,13 +491,29 @@ FixedPlane fixed_plane(const TetVertices& A, const TetVertices& B, const Vec3d& 
     const double value = 0.5 * x.head(8).dot(K.topLeftCorner(8, 8) * x.head(8));
     if (value < best.value) {
       best.value = value;
-      const Eigen::Matrix<double, 8, 8> Qs = piece_matrix(active);
+      const Eigen::Matrix<double, 8, 8> Qs = qs_kkt(active);
       const Eigen::Matrix<double, 8, 1> g = Qs * sv;
       for (int k = 0; k < 8; ++k)
         for (int c = 0; c < 3; ++c) best.gradient[k][c] = g[k] * u[c];
     }
   }
   return best;
+}
+
+namespace {
+std::array<std::array<double, 8>, 8> to_array(const Eigen::Matrix<double, 8, 8>& m) {
+  std::array<std::array<double, 8>, 8> out{};
+  for (int i = 0; i < 8; ++i)
+    for (int k = 0; k < 8; ++k) out[i][k] = m(i, k);
+  return out;
+}
+}  // namespace
+
+std::array<std::array<double, 8>, 8> piece_matrix(const std::array<bool, 8>& active) {
+  return to_array(qs_closed(active));
+}
+std::array<std::array<double, 8>, 8> piece_matrix_kkt(const std::array<bool, 8>& active) {
+  return to_array(qs_kkt(active));
 }
 
 ContactEnergy contact_energy(const Mesh& A, const Mesh& B, const std::vector<Vec3d>& pa,

@@ -44,11 +44,14 @@ py::object hessian_csr(const Eigen::SparseMatrix<double>& H) {
   const auto nnz = static_cast<py::ssize_t>(H.nonZeros());
   py::array_t<double> data(nnz);
   py::array_t<std::int64_t> indices(nnz), indptr(H.outerSize() + 1);
+  double* dp = data.mutable_data();
+  std::int64_t* ip = indices.mutable_data();
+  std::int64_t* op = indptr.mutable_data();
   for (py::ssize_t k = 0; k < nnz; ++k) {
-    data.mutable_data()[k] = H.valuePtr()[k];
-    indices.mutable_data()[k] = H.innerIndexPtr()[k];
+    dp[k] = H.valuePtr()[k];
+    ip[k] = H.innerIndexPtr()[k];
   }
-  for (Eigen::Index k = 0; k <= H.outerSize(); ++k) indptr.mutable_data()[k] = H.outerIndexPtr()[k];
+  for (Eigen::Index k = 0; k <= H.outerSize(); ++k) op[k] = H.outerIndexPtr()[k];
   py::module_ sparse;
   try {
     sparse = py::module_::import("scipy.sparse");
@@ -110,8 +113,9 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
   d["energy"] = e->energy;
   const auto n = static_cast<py::ssize_t>(e->gradient.size());
   py::array_t<double> g({n, py::ssize_t{3}});
+  double* gp = g.mutable_data();
   for (std::size_t i = 0; i < e->gradient.size(); ++i)
-    for (int k = 0; k < 3; ++k) g.mutable_data()[i * 3 + k] = e->gradient[i][k];
+    for (int k = 0; k < 3; ++k) gp[i * 3 + k] = e->gradient[i][k];
   d["gradient"] = g;
   d["hessian"] = hessian ? hessian_csr(e->hessian) : py::object(py::none());
   d["pairs"] = e->pair_count;

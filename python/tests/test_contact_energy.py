@@ -125,3 +125,106 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     assert huge["pairs"] == 0 and huge["energy"] == 0
     assert [s[2] for s in huge["skipped"]] == [
         f"element {i} of mesh B: its rest volume is not finite: it has no contact weight" for i in (0, 1)]
+
+
+# ---- `pdd mesh --energy` (docs/definitions.md "Contact energy": its keys) ------------------
+
+ENERGY_KEYS = {"energy", "pairs", "max_pdd2_global", "max_force", "max_force_vertex", "seconds"}
+
+
+def write_vtk(path, V, T):
+    """Legacy VTK with every coordinate in its shortest round-trip form (repr), so that the
+    tool reads the same doubles as the module gets."""
+    with open(path, "w") as f:
+        f.write("# vtk DataFile Version 3.0\nscene\nASCII\nDATASET UNSTRUCTURED_GRID\n")
+        f.write(f"POINTS {len(V)} double\n")
+        for v in V:
+            f.write(" ".join(repr(float(x)) for x in v) + "\n")
+        f.write(f"CELLS {len(T)} {5 * len(T)}\n")
+        for t in T:
+            f.write("4 " + " ".join(str(int(i)) for i in t) + "\n")
+        f.write(f"CELL_TYPES {len(T)}\n" + "10\n" * len(T))
+
+
+def run_cli(*args):
+    import subprocess
+    cli = os.environ.get("PDD_CLI")
+    if not cli:
+        pytest.skip("PDD_CLI (the pdd tool of this build) not set")
+    return subprocess.run([cli, "mesh", *args], capture_output=True, text=True)
+
+
+def check_cli_energy(out, e):
+    import json
+    lines = out.strip().splitlines()
+    assert len(lines) == 1
+    j = json.loads(lines[0])
+    assert set(j) == ENERGY_KEYS
+    # the same library call on the same doubles: equal, not close
+    assert j["energy"] == e["energy"]
+    assert j["pairs"] == e["pairs"]
+    assert j["max_pdd2_global"] == e["max_pdd2_global"]
+    forces = np.sqrt((e["gradient"] ** 2).sum(axis=1))
+    assert j["max_force"] == pytest.approx(forces.max(), rel=1e-15)
+    assert j["max_force_vertex"] == int(np.argmax(forces))
+    assert j["seconds"] >= 0
+
+
+def test_cli_energy_two_meshes(tmp_path):
+    VA, TA, VB, TB = scene()
+    a, b = str(tmp_path / "a.vtk"), str(tmp_path / "b.vtk")
+    write_vtk(a, VA, TA)
+    write_vtk(b, VB, TB)
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet")
+    assert r.returncode == 0, r.stderr
+    e = pdd.contact_energy(VA, TA, VB, TB)
+    assert e["pairs"] > 0
+    check_cli_energy(r.stdout, e)
+    # --output: the same object in the file, nothing on standard output
+    out = str(tmp_path / "energy.json")
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet", "--output", out)
+    assert r.returncode == 0 and r.stdout == ""
+    with open(out) as f:
+        check_cli_energy(f.read(), e)
+
+
+def test_cli_energy_self_contact(tmp_path):
+    VA, TA, VB, TB = scene()
+    V = np.vstack([VA, VB])
+    T = np.vstack([TA, TB + len(VA)])
+    p = str(tmp_path / "both.vtk")
+    write_vtk(p, V, T)
+    r = run_cli("--a", p, "--self", "--energy", "--quiet")
+    assert r.returncode == 0, r.stderr
+    e = pdd.contact_energy(V, T)
+    assert e["pairs"] > 0
+    check_cli_energy(r.stdout, e)
+
+
+def test_cli_energy_no_contact(tmp_path):
+    VA, TA, VB, TB = scene()
+    a, b = str(tmp_path / "a.vtk"), str(tmp_path / "b.vtk")
+    write_vtk(a, VA, TA)
+    write_vtk(b, VB + np.array([10.0, 0, 0]), TB)
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet")
+    assert r.returncode == 0, r.stderr
+    import json
+    j = json.loads(r.stdout)
+    assert set(j) == ENERGY_KEYS
+    assert j["energy"] == 0 and j["pairs"] == 0 and j["max_force"] == 0
+    assert j["max_force_vertex"] is None
+
+
+def test_cli_energy_exit_codes(tmp_path):
+    VA, TA, VB, TB = scene()
+    a = str(tmp_path / "a.vtk")
+    write_vtk(a, VA, TA)
+    # a missing mesh: exit 2 (file error), a message naming it, nothing on standard output
+    r = run_cli("--a", a, "--b", str(tmp_path / "missing.vtk"), "--energy", "--quiet")
+    assert r.returncode == 2 and r.stdout == "" and "missing.vtk" in r.stderr
+    # neither --b nor --self: exit 2 (usage)
+    r = run_cli("--a", a, "--energy", "--quiet")
+    assert r.returncode == 2 and r.stdout == "" and "--self" in r.stderr
+    # an unwritable --output: exit 2
+    r = run_cli("--a", a, "--self", "--energy", "--quiet", "--output", str(tmp_path / "no" / "dir" / "e.json"))
+    assert r.returncode == 2 and "cannot write" in r.stderr

@@ -11,6 +11,9 @@
 #include <random>
 #include <string>
 
+#include <tbb/task_arena.h>
+
+#include "pdd/global_minimiser.h"
 #include "pdd/mesh.h"
 
 using namespace pdd;
@@ -272,4 +275,84 @@ BOOST_AUTO_TEST_CASE(positions_must_match_the_mesh) {
   std::vector<Vec3d> pa = s.A.vertices;
   pa.pop_back();
   BOOST_CHECK_THROW(contact_energy(s.A, s.B, pa, s.B.vertices), std::invalid_argument);
+}
+
+// The closed form of Qs (piece_matrix, the energy's) against the KKT solve (piece_matrix_kkt)
+// on every active set with both sides touching (15 x 15): equal to the KKT solve's rounding
+// (entries are O(1/10), the 9 + |S| system is well conditioned: 1e-14 absolute), symmetric
+// bit for bit, and Qs 1 = 0 (shifting all eight heights moves the plane along).
+BOOST_AUTO_TEST_CASE(piece_matrix_closed_form_equals_the_kkt_solve) {
+  int sets = 0;
+  for (unsigned ma = 1; ma < 16; ++ma)
+    for (unsigned mb = 1; mb < 16; ++mb) {
+      std::array<bool, 8> active{};
+      for (int k = 0; k < 4; ++k) active[k] = (ma >> k) & 1u, active[4 + k] = (mb >> k) & 1u;
+      const auto Q = piece_matrix(active), K = piece_matrix_kkt(active);
+      for (int i = 0; i < 8; ++i) {
+        double row = 0;
+        for (int k = 0; k < 8; ++k) {
+          BOOST_TEST(std::abs(Q[i][k] - K[i][k]) <= 1e-14, "set " << ma << "," << mb << " (" << i << "," << k << ")");
+          BOOST_TEST(Q[i][k] == Q[k][i]);
+          if (!active[i] || !active[k]) BOOST_TEST(Q[i][k] == 0);
+          row += Q[i][k];
+        }
+        BOOST_TEST(std::abs(row) <= 1e-15);
+      }
+      ++sets;
+    }
+  BOOST_TEST(sets == 225);
+}
+
+// pdd::fast::global_minimiser, the energy's per-pair call, gives solve_pair's definitions §9
+// fields bit for bit where it does not decline (pdd/global_minimiser.h), on the tiny scene's
+// pairs and on the same pairs moved by random perturbations.
+BOOST_AUTO_TEST_CASE(global_minimiser_equals_solve_pair) {
+  const Scene s = tiny();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-0.01, 0.01);
+  int compared = 0, declined = 0;
+  for (int round = 0; round < 4; ++round) {
+    Scene m = s;
+    if (round > 0)
+      for (auto& v : m.B.vertices)
+        for (double& x : v) x += U(rng);
+    ContactOptions co;
+    co.variants = kGlobal;
+    for (const auto& k : contacts(m.A, m.B, co).pairs) {
+      const auto g = fast::global_minimiser(element(m.A, k.a), element(m.B, k.b));
+      if (!g) {
+        ++declined;
+        continue;
+      }
+      const auto& r = k.result;
+      BOOST_REQUIRE(!r.pdd2_global_error);
+      BOOST_TEST(g->pd2 == r.pdd2_global);
+      BOOST_TEST((g->normal == *r.pdd2_global_normal));
+      for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) {
+          BOOST_TEST(g->q1_A[i][c] == r.q1_A_global[i][c]);
+          BOOST_TEST(g->q1_B[i][c] == r.q1_B_global[i][c]);
+        }
+      ++compared;
+    }
+  }
+  BOOST_TEST_MESSAGE("compared " << compared << ", declined " << declined);
+  BOOST_TEST(compared > 100);
+}
+
+// The sums over pairs run per vertex in pair order: one thread and all threads give the same
+// doubles (energy, gradient, every Hessian entry and its position).
+BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_threads) {
+  const Scene s = tiny();
+  ContactEnergyOptions o;
+  o.hessian = true;
+  const ContactEnergy all = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+  tbb::task_arena one(1);
+  ContactEnergy single;
+  one.execute([&] { single = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o); });
+  BOOST_TEST(all.energy == single.energy);
+  BOOST_TEST((all.gradient == single.gradient));
+  BOOST_REQUIRE_EQUAL(all.hessian.nonZeros(), single.hessian.nonZeros());
+  const Eigen::SparseMatrix<double> d = all.hessian - single.hessian;
+  BOOST_TEST((d.nonZeros() == 0 || d.coeffs().cwiseAbs().maxCoeff() == 0));
 }

@@ -6,6 +6,8 @@
 // pdd bench resolve [--cases LIST] [--size N] [--shallow-distance D] [--deep-distance D]
 //                   [--meshes DIR] [--max-rounds K] [--repeats R] [--json [FILE]]
 //                                                                   (resolve_bench.h)
+// pdd bench energy [--cases LIST] [--size N] [--grid-depth D] [--ball-distance D] [--repeats R]
+//                  [--json [FILE]]                                   (energy_bench.h)
 // Table on standard output. --json FILE also writes the same numbers as one JSON object to
 // FILE; --json alone writes the JSON to standard output and the table to standard error.
 #include <cmath>
@@ -19,6 +21,7 @@
 #include "pdd/cli/cli_checks.h"
 #include "pdd/cli/exit_codes.h"
 #include "pdd/compare/bench.h"
+#include "pdd/compare/energy_bench.h"
 #include "pdd/compare/mesh_bench.h"
 #include "pdd/compare/research_commands.h"
 #include "pdd/io/output.h"
@@ -638,6 +641,89 @@ int run_resolve(const ResolveBenchArgs& a) {
       [](const ResolveBenchReport& r) { return resolve_report_json(r); });
 }
 
+// ---- pdd bench energy --------------------------------------------------------------
+
+struct EnergyBenchArgs {
+  EnergyBenchOptions options;
+  std::string json_path;
+  bool json = false;
+};
+
+Json energy_times_json(const EnergyTimes& t) {
+  Json j;
+  j["found_s"] = number(t.found);
+  j["energy_gradient_s"] = number(t.energy);
+  j["energy_gradient_cpu_s"] = number(t.energy_cpu);
+  j["energy_gradient_hessian_s"] = number(t.hessian);
+  j["energy_gradient_hessian_cpu_s"] = number(t.hessian_cpu);
+  j["pairs_per_s"] = number(t.pairs_per_second);
+  return j;
+}
+
+Json energy_report_json(const EnergyBenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench energy";
+  j["cases"] = Json::array();
+  j["repeats"] = r.options.repeats;
+  Json m;
+  m["cpu_model"] = r.machine.cpu_model;
+  m["logical_cpus"] = r.machine.logical_cpus;
+  m["compiler"] = r.machine.compiler;
+  m["assertions"] = r.machine.assertions;
+  m["loadavg_before"] = r.machine.load_before;
+  m["loadavg_after"] = r.machine.load_after;
+  j["machine"] = m;
+  for (const auto& c : r.cases) {
+    Json q;
+    q["name"] = c.name;
+    q["description"] = c.description;
+    q["elements_a"] = c.elements_a;
+    q["elements_b"] = c.elements_b;
+    q["pairs"] = c.pairs;
+    q["hessian_nonzeros"] = c.hessian_nonzeros;
+    q["energy"] = number(c.energy);
+    q["max_pdd2_global"] = number(c.max_pdd2_global);
+    q["threads"] = c.threads;
+    q["one_core"] = energy_times_json(c.one_core);
+    q["all_cores"] = energy_times_json(c.all_cores);
+    j["cases"].push_back(q);
+  }
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_energy_table(const EnergyBenchReport& r, std::ostream& s) {
+  s << "pdd bench energy: pdd::mesh::contact_energy, medians of " << r.options.repeats << " runs per row; "
+    << r.machine.logical_cpus << " logical CPUs (" << r.machine.cpu_model << "); load before "
+    << r.machine.load_before << ", after " << r.machine.load_after << "\n";
+  for (const auto& c : r.cases) {
+    s << "\n" << c.name << ": " << c.description << "; " << c.elements_a << " + " << c.elements_b
+      << " tetrahedra, " << c.pairs << " intersecting pairs, Hessian " << c.hessian_nonzeros
+      << " non-zeros\n";
+    s << "  " << pad("threads", 10) << rpad("find s", 9) << rpad("E+grad s", 10) << rpad("cpu s", 8)
+      << rpad("E+grad+H s", 12) << rpad("cpu s", 8) << rpad("pairs/s", 11) << rpad("us/pair", 9) << "\n";
+    auto row = [&](int threads, const EnergyTimes& t) {
+      s << "  " << pad(std::to_string(threads), 10) << rpad(fmt("%.4f", t.found), 9)
+        << rpad(fmt("%.4f", t.energy), 10) << rpad(fmt("%.3f", t.energy_cpu), 8)
+        << rpad(fmt("%.4f", t.hessian), 12) << rpad(fmt("%.3f", t.hessian_cpu), 8)
+        << rpad(fmt("%.0f", t.pairs_per_second), 11)
+        << rpad(fmt("%.2f", c.pairs ? 1e6 * t.hessian / double(c.pairs) : 0.0), 9) << "\n";
+    };
+    row(1, c.one_core);
+    row(c.threads, c.all_cores);
+  }
+  s << "(find: boxes, broadphase and exact decision; E+grad, E+grad+H: everything after finding the "
+       "pairs, wall and process CPU seconds; pairs/s and us/pair: intersecting pairs over E+grad+H; "
+       "total "
+    << fmt("%.1f", r.seconds) << " s)\n";
+}
+
+int run_energy(const EnergyBenchArgs& a) {
+  return run_and_report(
+      "pdd bench energy", a.json, a.json_path, [&] { return run_energy_bench(a.options); },
+      [](const EnergyBenchReport& r, std::ostream& os) { print_energy_table(r, os); }, energy_report_json);
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, int& exit_code) {
@@ -732,8 +818,37 @@ void add_bench_command(CLI::App& app, int& exit_code) {
     ra->json = resolve_cmd->count("--json") > 0;
     exit_code = run_resolve(*ra);
   });
-  cmd->callback([a, cmd, mesh_cmd, resolve_cmd, &exit_code] {
-    if (mesh_cmd->parsed() || resolve_cmd->parsed()) return;  // `pdd bench mesh` / `resolve`
+  auto ea = std::make_shared<EnergyBenchArgs>();
+  CLI::App* energy_cmd = cmd->add_subcommand(
+      "energy",
+      "Time pdd::mesh::contact_energy (E + gradient, and with the Hessian) on shallow contacts of "
+      "two meshes of about 10^5 tetrahedra, after finding the pairs; one core and all cores, "
+      "medians of repeated runs.");
+  energy_cmd->add_option("--cases", ea->options.cases, "Cases, comma-separated: grids, balls")
+      ->capture_default_str();
+  energy_cmd->add_option("--size", ea->options.size, "Tetrahedra per generated ball (balls)")
+      ->check(integer_in(6, 20000000))
+      ->capture_default_str();
+  energy_cmd->add_option("--grid-depth", ea->options.grid_depth,
+                         "grids: depth of B's lowest vertex below A's top face (cell 1/26)")
+      ->check(finite_number(0, false) & CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  energy_cmd->add_option("--ball-distance", ea->options.ball_distance, "balls: centre distance (radius 1)")
+      ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  energy_cmd->add_option("--repeats", ea->options.repeats, "Timed runs per row (median reported)")
+      ->check(integer_in(1, 1000))
+      ->capture_default_str();
+  energy_cmd->add_option("--json", ea->json_path,
+                         "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                         "output, table on standard error)")
+      ->expected(0, 1);
+  energy_cmd->callback([ea, energy_cmd, &exit_code] {
+    ea->json = energy_cmd->count("--json") > 0;
+    exit_code = run_energy(*ea);
+  });
+  cmd->callback([a, cmd, mesh_cmd, resolve_cmd, energy_cmd, &exit_code] {
+    if (mesh_cmd->parsed() || resolve_cmd->parsed() || energy_cmd->parsed()) return;  // `pdd bench mesh` / `resolve`
     a->json = cmd->count("--json") > 0;
     exit_code = run(*a);
   });

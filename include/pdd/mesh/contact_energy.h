@@ -74,13 +74,19 @@
 // (the positions attain the value to 2e-9 relative: definitions §8; vertices off the plane by less
 // are at a kink of V_u, where either piece is a one-sided Hessian).
 //
-// Engine. Fast (default): mesh contacts with definitions §9 (pdd::fast::solve_pair per pair); a
-// pair whose fast pdd2_global is declined (pdd2_global_error) is recomputed by the exact engine.
+// Engine. Fast (default): the intersecting pairs of mesh contacts (no variant), then per pair
+// pdd::fast::global_minimiser (pdd/global_minimiser.h: solve_pair's definitions §9 value,
+// normal and positions bit for bit, without the rest of the record), or where it declines the
+// whole pdd::fast::solve_pair; a pair whose fast pdd2_global is declined (pdd2_global_error) is
+// recomputed by the exact engine. Pairs run in parallel (TBB); the gradient and the Hessian are
+// summed per vertex over its pairs in pair order (the same doubles on any number of threads),
+// the Hessian written row by row straight into its compressed storage.
 // Exact: contacts_exact (pdd::reference::solve_pair; exact witness positions, rounded to double
 // here), milliseconds a pair: the judge for small meshes.
 //
 // Errors: std::invalid_argument when positions do not have one entry per vertex or a
-// tetrahedron refers to a missing vertex; Cancelled when options.cancel is set.
+// tetrahedron refers to a missing vertex; Cancelled when options.cancel is set;
+// std::length_error when the Hessian would have more than 2^31 - 1 entries (Eigen's int index).
 #pragma once
 
 #include <Eigen/Sparse>
@@ -128,6 +134,8 @@ struct ContactEnergy {
   double max_pdd2_global = 0;           // largest pdd2_global over them (0 if none)
   std::vector<SkippedElement> skipped;
   double seconds_contacts = 0, seconds_assembly = 0;
+  double seconds_found = 0;  // the part of seconds_contacts spent finding the pairs (boxes,
+                             // broadphase, exact decision); the rest: their minimisers
 };
 
 // Two meshes: pa / pb the current positions of A's / B's vertices.
@@ -155,6 +163,15 @@ struct PairTerms {
 };
 PairTerms pair_terms(const TetVertices& A, const TetVertices& B, const TetVertices& qA,
                      const TetVertices& qB, const Vec3d& normal);
+
+// Qs of "Hessian" for an active set S (true: on the plane; A's four vertices, then B's; S_A
+// and S_B not empty), 8 x 8, zero off S. piece_matrix: the closed form
+//     Qs_km = ( [k = m] + alpha_g [m in S_g] - 5 alpha_g alpha_g(m) / W ) / 10   (k in S_g, m in S)
+// with alpha_g = 1 / (5 - |S_g|), W = alpha_A |S_A| + alpha_B |S_B| (derived in
+// contact_energy.cpp), which the energy uses; piece_matrix_kkt: by solving the KKT system
+// above (for tests: the two agree to rounding).
+std::array<std::array<double, 8>, 8> piece_matrix(const std::array<bool, 8>& active);
+std::array<std::array<double, 8>, 8> piece_matrix_kkt(const std::array<bool, 8>& active);
 
 // V_u of "Hessian" with the normal u held (any length, A -> B), solved exactly as a QP by
 // enumerating the 255 non-empty active sets (the feasible one of least value): for tests.

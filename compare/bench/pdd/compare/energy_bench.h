@@ -1,0 +1,63 @@
+// energy_bench.h — `pdd bench energy`: the speed of pdd::mesh::contact_energy
+// (pdd/mesh/contact_energy.h, definitions §12) on shallow contacts of two meshes of about 10^5
+// tetrahedra each.
+//
+// Input:  EnergyBenchOptions (cases, size, repeats; defaults in the struct).
+// Output: EnergyBenchReport: per case and per thread count (one core: a tbb::task_arena of 1
+//         thread; all cores: TBB's default concurrency), medians over `repeats` runs (after one
+//         untimed warm-up run) of contact_energy's wall time without the Hessian (E + gradient)
+//         and with it (E + gradient + Hessian), split into finding the pairs (boxes,
+//         broadphase, exact decision: ContactEnergy::seconds_found) and everything after it
+//         (the pairs' minimisers, weights, gradient, Hessian), the process CPU time of the
+//         latter, and intersecting pairs per second after the broadphase.
+// Cases: "grids": two Kuhn grids of 26^3 cubes (105,456 tetrahedra each, side 1), B tilted by
+//        0.01 rad about (1, 2, 3) and lowered onto A's top face by `grid_depth`;
+//        "balls": two jittered, rotated Kuhn balls (make_bench_ball, mesh_bench.h: the meshes
+//        `pdd bench mesh` uses, the real-mesh kind: no face of one parallel to the other's) of
+//        `size` tetrahedra and radius 1 at centre distance `ball_distance` (a shallow overlap).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "pdd/compare/timing.h"
+
+namespace pdd::compare {
+
+struct EnergyBenchOptions {
+  std::string cases = "grids,balls";
+  std::size_t size = 100000;    // tetrahedra per generated ball
+  double grid_depth = 0.004;    // grids: B's lowest vertex below A's top face (cell 1/26)
+  double ball_distance = 1.9;   // balls: centre distance (radius 1): ~10^4 pairs
+  int repeats = 5;
+};
+
+struct EnergyTimes {
+  double found = 0;         // seconds finding the pairs (median)
+  double energy = 0;        // E + gradient after the pairs are found (median wall seconds)
+  double energy_cpu = 0;    // its process CPU seconds (median)
+  double hessian = 0;       // E + gradient + Hessian after the pairs are found
+  double hessian_cpu = 0;
+  double pairs_per_second = 0;  // pairs / hessian
+};
+
+struct EnergyCase {
+  std::string name, description;
+  std::size_t elements_a = 0, elements_b = 0, pairs = 0, hessian_nonzeros = 0;
+  double energy = 0, max_pdd2_global = 0;
+  EnergyTimes one_core, all_cores;
+  int threads = 0;  // all cores
+};
+
+struct EnergyBenchReport {
+  EnergyBenchOptions options;
+  MachineInfo machine;
+  std::vector<EnergyCase> cases;
+  double seconds = 0;
+};
+
+// Throws std::invalid_argument on an unknown case name.
+EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options);
+
+}  // namespace pdd::compare

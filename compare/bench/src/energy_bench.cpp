@@ -1,0 +1,135 @@
+// energy_bench.cpp — `pdd bench energy` (energy_bench.h).
+#include "pdd/compare/energy_bench.h"
+
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "pdd/compare/mesh_bench.h"
+#include "pdd/compare/stats.h"
+#include "pdd/mesh.h"
+
+namespace pdd::compare {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct Sample {
+  double found = 0, after = 0, cpu = 0;
+};
+
+// One contact_energy call in `arena`: its time finding the pairs, its wall time after that and
+// the process CPU time of the call minus the share spent finding the pairs (at the same
+// CPU/wall ratio as the whole call: the stages are not timed apart in CPU).
+Sample run_once(tbb::task_arena& arena, const mesh::Mesh& A, const mesh::Mesh& B, bool hessian,
+                mesh::ContactEnergy* keep) {
+  mesh::ContactEnergyOptions o;
+  o.hessian = hessian;
+  Sample s;
+  arena.execute([&] {
+    const double c0 = cpu_seconds();
+    const auto t0 = Clock::now();
+    mesh::ContactEnergy e = mesh::contact_energy(A, B, A.vertices, B.vertices, o);
+    const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double cpu = cpu_seconds() - c0;
+    s.found = e.seconds_found;
+    s.after = wall - e.seconds_found;
+    s.cpu = wall > 0 ? cpu * s.after / wall : 0;
+    if (keep) *keep = std::move(e);
+  });
+  return s;
+}
+
+EnergyTimes time_case(tbb::task_arena& arena, const mesh::Mesh& A, const mesh::Mesh& B, int repeats,
+                      std::size_t pairs) {
+  std::vector<double> found, e, ecpu, h, hcpu;
+  run_once(arena, A, B, true, nullptr);  // warm-up
+  for (int r = 0; r < repeats; ++r) {    // interleaved: both rows see the same load
+    const Sample a = run_once(arena, A, B, false, nullptr);
+    const Sample b = run_once(arena, A, B, true, nullptr);
+    found.push_back(a.found);
+    found.push_back(b.found);
+    e.push_back(a.after);
+    ecpu.push_back(a.cpu);
+    h.push_back(b.after);
+    hcpu.push_back(b.cpu);
+  }
+  EnergyTimes t;
+  t.found = median(found);
+  t.energy = median(e);
+  t.energy_cpu = median(ecpu);
+  t.hessian = median(h);
+  t.hessian_cpu = median(hcpu);
+  t.pairs_per_second = t.hessian > 0 ? double(pairs) / t.hessian : 0;
+  return t;
+}
+
+}  // namespace
+
+EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
+  if (options.repeats < 1) throw std::invalid_argument("--repeats must be at least 1");
+  const auto t0 = Clock::now();
+  EnergyBenchReport rep;
+  rep.options = options;
+  rep.machine = machine_info();
+  tbb::task_arena one(1), all(tbb::info::default_concurrency());
+  for (const std::string& name : split(options.cases)) {
+    EnergyCase c;
+    c.name = name;
+    mesh::Mesh A, B;
+    if (name == "grids") {
+      const int n = 26;
+      const double h = 1.0 / n;
+      A = make_structured_block({n, n, n}, h, {0, 0, 0}, CubeSplit::Kuhn6);
+      B = make_structured_block({n, n, n}, h, {0.013, 0.021, 0}, CubeSplit::Kuhn6, 0.01);
+      double low = INFINITY;
+      for (const Vec3d& v : B.vertices) low = std::min(low, v[2]);
+      for (Vec3d& v : B.vertices) v[2] += 1 - options.grid_depth - low;
+      std::ostringstream d;
+      d << "Kuhn grids of 26^3 cubes, B tilted 0.01 rad and " << options.grid_depth << " deep on A's top";
+      c.description = d.str();
+    } else if (name == "balls") {
+      A = make_bench_ball(options.size, {0, 0, 0}, 1, {1, 2, 3}, 0.3, 7);
+      B = make_bench_ball(options.size, {options.ball_distance, 0, 0}, 1, {3, 1, 2}, 0.7, 11);
+      std::ostringstream d;
+      d << "jittered Kuhn balls of radius 1, centres " << options.ball_distance << " apart";
+      c.description = d.str();
+    } else {
+      throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls)");
+    }
+    std::cerr << "pdd bench energy: " << name << "...\n";
+    c.elements_a = A.tets.size();
+    c.elements_b = B.tets.size();
+    mesh::ContactEnergy e;
+    run_once(all, A, B, true, &e);
+    c.pairs = e.pair_count;
+    c.hessian_nonzeros = std::size_t(e.hessian.nonZeros());
+    c.energy = e.energy;
+    c.max_pdd2_global = e.max_pdd2_global;
+    c.threads = tbb::info::default_concurrency();
+    c.all_cores = time_case(all, A, B, options.repeats, c.pairs);
+    c.one_core = time_case(one, A, B, options.repeats, c.pairs);
+    rep.cases.push_back(c);
+  }
+  rep.machine.load_after = read_first_line("/proc/loadavg");
+  rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return rep;
+}
+
+}  // namespace pdd::compare

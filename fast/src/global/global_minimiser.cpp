@@ -1,0 +1,114 @@
+// global_minimiser.cpp — pdd/global_minimiser.h: solve_pair's definitions §9 fields alone
+// (fast/src/solve_pair.cpp's solve_record with `global`, restricted to its common double path).
+#include "pdd/global_minimiser.h"
+
+#include <cmath>
+#include <memory>
+
+#include "exact/exact_candidate.h"
+#include "global/global_depth.h"
+#include "kernel/direction_geometry.h"
+#include "kernel/power_scale.h"
+#include "kernel/quick_candidates.h"
+#include "kernel/rigid_depth.h"
+#include "qp/deformable_depth.h"
+
+namespace pdd::fast {
+
+namespace {
+
+// A value within kClampMargin of pdd2_relaxed (the pair's best plane is, or is close to,
+// pdd2_relaxed's candidate): solve_pair's record computes the rest of the chain of definitions
+// §5 and lowers along it (value_relations.h's keep_exact_relations, on the values scaled back).
+// The same here, from the same choices: pdd2_static and pdd2 from the lane sweeps (else the
+// list's sweeps with solve_pair's hints: the list gives the set's results, quick_candidates.h),
+// pdd2_accel6 and pdd2_accel1 from the list; false (decline) when one of them is not certified
+// or leaves the double range, where solve_pair would take its exact path.
+// (solve_pair takes a lane choice only when its label is one of the list's candidates.)
+bool listed(const QuickCandidates& q, const Choice& ch) {
+  for (int k = 0; k < q.count; ++k)
+    if (label_code(q, k) == ch.code) return true;
+  return false;
+}
+
+bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Choice& rel, double& value) {
+  Choice st, def;
+  if (!pdd2_static_lanes(q, st) || !listed(q, st)) st = pdd2_static(q, rigid.index);
+  const Choice accel6 = pdd2_accel(q, kAccelWide), accel1 = pdd2_accel(q, 1);
+  if (!pdd2_lanes(q, def) || !listed(q, def)) def = pdd2(q, accel6.index);
+  if (!st.certified || !def.certified || !accel6.certified || !accel1.certified) return false;
+  bool ok = true;
+  auto back = [&](double v) { return detail::unscaled(v, 2 * -e, ok); };
+  const double r = back(rigid.value), a1 = back(accel1.value);
+  double s = back(st.value), a6 = back(accel6.value), d = back(def.value), x = back(rel.value);
+  if (!ok) return false;
+  auto at_most = [](double& v, double b) {
+    if (v > b) v = b;
+  };
+  at_most(s, r);  // keep_exact_relations, in its order
+  at_most(a6, a1);
+  at_most(d, s);
+  at_most(d, a6);
+  if (std::isnormal(r / 2)) at_most(d, r / 2);
+  at_most(x, d);
+  at_most(value, x);
+  return true;
+}
+
+}  // namespace
+
+std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B) {
+  if (!detail::all_finite(A) || !detail::all_finite(B)) return std::nullopt;
+  const detail::ScaledPair sp = detail::power_scaled(A, B);
+  if (!sp.exact) return std::nullopt;
+  // solve_pair: the quick lanes (valid, intersecting, every filter verdict clear), pdd2_relaxed
+  // from their sweep, rigid_pd2 over the candidates (QuickCandidates gives the same candidates,
+  // in the same order, bit for bit, as the set solve_pair builds: quick_candidates.h).
+  std::unique_ptr<QuickCandidates> q(new QuickCandidates);  // ~8 KB: off TBB's worker stacks
+  if (!quick_lanes(sp.A, sp.B, *q)) return std::nullopt;
+  Choice rel;
+  const bool rel_lanes = pdd2_relaxed_lanes(*q, rel);
+  quick_edge_list(*q);  // (appends the edge candidates; the lanes and faces the sweeps read stay)
+  if (!rel_lanes || !listed(*q, rel)) {
+    // solve_pair's route when the sweep cannot decide: the list's sweep hinted by pdd2's choice,
+    // itself the lanes' or the list's hinted by pdd2_accel6's.
+    Choice def;
+    if (!pdd2_lanes(*q, def) || !listed(*q, def)) def = pdd2(*q, pdd2_accel(*q, kAccelWide).index);
+    rel = pdd2_relaxed(*q, def.index);
+  }
+  if (!rel.certified || !(rel.value > 0)) return std::nullopt;
+  const Choice rigid = rigid_pd2(*q);
+  if (!rigid.certified) return std::nullopt;
+  int index = -1;  // the relaxed choice's candidate (its label, as solve_pair finds it)
+  for (int k = 0; k < q->count && index < 0; ++k)
+    if (label_code(*q, k) == rel.code) index = k;
+  if (index < 0) return std::nullopt;
+  const Candidate c = candidate(*q, index);
+  const double start[3] = {c.n[0], c.n[1], c.n[2]};
+  const DirectionLabel label = rel.label();
+  const TetVertices &As = sp.A, &Bs = sp.B;
+  const ExactStart exact_start = [&]() -> std::array<double, 3> {
+    return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
+  };
+  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
+  if (!g.certified || g.exact_value) return std::nullopt;
+  if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
+  bool in_range = true;
+  GlobalMinimiser m;
+  m.pd2 = detail::unscaled(g.value, 2 * -sp.e, in_range);
+  const double relaxed = detail::unscaled(rel.value, 2 * -sp.e, in_range);
+  if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
+  if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(*q, sp.e, rigid, rel, m.pd2))
+    return std::nullopt;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      m.q1_A[i][k] = std::ldexp(g.q1_A[i][k], -sp.e);
+      m.q1_B[i][k] = std::ldexp(g.q1_B[i][k], -sp.e);
+      if (!std::isfinite(m.q1_A[i][k]) || !std::isfinite(m.q1_B[i][k])) return std::nullopt;
+    }
+  m.normal = g.normal;
+  detail::power_normalized(m.normal);
+  return m;
+}
+
+}  // namespace pdd::fast

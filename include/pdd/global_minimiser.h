@@ -1,0 +1,49 @@
+// global_minimiser.h — definitions §9's minimiser of one pair by the fast engine, alone: the
+// value pdd2_global, its normal and the deformed positions attaining it, without the rest of
+// the record. For callers that need only those, many times (the contact energy,
+// pdd/mesh/contact_energy.h).
+//
+// Inputs:  A, B  the tetrahedra's vertices s0..s3 and r0..r3 (any orientation).
+// Outputs: GlobalMinimiser, or nothing ("declined" below).
+//   pd2       pdd2_global (definitions §9; the definitions §8 contract)
+//   normal    the normal attaining it (A -> B), scaled as solve_pair's pdd2_global_normal
+//   q1_A, q1_B  the deformed positions attaining it (q1_*_global)
+// Equal bit for bit to the fields of the same name of pdd::fast::solve_pair(pair, with_global)
+// whenever that returns a record with pdd2_global: the same computation (the same rescaled
+// pair, the same start, pdd2_relaxed's candidate from the same lane sweep, the same pruning
+// value rigid_pd2, global_depth.h's enumeration, the same scaling back), minus every other
+// value of the record. solve_pair lowers pdd2_global to pdd2_relaxed when it rounds above it
+// (value_relations.h), and pdd2_relaxed may itself be lowered along the chain of definitions
+// §5; every value of that chain is certified to 1e-9 of an exact value >= the exact relaxed
+// value e, so each is >= (1 - 1e-9) e >= (1 - 1e-9) / (1 + 1e-9) pdd2_relaxed > (1 - 2.1e-9)
+// pdd2_relaxed. A value below (1 - kClampMargin) pdd2_relaxed is therefore never lowered; above
+// that (a tie: the best plane is pdd2_relaxed's candidate, common where faces are nearly
+// parallel) the chain's other values are computed as solve_pair computes them and the same
+// relations applied.
+// Declined (std::nullopt): whenever the common double path does not apply as a whole — a pair
+// that is not valid, not intersecting, or whose lane sweeps or candidate choices are not
+// certified in doubles; an enumeration not certified or computed in rationals; a value or a
+// position outside the double range; at a tie, a value of the chain not certified in doubles
+// or outside the double range (solve_pair's exact path). The caller
+// then takes solve_pair (which gives the same fields, or declines pdd2_global itself).
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "pdd/pair_result.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd::fast {
+
+inline constexpr double kClampMargin = 4e-9;
+
+struct GlobalMinimiser {
+  double pd2 = 0.0;
+  std::array<double, 3> normal{};
+  Positions<double> q1_A{}, q1_B{};
+};
+
+std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B);
+
+}  // namespace pdd::fast
