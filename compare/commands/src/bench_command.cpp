@@ -612,7 +612,8 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
     if (c.skipped) s << "; " << c.skipped << " elements skipped";
     s << "\n";
     if (c.rigid_separation >= 0)
-      s << "  rigid separation along the line: t = " << fmt("%.5g", c.rigid_t) << ", cost t^2/2 = "
+      s << "  rigid separation along the line: t = " << fmt("%.5g", c.rigid_t)
+        << (c.fixed_a || c.fixed_b ? ", one mesh fixed, cost t^2 = " : ", cost t^2/2 = ")
         << fmt("%.4g", c.rigid_separation) << "\n";
     s << "  " << pad("variant", 8) << rpad("resolved", 9) << rpad("rounds", 7) << rpad("pairs", 7)
       << rpad("left", 6) << rpad("cost", 11) << rpad("vs rigid", 9) << rpad("max disp", 10)
