@@ -7,9 +7,15 @@ coloured by how far each point moved.
                                                        # B moved 0.08 deep into A (see --move-b)
     scripts/render-resolve.py --a A.msh --b B.msh --a1 A1.msh --b1 B1.msh   # existing results
     scripts/render-resolve.py --a M.msh --self --a1 M1.msh                  # self-contact
+    # the README's picture: the plate-ball case of scripts/make-resolve-cases.sh DIR, resolved
+    # by `pdd bench resolve --cases '' --cases-dir DIR --variants global --write OUT`
+    scripts/render-resolve.py --a DIR/plate-ball-a.msh --b DIR/plate-ball-b.msh \
+        --a1 OUT/plate-ball-global-a.vtk --b1 OUT/plate-ball-global-b.vtk --rigid-cost 0.0004
 
 Writes <out>/resolve-before.png, <out>/resolve-after.png and <out>/resolve.png (both side by
-side; the README's picture). Needs Debian's python3-matplotlib and python3-meshio (both in
+side with a third panel, the distribution over all elements of the volume ratio V1/V0 and the
+shape ratio eta1/eta0 with R4's bounds --rho and --kappa, and the cost in its title: the README's
+picture). Needs Debian's python3-matplotlib and python3-meshio (both in
 scripts/setup.sh). Without --a1, runs `pdd resolve` (--pdd, default build/bin/pdd) into
 a temporary folder with --fix and --variant as given, on B translated by --move-b first (by
 default, for the shipped balls: along the line of their centres until they are 1.82 apart, a
@@ -65,6 +71,30 @@ def cut(V, T, origin, normal, values):
     return polys, np.array(vals)
 
 
+def quality(V0, V1, T):
+    """Per element: V1/V0 and eta1/eta0, eta = 12 (3|V|)^(2/3) / (sum of the six squared edge
+    lengths) (SPEC §11), in doubles (a picture; check-resolution.py decides R4 exactly)."""
+    def vol_edges(V):
+        P = V[T]
+        D = P[:, 1:] - P[:, :1]
+        vol = np.linalg.det(D) / 6
+        l2 = sum(((P[:, i] - P[:, j]) ** 2).sum(axis=1) for i in range(4) for j in range(i + 1, 4))
+        return vol, l2
+    v0, l0 = vol_edges(V0)
+    v1, l1 = vol_edges(V1)
+    eta = lambda v, l: 12 * np.cbrt(3 * np.abs(v)) ** 2 / l
+    return v1 / v0, eta(v1, l1) / eta(v0, l0), np.abs(v0)
+
+
+def cost(V0, V1, T):
+    """SPEC §11's mesh object norm of one mesh: sum_e V_e sigma_e / sum_e V_e, sigma_e =
+    (sum_i |d_i|^2 + |sum_i d_i|^2) / 20 over the element's four displacements d_i."""
+    d = (V1 - V0)[T]
+    sigma = ((d ** 2).sum(axis=(1, 2)) + (d.sum(axis=1) ** 2).sum(axis=1)) / 20
+    w = np.abs(np.linalg.det(V0[T][:, 1:] - V0[T][:, :1]))
+    return float((w * sigma).sum() / w.sum())
+
+
 def in_plane(polys, u, w):
     """3-D polygons -> their coordinates along the in-plane axes u, w (unit coordinate axes),
     vertices ordered around their centre."""
@@ -89,6 +119,9 @@ def main():
                     help="translate B by this vector before resolving (default: see above)")
     ap.add_argument("--pdd", default=str(ROOT / "build/bin/pdd"))
     ap.add_argument("--out", default=str(ROOT / "docs/images"))
+    ap.add_argument("--rho", type=float, default=0.25, help="R4's volume-ratio bound (drawn)")
+    ap.add_argument("--kappa", type=float, default=0.5, help="R4's shape-ratio bound (drawn)")
+    ap.add_argument("--rigid-cost", type=float, help="cost of the rigid separation, for the title")
     args = ap.parse_args()
 
     import matplotlib
@@ -183,12 +216,33 @@ def main():
         fig.tight_layout()
         fig.savefig(out / name, dpi=90)
         plt.close(fig)
-    fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(8, 3.6))
+    q = [quality(V0, V1, T) for _, (V0, T), (V1, _) in meshes]
+    vr = np.concatenate([x[0] for x in q])
+    sr = np.concatenate([x[1] for x in q])
+    total = sum(cost(V0, V1, T) for _, (V0, T), (V1, _) in meshes)
+    fig, (ax0, ax1, ax2) = plt.subplots(1, 3, figsize=(12, 3.6))
     draw(ax0, False)
     ax0.set_title("before: A (red) and B (blue) overlap", fontsize=9)
     coll = draw(ax1, True)
     ax1.set_title("after pdd resolve: |displacement|", fontsize=9)
     fig.colorbar(coll, ax=ax1, shrink=0.85)
+    lo = min(args.rho, args.kappa, float(vr.min()), float(sr.min())) * 0.9
+    hi = max(1 / args.rho, float(vr.max()), float(sr.max())) * 1.1
+    bins = np.geomspace(lo, hi, 60)
+    ax2.hist(vr, bins=bins, histtype="step", color="tab:blue", label=f"V1/V0 (min {vr.min():.3f})")
+    ax2.hist(sr, bins=bins, histtype="step", color="tab:orange", label=f"eta1/eta0 (min {sr.min():.3f})")
+    for x, c in ((args.rho, "tab:blue"), (1 / args.rho, "tab:blue"), (args.kappa, "tab:orange")):
+        ax2.axvline(x, color=c, linestyle=":", linewidth=1)
+    ax2.set_xscale("log")
+    ticks = [x for x in (0.125, 0.25, 0.5, 1, 2, 4, 8) if lo <= x <= hi]
+    ax2.set_xticks(ticks, [f"{x:g}" for x in ticks])
+    ax2.minorticks_off()
+    ax2.set_yscale("log")
+    ax2.set_xlabel("ratio, final over rest (dotted: R4 bounds)")
+    ax2.set_ylabel("elements")
+    ax2.legend(fontsize=7, loc="upper left")
+    rigid = f" ({total / args.rigid_cost:.2g} of the rigid separation)" if args.rigid_cost else ""
+    ax2.set_title(f"quality of all {len(vr):,} elements\ncost {total:.2g}{rigid}", fontsize=9)
     fig.suptitle(f"planar cut {title} through the contact region (zoomed)", fontsize=9)
     fig.tight_layout()
     fig.savefig(out / "resolve.png", dpi=80)

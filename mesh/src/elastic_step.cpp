@@ -1,6 +1,8 @@
 // elastic_step.cpp — the global step of resolve (elastic_step.h).
 #include "elastic_step.h"
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -68,10 +70,8 @@ ElasticStep::ElasticStep(const Mesh& rest, const std::vector<std::size_t>& eleme
   matrix_.resize(n, n);
   matrix_.setFromTriplets(k.begin(), k.end());
   if (n == 0) return;
-  solver_.setTolerance(kTolerance);
-  solver_.setMaxIterations(kMaxIterations);
-  solver_.compute(matrix_);
-  ok_ = solver_.info() == Eigen::Success;
+  preconditioner_.compute(matrix_);
+  ok_ = preconditioner_.info() == Eigen::Success;
 }
 
 bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delta) const {
@@ -82,7 +82,16 @@ bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delt
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)
       for (int c = 0; c < 3; ++c) rhs(unknown_[v], c) = weight_[std::size_t(unknown_[v])] * pull[v][c];
-  const Eigen::MatrixXd x = solver_.solve(rhs);
+  // Per column, Eigen's ConjugateGradient<SparseMatrix, Lower | Upper>::solve from x = 0: it
+  // multiplies by the transpose (a row-major traversal of the symmetric matrix), and an
+  // iteration that does not reach kTolerance in kMaxIterations returns its last iterate.
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, 3);
+  tbb::parallel_for(0, 3, [&](int c) {
+    auto xc = x.col(c);
+    Eigen::Index iterations = kMaxIterations;
+    double error = kTolerance;
+    Eigen::internal::conjugate_gradient(matrix_.transpose(), rhs.col(c), xc, preconditioner_, iterations, error);
+  });
   if (!x.allFinite()) return false;  // not converged within kMaxIterations: still a descent
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)

@@ -4,9 +4,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -47,11 +49,39 @@ double rigid_separation_t(const mesh::Mesh& A, const mesh::Mesh& B, const Vec3d&
 struct Input {
   std::string name, description;
   mesh::Mesh A, B;
-  bool self = false;
+  bool self = false, fix_a = false, fix_b = false;
   double read_seconds = 0;
   Vec3d line{};      // for the rigid comparison; zero: none
   double line_hi = 0;
 };
+
+std::vector<std::string> split(const std::string& list, char sep) {
+  std::vector<std::string> out;
+  std::stringstream s(list);
+  std::string w;
+  while (std::getline(s, w, sep))
+    if (!w.empty()) out.push_back(w);
+  return out;
+}
+
+// The variants named in `list` (resolve_variant_name), in that order.
+std::vector<mesh::ResolveVariant> parse_variants(const std::string& list) {
+  std::vector<mesh::ResolveVariant> out;
+  for (const std::string& w : split(list, ',')) {
+    bool found = false;
+    for (mesh::ResolveVariant v : {mesh::ResolveVariant::Global, mesh::ResolveVariant::Pdd2, mesh::ResolveVariant::Rigid})
+      if (w == mesh::resolve_variant_name(v)) out.push_back(v), found = true;
+    if (!found) throw std::invalid_argument("unknown variant '" + w + "' (global, pdd2, rigid)");
+  }
+  if (out.empty()) throw std::invalid_argument("--variants names no variant");
+  return out;
+}
+
+std::string file_name(std::string s) {
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '.') ch = '_';
+  return s;
+}
 
 ResolveBenchCase run_case(const Input& in, const ResolveBenchOptions& o) {
   ResolveBenchCase c;
@@ -60,7 +90,9 @@ ResolveBenchCase run_case(const Input& in, const ResolveBenchOptions& o) {
   c.elements_a = in.A.tets.size();
   c.elements_b = in.self ? 0 : in.B.tets.size();
   c.read_seconds = in.read_seconds;
-  for (mesh::ResolveVariant v : {mesh::ResolveVariant::Global, mesh::ResolveVariant::Pdd2, mesh::ResolveVariant::Rigid}) {
+  c.fixed_a = in.fix_a;
+  c.fixed_b = in.fix_b;
+  for (mesh::ResolveVariant v : parse_variants(o.variants)) {
     std::cerr << "pdd bench resolve: " << in.name << ", " << mesh::resolve_variant_name(v) << "\n";
     ResolveBenchRow row;
     row.variant = mesh::resolve_variant_name(v);
@@ -69,6 +101,8 @@ ResolveBenchCase run_case(const Input& in, const ResolveBenchOptions& o) {
       mesh::ResolveOptions ro;
       ro.variant = v;
       ro.max_rounds = o.max_rounds;
+      ro.fix_a = in.fix_a;
+      ro.fix_b = in.fix_b;
       const mesh::Resolution res = in.self ? mesh::resolve_self(in.A, ro) : mesh::resolve(in.A, in.B, ro);
       const mesh::ResolveReport& p = res.report;
       total.push_back(p.seconds_total);
@@ -92,6 +126,11 @@ ResolveBenchCase run_case(const Input& in, const ResolveBenchOptions& o) {
         row.min_volume_ratio = p.min_volume_ratio;
         row.round_log = p.rounds;
         c.skipped = p.skipped.size();
+        if (!o.write_dir.empty()) {
+          const std::string stem = o.write_dir + "/" + file_name(in.name) + "-" + row.variant;
+          mesh::write_mesh(stem + "-a.vtk", in.A, res.a);
+          if (!in.self) mesh::write_mesh(stem + "-b.vtk", in.B, res.b);
+        }
       }
     }
     row.total = median(total);
@@ -105,15 +144,14 @@ ResolveBenchCase run_case(const Input& in, const ResolveBenchOptions& o) {
   if (!in.self && (in.line[0] != 0 || in.line[1] != 0 || in.line[2] != 0)) {
     std::cerr << "pdd bench resolve: " << in.name << ", rigid separation along the line\n";
     c.rigid_t = rigid_separation_t(in.A, in.B, in.line, in.line_hi);
-    if (c.rigid_t > 0) c.rigid_separation = c.rigid_t * c.rigid_t / 2;
+    // Both meshes free: t split half and half, 2 (t/2)^2; one fixed: the other moves by t.
+    if (c.rigid_t > 0) c.rigid_separation = c.rigid_t * c.rigid_t / (in.fix_a || in.fix_b ? 1 : 2);
   }
   return c;
 }
 
 bool wanted(const ResolveBenchOptions& o, const std::string& name) {
-  std::stringstream s(o.cases);
-  std::string w;
-  while (std::getline(s, w, ','))
+  for (const std::string& w : split(o.cases, ','))
     if (w == name) return true;
   return false;
 }
@@ -123,18 +161,79 @@ Vec3d unit(const Vec3d& v) {
   return {v[0] / n, v[1] / n, v[2] / n};
 }
 
+// The cases of DIR/cases.tsv (resolve_bench.h, `real`), read and timed. Throws
+// std::invalid_argument naming the line when it cannot be understood.
+std::vector<Input> read_case_list(const std::string& dir) {
+  const std::string path = dir + "/cases.tsv";
+  std::ifstream f(path);
+  if (!f) throw std::invalid_argument("cannot read " + path + " (make it with scripts/make-resolve-cases.sh)");
+  std::vector<Input> out;
+  std::string line;
+  for (int n = 1; std::getline(f, line); ++n) {
+    if (line.empty()) continue;
+    const std::vector<std::string> cols = [&] {
+      std::vector<std::string> c;
+      std::stringstream s(line);
+      std::string w;
+      while (std::getline(s, w, '\t')) c.push_back(w);
+      return c;
+    }();
+    const std::string where = path + " line " + std::to_string(n);
+    if (cols.size() < 2) throw std::invalid_argument(where + ": expected name, resolve options, check options");
+    Input in;
+    in.name = cols[0];
+    std::string a, b;
+    auto tokens = split(cols[1], ' ');
+    for (std::size_t k = 0; k < tokens.size(); ++k) {
+      const std::string& t = tokens[k];
+      const bool has_value = k + 1 < tokens.size();
+      if (t == "--a" && has_value) a = tokens[++k];
+      else if (t == "--b" && has_value) b = tokens[++k];
+      else if (t == "--self") in.self = true;
+      else if (t == "--fix" && has_value) {
+        const std::string& w = tokens[++k];
+        if (w != "a" && w != "b") throw std::invalid_argument(where + ": --fix takes a or b");
+        (w == "a" ? in.fix_a : in.fix_b) = true;
+      } else throw std::invalid_argument(where + ": unknown resolve option '" + t + "'");
+    }
+    if (a.empty() || in.self == !b.empty())
+      throw std::invalid_argument(where + ": needs --a and either --b or --self");
+    const auto t0 = Clock::now();
+    in.A = mesh::read_mesh(a);
+    if (!in.self) in.B = mesh::read_mesh(b);
+    in.read_seconds = since(t0);
+    std::ostringstream d;
+    d << (in.self ? "one file (--self): " : "") << std::filesystem::path(a).filename().string();
+    if (!in.self) d << " x " << std::filesystem::path(b).filename().string();
+    if (in.fix_a || in.fix_b) d << ", " << (in.fix_a ? "a" : "b") << " fixed";
+    in.description = d.str();
+    const auto check = cols.size() > 2 ? split(cols[2], ' ') : std::vector<std::string>{};
+    bool per_body = false;
+    for (std::size_t k = 0; k + 1 < check.size(); ++k) {
+      if (check[k] == "--rigid-hi") in.line_hi = std::stod(check[k + 1]);
+      if (check[k] == "--rigid-body") per_body = true;
+      if (check[k] == "--rigid-dir") {
+        const auto xyz = split(check[k + 1], ',');
+        if (xyz.size() != 3) throw std::invalid_argument(where + ": --rigid-dir takes x,y,z");
+        in.line = unit({std::stod(xyz[0]), std::stod(xyz[1]), std::stod(xyz[2])});
+      }
+    }
+    if (per_body || in.line_hi <= 0) in.line = {0, 0, 0};
+    out.push_back(std::move(in));
+  }
+  return out;
+}
+
 }  // namespace
 
 ResolveBenchReport run_resolve_bench(const ResolveBenchOptions& o) {
   if (o.repeats < 1) throw std::invalid_argument("--repeats must be at least 1");
   if (o.max_rounds < 1) throw std::invalid_argument("--max-rounds must be at least 1");
-  {
-    std::stringstream s(o.cases);
-    std::string w;
-    while (std::getline(s, w, ','))
-      if (w != "shallow" && w != "deep" && w != "self" && w != "shipped")
-        throw std::invalid_argument("unknown case '" + w + "' (shallow, deep, self, shipped)");
-  }
+  for (const std::string& w : split(o.cases, ','))
+    if (w != "shallow" && w != "deep" && w != "self" && w != "shipped")
+      throw std::invalid_argument("unknown case '" + w + "' (shallow, deep, self, shipped)");
+  parse_variants(o.variants);
+  if (!o.write_dir.empty()) std::filesystem::create_directories(o.write_dir);
   const auto t_all = Clock::now();
   ResolveBenchReport rep;
   rep.options = o;
@@ -245,6 +344,11 @@ ResolveBenchReport run_resolve_bench(const ResolveBenchOptions& o) {
       rep.cases.push_back(run_case(in, o));
     }
   }
+  if (!o.cases_dir.empty())
+    for (const Input& in : read_case_list(o.cases_dir)) {
+      std::cerr << "pdd bench resolve: " << in.name << " (" << o.cases_dir << ")\n";
+      rep.cases.push_back(run_case(in, o));
+    }
   rep.seconds = since(t_all);
   return rep;
 }

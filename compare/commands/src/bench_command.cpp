@@ -4,7 +4,8 @@
 // pdd bench mesh [--a A --b B | --size N [--distance D] [--write-meshes DIR]]
 //                [--variants LIST] [--aligned-cells N] [--repeats R] [--json [FILE]]  (mesh_bench.h)
 // pdd bench resolve [--cases LIST] [--size N] [--shallow-distance D] [--deep-distance D]
-//                   [--meshes DIR] [--max-rounds K] [--repeats R] [--json [FILE]]
+//                   [--meshes DIR] [--cases-dir DIR] [--variants LIST] [--write DIR]
+//                   [--max-rounds K] [--repeats R] [--json [FILE]]
 //                                                                   (resolve_bench.h)
 // pdd bench energy [--cases LIST] [--size N] [--grid-depth D] [--ball-distance D] [--repeats R]
 //                  [--json [FILE]]                                   (energy_bench.h)
@@ -541,6 +542,8 @@ Json resolve_report_json(const ResolveBenchReport& r) {
   j["deep_distance"] = r.options.deep_distance;
   j["max_rounds"] = r.options.max_rounds;
   j["repeats"] = r.options.repeats;
+  j["cases_dir"] = r.options.cases_dir;
+  j["variants"] = r.options.variants;
   Json m;
   m["cpu_model"] = r.machine.cpu_model;
   m["logical_cpus"] = r.machine.logical_cpus;
@@ -559,6 +562,7 @@ Json resolve_report_json(const ResolveBenchReport& r) {
     q["read_s"] = number(c.read_seconds);
     q["rigid_separation_cost"] = c.rigid_separation >= 0 ? Json(c.rigid_separation) : Json(nullptr);
     q["rigid_separation_t"] = number(c.rigid_t);
+    q["fixed"] = c.fixed_a ? Json("a") : c.fixed_b ? Json("b") : Json(nullptr);
     Json rows = Json::array();
     for (const auto& w : c.rows) {
       Json x;
@@ -574,6 +578,7 @@ Json resolve_report_json(const ResolveBenchReport& r) {
       x["remaining_pairs"] = w.remaining_pairs;
       x["bad_elements"] = w.bad_elements;
       x["cost"] = number(w.cost);
+      x["cost_over_rigid"] = c.rigid_separation > 0 ? Json(w.cost / c.rigid_separation) : Json(nullptr);
       x["max_displacement"] = number(w.max_displacement);
       x["min_volume_ratio"] = number(w.min_volume_ratio);
       x["max_volume_ratio"] = number(w.max_volume_ratio);
@@ -610,11 +615,12 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
     if (c.skipped) s << "; " << c.skipped << " elements skipped";
     s << "\n";
     if (c.rigid_separation >= 0)
-      s << "  rigid separation along the line: t = " << fmt("%.5g", c.rigid_t) << ", cost t^2/2 = "
+      s << "  rigid separation along the line: t = " << fmt("%.5g", c.rigid_t)
+        << (c.fixed_a || c.fixed_b ? ", one mesh fixed, cost t^2 = " : ", cost t^2/2 = ")
         << fmt("%.4g", c.rigid_separation) << "\n";
     s << "  " << pad("variant", 8) << rpad("resolved", 9) << rpad("rounds", 7) << rpad("pairs", 7)
       << rpad("left", 6) << rpad("cost", 11) << rpad("vs rigid", 9) << rpad("max disp", 10)
-      << rpad("min V1/V0", 10) << rpad("max V1/V0", 10) << rpad("min eta", 8) << rpad("method", 12) << rpad("total s", 9) << rpad("contacts", 9) << rpad("solve", 8)
+      << rpad("min V1/V0", 10) << rpad("max V1/V0", 10) << rpad("min eta", 8) << rpad("R4", 4) << rpad("method", 12) << rpad("total s", 9) << rpad("contacts", 9) << rpad("solve", 8)
       << rpad("move", 8) << rpad("verify", 8) << rpad("s/round", 9) << "\n";
     for (const auto& w : c.rows)
       s << "  " << pad(w.variant, 8) << rpad(w.resolved ? "yes" : "NO", 9) << rpad(std::to_string(w.rounds), 7)
@@ -623,7 +629,7 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
         << rpad(c.rigid_separation > 0 ? fmt("%.4f", w.cost / c.rigid_separation) : "-", 9)
         << rpad(fmt("%.4f", w.max_displacement), 10) << rpad(fmt("%.3f", w.min_volume_ratio), 10)
         << rpad(fmt("%.3f", w.max_volume_ratio), 10) << rpad(fmt("%.3f", w.min_shape_ratio), 8)
-        << rpad(w.method, 12) << rpad(fmt("%.3f", w.total), 9) << rpad(fmt("%.3f", w.contacts), 9) << rpad(fmt("%.3f", w.solve), 8)
+        << rpad(w.r4 ? "yes" : "NO", 4) << rpad(w.method, 12) << rpad(fmt("%.3f", w.total), 9) << rpad(fmt("%.3f", w.contacts), 9) << rpad(fmt("%.3f", w.solve), 8)
         << rpad(fmt("%.3f", w.move), 8) << rpad(fmt("%.3f", w.verify), 8) << rpad(fmt("%.4f", w.per_round), 9)
         << "\n";
   }
@@ -804,6 +810,12 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   resolve_cmd->add_option("--meshes", ra->options.meshes, "Directory of the shipped meshes (self, shipped)")
       ->capture_default_str();
+  resolve_cmd->add_option("--cases-dir", ra->options.cases_dir,
+                          "Also the real-mesh cases of DIR/cases.tsv (made by scripts/make-resolve-cases.sh DIR)");
+  resolve_cmd->add_option("--variants", ra->options.variants, "Variants, comma-separated: global, pdd2, rigid")
+      ->capture_default_str();
+  resolve_cmd->add_option("--write", ra->options.write_dir,
+                          "Write each row's final meshes to DIR/<case>-<variant>-a.vtk / -b.vtk (for check-resolution.py)");
   resolve_cmd->add_option("--max-rounds", ra->options.max_rounds, "Rounds before giving up")
       ->check(integer_in(1, 100000))
       ->capture_default_str();

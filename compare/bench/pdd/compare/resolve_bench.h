@@ -11,11 +11,21 @@
 //   deep     the same balls at `deep_distance` (the lens of `pdd bench mesh`);
 //   self     two-spheres.msh of `meshes` (one mesh intersecting itself);
 //   shipped  the small meshes of `meshes`, moved into shallow overlaps of known depth as in
-//            tests/mesh/test_resolve.cpp, and the shipped deep pairs as they are.
+//            tests/mesh/test_resolve.cpp, and the shipped deep pairs as they are;
+//   real     with `cases_dir`: every line of DIR/cases.tsv as scripts/make-resolve-cases.sh writes
+//            it (Gmsh and TetGen meshes: a ball on a fixed thin plate, two bodies, two bodies in
+//            one file, a body against itself, two balls of 10^5 elements one layer deep, a ball
+//            through the plate): `name <TAB> pdd resolve options <TAB> check-resolution.py
+//            options`, of which --a, --b, --self, --fix a|b and --rigid-dir, --rigid-hi are read.
 // Rigid comparison ("rigid separation"): B translated along the line of the balls' centres
 // (boxes: along x) by the smallest t after which no element pair intersects (bisection on t
 // with check_resolution's exact R1, to 1e-4 relative), split half and half between the meshes as
-// PD_d splits a translation: cost 2 (t/2)^2 = t^2 / 2 (the cheapest rigid motion along that line).
+// PD_d splits a translation: cost 2 (t/2)^2 = t^2 / 2 (the cheapest rigid motion along that line);
+// with one mesh fixed the other moves by all of t: cost t^2. Cases of one file (--self) have no
+// rigid comparison here (check-resolution.py --rigid-body computes it per body).
+// Quality columns (per variant, of the first run): smallest and largest V1/V0, smallest
+// eta1/eta0, the R4 verdict, rounds, method; with `write_dir` the final meshes are written there
+// as <case>-<variant>-a.vtk / -b.vtk so that scripts/check-resolution.py can judge them.
 #pragma once
 
 #include <cstddef>
@@ -32,7 +42,10 @@ struct ResolveBenchOptions {
   double shallow_distance = 1.99;   // centre distance, shallow case (about one layer at 10^5)
   double deep_distance = 1.88;      // centre distance, deep case (the lens of `pdd bench mesh`)
   std::string meshes = "fixtures/meshes";  // directory of the shipped meshes
-  std::string cases = "shallow,deep,self,shipped";
+  std::string cases = "shallow,deep,self,shipped";  // may be empty (only cases_dir)
+  std::string cases_dir;            // real-mesh cases: DIR/cases.tsv; empty: none
+  std::string variants = "global,pdd2,rigid";  // comma-separated resolve variants to run
+  std::string write_dir;            // final meshes of the first run per row; empty: not written
   std::size_t max_rounds = 200;
   int repeats = 3;                  // runs per case and variant (median of the times)
 };
@@ -54,6 +67,7 @@ struct ResolveBenchCase {
   double read_seconds = 0;      // generated balls: reading both files
   double rigid_separation = -1; // t^2 / 2 (header); -1: not computed
   double rigid_t = 0;
+  bool fixed_a = false, fixed_b = false;  // a mesh kept bit for bit (--fix)
   std::vector<ResolveBenchRow> rows;  // global, pdd2, rigid
 };
 
