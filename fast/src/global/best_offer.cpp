@@ -13,27 +13,4 @@ double Best::value_in(long extra) const {
   return x.get_d();
 }
 
-void Best::offer(const Problem& P, const V3& v) {
-  if (!nonzero(v)) return;
-  if (A) {
-    detail::Q hA[4], hB[4];
-    Solution<detail::Q> s;
-    const detail::Q q = relaxed_exact(*A, *B, v, hA, hB, s);
-    if (have_q && !(q < qvalue)) return;
-    qvalue = q, have_q = true, n = v;
-    value = value_in(0);
-    return;
-  }
-  DirectionSolution& s = last;
-  double hm = 0, hA[4], hB[4];
-  const double x = relaxed_at(P, v, &s, &hm, hA, hB);
-  const double error = value_error(P, v, s.cost, hm);
-  offers.push_back({x, error, v});
-  if (x < value) {
-    value = x, n = v;
-    win.n = v, win.sol = s, win.error = error;
-    std::copy(hA, hA + 4, win.hA), std::copy(hB, hB + 4, win.hB);
-  }
-}
-
 }  // namespace pdd::fast::global

@@ -13,6 +13,7 @@
 //         suspect_proof.h (exact path).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -63,7 +64,28 @@ struct Best {
   std::vector<Suspect> suspects;
   // The best value in units scaled by 2^-extra (a piece's own scale, exact path), or as is.
   double value_in(long extra) const;
-  void offer(const Problem& P, const V3& v);
+  void offer(const Problem& P, const V3& v) {
+    if (!nonzero(v)) return;
+    if (A) {
+      detail::Q hA[4], hB[4];
+      Solution<detail::Q> s;
+      const detail::Q q = relaxed_exact(*A, *B, v, hA, hB, s);
+      if (have_q && !(q < qvalue)) return;
+      qvalue = q, have_q = true, n = v;
+      value = value_in(0);
+      return;
+    }
+    DirectionSolution& s = last;
+    double hm = 0, hA[4], hB[4];
+    const double x = relaxed_at(P, v, &s, &hm, hA, hB);
+    const double error = value_error(P, v, s.cost, hm);
+    offers.push_back({x, error, v});
+    if (x < value) {
+      value = x, n = v;
+      win.n = v, win.sol = s, win.error = error;
+      std::copy(hA, hA + 4, win.hA), std::copy(hB, hB + 4, win.hB);
+    }
+  }
   DirectionSolution last;  // double path: the last offer's solution (descent_step)
   // Double path: the lowest offer's solution, value_error and heights (relative to A[0]).
   struct Winner {

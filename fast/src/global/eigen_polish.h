@@ -13,6 +13,8 @@
 //         is a multiple of I.
 #pragma once
 
+#include <cmath>
+
 #include "exact/exact_geometry.h"
 #include "global/vec3.h"
 
@@ -37,6 +39,27 @@ bool ritz(const detail::Q (&h)[3][3], const V3& e, const V3& f, V3 (&out)[2]);
 // of H - mu I: beside a vertex 10^4 away (|H| ~ 1e9, a depth ~ 1) their error along the large
 // eigenvector, ~ u |H| / mu, costs |H| (u |H| / mu)^2 ~ 1e-5 of the value. Each step damps that
 // component by (mu - sigma) / (lambda_big - sigma); the vector's rounding then leaves u.
-V3 refine(const double (&h)[3][3], const V3& v0, double mu, long);
+inline V3 refine(const double (&h)[3][3], const V3& v0, double mu, long) {
+  const double sigma = mu * (1 - 1e-6);
+  double m[3][3], adj[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : 0.0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
+    }
+  V3 v = v0;
+  for (int it = 0; it < 2; ++it) {
+    V3 x;
+    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * v[0] + adj[r][1] * v[1] + adj[r][2] * v[2];
+    const double nx = norm(x);
+    if (!(nx > 0) || !std::isfinite(nx)) return v;
+    x = mul(x, 1 / nx);
+    if (dot(x, v) < 0) x = mul(x, -1.0);  // keep the orientation
+    v = x;
+  }
+  return v;
+}
 
 }  // namespace pdd::fast::global

@@ -6,20 +6,6 @@
 
 namespace pdd::fast::global {
 
-double relaxed_at(const Problem& P, const V3& v, DirectionSolution* sol, double* hmax, double* hA_out,
-                  double* hB_out) {
-  double local[8];
-  double *hA = hA_out ? hA_out : local, *hB = hB_out ? hB_out : local + 4, hm = 0;
-  for (int i = 0; i < 4; ++i) {
-    hA[i] = dot(v, P.relA[i]), hB[i] = dot(v, P.relB[i]);
-    hm = std::max({hm, std::fabs(hA[i]), std::fabs(hB[i])});
-  }
-  const DirectionSolution s = solve_relaxed(hA, hB);
-  if (sol) *sol = s;
-  if (hmax) *hmax = hm;
-  return s.cost / (20.0 * dot(v, v));
-}
-
 detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v, detail::Q hA[4],
                         detail::Q hB[4], Solution<detail::Q>& s) {
   using detail::Q;
@@ -30,14 +16,6 @@ detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v,
   }
   s = detail::solve_relaxed_heights(hA, hB);
   return s.cost / (20 * (v0 * v0 + v1 * v1 + v2 * v2));
-}
-
-double value_error(const Problem& P, const V3& v, double cost, double hm) {
-  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
-  const double phi = std::sqrt(cost / 20.0);
-  if (!(phi > 0)) return INFINITY;
-  const double r = (2 * 5 * kU * vn1 * P.scale + std::sqrt(2.0) * 0x1p12 * kU * hm) / phi + 4 * kU;
-  return 2 * r + 8 * kU;
 }
 
 Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v) {

@@ -12,6 +12,7 @@
 // kGlobalRel: the error budget of a reported pdd2_global (definitions §8's 1e-9, with room).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "exact/exact_candidate.h"
@@ -34,8 +35,19 @@ struct Problem {
 
 // relaxed(v) = cost / (20 v.v) by direction_qp.h's closed form on heights relative to A[0].
 // (hA, hB: the heights, when wanted.)
-double relaxed_at(const Problem& P, const V3& v, DirectionSolution* sol = nullptr, double* hmax = nullptr,
-                  double* hA_out = nullptr, double* hB_out = nullptr);
+inline double relaxed_at(const Problem& P, const V3& v, DirectionSolution* sol = nullptr, double* hmax = nullptr,
+                         double* hA_out = nullptr, double* hB_out = nullptr) {
+  double local[8];
+  double *hA = hA_out ? hA_out : local, *hB = hB_out ? hB_out : local + 4, hm = 0;
+  for (int i = 0; i < 4; ++i) {
+    hA[i] = dot(v, P.relA[i]), hB[i] = dot(v, P.relB[i]);
+    hm = std::max({hm, std::fabs(hA[i]), std::fabs(hB[i])});
+  }
+  const DirectionSolution s = solve_relaxed(hA, hB);
+  if (sol) *sol = s;
+  if (hmax) *hmax = hm;
+  return s.cost / (20.0 * dot(v, v));
+}
 
 // relaxed(v) in rationals (the exact closed form along the exact normal v), with its solution.
 detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v, detail::Q hA[4],
@@ -46,7 +58,13 @@ detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v,
 // e_h <= 5 u |v|_1 scale; the closed form's T within dT = 2^12 u Hm; |Phi~ - Phi| <= 2 e_h +
 // sqrt(2) dT + 4 u Phi~ with Phi = sqrt(cost / 20); the value Phi^2 / v.v (v.v to 3u) has
 // relative error <= 2 r + 8u, r = |Phi~ - Phi| / Phi~. +inf when Phi~ = 0.
-double value_error(const Problem& P, const V3& v, double cost, double hm);
+inline double value_error(const Problem& P, const V3& v, double cost, double hm) {
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double phi = std::sqrt(cost / 20.0);
+  if (!(phi > 0)) return INFINITY;
+  const double r = (2 * 5 * kU * vn1 * P.scale + std::sqrt(2.0) * 0x1p12 * kU * hm) / phi + 4 * kU;
+  return 2 * r + 8 * kU;
+}
 
 // The relaxed value along v (a double normal, A -> B) with a certified relative error bound,
 // on heights relative to A's highest vertex along v (near the plane), so that value_bounds.h's
