@@ -135,7 +135,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
   // nearly collinear edges in shallow contact, the optimal piece's two smallest eigenvalues
   // 1.5e-9 (first), ~1e-15 (second) or untuned apart: Eigen's closed-form solver merges them
   // and gives vectors anywhere in their plane, so a fast pdd2_global from it comes out 4.1e-2,
-  // 2.5e-9, 1.3e-3 and 8e-4 above the exact interval (what handles them, global_depth.cpp:
+  // 2.5e-9, 1.3e-3 and 8e-4 above the exact interval (what handles them, piece_visit.h:
   // the iterative solver near a double eigenvalue, the exact pieces where its estimate is
   // too wide, and there the Ritz vectors of the plane)
   const TetVertices collinear_A = {{{-1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.1, 0.6882917236212551, -0.9829824531467902},
@@ -173,7 +173,7 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
   // every kind is computed except the scale 2^-1010 (values ~2^-2000: not representable) and
   // span-1e308, whose pdd2_global (5.03e224 in doubles, inside the exact engine's interval
   // [3.46e224, 9.23e224], which is not closed there) has an eigenvalue of a piece in the window
-  // no double normal reaches (global_depth.cpp's unrepresented()): that value alone declined,
+  // no double normal reaches (suspect_proof.h's unrepresented()): that value alone declined,
   // in the class pdd compare allows, every other value computed
   BOOST_TEST(rejected == 5);
   BOOST_TEST(computed == int(pairs.size()) - 5);

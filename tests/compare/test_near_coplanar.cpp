@@ -1,7 +1,7 @@
 // definitions §9 on near-coplanar contacts (data/near-coplanar.json, written by
 // data/near-coplanar.py): a face of B 1e-15 to 1e-11 inside a face of A, tetrahedra of size ~8, B's
 // face parallel or tilted by ~1e-12 rad, along coordinate planes and not. The depth is ~1e-25 of
-// the size squared, far below global_depth.cpp's kUnrepresentedDepth, so the fast engine's
+// the size squared, far below suspect_proof.h's kUnrepresentedDepth, so the fast engine's
 // pdd2_global is decided on exact pieces with suspects (a piece's eigenvector that held its signs
 // within tolerance, its eigenvalue below the best offer); on the 11 pairs along coordinate planes
 // the exact engine's witness normals are themselves double triples that attain pdd2_global. Each

@@ -178,7 +178,7 @@ BOOST_AUTO_TEST_CASE(all_fixtures_with_golden_records) {
     ++files;
   }
   BOOST_TEST(files == 23);  // every shipped fixture file has a golden record: none may be skipped
-  // Exactly the pairs whose double normals cannot represent pdd2_global (global_depth.cpp's
+  // Exactly the pairs whose double normals cannot represent pdd2_global (suspect_proof.h's
   // unrepresented(): a vertex 1e-18 inside a face, the exact minimum 13%, 7% and 22% below the
   // best double normal's value) have it declined; the other pairs of that class (a far vertex, or a
   // vertex 2^-60 inside a face, whose fast values lie in the exact engine's closed intervals)

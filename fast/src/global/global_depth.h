@@ -44,7 +44,7 @@
 // rationals (the exact closed form, direction_qp_impl.h on mpq).
 // Where the depth is far below the pair's size (exact pieces), an eigenvector that held its
 // signs only within the tolerance may hide a stationary value below the best offer; each such
-// suspect is settled exactly before the pair is given up (global_depth.cpp's unrepresented():
+// suspect is settled exactly before the pair is given up (suspect_proof.h's unrepresented():
 // proved outside its cone, or its eigenvalue bounded below and reached by a double normal --
 // the eigenvector rounded, its neighbours, integer normals along it).
 #pragma once

@@ -1,8 +1,8 @@
-// piece_screen.h — internal to fast/src: the double path of global_depth.cpp prunes its 225
+// piece_screen.h — internal to fast/src: the double path of piece_enumeration.cpp prunes its 225
 // pieces (active sets of the relaxed QP, global_depth.h) without an eigensolver.
 //
 // Input:  per active set S = (S_A, S_B), the piece's matrix as lanes; the pruning window
-//         [lower, top) of consider_piece (global_depth.cpp: an eigenpair can hold the minimiser
+//         [lower, top) of consider_piece (piece_visit.h: an eigenpair can hold the minimiser
 //         only if its exact eigenvalue lies there); the pair's centred vertices.
 // Output: surviving_pieces: per row (S_A fixed, 15 lanes S_B), the pieces with an eigenvalue
 //         possibly in the window; screen: of those, the ones whose in-window eigenvector may
@@ -24,7 +24,7 @@ namespace pdd::fast::detail {
 
 inline constexpr double kScreenU = 0x1p-53;  // unit roundoff
 // A sign condition l.v >= 0 (or <= 0) holds within tolerance kSign |l|_1 + floor (|l|_1 >=
-// |l|_2: a wider tolerance, no square root; global_depth.cpp's Conditions).
+// |l|_2: a wider tolerance, no square root; piece_visit.h's Conditions).
 inline constexpr double kSign = 1e-6;
 // Bits of an active set (a subset of a tetrahedron's four vertices), and each vertex's sign
 // condition in it: +1 active (l.v >= 0), -1 free (l.v <= 0). Tables: no branch per lane.
@@ -78,7 +78,7 @@ inline int eigenvalues_below_certain(double h00, double h01, double h02, double 
 // The double pieces of one row (A's active set fixed: its sums SA, QA (xx xy xz yy yz zz),
 // max |QA| qa, size mA) against every B active set mb = 1..15 at once (lane mb; lane 0 is
 // padding): bit mb of the result is set unless the piece is certainly outside the pruning
-// window. The lanes hold N = 20 H, global_depth.cpp's enumerate_pieces' numerator (the same
+// window. The lanes hold N = 20 H, piece_enumeration.h's numerator (the same
 // operations in the same order, without its final /20: no division per entry).
 // N's error, entrywise, against the exact 20 H of the (centred, rounded) vertices: first order
 // in u, with L the largest |coordinate| of the piece's active vertices, so that mag (the sum
@@ -95,7 +95,7 @@ inline int eigenvalues_below_certain(double h00, double h01, double h02, double 
 // n_error = 2^-39 mag (2^14 u mag), second-order terms far inside the rest. (16u mag, the
 // last expression's roundings alone, would leave out the inputs' own errors; measured errors
 // stay below 0.3 of that.) So (Weyl, |E|_2 <= |E|_F <= 3 n_error) each exact eigenvalue of 20 H is
-// within 3 n_error of one of the double N's own. The window of global_depth.cpp's
+// within 3 n_error of one of the double N's own. The window of piece_visit.h's
 // consider_piece, [lower, top) with top = best (1 - kPrune), becomes [20 lower, 20 top) for
 // 20 H, and window_edges() widens it by 4 n_error (3 for Weyl, the rest and a relative 2^-40
 // for the edges' own roundings, each <= u relative). When N has no eigenvalue between the

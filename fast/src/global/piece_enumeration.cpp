@@ -1,0 +1,306 @@
+// piece_enumeration.cpp — see piece_enumeration.h for what it computes and H_S's equation.
+#include "global/piece_enumeration.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <type_traits>
+
+#include "global/eigen_polish.h"
+#include "global/piece_screen.h"
+
+namespace pdd::fast::global {
+namespace {
+
+using detail::ColumnsB;
+using detail::kPopcount;
+using detail::kSignOf;
+using detail::RowLanes;
+using detail::ScreenLanes;
+using detail::screen;
+using detail::surviving_pieces;
+
+// A coordinate as a double: itself, or a rational rounded once.
+struct AsDouble {
+  double operator()(double x) const { return x; }
+  double operator()(const detail::Q& x) const { return x.get_d(); }
+};
+
+// The 16 subsets' sums and second moments (xx xy xz yy yz zz) of A's and B's positions, each
+// from the subset without its highest vertex i: the terms added in increasing i, from 0 (the
+// same roundings as summing each subset on its own).
+template <class T>
+void subset_sums(const std::array<std::array<T, 3>, 4>& pA, const std::array<std::array<T, 3>, 4>& pB,
+                 std::array<T, 3> (&SA)[16], std::array<T, 3> (&SB)[16], std::array<T, 6> (&QA)[16],
+                 std::array<T, 6> (&QB)[16]) {
+  constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
+  SA[0] = SB[0] = {T(0), T(0), T(0)};
+  QA[0].fill(T(0)), QB[0].fill(T(0));
+  for (unsigned m = 1; m < 16; ++m) {
+    const int i = m >= 8 ? 3 : m >= 4 ? 2 : m >= 2 ? 1 : 0;
+    const unsigned rest = m & ~(1u << i);
+    for (int k = 0; k < 3; ++k) SA[m][k] = SA[rest][k] + pA[i][k], SB[m][k] = SB[rest][k] + pB[i][k];
+    for (int q = 0; q < 6; ++q)
+      QA[m][q] = QA[rest][q] + pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] = QB[rest][q] + pB[i][kR[q]] * pB[i][kC[q]];
+  }
+}
+
+// One piece's geometry (relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B), its
+// 20 H's moments' combination H (exact or in doubles), and (exact path) the power of two pe
+// its double matrix is scaled by.
+template <class T>
+struct PieceGeometry {
+  unsigned ma = 0, mb = 0;
+  int mA = 0, mB = 0;
+  std::array<T, 3> C, TA, S;
+  T h[3][3];
+  long pe = 0;
+};
+
+// The enumeration of enumerate_pieces (below) over one pair: the subset sums, the pieces that
+// survive the pruning, and each survivor's H and conditions for consider_piece.
+template <class T, class ToDouble>
+class PieceEnumeration {
+  static constexpr bool kExact = !std::is_same_v<T, double>;
+  using TV = std::array<T, 3>;
+  using M6 = std::array<T, 6>;  // xx xy xz yy yz zz
+  static constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
+  static TV vadd(const TV& a, const TV& b) { return TV{a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+  static TV vsub(const TV& a, const TV& b) { return TV{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+  static TV vmul(const TV& a, const T& s) { return TV{a[0] * s, a[1] * s, a[2] * s}; }
+
+ public:
+  PieceEnumeration(const Corners<T>& pA, const Corners<T>& pB, const Search& search, ToDouble to_d)
+      : pA(pA), pB(pB), search(search), P(search.P), best(search.best), to_d(to_d) {}
+
+  void run() {
+    sums();
+    if constexpr (kExact) survivors_exact();
+    else survivors_double();
+    for (unsigned ma = 1; ma < 16; ++ma)
+      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) visit(ma, unsigned(__builtin_ctz(bits)));
+  }
+
+ private:
+  double amax(const TV& x) const {
+    double m = 0;
+    for (const T& c : x) m = std::max(m, std::fabs(to_d(c)));
+    return m;
+  }
+
+  // The pieces' double matrices N = 20 H by rows (surviving_pieces), with their eigenvalue
+  // counts at the window's edges. Double path: on its own sums. Exact path: on the exact
+  // positions rounded once (|x| < 4 here), each coordinate within u |x| of the exact one;
+  // that moves the exact 20 H by at most 704 u L^2 per entry (C moves by <= u L and each C - a
+  // by <= 2u L, |C - a| <= 2L: 8u L^2 per outer product, <= 8 of them; T_A = wA sum (C - a)
+  // moves by <= 2u L mA wA, |T_A| <= 2L mA wA, so k T_A T_A^T by <= 8 k wA^2 mA^2 u L^2 <=
+  // 640u L^2 (mA = 4: k <= 5, wA = 1)), inside the 2^14 u mag of n_error (piece_screen.h's
+  // count, 10720u L^2 + 9u mag, leaves 5655u L^2 with mag >= L^2): the counts hold for the
+  // exact H too.
+  void sums() {
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) dA[i][k] = to_d(pA[i][k]), dB[i][k] = to_d(pB[i][k]);
+    subset_sums(dA, dB, dSA, dSB, dQA, dQB);
+    if constexpr (kExact) {
+      subset_sums(pA, pB, xSA, xSB, xQA, xQB);
+      SA = xSA, SB = xSB, QA = xQA, QB = xQB;
+    } else {
+      SA = dSA, SB = dSB, QA = dQA, QB = dQB;  // (the double path's own: dA = pA)
+    }
+    for (unsigned m = 0; m < 16; ++m) {
+      qa[m] = qb[m] = 0;
+      for (int q = 0; q < 6; ++q) qa[m] = std::max(qa[m], std::fabs(dQA[m][q])), qb[m] = std::max(qb[m], std::fabs(dQB[m][q]));
+    }
+    for (unsigned mb = 0; mb < 16; ++mb) {
+      for (int k = 0; k < 3; ++k) cols.S[k][mb] = dSB[mb][k];
+      for (int q = 0; q < 6; ++q) cols.Q[q][mb] = dQB[mb][q];
+      cols.q[mb] = qb[mb];
+      cols.m[mb] = kPopcount[mb];
+      cols.w[mb] = 1.0 / (5 - kPopcount[mb]);
+    }
+    top = best.value_in(0) * (1 - kPrune);
+  }
+
+  // Double path: every row's pieces outside the window are dropped (surviving_pieces), the
+  // rest gathered and screened side by side (screen); survivors[ma] keeps the bits of the
+  // pieces left for consider_piece. Both use the best value offered so far (the start's): a
+  // higher threshold than later ones, so nothing is dropped that a later one would keep.
+  void survivors_double() {
+    static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
+    lanes.n = 0;
+    for (unsigned ma = 1; ma < 16; ++ma) {
+      RowLanes row;
+      survivors[ma] = surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top,
+                                       search.lower, row);
+      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {  // (set bits: no branch per piece)
+        const unsigned mb = unsigned(__builtin_ctz(bits));
+        const int p = lanes.n++;
+        for (int q = 0; q < 6; ++q) lanes.N[q][p] = row.N[q][mb];
+        for (int k = 0; k < 3; ++k) lanes.C[k][p] = row.C[k][mb], lanes.TA[k][p] = row.TA[k][mb];
+        lanes.n_error[p] = row.n_error[mb], lanes.below_low[p] = row.below_low[mb], lanes.one[p] = row.one[mb];
+        for (int i = 0; i < 4; ++i) lanes.sign[i][p] = kSignOf[ma][i], lanes.sign[4 + i][p] = kSignOf[mb][i];
+        lanes.ma[p] = static_cast<unsigned char>(ma), lanes.mb[p] = static_cast<unsigned char>(mb);
+      }
+    }
+    double qA[4][3], qB[4][3];
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) qA[i][k] = dA[i][k], qB[i][k] = dB[i][k];
+    screen(lanes, qA, qB, 1e-12 * P.scale, top, search.lower);
+    for (int p = 0; p < lanes.n; ++p) survivors[lanes.ma[p]] &= ~(unsigned(!lanes.keep[p]) << lanes.mb[p]);
+  }
+
+  // Exact path: only the pieces whose eigenvalues all lie certainly above the window's top
+  // edge or below its bottom one are dropped: such a piece holds no stationary value in the
+  // window, and no wall offer either (a wall's value lies between H's two smallest
+  // eigenvalues, Cauchy interlacing: above the top, or below the bottom edge); the pieces
+  // with eigenvalues on both sides of the window keep their wall offers (a far vertex's
+  // minimiser, consider_piece).
+  void survivors_exact() {
+    for (unsigned ma = 1; ma < 16; ++ma) {
+      RowLanes row;
+      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
+      survivors[ma] = 0;
+      for (unsigned mb = 1; mb < 16; ++mb)
+        if (!(row.below_top[mb] == 0 || row.below_low[mb] == 3)) survivors[ma] |= 1u << mb;
+    }
+  }
+
+  // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B; 20 H by moments (above).
+  void build(PieceGeometry<T>& g) const {
+    const unsigned ma = g.ma, mb = g.mb;
+    const int mA = g.mA = kPopcount[ma], mB = g.mB = kPopcount[mb];
+    const T wA = T(1) / T(5 - mA), wB = T(1) / T(5 - mB);
+    g.C = vmul(vadd(vmul(SA[ma], wA), vmul(SB[mb], wB)), T(1) / (T(mA) * wA + T(mB) * wB));
+    g.TA = vmul(vsub(vmul(g.C, T(mA)), SA[ma]), wA);
+    g.S = vadd(SA[ma], SB[mb]);
+    const TV &C = g.C, &TA = g.TA, &S = g.S;
+    const T m = T(mA + mB), k = T(10 - mA - mB);
+    for (int q = 0; q < 6; ++q) {
+      const int r = kR[q], c = kC[q];
+      g.h[r][c] = (QA[ma][q] + QB[mb][q] - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
+                   k * TA[r] * TA[c]) / T(20);
+      g.h[c][r] = g.h[r][c];
+    }
+  }
+
+  // Exact path: H rounded after scaling by 2^-pe, its largest entry near 1 (a piece of the
+  // near vertices of a pair with a vertex 1e200 away has entries ~1e-400 in the pair's
+  // scaled units: they would underflow). Eigenvectors do not change; eigenvalues and the
+  // values they are compared with are taken in the piece's units (consider_piece).
+  void rounded_matrix(PieceGeometry<T>& g, Eigen::Matrix3d& H) const {
+    if constexpr (kExact) {
+      g.pe = LONG_MIN;
+      for (int q = 0; q < 6; ++q) g.pe = std::max(g.pe, detail::log2_estimate(g.h[kR[q]][kC[q]]));
+      if (g.pe == LONG_MIN) g.pe = 0;
+    }
+    for (int q = 0; q < 6; ++q) {
+      const int r = kR[q], c = kC[q];
+      if constexpr (kExact) {
+        T x = g.h[r][c];
+        detail::scale_pow2(x, -g.pe);
+        H(r, c) = H(c, r) = to_d(x);
+      } else {
+        H(r, c) = H(c, r) = to_d(g.h[r][c]);
+      }
+    }
+  }
+
+  double h_error(const PieceGeometry<T>& g) const {
+    if constexpr (kExact) return 0;
+    const double c = amax(g.C), t = amax(g.TA);
+    return 0x1p-39 * (qa[g.ma] + qb[g.mb] + 2 * c * amax(g.S) + (g.mA + g.mB) * c * c + (10 - g.mA - g.mB) * t * t) /
+           20;
+  }
+
+  // The conditions' vectors: in doubles, with an absolute floor for their rounding (a few
+  // roundings of coordinates <= scale: far above); exact path, each scaled by its own power
+  // of two before rounding once (relative error u, no floor: a condition of the near
+  // vertices beside a far one would underflow or drown in an absolute floor).
+  V3 rounded(TV x) const {
+    if constexpr (kExact) {
+      long top = LONG_MIN;
+      for (const T& y : x) top = std::max(top, detail::log2_estimate(y));
+      if (top != LONG_MIN)
+        for (T& y : x) detail::scale_pow2(y, -top);
+    }
+    return V3{to_d(x[0]), to_d(x[1]), to_d(x[2])};
+  }
+  Conditions conditions(const PieceGeometry<T>& g) const {
+    Conditions cond;
+    cond.floor = kExact ? 0.0 : 1e-12 * P.scale;
+    for (int i = 0; i < 4; ++i) {
+      const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
+      cond.l[i] = rounded(d);        // d_i = a_i - c - T_A
+      cond.sign[i] = g.ma >> i & 1u ? 1 : -1;
+      cond.l[4 + i] = rounded(e);    // e_j = c - b_j + T_B
+      cond.sign[4 + i] = g.mb >> i & 1u ? 1 : -1;
+    }
+    cond.finish();
+    return cond;
+  }
+
+  // Exact path: eigenvector k of the piece held its signs (unrepresented()): its exact H and
+  // conditions (conditions()' vectors, exact: d_i = a_i - c - T_A, e_j = c - b_j + T_B).
+  void suspect(const PieceGeometry<T>& g, int k) {
+    if constexpr (kExact) {
+      const auto& h = g.h;
+      Best::Suspect x{{{{h[0][0], h[0][1], h[0][2]}, {h[1][0], h[1][1], h[1][2]}, {h[2][0], h[2][1], h[2][2]}}},
+                      k, {}, {}};
+      for (int i = 0; i < 4; ++i) {
+        const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
+        for (int q = 0; q < 3; ++q) x.l[i][q] = d[q], x.l[4 + i][q] = e[q];
+        x.sign[i] = g.ma >> i & 1u ? 1 : -1;
+        x.sign[4 + i] = g.mb >> i & 1u ? 1 : -1;
+      }
+      best.suspects.push_back(std::move(x));
+    }
+  }
+
+  void visit(unsigned ma, unsigned mb) {
+    PieceGeometry<T> g;
+    g.ma = ma, g.mb = mb;
+    build(g);
+    Eigen::Matrix3d H;
+    rounded_matrix(g, H);
+    auto calls = piece_calls([&] { return conditions(g); },
+                             [&](const V3& v, double mu) { return refine(g.h, v, mu, g.pe); },
+                             [&](const V3& e, const V3& f, V3 (&r)[2]) {
+                               if constexpr (kExact) return ritz(g.h, e, f, r);
+                               else return false;
+                             },
+                             [&](int k) { suspect(g, k); });
+    consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);
+  }
+
+  const Corners<T>& pA;
+  const Corners<T>& pB;
+  const Search& search;
+  const Problem& P;
+  Best& best;
+  ToDouble to_d;
+  std::array<std::array<double, 3>, 4> dA, dB;
+  std::array<double, 3> dSA[16], dSB[16];
+  std::array<double, 6> dQA[16], dQB[16];
+  TV xSA[16], xSB[16];  // exact path: the exact sums
+  M6 xQA[16], xQB[16];
+  const TV *SA = nullptr, *SB = nullptr;
+  const M6 *QA = nullptr, *QB = nullptr;
+  double qa[16], qb[16];  // max |QA|, |QB| (doubles)
+  ColumnsB cols{};        // B's sums as lanes (surviving_pieces)
+  unsigned survivors[16];
+  double top = 0;         // the window's top edge: the best value so far, less kPrune
+};
+
+}  // namespace
+
+void enumerate_pieces(const Corners<double>& pA, const Corners<double>& pB, const Search& search) {
+  PieceEnumeration<double, AsDouble>(pA, pB, search, AsDouble{}).run();
+}
+
+void enumerate_pieces(const Corners<detail::Q>& pA, const Corners<detail::Q>& pB, const Search& search) {
+  PieceEnumeration<detail::Q, AsDouble>(pA, pB, search, AsDouble{}).run();
+}
+
+}  // namespace pdd::fast::global

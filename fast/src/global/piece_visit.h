@@ -1,0 +1,351 @@
+// piece_visit.h — internal to fast/src/global: one piece of the global depth's enumeration,
+// its eigenpairs pruned and the ones that may hold the minimiser offered.
+//
+// Input : an active set S's matrix H_S (rounded, with its entries' absolute error h_error; on
+//         the exact path H = h_S 2^-pe rounded once), its sign conditions (built on demand),
+//         the best value so far and the lower bound on every G(u) (Search).
+// Output: offers to Best (best_offer.h) of every eigenvector v of H_S, or point of an
+//         eigen-plane's arc, that lies in S's cone R_S up to the tolerance kSign and whose
+//         eigenvalue may lie in the window [lower, best):
+//             H_S v = mu v, v in R_S, lower <= mu < best   (global_depth.h: pdd2_global is the
+//             least such mu over the 15 x 15 active sets);
+//         exact path, also each wall's stationary point (the 2x2 eigenproblem of H on l.v = 0),
+//         the Rayleigh-Ritz vectors of near-double eigenvalues, and the suspects of
+//         suspect_proof.h (eigenvectors that held their signs).
+#pragma once
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+#include "global/best_offer.h"
+#include "global/piece_screen.h"
+#include "global/vec3.h"
+
+namespace pdd::fast::global {
+
+using detail::kSign;
+
+inline constexpr double kPrune = 1e-10;       // an eigenvalue must beat the best by this, relative
+inline constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
+inline constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
+inline constexpr double kNearDouble = 1e-2;   // a gap below this (times |H|_F): the iterative solver
+
+// The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
+// l.v <= tol (free), per condition.
+struct Conditions {
+  V3 l[8];
+  double sign[8];  // +1: needs l.v >= 0, -1: l.v <= 0
+  double floor = 0;  // absolute error of the computed l (rounding of centred positions)
+  double tol_[8];    // kSign |l|_1 + floor (|l|_1 >= |l|_2: a wider tolerance, no square root)
+  void finish() {
+    for (int k = 0; k < 8; ++k)
+      tol_[k] = kSign * (std::fabs(l[k][0]) + std::fabs(l[k][1]) + std::fabs(l[k][2])) + floor;
+  }
+  double tol(int k) const { return tol_[k]; }
+  bool hold(const V3& v) const {
+    const double nv = norm(v);
+    for (int k = 0; k < 8; ++k)
+      if (sign[k] * dot(l[k], v) < -tol(k) * nv) return false;
+    return true;
+  }
+};
+
+// The plane spanned by unit p, q: the arc of unit vectors cos t p + sin t q where every
+// condition holds (each one a half circle widened by its tolerance); its middle, if any.
+bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out);
+
+// One active set's piece as consider_piece takes it: H, its entries within h_error (absolute;
+// on the exact path H is the exact one times 2^-pe, rounded once), and which path builds it.
+struct PieceMatrix {
+  const Eigen::Matrix3d& H;
+  double h_error;
+  bool exact;
+  long pe;
+};
+
+// What the enumeration offers to and prunes with: the evaluations' problem, the best so far,
+// and the lower bound on every G(u) (global_depth.h), in the pair's units.
+struct Search {
+  const Problem& P;
+  Best& best;
+  double lower;
+};
+
+// The piece's own operations: make_conditions() its sign conditions (built only when an
+// eigenpair survives), refine(v, mu) and ritz(e, f, out) on its H (eigen_polish.h),
+// suspect(k) (exact path: eigenvector k held its signs, for unrepresented()).
+template <class MakeConditions, class Refine, class Ritz, class Suspect>
+struct PieceCalls {
+  MakeConditions make_conditions;
+  Refine refine;
+  Ritz ritz;
+  Suspect suspect;
+};
+template <class MakeConditions, class Refine, class Ritz, class Suspect>
+PieceCalls<MakeConditions, Refine, Ritz, Suspect> piece_calls(MakeConditions make_conditions, Refine refine,
+                                                              Ritz ritz, Suspect suspect) {
+  return {make_conditions, refine, ritz, suspect};
+}
+
+// One active set's H and sign conditions: prune by eigenvalue, evaluate the eigenvectors (or
+// the eigen-plane's arc) that satisfy the conditions (global_depth.h).
+// Pruning window: an eigenpair can hold the minimiser only if its exact eigenvalue mu (= G
+// there) lies in [lower, best): every G(u) >= lower (global_depth.h's bound), and a value at or
+// above the best cannot improve it. The computed eigenvalues of the rounded H are within
+// h_error (Weyl: |E|_2 <= |E|_F <= 3 max |E_rc|) of the exact ones, plus the solver's own error:
+// kEigen |H|_F where the eigenvalues are apart, growing near a double eigenvalue (the closed
+// form's cubic roots: measured 2e-11 |H| at a gap of 4e-6 |H|, 4.5e-9 |H| below 1e-6 |H|), so
+// each eigenvalue's margin adds 8 u |H|^2 / max(gap to its neighbours, sqrt(u) |H|) (>= 1e-9
+// |H| at any gap). The window is widened by that margin on both sides (and kPrune above).
+template <class Calls>
+class PieceVisit {
+ public:
+  PieceVisit(const PieceMatrix& piece, Calls& calls, const Search& search)
+      : H(piece.H), h_error(piece.h_error), exact(piece.exact), pe(piece.pe), calls(calls), P(search.P),
+        best(search.best), lower(search.lower) {}
+
+  void run() {
+    hnorm = H.norm();
+    margin = kEigen * hnorm + 3 * h_error;
+    best_here = best.value_in(pe);  // the best value in this piece's units
+    lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
+    threshold = best_here * (1 - kPrune) + margin;
+    floor = lower_here - margin;
+    if (outside_window_cheaply() || !solve()) return;
+    if (!exact && !double_path_accuracy()) return;
+    cond = calls.make_conditions();
+    if (exact) {
+      offer_smallest();
+      for (int k = 0; k < 8; ++k) offer_wall(k);
+      offer_ritz();
+    }
+    offer_eigenvectors();
+    if (exact)
+      for (int k = 0; k < 3; ++k)
+        if (held[k]) calls.suspect(k);
+  }
+
+ private:
+  // Cheap tests first. mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
+  // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and the
+  // entries' own errors): 64 u |H|_F^3 + 6 |H|_F^2 (3 h_error). mu_max <= trace (H is PSD).
+  bool outside_window_cheaply() const {
+    const double tr = H.trace();
+    const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm - 18 * hnorm * hnorm * h_error;
+    if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return true;
+    if (tr + 3 * margin < floor) return true;
+    return false;
+  }
+
+  // The eigenpairs and each eigenvalue's margin (above); false when none can matter.
+  // Double path: the closed-form solver (fast; eigenvectors off by ~u |H| / gap, so the value
+  // along one exceeds the stationary value by ~|H| (u |H| / gap)^2, below 1e-13 of any depth
+  // this path takes, >= 1e-10 scale^2). Exact path: the iterative solver (Householder + QR),
+  // whose vectors keep structure such as a zero row, then inverse iteration (refine).
+  bool solve() {
+    if (exact) eig.compute(H);
+    else eig.computeDirect(H);
+    if (eig.info() != Eigen::Success) return false;
+    mu = eig.eigenvalues();
+    for (int k = 0; k < 3; ++k) {
+      double gap = INFINITY;
+      if (k > 0) gap = std::min(gap, mu(k) - mu(k - 1));
+      if (k < 2) gap = std::min(gap, mu(k + 1) - mu(k));
+      m[k] = margin + 8 * kU * hnorm * hnorm / std::max(gap, std::sqrt(kU) * hnorm);
+    }
+    bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
+    for (int k = 0; k < 3; ++k) any = any || in_window(k);
+    return any;
+  }
+
+  bool in_window(int k) const {
+    return mu(k) >= lower_here - m[k] && mu(k) < best_here * (1 - kPrune) + m[k];
+  }
+  double gap_of(int k) const {
+    double g = INFINITY;
+    for (int j = 0; j < 3; ++j)
+      if (j != k) g = std::min(g, std::fabs(mu(j) - mu(k)));
+    return g;
+  }
+
+  // Near-double eigenvalues (double path). An eigenvector v~ off the exact one v* by small
+  // components d_j along the other eigenvectors has a value off by sum_j (lambda_j - mu) d_j^2
+  // (the quadratic form on the unit sphere), and d_j ~ E / |lambda_j - mu| for a matrix error
+  // E: so about E^2 / gap, which is not small beside a shallow mu when the gap is small. The
+  // closed-form solver is worse there (its eigenvalues err by up to ~4.5e-9 |H| near a double
+  // root, so its vectors can be anywhere in the plane: on pairs of nearly collinear edges in
+  // shallow contact, two eigenvalues 1e-9 apart, its values come out 4% above the minimum).
+  // So an in-window eigenvalue within kNearDouble |H| of another is taken from the iterative
+  // solver (vectors off by ~u |H| / gap; eigenvalues backward stable, within a few u |H| of
+  // H's whatever the gap, so the margin drops the closed form's loss term and keeps kEigen
+  // |H| + 3 h_error), and where its estimate 2 E^2 / gap, E = 3 h_error +
+  // 8 u |H| (H's error and the solver's), exceeds 1e-11 of the eigenvalue (a tenth of the
+  // budget kGlobalRel), the pair is redone on exact pieces (needs_exact), whose Ritz offers
+  // below do not depend on the gap. false: the iterative solver failed (needs_exact set).
+  bool double_path_accuracy() {
+    bool near_double = false;
+    for (int k = 0; k < 3; ++k) near_double = near_double || (in_window(k) && !(gap_of(k) >= kNearDouble * hnorm));
+    if (near_double) {
+      eig.compute(H);
+      if (eig.info() != Eigen::Success) {
+        best.needs_exact = true;
+        return false;
+      }
+      mu = eig.eigenvalues();
+      for (double& mk : m) mk = margin;
+    }
+    // The same estimate for every in-window eigenvalue, near-double or not (the closed-form
+    // solver's vectors are off by ~u |H| / gap too): H's error E is absolute, ~2^-39 of the
+    // moments' magnitude, so a piece whose active vertices form a small cluster far from the
+    // centroid (|H| << mag) in a shallow contact can have E^2 / gap near the eigenvalue
+    // itself (estimated: ~1e-8 of it for |H| ~ 1e-8 R^2, gap ~ 1e-2 |H|). Such a
+    // piece sends the pair to the exact pieces. On the paper's pairs it never triggers.
+    const double E = 3 * h_error + 8 * kU * hnorm;
+    for (int k = 0; k < 3; ++k)
+      if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here))) best.needs_exact = true;
+    return true;
+  }
+
+  V3 vector(int k) const {
+    const Eigen::Vector3d e = eig.eigenvectors().col(k);
+    return V3{e(0), e(1), e(2)};
+  }
+  void offer_if_held(const V3& v, int k) {  // k: the eigenvector's index, -1 for none
+    if (!cond.hold(v)) return;
+    if (k >= 0) held[k] = true;
+    best.offer(P, v);
+  }
+
+  // Generic minimisers are interior to their piece, hence the smallest eigenvalue's vector
+  // (the Rayleigh quotient has no other local minimum). Its eigenvalue can be far below the
+  // solver's resolution u |H| (a vertex 1e18 away makes |H| ~ 1e36 while the depth is ~1):
+  // inverse iteration with shift 0 on the exact H (slow path) finds it regardless.
+  void offer_smallest() {
+    if (mu(0) < lower_here - m[0]) return;
+    const V3 v = calls.refine(vector(0), 0.0);
+    for (double s : {1.0, -1.0}) offer_if_held(mul(v, s), 0);
+  }
+
+  // A far vertex (exact path): a vertex 1e18 away from the others makes the H of every piece
+  // where it is active the sum of a moderate part and a huge rank-one part ~ d d^T (d its
+  // lever); the minimiser then sits on the wall l.v = 0 between a moderate piece (vertex free)
+  // and that steep one (within ~1e-36 rad of it), an eigenvector of the steep H with an
+  // eigenvalue far below its resolution, and no double normal reaches the steep side without
+  // its value exploding. So on each wall of each piece the moderate H's smallest stationary
+  // point on the wall (the 2x2 eigenproblem of H on the plane l^T v = 0) is offered, nudged
+  // by 2^-49 rad into the piece: far above the normal's rounding (3 u of each component), so
+  // the vertex stays free, and a change of the value of ~2^-49 |H| / G relative. Each offer is
+  // evaluated exactly; offers only ever lower the result.
+  void offer_wall(int k) {
+    const V3& l = cond.l[k];
+    const double ln = norm(l);
+    if (!(ln > 0)) return;
+    const int axis = std::fabs(l[0]) <= std::fabs(l[1]) && std::fabs(l[0]) <= std::fabs(l[2]) ? 0
+                     : std::fabs(l[1]) <= std::fabs(l[2])                                     ? 1
+                                                                                              : 2;
+    V3 p = cross(l, V3{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0});
+    p = mul(p, 1 / norm(p));
+    const V3 q = mul(cross(l, p), 1 / ln);
+    auto form = [&](const V3& x, const V3& y) {
+      double f = 0;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) f += x[r] * H(r, c) * y[c];
+      return f;
+    };
+    const double m00 = form(p, p), m01 = form(p, q), m11 = form(q, q);
+    const double mw = (m00 + m11) / 2 - std::hypot((m00 - m11) / 2, m01);
+    if (!(mw < threshold) || mw < floor) return;
+    const double a0 = m01, b0 = mw - m00, a1 = mw - m11, b1 = m01;
+    const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
+    double ua = first ? a0 : a1, ub = first ? b0 : b1;
+    const double big = std::max(std::fabs(ua), std::fabs(ub));  // H-sized: may be ~1e-300
+    if (!(big > 0)) return;
+    const V3 u = add(mul(p, ua / big), mul(q, ub / big));
+    const V3 nudge = mul(l, cond.sign[k] * 0x1p-49 / ln);
+    for (double s : {1.0, -1.0}) {
+      offer_if_held(add(mul(u, s / norm(u)), nudge), -1);  // (a wall: not an eigenvector)
+    }
+  }
+
+  // Exact path: near-double eigenvalues. On the plane of two computed eigenvectors e, f whose
+  // eigenvalues are within 1e-2 of each other, the Rayleigh-Ritz vectors of the exact H (ritz:
+  // the 2x2 matrix K = [e f]^T H [e f] in rationals, its eigenvectors by one atan2 of its
+  // exactly computed entries) are offered. Why they are accurate whatever the gap: e, f span
+  // the exact invariant plane up to components w orthogonal to it, |w| ~ u |H| / (distance to
+  // the third eigenvalue), and H maps that plane into itself, so K differs from H's own
+  // restriction by w^T H w only (second order); [e f]^T [e f] = I + O(u) moves K's eigenvalues
+  // by O(u mu) and its vectors by O(u mu / gap), a value change of O(min(gap, (u mu)^2 / gap))
+  // <= u mu; the atan2 of entries rounded once is good to a few u. The inverse iteration
+  // (refine) alone cannot do this: its shift, 1e-6 of mu below, lies between two eigenvalues
+  // that are closer than that.
+  void offer_ritz() {
+    for (int k = 0; k < 2; ++k) {
+      if (!(in_window(k) || in_window(k + 1))) continue;
+      if (!(mu(k + 1) - mu(k) <= 1e-2 * std::max(std::fabs(mu(k + 1)), std::fabs(mu(k))) + 2 * m[k])) continue;
+      V3 r[2];
+      if (!calls.ritz(vector(k), vector(k + 1), r)) continue;
+      for (const V3& v : r)
+        for (double s : {1.0, -1.0}) offer_if_held(mul(v, s), -1);
+    }
+  }
+
+  // The eigenvectors in the window, ascending. A plane of eigenvectors: two eigenvalues within
+  // the solver's resolution of each other (relative to them, not to |H|: a far vertex's huge
+  // eigenvalue beside two moderate ones must not merge the moderate two). Its arc's middle is
+  // offered, and each computed vector.
+  void offer_eigenvectors() {
+    for (int k = 0; k < 3; ++k) {
+      if (!(mu(k) < best_here * (1 - kPrune) + m[k])) break;  // ascending
+      const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * std::fabs(mu(k + 1)) + 2 * m[k];
+      if (mu(k) < lower_here - m[k] && !(plane && mu(k + 1) >= lower_here - m[k + 1])) continue;
+      if (plane) {
+        offer_plane(k);
+        ++k;
+        continue;
+      }
+      // The polish (refine) only for an orientation that holds its conditions as computed: the
+      // conditions' tolerance (kSign) is far above the polish's change of direction.
+      const V3 raw = vector(k);
+      for (double s : {1.0, -1.0}) {
+        if (!exact && !cond.hold(mul(raw, s))) continue;
+        offer_if_held(mul(calls.refine(raw, mu(k)), s), k);
+      }
+    }
+  }
+  void offer_plane(int k) {  // eigenvectors k and k + 1 span a plane
+    const V3 e = vector(k), f = vector(k + 1);
+    V3 w;
+    if (arc_middle(cond, e, f, w)) {
+      held[k] = held[k + 1] = true;
+      best.offer(P, w);
+    }
+    for (int j = 0; j < 2; ++j) {
+      const V3 u = calls.refine(j ? f : e, mu(k));
+      for (double s : {1.0, -1.0}) offer_if_held(mul(u, s), k + j);
+    }
+  }
+
+  const Eigen::Matrix3d& H;
+  const double h_error;
+  const bool exact;
+  const long pe;
+  Calls& calls;
+  const Problem& P;
+  Best& best;
+  const double lower;
+  double hnorm = 0, margin = 0, best_here = 0, lower_here = 0, threshold = 0, floor = 0;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  Eigen::Vector3d mu;
+  double m[3] = {0, 0, 0};  // each eigenvalue's margin (above)
+  Conditions cond;
+  bool held[3] = {false, false, false};  // exact path: eigenvector k held the signs
+};
+
+template <class Calls>
+void consider_piece(const PieceMatrix& piece, Calls& calls, const Search& search) {
+  PieceVisit<Calls>(piece, calls, search).run();
+}
+
+}  // namespace pdd::fast::global

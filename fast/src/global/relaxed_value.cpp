@@ -1,0 +1,51 @@
+// relaxed_value.cpp — see relaxed_value.h.
+#include "global/relaxed_value.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pdd::fast::global {
+
+detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v, detail::Q hA[4],
+                        detail::Q hB[4], Solution<detail::Q>& s) {
+  using detail::Q;
+  const Q v0(v[0]), v1(v[1]), v2(v[2]);
+  for (int i = 0; i < 4; ++i) {
+    hA[i] = v0 * (Q(A[i][0]) - Q(A[0][0])) + v1 * (Q(A[i][1]) - Q(A[0][1])) + v2 * (Q(A[i][2]) - Q(A[0][2]));
+    hB[i] = v0 * (Q(B[i][0]) - Q(A[0][0])) + v1 * (Q(B[i][1]) - Q(A[0][1])) + v2 * (Q(B[i][2]) - Q(A[0][2]));
+  }
+  s = detail::solve_relaxed_heights(hA, hB);
+  return s.cost / (20 * (v0 * v0 + v1 * v1 + v2 * v2));
+}
+
+Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v) {
+  Evaluation ev;
+  int top = 0;
+  for (int i = 1; i < 4; ++i)
+    if (dot(v, P.relA[i]) > dot(v, P.relA[top])) top = i;
+  for (int i = 0; i < 4; ++i) {
+    V3 a, b;
+    for (int k = 0; k < 3; ++k) a[k] = A[i][k] - A[top][k], b[k] = B[i][k] - A[top][k];
+    ev.hA[i] = dot(v, a), ev.hB[i] = dot(v, b);
+  }
+  const DirectionSolution& sol = ev.sol = solve_relaxed(ev.hA, ev.hB);
+  double Ha = std::fabs(sol.c);
+  bool margins = true;
+  double margin[8];
+  for (int i = 0; i < 4; ++i) {
+    margin[i] = sol.c - ev.hA[i] + sol.sumA;      // < 0: at the plane (active)
+    margin[4 + i] = sol.c - ev.hB[i] + sol.sumB;  // > 0: at the plane (active)
+    if (margin[i] < 0) Ha = std::max(Ha, std::fabs(ev.hA[i]));
+    if (margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(ev.hB[i]));
+  }
+  const double dT = 0x1p9 * kU * Ha;
+  for (double m : margin) margins = margins && std::fabs(m) > 2 * dT;
+  const double phi = std::sqrt(sol.cost / 20.0);
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double r = phi > 0 ? (2 * 10 * kU * vn1 * P.scale + std::sqrt(2.0) * dT) / phi + 4 * kU : INFINITY;
+  ev.value = sol.cost / (20.0 * dot(v, v));
+  if (margins) ev.error = 2 * r + 8 * kU;
+  return ev;
+}
+
+}  // namespace pdd::fast::global

@@ -1,0 +1,377 @@
+// suspect_proof.cpp — see suspect_proof.h for the argument.
+#include "global/suspect_proof.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "global/eigen_polish.h"
+
+namespace pdd::fast::global {
+namespace {
+
+// The number of eigenvalues of the symmetric M below t, exactly. N = M - tI has the
+// characteristic polynomial x^3 - tr(N) x^2 + c1 x - det(N) (c1: the sum of N's principal 2x2
+// minors); its roots are N's eigenvalues, all real, so by Descartes' rule (exact for real-rooted
+// polynomials, zero coefficients skipped) N's negative eigenvalues, the positive roots of
+// -(x^3 + tr(N) x^2 + c1 x + det(N)), number the sign changes of (1, tr N, c1, det N).
+// An eigenvalue equal to t is not counted (it is not below t) unless `or_equal`: then each
+// eigenvalue equal to t (a zero root of the polynomial: its trailing zero coefficients) is.
+int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const detail::Q& t,
+                      bool or_equal = false) {
+  using detail::Q;
+  Q a[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[r][c] = M[r][c] - (r == c ? t : Q(0));
+  const Q tr = a[0][0] + a[1][1] + a[2][2];
+  const Q c1 = a[0][0] * a[1][1] - a[0][1] * a[1][0] + a[0][0] * a[2][2] - a[0][2] * a[2][0] +
+               a[1][1] * a[2][2] - a[1][2] * a[2][1];
+  const Q det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  int changes = 0, last = 1;
+  for (const Q* c : {&tr, &c1, &det}) {
+    const int sg = sgn(*c);
+    if (sg == 0) continue;
+    if (sg != last) ++changes;
+    last = sg;
+  }
+  if (or_equal)
+    for (const Q* c : {&det, &c1, &tr}) {
+      if (sgn(*c) != 0) break;
+      ++changes;
+    }
+  return changes;
+}
+
+// Integer normals near the direction of y (exact), for represent_suspect: a double triple
+// rounded from a unit vector misses its direction by ~u, and along a generic direction (a contact
+// not along a coordinate plane) the neighbouring doubles do no better; but the normal need not
+// be a unit vector. With y_m its largest component and alpha_i = y_i / y_m (|alpha_i| <= 1),
+// the triple c (alpha_0, alpha_1, alpha_2) with c an integer below 2^53 and the other two
+// components rounded to integers is a double triple (every integer up to 2^53 is) whose
+// direction misses y's by (frac distance of c alpha_i) / c: for the c among `tries` consecutive
+// integers below 2^53 where both fractional parts are small (they are equidistributed: the best
+// of M tries has both within ~1/sqrt(M)), that angle is ~1/sqrt(M) of a rounded unit vector's.
+// The fractional parts are tracked in 64-bit fixed point (wrapping arithmetic is arithmetic mod
+// 1): the first exactly, then minus alpha_i 2^64 rounded down per step, so after j steps they
+// are off by < j 2^-64, beside the ~2^-9 that selects; the chosen triples' integers are then
+// computed exactly. Only a search: each triple is evaluated exactly by the caller.
+void integer_normals(const detail::Q (&y)[3], int tries, int keep, std::vector<V3>& out) {
+  using detail::Q;
+  int m = 0;
+  for (int i = 1; i < 3; ++i)
+    if (abs(y[i]) > abs(y[m])) m = i;
+  if (sgn(y[m]) == 0) return;
+  const int idx[2] = {(m + 1) % 3, (m + 2) % 3};
+  const std::uint64_t c0 = (std::uint64_t(1) << 53) - 1;
+  Q alpha[2];
+  std::uint64_t A[2], F[2];
+  for (int t = 0; t < 2; ++t) {
+    alpha[t] = y[idx[t]] / y[m];
+    auto frac64 = [&](unsigned long c) {  // floor(c alpha 2^64) mod 2^64
+      mpz_class num = alpha[t].get_num() * c, q, r;
+      mpz_mul_2exp(num.get_mpz_t(), num.get_mpz_t(), 64);
+      mpz_fdiv_q(q.get_mpz_t(), num.get_mpz_t(), alpha[t].get_den_mpz_t());
+      mpz_fdiv_r_2exp(r.get_mpz_t(), q.get_mpz_t(), 64);  // in [0, 2^64)
+      return std::uint64_t(mpz_get_ui(r.get_mpz_t()));
+    };
+    A[t] = frac64(1), F[t] = frac64(static_cast<unsigned long>(c0));
+  }
+  std::vector<std::pair<double, std::uint64_t>> top;  // (metric, c), the `keep` best
+  auto dist = [](std::uint64_t f) {  // distance to the nearest integer, times 2^64
+    return double(f < (std::uint64_t(1) << 63) ? f : std::uint64_t(0) - f);
+  };
+  for (int j = 0; j < tries; ++j) {
+    const double d0 = dist(F[0]), d1 = dist(F[1]), metric = d0 * d0 + d1 * d1;
+    if (int(top.size()) < keep || metric < top.back().first) {
+      if (int(top.size()) == keep) top.pop_back();
+      top.insert(std::upper_bound(top.begin(), top.end(), std::make_pair(metric, std::uint64_t(0))),
+                 {metric, c0 - std::uint64_t(j)});
+    }
+    F[0] -= A[0], F[1] -= A[1];  // c -> c - 1 (mod 2^64: mod 1)
+  }
+  const double s = sgn(y[m]) > 0 ? 1.0 : -1.0;
+  for (const auto& [metric, c] : top) {
+    V3 v;
+    v[m] = s * double(c);
+    for (int t = 0; t < 2; ++t) {  // round(c alpha) = floor((2 c num + den) / (2 den)), exactly
+      mpz_class num = alpha[t].get_num(), den = alpha[t].get_den(), q;
+      num *= static_cast<unsigned long>(c);
+      num = 2 * num + den;
+      den *= 2;
+      mpz_fdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+      v[idx[t]] = s * q.get_d();  // |q| <= c < 2^53: exact
+    }
+    out.push_back(v);
+  }
+}
+
+// One suspect in the window (above): true when its eigenvalue is proved not to be a stationary
+// value of G (both unit eigenvectors outside the cone); else lo (a proved lower bound of the
+// eigenvalue, at least `bottom`) and the offers, as above.
+// The eigenvector x: Eigen's on h rounded (scaled by a power of two), polished by inverse
+// iteration on the exact h (refine: each step rounded componentwise to doubles) shifted by the
+// exact Rayleigh quotient of Eigen's; then y = one exact step more (below). The proof holds
+// for any non-zero vector y (x, tried first as it is cheap, or y): with rho = y^T h y / y^T y
+// and R2 = |h y - rho y|^2 / y^T y (exact rationals), and g > 0 such that h has exactly one
+// eigenvalue, the k-th, in (rho - g, rho + g) (counted exactly by eigenvalues_below, with multiplicity: so that
+// eigenvalue mu is simple and every other lambda_j has |lambda_j - rho| >= g). Write y / |y| =
+// sum c_j e_j in h's orthonormal eigenvectors, sum c_j^2 = 1. Then R2 = sum c_j^2 (lambda_j -
+// rho)^2 >= g^2 sum_{j != k} c_j^2 = g^2 sin^2 t (t the angle between y and e = +-e_k chosen
+// with e.y >= 0, t <= pi/2), so sin^2 t <= s2 = R2 / g^2 (the sin theta theorem).
+// (a) Cone: |y/|y| - e|^2 = 2 - 2 cos t <= 2 sin^2 t for t <= pi/2, so |l.y/|y| - l.e| <=
+// |l| sqrt(2 s2) for each condition l: when sign l.y < 0 and (l.y)^2 > 2 |l|^2 |y|^2 s2,
+// sign l.e < 0 and e is outside the cone; when sign l.y > 0 and the same, -e is. Both outside
+// (the only unit eigenvectors of the simple mu): not a stationary value of its piece, dropped.
+// (b) Bound: sum c_j^2 (lambda_j - rho) = 0 (rho's definition), so c_k^2 |mu - rho| =
+// |sum_{j != k} c_j^2 (lambda_j - rho)| <= sum_{j != k} c_j^2 (lambda_j - rho)^2 / g <= R2 / g,
+// and c_k^2 = cos^2 t >= 1 - s2: mu >= rho - R2 / (g (1 - s2)) when s2 < 1. lo is that,
+// checked once more by counting (#at_or_below(lo) <= k, i.e. mu > lo), when above `bottom`.
+// Where a step fails (no gap, s2 >= 1, a count disagrees), lo = bottom: still a lower bound
+// (the eigenvalue lies in the window), which no offer meets unless its value is as low as the
+// floor (0, or ~PD^2 / 32 <= G): in practice the pair is then rejected. The offers are tried
+// in order of cost (x itself; the 26 triples one ulp away; integer normals along y) until q
+// meets lo to kGlobalRel (below).
+// represent_suspect's exact arithmetic on one suspect (its argument above): the eigenvector x
+// (Eigen's, polished), y (one exact step more), the Rayleigh quotient rho of the last vector
+// given to rayleigh() with R2 = |h q - rho q|^2 / q.q and q.q, and what settle() proved.
+class SuspectProof {
+  using Q = detail::Q;
+
+ public:
+  explicit SuspectProof(const Best::Suspect& s) : s(s) {}
+
+  // h (exact), its double image H = h 2^-pe and Eigen's eigenpairs of H; false when h = 0 or
+  // the solver fails.
+  bool setup() {
+    pe = LONG_MIN;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) h[r][c] = s.h[r][c], pe = std::max(pe, detail::log2_estimate(h[r][c]));
+    if (pe == LONG_MIN) return false;  // h = 0 (no eigenvalue in the window: not reached)
+    Eigen::Matrix3d H;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        Q x = h[r][c];
+        detail::scale_pow2(x, -pe);
+        H(r, c) = x.get_d();
+      }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+    if (eig.info() != Eigen::Success) return false;
+    mu_d = eig.eigenvalues();  // in units of 2^pe
+    e0 = eig.eigenvectors().col(s.k);
+    return true;
+  }
+
+  // x: Eigen's vector polished by refine, shifted by its exact Rayleigh quotient; then rho and
+  // R2 of x. false when a vector vanishes.
+  bool polish() {
+    qx[0] = Q(e0(0)), qx[1] = Q(e0(1)), qx[2] = Q(e0(2));
+    if (sgn(qx[0]) == 0 && sgn(qx[1]) == 0 && sgn(qx[2]) == 0) return false;
+    rayleigh(qx);
+    x = refine(h, V3{e0(0), e0(1), e0(2)}, in_units(rho), pe);
+    if (!nonzero(x)) return false;
+    for (int c = 0; c < 3; ++c) qx[c] = Q(x[c]);
+    rayleigh(qx);
+    return true;
+  }
+
+  // The Rayleigh quotient rho of q, R2 = |h q - rho q|^2 / q.q and q.q, exactly.
+  void rayleigh(const Q (&q)[3]) {
+    Q hq[3];
+    for (int r = 0; r < 3; ++r) hq[r] = h[r][0] * q[0] + h[r][1] * q[1] + h[r][2] * q[2];
+    qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+    rho = (q[0] * hq[0] + q[1] * hq[1] + q[2] * hq[2]) / qq;
+    R2 = 0;
+    for (int r = 0; r < 3; ++r) {
+      const Q res = hq[r] - rho * q[r];
+      R2 += res * res;
+    }
+    R2 /= qq;
+  }
+
+  // (a) and (b) above for the vector q of the last rayleigh(): which orientations are proved
+  // outside the cone (excluded_pos, excluded_neg), and the bound rho - R2 / (g (1 - s2));
+  // false where g or s2 fails. g: half the distance from rho to the solver's nearest other
+  // eigenvalue (a guess; the counts decide).
+  bool settle(const Q (&q)[3]) {
+    excluded_pos = excluded_neg = false;
+    const double rho_d = in_units(rho);
+    double gap_d = INFINITY;
+    for (int j = 0; j < 3; ++j)
+      if (j != s.k) gap_d = std::min(gap_d, std::fabs(mu_d(j) - rho_d));
+    if (!(gap_d > 0) || !std::isfinite(gap_d)) return false;
+    Q g(gap_d / 2);
+    if (sgn(g) == 0) return false;  // (underflow)
+    detail::scale_pow2(g, pe);
+    if (eigenvalues_below(s.h, rho - g, true) != s.k || eigenvalues_below(s.h, rho + g) != s.k + 1) return false;
+    const Q s2 = R2 / (g * g);
+    if (!(s2 < 1)) return false;
+    for (int c = 0; c < 8; ++c) {
+      const auto& l = s.l[c];
+      const Q p = s.sign[c] * (l[0] * q[0] + l[1] * q[1] + l[2] * q[2]);
+      const Q ll = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+      if (p * p > 2 * ll * qq * s2) (sgn(p) < 0 ? excluded_pos : excluded_neg) = true;
+    }
+    bound = rho - R2 / (g * (1 - s2));
+    return true;
+  }
+  bool excluded() const { return excluded_pos && excluded_neg; }
+
+  // y = adj(h - rho I) x: one more step of inverse iteration, exact, shifted by x's Rayleigh
+  // quotient. It damps x's components along the other eigenvectors by |mu - rho| /
+  // |lambda_j - rho| (rho is within ~|H| u^2 of mu), so y's direction is far more accurate than
+  // x's (x is rounded to doubles: its Rayleigh quotient, and the bound from it, would miss mu
+  // by ~|H| u^2, not small beside a depth of 1e-26 |H|). Oriented as x. Then rho and R2 of y.
+  void exact_step() {
+    Q m[3][3], adj[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? rho : Q(0));
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+        adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
+      }
+    for (int r = 0; r < 3; ++r) y[r] = adj[r][0] * qx[0] + adj[r][1] * qx[1] + adj[r][2] * qx[2];
+    const Q yx = y[0] * qx[0] + y[1] * qx[1] + y[2] * qx[2];
+    if (sgn(yx) == 0)
+      for (int c = 0; c < 3; ++c) y[c] = qx[c];  // (x orthogonal to adj's range: keep x)
+    else if (sgn(yx) < 0)
+      for (Q& c : y) c = -c;
+    rayleigh(y);
+  }
+
+  // Offers, each stage only while the bound lo is not met (met() below): x in each orientation
+  // not excluded; integer normals along y (a generic direction); the 26 triples one ulp away
+  // from x in some components (nextafter each way: a direction near an axis, where x's small
+  // components carry their own exponents and integer normals would round them coarsely).
+  // bounded: lo is a proved bound (else lo = bottom, which no offer meets).
+  void offer_near(Best& best, const Q& lo, bool bounded) const {
+    Problem none;  // (the exact offers do not read it)
+    Q scale_top(1);
+    detail::scale_pow2(scale_top, -2 * best.unit);
+    // The offers go on until q (1 + 2^-53) <= lo (1 + kGlobalRel), q in the suspects' units: the
+    // double path's budget, a tenth of what unrepresented() accepts (definitions §8's 1e-9), so
+    // that a value accepted there is not needlessly near the contract's edge where a better normal
+    // is cheap to find.
+    auto met = [&] {
+      return bounded && best.qvalue * scale_top * (Q(1) + Q(1, 1ul << 53)) <= lo * (Q(1) + Q(kGlobalRel));
+    };
+    auto offer = [&](const V3& v) {
+      for (double sg : {1.0, -1.0})
+        if (!(sg > 0 ? excluded_pos : excluded_neg)) best.offer(none, mul(v, sg));
+    };
+    offer(x);
+    if (!bounded || met()) return;  // (unbounded: lo = bottom, which no offer meets)
+    std::vector<V3> normals;
+    integer_normals(y, 1 << 18, 4, normals);
+    for (const V3& v : normals) offer(v);
+    for (int m = 0; m < 27 && !met(); ++m) {
+      if (m == 13) continue;  // all three components as they are: x
+      V3 v = x;
+      for (int c = 0, mm = m; c < 3; ++c, mm /= 3)
+        if (mm % 3 != 1) v[c] = std::nextafter(v[c], mm % 3 == 0 ? -INFINITY : INFINITY);
+      offer(v);
+    }
+  }
+
+  Q qx[3], y[3];
+  Q bound;  // settle()'s bound, when it succeeded
+
+ private:
+  double in_units(const Q& v) const {  // v 2^-pe as a double
+    Q t = v;
+    detail::scale_pow2(t, -pe);
+    return t.get_d();
+  }
+
+  const Best::Suspect& s;
+  Q h[3][3];
+  long pe = LONG_MIN;
+  Eigen::Vector3d mu_d, e0;
+  Q rho, R2, qq;
+  V3 x{};
+  bool excluded_pos = false, excluded_neg = false;
+};
+
+bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bottom, detail::Q& lo) {
+  lo = bottom;
+  SuspectProof p(s);
+  if (!p.setup() || !p.polish()) return false;
+  // x alone usually proves a spurious suspect outside its cone (its conditions are violated
+  // far beyond x's error, ~u): no exact step needed.
+  if (p.settle(p.qx) && p.excluded()) return true;
+  p.exact_step();
+  bool bounded = false;
+  if (p.settle(p.y)) {
+    if (p.excluded()) return true;
+    if (eigenvalues_below(s.h, p.bound, true) <= s.k && p.bound > bottom) lo = p.bound, bounded = true;
+  }
+  p.offer_near(best, lo, bounded);
+  return false;
+}
+
+}  // namespace
+
+bool unrepresented(Best& best, double floor_scaled) {
+  using detail::Q;
+  if (!best.have_q || best.suspects.empty()) return false;
+  // top: the reported value, qvalue rounded to a double (<= qvalue (1 + 2^-53)), is within
+  // 1e-9 of every stationary value mu >= top (qvalue (1 + 2^-53) <= mu (1 + 1e-9)). (Was
+  // qvalue (1 - 1e-9): it let the rounded value exceed such a mu by up to 1e-9 + 1.2e-16.)
+  Q top = best.qvalue * (Q(1) + Q(1, 1ul << 53)) / (Q(1) + Q(1, 1000000000));
+  detail::scale_pow2(top, -2 * best.unit);
+  const Q bottom(floor_scaled);
+  std::vector<std::size_t> window;
+  for (std::size_t i = 0; i < best.suspects.size(); ++i) {  // eigenvalue k (ascending) in (bottom, top)?
+    const auto& [h, k, l, sign] = best.suspects[i];
+    const int below_top = eigenvalues_below(h, top), below_floor = eigenvalues_below(h, bottom, true);
+    if (below_floor <= k && k < below_top) window.push_back(i);
+  }
+  if (window.empty()) return false;
+  std::vector<Q> lows;  // the settled suspects' lower bounds
+  for (std::size_t i : window) {
+    Q lo;
+    if (!represent_suspect(best, best.suspects[i], bottom, lo)) lows.push_back(lo);
+  }
+  // The suspects just above the window, in [top, q0 (1 + 2^-53) / (1 + kGlobalRel)), q0 the
+  // best now: within 1e-9 of the value already (the argument above needs nothing of them), but
+  // more than kGlobalRel below it, and their offers may come closer (a generic direction's
+  // rounded eigenvector misses by up to that 1e-9). Offers only: they lower the best and leave
+  // every bound above as it is. (Only where the window was not empty: a pair accepted without
+  // it keeps its value.)
+  Q q0 = best.qvalue * (Q(1) + Q(1, 1ul << 53)) / (Q(1) + Q(kGlobalRel));
+  detail::scale_pow2(q0, -2 * best.unit);
+  for (std::size_t i = 0; i < best.suspects.size(); ++i) {
+    const auto& [h, k, l, sign] = best.suspects[i];
+    if (eigenvalues_below(h, top) <= k && k < eigenvalues_below(h, q0)) {
+      Q lo;
+      represent_suspect(best, best.suspects[i], top, lo);
+    }
+  }
+  Q q = best.qvalue * (Q(1) + Q(1, 1ul << 53));  // (the final best, after every offer)
+  detail::scale_pow2(q, -2 * best.unit);
+  for (const Q& lo : lows)
+    if (q > lo * (Q(1) + Q(1, 1000000000))) return true;
+  return false;
+}
+
+double near_extent_sq(const TetVertices& A, const TetVertices& B) {
+  double L = INFINITY;  // the smaller tetrahedron's extent (largest coordinate range)
+  for (const TetVertices* T : {&A, &B}) {
+    double e = 0;
+    for (int k = 0; k < 3; ++k) {
+      double lo = (*T)[0][k], hi = lo;
+      for (int i = 1; i < 4; ++i) lo = std::min(lo, (*T)[i][k]), hi = std::max(hi, (*T)[i][k]);
+      e = std::max(e, hi - lo);
+    }
+    L = std::min(L, e);
+  }
+  return L * L;
+}
+
+}  // namespace pdd::fast::global
