@@ -156,4 +156,46 @@ std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices
   return d.sign() > 0;
 }
 
+// Range (expansion.h's argument with degree 10): a non-zero |coordinate| >= 2^-40 is a multiple
+// of its last bit >= 2^-92, so is every difference; n has degree 2 in differences (faces and
+// generic edge pairs), heights and D degree 3, n.n degree 4, D² n.n degree 10: every term is a
+// multiple of 2^-920 (a double, nothing lost to underflow). Magnitudes: differences < 2^41, so
+// |D² n.n| < (3 · 2^125)² · 3 · 2^166 < 2^430, far below overflow with the splitter's 2^27.
+ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
+  ExactDepthParts parts;
+  for (const TetVertices* T : {&A, &B})
+    for (const Vec3d& p : *T)
+      for (double x : p) {
+        const double a = std::fabs(x);
+        if (a != 0.0 && !(a >= 0x1p-40 && a <= 0x1p40)) return parts;
+      }
+  bool ok = true;
+  if (label.kind != ContactKind::FV && label.kind != ContactKind::VF) {
+    EdgePairKind kind;
+    (void)edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
+    if (!ok || kind != EdgePairKind::Generic) return parts;
+  }
+  const ExpVec n = oriented_normal_exp(A, B, label, ok);
+  if (!ok || !n.ok()) return parts;
+  Expansion hi, lo;
+  for (int i = 0; i < 4; ++i) {
+    const Expansion ha = dot(n, difference(A[i], A[0]));
+    const Expansion hb = dot(n, difference(B[i], A[0]));
+    if (i == 0 || difference(ha, hi).sign() > 0) hi = ha;
+    if (i == 0 || difference(hb, lo).sign() < 0) lo = hb;
+    ok = ok && ha.ok && hb.ok;
+  }
+  parts.D = difference(hi, lo);
+  parts.D2 = product(parts.D, parts.D);
+  parts.nn = dot(n, n);
+  parts.ok = ok && parts.D2.ok && parts.nn.ok && parts.nn.sign() > 0;
+  return parts;
+}
+
+std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q) {
+  const Expansion d = difference(product(p.D2, q.nn), product(q.D2, p.nn));
+  if (!d.ok) return std::nullopt;
+  return d.sign();
+}
+
 }  // namespace pdd::fast
