@@ -192,7 +192,45 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
   return parts;
 }
 
+namespace {
+// An expansion's value in doubles and a bound of its error, computed: the components summed in
+// increasing order (recursive summation: |error| <= gamma_(n-1) sum |c_i|, gamma_k = k u/(1 − k u),
+// u = 2^-53), with sum |c_i| itself computed; 2 (n + 1) u covers gamma_(n−1) and the relative
+// error gamma_n of the computed sum |c_i| for n <= kExpansionCapacity.
+struct Approx {
+  double v = 0.0, err = 0.0;
+};
+Approx approx_of(const Expansion& e) {
+  constexpr double u = 0x1p-53;
+  Approx a;
+  double m = 0.0;
+  for (int i = 0; i < e.n; ++i) a.v += e.c[i], m += std::fabs(e.c[i]);
+  a.err = 2.0 * (e.n + 1) * u * m;
+  return a;
+}
+// x · y with its error bound: |x̃ỹ − xy| <= |x̃| e_y + |ỹ| e_x + e_x e_y, plus the product's
+// rounding u |x̃ỹ|; (1 + 4u) covers the rounding of the bound's own terms. The components are
+// multiples of 2^-920 (depth_parts_exact), so non-zero values and products are normal; a term
+// of the bound that underflows loses less than 2^-1074, which the caller's 2^-1000 covers.
+Approx times(const Approx& x, const Approx& y) {
+  constexpr double u = 0x1p-53;
+  Approx r;
+  r.v = x.v * y.v;
+  r.err = (std::fabs(x.v) * y.err + std::fabs(y.v) * x.err + x.err * y.err) * (1.0 + 4.0 * u) +
+          u * std::fabs(r.v);
+  return r;
+}
+}  // namespace
+
 std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q) {
+  // Filter: the sign of the computed difference when it exceeds the computed error bound (the
+  // subtraction's own rounding, relative u, within the factor 1 + 4u); exact expansions below.
+  {
+    constexpr double u = 0x1p-53;
+    const Approx a = times(approx_of(p.D2), approx_of(q.nn)), b = times(approx_of(q.D2), approx_of(p.nn));
+    const double d = a.v - b.v, bound = (a.err + b.err) * (1.0 + 4.0 * u) + 0x1p-1000;
+    if (std::fabs(d) > bound) return d > 0 ? 1 : -1;
+  }
   const Expansion d = difference(product(p.D2, q.nn), product(q.D2, p.nn));
   if (!d.ok) return std::nullopt;
   return d.sign();
