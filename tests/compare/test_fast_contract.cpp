@@ -185,9 +185,9 @@ BOOST_AUTO_TEST_CASE(fast_engine_within_contract_on_adversarial_pairs) {
 // almost always without rationals. Record statistics (pdd.h): slow_path = the exact path, or
 // pdd2_global's value computed in rationals (at most 2% here: one pair of the 150 has the
 // latter; exact parallelism and coplanarity are decided by expansions, nearly parallel edge
-// pairs certified with their own bounds); refined = a few candidates evaluated in rationals,
-// left where nearly tied candidates of different directions must be ordered exactly for
-// pdd2_accel (at most 25% here: 22 of 150).
+// pairs certified with their own bounds); refined = a few candidates evaluated in rationals
+// (at most 4% here: 5 of 150; pdd2_accel's contenders are ordered exactly by expansions and its
+// value certified in doubles, so rationals remain where those cannot decide).
 BOOST_AUTO_TEST_CASE(aligned_pairs_within_contract_without_the_exact_path) {
   const auto pairs = compare::generate_family("aligned", 2, 150);
   int slow = 0, refined = 0;
@@ -202,6 +202,7 @@ BOOST_AUTO_TEST_CASE(aligned_pairs_within_contract_without_the_exact_path) {
     slow += fast.stats.slow_path;
     refined += fast.stats.refined;
   }
+  BOOST_TEST_MESSAGE(slow << " of " << pairs.size() << " on the slow path, " << refined << " refined");
   BOOST_TEST(slow <= int(pairs.size()) / 50, slow << " of " << pairs.size() << " on the slow path");
-  BOOST_TEST(refined <= int(pairs.size()) / 4, refined << " of " << pairs.size() << " refined");
+  BOOST_TEST(refined <= int(pairs.size()) / 25, refined << " of " << pairs.size() << " refined");
 }

@@ -55,6 +55,7 @@ int sign_of_q(const Q& q) { return sgn(q); }
 BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
   compare::ReproducibleRng r(38);
   int parallel = 0, colinear = 0, zero_g = 0, zero_depth = 0, same_direction = 0;
+  int delta_compared = 0, delta_ties = 0;
   for (int it = 0; it < 3000; ++it) {
     const auto [A, B] = aligned_pair(r);
     BOOST_REQUIRE(detail::in_exact_range(A, B));
@@ -104,6 +105,7 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
         n = detail::negated(n);
       return n;
     };
+    std::vector<Q> delta2;  // definitions §4: D²/(n.n), per label, in rationals
     for (const auto& l : labels) {
       const detail::QV n = exact_normal(l);
       Q hi = dot(n, qa[0]), lo = dot(n, qb[0]);
@@ -115,7 +117,21 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
       const int want = sgn(Q(hi - lo));
       zero_depth += want == 0;
       BOOST_TEST((depth_sign_exact(A, B, l) == sign_of(want)), l.str());
+      delta2.push_back(Q(hi - lo) * Q(hi - lo) / dot(n, n));
     }
+    // the order of delta² by expansions (no division) against the rationals' order
+    std::vector<ExactDepthParts> parts;
+    for (const auto& l : labels) parts.push_back(depth_parts_exact(A, B, l));
+    for (std::size_t i = 0; i < labels.size(); i += 3)
+      for (std::size_t j = i + 1; j < labels.size(); j += 5) {
+        if (!parts[i].ok || !parts[j].ok) continue;
+        const std::optional<int> got = compare_delta2_exact(parts[i], parts[j]);
+        if (!got) continue;
+        const int want = delta2[i] < delta2[j] ? -1 : (delta2[j] < delta2[i] ? 1 : 0);
+        BOOST_TEST(*got == want, labels[i].str() << " " << labels[j].str());
+        delta_compared += 1;
+        delta_ties += want == 0;
+      }
     for (std::size_t k = 1; k < labels.size(); k += 7) {
       const detail::QV n1 = exact_normal(labels[0]), n2 = exact_normal(labels[k]);
       const bool want = detail::is_zero(detail::cross(n1, n2)) && sgn(dot(n1, n2)) > 0;
@@ -130,6 +146,9 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
   BOOST_TEST(zero_g > 1000);
   BOOST_TEST(zero_depth > 10);
   BOOST_TEST(same_direction > 100);
+  BOOST_TEST(delta_compared > 10000);
+  BOOST_TEST(delta_ties > 100);
+  BOOST_TEST_MESSAGE("delta² compared by expansions " << delta_compared << ", exact ties " << delta_ties);
   BOOST_TEST_MESSAGE("parallel " << parallel << ", colinear " << colinear << ", zero g " << zero_g
                                  << ", zero depths " << zero_depth << ", same directions " << same_direction);
 }

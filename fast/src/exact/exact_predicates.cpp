@@ -156,4 +156,84 @@ std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices
   return d.sign() > 0;
 }
 
+// Range (expansion.h's argument with degree 10): a non-zero |coordinate| >= 2^-40 is a multiple
+// of its last bit >= 2^-92, so is every difference; n has degree 2 in differences (faces and
+// generic edge pairs), heights and D degree 3, n.n degree 4, D² n.n degree 10: every term is a
+// multiple of 2^-920 (a double, nothing lost to underflow). Magnitudes: differences < 2^41, so
+// |D² n.n| < (3 · 2^125)² · 3 · 2^166 < 2^430, far below overflow with the splitter's 2^27.
+ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
+  ExactDepthParts parts;
+  for (const TetVertices* T : {&A, &B})
+    for (const Vec3d& p : *T)
+      for (double x : p) {
+        const double a = std::fabs(x);
+        if (a != 0.0 && !(a >= 0x1p-40 && a <= 0x1p40)) return parts;
+      }
+  bool ok = true;
+  if (label.kind != ContactKind::FV && label.kind != ContactKind::VF) {
+    EdgePairKind kind;
+    (void)edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
+    if (!ok || kind != EdgePairKind::Generic) return parts;
+  }
+  const ExpVec n = oriented_normal_exp(A, B, label, ok);
+  if (!ok || !n.ok()) return parts;
+  Expansion hi, lo;
+  for (int i = 0; i < 4; ++i) {
+    const Expansion ha = dot(n, difference(A[i], A[0]));
+    const Expansion hb = dot(n, difference(B[i], A[0]));
+    if (i == 0 || difference(ha, hi).sign() > 0) hi = ha;
+    if (i == 0 || difference(hb, lo).sign() < 0) lo = hb;
+    ok = ok && ha.ok && hb.ok;
+  }
+  parts.D = difference(hi, lo);
+  parts.D2 = product(parts.D, parts.D);
+  parts.nn = dot(n, n);
+  parts.ok = ok && parts.D2.ok && parts.nn.ok && parts.nn.sign() > 0;
+  return parts;
+}
+
+namespace {
+// An expansion's value in doubles and a bound of its error, computed: the components summed in
+// increasing order (recursive summation: |error| <= gamma_(n-1) sum |c_i|, gamma_k = k u/(1 − k u),
+// u = 2^-53), with sum |c_i| itself computed; 2 (n + 1) u covers gamma_(n−1) and the relative
+// error gamma_n of the computed sum |c_i| for n <= kExpansionCapacity.
+struct Approx {
+  double v = 0.0, err = 0.0;
+};
+Approx approx_of(const Expansion& e) {
+  constexpr double u = 0x1p-53;
+  Approx a;
+  double m = 0.0;
+  for (int i = 0; i < e.n; ++i) a.v += e.c[i], m += std::fabs(e.c[i]);
+  a.err = 2.0 * (e.n + 1) * u * m;
+  return a;
+}
+// x · y with its error bound: |x̃ỹ − xy| <= |x̃| e_y + |ỹ| e_x + e_x e_y, plus the product's
+// rounding u |x̃ỹ|; (1 + 4u) covers the rounding of the bound's own terms. The components are
+// multiples of 2^-920 (depth_parts_exact), so non-zero values and products are normal; a term
+// of the bound that underflows loses less than 2^-1074, which the caller's 2^-1000 covers.
+Approx times(const Approx& x, const Approx& y) {
+  constexpr double u = 0x1p-53;
+  Approx r;
+  r.v = x.v * y.v;
+  r.err = (std::fabs(x.v) * y.err + std::fabs(y.v) * x.err + x.err * y.err) * (1.0 + 4.0 * u) +
+          u * std::fabs(r.v);
+  return r;
+}
+}  // namespace
+
+std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q) {
+  // Filter: the sign of the computed difference when it exceeds the computed error bound (the
+  // subtraction's own rounding, relative u, within the factor 1 + 4u); exact expansions below.
+  {
+    constexpr double u = 0x1p-53;
+    const Approx a = times(approx_of(p.D2), approx_of(q.nn)), b = times(approx_of(q.D2), approx_of(p.nn));
+    const double d = a.v - b.v, bound = (a.err + b.err) * (1.0 + 4.0 * u) + 0x1p-1000;
+    if (std::fabs(d) > bound) return d > 0 ? 1 : -1;
+  }
+  const Expansion d = difference(product(p.D2, q.nn), product(q.D2, p.nn));
+  if (!d.ok) return std::nullopt;
+  return d.sign();
+}
+
 }  // namespace pdd::fast

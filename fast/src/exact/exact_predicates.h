@@ -9,6 +9,7 @@
 
 #include <optional>
 
+#include "exact/expansion.h"
 #include "pdd/direction_label.h"
 #include "pdd/sign.h"
 #include "pdd/tet_pair.h"
@@ -39,5 +40,19 @@ Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const Directio
 // exceeds its capacity).
 std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
                                          const DirectionLabel& l1, const DirectionLabel& l2);
+
+// A candidate's definitions §4 depth in two exact parts, for comparing delta² = D²/(n.n) without
+// division: D = max_i n.s_i − min_j n.r_j and n.n, n the exact oriented candidate of the label.
+// ok = false when expansions cannot give them: a coordinate outside [2^-40, 2^40] (non-zero),
+// a parallel edge pair (its normal has degree 5: D² n.n would leave the range), or capacity.
+struct ExactDepthParts {
+  detail::Expansion D, D2, nn;  // D2 = D²
+  bool ok = false;
+};
+ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
+
+// sign(delta²_p − delta²_q) = sign(D_p² n_q.n_q − D_q² n_p.n_p) (n.n > 0), exactly; nullopt
+// when an expansion exceeds its capacity. Both parts from depth_parts_exact (ok).
+std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q);
 
 }  // namespace pdd::fast

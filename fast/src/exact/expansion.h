@@ -157,10 +157,15 @@ inline Expansion scaled(const Expansion& e, double b) {
   return h;
 }
 
+// e · f = sum over i of e · f_i, each partial product grown into the result in place (sum()).
 inline Expansion product(const Expansion& e, const Expansion& f) {
   Expansion r;
   r.ok = e.ok && f.ok;
-  for (int i = 0; i < f.n; ++i) r = sum(r, scaled(e, f.c[i]));
+  for (int i = 0; i < f.n; ++i) {
+    const Expansion s = scaled(e, f.c[i]);
+    r.ok = r.ok && s.ok;
+    for (int j = 0; j < s.n; ++j) grow(r, s.c[j]);
+  }
   return r;
 }
 

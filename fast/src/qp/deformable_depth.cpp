@@ -435,10 +435,74 @@ int accel_order_of(const List& set, int k, int* out) {
 // largest certified upper bound among the double path's k choices). At least k candidates have
 // exact delta² <= hi_chosen, so the exact k-th smallest is <= hi_chosen and every non-contender
 // is strictly above it: the exact first k are the first k of the contenders in exact order.
+constexpr int kMaxAccelContenders = kAccelWide + detail::kMaxRefined;
+
+// The minimum of the case-2 values of chosen[0..k) (the exact first k), certified in doubles as
+// in accel_of (the choice's value within its bounds, every other one's lower bound above it);
+// false, ch unchanged, when the bounds cannot certify it.
+template <class List>
+bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch) {
+  const DeformableVariant variant;
+  double v[kMaxAccelContenders];
+  Pending p[kMaxAccelContenders];
+  int best = -1;
+  for (int j = 0; j < k; ++j) {
+    v[j] = evaluate(set, chosen[j], variant, p[j]);
+    if (!p[j].feasible || !(v[j] > 0.0)) return false;
+    if (best < 0 || v[j] < v[best]) best = j;
+  }
+  if (best < 0) return false;
+  const double rel_best = root_bound(set, chosen[best], variant, p[best]);
+  double lo_min = safe_lower(v[best], rel_best);
+  for (int j = 0; j < k; ++j) {
+    const double l = safe_lower(v[j], root_bound(set, chosen[j], variant, p[j]));
+    lo_min = l < lo_min ? l : lo_min;
+  }
+  if (!certified_choice(upper_of(v[best], rel_best), lo_min)) return false;
+  ch = Choice{v[best], chosen[best], label_code(set, chosen[best])};
+  ch.certified = true;
+  return true;
+}
+
+// pos[0..n): the contenders idx[0..n) (canonical order) in ascending exact delta², exact ties
+// in canonical order (a stable insertion sort), compared by expansions (depth_parts_exact,
+// compare_delta2_exact: D_a² n_b.n_b against D_b² n_a.n_a, no division); false when the
+// expansions cannot decide a comparison (pos then unspecified).
+template <class List>
+bool exact_delta_order(const List& set, const int* idx, int n, int* pos) {
+  ExactDepthParts parts[kMaxAccelContenders];
+  for (int j = 0; j < n; ++j) {
+    parts[j] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[j])));
+    if (!parts[j].ok) return false;
+  }
+  for (int j = 0; j < n; ++j) {
+    int t = j;
+    pos[t] = j;
+    while (t > 0) {
+      const std::optional<int> s = compare_delta2_exact(parts[pos[t]], parts[pos[t - 1]]);
+      if (!s) return false;
+      if (*s >= 0) break;  // not below: stays after (stable)
+      std::swap(pos[t], pos[t - 1]);
+      --t;
+    }
+  }
+  return true;
+}
+
+// Case 3 refined: the exact first k in ascending exact delta² (stable in canonical order), then
+// the minimum of their case-2 values. `order` (m entries): the double path's first k when they
+// are certainly the exact first k (separated), else nullptr: then the contenders are the
+// candidates whose certified lower bound of delta² is <= hi_chosen (the largest certified upper
+// bound among the double path's k choices). At least k candidates have exact delta² <=
+// hi_chosen, so the exact k-th smallest is <= hi_chosen and every non-contender is strictly above
+// it: the exact first k are the first k of the contenders in exact order. That order is taken
+// by expansions (exact_delta_order) where they decide it, else in rationals; the value is
+// certified in doubles over the exact first k where the bounds allow (certify_first_k), else
+// the exact minimum of their case-2 values is evaluated (refine.h: refined).
 template <class List>
 void refine_accel(const List& set, int k, const int* order, int m, double hi_chosen,
                   Choice& ch) {
-  constexpr int kMax = kAccelWide + detail::kMaxRefined;
+  constexpr int kMax = kMaxAccelContenders;
   int idx[kMax], n = 0;
   if (order) {
     for (int r = 0; r < m; ++r) idx[n++] = order[r];
@@ -450,23 +514,34 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
       }
   }
   if (!set.A || n == 0) return;
-  const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
-  std::vector<detail::ExactCandidate> c;
-  c.reserve(n);
-  for (int j = 0; j < n; ++j) c.push_back(detail::exact_candidate(f, unpack_label(label_code(set, idx[j]))));
+  const int kk = k < n ? k : n;
   int pos[kMax];
-  for (int j = 0; j < n; ++j) pos[j] = j;
-  if (!order) {
+  bool sorted = order != nullptr;
+  if (!sorted && exact_delta_order(set, idx, n, pos)) {
+    sorted = true;
+    int chosen[kMax];
+    for (int r = 0; r < kk; ++r) chosen[r] = idx[pos[r]];
+    if (certify_first_k(set, chosen, kk, ch)) return;
+  }
+  if (order)
+    for (int j = 0; j < n; ++j) pos[j] = j;
+  const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
+  std::vector<detail::ExactCandidate> c(n);
+  auto exact_candidate_of = [&](int j) -> const detail::ExactCandidate& {
+    if (c[j].nn == 0) c[j] = detail::exact_candidate(f, unpack_label(label_code(set, idx[j])));
+    return c[j];
+  };
+  if (!sorted) {
+    for (int j = 0; j < n; ++j) pos[j] = j;
     std::vector<detail::Q> d(n);
-    for (int j = 0; j < n; ++j) d[j] = detail::exact_delta2(c[j]);
+    for (int j = 0; j < n; ++j) d[j] = detail::exact_delta2(exact_candidate_of(j));
     // idx ascends (canonical order), so a stable sort keeps exact ties in canonical order
     std::stable_sort(pos, pos + n, [&d](int a, int b) { return d[a] < d[b]; });
   }
-  const int kk = k < n ? k : n;
   detail::Q best;
   int bi = -1;
   for (int r = 0; r < kk; ++r) {
-    const detail::Q v = detail::exact_deformable_value(c[pos[r]]);
+    const detail::Q v = detail::exact_deformable_value(exact_candidate_of(pos[r]));
     if (bi < 0 || v < best || (v == best && idx[pos[r]] < idx[bi])) {
       best = v;
       bi = pos[r];
@@ -561,24 +636,7 @@ void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
     int chosen[kMax], c = 0;
     for (int j = 0; j < s; ++j) chosen[c++] = sorted[j];
     for (int j = 0; c < k; ++j) chosen[c++] = T[j];
-    const DeformableVariant variant;
-    double v[kMax];
-    Pending p[kMax];
-    int best = -1;
-    for (int j = 0; j < k; ++j) {
-      v[j] = evaluate(set, chosen[j], variant, p[j]);
-      if (!p[j].feasible || !(v[j] > 0.0)) return;
-      if (best < 0 || v[j] < v[best]) best = j;
-    }
-    const double rel_best = root_bound(set, chosen[best], variant, p[best]);
-    double lo_min = safe_lower(v[best], rel_best);
-    for (int j = 0; j < k; ++j) {
-      const double l = safe_lower(v[j], root_bound(set, chosen[j], variant, p[j]));
-      lo_min = l < lo_min ? l : lo_min;
-    }
-    if (!certified_choice(upper_of(v[best], rel_best), lo_min)) return;
-    ch = Choice{v[best], chosen[best], label_code(set, chosen[best])};
-    ch.certified = true;
+    certify_first_k(set, chosen, k, ch);
     return;
   }
 }
