@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
       {{"bench", "mesh"},
        "pdd bench mesh --a fixtures/meshes/sphere-a.msh --b fixtures/meshes/sphere-b.msh --repeats 1"},
       {{"bench", "resolve"}, "pdd bench resolve --cases shipped --repeats 1"},
+      {{"bench", "energy"}, "pdd bench energy --cases balls --size 5000 --repeats 3"},
       {{"mesh"},
        "pdd mesh --a fixtures/meshes/sphere-a.msh --b fixtures/meshes/sphere-b.msh --output pairs.jsonl --summary\n"
        "  pdd mesh --a fixtures/meshes/two-spheres.msh --self --variants global --energy"},

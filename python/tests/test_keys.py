@@ -149,7 +149,8 @@ def cli_keys(pdd_cli, tmp_path_factory):
     bench = [["bench", "--count", "20", "--repeats", "1", "--exact-sample", "2"],
              ["bench", "mesh", *TINY, "--repeats", "1", "--aligned-cells", "1"],
              ["bench", "resolve", "--cases", "self", "--size", "200", "--repeats", "1", "--max-rounds", "3",
-              "--meshes", MESHES]]
+              "--meshes", MESHES],
+             ["bench", "energy", "--cases", "balls", "--size", "2000", "--repeats", "1"]]
     for k, args in enumerate(bench):
         out = tmp / f"bench-{k}.json"
         run(pdd_cli, *args, "--json", out)
