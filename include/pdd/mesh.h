@@ -261,10 +261,11 @@ struct QualityLimits {
 // How the result was produced (ResolveReport::method).
 enum class ResolveMethod {
   Rounds,       // the rounds alone cleared every contact
-  Translation,  // the deep-overlap fallback: the smallest separating translation of a body
-                // pair along its centroids' line, then walked back towards the rest pose
-  Bodies,       // self-contact of several bodies: each contacting body pair resolved as two
-                // meshes (any of the above per pair)
+  Translation,  // the deep-overlap fallback: the cheapest separating translation of a body
+                // pair over a few directions (centroids' line, mean pdd2 normal, principal
+                // axes of the contact region), then walked back towards the rest pose
+  Bodies,       // self-contact of several bodies: each contacting group of bodies, split in
+                // two colours, resolved as two meshes (any of the above per group)
   RigidRounds,  // self-contact fallback: rounds of the rigid variant from the rest pose
   None,         // nothing cleared the contacts (the report says what remains)
 };
