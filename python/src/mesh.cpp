@@ -368,7 +368,7 @@ the fast one FV:1; docs/definitions.md §8 allows either):
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> c = pdd.mesh_contacts(VA, TA, VB, TB)
   >>> len(c["a"]), int(c["a"][0]), int(c["b"][0]), float(c["pdd2"][0]), c["pdd2_dir"][0], c["skipped"]
-  (51, 0, 8, 0.0034615384615384608, 'FV:1', [])
+  (51, 0, 8, 0.003461538461538461, 'FV:1', [])
   >>> s = pdd.mesh_contacts(VA, TA)       # self-contact of A
 )doc";
 
