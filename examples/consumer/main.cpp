@@ -1,7 +1,9 @@
-// The README's library example: one pair through both engines of an installed pdd.
+// The README's library example: one pair through both engines of an installed pdd, then the
+// same pair as two one-element meshes through pdd::mesh.
 // The pair is fixtures/smoke.json's "poke-vertex-through-face": B's apex pokes 1/2 through A's
 // face z = 0; its exact values (fixtures/golden/smoke.jsonl) are PD² = 1/4 and PD_d² = 3/224,
 // both along FV:3.
+#include <pdd/mesh.h>  // the umbrella: every header of pdd/mesh/ (it includes <pdd/pdd.h>)
 #include <pdd/pdd.h>
 
 #include <cmath>
@@ -31,5 +33,18 @@ int main() {
   if (!(std::fabs(dot + 2 * g.pdd2_global) <= 1e-12 * g.pdd2_global)) return 1;
   // definitions §8: the fast value is within 1e-9 relative of the exact one.
   const double e = exact.pdd2.get_d();
-  return std::fabs(fast.pdd2 - e) <= 1e-9 * e && fast.pdd2_dir == exact.pdd2_dir ? 0 : 1;
+  if (!(std::fabs(fast.pdd2 - e) <= 1e-9 * e && fast.pdd2_dir == exact.pdd2_dir)) return 1;
+
+  // The pair as two meshes of one tetrahedron each: one contact, element 0 of A with element 0
+  // of B, whose record is the fast engine's (the same solve_pair); A alone has no self-contact
+  // (a single element has no partner).
+  pdd::mesh::Mesh A, B;
+  A.vertices.assign(p.A.begin(), p.A.end());
+  B.vertices.assign(p.B.begin(), p.B.end());
+  A.tets = B.tets = {{0, 1, 2, 3}};
+  const pdd::mesh::Contacts<double> c = pdd::mesh::contacts(A, B);
+  const pdd::mesh::Contacts<double> self = pdd::mesh::self_contacts(A);
+  std::cout << "mesh:  " << c.pairs.size() << " pair, pdd2 = " << c.pairs.at(0).result.pdd2
+            << "; self-contact of A: " << self.pairs.size() << " pairs\n";
+  return c.pairs.size() == 1 && c.pairs[0].result.pdd2 == fast.pdd2 && self.pairs.empty() ? 0 : 1;
 }

@@ -1,4 +1,4 @@
-// check_resolution.cpp — the exact verdict R1–R4 on given positions (mesh.h), the mesh object
+// check_resolution.cpp — the exact verdict R1–R4 on given positions (pdd/mesh/check_resolution.h), the mesh object
 // norm mesh_cost, and the contact stage the rounds of resolve share with the verdict
 // (resolve.h).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,4 +1,4 @@
-// contacts.cpp — the four stages of pdd::mesh::contacts (mesh.h): boxes, CGAL's
+// contacts.cpp — the four stages of pdd::mesh::contacts (pdd/mesh/contacts.h): boxes, CGAL's
 // box_intersection_d, the exact decision, the requested variants on all cores.
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -87,7 +87,7 @@ Positions<R> rest(const TetVertices& T) {
   return p;
 }
 
-// definitions §9's fields as when kGlobal is not requested (mesh.h): 0, no normal, the rest pose,
+// definitions §9's fields as when kGlobal is not requested (pdd/mesh/contacts.h): 0, no normal, the rest pose,
 // no lower bound.
 template <class R>
 void clear_global(PairResult<R>& r, const TetVertices& A, const TetVertices& B) {
@@ -102,7 +102,7 @@ void clear_global(PairResult<R>& r, const TetVertices& A, const TetVertices& B) 
 PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsigned variants) {
   PairResult<double> r;
   // One solve_pair: for pdd2 and global (their positions come only from it; global's hot path
-  // is also slower than solve_pair on mesh pairs, mesh.h), eq11 (no separate call), and two
+  // is also slower than solve_pair on mesh pairs, pdd/mesh/contacts.h), eq11 (no separate call), and two
   // or more variants besides rigid.
   // pdd2_relaxed too: solve_pair keeps it at most pdd2 (definitions §5), which needs pdd2.
   const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal | kRelaxed)) ||
@@ -261,7 +261,7 @@ std::optional<std::string> element_problem(const Mesh& m, std::size_t i, char wh
 
 namespace {
 
-// Stage 2 on boxes (box_pairs, mesh.h); ba, bb are reordered (and pruned). bb null: self.
+// Stage 2 on boxes (box_pairs, pdd/mesh/broadphase.h); ba, bb are reordered (and pruned). bb null: self.
 std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vector<Box>& ba,
                                                        std::vector<Box>* bbp,
                                                        const BroadphaseOptions& options) {

@@ -1,5 +1,5 @@
 // write_mesh.cpp — a tetrahedral mesh at new vertex positions as Gmsh 4.1 ASCII (.msh) or
-// legacy VTK ASCII (.vtk) (mesh.h, write_mesh).
+// legacy VTK ASCII (.vtk) (pdd/mesh/write_mesh.h).
 //
 // Input : m (connectivity: its tetrahedra, in order), positions (one per vertex of m).
 // Output: the file, written whole or not at all (atomic_file.h). Vertex i is Gmsh node tag

@@ -1,5 +1,5 @@
 // write_vtk.cpp — both meshes and their contacts (write_vtk), or a resolution's new positions
-// (write_resolution_vtk), in one legacy VTK file for ParaView (mesh.h).
+// (write_resolution_vtk), in one legacy VTK file for ParaView (pdd/mesh/vtk.h).
 #include <cerrno>
 #include <cmath>
 #include <cstring>

@@ -315,7 +315,7 @@ progress None (the default) or False: silent; a callable progress(done, total) o
          tqdm bar), as in solve_batch(). Over stage 4 below: `done` counts the intersecting
          pairs computed, `total` is their number (no call comes before stage 3 is done).
 
-Stages (mesh.h): 1. a box per element (an element with a non-finite coordinate or zero
+Stages (pdd/mesh/contacts.h): 1. a box per element (an element with a non-finite coordinate or zero
 volume, decided exactly, is skipped and listed); 2. the pairs whose boxes overlap (CGAL's
 box_intersection_d); 3. the exact decision: the interiors intersect iff rigid_pd2 > 0
 (touching is not intersecting); 4. the requested values per intersecting pair.

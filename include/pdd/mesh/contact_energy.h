@@ -1,4 +1,4 @@
-// contact_energy.h — a contact energy for simulators (definitions §12): at the current positions
+// mesh/contact_energy.h — a contact energy for simulators (definitions §12): at the current positions
 // P of two tetrahedral meshes (or of one, self-contact),
 //
 //     E(P) = sum over intersecting element pairs (a, b) of  w_ab * pdd2_global(a, b; P)
@@ -96,12 +96,10 @@
 #include <cstddef>
 #include <vector>
 
+#include "pdd/mesh/mesh.h"
 #include "pdd/pdd.h"
 
 namespace pdd::mesh {
-
-struct Mesh;
-struct SkippedElement;
 
 enum class EnergyEngine { Fast, Exact };
 enum class EnergyWeight {
