@@ -113,7 +113,8 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
   }
   if (!args.vtk.empty()) {
     try {
-      mesh::write_vtk(args.vtk, A, B, c, variants);
+      if (B) mesh::write_vtk(args.vtk, A, *B, c, variants);
+      else mesh::write_vtk_self(args.vtk, A, c, variants);
     } catch (const std::exception& e) {
       std::cerr << "pdd mesh: " << e.what() << '\n';
       return kExitFileError;
@@ -186,7 +187,7 @@ int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
   o.engine = args.engine == "fast" ? mesh::EnergyEngine::Fast : mesh::EnergyEngine::Exact;
   const auto t0 = Clock::now();
   const mesh::ContactEnergy e = B ? mesh::contact_energy(A, *B, A.vertices, B->vertices, o)
-                                  : mesh::self_contact_energy(A, A.vertices, o);
+                                  : mesh::contact_energy_self(A, A.vertices, o);
   double max_force = 0;
   std::size_t at = 0;
   for (std::size_t v = 0; v < e.gradient.size(); ++v) {
@@ -292,9 +293,9 @@ int run_mesh(const MeshArgs& args) {
   run_interruptible(
       [&] {
         if (fast)
-          fast_result = args.self ? mesh::self_contacts(A, options) : mesh::contacts(A, B, options);
+          fast_result = args.self ? mesh::contacts_self(A, options) : mesh::contacts(A, B, options);
         else
-          exact_result = args.self ? mesh::self_contacts_exact(A, options) : mesh::contacts_exact(A, B, options);
+          exact_result = args.self ? mesh::contacts_exact_self(A, options) : mesh::contacts_exact(A, B, options);
       },
       lines, stop, "(a, b) order");
   lines.flush();

@@ -300,7 +300,8 @@ int run_resolve(const ResolveArgs& args) {
                      }});
   if (!args.vtk.empty())
     files.push_back({args.vtk, "", [&](const std::string& p) {
-                       mesh::write_resolution_vtk(p, A, res.a, args.self ? nullptr : &B, res.b, rep);
+                       if (args.self) mesh::write_resolution_vtk_self(p, A, res.a, rep);
+                       else mesh::write_resolution_vtk(p, A, res.a, B, res.b, rep);
                      }});
   if (auto why = write_outputs(files)) {
     std::cerr << kName << ": " << *why << " (nothing written)\n";

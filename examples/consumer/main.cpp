@@ -43,7 +43,7 @@ int main() {
   B.vertices.assign(p.B.begin(), p.B.end());
   A.tets = B.tets = {{0, 1, 2, 3}};
   const pdd::mesh::Contacts<double> c = pdd::mesh::contacts(A, B);
-  const pdd::mesh::Contacts<double> self = pdd::mesh::self_contacts(A);
+  const pdd::mesh::Contacts<double> self = pdd::mesh::contacts_self(A);  // self-contact: the _self twin
   std::cout << "mesh:  " << c.pairs.size() << " pair, pdd2 = " << c.pairs.at(0).result.pdd2
             << "; self-contact of A: " << self.pairs.size() << " pairs\n";
   return c.pairs.size() == 1 && c.pairs[0].result.pdd2 == fast.pdd2 && self.pairs.empty() ? 0 : 1;

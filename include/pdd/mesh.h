@@ -8,6 +8,12 @@
 //   pdd::mesh::Resolution r = pdd::mesh::resolve(A, B);             // no pair intersects
 //   pdd::mesh::ContactEnergy e = pdd::mesh::contact_energy(A, B, r.a, r.b);
 //
+// Self-contact, one convention for every call: a function of two meshes f(A, B, ...) has a twin
+// f_self(A, ...) for the self-contact of A (the element pairs a < b of A that share no vertex
+// index; definitions §10, §11): contacts_self, contacts_exact_self, box_pairs_self,
+// resolve_self, check_resolution_self, write_vtk_self, write_resolution_vtk_self,
+// contact_energy_self. No function takes a nullable mesh. (Python: VB=None, TB=None.)
+//
 //   pdd/mesh/mesh.h              Mesh, read_mesh, ReadError; SkippedElement, Cancelled (shared
 //                                by every call); element, element_problem
 //   pdd/mesh/variants.h          which values contacts() computes: Variant bits, their names

@@ -45,7 +45,7 @@ std::vector<std::array<std::size_t, 2>> intersecting_pairs(const Mesh& A, const 
   BroadphaseOptions bo;
   bo.drop_shared_vertex = !B;
   bo.parallel = B != nullptr;  // as contacts(): the sequential self-intersection is faster
-  std::vector<std::array<std::size_t, 2>> cand = box_pairs(A, ea, B, eb, bo);
+  std::vector<std::array<std::size_t, 2>> cand = B ? box_pairs(A, ea, *B, eb, bo) : box_pairs_self(A, ea, bo);
   const Mesh& BB = B ? *B : A;
   std::vector<char> hit(cand.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cand.size(), 256),
@@ -125,9 +125,12 @@ void check_fixed(const Mesh& m0, const std::vector<Vec3d>& p1, const std::vector
 
 }  // namespace
 
-ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, const Mesh* B0,
-                               const std::vector<Vec3d>& b1, const std::vector<char>& fixed_a,
-                               const std::vector<char>& fixed_b, const QualityLimits& limits) {
+namespace {
+
+// check_resolution and check_resolution_self (B0 == nullptr).
+ResolveReport verdict(const Mesh& A0, const std::vector<Vec3d>& a1, const Mesh* B0,
+                      const std::vector<Vec3d>& b1, const std::vector<char>& fixed_a,
+                      const std::vector<char>& fixed_b, const QualityLimits& limits) {
   detail::check_limits(limits);
   detail::check_fixed_flags(fixed_a, A0, 'A');
   if (B0) detail::check_fixed_flags(fixed_b, *B0, 'B');
@@ -152,6 +155,19 @@ ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, con
   rep.r4 = rep.poor_elements.empty();
   rep.resolved = rep.r1 && rep.r2 && rep.r3 && rep.r4;
   return rep;
+}
+
+}  // namespace
+
+ResolveReport check_resolution(const Mesh& A0, const std::vector<Vec3d>& a1, const Mesh& B0,
+                               const std::vector<Vec3d>& b1, const std::vector<char>& fixed_a,
+                               const std::vector<char>& fixed_b, const QualityLimits& limits) {
+  return verdict(A0, a1, &B0, b1, fixed_a, fixed_b, limits);
+}
+
+ResolveReport check_resolution_self(const Mesh& A0, const std::vector<Vec3d>& a1,
+                                    const std::vector<char>& fixed_a, const QualityLimits& limits) {
+  return verdict(A0, a1, nullptr, {}, fixed_a, {}, limits);
 }
 
 double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1) {

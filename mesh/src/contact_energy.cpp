@@ -203,14 +203,14 @@ std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactE
   std::vector<PairSolution> out;
   if (o.engine == EnergyEngine::Exact) {
     co.variants = kGlobal;
-    const Contacts<Rational> c = B ? contacts_exact(A, *B, co) : self_contacts_exact(A, co);
+    const Contacts<Rational> c = B ? contacts_exact(A, *B, co) : contacts_exact_self(A, co);
     skipped = c.skipped;
     for (const auto& k : c.pairs) out.push_back(solution_of(k.a, k.b, k.result));
     seconds_found = seconds_since(t0);
     return out;
   }
   co.variants = 0;  // the pairs only (contacts(): an intersecting pair's record is then empty)
-  const Contacts<double> c = B ? contacts(A, *B, co) : self_contacts(A, co);
+  const Contacts<double> c = B ? contacts(A, *B, co) : contacts_self(A, co);
   skipped = c.skipped;
   seconds_found = seconds_since(t0);
   const Mesh& Bm = B ? *B : A;
@@ -521,7 +521,7 @@ ContactEnergy contact_energy(const Mesh& A, const Mesh& B, const std::vector<Vec
   return run(A, &B, pa, &pb, options);
 }
 
-ContactEnergy self_contact_energy(const Mesh& A, const std::vector<Vec3d>& pa,
+ContactEnergy contact_energy_self(const Mesh& A, const std::vector<Vec3d>& pa,
                                   const ContactEnergyOptions& options) {
   return run(A, nullptr, pa, nullptr, options);
 }

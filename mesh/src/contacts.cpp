@@ -354,18 +354,26 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
 
 }  // namespace
 
+namespace {
+std::vector<Box> boxes_of(const Mesh& m, const std::vector<std::size_t>& e, std::size_t id_offset) {
+  std::vector<Box> v(e.size());
+  tbb::parallel_for(std::size_t{0}, e.size(), [&](std::size_t k) { v[k] = box_of(m, e[k], id_offset); });
+  return v;
+}
+}  // namespace
+
 std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
-                                                  const Mesh* B, const std::vector<std::size_t>& eb,
+                                                  const Mesh& B, const std::vector<std::size_t>& eb,
                                                   const BroadphaseOptions& options) {
-  auto boxes = [](const Mesh& m, const std::vector<std::size_t>& e, std::size_t id_offset) {
-    std::vector<Box> v(e.size());
-    tbb::parallel_for(std::size_t{0}, e.size(), [&](std::size_t k) { v[k] = box_of(m, e[k], id_offset); });
-    return v;
-  };
-  std::vector<Box> ba = boxes(A, ea, 0);
-  if (!B) return pairs_of_boxes(A, ba, nullptr, options);
-  std::vector<Box> bb = boxes(*B, eb, A.tets.size());
+  std::vector<Box> ba = boxes_of(A, ea, 0);
+  std::vector<Box> bb = boxes_of(B, eb, A.tets.size());
   return pairs_of_boxes(A, ba, &bb, options);
+}
+
+std::vector<std::array<std::size_t, 2>> box_pairs_self(const Mesh& A, const std::vector<std::size_t>& ea,
+                                                       const BroadphaseOptions& options) {
+  std::vector<Box> ba = boxes_of(A, ea, 0);
+  return pairs_of_boxes(A, ba, nullptr, options);
 }
 
 unsigned parse_variants(const std::string& list) {
@@ -398,11 +406,11 @@ std::string variant_names(unsigned variants) {
 }
 
 Contacts<double> contacts(const Mesh& A, const Mesh& B, const ContactOptions& o) { return run<double>(A, &B, o); }
-Contacts<double> self_contacts(const Mesh& A, const ContactOptions& o) { return run<double>(A, nullptr, o); }
+Contacts<double> contacts_self(const Mesh& A, const ContactOptions& o) { return run<double>(A, nullptr, o); }
 Contacts<Rational> contacts_exact(const Mesh& A, const Mesh& B, const ContactOptions& o) {
   return run<Rational>(A, &B, o);
 }
-Contacts<Rational> self_contacts_exact(const Mesh& A, const ContactOptions& o) {
+Contacts<Rational> contacts_exact_self(const Mesh& A, const ContactOptions& o) {
   return run<Rational>(A, nullptr, o);
 }
 

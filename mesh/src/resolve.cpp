@@ -89,8 +89,9 @@ void verdict(Run& run) {
   ResolveReport& rep = run.rep;
   const Mesh* B = run.B;
   const auto t = Clock::now();
-  ResolveReport v = check_resolution(run.A, run.sa.cur.vertices, B, B ? run.sb.cur.vertices : std::vector<Vec3d>{},
-                                     run.sa.fixed, B ? run.sb.fixed : std::vector<char>{}, run.o);
+  ResolveReport v = B ? check_resolution(run.A, run.sa.cur.vertices, *B, run.sb.cur.vertices, run.sa.fixed,
+                                         run.sb.fixed, run.o)
+                      : check_resolution_self(run.A, run.sa.cur.vertices, run.sa.fixed, run.o);
   rep.seconds_verify = since(t);
   rep.r1 = v.r1;
   rep.r2 = v.r2;

@@ -37,9 +37,10 @@ void write_cells(std::ostream& out, const Mesh& A, const Mesh* B, std::size_t na
 
 }  // namespace
 
+// write_vtk and write_vtk_self (B == nullptr).
 template <class R>
-void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Contacts<R>& contacts,
-               unsigned variants) {
+static void contacts_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Contacts<R>& contacts,
+                         unsigned variants) {
   const std::size_t na = A.vertices.size(), nb = B ? B->vertices.size() : 0;
   const std::size_t ta = A.tets.size(), tb = B ? B->tets.size() : 0;
   // Cell data.
@@ -122,8 +123,9 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
   if (!out) throw std::runtime_error("cannot write to '" + path + "'" + (errno ? std::string(": ") + std::strerror(errno) : ""));
 }
 
-void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
-                          const Mesh* B, const std::vector<Vec3d>& b1, const ResolveReport& report) {
+// write_resolution_vtk and write_resolution_vtk_self (B == nullptr).
+static void resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
+                           const Mesh* B, const std::vector<Vec3d>& b1, const ResolveReport& report) {
   if (a1.size() != A.vertices.size() || (B && b1.size() != B->vertices.size()))
     throw std::invalid_argument("write_resolution_vtk '" + path +
                                 "': not one new position per vertex");
@@ -203,7 +205,27 @@ void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vec
   detail::write_whole_file(path, out.str());
 }
 
-template void write_vtk<double>(const std::string&, const Mesh&, const Mesh*, const Contacts<double>&, unsigned);
-template void write_vtk<Rational>(const std::string&, const Mesh&, const Mesh*, const Contacts<Rational>&, unsigned);
+template <class R>
+void write_vtk(const std::string& path, const Mesh& A, const Mesh& B, const Contacts<R>& contacts,
+               unsigned variants) {
+  contacts_vtk(path, A, &B, contacts, variants);
+}
+template <class R>
+void write_vtk_self(const std::string& path, const Mesh& A, const Contacts<R>& contacts, unsigned variants) {
+  contacts_vtk(path, A, nullptr, contacts, variants);
+}
+void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
+                          const Mesh& B, const std::vector<Vec3d>& b1, const ResolveReport& report) {
+  resolution_vtk(path, A, a1, &B, b1, report);
+}
+void write_resolution_vtk_self(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
+                               const ResolveReport& report) {
+  resolution_vtk(path, A, a1, nullptr, {}, report);
+}
+
+template void write_vtk<double>(const std::string&, const Mesh&, const Mesh&, const Contacts<double>&, unsigned);
+template void write_vtk<Rational>(const std::string&, const Mesh&, const Mesh&, const Contacts<Rational>&, unsigned);
+template void write_vtk_self<double>(const std::string&, const Mesh&, const Contacts<double>&, unsigned);
+template void write_vtk_self<Rational>(const std::string&, const Mesh&, const Contacts<Rational>&, unsigned);
 
 }  // namespace pdd::mesh

@@ -100,7 +100,7 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
   call.run(true, [&] {
     with_threads(threads, [&] {
       try {
-        e = self ? pdd::mesh::self_contact_energy(A, pa, o) : pdd::mesh::contact_energy(A, B, pa, pb, o);
+        e = self ? pdd::mesh::contact_energy_self(A, pa, o) : pdd::mesh::contact_energy(A, B, pa, pb, o);
       } catch (const std::invalid_argument& x) {
         bad_input = x.what();
       } catch (const pdd::mesh::Cancelled&) {  // call.run raises why

@@ -141,9 +141,9 @@ py::dict mesh_contacts(py::handle VA, py::handle TA, py::handle VB, py::handle T
     with_threads(threads, [&] {
       try {
         if (engine == "fast")
-          fast = self ? pdd::mesh::self_contacts(A, options) : pdd::mesh::contacts(A, B, options);
+          fast = self ? pdd::mesh::contacts_self(A, options) : pdd::mesh::contacts(A, B, options);
         else
-          exact = self ? pdd::mesh::self_contacts_exact(A, options)
+          exact = self ? pdd::mesh::contacts_exact_self(A, options)
                        : pdd::mesh::contacts_exact(A, B, options);
       } catch (const std::invalid_argument& e) {  // an index past the end of the vertices
         bad_input = e.what();

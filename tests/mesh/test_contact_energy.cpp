@@ -263,11 +263,11 @@ BOOST_AUTO_TEST_CASE(self_contact_of_two_bodies_equals_two_meshes) {
   // two-spheres.msh: two bodies in one file; its self-contact energy counts the pairs between
   // the bodies (and a body's own non-adjacent pairs, none here when it does not fold).
   const Mesh m = load("two-spheres.msh");
-  const ContactEnergy e = self_contact_energy(m, m.vertices);
+  const ContactEnergy e = contact_energy_self(m, m.vertices);
   BOOST_TEST(e.gradient.size() == m.vertices.size());
   ContactOptions co;
   co.variants = kGlobal;
-  BOOST_TEST(e.pair_count == self_contacts(m, co).pairs.size());
+  BOOST_TEST(e.pair_count == contacts_self(m, co).pairs.size());
 }
 
 BOOST_AUTO_TEST_CASE(positions_must_match_the_mesh) {

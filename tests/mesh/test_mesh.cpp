@@ -305,7 +305,7 @@ BOOST_AUTO_TEST_CASE(flat_and_nan_elements_are_reported_and_skipped) {
     // In the VTK file both skipped elements of B are marked (cells after the ball's) and the
     // NaN vertex (B's vertex 3) is marked non_finite where it is written at the origin.
     const std::string path = "mesh_test_skipped.vtk";
-    write_vtk(path, ball, &m, c, kDefaultVariants);
+    write_vtk(path, ball, m, c, kDefaultVariants);
     std::ifstream in(path);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     auto field = [&](const std::string& header, std::size_t count) {
@@ -332,14 +332,14 @@ BOOST_AUTO_TEST_CASE(pair_set_equals_brute_force) {
 
 BOOST_AUTO_TEST_CASE(self_contact_equals_brute_force) {
   const Mesh m = load("two-spheres.msh");
-  const Contacts<double> c = self_contacts(m, {kRigid | kAccel1, {}});
+  const Contacts<double> c = contacts_self(m, {kRigid | kAccel1, {}});
   const PairSet expected = brute_force(m, nullptr);
   BOOST_TEST(!expected.empty());
   BOOST_TEST((pairs_of(c) == expected));
   for (const auto& p : c.pairs) BOOST_TEST(p.a < p.b);
   // A valid conforming mesh does not intersect itself.
-  BOOST_TEST(self_contacts(load("sphere-a.msh")).pairs.empty());
-  BOOST_TEST(self_contacts(load("slivers.msh")).pairs.empty());
+  BOOST_TEST(contacts_self(load("sphere-a.msh")).pairs.empty());
+  BOOST_TEST(contacts_self(load("slivers.msh")).pairs.empty());
 }
 
 BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
@@ -354,7 +354,7 @@ BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
     }
   }
   const Mesh S = load("two-spheres.msh");
-  check_values(self_contacts(S, {kAllVariants, {}}), S, S, kAllVariants);
+  check_values(contacts_self(S, {kAllVariants, {}}), S, S, kAllVariants);
 }
 
 BOOST_AUTO_TEST_CASE(progress_starts_at_zero_and_cancel_stops_the_call) {
@@ -377,7 +377,7 @@ BOOST_AUTO_TEST_CASE(progress_starts_at_zero_and_cancel_stops_the_call) {
   o.cancel = &cancel;
   done = 0;
   BOOST_CHECK_THROW(contacts(A, B, o), Cancelled);
-  BOOST_CHECK_THROW(self_contacts_exact(A, o), Cancelled);
+  BOOST_CHECK_THROW(contacts_exact_self(A, o), Cancelled);
   BOOST_TEST(done == 0u);
   // cancelled from stage 4 after 10 pairs: at most the pairs already started finish
   cancel = false;
@@ -459,7 +459,7 @@ BOOST_AUTO_TEST_CASE(vtk_output_reads_back) {
   const Mesh A = load("sphere-a.msh"), B = load("sphere-b.msh");
   const Contacts<double> c = contacts(A, B);
   const std::string path = "mesh_test_out.vtk";
-  write_vtk(path, A, &B, c, kDefaultVariants);
+  write_vtk(path, A, B, c, kDefaultVariants);
   const Mesh both = read_mesh(path);  // our own reader: the cells are A's then B's
   BOOST_REQUIRE(both.tets.size() == A.tets.size() + B.tets.size());
   BOOST_TEST((element(both, 0) == element(A, 0)));
@@ -472,7 +472,7 @@ BOOST_AUTO_TEST_CASE(vtk_output_reads_back) {
   // With kGlobal: max_pdd2_global, each cell's largest pdd2_global over its pairs.
   const Mesh a = load("tiny-a.msh"), b = load("tiny-b.msh");
   const Contacts<double> g = contacts(a, b, {kRigid | kGlobal, {}});
-  write_vtk(path, a, &b, g, kRigid | kGlobal);
+  write_vtk(path, a, b, g, kRigid | kGlobal);
   std::ifstream gin(path);
   const std::string gtext((std::istreambuf_iterator<char>(gin)), std::istreambuf_iterator<char>());
   const std::size_t at = gtext.find("SCALARS max_pdd2_global double 1\nLOOKUP_TABLE default\n");

@@ -91,7 +91,7 @@ std::vector<std::size_t> all(const Mesh& m) {
 void check_box_pairs(const std::string& a, const std::string& b, Tally& t, bool expect_pairs = true) {
   const Mesh A = read_mesh(kMeshes + a);
   const Mesh B = b.empty() ? Mesh{} : read_mesh(kMeshes + b);
-  const auto cand = box_pairs(A, all(A), b.empty() ? nullptr : &B, b.empty() ? std::vector<std::size_t>{} : all(B));
+  const auto cand = b.empty() ? box_pairs_self(A, all(A)) : box_pairs(A, all(A), B, all(B));
   const Mesh& BB = b.empty() ? A : B;
   tbb::parallel_for(std::size_t{0}, cand.size(), [&](std::size_t k) {
     const TetVertices x = element(A, cand[k][0]), y = element(BB, cand[k][1]);
@@ -130,7 +130,7 @@ BOOST_AUTO_TEST_CASE(touching_neighbours_moved_by_a_few_ulps) {
   // unless rounding undoes the shift; away: s < 0 makes it disjoint), s = ±2^-30 .. ±2^-52.
   for (const char* name : {"sphere-a.msh", "slivers.msh"}) {
     const Mesh M = read_mesh(kMeshes + name);
-    auto cand = box_pairs(M, all(M), nullptr, {});
+    auto cand = box_pairs_self(M, all(M));
     std::vector<std::array<std::size_t, 2>> touching;
     for (const auto& p : cand) {
       bool share = false;

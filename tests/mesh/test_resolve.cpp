@@ -489,7 +489,7 @@ BOOST_AUTO_TEST_CASE(deep_through_a_plate) {
 BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
   const Mesh A = load("touching-a.msh"), B = load("touching-b.msh");
   // Touching meshes at rest: resolved, cost 0.
-  ResolveReport rep = check_resolution(A, A.vertices, &B, B.vertices);
+  ResolveReport rep = check_resolution(A, A.vertices, B, B.vertices);
   BOOST_TEST(rep.resolved);
   BOOST_TEST(rep.min_volume_ratio == 1.0);
   BOOST_TEST(mesh_cost(A, A.vertices) == 0.0);
@@ -499,21 +499,21 @@ BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
   // Overlapping by delta: R1 fails with the judge's pairs; moving a fixed vertex fails R3;
   // flipping one vertex through the opposite face fails R2.
   const Mesh Bt = translated(B, {-kDelta, 0, 0});
-  rep = check_resolution(A, A.vertices, &Bt, Bt.vertices);
+  rep = check_resolution(A, A.vertices, Bt, Bt.vertices);
   BOOST_TEST(!rep.r1);
   BOOST_TEST((rep.remaining_pairs == judge_pairs(A, A.vertices, &Bt, Bt.vertices)));
   std::vector<Vec3d> a1 = A.vertices;
   a1[0][0] = std::nextafter(a1[0][0], 10.0);
   std::vector<char> fixed(A.vertices.size(), 0);
   fixed[0] = 1;
-  rep = check_resolution(A, a1, &B, B.vertices, fixed);
+  rep = check_resolution(A, a1, B, B.vertices, fixed);
   BOOST_TEST(!rep.r3);
   BOOST_TEST(rep.moved_fixed_vertices.size() == 1u);
   const auto& t = A.tets[0];
   std::vector<Vec3d> a2 = A.vertices;
   for (int k = 0; k < 3; ++k)  // vertex 0 mirrored through the centroid of the opposite face
     a2[t[0]][k] = 2 * (A.vertices[t[1]][k] + A.vertices[t[2]][k] + A.vertices[t[3]][k]) / 3 - A.vertices[t[0]][k];
-  rep = check_resolution(A, a2, &B, B.vertices);
+  rep = check_resolution(A, a2, B, B.vertices);
   BOOST_TEST(!rep.r2);
   BOOST_TEST(rep.min_volume_ratio < 0.0);
   BOOST_TEST(rep.bad_elements.size() == judge_inverted(A, a2));
@@ -525,7 +525,7 @@ BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {
 BOOST_AUTO_TEST_CASE(r4_exact_at_the_boundary) {
   const Mesh m{{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}}, {{0, 1, 2, 3}}, {}, {}};
   auto verdict = [&](const std::vector<Vec3d>& p, const QualityLimits& q) {
-    const ResolveReport r = check_resolution(m, p, nullptr, {}, {}, {}, q);
+    const ResolveReport r = check_resolution_self(m, p, {}, q);
     BOOST_TEST(r.r4 == judge_usable(element(m, 0), at(m, p, 0), q));
     BOOST_TEST(r.r4 == r.poor_elements.empty());
     return r.r4;
@@ -552,8 +552,8 @@ BOOST_AUTO_TEST_CASE(r4_exact_at_the_boundary) {
   BOOST_TEST(!verdict(q, {std::nextafter(0.125, 1.0), 0.25}));
   BOOST_TEST(!verdict(q, {0.125, std::nextafter(0.25, 1.0)}));
   // Limits outside (0, 1] are refused.
-  BOOST_CHECK_THROW(check_resolution(m, q, nullptr, {}, {}, {}, {0, 0.5}), std::invalid_argument);
-  BOOST_CHECK_THROW(check_resolution(m, q, nullptr, {}, {}, {}, {0.25, 1.5}), std::invalid_argument);
+  BOOST_CHECK_THROW(check_resolution_self(m, q, {}, {0, 0.5}), std::invalid_argument);
+  BOOST_CHECK_THROW(check_resolution_self(m, q, {}, {0.25, 1.5}), std::invalid_argument);
 }
 
 // Runs that cannot move anything stop at once and say why: every vertex fixed; coordinates so

@@ -174,7 +174,7 @@ BOOST_AUTO_TEST_CASE(resolution_vtk_reads_back) {
   report.remaining_pairs = {{0, 1}};
   report.bad_elements = {{'B', 2}};
   const std::string path = (d / "both.vtk").string();
-  write_resolution_vtk(path, A, a1, &B, b1, report);
+  write_resolution_vtk(path, A, a1, B, b1, report);
   const Mesh r = read_mesh(path);
   BOOST_TEST_REQUIRE(r.vertices.size() == a1.size() + b1.size());
   BOOST_TEST_REQUIRE(r.tets.size() == A.tets.size() + B.tets.size());

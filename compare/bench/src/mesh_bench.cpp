@@ -113,7 +113,7 @@ std::vector<BroadphaseRow> broadphase_rows(const mesh::Mesh& A, const std::vecto
        [&] {
          Sample s;
          const auto t = Clock::now();
-         one.execute([&] { s.pairs = mesh::box_pairs(A, ea, &B, eb, {false, false}).size(); });
+         one.execute([&] { s.pairs = mesh::box_pairs(A, ea, B, eb, {false, false}).size(); });
          s.query = since(t);
          return s;
        }},
@@ -470,8 +470,8 @@ MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
     }
     pa = (dir / "ball-a.vtk").string();
     pb = (dir / "ball-b.vtk").string();
-    mesh::write_vtk(pa, A, nullptr, mesh::Contacts<double>{}, 0);
-    mesh::write_vtk(pb, B, nullptr, mesh::Contacts<double>{}, 0);
+    mesh::write_vtk_self(pa, A, mesh::Contacts<double>{}, 0);
+    mesh::write_vtk_self(pb, B, mesh::Contacts<double>{}, 0);
     char buf[200];
     std::snprintf(buf, sizeof buf, "generated ball (Kuhn grid, jittered), centre (0, 0, 0), radius 1");
     rep.source_a = buf;
@@ -513,7 +513,7 @@ MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
 
   // The decision stage's costs on a sample of the box pairs (every k-th), one core.
   std::cerr << "pdd bench mesh: decision costs\n";
-  const auto cand = mesh::box_pairs(A, all_elements(A), &B, all_elements(B));
+  const auto cand = mesh::box_pairs(A, all_elements(A), B, all_elements(B));
   std::vector<std::array<TetVertices, 2>> sample;
   const std::size_t step = std::max<std::size_t>(1, cand.size() / 5000);
   for (std::size_t k = 0; k < cand.size(); k += step)

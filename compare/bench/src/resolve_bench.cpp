@@ -35,7 +35,7 @@ mesh::Mesh translated(mesh::Mesh m, const Vec3d& t) {
 double rigid_separation_t(const mesh::Mesh& A, const mesh::Mesh& B, const Vec3d& dir, double hi) {
   auto separated = [&](double t) {
     const mesh::Mesh Bt = translated(B, {dir[0] * t, dir[1] * t, dir[2] * t});
-    return mesh::check_resolution(A, A.vertices, &Bt, Bt.vertices).r1;
+    return mesh::check_resolution(A, A.vertices, Bt, Bt.vertices).r1;
   };
   if (!separated(hi)) return -1;
   double lo = 0;
@@ -252,8 +252,8 @@ ResolveBenchReport run_resolve_bench(const ResolveBenchOptions& o) {
         std::filesystem::temp_directory_path() / ("pdd-bench-resolve-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string pa = (dir / "ball-a.vtk").string(), pb = (dir / "ball-b.vtk").string();
-    mesh::write_vtk(pa, A0, nullptr, mesh::Contacts<double>{}, 0);
-    mesh::write_vtk(pb, B0, nullptr, mesh::Contacts<double>{}, 0);
+    mesh::write_vtk_self(pa, A0, mesh::Contacts<double>{}, 0);
+    mesh::write_vtk_self(pb, B0, mesh::Contacts<double>{}, 0);
     Input in;
     const auto t = Clock::now();
     in.A = mesh::read_mesh(pa);

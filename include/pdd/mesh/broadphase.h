@@ -14,8 +14,9 @@
 
 namespace pdd::mesh {
 
-// Stage 2 alone over the given elements (indices into A and B; B == nullptr: self, a < b,
-// vertex-sharing pairs kept unless options.drop_shared_vertex): the box pairs, sorted by (a, b).
+// Stage 2 alone over the given elements (indices into A and B; box_pairs_self: A with itself,
+// a < b, vertex-sharing pairs kept unless options.drop_shared_vertex): the box pairs, sorted
+// by (a, b).
 //   prune     (two meshes) first drop the boxes that miss the other mesh's bounding box;
 //   parallel  CGAL's parallel box_intersection_d (Parallel_tag, on TBB's threads);
 //   drop_shared_vertex  (self) leave out the pairs whose elements share a vertex index.
@@ -26,7 +27,9 @@ struct BroadphaseOptions {
   bool drop_shared_vertex = false;
 };
 std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
-                                                  const Mesh* B, const std::vector<std::size_t>& eb,
+                                                  const Mesh& B, const std::vector<std::size_t>& eb,
                                                   const BroadphaseOptions& options = {});
+std::vector<std::array<std::size_t, 2>> box_pairs_self(const Mesh& A, const std::vector<std::size_t>& ea,
+                                                       const BroadphaseOptions& options = {});
 
 }  // namespace pdd::mesh

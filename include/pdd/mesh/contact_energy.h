@@ -140,7 +140,7 @@ struct ContactEnergy {
 ContactEnergy contact_energy(const Mesh& A, const Mesh& B, const std::vector<Vec3d>& pa,
                              const std::vector<Vec3d>& pb, const ContactEnergyOptions& options = {});
 // Self-contact of one mesh (definitions §10's pairs: a < b sharing no vertex).
-ContactEnergy self_contact_energy(const Mesh& A, const std::vector<Vec3d>& pa,
+ContactEnergy contact_energy_self(const Mesh& A, const std::vector<Vec3d>& pa,
                                   const ContactEnergyOptions& options = {});
 
 // ---------------------------------------------------------------------------------------------

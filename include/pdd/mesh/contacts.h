@@ -28,7 +28,7 @@
 //                   public engine calls of <pdd/pdd.h> only.
 // Results are sorted by (a, b), independent of the number of threads.
 //
-// Self-contact (self_contacts): pairs a < b of one mesh whose elements share no vertex index.
+// Self-contact (contacts_self, contacts_exact_self): pairs a < b of one mesh whose elements share no vertex index.
 //
 // Values: a record is pdd.h's PairResult with `name` empty; only the requested variants are
 // computed, the others are 0 with no label; q1_A / q1_B (the deformed positions attaining pdd2)
@@ -99,11 +99,11 @@ struct Contacts {
 
 // Throws std::invalid_argument when a tetrahedron refers to a vertex that does not exist.
 Contacts<double> contacts(const Mesh& A, const Mesh& B, const ContactOptions& options = {});
-Contacts<double> self_contacts(const Mesh& A, const ContactOptions& options = {});
+Contacts<double> contacts_self(const Mesh& A, const ContactOptions& options = {});
 // The same pairs (stages 1–3 as above), each pair's record from the exact engine
 // (pdd::reference::solve_pair, reduced formulation; every value of the record is computed).
 Contacts<Rational> contacts_exact(const Mesh& A, const Mesh& B,
                                   const ContactOptions& options = {});
-Contacts<Rational> self_contacts_exact(const Mesh& A, const ContactOptions& options = {});
+Contacts<Rational> contacts_exact_self(const Mesh& A, const ContactOptions& options = {});
 
 }  // namespace pdd::mesh

@@ -16,7 +16,7 @@
 
 namespace pdd::mesh {
 
-// Writes A (and B unless null: self-contact) as one legacy VTK unstructured grid (ASCII) for
+// Writes A and B (write_vtk_self: A alone, its self-contacts) as one legacy VTK unstructured grid (ASCII) for
 // ParaView: points of A then of B, cells of A then of B, with cell data `mesh` (0 A, 1 B),
 // `element` (its number in its mesh), `partners` (number of intersecting pairs it is in),
 // `skipped` (1: the element was skipped, flat or with a non-finite vertex) and `max_<value>`
@@ -27,10 +27,13 @@ namespace pdd::mesh {
 // length (first in (a, b) order among equals); 0 where no pair moves it. Throws
 // std::runtime_error when the file cannot be written.
 template <class R>
-void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Contacts<R>& contacts,
+void write_vtk(const std::string& path, const Mesh& A, const Mesh& B, const Contacts<R>& contacts,
                unsigned variants);
+template <class R>
+void write_vtk_self(const std::string& path, const Mesh& A, const Contacts<R>& contacts, unsigned variants);
 
-// Writes a resolution for ParaView: A at positions a1 and B at b1 (B == nullptr: self-contact)
+// Writes a resolution for ParaView: A at positions a1 and B at b1 (write_resolution_vtk_self: A
+// alone, self-contact)
 // as one legacy VTK ASCII file, points of A then of B, cells of A then of B, with point data
 // `displacement` (p1 - p0) and cell data `mesh` (0 A, 1 B), `element` (its number in its mesh),
 // `volume_ratio` (V1 / V0, signed; doubles, for display), `shape_ratio` (eta1 / eta0 from
@@ -39,6 +42,8 @@ void write_vtk(const std::string& path, const Mesh& A, const Mesh* B, const Cont
 // non-finite coordinate is written at the origin (VTK readers reject nan). Written whole or
 // not at all, as write_mesh; throws std::runtime_error when the file cannot be written.
 void write_resolution_vtk(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
-                          const Mesh* B, const std::vector<Vec3d>& b1, const ResolveReport& report);
+                          const Mesh& B, const std::vector<Vec3d>& b1, const ResolveReport& report);
+void write_resolution_vtk_self(const std::string& path, const Mesh& A, const std::vector<Vec3d>& a1,
+                               const ResolveReport& report);
 
 }  // namespace pdd::mesh
