@@ -50,7 +50,8 @@ using io::kSummaryLabel;
 namespace {
 
 struct MeshArgs {
-  std::string a, b, variants = "rigid,static,pdd2,accel1", engine = "fast", output, vtk;
+  std::string a, b, engine = "fast", output, vtk;
+  std::string variants = mesh::variant_names(mesh::ContactOptions{}.variants);  // the library's default
   bool self = false, summary = false, quiet = false, energy = false;
   int threads = 0;
 };

@@ -50,10 +50,12 @@ namespace pdd::compare {
 using namespace pdd::io;  // file formats and streaming helpers
 namespace {
 
+// Defaults from mesh::ResolveOptions (the library's, printed by --help), typed nowhere else.
 struct ResolveArgs {
-  std::string a, b, fix, variant = "global", out_a, out_b, report, vtk;
+  std::string a, b, fix, out_a, out_b, report, vtk;
+  std::string variant = mesh::resolve_variant_name(mesh::ResolveOptions{}.variant);
   bool self = false, summary = false, quiet = false;
-  std::size_t max_rounds = 200;
+  std::size_t max_rounds = mesh::ResolveOptions{}.max_rounds;
   mesh::QualityLimits limits;  // --min-volume-ratio, --min-shape-ratio
   int threads = 0;
 };

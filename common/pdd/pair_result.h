@@ -52,8 +52,8 @@ struct PairResult {
   // above are still reported; pdd2_global and q1_*_global are then NaN and there is no normal,
   // so that none of them can be read as a depth. Written as null keys in a record.
   std::optional<std::string> pdd2_global_error;
-  // The gradient of pdd2_global with respect to the eight rest vertices (pdd.h, "The gradient
-  // of pdd2_global"): set only when the options asked for it (SolveOptions::gradient); NaN
+  // The gradient of pdd2_global with respect to the eight vertices at their current positions,
+  // the pair as given (pdd.h, "The gradient of pdd2_global"): set only when the options asked for it (SolveOptions::gradient); NaN
   // where pdd2_global is declined (pdd2_global_error), 0 when not intersecting.
   std::optional<PairGradient<R>> pdd2_global_grad;
 

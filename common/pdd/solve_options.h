@@ -4,7 +4,8 @@
 //   with_global  (--no-global, with_global=False)  compute pdd2_global and its keys (default).
 //                Not `global`: that is a Python keyword.
 //   gradient     (--gradient, gradient=True)        also pdd2_global's gradient with respect to
-//                the eight rest vertices (PairResult::pdd2_global_grad; definitions §9 says what it is).
+//                the eight vertices at their current positions (the pair as given;
+//                PairResult::pdd2_global_grad; definitions §9 says what it is).
 //                Off by default; it needs with_global (without it the field stays empty; the
 //                CLI and Python reject the combination).
 //   formulation  (--formulation, formulation=)      reference engine: the per-direction QP.

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common.h"
@@ -147,7 +148,12 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
   return d;
 }
 
-constexpr const char* kDoc = R"doc(contact_energy(VA, TA, VB=None, TB=None, hessian=False, per_pair=False, engine='fast', weight='area', threads=None, rest_A=None, rest_B=None)
+// Python's names of the library's enums (the keyword values below).
+const char* engine_name(pdd::mesh::EnergyEngine e) { return e == pdd::mesh::EnergyEngine::Fast ? "fast" : "exact"; }
+const char* weight_name(pdd::mesh::EnergyWeight w) { return w == pdd::mesh::EnergyWeight::Area ? "area" : "unit"; }
+
+// {hessian}, {per_pair}, {engine}, {weight}: ContactEnergyOptions' defaults, filled in by bind_energy.
+constexpr const char* kDoc = R"doc(contact_energy(VA, TA, VB=None, TB=None, hessian={hessian}, per_pair={per_pair}, engine='{engine}', weight='{weight}', threads=None, rest_A=None, rest_B=None)
 
 The contact energy of two tetrahedral meshes at their current positions (docs/definitions.md
 "Contact energy"; SPEC §12):  E = sum over intersecting element pairs of w_ab * pdd2_global.
@@ -181,9 +187,20 @@ The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).
 }  // namespace
 
 void bind_energy(py::module_& m) {
-  m.def("contact_energy", &contact_energy, kDoc, py::arg("VA"), py::arg("TA"), py::arg("VB") = py::none(),
-        py::arg("TB") = py::none(), py::arg("hessian") = false, py::arg("per_pair") = false,
-        py::arg("engine") = "fast", py::arg("weight") = "area", py::arg("threads") = py::none(),
+  // Every default from pdd::mesh::ContactEnergyOptions, in the signature and in the docstring.
+  const pdd::mesh::ContactEnergyOptions d;
+  static const std::string doc = [&] {
+    std::string s = kDoc;
+    const std::pair<std::string, std::string> values[] = {
+        {"{hessian}", d.hessian ? "True" : "False"}, {"{per_pair}", d.per_pair ? "True" : "False"},
+        {"{engine}", engine_name(d.engine)}, {"{weight}", weight_name(d.weight)}};
+    for (const auto& [key, value] : values)
+      for (std::size_t at; (at = s.find(key)) != std::string::npos;) s.replace(at, key.size(), value);
+    return s;
+  }();
+  m.def("contact_energy", &contact_energy, doc.c_str(), py::arg("VA"), py::arg("TA"), py::arg("VB") = py::none(),
+        py::arg("TB") = py::none(), py::arg("hessian") = d.hessian, py::arg("per_pair") = d.per_pair,
+        py::arg("engine") = engine_name(d.engine), py::arg("weight") = weight_name(d.weight), py::arg("threads") = py::none(),
         py::arg("rest_A") = py::none(), py::arg("rest_B") = py::none());
 }
 

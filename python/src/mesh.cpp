@@ -288,7 +288,9 @@ py::tuple resolve(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py
 // ---------------------------------------------------------------------------------------------
 // Docstrings: help(pdd.mesh_contacts) reads like the README.
 
-constexpr const char* kMeshContactsDoc = R"doc(mesh_contacts(VA, TA, VB=None, TB=None, variants='rigid,static,pdd2,accel1', engine='fast', threads=None, progress=None)
+// The defaults in these texts ({variants}, {max_rounds}, ...) are filled in from the library's
+// options structs by with_defaults() below, as the keyword defaults are: typed nowhere else.
+constexpr const char* kMeshContactsDoc = R"doc(mesh_contacts(VA, TA, VB=None, TB=None, variants='{variants}', engine='fast', threads=None, progress=None)
 --
 
 Two tetrahedral meshes (or one, with itself) -> every intersecting element pair and its
@@ -304,8 +306,8 @@ VB, TB   mesh B, the same way; both None (the default): self-contact of A, the p
 variants comma-separated, which values to compute: rigid (rigid_pd2), eq11 (eq11_pd2),
          static (pdd2_static), pdd2, relaxed (pdd2_relaxed), accel1, accel6 (pdd2_accel1/6),
          global (pdd2_global, PD_d² over every separating plane: tens of microseconds
-         a pair with the fast engine), or all. Default: "rigid,static,pdd2,accel1", as
-         `pdd mesh`.
+         a pair with the fast engine), or all. Default: "{variants}" (the C++
+         ContactOptions::variants), as `pdd mesh`.
 engine   "fast" (doubles, certified to the accuracy contract of docs/definitions.md §8)
          or "reference" (exact rationals, fractions.Fraction; about 0.1 s a pair on one
          core: for small meshes).
@@ -397,7 +399,7 @@ refers to node 999, which is not in the file".
   ((14, 3), dtype('float64'), (24, 4), dtype('int64'))
 )doc";
 
-constexpr const char* kResolveDoc = R"doc(resolve(VA, TA, VB=None, TB=None, fix=None, variant='global', max_rounds=200, threads=None, progress=None, fixed_a=None, fixed_b=None, min_volume_ratio=None, min_shape_ratio=None)
+constexpr const char* kResolveDoc = R"doc(resolve(VA, TA, VB=None, TB=None, fix=None, variant='{variant}', max_rounds={max_rounds}, threads=None, progress=None, fixed_a=None, fixed_b=None, min_volume_ratio=None, min_shape_ratio=None)
 --
 
 Two tetrahedral meshes that interpenetrate (or one that intersects itself) -> new vertex
@@ -421,14 +423,16 @@ fix      None (the default): every vertex may move; "a" or "b": that whole mesh 
          for bit and only the other one moves ("b" needs B).
 fixed_a, fixed_b   boundary conditions: None, or a numpy bool array of shape (n,) per mesh,
          True where the vertex is kept bit for bit (with fix, the union is fixed).
-variant  which per-pair solution drives the vertices: "global" (the default: the deformable
+variant  which per-pair solution drives the vertices: "global" (the deformable
          penetration depth over every separating plane, its deformed positions), "pdd2" (the
          deformable depth over the candidate directions) or "rigid" (the baseline: each pair
-         pushed apart by its rigid translation, split between the two elements).
-max_rounds   rounds of contact solving before giving up, an int from 1 to 1000000. A run
+         pushed apart by its rigid translation, split between the two elements). Default:
+         "{variant}" (the C++ ResolveOptions::variant).
+max_rounds   rounds of contact solving before giving up, an int from 1 to 1000000 (default
+         {max_rounds}: the C++ ResolveOptions::max_rounds). A run
          that reaches it without R1-R4 returns normally with report["resolved"] False.
 min_volume_ratio, min_shape_ratio   R4's rho and kappa, real numbers in (0, 1]; None: the
-         library's defaults (1/4 and 1/2), as `pdd resolve --min-volume-ratio/--min-shape-ratio`.
+         library's defaults ({min_volume_ratio} and {min_shape_ratio}: QualityLimits), as `pdd resolve --min-volume-ratio/--min-shape-ratio`.
 threads  None or 0: all cores; k from 1 to 4096: at most k threads (a TBB arena for this
          call only), as `pdd resolve --threads`. Anything else raises ValueError.
 progress None (the default) or False: silent. A callable progress(done, total): called from
@@ -505,17 +509,35 @@ Example:
   >>> V1, _, r = pdd.resolve(VA, TA)                # self-contact of one mesh
 )doc";
 
+// `doc` with every {name} replaced by the library's default of that option.
+std::string with_defaults(std::string doc) {
+  const pdd::mesh::ResolveOptions r;
+  const std::pair<std::string, std::string> values[] = {
+      {"{variants}", pdd::mesh::variant_names(pdd::mesh::ContactOptions{}.variants)},
+      {"{variant}", pdd::mesh::resolve_variant_name(r.variant)},
+      {"{max_rounds}", std::to_string(r.max_rounds)},
+      {"{min_volume_ratio}", py::repr(py::float_(r.min_volume_ratio)).cast<std::string>()},
+      {"{min_shape_ratio}", py::repr(py::float_(r.min_shape_ratio)).cast<std::string>()}};
+  for (const auto& [key, value] : values)
+    for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
+  return doc;
+}
+
 }  // namespace
 
 void bind_mesh(py::module_& m) {
-  m.def("mesh_contacts", &mesh_contacts, kMeshContactsDoc, py::arg("VA"), py::arg("TA"),
+  // Kept for the module's lifetime (pybind11 keeps the pointer).
+  static const std::string contacts_doc = with_defaults(kMeshContactsDoc), resolve_doc = with_defaults(kResolveDoc);
+  const pdd::mesh::ResolveOptions defaults;
+  m.def("mesh_contacts", &mesh_contacts, contacts_doc.c_str(), py::arg("VA"), py::arg("TA"),
         py::arg("VB") = py::none(), py::arg("TB") = py::none(),
-        py::arg("variants") = "rigid,static,pdd2,accel1", py::arg("engine") = "fast",
+        py::arg("variants") = pdd::mesh::variant_names(pdd::mesh::ContactOptions{}.variants), py::arg("engine") = "fast",
         py::arg("threads") = py::none(), py::arg("progress") = py::none());
   m.def("read_mesh", &read_mesh, kReadMeshDoc, py::arg("path"));
-  m.def("resolve", &resolve, kResolveDoc, py::arg("VA"), py::arg("TA"), py::arg("VB") = py::none(),
-        py::arg("TB") = py::none(), py::arg("fix") = py::none(), py::arg("variant") = "global",
-        py::arg("max_rounds") = 200, py::arg("threads") = py::none(),
+  m.def("resolve", &resolve, resolve_doc.c_str(), py::arg("VA"), py::arg("TA"), py::arg("VB") = py::none(),
+        py::arg("TB") = py::none(), py::arg("fix") = py::none(),
+        py::arg("variant") = pdd::mesh::resolve_variant_name(defaults.variant),
+        py::arg("max_rounds") = defaults.max_rounds, py::arg("threads") = py::none(),
         py::arg("progress") = py::none(), py::arg("fixed_a") = py::none(),
         py::arg("fixed_b") = py::none(), py::arg("min_volume_ratio") = py::none(),
         py::arg("min_shape_ratio") = py::none());

@@ -62,7 +62,7 @@ Functions:
                                        meshes (numpy arrays; docs/definitions.md §10)
                                        and its depths
   read_mesh(path)                      a .msh or .vtk file -> (V, T) numpy arrays
-  resolve(VA, TA, VB=None, TB=None, fix=None, variant="global", max_rounds=200, ...)
+  resolve(VA, TA, VB=None, TB=None, fix=None, variant=..., max_rounds=..., ...)
                                        move the meshes' vertices until no element pair
                                        intersects, checked exactly -> (VA1, VB1, report)
 

@@ -171,7 +171,7 @@ with_global  False: skip pdd2_global, PD_d² over every separating plane
          q1_A_global, q1_B_global, pdd2_global_lower keys. Faster (fast engine: about 6 of
          15 us a pair; reference: its branch and bound of 5 to 50 ms). `pdd solve --no-global`.
 gradient True: add "pdd2_global_grad", the gradient of pdd2_global with respect to the
-         eight rest vertices, 8 x [x, y, z] (A's s0..s3, then B's r0..r3): minus the object
+         eight vertices at their current positions (A, B as given), 8 x [x, y, z] (A's s0..s3, then B's r0..r3): minus the object
          norm's derivative at the displacement to q1_A_global, q1_B_global (docs/definitions.md §9 says why;
          how exact: §8). None where pdd2_global is None; 0 when not intersecting. Needs
          with_global=True (ValueError otherwise). `pdd solve --gradient`.

@@ -1,7 +1,7 @@
 """pdd2_global's gradient from Python: solve(..., gradient=True), solve_batch(..., gradient=True)
 and `pdd solve --gradient` (pdd.h, "The gradient of pdd2_global").
 
-f = pdd2_global, P the rest pose, W a displacement of the eight vertices, sigma(W) its object norm
+f = pdd2_global, P the current positions, W a displacement of the eight vertices, sigma(W) its object norm
 over A and B. What is asserted and why:
 - the key is there only when asked; 8 x [x, y, z], A's vertices first; it is
   -(d_i + sum_k d_k) / 10 per tetrahedron at d = q1_global - P (exactly, from the reference

@@ -53,3 +53,36 @@ def test_readme_dask_block(tmp_path):
     pytest.importorskip("distributed", reason="dask.distributed not importable (Debian python3-distributed)")
     out = run_block(readme_python_blocks()[1], tmp_path, "readme_dask.py")
     assert out.returncode == 0, out.stderr
+
+
+def test_readme_defaults_are_the_programs(pdd_cli):
+    """Every "`--flag` (default X" of the README is the default `pdd mesh --help` or `pdd resolve
+    --help` prints for that flag, which the CLI takes from the library's options structs
+    (ContactOptions, ResolveOptions): the README cannot drift from them."""
+    text = (SOURCE_DIR / "README.md").read_text()
+    stated = re.findall(r"`(--[\w-]+)`\*?\*?\s+\(default `?([^`;)]+)`?[;)]", text)
+    assert {f for f, _ in stated} >= {"--variants", "--max-rounds", "--min-volume-ratio", "--min-shape-ratio"}
+    helps = "".join(subprocess.run([pdd_cli, cmd, "--help"], capture_output=True, text=True, check=True).stdout
+                    for cmd in ("mesh", "resolve"))
+    for flag, value in stated:
+        printed = re.findall(rf"^\s*{re.escape(flag)} [^\n=]*=(\S+)", helps, re.M)
+        assert printed, f"{flag}: no default in the --help of pdd mesh / pdd resolve"
+        assert value.strip() in printed, f"README says {flag} defaults to {value}; --help says {printed}"
+
+
+def test_python_defaults_are_the_programs(pdd_cli):
+    """pdd.resolve and pdd.mesh_contacts take their keyword defaults from the same structs as the
+    CLI: each equals the default `pdd resolve --help` / `pdd mesh --help` prints."""
+    import inspect
+    import pdd
+    helps = {cmd: subprocess.run([pdd_cli, cmd, "--help"], capture_output=True, text=True, check=True).stdout
+             for cmd in ("mesh", "resolve")}
+    def cli_default(cmd, flag):
+        return re.search(rf"^\s*{flag} [^\n=]*=(\S+)", helps[cmd], re.M).group(1)
+    r = inspect.signature(pdd.resolve).parameters
+    assert str(r["max_rounds"].default) == cli_default("resolve", "--max-rounds")
+    assert r["variant"].default == cli_default("resolve", "--variant")
+    assert inspect.signature(pdd.mesh_contacts).parameters["variants"].default == cli_default("mesh", "--variants")
+    doc = pdd.resolve.__doc__
+    for flag in ("--min-volume-ratio", "--min-shape-ratio"):
+        assert cli_default("resolve", flag) in doc, flag  # "library's defaults (0.25 and 0.5 ..."

@@ -1,7 +1,7 @@
 // The fast engine's gradient of pdd2_global (definitions §9, "The gradient of pdd2_global";
 // SolveOptions::gradient), against finite differences of pdd2_global itself.
 //
-// Notation: f = pdd2_global, P the rest pose (8 vertices), W a displacement of P, sigma(W) the
+// Notation: f = pdd2_global, P the current positions (8 vertices), W a displacement of P, sigma(W) the
 // object norm of W summed over A and B, <g, W> the sum of the 24 products.
 // What is asserted, and why each bound holds:
 // - the gradient is -d sigma/d d at d = q1_global - P: Euler's relation <g, d> = -2 f (to the

@@ -1,7 +1,7 @@
 // The gradient of pdd2_global (pdd.h, "The gradient of pdd2_global"; SolveOptions::gradient) in
 // the exact engine, and the fast engine's against it.
 //
-// Notation: f = pdd2_global, P the rest pose (8 vertices), W a displacement of P, sigma(W) its
+// Notation: f = pdd2_global, P the current positions (8 vertices), W a displacement of P, sigma(W) its
 // object norm over A and B, <g, W> the sum of the 24 products; U = f's witness value at P (the
 // exact engine's pdd2_global: sigma of its witness positions, within 1e-12 above the minimum)
 // and L = its proved lower bound.
@@ -10,7 +10,7 @@
 //   relaxed optimum along a normal is not improved by translating both tetrahedra along it);
 //   not intersecting: 0; no gradient unless asked; asking changes no other field.
 // - (*) of definitions §9 with the witness Q: f(P + W) <= U + <g, W> + sigma(W) for every W, and
-//   L(P + W) <= f(P + W). So, exactly, for steps W and -W of the rest pose (both doubles):
+//   L(P + W) <= f(P + W). So, exactly, for steps W and -W of P (both doubles):
 //       L(P + W) - U - sigma(W) <= <g, W> <= U + sigma(W) - L(P - W).            (box)
 //   The same box holds for the true gradient (any minimiser's: (*) with that minimiser), so
 //   it is a certified interval for <grad f, W>: about 2 (1e-12 f + sigma(W)) + |second

@@ -46,7 +46,7 @@ struct ResolveBenchOptions {
   std::string cases_dir;            // real-mesh cases: DIR/cases.tsv; empty: none
   std::string variants = "global,pdd2,rigid";  // comma-separated resolve variants to run
   std::string write_dir;            // final meshes of the first run per row; empty: not written
-  std::size_t max_rounds = 200;
+  std::size_t max_rounds = mesh::ResolveOptions{}.max_rounds;  // the library's default
   int repeats = 3;                  // runs per case and variant (median of the times)
 };
 
