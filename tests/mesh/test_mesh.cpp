@@ -38,6 +38,13 @@ Mesh load(const std::string& name) { return read_mesh(kDir + name); }
 
 using PairSet = std::vector<std::array<std::size_t, 2>>;
 
+// Options computing the variants `v` (every other option at its default).
+ContactOptions computing(unsigned v) {
+  ContactOptions o;
+  o.variants = v;
+  return o;
+}
+
 // All N·M pairs (self: i < j sharing no vertex), exact decision, no boxes.
 PairSet brute_force(const Mesh& A, const Mesh* B) {
   const Mesh& BB = B ? *B : A;
@@ -72,7 +79,7 @@ PairSet pairs_of(const Contacts<R>& c) {
 
 void check_pair_set(const std::string& a, const std::string& b) {
   const Mesh A = load(a), B = load(b);
-  const Contacts<double> c = contacts(A, B, {kRigid, {}});
+  const Contacts<double> c = contacts(A, B, computing(kRigid));
   const PairSet expected = brute_force(A, &B);
   BOOST_TEST_MESSAGE(a << " x " << b << ": " << A.tets.size() << " x " << B.tets.size()
                        << " elements, " << c.box_pairs << " box pairs, " << expected.size()
@@ -332,7 +339,7 @@ BOOST_AUTO_TEST_CASE(pair_set_equals_brute_force) {
 
 BOOST_AUTO_TEST_CASE(self_contact_equals_brute_force) {
   const Mesh m = load("two-spheres.msh");
-  const Contacts<double> c = contacts_self(m, {kRigid | kAccel1, {}});
+  const Contacts<double> c = contacts_self(m, computing(kRigid | kAccel1));
   const PairSet expected = brute_force(m, nullptr);
   BOOST_TEST(!expected.empty());
   BOOST_TEST((pairs_of(c) == expected));
@@ -348,13 +355,13 @@ BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
                      unsigned(kRelaxed | kAccel6), unsigned(kGlobal), unsigned(kRigid | kGlobal),
                      unsigned(kPdd2 | kGlobal)}) {
     BOOST_TEST_CONTEXT(variant_names(v)) {
-      const Contacts<double> c = contacts(A, B, {v, {}});
+      const Contacts<double> c = contacts(A, B, computing(v));
       BOOST_TEST(!c.pairs.empty());
       check_values(c, A, B, v);
     }
   }
   const Mesh S = load("two-spheres.msh");
-  check_values(contacts_self(S, {kAllVariants, {}}), S, S, kAllVariants);
+  check_values(contacts_self(S, computing(kAllVariants)), S, S, kAllVariants);
 }
 
 BOOST_AUTO_TEST_CASE(progress_starts_at_zero_and_cancel_stops_the_call) {
@@ -402,9 +409,9 @@ BOOST_AUTO_TEST_CASE(touching_meshes_report_no_pair) {
 
 BOOST_AUTO_TEST_CASE(reference_engine_on_a_tiny_mesh_is_exact) {
   const Mesh A = load("tiny-a.msh"), B = load("tiny-b.msh");
-  const Contacts<Rational> e = contacts_exact(A, B, {kAllVariants, {}});
+  const Contacts<Rational> e = contacts_exact(A, B, computing(kAllVariants));
   const Contacts<Rational> plain = contacts_exact(A, B);  // default variants: no definitions §9 search
-  const Contacts<double> f = contacts(A, B, {kAllVariants, {}});
+  const Contacts<double> f = contacts(A, B, computing(kAllVariants));
   BOOST_TEST(!e.pairs.empty());
   BOOST_TEST((pairs_of(e) == pairs_of(f)));
   BOOST_TEST((pairs_of(plain) == pairs_of(f)));
@@ -471,7 +478,7 @@ BOOST_AUTO_TEST_CASE(vtk_output_reads_back) {
   BOOST_TEST(!contains(text, "max_pdd2_global"));
   // With kGlobal: max_pdd2_global, each cell's largest pdd2_global over its pairs.
   const Mesh a = load("tiny-a.msh"), b = load("tiny-b.msh");
-  const Contacts<double> g = contacts(a, b, {kRigid | kGlobal, {}});
+  const Contacts<double> g = contacts(a, b, computing(kRigid | kGlobal));
   write_vtk(path, a, b, g, kRigid | kGlobal);
   std::ifstream gin(path);
   const std::string gtext((std::istreambuf_iterator<char>(gin)), std::istreambuf_iterator<char>());
