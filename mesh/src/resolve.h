@@ -34,6 +34,9 @@
 //   - self-contact of several bodies, when every intersecting pair at rest joins two bodies and
 //     the bodies in contact split into two colours (no three meet pairwise): each contacting
 //     group resolved as two meshes, one colour each, all of the below included (method "bodies");
+//     else (three bodies meeting pairwise, or the two meshes not resolved) the bodies spread:
+//     each cluster's bodies translated away from its centre by the smallest separating factor,
+//     then walked back towards the rest pose as the translation below is (method "bodies");
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;

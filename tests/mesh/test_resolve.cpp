@@ -418,6 +418,40 @@ BOOST_AUTO_TEST_CASE(three_bodies_in_a_chain) {
   BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
 }
 
+BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise) {
+  // Three copies of sphere-a.msh (radius 1, surface vertices on the unit sphere) in one mesh,
+  // centred at the corners of an equilateral triangle of side 1.4: every two bodies overlap by
+  // 0.6 (about two element layers), so no two colours hold the contact graph. The rounds stall;
+  // the bodies are spread from the triangle's centre (each moved by t times its way out, of
+  // length 1.4 / sqrt(3)) until the contact stage finds them apart, then walked back towards
+  // rest (method "bodies"), judged on the whole mesh.
+  const Mesh a = load("sphere-a.msh");
+  Mesh m;
+  for (const Vec3d c : {Vec3d{0, 0, 0}, Vec3d{1.4, 0, 0}, Vec3d{0.7, 0.7 * std::sqrt(3.0), 0}}) {
+    const std::size_t base = m.vertices.size();
+    for (const Vec3d& v : a.vertices) m.vertices.push_back({v[0] + c[0], v[1] + c[1], v[2] + c[2]});
+    for (auto t : a.tets) {
+      for (auto& v : t) v += base;
+      m.tets.push_back(t);
+    }
+  }
+  ResolveOptions o;
+  o.variant = ResolveVariant::Rigid;  // as deep_overlap: keeps the test short
+  const Resolution r = resolve_self(m, o);
+  log_report("three deep balls meeting pairwise (self)", r);
+  judge(m, nullptr, r, {}, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
+  BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+  // Balls of radius 1 whose centres lie 2 apart do not intersect: the spread separates by
+  // t = 2 / 1.4 - 1, found by the bisection within a relative 1e-3 (1.001 below allows for it
+  // and the rounding of the surface vertices), and every vertex moves by t 1.4 / sqrt(3), so
+  // the rigid spread costs at most (1.001 t)^2 1.4^2 / 3; the walk back keeps only cheaper states.
+  const double t = 2 / 1.4 - 1, spread = 1.001 * 1.001 * t * t * 1.4 * 1.4 / 3;
+  BOOST_TEST(r.report.cost <= spread);
+  BOOST_TEST_MESSAGE("cost / rigid spread bound " << r.report.cost / spread);
+}
+
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {
   // The shipped balls overlap by 0.73 (about 2.4 elements of size 0.3): one round cannot end it.
   const Mesh A = load("sphere-a.msh"), B = load("sphere-b.msh");

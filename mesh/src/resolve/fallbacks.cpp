@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -298,6 +300,174 @@ bool resolve_group(Run& run, const std::vector<std::ptrdiff_t>& body, const Body
   return true;
 }
 
+// ---- the body spread (contact graphs that two colours cannot hold)
+
+// The spread of the bodies in contact (clusters: the connected components of the bodies'
+// contact graph): each body of a cluster translated by t times its way out, its vertex centroid
+// minus the cluster's centre, one factor t per cluster. The centre is the cluster's vertex
+// centroid, or the vertex centroid of its one body with fixed vertices (whose way is then zero:
+// it stays). Every centroid difference within a cluster grows by (1 + t): far enough out, every
+// two bodies whose centroids differ lie apart.
+struct Spread {
+  std::vector<std::ptrdiff_t> cluster;  // per body: its cluster, -1 for a body in no contact
+  std::vector<Vec3d> way;               // per body: its way out (zero outside the clusters)
+  std::vector<double> t_hi;             // per cluster: a first upper end for the bisection
+  std::size_t clusters = 0;
+};
+
+// The clusters of the bodies joined by `pairs` (union-find over bodies); nullopt when a body
+// meets itself (no translation of bodies parts it).
+std::optional<std::pair<std::vector<std::ptrdiff_t>, std::size_t>> body_clusters(
+    const Mesh& A, const std::vector<std::ptrdiff_t>& body, std::size_t count,
+    const std::vector<std::array<std::size_t, 2>>& pairs) {
+  std::vector<std::size_t> parent(count);
+  for (std::size_t k = 0; k < count; ++k) parent[k] = k;
+  const auto root = [&](std::size_t k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  std::vector<char> touching(count, 0);
+  for (const auto& p : pairs) {
+    const std::size_t i = std::size_t(body[A.tets[p[0]][0]]), j = std::size_t(body[A.tets[p[1]][0]]);
+    if (i == j) return std::nullopt;
+    touching[i] = touching[j] = 1;
+    parent[root(i)] = root(j);
+  }
+  std::vector<std::ptrdiff_t> cluster(count, -1), id(count, -1);
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < count; ++k)
+    if (touching[k]) {
+      const std::size_t r = root(k);
+      if (id[r] < 0) id[r] = std::ptrdiff_t(n++);
+      cluster[k] = id[r];
+    }
+  return std::make_pair(cluster, n);
+}
+
+// The spread of side s's bodies in contact (above); nullopt when a body meets itself, a
+// cluster holds two bodies with fixed vertices (neither may move), or two bodies in contact
+// share their centroid (the spread does not part them).
+std::optional<Spread> body_spread(const Side& s, const std::vector<std::ptrdiff_t>& body, std::size_t count,
+                                  const std::vector<std::array<std::size_t, 2>>& pairs) {
+  const Mesh& A = *s.rest;
+  const auto clusters = body_clusters(A, body, count, pairs);
+  if (!clusters) return std::nullopt;
+  Spread sp;
+  sp.cluster = clusters->first;
+  sp.clusters = clusters->second;
+  // Per body: vertex sum and count, whether it has fixed vertices; per cluster: the same and its box.
+  std::vector<Vec3d> sum(count, Vec3d{0, 0, 0}), csum(sp.clusters, Vec3d{0, 0, 0});
+  std::vector<std::size_t> n(count, 0), cn(sp.clusters, 0);
+  std::vector<char> has_fixed(count, 0);
+  std::vector<Vec3d> lo(sp.clusters, Vec3d{HUGE_VAL, HUGE_VAL, HUGE_VAL}), hi(sp.clusters, Vec3d{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  for (std::size_t v = 0; v < A.vertices.size(); ++v) {
+    const std::ptrdiff_t k = body[v];
+    if (k < 0 || sp.cluster[std::size_t(k)] < 0 || !finite(A.vertices[v])) continue;
+    const std::size_t c = std::size_t(sp.cluster[std::size_t(k)]);
+    add_to(sum[std::size_t(k)], A.vertices[v]), ++n[std::size_t(k)];
+    add_to(csum[c], A.vertices[v]), ++cn[c];
+    if (s.is_fixed(v)) has_fixed[std::size_t(k)] = 1;
+    for (int i = 0; i < 3; ++i)
+      lo[c][i] = std::min(lo[c][i], A.vertices[v][i]), hi[c][i] = std::max(hi[c][i], A.vertices[v][i]);
+  }
+  std::vector<Vec3d> centre(sp.clusters), centroid(count, Vec3d{0, 0, 0});
+  std::vector<int> fixed_bodies(sp.clusters, 0);
+  for (std::size_t c = 0; c < sp.clusters; ++c) centre[c] = scaled(csum[c], 1.0 / double(cn[c]));
+  for (std::size_t k = 0; k < count; ++k) {
+    if (sp.cluster[k] < 0) continue;
+    const std::size_t c = std::size_t(sp.cluster[k]);
+    centroid[k] = scaled(sum[k], 1.0 / double(n[k]));
+    if (has_fixed[k]) {
+      if (++fixed_bodies[c] > 1) return std::nullopt;
+      centre[c] = centroid[k];
+    }
+  }
+  sp.way.assign(count, Vec3d{0, 0, 0});
+  for (std::size_t k = 0; k < count; ++k)
+    if (sp.cluster[k] >= 0 && !has_fixed[k]) sp.way[k] = sub(centroid[k], centre[std::size_t(sp.cluster[k])]);
+  // t_hi: every body lies within the cluster box's diagonal `diag` of its centroid, so two
+  // bodies whose centroids lie d apart at rest are apart once (1 + t) d > 2 diag; over the
+  // pairs in contact, t = 2 diag / (smallest such d). Bodies of a cluster not in contact at
+  // rest, and bodies outside it, can still be met on the way: the bisection's contact stage
+  // decides (and its upper end grows while it does not separate).
+  std::vector<double> closest(sp.clusters, HUGE_VAL);
+  for (const auto& p : pairs) {
+    const std::size_t i = std::size_t(body[A.tets[p[0]][0]]), j = std::size_t(body[A.tets[p[1]][0]]);
+    const Vec3d d = sub(centroid[i], centroid[j]);
+    double& m = closest[std::size_t(sp.cluster[i])];
+    m = std::min(m, std::sqrt(dot(d, d)));
+  }
+  sp.t_hi.resize(sp.clusters);
+  for (std::size_t c = 0; c < sp.clusters; ++c) {
+    if (!(closest[c] > 0)) return std::nullopt;
+    const Vec3d e = sub(hi[c], lo[c]);
+    sp.t_hi[c] = 2 * std::sqrt(dot(e, e)) / closest[c];
+  }
+  return sp;
+}
+
+// Cluster c of side s at its rest pose spread by factor t (fixed vertices at rest; the other
+// clusters as they are).
+void place_spread(Side& s, const std::vector<std::ptrdiff_t>& body, const Spread& sp, std::size_t c, double t) {
+  const Mesh& m = *s.rest;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const std::ptrdiff_t k = body[v];
+    if (k < 0 || sp.cluster[std::size_t(k)] != std::ptrdiff_t(c)) continue;
+    s.cur.vertices[v] = s.is_fixed(v) ? m.vertices[v] : moved_by(m.vertices[v], t, sp.way[std::size_t(k)]);
+  }
+}
+
+// The smallest factor (to kBisection) at which cluster c, spread, meets nothing (contact stage:
+// exact; no intersecting pair has an element in the cluster), placed; false, the cluster at
+// rest, when no factor up to kSpreadGrowths doublings of its t_hi does.
+constexpr int kSpreadGrowths = 4;
+bool spread_cluster(Run& run, const std::vector<std::ptrdiff_t>& body, const Spread& sp, std::size_t c) {
+  const Mesh& A = run.A;
+  const auto apart_at = [&](double t) {
+    place_spread(run.sa, body, sp, c, t);
+    run.stop_if_cancelled();
+    for (const auto& p : contacts(run))
+      for (std::size_t e : p)
+        if (sp.cluster[std::size_t(body[A.tets[e][0]])] == std::ptrdiff_t(c)) return false;
+    return true;
+  };
+  double t_hi = sp.t_hi[c];
+  for (int growths = 0; !apart_at(t_hi); ++growths) {
+    if (growths == kSpreadGrowths) {
+      place_spread(run.sa, body, sp, c, 0);
+      return false;
+    }
+    t_hi *= 2;
+  }
+  double t_lo = 0;
+  while (t_hi - t_lo > kBisection * t_hi) {
+    const double mid = (t_lo + t_hi) / 2;
+    (apart_at(mid) ? t_hi : t_lo) = mid;
+  }
+  place_spread(run.sa, body, sp, c, t_hi);
+  return true;
+}
+
+// The body spread from rest, cluster by cluster, then walked back towards the rest pose as the
+// translation fallback is (relax_towards_rest). True when it ends resolved (R1 by the contact
+// stage); false, positions unchanged, when it does not apply (body_spread) or does not separate
+// everything with every element keeping its orientation.
+bool spread_bodies(Run& run, const std::vector<std::ptrdiff_t>& body, std::size_t count,
+                   const std::vector<std::array<std::size_t, 2>>& pairs, std::size_t budget) {
+  const std::optional<Spread> sp = body_spread(run.sa, body, count, pairs);
+  if (!sp) return false;
+  const std::vector<Vec3d> keep = run.sa.cur.vertices;
+  run.sa.cur.vertices = run.A.vertices;
+  bool ok = true;
+  for (std::size_t c = 0; ok && c < sp->clusters; ++c) ok = spread_cluster(run, body, *sp, c);
+  if (!ok || !contacts(run).empty() || !oriented(run.sa)) {
+    run.sa.cur.vertices = keep;
+    return false;
+  }
+  relax_towards_rest(run, budget);
+  return true;
+}
+
 }  // namespace
 
 bool translate_and_relax(Run& run, std::size_t budget) {
@@ -326,13 +496,15 @@ bool resolve_bodies(Run& run) {
   const Mesh& A = run.A;
   const auto [body, count] = bodies(A, run.sa.elems);
   if (count < 2) return false;
-  const auto g = body_groups(A, body, count, intersecting_pairs(A, run.sa.elems, nullptr, {}));
-  if (!g) return false;
-  std::vector<Vec3d> result = A.vertices;
-  for (std::size_t k = 0; k < g->groups; ++k)
-    if (!resolve_group(run, body, *g, k, result)) return false;
-  run.sa.cur.vertices = result;
-  return true;
+  const std::vector<std::array<std::size_t, 2>> pairs = intersecting_pairs(A, run.sa.elems, nullptr, {});
+  if (const auto g = body_groups(A, body, count, pairs)) {
+    std::vector<Vec3d> result = A.vertices;
+    std::size_t k = 0;
+    while (k < g->groups && resolve_group(run, body, *g, k, result)) ++k;
+    if (k == g->groups) return run.sa.cur.vertices = result, true;
+  }
+  const std::size_t used = std::min(run.o.max_rounds, run.rep.rounds.size());
+  return spread_bodies(run, body, count, pairs, run.o.max_rounds - used);
 }
 
 }  // namespace pdd::mesh::detail

@@ -14,9 +14,16 @@
 //   when every intersecting pair at rest joins two different bodies and the bodies' contact
 //   graph is 2-colourable (no three bodies meet pairwise: a chain or a star of bodies is), each
 //   connected group of contacting bodies is cut out as two meshes, one colour each, and resolved
-//   from rest as A x B (every fallback of two meshes included). True when every group ended
-//   resolved (the caller's exact verdict on the whole mesh judges the result); false, positions
-//   unchanged, otherwise.
+//   from rest as A x B (every fallback of two meshes included). Where two colours do not hold
+//   the graph, or a group does not end resolved, the bodies spread instead: each cluster of
+//   contacting bodies (connected component of the graph) moved rigidly, body k by t (c_k - c),
+//   c_k its vertex centroid and c the cluster's (or that of its one body with fixed vertices,
+//   which stays), t the smallest factor at which the contact stage (exact) finds the cluster
+//   apart (bisected to kBisection), then walked back towards rest as translate_and_relax is.
+//   True when it ended resolved (the caller's exact verdict on the whole mesh judges the
+//   result); false, positions unchanged, when neither applies: a body meets itself, a cluster
+//   holds two bodies with fixed vertices, two bodies in contact share their centroid, or no
+//   factor separates.
 #pragma once
 
 #include <cstddef>
