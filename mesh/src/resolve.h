@@ -31,12 +31,12 @@
 //
 // Fallbacks, in order, when the rounds stall (report.method says which produced the result;
 // fallbacks.h):
-//   - self-contact of several bodies, when every intersecting pair at rest joins two bodies and
-//     the bodies in contact split into two colours (no three meet pairwise): each contacting
-//     group resolved as two meshes, one colour each, all of the below included (method "bodies");
-//     else (three bodies meeting pairwise, or the two meshes not resolved) the bodies spread:
-//     each cluster's bodies translated away from its centre by the smallest separating factor,
-//     then walked back towards the rest pose as the translation below is (method "bodies");
+//   - self-contact of several bodies, when every intersecting pair at rest joins two bodies:
+//     when the contacting bodies come in pairs, each pair resolved as two meshes, all of the
+//     below included (method "bodies"); else (a chain, a square or a triangle of bodies, or the
+//     pairs not resolved) the bodies spread: each cluster's bodies translated away from its
+//     centre by the smallest separating factor, then walked back towards the rest pose as the
+//     translation below is (method "bodies");
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;

@@ -70,10 +70,10 @@ enum class ResolveMethod {
   Translation,  // the deep-overlap fallback: the cheapest separating translation of a body
                 // pair over a few directions (centroids' line, mean pdd2 normal, principal
                 // axes of the contact region), then walked back towards the rest pose
-  Bodies,       // self-contact of several bodies: each contacting group of bodies, split in
-                // two colours, resolved as two meshes (any of the above per group); where two
-                // colours do not hold it, the bodies spread apart from their cluster's centre
-                // by the smallest separating factor, then walked back towards the rest pose
+  Bodies,       // self-contact of several bodies: each contacting pair of bodies resolved as
+                // two meshes (any of the above per pair); larger groups of contacting bodies
+                // spread apart from their cluster's centre by the smallest separating factor,
+                // then walked back towards the rest pose
   RigidRounds,  // self-contact fallback: rounds of the rigid variant from the rest pose
   None,         // nothing cleared the contacts (the report says what remains)
 };

@@ -497,14 +497,31 @@ bool resolve_bodies(Run& run) {
   const auto [body, count] = bodies(A, run.sa.elems);
   if (count < 2) return false;
   const std::vector<std::array<std::size_t, 2>> pairs = intersecting_pairs(A, run.sa.elems, nullptr, {});
-  if (const auto g = body_groups(A, body, count, pairs)) {
+  const std::optional<BodyGroups> g = body_groups(A, body, count, pairs);
+  const auto two_meshes = [&] {
     std::vector<Vec3d> result = A.vertices;
     std::size_t k = 0;
     while (k < g->groups && resolve_group(run, body, *g, k, result)) ++k;
-    if (k == g->groups) return run.sa.cur.vertices = result, true;
+    if (k < g->groups) return false;
+    run.sa.cur.vertices = result;
+    return true;
+  };
+  const auto spread = [&] {
+    return spread_bodies(run, body, count, pairs, run.o.max_rounds - std::min(run.o.max_rounds, run.rep.rounds.size()));
+  };
+  // Two bodies: the two meshes' translation tries several directions, the spread only the
+  // centroid line. Larger groups: the two meshes are rigid wholes of bodies on both sides (a
+  // chain's two outer bodies against its middle one need a translation across the chain), the
+  // spread moves every body its own way.
+  bool pairs_only = bool(g);
+  if (g) {
+    std::vector<std::size_t> size(g->groups, 0);
+    for (std::ptrdiff_t k : g->group)
+      if (k >= 0) ++size[std::size_t(k)];
+    pairs_only = std::all_of(size.begin(), size.end(), [](std::size_t n) { return n == 2; });
   }
-  const std::size_t used = std::min(run.o.max_rounds, run.rep.rounds.size());
-  return spread_bodies(run, body, count, pairs, run.o.max_rounds - used);
+  if (pairs_only) return two_meshes() || spread();
+  return spread() || (g && two_meshes());
 }
 
 }  // namespace pdd::mesh::detail

@@ -11,15 +11,17 @@
 //   (both meshes have fixed vertices, no separating translation found, or the translated rest
 //   pose flips an element by rounding).
 // resolve_bodies (self-contact of several bodies, the connected components by shared vertices):
-//   when every intersecting pair at rest joins two different bodies and the bodies' contact
-//   graph is 2-colourable (no three bodies meet pairwise: a chain or a star of bodies is), each
-//   connected group of contacting bodies is cut out as two meshes, one colour each, and resolved
-//   from rest as A x B (every fallback of two meshes included). Where two colours do not hold
-//   the graph, or a group does not end resolved, the bodies spread instead: each cluster of
+//   when every intersecting pair at rest joins two different bodies and every connected group
+//   of contacting bodies is a pair, each pair is cut out as two meshes and resolved from rest
+//   as A x B (every fallback of two meshes included: the translation tries several directions).
+//   A larger group (a chain, whose two meshes would be the outer bodies as one rigid whole
+//   against the middle one, or three bodies meeting pairwise, which two colours cannot split),
+//   or a pair that does not end resolved, makes the bodies spread instead: each cluster of
 //   contacting bodies (connected component of the graph) moved rigidly, body k by t (c_k - c),
 //   c_k its vertex centroid and c the cluster's (or that of its one body with fixed vertices,
 //   which stays), t the smallest factor at which the contact stage (exact) finds the cluster
-//   apart (bisected to kBisection), then walked back towards rest as translate_and_relax is.
+//   apart (bisected to kBisection), then walked back towards rest as translate_and_relax is
+//   (a 2-colourable larger group goes to the two meshes when the spread does not apply).
 //   True when it ended resolved (the caller's exact verdict on the whole mesh judges the
 //   result); false, positions unchanged, when neither applies: a body meets itself, a cluster
 //   holds two bodies with fixed vertices, two bodies in contact share their centroid, or no
