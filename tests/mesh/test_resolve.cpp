@@ -19,6 +19,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -424,13 +425,9 @@ BOOST_AUTO_TEST_CASE(three_bodies_in_a_chain) {
   BOOST_TEST(r.report.cost <= spread);
 }
 
-BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise) {
-  // Three copies of sphere-a.msh (radius 1, surface vertices on the unit sphere) in one mesh,
-  // centred at the corners of an equilateral triangle of side 1.4: every two bodies overlap by
-  // 0.6 (about two element layers), so no two colours hold the contact graph. The rounds stall;
-  // the bodies are spread from the triangle's centre (each moved by t times its way out, of
-  // length 1.4 / sqrt(3)) until the contact stage finds them apart, then walked back towards
-  // rest (method "bodies"), judged on the whole mesh.
+// Three copies of sphere-a.msh (radius 1) in one mesh, centred at (0, 0, 0), (1.4, 0, 0) and
+// (0.7, 0.7 sqrt(3), 0): the corners of an equilateral triangle of side 1.4.
+Mesh triangle_of_balls() {
   const Mesh a = load("sphere-a.msh");
   Mesh m;
   for (const Vec3d c : {Vec3d{0, 0, 0}, Vec3d{1.4, 0, 0}, Vec3d{0.7, 0.7 * std::sqrt(3.0), 0}}) {
@@ -441,6 +438,17 @@ BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise) {
       m.tets.push_back(t);
     }
   }
+  return m;
+}
+
+BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise) {
+  // Three copies of sphere-a.msh (radius 1, surface vertices on the unit sphere) in one mesh,
+  // centred at the corners of an equilateral triangle of side 1.4: every two bodies overlap by
+  // 0.6 (about two element layers), so no two colours hold the contact graph. The rounds stall;
+  // the bodies are spread from the triangle's centre (each moved by t times its way out, of
+  // length 1.4 / sqrt(3)) until the contact stage finds them apart, then walked back towards
+  // rest (method "bodies"), judged on the whole mesh.
+  const Mesh m = triangle_of_balls();
   ResolveOptions o;
   o.variant = ResolveVariant::Rigid;  // as deep_overlap: keeps the test short
   const Resolution r = resolve_self(m, o);
@@ -456,6 +464,23 @@ BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise) {
   const double t = 2 / 1.4 - 1, spread = 1.001 * 1.001 * t * t * 1.4 * 1.4 / 3;
   BOOST_TEST(r.report.cost <= spread);
   BOOST_TEST_MESSAGE("cost / rigid spread bound " << r.report.cost / spread);
+}
+
+BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise_one_held) {
+  // As above with every vertex of the first ball fixed: the spread's centre is that ball's
+  // centroid, so it stays and the other two move away from it (and from each other: every
+  // centroid difference grows by the same factor). R3 is judged bit for bit.
+  const Mesh m = triangle_of_balls();
+  ResolveOptions o;
+  o.variant = ResolveVariant::Rigid;
+  o.fixed_vertices_a.assign(m.vertices.size(), 0);
+  std::fill(o.fixed_vertices_a.begin(), o.fixed_vertices_a.begin() + m.vertices.size() / 3, 1);
+  const Resolution r = resolve_self(m, o);
+  log_report("three deep balls meeting pairwise, one held (self)", r);
+  judge(m, nullptr, r, o.fixed_vertices_a, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(r.report.r3);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
 }
 
 BOOST_AUTO_TEST_CASE(round_limit_reports_what_remains) {

@@ -399,32 +399,38 @@ std::optional<Spread> body_spread(const Side& s, const std::vector<std::ptrdiff_
   }
   sp.t_hi.resize(sp.clusters);
   for (std::size_t c = 0; c < sp.clusters; ++c) {
-    if (!(closest[c] > 0)) return std::nullopt;
     const Vec3d e = sub(hi[c], lo[c]);
     sp.t_hi[c] = 2 * std::sqrt(dot(e, e)) / closest[c];
+    if (!(closest[c] > 0) || !std::isfinite(sp.t_hi[c])) return std::nullopt;
   }
   return sp;
 }
 
 // Cluster c of side s at its rest pose spread by factor t (fixed vertices at rest; the other
-// clusters as they are).
-void place_spread(Side& s, const std::vector<std::ptrdiff_t>& body, const Spread& sp, std::size_t c, double t) {
+// clusters as they are). False when a moved coordinate leaves the doubles (extreme scales).
+bool place_spread(Side& s, const std::vector<std::ptrdiff_t>& body, const Spread& sp, std::size_t c, double t) {
   const Mesh& m = *s.rest;
+  bool ok = true;
   for (std::size_t v = 0; v < m.vertices.size(); ++v) {
     const std::ptrdiff_t k = body[v];
     if (k < 0 || sp.cluster[std::size_t(k)] != std::ptrdiff_t(c)) continue;
     s.cur.vertices[v] = s.is_fixed(v) ? m.vertices[v] : moved_by(m.vertices[v], t, sp.way[std::size_t(k)]);
+    ok = ok && finite(s.cur.vertices[v]);
   }
+  return ok;
 }
 
 // The smallest factor (to kBisection) at which cluster c, spread, meets nothing (contact stage:
 // exact; no intersecting pair has an element in the cluster), placed; false, the cluster at
-// rest, when no factor up to kSpreadGrowths doublings of its t_hi does.
+// rest, when no factor up to kSpreadGrowths doublings of its t_hi does (or the moved
+// coordinates would leave the doubles).
 constexpr int kSpreadGrowths = 4;
 bool spread_cluster(Run& run, const std::vector<std::ptrdiff_t>& body, const Spread& sp, std::size_t c) {
   const Mesh& A = run.A;
+  bool finite_at = true;  // the last placement stayed within the doubles
   const auto apart_at = [&](double t) {
-    place_spread(run.sa, body, sp, c, t);
+    finite_at = place_spread(run.sa, body, sp, c, t);
+    if (!finite_at) return false;
     run.stop_if_cancelled();
     for (const auto& p : contacts(run))
       for (std::size_t e : p)
@@ -433,7 +439,7 @@ bool spread_cluster(Run& run, const std::vector<std::ptrdiff_t>& body, const Spr
   };
   double t_hi = sp.t_hi[c];
   for (int growths = 0; !apart_at(t_hi); ++growths) {
-    if (growths == kSpreadGrowths) {
+    if (growths == kSpreadGrowths || !finite_at) {
       place_spread(run.sa, body, sp, c, 0);
       return false;
     }
