@@ -1,4 +1,4 @@
-// fallbacks.cpp — the translation and body-pair fallbacks of resolve (fallbacks.h).
+// fallbacks.cpp — the translation, body-pair and body-spread fallbacks of resolve (fallbacks.h).
 #include "fallbacks.h"
 
 #include <algorithm>
