@@ -418,10 +418,11 @@ BOOST_AUTO_TEST_CASE(three_bodies_in_a_chain) {
   BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
   BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
   // The spread's centre is the middle body's (the copies share their vertex layout): the outer
-  // bodies move by t 1.4 each, t = 2 / 1.4 - 1 (balls of radius 1 two apart do not intersect)
-  // within the bisection's relative 1e-3, so the rigid spread costs at most two thirds of
-  // (1.001 t 1.4)^2; the walk back keeps only cheaper states.
-  const double t = 2 / 1.4 - 1, spread = 2.0 / 3 * (1.001 * t * 1.4) * (1.001 * t * 1.4);
+  // bodies move by t 1.4 each, t = 2 / 1.4 - 1 (balls of radius 1 two apart do not intersect),
+  // the bisection's factor below t / (1 - 1e-3) (its bracket; 1.002 also covers the rounding of
+  // the surface vertices), so the rigid spread costs at most two thirds of (1.002 t 1.4)^2; the
+  // walk back keeps only cheaper states.
+  const double t = 2 / 1.4 - 1, spread = 2.0 / 3 * (1.002 * t * 1.4) * (1.002 * t * 1.4);
   BOOST_TEST(r.report.cost <= spread);
 }
 
@@ -458,10 +459,12 @@ BOOST_AUTO_TEST_CASE(three_bodies_meeting_pairwise) {
   BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "bodies");
   BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
   // Balls of radius 1 whose centres lie 2 apart do not intersect: the spread separates by
-  // t = 2 / 1.4 - 1, found by the bisection within a relative 1e-3 (1.001 below allows for it
-  // and the rounding of the surface vertices), and every vertex moves by t 1.4 / sqrt(3), so
-  // the rigid spread costs at most (1.001 t)^2 1.4^2 / 3; the walk back keeps only cheaper states.
-  const double t = 2 / 1.4 - 1, spread = 1.001 * 1.001 * t * t * 1.4 * 1.4 / 3;
+  // t = 2 / 1.4 - 1 or less (the polytopes lie in the balls; two convex bodies moved apart
+  // along their centroids' line stay apart once apart), the bisection's factor below
+  // t / (1 - 1e-3) (its bracket; 1.002 also covers the rounding of the surface vertices), and
+  // every vertex moves by the factor times 1.4 / sqrt(3), so the rigid spread costs at most
+  // (1.002 t)^2 1.4^2 / 3; the walk back keeps only cheaper states.
+  const double t = 2 / 1.4 - 1, spread = 1.002 * 1.002 * t * t * 1.4 * 1.4 / 3;
   BOOST_TEST(r.report.cost <= spread);
   BOOST_TEST_MESSAGE("cost / rigid spread bound " << r.report.cost / spread);
 }
