@@ -69,16 +69,18 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   Choice rel;
   const bool rel_lanes = pdd2_relaxed_lanes(*q, rel);
   quick_edge_list(*q);  // (appends the edge candidates; the lanes and faces the sweeps read stay)
-  if (!rel_lanes || !listed(*q, rel)) {
-    // solve_pair's route when the sweep cannot decide: the list's sweep hinted by pdd2's choice,
-    // itself the lanes' or the list's hinted by pdd2_accel6's.
-    Choice def;
-    if (!pdd2_lanes(*q, def) || !listed(*q, def)) def = pdd2(*q, pdd2_accel(*q, kAccelWide).index);
-    rel = pdd2_relaxed(*q, def.index);
-  }
-  if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   const Choice rigid = rigid_pd2(*q);
   if (!rigid.certified) return std::nullopt;
+  if (!rel_lanes || !listed(*q, rel)) {
+    // solve_pair's route when the sweep cannot decide: the list's sweep. solve_pair hints it
+    // with pdd2's choice, which it computes anyway; a sweep's result does not depend on its
+    // hint (deformable_depth.h: the hint only seeds the pruning, the choice is the first tied
+    // minimum either way), so the rigid choice seeds it here, as pdd2_relaxed_choice does:
+    // pdd2 and pdd2_accel6 computed only to hint it cost ~5x the sweep on pairs whose
+    // candidates tie exactly (structured grids, where the sweeps refine in rationals).
+    rel = pdd2_relaxed(*q, rigid.index);
+  }
+  if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   int index = -1;  // the relaxed choice's candidate (its label, as solve_pair finds it)
   for (int k = 0; k < q->count && index < 0; ++k)
     if (label_code(*q, k) == rel.code) index = k;
