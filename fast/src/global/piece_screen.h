@@ -9,10 +9,11 @@
 //         satisfy the piece's sign conditions. Every other piece is certainly unable to hold
 //         the minimiser (the arguments below); the survivors go to consider_piece.
 // Both run as lane loops (the pieces side by side, branch-free) that GCC vectorises in its
-// AVX-512 and AVX2 clones; on the paper's pairs about 43 of the 225 pieces reach screen() and
-// 2.3 reach consider_piece. The vectorisation is fragile: check `-fopt-info-vec` after any
-// change (a chain of && on six comparisons once made GCC give up on the row loop: pdd2_global
-// 13.4 us instead of 7.4).
+// AVX-512 and AVX2 clones; on the paper's pairs (2000, seed 1) about 30 of the 225 pieces
+// reach screen() and 1.5 reach consider_piece. The vectorisation is fragile: check
+// `-fopt-info-vec` after any change (a chain of && on six comparisons once made GCC give up on
+// the row loop: pdd2_global 13.4 us instead of 7.4), and that each clone ends with vzeroupper
+// (objdump: without it the caller's SSE code runs with dirty upper registers, row_mask below).
 // Written by hand: no library counts a symmetric 3x3 matrix's eigenvalues in an interval with
 // certified signs, or screens 8 lanes of them at once.
 #pragma once
