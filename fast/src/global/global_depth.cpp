@@ -202,7 +202,10 @@ constexpr double kCompare = 4e-10;
 // enumeration's) tie within them. True (best.n set) when they separate the winner.
 bool tight_winner(GlobalRun& g, double win_err) {
   Best& best = g.best;
-  std::vector<std::pair<Evaluation, V3>> contenders;
+  // One buffer per thread (as Best's offers): no allocation per pair; global_depth() does not
+  // recurse.
+  static thread_local std::vector<std::pair<Evaluation, V3>> contenders;
+  contenders.clear();
   for (const auto& o : best.offers)
     if (!(o.value > best.value * (1 + 2 * (win_err + o.error))))  // inf band (or NaN): every offer
       contenders.push_back({evaluate_tight(g.A, g.B, g.P, o.n), o.n});

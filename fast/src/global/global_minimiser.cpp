@@ -3,7 +3,6 @@
 #include "pdd/global_minimiser.h"
 
 #include <cmath>
-#include <memory>
 
 #include "exact/exact_candidate.h"
 #include "global/global_depth.h"
@@ -25,11 +24,12 @@ namespace {
 // pdd2_accel6 and pdd2_accel1 from the list; false (decline) when one of them is not certified
 // or leaves the double range, where solve_pair would take its exact path.
 // (solve_pair takes a lane choice only when its label is one of the list's candidates.)
-bool listed(const QuickCandidates& q, const Choice& ch) {
+int index_of(const QuickCandidates& q, LabelCode code) {  // the first candidate with that label, or -1
   for (int k = 0; k < q.count; ++k)
-    if (label_code(q, k) == ch.code) return true;
-  return false;
+    if (label_code(q, k) == code) return k;
+  return -1;
 }
+bool listed(const QuickCandidates& q, const Choice& ch) { return index_of(q, ch.code) >= 0; }
 
 bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Choice& rel, double& value) {
   Choice st, def;
@@ -64,24 +64,29 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   // solve_pair: the quick lanes (valid, intersecting, every filter verdict clear), pdd2_relaxed
   // from their sweep, rigid_pd2 over the candidates (QuickCandidates gives the same candidates,
   // in the same order, bit for bit, as the set solve_pair builds: quick_candidates.h).
-  std::unique_ptr<QuickCandidates> q(new QuickCandidates);  // ~8 KB: off TBB's worker stacks
+  // One list per thread (~8 KB: off TBB's worker stacks; allocated per call it cost ~2% of
+  // global_minimiser on the energy's pairs). quick_lanes sets every field read below, and
+  // global_minimiser does not recurse.
+  static thread_local QuickCandidates list;
+  QuickCandidates* q = &list;
   if (!quick_lanes(sp.A, sp.B, *q)) return std::nullopt;
   Choice rel;
   const bool rel_lanes = pdd2_relaxed_lanes(*q, rel);
   quick_edge_list(*q);  // (appends the edge candidates; the lanes and faces the sweeps read stay)
-  if (!rel_lanes || !listed(*q, rel)) {
-    // solve_pair's route when the sweep cannot decide: the list's sweep hinted by pdd2's choice,
-    // itself the lanes' or the list's hinted by pdd2_accel6's.
-    Choice def;
-    if (!pdd2_lanes(*q, def) || !listed(*q, def)) def = pdd2(*q, pdd2_accel(*q, kAccelWide).index);
-    rel = pdd2_relaxed(*q, def.index);
-  }
-  if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   const Choice rigid = rigid_pd2(*q);
   if (!rigid.certified) return std::nullopt;
-  int index = -1;  // the relaxed choice's candidate (its label, as solve_pair finds it)
-  for (int k = 0; k < q->count && index < 0; ++k)
-    if (label_code(*q, k) == rel.code) index = k;
+  int index = rel_lanes ? index_of(*q, rel.code) : -1;  // the choice's candidate, as solve_pair finds it
+  if (index < 0) {
+    // solve_pair's route when the sweep cannot decide: the list's sweep. solve_pair hints it
+    // with pdd2's choice, which it computes anyway; a sweep's result does not depend on its
+    // hint (deformable_depth.h: the hint only seeds the pruning, the choice is the first tied
+    // minimum either way), so the rigid choice seeds it here, as pdd2_relaxed_choice does:
+    // pdd2 and pdd2_accel6 computed only to hint it cost ~5x the sweep on pairs whose
+    // candidates tie exactly (structured grids, where the sweeps refine in rationals).
+    rel = pdd2_relaxed(*q, rigid.index);
+    index = index_of(*q, rel.code);
+  }
+  if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   if (index < 0) return std::nullopt;
   const Candidate c = candidate(*q, index);
   const double start[3] = {c.n[0], c.n[1], c.n[2]};
@@ -100,10 +105,15 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
   if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(*q, sp.e, rigid, rel, m.pd2))
     return std::nullopt;
+  // x 2^-e: a product with a normal power of two is rounded once, as ldexp rounds (the same
+  // bits, subnormal results included), without a libm call per coordinate.
+  const double unit = std::ldexp(1.0, -sp.e);
+  const bool by_product = std::isnormal(unit);
+  auto back = [&](double x) { return by_product ? x * unit : std::ldexp(x, -sp.e); };
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
-      m.q1_A[i][k] = std::ldexp(g.q1_A[i][k], -sp.e);
-      m.q1_B[i][k] = std::ldexp(g.q1_B[i][k], -sp.e);
+      m.q1_A[i][k] = back(g.q1_A[i][k]);
+      m.q1_B[i][k] = back(g.q1_B[i][k]);
       if (!std::isfinite(m.q1_A[i][k]) || !std::isfinite(m.q1_B[i][k])) return std::nullopt;
     }
   m.normal = g.normal;

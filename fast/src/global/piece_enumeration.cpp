@@ -132,8 +132,8 @@ class PieceEnumeration {
     lanes.n = 0;
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
-      survivors[ma] = surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top,
-                                       search.lower, row);
+      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
+      survivors[ma] = detail::row_mask(row);
       for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {  // (set bits: no branch per piece)
         const unsigned mb = unsigned(__builtin_ctz(bits));
         const int p = lanes.n++;

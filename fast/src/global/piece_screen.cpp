@@ -13,26 +13,34 @@ namespace pdd::fast::detail {
 #define PDD_SCREEN_CLONES
 #endif
 
-// Bits 1..15 of keep (lane 0 is padding), in scalar code: vectorised (variable shifts and a
-// reduction after the lane loop's vector stores) it took 15% of surviving_pieces.
-#if defined(__GNUC__) && !defined(__clang__)
-__attribute__((noinline, optimize("no-tree-vectorize")))
-#endif
-static unsigned lane_mask(const int (&keep)[16]) {
-  unsigned mask = 0;
-  for (int l = 1; l < 16; ++l) mask |= unsigned(keep[l]) << l;
-  return mask;
-}
+namespace {
+// r = 1 / (mA wA + mB wB), w = 1 / (5 - m), per A size mA (1..4) and lane mb (mB its popcount):
+// the lane loop's operations, folded at compile time instead of one vector division per 8
+// lanes (the same bits: each operation correctly rounded, as at run time; no contraction).
+// constexpr: no dynamic initialisation, so no order to depend on.
+struct LaneReciprocals {
+  double r[5][16] = {};
+  constexpr LaneReciprocals() {
+    for (int mA = 1; mA <= 4; ++mA)
+      for (int l = 0; l < 16; ++l) {
+        const double wA = 1.0 / (5 - mA), dA = double(mA);
+        const double wB = 1.0 / (5 - kPopcount[l]), mB = double(kPopcount[l]);
+        r[mA][l] = 1.0 / (dA * wA + mB * wB);
+      }
+  }
+};
+constexpr LaneReciprocals kLaneR;
+}  // namespace
 
-PDD_SCREEN_CLONES unsigned surviving_pieces(const double SA[3], const double QA[6], double qa, int mA,
-                                            const ColumnsB& __restrict b, double top, double lower,
-                                            RowLanes& __restrict out) {
+PDD_SCREEN_CLONES void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA,
+                                        const ColumnsB& __restrict b, double top, double lower,
+                                        RowLanes& __restrict out) {
   constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
   const double wA = 1.0 / (5 - mA), dA = double(mA);
-  int keep[16];
+  const double* __restrict rA = kLaneR.r[mA];
   for (int l = 0; l < 16; ++l) {
     const double wB = b.w[l], mB = b.m[l];
-    const double r = 1.0 / (dA * wA + mB * wB);
+    const double r = rA[l];  // 1 / (dA wA + mB wB)
     double C[3], TA[3], S[3];
     for (int k = 0; k < 3; ++k) {
       C[k] = (SA[k] * wA + b.S[k][l] * wB) * r;
@@ -55,12 +63,11 @@ PDD_SCREEN_CLONES unsigned surviving_pieces(const double SA[3], const double QA[
     const Edges e = window_edges(top, lower, n_error);
     const int below_top = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.hi);
     const int below_low = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.lo);
-    keep[l] = !(below_top == 0 || (below_top > 0 && below_top == below_low));
+    out.keep[l] = !(below_top == 0 || (below_top > 0 && below_top == below_low));
     out.one[l] = below_low >= 0 && below_top == below_low + 1;
     out.below_low[l] = below_low;
     out.below_top[l] = below_top;
   }
-  return lane_mask(keep);
 }
 
 PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3], const double (&pB)[4][3],

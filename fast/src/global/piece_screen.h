@@ -9,10 +9,11 @@
 //         satisfy the piece's sign conditions. Every other piece is certainly unable to hold
 //         the minimiser (the arguments below); the survivors go to consider_piece.
 // Both run as lane loops (the pieces side by side, branch-free) that GCC vectorises in its
-// AVX-512 and AVX2 clones; on the paper's pairs about 43 of the 225 pieces reach screen() and
-// 2.3 reach consider_piece. The vectorisation is fragile: check `-fopt-info-vec` after any
-// change (a chain of && on six comparisons once made GCC give up on the row loop: pdd2_global
-// 13.4 us instead of 7.4).
+// AVX-512 and AVX2 clones; on the paper's pairs (2000, seed 1) about 30 of the 225 pieces
+// reach screen() and 1.5 reach consider_piece. The vectorisation is fragile: check
+// `-fopt-info-vec` after any change (a chain of && on six comparisons once made GCC give up on
+// the row loop: pdd2_global 13.4 us instead of 7.4), and that each clone ends with vzeroupper
+// (objdump: without it the caller's SSE code runs with dirty upper registers, row_mask below).
 // Written by hand: no library counts a symmetric 3x3 matrix's eigenvalues in an interval with
 // certified signs, or screens 8 lanes of them at once.
 #pragma once
@@ -113,13 +114,25 @@ struct ColumnsB {  // B's active sets, lane mb (structure of arrays)
 // One row's pieces as lanes (lane mb): N = 20 H (xx xy xz yy yz zz), n_error, c and T_A's
 // vectors, and the number of N's eigenvalues below the window's bottom edge (parity: f's sign
 // there, screen()) and below its top edge (-1: undecided).
+// keep[mb]: the piece is not certainly outside the pruning window (row_mask gathers the bits).
 struct RowLanes {
   double N[6][16], n_error[16], C[3][16], TA[3][16], below_low[16];
   int one[16];        // exactly one eigenvalue in the window, both counts decided
   int below_top[16];
+  int keep[16];
 };
-unsigned surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
-                          double top, double lower, RowLanes& out);
+void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b, double top,
+                      double lower, RowLanes& out);
+// Bit mb of the result: keep[mb], mb = 1..15 (lane 0 is padding). Scalar, in the caller: inside
+// surviving_pieces' vector clones a call or a reduction after the lanes' vector stores cost
+// more (vectorised: 15% of the function; called from the clone, a helper left the AVX-512
+// clone's upper registers dirty on return, no vzeroupper, and every SSE instruction of the
+// caller after it paid for that: ~40% of enumerate_pieces' own time, measured with perf).
+inline unsigned row_mask(const RowLanes& row) {
+  unsigned mask = 0;
+  for (int l = 1; l < 16; ++l) mask |= unsigned(row.keep[l] != 0) << l;
+  return mask;
+}
 
 // The pieces that passed surviving_pieces, gathered as lanes for screen().
 struct ScreenLanes {
