@@ -69,6 +69,13 @@ std::vector<std::array<std::size_t, 2>> intersecting_pairs(const Mesh& A,
                                                            const Mesh* B,
                                                            const std::vector<std::size_t>& eb);
 
+// box_pairs / box_pairs_self (B == nullptr) with every element's box grown by `grow` on each
+// side: every pair whose boxes, moved by at most `grow` per coordinate, can still overlap
+// (the contact stage's candidate list, resolve/contact_list.h).
+std::vector<std::array<std::size_t, 2>> grown_box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
+                                                        const Mesh* B, const std::vector<std::size_t>& eb,
+                                                        double grow, const BroadphaseOptions& options);
+
 // The exact orientation of the four points (CGAL's exact predicate); Zero: flat.
 Sign orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3);
 

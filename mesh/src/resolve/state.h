@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../elastic_step.h"
+#include "contact_list.h"
 #include "pdd/mesh.h"
 #include "pdd/sign.h"
 
@@ -57,6 +58,7 @@ struct Run {
   ResolveReport& rep;
   Side sa, sb;
   std::optional<ElasticStep> elastic_a, elastic_b;  // the global step, assembled on first use
+  ContactList contact_list;                         // the contact stage's candidates (rounds.h)
 
   Side& second() { return B ? sb : sa; }  // the side of a pair's second element
   double cost() const { return side_cost(sa) + (B ? side_cost(sb) : 0); }
