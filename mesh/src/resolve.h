@@ -7,8 +7,9 @@
 // The method: projective-dynamics rounds with the deformable metric PD_d, R2 and R4 kept as
 // invariants of every step. Its phases, one file each under resolve/:
 //   round k, from positions P_k (P_0 the rest pose; rounds.h):
-//     1. contacts: every element pair whose interiors intersect at P_k (fresh broadphase and
-//        the exact decision, intersecting_pairs below);
+//     1. contacts: every element pair whose interiors intersect at P_k (the exact decision on
+//        a candidate list kept over the rounds, contact_list.h: the set intersecting_pairs
+//        below gives);
 //     2. local step (local_step.h): each pair projected, in the object norm, onto the
 //        configurations in which a plane separates its two tetrahedra (the variant's per-pair
 //        solution, pdd2_global by default): a half-space for each of its free vertices on the
@@ -34,6 +35,10 @@
 //   - self-contact of several bodies, when every intersecting pair at rest joins two bodies and
 //     the bodies in contact split into two colours (no three meet pairwise): each contacting
 //     group resolved as two meshes, one colour each, all of the below included (method "bodies");
+//   - self-contact (one body folded into itself, or bodies the above declined): the
+//     projective-dynamics rounds again from the rest pose, vertices without pull weakly
+//     anchored (ElasticStep::Anchor::Free: the interior follows the contact further), within
+//     the first budget (method "rounds");
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;

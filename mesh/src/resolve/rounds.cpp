@@ -74,10 +74,10 @@ std::vector<Vec3d> pulls(const Side& s, std::vector<VertexTarget>& targets, Held
   return pull;
 }
 
-// The global step (elastic_step.h) and the step limit of one side.
+// The global step (elastic_step.h) with the side's anchors, and the step limit of one side.
 void elastic_move(Side& s, const ElasticStep& elastic, const std::vector<Vec3d>& pull) {
   std::vector<Vec3d> delta;
-  if (!elastic.solve(pull, delta)) return;
+  if (!elastic.solve(pull, delta, s.anchor)) return;
   double largest = 0;
   for (const Vec3d& d : delta)
     if (finite(d)) largest = std::max(largest, dot(d, d));

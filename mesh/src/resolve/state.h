@@ -30,6 +30,7 @@ struct Side {
   std::vector<double> volume;       // |rest volume| per element
   std::vector<Vec3d> acc;           // per vertex: the step proposed this round (step_limit.h)
   std::vector<double> weight;       // per vertex: sum of the weights in acc (0: no step)
+  ElasticStep::Anchor anchor = ElasticStep::Anchor::Pulled;  // the global step's anchors
   // The valid elements of each vertex (CSR: vertex_elems[vertex_start[v] .. vertex_start[v+1])).
   std::vector<std::size_t> vertex_start, vertex_elems;
 
