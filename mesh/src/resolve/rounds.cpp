@@ -210,7 +210,12 @@ void pair_round(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs, 
 
 std::vector<std::array<std::size_t, 2>> contacts(Run& run) {
   const auto t = Clock::now();
-  auto pairs = run.contact_list.pairs(run.sa.cur, run.sa.elems, run.B ? &run.sb.cur : nullptr, run.sb.elems);
+  // Two meshes: the fresh broadphase prunes to the boxes near the other mesh (a few thousand of
+  // 2e5 on the large one-layer case) and costs less than keeping the list over every element
+  // (measured 2.8 s against 3.3 s CPU on that case). Self-contact: every neighbour pair
+  // overlaps, nothing prunes, and the list saves most of the stage.
+  auto pairs = run.B ? intersecting_pairs(run.sa.cur, run.sa.elems, &run.sb.cur, run.sb.elems)
+                     : run.contact_list.pairs(run.sa.cur, run.sa.elems, nullptr, {});
   run.rep.seconds_contacts += since(t);
   return pairs;
 }
