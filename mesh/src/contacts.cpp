@@ -37,12 +37,13 @@ struct Box : CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d
   ID id() const { return uid; }
 };
 
-Box box_of(const Mesh& m, std::size_t i, std::size_t id_offset) {
+// Element i's box, grown by `grow` on every side (rounded as written; 0: the element's box).
+Box box_of(const Mesh& m, std::size_t i, std::size_t id_offset, double grow = 0) {
   const TetVertices t = element(m, i);
   double lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
-    lo[k] = std::min(std::min(t[0][k], t[1][k]), std::min(t[2][k], t[3][k]));
-    hi[k] = std::max(std::max(t[0][k], t[1][k]), std::max(t[2][k], t[3][k]));
+    lo[k] = std::min(std::min(t[0][k], t[1][k]), std::min(t[2][k], t[3][k])) - grow;
+    hi[k] = std::max(std::max(t[0][k], t[1][k]), std::max(t[2][k], t[3][k])) + grow;
   }
   return Box(lo, hi, i, id_offset + i);
 }
@@ -355,12 +356,26 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
 }  // namespace
 
 namespace {
-std::vector<Box> boxes_of(const Mesh& m, const std::vector<std::size_t>& e, std::size_t id_offset) {
+// The boxes of elements e, each grown by `grow` on every side (0: the elements' own boxes).
+std::vector<Box> boxes_of(const Mesh& m, const std::vector<std::size_t>& e, std::size_t id_offset, double grow = 0) {
   std::vector<Box> v(e.size());
-  tbb::parallel_for(std::size_t{0}, e.size(), [&](std::size_t k) { v[k] = box_of(m, e[k], id_offset); });
+  tbb::parallel_for(std::size_t{0}, e.size(), [&](std::size_t k) {
+    v[k] = box_of(m, e[k], id_offset, grow);
+  });
   return v;
 }
 }  // namespace
+
+namespace detail {
+std::vector<std::array<std::size_t, 2>> grown_box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
+                                                        const Mesh* B, const std::vector<std::size_t>& eb,
+                                                        double grow, const BroadphaseOptions& options) {
+  std::vector<Box> ba = boxes_of(A, ea, 0, grow);
+  if (!B) return pairs_of_boxes(A, ba, nullptr, options);
+  std::vector<Box> bb = boxes_of(*B, eb, A.tets.size(), grow);
+  return pairs_of_boxes(A, ba, &bb, options);
+}
+}  // namespace detail
 
 std::vector<std::array<std::size_t, 2>> box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
                                                   const Mesh& B, const std::vector<std::size_t>& eb,

@@ -18,7 +18,17 @@ namespace {
 // the R4 bound before the interior follows) / stalled at 400 pairs; 0.2 (overshoot 1): 23 / 22
 // rounds, min V1/V0 0.35 / 0.29; 0.1 (overshoot 1.5): 22 / 18 rounds, 0.54 / 0.37; 0.05
 // (overshoot 1): stalled / 41 rounds.
+// Anchor::Free anchors the vertices without a pull by kFreeAnchor * K_vv only: the interior
+// follows the contact about three times as far per round (1/sqrt(0.01) rings) while the
+// contact vertices keep kAnchor's share of their pull. Used from the first round on every mesh
+// it costs about 1.7 times as much on the one-layer cases of scripts/make-resolve-cases.sh, so
+// resolve uses it only for the self-contact rounds after the first ones stalled (resolve.cpp);
+// on that script's bar wound into itself (coil, 25.8k elements) kAnchor alone leaves 4 pairs
+// whose elements are squeezed to the R4 bounds; Anchor::Free from the rest pose resolves it in
+// 44 rounds, min V1/V0 0.38 (switched on only after the step limit first cut a step, it still
+// left 18 pairs: the squeezed layer does not recover).
 constexpr double kAnchor = 0.1;
+constexpr double kFreeAnchor = 0.01;
 // Conjugate gradients: relative residual 1e-3 (the displacement to about 1e-3 of the pull: the
 // step limit and the exact verdict judge the positions reached, not the solve, and the next
 // round's pull corrects what this one left), at most 500 iterations (the conditioning argued in
@@ -69,12 +79,13 @@ ElasticStep::ElasticStep(const Mesh& rest, const std::vector<std::size_t>& eleme
   }
   matrix_.resize(n, n);
   matrix_.setFromTriplets(k.begin(), k.end());
+  matrix_.makeCompressed();
   if (n == 0) return;
   preconditioner_.compute(matrix_);
   ok_ = preconditioner_.info() == Eigen::Success;
 }
 
-bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delta) const {
+bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delta, Anchor anchor) const {
   delta.assign(pull.size(), {0, 0, 0});
   if (!ok_) return false;
   const std::ptrdiff_t n = std::ptrdiff_t(weight_.size());
@@ -82,6 +93,22 @@ bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delt
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)
       for (int c = 0; c < 3; ++c) rhs(unknown_[v], c) = weight_[std::size_t(unknown_[v])] * pull[v][c];
+  // Free anchors: a copy of K + W whose vertices without pull keep kFreeAnchor of their anchor.
+  Eigen::SparseMatrix<double> relaxed;
+  Eigen::DiagonalPreconditioner<double> relaxed_preconditioner;
+  const Eigen::SparseMatrix<double>* m = &matrix_;
+  const Eigen::DiagonalPreconditioner<double>* preconditioner = &preconditioner_;
+  if (anchor == Anchor::Free) {
+    relaxed = matrix_;
+    for (std::size_t v = 0; v < pull.size(); ++v) {
+      const std::ptrdiff_t i = unknown_[v];
+      if (i >= 0 && pull[v] == Vec3d{0, 0, 0}) relaxed.coeffRef(i, i) -= (1 - kFreeAnchor / kAnchor) * weight_[std::size_t(i)];
+    }
+    relaxed_preconditioner.compute(relaxed);
+    if (relaxed_preconditioner.info() != Eigen::Success) return false;
+    m = &relaxed;
+    preconditioner = &relaxed_preconditioner;
+  }
   // Per column, Eigen's ConjugateGradient<SparseMatrix, Lower | Upper>::solve from x = 0: it
   // multiplies by the transpose (a row-major traversal of the symmetric matrix), and an
   // iteration that does not reach kTolerance in kMaxIterations returns its last iterate.
@@ -90,7 +117,7 @@ bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delt
     auto xc = x.col(c);
     Eigen::Index iterations = kMaxIterations;
     double error = kTolerance;
-    Eigen::internal::conjugate_gradient(matrix_.transpose(), rhs.col(c), xc, preconditioner_, iterations, error);
+    Eigen::internal::conjugate_gradient(m->transpose(), rhs.col(c), xc, *preconditioner, iterations, error);
   });
   if (!x.allFinite()) return false;  // not converged within kMaxIterations: still a descent
   for (std::size_t v = 0; v < pull.size(); ++v)

@@ -11,13 +11,17 @@
 //          K_ij = sum_e V_e grad phi_i . grad phi_j, the vector Laplacian form of linear
 //          elasticity) plus a weighted anchor to the targets, fixed vertices as Dirichlet
 //          conditions (Delta = 0). Normal equations, one per coordinate:
-//              (K + W) Delta = W pull,        W = diag(w_v),  w_v = kAnchor * K_vv.
-// W is the same for every round (a vertex without target is pulled to where it is), so K + W is
-// assembled once per run. It is symmetric positive definite (K positive semi-definite, W
-// positive on every unknown) and well conditioned: with w_v = kAnchor K_vv its Jacobi-scaled
-// eigenvalues lie in [kAnchor / (1 + kAnchor), (2 + kAnchor) / (1 + kAnchor)] up to the
-// mesh's valence spread (Gershgorin), so conjugate gradients with the diagonal preconditioner
-// (Eigen's ConjugateGradient) converge in a few tens of iterations whatever the mesh size. A
+//              (K + W) Delta = W pull,        W = diag(w_v),
+//          w_v = kAnchor K_vv (Anchor::Pulled), or with Anchor::Free kFreeAnchor K_vv for a
+//          vertex without pull this round (weaker: the interior follows further); a vertex
+//          without pull is anchored where it is.
+// K + W with kAnchor everywhere is assembled once per run; Anchor::Free lowers the diagonal of
+// a copy. It is symmetric positive definite (K positive semi-definite, W positive on every
+// unknown) and well conditioned: with w_v >= a K_vv (a = kAnchor, or kFreeAnchor), its
+// Jacobi-scaled eigenvalues lie in [a / (1 + a), (2 + a) / (1 + a)] up to the mesh's valence
+// spread (Gershgorin), so conjugate gradients with the diagonal preconditioner (Eigen's
+// ConjugateGradient) converge in tens of iterations (a few times 1/sqrt(a)) whatever the mesh
+// size. A
 // sparse Cholesky factorisation (SimplicialLDLT) was measured at 19 s for a 10^5-element ball
 // (fill of a 3D mesh), against 0.1 s per round for these iterations. The solution need not be
 // exact: the step limit and the exact verdict judge the positions, not the solve.
@@ -41,13 +45,14 @@ class ElasticStep {
   ElasticStep(const Mesh& rest, const std::vector<std::size_t>& elements, const std::vector<char>& fixed);
   // Delta for the given pulls (both of the mesh's vertex count). False when the iterations
   // did not converge (then Delta is zero).
-  bool solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delta) const;
+  enum class Anchor { Pulled, Free };  // every vertex anchored by kAnchor / unpulled ones weaker
+  bool solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delta, Anchor anchor = Anchor::Pulled) const;
   bool ok() const { return ok_; }
 
  private:
   std::vector<std::ptrdiff_t> unknown_;  // per vertex: its unknown, -1 when it does not move
-  std::vector<double> weight_;           // per unknown: w_v
-  Eigen::SparseMatrix<double> matrix_;  // K + W over the unknowns
+  std::vector<double> weight_;           // per unknown: w_v = kAnchor K_vv
+  Eigen::SparseMatrix<double> matrix_;   // K + W over the unknowns
   Eigen::DiagonalPreconditioner<double> preconditioner_;  // Jacobi, of matrix_
   bool ok_ = false;
 };

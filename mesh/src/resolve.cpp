@@ -49,6 +49,19 @@ void run_phases(Run& run) {
     run.stop_if_cancelled();
     if (resolve_bodies(run)) return void(rep.method = ResolveMethod::Bodies);
   }
+  // Self-contact of one body folded into itself: the contact layers of the two folds can be
+  // squeezed to the R4 bounds before the interior follows (the step limit then stalls the
+  // rounds with a few pairs left). The rounds again from the rest pose with the weak anchors
+  // of ElasticStep::Anchor::Free, within the first budget: the interior follows the contact
+  // further from the first round (they cost more where the default anchors succeed, so they
+  // are not the first try).
+  if (go_on() && !run.B && rounds_left()) {
+    run.place(run.A.vertices, {});
+    run.sa.anchor = ElasticStep::Anchor::Free;
+    if (run_pd_rounds(run, std::min(first_budget, o.max_rounds - rep.rounds.size())))
+      return void(rep.method = ResolveMethod::Rounds);
+    run.sa.anchor = ElasticStep::Anchor::Pulled;
+  }
   // Stalled: the per-pair rounds from the rest pose, within what is left of the first budget.
   if (go_on() && first_budget > rep.rounds.size()) {
     run.place(run.A.vertices, run.B ? run.B->vertices : std::vector<Vec3d>{});

@@ -7,8 +7,9 @@
 // The method: projective-dynamics rounds with the deformable metric PD_d, R2 and R4 kept as
 // invariants of every step. Its phases, one file each under resolve/:
 //   round k, from positions P_k (P_0 the rest pose; rounds.h):
-//     1. contacts: every element pair whose interiors intersect at P_k (fresh broadphase and
-//        the exact decision, intersecting_pairs below);
+//     1. contacts: every element pair whose interiors intersect at P_k (the exact decision on
+//        a candidate list kept over the rounds, contact_list.h: the set intersecting_pairs
+//        below gives);
 //     2. local step (local_step.h): each pair projected, in the object norm, onto the
 //        configurations in which a plane separates its two tetrahedra (the variant's per-pair
 //        solution, pdd2_global by default): a half-space for each of its free vertices on the
@@ -37,6 +38,10 @@
 //     pairs not resolved) the bodies spread: each cluster's bodies translated away from its
 //     centre by the smallest separating factor, then walked back towards the rest pose as the
 //     translation below is (method "bodies");
+//   - self-contact (one body folded into itself, or bodies the above declined): the
+//     projective-dynamics rounds again from the rest pose, vertices without pull weakly
+//     anchored (ElasticStep::Anchor::Free: the interior follows the contact further), within
+//     the first budget (method "rounds");
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;
@@ -71,6 +76,13 @@ std::vector<std::array<std::size_t, 2>> intersecting_pairs(const Mesh& A,
                                                            const std::vector<std::size_t>& ea,
                                                            const Mesh* B,
                                                            const std::vector<std::size_t>& eb);
+
+// box_pairs / box_pairs_self (B == nullptr) with every element's box grown by `grow` on each
+// side: every pair whose boxes, moved by at most `grow` per coordinate, can still overlap
+// (the contact stage's candidate list, resolve/contact_list.h).
+std::vector<std::array<std::size_t, 2>> grown_box_pairs(const Mesh& A, const std::vector<std::size_t>& ea,
+                                                        const Mesh* B, const std::vector<std::size_t>& eb,
+                                                        double grow, const BroadphaseOptions& options);
 
 // The exact orientation of the four points (CGAL's exact predicate); Zero: flat.
 Sign orientation(const Vec3d& p0, const Vec3d& p1, const Vec3d& p2, const Vec3d& p3);

@@ -24,10 +24,13 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "exact_overlap.h"
 #include "pdd/mesh.h"
+#include "resolve.h"
+#include "resolve/contact_list.h"
 
 using namespace pdd;
 using namespace pdd::mesh;
@@ -552,6 +555,63 @@ BOOST_AUTO_TEST_CASE(deep_through_a_plate) {
   BOOST_TEST(r.report.cost_a == 0.0);
   BOOST_TEST(j.cost <= 0.36 * 0.36);
   BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+}
+
+// Deterministic moves of the vertices for contact_list_is_the_fresh_contact_stage: every
+// `stride`-th vertex (from `first`) by `step` times a fixed pattern in [-1, 1]^3.
+std::vector<Vec3d> nudged(std::vector<Vec3d> p, std::size_t first, std::size_t stride, double step) {
+  for (std::size_t v = first; v < p.size(); v += stride)
+    for (int k = 0; k < 3; ++k) p[v][k] += step * std::sin(double(7 * v + 3 * k + 1));
+  return p;
+}
+
+BOOST_AUTO_TEST_CASE(contact_list_is_the_fresh_contact_stage) {
+  // The rounds' contact stage (mesh/src/resolve/contact_list.h) keeps a candidate list over
+  // calls; at every call its pairs must be exactly those of a fresh broadphase and exact
+  // decision (detail::intersecting_pairs), whatever moved: nothing (every decision kept), a
+  // few vertices by a small step (kept candidates, some re-decided), some by a step of an
+  // element's size (escaped elements paired afresh), most of them (the list rebuilt), the
+  // positions back at an earlier state. Self-contact (two-spheres.msh, its two balls 0.48
+  // into each other) and two meshes (the shipped balls); the last state against brute force.
+  struct Case {
+    Mesh a;
+    std::optional<Mesh> b;
+  };
+  std::vector<Case> cases;
+  cases.push_back({load("two-spheres.msh"), std::nullopt});
+  cases.push_back({load("sphere-a.msh"), load("sphere-b.msh")});
+  for (Case& c : cases) {
+    const std::vector<std::size_t> ea = detail::valid_elements(c.a, 'A', nullptr);
+    const std::vector<std::size_t> eb = c.b ? detail::valid_elements(*c.b, 'B', nullptr) : std::vector<std::size_t>{};
+    Mesh a = c.a;
+    std::optional<Mesh> b = c.b;
+    const std::vector<Vec3d> a0 = a.vertices;
+    detail::ContactList list;
+    // (first, stride, step) per call; step 0: back to the rest positions.
+    const std::vector<std::array<double, 3>> moves = {{0, 1, 0},     {0, 1, 0},    {0, 97, 0.002}, {1, 53, 0.01},
+                                                      {2, 31, 0.2},  {3, 29, 0.2}, {0, 2, 0.3},    {1, 3, 0.01},
+                                                      {0, 1, 0}};
+    std::size_t total = 0;
+    for (const auto& [first, stride, step] : moves) {
+      if (step == 0) {
+        a.vertices = a0;
+        if (b) b->vertices = c.b->vertices;
+      } else {
+        a.vertices = nudged(a.vertices, std::size_t(first), std::size_t(stride), step);
+        if (b) b->vertices = nudged(b->vertices, std::size_t(first) + 1, std::size_t(stride), step);
+      }
+      const PairSet got = list.pairs(a, ea, b ? &*b : nullptr, eb);
+      const PairSet fresh = detail::intersecting_pairs(a, ea, b ? &*b : nullptr, eb);
+      BOOST_TEST(got == fresh);
+      total += got.size();
+    }
+    BOOST_TEST(total > 0u);           // the states have contacts to find
+    BOOST_TEST(list.builds() >= 2u);  // the large moves rebuilt the list at least once
+    a.vertices = nudged(a.vertices, 5, 7, 0.05);
+    if (b) b->vertices = nudged(b->vertices, 6, 7, 0.05);
+    PairSet got = list.pairs(a, ea, b ? &*b : nullptr, eb);
+    BOOST_TEST(got == judge_pairs(a, a.vertices, b ? &*b : nullptr, b ? b->vertices : std::vector<Vec3d>{}));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(check_resolution_and_cost) {

@@ -74,10 +74,10 @@ std::vector<Vec3d> pulls(const Side& s, std::vector<VertexTarget>& targets, Held
   return pull;
 }
 
-// The global step (elastic_step.h) and the step limit of one side.
+// The global step (elastic_step.h) with the side's anchors, and the step limit of one side.
 void elastic_move(Side& s, const ElasticStep& elastic, const std::vector<Vec3d>& pull) {
   std::vector<Vec3d> delta;
-  if (!elastic.solve(pull, delta)) return;
+  if (!elastic.solve(pull, delta, s.anchor)) return;
   double largest = 0;
   for (const Vec3d& d : delta)
     if (finite(d)) largest = std::max(largest, dot(d, d));
@@ -210,7 +210,12 @@ void pair_round(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs, 
 
 std::vector<std::array<std::size_t, 2>> contacts(Run& run) {
   const auto t = Clock::now();
-  auto pairs = intersecting_pairs(run.sa.cur, run.sa.elems, run.B ? &run.sb.cur : nullptr, run.sb.elems);
+  // Two meshes: the fresh broadphase prunes to the boxes near the other mesh (a few thousand of
+  // 2e5 on the large one-layer case) and costs less than keeping the list over every element
+  // (measured 2.8 s against 3.3 s CPU on that case). Self-contact: every neighbour pair
+  // overlaps, nothing prunes, and the list saves most of the stage.
+  auto pairs = run.B ? intersecting_pairs(run.sa.cur, run.sa.elems, &run.sb.cur, run.sb.elems)
+                     : run.contact_list.pairs(run.sa.cur, run.sa.elems, nullptr, {});
   run.rep.seconds_contacts += since(t);
   return pairs;
 }

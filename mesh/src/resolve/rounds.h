@@ -18,7 +18,8 @@
 namespace pdd::mesh::detail {
 
 // The contact stage (timed into rep.seconds_contacts): every intersecting pair at the current
-// positions, by a fresh broadphase and the exact decision (intersecting_pairs).
+// positions (the set intersecting_pairs gives): self-contact from the run's candidate list
+// (contact_list.h), two meshes by intersecting_pairs itself.
 std::vector<std::array<std::size_t, 2>> contacts(Run& run);
 
 // The projective-dynamics rounds: half-space targets (pair_targets), the elastic global step

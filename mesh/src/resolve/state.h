@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../elastic_step.h"
+#include "contact_list.h"
 #include "pdd/mesh.h"
 #include "pdd/sign.h"
 
@@ -29,6 +30,7 @@ struct Side {
   std::vector<double> volume;       // |rest volume| per element
   std::vector<Vec3d> acc;           // per vertex: the step proposed this round (step_limit.h)
   std::vector<double> weight;       // per vertex: sum of the weights in acc (0: no step)
+  ElasticStep::Anchor anchor = ElasticStep::Anchor::Pulled;  // the global step's anchors
   // The valid elements of each vertex (CSR: vertex_elems[vertex_start[v] .. vertex_start[v+1])).
   std::vector<std::size_t> vertex_start, vertex_elems;
 
@@ -57,6 +59,7 @@ struct Run {
   ResolveReport& rep;
   Side sa, sb;
   std::optional<ElasticStep> elastic_a, elastic_b;  // the global step, assembled on first use
+  ContactList contact_list;                         // the contact stage's candidates (rounds.h)
 
   Side& second() { return B ? sb : sa; }  // the side of a pair's second element
   double cost() const { return side_cost(sa) + (B ? side_cost(sb) : 0); }
