@@ -40,6 +40,24 @@ void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, 
   c.hB[y] = c.hB[x];        // exactly: n.(r_y − r_x) = 0 (parallel to e)
 }
 
+// Structural zeros. For finite doubles, fl(a − b) = 0 iff a = b (gradual underflow), so a
+// coordinate difference computed as 0 is exactly 0; a product with an exactly zero factor is
+// exactly 0, and so is a sum of exactly zero terms. These tests are sufficient, not necessary:
+// "false" only means "not known to be 0" (the expansions then decide). Aligned pairs (shared
+// axis directions, faces in the same coordinate planes) meet them often.
+//
+// Component k of e × f, e = p1 − p0 and f = q1 − q0 (coordinate differences), is
+// e_i f_j − e_j f_i with (i, j) = (k + 1, k + 2) mod 3: exactly 0 when both products have an
+// exactly zero factor.
+bool cross_component_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  return (p1[i] == p0[i] || q1[j] == q0[j]) && (p1[j] == p0[j] || q1[i] == q0[i]);
+}
+bool cross_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  return cross_component_zero(p0, p1, q0, q1, 0) && cross_component_zero(p0, p1, q0, q1, 1) &&
+         cross_component_zero(p0, p1, q0, q1, 2);
+}
+
 struct Builder {
   const TetVertices& A;
   const TetVertices& B;
@@ -115,6 +133,7 @@ struct Builder {
     const int u = kEdges[a][0], v = kEdges[a][1];
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
     int& s = face_edge_sign[b][f];
+    if (s == 2 && triple_zero(b, f)) s = 0;
     if (s == 2) {
       if (!face_normal_known[f]) {
         const auto& F = kFace[f];
@@ -131,6 +150,17 @@ struct Builder {
     return inversions == 1 ? -s : s;
   }
 
+  // eB.N exactly 0 (structural zeros, see cross_zero), N = (s_F1 − s_F0) × (s_F2 − s_F0) the raw
+  // normal of A's face f (kFace order) and eB = r_y − r_x edge b of B: every term eB_k N_k has
+  // an exactly zero factor.
+  bool triple_zero(int b, int f) const {
+    const auto& F = kFace[f];
+    const Vec3d &x = B[kEdges[b][0]], &y = B[kEdges[b][1]];
+    for (int k = 0; k < 3; ++k)
+      if (y[k] != x[k] && !cross_component_zero(A[F[0]], A[F[1]], A[F[0]], A[F[2]], k)) return false;
+    return true;
+  }
+
   // own.e_h > 0: the draft was redone by near_parallel_normal and its heights have error
   // <= own.e_h; else the filter bounds apply.
   // Exactly parallel edges (n = 0, in the expansions' range): colinear iff w × e = 0 exactly
@@ -139,6 +169,10 @@ struct Builder {
   EdgePairClass exactly_parallel(int a, int b) {
     const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
     EdgePairClass k;
+    if (cross_zero(A[u], B[x], A[u], A[v])) {  // (r_x − s_u) × e exactly 0: colinear
+      k.kind = EdgePairKind::Colinear;
+      return k;
+    }
     const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
     if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
     if (m.is_zero()) {
@@ -162,6 +196,11 @@ struct Builder {
   EdgePairClass classify(int a, int b, Draft& c, DegreeBounds& own) {
     own = DegreeBounds{0.0, 0.0};
     bool parallel = false;
+    // n = eB × eA exactly 0 by structural zeros: parallel or colinear without the expansions
+    // (exactly_parallel's precondition, the expansions' range, as near_parallel_normal's).
+    if (in_range && max_abs3(c.n) <= fb.deg2 &&
+        cross_zero(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]))
+      return exactly_parallel(a, b);
     if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own, parallel))
       return parallel ? exactly_parallel(a, b) : classify_edge_pair_exact(A, B, a, b);
     const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
