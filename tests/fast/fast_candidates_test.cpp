@@ -140,6 +140,15 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
       }
     BOOST_TEST(checked > 0);  // every shift has intersecting pairs (A and B share a corner region)
   }
+  // Colinear along a body diagonal: r0 r1 lies on the line of s0 s1 = (1,1,1) (no zero
+  // coordinate difference: the exact path decides w × e = (1/2,1/2,1/2) × (1,1,1) = 0).
+  const TetPair q = tet_pair({{{0, 0, 0}, {1, 1, 1}, {1, 0, 0}, {0, 1, 0}}},
+                              {{{0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {0.5, 0.375, 0.125}, {0.375, 0.625, 0.25}}});
+  CandidateSet set;
+  BOOST_TEST((build_candidates(q.A, q.B, set) == BuildStatus::Ok));
+  BOOST_TEST(set.intersecting);
+  check_against_exact(q, set, true);
+  BOOST_TEST((classify_edge_pair_exact(q.A, q.B, 0, 0).kind == EdgePairKind::Colinear));
 }
 
 // Orientation / validity: exactly coplanar (decided exactly) vs. one ulp off the plane.

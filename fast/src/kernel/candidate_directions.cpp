@@ -58,6 +58,27 @@ bool cross_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& 
          cross_component_zero(p0, p1, q0, q1, 2);
 }
 
+// (p1 − p0) × (q1 − q0) exactly non-zero, decided by a filter on the computed components, for
+// pairs in the expansions' exact range (expansion.h: every coordinate difference and every
+// product of two is then 0 or a normal double, so each operation below has relative error
+// <= u = 2^-53). With d = p1 − p0, e = q1 − q0 and, for a component, P = fl(d~_i e~_j),
+// Q = fl(d~_j e~_i), m~ = fl(P − Q): d~_i e~_j (1 + delta) = P gives P = d_i e_j (1 + t),
+// |t| <= g3 = 3u/(1 − 3u), and likewise Q, so |m~/(1 + delta) − m| <= g3 (|d_i e_j| + |d_j e_i|)
+// <= g3/(1 − g3) (|P| + |Q|). If m = 0 then |m~| <= (1 + u) g3/(1 − g3) (|P| + |Q|)
+// < 3.01u (|P| + |Q|) < 8u (1 − u)(|P| + |Q|) <= 8u fl(|P| + |Q|) (the scaling by 8u = 2^-50
+// exact). So |m~| > 8u fl(|P| + |Q|) for one component proves m != 0. "false": not decided.
+bool cross_nonzero_filtered(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  double d[3], e[3];
+  sub(p1, p0, d);
+  sub(q1, q0, e);
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double P = d[i] * e[j], Q = d[j] * e[i];
+    if (std::fabs(P - Q) > 0x1p-50 * (std::fabs(P) + std::fabs(Q))) return true;
+  }
+  return false;
+}
+
 struct Builder {
   const TetVertices& A;
   const TetVertices& B;
@@ -173,11 +194,13 @@ struct Builder {
       k.kind = EdgePairKind::Colinear;
       return k;
     }
-    const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
-    if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
-    if (m.is_zero()) {
-      k.kind = EdgePairKind::Colinear;
-      return k;
+    if (!cross_nonzero_filtered(A[u], B[x], A[u], A[v])) {
+      const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
+      if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
+      if (m.is_zero()) {
+        k.kind = EdgePairKind::Colinear;
+        return k;
+      }
     }
     k.kind = EdgePairKind::Parallel;
     Draft d;
