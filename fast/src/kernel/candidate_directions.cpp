@@ -3,6 +3,7 @@
 #include "kernel/candidate_directions.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "certification/filter_bounds.h"
 #include "certification/tie_tolerance.h"
@@ -343,6 +344,68 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
   out.intersecting = Builder{A, B, fb, p, out, pair_extent(A, B)}.run();
   return BuildStatus::Ok;
+}
+
+namespace {
+
+bool same_bits(const TetVertices& x, const TetVertices& y) {
+  return std::memcmp(x.data(), y.data(), sizeof(TetVertices)) == 0;
+}
+
+int exact_lanes(const CandidateSet& set) {
+  int m = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) m += set.edges.unclear[kLaneStride * a + b] != 0.0;
+  return m;
+}
+
+// to = from, reading only what candidate(), label() and the lists use: the first `count`
+// entries, all edge lanes, and the explicit geometries of non-lane candidates (a full copy of
+// the ~20 KB set would cost a good part of a build).
+void copy_used(const CandidateSet& from, CandidateSet& to) {
+  const int n = from.count;
+  to.count = n;
+  to.intersecting = from.intersecting;
+  to.tie_kappa = from.tie_kappa;
+  to.fb = from.fb;
+  std::memcpy(to.code, from.code, n * sizeof from.code[0]);
+  std::memcpy(to.depth, from.depth, n * sizeof from.depth[0]);
+  std::memcpy(to.nn, from.nn, n * sizeof from.nn[0]);
+  std::memcpy(to.delta_sq, from.delta_sq, n * sizeof from.delta_sq[0]);
+  std::memcpy(to.lane, from.lane, n * sizeof from.lane[0]);
+  std::memcpy(to.sign, from.sign, n * sizeof from.sign[0]);
+  std::memcpy(to.parallel, from.parallel, n * sizeof from.parallel[0]);
+  std::memcpy(to.own_eh, from.own_eh, n * sizeof from.own_eh[0]);
+  std::memcpy(to.own_en, from.own_en, n * sizeof from.own_en[0]);
+  to.edges = from.edges;
+  for (int k = 0; k < n; ++k)
+    if (from.lane[k] < 0) to.explicit_[k] = from.explicit_[k];
+}
+
+struct LastBuild {
+  bool valid = false;
+  TetVertices A, B;
+  CandidateSet set;  // (Ok and intersecting: edges.unclear are all set)
+};
+
+}  // namespace
+
+BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out) {
+  thread_local LastBuild last;  // (~20 KB: off the stack, once per thread)
+  if (last.valid && same_bits(last.A, A) && same_bits(last.B, B)) {
+    copy_used(last.set, out);
+    out.A = &A;
+    out.B = &B;
+    return BuildStatus::Ok;
+  }
+  const BuildStatus s = build_candidates(A, B, out);
+  if (s == BuildStatus::Ok && out.intersecting && exact_lanes(out) >= kReuseExactLanes) {
+    last.A = A;
+    last.B = B;
+    copy_used(out, last.set);
+    last.valid = true;
+  }
+  return s;
 }
 
 Candidate candidate(const CandidateSet& set, int k) {
