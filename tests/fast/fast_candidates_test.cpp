@@ -107,6 +107,50 @@ BOOST_AUTO_TEST_CASE(exact_zero_decisions) {
   if (set.intersecting) check_against_exact(q, set, true);
 }
 
+// Aligned pairs: Kuhn tetrahedra of a cube of side h = 1/4 (the path 0 -> e_p0 -> e_p0 + e_p1
+// -> (1,1,1) for the 6 permutations p) against those of a cube shifted by t. Their edges share
+// axis, face-diagonal and body-diagonal directions (exactly parallel edges, n = eB × eA = 0 with
+// zero products), their faces lie in shared coordinate planes (g = 0 exactly), and the shifts
+// along one axis put edges on common lines (colinear). Every label and depth sign must equal
+// the exact classification.
+BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const double h = 0.25;
+  auto kuhn = [&](int m, const std::array<double, 3>& o) {
+    TetVertices T;
+    double d[3] = {0, 0, 0};
+    for (int v = 0; v < 4; ++v) {
+      if (v > 0) d[kPerm[m][v - 1]] = h;
+      for (int k = 0; k < 3; ++k) T[v][k] = o[k] + d[k];
+    }
+    return T;
+  };
+  const std::array<double, 3> shifts[] = {
+      {0, 0, 0}, {h / 2, 0, 0}, {0, 0, h / 4}, {0.37 * h, 0.21 * h, 0.13 * h}, {0.37 * h, 0, 0}};
+  for (const auto& t : shifts) {
+    int checked = 0;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) {
+        const TetPair p = tet_pair(kuhn(i, {0, 0, 0}), kuhn(j, t));
+        CandidateSet set;
+        BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
+        if (!set.intersecting) continue;
+        check_against_exact(p, set, true);
+        ++checked;
+      }
+    BOOST_TEST(checked > 0);  // every shift has intersecting pairs (A and B share a corner region)
+  }
+  // Colinear along a body diagonal: r0 r1 lies on the line of s0 s1 = (1,1,1) (no zero
+  // coordinate difference: the exact path decides w × e = (1/2,1/2,1/2) × (1,1,1) = 0).
+  const TetPair q = tet_pair({{{0, 0, 0}, {1, 1, 1}, {1, 0, 0}, {0, 1, 0}}},
+                              {{{0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, {0.5, 0.375, 0.125}, {0.375, 0.625, 0.25}}});
+  CandidateSet set;
+  BOOST_TEST((build_candidates(q.A, q.B, set) == BuildStatus::Ok));
+  BOOST_TEST(set.intersecting);
+  check_against_exact(q, set, true);
+  BOOST_TEST((classify_edge_pair_exact(q.A, q.B, 0, 0).kind == EdgePairKind::Colinear));
+}
+
 // Orientation / validity: exactly coplanar (decided exactly) vs. one ulp off the plane.
 BOOST_AUTO_TEST_CASE(degenerate_and_nearly_degenerate) {
   const TetVertices good = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};

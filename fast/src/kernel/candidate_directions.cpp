@@ -3,6 +3,7 @@
 #include "kernel/candidate_directions.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "certification/filter_bounds.h"
 #include "certification/tie_tolerance.h"
@@ -38,6 +39,45 @@ void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, 
   const int v = kEdges[a][1], y = kEdges[b][1];
   c.hA[v] = c.hA[u] = 0.0;  // exactly: n.e = 0
   c.hB[y] = c.hB[x];        // exactly: n.(r_y − r_x) = 0 (parallel to e)
+}
+
+// Structural zeros. For finite doubles, fl(a − b) = 0 iff a = b (gradual underflow), so a
+// coordinate difference computed as 0 is exactly 0; a product with an exactly zero factor is
+// exactly 0, and so is a sum of exactly zero terms. These tests are sufficient, not necessary:
+// "false" only means "not known to be 0" (the expansions then decide). Aligned pairs (shared
+// axis directions, faces in the same coordinate planes) meet them often.
+//
+// Component k of e × f, e = p1 − p0 and f = q1 − q0 (coordinate differences), is
+// e_i f_j − e_j f_i with (i, j) = (k + 1, k + 2) mod 3: exactly 0 when both products have an
+// exactly zero factor.
+bool cross_component_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  return (p1[i] == p0[i] || q1[j] == q0[j]) && (p1[j] == p0[j] || q1[i] == q0[i]);
+}
+bool cross_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  return cross_component_zero(p0, p1, q0, q1, 0) && cross_component_zero(p0, p1, q0, q1, 1) &&
+         cross_component_zero(p0, p1, q0, q1, 2);
+}
+
+// (p1 − p0) × (q1 − q0) exactly non-zero, decided by a filter on the computed components, for
+// pairs in the expansions' exact range (expansion.h: every coordinate difference and every
+// product of two is then 0 or a normal double, so each operation below has relative error
+// <= u = 2^-53). With d = p1 − p0, e = q1 − q0 and, for a component, P = fl(d~_i e~_j),
+// Q = fl(d~_j e~_i), m~ = fl(P − Q): d~_i e~_j (1 + delta) = P gives P = d_i e_j (1 + t),
+// |t| <= g3 = 3u/(1 − 3u), and likewise Q, so |m~/(1 + delta) − m| <= g3 (|d_i e_j| + |d_j e_i|)
+// <= g3/(1 − g3) (|P| + |Q|). If m = 0 then |m~| <= (1 + u) g3/(1 − g3) (|P| + |Q|)
+// < 3.01u (|P| + |Q|) < 8u (1 − u)(|P| + |Q|) <= 8u fl(|P| + |Q|) (the scaling by 8u = 2^-50
+// exact). So |m~| > 8u fl(|P| + |Q|) for one component proves m != 0. "false": not decided.
+bool cross_nonzero_filtered(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  double d[3], e[3];
+  sub(p1, p0, d);
+  sub(q1, q0, e);
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double P = d[i] * e[j], Q = d[j] * e[i];
+    if (std::fabs(P - Q) > 0x1p-50 * (std::fabs(P) + std::fabs(Q))) return true;
+  }
+  return false;
 }
 
 struct Builder {
@@ -115,6 +155,7 @@ struct Builder {
     const int u = kEdges[a][0], v = kEdges[a][1];
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
     int& s = face_edge_sign[b][f];
+    if (s == 2 && triple_zero(b, f)) s = 0;
     if (s == 2) {
       if (!face_normal_known[f]) {
         const auto& F = kFace[f];
@@ -131,6 +172,17 @@ struct Builder {
     return inversions == 1 ? -s : s;
   }
 
+  // eB.N exactly 0 (structural zeros, see cross_zero), N = (s_F1 − s_F0) × (s_F2 − s_F0) the raw
+  // normal of A's face f (kFace order) and eB = r_y − r_x edge b of B: every term eB_k N_k has
+  // an exactly zero factor.
+  bool triple_zero(int b, int f) const {
+    const auto& F = kFace[f];
+    const Vec3d &x = B[kEdges[b][0]], &y = B[kEdges[b][1]];
+    for (int k = 0; k < 3; ++k)
+      if (y[k] != x[k] && !cross_component_zero(A[F[0]], A[F[1]], A[F[0]], A[F[2]], k)) return false;
+    return true;
+  }
+
   // own.e_h > 0: the draft was redone by near_parallel_normal and its heights have error
   // <= own.e_h; else the filter bounds apply.
   // Exactly parallel edges (n = 0, in the expansions' range): colinear iff w × e = 0 exactly
@@ -139,11 +191,17 @@ struct Builder {
   EdgePairClass exactly_parallel(int a, int b) {
     const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
     EdgePairClass k;
-    const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
-    if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
-    if (m.is_zero()) {
+    if (cross_zero(A[u], B[x], A[u], A[v])) {  // (r_x − s_u) × e exactly 0: colinear
       k.kind = EdgePairKind::Colinear;
       return k;
+    }
+    if (!cross_nonzero_filtered(A[u], B[x], A[u], A[v])) {
+      const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
+      if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
+      if (m.is_zero()) {
+        k.kind = EdgePairKind::Colinear;
+        return k;
+      }
     }
     k.kind = EdgePairKind::Parallel;
     Draft d;
@@ -162,6 +220,11 @@ struct Builder {
   EdgePairClass classify(int a, int b, Draft& c, DegreeBounds& own) {
     own = DegreeBounds{0.0, 0.0};
     bool parallel = false;
+    // n = eB × eA exactly 0 by structural zeros: parallel or colinear without the expansions
+    // (exactly_parallel's precondition, the expansions' range, as near_parallel_normal's).
+    if (in_range && max_abs3(c.n) <= fb.deg2 &&
+        cross_zero(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]))
+      return exactly_parallel(a, b);
     if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own, parallel))
       return parallel ? exactly_parallel(a, b) : classify_edge_pair_exact(A, B, a, b);
     const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
@@ -281,6 +344,68 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
   out.intersecting = Builder{A, B, fb, p, out, pair_extent(A, B)}.run();
   return BuildStatus::Ok;
+}
+
+namespace {
+
+bool same_bits(const TetVertices& x, const TetVertices& y) {
+  return std::memcmp(x.data(), y.data(), sizeof(TetVertices)) == 0;
+}
+
+int exact_lanes(const CandidateSet& set) {
+  int m = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) m += set.edges.unclear[kLaneStride * a + b] != 0.0;
+  return m;
+}
+
+// to = from, reading only what candidate(), label() and the lists use: the first `count`
+// entries, all edge lanes, and the explicit geometries of non-lane candidates (a full copy of
+// the ~20 KB set would cost a good part of a build).
+void copy_used(const CandidateSet& from, CandidateSet& to) {
+  const int n = from.count;
+  to.count = n;
+  to.intersecting = from.intersecting;
+  to.tie_kappa = from.tie_kappa;
+  to.fb = from.fb;
+  std::memcpy(to.code, from.code, n * sizeof from.code[0]);
+  std::memcpy(to.depth, from.depth, n * sizeof from.depth[0]);
+  std::memcpy(to.nn, from.nn, n * sizeof from.nn[0]);
+  std::memcpy(to.delta_sq, from.delta_sq, n * sizeof from.delta_sq[0]);
+  std::memcpy(to.lane, from.lane, n * sizeof from.lane[0]);
+  std::memcpy(to.sign, from.sign, n * sizeof from.sign[0]);
+  std::memcpy(to.parallel, from.parallel, n * sizeof from.parallel[0]);
+  std::memcpy(to.own_eh, from.own_eh, n * sizeof from.own_eh[0]);
+  std::memcpy(to.own_en, from.own_en, n * sizeof from.own_en[0]);
+  to.edges = from.edges;
+  for (int k = 0; k < n; ++k)
+    if (from.lane[k] < 0) to.explicit_[k] = from.explicit_[k];
+}
+
+struct LastBuild {
+  bool valid = false;
+  TetVertices A, B;
+  CandidateSet set;  // (Ok and intersecting: edges.unclear are all set)
+};
+
+}  // namespace
+
+BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out) {
+  thread_local LastBuild last;  // (~20 KB: off the stack, once per thread)
+  if (last.valid && same_bits(last.A, A) && same_bits(last.B, B)) {
+    copy_used(last.set, out);
+    out.A = &A;
+    out.B = &B;
+    return BuildStatus::Ok;
+  }
+  const BuildStatus s = build_candidates(A, B, out);
+  if (s == BuildStatus::Ok && out.intersecting && exact_lanes(out) >= kReuseExactLanes) {
+    last.A = A;
+    last.B = B;
+    copy_used(out, last.set);
+    last.valid = true;
+  }
+  return s;
 }
 
 Candidate candidate(const CandidateSet& set, int k) {

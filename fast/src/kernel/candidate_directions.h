@@ -108,6 +108,15 @@ enum class BuildStatus { Ok, NonFiniteA, NonFiniteB, DegenerateA, DegenerateB };
 // at the first exactly separating candidate): only `intersecting == false` is then meaningful.
 BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, CandidateSet& out);
 
+// build_candidates for callers that often ask for the same pair twice in a row on one thread
+// (the depth stage: rigid_pd2 then pdd2_accel on the same rescaled pair). The thread's last
+// costly build (intersecting, at least kReuseExactLanes edge pairs through the exact path) is
+// kept with its input; an input equal to it bit for bit gets a copy with A, B pointing to the
+// caller's pair. build_candidates is a function of the coordinates' bits, so the set is the one
+// build_candidates would return.
+inline constexpr int kReuseExactLanes = 8;
+BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out);
+
 // Candidate k of the set with its heights (cheap: a few loads and sign flips).
 Candidate candidate(const CandidateSet& set, int k);
 

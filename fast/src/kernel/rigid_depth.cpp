@@ -138,7 +138,7 @@ Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
       [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
         if (rigid_superset(As, Bs, ch) && ch.certified) return true;
         CandidateSet set;
-        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
         ch = rigid_pd2(set);
         return true;
       },

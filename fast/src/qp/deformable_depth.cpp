@@ -773,7 +773,7 @@ Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick, Lanes
           return true;
         }
         CandidateSet set;
-        if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
         ch = f(set);
         return true;
       },
@@ -855,7 +855,7 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
             return true;
           }
           CandidateSet set;
-          if (build_candidates(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+          if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
           ch = pdd2_accel(set, 1);
           return true;
         },
