@@ -30,5 +30,4 @@ closed-form 1 6
 near-coplanar 1 8
 adversarial 1 30
 aligned 1 24
-aligned-copies 4 16
 LIST

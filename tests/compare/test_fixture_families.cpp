@@ -90,8 +90,6 @@ BOOST_AUTO_TEST_CASE(families_have_their_property) {
     BOOST_TEST(has_edge_kind(p, EdgePairKind::Parallel), p.name);
     BOOST_TEST(solve_exact(p, {QpFormulation::Reduced}).intersecting, p.name);
   }
-  for (const auto& p : test::load_pairs("families/aligned-copies.json"))  // a copy of A, translated
-    BOOST_TEST(solve_exact(p, {QpFormulation::Reduced}).intersecting, p.name);
   for (const auto& p : test::load_pairs("families/near-touching.json")) {
     const auto r = solve_exact(p, {QpFormulation::Reduced});
     BOOST_TEST(r.intersecting, p.name);

@@ -318,7 +318,9 @@ Json aligned_report_json(const AlignedBenchReport& r) {
     for (std::size_t k = 0; k < c.aligned.timings.size(); ++k)
       ratios.push_back({{"name", c.aligned.timings[k].name},
                         {"time_ratio", number(c.aligned.timings[k].median_ns_per_pair /
-                                              c.rotated.timings[k].median_ns_per_pair)}});
+                                              c.rotated.timings[k].median_ns_per_pair)},
+                        {"call_ratio", number(c.aligned.timings[k].median_call_ns /
+                                              c.rotated.timings[k].median_call_ns)}});
     q["ratios_aligned_to_rotated"] = ratios;
     cases.push_back(q);
   }

@@ -553,35 +553,6 @@ Attempt aligned_pair(Rng& r, std::size_t k) {
   return p;
 }
 
-// ---- aligned-copies: a tetrahedron of a structured cell (Kuhn or 5-tetrahedra, as in aligned)
-// against its own copy translated, as two copies of one mesh meet. Kind k % 2:
-//   0  along one of its own edges by t times the edge, t in [0.1, 0.9] (blocks stacked on each
-//      other's columns: every edge of B parallel to A's, one edge pair colinear);
-//   1  by a random vector of up to h/2 per axis (a mesh against a shifted copy of itself).
-// Tags: "aligned" (the geometry: ties between candidates, exact or up to rounding) and the kind.
-Attempt aligned_copy_pair(Rng& r, std::size_t k) {
-  const int kind = int(k % 2);
-  const double h = r.uniform(0.5, 2.0);
-  const Vec3d o = {r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5)};
-  const bool kuhn = r.integer(0, 1) != 0;
-  const int which = kuhn ? r.integer(0, 5) : r.integer(0, 4);
-  const bool odd = r.integer(0, 1) != 0;  // drawn apart: argument order is unspecified
-  const TetVertices a = kuhn ? kuhn_cell_tet(o, h, which) : five_cell_tet(o, h, which, odd);
-  Vec3d shift;
-  if (kind == 0) {
-    const int i = r.integer(0, 3), j = (i + 1 + r.integer(0, 2)) % 4;
-    shift = mul(r.uniform(0.1, 0.9), sub(a[j], a[i]));
-  } else {
-    shift = {r.uniform(-0.5, 0.5) * h, r.uniform(-0.5, 0.5) * h, r.uniform(-0.5, 0.5) * h};
-  }
-  TetVertices b = a;
-  for (auto& v : b) v = add(v, shift);
-  if (!valid(b)) return std::nullopt;
-  Attempt p = if_intersecting(a, b);
-  if (p) p->tags = {"aligned", kind == 0 ? "edge-translated" : "shifted-copy"};
-  return p;
-}
-
 // One attempt at a pair of a family; nullopt when the draw does not have the property.
 using Maker = std::function<std::optional<TetPair>(Rng&, std::size_t)>;
 
@@ -631,11 +602,6 @@ std::vector<Family> family_table(const PaperProtocol& pp) {
         "and 5-tetrahedra cells shifted by a non-grid offset, blocks stacked a third of a cell "
         "deep; parallel faces and edges, exactly or up to rounding"},
        [](Rng& r, std::size_t k) { return aligned_pair(r, k); }},
-      {{"aligned-copies",
-        "a tetrahedron of a structured cell against its own copy translated, kind k % 2: along one "
-        "of its edges (blocks stacked on each other's columns), by a random vector of up to h/2 "
-        "per axis (a mesh against a shifted copy of itself)"},
-       [](Rng& r, std::size_t k) { return aligned_copy_pair(r, k); }},
       {{"adversarial",
         "valid pairs that break naive doubles, kind k % 10: 1-ulp sliver, 1-ulp needle, nearly flat "
         "(2^-40), vertex 2^-60 inside / outside a face, nearly parallel edges, nearly coplanar faces "
