@@ -46,7 +46,9 @@ int main(int argc, char** argv) {
       {{"audit-ee"}, "pdd audit-ee --input fixtures/adversarial.json"},
       {{"compare"}, "pdd compare --input fixtures/adversarial.json"},
       {{"paper"}, "pdd paper --seed 7 --count 120 --exact-sample 120 --repeats 1 --out paper-out"},
-      {{"bench"}, "pdd bench --count 1000 --exact-sample 20 --repeats 1 --json bench.json"},
+      {{"bench"},
+       "pdd bench --count 1000 --exact-sample 20 --repeats 1 --json bench.json\n"
+       "  pdd bench --family aligned --count 300 --repeats 1"},
       {{"bench", "mesh"},
        "pdd bench mesh --a fixtures/meshes/sphere-a.msh --b fixtures/meshes/sphere-b.msh --repeats 1"},
       {{"bench", "resolve"}, "pdd bench resolve --cases shipped --repeats 1"},

@@ -12,8 +12,8 @@ The keys are collected by running things on small fixtures, not by reading the s
     pdd.contact_energy.
 A key is defined when definitions.md writes it as a code span (`key`, or inside an object's span
 `{key, other}`); a VTK field `max_<key>` when `max_<key>` is written there and <key> is defined.
-  - `pdd bench --json`, `pdd bench mesh --json` (with an aligned case), `pdd bench resolve --json`
-    on small inputs.
+  - `pdd bench --json` (both families), `pdd bench mesh --json` (with an aligned case), `pdd bench
+    resolve --json` and `pdd bench energy --json` (with the stacked blocks) on small inputs.
 Nested JSON keys are checked by name."""
 import json
 import re
@@ -150,7 +150,10 @@ def cli_keys(pdd_cli, tmp_path_factory):
              ["bench", "mesh", *TINY, "--repeats", "1", "--aligned-cells", "1"],
              ["bench", "resolve", "--cases", "self", "--size", "200", "--repeats", "1", "--max-rounds", "3",
               "--meshes", MESHES],
-             ["bench", "energy", "--cases", "balls", "--size", "2000", "--repeats", "1"]]
+             ["bench", "energy", "--cases", "balls", "--size", "2000", "--repeats", "1"],
+             ["bench", "--family", "aligned", "--count", "12", "--repeats", "1"],
+             ["bench", "resolve", "--cases", "stacked", "--stacked-cells", "2", "--repeats", "1", "--max-rounds", "3"],
+             ["bench", "energy", "--cases", "stacked", "--stacked-cells", "3", "--repeats", "1"]]
     for k, args in enumerate(bench):
         out = tmp / f"bench-{k}.json"
         run(pdd_cli, *args, "--json", out)

@@ -88,8 +88,13 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
   EnergyBenchReport rep;
   rep.options = options;
   rep.machine = machine_info();
+  if (options.stacked_cells < 1) throw std::invalid_argument("--stacked-cells must be at least 1");
   tbb::task_arena one(1), all(tbb::info::default_concurrency());
-  for (const std::string& name : split(options.cases)) {
+  std::vector<std::string> names;
+  for (const std::string& name : split(options.cases))
+    if (name == "stacked") names.insert(names.end(), {"stacked", "stacked-tilted"});
+    else names.push_back(name);
+  for (const std::string& name : names) {
     EnergyCase c;
     c.name = name;
     mesh::Mesh A, B;
@@ -110,8 +115,14 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
       std::ostringstream d;
       d << "jittered Kuhn balls of radius 1, centres " << options.ball_distance << " apart";
       c.description = d.str();
+    } else if (name == "stacked" || name == "stacked-tilted") {
+      BlockPair blocks = stacked_blocks(options.stacked_cells, 3, 1.0 / 3, name == "stacked" ? 0 : 0.01);
+      A = std::move(blocks.a);
+      B = std::move(blocks.b);
+      c.description = blocks.description;
+      if (name == "stacked") c.rotated_twin = "stacked-tilted";
     } else {
-      throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls)");
+      throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls, stacked)");
     }
     std::cerr << "pdd bench energy: " << name << "...\n";
     c.elements_a = A.tets.size();

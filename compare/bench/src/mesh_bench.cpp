@@ -260,9 +260,9 @@ void pruned(const mesh::Mesh& A, const mesh::Mesh& B, std::vector<std::size_t>& 
   for (const Bx& x : ba) ea.push_back(x.i);
   for (const Bx& x : bb) eb.push_back(x.i);
 }
+}  // namespace
 
-// Rotation matrix (Rodrigues) by `angle` about `axis`.
-std::array<std::array<double, 3>, 3> rotation(const std::array<double, 3>& axis, double angle) {
+std::array<std::array<double, 3>, 3> rotation_matrix(const std::array<double, 3>& axis, double angle) {
   const double an = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
   const double x = axis[0] / an, y = axis[1] / an, z = axis[2] / an, c = std::cos(angle),
                s = std::sin(angle), C = 1 - c;
@@ -270,6 +270,8 @@ std::array<std::array<double, 3>, 3> rotation(const std::array<double, 3>& axis,
            {y * x * C + z * s, c + y * y * C, y * z * C - x * s},
            {z * x * C - y * s, z * y * C + x * s, c + z * z * C}}};
 }
+
+namespace {
 
 // m translated by t, then rotated by `angle` about `axis` through its centre (angle 0: only
 // translated, each coordinate rounded once).
@@ -279,7 +281,7 @@ mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double ang
   double c[3] = {0, 0, 0};
   for (const Vec3d& v : m.vertices)
     for (int k = 0; k < 3; ++k) c[k] += v[k] / double(m.vertices.size());
-  const auto R = rotation(axis, angle);
+  const auto R = rotation_matrix(axis, angle);
   for (Vec3d& v : out.vertices) {
     if (angle == 0) {
       for (int k = 0; k < 3; ++k) v[k] += t[k];
@@ -391,6 +393,28 @@ mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const st
         }
       }
   return angle == 0 ? out : moved(out, {0, 0, 0}, angle, axis);
+}
+
+BlockPair stacked_blocks(int n, int layers, double depth, double tilt) {
+  const double h = 1.0 / n;
+  BlockPair out;
+  out.a = make_structured_block({n, n, layers}, h, {0, 0, 0}, CubeSplit::Kuhn6);
+  out.b = make_structured_block({n, n, layers}, h, {0, 0, layers * h - depth * h}, CubeSplit::Kuhn6);
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "Kuhn blocks of %dx%dx%d cubes, B on A's columns %.3g cell deep", n, n, layers,
+                depth);
+  out.description = buf;
+  if (tilt != 0) {
+    const auto R = rotation_matrix({1, 2, 3}, tilt);
+    const double c[3] = {0.5, 0.5, layers * h - depth * h};  // centre of B's bottom face
+    for (Vec3d& v : out.b.vertices) {
+      const double p[3] = {v[0] - c[0], v[1] - c[1], v[2] - c[2]};
+      for (int r = 0; r < 3; ++r) v[r] = c[r] + R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+    }
+    std::snprintf(buf, sizeof buf, ", B tilted %.3g rad about (1, 2, 3) through its bottom face's centre", tilt);
+    out.description += buf;
+  }
+  return out;
 }
 
 mesh::Mesh make_bench_ball(std::size_t target, const std::array<double, 3>& centre, double radius,

@@ -226,12 +226,19 @@ std::vector<Input> read_case_list(const std::string& dir) {
 
 }  // namespace
 
+std::size_t round_pairs(const ResolveBenchRow& row) {
+  std::size_t n = 0;
+  for (const auto& r : row.round_log) n += r.pairs;
+  return n;
+}
+
 ResolveBenchReport run_resolve_bench(const ResolveBenchOptions& o) {
   if (o.repeats < 1) throw std::invalid_argument("--repeats must be at least 1");
   if (o.max_rounds < 1) throw std::invalid_argument("--max-rounds must be at least 1");
   for (const std::string& w : split(o.cases, ','))
-    if (w != "shallow" && w != "deep" && w != "self" && w != "shipped")
-      throw std::invalid_argument("unknown case '" + w + "' (shallow, deep, self, shipped)");
+    if (w != "shallow" && w != "deep" && w != "self" && w != "shipped" && w != "stacked")
+      throw std::invalid_argument("unknown case '" + w + "' (shallow, deep, self, shipped, stacked)");
+  if (o.stacked_cells < 1) throw std::invalid_argument("--stacked-cells must be at least 1");
   parse_variants(o.variants);
   if (!o.write_dir.empty()) std::filesystem::create_directories(o.write_dir);
   const auto t_all = Clock::now();
@@ -344,11 +351,27 @@ ResolveBenchReport run_resolve_bench(const ResolveBenchOptions& o) {
       rep.cases.push_back(run_case(in, o));
     }
   }
+  if (wanted(o, "stacked")) {
+    const int layers = 3;
+    for (double tilt : {0.0, 0.01}) {
+      BlockPair blocks = stacked_blocks(o.stacked_cells, layers, 1.0 / 3, tilt);
+      Input in;
+      in.name = tilt == 0 ? "stacked" : "stacked-tilted";
+      in.description = blocks.description;
+      in.A = std::move(blocks.a);
+      in.B = std::move(blocks.b);
+      in.line = {0, 0, 1};
+      in.line_hi = 1.0 / o.stacked_cells;  // a cell: more than the third of a cell to undo
+      rep.cases.push_back(run_case(in, o));
+    }
+    rep.cases[rep.cases.size() - 2].rotated_twin = rep.cases.back().name;
+  }
   if (!o.cases_dir.empty())
     for (const Input& in : read_case_list(o.cases_dir)) {
       std::cerr << "pdd bench resolve: " << in.name << " (" << o.cases_dir << ")\n";
       rep.cases.push_back(run_case(in, o));
     }
+  rep.machine.load_after = read_first_line("/proc/loadavg");
   rep.seconds = since(t_all);
   return rep;
 }

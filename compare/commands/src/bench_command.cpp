@@ -1,16 +1,18 @@
 // bench_command.cpp — `pdd bench`: the speed table (bench.h; the protocol: timing.h).
 //
-// pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]
+// pdd bench [--count N] [--seed S] [--repeats R] [--exact-sample M] [--json [FILE]]   (bench.h)
+// pdd bench --family aligned [--count N] [--seed S] [--repeats R] [--json [FILE]] (aligned_bench.h)
 // pdd bench mesh [--a A --b B | --size N [--distance D] [--write-meshes DIR]]
 //                [--variants LIST] [--aligned-cells N] [--repeats R] [--json [FILE]]  (mesh_bench.h)
 // pdd bench resolve [--cases LIST] [--size N] [--shallow-distance D] [--deep-distance D]
-//                   [--meshes DIR] [--cases-dir DIR] [--variants LIST] [--write DIR]
+//                   [--stacked-cells N] [--meshes DIR] [--cases-dir DIR] [--variants LIST] [--write DIR]
 //                   [--max-rounds K] [--repeats R] [--json [FILE]]
 //                                                                   (resolve_bench.h)
-// pdd bench energy [--cases LIST] [--size N] [--grid-depth D] [--ball-distance D] [--repeats R]
-//                  [--json [FILE]]                                   (energy_bench.h)
+// pdd bench energy [--cases LIST] [--size N] [--grid-depth D] [--ball-distance D]
+//                  [--stacked-cells N] [--repeats R] [--json [FILE]]  (energy_bench.h)
 // Table on standard output. --json FILE also writes the same numbers as one JSON object to
 // FILE; --json alone writes the JSON to standard output and the table to standard error.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -21,6 +23,7 @@
 
 #include "pdd/cli/cli_checks.h"
 #include "pdd/cli/exit_codes.h"
+#include "pdd/compare/aligned_bench.h"
 #include "pdd/compare/bench.h"
 #include "pdd/compare/energy_bench.h"
 #include "pdd/compare/mesh_bench.h"
@@ -35,10 +38,17 @@ using io::check_writable;
 using io::write_file;
 namespace {
 
+// --json [FILE] of every bench subcommand: where the JSON goes (set when the command runs).
+struct JsonOutput {
+  std::string path;  // empty or "-": standard output
+  bool wanted = false;
+};
+
 struct BenchArgs {
   BenchOptions options;
-  std::string json_path;
-  bool json = false;
+  AlignedBenchOptions aligned;
+  std::string family = "paper";
+  JsonOutput json;
 };
 
 std::string fmt(const char* f, double v) {
@@ -64,6 +74,20 @@ std::string rpad(const std::string& s, std::size_t w) {
 
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+// The `machine` object of every bench JSON; the peers' versions where the command has peers.
+Json machine_json(const MachineInfo& m) {
+  Json j;
+  j["cpu_model"] = m.cpu_model;
+  j["logical_cpus"] = m.logical_cpus;
+  j["compiler"] = m.compiler;
+  j["assertions"] = m.assertions;
+  j["loadavg_before"] = m.load_before;
+  j["loadavg_after"] = m.load_after;
+  if (!m.fcl_version.empty()) j["fcl_version"] = m.fcl_version;
+  if (!m.ccd_version.empty()) j["ccd_cmake_config_version"] = m.ccd_version;
+  return j;
+}
+
 Json timing_json(const VariantTiming& t) {
   Json j;
   j["name"] = t.name;
@@ -85,16 +109,7 @@ Json report_json(const BenchReport& r) {
   j["repeats"] = r.options.repeats;
   j["exact_sample"] = r.exact.sample;
   j["pairs"] = r.pairs;
-  Json m;
-  m["cpu_model"] = r.machine.cpu_model;
-  m["logical_cpus"] = r.machine.logical_cpus;
-  m["compiler"] = r.machine.compiler;
-  m["assertions"] = r.machine.assertions;
-  m["loadavg_before"] = r.machine.load_before;
-  m["loadavg_after"] = r.machine.load_after;
-  m["fcl_version"] = r.machine.fcl_version;
-  m["ccd_cmake_config_version"] = r.machine.ccd_version;
-  j["machine"] = m;
+  j["machine"] = machine_json(r.machine);
   j["fast"] = Json::array();
   for (const auto& t : r.fast) j["fast"].push_back(timing_json(t));
   Json b;
@@ -269,13 +284,97 @@ void print_table(const BenchReport& r, std::ostream& s) {
   s << "(total " << fmt("%.1f", r.seconds) << " s)\n";
 }
 
+// ---- pdd bench --family aligned -----------------------------------------------------
+
+Json aligned_set_json(const AlignedPairSet& set) {
+  Json j;
+  j["timings"] = Json::array();
+  for (const auto& t : set.timings) j["timings"].push_back(timing_json(t));
+  j["slow_path_pairs"] = set.slow_path;
+  j["refined_pairs"] = set.refined;
+  return j;
+}
+
+Json aligned_report_json(const AlignedBenchReport& r) {
+  Json j;
+  j["command"] = "pdd bench";
+  j["family"] = "aligned";
+  j["count"] = r.options.count;
+  j["seed"] = r.options.seed;
+  j["repeats"] = r.options.repeats;
+  j["rotation_angle_rad"] = r.options.angle;
+  j["rotation_axis"] = {r.options.axis[0], r.options.axis[1], r.options.axis[2]};
+  j["pairs_drawn"] = r.drawn;
+  j["pairs_dropped"] = r.dropped;
+  j["machine"] = machine_json(r.machine);
+  Json cases = Json::array();
+  for (const auto& c : r.cases) {
+    Json q;
+    q["name"] = c.name;
+    q["pairs"] = c.pairs;
+    q["aligned"] = aligned_set_json(c.aligned);
+    q["rotated"] = aligned_set_json(c.rotated);
+    Json ratios = Json::array();
+    for (std::size_t k = 0; k < c.aligned.timings.size(); ++k)
+      ratios.push_back({{"name", c.aligned.timings[k].name},
+                        {"time_ratio", number(c.aligned.timings[k].median_ns_per_pair /
+                                              c.rotated.timings[k].median_ns_per_pair)},
+                        {"call_ratio", number(c.aligned.timings[k].median_call_ns /
+                                              c.rotated.timings[k].median_call_ns)}});
+    q["ratios_aligned_to_rotated"] = ratios;
+    cases.push_back(q);
+  }
+  j["cases"] = cases;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void print_aligned_pairs_table(const AlignedBenchReport& r, std::ostream& s) {
+  const auto& m = r.machine;
+  const auto& o = r.options;
+  s << "pdd bench: family aligned (seed " << o.seed << "), " << r.drawn << " pairs drawn, " << r.dropped
+    << " left out (B rotated misses A); beside each pair, B rotated by " << o.angle << " rad about ("
+    << o.axis[0] << ", " << o.axis[1] << ", " << o.axis[2] << ") through its centroid; "
+    << o.repeats << " timed passes per row, the two sets interleaved\n"
+    << "machine:   " << m.cpu_model << ", " << m.logical_cpus << " logical CPUs; " << m.compiler
+    << (m.assertions ? ", assertions ON" : ", NDEBUG") << "\n"
+    << "load avg:  before " << m.load_before << "; after " << m.load_after << "\n";
+  auto pct = [](std::size_t x, std::size_t n) {
+    return std::to_string(x) + " (" + fmt("%.1f", n ? 100.0 * double(x) / double(n) : 0.0) + "%)";
+  };
+  for (const auto& c : r.cases) {
+    s << "\n" << (c.name == "all" ? std::string("every kind (the kinds' rows weighted by their pairs)") : c.name)
+      << ": " << c.pairs << " pairs; ns, one core: per pair (median over passes) and per call (median)\n"
+      << "  " << pad("", 20) << rpad("aligned", 12) << rpad("rotated", 12) << rpad("ratio", 9)
+      << rpad("call aligned", 14) << rpad("call rotated", 14) << rpad("ratio", 9) << "\n";
+    for (std::size_t k = 0; k < c.aligned.timings.size(); ++k) {
+      const VariantTiming &x = c.aligned.timings[k], &y = c.rotated.timings[k];
+      const double a = x.median_ns_per_pair, b = y.median_ns_per_pair;
+      s << "  " << pad(x.name, 20) << rpad(fmt("%.0f", a), 12) << rpad(fmt("%.0f", b), 12)
+        << rpad(fmt("%.2fx", a / b), 9) << rpad(fmt("%.0f", x.median_call_ns), 14)
+        << rpad(fmt("%.0f", y.median_call_ns), 14) << rpad(fmt("%.2fx", x.median_call_ns / y.median_call_ns), 9)
+        << (a <= 2 * b ? "" : "  over 2x") << "\n";
+    }
+    s << "  " << pad("slow path (pairs)", 20) << rpad(pct(c.aligned.slow_path, c.pairs), 12)
+      << rpad(pct(c.rotated.slow_path, c.pairs), 12) << "\n"
+      << "  " << pad("refined (pairs)", 20) << rpad(pct(c.aligned.refined, c.pairs), 12)
+      << rpad(pct(c.rotated.refined, c.pairs), 12) << "\n";
+  }
+  s << "(per pair: pass time / pairs, the few slow pairs included; per call: the typical pair; 'every\n"
+       " kind': per call the kinds' medians weighted; slow path: solve_pair took the exact path or computed\n"
+       " pdd2_global in rationals; refined: a few candidates evaluated in rationals (definitions §8);\n"
+       " target: aligned within 2x of rotated per pair; total "
+    << fmt("%.1f", r.seconds) << " s)\n";
+}
+
 // One bench subcommand's run: check the JSON destination before the run, run, print the table
 // (to standard error when the JSON goes to standard output), then write the JSON. `who` names
 // the command in messages; run() throws std::invalid_argument for bad options (exit 2, usage)
 // and other exceptions for files that cannot be read or written (exit 2, file error).
 template <class Run, class Print, class ToJson>
-int run_and_report(const char* who, bool json, const std::string& json_path, Run run, Print print,
-                   ToJson to_json) {
+int run_and_report(const char* who, const JsonOutput& out, Run run, Print print, ToJson to_json) {
+  const bool json = out.wanted;
+  const std::string& json_path = out.path;
   const bool json_stdout = json && (json_path.empty() || json_path == "-");
   if (json && !json_stdout)
     if (auto why = check_writable(json_path)) {  // before the run, not after it
@@ -306,8 +405,13 @@ int run_and_report(const char* who, bool json, const std::string& json_path, Run
 }
 
 int run(const BenchArgs& a) {
+  if (a.family == "aligned")
+    return run_and_report(
+        "pdd bench", a.json, [&] { return run_aligned_bench(a.aligned); },
+        [](const AlignedBenchReport& r, std::ostream& os) { print_aligned_pairs_table(r, os); },
+        aligned_report_json);
   return run_and_report(
-      "pdd bench", a.json, a.json_path, [&] { return run_bench(a.options); },
+      "pdd bench", a.json, [&] { return run_bench(a.options); },
       [](const BenchReport& r, std::ostream& os) { print_table(r, os); }, report_json);
 }
 
@@ -316,8 +420,7 @@ int run(const BenchArgs& a) {
 struct MeshBenchArgs {
   MeshBenchOptions options;
   std::string variants = "rigid,accel1";
-  std::string json_path;
-  bool json = false;
+  JsonOutput json;
 };
 
 Json stage_json(const MeshRun& r) {
@@ -361,15 +464,7 @@ Json mesh_report_json(const MeshBenchReport& r) {
   j["variants"] = mesh::variant_names(r.options.variants);
   j["repeats"] = r.options.repeats;
   j["generate_s"] = number(r.generate_seconds);
-  Json m;
-  m["cpu_model"] = r.machine.cpu_model;
-  m["logical_cpus"] = r.machine.logical_cpus;
-  m["compiler"] = r.machine.compiler;
-  m["assertions"] = r.machine.assertions;
-  m["loadavg_before"] = r.machine.load_before;
-  m["loadavg_after"] = r.machine.load_after;
-  m["fcl_version"] = r.machine.fcl_version;
-  j["machine"] = m;
+  j["machine"] = machine_json(r.machine);
   j["one_core"] = stage_json(r.one_core);
   j["all_cores"] = stage_json(r.all_cores);
   Json d;
@@ -517,7 +612,7 @@ void print_mesh_table(const MeshBenchReport& r, std::ostream& s) {
 
 int run_mesh(const MeshBenchArgs& a) {
   return run_and_report(
-      "pdd bench mesh", a.json, a.json_path,
+      "pdd bench mesh", a.json,
       [&] {
         MeshBenchOptions o = a.options;
         o.variants = mesh::parse_variants(a.variants);
@@ -530,9 +625,32 @@ int run_mesh(const MeshBenchArgs& a) {
 
 struct ResolveBenchArgs {
   ResolveBenchOptions options;
-  std::string json_path;
-  bool json = false;
+  JsonOutput json;
 };
+
+// The case of `r` named `name`, or null.
+const ResolveBenchCase* find_case(const ResolveBenchReport& r, const std::string& name) {
+  for (const auto& c : r.cases)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+// Of one variant, aligned case `a` against its rotated twin `b`: total time, and time per round
+// pair (the pairs solved, summed over the rounds); NaN where a row or its pairs are missing.
+struct ResolveRatios {
+  double total = NAN, per_pair = NAN;
+};
+ResolveRatios resolve_ratios(const ResolveBenchCase& a, const ResolveBenchCase& b, const std::string& variant) {
+  ResolveRatios q;
+  for (const auto& x : a.rows)
+    for (const auto& y : b.rows)
+      if (x.variant == variant && y.variant == variant) {
+        q.total = x.total / y.total;
+        const double pa = double(round_pairs(x)), pb = double(round_pairs(y));
+        if (pa > 0 && pb > 0) q.per_pair = (x.total / pa) / (y.total / pb);
+      }
+  return q;
+}
 
 Json resolve_report_json(const ResolveBenchReport& r) {
   Json j;
@@ -544,13 +662,8 @@ Json resolve_report_json(const ResolveBenchReport& r) {
   j["repeats"] = r.options.repeats;
   j["cases_dir"] = r.options.cases_dir;
   j["variants"] = r.options.variants;
-  Json m;
-  m["cpu_model"] = r.machine.cpu_model;
-  m["logical_cpus"] = r.machine.logical_cpus;
-  m["compiler"] = r.machine.compiler;
-  m["assertions"] = r.machine.assertions;
-  m["loadavg_before"] = r.machine.load_before;
-  j["machine"] = m;
+  j["stacked_cells"] = r.options.stacked_cells;
+  j["machine"] = machine_json(r.machine);
   Json cases = Json::array();
   for (const auto& c : r.cases) {
     Json q;
@@ -563,6 +676,8 @@ Json resolve_report_json(const ResolveBenchReport& r) {
     q["rigid_separation_cost"] = c.rigid_separation >= 0 ? Json(c.rigid_separation) : Json(nullptr);
     q["rigid_separation_t"] = number(c.rigid_t);
     q["fixed"] = c.fixed_a ? Json("a") : c.fixed_b ? Json("b") : Json(nullptr);
+    const ResolveBenchCase* twin = c.rotated_twin.empty() ? nullptr : find_case(r, c.rotated_twin);
+    q["rotated_twin"] = twin ? Json(twin->name) : Json(nullptr);
     Json rows = Json::array();
     for (const auto& w : c.rows) {
       Json x;
@@ -595,6 +710,12 @@ Json resolve_report_json(const ResolveBenchReport& r) {
         rounds.push_back({{"round", k.round}, {"pairs", k.pairs}, {"max_pd2", number(k.max_pd2)},
                           {"cost", number(k.cost)}, {"seconds", number(k.seconds)}});
       x["rounds_log"] = rounds;
+      x["round_pairs"] = round_pairs(w);
+      if (twin) {
+        const ResolveRatios q2 = resolve_ratios(c, *twin, w.variant);
+        x["time_ratio_to_rotated"] = number(q2.total);
+        x["per_pair_ratio_to_rotated"] = number(q2.per_pair);
+      }
       rows.push_back(x);
     }
     q["variants"] = rows;
@@ -632,6 +753,15 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
         << rpad(w.r4 ? "yes" : "NO", 4) << rpad(w.method, 12) << rpad(fmt("%.3f", w.total), 9) << rpad(fmt("%.3f", w.contacts), 9) << rpad(fmt("%.3f", w.solve), 8)
         << rpad(fmt("%.3f", w.move), 8) << rpad(fmt("%.3f", w.verify), 8) << rpad(fmt("%.4f", w.per_round), 9)
         << "\n";
+    for (const auto& a : r.cases) {  // after the rotated twin of an aligned case: their ratios
+      if (a.rotated_twin != c.name) continue;
+      s << "  " << a.name << " / " << c.name << " (aligned / rotated), per variant: total time; time per round pair\n";
+      for (const auto& w : a.rows) {
+        const ResolveRatios q = resolve_ratios(a, c, w.variant);
+        s << "  " << pad(w.variant, 8) << rpad(fmt("%.2fx", q.total), 9) << rpad(fmt("%.2fx", q.per_pair), 9)
+          << (q.per_pair <= 2 ? "" : "  over 2x") << "\n";
+      }
+    }
   }
   s << "(pairs: intersecting pairs at the start; left: intersecting pairs at the end; vs rigid: cost "
        "over the rigid separation's; V1/V0 and eta: element volume and mean-ratio shape ratios, final "
@@ -642,7 +772,7 @@ void print_resolve_table(const ResolveBenchReport& r, std::ostream& s) {
 
 int run_resolve(const ResolveBenchArgs& a) {
   return run_and_report(
-      "pdd bench resolve", a.json, a.json_path, [&] { return run_resolve_bench(a.options); },
+      "pdd bench resolve", a.json, [&] { return run_resolve_bench(a.options); },
       [](const ResolveBenchReport& r, std::ostream& os) { print_resolve_table(r, os); },
       [](const ResolveBenchReport& r) { return resolve_report_json(r); });
 }
@@ -651,8 +781,7 @@ int run_resolve(const ResolveBenchArgs& a) {
 
 struct EnergyBenchArgs {
   EnergyBenchOptions options;
-  std::string json_path;
-  bool json = false;
+  JsonOutput json;
 };
 
 Json energy_times_json(const EnergyTimes& t) {
@@ -666,19 +795,26 @@ Json energy_times_json(const EnergyTimes& t) {
   return j;
 }
 
+// Aligned case `a` against its rotated twin `b`, one core: the ratios of the times per
+// intersecting pair of finding the pairs, of E + gradient, of E + gradient + Hessian.
+std::array<double, 3> energy_ratios(const EnergyCase& a, const EnergyCase& b) {
+  const double pa = double(a.pairs), pb = double(b.pairs);
+  auto ratio = [&](double x, double y) { return pa > 0 && pb > 0 && y > 0 ? (x / pa) / (y / pb) : NAN; };
+  return {ratio(a.one_core.found, b.one_core.found), ratio(a.one_core.energy, b.one_core.energy),
+          ratio(a.one_core.hessian, b.one_core.hessian)};
+}
+const EnergyCase* find_case(const EnergyBenchReport& r, const std::string& name) {
+  for (const auto& c : r.cases)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
 Json energy_report_json(const EnergyBenchReport& r) {
   Json j;
   j["command"] = "pdd bench energy";
   j["cases"] = Json::array();
   j["repeats"] = r.options.repeats;
-  Json m;
-  m["cpu_model"] = r.machine.cpu_model;
-  m["logical_cpus"] = r.machine.logical_cpus;
-  m["compiler"] = r.machine.compiler;
-  m["assertions"] = r.machine.assertions;
-  m["loadavg_before"] = r.machine.load_before;
-  m["loadavg_after"] = r.machine.load_after;
-  j["machine"] = m;
+  j["machine"] = machine_json(r.machine);
   for (const auto& c : r.cases) {
     Json q;
     q["name"] = c.name;
@@ -692,6 +828,13 @@ Json energy_report_json(const EnergyBenchReport& r) {
     q["threads"] = c.threads;
     q["one_core"] = energy_times_json(c.one_core);
     q["all_cores"] = energy_times_json(c.all_cores);
+    const EnergyCase* twin = c.rotated_twin.empty() ? nullptr : find_case(r, c.rotated_twin);
+    q["rotated_twin"] = twin ? Json(twin->name) : Json(nullptr);
+    if (twin) {
+      const auto x = energy_ratios(c, *twin);
+      q["per_pair_ratio_to_rotated"] = {{"found", number(x[0])}, {"energy_gradient", number(x[1])},
+                                        {"energy_gradient_hessian", number(x[2])}};
+    }
     j["cases"].push_back(q);
   }
   j["seconds"] = r.seconds;
@@ -717,6 +860,13 @@ void print_energy_table(const EnergyBenchReport& r, std::ostream& s) {
     };
     row(1, c.one_core);
     row(c.threads, c.all_cores);
+    for (const auto& a : r.cases) {  // after the rotated twin of an aligned case: their ratios
+      if (a.rotated_twin != c.name) continue;
+      const auto x = energy_ratios(a, c);
+      s << "  " << a.name << " / " << c.name << " per intersecting pair, one core: find " << fmt("%.2fx", x[0])
+        << ", E+grad " << fmt("%.2fx", x[1]) << ", E+grad+H " << fmt("%.2fx", x[2])
+        << (x[1] <= 2 && x[2] <= 2 ? "" : "  (over 2x)") << "\n";
+    }
   }
   s << "(find: boxes, broadphase and exact decision; E+grad, E+grad+H: everything after finding the "
        "pairs, wall and process CPU seconds; pairs/s and us/pair: intersecting pairs over E+grad+H; "
@@ -726,8 +876,26 @@ void print_energy_table(const EnergyBenchReport& r, std::ostream& s) {
 
 int run_energy(const EnergyBenchArgs& a) {
   return run_and_report(
-      "pdd bench energy", a.json, a.json_path, [&] { return run_energy_bench(a.options); },
+      "pdd bench energy", a.json, [&] { return run_energy_bench(a.options); },
       [](const EnergyBenchReport& r, std::ostream& os) { print_energy_table(r, os); }, energy_report_json);
+}
+
+// The options every bench subcommand shares: --repeats (into `repeats`, help `what`) and
+// --json [FILE] (into `json`); the command's callback records whether --json was given, then
+// runs `run` and keeps its exit status.
+void add_shared_options(CLI::App* cmd, int& repeats, const char* what, JsonOutput& json) {
+  cmd->add_option("--repeats", repeats, what)->check(integer_in(1, 1000))->capture_default_str();
+  cmd->add_option("--json", json.path,
+                  "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
+                  "output, table on standard error)")
+      ->expected(0, 1);
+}
+template <class Args>
+void on_run(CLI::App* cmd, std::shared_ptr<Args> args, int (*run)(const Args&), int& exit_code) {
+  cmd->callback([cmd, args, run, &exit_code] {
+    args->json.wanted = cmd->count("--json") > 0;
+    exit_code = run(*args);
+  });
 }
 
 }  // namespace
@@ -737,24 +905,26 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "bench",
       "Time the fast engine, FCL and libccd (rigid PD) and the exact engine on the paper's "
-      "protocol; medians of repeated passes, ratios in the same run.");
-  cmd->add_option("--count", a->options.count, "Pairs of the paper's protocol")
+      "protocol; medians of repeated passes, ratios in the same run. --family aligned: the fast "
+      "engine on aligned pairs beside the same pairs with B rotated, ratios in the same run.");
+  cmd->add_option("--family", a->family,
+                  "paper: the paper's protocol with the peers and the exact engine; aligned: `pdd "
+                  "generate --family aligned` beside the same pairs with B rotated by 0.3 rad")
+      ->check(CLI::IsMember({"paper", "aligned"}))
+      ->capture_default_str();
+  cmd->add_option("--count", a->options.count,
+                  "Pairs of the family (aligned: 3000 unless given; pairs whose rotated B misses A are left out)")
       ->check(integer_in(1, 100000000))
       ->capture_default_str();
   cmd->add_option("--seed", a->options.seed, "Random seed of the pairs (0 to 2^64-1)")
       ->check(seed_value())
       ->capture_default_str();
-  cmd->add_option("--repeats", a->options.repeats, "Timed passes per row (median reported)")
-      ->check(integer_in(1, 1000))
-      ->capture_default_str();
   cmd->add_option("--exact-sample", a->options.exact_sample,
-                  "The first M pairs are also solved exactly (errors, exact-engine ratio)")
+                  "The first M pairs are also solved exactly (errors, exact-engine ratio; family paper)")
       ->check(integer_in(0, 100000000))
       ->capture_default_str();
-  cmd->add_option("--json", a->json_path,
-                  "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
-                  "output, table on standard error)")
-      ->expected(0, 1);
+  add_shared_options(cmd, a->options.repeats, "Timed passes per row (median reported)", a->json);
+
   auto ma = std::make_shared<MeshBenchArgs>();
   CLI::App* mesh_cmd = cmd->add_subcommand(
       "mesh",
@@ -779,24 +949,18 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                        "copy, a mesh against its shifted copy, stacked blocks; each beside B rotated); 0: none")
       ->capture_default_str()
       ->check(CLI::Range(0, 60));
-  mesh_cmd->add_option("--repeats", ma->options.repeats, "Timed runs (median reported)")
-      ->check(integer_in(1, 1000))
-      ->capture_default_str();
-  mesh_cmd->add_option("--json", ma->json_path,
-                       "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
-                       "output, table on standard error)")
-      ->expected(0, 1);
-  mesh_cmd->callback([ma, mesh_cmd, &exit_code] {
-    ma->json = mesh_cmd->count("--json") > 0;
-    exit_code = run_mesh(*ma);
-  });
+  add_shared_options(mesh_cmd, ma->options.repeats, "Timed runs (median reported)", ma->json);
+  on_run(mesh_cmd, ma, run_mesh, exit_code);
+
   auto ra = std::make_shared<ResolveBenchArgs>();
   CLI::App* resolve_cmd = cmd->add_subcommand(
       "resolve",
       "Resolve interpenetrating meshes with every variant (global, pdd2, rigid) side by side: "
       "rounds, time per stage, cost, largest displacement, exact verdict; shallow and deep "
-      "overlaps of generated balls, self-contact and the shipped meshes.");
-  resolve_cmd->add_option("--cases", ra->options.cases, "Cases, comma-separated: shallow, deep, self, shipped")
+      "overlaps of generated balls, self-contact, the shipped meshes and stacked blocks beside "
+      "the same blocks tilted.");
+  resolve_cmd->add_option("--cases", ra->options.cases,
+                          "Cases, comma-separated: shallow, deep, self, shipped, stacked")
       ->capture_default_str();
   resolve_cmd->add_option("--size", ra->options.size, "Tetrahedra per generated ball")
       ->check(integer_in(6, 20000000))
@@ -807,6 +971,10 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   resolve_cmd->add_option("--deep-distance", ra->options.deep_distance, "Centre distance of the deep case")
       ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  resolve_cmd->add_option("--stacked-cells", ra->options.stacked_cells,
+                          "stacked: cells per side of the two Kuhn blocks (N x N x 3 cubes each)")
+      ->check(integer_in(1, 100))
       ->capture_default_str();
   resolve_cmd->add_option("--meshes", ra->options.meshes, "Directory of the shipped meshes (self, shipped)")
       ->capture_default_str();
@@ -819,24 +987,16 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   resolve_cmd->add_option("--max-rounds", ra->options.max_rounds, "Rounds before giving up")
       ->check(integer_in(1, 100000))
       ->capture_default_str();
-  resolve_cmd->add_option("--repeats", ra->options.repeats, "Runs per case and variant (median of the times)")
-      ->check(integer_in(1, 1000))
-      ->capture_default_str();
-  resolve_cmd->add_option("--json", ra->json_path,
-                          "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
-                          "output, table on standard error)")
-      ->expected(0, 1);
-  resolve_cmd->callback([ra, resolve_cmd, &exit_code] {
-    ra->json = resolve_cmd->count("--json") > 0;
-    exit_code = run_resolve(*ra);
-  });
+  add_shared_options(resolve_cmd, ra->options.repeats, "Runs per case and variant (median of the times)", ra->json);
+  on_run(resolve_cmd, ra, run_resolve, exit_code);
+
   auto ea = std::make_shared<EnergyBenchArgs>();
   CLI::App* energy_cmd = cmd->add_subcommand(
       "energy",
       "Time pdd::mesh::contact_energy (E + gradient, and with the Hessian) on shallow contacts of "
-      "two meshes of about 10^5 tetrahedra, after finding the pairs; one core and all cores, "
-      "medians of repeated runs.");
-  energy_cmd->add_option("--cases", ea->options.cases, "Cases, comma-separated: grids, balls")
+      "two meshes of about 10^5 tetrahedra, and on stacked blocks beside the same blocks tilted, "
+      "after finding the pairs; one core and all cores, medians of repeated runs.");
+  energy_cmd->add_option("--cases", ea->options.cases, "Cases, comma-separated: grids, balls, stacked")
       ->capture_default_str();
   energy_cmd->add_option("--size", ea->options.size, "Tetrahedra per generated ball (balls)")
       ->check(integer_in(6, 20000000))
@@ -848,20 +1008,24 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   energy_cmd->add_option("--ball-distance", ea->options.ball_distance, "balls: centre distance (radius 1)")
       ->check(finite_number(0, false) & CLI::Range(0.0, 4.0))
       ->capture_default_str();
-  energy_cmd->add_option("--repeats", ea->options.repeats, "Timed runs per row (median reported)")
-      ->check(integer_in(1, 1000))
+  energy_cmd->add_option("--stacked-cells", ea->options.stacked_cells,
+                         "stacked: cells per side of the two Kuhn blocks (N x N x 3 cubes each)")
+      ->check(integer_in(1, 100))
       ->capture_default_str();
-  energy_cmd->add_option("--json", ea->json_path,
-                         "Also write the numbers as JSON to FILE (no FILE or '-': JSON on standard "
-                         "output, table on standard error)")
-      ->expected(0, 1);
-  energy_cmd->callback([ea, energy_cmd, &exit_code] {
-    ea->json = energy_cmd->count("--json") > 0;
-    exit_code = run_energy(*ea);
-  });
+  add_shared_options(energy_cmd, ea->options.repeats, "Timed runs per row (median reported)", ea->json);
+  on_run(energy_cmd, ea, run_energy, exit_code);
+
   cmd->callback([a, cmd, mesh_cmd, resolve_cmd, energy_cmd, &exit_code] {
-    if (mesh_cmd->parsed() || resolve_cmd->parsed() || energy_cmd->parsed()) return;  // `pdd bench mesh` / `resolve`
-    a->json = cmd->count("--json") > 0;
+    if (mesh_cmd->parsed() || resolve_cmd->parsed() || energy_cmd->parsed()) return;  // a subcommand ran
+    a->json.wanted = cmd->count("--json") > 0;
+    if (a->family == "aligned" && cmd->count("--exact-sample") > 0) {  // nothing is solved exactly there
+      std::cerr << "pdd bench: --exact-sample applies to --family paper only\n";
+      exit_code = kExitUsage;
+      return;
+    }
+    a->aligned.seed = a->options.seed;
+    a->aligned.repeats = a->options.repeats;
+    if (cmd->count("--count") > 0) a->aligned.count = a->options.count;
     exit_code = run(*a);
   });
 }

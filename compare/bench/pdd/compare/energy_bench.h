@@ -14,7 +14,11 @@
 //        0.01 rad about (1, 2, 3) and lowered onto A's top face by `grid_depth`;
 //        "balls": two jittered, rotated Kuhn balls (make_bench_ball, mesh_bench.h: the meshes
 //        `pdd bench mesh` uses, the real-mesh kind: no face of one parallel to the other's) of
-//        `size` tetrahedra and radius 1 at centre distance `ball_distance` (a shallow overlap).
+//        `size` tetrahedra and radius 1 at centre distance `ball_distance` (a shallow overlap);
+//        "stacked": two Kuhn blocks of stacked_cells x stacked_cells x 3 cubes, B on A's columns a
+//        third of a cell deep (stacked_blocks, mesh_bench.h: faces parallel, vertical faces
+//        coplanar), then the same with B tilted 0.01 rad ("stacked-tilted": no face parallel);
+//        the aligned case names its twin (rotated_twin), and the ratios of the times per pair.
 #pragma once
 
 #include <cstddef>
@@ -26,10 +30,11 @@
 namespace pdd::compare {
 
 struct EnergyBenchOptions {
-  std::string cases = "grids,balls";
+  std::string cases = "grids,balls,stacked";
   std::size_t size = 100000;    // tetrahedra per generated ball
   double grid_depth = 0.004;    // grids: B's lowest vertex below A's top face (cell 1/26)
   double ball_distance = 1.9;   // balls: centre distance (radius 1): ~10^4 pairs
+  int stacked_cells = 12;       // stacked: cubes per side of each block (3 layers)
   int repeats = 5;
 };
 
@@ -48,6 +53,7 @@ struct EnergyCase {
   double energy = 0, max_pdd2_global = 0;
   EnergyTimes one_core, all_cores;
   int threads = 0;  // all cores
+  std::string rotated_twin;  // the same case with B tilted (aligned cases); empty: none
 };
 
 struct EnergyBenchReport {

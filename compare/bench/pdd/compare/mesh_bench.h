@@ -15,6 +15,7 @@
 //         box_intersection_d as contacts() runs it, and FCL's managers) on the same boxes.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -34,6 +35,10 @@ namespace pdd::compare {
 mesh::Mesh make_bench_ball(std::size_t target, const std::array<double, 3>& centre,
                            double radius, const std::array<double, 3>& axis, double angle,
                            std::uint64_t seed);
+
+// The rotation by `angle` radians about `axis` (need not be unit; Rodrigues' formula), as a
+// row-major matrix R: a point p rotates to R p.
+std::array<std::array<double, 3>, 3> rotation_matrix(const std::array<double, 3>& axis, double angle);
 
 struct MeshBenchOptions {
   std::string a, b;            // mesh files; both empty: two generated balls
@@ -107,6 +112,17 @@ struct AlignedCase {
 enum class CubeSplit { Kuhn6, Five };
 mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
                                  CubeSplit split, double angle = 0, const std::array<double, 3>& axis = {1, 2, 3});
+
+// Two Kuhn blocks of n x n x layers cubes of side h = 1/n, B's columns exactly over A's (the
+// same x and y coordinates), B's bottom face `depth` h below A's top face (depth 0: the faces
+// touch exactly; every vertical face of B in the plane of one of A's). tilt != 0: B rotated by
+// `tilt` rad about (1, 2, 3) through the centre of its bottom face: the same contact, no face of
+// B parallel to one of A's (the generic twin of the aligned case).
+struct BlockPair {
+  mesh::Mesh a, b;
+  std::string description;
+};
+BlockPair stacked_blocks(int n, int layers, double depth, double tilt);
 
 struct MeshBenchReport {
   MeshBenchOptions options;

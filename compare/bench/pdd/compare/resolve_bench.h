@@ -12,6 +12,10 @@
 //   self     two-spheres.msh of `meshes` (one mesh intersecting itself);
 //   shipped  the small meshes of `meshes`, moved into shallow overlaps of known depth as in
 //            tests/mesh/test_resolve.cpp, and the shipped deep pairs as they are;
+//   stacked  two Kuhn blocks of stacked_cells x stacked_cells x 3 cubes, B on A's columns a third
+//            of a cell deep (stacked_blocks, mesh_bench.h: faces parallel, vertical faces
+//            coplanar), then the same with B tilted 0.01 rad ("stacked-tilted", no face parallel);
+//            the aligned case names its twin (rotated_twin) and the tables give the time ratios;
 //   real     with `cases_dir`: every line of DIR/cases.tsv as scripts/make-resolve-cases.sh writes
 //            it (Gmsh and TetGen meshes: a ball on a fixed thin plate, two bodies, two bodies in
 //            one file, a body against itself, two balls of 10^5 elements one layer deep, a ball
@@ -42,7 +46,8 @@ struct ResolveBenchOptions {
   double shallow_distance = 1.99;   // centre distance, shallow case (about one layer at 10^5)
   double deep_distance = 1.88;      // centre distance, deep case (the lens of `pdd bench mesh`)
   std::string meshes = "fixtures/meshes";  // directory of the shipped meshes
-  std::string cases = "shallow,deep,self,shipped";  // may be empty (only cases_dir)
+  std::string cases = "shallow,deep,self,shipped,stacked";  // may be empty (only cases_dir)
+  int stacked_cells = 8;            // stacked: cubes per side of each block (3 layers)
   std::string cases_dir;            // real-mesh cases: DIR/cases.tsv; empty: none
   std::string variants = "global,pdd2,rigid";  // comma-separated resolve variants to run
   std::string write_dir;            // final meshes of the first run per row; empty: not written
@@ -69,7 +74,11 @@ struct ResolveBenchCase {
   double rigid_t = 0;
   bool fixed_a = false, fixed_b = false;  // a mesh kept bit for bit (--fix)
   std::vector<ResolveBenchRow> rows;  // global, pdd2, rigid
+  std::string rotated_twin;           // the same case with B tilted (aligned cases); empty: none
 };
+
+// Round pairs of a row: the intersecting pairs summed over its rounds (the pairs solved).
+std::size_t round_pairs(const ResolveBenchRow& row);
 
 struct ResolveBenchReport {
   ResolveBenchOptions options;
