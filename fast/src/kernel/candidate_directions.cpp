@@ -81,6 +81,11 @@ bool cross_nonzero_filtered(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, c
 }
 
 struct Builder {
+  // A constructor, not an aggregate: face_normal stays uninitialised (filled where first
+  // needed, face_normal_known says which) instead of zeroing four expansions per build.
+  Builder(const TetVertices& a, const TetVertices& b, const FilterBounds& bounds, const Precomputed& pre,
+          CandidateSet& set, double L)
+      : A(a), B(b), fb(bounds), p(pre), out(set), extent(L) {}
   const TetVertices& A;
   const TetVertices& B;
   const FilterBounds& fb;
@@ -342,7 +347,7 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   if (p.oA == Sign::Zero) return BuildStatus::DegenerateA;
   p.oB = orientation(B, p.detB, fb.deg3);
   if (p.oB == Sign::Zero) return BuildStatus::DegenerateB;
-  out.intersecting = Builder{A, B, fb, p, out, pair_extent(A, B)}.run();
+  out.intersecting = Builder(A, B, fb, p, out, pair_extent(A, B)).run();
   return BuildStatus::Ok;
 }
 
