@@ -25,6 +25,10 @@
 
 #include <pthread.h>
 
+#include <new>
+
+#include <oneapi/tbb/global_control.h>
+
 #include "common.h"
 #include "long_call.h"
 
@@ -79,6 +83,23 @@ KEYS is the tuple of every key a record can have, in the order `pdd solve` write
 with gradient=True).
 )doc";
 
+// Fork (os.fork; multiprocessing's default start method on Linux): the child has only the
+// forking thread. Workers forgets the parent's long-call threads, and TBB's worker threads are
+// joined before the fork (tbb::finalize on a handle attached at import, as numba's TBB backend
+// does): a child that inherits a scheduler whose workers held its slots or locks at the fork can
+// wait forever in its first parallel_for. When they cannot be joined (another thread is inside a
+// TBB call at that moment), finalize says so and the fork goes on as without it.
+oneapi::tbb::task_scheduler_handle* scheduler = nullptr;  // never destroyed (outlives every call)
+void attach_scheduler() { *scheduler = oneapi::tbb::task_scheduler_handle{oneapi::tbb::attach{}}; }
+void before_fork() {
+  if (*scheduler) oneapi::tbb::finalize(*scheduler, std::nothrow);  // releases the handle either way
+}
+void after_fork_in_parent() { attach_scheduler(); }
+void after_fork_in_child() {
+  Workers::forget_after_fork();
+  attach_scheduler();
+}
+
 }  // namespace
 }  // namespace pdd_python
 
@@ -87,7 +108,9 @@ PYBIND11_MODULE(pdd, m) {
   py::options options;
   options.disable_function_signatures();  // each docstring starts with its text signature
   m.doc() = kModuleDoc;
-  pthread_atfork(nullptr, nullptr, &Workers::forget_after_fork);
+  scheduler = new oneapi::tbb::task_scheduler_handle;
+  attach_scheduler();
+  pthread_atfork(&before_fork, &after_fork_in_parent, &after_fork_in_child);
   cached = new Cached{py::module_::import("fractions").attr("Fraction"),
                       py::module_::import("numpy").attr("bool_"),
                       py::module_::import("numpy").attr("asarray"),
