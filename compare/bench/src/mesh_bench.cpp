@@ -585,8 +585,9 @@ MeshBenchReport run_mesh_bench(const MeshBenchOptions& o) {
       {mesh::kGlobal, {"solve_pair", [](const TetVertices& a, const TetVertices& b) {
          return fast::solve_pair(TetPair{"", {}, a, b}).pdd2_global; }}},
   };
-  for (const auto& [bit, call] : calls) {
-    if (!(o.variants & bit) || hits.empty()) continue;
+  for (const auto& entry : calls) {  // not a structured binding: the lambda below captures call
+    const auto& call = entry.second;
+    if (!(o.variants & entry.first) || hits.empty()) continue;
     volatile double sink = 0;
     const std::vector<double> ns = time_each_call(hits.size(), [&](std::size_t k) {
       sink = sink + call.second(hits[k][0], hits[k][1]);

@@ -500,7 +500,11 @@ bool translate_and_relax(Run& run, std::size_t budget) {
 
 bool resolve_bodies(Run& run) {
   const Mesh& A = run.A;
-  const auto [body, count] = bodies(A, run.sa.elems);
+  // Named, not a structured binding: the lambdas below capture them (C++17 cannot capture a
+  // structured binding; clang rejects it).
+  const std::pair<std::vector<std::ptrdiff_t>, std::size_t> found = bodies(A, run.sa.elems);
+  const std::vector<std::ptrdiff_t>& body = found.first;
+  const std::size_t count = found.second;
   if (count < 2) return false;
   const std::vector<std::array<std::size_t, 2>> pairs = intersecting_pairs(A, run.sa.elems, nullptr, {});
   const std::optional<BodyGroups> g = body_groups(A, body, count, pairs);
