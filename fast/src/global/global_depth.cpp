@@ -21,6 +21,7 @@ namespace {
 
 using detail::kPopcount;
 using global::add;
+using global::cross;
 using global::Best;
 using global::dot;
 using global::enumerate_pieces;
@@ -95,8 +96,57 @@ struct GlobalRun {
   bool exact_pieces = false;  // the pieces were built exactly
 };
 
+// No start given (a caller whose candidate list could not be built: the pair has parallel
+// edges or coplanar faces, the aligned pairs of structured meshes): the enumeration would
+// prune nothing until its first offer and send every one of the 225 pieces to the eigensolver
+// (measured on `pdd generate --family aligned`: all 225 kept, ~100 solved, 80 us a pair). So
+// the pair's own candidate directions are ranked and the shallowest offered first: the 8 face
+// normals and the 36 cross products of A's and B's edges (definitions §3's directions, from
+// the rounded relative coordinates), each oriented A -> B by its rigid overlap D(d) = max_A d.a
+// - min_B d.b (the smaller of d's and -d's), ranked by D(d)^2 / d.d. The rigid depth's
+// direction is among them, and relaxed(u) >= D(u)^2 / 32 (global_depth.h), so the shallowest
+// are where relaxed() is small. The ranking is only a heuristic: any double normal is a valid
+// offer (its value is relaxed() along that very normal, with its own error bound, and an offer
+// only lowers the best), so a rounded or misranked direction costs pruning, never accuracy.
+// kGeometricStarts offers: about the start the callers with a list give (their rigid
+// direction), for ~1/10 of the cost of offering all 44.
+constexpr int kGeometricStarts = 3;
+
+void offer_geometric_starts(GlobalRun& g) {
+  const Problem& P = g.P;
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  V3 top[kGeometricStarts];
+  double key[kGeometricStarts];
+  int kept = 0;
+  auto consider = [&](const V3& d) {
+    const double dd = dot(d, d);
+    if (!(dd > 0) || !std::isfinite(dd)) return;
+    double maxA = -INFINITY, minA = INFINITY, maxB = -INFINITY, minB = INFINITY;
+    for (int i = 0; i < 4; ++i) {
+      const double a = dot(d, P.relA[i]), b = dot(d, P.relB[i]);
+      maxA = std::max(maxA, a), minA = std::min(minA, a), maxB = std::max(maxB, b), minB = std::min(minB, b);
+    }
+    const double plus = maxA - minB, minus = maxB - minA;  // overlaps along d and along -d
+    const double D = std::min(plus, minus);
+    const double k = D * D / dd;
+    if (!(k >= 0)) return;  // (NaN)
+    if (kept == kGeometricStarts && !(k < key[kept - 1])) return;
+    int at = kept < kGeometricStarts ? kept++ : kept - 1;
+    for (; at > 0 && key[at - 1] > k; --at) top[at] = top[at - 1], key[at] = key[at - 1];
+    top[at] = plus <= minus ? d : mul(d, -1.0), key[at] = k;
+  };
+  for (const V3* T : {P.relA, P.relB})
+    for (const auto& f : kFace) consider(cross(sub(T[f[1]], T[f[0]]), sub(T[f[2]], T[f[0]])));
+  for (const auto& ea : kEdge) {
+    const V3 a = sub(P.relA[ea[1]], P.relA[ea[0]]);
+    for (const auto& eb : kEdge) consider(cross(a, sub(P.relB[eb[1]], P.relB[eb[0]])));
+  }
+  for (int i = 0; i < kept; ++i) g.best.offer(P, top[i]);
+}
+
 // The problem (coordinates relative to A[0] and about the centroid), the lower bound, and the
-// start's offer.
+// start's offer (or, with none, the pair's candidate directions).
 void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
   // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
   g.lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
@@ -112,7 +162,8 @@ void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
   for (int i = 0; i < 4; ++i) P.pA[i] = sub(P.relA[i], centroid), P.pB[i] = sub(P.relB[i], centroid);
   g.best.value = INFINITY;
   g.best.n = {start_normal[0], start_normal[1], start_normal[2]};
-  g.best.offer(P, g.best.n);
+  if (nonzero(g.best.n)) g.best.offer(P, g.best.n);
+  else offer_geometric_starts(g);
 }
 
 // Doubles or rationals for the pieces (the enumeration is the same). H's entries carry
