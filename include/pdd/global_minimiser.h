@@ -21,8 +21,9 @@
 // parallel) the chain's other values are computed as solve_pair computes them and the same
 // relations applied.
 // Declined (std::nullopt): whenever the common double path does not apply as a whole — a pair
-// that is not valid, not intersecting, or whose lane sweeps or candidate choices are not
-// certified in doubles; an enumeration not certified or computed in rationals; a value or a
+// that is not valid, not intersecting, or whose lane sweeps (the candidate set's sweeps, as
+// solve_pair's, where the quick lanes decline: parallel edges, coplanar faces) or candidate
+// choices are not certified in doubles; an enumeration not certified or computed in rationals; a value or a
 // position outside the double range; at a tie, a value of the chain not certified in doubles
 // or outside the double range (solve_pair's exact path). The caller
 // then takes solve_pair (which gives the same fields, or declines pdd2_global itself).

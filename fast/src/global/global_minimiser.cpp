@@ -6,6 +6,7 @@
 
 #include "exact/exact_candidate.h"
 #include "global/global_depth.h"
+#include "kernel/candidate_directions.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/power_scale.h"
 #include "kernel/quick_candidates.h"
@@ -31,11 +32,9 @@ int index_of(const QuickCandidates& q, LabelCode code) {  // the first candidate
 }
 bool listed(const QuickCandidates& q, const Choice& ch) { return index_of(q, ch.code) >= 0; }
 
-bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Choice& rel, double& value) {
-  Choice st, def;
-  if (!pdd2_static_lanes(q, st) || !listed(q, st)) st = pdd2_static(q, rigid.index);
-  const Choice accel6 = pdd2_accel(q, kAccelWide), accel1 = pdd2_accel(q, 1);
-  if (!pdd2_lanes(q, def) || !listed(q, def)) def = pdd2(q, accel6.index);
+// The chain's choices, certified, lowered as keep_exact_relations lowers them (its order).
+bool lower_along_chain(int e, const Choice& rigid, const Choice& st, const Choice& accel6, const Choice& accel1,
+                       const Choice& def, const Choice& rel, double& value) {
   if (!st.certified || !def.certified || !accel6.certified || !accel1.certified) return false;
   bool ok = true;
   auto back = [&](double v) { return detail::unscaled(v, 2 * -e, ok); };
@@ -55,6 +54,84 @@ bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Ch
   return true;
 }
 
+bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Choice& rel, double& value) {
+  Choice st, def;
+  if (!pdd2_static_lanes(q, st) || !listed(q, st)) st = pdd2_static(q, rigid.index);
+  const Choice accel6 = pdd2_accel(q, kAccelWide), accel1 = pdd2_accel(q, 1);
+  if (!pdd2_lanes(q, def) || !listed(q, def)) def = pdd2(q, accel6.index);
+  return lower_along_chain(e, rigid, st, accel6, accel1, def, rel, value);
+}
+
+// The same on the candidate set, with solve_pair's calls where it has no lanes
+// (fill_intersecting: every choice from the set's sweeps, with its hints).
+bool lower_at_tie(const CandidateSet& set, int e, const Choice& rigid, const Choice& rel, double& value) {
+  const Choice st = pdd2_static(set, rigid.index);
+  const Choice accel6 = pdd2_accel(set, kAccelWide), accel1 = pdd2_accel(set, 1);
+  const Choice def = pdd2(set, accel6.index);
+  return lower_along_chain(e, rigid, st, accel6, accel1, def, rel, value);
+}
+
+// definitions §9 from the relaxed choice `rel` (a candidate `c` of the list or set `cands`,
+// certified, its label) and the certified rigid choice, on the rescaled pair: solve_pair's
+// fill_global, its scaling back and its relations (above). std::nullopt where solve_pair's
+// fields could differ (header).
+template <class Candidates>
+std::optional<GlobalMinimiser> minimiser_from(const detail::ScaledPair& sp, const Candidates& cands,
+                                              const Choice& rigid, const Choice& rel, const Candidate& c) {
+  const double start[3] = {c.n[0], c.n[1], c.n[2]};
+  const DirectionLabel label = rel.label();
+  const TetVertices &As = sp.A, &Bs = sp.B;
+  const ExactStart exact_start = [&]() -> std::array<double, 3> {
+    return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
+  };
+  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
+  if (!g.certified || g.exact_value) return std::nullopt;
+  if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
+  bool in_range = true;
+  GlobalMinimiser m;
+  m.pd2 = detail::unscaled(g.value, 2 * -sp.e, in_range);
+  const double relaxed = detail::unscaled(rel.value, 2 * -sp.e, in_range);
+  if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
+  if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(cands, sp.e, rigid, rel, m.pd2))
+    return std::nullopt;
+  // x 2^-e: a product with a normal power of two is rounded once, as ldexp rounds (the same
+  // bits, subnormal results included), without a libm call per coordinate.
+  const double unit = std::ldexp(1.0, -sp.e);
+  const bool by_product = std::isnormal(unit);
+  auto back = [&](double x) { return by_product ? x * unit : std::ldexp(x, -sp.e); };
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      m.q1_A[i][k] = back(g.q1_A[i][k]);
+      m.q1_B[i][k] = back(g.q1_B[i][k]);
+      if (!std::isfinite(m.q1_A[i][k]) || !std::isfinite(m.q1_B[i][k])) return std::nullopt;
+    }
+  m.normal = g.normal;
+  detail::power_normalized(m.normal);
+  return m;
+}
+
+// Pairs whose quick lanes decline (parallel edges, coplanar faces: the aligned pairs of
+// structured meshes, stacked blocks): solve_pair then builds its candidate set and takes every
+// choice from the set's sweeps (fill_intersecting without lanes), and its definitions §9 fields
+// come from fill_global on them whether or not the rest of its record is certified (the exact
+// path replaces candidate-based values only). The same here: the set (build_candidates on the
+// same rescaled pair: the same candidates in the same order), rigid_pd2 over it, pdd2_relaxed's
+// sweep over it (its choice does not depend on the hint: the rigid choice seeds it, as above).
+// Declined where solve_pair's inputs to fill_global could differ: a choice not certified.
+// Measured on the stacked Kuhn blocks of `pdd bench energy` (1728 pairs, every one declined by
+// the lanes): solve_pair ~250 us a pair there (its exact path for the rest of the record on
+// about one pair in six), this route ~25 us.
+std::optional<GlobalMinimiser> minimiser_from_set(const detail::ScaledPair& sp) {
+  // One set per thread (~20 KB: off TBB's worker stacks); build_candidates sets what is read.
+  static thread_local CandidateSet set;
+  if (build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) return std::nullopt;
+  const Choice rigid = rigid_pd2(set);
+  if (!rigid.certified) return std::nullopt;
+  const Choice rel = pdd2_relaxed(set, rigid.index);
+  if (!rel.certified || !(rel.value > 0) || rel.index < 0) return std::nullopt;
+  return minimiser_from(sp, set, rigid, rel, candidate(set, rel.index));
+}
+
 }  // namespace
 
 std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B) {
@@ -69,7 +146,7 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   // global_minimiser does not recurse.
   static thread_local QuickCandidates list;
   QuickCandidates* q = &list;
-  if (!quick_lanes(sp.A, sp.B, *q)) return std::nullopt;
+  if (!quick_lanes(sp.A, sp.B, *q)) return minimiser_from_set(sp);
   Choice rel;
   const bool rel_lanes = pdd2_relaxed_lanes(*q, rel);
   quick_edge_list(*q);  // (appends the edge candidates; the lanes and faces the sweeps read stay)
@@ -88,37 +165,7 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   }
   if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   if (index < 0) return std::nullopt;
-  const Candidate c = candidate(*q, index);
-  const double start[3] = {c.n[0], c.n[1], c.n[2]};
-  const DirectionLabel label = rel.label();
-  const TetVertices &As = sp.A, &Bs = sp.B;
-  const ExactStart exact_start = [&]() -> std::array<double, 3> {
-    return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
-  };
-  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
-  if (!g.certified || g.exact_value) return std::nullopt;
-  if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
-  bool in_range = true;
-  GlobalMinimiser m;
-  m.pd2 = detail::unscaled(g.value, 2 * -sp.e, in_range);
-  const double relaxed = detail::unscaled(rel.value, 2 * -sp.e, in_range);
-  if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
-  if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(*q, sp.e, rigid, rel, m.pd2))
-    return std::nullopt;
-  // x 2^-e: a product with a normal power of two is rounded once, as ldexp rounds (the same
-  // bits, subnormal results included), without a libm call per coordinate.
-  const double unit = std::ldexp(1.0, -sp.e);
-  const bool by_product = std::isnormal(unit);
-  auto back = [&](double x) { return by_product ? x * unit : std::ldexp(x, -sp.e); };
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      m.q1_A[i][k] = back(g.q1_A[i][k]);
-      m.q1_B[i][k] = back(g.q1_B[i][k]);
-      if (!std::isfinite(m.q1_A[i][k]) || !std::isfinite(m.q1_B[i][k])) return std::nullopt;
-    }
-  m.normal = g.normal;
-  detail::power_normalized(m.normal);
-  return m;
+  return minimiser_from(sp, *q, rigid, rel, candidate(*q, index));
 }
 
 }  // namespace pdd::fast
