@@ -7,6 +7,7 @@
 #include "exact/exact_candidate.h"
 #include "exact/exact_predicates.h"
 #include "global/global_depth.h"
+#include "kernel/candidate_directions.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/power_scale.h"
 #include "kernel/quick_candidates.h"
@@ -62,6 +63,28 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
   return depth_of(pdd2_accel_choice(A, B, k), A, B, false);
 }
 
+namespace {
+
+// pdd2_global's start where the quick list declines (parallel edges, coplanar faces): one
+// candidate set on the scaled pair (as solve_pair builds it), the certified rigid choice over it
+// (the enumeration's lower bound), pdd2_relaxed's choice over it (its candidate's normal the
+// start, its certified value an upper bound on pdd2_global: global_depth.h's check), its
+// candidate. Without it the fallback below builds the set twice (rigid_pd2_choice, then
+// pdd2_relaxed) and the enumeration has no start: on the aligned family of `pdd generate`
+// ~57k instructions a pair before the enumeration, ~40k here (callgrind). false: not certified.
+bool relaxed_on_set(const detail::ScaledPair& sp, Choice& rigid, Choice& rel, Candidate& c) {
+  static thread_local CandidateSet set;  // (~20 KB: off TBB's worker stacks)
+  if (build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) return false;
+  rigid = rigid_pd2(set);
+  if (!rigid.certified || rigid.index < 0) return false;
+  rel = pdd2_relaxed(set, rigid.index);
+  if (!rel.certified || rel.index < 0) return false;
+  c = candidate(set, rel.index);
+  return true;
+}
+
+}  // namespace
+
 NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   NormalDepth d;
   const detail::ScaledPair sp = detail::power_scaled(A, B);
@@ -88,10 +111,15 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
         if (have) c = candidate(q, rigid.index);
       }
     }
+    // Where the list declines too (parallel edges, coplanar faces: the aligned pairs of
+    // structured meshes), from the candidate set (relaxed_on_set): accel1 then holds pdd2_relaxed's
+    // choice, the start its candidate and label.
+    const Choice* labelled = &rigid;  // the exact start: this choice's label's exact normal
+    if (!have && relaxed_on_set(sp, rigid, accel1, c)) have = true, labelled = &accel1;
     if (have && rigid.value > 0 && accel1.value > 0) {
       const TetVertices &As = sp.A, &Bs = sp.B;
       // (one pointer captured: std::function keeps it inline instead of allocating per call)
-      const std::pair<const detail::ScaledPair*, const Choice*> start{&sp, &rigid};
+      const std::pair<const detail::ScaledPair*, const Choice*> start{&sp, labelled};
       const ExactStart rigid_start = [&start]() -> std::array<double, 3> {
         const detail::ScaledPair& p = *start.first;
         return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(p.A, p.B), start.second->label()).n);
