@@ -68,17 +68,23 @@ namespace {
 // pdd2_global's start where the quick list declines (parallel edges, coplanar faces): one
 // candidate set on the scaled pair (as solve_pair builds it), the certified rigid choice over it
 // (the enumeration's lower bound), pdd2_relaxed's choice over it (its candidate's normal the
-// start, its certified value an upper bound on pdd2_global: global_depth.h's check), its
+// start, its certified value an upper bound on pdd2_global: global_depth.h's check, or +inf), its
 // candidate. Without it the fallback below builds the set twice (rigid_pd2_choice, then
 // pdd2_relaxed) and the enumeration has no start: on the aligned family of `pdd generate`
-// ~57k instructions a pair before the enumeration, ~40k here (callgrind). false: not certified.
+// ~57k instructions a pair before the enumeration, ~40k here (callgrind). false: the rigid
+// choice not certified, or no relaxed candidate.
 bool relaxed_on_set(const detail::ScaledPair& sp, Choice& rigid, Choice& rel, Candidate& c) {
   static thread_local CandidateSet set;  // (~20 KB: off TBB's worker stacks)
   if (build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) return false;
   rigid = rigid_pd2(set);
   if (!rigid.certified || rigid.index < 0) return false;
   rel = pdd2_relaxed(set, rigid.index);
-  if (!rel.certified || rel.index < 0) return false;
+  if (rel.index < 0) return false;
+  // Not certified (a tie the doubles cannot order, on shallow contacts): the candidate still
+  // starts the search, with no upper bound (+inf), as solve_pair's fill_global takes it;
+  // the fallback below would compute pdd2_relaxed on the exact path for that bound alone
+  // (~2 M instructions a pair on the slowest aligned pairs).
+  if (!rel.certified) rel.value = INFINITY;
   c = candidate(set, rel.index);
   return true;
 }
