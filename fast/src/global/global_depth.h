@@ -3,9 +3,11 @@
 //
 // Input : a pair (in the engine's rescaled range, solve_pair.cpp, or as given on the exact
 //         path), a start normal (the best candidate of pdd2_relaxed: the answer when nothing
-//         beats it) and, on demand, its exact normal: where the depth is far below the pair's
-//         size (the exact pieces below), the double normal has no accurate digit in the
-//         direction that matters, so the exact one is offered, rounded componentwise.
+//         beats it; zero when the caller has none: the pair's shallowest candidate directions
+//         are offered instead, global_depth.cpp's offer_geometric_starts) and, on demand, its
+//         exact normal: where the depth is far below the pair's size (the exact pieces below),
+//         the double normal has no accurate digit in the direction that matters, so the exact
+//         one is offered, rounded componentwise.
 // Output: pdd2_global = relaxed(v) for the returned normal v (double components, A -> B), the
 //         deformed positions attaining it, and whether the value is certified to definitions §8
 //         (relative error <= kGlobalRel of the exact relaxed value along v).
