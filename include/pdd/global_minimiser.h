@@ -23,7 +23,8 @@
 // Declined (std::nullopt): whenever the common double path does not apply as a whole — a pair
 // that is not valid, not intersecting, or whose lane sweeps (the candidate set's sweeps, as
 // solve_pair's, where the quick lanes decline: parallel edges, coplanar faces) or candidate
-// choices are not certified in doubles; an enumeration not certified or computed in rationals; a value or a
+// choices are not certified in doubles; an enumeration not certified (one computed in
+// rationals is taken again exactly on the pair as given, as solve_pair takes it); a value or a
 // position outside the double range; at a tie, a value of the chain not certified in doubles
 // or outside the double range (solve_pair's exact path). The caller
 // then takes solve_pair (which gives the same fields, or declines pdd2_global itself).

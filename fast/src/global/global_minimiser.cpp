@@ -76,8 +76,9 @@ bool lower_at_tie(const CandidateSet& set, int e, const Choice& rigid, const Cho
 // fill_global, its scaling back and its relations (above). std::nullopt where solve_pair's
 // fields could differ (header).
 template <class Candidates>
-std::optional<GlobalMinimiser> minimiser_from(const detail::ScaledPair& sp, const Candidates& cands,
-                                              const Choice& rigid, const Choice& rel, const Candidate& c) {
+std::optional<GlobalMinimiser> minimiser_from(const TetVertices& A, const TetVertices& B, const detail::ScaledPair& sp,
+                                              const Candidates& cands, const Choice& rigid, const Choice& rel,
+                                              const Candidate& c) {
   const double start[3] = {c.n[0], c.n[1], c.n[2]};
   const DirectionLabel label = rel.label();
   const TetVertices &As = sp.A, &Bs = sp.B;
@@ -85,11 +86,17 @@ std::optional<GlobalMinimiser> minimiser_from(const detail::ScaledPair& sp, cons
     return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
   };
   const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
-  if (!g.certified || g.exact_value) return std::nullopt;
+  if (!g.certified) return std::nullopt;
   if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
   bool in_range = true;
   GlobalMinimiser m;
-  m.pd2 = detail::unscaled(g.value, 2 * -sp.e, in_range);
+  // Computed in rationals (global_depth's exact pieces: a depth far below the pair's size): its
+  // value in the rescaled units may have left the double range, so solve_pair takes it again,
+  // exactly, on the pair as given along the same normal, and declines it where that is not 0
+  // or a normal double; the same here (global_depth.h's exact_relaxed_value). Declining such a
+  // pair instead made the caller's solve_pair redo the whole exact enumeration (~7 M
+  // instructions a pair on the shallow contacts of the tilted stacked blocks).
+  m.pd2 = g.exact_value ? exact_relaxed_value(A, B, g.normal, in_range) : detail::unscaled(g.value, 2 * -sp.e, in_range);
   const double relaxed = detail::unscaled(rel.value, 2 * -sp.e, in_range);
   if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
   if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(cands, sp.e, rigid, rel, m.pd2))
@@ -121,7 +128,8 @@ std::optional<GlobalMinimiser> minimiser_from(const detail::ScaledPair& sp, cons
 // Measured on the stacked Kuhn blocks of `pdd bench energy` (1728 pairs, every one declined by
 // the lanes): solve_pair ~250 us a pair there (its exact path for the rest of the record on
 // about one pair in six), this route ~25 us.
-std::optional<GlobalMinimiser> minimiser_from_set(const detail::ScaledPair& sp) {
+std::optional<GlobalMinimiser> minimiser_from_set(const TetVertices& A, const TetVertices& B,
+                                                  const detail::ScaledPair& sp) {
   // One set per thread (~20 KB: off TBB's worker stacks); build_candidates sets what is read.
   static thread_local CandidateSet set;
   if (build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) return std::nullopt;
@@ -129,7 +137,7 @@ std::optional<GlobalMinimiser> minimiser_from_set(const detail::ScaledPair& sp) 
   if (!rigid.certified) return std::nullopt;
   const Choice rel = pdd2_relaxed(set, rigid.index);
   if (!rel.certified || !(rel.value > 0) || rel.index < 0) return std::nullopt;
-  return minimiser_from(sp, set, rigid, rel, candidate(set, rel.index));
+  return minimiser_from(A, B, sp, set, rigid, rel, candidate(set, rel.index));
 }
 
 }  // namespace
@@ -146,7 +154,7 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   // global_minimiser does not recurse.
   static thread_local QuickCandidates list;
   QuickCandidates* q = &list;
-  if (!quick_lanes(sp.A, sp.B, *q)) return minimiser_from_set(sp);
+  if (!quick_lanes(sp.A, sp.B, *q)) return minimiser_from_set(A, B, sp);
   Choice rel;
   const bool rel_lanes = pdd2_relaxed_lanes(*q, rel);
   quick_edge_list(*q);  // (appends the edge candidates; the lanes and faces the sweeps read stay)
@@ -165,7 +173,7 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   }
   if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   if (index < 0) return std::nullopt;
-  return minimiser_from(sp, *q, rigid, rel, candidate(*q, index));
+  return minimiser_from(A, B, sp, *q, rigid, rel, candidate(*q, index));
 }
 
 }  // namespace pdd::fast
