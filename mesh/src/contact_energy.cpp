@@ -3,6 +3,7 @@
 #include "pdd/mesh/contact_energy.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
@@ -254,30 +255,48 @@ Incidence incidence(const std::vector<PairShare>& shares, std::size_t n) {
   return inc;
 }
 
+// Each thread's view of the vertices while it builds rows (hessian() below): stamp[y] equals the
+// row's stamp when y is already a neighbour of the row vertex, and then slot[y] is y's place
+// among its neighbours. Each row of each pass has its own non-zero stamp, so nothing is cleared
+// between rows.
+struct RowScratch {
+  explicit RowScratch(std::size_t n) : stamp(n, 0), slot(n, 0) {}
+  std::vector<std::size_t> stamp, slot, ys;
+  std::vector<double> block;
+};
+
+// The vertices sharing a pair with x through a non-zero Qs entry, each once, in first-seen
+// order (ys); marks them in `s` with `stamp`.
+void neighbours(const std::vector<PairShare>& shares, const Incidence& inc, std::size_t x, std::size_t stamp,
+                RowScratch& s) {
+  s.ys.clear();
+  for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
+    const PairShare& p = shares[inc.at[e] / 8];
+    const int i = int(inc.at[e] % 8);
+    for (int k = 0; k < 8; ++k)
+      if (p.w * p.terms.qs[i][k] != 0 && s.stamp[p.v[k]] != stamp) {
+        s.stamp[p.v[k]] = stamp;
+        s.ys.push_back(p.v[k]);
+      }
+  }
+}
+
 // The sparse Hessian sum over pairs of w Qs (x) u u^T, built row by row in parallel: vertex x's
 // rows 3x..3x+2 hold a 3x3 block per vertex y sharing a pair with x through a non-zero Qs entry
 // (y ascending), each entry summed over the pairs in pair order (starting from 0). The matrix is
 // symmetric bit for bit (Qs is, u_a u_b = u_b u_a, the same pairs in the same order), so its
 // compressed rows are its compressed columns: written straight into the column-major storage.
+// Each thread keeps a stamp and a slot per vertex (RowScratch): a neighbour is found once, with
+// no sort of the repeated entries and no search per term.
 Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const Incidence& inc,
                                     std::size_t n) {
-  auto neighbours = [&](std::size_t x, std::vector<std::size_t>& ys) {
-    ys.clear();
-    for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
-      const PairShare& p = shares[inc.at[e] / 8];
-      const int i = int(inc.at[e] % 8);
-      for (int k = 0; k < 8; ++k)
-        if (p.w * p.terms.qs[i][k] != 0) ys.push_back(p.v[k]);
-    }
-    std::sort(ys.begin(), ys.end());
-    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
-  };
+  tbb::enumerable_thread_specific<RowScratch> scratch([n] { return RowScratch(n); });
   std::vector<std::size_t> degree(n + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<std::size_t> ys;
+    RowScratch& s = scratch.local();
     for (std::size_t x = r.begin(); x != r.end(); ++x) {
-      neighbours(x, ys);
-      degree[x + 1] = ys.size();
+      neighbours(shares, inc, x, x + 1, s);
+      degree[x + 1] = s.ys.size();
     }
   });
   for (std::size_t x = 0; x < n; ++x) degree[x + 1] += degree[x];  // blocks before vertex x
@@ -290,13 +309,16 @@ Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const 
   Index* outer = H.outerIndexPtr();
   Index* inner = H.innerIndexPtr();
   double* value = H.valuePtr();
+  // The second pass stamps with n + 1 + x (the first pass's stamps are x + 1 <= n).
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
-    std::vector<std::size_t> ys;
-    std::vector<double> block;
+    RowScratch& s = scratch.local();
     for (std::size_t x = r.begin(); x != r.end(); ++x) {
-      neighbours(x, ys);
+      neighbours(shares, inc, x, n + 1 + x, s);
+      std::vector<std::size_t>& ys = s.ys;
+      std::sort(ys.begin(), ys.end());
       const std::size_t m = ys.size();
-      block.assign(9 * m, 0.0);
+      for (std::size_t c = 0; c < m; ++c) s.slot[ys[c]] = c;
+      s.block.assign(9 * m, 0.0);
       for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
         const PairShare& p = shares[inc.at[e] / 8];
         const int i = int(inc.at[e] % 8);
@@ -304,9 +326,9 @@ Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const 
         for (int k = 0; k < 8; ++k) {
           const double q = p.w * p.terms.qs[i][k];
           if (q == 0) continue;
-          const std::size_t c = std::size_t(std::lower_bound(ys.begin(), ys.end(), p.v[k]) - ys.begin());
+          double* b = s.block.data() + 9 * s.slot[p.v[k]];
           for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) block[9 * c + 3 * a + b] += q * (u[a] * u[b]);
+            for (int c = 0; c < 3; ++c) b[3 * a + c] += q * (u[a] * u[c]);
         }
       }
       // rows 3x + a: for each neighbour y (ascending), columns 3y, 3y + 1, 3y + 2
@@ -316,7 +338,7 @@ Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const 
         for (std::size_t c = 0; c < m; ++c)
           for (int b = 0; b < 3; ++b) {
             inner[first + 3 * c + b] = Index(3 * ys[c] + b);
-            value[first + 3 * c + b] = block[9 * c + 3 * a + b];
+            value[first + 3 * c + b] = s.block[9 * c + 3 * a + b];
           }
       }
     }
