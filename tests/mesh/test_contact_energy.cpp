@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 
+#include <gmpxx.h>
 #include <tbb/task_arena.h>
 
 #include "pdd/global_minimiser.h"
@@ -301,6 +302,74 @@ BOOST_AUTO_TEST_CASE(piece_matrix_closed_form_equals_the_kkt_solve) {
       ++sets;
     }
   BOOST_TEST(sets == 225);
+}
+
+// A piece's value grows with its active set: with S within S' (S' = S and one more vertex, so
+// every S within S' by steps), Qs(S') - Qs(S) is positive semi-definite, exactly. V_S(s) =
+// s^T Qs s / 2 is the least object norm putting S's heights on one plane (the equality QP of the
+// set, the other constraints dropped), so a further vertex adds a constraint and V cannot drop.
+// The double enumeration of pdd2_global relies on it (piece_enumeration.cpp, pieces above the
+// window): H_S = X^T Qs X / 2 for the pair's positions X, so H_S' - H_S is semi-definite too.
+// Qs in rationals from the header's closed form (above: equal to the KKT solve); semi-definite
+// by exact symmetric elimination (a zero pivot must have a zero row).
+BOOST_AUTO_TEST_CASE(piece_matrix_grows_with_the_active_set) {
+  auto exact_qs = [](unsigned set) {  // bits 0..3: A's vertices, 4..7: B's
+    int n[2] = {0, 0};
+    for (int k = 0; k < 8; ++k) n[k / 4] += (set >> k) & 1u;
+    const mpq_class alpha[2] = {mpq_class(1, 5 - n[0]), mpq_class(1, 5 - n[1])};
+    const mpq_class W = alpha[0] * n[0] + alpha[1] * n[1];
+    std::array<std::array<mpq_class, 8>, 8> Q;
+    for (int k = 0; k < 8; ++k)
+      for (int m = 0; m < 8; ++m) {
+        Q[k][m] = 0;
+        if (!((set >> k) & 1u) || !((set >> m) & 1u)) continue;
+        Q[k][m] = (mpq_class(k == m ? 1 : 0) + (k / 4 == m / 4 ? alpha[k / 4] : 0) -
+                   5 * alpha[k / 4] * alpha[m / 4] / W) / 10;
+      }
+    return Q;
+  };
+  auto semi_definite = [](std::array<std::array<mpq_class, 8>, 8> D) {
+    for (int p = 0; p < 8; ++p) {
+      int piv = -1;  // the largest remaining diagonal entry
+      for (int i = p; i < 8; ++i)
+        if (piv < 0 || D[i][i] > D[piv][piv]) piv = i;
+      std::swap(D[p], D[piv]);
+      for (auto& row : D) std::swap(row[p], row[piv]);
+      if (D[p][p] < 0) return false;
+      if (D[p][p] == 0) {
+        for (int i = p; i < 8; ++i)
+          if (D[p][i] != 0) return false;
+        continue;
+      }
+      for (int i = p + 1; i < 8; ++i) {
+        const mpq_class f = D[i][p] / D[p][p];
+        for (int j = p; j < 8; ++j) D[i][j] -= f * D[p][j];
+      }
+    }
+    return true;
+  };
+  auto valid = [](unsigned set) { return (set & 15u) != 0 && (set >> 4) != 0; };
+  int steps = 0;
+  for (unsigned set = 1; set < 256; ++set) {
+    if (!valid(set)) continue;
+    const auto Q = exact_qs(set);
+    for (int k = 0; k < 8; ++k) {
+      if ((set >> k) & 1u) continue;
+      auto D = exact_qs(set | (1u << k));
+      for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j) D[i][j] -= Q[i][j];
+      BOOST_TEST(semi_definite(D), "set " << set << " plus vertex " << k);
+      ++steps;
+    }
+  }
+  // 225 sets, each with its 8 - |S| missing vertices: sum over a, b = 1..4 of C(4,a) C(4,b) (8 - a - b)
+  BOOST_TEST(steps == 840);
+  // and the check can fail: the smaller set minus the larger is not semi-definite
+  auto D = exact_qs(0x11u);
+  const auto Q = exact_qs(0x33u);
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) D[i][j] -= Q[i][j];
+  BOOST_TEST(!semi_definite(D));
 }
 
 // pdd::fast::global_minimiser, the energy's per-pair call, gives solve_pair's definitions §9

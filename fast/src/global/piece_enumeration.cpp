@@ -123,17 +123,40 @@ class PieceEnumeration {
     top = best.value_in(0) * (1 - kPrune);
   }
 
+  // Pieces above the window. A piece's G_S(n) = n^T H_S n is the least object norm of a
+  // deformation putting S's vertices on one plane of normal n (the equality QP of the active
+  // set, its other constraints dropped); adding a vertex to S adds a constraint, so S within S'
+  // gives H_S' - H_S positive semi-definite, and every eigenvalue of H_S' is at least H_S's
+  // smallest. surviving_pieces' count below_top == 0 certifies that the exact 20 H_S (of the
+  // same centred vertices as every piece) has no eigenvalue below 20 top (window_edges: its
+  // edge lies above 20 top by more than H_S's error): then no superset of S has an exact
+  // eigenvalue in the window either, and such a piece is dropped as surviving_pieces drops its
+  // own (no stationary value in the window, piece_screen.h). Every piece of the last row
+  // (S_A all of A, any S_B) contains a piece (S_A less one vertex, one vertex of S_B): when each
+  // vertex of B has such a piece certainly above, for some three vertices of A, the whole row
+  // is above and is not computed (on the energy bench's contacts most pairs).
+  static constexpr unsigned kSingleB = 1u | 2u | 4u | 8u;
+
   // Double path: every row's pieces outside the window are dropped (surviving_pieces), the
   // rest gathered and screened side by side (screen); survivors[ma] keeps the bits of the
   // pieces left for consider_piece. Both use the best value offered so far (the start's): a
   // higher threshold than later ones, so nothing is dropped that a later one would keep.
+  // The last row (all of A active) is skipped when every piece with three vertices of A and one
+  // of B lies certainly above the window (see above_window): its pieces are then above too.
   void survivors_double() {
     static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
     lanes.n = 0;
+    unsigned single_b_above = 0;  // bit mb (one vertex of B): some piece (|S_A| = 3, mb) is above
     for (unsigned ma = 1; ma < 16; ++ma) {
+      if (ma == 15 && single_b_above == kSingleB) {
+        survivors[ma] = 0;
+        continue;
+      }
       RowLanes row;
       surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
       survivors[ma] = detail::row_mask(row);
+      if (kPopcount[ma] == 3)
+        for (unsigned mb : {1u, 2u, 4u, 8u}) single_b_above |= unsigned(row.below_top[mb] == 0) * mb;
       for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {  // (set bits: no branch per piece)
         const unsigned mb = unsigned(__builtin_ctz(bits));
         const int p = lanes.n++;
