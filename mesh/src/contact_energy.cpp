@@ -11,9 +11,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <unordered_set>
 #include <utility>
 
 #include "pdd/global_minimiser.h"
@@ -235,6 +239,25 @@ struct PairShare {
   PairTerms terms;
 };
 
+// The kept pairs' shares, in storage that the parallel loop filling them constructs them in (a
+// vector would first value-initialise every share on one thread, ~0.8 KB a pair: the largest
+// serial step of the assembly). A share holds plain numbers: nothing to destroy.
+static_assert(std::is_trivially_destructible_v<PairShare>);
+class ShareArray {
+ public:
+  explicit ShareArray(std::size_t count) : count_(count), p_(std::allocator<PairShare>().allocate(count)) {}
+  ~ShareArray() { std::allocator<PairShare>().deallocate(p_, count_); }
+  ShareArray(const ShareArray&) = delete;
+  ShareArray& operator=(const ShareArray&) = delete;
+  PairShare& construct(std::size_t j) { return *new (p_ + j) PairShare; }
+  const PairShare& operator[](std::size_t j) const { return p_[j]; }
+  std::size_t size() const { return count_; }
+
+ private:
+  std::size_t count_;
+  PairShare* p_;
+};
+
 // The pairs incident to each vertex, in pair order (CSR: pairs of vertex x are
 // at[start[x] .. start[x + 1]), each as 8 * pair + local index): every per-vertex sum below
 // runs over them in that order, so that the gradient and the Hessian are the sums over pairs
@@ -242,11 +265,11 @@ struct PairShare {
 struct Incidence {
   std::vector<std::size_t> start, at;
 };
-Incidence incidence(const std::vector<PairShare>& shares, std::size_t n) {
+Incidence incidence(const ShareArray& shares, std::size_t n) {
   Incidence inc;
   inc.start.assign(n + 1, 0);
-  for (const PairShare& p : shares)
-    for (std::size_t x : p.v) ++inc.start[x + 1];
+  for (std::size_t j = 0; j < shares.size(); ++j)
+    for (std::size_t x : shares[j].v) ++inc.start[x + 1];
   for (std::size_t x = 0; x < n; ++x) inc.start[x + 1] += inc.start[x];
   inc.at.resize(8 * shares.size());
   std::vector<std::size_t> fill(inc.start.begin(), inc.start.end() - 1);
@@ -267,7 +290,7 @@ struct RowScratch {
 
 // The vertices sharing a pair with x through a non-zero Qs entry, each once, in first-seen
 // order (ys); marks them in `s` with `stamp`.
-void neighbours(const std::vector<PairShare>& shares, const Incidence& inc, std::size_t x, std::size_t stamp,
+void neighbours(const ShareArray& shares, const Incidence& inc, std::size_t x, std::size_t stamp,
                 RowScratch& s) {
   s.ys.clear();
   for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
@@ -288,7 +311,7 @@ void neighbours(const std::vector<PairShare>& shares, const Incidence& inc, std:
 // compressed rows are its compressed columns: written straight into the column-major storage.
 // Each thread keeps a stamp and a slot per vertex (RowScratch): a neighbour is found once, with
 // no sort of the repeated entries and no search per term.
-Eigen::SparseMatrix<double> hessian(const std::vector<PairShare>& shares, const Incidence& inc,
+Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& inc,
                                     std::size_t n) {
   tbb::enumerable_thread_specific<RowScratch> scratch([n] { return RowScratch(n); });
   std::vector<std::size_t> degree(n + 1, 0);
@@ -364,52 +387,49 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   const std::size_t n = nA + (B ? B->vertices.size() : 0);
   const std::size_t offset_b = B ? nA : 0;
 
-  // Weights from the rest volumes; an element flat at rest has no weight: listed, its pairs
-  // left out.
-  std::vector<double> wa(A.tets.size(), -1), wb(Bm.tets.size(), -1);
-  for (const auto& s : sol) {
-    if (wa[s.a] < 0) wa[s.a] = rest_volume(A, s.a);
-    if (wb[s.b] < 0) wb[s.b] = rest_volume(Bm, s.b);
-  }
-  auto weight = [&](const PairSolution& s) {
-    return o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(wa[s.a] * wb[s.b]);
-  };
+  // Weights from the rest volumes (each pair's two, in parallel); an element flat at rest has
+  // no weight: listed once (per side, in pair order), its pairs left out.
+  std::vector<std::array<double, 2>> volume(sol.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j)
+      volume[j] = {rest_volume(A, sol[j].a), rest_volume(Bm, sol[j].b)};
+  });
   // No weight: flat at rest, or a rest volume that is not finite (a non-finite rest coordinate,
-  // or one whose products overflow); -2 marks an element already listed.
-  const auto unweighted = [](double w) { return w == 0 || w == -2 || !std::isfinite(w); };
-  auto list_unweighted = [&](std::vector<double>& w, const Mesh& rest, std::size_t i, char which) {
-    if (w[i] == -2 || !unweighted(w[i])) return;
+  // or one whose products overflow).
+  const auto unweighted = [](double w) { return w == 0 || !std::isfinite(w); };
+  std::unordered_set<std::size_t> listed[2];  // the elements listed, per side (rare)
+  auto list_unweighted = [&](double w, int side, const Mesh& rest, std::size_t i, char which) {
+    if (!unweighted(w) || !listed[side].insert(i).second) return;
     const std::string element_i = "element " + std::to_string(i) + " of mesh " + which;
     std::string why = element_i + " is flat at rest (volume 0): it has no contact weight";
-    if (!std::isfinite(w[i])) {
+    if (!std::isfinite(w)) {
       const auto problem = element_problem(rest, i, which);
       why = (problem ? *problem + " at rest" : element_i + ": its rest volume is not finite") +
             ": it has no contact weight";
     }
-    w[i] = -2;
     e.skipped.push_back({which, i, why});
   };
-  std::vector<PairSolution> kept;
-  kept.reserve(sol.size());
-  for (auto& s : sol) {
-    const bool fa = unweighted(wa[s.a]), fb = unweighted(wb[s.b]);
-    list_unweighted(wa, A, s.a, 'A');
-    list_unweighted(wb, Bm, s.b, B ? 'B' : 'A');
-    if (!fa && !fb) kept.push_back(s);
+  std::size_t kept = 0;  // the weighted pairs, moved to the front in pair order
+  for (std::size_t j = 0; j < sol.size(); ++j) {
+    list_unweighted(volume[j][0], 0, A, sol[j].a, 'A');
+    list_unweighted(volume[j][1], 1, Bm, sol[j].b, B ? 'B' : 'A');
+    if (unweighted(volume[j][0]) || unweighted(volume[j][1])) continue;
+    if (kept != j) sol[kept] = sol[j], volume[kept] = volume[j];
+    ++kept;
   }
-  sol.swap(kept);
+  sol.resize(kept);
 
-  std::vector<PairShare> shares(sol.size());
+  ShareArray shares(sol.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
     if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const auto& s = sol[j];
-      PairShare& p = shares[j];
+      PairShare& p = shares.construct(j);
       for (int k = 0; k < 4; ++k) {
         p.v[k] = A.tets[s.a][k];
         p.v[4 + k] = offset_b + Bm.tets[s.b][k];
       }
-      p.w = weight(s);
+      p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
       p.terms = pair_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
     }
   });
