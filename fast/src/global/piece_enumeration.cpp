@@ -142,7 +142,7 @@ class PieceEnumeration {
   // pieces left for consider_piece. Both use the best value offered so far (the start's): a
   // higher threshold than later ones, so nothing is dropped that a later one would keep.
   // The last row (all of A active) is skipped when every piece with three vertices of A and one
-  // of B lies certainly above the window (see above_window): its pieces are then above too.
+  // of B lies certainly above the window (pieces above the window, above): its pieces are too.
   void survivors_double() {
     static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
     lanes.n = 0;
