@@ -409,6 +409,56 @@ BOOST_AUTO_TEST_CASE(global_minimiser_equals_solve_pair) {
   BOOST_TEST(compared > 100);
 }
 
+// Shallow tip contacts (a vertex of B 1e-7 inside a face of A, the pair about 2 across): the
+// depth is below the double pieces' floor (global_depth.h: 1e-14 scale^2 for a compact pair), so
+// the enumeration builds its pieces exactly and computes the value in rationals; solve_pair
+// then takes the value again on the pair as given along the same normal, and global_minimiser
+// does the same: its fields equal solve_pair's bit for bit there too.
+BOOST_AUTO_TEST_CASE(global_minimiser_equals_solve_pair_on_exact_values) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  auto sub = [](const Vec3d& a, const Vec3d& b) { return Vec3d{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto dot3 = [](const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  int slow = 0, compared = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    TetVertices A, B;
+    for (auto& v : A)
+      for (double& x : v) x = U(rng);
+    const Vec3d e = sub(A[2], A[1]), f = sub(A[3], A[1]);
+    Vec3d n{e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]};
+    const double len = std::sqrt(dot3(n, n));
+    if (dot3(n, sub(A[0], A[1])) > 0) n = {-n[0], -n[1], -n[2]};
+    for (double& x : n) x /= len;  // unit, outward from face 1 2 3
+    Vec3d c{};
+    for (int i = 1; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) c[k] += A[i][k] / 3;
+    for (int k = 0; k < 3; ++k) B[0][k] = c[k] - 1e-7 * n[k];  // the tip, inside A
+    for (int j = 1; j < 4; ++j) {
+      Vec3d r{U(rng), U(rng), U(rng)};
+      const double h = dot3(r, n), up = 0.2 + std::abs(U(rng));
+      for (int k = 0; k < 3; ++k) B[j][k] = c[k] + r[k] - h * n[k] + up * n[k];  // above the face
+    }
+    const auto g = fast::global_minimiser(A, B);
+    fast::SolveOptions so;
+    so.with_global = true;
+    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, so);
+    if (!g) continue;
+    BOOST_REQUIRE(!r.error);
+    BOOST_REQUIRE(!r.pdd2_global_error);
+    slow += r.stats.slow_path;
+    BOOST_TEST(g->pd2 == r.pdd2_global);
+    BOOST_TEST((g->normal == *r.pdd2_global_normal));
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        BOOST_TEST(g->q1_A[i][k] == r.q1_A_global[i][k]);
+        BOOST_TEST(g->q1_B[i][k] == r.q1_B_global[i][k]);
+      }
+    ++compared;
+  }
+  BOOST_TEST_MESSAGE("compared " << compared << ", in rationals " << slow);
+  BOOST_TEST(slow > 20);
+}
+
 // The sums over pairs run per vertex in pair order: one thread and all threads give the same
 // doubles (energy, gradient, every Hessian entry and its position).
 BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_threads) {
