@@ -95,7 +95,7 @@ std::vector<double> local_step(Run& run, const std::vector<std::array<std::size_
   std::vector<double> value(pairs.size(), 0);
   tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
     if (run.cancelled()) return;
-    value[k] = pair_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], run.o.variant, ta[k], tb[k]);
+    value[k] = pair_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], run.pd_variant, ta[k], tb[k]);
   });
   auto& into_b = run.B ? targets_b : targets_a;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
