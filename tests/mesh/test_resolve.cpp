@@ -413,7 +413,7 @@ BOOST_AUTO_TEST_CASE(helix_pressed_into_itself) {
   // pairs' own cheapest planes disagree across the contact patch), the weak-anchor rounds with
   // about 60, pdd2's planes (face normals and edge crossings that neighbouring pairs share) with
   // the default anchors with 5; pdd2's planes with the weak anchors resolve it with R4
-  // (measured: 169 rounds in all, min V1/V0 0.45).
+  // (measured: 112 rounds in all, min V1/V0 0.45).
   const Mesh m = kuhn_helix(30, 2, 0.1, 0.3, 0.8);
   BOOST_TEST(m.tets.size() == 720u);
   const Resolution r = resolve_self(m);
