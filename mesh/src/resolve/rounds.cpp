@@ -33,7 +33,10 @@ constexpr double kMinProgress = 0.01;
 // 58%, three balls pushed deep 52%, the Kuhn helix pressed 0.8 cell 54%, 96% on its tight twin). More than half after kProbeRounds
 // counts as stalled: the fallbacks start 10 to 50 rounds earlier, and a walk back towards rest
 // (fallbacks.h) drops a step that re-created a deep contact after 10 rounds instead of 20.
-constexpr std::size_t kProbeRounds = 10;
+// Only from kProbeMinPairs pairs in the first round (every case above has 500 or more): a few
+// pairs fall one at a time with plateaus between (the tiny fixture meshes: 1 pair for 9 rounds
+// before resolving), which the plateau rule above judges.
+constexpr std::size_t kProbeRounds = 10, kProbeMinPairs = 100;
 // A vertex is pulled kOvershoot times the way to its half-spaces: the elastic step moves a
 // contact vertex only part of its pull (elastic_step.h), and the overshoot makes up for it
 // (the step limit cuts where it would break R2 or R4). Measured on the one-layer Gmsh balls
@@ -242,7 +245,7 @@ bool run_pd_rounds(Run& run, std::size_t budget) {
     if (pairs.empty()) return true;
     if (r == 0) first = pairs.size();
     if (r == 0 || double(pairs.size()) < double(best) * (1 - kMinProgress)) best = pairs.size(), best_round = r;
-    if (r >= best_round + kStallRounds || (r >= kProbeRounds && 2 * pairs.size() > first)) return false;
+    if (r >= best_round + kStallRounds || (r >= kProbeRounds && first >= kProbeMinPairs && 2 * pairs.size() > first)) return false;
     run.stop_if_cancelled();
     ResolveRound rr;
     if (!pd_round(run, pairs, held_a, held_b, rr)) return false;
