@@ -2,6 +2,7 @@
 // order (rounds, then the fallbacks), the exact verdict and the report.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "element_quality.h"
 #include "resolve.h"
@@ -21,11 +22,19 @@ struct Snapshot {
 };
 Snapshot snapshot(Run& run) { return {run.sa.cur.vertices, run.sb.cur.vertices, contacts(run).size()}; }
 
-// When nothing cleared the contacts: back to `s` if it leaves fewer pairs than the positions
-// reached (the report then names what remains of the better state).
-void keep_fewer_pairs(Run& run, const Snapshot& s) {
-  if (s.pairs < contacts(run).size()) run.place(s.a, s.b);
-}
+// The end of each phase that did not clear the contacts, the one with the fewest pairs kept:
+// when nothing clears them, the state written (the report then names what remains of it).
+// Every phase keeps R2 and R4 (step_limit.h), so any of these ends is a valid state to write.
+struct BestEnd {
+  std::optional<Snapshot> best;
+  void consider(Run& run) {
+    Snapshot s = snapshot(run);
+    if (!best || s.pairs < best->pairs) best = std::move(s);
+  }
+  void restore(Run& run) const {
+    if (best && best->pairs < contacts(run).size()) run.place(best->a, best->b);
+  }
+};
 
 // The rounds and the fallbacks (resolve.h) from the rest pose; sets rep.method when one of them
 // cleared the contacts (the verdict judges the result either way).
@@ -43,8 +52,8 @@ void run_phases(Run& run) {
     return;
   }
   const auto go_on = [&] { return rep.stopped_because.empty(); };
-  // Where the rounds stopped: the state written when no fallback does better (fewer pairs).
-  const Snapshot rounds_end = snapshot(run);
+  BestEnd best_end;
+  best_end.consider(run);
   if (go_on() && !run.B && rounds_left()) {
     run.stop_if_cancelled();
     if (resolve_bodies(run)) return void(rep.method = ResolveMethod::Bodies);
@@ -60,13 +69,38 @@ void run_phases(Run& run) {
     run.sa.anchor = ElasticStep::Anchor::Free;
     if (run_pd_rounds(run, std::min(first_budget, o.max_rounds - rep.rounds.size())))
       return void(rep.method = ResolveMethod::Rounds);
-    run.sa.anchor = ElasticStep::Anchor::Pulled;
+    best_end.consider(run);
   }
+  // Self-contact still stalled: the rounds again from the rest pose with pdd2's per-pair planes.
+  // pdd2_global gives each pair its own cheapest plane over every direction; where a body is
+  // pressed into itself by a large share of an element (a bar of Kuhn cubes wound into a helix
+  // whose turns overlap by 0.8 of a cell), neighbouring pairs then choose planes across each
+  // other (sideways as often as along the contact normal) and the rounds stall with thousands of
+  // pairs, the contact layer squeezed to R4's bound. pdd2 chooses among the pair's face normals
+  // and edge crossings, which neighbouring pairs of one contact patch share, so their planes
+  // agree. First with the default anchors (on that helix the weak ones end with 4 pairs at the
+  // round limit), then, where these stall with the contact layer at R4's bound, again from the
+  // rest pose with the weak anchors: on a tighter helix (radius 1.5 bar widths, 720 elements)
+  // the default anchors stall at 5 pairs (and the weak ones do not free them from there), the
+  // weak ones from rest resolve it.
+  if (go_on() && !run.B && o.variant == ResolveVariant::Global && rounds_left()) {
+    run.pd_variant = ResolveVariant::Pdd2;
+    for (const ElasticStep::Anchor anchor : {ElasticStep::Anchor::Pulled, ElasticStep::Anchor::Free}) {
+      run.place(run.A.vertices, {});
+      run.sa.anchor = anchor;
+      if (go_on() && rounds_left() && run_pd_rounds(run, std::min(first_budget, o.max_rounds - rep.rounds.size())))
+        return void(rep.method = ResolveMethod::Pdd2Rounds);
+      best_end.consider(run);
+    }
+    run.pd_variant = o.variant;
+  }
+  run.sa.anchor = ElasticStep::Anchor::Pulled;
   // Stalled: the per-pair rounds from the rest pose, within what is left of the first budget.
   if (go_on() && first_budget > rep.rounds.size()) {
     run.place(run.A.vertices, run.B ? run.B->vertices : std::vector<Vec3d>{});
     if (run_pair_rounds(run, first_budget - rep.rounds.size(), o.variant, OnStall::Exit))
       return void(rep.method = ResolveMethod::Rounds);
+    best_end.consider(run);
   }
   if (go_on() && run.B && rounds_left()) {
     if (translate_and_relax(run, o.max_rounds - rep.rounds.size())) return void(rep.method = ResolveMethod::Translation);
@@ -81,7 +115,7 @@ void run_phases(Run& run) {
     if (run_pair_rounds(run, o.max_rounds - rep.rounds.size(), ResolveVariant::Rigid, OnStall::Continue))
       rep.method = ResolveMethod::RigidRounds;
   }
-  if (rep.method == ResolveMethod::None && go_on()) keep_fewer_pairs(run, rounds_end);
+  if (rep.method == ResolveMethod::None && go_on()) best_end.restore(run);
 }
 
 // The largest |p - m0.vertices| over finite displacements.
@@ -173,6 +207,7 @@ const char* resolve_method_name(ResolveMethod m) {
   switch (m) {
     case ResolveMethod::Rounds: return "rounds";
     case ResolveMethod::Translation: return "translation";
+    case ResolveMethod::Pdd2Rounds: return "pdd2 rounds";
     case ResolveMethod::RigidRounds: return "rigid rounds";
     case ResolveMethod::Bodies: return "bodies";
     case ResolveMethod::None: return "none";

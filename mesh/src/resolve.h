@@ -42,6 +42,9 @@
 //     projective-dynamics rounds again from the rest pose, vertices without pull weakly
 //     anchored (ElasticStep::Anchor::Free: the interior follows the contact further), within
 //     the first budget (method "rounds");
+//   - self-contact under the global variant: the projective-dynamics rounds again from the rest
+//     pose with pdd2's per-pair planes, whose candidate directions neighbouring pairs share,
+//     with the default anchors, then from the rest pose with the weak ones (method "pdd2 rounds");
 //   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
 //     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
 //     two consecutive rounds), step limit as above;

@@ -454,7 +454,7 @@ Returns (VA1, VB1, report):
   VB1       (n_B, 3) float64, or None for self-contact
   report    dict, the keys of `pdd resolve --report` (JSON), in that order:
     variant               "global", "pdd2" or "rigid"
-    method                "rounds", "translation", "bodies", "rigid rounds" or "none": what
+    method                "rounds", "translation", "bodies", "pdd2 rounds", "rigid rounds" or "none": what
                           produced it
     stopped_because       why the run stopped at once without resolving (every vertex fixed,
                           no finite per-pair solution), or None

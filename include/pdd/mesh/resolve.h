@@ -74,10 +74,12 @@ enum class ResolveMethod {
                 // two meshes (any of the above per pair); larger groups of contacting bodies
                 // spread apart from their cluster's centre by the smallest separating factor,
                 // then walked back towards the rest pose
+  Pdd2Rounds,   // self-contact fallback: the rounds again from the rest pose with pdd2's
+                // per-pair planes (under the global variant)
   RigidRounds,  // self-contact fallback: rounds of the rigid variant from the rest pose
   None,         // nothing cleared the contacts (the report says what remains)
 };
-// "rounds" | "translation" | "bodies" | "rigid rounds" | "none"
+// "rounds" | "translation" | "bodies" | "pdd2 rounds" | "rigid rounds" | "none"
 const char* resolve_method_name(ResolveMethod m);
 
 struct ResolveOptions : QualityLimits {

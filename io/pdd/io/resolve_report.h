@@ -4,7 +4,7 @@
 //
 // Keys, in this order:
 //   variant                "global" | "pdd2" | "rigid": the per-pair solution that drove the vertices
-//   method                 "rounds" | "translation" | "bodies" | "rigid rounds" | "none": what produced the
+//   method                 "rounds" | "translation" | "bodies" | "pdd2 rounds" | "rigid rounds" | "none": what produced the
 //                          result (mesh.h's ResolveMethod)
 //   stopped_because        why the run stopped early without resolving (every vertex fixed,
 //                          no finite per-pair solution), or null

@@ -58,6 +58,7 @@ struct Run {
   const ResolveOptions& o;
   ResolveReport& rep;
   Side sa, sb;
+  ResolveVariant pd_variant = o.variant;  // the per-pair solution of the projective-dynamics rounds
   std::optional<ElasticStep> elastic_a, elastic_b;  // the global step, assembled on first use
   ContactList contact_list;                         // the contact stage's candidates (rounds.h)
 
