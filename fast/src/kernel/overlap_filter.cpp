@@ -20,7 +20,12 @@
 // (both signs of N are tried). Non-finite input: Unknown before anything else.
 //
 // ---- Stage 2: the superset kernel (superset_kernel.h), reused as is: no second SAT.
+//
+// interiors_intersect, for Unknown: the exact separating-axis decision (exact_sat.h: the 44
+// axes in doubles, then floating-point expansions for the signs left open: no rationals), and
+// only when that is out of the expansions' range the candidate set's exact depth signs.
 #include "certification/filter_bounds.h"
+#include "exact/exact_sat.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
@@ -87,6 +92,10 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
     case Overlap::Unknown:
       break;
   }
+  // The exact separating-axis decision (exact_sat.h: doubles, then expansions; no rationals).
+  // Undecided only outside the expansions' range or capacity.
+  const detail::SatVerdict v = detail::interiors_intersect_sat(A, B);
+  if (v != detail::SatVerdict::Undecided) return v == detail::SatVerdict::Intersecting;
   // The decision alone (no depth to certify): the candidate set's exact depth signs on the pair
   // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
   const detail::ScaledPair sp = detail::power_scaled(A, B);

@@ -1,0 +1,183 @@
+// exact_sat.cpp — interiors_intersect_sat (exact_sat.h): the 8 face axes and the 36 edge-pair
+// axes in doubles with the static filter E3, then the exact signs the filter left open, axis by
+// axis, for the axes certain signs did not rule out.
+#include "exact/exact_sat.h"
+
+#include "certification/filter_bounds.h"
+#include "exact/expansion.h"
+#include "pdd/tet_tables.h"
+
+namespace pdd::fast::detail {
+namespace {
+
+inline void sub3(const Vec3d& p, const Vec3d& q, double* d) {
+  for (int k = 0; k < 3; ++k) d[k] = p[k] - q[k];
+}
+inline void cross3(const double* a, const double* b, double* n) {
+  n[0] = a[1] * b[2] - a[2] * b[1];
+  n[1] = a[2] * b[0] - a[0] * b[2];
+  n[2] = a[0] * b[1] - a[1] * b[0];
+}
+// n.(p − q) for n a computed cross product of two differences: a triple product of
+// differences, error <= 48 u L³ (filter_bounds.h).
+inline double height(const double* n, const Vec3d& p, const Vec3d& q) {
+  return n[0] * (p[0] - q[0]) + n[1] * (p[1] - q[1]) + n[2] * (p[2] - q[2]);
+}
+// The certain sign of a filtered value: ±1, or 0 when |v| <= e3 (undecided, not "zero").
+inline int certain(double v, double e3) { return v > e3 ? 1 : (v < -e3 ? -1 : 0); }
+
+// The exact sign of n.(p − q), n exact (header: structural zeros, one term, else the dot).
+int exact_height_sign(const ExpVec& n, const Vec3d& p, const Vec3d& q, bool& ok) {
+  int terms = 0, last = 0;
+  for (int k = 0; k < 3; ++k)
+    if (n.x[k].n != 0 && p[k] != q[k]) ++terms, last = k;
+  if (terms == 0) return 0;
+  if (terms == 1) return n.x[last].sign() * (p[last] > q[last] ? 1 : -1);
+  const Expansion d = dot(n, difference(p, q));
+  ok = ok && d.ok;
+  return d.sign();
+}
+
+// The exact normal (t1 − t0) × (t2 − t0) of face f of T, and of the edge pair (a, b).
+ExpVec face_normal_exact(const TetVertices& T, int f) {
+  const auto& v = kFace[f];
+  return cross(difference(T[v[1]], T[v[0]]), difference(T[v[2]], T[v[0]]));
+}
+ExpVec edge_normal_exact(const TetVertices& A, const TetVertices& B, int a, int b) {
+  return cross(difference(A[kEdges[a][1]], A[kEdges[a][0]]), difference(B[kEdges[b][1]], B[kEdges[b][0]]));
+}
+
+// The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]).
+int orientation(const TetVertices& T, double e3, bool& ok) {
+  double u[3], v[3], n[3];
+  sub3(T[1], T[0], u);
+  sub3(T[2], T[0], v);
+  cross3(u, v, n);
+  const int s = certain(height(n, T[3], T[0]), e3);
+  if (s != 0) return s;
+  const ExpVec ne = face_normal_exact(T, 3);  // (t1 − t0) × (t2 − t0)
+  ok = ok && ne.ok();
+  return exact_height_sign(ne, T[3], T[0], ok);
+}
+
+// A face axis (header, case i): face f of T against the vertices of O, σ = orientation(T) ·
+// kFaceParity[f]. True when certain signs already violate the test (not separating); fills
+// the values' certain signs times σ (0: undecided).
+bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma, double e3, int* s) {
+  const auto& v = kFace[f];
+  double u[3], w[3], n[3];
+  sub3(T[v[1]], T[v[0]], u);
+  sub3(T[v[2]], T[v[0]], w);
+  cross3(u, w, n);
+  for (int j = 0; j < 4; ++j) {
+    s[j] = sigma * certain(height(n, O[j], T[v[0]]), e3);
+    if (s[j] > 0) return true;
+  }
+  return false;
+}
+
+// The face axis decided exactly, s[] its certain signs (times σ): true when it separates.
+bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
+                          bool& ok) {
+  const ExpVec n = face_normal_exact(T, f);
+  ok = ok && n.ok();
+  if (!ok) return false;
+  for (int j = 0; j < 4; ++j) {
+    const int sj = s[j] != 0 ? s[j] : sigma * exact_height_sign(n, O[j], T[kFace[f][0]], ok);
+    if (sj > 0 || !ok) return false;
+  }
+  return true;
+}
+
+// The five values of an edge-pair axis (header, case iii) in the order α_w1, α_w2, β_j1, β_j2,
+// γ, as (p, q) of n.(p − q), and the sign each must have for m = +n (−n: the opposite).
+struct EdgeValues {
+  const Vec3d* p[5];
+  const Vec3d* q[5];
+};
+constexpr int kPlusSign[5] = {-1, -1, +1, +1, -1};  // α <= 0, β >= 0, γ <= 0
+
+EdgeValues edge_values(const TetVertices& A, const TetVertices& B, int a, int b) {
+  const Vec3d& su = A[kEdges[a][0]];
+  const Vec3d& rx = B[kEdges[b][0]];
+  return {{&A[kOffEdge[a][0]], &A[kOffEdge[a][1]], &B[kOffEdge[b][0]], &B[kOffEdge[b][1]], &su},
+          {&su, &su, &rx, &rx, &rx}};
+}
+
+// Updates the orientations still allowed by a value of sign sv (certain or exact).
+inline void restrict_orientations(int sv, int i, bool& plus, bool& minus) {
+  if (sv == -kPlusSign[i]) plus = false;
+  if (sv == kPlusSign[i]) minus = false;
+}
+
+struct PendingEdge {
+  int a, b;
+  int s[5];  // certain signs of the values (0: undecided)
+  bool plus, minus;
+};
+
+}  // namespace
+
+SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B) {
+  if (!in_exact_range(A, B)) return SatVerdict::Undecided;
+  const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  bool ok = true;
+  const int oa = orientation(A, e3, ok), ob = orientation(B, e3, ok);
+  if (!ok) return SatVerdict::Undecided;
+  if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
+
+  // Pass 1, doubles: the axes certain signs do not rule out.
+  int face_s[8][4];
+  bool face_open[8];
+  for (int t = 0; t < 2; ++t)
+    for (int f = 0; f < 4; ++f) {
+      const int sigma = (t == 0 ? oa : ob) * kFaceParity[f];
+      face_open[4 * t + f] = !face_ruled_out(t == 0 ? A : B, t == 0 ? B : A, f, sigma, e3, face_s[4 * t + f]);
+    }
+  PendingEdge pending[36];
+  int npending = 0;
+  double ea[6][3], eb[6][3];
+  for (int k = 0; k < 6; ++k) {
+    sub3(A[kEdges[k][1]], A[kEdges[k][0]], ea[k]);
+    sub3(B[kEdges[k][1]], B[kEdges[k][0]], eb[k]);
+  }
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      PendingEdge& e = pending[npending];
+      e.a = a, e.b = b, e.plus = true, e.minus = true;
+      double n[3];
+      cross3(ea[a], eb[b], n);
+      const EdgeValues ev = edge_values(A, B, a, b);
+      for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
+        e.s[i] = certain(height(n, *ev.p[i], *ev.q[i]), e3);
+        restrict_orientations(e.s[i], i, e.plus, e.minus);
+      }
+      if (e.plus || e.minus) ++npending;
+    }
+
+  // Pass 2, exact: the open axes, faces first (a touching face decides most touching pairs).
+  for (int t = 0; t < 2; ++t)
+    for (int f = 0; f < 4; ++f) {
+      if (!face_open[4 * t + f]) continue;
+      const int sigma = (t == 0 ? oa : ob) * kFaceParity[f];
+      if (face_separates_exact(t == 0 ? A : B, t == 0 ? B : A, f, sigma, face_s[4 * t + f], ok))
+        return SatVerdict::Disjoint;
+      if (!ok) return SatVerdict::Undecided;
+    }
+  for (int k = 0; k < npending; ++k) {
+    PendingEdge& e = pending[k];
+    const ExpVec n = edge_normal_exact(A, B, e.a, e.b);
+    if (!n.ok()) return SatVerdict::Undecided;
+    if (n.is_zero()) continue;  // parallel edges: no facet (header)
+    const EdgeValues ev = edge_values(A, B, e.a, e.b);
+    for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
+      const int sv = e.s[i] != 0 ? e.s[i] : exact_height_sign(n, *ev.p[i], *ev.q[i], ok);
+      if (!ok) return SatVerdict::Undecided;
+      restrict_orientations(sv, i, e.plus, e.minus);
+    }
+    if (e.plus || e.minus) return SatVerdict::Disjoint;
+  }
+  return SatVerdict::Intersecting;
+}
+
+}  // namespace pdd::fast::detail
