@@ -38,13 +38,57 @@ int exact_height_sign(const ExpVec& n, const Vec3d& p, const Vec3d& q, bool& ok)
   return d.sign();
 }
 
-// The exact normal (t1 − t0) × (t2 − t0) of face f of T, and of the edge pair (a, b).
+// x·y − z·w exactly (expansion.h's two_by_two), a product with a zero factor skipped: aligned
+// inputs have many zero coordinate differences, and then no Dekker split is needed.
+Expansion minor2(double x, double y, double z, double w) {
+  const bool first = x != 0.0 && y != 0.0, second = z != 0.0 && w != 0.0;
+  if (first && second) return two_by_two(x, y, z, w);
+  Expansion e;
+  if (!first && !second) return e;
+  double h, l;
+  if (first) {
+    two_product(x, y, h, l);
+  } else {
+    two_product(z, w, h, l);
+    h = -h, l = -l;
+  }
+  if (l != 0.0) e.push(l);
+  e.push(h);
+  return e;
+}
+
+// d = p − q when every coordinate difference is exact in doubles (its two_sum error is 0).
+bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
+  bool exact = true;
+  for (int k = 0; k < 3; ++k) {
+    double y;
+    two_sum(p[k], -q[k], d[k], y);
+    exact = exact && y == 0.0;
+  }
+  return exact;
+}
+
+// The exact normal (p1 − p0) × (q1 − q0): 2x2 minors of the differences when these are exact
+// in doubles (the common case), expansion.h's cross of exact differences otherwise.
+ExpVec exact_normal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
+  double u[3], v[3];
+  if (!exact_difference(p1, p0, u) || !exact_difference(q1, q0, v))
+    return cross(difference(p1, p0), difference(q1, q0));
+  ExpVec n;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    n.x[k] = minor2(u[i], v[j], u[j], v[i]);
+  }
+  return n;
+}
+
+// The exact normal (t1 − t0) × (t2 − t0) of face f of T, and e_a × e_b of the edge pair (a, b).
 ExpVec face_normal_exact(const TetVertices& T, int f) {
   const auto& v = kFace[f];
-  return cross(difference(T[v[1]], T[v[0]]), difference(T[v[2]], T[v[0]]));
+  return exact_normal(T[v[1]], T[v[0]], T[v[2]], T[v[0]]);
 }
 ExpVec edge_normal_exact(const TetVertices& A, const TetVertices& B, int a, int b) {
-  return cross(difference(A[kEdges[a][1]], A[kEdges[a][0]]), difference(B[kEdges[b][1]], B[kEdges[b][0]]));
+  return exact_normal(A[kEdges[a][1]], A[kEdges[a][0]], B[kEdges[b][1]], B[kEdges[b][0]]);
 }
 
 // The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]).
@@ -116,6 +160,52 @@ struct PendingEdge {
   bool plus, minus;
 };
 
+
+// Pass 1 for the 36 edge-pair axes: the five values of each in doubles, laid out for the
+// compiler to vectorise. Cyclic forms of the triple product, all of the filter_bounds.h kind
+// (a cross product of two differences dotted with a difference, error <= 48 u L³):
+//   α_w = (e_a × e_b).(s_w − s_u) = e_b.((s_w − s_u) × e_a)   (12 crosses of A, once)
+//   β_j = (e_a × e_b).(r_j − r_x) = e_a.(e_b × (r_j − r_x))   (12 crosses of B, once)
+//   γ   = (e_a × e_b).(s_u − r_x)                             (per pair)
+// Fills `open` with the pairs certain signs leave possible (either orientation); returns how many.
+int open_edge_pairs(const TetVertices& A, const TetVertices& B, double e3, PendingEdge* open) {
+  double ea[6][3], eb[6][3], ca[6][2][3], cb[6][2][3];
+  for (int k = 0; k < 6; ++k) {
+    sub3(A[kEdges[k][1]], A[kEdges[k][0]], ea[k]);
+    sub3(B[kEdges[k][1]], B[kEdges[k][0]], eb[k]);
+    for (int w = 0; w < 2; ++w) {
+      double d[3];
+      sub3(A[kOffEdge[k][w]], A[kEdges[k][0]], d);
+      cross3(d, ea[k], ca[k][w]);
+      sub3(B[kOffEdge[k][w]], B[kEdges[k][0]], d);
+      cross3(eb[k], d, cb[k][w]);
+    }
+  }
+  double v[5][36];  // the five values (α_w1, α_w2, β_j1, β_j2, γ) of pair p = 6a + b
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const int p = 6 * a + b;
+      double n[3];
+      cross3(ea[a], eb[b], n);
+      for (int w = 0; w < 2; ++w) {
+        v[w][p] = eb[b][0] * ca[a][w][0] + eb[b][1] * ca[a][w][1] + eb[b][2] * ca[a][w][2];
+        v[2 + w][p] = ea[a][0] * cb[b][w][0] + ea[a][1] * cb[b][w][1] + ea[a][2] * cb[b][w][2];
+      }
+      v[4][p] = height(n, A[kEdges[a][0]], B[kEdges[b][0]]);
+    }
+  // Ruled out: a certain sign against m = +n and one against m = −n (kPlusSign: − − + + −).
+  int count = 0;
+  for (int p = 0; p < 36; ++p) {
+    const bool plus_out = (v[0][p] > e3) | (v[1][p] > e3) | (v[2][p] < -e3) | (v[3][p] < -e3) | (v[4][p] > e3);
+    const bool minus_out = (v[0][p] < -e3) | (v[1][p] < -e3) | (v[2][p] > e3) | (v[3][p] > e3) | (v[4][p] < -e3);
+    if (plus_out & minus_out) continue;
+    PendingEdge& e = open[count++];
+    e.a = p / 6, e.b = p % 6, e.plus = !plus_out, e.minus = !minus_out;
+    for (int i = 0; i < 5; ++i) e.s[i] = certain(v[i][p], e3);
+  }
+  return count;
+}
+
 }  // namespace
 
 SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B) {
@@ -135,25 +225,7 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B) {
       face_open[4 * t + f] = !face_ruled_out(t == 0 ? A : B, t == 0 ? B : A, f, sigma, e3, face_s[4 * t + f]);
     }
   PendingEdge pending[36];
-  int npending = 0;
-  double ea[6][3], eb[6][3];
-  for (int k = 0; k < 6; ++k) {
-    sub3(A[kEdges[k][1]], A[kEdges[k][0]], ea[k]);
-    sub3(B[kEdges[k][1]], B[kEdges[k][0]], eb[k]);
-  }
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) {
-      PendingEdge& e = pending[npending];
-      e.a = a, e.b = b, e.plus = true, e.minus = true;
-      double n[3];
-      cross3(ea[a], eb[b], n);
-      const EdgeValues ev = edge_values(A, B, a, b);
-      for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
-        e.s[i] = certain(height(n, *ev.p[i], *ev.q[i]), e3);
-        restrict_orientations(e.s[i], i, e.plus, e.minus);
-      }
-      if (e.plus || e.minus) ++npending;
-    }
+  const int npending = open_edge_pairs(A, B, e3, pending);
 
   // Pass 2, exact: the open axes, faces first (a touching face decides most touching pairs).
   for (int t = 0; t < 2; ++t)
