@@ -3,6 +3,9 @@
 // axis, for the axes certain signs did not rule out.
 #include "exact/exact_sat.h"
 
+#include <algorithm>
+#include <cstdint>
+
 #include "certification/filter_bounds.h"
 #include "exact/expansion.h"
 #include "pdd/tet_tables.h"
@@ -40,11 +43,21 @@ int exact_height_sign(const ExpVec& n, const Vec3d& p, const Vec3d& q, bool& ok)
 
 // x·y − z·w exactly (expansion.h's two_by_two), a product with a zero factor skipped: aligned
 // inputs have many zero coordinate differences, and then no Dekker split is needed.
-Expansion minor2(double x, double y, double z, double w) {
+void minor2(double x, double y, double z, double w, Expansion& e) {
   const bool first = x != 0.0 && y != 0.0, second = z != 0.0 && w != 0.0;
-  if (first && second) return two_by_two(x, y, z, w);
-  Expansion e;
-  if (!first && !second) return e;
+  e.n = 0;
+  e.ok = true;
+  if (first && second) {
+    double h, l;
+    two_product(x, y, h, l);
+    if (l != 0.0) e.push(l);
+    e.push(h);
+    two_product(z, w, h, l);
+    grow(e, -l);
+    grow(e, -h);
+    return;
+  }
+  if (!first && !second) return;
   double h, l;
   if (first) {
     two_product(x, y, h, l);
@@ -54,7 +67,6 @@ Expansion minor2(double x, double y, double z, double w) {
   }
   if (l != 0.0) e.push(l);
   e.push(h);
-  return e;
 }
 
 // d = p − q when every coordinate difference is exact in doubles (its two_sum error is 0).
@@ -70,25 +82,24 @@ bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
 
 // The exact normal (p1 − p0) × (q1 − q0): 2x2 minors of the differences when these are exact
 // in doubles (the common case), expansion.h's cross of exact differences otherwise.
-ExpVec exact_normal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
+void exact_normal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0, ExpVec& n) {
   double u[3], v[3];
-  if (!exact_difference(p1, p0, u) || !exact_difference(q1, q0, v))
-    return cross(difference(p1, p0), difference(q1, q0));
-  ExpVec n;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    n.x[k] = minor2(u[i], v[j], u[j], v[i]);
+  if (!exact_difference(p1, p0, u) || !exact_difference(q1, q0, v)) {
+    n = cross(difference(p1, p0), difference(q1, q0));
+    return;
   }
-  return n;
+  minor2(u[1], v[2], u[2], v[1], n.x[0]);
+  minor2(u[2], v[0], u[0], v[2], n.x[1]);
+  minor2(u[0], v[1], u[1], v[0], n.x[2]);
 }
 
 // The exact normal (t1 − t0) × (t2 − t0) of face f of T, and e_a × e_b of the edge pair (a, b).
-ExpVec face_normal_exact(const TetVertices& T, int f) {
+void face_normal_exact(const TetVertices& T, int f, ExpVec& n) {
   const auto& v = kFace[f];
-  return exact_normal(T[v[1]], T[v[0]], T[v[2]], T[v[0]]);
+  exact_normal(T[v[1]], T[v[0]], T[v[2]], T[v[0]], n);
 }
-ExpVec edge_normal_exact(const TetVertices& A, const TetVertices& B, int a, int b) {
-  return exact_normal(A[kEdges[a][1]], A[kEdges[a][0]], B[kEdges[b][1]], B[kEdges[b][0]]);
+void edge_normal_exact(const TetVertices& A, const TetVertices& B, int a, int b, ExpVec& n) {
+  exact_normal(A[kEdges[a][1]], A[kEdges[a][0]], B[kEdges[b][1]], B[kEdges[b][0]], n);
 }
 
 // The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]).
@@ -99,7 +110,8 @@ int orientation(const TetVertices& T, double e3, bool& ok) {
   cross3(u, v, n);
   const int s = certain(height(n, T[3], T[0]), e3);
   if (s != 0) return s;
-  const ExpVec ne = face_normal_exact(T, 3);  // (t1 − t0) × (t2 − t0)
+  ExpVec ne;
+  face_normal_exact(T, 3, ne);  // (t1 − t0) × (t2 − t0)
   ok = ok && ne.ok();
   return exact_height_sign(ne, T[3], T[0], ok);
 }
@@ -123,7 +135,8 @@ bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma
 // The face axis decided exactly, s[] its certain signs (times σ): true when it separates.
 bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
                           bool& ok) {
-  const ExpVec n = face_normal_exact(T, f);
+  ExpVec n;
+  face_normal_exact(T, f, n);
   ok = ok && n.ok();
   if (!ok) return false;
   for (int j = 0; j < 4; ++j) {
@@ -161,6 +174,19 @@ struct PendingEdge {
 };
 
 
+// x·y − z·w = 0 exactly, seen without arithmetic: both products have a zero factor (a computed
+// difference is 0 iff the exact one is), or, for exact x, y, z, w, the products have the same
+// factors. Parallel edges of aligned inputs are mostly of these kinds.
+inline bool minor_is_zero(double x, double y, double z, double w, bool exact) {
+  return (((x == 0.0) | (y == 0.0)) & ((z == 0.0) | (w == 0.0))) |
+         (exact & (((x == z) & (y == w)) | ((x == w) & (y == z))));
+}
+// u × v = 0 exactly by minor_is_zero (false: not known, the exact pass decides).
+inline bool normal_is_zero(const double* u, const double* v, bool exact) {
+  return minor_is_zero(u[1], v[2], u[2], v[1], exact) & minor_is_zero(u[2], v[0], u[0], v[2], exact) &
+         minor_is_zero(u[0], v[1], u[1], v[0], exact);
+}
+
 // Pass 1 for the 36 edge-pair axes: the five values of each in doubles, laid out for the
 // compiler to vectorise. Cyclic forms of the triple product, all of the filter_bounds.h kind
 // (a cross product of two differences dotted with a difference, error <= 48 u L³):
@@ -170,9 +196,10 @@ struct PendingEdge {
 // Fills `open` with the pairs certain signs leave possible (either orientation); returns how many.
 int open_edge_pairs(const TetVertices& A, const TetVertices& B, double e3, PendingEdge* open) {
   double ea[6][3], eb[6][3], ca[6][2][3], cb[6][2][3];
+  bool exact_ea[6], exact_eb[6];  // every component of the edge vector exact in doubles
   for (int k = 0; k < 6; ++k) {
-    sub3(A[kEdges[k][1]], A[kEdges[k][0]], ea[k]);
-    sub3(B[kEdges[k][1]], B[kEdges[k][0]], eb[k]);
+    exact_ea[k] = exact_difference(A[kEdges[k][1]], A[kEdges[k][0]], ea[k]);
+    exact_eb[k] = exact_difference(B[kEdges[k][1]], B[kEdges[k][0]], eb[k]);
     for (int w = 0; w < 2; ++w) {
       double d[3];
       sub3(A[kOffEdge[k][w]], A[kEdges[k][0]], d);
@@ -194,21 +221,53 @@ int open_edge_pairs(const TetVertices& A, const TetVertices& B, double e3, Pendi
       v[4][p] = height(n, A[kEdges[a][0]], B[kEdges[b][0]]);
     }
   // Ruled out: a certain sign against m = +n and one against m = −n (kPlusSign: − − + + −).
+  // (Two plain loops: the first, branch-free, vectorises.)
+  double plus_out[36], minus_out[36];
+  for (int p = 0; p < 36; ++p) {
+    const double hi = std::max(std::max(v[0][p], v[1][p]), std::max(-v[2][p], std::max(-v[3][p], v[4][p])));
+    const double lo = std::min(std::min(v[0][p], v[1][p]), std::min(-v[2][p], std::min(-v[3][p], v[4][p])));
+    plus_out[p] = hi;   // > e3: a value certainly of the sign m = +n forbids
+    minus_out[p] = lo;  // < −e3: likewise for m = −n
+  }
   int count = 0;
   for (int p = 0; p < 36; ++p) {
-    const bool plus_out = (v[0][p] > e3) | (v[1][p] > e3) | (v[2][p] < -e3) | (v[3][p] < -e3) | (v[4][p] > e3);
-    const bool minus_out = (v[0][p] < -e3) | (v[1][p] < -e3) | (v[2][p] > e3) | (v[3][p] > e3) | (v[4][p] < -e3);
-    if (plus_out & minus_out) continue;
+    if (plus_out[p] > e3 && minus_out[p] < -e3) continue;
+    if (normal_is_zero(ea[p / 6], eb[p % 6], exact_ea[p / 6] && exact_eb[p % 6])) continue;  // no facet
     PendingEdge& e = open[count++];
-    e.a = p / 6, e.b = p % 6, e.plus = !plus_out, e.minus = !minus_out;
+    e.a = p / 6, e.b = p % 6, e.plus = !(plus_out[p] > e3), e.minus = !(minus_out[p] < -e3);
     for (int i = 0; i < 5; ++i) e.s[i] = certain(v[i][p], e3);
   }
   return count;
 }
 
+// Pass 1 from a caller's mask of the edge pairs that may separate (bit 8a + b): the five values
+// of those only, in doubles (n = e_a × e_b, each value a triple product of differences).
+int open_edge_pairs_in(const TetVertices& A, const TetVertices& B, double e3, std::uint64_t mask,
+                       PendingEdge* open) {
+  int count = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      if (!(mask >> (8 * a + b) & 1)) continue;
+      double ea[3], eb[3], n[3];
+      const bool exact = exact_difference(A[kEdges[a][1]], A[kEdges[a][0]], ea) &
+                         exact_difference(B[kEdges[b][1]], B[kEdges[b][0]], eb);
+      if (normal_is_zero(ea, eb, exact)) continue;  // no facet
+      cross3(ea, eb, n);
+      const EdgeValues ev = edge_values(A, B, a, b);
+      PendingEdge& e = open[count];
+      e.a = a, e.b = b, e.plus = true, e.minus = true;
+      for (int k = 0; k < 5; ++k) {
+        e.s[k] = certain(height(n, *ev.p[k], *ev.q[k]), e3);
+        restrict_orientations(e.s[k], k, e.plus, e.minus);
+      }
+      count += e.plus || e.minus;
+    }
+  return count;
+}
+
 }  // namespace
 
-SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B) {
+SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges) {
   if (!in_exact_range(A, B)) return SatVerdict::Undecided;
   const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
   bool ok = true;
@@ -225,7 +284,8 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B) {
       face_open[4 * t + f] = !face_ruled_out(t == 0 ? A : B, t == 0 ? B : A, f, sigma, e3, face_s[4 * t + f]);
     }
   PendingEdge pending[36];
-  const int npending = open_edge_pairs(A, B, e3, pending);
+  const int npending = open_edges ? open_edge_pairs_in(A, B, e3, *open_edges, pending)
+                                  : open_edge_pairs(A, B, e3, pending);
 
   // Pass 2, exact: the open axes, faces first (a touching face decides most touching pairs).
   for (int t = 0; t < 2; ++t)
@@ -238,7 +298,8 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B) {
     }
   for (int k = 0; k < npending; ++k) {
     PendingEdge& e = pending[k];
-    const ExpVec n = edge_normal_exact(A, B, e.a, e.b);
+    ExpVec n;
+    edge_normal_exact(A, B, e.a, e.b, n);
     if (!n.ok()) return SatVerdict::Undecided;
     if (n.is_zero()) continue;  // parallel edges: no facet (header)
     const EdgeValues ev = edge_values(A, B, e.a, e.b);

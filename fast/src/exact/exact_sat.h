@@ -41,13 +41,19 @@
 // used is the exact sign of the polynomial on the input doubles.
 #pragma once
 
+#include <cstdint>
+
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast::detail {
 
 enum class SatVerdict { Intersecting, Disjoint, Undecided };
 
-SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B);
+// open_edges (optional): bit 8a + b set for every edge pair (a, b) that may separate, e.g. from
+// the superset kernel's depths D(±n) (superset_kernel.h: computed D(±n) > E3 means the exact one
+// is > 0, so ±n does not separate); null: all 36 are filtered here.
+SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B,
+                                   const std::uint64_t* open_edges = nullptr);
 
 // sign det[t_f1 − t_f0, t_f2 − t_f0, t_f3 − t_f0] / sign det[t1 − t0, t2 − t0, t3 − t0] for face f
 // (kFace[f] = (f0, f1, f2), f3 = f): the sign of the permutation (f0, f1, f2, f) of (0, 1, 2, 3).
