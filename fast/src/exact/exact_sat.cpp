@@ -29,18 +29,6 @@ inline double height(const double* n, const Vec3d& p, const Vec3d& q) {
 // The certain sign of a filtered value: ±1, or 0 when |v| <= e3 (undecided, not "zero").
 inline int certain(double v, double e3) { return v > e3 ? 1 : (v < -e3 ? -1 : 0); }
 
-// The exact sign of n.(p − q), n exact (header: structural zeros, one term, else the dot).
-int exact_height_sign(const ExpVec& n, const Vec3d& p, const Vec3d& q, bool& ok) {
-  int terms = 0, last = 0;
-  for (int k = 0; k < 3; ++k)
-    if (n.x[k].n != 0 && p[k] != q[k]) ++terms, last = k;
-  if (terms == 0) return 0;
-  if (terms == 1) return n.x[last].sign() * (p[last] > q[last] ? 1 : -1);
-  const Expansion d = dot(n, difference(p, q));
-  ok = ok && d.ok;
-  return d.sign();
-}
-
 // x·y − z·w exactly (expansion.h's two_by_two), a product with a zero factor skipped: aligned
 // inputs have many zero coordinate differences, and then no Dekker split is needed.
 void minor2(double x, double y, double z, double w, Expansion& e) {
@@ -80,26 +68,48 @@ bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
   return exact;
 }
 
-// The exact normal (p1 − p0) × (q1 − q0): 2x2 minors of the differences when these are exact
-// in doubles (the common case), expansion.h's cross of exact differences otherwise.
-void exact_normal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0, ExpVec& n) {
+// The exact normal (p1 − p0) × (q1 − q0), each component computed when first asked for: 2x2
+// minors of the differences when these are exact in doubles (the common case), else
+// expansion.h's cross of the exact differences (all components at once). A height along a
+// touching face's normal often needs one component or none (zero coordinate differences).
+struct LazyNormal {
   double u[3], v[3];
-  if (!exact_difference(p1, p0, u) || !exact_difference(q1, q0, v)) {
+  bool have[3] = {false, false, false};
+  bool ok = true;  // false: an expansion exceeded its capacity
+  ExpVec n;
+  LazyNormal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
+    if (exact_difference(p1, p0, u) && exact_difference(q1, q0, v)) return;
     n = cross(difference(p1, p0), difference(q1, q0));
-    return;
+    ok = n.ok();
+    have[0] = have[1] = have[2] = true;
   }
-  minor2(u[1], v[2], u[2], v[1], n.x[0]);
-  minor2(u[2], v[0], u[0], v[2], n.x[1]);
-  minor2(u[0], v[1], u[1], v[0], n.x[2]);
+  const Expansion& operator[](int k) {
+    if (!have[k]) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      minor2(u[i], v[j], u[j], v[i], n.x[k]);
+      have[k] = true;
+    }
+    return n.x[k];
+  }
+};
+
+// The exact sign of n.(p − q) (header): terms with p_k == q_k vanish without computing n_k;
+// zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else the expansions' dot.
+int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
+  int terms = 0, last = 0;
+  for (int k = 0; k < 3; ++k)
+    if (p[k] != q[k] && n[k].n != 0) ++terms, last = k;
+  if (terms == 0) return 0;
+  if (terms == 1) return n[last].sign() * (p[last] > q[last] ? 1 : -1);
+  for (int k = 0; k < 3; ++k) n[k];
+  const Expansion d = dot(n.n, difference(p, q));
+  ok = ok && d.ok;
+  return d.sign();
 }
 
-// The exact normal (t1 − t0) × (t2 − t0) of face f of T, and e_a × e_b of the edge pair (a, b).
-void face_normal_exact(const TetVertices& T, int f, ExpVec& n) {
+LazyNormal face_normal_exact(const TetVertices& T, int f) {
   const auto& v = kFace[f];
-  exact_normal(T[v[1]], T[v[0]], T[v[2]], T[v[0]], n);
-}
-void edge_normal_exact(const TetVertices& A, const TetVertices& B, int a, int b, ExpVec& n) {
-  exact_normal(A[kEdges[a][1]], A[kEdges[a][0]], B[kEdges[b][1]], B[kEdges[b][0]], n);
+  return LazyNormal(T[v[1]], T[v[0]], T[v[2]], T[v[0]]);
 }
 
 // The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]).
@@ -110,9 +120,8 @@ int orientation(const TetVertices& T, double e3, bool& ok) {
   cross3(u, v, n);
   const int s = certain(height(n, T[3], T[0]), e3);
   if (s != 0) return s;
-  ExpVec ne;
-  face_normal_exact(T, 3, ne);  // (t1 − t0) × (t2 − t0)
-  ok = ok && ne.ok();
+  LazyNormal ne = face_normal_exact(T, 3);  // (t1 − t0) × (t2 − t0)
+  ok = ok && ne.ok;
   return exact_height_sign(ne, T[3], T[0], ok);
 }
 
@@ -135,9 +144,8 @@ bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma
 // The face axis decided exactly, s[] its certain signs (times σ): true when it separates.
 bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
                           bool& ok) {
-  ExpVec n;
-  face_normal_exact(T, f, n);
-  ok = ok && n.ok();
+  LazyNormal n = face_normal_exact(T, f);
+  ok = ok && n.ok;
   if (!ok) return false;
   for (int j = 0; j < 4; ++j) {
     const int sj = s[j] != 0 ? s[j] : sigma * exact_height_sign(n, O[j], T[kFace[f][0]], ok);
@@ -298,17 +306,19 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, c
     }
   for (int k = 0; k < npending; ++k) {
     PendingEdge& e = pending[k];
-    ExpVec n;
-    edge_normal_exact(A, B, e.a, e.b, n);
-    if (!n.ok()) return SatVerdict::Undecided;
-    if (n.is_zero()) continue;  // parallel edges: no facet (header)
+    LazyNormal n(A[kEdges[e.a][1]], A[kEdges[e.a][0]], B[kEdges[e.b][1]], B[kEdges[e.b][0]]);
+    if (!n.ok) return SatVerdict::Undecided;
     const EdgeValues ev = edge_values(A, B, e.a, e.b);
+    int alpha_nonzero = 0;
     for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
       const int sv = e.s[i] != 0 ? e.s[i] : exact_height_sign(n, *ev.p[i], *ev.q[i], ok);
       if (!ok) return SatVerdict::Undecided;
+      if (i < 2) alpha_nonzero |= sv;
       restrict_orientations(sv, i, e.plus, e.minus);
     }
-    if (e.plus || e.minus) return SatVerdict::Disjoint;
+    // n = 0 (parallel edges: no facet, header) iff α_w1 = α_w2 = 0: n ⊥ e_a by construction,
+    // and e_a, s_w1 − s_u, s_w2 − s_u span space for a non-flat A. (Both α are known here.)
+    if ((e.plus || e.minus) && alpha_nonzero != 0) return SatVerdict::Disjoint;
   }
   return SatVerdict::Intersecting;
 }

@@ -32,13 +32,16 @@
 //
 // Signs. Each determinant is first evaluated in doubles, error <= 48 u L³ < E3 = 512 u L³
 // (filter_bounds.h, "triple product"); |value| > E3 fixes its sign. An axis is dropped as soon as
-// certain signs violate its test (both orientations for iii). The remaining axes are decided
-// exactly: the normal as an expansion (expansion.h's cross: 2x2 determinants of exact
-// differences), then each undecided value n.(p − q) = Σ_k n_k (p_k − q_k). A term vanishes exactly
-// when n_k is the empty expansion or p_k == q_k (structural zeros: aligned inputs have many);
-// with one term left the sign is sign(n_k)·sign(p_k − q_k) (the comparison p_k > q_k is exact);
-// otherwise the expansions' exact dot product. No tolerance is involved anywhere: every sign
-// used is the exact sign of the polynomial on the input doubles.
+// certain signs violate its test (both orientations for iii); an edge pair whose normal is 0
+// without arithmetic (each 2x2 minor with a zero factor in both products, or the same factors
+// for exact differences) is skipped. The remaining axes are decided exactly: each undecided value
+// n.(p − q) = Σ_k n_k (p_k − q_k); a term vanishes when p_k == q_k (n_k is then not computed) or
+// n_k = 0; n_k is the exact 2x2 minor of the differences (expansions, when they are exact in
+// doubles; else expansion.h's cross); with one term left the sign is sign(n_k)·sign(p_k − q_k)
+// (the comparison p_k > q_k is exact); otherwise the expansions' dot product. An edge axis
+// passing its test with α_w1 = α_w2 = 0 has n = 0 (n ⊥ e_a, s_w1 − s_u, s_w2 − s_u, which span
+// space for non-flat A) and is skipped. No tolerance is involved anywhere: every sign used is
+// the exact sign of the polynomial on the input doubles.
 #pragma once
 
 #include <cstdint>
