@@ -146,8 +146,10 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B);
 // 8 face normals, the 36 edge-pair cross products) with a static forward error bound: Disjoint
 // or Intersecting only when certain, Unknown otherwise (touching, nearly touching, parallel
 // edges, a near-flat or non-finite element); about 100-150 ns, no allocation.
-// interiors_intersect: the filter, then rigid_pd2's exact decision for the Unknown ones; equal
-// to rigid_pd2(A, B).pd2 > 0 (NaN counted as intersecting); false for a rejected pair.
+// interiors_intersect: the filter, then for the Unknown ones the exact separating-axis decision
+// on the same axes (signs the filter leaves open taken by floating-point expansions; outside
+// their range rigid_pd2's exact decision); equal to rigid_pd2(A, B).pd2 > 0 (NaN counted as
+// intersecting); false for a rejected pair.
 enum class Overlap { Disjoint, Intersecting, Unknown };
 Overlap overlap_filter(const TetVertices& A, const TetVertices& B);
 bool interiors_intersect(const TetVertices& A, const TetVertices& B);

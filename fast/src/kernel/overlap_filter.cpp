@@ -20,7 +20,12 @@
 // (both signs of N are tried). Non-finite input: Unknown before anything else.
 //
 // ---- Stage 2: the superset kernel (superset_kernel.h), reused as is: no second SAT.
+//
+// interiors_intersect, for Unknown: the exact separating-axis decision (exact_sat.h: the 44
+// axes in doubles, then floating-point expansions for the signs left open: no rationals), and
+// only when that is out of the expansions' range the candidate set's exact depth signs.
 #include "certification/filter_bounds.h"
+#include "exact/exact_sat.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
@@ -28,6 +33,7 @@
 #include "pdd/pdd.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace pdd::fast {
 
@@ -59,18 +65,18 @@ inline bool face_separates(const TetVertices& T, const TetVertices& O, double e3
   return false;
 }
 
-}  // namespace
-
-Overlap overlap_filter(const TetVertices& A, const TetVertices& B) {
+// overlap_filter with the kernel's lanes kept (K filled when `kernel` is set on return).
+Overlap filter(const TetVertices& A, const TetVertices& B, detail::SupersetLanes& K, bool& kernel) {
+  kernel = false;
   double z = 0.0;  // 0 when every coordinate is finite (x·0 is NaN for inf and NaN)
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) z += A[i][k] * 0.0 + B[i][k] * 0.0;
   if (!(z == 0.0)) return Overlap::Unknown;
   const double e3_faces = filter_bounds(A, B).deg3;  // +inf when L is out of range
   if (face_separates(A, B, e3_faces) || face_separates(B, A, e3_faces)) return Overlap::Disjoint;
-  detail::SupersetLanes K;
   detail::superset_kernel(A, B, K, nullptr);
   if (!(K.finite == 0.0)) return Overlap::Unknown;  // non-finite input: garbage lanes
+  kernel = true;
   const double e3 = filter_bounds_of_extent(K.extent).deg3;  // +inf outside the range guard
   if (!(std::fabs(K.det[3]) > e3) || !(std::fabs(K.det[7]) > e3)) return Overlap::Unknown;
   if (K.lo < -e3) return Overlap::Disjoint;
@@ -78,8 +84,30 @@ Overlap overlap_filter(const TetVertices& A, const TetVertices& B) {
   return Overlap::Unknown;
 }
 
+// The edge pairs whose axis may separate: bit 8a + b unless both computed depths D(+n), D(−n)
+// of the kernel exceed E3 (their error is <= 174 u L³ < E3, filter_bounds.h: the exact depths
+// are then > 0 and neither ±n separates).
+std::uint64_t open_edge_pairs(const detail::SupersetLanes& K) {
+  const double e3 = filter_bounds_of_extent(K.extent).deg3;
+  std::uint64_t mask = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b)
+      if (!(K.dp[a][b] > e3 && K.dm[a][b] > e3)) mask |= std::uint64_t{1} << (8 * a + b);
+  return mask;
+}
+
+}  // namespace
+
+Overlap overlap_filter(const TetVertices& A, const TetVertices& B) {
+  detail::SupersetLanes K;
+  bool kernel;
+  return filter(A, B, K, kernel);
+}
+
 bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
-  switch (overlap_filter(A, B)) {
+  detail::SupersetLanes K;
+  bool kernel;
+  switch (filter(A, B, K, kernel)) {
     case Overlap::Disjoint:
       return false;
     case Overlap::Intersecting:
@@ -87,6 +115,11 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
     case Overlap::Unknown:
       break;
   }
+  // The exact separating-axis decision (exact_sat.h: doubles, then expansions; no rationals).
+  // Undecided only outside the expansions' range or capacity.
+  const std::uint64_t open = kernel ? open_edge_pairs(K) : ~std::uint64_t{0};
+  const detail::SatVerdict v = detail::interiors_intersect_sat(A, B, &open);
+  if (v != detail::SatVerdict::Undecided) return v == detail::SatVerdict::Intersecting;
   // The decision alone (no depth to certify): the candidate set's exact depth signs on the pair
   // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
   const detail::ScaledPair sp = detail::power_scaled(A, B);

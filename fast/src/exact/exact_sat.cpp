@@ -1,0 +1,326 @@
+// exact_sat.cpp — interiors_intersect_sat (exact_sat.h): the 8 face axes and the 36 edge-pair
+// axes in doubles with the static filter E3, then the exact signs the filter left open, axis by
+// axis, for the axes certain signs did not rule out.
+#include "exact/exact_sat.h"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "certification/filter_bounds.h"
+#include "exact/expansion.h"
+#include "pdd/tet_tables.h"
+
+namespace pdd::fast::detail {
+namespace {
+
+inline void sub3(const Vec3d& p, const Vec3d& q, double* d) {
+  for (int k = 0; k < 3; ++k) d[k] = p[k] - q[k];
+}
+inline void cross3(const double* a, const double* b, double* n) {
+  n[0] = a[1] * b[2] - a[2] * b[1];
+  n[1] = a[2] * b[0] - a[0] * b[2];
+  n[2] = a[0] * b[1] - a[1] * b[0];
+}
+// n.(p − q) for n a computed cross product of two differences: a triple product of
+// differences, error <= 48 u L³ (filter_bounds.h).
+inline double height(const double* n, const Vec3d& p, const Vec3d& q) {
+  return n[0] * (p[0] - q[0]) + n[1] * (p[1] - q[1]) + n[2] * (p[2] - q[2]);
+}
+// The certain sign of a filtered value: ±1, or 0 when |v| <= e3 (undecided, not "zero").
+inline int certain(double v, double e3) { return v > e3 ? 1 : (v < -e3 ? -1 : 0); }
+
+// x·y − z·w exactly (expansion.h's two_by_two), a product with a zero factor skipped: aligned
+// inputs have many zero coordinate differences, and then no Dekker split is needed.
+void minor2(double x, double y, double z, double w, Expansion& e) {
+  const bool first = x != 0.0 && y != 0.0, second = z != 0.0 && w != 0.0;
+  e.n = 0;
+  e.ok = true;
+  if (first && second) {
+    double h, l;
+    two_product(x, y, h, l);
+    if (l != 0.0) e.push(l);
+    e.push(h);
+    two_product(z, w, h, l);
+    grow(e, -l);
+    grow(e, -h);
+    return;
+  }
+  if (!first && !second) return;
+  double h, l;
+  if (first) {
+    two_product(x, y, h, l);
+  } else {
+    two_product(z, w, h, l);
+    h = -h, l = -l;
+  }
+  if (l != 0.0) e.push(l);
+  e.push(h);
+}
+
+// d = p − q when every coordinate difference is exact in doubles (its two_sum error is 0).
+bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
+  bool exact = true;
+  for (int k = 0; k < 3; ++k) {
+    double y;
+    two_sum(p[k], -q[k], d[k], y);
+    exact = exact && y == 0.0;
+  }
+  return exact;
+}
+
+// The exact normal (p1 − p0) × (q1 − q0), each component computed when first asked for: 2x2
+// minors of the differences when these are exact in doubles (the common case), else
+// expansion.h's cross of the exact differences (all components at once). A height along a
+// touching face's normal often needs one component or none (zero coordinate differences).
+struct LazyNormal {
+  double u[3], v[3];
+  bool have[3] = {false, false, false};
+  bool ok = true;  // false: an expansion exceeded its capacity
+  ExpVec n;
+  LazyNormal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
+    if (exact_difference(p1, p0, u) && exact_difference(q1, q0, v)) return;
+    n = cross(difference(p1, p0), difference(q1, q0));
+    ok = n.ok();
+    have[0] = have[1] = have[2] = true;
+  }
+  const Expansion& operator[](int k) {
+    if (!have[k]) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      minor2(u[i], v[j], u[j], v[i], n.x[k]);
+      have[k] = true;
+    }
+    return n.x[k];
+  }
+};
+
+// The exact sign of n.(p − q) (header): terms with p_k == q_k vanish without computing n_k;
+// zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else the expansions' dot.
+int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
+  int terms = 0, last = 0;
+  for (int k = 0; k < 3; ++k)
+    if (p[k] != q[k] && n[k].n != 0) ++terms, last = k;
+  if (terms == 0) return 0;
+  if (terms == 1) return n[last].sign() * (p[last] > q[last] ? 1 : -1);
+  for (int k = 0; k < 3; ++k) n[k];
+  const Expansion d = dot(n.n, difference(p, q));
+  ok = ok && d.ok;
+  return d.sign();
+}
+
+LazyNormal face_normal_exact(const TetVertices& T, int f) {
+  const auto& v = kFace[f];
+  return LazyNormal(T[v[1]], T[v[0]], T[v[2]], T[v[0]]);
+}
+
+// The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]).
+int orientation(const TetVertices& T, double e3, bool& ok) {
+  double u[3], v[3], n[3];
+  sub3(T[1], T[0], u);
+  sub3(T[2], T[0], v);
+  cross3(u, v, n);
+  const int s = certain(height(n, T[3], T[0]), e3);
+  if (s != 0) return s;
+  LazyNormal ne = face_normal_exact(T, 3);  // (t1 − t0) × (t2 − t0)
+  ok = ok && ne.ok;
+  return exact_height_sign(ne, T[3], T[0], ok);
+}
+
+// A face axis (header, case i): face f of T against the vertices of O, σ = orientation(T) ·
+// kFaceParity[f]. True when certain signs already violate the test (not separating); fills
+// the values' certain signs times σ (0: undecided).
+bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma, double e3, int* s) {
+  const auto& v = kFace[f];
+  double u[3], w[3], n[3];
+  sub3(T[v[1]], T[v[0]], u);
+  sub3(T[v[2]], T[v[0]], w);
+  cross3(u, w, n);
+  for (int j = 0; j < 4; ++j) {
+    s[j] = sigma * certain(height(n, O[j], T[v[0]]), e3);
+    if (s[j] > 0) return true;
+  }
+  return false;
+}
+
+// The face axis decided exactly, s[] its certain signs (times σ): true when it separates.
+bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
+                          bool& ok) {
+  LazyNormal n = face_normal_exact(T, f);
+  ok = ok && n.ok;
+  if (!ok) return false;
+  for (int j = 0; j < 4; ++j) {
+    const int sj = s[j] != 0 ? s[j] : sigma * exact_height_sign(n, O[j], T[kFace[f][0]], ok);
+    if (sj > 0 || !ok) return false;
+  }
+  return true;
+}
+
+// The five values of an edge-pair axis (header, case iii) in the order α_w1, α_w2, β_j1, β_j2,
+// γ, as (p, q) of n.(p − q), and the sign each must have for m = +n (−n: the opposite).
+struct EdgeValues {
+  const Vec3d* p[5];
+  const Vec3d* q[5];
+};
+constexpr int kPlusSign[5] = {-1, -1, +1, +1, -1};  // α <= 0, β >= 0, γ <= 0
+
+EdgeValues edge_values(const TetVertices& A, const TetVertices& B, int a, int b) {
+  const Vec3d& su = A[kEdges[a][0]];
+  const Vec3d& rx = B[kEdges[b][0]];
+  return {{&A[kOffEdge[a][0]], &A[kOffEdge[a][1]], &B[kOffEdge[b][0]], &B[kOffEdge[b][1]], &su},
+          {&su, &su, &rx, &rx, &rx}};
+}
+
+// Updates the orientations still allowed by a value of sign sv (certain or exact).
+inline void restrict_orientations(int sv, int i, bool& plus, bool& minus) {
+  if (sv == -kPlusSign[i]) plus = false;
+  if (sv == kPlusSign[i]) minus = false;
+}
+
+struct PendingEdge {
+  int a, b;
+  int s[5];  // certain signs of the values (0: undecided)
+  bool plus, minus;
+};
+
+
+// x·y − z·w = 0 exactly, seen without arithmetic: both products have a zero factor (a computed
+// difference is 0 iff the exact one is), or, for exact x, y, z, w, the products have the same
+// factors. Parallel edges of aligned inputs are mostly of these kinds.
+inline bool minor_is_zero(double x, double y, double z, double w, bool exact) {
+  return (((x == 0.0) | (y == 0.0)) & ((z == 0.0) | (w == 0.0))) |
+         (exact & (((x == z) & (y == w)) | ((x == w) & (y == z))));
+}
+// u × v = 0 exactly by minor_is_zero (false: not known, the exact pass decides).
+inline bool normal_is_zero(const double* u, const double* v, bool exact) {
+  return minor_is_zero(u[1], v[2], u[2], v[1], exact) & minor_is_zero(u[2], v[0], u[0], v[2], exact) &
+         minor_is_zero(u[0], v[1], u[1], v[0], exact);
+}
+
+// Pass 1 for the 36 edge-pair axes: the five values of each in doubles, laid out for the
+// compiler to vectorise. Cyclic forms of the triple product, all of the filter_bounds.h kind
+// (a cross product of two differences dotted with a difference, error <= 48 u L³):
+//   α_w = (e_a × e_b).(s_w − s_u) = e_b.((s_w − s_u) × e_a)   (12 crosses of A, once)
+//   β_j = (e_a × e_b).(r_j − r_x) = e_a.(e_b × (r_j − r_x))   (12 crosses of B, once)
+//   γ   = (e_a × e_b).(s_u − r_x)                             (per pair)
+// Fills `open` with the pairs certain signs leave possible (either orientation); returns how many.
+int open_edge_pairs(const TetVertices& A, const TetVertices& B, double e3, PendingEdge* open) {
+  double ea[6][3], eb[6][3], ca[6][2][3], cb[6][2][3];
+  bool exact_ea[6], exact_eb[6];  // every component of the edge vector exact in doubles
+  for (int k = 0; k < 6; ++k) {
+    exact_ea[k] = exact_difference(A[kEdges[k][1]], A[kEdges[k][0]], ea[k]);
+    exact_eb[k] = exact_difference(B[kEdges[k][1]], B[kEdges[k][0]], eb[k]);
+    for (int w = 0; w < 2; ++w) {
+      double d[3];
+      sub3(A[kOffEdge[k][w]], A[kEdges[k][0]], d);
+      cross3(d, ea[k], ca[k][w]);
+      sub3(B[kOffEdge[k][w]], B[kEdges[k][0]], d);
+      cross3(eb[k], d, cb[k][w]);
+    }
+  }
+  double v[5][36];  // the five values (α_w1, α_w2, β_j1, β_j2, γ) of pair p = 6a + b
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const int p = 6 * a + b;
+      double n[3];
+      cross3(ea[a], eb[b], n);
+      for (int w = 0; w < 2; ++w) {
+        v[w][p] = eb[b][0] * ca[a][w][0] + eb[b][1] * ca[a][w][1] + eb[b][2] * ca[a][w][2];
+        v[2 + w][p] = ea[a][0] * cb[b][w][0] + ea[a][1] * cb[b][w][1] + ea[a][2] * cb[b][w][2];
+      }
+      v[4][p] = height(n, A[kEdges[a][0]], B[kEdges[b][0]]);
+    }
+  // Ruled out: a certain sign against m = +n and one against m = −n (kPlusSign: − − + + −).
+  // (Two plain loops: the first, branch-free, vectorises.)
+  double plus_out[36], minus_out[36];
+  for (int p = 0; p < 36; ++p) {
+    const double hi = std::max(std::max(v[0][p], v[1][p]), std::max(-v[2][p], std::max(-v[3][p], v[4][p])));
+    const double lo = std::min(std::min(v[0][p], v[1][p]), std::min(-v[2][p], std::min(-v[3][p], v[4][p])));
+    plus_out[p] = hi;   // > e3: a value certainly of the sign m = +n forbids
+    minus_out[p] = lo;  // < −e3: likewise for m = −n
+  }
+  int count = 0;
+  for (int p = 0; p < 36; ++p) {
+    if (plus_out[p] > e3 && minus_out[p] < -e3) continue;
+    if (normal_is_zero(ea[p / 6], eb[p % 6], exact_ea[p / 6] && exact_eb[p % 6])) continue;  // no facet
+    PendingEdge& e = open[count++];
+    e.a = p / 6, e.b = p % 6, e.plus = !(plus_out[p] > e3), e.minus = !(minus_out[p] < -e3);
+    for (int i = 0; i < 5; ++i) e.s[i] = certain(v[i][p], e3);
+  }
+  return count;
+}
+
+// Pass 1 from a caller's mask of the edge pairs that may separate (bit 8a + b): the five values
+// of those only, in doubles (n = e_a × e_b, each value a triple product of differences).
+int open_edge_pairs_in(const TetVertices& A, const TetVertices& B, double e3, std::uint64_t mask,
+                       PendingEdge* open) {
+  int count = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      if (!(mask >> (8 * a + b) & 1)) continue;
+      double ea[3], eb[3], n[3];
+      const bool exact = exact_difference(A[kEdges[a][1]], A[kEdges[a][0]], ea) &
+                         exact_difference(B[kEdges[b][1]], B[kEdges[b][0]], eb);
+      if (normal_is_zero(ea, eb, exact)) continue;  // no facet
+      cross3(ea, eb, n);
+      const EdgeValues ev = edge_values(A, B, a, b);
+      PendingEdge& e = open[count];
+      e.a = a, e.b = b, e.plus = true, e.minus = true;
+      for (int k = 0; k < 5; ++k) {
+        e.s[k] = certain(height(n, *ev.p[k], *ev.q[k]), e3);
+        restrict_orientations(e.s[k], k, e.plus, e.minus);
+      }
+      count += e.plus || e.minus;
+    }
+  return count;
+}
+
+}  // namespace
+
+SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges) {
+  if (!in_exact_range(A, B)) return SatVerdict::Undecided;
+  const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  bool ok = true;
+  const int oa = orientation(A, e3, ok), ob = orientation(B, e3, ok);
+  if (!ok) return SatVerdict::Undecided;
+  if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
+
+  // Pass 1, doubles: the axes certain signs do not rule out.
+  int face_s[8][4];
+  bool face_open[8];
+  for (int t = 0; t < 2; ++t)
+    for (int f = 0; f < 4; ++f) {
+      const int sigma = (t == 0 ? oa : ob) * kFaceParity[f];
+      face_open[4 * t + f] = !face_ruled_out(t == 0 ? A : B, t == 0 ? B : A, f, sigma, e3, face_s[4 * t + f]);
+    }
+  PendingEdge pending[36];
+  const int npending = open_edges ? open_edge_pairs_in(A, B, e3, *open_edges, pending)
+                                  : open_edge_pairs(A, B, e3, pending);
+
+  // Pass 2, exact: the open axes, faces first (a touching face decides most touching pairs).
+  for (int t = 0; t < 2; ++t)
+    for (int f = 0; f < 4; ++f) {
+      if (!face_open[4 * t + f]) continue;
+      const int sigma = (t == 0 ? oa : ob) * kFaceParity[f];
+      if (face_separates_exact(t == 0 ? A : B, t == 0 ? B : A, f, sigma, face_s[4 * t + f], ok))
+        return SatVerdict::Disjoint;
+      if (!ok) return SatVerdict::Undecided;
+    }
+  for (int k = 0; k < npending; ++k) {
+    PendingEdge& e = pending[k];
+    LazyNormal n(A[kEdges[e.a][1]], A[kEdges[e.a][0]], B[kEdges[e.b][1]], B[kEdges[e.b][0]]);
+    if (!n.ok) return SatVerdict::Undecided;
+    const EdgeValues ev = edge_values(A, B, e.a, e.b);
+    int alpha_nonzero = 0;
+    for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
+      const int sv = e.s[i] != 0 ? e.s[i] : exact_height_sign(n, *ev.p[i], *ev.q[i], ok);
+      if (!ok) return SatVerdict::Undecided;
+      if (i < 2) alpha_nonzero |= sv;
+      restrict_orientations(sv, i, e.plus, e.minus);
+    }
+    // n = 0 (parallel edges: no facet, header) iff α_w1 = α_w2 = 0: n ⊥ e_a by construction,
+    // and e_a, s_w1 − s_u, s_w2 − s_u span space for a non-flat A. (Both α are known here.)
+    if ((e.plus || e.minus) && alpha_nonzero != 0) return SatVerdict::Disjoint;
+  }
+  return SatVerdict::Intersecting;
+}
+
+}  // namespace pdd::fast::detail
