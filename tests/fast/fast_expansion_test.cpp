@@ -171,3 +171,40 @@ BOOST_AUTO_TEST_CASE(expansion_arithmetic_is_exact) {
     for (int i = 1; i < e.n; ++i) BOOST_TEST(std::fabs(e.c[i - 1]) < std::fabs(e.c[i]));  // increasing
   }
 }
+
+// compressed(): the same exact value (rationals), the same sign, no more components, increasing
+// and non-zero; the largest component is the value rounded to within one ulp (Shewchuk's
+// compress), checked as |value − c_top| <= ulp(c_top). Values that cancel to exactly 0 included.
+BOOST_AUTO_TEST_CASE(compressed_keeps_the_exact_value) {
+  compare::ReproducibleRng r(11);
+  int zeros = 0, shorter = 0;
+  for (int it = 0; it < 20000; ++it) {
+    const double x[6] = {r.uniform(-10, 10), r.uniform(-1e-8, 1e-8), r.uniform(-1e5, 1e5),
+                         r.uniform(-10, 10),  r.uniform(-3, 3),       r.uniform(-1e-3, 1e-3)};
+    const detail::Expansion a = detail::product(detail::difference(x[0], x[1]), detail::difference(x[2], x[3]));
+    const detail::Expansion b = detail::product(detail::difference(x[4], x[5]), detail::difference(x[0], x[1]));
+    // every fourth draw: a − a·1, exactly 0 whatever the components
+    const detail::Expansion e =
+        it % 4 == 0 ? detail::difference(a, detail::scaled(a, 1.0)) : detail::sum(detail::product(a, b), a);
+    const detail::Expansion c = detail::compressed(e);
+    Q want = 0, got = 0;
+    for (int i = 0; i < e.n; ++i) want += Q(e.c[i]);
+    for (int i = 0; i < c.n; ++i) got += Q(c.c[i]);
+    BOOST_TEST(c.ok);
+    BOOST_TEST((got == want));
+    BOOST_TEST(c.sign() == sgn(want));
+    BOOST_TEST(c.n <= e.n);
+    for (int i = 0; i < c.n; ++i) BOOST_TEST(c.c[i] != 0.0);
+    for (int i = 1; i < c.n; ++i) BOOST_TEST(std::fabs(c.c[i - 1]) < std::fabs(c.c[i]));
+    if (c.n > 0) {
+      const double top = c.c[c.n - 1];
+      const double ulp = std::nextafter(std::fabs(top), HUGE_VAL) - std::fabs(top);
+      const Q gap = want - Q(top);
+      BOOST_TEST((gap <= Q(ulp) && -gap <= Q(ulp)));
+    }
+    zeros += sgn(want) == 0;
+    shorter += c.n < e.n;
+  }
+  BOOST_TEST(zeros >= 4000);   // the a − a draws
+  BOOST_TEST(shorter > 1000);  // compression does shorten products
+}

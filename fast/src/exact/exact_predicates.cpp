@@ -185,9 +185,11 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
     if (i == 0 || difference(hb, lo).sign() < 0) lo = hb;
     ok = ok && ha.ok && hb.ok;
   }
-  parts.D = difference(hi, lo);
-  parts.D2 = product(parts.D, parts.D);
-  parts.nn = dot(n, n);
+  // compressed: the same values in a few components, so that the products of
+  // compare_delta2_exact stay short
+  parts.D = compressed(difference(hi, lo));
+  parts.D2 = compressed(product(parts.D, parts.D));
+  parts.nn = compressed(dot(n, n));
   parts.ok = ok && parts.D2.ok && parts.nn.ok && parts.nn.sign() > 0;
   return parts;
 }
@@ -222,7 +224,40 @@ Approx times(const Approx& x, const Approx& y) {
 }
 }  // namespace
 
+// The two cases of compare_delta2_exact that need no product of expansions, common on aligned
+// pairs (parallel faces and edges give candidates of equal n.n or equal D, many of them exact
+// ties). With D_p, D_q > 0 and n.n > 0:
+//   n_p.n_p = n_q.n_q = m:  D_p² m − D_q² m = m (D_p − D_q)(D_p + D_q), sign = sign(D_p − D_q);
+//   D_p = D_q = D:          D² n_q.n_q − D² n_p.n_p, sign = sign(n_q.n_q − n_p.n_p).
+// Each sign is that of one exact difference of expansions (linear in their lengths). Tried only
+// when the rounded values are within 2^-40 relative (a necessary condition for equality: each
+// approx() is within 2·48 u of its exact value: the gate decides cost only, never the sign),
+// so other pairs pay two comparisons.
+// nullopt: neither case applies (or an expansion exceeds its capacity).
+namespace {
+bool nearly_equal(double a, double b) { return std::fabs(a - b) <= 0x1p-40 * std::fabs(a); }
+std::optional<int> compare_delta2_equal_part(const ExactDepthParts& p, const ExactDepthParts& q) {
+  if (!(p.D.sign() > 0 && q.D.sign() > 0)) return std::nullopt;
+  if (nearly_equal(p.nn.approx(), q.nn.approx())) {
+    const Expansion dn = difference(p.nn, q.nn);
+    if (dn.ok && dn.sign() == 0) {
+      const Expansion dd = difference(p.D, q.D);
+      if (dd.ok) return dd.sign();
+    }
+  }
+  if (nearly_equal(p.D.approx(), q.D.approx())) {
+    const Expansion dd = difference(p.D, q.D);
+    if (dd.ok && dd.sign() == 0) {
+      const Expansion dn = difference(q.nn, p.nn);
+      if (dn.ok) return dn.sign();
+    }
+  }
+  return std::nullopt;
+}
+}  // namespace
+
 std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q) {
+  if (const std::optional<int> s = compare_delta2_equal_part(p, q)) return s;
   // Filter: the sign of the computed difference when it exceeds the computed error bound (the
   // subtraction's own rounding, relative u, within the factor 1 + 4u); exact expansions below.
   {

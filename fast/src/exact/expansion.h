@@ -169,6 +169,38 @@ inline Expansion product(const Expansion& e, const Expansion& f) {
   return r;
 }
 
+// e, the same exact value in fewer components (Shewchuk's compress): a downward pass of
+// fast_two_sum from the largest component gathers what each component adds, an upward pass
+// renormalises; the result is nonoverlapping and increasing, its largest component within one
+// ulp of the value, zero components dropped (the value 0 gives n = 0). Only sums: exact in the
+// range stated above. Used before products, whose cost grows with the product of the lengths.
+inline Expansion compressed(const Expansion& e) {
+  Expansion h;
+  h.ok = e.ok;
+  if (e.n == 0) return h;
+  double g[kExpansionCapacity];
+  int bottom = e.n - 1;
+  double Q = e.c[bottom];
+  for (int i = e.n - 2; i >= 0; --i) {
+    double Qn, q;
+    fast_two_sum(Q, e.c[i], Qn, q);
+    if (q != 0.0) {
+      g[bottom--] = Qn;
+      Q = q;
+    } else {
+      Q = Qn;
+    }
+  }
+  for (int i = bottom + 1; i < e.n; ++i) {
+    double Qn, q;
+    fast_two_sum(g[i], Q, Qn, q);
+    if (q != 0.0) h.c[h.n++] = q;
+    Q = Qn;
+  }
+  if (Q != 0.0) h.c[h.n++] = Q;
+  return h;
+}
+
 // Exact 3-vectors.
 struct ExpVec {
   Expansion x[3];

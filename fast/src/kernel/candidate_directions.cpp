@@ -97,6 +97,11 @@ struct Builder {
                               {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet, 3: too long
   ExpVec face_normal[4];  // A's raw face normals, exactly, as g_sign_exact needs them
   bool face_normal_known[4] = {false, false, false, false};
+  // parallel_heights of edge pair (a, b) as exactly_parallel computed them, lane 8a + b in
+  // parallel_lane (−1: none); edge_pair_general takes them instead of computing them again
+  // (the same function of the same inputs: the same bits).
+  Draft parallel_draft;
+  int parallel_lane = -1;
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   bool depth_positive(int k, double bound) {
@@ -209,8 +214,9 @@ struct Builder {
       }
     }
     k.kind = EdgePairKind::Parallel;
-    Draft d;
+    Draft& d = parallel_draft;
     parallel_heights(A, p, a, b, d);
+    parallel_lane = kLaneStride * a + b;
     int lo = 0, hi = 0;
     for (int i : kOffEdge[a]) {
       const double g = d.hA[i];
@@ -259,7 +265,13 @@ struct Builder {
     double bound = fb.deg3;
     int cls = 0;
     if (k.kind == EdgePairKind::Parallel) {
-      parallel_heights(A, p, a, b, c);
+      if (parallel_lane == kLaneStride * a + b) {  // n, hA, hB: parallel_heights(A, p, a, b, c)
+        std::memcpy(c.n, parallel_draft.n, sizeof c.n);
+        std::memcpy(c.hA, parallel_draft.hA, sizeof c.hA);
+        std::memcpy(c.hB, parallel_draft.hB, sizeof c.hB);
+      } else {
+        parallel_heights(A, p, a, b, c);
+      }
       bound = fb.deg4;
       cls = 1;
     } else if (own.e_h > 0.0) {

@@ -131,12 +131,21 @@ double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
 }
 
 Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
+  // superset_uncertified: the fused branch ran on power_scaled(A, B) and declined or did not
+  // certify. rigid_superset on that same scaled pair is the same computation bit for bit
+  // (superset_depth.h), so the run does not repeat it and goes to the candidate set.
+  bool superset_uncertified = false;
   return detail::fused_hot_path(
       A, B,
       // rigid_superset on the rescaled pair, the run's first branch (superset_depth.h)
-      [&A, &B](Choice& ch, int& e) { return rigid_superset_scaled(A, B, ch, e); },
-      [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
-        if (rigid_superset(As, Bs, ch) && ch.certified) return true;
+      [&A, &B, &superset_uncertified](Choice& ch, int& e) {
+        bool ran = false;
+        const bool done = rigid_superset_scaled(A, B, ch, e, nullptr, nullptr, nullptr, &ran);
+        superset_uncertified = ran && !(done && ch.certified);
+        return done;
+      },
+      [&superset_uncertified](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        if (!superset_uncertified && rigid_superset(As, Bs, ch) && ch.certified) return true;
         CandidateSet set;
         if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
         ch = rigid_pd2(set);

@@ -227,9 +227,11 @@ bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Can
 }  // namespace
 
 bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
-                           Candidate* geometry, bool* unique, double* extent) {
+                           Candidate* geometry, bool* unique, double* extent, bool* kernel_ran) {
   SupersetLanes K;
-  if (!superset_kernel_scaled(A, B, K, e)) return false;
+  const bool ran = superset_kernel_scaled(A, B, K, e);
+  if (kernel_ran) *kernel_ran = ran;
+  if (!ran) return false;
   if (extent) *extent = K.extent;
   return choice_of_lanes(K, ch, geometry, unique, true);
 }

@@ -73,10 +73,12 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
 // (optional) the scaled pair's L of filter_bounds.h (filter_bounds(scaled pair) is
 // filter_bounds_of_extent(*extent): the same maxima, minima and differences). False when
 // power_scale.h's common exact case does not apply or the choice declines: the caller then
-// takes hot_path.h's general frame.
+// takes hot_path.h's general frame. `kernel_ran` (optional): true when the common exact case
+// applied (the kernel ran on the scaled pair), so that a false return is rigid_superset's own
+// decline on that pair, and an uncertified choice its uncertified choice.
 bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
                            Candidate* geometry = nullptr, bool* unique = nullptr,
-                           double* extent = nullptr);
+                           double* extent = nullptr, bool* kernel_ran = nullptr);
 
 // A benchmark baseline only, NOT definitions §8: the same kernel and pick on the pair as given,
 // with none of the certification (no power-of-two rescaling, no certify pass, no exact path;
