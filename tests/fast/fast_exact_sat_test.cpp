@@ -16,6 +16,7 @@
 
 #include "exact/exact_sat.h"
 #include "exact_overlap.h"
+#include "structured_cells.h"
 #include "fast_test_util.h"
 #include "pdd/compare/random.h"
 #include "pdd/pdd.h"
@@ -24,29 +25,10 @@
 using namespace pdd;
 using fast::detail::interiors_intersect_sat;
 using fast::detail::SatVerdict;
+using pdd::test::five_cell_tet;
+using pdd::test::kuhn_cell_tet;
 
 namespace {
-
-TetVertices kuhn(const Vec3d& o, double h, int perm) {
-  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  TetVertices t;
-  int d[3] = {0, 0, 0};
-  t[0] = o;
-  for (int q = 0; q < 3; ++q) {
-    d[kPerm[perm][q]] = 1;
-    t[q + 1] = {o[0] + d[0] * h, o[1] + d[1] * h, o[2] + d[2] * h};
-  }
-  return t;
-}
-TetVertices five(const Vec3d& o, double h, int which, bool odd) {
-  auto corner = [&](int c) -> Vec3d {
-    return {o[0] + (c & 1) * h, o[1] + (c >> 1 & 1) * h, o[2] + (c >> 2 & 1) * h};
-  };
-  static const int kEven[5][4] = {{0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}, {1, 2, 4, 7}};
-  static const int kOdd[5][4] = {{1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}, {0, 3, 5, 6}};
-  const int* c = odd ? kOdd[which] : kEven[which];
-  return {corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])};
-}
 
 struct Tally {
   int pairs = 0, intersecting = 0, touching_or_apart = 0, undecided = 0, wrong = 0;
@@ -78,7 +60,7 @@ struct Grid {
   int kind;
   TetVertices tet(int i, int j, int l, int which) const {
     const Vec3d o = {origin[0] + i * h, origin[1] + j * h, origin[2] + l * h};
-    return kind == 0 ? kuhn(o, h, which % 6) : five(o, h, which % 5, ((i + j + l) & 1) != 0);
+    return kind == 0 ? kuhn_cell_tet(o, h, which % 6) : five_cell_tet(o, h, which % 5, ((i + j + l) & 1) != 0);
   }
 };
 

@@ -11,6 +11,7 @@
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
 #include "pdd/compare/random.h"
+#include "structured_cells.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -22,14 +23,7 @@ namespace {
 // path `perm`, or with one vertex nudged by a few ulps (nearly parallel edges, nearly coplanar
 // faces).
 TetVertices cell_tet(compare::ReproducibleRng& r, const Vec3d& origin, double h, int perm, bool nudge) {
-  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  TetVertices t;
-  int d[3] = {0, 0, 0};
-  t[0] = origin;
-  for (int q = 0; q < 3; ++q) {
-    d[kPerm[perm][q]] = 1;
-    t[q + 1] = {origin[0] + d[0] * h, origin[1] + d[1] * h, origin[2] + d[2] * h};
-  }
+  TetVertices t = pdd::test::kuhn_cell_tet(origin, h, perm);
   if (nudge) {
     double& x = t[r.integer(0, 3)][r.integer(0, 2)];
     x = std::nextafter(x, r.integer(0, 1) ? HUGE_VAL : -HUGE_VAL);
