@@ -51,21 +51,29 @@ def wind(V, s, h, radius, overlap):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("out")
-    ap.add_argument("--cells", type=int, default=154)
-    ap.add_argument("--section", type=int, default=2)
-    ap.add_argument("--h", type=float, default=0.1)
-    ap.add_argument("--radius", type=float, default=0.8)
-    ap.add_argument("--overlap", type=float, default=0.3)
+    ap = argparse.ArgumentParser(
+        description="A bar of Kuhn cubes wound into a helix whose turns overlap: a self-contact "
+        "case for `pdd resolve --self` (one body folded into itself).")
+    ap.add_argument("out", help="the Gmsh 2.2 file to write")
+    ap.add_argument("--cells", type=int, default=154, help="cells along the bar (default 154)")
+    ap.add_argument("--section", type=int, default=2, help="cells across the bar's square section (default 2)")
+    ap.add_argument("--h", type=float, default=0.1, help="cell size (default 0.1)")
+    ap.add_argument("--radius", type=float, default=0.8, help="radius of the helix (default 0.8)")
+    ap.add_argument("--overlap", type=float, default=0.3,
+                    help="axial overlap of consecutive turns, in cells (default 0.3)")
     a = ap.parse_args()
+    if a.cells < 1 or a.section < 1 or not a.h > 0:
+        raise SystemExit("make-helix-case: --cells and --section must be >= 1 and --h > 0")
     V, T = kuhn_bar(a.cells, a.section, a.h)
     W = wind(V, a.section, a.h, a.radius, a.overlap)
     d = W[T]
     vol = np.einsum("ij,ij->i", np.cross(d[:, 1] - d[:, 0], d[:, 2] - d[:, 0]), d[:, 3] - d[:, 0])
     if not (vol > 0).all():
         raise SystemExit("make-helix-case: the winding inverts elements (radius too small)")
-    meshio.write(a.out, meshio.Mesh(W, [("tetra", T)]), file_format="gmsh22", binary=False)
+    try:
+        meshio.write(a.out, meshio.Mesh(W, [("tetra", T)]), file_format="gmsh22", binary=False)
+    except OSError as e:
+        raise SystemExit(f"make-helix-case: cannot write {a.out}: {e.strerror}")
 
 
 if __name__ == "__main__":
