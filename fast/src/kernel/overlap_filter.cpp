@@ -19,7 +19,9 @@
 // strictly below every vertex of the other along N (or −N): disjoint. No orientation is needed
 // (both signs of N are tried). Non-finite input: Unknown before anything else.
 //
-// ---- Stage 2: the superset kernel (superset_kernel.h), reused as is: no second SAT.
+// ---- Stage 2: the superset kernel (superset_kernel.h), reused as is: no second SAT; where
+// unresolved edge pairs (nearly parallel edges) spoil its minimum depth, those pairs bounded by
+// near_parallel_bound.h (intersecting_without_unresolved below).
 //
 // interiors_intersect, for Unknown: the exact separating-axis decision (exact_sat.h: the 44
 // axes in doubles, then floating-point expansions for the signs left open: no rationals), and
@@ -27,6 +29,7 @@
 #include "certification/filter_bounds.h"
 #include "exact/exact_sat.h"
 #include "kernel/candidate_directions.h"
+#include "kernel/near_parallel_bound.h"
 #include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
 #include "kernel/superset_kernel.h"
@@ -65,6 +68,34 @@ inline bool face_separates(const TetVertices& T, const TetVertices& O, double e3
   return false;
 }
 
+// Stage 2 on an aligned pair: the kernel's minimum depth is spoilt by edge pairs the doubles cannot
+// resolve (n = eB × eA possibly 0). Every facet of A ⊕ (−B) has a positive offset — the interiors
+// intersect (definitions §4) — when the faces and the resolved edge pairs have computed depths
+// D > E3 in both orientations (the kernel's test) and near_parallel_bound gives each unresolved
+// pair a positive lower bound (near_parallel_bound.h: it bounds every facet such a pair can be).
+bool intersecting_without_unresolved(const detail::SupersetLanes& K) {
+  const FilterBounds fb = filter_bounds_of_extent(K.extent);
+  const std::uint64_t unresolved = detail::unresolved_edge_pairs(K, fb);
+  if (!unresolved) return false;
+  for (int f = 0; f < 8; ++f) {
+    double D = K.H[0][f];
+    for (int j = 1; j < 4; ++j) D = D > K.H[j][f] ? D : K.H[j][f];
+    if (!(D > fb.deg3)) return false;
+  }
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b)
+      if (!(unresolved >> (8 * a + b) & 1u) && !(K.dp[a][b] > fb.deg3 && K.dm[a][b] > fb.deg3))
+        return false;
+  for (std::uint64_t bits = unresolved; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits);
+    double lo2;
+    if (!detail::near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2) ||
+        !(lo2 > 0.0))
+      return false;
+  }
+  return true;
+}
+
 // overlap_filter with the kernel's lanes kept (K filled when `kernel` is set on return).
 Overlap filter(const TetVertices& A, const TetVertices& B, detail::SupersetLanes& K, bool& kernel) {
   kernel = false;
@@ -81,7 +112,7 @@ Overlap filter(const TetVertices& A, const TetVertices& B, detail::SupersetLanes
   if (!(std::fabs(K.det[3]) > e3) || !(std::fabs(K.det[7]) > e3)) return Overlap::Unknown;
   if (K.lo < -e3) return Overlap::Disjoint;
   if (K.lo > e3) return Overlap::Intersecting;
-  return Overlap::Unknown;
+  return intersecting_without_unresolved(K) ? Overlap::Intersecting : Overlap::Unknown;
 }
 
 // The edge pairs whose axis may separate: bit 8a + b unless both computed depths D(+n), D(−n)

@@ -11,6 +11,7 @@
 #include "certification/tie_tolerance.h"
 #include "certification/value_bounds.h"
 #include "kernel/direction_geometry.h"
+#include "kernel/near_parallel_bound.h"
 #include "kernel/superset_kernel.h"
 
 namespace pdd::fast {
@@ -29,8 +30,13 @@ struct Near {
   double sign;   // orientation of a lane
 };
 
-// Entries with value <= t2 that are real candidates, in canonical order; false when an
-// orientation decision is unclear (filter) — then the caller declines.
+// Entries with value <= t2 that are real candidates, in canonical order. An edge pair whose
+// label the doubles cannot decide (n possibly 0, or an orientation sign g within the filter
+// bound: definitions §3 names it `EE:a:b` or `EE:a:b:±` by that exact sign) is left out of the
+// pick but not out of the certificate (tie-band entries are always among the bound bits:
+// tie_and_certify_bits): the pick is then another entry, certified only if its value is within
+// definitions §8's bound of every entry's lower bound, this one's included — which §8 allows
+// (either side of a near tie may be named). Always true (the signature keeps the caller's test).
 bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, int& count) {
   const double t2 = K.t2;
   count = 0;
@@ -49,7 +55,7 @@ bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, 
     const double nmax = max2(std::fabs(m0), max2(std::fabs(m1), std::fabs(m2)));
     const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
     const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
-    if (nmax <= fb.deg2 || std::fabs(g1) <= fb.deg3 || std::fabs(g2) <= fb.deg3) return false;
+    if (nmax <= fb.deg2 || std::fabs(g1) <= fb.deg3 || std::fabs(g2) <= fb.deg3) continue;
     const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
     const bool flip = pos1 && pos2, undecidable = pos1 != pos2;
     const double inv = K.inv[a][b];
@@ -133,14 +139,15 @@ void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
 constexpr double kSmallRoot = 2e-11;
 
 // with_small: substitute kSmallRoot where small_root holds (else every bound is rigid_root_rel's).
+// extra_lo: a lower bound of the values of entries outside K's bound bits (+inf: none).
 inline __attribute__((always_inline)) void certify_pass(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
-                  bool* unique, bool with_small) {
+                  bool* unique, bool with_small, double extra_lo) {
   const DegreeBounds db = degree_bounds(fb, false);
   // small_root's thresholds: D² >= eh2k (faces: fl(v·nn), within 3u of the D² that
   // rigid_root_rel's D = sqrt(v·nn) has, inside the margin above); n.n >= en2k (lanes:
   // en2k · inv <= 1).
   const double eh2k = db.e_h * db.e_h * 4.2e22, en2k = db.e_n * db.e_n * 3.2e22;
-  double lo_all = kInf, lo_other = kInf, r_pick = kInf;
+  double lo_all = extra_lo, lo_other = extra_lo, r_pick = kInf;
   auto entry = [&](double v, bool small_root, auto exact_root, bool picked) {
     const double r = with_small && small_root ? kSmallRoot : exact_root();
     double lo = lower_of(v, r);
@@ -177,19 +184,15 @@ inline __attribute__((always_inline)) void certify_pass(const SupersetLanes& K, 
 // the verdict with every bound exact: the same verdict as the exact bounds alone give (a pass
 // with kSmallRoot implies one without it, above).
 void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
-             bool* unique) {
-  certify_pass(K, fb, c, ch, unique, true);
-  if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false);
+             bool* unique, double extra_lo) {
+  certify_pass(K, fb, c, ch, unique, true, extra_lo);
+  if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false, extra_lo);
 }
 
-// The choice from the kernel's lanes K.
-bool choice_of_lanes(const SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
-                     bool with_certificate) {
-  if (!(K.finite == 0.0)) return false;
-  const FilterBounds fb = filter_bounds_of_extent(K.extent);
-  // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
-  if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
-  if (!(K.lo > fb.deg3)) return false;
+// The pick among the entries of K's tie band (face_bits, lane_bits) and its certificate
+// (K's bound bits, and extra_lo for entries outside them).
+bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, double extra_lo, Choice& ch,
+                      Candidate* geometry, bool* unique, bool with_certificate) {
   Near near[kMaxCandidates];
   int count = 0;
   if (!near_candidates(K, fb, near, count)) return false;
@@ -203,7 +206,7 @@ bool choice_of_lanes(const SupersetLanes& K, Choice& ch, Candidate* geometry, bo
   ch.value = c.value;
   ch.index = -1;
   ch.code = c.code;
-  if (with_certificate) certify(K, fb, c, ch, unique);
+  if (with_certificate) certify(K, fb, c, ch, unique, extra_lo);
   if (!geometry) return true;
   if (c.lane >= 0)
     lane_geometry(K, c, *geometry);
@@ -215,6 +218,101 @@ bool choice_of_lanes(const SupersetLanes& K, Choice& ch, Candidate* geometry, bo
   }
   geometry->label = unpack_label(c.code);
   return true;
+}
+
+// K without the edge pairs of `unresolved` (near_parallel_bound.h): positivity, minimum, tie
+// band and bound bits of the rest, by the kernel's rules (tie_and_certify_bits: the same
+// thresholds t1, t2 from the new minimum, the same far-entry skip, whose proof needs only that
+// the pick is <= t2 and a skipped entry passes the three tests).
+bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved) {
+  double lo = kInf, vmin = kInf;
+  double face_D[8];
+  for (int f = 0; f < 8; ++f) {
+    double D = K.H[0][f];
+    for (int j = 1; j < 4; ++j) D = max2(D, K.H[j][f]);
+    face_D[f] = D;
+    lo = min2(lo, D);
+    vmin = min2(vmin, K.face_val[f]);
+  }
+  const std::uint64_t kept = 0x3f3f3f3f3f3fULL & ~unresolved;
+  for (std::uint64_t bits = kept; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    lo = min2(lo, min2(K.dp[a][b], K.dm[a][b]));
+    vmin = min2(vmin, K.val[a][b]);
+  }
+  if (!(lo > fb.deg3)) return false;
+  K.lo = lo;
+  K.vmin = vmin;
+  const double q = std::sqrt(vmin);
+  K.t1 = vmin + K.kappa * q;  // = tie_threshold(vmin, kappa)
+  const double t2 = K.t2 = K.t1 + K.kappa * (q + q + K.kappa), far = kFarFactor * t2;
+  const DegreeBounds db = degree_bounds(fb, false);
+  const double eh = kFarBoundScale * db.e_h, en = kFarBoundScale * db.e_n;
+  const double D_min2 = eh * eh, nn_min = en * en;
+  K.face_bits = K.face_bound_bits = 0;
+  for (int f = 0; f < 8; ++f) {
+    const double v = K.face_val[f];
+    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
+                      K.NAB[2][f] * K.NAB[2][f];
+    if (v <= t2) K.face_bits |= std::uint8_t(1u << f);
+    if (!(v > far && face_D[f] * face_D[f] >= D_min2 && nn >= nn_min))
+      K.face_bound_bits |= std::uint8_t(1u << f);
+  }
+  K.lane_bits = K.lane_bound_bits = 0;
+  for (std::uint64_t bits = kept; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    const double v = K.val[a][b], dd = min2(K.dp[a][b], K.dm[a][b]);
+    if (v <= t2) K.lane_bits |= std::uint64_t{1} << lane;
+    if (!(v > far && dd * dd >= D_min2 && K.inv[a][b] * nn_min <= 1.0))
+      K.lane_bound_bits |= std::uint64_t{1} << lane;
+  }
+  return true;
+}
+
+// The choice when edge pairs the doubles cannot resolve (nearly or exactly parallel edges: an
+// aligned pair) spoil the kernel's screens: those pairs bounded by near_parallel_bound, the
+// choice made among the others. True only with a certified choice (then in ch, geometry,
+// unique); K is changed either way.
+bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice& ch,
+                               Candidate* geometry, bool* unique) {
+  const std::uint64_t unresolved = unresolved_edge_pairs(K, fb);
+  if (!unresolved) return false;
+  double extra_lo = kInf;
+  for (std::uint64_t bits = unresolved; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits);
+    double lo2;
+    if (!near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2)) return false;
+    extra_lo = min2(extra_lo, lo2);
+  }
+  if (!(extra_lo > 0.0)) return false;
+  if (!drop_edge_pairs(K, fb, unresolved)) return false;
+  Choice c;
+  Candidate g;
+  bool u = false;
+  if (!pick_and_certify(K, fb, extra_lo, c, geometry ? &g : nullptr, unique ? &u : nullptr, true) ||
+      !c.certified)
+    return false;
+  ch = c;
+  if (geometry) *geometry = g;
+  if (unique) *unique = u;
+  return true;
+}
+
+// The choice from the kernel's lanes K (K is changed where unresolved edge pairs are dropped).
+// With a certificate, a choice the kernel's screens cannot certify is retried without the edge
+// pairs the doubles cannot resolve; when that fails too, the first choice stands (uncertified)
+// or the pair is declined, as the screens said.
+bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
+                     bool with_certificate) {
+  if (!(K.finite == 0.0)) return false;
+  const FilterBounds fb = filter_bounds_of_extent(K.extent);
+  // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
+  if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
+  const bool chosen =
+      K.lo > fb.deg3 && pick_and_certify(K, fb, kInf, ch, geometry, unique, with_certificate);
+  if (chosen && (!with_certificate || ch.certified)) return true;
+  if (with_certificate && choice_without_unresolved(K, fb, ch, geometry, unique)) return true;
+  return chosen;
 }
 
 bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,

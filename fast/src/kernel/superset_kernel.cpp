@@ -195,7 +195,6 @@ PDD_INLINE v8 face_values(const v8* X, SupersetLanes& K, v8& fnn) {
   return D;
 }
 
-inline constexpr double kFarFactor = 1.001, kFarBoundScale = 1e5;  // tie_and_certify_bits (below)
 constexpr v8l kOne = {1, 2, 4, 8, 16, 32, 64, 128};
 // The thresholds of tie_and_certify_bits' tests that do not depend on the minimum: D² >= D_min2 and
 // n.n >= nn_min, made in the edge loop where D² and 1/(n.n) are at hand.

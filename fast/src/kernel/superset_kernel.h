@@ -19,6 +19,11 @@ namespace pdd::fast::detail {
 // v8, v8l: edge_pair_formula.h.
 
 
+// The far-entry skip of the bound bits (proof at tie_and_certify_bits, superset_kernel.cpp): an
+// entry with value > kFarFactor · t2, D² >= (kFarBoundScale e_h)² and n.n >= (kFarBoundScale e_n)²
+// cannot change certify()'s verdict.
+inline constexpr double kFarFactor = 1.001, kFarBoundScale = 1e5;
+
 // Output of the vector kernel (lanes: see superset_kernel.cpp).
 struct alignas(64) SupersetLanes {
   v8 X[3];          // the pair's coordinates (scaled, superset_kernel_scaled), lanes s0..s3, r0..r3

@@ -1,0 +1,105 @@
+// near_parallel_bound.cpp — the bound of near_parallel_bound.h (the proof is there).
+#include "kernel/near_parallel_bound.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "pdd/tet_tables.h"
+
+namespace pdd::fast::detail {
+namespace {
+
+using P3 = std::array<double, 3>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kU = kUnitRoundoff;
+
+P3 vertex(const SupersetLanes& K, int lane) { return {K.X[0][lane], K.X[1][lane], K.X[2][lane]}; }
+P3 sub(const P3& p, const P3& q) { return {p[0] - q[0], p[1] - q[1], p[2] - q[2]}; }
+P3 cross(const P3& p, const P3& q) {
+  return {p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+}
+double dot(const P3& p, const P3& q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; }
+double max_abs(const P3& p) {
+  const double x = std::fabs(p[0]), y = std::fabs(p[1]), z = std::fabs(p[2]);
+  const double m = x > y ? x : y;
+  return m > z ? m : z;  // (NaN: not <= E2, so never "unresolved"; the kernel rejects NaN pairs)
+}
+
+// A lower bound of S = num / |n| from the computed num and n.n (header: "Errors"); NaN when the
+// numerator is not certainly positive.
+double depth_lower(double num, double nn, const FilterBounds& fb) {
+  if (!(num > fb.deg3)) return std::numeric_limits<double>::quiet_NaN();
+  const double n_up = (std::sqrt(nn) + 1.7321 * fb.deg2) * (1.0 + 8.0 * kU);
+  return (num - fb.deg3) / n_up * (1.0 - 4.0 * kU);
+}
+
+}  // namespace
+
+std::uint64_t unresolved_edge_pairs(const SupersetLanes& K, const FilterBounds& fb) {
+  // Screen on the kernel's 1/(n.n) (the same n): every |n_k| <= E2 gives n.n <= 3 E2² and, with
+  // the roundings of n.n (3u) and of the division (u), inv >= 1/(3 E2² (1 + 4u)) > 0.33/E2².
+  const double inv_min = 0.33 / (fb.deg2 * fb.deg2);
+  std::uint64_t mask = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      if (!(K.inv[a][b] >= inv_min)) continue;
+      const P3 eA = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
+      const P3 eB = {K.EB[0][b], K.EB[1][b], K.EB[2][b]};
+      if (max_abs(cross(eB, eA)) <= fb.deg2) mask |= std::uint64_t{1} << (8 * a + b);
+    }
+  return mask;
+}
+
+bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {
+  const int u = kEdges[a][0], v = kEdges[a][1];
+  const int x = kEdges[b][0];
+  const P3 su = vertex(K, u), eA = sub(vertex(K, v), su), rx = vertex(K, 4 + x);
+  const int offA[2] = {kOffEdge[a][0], kOffEdge[a][1]}, offB[2] = {kOffEdge[b][0], kOffEdge[b][1]};
+  P3 dA[2];  // s_k − s_u for A's two other vertices
+  for (int i = 0; i < 2; ++i) dA[i] = sub(vertex(K, offA[i]), su);
+
+  // d_x, the only local minimum of S on the circle, certainly not in F.
+  const P3 cp = cross(eA, sub(rx, su));
+  bool outside = false;
+  for (int i = 0; i < 2; ++i) outside = outside || dot(cp, cross(eA, dA[i])) > fb.deg4;
+  for (int i = 0; i < 2; ++i)
+    outside = outside || dot(cp, cross(eA, sub(vertex(K, 4 + offB[i]), rx))) < -fb.deg4;
+  if (!outside) return false;
+
+  double low = kInf;
+  // The ends of arc(a): the outward normals of A's faces at edge a (the faces opposite A's two
+  // other vertices), unless certainly violating a constraint (r_j certainly deeper than r_x).
+  for (int i = 0; i < 2; ++i) {
+    const int f = offA[i];
+    const double hx = K.H[x][f];
+    if (K.H[offB[0]][f] - hx > fb.deg3 || K.H[offB[1]][f] - hx > fb.deg3) continue;
+    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
+                      K.NAB[2][f] * K.NAB[2][f];
+    const double s = depth_lower(hx, nn, fb);
+    if (!(s >= 0.0)) return false;
+    low = s < low ? s : low;
+  }
+  // ±n' for the edges b' = (r_x, r_j) of B, j off edge b.
+  for (int i = 0; i < 2; ++i) {
+    const int j = offB[i], k = offB[1 - i];  // k: B's vertex off b and b'
+    const int w = x < j ? x : j, z = x < j ? j : x;
+    const P3 rw = vertex(K, 4 + w);
+    const P3 n = cross(sub(vertex(K, 4 + z), rw), eA);
+    if (max_abs(n) <= fb.deg2) return false;  // b' unresolved too (a sliver of B)
+    const double g0 = dot(n, dA[0]), g1 = dot(n, dA[1]);
+    const double h = dot(n, sub(rw, su)), q = dot(n, sub(vertex(K, 4 + k), rw));
+    const double nn = dot(n, n);
+    for (const double sign : {1.0, -1.0}) {
+      if (sign * g0 > fb.deg3 || sign * g1 > fb.deg3) continue;  // certainly off arc(a)
+      if (sign * q < -fb.deg3) continue;                          // r_k certainly below r_x
+      const double s = depth_lower(-sign * h, nn, fb);
+      if (!(s >= 0.0)) return false;
+      low = s < low ? s : low;
+    }
+  }
+  lo2 = low == kInf ? kInf : low * low * (1.0 - 2.0 * kU);
+  return true;
+}
+
+}  // namespace pdd::fast::detail
