@@ -4,12 +4,15 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <new>
@@ -54,23 +57,36 @@ double rest_volume(const Mesh& m, std::size_t i) {
 //     Qs_km = ( [k = m] + alpha_g [g(m) = g] - 5 alpha_g alpha_g(m) / W ) / 10   (k, m in S)
 // and 0 in a row or column off S. qs_kkt (below) solves the KKT system instead: the
 // tests hold the two equal on all 225 active sets. Symmetric bit for bit (a_k a_m = a_m a_k).
-Eigen::Matrix<double, 8, 8> qs_closed(const std::array<bool, 8>& active) {
+// PieceFactors holds the formula's factors (72 bytes, where the matrix takes 512): the energy
+// keeps them per pair and evaluates an entry where the Hessian needs it, with the same
+// operations as qs_closed (the same bits).
+struct PieceFactors {
+  std::array<double, 8> a{};            // alpha_g(k) on S, 0 off S
+  double W = 0;                         // sum_g alpha_g n_g (0: S empty)
+  std::array<std::uint8_t, 8> on{};     // S's indices, ascending: on[0 .. count)
+  int count = 0;
+  double entry(int k, int m) const {    // Qs_km, k and m in S (W > 0 there)
+    const double same = (k / 4 == m / 4) ? a[k] : 0.0;
+    return ((k == m ? 1.0 : 0.0) + same - 5 * (a[k] * a[m]) / W) / 10;
+  }
+};
+PieceFactors piece_factors(const std::array<bool, 8>& active) {
   int n[2] = {0, 0};
   for (int k = 0; k < 8; ++k) n[k / 4] += active[k];
   const double alpha[2] = {1.0 / (5 - n[0]), 1.0 / (5 - n[1])};
-  const double W = alpha[0] * n[0] + alpha[1] * n[1];
-  double a[8];
-  for (int k = 0; k < 8; ++k) a[k] = active[k] ? alpha[k / 4] : 0.0;
-  Eigen::Matrix<double, 8, 8> Qs = Eigen::Matrix<double, 8, 8>::Zero();
-  if (!(W > 0)) return Qs;
+  PieceFactors f;
+  f.W = alpha[0] * n[0] + alpha[1] * n[1];
   for (int k = 0; k < 8; ++k) {
-    if (!active[k]) continue;
-    for (int m = 0; m < 8; ++m) {
-      if (!active[m]) continue;
-      const double same = (k / 4 == m / 4) ? a[k] : 0.0;
-      Qs(k, m) = ((k == m ? 1.0 : 0.0) + same - 5 * (a[k] * a[m]) / W) / 10;
-    }
+    f.a[k] = active[k] ? alpha[k / 4] : 0.0;
+    if (active[k] && f.W > 0) f.on[f.count++] = std::uint8_t(k);
   }
+  return f;
+}
+Eigen::Matrix<double, 8, 8> qs_closed(const std::array<bool, 8>& active) {
+  const PieceFactors f = piece_factors(active);
+  Eigen::Matrix<double, 8, 8> Qs = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int i = 0; i < f.count; ++i)
+    for (int j = 0; j < f.count; ++j) Qs(f.on[i], f.on[j]) = f.entry(f.on[i], f.on[j]);
   return Qs;
 }
 
@@ -132,6 +148,30 @@ void object_norm_gradient(const TetVertices& p, const TetVertices& q, Vec3d* g) 
     for (int k = 0; k < 3; ++k) g[i][k] = -((q[i][k] - p[i][k]) + sum[k]) / 10;
 }
 
+// pair_terms (header) without Qs and the piece's value: the gradient, u and the active set S.
+PairTerms plane_terms(const TetVertices& A, const TetVertices& B, const TetVertices& qA,
+                      const TetVertices& qB, const Vec3d& normal) {
+  PairTerms t;
+  object_norm_gradient(A, qA, t.gradient.data());
+  object_norm_gradient(B, qB, t.gradient.data() + 4);
+  const Vec3d u = unit(normal);
+  t.unit_normal = u;
+  const std::array<double, 8> s = projections(A, B, u);
+  const std::array<double, 8> q = projections(qA, qB, u);
+  double cA = -std::numeric_limits<double>::infinity(), cB = std::numeric_limits<double>::infinity();
+  double lo = s[0], hi = s[0];
+  for (int i = 0; i < 8; ++i) {
+    lo = std::min(lo, s[i]);
+    hi = std::max(hi, s[i]);
+    if (i < 4) cA = std::max(cA, q[i]);
+    else cB = std::min(cB, q[i]);
+  }
+  const double c = (cA + cB) / 2;
+  const double tol = kActiveTolerance * (hi - lo);
+  for (int i = 0; i < 8; ++i) t.active[i] = i < 4 ? q[i] >= c - tol : q[i] <= c + tol;
+  return t;
+}
+
 // One intersecting pair as the energy needs it: the positions attaining pdd2_global and the
 // normal, from either engine (rounded to double for the exact one).
 struct PairSolution {
@@ -162,16 +202,30 @@ PairSolution solution_of(std::size_t a, std::size_t b, const PairResult<R>& r) {
   return s;
 }
 
-Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which) {
+void check_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which) {
   if (p.size() != m.vertices.size())
     throw std::invalid_argument(std::string("contact_energy: positions of mesh ") + which + " have " +
                                 std::to_string(p.size()) + " entries, the mesh has " +
                                 std::to_string(m.vertices.size()) + " vertices");
+}
+
+// Positions p (as many as m's vertices) that are m's vertices bit for bit: m itself is the mesh
+// at p, with nothing to copy (two meshes of 10^5 elements: ~8 MB of indices otherwise).
+bool at_rest(const Mesh& m, const std::vector<Vec3d>& p) {
+  static_assert(sizeof(Vec3d) == 3 * sizeof(double));
+  return p.empty() || p.data() == m.vertices.data() ||
+         std::memcmp(p.data(), m.vertices.data(), p.size() * sizeof(Vec3d)) == 0;
+}
+
+// m with p as its vertices (its arrays copied side by side).
+Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p) {
   Mesh out;
-  out.vertices = p;
-  out.tets = m.tets;
-  out.source_ids = m.source_ids;
-  out.vertex_sources = m.vertex_sources;  // messages name a non-finite vertex where it was read
+  tbb::parallel_invoke(
+      [&] {
+        out.vertices = p;
+        out.vertex_sources = m.vertex_sources;  // messages name a non-finite vertex where it was read
+      },
+      [&] { out.tets = m.tets; }, [&] { out.source_ids = m.source_ids; });
   return out;
 }
 
@@ -232,11 +286,14 @@ std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactE
   return out;
 }
 
-// One kept pair's share: its eight vertices (A's, then B's, as gradient rows), weight, terms.
+// One kept pair's share: its eight vertices (A's, then B's, as gradient rows), weight,
+// gradient of pdd2_global, u and Qs as its factors (pair_terms' values without the matrix).
 struct PairShare {
   std::array<std::size_t, 8> v{};
   double w = 0;
-  PairTerms terms;
+  std::array<Vec3d, 8> gradient{};
+  Vec3d u{};
+  PieceFactors qs;
 };
 
 // The kept pairs' shares, in storage that the parallel loop filling them constructs them in (a
@@ -296,11 +353,14 @@ void neighbours(const ShareArray& shares, const Incidence& inc, std::size_t x, s
   for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
     const PairShare& p = shares[inc.at[e] / 8];
     const int i = int(inc.at[e] % 8);
-    for (int k = 0; k < 8; ++k)
-      if (p.w * p.terms.qs[i][k] != 0 && s.stamp[p.v[k]] != stamp) {
+    if (p.qs.a[i] == 0) continue;  // i off S: a zero row
+    for (int c = 0; c < p.qs.count; ++c) {
+      const int k = p.qs.on[c];
+      if (p.w * p.qs.entry(i, k) != 0 && s.stamp[p.v[k]] != stamp) {
         s.stamp[p.v[k]] = stamp;
         s.ys.push_back(p.v[k]);
       }
+    }
   }
 }
 
@@ -345,9 +405,11 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
       for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
         const PairShare& p = shares[inc.at[e] / 8];
         const int i = int(inc.at[e] % 8);
-        const Vec3d& u = p.terms.unit_normal;
-        for (int k = 0; k < 8; ++k) {
-          const double q = p.w * p.terms.qs[i][k];
+        if (p.qs.a[i] == 0) continue;  // i off S: a zero row
+        const Vec3d& u = p.u;
+        for (int j = 0; j < p.qs.count; ++j) {
+          const int k = p.qs.on[j];
+          const double q = p.w * p.qs.entry(i, k);
           if (q == 0) continue;
           double* b = s.block.data() + 9 * s.slot[p.v[k]];
           for (int a = 0; a < 3; ++a)
@@ -373,11 +435,15 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
 ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
                   const std::vector<Vec3d>* pb, const ContactEnergyOptions& o) {
   const auto t0 = Clock::now();
-  const Mesh Ap = at_positions(A, pa, "A");
-  std::optional<Mesh> Bp;
-  if (B) Bp = at_positions(*B, *pb, "B");
+  check_positions(A, pa, "A");
+  if (B) check_positions(*B, *pb, "B");
+  std::optional<Mesh> copy_a, copy_b;  // the meshes at the positions, where not at rest
+  tbb::parallel_invoke([&] { if (!at_rest(A, pa)) copy_a = at_positions(A, pa); },
+                       [&] { if (B && !at_rest(*B, *pb)) copy_b = at_positions(*B, *pb); });
+  const Mesh& Ap = copy_a ? *copy_a : A;
+  const Mesh* Bp = B ? (copy_b ? &*copy_b : B) : nullptr;
   ContactEnergy e;
-  std::vector<PairSolution> sol = solutions(Ap, B ? &*Bp : nullptr, o, e.skipped, e.seconds_found);
+  std::vector<PairSolution> sol = solutions(Ap, Bp, o, e.skipped, e.seconds_found);
   e.seconds_contacts = seconds_since(t0);
   const auto t1 = Clock::now();
 
@@ -430,7 +496,10 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
         p.v[4 + k] = offset_b + Bm.tets[s.b][k];
       }
       p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
-      p.terms = pair_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+      const PairTerms t = plane_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+      p.gradient = t.gradient;
+      p.u = t.unit_normal;
+      p.qs = piece_factors(t.active);
     }
   });
   if (o.cancel && o.cancel->load()) throw Cancelled();
@@ -448,7 +517,7 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
     for (std::size_t x = r.begin(); x != r.end(); ++x)
       for (std::size_t k = inc.start[x]; k < inc.start[x + 1]; ++k) {
         const PairShare& p = shares[inc.at[k] / 8];
-        const Vec3d& g = p.terms.gradient[inc.at[k] % 8];
+        const Vec3d& g = p.gradient[inc.at[k] % 8];
         for (int c = 0; c < 3; ++c) e.gradient[x][c] += p.w * g[c];
       }
   });
@@ -461,29 +530,11 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
 
 PairTerms pair_terms(const TetVertices& A, const TetVertices& B, const TetVertices& qA,
                      const TetVertices& qB, const Vec3d& normal) {
-  PairTerms t;
-  object_norm_gradient(A, qA, t.gradient.data());
-  object_norm_gradient(B, qB, t.gradient.data() + 4);
-  const Vec3d u = unit(normal);
-  t.unit_normal = u;
-  const std::array<double, 8> s = projections(A, B, u);
-  const std::array<double, 8> q = projections(qA, qB, u);
-  double cA = -std::numeric_limits<double>::infinity(), cB = std::numeric_limits<double>::infinity();
-  double lo = s[0], hi = s[0];
-  for (int i = 0; i < 8; ++i) {
-    lo = std::min(lo, s[i]);
-    hi = std::max(hi, s[i]);
-    if (i < 4) cA = std::max(cA, q[i]);
-    else cB = std::min(cB, q[i]);
-  }
-  const double c = (cA + cB) / 2;
-  const double tol = kActiveTolerance * (hi - lo);
+  PairTerms t = plane_terms(A, B, qA, qB, normal);
   bool any = false;
-  for (int i = 0; i < 8; ++i) {
-    t.active[i] = i < 4 ? q[i] >= c - tol : q[i] <= c + tol;
-    any = any || t.active[i];
-  }
+  for (bool a : t.active) any = any || a;
   if (!any) return t;  // not reached for an intersecting pair (both sides touch the plane)
+  const std::array<double, 8> s = projections(A, B, t.unit_normal);
   const Eigen::Matrix<double, 8, 8> Qs = qs_closed(t.active);
   Eigen::Matrix<double, 8, 1> sv;
   for (int i = 0; i < 8; ++i) sv[i] = s[i];
