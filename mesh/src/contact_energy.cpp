@@ -294,6 +294,8 @@ struct PairShare {
   std::array<Vec3d, 8> gradient{};
   Vec3d u{};
   PieceFactors qs;
+  // Row i of w Qs: bit k set where w Qs_ik != 0 (k in S; i off S: none), for the Hessian.
+  std::array<std::uint8_t, 8> row{};
 };
 
 // The kept pairs' shares, in storage that the parallel loop filling them constructs them in (a
@@ -352,13 +354,11 @@ void neighbours(const ShareArray& shares, const Incidence& inc, std::size_t x, s
   s.ys.clear();
   for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
     const PairShare& p = shares[inc.at[e] / 8];
-    const int i = int(inc.at[e] % 8);
-    if (p.qs.a[i] == 0) continue;  // i off S: a zero row
-    for (int c = 0; c < p.qs.count; ++c) {
-      const int k = p.qs.on[c];
-      if (p.w * p.qs.entry(i, k) != 0 && s.stamp[p.v[k]] != stamp) {
-        s.stamp[p.v[k]] = stamp;
-        s.ys.push_back(p.v[k]);
+    for (unsigned bits = p.row[inc.at[e] % 8]; bits != 0; bits &= bits - 1) {
+      const std::size_t y = p.v[__builtin_ctz(bits)];
+      if (s.stamp[y] != stamp) {
+        s.stamp[y] = stamp;
+        s.ys.push_back(y);
       }
     }
   }
@@ -405,15 +405,15 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
       for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
         const PairShare& p = shares[inc.at[e] / 8];
         const int i = int(inc.at[e] % 8);
-        if (p.qs.a[i] == 0) continue;  // i off S: a zero row
-        const Vec3d& u = p.u;
-        for (int j = 0; j < p.qs.count; ++j) {
-          const int k = p.qs.on[j];
+        if (p.row[i] == 0) continue;
+        double uu[9];
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) uu[3 * a + c] = p.u[a] * p.u[c];
+        for (unsigned bits = p.row[i]; bits != 0; bits &= bits - 1) {
+          const int k = __builtin_ctz(bits);
           const double q = p.w * p.qs.entry(i, k);
-          if (q == 0) continue;
           double* b = s.block.data() + 9 * s.slot[p.v[k]];
-          for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) b[3 * a + c] += q * (u[a] * u[c]);
+          for (int c = 0; c < 9; ++c) b[c] += q * uu[c];
         }
       }
       // rows 3x + a: for each neighbour y (ascending), columns 3y, 3y + 1, 3y + 2
@@ -500,6 +500,11 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
       p.gradient = t.gradient;
       p.u = t.unit_normal;
       p.qs = piece_factors(t.active);
+      for (int a = 0; a < p.qs.count; ++a)
+        for (int c = 0; c < p.qs.count; ++c) {
+          const int i = p.qs.on[a], k = p.qs.on[c];
+          if (p.w * p.qs.entry(i, k) != 0) p.row[i] |= std::uint8_t(1u << k);
+        }
     }
   });
   if (o.cancel && o.cancel->load()) throw Cancelled();
