@@ -324,16 +324,20 @@ class ShareArray {
 struct Incidence {
   std::vector<std::size_t> start, at;
 };
-Incidence incidence(const ShareArray& shares, std::size_t n) {
+// `vertices(j)`: pair j's eight vertices (A's, then B's, as gradient rows), j < pairs.
+template <class Vertices>
+Incidence incidence(std::size_t pairs, std::size_t n, const Vertices& vertices) {
   Incidence inc;
   inc.start.assign(n + 1, 0);
-  for (std::size_t j = 0; j < shares.size(); ++j)
-    for (std::size_t x : shares[j].v) ++inc.start[x + 1];
+  for (std::size_t j = 0; j < pairs; ++j)
+    for (std::size_t x : vertices(j)) ++inc.start[x + 1];
   for (std::size_t x = 0; x < n; ++x) inc.start[x + 1] += inc.start[x];
-  inc.at.resize(8 * shares.size());
+  inc.at.resize(8 * pairs);
   std::vector<std::size_t> fill(inc.start.begin(), inc.start.end() - 1);
-  for (std::size_t j = 0; j < shares.size(); ++j)
-    for (int i = 0; i < 8; ++i) inc.at[fill[shares[j].v[i]]++] = 8 * j + i;
+  for (std::size_t j = 0; j < pairs; ++j) {
+    const std::array<std::size_t, 8> v = vertices(j);
+    for (int i = 0; i < 8; ++i) inc.at[fill[v[i]]++] = 8 * j + i;
+  }
   return inc;
 }
 
@@ -485,27 +489,35 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   }
   sol.resize(kept);
 
-  ShareArray shares(sol.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
-    for (std::size_t j = r.begin(); j != r.end(); ++j) {
-      const auto& s = sol[j];
-      PairShare& p = shares.construct(j);
-      for (int k = 0; k < 4; ++k) {
-        p.v[k] = A.tets[s.a][k];
-        p.v[4 + k] = offset_b + Bm.tets[s.b][k];
-      }
-      p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
-      const PairTerms t = plane_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
-      p.gradient = t.gradient;
-      p.u = t.unit_normal;
-      p.qs = piece_factors(t.active);
-      for (int a = 0; a < p.qs.count; ++a)
-        for (int c = 0; c < p.qs.count; ++c) {
-          const int i = p.qs.on[a], k = p.qs.on[c];
-          if (p.w * p.qs.entry(i, k) != 0) p.row[i] |= std::uint8_t(1u << k);
-        }
+  const auto vertices = [&](std::size_t j) {
+    std::array<std::size_t, 8> v;
+    for (int k = 0; k < 4; ++k) {
+      v[k] = A.tets[sol[j].a][k];
+      v[4 + k] = offset_b + Bm.tets[sol[j].b][k];
     }
+    return v;
+  };
+  ShareArray shares(sol.size());
+  Incidence inc;  // (serial: built by one task while the others fill the shares)
+  tbb::parallel_invoke([&] { inc = incidence(sol.size(), n, vertices); }, [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
+      for (std::size_t j = r.begin(); j != r.end(); ++j) {
+        const auto& s = sol[j];
+        PairShare& p = shares.construct(j);
+        p.v = vertices(j);
+        p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
+        const PairTerms t = plane_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+        p.gradient = t.gradient;
+        p.u = t.unit_normal;
+        p.qs = piece_factors(t.active);
+        for (int a = 0; a < p.qs.count; ++a)
+          for (int c = 0; c < p.qs.count; ++c) {
+            const int i = p.qs.on[a], k = p.qs.on[c];
+            if (p.w * p.qs.entry(i, k) != 0) p.row[i] |= std::uint8_t(1u << k);
+          }
+      }
+    });
   });
   if (o.cancel && o.cancel->load()) throw Cancelled();
 
@@ -516,7 +528,6 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
     e.max_pdd2_global = std::max(e.max_pdd2_global, s.value);
     if (o.per_pair) e.pairs.push_back({s.a, s.b, shares[j].w, s.value, shares[j].w * s.value});
   }
-  const Incidence inc = incidence(shares, n);
   e.gradient.assign(n, Vec3d{0, 0, 0});
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t x = r.begin(); x != r.end(); ++x)
