@@ -299,7 +299,7 @@ struct PairShare {
 };
 
 // The kept pairs' shares, in storage that the parallel loop filling them constructs them in (a
-// vector would first value-initialise every share on one thread, ~0.8 KB a pair: the largest
+// vector would first value-initialise every share on one thread, ~0.4 KB a pair: the largest
 // serial step of the assembly). A share holds plain numbers: nothing to destroy.
 static_assert(std::is_trivially_destructible_v<PairShare>);
 class ShareArray {
@@ -537,7 +537,11 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
         for (int c = 0; c < 3; ++c) e.gradient[x][c] += p.w * g[c];
       }
   });
-  if (o.hessian) e.hessian = hessian(shares, inc, n);
+  if (o.hessian) {
+    // swapped in: Eigen 3.4's SparseMatrix has no move assignment (`=` would copy the arrays)
+    Eigen::SparseMatrix<double> H = hessian(shares, inc, n);
+    e.hessian.swap(H);
+  }
   e.seconds_assembly = seconds_since(t1);
   return e;
 }
