@@ -4,12 +4,15 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <new>
@@ -54,23 +57,36 @@ double rest_volume(const Mesh& m, std::size_t i) {
 //     Qs_km = ( [k = m] + alpha_g [g(m) = g] - 5 alpha_g alpha_g(m) / W ) / 10   (k, m in S)
 // and 0 in a row or column off S. qs_kkt (below) solves the KKT system instead: the
 // tests hold the two equal on all 225 active sets. Symmetric bit for bit (a_k a_m = a_m a_k).
-Eigen::Matrix<double, 8, 8> qs_closed(const std::array<bool, 8>& active) {
+// PieceFactors holds the formula's factors (72 bytes, where the matrix takes 512): the energy
+// keeps them per pair and evaluates an entry where the Hessian needs it, with the same
+// operations as qs_closed (the same bits).
+struct PieceFactors {
+  std::array<double, 8> a{};            // alpha_g(k) on S, 0 off S
+  double W = 0;                         // sum_g alpha_g n_g (0: S empty)
+  std::array<std::uint8_t, 8> on{};     // S's indices, ascending: on[0 .. count)
+  int count = 0;
+  double entry(int k, int m) const {    // Qs_km, k and m in S (W > 0 there)
+    const double same = (k / 4 == m / 4) ? a[k] : 0.0;
+    return ((k == m ? 1.0 : 0.0) + same - 5 * (a[k] * a[m]) / W) / 10;
+  }
+};
+PieceFactors piece_factors(const std::array<bool, 8>& active) {
   int n[2] = {0, 0};
   for (int k = 0; k < 8; ++k) n[k / 4] += active[k];
   const double alpha[2] = {1.0 / (5 - n[0]), 1.0 / (5 - n[1])};
-  const double W = alpha[0] * n[0] + alpha[1] * n[1];
-  double a[8];
-  for (int k = 0; k < 8; ++k) a[k] = active[k] ? alpha[k / 4] : 0.0;
-  Eigen::Matrix<double, 8, 8> Qs = Eigen::Matrix<double, 8, 8>::Zero();
-  if (!(W > 0)) return Qs;
+  PieceFactors f;
+  f.W = alpha[0] * n[0] + alpha[1] * n[1];
   for (int k = 0; k < 8; ++k) {
-    if (!active[k]) continue;
-    for (int m = 0; m < 8; ++m) {
-      if (!active[m]) continue;
-      const double same = (k / 4 == m / 4) ? a[k] : 0.0;
-      Qs(k, m) = ((k == m ? 1.0 : 0.0) + same - 5 * (a[k] * a[m]) / W) / 10;
-    }
+    f.a[k] = active[k] ? alpha[k / 4] : 0.0;
+    if (active[k] && f.W > 0) f.on[f.count++] = std::uint8_t(k);
   }
+  return f;
+}
+Eigen::Matrix<double, 8, 8> qs_closed(const std::array<bool, 8>& active) {
+  const PieceFactors f = piece_factors(active);
+  Eigen::Matrix<double, 8, 8> Qs = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int i = 0; i < f.count; ++i)
+    for (int j = 0; j < f.count; ++j) Qs(f.on[i], f.on[j]) = f.entry(f.on[i], f.on[j]);
   return Qs;
 }
 
@@ -132,6 +148,30 @@ void object_norm_gradient(const TetVertices& p, const TetVertices& q, Vec3d* g) 
     for (int k = 0; k < 3; ++k) g[i][k] = -((q[i][k] - p[i][k]) + sum[k]) / 10;
 }
 
+// pair_terms (header) without Qs and the piece's value: the gradient, u and the active set S.
+PairTerms plane_terms(const TetVertices& A, const TetVertices& B, const TetVertices& qA,
+                      const TetVertices& qB, const Vec3d& normal) {
+  PairTerms t;
+  object_norm_gradient(A, qA, t.gradient.data());
+  object_norm_gradient(B, qB, t.gradient.data() + 4);
+  const Vec3d u = unit(normal);
+  t.unit_normal = u;
+  const std::array<double, 8> s = projections(A, B, u);
+  const std::array<double, 8> q = projections(qA, qB, u);
+  double cA = -std::numeric_limits<double>::infinity(), cB = std::numeric_limits<double>::infinity();
+  double lo = s[0], hi = s[0];
+  for (int i = 0; i < 8; ++i) {
+    lo = std::min(lo, s[i]);
+    hi = std::max(hi, s[i]);
+    if (i < 4) cA = std::max(cA, q[i]);
+    else cB = std::min(cB, q[i]);
+  }
+  const double c = (cA + cB) / 2;
+  const double tol = kActiveTolerance * (hi - lo);
+  for (int i = 0; i < 8; ++i) t.active[i] = i < 4 ? q[i] >= c - tol : q[i] <= c + tol;
+  return t;
+}
+
 // One intersecting pair as the energy needs it: the positions attaining pdd2_global and the
 // normal, from either engine (rounded to double for the exact one).
 struct PairSolution {
@@ -162,16 +202,30 @@ PairSolution solution_of(std::size_t a, std::size_t b, const PairResult<R>& r) {
   return s;
 }
 
-Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which) {
+void check_positions(const Mesh& m, const std::vector<Vec3d>& p, const char* which) {
   if (p.size() != m.vertices.size())
     throw std::invalid_argument(std::string("contact_energy: positions of mesh ") + which + " have " +
                                 std::to_string(p.size()) + " entries, the mesh has " +
                                 std::to_string(m.vertices.size()) + " vertices");
+}
+
+// Positions p (as many as m's vertices) that are m's vertices bit for bit: m itself is the mesh
+// at p, with nothing to copy (two meshes of 10^5 elements: ~8 MB of indices otherwise).
+bool at_rest(const Mesh& m, const std::vector<Vec3d>& p) {
+  static_assert(sizeof(Vec3d) == 3 * sizeof(double));
+  return p.empty() || p.data() == m.vertices.data() ||
+         std::memcmp(p.data(), m.vertices.data(), p.size() * sizeof(Vec3d)) == 0;
+}
+
+// m with p as its vertices (its arrays copied side by side).
+Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p) {
   Mesh out;
-  out.vertices = p;
-  out.tets = m.tets;
-  out.source_ids = m.source_ids;
-  out.vertex_sources = m.vertex_sources;  // messages name a non-finite vertex where it was read
+  tbb::parallel_invoke(
+      [&] {
+        out.vertices = p;
+        out.vertex_sources = m.vertex_sources;  // messages name a non-finite vertex where it was read
+      },
+      [&] { out.tets = m.tets; }, [&] { out.source_ids = m.source_ids; });
   return out;
 }
 
@@ -232,15 +286,20 @@ std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactE
   return out;
 }
 
-// One kept pair's share: its eight vertices (A's, then B's, as gradient rows), weight, terms.
+// One kept pair's share: its eight vertices (A's, then B's, as gradient rows), weight,
+// gradient of pdd2_global, u and Qs as its factors (pair_terms' values without the matrix).
 struct PairShare {
   std::array<std::size_t, 8> v{};
   double w = 0;
-  PairTerms terms;
+  std::array<Vec3d, 8> gradient{};
+  Vec3d u{};
+  PieceFactors qs;
+  // Row i of w Qs: bit k set where w Qs_ik != 0 (k in S; i off S: none), for the Hessian.
+  std::array<std::uint8_t, 8> row{};
 };
 
 // The kept pairs' shares, in storage that the parallel loop filling them constructs them in (a
-// vector would first value-initialise every share on one thread, ~0.8 KB a pair: the largest
+// vector would first value-initialise every share on one thread, ~0.4 KB a pair: the largest
 // serial step of the assembly). A share holds plain numbers: nothing to destroy.
 static_assert(std::is_trivially_destructible_v<PairShare>);
 class ShareArray {
@@ -265,16 +324,20 @@ class ShareArray {
 struct Incidence {
   std::vector<std::size_t> start, at;
 };
-Incidence incidence(const ShareArray& shares, std::size_t n) {
+// `vertices(j)`: pair j's eight vertices (A's, then B's, as gradient rows), j < pairs.
+template <class Vertices>
+Incidence incidence(std::size_t pairs, std::size_t n, const Vertices& vertices) {
   Incidence inc;
   inc.start.assign(n + 1, 0);
-  for (std::size_t j = 0; j < shares.size(); ++j)
-    for (std::size_t x : shares[j].v) ++inc.start[x + 1];
+  for (std::size_t j = 0; j < pairs; ++j)
+    for (std::size_t x : vertices(j)) ++inc.start[x + 1];
   for (std::size_t x = 0; x < n; ++x) inc.start[x + 1] += inc.start[x];
-  inc.at.resize(8 * shares.size());
+  inc.at.resize(8 * pairs);
   std::vector<std::size_t> fill(inc.start.begin(), inc.start.end() - 1);
-  for (std::size_t j = 0; j < shares.size(); ++j)
-    for (int i = 0; i < 8; ++i) inc.at[fill[shares[j].v[i]]++] = 8 * j + i;
+  for (std::size_t j = 0; j < pairs; ++j) {
+    const std::array<std::size_t, 8> v = vertices(j);
+    for (int i = 0; i < 8; ++i) inc.at[fill[v[i]]++] = 8 * j + i;
+  }
   return inc;
 }
 
@@ -295,12 +358,13 @@ void neighbours(const ShareArray& shares, const Incidence& inc, std::size_t x, s
   s.ys.clear();
   for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
     const PairShare& p = shares[inc.at[e] / 8];
-    const int i = int(inc.at[e] % 8);
-    for (int k = 0; k < 8; ++k)
-      if (p.w * p.terms.qs[i][k] != 0 && s.stamp[p.v[k]] != stamp) {
-        s.stamp[p.v[k]] = stamp;
-        s.ys.push_back(p.v[k]);
+    for (unsigned bits = p.row[inc.at[e] % 8]; bits != 0; bits &= bits - 1) {
+      const std::size_t y = p.v[__builtin_ctz(bits)];
+      if (s.stamp[y] != stamp) {
+        s.stamp[y] = stamp;
+        s.ys.push_back(y);
       }
+    }
   }
 }
 
@@ -345,13 +409,15 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
       for (std::size_t e = inc.start[x]; e < inc.start[x + 1]; ++e) {
         const PairShare& p = shares[inc.at[e] / 8];
         const int i = int(inc.at[e] % 8);
-        const Vec3d& u = p.terms.unit_normal;
-        for (int k = 0; k < 8; ++k) {
-          const double q = p.w * p.terms.qs[i][k];
-          if (q == 0) continue;
+        if (p.row[i] == 0) continue;
+        double uu[9];
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) uu[3 * a + c] = p.u[a] * p.u[c];
+        for (unsigned bits = p.row[i]; bits != 0; bits &= bits - 1) {
+          const int k = __builtin_ctz(bits);
+          const double q = p.w * p.qs.entry(i, k);
           double* b = s.block.data() + 9 * s.slot[p.v[k]];
-          for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) b[3 * a + c] += q * (u[a] * u[c]);
+          for (int c = 0; c < 9; ++c) b[c] += q * uu[c];
         }
       }
       // rows 3x + a: for each neighbour y (ascending), columns 3y, 3y + 1, 3y + 2
@@ -373,11 +439,15 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
 ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
                   const std::vector<Vec3d>* pb, const ContactEnergyOptions& o) {
   const auto t0 = Clock::now();
-  const Mesh Ap = at_positions(A, pa, "A");
-  std::optional<Mesh> Bp;
-  if (B) Bp = at_positions(*B, *pb, "B");
+  check_positions(A, pa, "A");
+  if (B) check_positions(*B, *pb, "B");
+  std::optional<Mesh> copy_a, copy_b;  // the meshes at the positions, where not at rest
+  tbb::parallel_invoke([&] { if (!at_rest(A, pa)) copy_a = at_positions(A, pa); },
+                       [&] { if (B && !at_rest(*B, *pb)) copy_b = at_positions(*B, *pb); });
+  const Mesh& Ap = copy_a ? *copy_a : A;
+  const Mesh* Bp = B ? (copy_b ? &*copy_b : B) : nullptr;
   ContactEnergy e;
-  std::vector<PairSolution> sol = solutions(Ap, B ? &*Bp : nullptr, o, e.skipped, e.seconds_found);
+  std::vector<PairSolution> sol = solutions(Ap, Bp, o, e.skipped, e.seconds_found);
   e.seconds_contacts = seconds_since(t0);
   const auto t1 = Clock::now();
 
@@ -419,19 +489,35 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   }
   sol.resize(kept);
 
-  ShareArray shares(sol.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-    if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
-    for (std::size_t j = r.begin(); j != r.end(); ++j) {
-      const auto& s = sol[j];
-      PairShare& p = shares.construct(j);
-      for (int k = 0; k < 4; ++k) {
-        p.v[k] = A.tets[s.a][k];
-        p.v[4 + k] = offset_b + Bm.tets[s.b][k];
-      }
-      p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
-      p.terms = pair_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+  const auto vertices = [&](std::size_t j) {
+    std::array<std::size_t, 8> v;
+    for (int k = 0; k < 4; ++k) {
+      v[k] = A.tets[sol[j].a][k];
+      v[4 + k] = offset_b + Bm.tets[sol[j].b][k];
     }
+    return v;
+  };
+  ShareArray shares(sol.size());
+  Incidence inc;  // (serial: built by one task while the others fill the shares)
+  tbb::parallel_invoke([&] { inc = incidence(sol.size(), n, vertices); }, [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
+      for (std::size_t j = r.begin(); j != r.end(); ++j) {
+        const auto& s = sol[j];
+        PairShare& p = shares.construct(j);
+        p.v = vertices(j);
+        p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
+        const PairTerms t = plane_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
+        p.gradient = t.gradient;
+        p.u = t.unit_normal;
+        p.qs = piece_factors(t.active);
+        for (int a = 0; a < p.qs.count; ++a)
+          for (int c = 0; c < p.qs.count; ++c) {
+            const int i = p.qs.on[a], k = p.qs.on[c];
+            if (p.w * p.qs.entry(i, k) != 0) p.row[i] |= std::uint8_t(1u << k);
+          }
+      }
+    });
   });
   if (o.cancel && o.cancel->load()) throw Cancelled();
 
@@ -442,17 +528,20 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
     e.max_pdd2_global = std::max(e.max_pdd2_global, s.value);
     if (o.per_pair) e.pairs.push_back({s.a, s.b, shares[j].w, s.value, shares[j].w * s.value});
   }
-  const Incidence inc = incidence(shares, n);
   e.gradient.assign(n, Vec3d{0, 0, 0});
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t x = r.begin(); x != r.end(); ++x)
       for (std::size_t k = inc.start[x]; k < inc.start[x + 1]; ++k) {
         const PairShare& p = shares[inc.at[k] / 8];
-        const Vec3d& g = p.terms.gradient[inc.at[k] % 8];
+        const Vec3d& g = p.gradient[inc.at[k] % 8];
         for (int c = 0; c < 3; ++c) e.gradient[x][c] += p.w * g[c];
       }
   });
-  if (o.hessian) e.hessian = hessian(shares, inc, n);
+  if (o.hessian) {
+    // swapped in: Eigen 3.4's SparseMatrix has no move assignment (`=` would copy the arrays)
+    Eigen::SparseMatrix<double> H = hessian(shares, inc, n);
+    e.hessian.swap(H);
+  }
   e.seconds_assembly = seconds_since(t1);
   return e;
 }
@@ -461,29 +550,11 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
 
 PairTerms pair_terms(const TetVertices& A, const TetVertices& B, const TetVertices& qA,
                      const TetVertices& qB, const Vec3d& normal) {
-  PairTerms t;
-  object_norm_gradient(A, qA, t.gradient.data());
-  object_norm_gradient(B, qB, t.gradient.data() + 4);
-  const Vec3d u = unit(normal);
-  t.unit_normal = u;
-  const std::array<double, 8> s = projections(A, B, u);
-  const std::array<double, 8> q = projections(qA, qB, u);
-  double cA = -std::numeric_limits<double>::infinity(), cB = std::numeric_limits<double>::infinity();
-  double lo = s[0], hi = s[0];
-  for (int i = 0; i < 8; ++i) {
-    lo = std::min(lo, s[i]);
-    hi = std::max(hi, s[i]);
-    if (i < 4) cA = std::max(cA, q[i]);
-    else cB = std::min(cB, q[i]);
-  }
-  const double c = (cA + cB) / 2;
-  const double tol = kActiveTolerance * (hi - lo);
+  PairTerms t = plane_terms(A, B, qA, qB, normal);
   bool any = false;
-  for (int i = 0; i < 8; ++i) {
-    t.active[i] = i < 4 ? q[i] >= c - tol : q[i] <= c + tol;
-    any = any || t.active[i];
-  }
+  for (bool a : t.active) any = any || a;
   if (!any) return t;  // not reached for an intersecting pair (both sides touch the plane)
+  const std::array<double, 8> s = projections(A, B, t.unit_normal);
   const Eigen::Matrix<double, 8, 8> Qs = qs_closed(t.active);
   Eigen::Matrix<double, 8, 1> sv;
   for (int i = 0; i < 8; ++i) sv[i] = s[i];
