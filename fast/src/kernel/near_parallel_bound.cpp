@@ -26,12 +26,19 @@ double max_abs(const P3& p) {
   return m > z ? m : z;  // (NaN: not <= E2, so never "unresolved"; the kernel rejects NaN pairs)
 }
 
-// A lower bound of S = num / |n| from the computed num and n.n (header: "Errors"); NaN when the
-// numerator is not certainly positive.
-double depth_lower(double num, double nn, const FilterBounds& fb) {
+// A lower bound of S² = num² / |n|² from the computed num and n.n (header: "Errors"); NaN when
+// the numerator is not certainly positive. Where n.n >= 2^80 E2² (|n| far above its error, the
+// common case), without a square root: the exact |n| < sqrt(n.n)(1 + 2u) + √3 E2 <=
+// sqrt(n.n)(1 + 2u + 1.6e-12), so |n|² < n.n (1 + 4e-12), and the computed
+// (num − E3)² / (n.n (1 + 4e-12)) carries at most 6 roundings (each <= u, against the 8u taken).
+// The relative slack 4e-12 is far inside the certificate's 9e-10 (value_bounds.h).
+double depth2_lower(double num, double nn, const FilterBounds& fb) {
   if (!(num > fb.deg3)) return std::numeric_limits<double>::quiet_NaN();
+  const double d = num - fb.deg3;
+  if (nn >= 0x1p80 * (fb.deg2 * fb.deg2)) return d * d / (nn * (1.0 + 4e-12)) * (1.0 - 8.0 * kU);
   const double n_up = (std::sqrt(nn) + 1.7321 * fb.deg2) * (1.0 + 8.0 * kU);
-  return (num - fb.deg3) / n_up * (1.0 - 4.0 * kU);
+  const double s = d / n_up * (1.0 - 4.0 * kU);
+  return s * s * (1.0 - 2.0 * kU);
 }
 
 }  // namespace
@@ -51,7 +58,8 @@ std::uint64_t unresolved_edge_pairs(const SupersetLanes& K, const FilterBounds& 
   return mask;
 }
 
-bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {
+template <bool kPositiveOnly>
+bool bound_of_pair(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {
   const int u = kEdges[a][0], v = kEdges[a][1];
   const int x = kEdges[b][0];
   const P3 su = vertex(K, u), eA = sub(vertex(K, v), su), rx = vertex(K, 4 + x);
@@ -76,7 +84,11 @@ bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, 
     if (K.H[offB[0]][f] - hx > fb.deg3 || K.H[offB[1]][f] - hx > fb.deg3) continue;
     const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                       K.NAB[2][f] * K.NAB[2][f];
-    const double s = depth_lower(hx, nn, fb);
+    if (kPositiveOnly) {
+      if (!(hx > fb.deg3)) return false;
+      continue;
+    }
+    const double s = depth2_lower(hx, nn, fb);
     if (!(s >= 0.0)) return false;
     low = s < low ? s : low;
   }
@@ -93,13 +105,26 @@ bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, 
     for (const double sign : {1.0, -1.0}) {
       if (sign * g0 > fb.deg3 || sign * g1 > fb.deg3) continue;  // certainly off arc(a)
       if (sign * q < -fb.deg3) continue;                          // r_k certainly below r_x
-      const double s = depth_lower(-sign * h, nn, fb);
+      if (kPositiveOnly) {
+        if (!(-sign * h > fb.deg3)) return false;
+        continue;
+      }
+      const double s = depth2_lower(-sign * h, nn, fb);
       if (!(s >= 0.0)) return false;
       low = s < low ? s : low;
     }
   }
-  lo2 = low == kInf ? kInf : low * low * (1.0 - 2.0 * kU);
+  lo2 = low;
   return true;
+}
+
+bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {
+  return bound_of_pair<false>(K, fb, a, b, lo2);
+}
+
+bool near_parallel_positive(const SupersetLanes& K, const FilterBounds& fb, int a, int b) {
+  double unused;
+  return bound_of_pair<true>(K, fb, a, b, unused);
 }
 
 }  // namespace pdd::fast::detail

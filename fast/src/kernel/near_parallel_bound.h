@@ -49,8 +49,9 @@
 // (filter_bounds.h); the cross products' components <= 8 u L² < E2. A kept point's S is bounded
 // below by (S̃ − E3) / ((|ñ| + √3 E2)(1 + 8u)) (1 − 4u): the exact numerator is > S̃ − E3, the
 // exact |n| < |ñ| + √3 E2, and the factors cover the roundings of the square root, the sums and
-// the division (at most 6 roundings, each <= u, against the 12 u taken). A kept point whose S̃
-// is <= E3 (a possibly non-positive depth) makes the bound unavailable: false.
+// the division (at most 6 roundings, each <= u, against the 12 u taken); where |ñ| is far above
+// its error, S² directly by (S̃ − E3)² / (ñ.ñ (1 + 4e-12)) (near_parallel_bound.cpp). A kept
+// point whose S̃ is <= E3 (a possibly non-positive depth) makes the bound unavailable: false.
 #pragma once
 
 #include "certification/filter_bounds.h"
@@ -59,6 +60,10 @@
 namespace pdd::fast::detail {
 
 bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2);
+
+// The sign alone: true when near_parallel_bound would give lo2 > 0 (every kept point's S̃ > E3),
+// without the values (no division).
+bool near_parallel_positive(const SupersetLanes& K, const FilterBounds& fb, int a, int b);
 
 // The edge pairs (bit 8a + b) whose computed n = eB × eA has every component <= E2 in magnitude:
 // the exact n may be 0 (no direction, or definitions §3's common perpendicular) or point anywhere ⊥ eA.

@@ -88,10 +88,7 @@ bool intersecting_without_unresolved(const detail::SupersetLanes& K) {
         return false;
   for (std::uint64_t bits = unresolved; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits);
-    double lo2;
-    if (!detail::near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2) ||
-        !(lo2 > 0.0))
-      return false;
+    if (!detail::near_parallel_positive(K, fb, lane / kLaneStride, lane % kLaneStride)) return false;
   }
   return true;
 }
