@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(scaled_and_translated_pairs) {
 }
 
 // Degenerate configurations: parallel and colinear edges, shared faces, exact zeros, touching
-// pairs. The superset may decline (today it declines on all six: its filters see the
+// pairs. The superset may decline (its filters see the
 // degeneracy) or agree with the list (check_pair); either way the hot path over raw vertices
 // (rigid_pd2_choice: superset, else the list) must give the list's exact decision and value.
 BOOST_AUTO_TEST_CASE(degenerate_pairs_decline_or_agree) {
