@@ -299,9 +299,9 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice&
 }
 
 // The choice from the kernel's lanes K (K is changed where unresolved edge pairs are dropped).
-// With a certificate, a choice the kernel's screens cannot certify is retried without the edge
-// pairs the doubles cannot resolve; when that fails too, the first choice stands (uncertified)
-// or the pair is declined, as the screens said.
+// With a certificate and no `unique` asked, a choice the kernel's screens cannot certify is
+// retried without the edge pairs the doubles cannot resolve; when that fails too, the first
+// choice stands (uncertified) or the pair is declined, as the screens said.
 bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
                      bool with_certificate) {
   if (!(K.finite == 0.0)) return false;
@@ -311,7 +311,11 @@ bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* un
   const bool chosen =
       K.lo > fb.deg3 && pick_and_certify(K, fb, kInf, ch, geometry, unique, with_certificate);
   if (chosen && (!with_certificate || ch.certified)) return true;
-  if (with_certificate && choice_without_unresolved(K, fb, ch, geometry, unique)) return true;
+  // (Not where `unique` is asked: the bound of an unresolved pair is not strict, so a pick it
+  // could tie with is never unique, and on aligned pairs the pick ties exactly with a parallel
+  // face anyway: the caller's exact route would follow the retry's cost.)
+  if (with_certificate && !unique && choice_without_unresolved(K, fb, ch, geometry, unique))
+    return true;
   return chosen;
 }
 
