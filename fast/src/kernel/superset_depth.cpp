@@ -226,11 +226,9 @@ bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, double ext
 // the pick is <= t2 and a skipped entry passes the three tests).
 bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved) {
   double lo = kInf, vmin = kInf;
-  double face_D[8];
   for (int f = 0; f < 8; ++f) {
     double D = K.H[0][f];
     for (int j = 1; j < 4; ++j) D = max2(D, K.H[j][f]);
-    face_D[f] = D;
     lo = min2(lo, D);
     vmin = min2(vmin, K.face_val[f]);
   }
@@ -255,7 +253,7 @@ bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unr
     const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                       K.NAB[2][f] * K.NAB[2][f];
     if (v <= t2) K.face_bits |= std::uint8_t(1u << f);
-    if (!(v > far && face_D[f] * face_D[f] >= D_min2 && nn >= nn_min))
+    if (!(v > far && v * nn >= D_min2 && nn >= nn_min))  // (the kernel's D² = fl(v·nn))
       K.face_bound_bits |= std::uint8_t(1u << f);
   }
   K.lane_bits = K.lane_bound_bits = 0;
