@@ -134,26 +134,37 @@ Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const Directio
   return sign_of(sgn(Q(hi - lo)));
 }
 
-std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
-                                         const DirectionLabel& l1, const DirectionLabel& l2) {
+ExactDirection::ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l)
+    : A_(A), B_(B) {
   // Granularity: coordinates multiples of 2^-152, products of 6 differences of 2^-912 (normal);
   // magnitudes below (2^101)^6 · 2^40 (no overflow). See expansion.h.
   for (const TetVertices* T : {&A, &B})
     for (const Vec3d& p : *T)
       for (double x : p) {
         const double a = std::fabs(x);
-        if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return std::nullopt;
+        if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return;
       }
   bool ok = true;
-  const ExpVec n1 = oriented_normal_exp(A, B, l1, ok);
-  const ExpVec n2 = oriented_normal_exp(A, B, l2, ok);
-  if (!ok || !n1.ok() || !n2.ok()) return std::nullopt;
-  const ExpVec c = cross(n1, n2);
+  n_ = oriented_normal_exp(A, B, l, ok);
+  ok_ = ok && n_.ok();
+}
+
+std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const {
+  if (!ok_) return std::nullopt;
+  bool ok = true;
+  const ExpVec n2 = oriented_normal_exp(A_, B_, l, ok);
+  if (!ok || !n2.ok()) return std::nullopt;
+  const ExpVec c = cross(n_, n2);
   if (!c.ok()) return std::nullopt;
   if (!c.is_zero()) return false;
-  const Expansion d = dot(n1, n2);
+  const Expansion d = dot(n_, n2);
   if (!d.ok) return std::nullopt;
   return d.sign() > 0;
+}
+
+std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
+                                         const DirectionLabel& l1, const DirectionLabel& l2) {
+  return ExactDirection(A, B, l1).same_as(l2);
 }
 
 // Range (expansion.h's argument with degree 10): a non-zero |coordinate| >= 2^-40 is a multiple
@@ -188,9 +199,8 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
   // compressed: the same values in a few components, so that the products of
   // compare_delta2_exact stay short
   parts.D = compressed(difference(hi, lo));
-  parts.D2 = compressed(product(parts.D, parts.D));
   parts.nn = compressed(dot(n, n));
-  parts.ok = ok && parts.D2.ok && parts.nn.ok && parts.nn.sign() > 0;
+  parts.ok = ok && parts.D.ok && parts.nn.ok && parts.nn.sign() > 0;
   return parts;
 }
 
@@ -256,17 +266,66 @@ std::optional<int> compare_delta2_equal_part(const ExactDepthParts& p, const Exa
 }
 }  // namespace
 
+// The sign of D_p² n_q.n_q − D_q² n_p.n_p from each expansion's two largest components, with a
+// bound on what the rest can change; nullopt when the bound does not decide it. Near ties of
+// nearly parallel directions (aligned pairs: delta² equal to ~1e-16 relative, beyond the double
+// filter) are decided here at the cost of a few short products instead of the full ones.
+// Proof. An expansion x (nonoverlapping, increasing magnitude) is x' + x_t with x' its two
+// largest components and |x_t| <= t(x) = the sum of the other |c_i|, computed within a factor
+// (1 + 48u) (recursive summation of <= kExpansionCapacity terms); |x'| <= m(x) = |c_(n-1)| +
+// |c_(n-2)| within (1 + u). With a = D², a' = D'²: |a − a'| = |D − D'| |D + D'| <= t(D) (2 m(D)
+// + t(D)) =: t(a), and |a'| <= m(D)² =: m(a). For a product, |ab − a'b'| <= |a − a'| |b| + |a'|
+// |b − b'| <= t(a) (m(b) + t(b)) + m(a) t(b). The products a'b' and their difference are exact
+// (expansion.h), then rounded to v within err (approx_of); so the exact difference lies within
+// E + err of v, E the two products' bounds. The computed bound is inflated by (1 + 2^-40) for
+// its own few roundings (each <= u relative, far fewer than 2^13 of them) and by 2^-1000 for
+// products that underflow (each loses < 2^-1074). |v| > that bound gives the sign.
+namespace {
+struct Truncated {
+  Expansion top;
+  double m = 0.0, t = 0.0;
+};
+Truncated truncated(const Expansion& x) {
+  Truncated r;
+  const int k = x.n < 2 ? x.n : 2;
+  for (int i = x.n - k; i < x.n; ++i) r.top.push(x.c[i]), r.m += std::fabs(x.c[i]);
+  for (int i = 0; i < x.n - k; ++i) r.t += std::fabs(x.c[i]);
+  return r;
+}
+Truncated squared(const Truncated& d) {
+  Truncated r;
+  r.top = product(d.top, d.top);
+  r.m = d.m * d.m;
+  r.t = d.t * (2 * d.m + d.t);
+  return r;
+}
+std::optional<int> compare_delta2_truncated(const ExactDepthParts& p, const ExactDepthParts& q) {
+  const Truncated pd = squared(truncated(p.D)), pn = truncated(p.nn);
+  const Truncated qd = squared(truncated(q.D)), qn = truncated(q.nn);
+  const Expansion d = difference(product(pd.top, qn.top), product(qd.top, pn.top));
+  if (!d.ok) return std::nullopt;
+  const Approx v = approx_of(d);
+  const double E = pd.t * (qn.m + qn.t) + pd.m * qn.t + qd.t * (pn.m + pn.t) + qd.m * pn.t;
+  const double bound = (E + v.err) * (1.0 + 0x1p-40) + 0x1p-1000;
+  if (std::fabs(v.v) > bound) return v.v > 0 ? 1 : -1;
+  return std::nullopt;
+}
+}  // namespace
+
 std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q) {
   if (const std::optional<int> s = compare_delta2_equal_part(p, q)) return s;
   // Filter: the sign of the computed difference when it exceeds the computed error bound (the
   // subtraction's own rounding, relative u, within the factor 1 + 4u); exact expansions below.
   {
     constexpr double u = 0x1p-53;
-    const Approx a = times(approx_of(p.D2), approx_of(q.nn)), b = times(approx_of(q.D2), approx_of(p.nn));
+    const Approx dp = approx_of(p.D), dq = approx_of(q.D);
+    const Approx a = times(times(dp, dp), approx_of(q.nn)), b = times(times(dq, dq), approx_of(p.nn));
     const double d = a.v - b.v, bound = (a.err + b.err) * (1.0 + 4.0 * u) + 0x1p-1000;
     if (std::fabs(d) > bound) return d > 0 ? 1 : -1;
   }
-  const Expansion d = difference(product(p.D2, q.nn), product(q.D2, p.nn));
+  if (const std::optional<int> s = compare_delta2_truncated(p, q)) return s;
+  const Expansion d =
+      difference(product(product(p.D, p.D), q.nn), product(product(q.D, q.D), p.nn));
   if (!d.ok) return std::nullopt;
   return d.sign();
 }

@@ -41,12 +41,25 @@ Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const Directio
 std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
                                          const DirectionLabel& l1, const DirectionLabel& l2);
 
+// same_direction_exact against one label l1 for several l2: l1's exact normal computed once.
+class ExactDirection {
+ public:
+  ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l1);
+  std::optional<bool> same_as(const DirectionLabel& l2) const;  // same_direction_exact(A, B, l1, l2)
+
+ private:
+  const TetVertices& A_;
+  const TetVertices& B_;
+  detail::ExpVec n_;
+  bool ok_ = false;
+};
+
 // A candidate's definitions §4 depth in two exact parts, for comparing delta² = D²/(n.n) without
 // division: D = max_i n.s_i − min_j n.r_j and n.n, n the exact oriented candidate of the label.
 // ok = false when expansions cannot give them: a coordinate outside [2^-40, 2^40] (non-zero),
 // a parallel edge pair (its normal has degree 5: D² n.n would leave the range), or capacity.
 struct ExactDepthParts {
-  detail::Expansion D, D2, nn;  // D2 = D²
+  detail::Expansion D, nn;
   bool ok = false;
 };
 ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);

@@ -301,7 +301,7 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice&
 // retried without the edge pairs the doubles cannot resolve; when that fails too, the first
 // choice stands (uncertified) or the pair is declined, as the screens said.
 bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
-                     bool with_certificate) {
+                     bool with_certificate, bool* unresolved = nullptr) {
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);
   // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
@@ -309,6 +309,7 @@ bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* un
   const bool chosen =
       K.lo > fb.deg3 && pick_and_certify(K, fb, kInf, ch, geometry, unique, with_certificate);
   if (chosen && (!with_certificate || ch.certified)) return true;
+  if (unresolved) *unresolved = unresolved_edge_pairs(K, fb) != 0;
   // (Not where `unique` is asked: the bound of an unresolved pair is not strict, so a pick it
   // could tie with is never unique, and on aligned pairs the pick ties exactly with a parallel
   // face anyway: the caller's exact route would follow the retry's cost.)
@@ -327,13 +328,15 @@ bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Can
 }  // namespace
 
 bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
-                           Candidate* geometry, bool* unique, double* extent, bool* kernel_ran) {
+                           Candidate* geometry, bool* unique, double* extent, bool* kernel_ran,
+                           bool* unresolved) {
   SupersetLanes K;
   const bool ran = superset_kernel_scaled(A, B, K, e);
   if (kernel_ran) *kernel_ran = ran;
+  if (unresolved) *unresolved = false;
   if (!ran) return false;
   if (extent) *extent = K.extent;
-  return choice_of_lanes(K, ch, geometry, unique, true);
+  return choice_of_lanes(K, ch, geometry, unique, true, unresolved);
 }
 
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,

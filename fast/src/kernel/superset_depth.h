@@ -75,10 +75,15 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
 // power_scale.h's common exact case does not apply or the choice declines: the caller then
 // takes hot_path.h's general frame. `kernel_ran` (optional): true when the common exact case
 // applied (the kernel ran on the scaled pair), so that a false return is rigid_superset's own
-// decline on that pair, and an uncertified choice its uncertified choice.
+// decline on that pair, and an uncertified choice its uncertified choice. `unresolved`
+// (optional): when no certified choice was reached at the first try, whether the kernel found
+// edge pairs whose n the doubles cannot resolve (near_parallel_bound.h: aligned pairs); the
+// candidate list's lanes of such pairs are unclear, so quick_candidates.h would decline: a hint
+// for the caller's next route.
 bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
                            Candidate* geometry = nullptr, bool* unique = nullptr,
-                           double* extent = nullptr, bool* kernel_ran = nullptr);
+                           double* extent = nullptr, bool* kernel_ran = nullptr,
+                           bool* unresolved = nullptr);
 
 // A benchmark baseline only, NOT definitions §8: the same kernel and pick on the pair as given,
 // with none of the certification (no power-of-two rescaling, no certify pass, no exact path;

@@ -626,12 +626,9 @@ void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
       if (!in_s) T[m++] = P[j];
     }
     bool one = true;
-    const DirectionLabel first = unpack_label(label_code(set, T[0]));
-    for (int j = 1; j < m && one; ++j) {
-      const std::optional<bool> same =
-          same_direction_exact(*set.A, *set.B, first, unpack_label(label_code(set, T[j])));
-      one = same.value_or(false);
-    }
+    const ExactDirection first(*set.A, *set.B, unpack_label(label_code(set, T[0])));
+    for (int j = 1; j < m && one; ++j)
+      one = first.same_as(unpack_label(label_code(set, T[j]))).value_or(false);
     if (!one) continue;
     int chosen[kMax], c = 0;
     for (int j = 0; j < s; ++j) chosen[c++] = sorted[j];
@@ -831,26 +828,30 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
     return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;
   };
   if (k != 1 && k != kAccelWide) return {};  // the exact path reports the paper's k = 1 and 6
-  if (k == 1)
+  if (k == 1) {
+    // What the first branch learns, for the run's routes on the same rescaled pair: where the
+    // kernel ran and `unique` failed, rigid_and_accel1 there computes the same choice and
+    // fails too (it needs `unique`); with unresolved edge pairs the quick list declines.
+    // (Either route skipped is only time saved: the next one computes the same value.)
+    bool ran = false, unique = false, unresolved = false;
     return detail::fused_hot_path(
         A, B,
         // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
         // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
         // of the kernel's extent: the same maxima, minima and differences)
-        [&A, &B](Choice& ch, int& e) {
+        [&](Choice& ch, int& e) {
           Choice rigid;
           Candidate c;
-          bool unique = false;
           double extent = 0;
-          return rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent) &&
+          return rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved) &&
                  accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch);
         },
-        [](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
           Choice rigid;
           Candidate c;
-          if (rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
+          if (!(ran && !unique) && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
           QuickCandidates q;
-          if (quick_candidates(As, Bs, q)) {
+          if (!(ran && unresolved) && quick_candidates(As, Bs, q)) {
             ch = pdd2_accel(q, 1);
             return true;
           }
@@ -860,6 +861,7 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
           return true;
         },
         pick);
+  }
   return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick,
                  [](const QuickCandidates&, Choice&) { return false; });
 }
