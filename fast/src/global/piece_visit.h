@@ -203,9 +203,45 @@ class PieceVisit {
     // itself (estimated: ~1e-8 of it for |H| ~ 1e-8 R^2, gap ~ 1e-2 |H|). Such a
     // piece sends the pair to the exact pieces. On the paper's pairs it never triggers.
     const double E = 3 * h_error + 8 * kU * hnorm;
+    int pair_of[3];
+    planes(pair_of);
     for (int k = 0; k < 3; ++k)
-      if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here))) best.needs_exact = true;
+      if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here)) &&
+          !(pair_of[k] >= 0 && plane_accurate(pair_of[k], E)))
+        best.needs_exact = true;
     return true;
+  }
+
+  // The planes offer_eigenvectors takes (eigenvalues j, j + 1 within kDegenerate, paired in
+  // ascending order): pair_of[k] = j for both members, -1 for an eigenvalue taken alone.
+  void planes(int (&pair_of)[3]) const {
+    pair_of[0] = pair_of[1] = pair_of[2] = -1;
+    for (int k = 0; k < 2; ++k)
+      if (mu(k + 1) - mu(k) <= kDegenerate * std::fabs(mu(k + 1)) + 2 * m[k]) {
+        pair_of[k] = pair_of[k + 1] = k;
+        ++k;
+      }
+  }
+
+  // A plane (eigenvalues j, j + 1) whose vectors are accurate enough as a plane, whatever the
+  // gap inside it (an exactly double eigenvalue: symmetric aligned pairs), where the estimate
+  // 2 E^2 / gap above is no bound. The computed pairs are exact for H' = H + F, |F|_2 <= E
+  // (H's error and the solver's backward error, as above), so the computed plane P' is
+  // invariant under H' with eigenvalues mu_j <= mu_j+1, and for a unit w of P' (up to the
+  // vectors' own orthogonality error, a few u, covered by 16 u |H|) w^T H w lies in
+  // [mu_j - E, mu_j+1 + E]; every exact eigenvalue of H in the cluster is >= mu_j - E (Weyl).
+  // So whichever vector of P' offer_plane evaluates (the arc's middle, or each computed
+  // vector) is within (mu_j+1 - mu_j) + 2 E + 16 u |H| of the cluster's stationary value: within
+  // 1e-10 of the eigenvalue, beside the evaluation's kGlobalRel and the pruning's kPrune
+  // (1e-10 each: 3e-10 inside definitions §8's 1e-9). The arc must also meet the exact plane's
+  // cone: P' is tilted from the exact invariant plane by at most E / delta (Davis-Kahan, delta
+  // the distance to the third eigenvalue), required <= 1e-9, far inside the conditions'
+  // tolerance kSign = 1e-6.
+  bool plane_accurate(int j, double E) const {
+    const int third = j == 0 ? 2 : 0;
+    const double delta = std::min(std::fabs(mu(third) - mu(j)), std::fabs(mu(third) - mu(j + 1)));
+    const double spread = mu(j + 1) - mu(j) + 2 * E + 16 * kU * hnorm;
+    return spread <= 1e-10 * std::max(mu(j), lower_here) && E <= 1e-9 * delta;
   }
 
   V3 vector(int k) const {
