@@ -125,3 +125,65 @@ BOOST_AUTO_TEST_CASE(global_minimiser_takes_exact_enumerations) {
   BOOST_TEST(compared == 4);  // the family's 4 intersecting pairs
   BOOST_TEST(declined == 0);
 }
+
+// A double eigenvalue (symmetric aligned pairs: gaps of ~1e-19 beside eigenvalues of ~1e-3)
+// is taken as a plane on the double path (piece_visit.h's plane_accurate) instead of sending
+// the pair to the exact pieces, which took milliseconds. Pairs `aligned-2-106`,
+// `aligned-9-442` and `aligned-10-246` of `pdd generate --family aligned --seed 2 / 9 / 10
+// --count 1000`, the pairs of three seeds whose enumeration met such a plane; each exact value is
+// `pdd solve --engine reference`'s pdd2_global of the pair (its lower bound within 1e-12).
+BOOST_AUTO_TEST_CASE(double_eigenvalues_stay_in_doubles) {
+  struct Case {
+    TetVertices A, B;
+    const char* exact;
+  };
+  const Case cases[] = {
+      {{{{-3.5062469909220626, -1.737735460655986, 4.685418596745679},
+         {-4.064606358716736, -1.1793760928613126, 4.685418596745679},
+         {-4.064606358716736, -1.737735460655986, 5.243777964540352},
+         {-3.5062469909220626, -1.1793760928613126, 5.243777964540352}}},
+       {{{-3.58567839667384, -1.6978706536441206, 4.672583925099658},
+         {-4.144037764468513, -1.1395112858494472, 4.672583925099658},
+         {-4.144037764468513, -1.6978706536441206, 5.230943292894331},
+         {-3.58567839667384, -1.1395112858494472, 5.230943292894331}}},
+       "770294648834778934385293017459600739569257032722407631659722963/"
+       "47281695449962029579754208688841821549162802136759026501812224000"},
+      {{{{-0.7241668273057513, -2.17430759713932, -2.8637481033613055},
+         {1.1483039256768024, -2.17430759713932, -2.8637481033613055},
+         {-0.7241668273057513, -0.30183684415676626, -2.8637481033613055},
+         {-0.7241668273057513, -2.17430759713932, -0.9912773503787518}}},
+       {{{0.7997103281263889, -1.8518570277416997, -4.729680841812904},
+         {0.7997103281263889, -3.7243277807242534, -4.729680841812904},
+         {2.672181081108943, -1.8518570277416997, -4.729680841812904},
+         {0.7997103281263889, -1.8518570277416997, -2.8572100888303504}}},
+       "49943413496782325213506678317525171593282642340446609624772114693/"
+       "30195286851041787482554567775737987435788954763265787557562821189304320"},
+      {{{{-3.565390723200219, 0.9018292728370589, -1.599063893992815},
+         {-2.2595091485012975, 0.9018292728370589, -1.599063893992815},
+         {-2.2595091485012975, 0.9018292728370589, -0.2931823192938934},
+         {-2.2595091485012975, 2.2077108475359806, -0.2931823192938934}}},
+       {{{-3.8388621023725076, -0.4017962517128042, -0.9947656295455404},
+         {-3.8388621023725076, 0.9040853229861174, -0.9947656295455404},
+         {-2.532980527673586, 0.9040853229861174, -0.9947656295455404},
+         {-2.532980527673586, 0.9040853229861174, 0.31111594515338126}}},
+       "4591725926317378701245555944957639217103318787059032607750672507/"
+       "11215383268277739161133030883667830058032849160102051611187662783774720"},
+  };
+  for (const Case& c : cases) {
+    const double exact = mpq_class(c.exact).get_d();
+    // the public function (its start from the superset) and solve_pair's record
+    const fast::NormalDepth d = fast::pdd2_global(c.A, c.B);
+    BOOST_TEST(std::fabs(d.pd2 - exact) <= 1e-9 * exact, d.pd2 << " vs exact " << exact);
+    fast::SolveOptions o;
+    o.with_global = true;
+    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
+    BOOST_REQUIRE(!r.pdd2_global_error);
+    BOOST_TEST(std::fabs(r.pdd2_global - exact) <= 1e-9 * exact);
+    BOOST_TEST(!r.stats.slow_path);  // not in rationals
+    // and the enumeration itself, from solve_pair's bounds as above: in doubles
+    const double none[3] = {0, 0, 0};
+    const fast::GlobalOptimum g = fast::global_depth(c.A, c.B, none, r.pdd2_relaxed, {}, r.rigid_pd2);
+    BOOST_TEST(g.certified);
+    BOOST_TEST(!g.exact_value);
+  }
+}
