@@ -59,12 +59,6 @@ double max_abs(const std::vector<Vec3d>& g) {
   return m;
 }
 
-TetVertices at(const Mesh& m, const std::vector<Vec3d>& p, std::size_t e) {
-  TetVertices t;
-  for (int i = 0; i < 4; ++i) t[i] = p[m.tets[e][i]];
-  return t;
-}
-
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(energy_is_the_weighted_sum_of_the_pairs) {
