@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "exact/expansion.h"
 #include "pdd/tet_tables.h"
 
 namespace pdd::fast::detail {
@@ -118,11 +119,49 @@ bool bound_of_pair(const SupersetLanes& K, const FilterBounds& fb, int a, int b,
   return true;
 }
 
+namespace {
+
+// Edges a of A and b of B exactly parallel, shown in doubles (else false: not known): both edge
+// vectors are computed exactly (two_sum's error of each coordinate difference is 0) and every
+// component of eB × eA is exactly 0, f_i e_j and f_j e_i equal as exact products (two_product's
+// pairs equal; exact when the factors are 0 or of magnitude >= 2^-400, so that no product or
+// its error term underflows, checked). Parallel edges span no facet of A ⊕ (−B) (their sum is
+// a segment): no orientation of the pair is a facet normal, so lo2 = +inf (header). Grids and
+// copies of a mesh are full of them.
+bool exactly_parallel(const SupersetLanes& K, int a, int b) {
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  double e[3], f[3];
+  for (int k = 0; k < 3; ++k) {
+    double err_e, err_f;
+    two_sum(K.X[k][v], -K.X[k][u], e[k], err_e);
+    two_sum(K.X[k][4 + y], -K.X[k][4 + x], f[k], err_f);
+    if (err_e != 0.0 || err_f != 0.0) return false;
+    if ((e[k] != 0.0 && !(std::fabs(e[k]) >= 0x1p-400)) || (f[k] != 0.0 && !(std::fabs(f[k]) >= 0x1p-400)))
+      return false;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if ((f[i] == 0.0 || e[j] == 0.0) && (f[j] == 0.0 || e[i] == 0.0)) continue;  // 0 − 0 (axis edges)
+    double p, pe, q, qe;
+    two_product(f[i], e[j], p, pe);
+    two_product(f[j], e[i], q, qe);
+    if (p != q || pe != qe) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {
+  if (exactly_parallel(K, a, b)) {
+    lo2 = kInf;
+    return true;
+  }
   return bound_of_pair<false>(K, fb, a, b, lo2);
 }
 
 bool near_parallel_positive(const SupersetLanes& K, const FilterBounds& fb, int a, int b) {
+  if (exactly_parallel(K, a, b)) return true;  // no facet normal: nothing to be positive
   double unused;
   return bound_of_pair<true>(K, fb, a, b, unused);
 }
