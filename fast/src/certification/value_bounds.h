@@ -14,7 +14,7 @@
 //   (n ⟂ the constrained edge or face), so their common error is one error. Parallel edge pairs
 //   (n = (e.e)w − (w.e)e, degree 3): heights of degree 4, error <= 270 u L⁴ (filter_bounds.h).
 //   So every height has error <= e_h = E3/4 (E4/4 for a parallel pair).
-//   Nearly parallel edge pairs (n~ below the degree-2 filter, n exactly non-zero): n is taken
+//   Nearly parallel edge pairs (n~ below kExactNormalBelow E2, n exactly non-zero): n is taken
 //   exactly (expansion.h) and rounded, n~_k within 3u|n_k| (a nonoverlapping expansion summed in
 //   increasing order: its tail is below 2u of its largest term), and the heights are computed
 //   along n~ (candidate_directions.cpp, near_parallel_normal): with L the pair's extent, each
@@ -94,6 +94,15 @@ template <class C>
 inline DegreeBounds degree_bounds_of(const FilterBounds& fb, const C& c) {
   return c.own_bounds ? DegreeBounds{c.own_eh, c.own_en} : degree_bounds(fb, c.parallel);
 }
+
+// Which edge pairs take their normal exactly (candidate_directions.cpp's near_parallel_normal,
+// own_degree_bounds below): those whose computed n has every component <= kExactNormalBelow E2.
+// With the filter bounds their direction would be off by rho = sqrt(3) E2 / |n~| >= 2^-34
+// relative, beside definitions §8's 9e-10 budget for the whole value (kCertifyRel): such a pair
+// could not be certified as the minimum, nor ordered against it (edges parallel up to a mesh
+// generator's noise, ~1e-12, not the doubles' 1e-16). Random pairs meet one about once in 10^5
+// (an angle below ~0.03 degrees between edges of the pair's size).
+inline constexpr double kExactNormalBelow = 0x1p34;
 
 // The nearly parallel edge pair's bounds (see above): n~ its rounded exact normal, L the extent.
 inline DegreeBounds own_degree_bounds(const double* n, double L) {

@@ -128,7 +128,7 @@ struct Builder {
     return depth_positive(k, bound);
   }
 
-  // Nearly parallel edges (n~ below the degree-2 filter): n = eB × eA exactly (expansion.h);
+  // Nearly parallel edges (n~ below kExactNormalBelow E2): n = eB × eA exactly (expansion.h);
   // when it is not 0, the draft is redone along n rounded (n~_k within 3u|n_k|) with heights
   // along it, and `own` gets their bounds (value_bounds.h, own_degree_bounds). False when n is
   // exactly 0 (parallel or colinear) or the pair is outside the expansions' exact range.
@@ -236,7 +236,11 @@ struct Builder {
     if (in_range && max_abs3(c.n) <= fb.deg2 &&
         cross_zero(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]))
       return exactly_parallel(a, b);
-    if (max_abs3(c.n) <= fb.deg2 && !near_parallel_normal(a, b, c, own, parallel))
+    // n~ small (value_bounds.h, kExactNormalBelow): taken exactly, with its own bounds; where
+    // the expansions cannot, n~ within the degree-2 filter is classified exactly, and a larger
+    // one (certainly not 0) keeps the filter bounds
+    if (max_abs3(c.n) <= kExactNormalBelow * fb.deg2 && !near_parallel_normal(a, b, c, own, parallel) &&
+        (parallel || max_abs3(c.n) <= fb.deg2))
       return parallel ? exactly_parallel(a, b) : classify_edge_pair_exact(A, B, a, b);
     const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
     EdgePairClass k;
@@ -336,7 +340,8 @@ struct Builder {
       out.own_eh[k] = out.own_en[k] = 0.0;
       if (!depth_positive(k, fb.deg3)) return false;
     }
-    edge_lanes(p, fb.deg2, fb.deg3, out.edges);
+    // (a lane whose n~ is small is unclear: edge_pair_general takes its n exactly)
+    edge_lanes(p, kExactNormalBelow * fb.deg2, fb.deg3, out.edges);
     return edge_pairs();
   }
 };

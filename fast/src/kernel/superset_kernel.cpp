@@ -382,7 +382,7 @@ PDD_INLINE bool kernel_body(const TetVertices& A, const TetVertices& B, Superset
   edge_pair_values<kFull, kScaled>(A, pA, RX, K, full, lo, best, sb, small);
   if (kFull) {
     const FilterBounds fb = filter_bounds_of_extent(K.extent);
-    finish_lanes(fb.deg2, fb.deg3, *full);
+    finish_lanes(kExactNormalBelow * fb.deg2, fb.deg3, *full);  // (as build_candidates: the same verdicts)
   }
   K.lo = hmin(lo);
   K.vmin = hmin(best);
