@@ -111,7 +111,7 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
     // Not `unique` (aligned pairs: parallel faces tie exactly) or accel1 not certified: the
     // superset's certified rigid choice still gives the bound, the start and an upper bound
     // (the case-2 value along its candidate, or +inf), with no candidate list.
-    if (!have && rigid_and_case2(sp.A, sp.B, rigid, c, accel1.value)) have = true;
+    if (!have && rigid.certified) accel1.value = case2_upper(sp.A, sp.B, c), have = true;
     if (!have) {
       QuickCandidates q;
       if (quick_candidates(sp.A, sp.B, q)) {

@@ -13,7 +13,13 @@
 #include "pdd/compare/mesh_bench.h"
 #include "pdd/mesh.h"
 #include "pdd/pdd.h"
+#include "pdd/reference/candidate_directions.h"
+#include "pdd/reference/oriented_depth.h"
 #include "pdd/reference/solve_exact.h"
+
+// the fast engine's internals (pdd_fast_internal): the superset's rigid choice
+#include "kernel/power_scale.h"
+#include "kernel/superset_depth.h"
 
 using namespace pdd;
 
@@ -99,6 +105,44 @@ BOOST_AUTO_TEST_CASE(aligned_mesh_pairs_rarely_take_the_exact_path) {
     BOOST_TEST(slow * 100 <= c.slow_per_100 * n, c.name << ": " << slow << " of " << n << " on the slow path");
     BOOST_TEST(refined * 10 <= n, c.name << ": " << refined << " of " << n << " refined");
   }
+}
+
+// rigid_superset's `unique` (superset_depth.h) is what pdd2_accel1 takes without a candidate list:
+// the picked candidate must be the first of the exact order (delta² ascending, stable in
+// canonical order) over the exact engine's candidate list. On aligned pairs the pick ties
+// exactly with the parallel face and the edge pairs in its plane (same direction, same delta),
+// which `unique` accepts when they come after it: those ties are counted, and must occur.
+BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
+  std::size_t uniques = 0, tied = 0;
+  for (const Case& c : aligned_cases()) {
+    mesh::ContactOptions o;
+    o.variants = mesh::kRigid;
+    const auto contacts = mesh::contacts(c.a, c.b, o);
+    for (const auto& cp : contacts.pairs) {
+      const TetPair p{c.name, {}, mesh::element(c.a, cp.a), mesh::element(c.b, cp.b)};
+      const fast::detail::ScaledPair sp = fast::detail::power_scaled(p.A, p.B);
+      if (!sp.finite || !sp.exact) continue;
+      fast::Choice ch;
+      bool unique = false;
+      if (!fast::rigid_superset(sp.A, sp.B, ch, nullptr, &unique) || !unique) continue;
+      ++uniques;
+      const reference::ExactPair x = reference::to_exact(p);
+      const auto cands = reference::candidate_directions(x);
+      std::size_t first = 0, equal_to_first = 0;
+      std::vector<reference::Rational> d;
+      for (const auto& cand : cands) d.push_back(reference::oriented_depth_signed_square(x, cand.n));
+      for (std::size_t k = 1; k < cands.size(); ++k)
+        if (d[k] < d[first]) first = k;
+      for (std::size_t k = 0; k < cands.size(); ++k) equal_to_first += k != first && d[k] == d[first];
+      tied += equal_to_first > 0;
+      BOOST_TEST(cands[first].label == ch.label(),
+                 p.name << " " << cp.a << "," << cp.b << ": picked " << ch.label().str() << ", exact first "
+                        << cands[first].label.str());
+    }
+  }
+  BOOST_TEST_MESSAGE(uniques << " unique picks, " << tied << " of them tied exactly with later candidates");
+  BOOST_TEST(uniques > 100u);
+  BOOST_TEST(tied > 100u);
 }
 
 // The stacked case's geometry, which the benchmarks' "stacked" rows rely on: B's columns exactly

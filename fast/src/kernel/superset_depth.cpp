@@ -141,7 +141,7 @@ constexpr double kSmallRoot = 2e-11;
 // with_small: substitute kSmallRoot where small_root holds (else every bound is rigid_root_rel's).
 // extra_lo: a lower bound of the values of entries outside K's bound bits (+inf: none).
 inline __attribute__((always_inline)) void certify_pass(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
-                  bool* unique, bool with_small, double extra_lo) {
+                  bool* unique, bool with_small, double extra_lo, double& hi_pick) {
   const DegreeBounds db = degree_bounds(fb, false);
   // small_root's thresholds: D² >= eh2k (faces: fl(v·nn), within 3u of the D² that
   // rigid_root_rel's D = sqrt(v·nn) has, inside the margin above); n.n >= en2k (lanes:
@@ -176,17 +176,121 @@ inline __attribute__((always_inline)) void certify_pass(const SupersetLanes& K, 
     entry(dm * dm * inv, small_n & (eh2k <= dm * dm),
           [&] { return rigid_root_rel(dm, 1.0 / inv, db); }, picked_lane && c.sign < 0);
   }
-  ch.certified = certified_choice(upper_of(ch.value, r_pick), lo_all);
-  if (unique) *unique = ch.certified && upper_of(ch.value, r_pick) < lo_other;
+  hi_pick = upper_of(ch.value, r_pick);
+  ch.certified = certified_choice(hi_pick, lo_all);
+  if (unique) *unique = ch.certified && hi_pick < lo_other;
 }
 
 // The verdict with kSmallRoot, and where it fails (not certified, or not `unique` when asked)
 // the verdict with every bound exact: the same verdict as the exact bounds alone give (a pass
 // with kSmallRoot implies one without it, above).
+// hi_pick: the pick's certified upper bound (with the exact bound where the second pass ran).
 void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choice& ch,
-             bool* unique, double extra_lo) {
-  certify_pass(K, fb, c, ch, unique, true, extra_lo);
-  if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false, extra_lo);
+             bool* unique, double extra_lo, double& hi_pick) {
+  certify_pass(K, fb, c, ch, unique, true, extra_lo, hi_pick);
+  if (!ch.certified || (unique && !*unique)) certify_pass(K, fb, c, ch, unique, false, extra_lo, hi_pick);
+}
+
+// ---- `unique` through exact ties of direction (aligned pairs). A face picked on an aligned
+// pair ties exactly with the parallel face of the other tetrahedron and with the edge pairs
+// lying in its plane: one direction, one exact delta. When every entry of S that is not
+// certainly above the pick (its certified lower bound <= the pick's upper bound hi_pick) points
+// exactly the pick's way and comes after it in canonical order, the pick is still the first of
+// the exact order (stable in canonical order) over the candidate list: every other entry of S
+// is certainly above or tied after it; the list's other candidates (exactly parallel edge pairs,
+// left out of S) have exact delta >= PD² = the pick's and, being edge pairs, come after a face.
+// Those are the pairs where pdd2_accel1 needs no candidate list.
+//
+// Exact directions from structural zeros (candidate_directions.cpp's rule: for finite doubles a
+// coordinate difference computed as 0 is exactly 0, and a product with an exactly zero factor is
+// exactly 0; sufficient, not necessary, so "false" only sends the pair to the list) and signs
+// of degree-3 heights that clear their filter bound E3 (every such height and every difference
+// of two has computed error <= 108 u L³ < E3: near_parallel_bound.h).
+
+// Component k of the normal (p1 − p0) × (p2 − p0) of face f of A (t = 0) or B (t = 1), p the
+// face's vertices (kFace): exactly 0.
+bool normal_component_zero(const SupersetLanes& K, int t, int f, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3, o = 4 * t;
+  const int p0 = o + kFace[f][0], p1 = o + kFace[f][1], p2 = o + kFace[f][2];
+  return (K.X[i][p1] == K.X[i][p0] || K.X[j][p2] == K.X[j][p0]) &&
+         (K.X[j][p1] == K.X[j][p0] || K.X[i][p2] == K.X[i][p0]);
+}
+
+// Edge e of tetrahedron te exactly orthogonal to the normal of face f of the other one: every
+// term of the dot product has an exactly zero factor.
+bool edge_in_face_plane(const SupersetLanes& K, int te, int e, int f) {
+  const int x = 4 * te + kEdges[e][0], y = 4 * te + kEdges[e][1];
+  for (int k = 0; k < 3; ++k)
+    if (!(K.X[k][y] == K.X[k][x]) && !normal_component_zero(K, 1 - te, f, k)) return false;
+  return true;
+}
+
+// Face g (FV:g for g < 4, VF:(g − 4)) points exactly the way of face p of the other tetrahedron.
+// Parallel: two edges of g (edges of a triangle, never parallel) orthogonal to p's normal. The
+// same way: with heights along p's direction, g's opposite vertex w lies below g's plane when g
+// is A's face (FV: outward normal) and above it when g is B's (VF: B on the positive side); in
+// the kernel's heights H[.][p] (face_draft: hB = −H for an A face, hA = H for a B face) both read
+// H[v0][p] − H[w][p] > 0, v0 a vertex of g.
+bool face_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int g) {
+  const int tg = g / 4, w = g % 4;
+  if (p / 4 == tg) return false;  // two faces of one tetrahedron are never parallel
+  int in_plane = 0;
+  for (int e = 0; e < 6; ++e)
+    if (kEdges[e][0] != w && kEdges[e][1] != w) in_plane += edge_in_face_plane(K, tg, e, p % 4);
+  if (in_plane < 2) return false;
+  return K.H[kFace[w][0]][p] - K.H[w][p] > fb.deg3;
+}
+
+// Entry (lane, sign s) of S points exactly the way of face p. Its line: the edge of p's
+// tetrahedron lies in p (p's opposite vertex is off the edge) and the other edge is orthogonal
+// to p's normal, so n = eB × eA is parallel to it (n != 0: the lane is in S, not an exactly
+// parallel pair). Its way: p's opposite vertex is below p's plane for an A face (s·g < 0, g its
+// height in the lane, lane_geometry), above for a B face (s·q > 0).
+bool lane_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int lane, double s) {
+  const int a = lane / kLaneStride, b = lane % kLaneStride;
+  if (p < 4) {
+    const int m = kOffEdge[a][0] == p ? 0 : kOffEdge[a][1] == p ? 1 : -1;
+    if (m < 0 || !edge_in_face_plane(K, 1, b, p)) return false;
+    const double g = kOffFaces.eps[a][m] * K.G[kOffFaces.face[a][m]][b];
+    return std::fabs(g) > fb.deg3 && s * g < 0.0;
+  }
+  const int j = p - 4;
+  const int m = kOffEdge[b][0] == j ? 0 : kOffEdge[b][1] == j ? 1 : -1;
+  if (m < 0 || !edge_in_face_plane(K, 0, a, j)) return false;
+  const int f = 4 + kOffFaces.face[b][m];
+  const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
+  const double nb[3] = {K.NAB[0][f], K.NAB[1][f], K.NAB[2][f]};
+  const double q = off_sign_B(b, m) * dot(eA, nb);
+  return std::fabs(q) > fb.deg3 && s * q > 0.0;
+}
+
+// `unique` for a face pick c whose certificate found entries not certainly above it: true when
+// each of them points exactly the pick's way and comes after it (above). extra_lo: the lower
+// bound of the entries left out of K's bound bits (unresolved edge pairs), which must be
+// certainly above. Lower bounds as certify's exact pass computes them.
+bool ties_share_direction(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
+                          double hi_pick, double extra_lo) {
+  if (c.lane >= 0 || !(extra_lo > hi_pick)) return false;
+  const DegreeBounds db = degree_bounds(fb, false);
+  auto above = [&](double v, double r) { return lower_of(v, r) > hi_pick; };
+  for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
+    const int f = __builtin_ctz(bits);
+    if (f == c.face) continue;
+    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
+                      K.NAB[2][f] * K.NAB[2][f];
+    const double v = K.face_val[f];
+    if (above(v, rigid_root_rel(std::sqrt(v * nn), nn, db))) continue;
+    if (f < c.face || !face_along_face(K, fb, c.face, f)) return false;
+  }
+  for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
+    if (!above(dp * dp * inv, rigid_root_rel(dp, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, 1.0))
+      return false;
+    if (!above(dm * dm * inv, rigid_root_rel(dm, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, -1.0))
+      return false;
+  }
+  return true;
 }
 
 // The pick among the entries of K's tie band (face_bits, lane_bits) and its certificate
@@ -206,7 +310,11 @@ bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, double ext
   ch.value = c.value;
   ch.index = -1;
   ch.code = c.code;
-  if (with_certificate) certify(K, fb, c, ch, unique, extra_lo);
+  if (with_certificate) {
+    double hi_pick = kInf;
+    certify(K, fb, c, ch, unique, extra_lo, hi_pick);
+    if (unique && ch.certified && !*unique) *unique = ties_share_direction(K, fb, c, hi_pick, extra_lo);
+  }
   if (!geometry) return true;
   if (c.lane >= 0)
     lane_geometry(K, c, *geometry);
@@ -271,6 +379,16 @@ bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unr
 // aligned pair) spoil the kernel's screens: those pairs bounded by near_parallel_bound, the
 // choice made among the others. True only with a certified choice (then in ch, geometry,
 // unique); K is changed either way.
+// `unique` here: the pick is certainly below every entry of S (near_parallel_bound's lo2 bounds
+// the ±n entries of the nearly parallel pairs) — and the candidate list has one more kind of
+// candidate, that of an exactly parallel pair (its normal ⊥ both edges, definitions §3), which S
+// leaves out (lo2 = +inf: no facet). Its exact delta is >= PD², and equal only along a direction
+// attaining PD: a facet normal of M (the nearest point of ∂M to the origin lies inside a facet,
+// where the supporting plane is tangent to the ball B(0, PD)); with the pick unique that is the
+// pick's own direction, so the two tie exactly and the list orders them canonically. A face pick
+// (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
+// pair precedes its lane: then `unique` is false (conservatively: that pair may be exactly
+// parallel).
 bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice& ch,
                                Candidate* geometry, bool* unique) {
   const std::uint64_t unresolved = unresolved_edge_pairs(K, fb);
@@ -290,6 +408,9 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice&
   if (!pick_and_certify(K, fb, extra_lo, c, geometry ? &g : nullptr, unique ? &u : nullptr, true) ||
       !c.certified)
     return false;
+  const DirectionLabel l = c.label();
+  if (u && l.kind == ContactKind::EE && (unresolved & ((std::uint64_t{1} << (kLaneStride * l.a + l.b)) - 1)))
+    u = false;
   ch = c;
   if (geometry) *geometry = g;
   if (unique) *unique = u;
@@ -310,11 +431,7 @@ bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* un
       K.lo > fb.deg3 && pick_and_certify(K, fb, kInf, ch, geometry, unique, with_certificate);
   if (chosen && (!with_certificate || ch.certified)) return true;
   if (unresolved) *unresolved = unresolved_edge_pairs(K, fb) != 0;
-  // (Not where `unique` is asked: the bound of an unresolved pair is not strict, so a pick it
-  // could tie with is never unique, and on aligned pairs the pick ties exactly with a parallel
-  // face anyway: the caller's exact route would follow the retry's cost.)
-  if (with_certificate && !unique && choice_without_unresolved(K, fb, ch, geometry, unique))
-    return true;
+  if (with_certificate && choice_without_unresolved(K, fb, ch, geometry, unique)) return true;
   return chosen;
 }
 

@@ -139,15 +139,12 @@ bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const
 
 }  // namespace
 
-bool rigid_and_case2(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
-                     double& upper) {
-  if (!rigid_superset(As, Bs, rigid, &c) || !rigid.certified) return false;
+double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate& c) {
   const Valued x = deformable_valued(c, filter_bounds(As, Bs));
   double v = 0;
-  upper = certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r)) ? x.v
-          : accel1_compensated(As, Bs, c, v)                       ? v
-                                                                   : INFINITY;
-  return true;
+  return certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r)) ? x.v
+         : accel1_compensated(As, Bs, c, v)                       ? v
+                                                                  : INFINITY;
 }
 
 bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,

@@ -75,17 +75,16 @@ bool pdd2_relaxed_lanes(const QuickCandidates& q, Choice& ch);
 // rigid_superset's rigid choice and its candidate `c` (superset_depth.h), and `accel1`, the
 // case-2 value along c. True when both are certified (the rigid direction is the exact one,
 // `unique`, and accel1's own interval meets definitions §8); false: the caller takes the candidate
-// list.
+// list. On false, rigid.certified says that rigid and c still hold rigid_superset's certified
+// choice and candidate (only `unique` or accel1's interval failed): case2_upper's input.
 bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
                       Choice& accel1);
 
-// The same without `unique` (pdd2_global's start where the rigid direction is not certainly the
-// exact one: aligned pairs, whose parallel faces tie): rigid_superset's rigid choice, certified
-// (its value within definitions §8 of PD², its candidate c's exact value too), and `upper`, the
-// case-2 value along c where its own interval meets definitions §8, else +inf. Case 2 along c
-// >= the relaxed value along c >= pdd2_global (definitions §5, §9). False: no certified choice.
-bool rigid_and_case2(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
-                     double& upper);
+// pdd2_global's start where the rigid direction is not certainly the exact one (aligned pairs,
+// whose parallel faces tie), from rigid_and_accel1's certified rigid choice and its candidate c
+// on the rescaled pair: the case-2 value along c where its own interval meets definitions §8,
+// else +inf. Case 2 along c >= the relaxed value along c >= pdd2_global (definitions §5, §9).
+double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate& c);
 
 // Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
