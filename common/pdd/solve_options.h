@@ -3,6 +3,8 @@
 // Python module use the same names and defaults:
 //   with_global  (--no-global, with_global=False)  compute pdd2_global and its keys (default).
 //                Not `global`: that is a Python keyword.
+//   values       (fast engine, C++: `pdd mesh` and mesh_contacts set it from their variants)
+//                which definitions §5 values to compute (default: all).
 //   gradient     (--gradient, gradient=True)        also pdd2_global's gradient with respect to
 //                the eight vertices at their current positions (the pair as given;
 //                PairResult::pdd2_global_grad; definitions §9 says what it is).
@@ -17,6 +19,7 @@
 // no counter shared between threads.
 #pragma once
 
+#include "pdd/pair_result.h"
 #include "pdd/qp_formulation.h"
 
 namespace pdd::fast {
@@ -39,6 +42,17 @@ struct SolveOptions {
   // two engines may return different ones (smoke.json's nested-1, B symmetric in A's corner),
   // hence different gradients: each is valid (definitions §9, "Ties").
   bool gradient = false;
+  // Which definitions §5 values to compute: bit k is the value kValueKeys[k] of pair_result.h
+  // (the bits of pdd::mesh::Variant; `pdd mesh` and mesh_contacts pass their variants). The
+  // others are reported 0 with no label (q1_A, q1_B: the rest pose when pdd2 is not asked).
+  // The values an asked one is kept against (definitions §5's relations, in the doubles:
+  // fast/src/certification/value_relations.h) are computed too, and left out of the record the
+  // same way: rigid_pd2 always; pdd2 needs pdd2_static and pdd2_accel1, pdd2_accel6 and
+  // pdd2_relaxed need pdd2, with_global needs pdd2_relaxed. So an asked value has the same bits
+  // whatever else is asked (tests/fast/fast_batch_test.cpp). `pdd mesh`'s default (rigid,
+  // static, pdd2, accel1) skips pdd2_accel6, eq11_pd2 and pdd2_relaxed: about half of the
+  // record's time on the paper's pairs and on aligned ones (docs/performance.md).
+  unsigned values = (1u << kValueCount) - 1;
 };
 
 }  // namespace pdd::fast

@@ -72,6 +72,32 @@ constexpr unsigned kRelaxed = 64;
 constexpr unsigned kPositions = 128;
 constexpr unsigned kGlobal = 256;  // pdd2_global not representable (global_depth.h)
 
+// SolveOptions::values' bits: the value kValueKeys[k] of pair_result.h.
+enum ValueIndex : unsigned { kIdxRigid, kIdxEq11, kIdxStatic, kIdxPdd2, kIdxRelaxed, kIdxAccel1, kIdxAccel6 };
+constexpr unsigned bit(ValueIndex k) { return 1u << k; }
+constexpr unsigned kAllValues = (1u << kValueCount) - 1;
+
+// The values computed for the asked ones (solve_options.h): with every value each one is kept
+// against (value_relations.h's order), so that the asked ones are the full record's bit for
+// bit; definitions §9 is kept below pdd2_relaxed and started from its choice.
+unsigned computed_values(unsigned asked, bool global) {
+  unsigned c = (asked & kAllValues) | bit(kIdxRigid);
+  if (global) c |= bit(kIdxRelaxed);
+  if (c & (bit(kIdxRelaxed) | bit(kIdxAccel6))) c |= bit(kIdxPdd2);
+  if (c & bit(kIdxPdd2)) c |= bit(kIdxStatic) | bit(kIdxAccel1);
+  return c;
+}
+
+// The values not asked: 0 and no label; q1 the rest pose when pdd2 is not asked.
+void leave_out(const TetPair& pair, unsigned asked, PairResult<double>& r) {
+  for (std::size_t k = 0; k < kValueCount; ++k)
+    if (!(asked >> k & 1u)) {
+      record_value(r, k) = 0;
+      if (kLabelOfValue[k] >= 0) record_label(r, std::size_t(kLabelOfValue[k])).reset();
+    }
+  if (!(asked & bit(kIdxPdd2))) r.q1_A = pair.A, r.q1_B = pair.B;
+}
+
 // definitions §9 from the relaxed choice `rel` (its candidate's normal and label, when the double
 // path has one): value, normal, positions. Returns false when the value is not certified (not
 // representable).
@@ -109,9 +135,11 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
 // (deformable_depth.h), which see the same rescaled pair, so that both report the same values
 // and labels; the set's sweeps where those cannot decide (their results do not depend on the
 // hint, so the choice is the hot functions' fallback's too).
+// `computed` (computed_values): the values to compute; the others stay 0 and uncounted.
 unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const QuickCandidates* lanes,
                            PairResult<double>& r, bool& refined, bool& exact_q1, bool& global_slow,
-                           bool global) {
+                           bool global, unsigned computed) {
+  auto asked = [computed](ValueIndex k) { return (computed & bit(k)) != 0; };
   // a lane choice as a choice of the set (its index: the same label; same candidates, same order)
   auto from_lanes = [&](bool (*sweep)(const QuickCandidates&, Choice&), Choice& ch) {
     if (!lanes || !sweep(*lanes, ch)) return false;
@@ -128,37 +156,52 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   r.rigid_dir = label_of(set, rigid);
   missing |= rigid.certified ? 0 : kRigid;
   bool e11_ok = false, e11_refined = false;
-  r.eq11_pd2 = eq11_pd2(set, &e11_ok, &e11_refined);
-  missing |= e11_ok ? 0 : kEq11;
+  if (asked(kIdxEq11)) {
+    r.eq11_pd2 = eq11_pd2(set, &e11_ok, &e11_refined);
+    missing |= e11_ok ? 0 : kEq11;
+  }
   Choice st;
-  if (!from_lanes(pdd2_static_lanes, st)) st = pdd2_static(set, rigid.index);
-  r.pdd2_static = st.value;
-  r.pdd2_static_dir = label_of(set, st);
-  missing |= st.certified ? 0 : kStatic;
-  const Choice accel6 = pdd2_accel(set, kAccelWide);
-  r.pdd2_accel6 = accel6.value;
-  missing |= accel6.certified ? 0 : kAccel6;
-  const Choice accel1 = pdd2_accel(set, 1);
-  r.pdd2_accel1 = accel1.value;
-  missing |= accel1.certified ? 0 : kAccel1;
+  if (asked(kIdxStatic)) {
+    if (!from_lanes(pdd2_static_lanes, st)) st = pdd2_static(set, rigid.index);
+    r.pdd2_static = st.value;
+    r.pdd2_static_dir = label_of(set, st);
+    missing |= st.certified ? 0 : kStatic;
+  }
+  Choice accel6;
+  if (asked(kIdxAccel6)) {
+    accel6 = pdd2_accel(set, kAccelWide);
+    r.pdd2_accel6 = accel6.value;
+    missing |= accel6.certified ? 0 : kAccel6;
+  }
+  Choice accel1;
+  if (asked(kIdxAccel1)) {
+    accel1 = pdd2_accel(set, 1);
+    r.pdd2_accel1 = accel1.value;
+    missing |= accel1.certified ? 0 : kAccel1;
+  }
   Choice def;
-  if (!from_lanes(pdd2_lanes, def)) def = pdd2(set, accel6.index);
-  r.pdd2 = def.value;
-  r.pdd2_dir = label_of(set, def);
-  missing |= def.certified ? 0 : kDeformable;
+  if (asked(kIdxPdd2)) {
+    // (the sweep's result does not depend on its hint: deformable_depth.h)
+    if (!from_lanes(pdd2_lanes, def)) def = pdd2(set, accel6.index >= 0 ? accel6.index : rigid.index);
+    r.pdd2 = def.value;
+    r.pdd2_dir = label_of(set, def);
+    missing |= def.certified ? 0 : kDeformable;
+  }
   Choice rel;
-  if (!from_lanes(pdd2_relaxed_lanes, rel)) rel = pdd2_relaxed(set, def.index);
-  r.pdd2_relaxed = rel.value;
-  r.pdd2_relaxed_dir = label_of(set, rel);
-  missing |= rel.certified ? 0 : kRelaxed;
+  if (asked(kIdxRelaxed)) {
+    if (!from_lanes(pdd2_relaxed_lanes, rel)) rel = pdd2_relaxed(set, def.index);
+    r.pdd2_relaxed = rel.value;
+    r.pdd2_relaxed_dir = label_of(set, rel);
+    missing |= rel.certified ? 0 : kRelaxed;
+  }
   refined = rigid.refined || e11_refined || st.refined || accel6.refined || accel1.refined ||
             def.refined || rel.refined;
   exact_q1 = false;
-  if (def.index >= 0 && def.certified) {
+  if (asked(kIdxPdd2) && def.index >= 0 && def.certified) {
     deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
     // refined, or the double positions miss the contract: the exact ones for the label
     exact_q1 = def.refined || !positions_attain(pair, r, def.value);
-  } else {
+  } else if (asked(kIdxPdd2)) {
     missing |= kPositions;
   }
   if (global && !fill_global(pair, rel, set, rigid.certified ? rigid.value : 0.0, r, &global_slow))
@@ -265,8 +308,11 @@ PairResult<double> exact_path(const TetPair& pair, PairResult<double> r, bool gl
   return x;
 }
 
-// The record without the gradient; *slow_path, *refined_out: its stats (pdd.h).
-PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refined_out, bool global) {
+// The record without the gradient; *slow_path, *refined_out: its stats (pdd.h). `computed`
+// (computed_values): the values to compute; on return the values the record holds (every one
+// where the exact path gave the record).
+PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refined_out, bool global,
+                                unsigned& computed) {
   PairResult<double> r;
   r.name = pair.name;
   if (!detail::all_finite(pair.A) || !detail::all_finite(pair.B)) {
@@ -278,6 +324,7 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
     r.error = rejection_of(pair);
     if (r.error) return r;
     if (slow_path) *slow_path = true;
+    computed = kAllValues;
     return exact_path(pair, r, global);
   }
   // ~20 KB: on the heap to keep TBB worker stacks small; default-initialised (no zeroing).
@@ -298,7 +345,7 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   std::unique_ptr<QuickCandidates> lanes(new QuickCandidates);  // (~8 KB: off the stack as well)
   const bool have_lanes = quick_lanes(scaled.A, scaled.B, *lanes);
   unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes.get() : nullptr, r, refined,
-                                       exact_q1, global_slow, global);
+                                       exact_q1, global_slow, global, computed);
   PairResult<double> bad;
   bad.name = pair.name;
   bad.error = kNotRepresentable;
@@ -370,8 +417,12 @@ PairGradient<double> global_gradient(const TetPair& pair, const PairResult<doubl
 
 PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options) {
   bool slow = false, refined = false;
-  PairResult<double> r = solve_record(pair, &slow, &refined, options.with_global);
-  if (!r.error && r.intersecting) keep_exact_relations(r);
+  unsigned computed = computed_values(options.values, options.with_global);
+  PairResult<double> r = solve_record(pair, &slow, &refined, options.with_global, computed);
+  if (!r.error && r.intersecting) {
+    keep_exact_relations(r, computed);
+    leave_out(pair, options.values, r);
+  }
   r.stats.slow_path = slow;
   r.stats.refined = refined;
   if (options.gradient && options.with_global && !r.error) r.pdd2_global_grad = global_gradient(pair, r);

@@ -103,23 +103,20 @@ void clear_global(PairResult<R>& r, const TetVertices& A, const TetVertices& B) 
 PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsigned variants) {
   PairResult<double> r;
   // One solve_pair: for pdd2 and global (their positions come only from it; global's hot path
-  // is also slower than solve_pair on mesh pairs, pdd/mesh/contacts.h), eq11 (no separate call), and two
-  // or more variants besides rigid.
-  // pdd2_relaxed too: solve_pair keeps it at most pdd2 (definitions §5), which needs pdd2.
-  const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal | kRelaxed)) ||
+  // is also slower than solve_pair on mesh pairs, pdd/mesh/contacts.h), eq11 (no separate call),
+  // pdd2_relaxed and pdd2_accel6 (solve_pair keeps them against pdd2: value_relations.h), and two
+  // or more variants besides rigid; it computes the asked values and those they are kept
+  // against, no others (SolveOptions::values).
+  const bool needs_record = (variants & (kPdd2 | kEq11 | kGlobal | kRelaxed | kAccel6)) ||
                             __builtin_popcount(variants & ~unsigned(kRigid)) >= 2;
   if (needs_record) {
-    // definitions §9's search only when asked: it is most of solve_pair's time
+    // definitions §9's search only when asked: it is most of solve_pair's time; the other
+    // values only as asked too (solve_options.h: not asked, 0 and no label)
     fast::SolveOptions options;
     options.with_global = (variants & kGlobal) != 0;
+    options.values = variants & ~unsigned(kGlobal);
     r = fast::solve_pair(TetPair{"", {}, A, B}, options);
     if (r.error) return r;
-    for (std::size_t k = 0; k < kValueCount; ++k)
-      if (!(variants & (1u << k))) {
-        record_value(r, k) = 0;
-        if (kLabelOfValue[k] >= 0) record_label(r, kLabelOfValue[k]).reset();
-      }
-    if (!(variants & kPdd2)) r.q1_A = A, r.q1_B = B;
     if (!(variants & kGlobal)) clear_global(r, A, B);
     return r;
   }
@@ -134,17 +131,12 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
   };
   if (variants & kRigid) put(fast::rigid_pd2(A, B), r.rigid_pd2, &r.rigid_dir);
   if (variants & kAccel1) put(fast::pdd2_accel(A, B, 1), r.pdd2_accel1, nullptr);
-  // solve_pair keeps pdd2_static <= rigid_pd2 and pdd2_accel6 <= pdd2_accel1 (definitions §5,
-  // fast/src/solve_pair.cpp): the same here, against the same bounds, for the same doubles.
+  // solve_pair keeps pdd2_static <= rigid_pd2 (definitions §5, value_relations.h): the same
+  // here, against the same bound, for the same doubles.
   if (variants & kStatic) {
     put(fast::pdd2_static(A, B), r.pdd2_static, &r.pdd2_static_dir);
     const double bound = (variants & kRigid) ? r.rigid_pd2 : fast::rigid_pd2(A, B).pd2;
     if (r.pdd2_static > bound) r.pdd2_static = bound;
-  }
-  if (variants & kAccel6) {
-    put(fast::pdd2_accel(A, B, 6), r.pdd2_accel6, nullptr);
-    const double bound = (variants & kAccel1) ? r.pdd2_accel1 : fast::pdd2_accel(A, B, 1).pd2;
-    if (r.pdd2_accel6 > bound) r.pdd2_accel6 = bound;
   }
   return r;
 }

@@ -12,6 +12,7 @@
 #include "fast_test_util.h"
 #include "kernel/power_scale.h"
 #include "pdd/pdd.h"
+#include "structured_cells.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -117,6 +118,64 @@ BOOST_AUTO_TEST_CASE(skipping_the_global_search_changes_nothing_else) {
     BOOST_TEST(same(with, without), p.name);
   }
   BOOST_TEST(intersecting > 50);
+}
+
+// SolveOptions::values (solve_options.h): the asked values, their labels and (pdd2 asked) q1 are
+// the full record's bit for bit (value_relations.h orders the relations so that each value
+// depends on few others, and solve_pair computes those); the others are 0 with no label, q1 the
+// rest pose where pdd2 is not asked. definitions §9 too. Random pairs and aligned ones (grid
+// cells against cells of a shifted grid: ties, the candidate list's exact paths).
+BOOST_AUTO_TEST_CASE(asking_for_some_values_computes_them_alone) {
+  std::vector<TetPair> pairs = random_pairs(150, 78, true);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const Vec3d o = {0.5, -0.25, 0.125}, q = {o[0] + 0.37 * 0.3, o[1] + 0.21 * 0.3, o[2] + 0.13 * 0.3};
+      pairs.push_back(tet_pair(pdd::test::kuhn_cell_tet(o, 0.3, i), pdd::test::kuhn_cell_tet(q, 0.3, j), "kuhn"));
+      if (i < 5 && j < 5)
+        pairs.push_back(tet_pair(pdd::test::five_cell_tet(o, 0.3, i, false),
+                                 pdd::test::five_cell_tet(q, 0.3, j, false), "five"));
+    }
+  std::vector<unsigned> masks = {45u /* rigid, static, pdd2, accel1: pdd mesh's default */};
+  for (unsigned k = 0; k < kValueCount; ++k) masks.push_back(1u << k);
+  int intersecting = 0;
+  for (const TetPair& p : pairs) {
+    SolveOptions no_global;
+    no_global.with_global = false;
+    const PairResult<double> full = solve_pair(p, no_global);
+    BOOST_REQUIRE(!full.error);
+    intersecting += full.intersecting;
+    for (unsigned mask : masks) {
+      SolveOptions o = no_global;
+      o.values = mask;
+      const PairResult<double> r = solve_pair(p, o);
+      BOOST_TEST_CONTEXT(p.name << ", values " << mask) {
+        BOOST_TEST(!r.error);
+        BOOST_TEST(r.intersecting == full.intersecting);
+        for (std::size_t k = 0; k < kValueCount; ++k) {
+          const double v = record_value(r, k), f = record_value(full, k);
+          const int l = kLabelOfValue[k];
+          if (!(mask >> k & 1u)) {
+            BOOST_TEST(v == 0.0, kValueKeys[k]);
+            if (l >= 0) BOOST_TEST(!record_label(r, std::size_t(l)), kValueKeys[k]);
+            continue;
+          }
+          if (l >= 0) BOOST_TEST((record_label(r, std::size_t(l)) == record_label(full, std::size_t(l))), kValueKeys[k]);
+          BOOST_TEST(v == f, kValueKeys[k] << " " << v << " vs " << f);
+        }
+        const bool pdd2_asked = mask >> 3 & 1u;
+        BOOST_TEST((pdd2_asked ? r.q1_A == full.q1_A && r.q1_B == full.q1_B : r.q1_A == p.A && r.q1_B == p.B));
+      }
+    }
+    SolveOptions rigid_and_global;
+    rigid_and_global.values = 1u;
+    const PairResult<double> g = solve_pair(p, rigid_and_global), fg = solve_pair(p);
+    BOOST_TEST(g.pdd2_global == fg.pdd2_global, p.name);
+    BOOST_TEST((g.pdd2_global_normal == fg.pdd2_global_normal), p.name);
+    BOOST_TEST((g.q1_A_global == fg.q1_A_global && g.q1_B_global == fg.q1_B_global), p.name);
+    BOOST_TEST(g.pdd2 == 0.0, p.name);
+    BOOST_TEST(g.rigid_pd2 == fg.rigid_pd2, p.name);
+  }
+  BOOST_TEST(intersecting > 150);
 }
 
 // The hot paths over raw vertices (hot_path.h) decide finiteness inside power_scaled (one pass

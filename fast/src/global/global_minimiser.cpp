@@ -21,8 +21,8 @@ namespace {
 // pdd2_relaxed's candidate): solve_pair's record computes the rest of the chain of definitions
 // §5 and lowers along it (value_relations.h's keep_exact_relations, on the values scaled back).
 // The same here, from the same choices: pdd2_static and pdd2 from the lane sweeps (else the
-// list's sweeps with solve_pair's hints: the list gives the set's results, quick_candidates.h),
-// pdd2_accel6 and pdd2_accel1 from the list; false (decline) when one of them is not certified
+// list's sweeps: the list gives the set's results, quick_candidates.h), pdd2_accel1 from the
+// list; false (decline) when one of them is not certified
 // or leaves the double range, where solve_pair would take its exact path.
 // (solve_pair takes a lane choice only when its label is one of the list's candidates.)
 int index_of(const QuickCandidates& q, LabelCode code) {  // the first candidate with that label, or -1
@@ -32,43 +32,45 @@ int index_of(const QuickCandidates& q, LabelCode code) {  // the first candidate
 }
 bool listed(const QuickCandidates& q, const Choice& ch) { return index_of(q, ch.code) >= 0; }
 
-// The chain's choices, certified, lowered as keep_exact_relations lowers them (its order).
-bool lower_along_chain(int e, const Choice& rigid, const Choice& st, const Choice& accel6, const Choice& accel1,
+// The chain's choices, certified, lowered as keep_exact_relations lowers them (its order;
+// pdd2_global depends on pdd2_relaxed, pdd2, pdd2_static, pdd2_accel1 and rigid_pd2 there).
+bool lower_along_chain(int e, const Choice& rigid, const Choice& st, const Choice& accel1,
                        const Choice& def, const Choice& rel, double& value) {
-  if (!st.certified || !def.certified || !accel6.certified || !accel1.certified) return false;
+  if (!st.certified || !def.certified || !accel1.certified) return false;
   bool ok = true;
   auto back = [&](double v) { return detail::unscaled(v, 2 * -e, ok); };
   const double r = back(rigid.value), a1 = back(accel1.value);
-  double s = back(st.value), a6 = back(accel6.value), d = back(def.value), x = back(rel.value);
+  double s = back(st.value), d = back(def.value), x = back(rel.value);
   if (!ok) return false;
   auto at_most = [](double& v, double b) {
     if (v > b) v = b;
   };
   at_most(s, r);  // keep_exact_relations, in its order
-  at_most(a6, a1);
   at_most(d, s);
-  at_most(d, a6);
+  at_most(d, a1);
   if (std::isnormal(r / 2)) at_most(d, r / 2);
   at_most(x, d);
   at_most(value, x);
   return true;
 }
 
+// (pdd2's sweep does not depend on its hint, deformable_depth.h: solve_pair's is pdd2_accel6's
+// choice where it computes it, the rigid one here)
 bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Choice& rel, double& value) {
   Choice st, def;
   if (!pdd2_static_lanes(q, st) || !listed(q, st)) st = pdd2_static(q, rigid.index);
-  const Choice accel6 = pdd2_accel(q, kAccelWide), accel1 = pdd2_accel(q, 1);
-  if (!pdd2_lanes(q, def) || !listed(q, def)) def = pdd2(q, accel6.index);
-  return lower_along_chain(e, rigid, st, accel6, accel1, def, rel, value);
+  const Choice accel1 = pdd2_accel(q, 1);
+  if (!pdd2_lanes(q, def) || !listed(q, def)) def = pdd2(q, rigid.index);
+  return lower_along_chain(e, rigid, st, accel1, def, rel, value);
 }
 
 // The same on the candidate set, with solve_pair's calls where it has no lanes
-// (fill_intersecting: every choice from the set's sweeps, with its hints).
+// (fill_intersecting: every choice from the set's sweeps).
 bool lower_at_tie(const CandidateSet& set, int e, const Choice& rigid, const Choice& rel, double& value) {
   const Choice st = pdd2_static(set, rigid.index);
-  const Choice accel6 = pdd2_accel(set, kAccelWide), accel1 = pdd2_accel(set, 1);
-  const Choice def = pdd2(set, accel6.index);
-  return lower_along_chain(e, rigid, st, accel6, accel1, def, rel, value);
+  const Choice accel1 = pdd2_accel(set, 1);
+  const Choice def = pdd2(set, rigid.index);
+  return lower_along_chain(e, rigid, st, accel1, def, rel, value);
 }
 
 // definitions §9 from the relaxed choice `rel` (a candidate `c` of the list or set `cands`,
