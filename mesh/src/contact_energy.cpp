@@ -245,6 +245,7 @@ PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, 
   }
   fast::SolveOptions fo;
   fo.with_global = true;
+  fo.values = kRigid;  // definitions §9's fields alone are read (the same bits: solve_options.h)
   const PairResult<double> r = fast::solve_pair(TetPair{"", {}, Ta, Tb}, fo);
   if (!r.error && !r.pdd2_global_error) return solution_of(a, b, r);
   reference::SolveOptions so;

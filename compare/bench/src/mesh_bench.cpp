@@ -301,7 +301,7 @@ mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double ang
 }
 
 // One aligned case's meshes (A, B) on one core: contacts() `repeats` times (medians per stage),
-// then solve_pair's record statistics on up to 2000 intersecting pairs.
+// then solve_pair's record statistics (the values of `variants`) on up to 2000 intersecting pairs.
 AlignedRun aligned_run(const mesh::Mesh& A, const mesh::Mesh& B, unsigned variants, int repeats) {
   tbb::task_arena one(1);
   AlignedRun a;
@@ -319,8 +319,9 @@ AlignedRun aligned_run(const mesh::Mesh& A, const mesh::Mesh& B, unsigned varian
   a.intersecting = c.pairs.size();
   a.decision_ns = a.box_pairs ? median(dec) * 1e9 / double(a.box_pairs) : 0;
   a.depth_ns = a.intersecting ? median(dep) * 1e9 / double(a.intersecting) : 0;
-  fast::SolveOptions so;
+  fast::SolveOptions so;  // what the depth stage computes (mesh/src/contacts.cpp)
   so.with_global = (variants & mesh::kGlobal) != 0;
+  so.values = variants & ~unsigned(mesh::kGlobal);
   const std::size_t step = std::max<std::size_t>(1, c.pairs.size() / 2000);
   for (std::size_t k = 0; k < c.pairs.size(); k += step) {
     const auto r = fast::solve_pair(TetPair{"", {}, mesh::element(A, c.pairs[k].a), mesh::element(B, c.pairs[k].b)}, so);

@@ -536,7 +536,8 @@ void print_aligned_table(const MeshBenchReport& r, std::ostream& s) {
       << rpad(fmt("%.2fx", c.aligned.decision_ns / c.rotated.decision_ns), 13)
       << rpad(fmt("%.2fx", c.aligned.depth_ns / c.rotated.depth_ns), 11) << "\n";
   }
-  s << "  (slow path, refined: solve_pair's record statistics on up to 2000 intersecting pairs;\n"
+  s << "  (slow path, refined: solve_pair's record statistics for the variants timed, on up to 2000\n"
+       "   intersecting pairs;\n"
        "   target: aligned within 2x of rotated per box pair and per intersecting pair)\n";
 }
 

@@ -112,6 +112,7 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
   const bool global = variant == ResolveVariant::Global;
   fast::SolveOptions options;
   options.with_global = global;
+  options.values = kPdd2;  // its positions (and definitions §9's with `global`): no other value
   const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
   if (!r.error) {
     if (global && !r.pdd2_global_error && r.pdd2_global_normal) {
