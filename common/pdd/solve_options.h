@@ -49,7 +49,9 @@ struct SolveOptions {
   // fast/src/certification/value_relations.h) are computed too, and left out of the record the
   // same way: rigid_pd2 always; pdd2 needs pdd2_static and pdd2_accel1, pdd2_accel6 and
   // pdd2_relaxed need pdd2, with_global needs pdd2_relaxed. So an asked value has the same bits
-  // whatever else is asked (tests/fast/fast_batch_test.cpp). `pdd mesh`'s default (rigid,
+  // whatever else is asked (tests/fast/fast_batch_test.cpp) — where the full record is
+  // representable: at the edges of the double range a value not asked can make it "not
+  // representable" while the asked ones are. `pdd mesh`'s default (rigid,
   // static, pdd2, accel1) skips pdd2_accel6, eq11_pd2 and pdd2_relaxed: about 40% of the
   // record's time on the paper's pairs, 55% on aligned ones (docs/performance.md).
   unsigned values = (1u << kValueCount) - 1;

@@ -181,15 +181,19 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   }
   Choice def;
   if (asked(kIdxPdd2)) {
-    // (the sweep's result does not depend on its hint: deformable_depth.h)
-    if (!from_lanes(pdd2_lanes, def)) def = pdd2(set, accel6.index >= 0 ? accel6.index : rigid.index);
+    // Hinted by the rigid choice, as pdd2 and pdd2_relaxed below, the hot functions
+    // (deformable_depth.h: rigid_hint) and global_minimiser.cpp: the sweep's choice does not
+    // depend on its hint, but its certificate may (a candidate it skips is bounded from delta²
+    // alone), and with it whether the value is the double or the refined one: one hint keeps
+    // the bits the same whatever values are asked.
+    if (!from_lanes(pdd2_lanes, def)) def = pdd2(set, rigid.index);
     r.pdd2 = def.value;
     r.pdd2_dir = label_of(set, def);
     missing |= def.certified ? 0 : kDeformable;
   }
   Choice rel;
   if (asked(kIdxRelaxed)) {
-    if (!from_lanes(pdd2_relaxed_lanes, rel)) rel = pdd2_relaxed(set, def.index);
+    if (!from_lanes(pdd2_relaxed_lanes, rel)) rel = pdd2_relaxed(set, rigid.index);
     r.pdd2_relaxed = rel.value;
     r.pdd2_relaxed_dir = label_of(set, rel);
     missing |= rel.certified ? 0 : kRelaxed;

@@ -54,8 +54,7 @@ bool lower_along_chain(int e, const Choice& rigid, const Choice& st, const Choic
   return true;
 }
 
-// (pdd2's sweep does not depend on its hint, deformable_depth.h: solve_pair's is pdd2_accel6's
-// choice where it computes it, the rigid one here)
+// (every sweep hinted by the rigid choice, as solve_pair's: fill_intersecting says why)
 bool lower_at_tie(const QuickCandidates& q, int e, const Choice& rigid, const Choice& rel, double& value) {
   Choice st, def;
   if (!pdd2_static_lanes(q, st) || !listed(q, st)) st = pdd2_static(q, rigid.index);
@@ -164,12 +163,8 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   if (!rigid.certified) return std::nullopt;
   int index = rel_lanes ? index_of(*q, rel.code) : -1;  // the choice's candidate, as solve_pair finds it
   if (index < 0) {
-    // solve_pair's route when the sweep cannot decide: the list's sweep. solve_pair hints it
-    // with pdd2's choice, which it computes anyway; a sweep's result does not depend on its
-    // hint (deformable_depth.h: the hint only seeds the pruning, the choice is the first tied
-    // minimum either way), so the rigid choice seeds it here, as pdd2_relaxed_choice does:
-    // pdd2 and pdd2_accel6 computed only to hint it cost ~5x the sweep on pairs whose
-    // candidates tie exactly (structured grids, where the sweeps refine in rationals).
+    // solve_pair's route when the sweep cannot decide: the list's sweep, hinted by the rigid
+    // choice as there (fill_intersecting).
     rel = pdd2_relaxed(*q, rigid.index);
     index = index_of(*q, rel.code);
   }
