@@ -160,44 +160,40 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
     r.eq11_pd2 = eq11_pd2(set, &e11_ok, &e11_refined);
     missing |= e11_ok ? 0 : kEq11;
   }
-  Choice st;
-  if (asked(kIdxStatic)) {
-    if (!from_lanes(pdd2_static_lanes, st)) st = pdd2_static(set, rigid.index);
-    r.pdd2_static = st.value;
-    r.pdd2_static_dir = label_of(set, st);
-    missing |= st.certified ? 0 : kStatic;
-  }
-  Choice accel6;
+  // pdd2_static, pdd2 and pdd2_relaxed: the lane sweep's choice, else the set's, hinted by the
+  // rigid choice, as the hot functions (deformable_depth.h: rigid_hint) and
+  // global_minimiser.cpp: a sweep's choice does not depend on its hint, but its certificate may
+  // (a candidate it skips is bounded from delta² alone), and with it whether the value is the
+  // double or the refined one: one hint keeps the bits the same whatever values are asked.
+  auto labelled = [&](bool (*lanes_sweep)(const QuickCandidates&, Choice&), auto set_sweep, double& value,
+                      std::optional<DirectionLabel>& dir, unsigned bit) {
+    Choice ch;
+    if (!from_lanes(lanes_sweep, ch)) ch = set_sweep(set, rigid.index);
+    value = ch.value;
+    dir = label_of(set, ch);
+    missing |= ch.certified ? 0 : bit;
+    return ch;
+  };
+  Choice st, accel6, accel1, def, rel;
+  if (asked(kIdxStatic))
+    st = labelled(pdd2_static_lanes, [](const CandidateSet& s, int h) { return pdd2_static(s, h); },
+                  r.pdd2_static, r.pdd2_static_dir, kStatic);
   if (asked(kIdxAccel6)) {
     accel6 = pdd2_accel(set, kAccelWide);
     r.pdd2_accel6 = accel6.value;
     missing |= accel6.certified ? 0 : kAccel6;
   }
-  Choice accel1;
   if (asked(kIdxAccel1)) {
     accel1 = pdd2_accel(set, 1);
     r.pdd2_accel1 = accel1.value;
     missing |= accel1.certified ? 0 : kAccel1;
   }
-  Choice def;
-  if (asked(kIdxPdd2)) {
-    // Hinted by the rigid choice, as pdd2 and pdd2_relaxed below, the hot functions
-    // (deformable_depth.h: rigid_hint) and global_minimiser.cpp: the sweep's choice does not
-    // depend on its hint, but its certificate may (a candidate it skips is bounded from delta²
-    // alone), and with it whether the value is the double or the refined one: one hint keeps
-    // the bits the same whatever values are asked.
-    if (!from_lanes(pdd2_lanes, def)) def = pdd2(set, rigid.index);
-    r.pdd2 = def.value;
-    r.pdd2_dir = label_of(set, def);
-    missing |= def.certified ? 0 : kDeformable;
-  }
-  Choice rel;
-  if (asked(kIdxRelaxed)) {
-    if (!from_lanes(pdd2_relaxed_lanes, rel)) rel = pdd2_relaxed(set, rigid.index);
-    r.pdd2_relaxed = rel.value;
-    r.pdd2_relaxed_dir = label_of(set, rel);
-    missing |= rel.certified ? 0 : kRelaxed;
-  }
+  if (asked(kIdxPdd2))
+    def = labelled(pdd2_lanes, [](const CandidateSet& s, int h) { return pdd2(s, h); }, r.pdd2, r.pdd2_dir,
+                   kDeformable);
+  if (asked(kIdxRelaxed))
+    rel = labelled(pdd2_relaxed_lanes, [](const CandidateSet& s, int h) { return pdd2_relaxed(s, h); },
+                   r.pdd2_relaxed, r.pdd2_relaxed_dir, kRelaxed);
   refined = rigid.refined || e11_refined || st.refined || accel6.refined || accel1.refined ||
             def.refined || rel.refined;
   exact_q1 = false;
