@@ -41,6 +41,7 @@ using io::NumberWriter;
 using io::Progress;
 using io::close_error;
 using io::flush_error;
+using io::asked_keys;
 using io::result_json;
 using io::summary_line;
 using io::summary_number;
@@ -65,23 +66,12 @@ double as_double(const Rational& x) { return x.get_d(); }
 // The definitions §6 record of one contact, keys of unrequested variants dropped, a and b first.
 template <class R>
 Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWriter<R>& number) {
-  const Json full = result_json(c.result, number);
   Json j;
   j["a"] = c.a;
   j["b"] = c.b;
-  for (const auto& [key, value] : full.items()) {
-    if (key == "name") continue;
-    bool keep = true;
-    for (std::size_t k = 0; k < kValueCount; ++k) {
-      const bool on = variants & (1u << k);
-      if (key == kValueKeys[k] || (kLabelOfValue[k] >= 0 && key == kLabelKeys[kLabelOfValue[k]]))
-        keep = on;
-    }
-    if ((key == "q1_A" || key == "q1_B") && !(variants & mesh::kPdd2)) keep = false;
-    // definitions §9: pdd2_global, pdd2_global_normal, q1_A_global, q1_B_global, pdd2_global_lower
-    if (key.find("_global") != std::string::npos) keep = variants & mesh::kGlobal;
-    if (keep) j[key] = value;
-  }
+  const Json record = asked_keys(result_json(c.result, number), variants);
+  for (const auto& [key, value] : record.items())
+    if (key != "name") j[key] = value;
   return j;
 }
 

@@ -23,6 +23,7 @@
 #include "pdd/io/record_text.h"
 #include "pdd/io/result_json.h"
 #include "pdd/io/streaming.h"
+#include "pdd/mesh/variants.h"
 #include "pdd/pdd.h"
 
 namespace pdd::compare {
@@ -52,6 +53,7 @@ struct SolveArgs {
   int threads = 0;  // 0: all cores
   double global_gap = 1e-12;  // definitions §9's target for pdd2_global - pdd2_global_lower
   bool no_global = false;     // skip definitions §9: records without its keys
+  std::string variants = "all";  // the values computed and written (pdd mesh's names)
   bool gradient = false;      // add pdd2_global_grad
   std::string format = "jsonl";
 };
@@ -82,6 +84,22 @@ std::string record_note(const PairResult<R>& r, double gap) {
 }
 
 int run_solve(const SolveArgs& args) {
+  unsigned variants = 0;  // bit k < kValueCount: kValueKeys[k]; mesh::kGlobal: definitions §9
+  try {
+    variants = mesh::parse_variants(args.variants);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "pdd solve: --variants: " << e.what() << '\n';
+    return kExitUsage;
+  }
+  if (args.no_global) variants &= ~unsigned(mesh::kGlobal);
+  if (!variants) {
+    std::cerr << "pdd solve: --no-global leaves nothing of --variants " << args.variants << '\n';
+    return kExitUsage;
+  }
+  if (args.gradient && !(variants & mesh::kGlobal)) {
+    std::cerr << "pdd solve: --gradient needs pdd2_global ('global' in --variants, no --no-global)\n";
+    return kExitUsage;
+  }
   // The table and CSV formats have one column per scalar value; the gradient (8 x 3 numbers a
   // pair) has no column there, so the combination is refused rather than dropped.
   if (args.gradient && args.format != "jsonl") {
@@ -141,14 +159,14 @@ int run_solve(const SolveArgs& args) {
   reference::SolveOptions options;
   options.formulation = args.formulation == "reduced" ? QpFormulation::Reduced
                                                       : QpFormulation::Full;
-  options.with_global = !args.no_global;
+  options.with_global = (variants & mesh::kGlobal) != 0;
   options.gradient = args.gradient;
   reference::GlobalOptions budget;
   budget.gap = reference::Rational(args.global_gap);
   fast::SolveOptions fast_options;
   fast_options.with_global = options.with_global;
   fast_options.gradient = options.gradient;
-  const bool global = options.with_global;
+  fast_options.values = variants & ((1u << kValueCount) - 1);  // (the exact engine computes all)
   if (!args.quiet) {
     if (fast)
       std::cerr << "pdd solve: " << total << " pairs, fast engine\n";
@@ -184,7 +202,7 @@ int run_solve(const SolveArgs& args) {
         refined += r.stats.refined;
       }
       code = r.error || r.pdd2_global_error ? kExitPairRejected : kExitOk;
-      lines.done(k, record_row(fast_record(r, global), format), record_note(r, args.global_gap));
+      lines.done(k, record_row(fast_record(r, variants), format), record_note(r, args.global_gap));
     } else {
       reference::ExactResult r;
       r.name = e.pair.name;
@@ -193,7 +211,7 @@ int run_solve(const SolveArgs& args) {
       else
         r = solve_reference(e.pair, options, budget);
       code = r.error ? kExitPairRejected : kExitOk;
-      lines.done(k, record_row(exact_record(r, global), format), record_note(r, args.global_gap));
+      lines.done(k, record_row(exact_record(r, variants), format), record_note(r, args.global_gap));
     }
     for (int s = status.load(); code > s && !status.compare_exchange_weak(s, code);) {
     }
@@ -280,6 +298,14 @@ void add_solve_command(CLI::App& app, int& exit_code) {
                  "Skip pdd2_global, the deformable depth over every separating plane (its keys are "
                  "left out of the records): faster (fast engine: ~3.5 of ~13 us a pair; reference: "
                  "its branch and bound)");
+  cmd->add_option("--variants", args->variants,
+                  "Values to compute and write, comma-separated, as pdd mesh names them: rigid "
+                  "(rigid_pd2), eq11 (eq11_pd2), static (pdd2_static), pdd2 (pdd2, q1_A, q1_B), "
+                  "relaxed (pdd2_relaxed), accel1 (pdd2_accel1), accel6 (pdd2_accel6), global "
+                  "(pdd2_global and its keys), or all; a value's label comes with it, the others' "
+                  "keys are left out of the records. Fast engine: each value has the bits it has "
+                  "in the full record, and only it (and what it is kept against) is computed")
+      ->capture_default_str();
   CLI::Option* gradient =
       cmd->add_flag("--gradient", args->gradient,
                     "Add pdd2_global_grad: the gradient of pdd2_global with respect to the eight "

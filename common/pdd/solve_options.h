@@ -3,8 +3,9 @@
 // Python module use the same names and defaults:
 //   with_global  (--no-global, with_global=False)  compute pdd2_global and its keys (default).
 //                Not `global`: that is a Python keyword.
-//   values       (fast engine, C++: `pdd mesh` and mesh_contacts set it from their variants)
-//                which definitions §5 values to compute (default: all).
+//   values       (--variants, variants='all')       fast engine: which definitions §5 values to
+//                compute (default: all); the CLI and Python also leave the others' keys out
+//                and take definitions §9 (with_global) from the same list, as `pdd mesh` does.
 //   gradient     (--gradient, gradient=True)        also pdd2_global's gradient with respect to
 //                the eight vertices at their current positions (the pair as given;
 //                PairResult::pdd2_global_grad; definitions §9 says what it is).

@@ -118,10 +118,12 @@ py::list gradient_list(const pdd::PairGradient<R>& g) {
   return out;
 }
 
-// `global` false: without definitions §9's keys (the result was computed without it). The key
-// pdd2_global_grad is there when the result has the gradient (gradient=True).
+// The keys of the values in `variants` (the bits of pdd::mesh::Variant: bit k < kValueCount the
+// value kValueKeys[k] with its label, q1_A and q1_B with pdd2; bit kValueCount definitions §9's
+// keys), as `pdd solve --variants` writes them (io::asked_keys). The key pdd2_global_grad is
+// there when the result has the gradient (gradient=True).
 template <class R>
-py::dict record(const pdd::PairResult<R>& r, bool global) {
+py::dict record(const pdd::PairResult<R>& r, unsigned variants) {
   py::dict d;
   d["name"] = r.name;
   if (r.error) {  // as `pdd solve` writes it: the name and the reason, no values
@@ -129,12 +131,17 @@ py::dict record(const pdd::PairResult<R>& r, bool global) {
     return d;
   }
   d["intersecting"] = r.intersecting;
-  for (std::size_t k = 0; k < pdd::kValueCount; ++k) d[pdd::kValueKeys[k]] = number(pdd::record_value(r, k));
-  for (std::size_t k = 0; k < pdd::kLabelCount; ++k) d[pdd::kLabelKeys[k]] = label(pdd::record_label(r, k));
-  d["q1_A"] = positions(r.q1_A);
-  d["q1_B"] = positions(r.q1_B);
+  for (std::size_t k = 0; k < pdd::kValueCount; ++k)
+    if (variants >> k & 1u) d[pdd::kValueKeys[k]] = number(pdd::record_value(r, k));
+  for (std::size_t k = 0; k < pdd::kValueCount; ++k)
+    if ((variants >> k & 1u) && pdd::kLabelOfValue[k] >= 0)
+      d[pdd::kLabelKeys[pdd::kLabelOfValue[k]]] = label(pdd::record_label(r, pdd::kLabelOfValue[k]));
+  if (variants >> 3 & 1u) {  // pdd2 (kValueKeys[3])
+    d["q1_A"] = positions(r.q1_A);
+    d["q1_B"] = positions(r.q1_B);
+  }
   d["error"] = py::none();
-  if (!global) return d;
+  if (!(variants >> pdd::kValueCount & 1u)) return d;
   // definitions §9, in the order `pdd solve` writes them; None where the fast engine declined it
   if (r.pdd2_global_error) {
     for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global"}) d[key] = py::none();

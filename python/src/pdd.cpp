@@ -14,15 +14,40 @@
 
 #include "common.h"
 #include "long_call.h"
+#include "pdd/mesh/variants.h"
 #include "pdd/pdd.h"
 #include "record_columns.h"
 
 namespace pdd_python {
 namespace {
 
+// The fast engine's options for the values asked (pdd::mesh::Variant bits).
+pdd::fast::SolveOptions fast_options(unsigned variants, bool gradient) {
+  pdd::fast::SolveOptions o;
+  o.with_global = (variants & pdd::mesh::kGlobal) != 0;
+  o.gradient = gradient;
+  o.values = variants & ((1u << pdd::kValueCount) - 1);
+  return o;
+}
+
+// The values asked: variants= parsed as `pdd solve --variants` parses it, less definitions §9
+// when with_global=False; ValueError when nothing is left.
+unsigned asked_variants(py::handle variants_arg, bool global) {
+  unsigned v = 0;
+  try {
+    v = pdd::mesh::parse_variants(text_arg(variants_arg, "variants"));
+  } catch (const std::invalid_argument& e) {
+    value_error(std::string("variants: ") + e.what());
+  }
+  if (!global) v &= ~unsigned(pdd::mesh::kGlobal);
+  if (!v) value_error("with_global=False leaves nothing of variants='global'");
+  return v;
+}
+
 py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle formulation_arg,
-               py::handle name_arg, py::handle global_arg, py::handle gradient_arg) {
-  const bool global = bool_arg(global_arg, "with_global");
+               py::handle name_arg, py::handle global_arg, py::handle gradient_arg, py::handle variants_arg) {
+  const unsigned variants = asked_variants(variants_arg, bool_arg(global_arg, "with_global"));
+  const bool global = (variants & pdd::mesh::kGlobal) != 0;
   const bool gradient = bool_arg(gradient_arg, "gradient");
   check_gradient_needs_global(global, gradient);
   const std::string engine = text_arg(engine_arg, "engine");
@@ -37,10 +62,10 @@ py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle for
     pdd::PairResult<double> r;
     {
       py::gil_scoped_release release;
-      r = pdd::fast::solve_pair(pair, pdd::fast::SolveOptions{global, gradient});
+      r = pdd::fast::solve_pair(pair, fast_options(variants, gradient));
     }
     r.name = name;
-    return record(r, global);
+    return record(r, variants);
   }
   pdd::reference::SolveOptions options;
   options.formulation = formulation == "full" ? pdd::QpFormulation::Full : pdd::QpFormulation::Reduced;
@@ -57,7 +82,7 @@ py::dict solve(py::handle A, py::handle B, py::handle engine_arg, py::handle for
     }
   }
   r.name = name;
-  return record(r, global);
+  return record(r, variants);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -83,8 +108,9 @@ constexpr std::size_t kChunk = 1 << 15;
 constexpr std::size_t kWatchedPairs = 256;
 
 py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py::handle global_arg,
-                     py::handle gradient_arg, py::handle progress_arg) {
-  const bool global = bool_arg(global_arg, "with_global");
+                     py::handle gradient_arg, py::handle progress_arg, py::handle variants_arg) {
+  const unsigned variants = asked_variants(variants_arg, bool_arg(global_arg, "with_global"));
+  const bool global = (variants & pdd::mesh::kGlobal) != 0;
   const bool gradient = bool_arg(gradient_arg, "gradient");
   check_gradient_needs_global(global, gradient);
   const std::optional<int> threads = threads_arg(threads_in);
@@ -98,8 +124,9 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
   const std::size_t n = static_cast<std::size_t>(A.shape(0));
 
   // Outputs, allocated with the GIL held, filled without it.
-  RecordColumns out(n, /*exact=*/false, (1u << pdd::kValueCount) - 1, /*positions=*/true, global, gradient);
-  const pdd::fast::SolveOptions options{global, gradient};
+  RecordColumns out(n, /*exact=*/false, variants & ((1u << pdd::kValueCount) - 1),
+                    /*positions=*/(variants & pdd::mesh::kPdd2) != 0, global, gradient);
+  const pdd::fast::SolveOptions options = fast_options(variants, gradient);
   const double* a = A.data();
   const double* b = B.data();
   std::size_t slow_paths = 0;
@@ -148,7 +175,7 @@ py::dict solve_batch(py::handle A_in, py::handle B_in, py::handle threads_in, py
 // ---------------------------------------------------------------------------------------------
 // Docstrings: help(pdd.solve) reads like the README.
 
-constexpr const char* kSolveDoc = R"doc(solve(A, B, engine='fast', formulation='reduced', name='', with_global=True, gradient=False)
+constexpr const char* kSolveDoc = R"doc(solve(A, B, engine='fast', formulation='reduced', name='', with_global=True, gradient=False, variants='all')
 --
 
 One pair -> dict: every quantity of the output record (docs/definitions.md §6), as
@@ -175,6 +202,15 @@ gradient True: add "pdd2_global_grad", the gradient of pdd2_global with respect 
          norm's derivative at the displacement to q1_A_global, q1_B_global (docs/definitions.md §9 says why;
          how exact: §8). None where pdd2_global is None; 0 when not intersecting. Needs
          with_global=True (ValueError otherwise). `pdd solve --gradient`.
+variants comma-separated, which values to compute and return, as `pdd solve --variants`
+         and mesh_contacts name them: rigid (rigid_pd2), eq11 (eq11_pd2), static
+         (pdd2_static), pdd2 (pdd2, q1_A, q1_B), relaxed (pdd2_relaxed), accel1
+         (pdd2_accel1), accel6 (pdd2_accel6), global (pdd2_global and its keys), or "all"
+         (the default). A value comes with its label; the other values' keys are left out.
+         From the fast engine each value asked is the same double as with "all", and only
+         it and what it is kept against (docs/definitions.md §5's relations) is computed:
+         variants="rigid,pdd2" takes less than half the time of "all". with_global=False
+         removes "global" (nothing left: ValueError).
 
 Returns a dict with the keys of `pdd solve`'s JSON records (pdd.KEYS), in that order:
   name          the name given
@@ -224,7 +260,7 @@ Example:
   (Fraction(4, 5), 'VF:0', [Fraction(7, 3), Fraction(11, 6), Fraction(11, 6)])
 )doc";
 
-constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None)
+constexpr const char* kSolveBatchDoc = R"doc(solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None, variants='all')
 --
 
 N pairs -> dict of numpy arrays: the fast engine on all cores, with the GIL released; the
@@ -239,6 +275,8 @@ with_global  False: skip pdd2_global (PD_d² over every separating plane), as in
          (no pdd2_global* / q1_*_global arrays).
 gradient True: add "pdd2_global_grad", (N, 8, 3) float64, as in solve() (NaN where solve()
          gives None).
+variants which values to compute and return, as in solve(): the other values' arrays are
+         left out (q1_A, q1_B come with pdd2).
 progress None (the default) or False: silent. A callable progress(done, total): called
          from the calling thread with the GIL held, about every 0.05 s while pairs are
          computed when `done` (pairs computed so far) has grown, and once at the end with
@@ -286,10 +324,12 @@ void bind_pdd(py::module_& m) {
   const pdd::reference::SolveOptions defaults;
   m.def("solve", &solve, kSolveDoc, py::arg("A"), py::arg("B"), py::arg("engine") = "fast",
         py::arg("formulation") = pdd::to_string(defaults.formulation), py::arg("name") = "",
-        py::arg("with_global") = defaults.with_global, py::arg("gradient") = defaults.gradient);
+        py::arg("with_global") = defaults.with_global, py::arg("gradient") = defaults.gradient,
+        py::arg("variants") = "all");
   m.def("solve_batch", &solve_batch, kSolveBatchDoc, py::arg("A"), py::arg("B"),
         py::arg("threads") = py::none(), py::arg("with_global") = defaults.with_global,
-        py::arg("gradient") = defaults.gradient, py::arg("progress") = py::none());
+        py::arg("gradient") = defaults.gradient, py::arg("progress") = py::none(),
+        py::arg("variants") = "all");
 }
 
 }  // namespace pdd_python

@@ -38,20 +38,21 @@ def test_module_surface():
     for f in (pdd, pdd.solve, pdd.solve_batch, pdd.read_fixtures):
         assert f.__doc__ and len(f.__doc__) > 400, f
     single = inspect.signature(pdd.solve).parameters
-    assert list(single) == ["A", "B", "engine", "formulation", "name", "with_global", "gradient"]
+    assert list(single) == ["A", "B", "engine", "formulation", "name", "with_global", "gradient", "variants"]
     # pdd.h's SolveOptions defaults, as `pdd solve` has them
-    assert (single["formulation"].default, single["with_global"].default, single["gradient"].default) == \
-        ("reduced", True, False)
+    assert (single["formulation"].default, single["with_global"].default, single["gradient"].default,
+            single["variants"].default) == ("reduced", True, False, "all")
     batch = inspect.signature(pdd.solve_batch).parameters
-    assert list(batch) == ["A", "B", "threads", "with_global", "gradient", "progress"]
+    assert list(batch) == ["A", "B", "threads", "with_global", "gradient", "progress", "variants"]
     assert batch["threads"].default is None and batch["progress"].default is None
     assert batch["with_global"].default is True and batch["gradient"].default is False
     text = pydoc.render_doc(pdd.solve_batch, renderer=pydoc.plaintext)
-    for words in ("solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None)", "None or 0: all cores",
+    for words in ("solve_batch(A, B, threads=None, with_global=True, gradient=False, progress=None, variants='all')", "None or 0: all cores",
                   "progress(done, total)", "tqdm", "Ctrl-C", "KeyboardInterrupt", "bit for bit"):
         assert words in text, words
     text = pydoc.render_doc(pdd.solve, renderer=pydoc.plaintext)
-    for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True, gradient=False)", "fractions.Fraction",
+    for words in ("solve(A, B, engine='fast', formulation='reduced', name='', with_global=True, gradient=False, variants='all')",
+                  "fractions.Fraction",
                   "rigid_pd2", "pdd2_relaxed_dir", "q1_A", "ValueError", "definitions.md §8", "GIL"):
         assert words in text, words
 

@@ -195,6 +195,23 @@ run(0 "took the exact path" solve --engine fast --no-global --input ${WORK}/decl
 if(out MATCHES "_global" OR NOT out MATCHES "\"intersecting\":true,\"rigid_pd2\":1\\.52315146158976[0-9]*e-36")
   message(FATAL_ERROR "solve --no-global (fast): wrong record\n${out}")
 endif()
+# --variants: only the values asked (a value with its label, q1_A and q1_B with pdd2), each the
+# full record's (fixtures/golden/smoke.jsonl: nested-1 16/3, 4/5, 263/60; python/tests/test_variants.py
+# compares every value bit for bit); the other
+# values' keys left out; names as pdd mesh's; --no-global and --gradient keep their meaning.
+run(0 "" solve --engine fast --quiet --variants rigid,pdd2 --input ${FIXTURES}/smoke.json)
+if(NOT out MATCHES "^{\"name\":\"nested-1\",\"intersecting\":true,\"rigid_pd2\":5[.]333333333333333,\"pdd2\":0[.]8,\"rigid_dir\":\"FV:0\",\"pdd2_dir\":\"VF:0\",\"q1_A\":[^\n]*,\"q1_B\":[^\n]*,\"error\":null}\n"
+   OR out MATCHES "static|relaxed|accel|eq11|_global")
+  message(FATAL_ERROR "solve --variants rigid,pdd2: wrong records\n${out}")
+endif()
+run(0 "" ${SOLVE} --variants static --input ${FIXTURES}/smoke.json)
+if(NOT out MATCHES "^{\"name\":\"nested-1\",\"intersecting\":true,\"pdd2_static\":\"263/60\",\"pdd2_static_dir\":\"FV:0\",\"error\":null}\n")
+  message(FATAL_ERROR "solve --variants static (reference): wrong records\n${out}")
+endif()
+run(2 "--variants: unknown variant 'rigd'" solve --engine fast --variants rigid,rigd --input ${FIXTURES}/smoke.json)
+run(2 "--no-global leaves nothing" solve --engine fast --variants global --no-global --input ${FIXTURES}/smoke.json)
+run(2 "--gradient needs pdd2_global" solve --engine fast --variants pdd2 --gradient --input ${FIXTURES}/smoke.json)
+
 # --format table and csv: one row per pair under a header, the same values as decimals (exact
 # ones correctly rounded to 17 digits, marked '~' in the table: 16/3 and 4/5 below)
 run(0 "" ${SOLVE} --format table --input ${FIXTURES}/smoke.json)

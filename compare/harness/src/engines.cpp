@@ -60,26 +60,16 @@ std::vector<PairResult<double>> run_fast(const std::vector<FixtureEntry>& entrie
   return out;
 }
 
-namespace {
-Json without_global(Json j, bool global) {
-  if (!global)
-    for (const char* key : {"pdd2_global", "pdd2_global_normal", "q1_A_global", "q1_B_global", "pdd2_global_lower",
-                            "pdd2_global_error", "pdd2_global_grad"})
-      j.erase(key);
-  return j;
-}
-}  // namespace
-
-Json fast_record(const PairResult<double>& r, bool global) {
+Json fast_record(const PairResult<double>& r, unsigned variants) {
   static const NumberWriter<double> number = [](const double& x) { return Json(x); };
-  return without_global(result_json(r, number), global);
+  return io::asked_keys(result_json(r, number), variants);
 }
 
-Json exact_record(const reference::ExactResult& r, bool global) {
+Json exact_record(const reference::ExactResult& r, unsigned variants) {
   static const NumberWriter<reference::Rational> exact = [](const reference::Rational& q) {
     return Json(reference::to_string(q));
   };
-  return without_global(result_json(r, exact), global);
+  return io::asked_keys(result_json(r, exact), variants);
 }
 
 }  // namespace pdd::compare

@@ -17,6 +17,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "pdd/pair_result.h"
@@ -74,6 +75,27 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
   }
   return j;
 }
+
+// The record with only the keys of the values asked. `variants`: bit k < kValueCount asks for
+// kValueKeys[k] with its label (kLabelOfValue), q1_A and q1_B coming with pdd2 (bit 3); bit
+// kValueCount for definitions §9's keys (pdd2_global, its normal and positions,
+// pdd2_global_lower, pdd2_global_error, pdd2_global_grad) — the bits of pdd::mesh::Variant, as
+// `pdd solve --variants`, `pdd mesh --variants` and Python's variants= parse them. name,
+// intersecting and error stay; a rejected pair's record is unchanged.
+inline Json asked_keys(const Json& record, unsigned variants) {
+  Json j;
+  for (const auto& [key, value] : record.items()) {
+    bool keep = true;
+    for (std::size_t k = 0; k < kValueCount; ++k)
+      if (key == kValueKeys[k] || (kLabelOfValue[k] >= 0 && key == kLabelKeys[kLabelOfValue[k]]))
+        keep = variants >> k & 1u;
+    if (key == "q1_A" || key == "q1_B") keep = variants >> 3 & 1u;  // kValueKeys[3] = "pdd2"
+    if (key.find("_global") != std::string::npos) keep = variants >> kValueCount & 1u;
+    if (keep) j[key] = value;
+  }
+  return j;
+}
+static_assert(std::string_view(kValueKeys[3]) == "pdd2", "asked_keys: q1_A, q1_B come with bit 3");
 
 // The record written by result_json, read back; throws (nlohmann::json's exceptions, or
 // std::runtime_error for a malformed label) when a key is missing or mistyped.

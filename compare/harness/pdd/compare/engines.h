@@ -67,14 +67,17 @@ std::vector<reference::ExactResult> run_reference(const std::vector<io::FixtureE
 std::vector<PairResult<double>> run_fast(const std::vector<io::FixtureEntry>& entries,
                                          const fast::SolveOptions& options = {});
 
+// Every value and definitions §9: the default of fast_record and exact_record.
+inline constexpr unsigned kEveryValue = (2u << kValueCount) - 1;
+
 // The definitions §6 record of a fast result: numbers as JSON numbers that read back to the
-// same double.
-// `global` false: without definitions §9's keys (pdd2_global, pdd2_global_normal, q1_A_global,
-// q1_B_global, pdd2_global_lower, pdd2_global_grad), for results computed without it.
-// pdd2_global_grad is written when the result has it (the options asked for it).
-io::Json fast_record(const PairResult<double>& r, bool global = true);
+// same double. `variants`: the values whose keys the record has (io::asked_keys, result_json.h:
+// bit k < kValueCount the value kValueKeys[k], bit kValueCount definitions §9's keys), for
+// results computed with only those. pdd2_global_grad is written when the result has it (the
+// options asked for it) and §9 is asked.
+io::Json fast_record(const PairResult<double>& r, unsigned variants = kEveryValue);
 
 // definitions §6 record of an exact result: every number as an exact "p/q" string.
-io::Json exact_record(const reference::ExactResult& r, bool global = true);
+io::Json exact_record(const reference::ExactResult& r, unsigned variants = kEveryValue);
 
 }  // namespace pdd::compare
