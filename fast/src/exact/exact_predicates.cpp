@@ -184,7 +184,14 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
   if (label.kind != ContactKind::FV && label.kind != ContactKind::VF) {
     EdgePairKind kind;
     (void)edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
-    if (!ok || kind != EdgePairKind::Generic) return parts;
+    if (!ok || kind == EdgePairKind::Colinear) return parts;
+    if (kind == EdgePairKind::Parallel)  // (the header: the narrower range of degree 14)
+      for (const TetVertices* T : {&A, &B})
+        for (const Vec3d& p : *T)
+          for (double x : p) {
+            const double a = std::fabs(x);
+            if (a != 0.0 && !(a >= 0x1p-20 && a <= 0x1p20)) return parts;
+          }
   }
   const ExpVec n = oriented_normal_exp(A, B, label, ok);
   if (!ok || !n.ok()) return parts;
@@ -222,7 +229,7 @@ Approx approx_of(const Expansion& e) {
 }
 // x · y with its error bound: |x̃ỹ − xy| <= |x̃| e_y + |ỹ| e_x + e_x e_y, plus the product's
 // rounding u |x̃ỹ|; (1 + 4u) covers the rounding of the bound's own terms. The components are
-// multiples of 2^-920 (depth_parts_exact), so non-zero values and products are normal; a term
+// multiples of 2^-1008 (depth_parts_exact), so non-zero values and products are normal; a term
 // of the bound that underflows loses less than 2^-1074, which the caller's 2^-1000 covers.
 Approx times(const Approx& x, const Approx& y) {
   constexpr double u = 0x1p-53;

@@ -57,7 +57,13 @@ class ExactDirection {
 // A candidate's definitions §4 depth in two exact parts, for comparing delta² = D²/(n.n) without
 // division: D = max_i n.s_i − min_j n.r_j and n.n, n the exact oriented candidate of the label.
 // ok = false when expansions cannot give them: a coordinate outside [2^-40, 2^40] (non-zero),
-// a parallel edge pair (its normal has degree 5: D² n.n would leave the range), or capacity.
+// a colinear edge pair (no direction), or capacity. Range: every coordinate is then a multiple
+// of 2^-92 (its last bit); n.n has degree 4 and D 3 in them, so every term of compare_delta2_exact's
+// D_p² n_q.n_q (degree 10) is a multiple of 2^-920: normal (expansion.h's argument). A parallel
+// edge pair's n = (e.e) w − (w.e) e has degree 3, D 4, n.n 6: degree 14 in those products, so
+// its parts are given only when every non-zero |coordinate| of the pair is in [2^-20, 2^20]
+// (multiples of 2^-72, products of 14 multiples of 2^-1008, still normal; magnitudes below
+// (2^21)^14 times the splitter's 2^27, far from overflow).
 struct ExactDepthParts {
   detail::Expansion D, nn;
   bool ok = false;

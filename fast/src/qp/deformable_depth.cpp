@@ -451,8 +451,8 @@ constexpr int kMaxAccelContenders = kAccelWide + detail::kMaxRefined;
 template <class List>
 bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch) {
   const DeformableVariant variant;
-  double v[kMaxAccelContenders];
-  Pending p[kMaxAccelContenders];
+  double v[kMaxCandidates];
+  Pending p[kMaxCandidates];
   int best = -1;
   for (int j = 0; j < k; ++j) {
     v[j] = evaluate(set, chosen[j], variant, p[j]);
@@ -478,7 +478,7 @@ bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch) {
 // expansions cannot decide a comparison (pos then unspecified).
 template <class List>
 bool exact_delta_order(const List& set, const int* idx, int n, int* pos) {
-  ExactDepthParts parts[kMaxAccelContenders];
+  std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each, up to kMaxCandidates: on the heap)
   for (int j = 0; j < n; ++j) {
     parts[j] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[j])));
     if (!parts[j].ok) return false;
@@ -507,19 +507,19 @@ bool exact_delta_order(const List& set, const int* idx, int n, int* pos) {
 // by expansions (exact_delta_order) where they decide it, else in rationals; the value is
 // certified in doubles over the exact first k where the bounds allow (certify_first_k), else
 // the exact minimum of their case-2 values is evaluated (refine.h: refined).
+// Any number of contenders is ordered by expansions (a symmetric aligned pair, e.g. a Kuhn grid
+// against its copy shifted by half a cell along (1, 1, 1), ties 17 candidates exactly); only
+// the rationals' order, ~20 µs a contender, is limited to kMaxAccelContenders.
 template <class List>
 void refine_accel(const List& set, int k, const int* order, int m, double hi_chosen,
                   Choice& ch) {
-  constexpr int kMax = kMaxAccelContenders;
+  constexpr int kMax = kMaxCandidates;
   int idx[kMax], n = 0;
   if (order) {
     for (int r = 0; r < m; ++r) idx[n++] = order[r];
   } else {
     for (int i = 0; i < set.count; ++i)
-      if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen)) {
-        if (n == kMax) return;
-        idx[n++] = i;
-      }
+      if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen)) idx[n++] = i;
   }
   if (!set.A || n == 0) return;
   const int kk = k < n ? k : n;
@@ -531,6 +531,7 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
     for (int r = 0; r < kk; ++r) chosen[r] = idx[pos[r]];
     if (certify_first_k(set, chosen, kk, ch)) return;
   }
+  if (!sorted && n > kMaxAccelContenders) return;  // (the exact path is as cheap)
   if (order)
     for (int j = 0; j < n; ++j) pos[j] = j;
   const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
