@@ -187,6 +187,32 @@ double to_double(const R& x) {
   else return x.get_d();
 }
 
+// The exact engine's normal as doubles. Its witness has no fixed length, and a pair whose
+// depth is far below its extent gets components outside the double range (numerators of ~800
+// bits: get_d gives inf or 0); so the three are first scaled exactly by one power of two
+// that brings the largest magnitude into (1/2, 2) (bit lengths of numerator and denominator
+// bound log2 |x| within 1), then rounded. The direction is the witness's to rounding (a
+// component that underflows is below 2^-1000 of the largest).
+Vec3d rounded_direction(const std::array<Rational, 3>& n) {
+  long e = 0;
+  bool any = false;
+  for (const Rational& x : n) {
+    if (sgn(x) == 0) continue;
+    const long b = long(mpz_sizeinbase(x.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(x.get_den_mpz_t(), 2));
+    e = any ? std::max(e, b) : b;
+    any = true;
+  }
+  Vec3d out{0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    Rational q = n[k];
+    if (e > 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(e));
+    if (e < 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-e));
+    out[k] = q.get_d();
+  }
+  return out;
+}
+Vec3d rounded_direction(const std::array<double, 3>& n) { return n; }
+
 template <class R>
 PairSolution solution_of(std::size_t a, std::size_t b, const PairResult<R>& r) {
   PairSolution s;
@@ -198,7 +224,7 @@ PairSolution solution_of(std::size_t a, std::size_t b, const PairResult<R>& r) {
       s.qA[i][k] = to_double(r.q1_A_global[i][k]);
       s.qB[i][k] = to_double(r.q1_B_global[i][k]);
     }
-  for (int k = 0; k < 3; ++k) s.normal[k] = to_double((*r.pdd2_global_normal)[k]);
+  s.normal = rounded_direction(*r.pdd2_global_normal);
   return s;
 }
 

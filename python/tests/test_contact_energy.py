@@ -89,6 +89,25 @@ def test_exact_engine_agrees():
     assert np.abs(f["gradient"] - x["gradient"]).max() <= 1e-4 * np.abs(x["gradient"]).max()
 
 
+def test_a_pair_intersecting_by_rounding_takes_the_exact_engines_normal():
+    """A Kuhn cell and one of its copy shifted by 0.01 along (1, 1, 1): their diagonal faces are
+    coplanar but for the rounding of x + 0.01 and y + 0.01, so the pair intersects by ~1e-19.
+    The fast engine cannot certify pdd2_global there (its record says so); the energy takes the
+    exact engine's, whose witness normal has components outside the double range (numerators of
+    ~800 bits): it is scaled by a power of two before rounding, and E is that value weighted."""
+    VA = np.array([[0.0, 0.0, 0.5], [0.25, 0.0, 0.5], [0.25, 0.25, 0.5], [0.25, 0.25, 0.75]])
+    VB = np.array([[0.01, 0.01, 0.26], [0.26, 0.01, 0.51], [0.26, 0.01, 0.26], [0.26, 0.26, 0.51]])
+    T = np.array([[0, 1, 2, 3]])
+    assert pdd.solve(VA, VB)["pdd2_global_error"] is not None
+    exact = pdd.solve(VA, VB, engine="reference")["pdd2_global"]
+    assert 0 < exact < 1e-37
+    e = pdd.contact_energy(VA, T, VB, T, hessian=True, per_pair=True)
+    assert e["pairs"] == 1
+    assert e["pdd2_global"][0] == pytest.approx(float(exact), rel=1e-15)
+    assert e["energy"] == pytest.approx(e["weight"][0] * float(exact), rel=1e-15)
+    assert np.isfinite(e["gradient"]).all() and np.isfinite(e["hessian"].toarray()).all()
+
+
 def test_self_contact_and_errors():
     V, T = pdd.read_mesh(os.path.join(MESHES, "two-spheres.msh"))
     e = pdd.contact_energy(V, T)
