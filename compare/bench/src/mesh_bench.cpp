@@ -352,6 +352,14 @@ std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
     run(std::string(split == CubeSplit::Kuhn6 ? "Kuhn grids" : "5-tetrahedra grids") + ", one shifted by a non-grid offset",
         A, B, moved(B, {0, 0, 0}, 0.3));
   }
+  {  // a Kuhn grid against its copy shifted by half a cell along (1, 1, 1): B's vertices on A's
+     // cube diagonals, diagonal edges colinear, diagonal faces coplanar, candidates tied in
+     // symmetric groups (the cell a power of two, so that the shift is exact)
+    const double hp = std::ldexp(1.0, -int(std::ceil(std::log2(double(n)))));
+    const mesh::Mesh A = make_structured_block({n, n, n}, hp, {0, 0, 0}, CubeSplit::Kuhn6);
+    const mesh::Mesh B = make_structured_block({n, n, n}, hp, {hp / 2, hp / 2, hp / 2}, CubeSplit::Kuhn6);
+    run("Kuhn grids, one shifted half a cell along (1, 1, 1)", A, B, moved(B, {0, 0, 0}, 0.3));
+  }
   {  // a jittered (unstructured-looking) mesh against a copy of itself shifted off the grid
     const mesh::Mesh A = make_bench_ball(std::size_t(6) * n * n * n, {0, 0, 0}, 1, {1, 2, 3}, 0.3, 7);
     run("a jittered mesh against its shifted copy", A, moved(A, {0.061, 0.043, 0.029}, 0),
