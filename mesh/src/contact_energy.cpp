@@ -191,8 +191,9 @@ double to_double(const R& x) {
 // depth is far below its extent gets components outside the double range (numerators of ~800
 // bits: get_d gives inf or 0); so the three are first scaled exactly by one power of two
 // that brings the largest magnitude into (1/2, 2) (bit lengths of numerator and denominator
-// bound log2 |x| within 1), then rounded. The direction is the witness's to rounding (a
-// component that underflows is below 2^-1000 of the largest).
+// bound log2 |x| within 1), then converted (mpq_get_d: truncated, relative error < 2^-52). The
+// direction is the witness's to that error (a component that underflows is below 2^-1000 of the
+// largest).
 Vec3d rounded_direction(const std::array<Rational, 3>& n) {
   long e = 0;
   bool any = false;

@@ -172,6 +172,10 @@ std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices
 // generic edge pairs), heights and D degree 3, n.n degree 4, D² n.n degree 10: every term is a
 // multiple of 2^-920 (a double, nothing lost to underflow). Magnitudes: differences < 2^41, so
 // |D² n.n| < (3 · 2^125)² · 3 · 2^166 < 2^430, far below overflow with the splitter's 2^27.
+// A parallel edge pair (n = (e.e) w − (w.e) e: degree 3, D 4, n.n 6, D² n.n 14) only with every
+// non-zero |coordinate| in [2^-20, 2^20]: multiples of 2^-72, so every term of degree <= 14 is a
+// multiple of 2^-1008 (normal); differences < 2^21, D < 36 · 2^84, n.n < 108 · 2^126, so
+// |D² n.n| < 2^312 (2^339 with the splitter's 2^27).
 ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
   ExactDepthParts parts;
   for (const TetVertices* T : {&A, &B})

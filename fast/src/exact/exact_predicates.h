@@ -63,7 +63,7 @@ class ExactDirection {
 // edge pair's n = (e.e) w − (w.e) e has degree 3, D 4, n.n 6: degree 14 in those products, so
 // its parts are given only when every non-zero |coordinate| of the pair is in [2^-20, 2^20]
 // (multiples of 2^-72, products of 14 multiples of 2^-1008, still normal; magnitudes below
-// (2^21)^14 times the splitter's 2^27, far from overflow).
+// 2^339, far from overflow: exact_predicates.cpp).
 struct ExactDepthParts {
   detail::Expansion D, nn;
   bool ok = false;
