@@ -309,7 +309,8 @@ void add_solve_command(CLI::App& app, int& exit_code) {
   CLI::Option* gradient =
       cmd->add_flag("--gradient", args->gradient,
                     "Add pdd2_global_grad: the gradient of pdd2_global with respect to the eight "
-                    "rest vertices (A's four, then B's), 8 x [x, y, z]; null where pdd2_global is");
+                    "vertices at their current positions (the pair as given; A's four, then B's), "
+                    "8 x [x, y, z]; null where pdd2_global is");
   gradient->excludes("--no-global");
   cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
   cmd->callback([args, &exit_code] { exit_code = run_solve(*args); });

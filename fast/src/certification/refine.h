@@ -21,10 +21,14 @@
 // contacts whose double error bound exceeds 1e-9 relative), instead of the whole exact path.
 #pragma once
 
+#include <algorithm>
+#include <limits>
 #include <optional>
 
 #include "exact/exact_candidate.h"
 #include "kernel/candidate_directions.h"
+#include "certification/tie_tolerance.h"
+#include "certification/value_bounds.h"
 #include "kernel/rigid_depth.h"
 
 namespace pdd::fast::detail {
@@ -68,6 +72,109 @@ bool refine_minimum(const List& s, Lo lo, double hi, ExactValue exact_value, Cho
   ch.value = d;
   ch.index = bi;
   ch.code = label_code(s, bi);
+  ch.certified = ch.refined = true;
+  return true;
+}
+
+// After refine_minimum (more than kMaxRefined contenders): a minimum the double bounds could
+// not certify, certified on tighter intervals.
+// Input:  lo and hi as for refine_minimum; `interval(i, v, r)`: candidate i's value v and root
+//         bound r (value_bounds.h: its exact value lies in [lower_of(v, r), upper_of(v, r)]),
+//         false when i is not in the family (the callers give compensated_heights.h's where
+//         they apply: heights within u of themselves plus a u^2 term, where the engine's
+//         doubles carry u L^3; else the double one); `exact_value` as for refine_minimum;
+//         `tie_order(c, n)`: for candidate indices c[0..n) ascending in canonical order, the
+//         position of the first exact minimum, or -1 when the caller cannot tell.
+// Output: the choice (value, label), certified = refined = true; or false, ch unchanged.
+// Method and proof. The candidates with lo(i) <= hi, by ascending lo(i), take their interval
+// until the next lo(i) exceeds H, the least upper bound so far (the rest cannot be least: their
+// exact values exceed H >= x*, the exact minimum). Where an interval reaching H is still too
+// wide to certify (a parallel edge pair, a margin within its bound), the exact value is taken,
+// at most kMaxRefined of them, rounded once (within 2^-52 of it). So x* lies in [lo_min, H],
+// lo_min the least lower bound over every candidate; the choice, the least value (the first in
+// canonical order among equal ones), is certified when its interval and lo_min pass
+// certified_choice: its value and its label's exact value are then within the contract of x*.
+// Near ties (another interval reaching below the choice's upper bound) may each be the exact
+// minimum and each is within the contract of it (definitions §8 lets either side be named):
+// tie_order orders them exactly where it can, so the label is the exact engine's; else the
+// first in canonical order is named, the exact engine's too when the tie is exact.
+// The pairs that need it: contacts made by rounding (a grid against its copy shifted by a
+// non-dyadic offset: faces that coincide in exact arithmetic overlap by ~1e-17 of the size
+// once the shifted coordinates are rounded), where no double value has a correct digit: ~20
+// compensated candidates instead of the whole exact path (~0.5 ms).
+template <class List, class Lo, class Interval, class ExactValue, class TieOrder>
+bool refine_tight(const List& s, Lo lo, double hi, Interval interval, ExactValue exact_value, TieOrder tie_order,
+                  Choice& ch) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!s.A) return false;
+  // The candidates by ascending lower bound; each takes its tight interval until the next
+  // lower bound exceeds H (the least upper bound so far): the rest cannot be least.
+  int idx[kMaxCandidates], m = 0;
+  double l[kMaxCandidates], lo_min = kInf;  // lo_min: first over the candidates above hi
+  for (int i = 0; i < s.count; ++i) {
+    const double y = lo(i), x = y >= 0.0 ? y : 0.0;  // (NaN: no bound)
+    if (x > hi) {
+      lo_min = x < lo_min ? x : lo_min;
+      continue;
+    }
+    int t = m++;
+    for (; t > 0 && x < l[t - 1]; --t) idx[t] = idx[t - 1], l[t] = l[t - 1];
+    idx[t] = i, l[t] = x;
+  }
+  double v[kMaxCandidates], lower[kMaxCandidates], upper[kMaxCandidates], H = kInf;
+  int n = 0;
+  for (; n < m && !(l[n] > H); ++n) {
+    double r = kInf;
+    if (!interval(idx[n], v[n], r)) {
+      v[n] = lower[n] = upper[n] = kInf;  // not in the family
+      continue;
+    }
+    lower[n] = r < 1 ? lower_of(v[n], r) : 0.0;
+    upper[n] = r < 1 ? upper_of(v[n], r) : kInf;
+    if (!(lower[n] >= 0.0)) lower[n] = 0.0;  // (NaN)
+    if (!(upper[n] >= lower[n])) upper[n] = v[n] = kInf;  // (NaN: no value; its exact one is due)
+    H = upper[n] < H ? upper[n] : H;
+  }
+  if (n == 0) return false;
+  if (n < m) lo_min = l[n] < lo_min ? l[n] : lo_min;  // the ones not reached (ascending)
+  m = n;
+  int exact = 0;
+  std::optional<ExactFrame> f;
+  // contender j exactly (rounded once: within 2^-52 of it)
+  auto take_exact = [&](int j) {
+    if (!f) f = exact_frame(*s.A, *s.B);
+    Q x;
+    if (!exact_value(exact_candidate(*f, unpack_label(label_code(s, idx[j]))), x)) {
+      v[j] = lower[j] = upper[j] = kInf;  // not in the family
+      return true;
+    }
+    bool ok = true;
+    const double d = rounded_value(unscaled(*f, x, 2), ok);
+    if (!ok) return false;
+    v[j] = d, lower[j] = d * (1 - 0x1p-52), upper[j] = d * (1 + 0x1p-52);
+    return true;
+  };
+  for (int j = 0; j < m; ++j)
+    if (lower[j] <= H && !certified_choice(upper[j], lower[j]) && (exact++ == kMaxRefined || !take_exact(j)))
+      return false;
+  int b = 0;  // the first least value in canonical order (the intervals are tight: no tie band)
+  for (int j = 1; j < m; ++j) b = v[j] < v[b] || (v[j] == v[b] && idx[j] < idx[b]) ? j : b;
+  if (!(v[b] > 0.0) || !(v[b] < kInf)) return false;
+  for (int j = 0; j < m; ++j) lo_min = lower[j] < lo_min ? lower[j] : lo_min;
+  if (!certified_choice(upper[b], lo_min)) return false;
+  // near ties (above): ordered by tie_order, else the first in canonical order
+  int ties[kMaxCandidates], cand[kMaxCandidates], t = 0;
+  for (int j = 0; j < m; ++j)
+    if (lower[j] <= upper[b] && v[j] < kInf) ties[t++] = j;
+  if (t > 1) {
+    std::sort(ties, ties + t, [&idx](int x, int y) { return idx[x] < idx[y]; });
+    for (int k = 0; k < t; ++k) cand[k] = idx[ties[k]];
+    const int first = tie_order(cand, t), w = ties[first >= 0 ? first : 0];
+    if (certified_choice(upper[w], lo_min)) b = w;  // (its interval within the contract too)
+  }
+  ch.value = v[b];
+  ch.index = idx[b];
+  ch.code = label_code(s, idx[b]);
   ch.certified = ch.refined = true;
   return true;
 }

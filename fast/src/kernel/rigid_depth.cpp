@@ -2,11 +2,16 @@
 #include "kernel/rigid_depth.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "certification/certify.h"
 #include "certification/refine.h"
+#include "certification/tight_delta.h"
 #include "certification/value_bounds.h"
+#include "exact/exact_predicates.h"
 #include "hot_path.h"
 
 #include "certification/tie_tolerance.h"
@@ -15,6 +20,25 @@
 namespace pdd::fast {
 
 namespace {
+
+// refine_tight's tie order for delta²: the position in c[0..n) (canonical order) of the first
+// exact minimum, compared by expansions (exact_predicates.h: D_p² n_q.n_q against D_q² n_p.n_p),
+// or -1 where they cannot decide.
+template <class List>
+int exact_first(const List& s, const int* c, int n) {
+  std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each: on the heap)
+  for (int k = 0; k < n; ++k) {
+    parts[k] = depth_parts_exact(*s.A, *s.B, unpack_label(label_code(s, c[k])));
+    if (!parts[k].ok) return -1;
+  }
+  int w = 0;
+  for (int k = 1; k < n; ++k) {
+    const std::optional<int> below = compare_delta2_exact(parts[k], parts[w]);
+    if (!below) return -1;
+    if (*below < 0) w = k;
+  }
+  return w;
+}
 
 // First tied minimum of delta², certified (value_bounds.h: every candidate's exact delta² is
 // >= lower_of(delta~², its bound)).
@@ -35,14 +59,15 @@ Choice rigid_of(const List& s) {
   }
   const double hi = upper_of(ch.value, detail::rigid_rel(s, ch.index));
   ch.certified = certified_choice(hi, lo_min);
-  if (!ch.certified)
-    detail::refine_minimum(
-        s, [&s](int i) { return lower_of(s.delta_sq[i], detail::rigid_rel(s, i)); }, hi,
-        [](const detail::ExactCandidate& c, detail::Q& v) {
-          v = detail::exact_delta2(c);
-          return true;
-        },
-        ch);
+  if (ch.certified) return ch;
+  auto lower = [&s](int i) { return lower_of(s.delta_sq[i], detail::rigid_rel(s, i)); };
+  auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {
+    v = detail::exact_delta2(c);
+    return true;
+  };
+  auto interval = [&s](int i, double& v, double& r) { return detail::tight_delta2(s, i, v, r); };
+  auto tie_order = [&s](const int* c, int n) { return exact_first(s, c, n); };
+  if (!detail::refine_minimum(s, lower, hi, exact, ch)) detail::refine_tight(s, lower, hi, interval, exact, tie_order, ch);
   return ch;
 }
 
@@ -55,38 +80,57 @@ Choice rigid_pd2(const CandidateSet& set) {
 
 Choice rigid_pd2(const QuickCandidates& q) { return rigid_of(q); }
 
-// definitions §8 (value_bounds.h): the overlap combines six heights (error <= e_h each) in five
-// roundings of values <= 4 Hm, so |overlap~ − overlap| <= eO = 6 e_h + 21 u Hm; its sign is
-// certain beyond eO, and its root bound is finish_root_rel(eO/|overlap~|).
-// Not certified: refined (refine.h) over the contenders = the candidates whose overlap sign is
-// uncertain, and those whose certified lower bound is <= best_hi (a certified upper bound of
-// one candidate's exact value, when some overlap is surely > 0). If one contender's exact overlap
-// is <= 0, E11 = 0 exactly; else every non-contender's overlap is surely > 0 and its value
-// > best_hi >= the minimum, so the minimum over the contenders is E11 (refine.h's proof).
-double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
-  if (certified) *certified = true;
-  if (refined) *refined = false;
-  if (!set.intersecting) return 0.0;
+namespace {
+
+// A candidate's overlap L_A + L_B - L_{A u B} = min(hiA, hiB) - max(loA, loB) on
+// compensated_heights.h's heights, with its error: each extreme within its near vertices'
+// largest e_i (tight_delta.h's largest and smallest), the lesser of the two tops and the
+// greater of the two bottoms within theirs (lesser, greater), and one rounding: eO = e_top +
+// e_bottom + u |overlap~|. False where the compensated heights do not apply.
+bool eq11_tight_overlap(const CandidateSet& set, const Candidate& c, double& overlap, double& eO, double& nn,
+                        double& e_n) {
+  detail::CompensatedHeights h;
+  if (!detail::compensated_heights(*set.A, *set.B, c, h)) return false;
+  const detail::Extreme hiA = detail::largest(h.hA, h.eA), loA = detail::smallest(h.hA, h.eA);
+  const detail::Extreme hiB = detail::largest(h.hB, h.eB), loB = detail::smallest(h.hB, h.eB);
+  const detail::Extreme top = detail::lesser(hiA, hiB), bottom = detail::greater(loA, loB);
+  overlap = top.value - bottom.value;
+  eO = (top.error + bottom.error + kUnitRoundoff * std::fabs(overlap)) * (1 + 0x1p-40);
+  nn = h.nn, e_n = h.e_n;
+  return true;
+}
+
+// One pass of eq11_pd2 over every candidate, with the double overlaps or (tight) the
+// compensated ones where they apply. Returns true when certified: `zero` (some overlap surely
+// <= 0: E11 = 0) or `best`. Else lo[i] (a certified lower bound, -1 where the sign is
+// uncertain) and hi_sure (the least upper bound among sure overlaps) for the refinement.
+bool eq11_pass(const CandidateSet& set, bool tight, double* lo, double& best_out, double& hi_sure, bool& zero) {
   double best = -1.0, best_hi = 0.0, lo_min = std::numeric_limits<double>::infinity();
-  double hi_sure = std::numeric_limits<double>::infinity();  // min upper bound, sure overlaps
+  hi_sure = std::numeric_limits<double>::infinity();
   bool sure = true;
-  double lo[kMaxCandidates];  // certified lower bound of each value; −1: sign uncertain
   for (int i = 0; i < set.count; ++i) {
     const Candidate c = candidate(set, i);
-    const double loA = *std::min_element(c.hA, c.hA + 4), hiA = *std::max_element(c.hA, c.hA + 4);
-    const double loB = *std::min_element(c.hB, c.hB + 4), hiB = *std::max_element(c.hB, c.hB + 4);
-    const double overlap = (hiA - loA) + (hiB - loB) - (std::max(hiA, hiB) - std::min(loA, loB));
-    const DegreeBounds db = degree_bounds_of(set.fb, c);
-    const double eO = 6 * db.e_h + 21 * kUnitRoundoff * detail::max_height(c);
-    if (overlap <= -eO) return 0.0;  // exactly <= 0: E11 = 0, certified
+    double overlap, eO, nn = c.nn, e_n;
+    if (!(tight && set.A && eq11_tight_overlap(set, c, overlap, eO, nn, e_n))) {
+      const double loA = *std::min_element(c.hA, c.hA + 4), hiA = *std::max_element(c.hA, c.hA + 4);
+      const double loB = *std::min_element(c.hB, c.hB + 4), hiB = *std::max_element(c.hB, c.hB + 4);
+      overlap = (hiA - loA) + (hiB - loB) - (std::max(hiA, hiB) - std::min(loA, loB));
+      const DegreeBounds db = degree_bounds_of(set.fb, c);
+      eO = 6 * db.e_h + 21 * kUnitRoundoff * detail::max_height(c);
+      e_n = db.e_n;
+    }
+    if (overlap <= -eO) {  // exactly <= 0: E11 = 0, certified
+      zero = true;
+      return true;
+    }
     lo[i] = -1.0;
     if (!(overlap > eO)) sure = false;  // sign unknown: keep scanning for a sure zero
     if (overlap <= 0.0) {
       best = 0.0;
       continue;
     }
-    const double v = overlap * overlap / c.nn;
-    const double r = finish_root_rel(eO / overlap, c.nn, db.e_n);
+    const double v = overlap * overlap / nn;
+    const double r = finish_root_rel(eO / overlap, nn, e_n);
     double l = lower_of(v, r);
     if (!(l >= 0.0)) l = 0.0;
     lo_min = l < lo_min ? l : lo_min;
@@ -100,27 +144,60 @@ double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
       best_hi = upper_of(v, r);
     }
   }
-  const bool ok = sure && best > 0.0 && certified_choice(best_hi, lo_min);
-  if (ok) return best;
-  // Refinement: contenders lo < 0 (sign uncertain) or lo <= hi_sure.
+  best_out = best;
+  return sure && best > 0.0 && certified_choice(best_hi, lo_min);
+}
+
+}  // namespace
+
+// definitions §8 (value_bounds.h): the overlap combines six heights (error <= e_h each) in five
+// roundings of values <= 4 Hm, so |overlap~ − overlap| <= eO = 6 e_h + 21 u Hm; its sign is
+// certain beyond eO, and its root bound is finish_root_rel(eO/|overlap~|).
+// Not certified: refined (refine.h) over the contenders = the candidates whose overlap sign is
+// uncertain, and those whose certified lower bound is <= best_hi (a certified upper bound of
+// one candidate's exact value, when some overlap is surely > 0). If one contender's exact overlap
+// is <= 0, E11 = 0 exactly; else every non-contender's overlap is surely > 0 and its value
+// > best_hi >= the minimum, so the minimum over the contenders is E11 (refine.h's proof).
+double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
+  if (certified) *certified = true;
+  if (refined) *refined = false;
+  if (!set.intersecting) return 0.0;
+  double lo[kMaxCandidates];  // certified lower bound of each value; −1: sign uncertain
+  double best = 0.0, hi_sure = 0.0;
+  bool zero = false;
+  // The double overlaps, then (not certified) every overlap on compensated heights where they
+  // apply (eq11_tight_overlap: contacts far shallower than the pair), then the contenders exactly.
+  if (eq11_pass(set, false, lo, best, hi_sure, zero) || eq11_pass(set, true, lo, best, hi_sure, zero))
+    return zero ? 0.0 : best;
+  // A zero first: the candidates whose overlap sign is uncertain, exactly (a contact made by
+  // rounding often has one exactly 0: E11 = 0 whatever the others).
   int idx[detail::kMaxRefined], m = 0;
+  if (detail::contenders(set, [&lo](int i) { return lo[i] < 0.0 ? -1.0 : INFINITY; }, 0.0, idx, m)) {
+    const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
+    for (int j = 0; j < m; ++j)
+      if (sgn(detail::exact_overlap(detail::exact_candidate(f, unpack_label(label_code(set, idx[j]))))) <= 0) {
+        if (refined) *refined = true;
+        return 0.0;
+      }
+  }
+  // Refinement: contenders lo < 0 (sign uncertain) or lo <= hi_sure.
   if (detail::contenders(set, [&lo](int i) { return lo[i]; }, hi_sure, idx, m)) {
     const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
     detail::Q e11;
-    bool zero = false;
-    for (int j = 0; j < m && !zero; ++j) {
+    bool exact_zero = false;
+    for (int j = 0; j < m && !exact_zero; ++j) {
       const detail::ExactCandidate c =
           detail::exact_candidate(f, unpack_label(label_code(set, idx[j])));
       const detail::Q overlap = detail::exact_overlap(c);
       if (sgn(overlap) <= 0) {
-        zero = true;
+        exact_zero = true;
         break;
       }
       const detail::Q v = overlap * overlap / c.nn;
       if (j == 0 || v < e11) e11 = v;
     }
     bool in_range = true;
-    const double d = zero ? 0.0 : detail::rounded_value(detail::unscaled(f, e11, 2), in_range);
+    const double d = exact_zero ? 0.0 : detail::rounded_value(detail::unscaled(f, e11, 2), in_range);
     if (in_range) {
       if (refined) *refined = true;
       return d;

@@ -13,9 +13,11 @@
 #include "certification/qp_lower_bound.h"
 #include "certification/refine.h"
 #include "certification/tie_tolerance.h"
+#include "certification/tight_delta.h"
 #include "certification/value_bounds.h"
 #include "hot_path.h"
 #include "kernel/superset_depth.h"
+#include "qp/direction_qp_impl.h"
 
 namespace pdd::fast {
 namespace {
@@ -79,51 +81,110 @@ Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
-// pdd2_accel(A, B, 1)'s value along c when c is the exact rigid direction and the double
-// heights cannot certify it (a shallow contact: their errors ~u L^3 beside a value ~|n| depth):
-// the case-2 QP on compensated_heights.h's heights (each within e_i of the exact one), certified
-// by value_bounds.h's tight case with the heights' errors restricted to the vertices that
-// matter. Argument: let H~ be those heights, H* the exact ones, e_act the largest e_i over
-// the constrained and the active free vertices. (1) As in solver_bound, a free vertex's
-// computed margin m_i is within 2 dT (wide: 2^12 u Hm) of the exact solution's for H~. (2)
-// Under one fixed status pattern C is a convex combination of the constrained and active
-// heights (direction_qp_impl.h: weights 5 - m_B and 5 - m_A summing to den), so H* moves it by
-// <= e_act; S = (m C - P)/(5 - m) by <= 2 m e_act/(5 - m) <= 8 e_act; a margin C - h_i + S by
-// <= 9 e_act + e_i. So |m_i| > 2 dT + 9 e_act + e_i for every free vertex keeps the pattern
-// optimal (KKT) for H~ and for H*, and for H'' (H* on the constrained and active vertices, H~
-// elsewhere); the closed form ignores the other heights, so Phi(H*) = Phi(H''), and
-// value_bounds.h's Lipschitz argument on H~ and H'' (which differ by <= e_act) gives
-// |Phi(H*) - Phi(H~)| <= 2 e_act (sqrt(2) e_act in case 2, C free): qp_root_rel's e_h. The
-// solver's own error is the tight dT (2^9 u Ha), the direction's e_n the compensated normal's.
+// Which per-direction QP (direction_qp.h) a compensated evaluation solves.
+enum class QpKind { Static, Deformable, Relaxed };
+
+// direction_qp.h's closed form for one status pattern: bit i of atA (atB) set for A's (B's)
+// vertices at the plane, constrained or active; case 1 (a_static): C = 0, A's constrained
+// height (compensated_heights.h puts the origin on it), S_A = 0. The same operations as the
+// solver's last step (direction_qp_impl.h: P summed over the vertices at the plane, C = (P_A
+// (5 - m_B) + P_B (5 - m_A)) / den, side_cost), so value_bounds.h's tight bounds hold: C within
+// 60 u Ha, S within 350 u Ha, every T within 2^9 u Ha (Ha = max |C| and the heights at the
+// plane). False when no vertex is at the plane on either side (den = 0).
+bool closed_form(const double hA[4], const double hB[4], unsigned atA, unsigned atB, bool a_static,
+                 DirectionSolution& s) {
+  double fa[4], fb[4], PA = 0, PB = 0;
+  int mA = 0, mB = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (atA >> i & 1u) fa[mA++] = hA[i], PA += hA[i];
+    if (atB >> i & 1u) fb[mB++] = hB[i], PB += hB[i];
+  }
+  s = DirectionSolution{};
+  if (a_static) {
+    s.c = 0;
+  } else {
+    const int den = mA * (5 - mB) + mB * (5 - mA);
+    if (den == 0) return false;
+    s.c = (PA * (5 - mB) + PB * (5 - mA)) / den;
+  }
+  const double costA = a_static ? 0.0 : detail::side_cost(0, 0.0, fa, mA, s.c, &s.sumA);
+  s.cost = costA + detail::side_cost(0, 0.0, fb, mB, s.c, &s.sumB);
+  return true;
+}
+
+// The QP value of candidate c on compensated_heights.h's heights (each within e_i of the exact
+// one) and its root bound (value_bounds.h), for a candidate whose double heights cannot
+// certify it: a shallow contact, their errors ~u L^3 beside a value ~|n| depth (a contact
+// made by rounding alone, ~1e-17 of the size deep, has no correct digit in doubles).
+// Argument. The solver's statuses (a free vertex of A is at the plane when its margin C - h +
+// S_A < 0, one of B when C - h + S_B > 0) give a pattern; closed_form evaluates it afresh and
+// each free vertex's margin there is checked against its own error, <= (2^9 u Ha + 2u |h_i| +
+// 2u |m_i|) (C's 60 u Ha and S's 350 u Ha, the two subtractions' roundings). (1) Every margin's
+// sign certain and matching the pattern: the pattern satisfies KKT for the heights H~
+// (direction_qp.h), so it is the exact optimum's for H~ (strictly convex), and only its closed
+// form is rounded: the tight solver bound 2^9 u Ha, which does not grow with the far
+// vertices' heights (the walk's running sums would: value_bounds.h's wide 2^12 u Hm). (2)
+// Under the fixed pattern C is a convex combination of the heights at the plane (weights 5 -
+// m_B and 5 - m_A summing to den; 0 exactly in case 1), so the exact heights H* move it by <=
+// e_act (the largest e_i at the plane); S = (m C - P)/(5 - m) by <= 8 e_act; a margin by <= 9
+// e_act + e_i. Required: |m_i| > error + 9 e_act + e_i, so the pattern is optimal for H* too,
+// and for H'' (H* at the plane, H~ elsewhere); the closed form ignores the other heights, so
+// Phi(H*) = Phi(H''), and value_bounds.h's Lipschitz argument on H~ and H'' (which differ by
+// <= e_act) gives |Phi(H*) - Phi(H~)| <= 2 e_act: qp_root_rel's e_h; e_n the compensated
+// normal's.
+// Case 1 (Static): A does not move, so only B's free vertices have margins; C_A empty (VF,
+// where C is a maximum over A's heights) and undecidable edge pairs (not in case 1's family)
+// are declined. Relaxed: every vertex free.
 // Precondition: a pair rescaled by power_scale.h (every caller's); a cost or n.n below 2^-900
 // (an unscaled list of a tiny pair, where the solver's values underflow) is declined.
+// Returns false when not applicable or a margin is too small (the caller's next path decides).
+bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
+                        Valued& out) {
+  const bool a_static = kind == QpKind::Static;
+  if (a_static && (!c.conA || c.label.orientation != EdgeOrientation::Decided)) return false;
+  detail::CompensatedHeights h;
+  if (!detail::compensated_heights(A, B, c, h)) return false;
+  const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
+  DirectionSolution s = kind == QpKind::Relaxed ? solve_relaxed(h.hA, h.hB)
+                        : a_static              ? solve_static(side_of(h.hA, conA), side_of(h.hB, conB))
+                                                : solve_deformable(side_of(h.hA, conA), side_of(h.hB, conB));
+  unsigned atA = conA, atB = conB;
+  for (int i = 0; i < 4; ++i) {
+    if (!a_static && s.c - h.hA[i] + s.sumA < 0) atA |= 1u << i;
+    if (s.c - h.hB[i] + s.sumB > 0) atB |= 1u << i;
+  }
+  if (!closed_form(h.hA, h.hB, atA, atB, a_static, s)) return false;
+  if (!(s.cost >= 0x1p-900) || !(h.nn >= 0x1p-900)) return false;  // (precondition, above)
+  double Ha = std::fabs(s.c), e_act = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (atA >> i & 1u) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
+    if (atB >> i & 1u) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
+  }
+  // margin m of a free vertex of height hv and error ev: its sign must be certain and be `at`
+  auto certain = [&](double hv, double ev, double m, bool at_if_negative, bool at) {
+    const double err = (512 * kUnitRoundoff * Ha + 2 * kUnitRoundoff * (std::fabs(hv) + std::fabs(m))) * (1 + 0x1p-40);
+    return std::fabs(m) > err + 9 * e_act + ev && ((m < 0) == at_if_negative) == at;
+  };
+  for (int i = 0; i < 4; ++i) {
+    if (!a_static && !(conA >> i & 1u) && !certain(h.hA[i], h.eA[i], s.c - h.hA[i] + s.sumA, true, atA >> i & 1u))
+      return false;
+    if (!(conB >> i & 1u) && !certain(h.hB[i], h.eB[i], s.c - h.hB[i] + s.sumB, false, atB >> i & 1u))
+      return false;
+  }
+  out.v = s.cost / (20.0 * h.nn);
+  out.r = qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight);
+  return true;
+}
+
+// pdd2_accel(A, B, 1)'s value along c when c is the exact rigid direction and the double
+// heights cannot certify it: compensated_valued's case 2, certified on its own interval.
 // Returns the verdict (checked: no failure on ~92 million heights against rationals and ~39k
 // pdd2_accel1 values against an exact case-2 solver).
 bool accel1_compensated(const TetVertices& A, const TetVertices& B, const Candidate& c, double& value) {
-  detail::CompensatedHeights h;
-  if (!detail::compensated_heights(A, B, c, h)) return false;
-  const DirectionSolution s = solve_deformable(side_of(h.hA, c.conA), side_of(h.hB, c.conB));
-  if (!(s.cost >= 0x1p-900) || !(h.nn >= 0x1p-900)) return false;  // (precondition, above)
-  double Hm = 0;
-  for (int i = 0; i < 4; ++i) Hm = std::max({Hm, std::fabs(h.hA[i]), std::fabs(h.hB[i])});
-  double Ha = std::fabs(s.c), e_act = 0;
-  double margin[8];
-  for (int i = 0; i < 4; ++i) {
-    margin[i] = s.c - h.hA[i] + s.sumA;      // free A vertex: < 0 active
-    margin[4 + i] = s.c - h.hB[i] + s.sumB;  // free B vertex: > 0 active
-    const bool conA = c.conA >> i & 1u, conB = c.conB >> i & 1u;
-    if (conA || margin[i] < 0) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
-    if (conB || margin[4 + i] > 0) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
-  }
-  const double two_dT = 2 * kSolverDisplacementCoeff * kUnitRoundoff * Hm;
-  for (int i = 0; i < 4; ++i) {
-    if (!(c.conA >> i & 1u) && !(std::fabs(margin[i]) > (two_dT + 9 * e_act + h.eA[i]) * (1 + 0x1p-40))) return false;
-    if (!(c.conB >> i & 1u) && !(std::fabs(margin[4 + i]) > (two_dT + 9 * e_act + h.eB[i]) * (1 + 0x1p-40))) return false;
-  }
-  const double v = s.cost / (20.0 * h.nn);
-  const double r = qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight);
-  value = v;
-  return certified_choice(upper_of(v, r), lower_of(v, r));
+  Valued x;
+  if (!compensated_valued(A, B, c, QpKind::Deformable, x)) return false;
+  value = x.v;
+  return certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r));
 }
 
 // pdd2_accel(A, B, 1) from the superset's rigid choice and its candidate c: the case-2 value
@@ -164,6 +225,7 @@ namespace {
 // The sweep's variants, as function objects (inlined): `solve` the QP (false: infeasible, not
 // in the family), `bound` its solver bound. The sweep computes a bound only where it is used.
 struct StaticVariant {
+  static constexpr QpKind kKind = QpKind::Static;
   bool solve(const Candidate& c, DirectionSolution& s) const {
     if (c.label.orientation != EdgeOrientation::Decided) return false;  // definitions §5
     s = solve_static(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
@@ -176,6 +238,7 @@ struct StaticVariant {
   }
 };
 struct DeformableVariant {
+  static constexpr QpKind kKind = QpKind::Deformable;
   bool solve(const Candidate& c, DirectionSolution& s) const {
     s = solve_deformable(side_of(c.hA, c.conA), side_of(c.hB, c.conB));
     return true;
@@ -185,6 +248,7 @@ struct DeformableVariant {
   }
 };
 struct RelaxedVariant {
+  static constexpr QpKind kKind = QpKind::Relaxed;
   bool solve(const Candidate& c, DirectionSolution& s) const {
     s = solve_relaxed(c.hA, c.hB);
     return true;
@@ -254,6 +318,24 @@ double root_bound(const List& set, int i, const Variant& variant, const Pending&
 }
 inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
   return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds_of(fb, e));
+}
+
+// A contender's interval for refine_tight (refine.h): compensated_valued's where it applies,
+// else the double one (none, r = inf, where the doubles give no finite value: a face normal
+// that underflows beside a far vertex); false when the candidate is not in the family.
+template <class List, class Variant>
+bool tight_interval(const List& set, int i, const Variant& variant, double& v, double& r, bool tight = true) {
+  const Candidate c = candidate(set, i);
+  Valued x;
+  if (tight && set.A && compensated_valued(*set.A, *set.B, c, Variant::kKind, x)) {
+    v = x.v, r = x.r;
+    return true;
+  }
+  Pending p;
+  v = evaluate(c, variant, p);
+  if (!p.feasible) return false;  // (case 1's undecidable edge pairs)
+  r = v < kInf ? root_bound(c, set.fb, variant, p) : kInf;  // (inf, NaN: no bound, an exact value is due)
+  return true;
 }
 
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
@@ -340,7 +422,9 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   // family.
   if (!ch.certified) {
     for (int j = 0; j < n_evaluated; ++j) bound(evaluated[j]);
-    detail::refine_minimum(set, lower, hi, exact_value, ch);
+    auto interval = [&](int i, double& v, double& r) { return tight_interval(set, i, variant, v, r); };
+    if (!detail::refine_minimum(set, lower, hi, exact_value, ch))
+      detail::refine_tight(set, lower, hi, interval, exact_value, [](const int*, int) { return -1; }, ch);
   }
   return ch;
 }
@@ -448,25 +532,25 @@ constexpr int kMaxAccelContenders = kAccelWide + detail::kMaxRefined;
 // The minimum of the case-2 values of chosen[0..k) (the exact first k), certified in doubles as
 // in accel_of (the choice's value within its bounds, every other one's lower bound above it);
 // false, ch unchanged, when the bounds cannot certify it.
+// Each value's interval is the double one, or (tight) tight_interval's: compensated heights
+// where they apply (the exact first k of a contact made by rounding, ~1e-17 of the size deep).
+// Called with the double intervals first, so that what doubles certify keeps their bits.
 template <class List>
-bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch) {
+bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch, bool tight) {
   const DeformableVariant variant;
-  double v[kMaxCandidates];
-  Pending p[kMaxCandidates];
+  double v[kMaxCandidates], r[kMaxCandidates];
   int best = -1;
   for (int j = 0; j < k; ++j) {
-    v[j] = evaluate(set, chosen[j], variant, p[j]);
-    if (!p[j].feasible || !(v[j] > 0.0)) return false;
+    if (!tight_interval(set, chosen[j], variant, v[j], r[j], tight) || !(v[j] > 0.0)) return false;
     if (best < 0 || v[j] < v[best]) best = j;
   }
   if (best < 0) return false;
-  const double rel_best = root_bound(set, chosen[best], variant, p[best]);
-  double lo_min = safe_lower(v[best], rel_best);
+  double lo_min = safe_lower(v[best], r[best]);
   for (int j = 0; j < k; ++j) {
-    const double l = safe_lower(v[j], root_bound(set, chosen[j], variant, p[j]));
+    const double l = safe_lower(v[j], r[j]);
     lo_min = l < lo_min ? l : lo_min;
   }
-  if (!certified_choice(upper_of(v[best], rel_best), lo_min)) return false;
+  if (!certified_choice(upper_of(v[best], r[best]), lo_min)) return false;
   ch = Choice{v[best], chosen[best], label_code(set, chosen[best])};
   ch.certified = true;
   return true;
@@ -497,6 +581,45 @@ bool exact_delta_order(const List& set, const int* idx, int n, int* pos) {
   return true;
 }
 
+// The contenders of refine_accel without an order (canonical order, their number returned):
+// the candidates whose certified lower bound of delta² is <= U, U the k-th least upper bound
+// (<= hi_chosen). At least k candidates have exact delta² <= U, so every candidate above U
+// is not among the exact first k. The bounds are the double ones, and tight_delta2's for the
+// candidates taken in ascending lower bound until the next one exceeds U: on a contact made by
+// rounding every double bound is wide (hi_chosen ~ the pair's size), the tight ones leave the
+// few candidates of that depth instead of every candidate.
+template <class List>
+int accel_contenders(const List& set, int k, double hi_chosen, int* idx) {
+  int order[kMaxCandidates], m = 0;
+  double lo[kMaxCandidates], up_k[kAccelWide];  // up_k: the k least upper bounds, ascending
+  for (int i = 0; i < set.count; ++i) {
+    const double x = safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    if (x > hi_chosen) continue;
+    int t = m++;
+    for (; t > 0 && x < lo[order[t - 1]]; --t) order[t] = order[t - 1];
+    order[t] = i, lo[i] = x;
+  }
+  int have = 0;
+  double U = hi_chosen;
+  for (int j = 0; j < m && !(lo[order[j]] > U); ++j) {
+    const int i = order[j];
+    double v = 0, r = kInf;
+    if (set.A) detail::tight_delta2(set, i, v, r);
+    if (!(r < 1)) continue;
+    lo[i] = std::max(lo[i], lower_of(v, r));
+    const double up = upper_of(v, r);
+    int t = have < k ? have++ : k;
+    for (; t > 0 && up < up_k[t - 1]; --t)
+      if (t < k) up_k[t] = up_k[t - 1];
+    if (t < k) up_k[t] = up;
+    if (have == k) U = std::min(U, up_k[k - 1]);
+  }
+  int n = 0;
+  for (int i = 0; i < set.count; ++i)
+    if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > U) && !(lo[i] > U)) idx[n++] = i;
+  return n;
+}
+
 // Case 3 refined: the exact first k in ascending exact delta² (stable in canonical order), then
 // the minimum of their case-2 values. `order` (m entries): the double path's first k when they
 // are certainly the exact first k (separated), else nullptr: then the contenders are the
@@ -518,8 +641,7 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
   if (order) {
     for (int r = 0; r < m; ++r) idx[n++] = order[r];
   } else {
-    for (int i = 0; i < set.count; ++i)
-      if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen)) idx[n++] = i;
+    n = accel_contenders(set, k, hi_chosen, idx);
   }
   if (!set.A || n == 0) return;
   const int kk = k < n ? k : n;
@@ -529,7 +651,7 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
     sorted = true;
     int chosen[kMax];
     for (int r = 0; r < kk; ++r) chosen[r] = idx[pos[r]];
-    if (certify_first_k(set, chosen, kk, ch)) return;
+    if (certify_first_k(set, chosen, kk, ch, false) || certify_first_k(set, chosen, kk, ch, true)) return;
   }
   if (!sorted && n > kMaxAccelContenders) return;  // (the exact path is as cheap)
   if (order)
@@ -613,6 +735,7 @@ void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
     const double r = detail::rigid_rel(set, i);
     lo[i] = safe_lower(delta2(set, i), r);
     hi[i] = upper_of(delta2(set, i), r);
+    if (!(hi[i] >= 0.0)) hi[i] = kInf;  // (0 times an infinite bound: no bound)
     if (lo[i] > hi_chosen) continue;
     if (n == kMax) return;
     P[n++] = i;
@@ -642,7 +765,7 @@ void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
     int chosen[kMax], c = 0;
     for (int j = 0; j < s; ++j) chosen[c++] = sorted[j];
     for (int j = 0; c < k; ++j) chosen[c++] = T[j];
-    certify_first_k(set, chosen, k, ch);
+    if (!certify_first_k(set, chosen, k, ch, false)) certify_first_k(set, chosen, k, ch, true);
     return;
   }
 }
@@ -658,7 +781,7 @@ Choice accel_of(const List& set, int k) {
   for (int r = 0; r < m; ++r) {
     chosen[order[r]] = true;
     const double hi = upper_of(delta2(set, order[r]), detail::rigid_rel(set, order[r]));
-    hi_chosen = hi > hi_chosen ? hi : hi_chosen;
+    hi_chosen = !(hi <= hi_chosen) ? (hi >= 0.0 ? hi : kInf) : hi_chosen;  // (NaN: no bound)
   }
   bool separated = hi_chosen < kInf;
   // (certify.h: kSmallRigidLower delta² > hi_chosen with a small bound has lower bound
