@@ -40,7 +40,8 @@ namespace pdd::mesh {
 
 // Which per-pair solution drives the vertices.
 enum class ResolveVariant {
-  Global,  // pdd2_global: PD_d over every separating plane (q1_*_global); the default
+  Global,  // pdd2_global: PD_d over every separating plane (q1_*_global); the default (a pair
+           // whose pdd2_global is declined, or shallower than 1e-12 of its extent: pdd2's)
   Pdd2,    // pdd2: PD_d over the candidate directions (q1_A, q1_B)
   Rigid,   // baseline: each pair pushed apart by its rigid translation (rigid_pd2's direction),
            // split between the two elements as PD_d would split it

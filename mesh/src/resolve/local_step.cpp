@@ -105,11 +105,25 @@ constexpr double kPlaneGap = 1e-3;
 constexpr double kMargin = 1e-6;
 constexpr double kMarginUlp = 1e-12;
 
+// A contact far shallower than the pair's extent E (rigid_pd2 below 1e-24 E^2: a depth below
+// 1e-12 of it, as contacts made by rounding are, ~1e-17) is moved along pdd2's plane, as one whose
+// pdd2_global is declined: pdd2_global <= pdd2 <= rigid_pd2 / 2 (definitions §5, §9) is then below
+// 1e-24 E^2, where a normal rounded to doubles moves the plane by ~1e-16 E, 1e4 times the depth,
+// so the fast engine searches exact pieces (~25 ms a pair) and nearly always declines it; and the
+// move is the plane gap (kPlaneGap) either way. rigid_pd2 (certified, under a microsecond) tells.
+bool shallower_than_doubles(const TetVertices& A, const TetVertices& B) {
+  double E2 = 0;
+  for (const TetVertices* T : {&A, &B})
+    for (const Vec3d& x : *T) E2 = std::max(E2, dot(sub(x, A[0]), sub(x, A[0])));
+  const fast::Depth d = fast::rigid_pd2(A, B);
+  return d.status == fast::DepthStatus::Ok && d.pd2 < 1e-24 * E2;
+}
+
 }  // namespace
 
 PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
   if (variant == ResolveVariant::Rigid) return rigid_move(A, B);
-  const bool global = variant == ResolveVariant::Global;
+  const bool global = variant == ResolveVariant::Global && !shallower_than_doubles(A, B);
   fast::SolveOptions options;
   options.with_global = global;
   options.values = kPdd2;  // its positions (and definitions §9's with `global`): no other value

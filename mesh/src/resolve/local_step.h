@@ -13,7 +13,9 @@
 //            other side and the two sides pushed mu = kMargin edge + kMarginUlp |x| apart.
 // A pair whose per-pair solve fails (pdd2_global_error, a record error, no direction) falls back
 // to pdd2's positions, then to the rigid translation along the rigid direction (or the centroid
-// line when the rigid depth is not certified).
+// line when the rigid depth is not certified). Under the global variant, a contact shallower
+// than 1e-12 of the pair's extent (contacts made by rounding) takes pdd2's positions at once:
+// its pdd2_global is nearly always declined, after an exact search (local_step.cpp).
 #pragma once
 
 #include <array>
