@@ -24,23 +24,26 @@ ExactFrame exact_frame(const TetVertices& A, const TetVertices& B) {
         nonzero = true;
       }
   f.shift = nonzero ? -long(lowest) : 0;
-  auto scaled_coordinate = [&](double x) {
-    Q q(x);
-    if (f.shift > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), f.shift);
-    if (f.shift < 0) mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), -f.shift);
-    return q;
+  // x·2^shift as an integer: x = m·2^e, m·2^53 an integer below 2^53 (subnormals included:
+  // frexp normalises m), and e − 53 >= lowest = −shift, so the power is >= 0. Integers (mpz)
+  // throughout, each difference an integer rational with denominator 1: the same values as
+  // Q(x)·2^shift, without the rationals' canonicalising gcds (most of this function's time).
+  auto integer = [&](double x) {
+    mpz_class z;
+    if (x == 0.0) return z;
+    int e;
+    const double m = std::frexp(x, &e);
+    mpz_set_si(z.get_mpz_t(), static_cast<long>(std::ldexp(m, 53)));
+    mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(e - 53 + f.shift));
+    return z;
   };
-  QV s0;
-  for (int k = 0; k < 3; ++k) s0.x[k] = scaled_coordinate(A[0][k]);
-  for (int i = 0; i < 4; ++i) {
-    QV a, b;
+  mpz_class s0[3];
+  for (int k = 0; k < 3; ++k) s0[k] = integer(A[0][k]);
+  for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
-      a.x[k] = scaled_coordinate(A[i][k]);
-      b.x[k] = scaled_coordinate(B[i][k]);
+      f.s[i].x[k] = Q(mpz_class(integer(A[i][k]) - s0[k]));
+      f.r[i].x[k] = Q(mpz_class(integer(B[i][k]) - s0[k]));
     }
-    f.s[i] = a - s0;
-    f.r[i] = b - s0;
-  }
   return f;
 }
 
