@@ -403,8 +403,8 @@ BOOST_AUTO_TEST_CASE(global_minimiser_equals_solve_pair) {
   BOOST_TEST(compared > 100);
 }
 
-// Shallow tip contacts (a vertex of B 1e-7 inside a face of A, the pair about 2 across): the
-// depth is below the double pieces' floor (global_depth.h: 1e-14 scale^2 for a compact pair), so
+// Shallow tip contacts (a vertex of B 1e-10 inside a face of A, the pair about 2 across): the
+// depth is below the double pieces' floor (global_depth.cpp: 1e-18 scale^2 for a compact pair), so
 // the enumeration builds its pieces exactly and computes the value in rationals; solve_pair
 // then takes the value again on the pair as given along the same normal, and global_minimiser
 // does the same: its fields equal solve_pair's bit for bit there too.
@@ -426,7 +426,7 @@ BOOST_AUTO_TEST_CASE(global_minimiser_equals_solve_pair_on_exact_values) {
     Vec3d c{};
     for (int i = 1; i < 4; ++i)
       for (int k = 0; k < 3; ++k) c[k] += A[i][k] / 3;
-    for (int k = 0; k < 3; ++k) B[0][k] = c[k] - 1e-7 * n[k];  // the tip, inside A
+    for (int k = 0; k < 3; ++k) B[0][k] = c[k] - 1e-10 * n[k];  // the tip, inside A
     for (int j = 1; j < 4; ++j) {
       Vec3d r{U(rng), U(rng), U(rng)};
       const double h = dot3(r, n), up = 0.2 + std::abs(U(rng));

@@ -3,35 +3,18 @@
 
 #include <cmath>
 
+#include "certification/double_word.h"
 #include "kernel/direction_geometry.h"
 
 namespace pdd::fast::detail {
 namespace {
 
-constexpr double kU = 0x1p-53;
-
-struct DW {  // hi + lo, normalised (|lo| <= u |hi|)
-  double hi, lo;
-};
-
-DW two_sum(double a, double b) {
-  const double s = a + b, bb = s - a;
-  return {s, (a - (s - bb)) + (b - bb)};
-}
-DW two_prod(double a, double b) {
-  const double p = a * b;
-  return {p, std::fma(a, b, -p)};
-}
-DW mul(DW x, DW y) {
-  const DW c = two_prod(x.hi, y.hi);
-  const double t0 = x.lo * y.lo, t1 = std::fma(x.hi, y.lo, t0), c2 = std::fma(x.lo, y.hi, t1);
-  return two_sum(c.hi, c.lo + c2);
-}
-DW add(DW x, DW y) {
-  const DW s = two_sum(x.hi, y.hi);
-  return two_sum(s.hi, s.lo + (x.lo + y.lo));
-}
-DW neg(DW x) { return {-x.hi, -x.lo}; }
+using dw::add;
+using dw::DW;
+using dw::kU;
+using dw::mul;
+using dw::neg;
+using dw::two_sum;
 
 struct DV {
   DW x[3];
@@ -109,6 +92,44 @@ bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candi
     const int x = kEdges[l.b][0], y = kEdges[l.b][1];
     out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
   }
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
+        !std::isfinite(out.eB[i]))
+      return false;
+  return true;
+}
+
+bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
+                               CompensatedHeights& out) {
+  int top = 0;
+  double best = -INFINITY;
+  for (int i = 0; i < 4; ++i) {
+    const double h = v[0] * (A[i][0] - A[0][0]) + v[1] * (A[i][1] - A[0][1]) + v[2] * (A[i][2] - A[0][2]);
+    if (h > best) best = h, top = i;  // (a heuristic choice: any vertex is a valid origin)
+  }
+  const std::array<double, 3> o = A[top];
+  for (int k = 0; k < 3; ++k) out.n[k] = v[k];
+  out.e_n = 0;
+  out.nn = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
+  constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
+  // A height v.(x − o): the difference exact (two_sum), three products of a double and a
+  // double word (mul, at most the header's 6.2 u^2 each) and two adds: within the header's
+  // 25 u^2 M, M = sum |v_k| |d_k| (no normal error here), then rounded to its high part (u).
+  auto height = [&](const std::array<double, 3>& x, double& h, double& e) {
+    const DV d = diff(x, o);
+    DW s = mul(DW{v[0], 0.0}, d.x[0]);
+    s = add(s, mul(DW{v[1], 0.0}, d.x[1]));
+    s = add(s, mul(DW{v[2], 0.0}, d.x[2]));
+    const double M = std::fabs(v[0] * d.x[0].hi) + std::fabs(v[1] * d.x[1].hi) + std::fabs(v[2] * d.x[2].hi);
+    h = s.hi;
+    e = (kU * std::fabs(h) + 25 * kU * kU * M) * kGrow + 0x1p-1040;
+  };
+  for (int i = 0; i < 4; ++i) {
+    height(A[i], out.hA[i], out.eA[i]);
+    height(B[i], out.hB[i], out.eB[i]);
+  }
+  out.hA[top] = 0, out.eA[top] = 0;  // the origin itself: exactly 0
   for (int i = 0; i < 4; ++i)
     if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
         !std::isfinite(out.eB[i]))

@@ -15,22 +15,11 @@
 // (depth ~1e-9 of the size) that is ~1e-7 of the value, and pdd2_accel1 went to rationals (~20
 // us a pair, 9 in 10^4 of the paper's pairs). Here every height is within u|H*| plus a u²
 // term of the exact one, so the heights that matter near the plane (value_bounds.h's tight
-// case) are accurate to their own size. Written by hand: the few double-word operations
-// below, not a library (no Debian package offers them), each with its bound derived here.
+// case) are accurate to their own size. Written by hand: the bounds of the few double-word
+// operations (double_word.h) through the normal and the heights, derived below.
 //
-// Double-word arithmetic (u = 2^-53; x = xh + xl with |xl| <= u|xh|, "normalised"):
-//   two_sum(a, b) = (s, e), s + e = a + b exactly (Knuth; no overflow at these magnitudes);
-//   two_prod(a, b) = (p, e), p + e = a b exactly (e = fma(a, b, −p)) unless e underflows:
-//     then off by <= 2^-1075, covered by an absolute 2^-1040 in every e_i (below);
-//   mul(x, y): (ch, c1) = two_prod(xh, yh); t0 = xl yl; t1 = fma(xh, yl, t0);
-//     c2 = fma(xl, yh, t1); c3 = c1 + c2; two_sum(ch, c3). Error <= 6.2u² |xh| |yh|:
-//     |xl yl| <= u²|xh yh| (t0's rounding: u³); t1 errs by <= u |xh yl + t0| <= u²(1 + u)
-//     |xh yh|; c2 by <= u |xl yh + t1| <= 2u²(1 + u) |xh yh|; c3 by <= u (|c1| + |c2|) <= u
-//     (u + 2u(1 + u)) |xh yh| < 3.1 u² |xh yh|; two_sum exact: < 6.2 u² in all;
-//   add(x, y): (sh, s1) = two_sum(xh, yh); v = xl + yl; w = s1 + v; two_sum(sh, w). Error
-//     <= 4u² (|xh| + |yh|): v errs by <= u (|xl| + |yl|) <= u² (|xh| + |yh|), w by <= u (|s1|
-//     + |v|) <= u (u |sh| + u (|xh| + |yh|)(1 + u)) <= 2.1 u² (|xh| + |yh|); two_sum exact.
-//   Both results are normalised (two_sum's).
+// Double-word arithmetic (u = 2^-53): double_word.h, with each operation's error (mul 6.2 u²,
+// add 4u² of the operands' magnitudes).
 // The normal, componentwise n_z = e1x e2y − e1y e2x on differences taken exactly (two_sum):
 //   two products (6.2 u² each of its magnitude) and an add (4u² (|p1| + |p2|)):
 //   |n~_z − n*_z| <= 10.3 u² N_z, N_z = |e1x e2y| + |e1y e2x| (magnitudes from the high parts,
@@ -59,5 +48,13 @@ struct CompensatedHeights {
 // false when not applicable (see above); c must be a candidate of (A, B) as given.
 bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
                          CompensatedHeights& out);
+
+// The heights along a given double normal v instead of a candidate's (pdd2_global's normals,
+// global_depth.h): n* = v exactly (e_n = 0), the origin A's vertex highest along v (so the
+// vertices at a shallow plane have small heights, each within its own u), every other field
+// as above; the products of a double-word difference by a double component err by less than
+// the normal's share of the 25 u^2 M above. False on a zero or non-finite v or value.
+bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
+                               CompensatedHeights& out);
 
 }  // namespace pdd::fast::detail

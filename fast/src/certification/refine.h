@@ -76,8 +76,11 @@ bool refine_minimum(const List& s, Lo lo, double hi, ExactValue exact_value, Cho
   return true;
 }
 
-// After refine_minimum (more than kMaxRefined contenders): a minimum the double bounds could
-// not certify, certified on tighter intervals.
+// A minimum the double bounds could not certify, certified on tighter intervals: after
+// refine_minimum declines (more than kMaxRefined contenders), or first (rigid_pd2,
+// rigid_depth.cpp: the contenders of a shallow contact certify on compensated heights at a
+// fraction of the rationals' cost; its value is then within definitions §8 of the exact one,
+// not its correctly rounded double).
 // Input:  lo and hi as for refine_minimum; `interval(i, v, r)`: candidate i's value v and root
 //         bound r (value_bounds.h: its exact value lies in [lower_of(v, r), upper_of(v, r)]),
 //         false when i is not in the family (the callers give compensated_heights.h's where

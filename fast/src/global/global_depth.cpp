@@ -82,7 +82,7 @@ V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
   return refine(H, v, 0.0, 0);
 }
 
-constexpr double kCompactTiny = 1e-14;  // global_depth(): the compact pairs' exact-pieces depth
+constexpr double kCompactTiny = 1e-18;  // global_depth(): the compact pairs' exact-pieces depth
 
 // One global_depth() call: the pair, the evaluations' problem, the offers and the bounds.
 struct GlobalRun {
@@ -166,28 +166,29 @@ void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
   else offer_geometric_starts(g);
 }
 
-// Doubles or rationals for the pieces (the enumeration is the same). H's entries carry
-// absolute errors ~64 u scale^2 in doubles, so a computed eigenvector is off by an angle
-// ~1e-14 scale^2 / gap, and the value along it exceeds the minimum by about gap * angle^2 ~
-// 1e-28 scale^4 / gap: negligible while the depth is far above 1e-16 scale^2. A far vertex
-// (depth ~1e-11 scale^2 with a vertex 3e4 away) can also put the minimiser on the wall of a
-// steep piece, which only the exact path's wall offers reach (the fuzzer found a miss of
-// 1.6e-8 there). Below 1e-10 scale^2 (far vertices, contacts of 1e-5 of the pair's size) the
-// pieces are built exactly, with the wall offers, and their eigenvectors polished. A compact
-// pair (the smaller tetrahedron's extent >= scale / 16: no vertex far from the others, so
-// every piece's |H| <= 12 L^2 with centred |coordinates| L <= 2 scale, <= 12288 near^2: no
-// steep piece) keeps the doubles down to kCompactTiny = 1e-14 scale^2: the paper's shallow
-// contacts (1 pair in 10^4 below 1e-10 scale^2, each ~3 ms exactly). The argument above
-// takes gap ~ |H| ~ scale^2; a piece whose active vertices form a small cluster far from the
-// centroid has |H| << scale^2 while H's error stays ~2^-39 of the moments: consider_piece's
-// estimate 2 E^2 / gap <= 1e-11 mu, checked for every in-window eigenvalue, sends such a pair
-// to the exact pieces (of shallow "tip" contacts 10-25% stay in doubles, all between 1e-12
-// and 1e-10 scale^2, all within the exact intervals).
+// Doubles or rationals for the pieces (the enumeration is the same). The value along a
+// computed eigenvector exceeds its stationary value by about E^2 / gap (E the error of H and of
+// the solver): consider_piece's estimate 2 E^2 / gap <= 1e-11 mu is checked for every in-window
+// eigenvalue, on H built in doubles (E ~2^-39 of the moments: passes down to mu ~1e-12 scale^2)
+// and, where that fails, on H built to its own rounding (accurate_piece_matrix.h, E ~14 u |H|:
+// down to mu ~1e-18 |H|); where it fails on both, the pair goes to the exact pieces. Two limits
+// that estimate does not see: (1) a double normal represents the minimiser only to its own
+// rounding, the value along the rounded eigenvector exceeding mu by ~|H| u^2, which is below
+// 1e-12 of mu while mu >= 1e-18 |H| (further down, the exact path's suspects settle it:
+// suspect_proof.h); (2) a far vertex (depth ~1e-11 scale^2 with a vertex 3e4 away) can put the
+// minimiser on the wall of a steep piece, which only the exact path's wall offers reach (the
+// fuzzer found a miss of 1.6e-8 there). So below 1e-10 scale^2 a pair with a far vertex is
+// built exactly, with the wall offers, and its eigenvectors polished; a compact pair (the
+// smaller tetrahedron's extent >= scale / 16: no vertex far from the others, so every piece's
+// |H| <= 12 L^2 with centred |coordinates| L <= 2 scale, <= 48 scale^2: no steep piece, and
+// |H| u^2 <= 6e-13 of a value >= kCompactTiny scale^2) keeps the doubles down to kCompactTiny
+// = 1e-18 scale^2, a depth ~1e-9 of its size (the resting contacts of a simulation: ~1e-15
+// scale^2 in examples/soft_body.py, ~7 ms a pair on the exact pieces).
 // The double pieces also need the pair's own scale within [2^-100, 2^100] (solve_pair and
 // pdd2_global pass pairs rescaled to it; an unscaled pair, spanning more of the double range
 // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
 // determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
-// finds a depth below that (1e-10 or, compact, 1e-14 scale^2), it is done again exactly.
+// finds a depth below that (1e-10 or, compact, 1e-18 scale^2), it is done again exactly.
 // Returns whether the pieces must be built exactly (then the double offers are dropped).
 bool needs_exact_pieces(GlobalRun& g, double start_value) {
   const Problem& P = g.P;

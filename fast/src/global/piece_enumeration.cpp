@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <climits>
+#include <optional>
 #include <cmath>
 #include <type_traits>
 
+#include "global/accurate_piece_matrix.h"
 #include "global/eigen_polish.h"
 #include "global/piece_screen.h"
 
@@ -294,7 +296,30 @@ class PieceEnumeration {
                                else return false;
                              },
                              [&](int k) { suspect(g, k); });
-    consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);
+    // The double H too coarse for this piece's in-window eigenvalue (consider_piece's accuracy
+    // estimate: a contact far shallower than the pair): the piece again on its H to about its
+    // own rounding (accurate_piece_matrix.h) before the pair goes to the exact pieces, and every
+    // later piece of the pair on that H at once. The first visit's offers stand (an offer only
+    // lowers the best).
+    if constexpr (!kExact) {
+      const int zeros = std::max(0, 4 - g.mA - g.mB);  // (PieceMatrix::zeros)
+      Eigen::Matrix3d Hw;
+      double ew = 0;
+      if (accurate && accurate->matrix(ma, mb, Hw, ew)) {
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, calls, search);
+        return;
+      }
+      const bool needed_exact = best.needs_exact;
+      consider_piece(PieceMatrix{H, h_error(g), false, 0, false, zeros}, calls, search);
+      if (needed_exact || !best.needs_exact) return;
+      accurate.emplace(dA, dB);
+      if (accurate->matrix(ma, mb, Hw, ew)) {
+        best.needs_exact = false;
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, calls, search);
+      }
+    } else {
+      consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);
+    }
   }
 
   const Corners<T>& pA;
@@ -314,6 +339,7 @@ class PieceEnumeration {
   ColumnsB cols{};        // B's sums as lanes (surviving_pieces)
   unsigned survivors[16];
   double top = 0;         // the window's top edge: the best value so far, less kPrune
+  std::optional<AccurateMoments> accurate;  // double path: built on the first piece that needs it
 };
 
 }  // namespace

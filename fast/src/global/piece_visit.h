@@ -31,6 +31,11 @@ inline constexpr double kPrune = 1e-10;       // an eigenvalue must beat the bes
 inline constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
 inline constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
 inline constexpr double kNearDouble = 1e-2;   // a gap below this (times |H|_F): the iterative solver
+// The iterative solver's eigenvalue error, times |H|_F, for an accurate H (PieceMatrix): it is
+// backward stable (Householder tridiagonalisation and implicit QR), its eigenpairs exact for
+// H + F with |F|_2 within a few u |H| (the 8 u |H| that double_path_accuracy's estimate E takes
+// for its vectors), so by Weyl each eigenvalue within that of H's; eight times that here.
+inline constexpr double kIterativeEigen = 64 * 0x1p-53;
 
 // The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
 // l.v <= tol (free), per condition.
@@ -58,11 +63,22 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out);
 
 // One active set's piece as consider_piece takes it: H, its entries within h_error (absolute;
 // on the exact path H is the exact one times 2^-pe, rounded once), and which path builds it.
+// `accurate` (double path): H from accurate_piece_matrix.h, its error near its own rounding;
+// then the iterative solver throughout, with its own eigenvalue margin (PieceVisit).
+// `zeros` (double path): how many eigenvalues of the exact H_S are exactly 0: G_S(n), the least
+// norm of a deformation putting S's vertices on one plane of normal n, vanishes for every n
+// orthogonal to their affine span, so H_S has 4 - |S| zero eigenvalues when |S| <= 3 (2 for
+// |S| = 2, 1 for |S| = 3). Sorted, the exact eigenvalues' first `zeros` are 0 and (Weyl) the
+// computed first `zeros` are their images: none is a stationary value of G (G > 0 on the
+// sphere of an intersecting pair), so they are never in the window, whatever the margin (a
+// shallow contact's margin exceeds its floor: they would send the pair to the exact pieces).
 struct PieceMatrix {
   const Eigen::Matrix3d& H;
   double h_error;
   bool exact;
   long pe;
+  bool accurate = false;
+  int zeros = 0;
 };
 
 // What the enumeration offers to and prunes with: the evaluations' problem, the best so far,
@@ -103,12 +119,12 @@ template <class Calls>
 class PieceVisit {
  public:
   PieceVisit(const PieceMatrix& piece, Calls& calls, const Search& search)
-      : H(piece.H), h_error(piece.h_error), exact(piece.exact), pe(piece.pe), calls(calls), P(search.P),
-        best(search.best), lower(search.lower) {}
+      : H(piece.H), h_error(piece.h_error), exact(piece.exact), accurate(piece.accurate), zeros(piece.zeros),
+        pe(piece.pe), calls(calls), P(search.P), best(search.best), lower(search.lower) {}
 
   void run() {
     hnorm = H.norm();
-    margin = kEigen * hnorm + 3 * h_error;
+    margin = (accurate ? kIterativeEigen : kEigen) * hnorm + 3 * h_error;
     best_here = best.value_in(pe);  // the best value in this piece's units
     lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
     threshold = best_here * (1 - kPrune) + margin;
@@ -145,11 +161,12 @@ class PieceVisit {
   // this path takes, >= 1e-10 scale^2). Exact path: the iterative solver (Householder + QR),
   // whose vectors keep structure such as a zero row, then inverse iteration (refine).
   bool solve() {
-    if (exact) eig.compute(H);
+    if (exact || accurate) eig.compute(H);
     else eig.computeDirect(H);
     if (eig.info() != Eigen::Success) return false;
     mu = eig.eigenvalues();
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && accurate; ++k) m[k] = margin;
+    for (int k = 0; k < 3 && !accurate; ++k) {
       double gap = INFINITY;
       if (k > 0) gap = std::min(gap, mu(k) - mu(k - 1));
       if (k < 2) gap = std::min(gap, mu(k + 1) - mu(k));
@@ -161,7 +178,7 @@ class PieceVisit {
   }
 
   bool in_window(int k) const {
-    return mu(k) >= lower_here - m[k] && mu(k) < best_here * (1 - kPrune) + m[k];
+    return k >= zeros && mu(k) >= lower_here - m[k] && mu(k) < best_here * (1 - kPrune) + m[k];
   }
   double gap_of(int k) const {
     double g = INFINITY;
@@ -186,7 +203,8 @@ class PieceVisit {
   // below do not depend on the gap. false: the iterative solver failed (needs_exact set).
   bool double_path_accuracy() {
     bool near_double = false;
-    for (int k = 0; k < 3; ++k) near_double = near_double || (in_window(k) && !(gap_of(k) >= kNearDouble * hnorm));
+    for (int k = 0; k < 3 && !accurate; ++k)
+      near_double = near_double || (in_window(k) && !(gap_of(k) >= kNearDouble * hnorm));
     if (near_double) {
       eig.compute(H);
       if (eig.info() != Eigen::Success) {
@@ -332,7 +350,7 @@ class PieceVisit {
   // eigenvalue beside two moderate ones must not merge the moderate two). Its arc's middle is
   // offered, and each computed vector.
   void offer_eigenvectors() {
-    for (int k = 0; k < 3; ++k) {
+    for (int k = zeros; k < 3; ++k) {
       if (!(mu(k) < best_here * (1 - kPrune) + m[k])) break;  // ascending
       const bool plane = k < 2 && mu(k + 1) - mu(k) <= kDegenerate * std::fabs(mu(k + 1)) + 2 * m[k];
       if (mu(k) < lower_here - m[k] && !(plane && mu(k + 1) >= lower_here - m[k + 1])) continue;
@@ -366,6 +384,8 @@ class PieceVisit {
   const Eigen::Matrix3d& H;
   const double h_error;
   const bool exact;
+  const bool accurate;  // PieceMatrix::accurate
+  const int zeros;      // PieceMatrix::zeros
   const long pe;
   Calls& calls;
   const Problem& P;

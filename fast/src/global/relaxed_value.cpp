@@ -45,6 +45,17 @@ Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Prob
   const double r = phi > 0 ? (2 * 10 * kU * vn1 * P.scale + std::sqrt(2.0) * dT) / phi + 4 * kU : INFINITY;
   ev.value = sol.cost / (20.0 * dot(v, v));
   if (margins) ev.error = 2 * r + 8 * kU;
+  if (ev.error <= kGlobalRel) return ev;
+  // The heights' absolute error (~u |v| size) against a depth far below the size: compensated
+  // heights (relaxed_compensated), whose error at the plane is the vertices' own u. The exact
+  // value lies within v (1 +- r)^2 (value_bounds.h): relative error (2 + r) r, and 8u for the
+  // roundings of these expressions.
+  Evaluation tight;
+  double rc = 1;
+  if (relaxed_compensated(A, B, v, tight.value, rc, tight.sol, tight.hA, tight.hB) && rc < 1) {
+    tight.error = (2 + rc) * rc + 8 * kU;
+    if (tight.error < ev.error) return tight;
+  }
   return ev;
 }
 

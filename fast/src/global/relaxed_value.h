@@ -8,7 +8,9 @@
 //         value_error: relaxed_at's certified relative error (value_bounds.h's QP bound);
 //         relaxed_exact: the same closed form in rationals along the exact v;
 //         evaluate_tight: relaxed(v) on heights relative to A's highest vertex along v, with a
-//         tighter bound where the depth is far below the pair's size (+inf when it fails).
+//         tighter bound where the depth is far below the pair's size, and where that bound
+//         still exceeds kGlobalRel, on compensated heights (relaxed_compensated,
+//         deformable_depth.h); error +inf when both fail.
 // kGlobalRel: the error budget of a reported pdd2_global (definitions §8's 1e-9, with room).
 #pragma once
 

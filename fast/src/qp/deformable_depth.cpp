@@ -138,6 +138,11 @@ bool closed_form(const double hA[4], const double hB[4], unsigned atA, unsigned 
 // Precondition: a pair rescaled by power_scale.h (every caller's); a cost or n.n below 2^-900
 // (an unscaled list of a tiny pair, where the solver's values underflow) is declined.
 // Returns false when not applicable or a margin is too small (the caller's next path decides).
+// The same on given compensated heights h (constrained vertices conA, conB), with the solution
+// of the verified pattern in s.
+bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
+                       Valued& out, DirectionSolution& s);
+
 bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
                         Valued& out) {
   const bool a_static = kind == QpKind::Static;
@@ -145,7 +150,14 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   detail::CompensatedHeights h;
   if (!detail::compensated_heights(A, B, c, h)) return false;
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
-  DirectionSolution s = kind == QpKind::Relaxed ? solve_relaxed(h.hA, h.hB)
+  DirectionSolution s;
+  return valued_on_heights(h, conA, conB, kind, out, s);
+}
+
+bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
+                       Valued& out, DirectionSolution& s) {
+  const bool a_static = kind == QpKind::Static;
+  s = kind == QpKind::Relaxed ? solve_relaxed(h.hA, h.hB)
                         : a_static              ? solve_static(side_of(h.hA, conA), side_of(h.hB, conB))
                                                 : solve_deformable(side_of(h.hA, conA), side_of(h.hB, conB));
   unsigned atA = conA, atB = conB;
@@ -206,6 +218,17 @@ double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate
   return certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r)) ? x.v
          : accel1_compensated(As, Bs, c, v)                       ? v
                                                                   : INFINITY;
+}
+
+bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
+                         double& value, double& r, DirectionSolution& s, double hA[4], double hB[4]) {
+  detail::CompensatedHeights h;
+  Valued x;
+  if (!detail::compensated_heights_along(A, B, v, h) || !valued_on_heights(h, 0u, 0u, QpKind::Relaxed, x, s))
+    return false;
+  value = x.v, r = x.r;
+  for (int i = 0; i < 4; ++i) hA[i] = h.hA[i], hB[i] = h.hB[i];
+  return true;
 }
 
 bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,

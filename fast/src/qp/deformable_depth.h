@@ -86,6 +86,17 @@ bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigi
 // else +inf. Case 2 along c >= the relaxed value along c >= pdd2_global (definitions §5, §9).
 double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate& c);
 
+// The relaxed value along a double normal v (A -> B; pdd2_global's, global_depth.h) where the
+// double heights cannot certify it (a contact far shallower than the pair): on the heights of
+// compensated_heights_along, each within its own u, the status pattern verified with certain
+// margins and the root bound r counting only the vertices at the plane (compensated_valued's
+// argument, deformable_depth.cpp). value, r (value_bounds.h: the exact value lies in
+// [lower_of(value, r), upper_of(value, r)]), the solution s of that pattern and the heights
+// (relative to A's vertex highest along v) it was computed on. False when not applicable or
+// a margin is too small. Precondition: a pair rescaled by power_scale.h.
+bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
+                         double& value, double& r, DirectionSolution& s, double hA[4], double hB[4]);
+
 // Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);
