@@ -64,8 +64,11 @@ PDD_FMA_CLONES void AccurateMoments::fill(const std::array<std::array<double, 3>
 // S Cn^T) 54.6 u², m g² Cn Cn^T 56.8 u², D (Q_A + Q_B) 28.4 u²; M (three adds) 89.2 u² (the d
 // d terms are ~u⁴: inside the margin to 96). So |M~ − M| <= 96 u² |M|, |M| from the doubles
 // with the relative 2^-40 for their roundings. Then H = fl(fl(M~.hi + M~.lo) / (20 D)): two
-// roundings, <= 2u (1 + u) relative. The absolute 2^-1000 covers products' errors that may
-// underflow (two_prod, < 2^-1075 each, a few hundred of them).
+// roundings, <= 2u (1 + u) relative (the few u² beyond it inside the margin from 89.2 to 96).
+// The absolute 2^-940 covers products' errors that may underflow (two_prod, < 2^-1075 each,
+// fewer than 2^9 of them), each carried through later products by at most the coefficients
+// (< 2^13) times the sums' magnitudes (< 2^110: the double path's |coordinates| < 2^102,
+// global_depth.cpp): < 2^-943 in all.
 PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, Eigen::Matrix3d& H, double& h_error) const {
   const int mA = __builtin_popcount(ma), mB = __builtin_popcount(mb);
   if (mA == 0 || mB == 0 || ma > 15 || mb > 15) return false;
@@ -94,7 +97,7 @@ PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, Eigen::Mat
                       mg2 * aCn[r] * aCn[c] + k * aU[r] * aU[c];
     const double h = (M.hi + M.lo) / (20 * D);
     H(r, c) = H(c, r) = h;
-    const double err = (2 * kU * (1 + kU) * std::fabs(h) + 96 * kU * kU * aM / (20 * D)) * kGrow + 0x1p-1000;
+    const double err = (2 * kU * (1 + kU) * std::fabs(h) + 96 * kU * kU * aM / (20 * D)) * kGrow + 0x1p-940;
     if (!std::isfinite(h) || !std::isfinite(err)) return false;
     h_error = std::max(h_error, err);
   }

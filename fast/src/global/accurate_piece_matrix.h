@@ -21,7 +21,7 @@
 //     20 H D = D (Q_A + Q_B) − d g^2 (Cn S^T + S Cn^T) + m g^2 Cn Cn^T + k U U^T,  D = d^2 g^2,
 // the closed form 20 H = Q_A + Q_B − C S^T − S C^T + m C C^T + k T_A T_A^T of
 // relaxed_pieces.h (C = (S_A w_A + S_B w_B) / (m_A w_A + m_B w_B), w = 1 / (5 − m),
-// T_A = (m_A C − S_A) w_A). D <= 32^2 4^2 and every coefficient is an exact double.
+// T_A = (m_A C − S_A) w_A). d <= 17, D <= 17^2 4^2: every coefficient is an exact double.
 #pragma once
 
 #include <Eigen/Core>

@@ -170,8 +170,9 @@ void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
 // computed eigenvector exceeds its stationary value by about E^2 / gap (E the error of H and of
 // the solver): consider_piece's estimate 2 E^2 / gap <= 1e-11 mu is checked for every in-window
 // eigenvalue, on H built in doubles (E ~2^-39 of the moments: passes down to mu ~1e-12 scale^2)
-// and, where that fails, on H built to its own rounding (accurate_piece_matrix.h, E ~14 u |H|:
-// down to mu ~1e-18 |H|); where it fails on both, the pair goes to the exact pieces. Two limits
+// and, where that fails, on H built to its own rounding (accurate_piece_matrix.h; E a few u |H|,
+// the solver's part bounded from its residuals: down to mu ~1e-18 |H| where the gap is ~|H|);
+// where it fails on both, the pair goes to the exact pieces. Two limits
 // that estimate does not see: (1) a double normal represents the minimiser only to its own
 // rounding, the value along the rounded eigenvector exceeding mu by ~|H| u^2, which is below
 // 1e-12 of mu while mu >= 1e-18 |H| (further down, the exact path's suspects settle it:

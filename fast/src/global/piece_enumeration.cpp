@@ -305,17 +305,21 @@ class PieceEnumeration {
       const int zeros = std::max(0, 4 - g.mA - g.mB);  // (PieceMatrix::zeros)
       Eigen::Matrix3d Hw;
       double ew = 0;
-      if (accurate && accurate->matrix(ma, mb, Hw, ew)) {
-        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, calls, search);
+      // (the accurate visit's vectors as computed: PieceMatrix::accurate)
+      auto accurate_calls = piece_calls([&] { return conditions(g); }, [](const V3& v, double) { return v; },
+                                        [](const V3&, const V3&, V3 (&)[2]) { return false; }, [](int) {});
+      // (a pair already sent to the exact pieces: the cheaper double visit, its offers only)
+      if (accurate && !best.needs_exact && accurate->matrix(ma, mb, Hw, ew)) {
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, accurate_calls, search);
         return;
       }
       const bool needed_exact = best.needs_exact;
       consider_piece(PieceMatrix{H, h_error(g), false, 0, false, zeros}, calls, search);
       if (needed_exact || !best.needs_exact) return;
-      accurate.emplace(dA, dB);
+      if (!accurate) accurate.emplace(dA, dB);
       if (accurate->matrix(ma, mb, Hw, ew)) {
         best.needs_exact = false;
-        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, calls, search);
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, accurate_calls, search);
       }
     } else {
       consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);

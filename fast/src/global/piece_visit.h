@@ -31,11 +31,6 @@ inline constexpr double kPrune = 1e-10;       // an eigenvalue must beat the bes
 inline constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
 inline constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
 inline constexpr double kNearDouble = 1e-2;   // a gap below this (times |H|_F): the iterative solver
-// The iterative solver's eigenvalue error, times |H|_F, for an accurate H (PieceMatrix): it is
-// backward stable (Householder tridiagonalisation and implicit QR), its eigenpairs exact for
-// H + F with |F|_2 within a few u |H| (the 8 u |H| that double_path_accuracy's estimate E takes
-// for its vectors), so by Weyl each eigenvalue within that of H's; eight times that here.
-inline constexpr double kIterativeEigen = 64 * 0x1p-53;
 
 // The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
 // l.v <= tol (free), per condition.
@@ -64,14 +59,19 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out);
 // One active set's piece as consider_piece takes it: H, its entries within h_error (absolute;
 // on the exact path H is the exact one times 2^-pe, rounded once), and which path builds it.
 // `accurate` (double path): H from accurate_piece_matrix.h, its error near its own rounding;
-// then the iterative solver throughout, with its own eigenvalue margin (PieceVisit).
-// `zeros` (double path): how many eigenvalues of the exact H_S are exactly 0: G_S(n), the least
-// norm of a deformation putting S's vertices on one plane of normal n, vanishes for every n
-// orthogonal to their affine span, so H_S has 4 - |S| zero eigenvalues when |S| <= 3 (2 for
-// |S| = 2, 1 for |S| = 3). Sorted, the exact eigenvalues' first `zeros` are 0 and (Weyl) the
-// computed first `zeros` are their images: none is a stationary value of G (G > 0 on the
-// sphere of an intersecting pair), so they are never in the window, whatever the margin (a
-// shallow contact's margin exceeds its floor: they would send the pair to the exact pieces).
+// then the iterative solver throughout, its error bounded a posteriori (backward_error), and its
+// vectors offered as computed (the caller's refine is the identity: the double polish of
+// eigen_polish.h would not add accuracy to a backward-stable vector).
+// `zeros` (double path): a count of eigenvalues of the exact H_S that are exactly 0: G_S(n), the
+// least norm of a deformation putting S's vertices on one plane of normal n (20 G_S(n) = sum
+// over S of (p_i.n - c)^2 + k (T_A.n)^2), vanishes for every n orthogonal to their affine span,
+// so H_S has at least 4 - |S| zero eigenvalues when |S| <= 3 (2 for |S| = 2, 1 for |S| = 3).
+// Sorted, the exact eigenvalues' first `zeros` are 0 and (Weyl) the computed first `zeros` are
+// their images: none is a stationary value of G (G > 0 on the sphere of an intersecting pair;
+// a touching one, depth 0, goes to the exact pieces before: global_depth.cpp's tiny start), so
+// they are never in the window, whatever the margin (a shallow contact's margin exceeds its
+// floor: they would send the pair to the exact pieces). An in-window eigenvalue beside them
+// keeps them in its gap (gap_of), so its accuracy estimate sees them.
 struct PieceMatrix {
   const Eigen::Matrix3d& H;
   double h_error;
@@ -124,7 +124,9 @@ class PieceVisit {
 
   void run() {
     hnorm = H.norm();
-    margin = (accurate ? kIterativeEigen : kEigen) * hnorm + 3 * h_error;
+    // (accurate: no solver yet; the trace's and determinant's own roundings, a few u |H|; the
+    // solver's error is bounded after it ran, backward_error())
+    margin = (accurate ? 8 * kU : kEigen) * hnorm + 3 * h_error;
     best_here = best.value_in(pe);  // the best value in this piece's units
     lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
     threshold = best_here * (1 - kPrune) + margin;
@@ -163,9 +165,16 @@ class PieceVisit {
   bool solve() {
     if (exact || accurate) eig.compute(H);
     else eig.computeDirect(H);
-    if (eig.info() != Eigen::Success) return false;
+    if (eig.info() != Eigen::Success) {
+      if (accurate) best.needs_exact = true;  // (as double_path_accuracy's own failure)
+      return false;
+    }
     mu = eig.eigenvalues();
-    for (int k = 0; k < 3 && accurate; ++k) m[k] = margin;
+    if (accurate && !backward_error()) {
+      best.needs_exact = true;
+      return false;
+    }
+    for (int k = 0; k < 3 && accurate; ++k) m[k] = 3 * h_error + solver_error;
     for (int k = 0; k < 3 && !accurate; ++k) {
       double gap = INFINITY;
       if (k > 0) gap = std::min(gap, mu(k) - mu(k - 1));
@@ -175,6 +184,31 @@ class PieceVisit {
     bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
     for (int k = 0; k < 3; ++k) any = any || in_window(k);
     return any;
+  }
+
+  // The computed pairs' backward error, a posteriori (accurate H): with R = H V - V Lambda (V the
+  // computed eigenvectors, Lambda their eigenvalues), H + F with F = -R V^-1 has exactly these
+  // eigenpairs, |F|_2 <= |R|_F |V^-1|_2, and |V^-1|_2 = 1 / sigma_min(V) <= 1 / sqrt(1 - 3 o) <=
+  // 1 + 3 o for o = max |V^T V - I| <= 0.1 (|V^T V - I|_2 <= 3 o). So by Weyl each exact
+  // eigenvalue of H lies within |F|_2 of its computed one (sorted), and each computed vector
+  // is an exact one of H + F: solver_error = that bound, the solver's part of the margins and
+  // of double_path_accuracy's E. R's entries computed in doubles: a row of three products and
+  // two sums, then the subtraction of mu v_i, within 5u of (sum |H_ij v_j| + |mu v_i|); o's dot
+  // products within 4u; the relative 2^-40 for the rest of these roundings. False when V is
+  // too far from orthonormal (o > 0.1) or a value is not finite.
+  bool backward_error() {
+    const Eigen::Matrix3d& V = eig.eigenvectors();
+    double r2 = 0, o = 0;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) {
+        double hv = 0, mag = 0;
+        for (int j = 0; j < 3; ++j) hv += H(i, j) * V(j, k), mag += std::fabs(H(i, j) * V(j, k));
+        const double rik = std::fabs(hv - mu(k) * V(i, k)) + 5 * kU * (mag + std::fabs(mu(k) * V(i, k)));
+        r2 += rik * rik;
+        o = std::max(o, std::fabs(V.col(k).dot(V.col(i)) - (k == i ? 1.0 : 0.0)) + 4 * kU);
+      }
+    solver_error = std::sqrt(r2) * (1 + 3 * o) * (1 + 0x1p-40);
+    return o <= 0.1 && std::isfinite(solver_error);
   }
 
   bool in_window(int k) const {
@@ -220,7 +254,7 @@ class PieceVisit {
     // centroid (|H| << mag) in a shallow contact can have E^2 / gap near the eigenvalue
     // itself (estimated: ~1e-8 of it for |H| ~ 1e-8 R^2, gap ~ 1e-2 |H|). Such a
     // piece sends the pair to the exact pieces. On the paper's pairs it never triggers.
-    const double E = 3 * h_error + 8 * kU * hnorm;
+    const double E = 3 * h_error + (accurate ? solver_error : 8 * kU * hnorm);
     int pair_of[3];
     planes(pair_of);
     for (int k = 0; k < 3; ++k)
@@ -392,6 +426,7 @@ class PieceVisit {
   Best& best;
   const double lower;
   double hnorm = 0, margin = 0, best_here = 0, lower_here = 0, threshold = 0, floor = 0;
+  double solver_error = 0;  // accurate H: the computed pairs' backward error (backward_error)
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   Eigen::Vector3d mu;
   double m[3] = {0, 0, 0};  // each eigenvalue's margin (above)
