@@ -245,6 +245,19 @@ Approx times(const Approx& x, const Approx& y) {
 }
 }  // namespace
 
+bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, double& v,
+                          double& r) {
+  constexpr double u = 0x1p-53;
+  const ExactDepthParts parts = depth_parts_exact(A, B, label);
+  if (!parts.ok || parts.D.sign() == 0) return false;
+  const Approx D = approx_of(parts.D), nn = approx_of(parts.nn);
+  const double rho_D = D.err / std::fabs(D.v), rho_n = nn.err / nn.v;
+  if (!(rho_D <= 0.01 && rho_n <= 0.01)) return false;  // (NaN: false)
+  v = D.v * D.v / nn.v;
+  r = 1.02 * (rho_D + rho_n + 4 * u);
+  return std::isfinite(v) && v > 0.0;
+}
+
 // The two cases of compare_delta2_exact that need no product of expansions, common on aligned
 // pairs (parallel faces and edges give candidates of equal n.n or equal D, many of them exact
 // ties). With D_p, D_q > 0 and n.n > 0:

@@ -70,6 +70,19 @@ struct ExactDepthParts {
 };
 ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
 
+// delta² = D²/(n.n) of the label's exact candidate from depth_parts_exact, as a double v with a
+// root bound r (value_bounds.h: the exact delta² lies in [lower_of(v, r), upper_of(v, r)]);
+// false where depth_parts_exact cannot give the parts, D is 0 or a part's error exceeds 1%.
+// For the contenders whose compensated heights (compensated_heights.h) cannot certify them: a
+// nearly parallel edge pair of a contact made by rounding (n ~ u |e|², its height ~ u |n| L)
+// or an exactly parallel one; a few microseconds where the rationals take tens.
+// Bound. approx_of gives D~ within eD and n.n~ within en (rho_D = eD/|D~|, rho_n = en/n.n~);
+// sqrt(v) = |D|/sqrt(n.n) is then within rho_D (1 + 2 rho_D) + rho_n/2 relative, and the
+// product and the quotient add u each: r = 1.02 (rho_D + rho_n + 4u), the 4u covering those
+// and the roundings of lower_of and upper_of, as finish_root_rel's (value_bounds.h).
+bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, double& v,
+                          double& r);
+
 // sign(delta²_p − delta²_q) = sign(D_p² n_q.n_q − D_q² n_p.n_p) (n.n > 0), exactly; nullopt
 // when an expansion exceeds its capacity. Both parts from depth_parts_exact (ok).
 std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q);

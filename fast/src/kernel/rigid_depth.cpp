@@ -65,12 +65,20 @@ Choice rigid_of(const List& s) {
     v = detail::exact_delta2(c);
     return true;
   };
-  auto interval = [&s](int i, double& v, double& r) { return detail::tight_delta2(s, i, v, r); };
+  auto interval = [&s](int i, double& v, double& r) {
+    if (!detail::tight_delta2(s, i, v, r)) return false;
+    double ve, re;
+    if (!(r < 1 && certified_choice(upper_of(v, r), lower_of(v, r))) &&
+        delta2_by_expansions(*s.A, *s.B, unpack_label(label_code(s, i)), ve, re))
+      v = ve, r = re;
+    return true;
+  };
   auto tie_order = [&s](const int* c, int n) { return exact_first(s, c, n); };
   // Compensated intervals first (refine.h: ~1 us for the contenders of a shallow contact, whose
-  // double bounds carry u L^3 beside a value ~|n| depth), the contenders in rationals (~10-30
-  // us each) only where those cannot certify. The value is then within definitions §8 of the
-  // exact one (typically a few u) rather than its correctly rounded double.
+  // double bounds carry u L^3 beside a value ~|n| depth), then expansions for the contenders
+  // those leave too wide (exact_predicates.h), the contenders in rationals (~10-30 us each) only
+  // where neither can certify. The value is then within definitions §8 of the exact one
+  // (typically a few u) rather than its correctly rounded double.
   if (!detail::refine_tight(s, lower, hi, interval, exact, tie_order, ch)) detail::refine_minimum(s, lower, hi, exact, ch);
   return ch;
 }
