@@ -128,7 +128,8 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
 
 // The double path on a rescaled pair; returns the quantities that are not certified.
 // `refined`: some quantity was certified by refine.h (a few candidates evaluated exactly);
-// `exact_q1`: the pdd2 choice was refined, so q1 must be the exact solution's (solve_pair);
+// `exact_q1`: q1 must be the exact solution's (solve_pair): neither the double positions nor
+// the compensated ones meet the contract;
 // `global_slow`: pdd2_global's value was computed in rationals (global_depth.h).
 // `lanes`: the pair's quick lanes (quick_lanes), or null when they decline: pdd2_static, pdd2 and
 // pdd2_relaxed are then first taken from the lane sweeps of the functions over raw tetrahedra
@@ -199,8 +200,12 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   exact_q1 = false;
   if (asked(kIdxPdd2) && def.index >= 0 && def.certified) {
     deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
-    // refined, or the double positions miss the contract: the exact ones for the label
-    exact_q1 = def.refined || !positions_attain(pair, r, def.value);
+    // refined, or the double positions miss the contract: on compensated heights where they
+    // give them (deformable_depth.h), else the exact ones for the label
+    if (def.refined || !positions_attain(pair, r, def.value)) {
+      refined = true;
+      exact_q1 = !compensated_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
+    }
   } else if (asked(kIdxPdd2)) {
     missing |= kPositions;
   }

@@ -17,6 +17,7 @@
 #include "pdd/compare/generate.h"
 #include "pdd/pdd.h"
 #include "pdd/reference/solve_exact.h"
+#include "structured_cells.h"
 
 using namespace pdd;
 
@@ -207,6 +208,40 @@ BOOST_AUTO_TEST_CASE(aligned_pairs_within_contract_without_the_exact_path) {
   BOOST_TEST_MESSAGE(slow << " of " << pairs.size() << " on the slow path, " << refined << " refined");
   BOOST_TEST(slow <= int(pairs.size()) / 50, slow << " of " << pairs.size() << " on the slow path");
   BOOST_TEST(refined <= int(pairs.size()) / 25, refined << " of " << pairs.size() << " refined");
+}
+
+// Contacts made by rounding (structured_cells.h: a Kuhn grid against its copy shifted a tenth of
+// a cell along (1, 1, 1); faces that coincide in exact arithmetic overlap by ~1e-17 once the
+// shifted coordinates are rounded): no double value has a correct digit. Every value, label and
+// the deformed positions within definitions §8 of the exact engine, and none of these pairs on
+// the exact path without definitions §9: the rigid contenders certify on compensated heights or
+// expansions, the case-1 and case-2 values on compensated heights (with the rationals only for
+// contenders neither certifies), the positions on compensated heights (compensated_positions).
+// (pdd2_global of such a pair, ~1e-33 of the size squared, is searched on exact pieces, and its
+// eq11_pd2 taken exactly where several overlaps are exactly 0: the slow path with the default
+// options.)
+BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_within_contract_without_the_exact_path) {
+  const std::vector<TetPair> pairs = pdd::test::rounding_contact_pairs(2, 24);
+  BOOST_REQUIRE(pairs.size() == 24u);
+  int slow = 0;
+  for (const auto& p : pairs) {
+    const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
+    const auto fast = fast::solve_pair(p);
+    const auto c = compare::compare_pair(p, exact, fast);
+    BOOST_TEST(!c.over_tolerance(), p.name);
+    for (int v = 0; v < 7; ++v)
+      BOOST_TEST(c.rel_error[v] <= c.tolerance[v], p.name << " " << pdd::kValueKeys[v] << " "
+                                                          << c.fast_value[v] << " vs " << c.exact_value[v]);
+    BOOST_TEST(c.position_error <= c.position_tolerance, p.name);
+    // the record of `pdd mesh` and mesh_contacts: no pdd2_global, and not eq11_pd2 either (its
+    // exactly-0 overlaps of such pairs take the exact path)
+    fast::SolveOptions o;
+    o.with_global = false;
+    for (std::size_t k = 0; k < kValueCount; ++k)
+      if (std::string(kValueKeys[k]) == "eq11_pd2") o.values &= ~(1u << k);
+    slow += fast::solve_pair(p, o).stats.slow_path;
+  }
+  BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
 }
 
 // Shallow contacts, as a simulator's resting contacts are: a vertex of B (tip) or a face of B

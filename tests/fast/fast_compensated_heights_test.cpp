@@ -10,13 +10,21 @@
 //    1e-9 of the exact case-2 value along the exact rigid label; where the rigid direction is
 //    certified in doubles (to ~1e-4 of the size) but the double heights cannot certify
 //    pdd2_accel1, rigid_and_accel1 now does (>= 95% of those pairs; ~75% at 1e-3 and none at
-//    1e-4 before).
+//    1e-4 before);
+//  - compensated_positions (deformable_depth.h) puts every coordinate within 3u Q of the exact
+//    case-2 positions P + d* of the pdd2 label (Q the pair's largest |coordinate|), on shallow
+//    contacts and on contacts made by rounding (structured_cells.h);
+//  - on the same pairs pdd2_static, whose contenders (VF ones included: C is then A's highest
+//    height) certify on compensated heights, is within 1e-9 of the exact minimum over the
+//    case-1 family, computed here in rationals.
 #define BOOST_TEST_MODULE fast_compensated_heights
 #include <boost/test/unit_test.hpp>
 
 #include <gmpxx.h>
 
 #include <cmath>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "certification/compensated_heights.h"
@@ -28,6 +36,7 @@
 #include "pdd/compare/random.h"
 #include "pdd/pdd.h"
 #include "qp/deformable_depth.h"
+#include "structured_cells.h"
 
 using namespace pdd;
 using namespace pdd::fast;
@@ -173,4 +182,88 @@ BOOST_AUTO_TEST_CASE(shallow_accel1_certified_and_exact) {
   BOOST_TEST(pairs > 300);
   BOOST_TEST(unique_pairs > 100);
   BOOST_TEST(certified_fast >= 0.95 * unique_pairs, certified_fast << " of " << unique_pairs);
+}
+
+// Each coordinate of compensated_positions against the exact positions P + d* (d* = T*/n.n n*
+// of the exact case-2 solution along the same label, direction_qp.h), in units of u Q.
+BOOST_AUTO_TEST_CASE(compensated_positions_within_their_bound) {
+  Rng rng(5);
+  int offered = 0, given = 0;
+  double worst = 0;
+  auto check = [&](const TetVertices& A, const TetVertices& B) {
+    const detail::ScaledPair sp = detail::power_scaled(A, B);
+    CandidateSet set;
+    if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) return;
+    const Choice def = pdd2(set);
+    if (def.index < 0 || !def.certified) return;
+    const Candidate c = candidate(set, def.index);
+    Positions<double> qA, qB;
+    ++offered;
+    if (!compensated_positions(sp.A, sp.B, c, qA, qB)) return;
+    ++given;
+    const detail::ExactFrame f = detail::exact_frame(sp.A, sp.B);
+    const detail::ExactCandidate x = detail::exact_candidate(f, c.label);
+    Solution<Q> sol;
+    (void)detail::exact_deformable_value(x, &sol);
+    double Qmax = 0;
+    for (const TetVertices* T : {&sp.A, &sp.B})
+      for (const auto& v : *T)
+        for (double y : v) Qmax = std::max(Qmax, std::fabs(y));
+    const Q unit = Q(std::ldexp(Qmax, -53));  // u Q
+    for (int i = 0; i < 4; ++i) {
+      const Q tA = displacement_below(x.hA[i], (x.conA >> i & 1u) != 0, sol) / x.nn;
+      const Q tB = displacement_above(x.hB[i], (x.conB >> i & 1u) != 0, sol) / x.nn;
+      for (int k = 0; k < 3; ++k) {
+        const Q eA = Q(sp.A[i][k]) + detail::unscaled(f, tA * x.n.x[k], 1);
+        const Q eB = Q(sp.B[i][k]) + detail::unscaled(f, tB * x.n.x[k], 1);
+        const double e = std::max(Q(abs(Q(qA[i][k]) - eA) / unit).get_d(), Q(abs(Q(qB[i][k]) - eB) / unit).get_d());
+        worst = std::max(worst, e);
+        BOOST_TEST(e <= 3.0, "vertex " << i << " coordinate " << k << ": " << e << " u Q");
+      }
+    }
+  };
+  for (int trial = 0; trial < 400; ++trial) {
+    TetVertices A = random_tet(rng, 10), B = random_tet(rng, 10);
+    if (shallow(A, B, 10 * std::pow(10.0, -rng.uniform(3, 12)))) check(A, B);
+  }
+  const std::vector<TetPair> rounding = pdd::test::rounding_contact_pairs(2, 60);
+  BOOST_TEST(rounding.size() == 60u);
+  const int shallow_given = given;
+  for (const TetPair& p : rounding) check(p.A, p.B);
+  BOOST_TEST(given - shallow_given == 60, given - shallow_given << " of the 60 contacts made by rounding");
+  BOOST_TEST_MESSAGE("compensated positions given for " << given << " of " << offered << " pdd2 labels, worst "
+                                                         << worst << " u Q");
+  BOOST_TEST(given >= 0.9 * offered, given << " of " << offered);
+  BOOST_TEST(worst > 0.25);  // not vacuous: the final rounding alone reaches about half a unit
+}
+
+BOOST_AUTO_TEST_CASE(shallow_static_values_exact) {
+  Rng rng(6);
+  std::vector<std::pair<TetVertices, TetVertices>> pairs;
+  for (int trial = 0; trial < 300; ++trial) {
+    TetVertices A = random_tet(rng, 10), B = random_tet(rng, 10);
+    if (shallow(A, B, 10 * std::pow(10.0, -rng.uniform(3, 12)))) pairs.emplace_back(A, B);
+  }
+  for (const TetPair& p : pdd::test::rounding_contact_pairs(2, 40)) pairs.emplace_back(p.A, p.B);
+  int checked = 0;
+  for (const auto& [A, B] : pairs) {
+    const Depth d = pdd2_static(A, B);
+    if (d.status != DepthStatus::Ok || !(d.pd2 > 0)) continue;
+    CandidateSet set;
+    BOOST_REQUIRE(build_candidates(A, B, set) == BuildStatus::Ok);
+    const detail::ExactFrame f = detail::exact_frame(A, B);
+    std::optional<Q> best;
+    for (int k = 0; k < set.count; ++k) {
+      const DirectionLabel l = candidate(set, k).label;
+      if (l.orientation != EdgeOrientation::Decided) continue;  // not in case 1's family
+      const Q v = detail::exact_static_value(detail::exact_candidate(f, l));
+      if (!best || v < *best) best = v;
+    }
+    BOOST_REQUIRE(best.has_value());
+    const Q exact = detail::unscaled(f, *best, 2);
+    const Q rel = abs(Q(d.pd2) - exact) / exact;
+    BOOST_TEST(rel.get_d() <= 1e-9, d.pd2 << " vs " << exact.get_d());
+    ++checked;
+  }
+  BOOST_TEST(checked > 200);
 }

@@ -5,6 +5,9 @@
 // along the axes are exactly parallel, the others parallel up to that rounding.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "pdd/pdd.h"
 
 namespace pdd::test {
@@ -33,6 +36,39 @@ inline TetVertices five_cell_tet(const Vec3d& o, double h, int which, bool odd) 
   static const int kOdd[5][4] = {{1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}, {0, 3, 5, 6}};
   const int* c = odd ? kOdd[which] : kEven[which];
   return {corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])};
+}
+
+// Contacts made by rounding: the Kuhn tetrahedra of an n^3 grid of cubes of side h = 1/8
+// against those of the same grid shifted by h/10 along (1, 1, 1) (each coordinate i h + h/10
+// rounded once). In exact arithmetic the shift lies in the planes x - y = c, y - z = c of the
+// cells' diagonal faces, so such faces of the two grids coincide; once rounded they are ~1e-17
+// apart, and the element pairs whose interiors meet only through that rounding (rigid PD² below
+// 1e-20 here) are what this returns, up to `max_pairs` of them: no double value of theirs has
+// a correct digit.
+inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
+  const double h = 0.125, s = h / 10;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        for (int perm = 0; perm < 6; ++perm) {
+          A.push_back(kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
+          TetVertices b = A.back();
+          for (auto& v : b)
+            for (double& x : v) x += s;
+          B.push_back(b);
+        }
+  std::vector<TetPair> out;
+  for (std::size_t a = 0; a < A.size(); ++a)
+    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
+      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
+      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0) || !(d.pd2 < 1e-20)) continue;
+      TetPair p;
+      p.name = "rounding a" + std::to_string(a) + " b" + std::to_string(b);
+      p.A = A[a], p.B = B[b];
+      out.push_back(p);
+    }
+  return out;
 }
 
 }  // namespace pdd::test

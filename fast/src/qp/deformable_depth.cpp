@@ -92,7 +92,7 @@ enum class QpKind { Static, Deformable, Relaxed };
 // 60 u Ha, S within 350 u Ha, every T within 2^9 u Ha (Ha = max |C| and the heights at the
 // plane). False when no vertex is at the plane on either side (den = 0).
 bool closed_form(const double hA[4], const double hB[4], unsigned atA, unsigned atB, bool a_static,
-                 DirectionSolution& s) {
+                 DirectionSolution& s, double c_static = 0) {
   double fa[4], fb[4], PA = 0, PB = 0;
   int mA = 0, mB = 0;
   for (int i = 0; i < 4; ++i) {
@@ -101,7 +101,7 @@ bool closed_form(const double hA[4], const double hB[4], unsigned atA, unsigned 
   }
   s = DirectionSolution{};
   if (a_static) {
-    s.c = 0;
+    s.c = c_static;
   } else {
     const int den = mA * (5 - mB) + mB * (5 - mA);
     if (den == 0) return false;
@@ -132,21 +132,31 @@ bool closed_form(const double hA[4], const double hB[4], unsigned atA, unsigned 
 // Phi(H*) = Phi(H''), and value_bounds.h's Lipschitz argument on H~ and H'' (which differ by
 // <= e_act) gives |Phi(H*) - Phi(H~)| <= 2 e_act: qp_root_rel's e_h; e_n the compensated
 // normal's.
-// Case 1 (Static): A does not move, so only B's free vertices have margins; C_A empty (VF,
-// where C is a maximum over A's heights) and undecidable edge pairs (not in case 1's family)
-// are declined. Relaxed: every vertex free.
+// Case 1 (Static): A does not move, so only B's free vertices have margins; undecidable edge
+// pairs (not in case 1's family) are declined. With C_A empty (VF) C = max(max_i H_A,i, the
+// root of S_B) (direction_qp.h); taken only where it is A's highest height (largest(), within
+// e_c, the error of the heights within reach of the top, tight_delta.h) and S_B there is
+// certainly positive, |S_B| > 2^9 u Ha + 8 e_act (the closed form's rounding, and S's move
+// under the exact heights): then S_B* (C*) > 0 too, the root lies below the exact top height
+// and C* = max_i H*_A,i. C plays the part of a height at the plane (within e_c, counted in
+// e_act), so the argument above holds as written. Relaxed: every vertex free.
 // Precondition: a pair rescaled by power_scale.h (every caller's); a cost or n.n below 2^-900
 // (an unscaled list of a tiny pair, where the solver's values underflow) is declined.
 // Returns false when not applicable or a margin is too small (the caller's next path decides).
 // The same on given compensated heights h (constrained vertices conA, conB), with the solution
-// of the verified pattern in s.
+// of the verified pattern in s; `pattern` (optional): that pattern (the vertices at the plane),
+// Ha and e_act.
+struct VerifiedPattern {
+  unsigned atA = 0, atB = 0;
+  double Ha = 0, e_act = 0;
+};
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
-                       Valued& out, DirectionSolution& s);
+                       Valued& out, DirectionSolution& s, VerifiedPattern* pattern = nullptr);
 
 bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
                         Valued& out) {
   const bool a_static = kind == QpKind::Static;
-  if (a_static && (!c.conA || c.label.orientation != EdgeOrientation::Decided)) return false;
+  if (a_static && c.label.orientation != EdgeOrientation::Decided) return false;
   detail::CompensatedHeights h;
   if (!detail::compensated_heights(A, B, c, h)) return false;
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
@@ -155,19 +165,23 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
 }
 
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
-                       Valued& out, DirectionSolution& s) {
+                       Valued& out, DirectionSolution& s, VerifiedPattern* pattern) {
   const bool a_static = kind == QpKind::Static;
   s = kind == QpKind::Relaxed ? solve_relaxed(h.hA, h.hB)
                         : a_static              ? solve_static(side_of(h.hA, conA), side_of(h.hB, conB))
                                                 : solve_deformable(side_of(h.hA, conA), side_of(h.hB, conB));
+  // case 1 without a constrained vertex of A (VF): C is A's highest height (above), e_c its error
+  const bool top_pinned = a_static && conA == 0;
+  const detail::Extreme top = top_pinned ? detail::largest(h.hA, h.eA) : detail::Extreme{0.0, 0.0};
+  if (top_pinned && s.c != top.value) return false;  // the double solution is at S_B's root
   unsigned atA = conA, atB = conB;
   for (int i = 0; i < 4; ++i) {
     if (!a_static && s.c - h.hA[i] + s.sumA < 0) atA |= 1u << i;
     if (s.c - h.hB[i] + s.sumB > 0) atB |= 1u << i;
   }
-  if (!closed_form(h.hA, h.hB, atA, atB, a_static, s)) return false;
+  if (!closed_form(h.hA, h.hB, atA, atB, a_static, s, top.value)) return false;
   if (!(s.cost >= 0x1p-900) || !(h.nn >= 0x1p-900)) return false;  // (precondition, above)
-  double Ha = std::fabs(s.c), e_act = 0;
+  double Ha = std::fabs(s.c), e_act = top.error;
   for (int i = 0; i < 4; ++i) {
     if (atA >> i & 1u) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
     if (atB >> i & 1u) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
@@ -177,6 +191,7 @@ bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsig
     const double err = (512 * kUnitRoundoff * Ha + 2 * kUnitRoundoff * (std::fabs(hv) + std::fabs(m))) * (1 + 0x1p-40);
     return std::fabs(m) > err + 9 * e_act + ev && ((m < 0) == at_if_negative) == at;
   };
+  if (top_pinned && !(s.sumB > (512 * kUnitRoundoff * Ha) * (1 + 0x1p-40) + 8 * e_act)) return false;
   for (int i = 0; i < 4; ++i) {
     if (!a_static && !(conA >> i & 1u) && !certain(h.hA[i], h.eA[i], s.c - h.hA[i] + s.sumA, true, atA >> i & 1u))
       return false;
@@ -185,6 +200,7 @@ bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsig
   }
   out.v = s.cost / (20.0 * h.nn);
   out.r = qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight);
+  if (pattern) *pattern = {atA, atB, Ha, e_act};
   return true;
 }
 
@@ -898,6 +914,35 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
       qB[i][k] = B[i][k] + tB * c.n[k];
     }
   }
+}
+
+bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                           Positions<double>& qA, Positions<double>& qB) {
+  detail::CompensatedHeights h;
+  Valued x;
+  DirectionSolution s;
+  VerifiedPattern p;
+  if (!detail::compensated_heights(A, B, c, h) ||
+      !valued_on_heights(h, c.conA, c.conB, QpKind::Deformable, x, s, &p))
+    return false;
+  const double N = std::sqrt(h.nn), rho = std::sqrt(3.0) * h.e_n / N;
+  if (!(rho <= 0.01)) return false;
+  const double dT = kSolverDisplacementCoeffTight * kUnitRoundoff * p.Ha + 8 * p.e_act;
+  double Q = 0, eta = 0, dA[4][3], dB[4][3];
+  for (int t = 0; t < 2; ++t)
+    for (int i = 0; i < 4; ++i) {
+      const bool at = ((t ? p.atB : p.atA) >> i & 1u) != 0;
+      const double T = at ? s.c - (t ? h.hB[i] : h.hA[i]) : -(t ? s.sumB : s.sumA), w = T / h.nn;
+      eta = std::fmax(eta, (dT + (std::fabs(T) + dT) * (4 * rho + 8 * kUnitRoundoff)) / N);
+      for (int k = 0; k < 3; ++k) {
+        (t ? dB : dA)[i][k] = w * h.n[k];
+        Q = std::fmax(Q, std::fabs((t ? B : A)[i][k]));
+      }
+    }
+  if (!(eta * 1.01 <= 2 * kUnitRoundoff * Q)) return false;  // (NaN: false)
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) qA[i][k] = A[i][k] + dA[i][k], qB[i][k] = B[i][k] + dB[i][k];
+  return true;
 }
 
 namespace {

@@ -101,6 +101,26 @@ bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                         Positions<double>& qA, Positions<double>& qB);
 
+// The same positions where the double heights cannot give them (a contact far shallower than
+// the pair: its displacements have no correct digit in doubles), on compensated_heights.h's
+// heights: each position within 3u Q of the exact positions P + d* for c's exact direction
+// (Q the pair's largest coordinate magnitude), as the exact positions rounded once are within
+// u Q. False (qA, qB unchanged) when the pattern cannot be verified or that bound fails.
+// Argument. valued_on_heights verifies the status pattern of the heights H~ and of the exact
+// H* alike, so both solutions are its closed form: the computed displacement T~_i is within
+// 2^9 u Ha of the closed form on H~ (value_bounds.h's tight solver bound), which moves by at
+// most 2 e_act (T = C - H_i at the plane: C a convex combination of heights at the plane) or
+// 8 e_act (T = -S) from H~ to H*: |T~ - T*| <= dT = 2^9 u Ha + 8 e_act. The displacement is
+// d = (T/|n|) n/|n|; the rounded normal is within rho = sqrt(3) e_n/|n~| of n* relative (<=
+// 0.01 required), which moves 1/|n| by <= 1.02 rho and n/|n| by <= 2.04 rho; the double
+// operations (n~.n~, the division, the product) add <= 5u. So |d~_ik - d*_ik| <= eta =
+// (dT + (|T~| + dT)(4 rho + 8u)) / |n~| (1.01 covering the second-order terms), and the sum
+// P + d~ rounded adds u |q|. Required: eta <= 2u Q, so each coordinate is within 3u Q of P +
+// d*, which attains c's exact value exactly; compare/'s judge allows 4u Q a coordinate for
+// positions rounded to doubles (engine_comparison.cpp, position_tolerance).
+bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                           Positions<double>& qA, Positions<double>& qB);
+
 // Convenience over raw tetrahedra: the quick list when quick_candidates decides, else the full
 // candidate set (on the stack), on the pair rescaled by a power of two; value 0 when not
 // intersecting or invalid. The hot functions to time. definitions §8: the choice is certified
