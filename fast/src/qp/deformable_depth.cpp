@@ -543,6 +543,31 @@ bool lane_sweep(const QuickCandidates& q, const detail::QpLowerBounds& bounds, V
   return true;
 }
 
+// delta²'s certified interval per candidate of a list, [safe_lower(delta², rigid_rel),
+// upper_of(delta², rigid_rel)] (no upper bound: +inf), each computed on first use: case 3's
+// passes (accel_of's separation test, accel_over_ties, accel_by_directions, accel_contenders)
+// ask for the same candidates' bounds in turn.
+template <class List>
+class DeltaBounds {
+ public:
+  explicit DeltaBounds(const List& set) : set_(set) {}
+  double lower(int i) { return fill(i), lo_[i]; }
+  double upper(int i) { return fill(i), hi_[i]; }
+
+ private:
+  void fill(int i) {
+    if (done_[i]) return;
+    const double r = detail::rigid_rel(set_, i);
+    lo_[i] = safe_lower(delta2(set_, i), r);
+    hi_[i] = upper_of(delta2(set_, i), r);
+    if (!(hi_[i] >= 0.0)) hi_[i] = kInf;  // (0 times an infinite bound: no bound)
+    done_[i] = true;
+  }
+  const List& set_;
+  double lo_[kMaxCandidates], hi_[kMaxCandidates];
+  bool done_[kMaxCandidates] = {};
+};
+
 // The first k candidates in ascending delta order (tie band); -1 entries never written: returns
 // the number found (< min(k, count) only on NaN input).
 template <class List>
@@ -628,11 +653,11 @@ bool exact_delta_order(const List& set, const int* idx, int n, int* pos) {
 // rounding every double bound is wide (hi_chosen ~ the pair's size), the tight ones leave the
 // few candidates of that depth instead of every candidate.
 template <class List>
-int accel_contenders(const List& set, int k, double hi_chosen, int* idx) {
+int accel_contenders(const List& set, int k, double hi_chosen, DeltaBounds<List>& db, int* idx) {
   int order[kMaxCandidates], m = 0;
   double lo[kMaxCandidates], up_k[kAccelWide];  // up_k: the k least upper bounds, ascending
   for (int i = 0; i < set.count; ++i) {
-    const double x = safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    const double x = db.lower(i);
     if (x > hi_chosen) continue;
     int t = m++;
     for (; t > 0 && x < lo[order[t - 1]]; --t) order[t] = order[t - 1];
@@ -655,7 +680,7 @@ int accel_contenders(const List& set, int k, double hi_chosen, int* idx) {
   }
   int n = 0;
   for (int i = 0; i < set.count; ++i)
-    if (!(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > U) && !(lo[i] > U)) idx[n++] = i;
+    if (!(db.lower(i) > U) && !(lo[i] > U)) idx[n++] = i;
   return n;
 }
 
@@ -673,14 +698,14 @@ int accel_contenders(const List& set, int k, double hi_chosen, int* idx) {
 // against its copy shifted by half a cell along (1, 1, 1), ties 17 candidates exactly); only
 // the rationals' order, ~20 µs a contender, is limited to kMaxAccelContenders.
 template <class List>
-void refine_accel(const List& set, int k, const int* order, int m, double hi_chosen,
+void refine_accel(const List& set, int k, const int* order, int m, double hi_chosen, DeltaBounds<List>& db,
                   Choice& ch) {
   constexpr int kMax = kMaxCandidates;
   int idx[kMax], n = 0;
   if (order) {
     for (int r = 0; r < m; ++r) idx[n++] = order[r];
   } else {
-    n = accel_contenders(set, k, hi_chosen, idx);
+    n = accel_contenders(set, k, hi_chosen, db, idx);
   }
   if (!set.A || n == 0) return;
   const int kk = k < n ? k : n;
@@ -736,18 +761,19 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
 // bounds]. When that interval passes certified_choice, any value in it meets definitions §8:
 // the computed choice's value (itself in it) is reported. (No label is reported for case 3.)
 template <class List>
-void accel_over_ties(const List& set, double hi_chosen, Choice& ch) {
+void accel_over_ties(const List& set, double hi_chosen, DeltaBounds<List>& db, Choice& ch) {
   if (!(hi_chosen < kInf)) return;
   const DeformableVariant variant;
   double lo_min = kInf, hi_max = 0.0;
   int n = 0;
   for (int i = 0; i < set.count; ++i) {
-    if (safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen) continue;
+    if (db.lower(i) > hi_chosen) continue;
     if (++n > kAccelWide + detail::kMaxRefined) return;
     Pending p;
-    const double v = evaluate(set, i, variant, p);
+    const Candidate c = candidate(set, i);
+    const double v = evaluate(c, variant, p);
     if (!p.feasible || !(v > 0.0)) return;
-    const double r = root_bound(set, i, variant, p);
+    const double r = root_bound(c, set.fb, variant, p);
     const double lo = safe_lower(v, r), hi = upper_of(v, r);
     lo_min = lo < lo_min ? lo : lo_min;
     hi_max = hi > hi_max ? hi : hi_max;
@@ -765,16 +791,14 @@ void accel_over_ties(const List& set, double hi_chosen, Choice& ch) {
 // their case-2 minimum is certified as in accel_of. (Aligned pairs: a face and the edge pairs
 // of its plane give one direction exactly.)
 template <class List>
-void accel_by_directions(const List& set, int k, double hi_chosen, Choice& ch) {
+void accel_by_directions(const List& set, int k, double hi_chosen, DeltaBounds<List>& db, Choice& ch) {
   if (!set.A || !(hi_chosen < kInf)) return;
   constexpr int kMax = kAccelWide + detail::kMaxRefined;
   int P[kMax], n = 0;
   double lo[kMaxCandidates], hi[kMaxCandidates];
   for (int i = 0; i < set.count; ++i) {
-    const double r = detail::rigid_rel(set, i);
-    lo[i] = safe_lower(delta2(set, i), r);
-    hi[i] = upper_of(delta2(set, i), r);
-    if (!(hi[i] >= 0.0)) hi[i] = kInf;  // (0 times an infinite bound: no bound)
+    lo[i] = db.lower(i);
+    hi[i] = db.upper(i);
     if (lo[i] > hi_chosen) continue;
     if (n == kMax) return;
     P[n++] = i;
@@ -823,12 +847,13 @@ Choice accel_of(const List& set, int k) {
     hi_chosen = !(hi <= hi_chosen) ? (hi >= 0.0 ? hi : kInf) : hi_chosen;  // (NaN: no bound)
   }
   bool separated = hi_chosen < kInf;
+  DeltaBounds<List> db(set);
   // (certify.h: kSmallRigidLower delta² > hi_chosen with a small bound has lower bound
   // > hi_chosen, so the exact test below would pass: it is skipped)
   for (int i = 0; i < set.count && separated; ++i)
     if (!chosen[i] &&
         !(detail::kSmallRigidLower * delta2(set, i) > hi_chosen && detail::rigid_rel_small(set, i)) &&
-        !(safe_lower(delta2(set, i), detail::rigid_rel(set, i)) > hi_chosen))
+        !(db.lower(i) > hi_chosen))
       separated = false;
   const DeformableVariant variant;
   double v[kMaxCandidates];  // (k is any count on the lists' interface)
@@ -858,9 +883,9 @@ Choice accel_of(const List& set, int k) {
     double value = 0;
     if (accel1_compensated(*set.A, *set.B, c, value)) ch.value = value, ch.certified = true;
   }
-  if (!ch.certified && !separated) accel_over_ties(set, hi_chosen, ch);
-  if (!ch.certified && !separated) accel_by_directions(set, k, hi_chosen, ch);
-  if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, ch);
+  if (!ch.certified && !separated) accel_over_ties(set, hi_chosen, db, ch);
+  if (!ch.certified && !separated) accel_by_directions(set, k, hi_chosen, db, ch);
+  if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, db, ch);
   return ch;
 }
 
