@@ -620,16 +620,26 @@ bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch, bool
   return true;
 }
 
-// pos[0..n): the contenders idx[0..n) (canonical order) in ascending exact delta², exact ties
-// in canonical order (a stable insertion sort), compared by expansions (depth_parts_exact,
+// pos[0..first): the first `first` of the contenders idx[0..n) (canonical order) in ascending
+// exact delta², exact ties in canonical order (a stable insertion sort; for first = 1 the first
+// least one, n - 1 comparisons), compared by expansions (depth_parts_exact,
 // compare_delta2_exact: D_a² n_b.n_b against D_b² n_a.n_a, no division); false when the
 // expansions cannot decide a comparison (pos then unspecified).
 template <class List>
-bool exact_delta_order(const List& set, const int* idx, int n, int* pos) {
+bool exact_delta_order(const List& set, const int* idx, int n, int first, int* pos) {
   std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each, up to kMaxCandidates: on the heap)
   for (int j = 0; j < n; ++j) {
     parts[j] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[j])));
     if (!parts[j].ok) return false;
+  }
+  if (first == 1) {
+    pos[0] = 0;
+    for (int j = 1; j < n; ++j) {
+      const std::optional<int> s = compare_delta2_exact(parts[j], parts[pos[0]]);
+      if (!s) return false;
+      if (*s < 0) pos[0] = j;  // strictly below: an exact tie keeps the earlier one
+    }
+    return true;
   }
   for (int j = 0; j < n; ++j) {
     int t = j;
@@ -711,7 +721,7 @@ void refine_accel(const List& set, int k, const int* order, int m, double hi_cho
   const int kk = k < n ? k : n;
   int pos[kMax];
   bool sorted = order != nullptr;
-  if (!sorted && exact_delta_order(set, idx, n, pos)) {
+  if (!sorted && exact_delta_order(set, idx, n, kk, pos)) {
     sorted = true;
     int chosen[kMax];
     for (int r = 0; r < kk; ++r) chosen[r] = idx[pos[r]];
