@@ -332,8 +332,11 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
     computed = kAllValues;
     return exact_path(pair, r, global);
   }
-  // ~20 KB: on the heap to keep TBB worker stacks small; default-initialised (no zeroing).
-  std::unique_ptr<CandidateSet> set(new CandidateSet);
+  // ~20 KB and ~8 KB: once per thread, off TBB worker stacks (solve_record does not recurse:
+  // nothing below calls solve_pair or waits on other tasks)
+  static thread_local CandidateSet set_storage;
+  static thread_local QuickCandidates lanes_storage;
+  CandidateSet* const set = &set_storage;
   if (build_candidates(sp.A, sp.B, *set) != BuildStatus::Ok) {
     r.error = rejection_of(pair);  // flat (decided exactly); the scaling preserves flatness
     return r;
@@ -347,9 +350,10 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   scaled.A = sp.A;
   scaled.B = sp.B;
   bool refined = false, exact_q1 = false, global_slow = false;
-  std::unique_ptr<QuickCandidates> lanes(new QuickCandidates);  // (~8 KB: off the stack as well)
-  const bool have_lanes = quick_lanes(scaled.A, scaled.B, *lanes);
-  unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes.get() : nullptr, r, refined,
+  // (an edge lane through the exact path makes quick_lanes decline: not tried then)
+  QuickCandidates* const lanes = &lanes_storage;
+  const bool have_lanes = exact_lanes(*set) == 0 && quick_lanes(scaled.A, scaled.B, *lanes);
+  unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes : nullptr, r, refined,
                                        exact_q1, global_slow, global, computed);
   PairResult<double> bad;
   bad.name = pair.name;

@@ -374,13 +374,6 @@ bool same_bits(const TetVertices& x, const TetVertices& y) {
   return std::memcmp(x.data(), y.data(), sizeof(TetVertices)) == 0;
 }
 
-int exact_lanes(const CandidateSet& set) {
-  int m = 0;
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) m += set.edges.unclear[kLaneStride * a + b] != 0.0;
-  return m;
-}
-
 // to = from, reading only what candidate(), label() and the lists use: the first `count`
 // entries, all edge lanes, and the explicit geometries of non-lane candidates (a full copy of
 // the ~20 KB set would cost a good part of a build).
@@ -411,6 +404,13 @@ struct LastBuild {
 };
 
 }  // namespace
+
+int exact_lanes(const CandidateSet& set) {
+  int m = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) m += set.edges.unclear[kLaneStride * a + b] != 0.0;
+  return m;
+}
 
 BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out) {
   thread_local LastBuild last;  // (~20 KB: off the stack, once per thread)

@@ -117,6 +117,11 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 inline constexpr int kReuseExactLanes = 8;
 BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out);
 
+// The number of edge lanes of an intersecting set that took the exact path (edges.unclear set):
+// where it is not 0, quick_lanes (quick_candidates.h), whose lanes are these bit for bit,
+// declines on the same pair.
+int exact_lanes(const CandidateSet& set);
+
 // Candidate k of the set with its heights (cheap: a few loads and sign flips).
 Candidate candidate(const CandidateSet& set, int k);
 
