@@ -210,16 +210,27 @@ BOOST_AUTO_TEST_CASE(aligned_pairs_within_contract_without_the_exact_path) {
   BOOST_TEST(refined <= int(pairs.size()) / 25, refined << " of " << pairs.size() << " refined");
 }
 
+// The values a mesh's contacts can ask for (`pdd mesh`, mesh_contacts' variants) without
+// pdd2_global: every one but eq11_pd2, the paper's value, which takes the exact path where
+// several of a pair's overlaps are exactly 0 (a contact made by rounding, a resting contact of
+// aligned blocks: rigid_depth.cpp's eq11_pd2).
+static fast::SolveOptions mesh_variants_only() {
+  fast::SolveOptions o;
+  o.with_global = false;
+  for (std::size_t k = 0; k < kValueCount; ++k)
+    if (std::string(kValueKeys[k]) == "eq11_pd2") o.values &= ~(1u << k);
+  return o;
+}
+
 // Contacts made by rounding (structured_cells.h: a Kuhn grid against its copy shifted a tenth of
 // a cell along (1, 1, 1); faces that coincide in exact arithmetic overlap by ~1e-17 once the
 // shifted coordinates are rounded): no double value has a correct digit. Every value, label and
 // the deformed positions within definitions §8 of the exact engine, and none of these pairs on
-// the exact path without definitions §9: the rigid contenders certify on compensated heights or
-// expansions, the case-1 and case-2 values on compensated heights (with the rationals only for
-// contenders neither certifies), the positions on compensated heights (compensated_positions).
-// (pdd2_global of such a pair, ~1e-33 of the size squared, is searched on exact pieces, and its
-// eq11_pd2 taken exactly where several overlaps are exactly 0: the slow path with the default
-// options.)
+// the exact path for the mesh variants (mesh_variants_only): the rigid contenders certify on
+// compensated heights or expansions, the case-1 and case-2 values on compensated heights (with
+// the rationals only for contenders neither certifies), the positions on compensated heights
+// (compensated_positions). (pdd2_global of such a pair, ~1e-33 of the size squared, is searched
+// on exact pieces: the slow path with the default options.)
 BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_within_contract_without_the_exact_path) {
   const std::vector<TetPair> pairs = pdd::test::rounding_contact_pairs(2, 24);
   BOOST_REQUIRE(pairs.size() == 24u);
@@ -233,15 +244,32 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_within_contract_without_the_exact
       BOOST_TEST(c.rel_error[v] <= c.tolerance[v], p.name << " " << pdd::kValueKeys[v] << " "
                                                           << c.fast_value[v] << " vs " << c.exact_value[v]);
     BOOST_TEST(c.position_error <= c.position_tolerance, p.name);
-    // the record of `pdd mesh` and mesh_contacts: no pdd2_global, and not eq11_pd2 either (its
-    // exactly-0 overlaps of such pairs take the exact path)
-    fast::SolveOptions o;
-    o.with_global = false;
-    for (std::size_t k = 0; k < kValueCount; ++k)
-      if (std::string(kValueKeys[k]) == "eq11_pd2") o.values &= ~(1u << k);
-    slow += fast::solve_pair(p, o).stats.slow_path;
+    slow += fast::solve_pair(p, mesh_variants_only()).stats.slow_path;
   }
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
+}
+
+// A resting contact of stacked blocks (structured_cells.h), 1e-7 and 1e-10 of the cell deep:
+// every value within definitions §8 of the exact engine and each label the exact engine's
+// (the contact's candidates tie exactly: a face and the edge pairs of its plane), none on the
+// exact path for the mesh variants (mesh_variants_only). The case-1 and case-2 contenders
+// certify on compensated heights and their exact ties are recognised without rationals
+// (deformable_depth.cpp, tied_first).
+BOOST_AUTO_TEST_CASE(resting_contacts_within_contract_without_the_exact_path) {
+  int slow = 0, pairs = 0;
+  for (double depth : {1e-7 * 0.125, 1e-10 * 0.125})
+    for (const TetPair& p : pdd::test::resting_contact_pairs(2, depth, 16)) {
+      const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
+      const auto fast = fast::solve_pair(p);
+      const auto c = compare::compare_pair(p, exact, fast);
+      BOOST_TEST(!c.over_tolerance(), p.name);
+      for (std::size_t k = 0; k < c.labels.size(); ++k)
+        BOOST_TEST(c.exact_label[k] == c.fast_label[k], p.name << " label " << k);
+      slow += fast::solve_pair(p, mesh_variants_only()).stats.slow_path;
+      ++pairs;
+    }
+  BOOST_TEST(pairs == 32);
+  BOOST_TEST(slow == 0, slow << " of " << pairs << " on the slow path");
 }
 
 // Shallow contacts, as a simulator's resting contacts are: a vertex of B (tip) or a face of B

@@ -71,4 +71,32 @@ inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
   return out;
 }
 
+// A resting contact of structured blocks: the Kuhn tetrahedra of an n x n x 1 layer of cubes
+// of side h = 1/8 and those of the same layer moved by (0.37 h, 0.21 h, h - depth), B's bottom
+// `depth` below A's top; the element pairs whose interiors meet, up to `max_pairs`. A
+// simulator's resting contact between two blocks: faces exactly parallel, the candidates of
+// the contact's direction tied exactly, every value ~depth^2.
+inline std::vector<TetPair> resting_contact_pairs(int n, double depth, int max_pairs) {
+  const double h = 0.125;
+  const Vec3d shift = {0.37 * h, 0.21 * h, h - depth};
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int perm = 0; perm < 6; ++perm) {
+        A.push_back(kuhn_cell_tet({i * h, j * h, 0.0}, h, perm));
+        B.push_back(kuhn_cell_tet({i * h + shift[0], j * h + shift[1], shift[2]}, h, perm));
+      }
+  std::vector<TetPair> out;
+  for (std::size_t a = 0; a < A.size(); ++a)
+    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
+      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
+      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0)) continue;
+      TetPair p;
+      p.name = "resting a" + std::to_string(a) + " b" + std::to_string(b);
+      p.A = A[a], p.B = B[b];
+      out.push_back(p);
+    }
+  return out;
+}
+
 }  // namespace pdd::test

@@ -152,16 +152,18 @@ struct VerifiedPattern {
 };
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
                        Valued& out, DirectionSolution& s, VerifiedPattern* pattern = nullptr);
+bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
+                        Valued& out, VerifiedPattern* pattern = nullptr);
 
 bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
-                        Valued& out) {
+                        Valued& out, VerifiedPattern* pattern) {
   const bool a_static = kind == QpKind::Static;
   if (a_static && c.label.orientation != EdgeOrientation::Decided) return false;
   detail::CompensatedHeights h;
   if (!detail::compensated_heights(A, B, c, h)) return false;
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
   DirectionSolution s;
-  return valued_on_heights(h, conA, conB, kind, out, s);
+  return valued_on_heights(h, conA, conB, kind, out, s, pattern);
 }
 
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
@@ -363,18 +365,65 @@ inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
 // else the double one (none, r = inf, where the doubles give no finite value: a face normal
 // that underflows beside a far vertex); false when the candidate is not in the family.
 template <class List, class Variant>
-bool tight_interval(const List& set, int i, const Variant& variant, double& v, double& r, bool tight = true) {
+// `pattern` (optional): the verified pattern where the compensated value is taken, else its
+// atA = atB = ~0u (no pattern).
+bool tight_interval(const List& set, int i, const Variant& variant, double& v, double& r, bool tight = true,
+                    VerifiedPattern* pattern = nullptr) {
   const Candidate c = candidate(set, i);
   Valued x;
-  if (tight && set.A && compensated_valued(*set.A, *set.B, c, Variant::kKind, x)) {
+  if (pattern) pattern->atA = pattern->atB = ~0u;
+  if (tight && set.A && compensated_valued(*set.A, *set.B, c, Variant::kKind, x, pattern)) {
     v = x.v, r = x.r;
     return true;
   }
+  if (pattern) pattern->atA = pattern->atB = ~0u;  // (a pattern not verified)
   Pending p;
   v = evaluate(c, variant, p);
   if (!p.feasible) return false;  // (case 1's undecidable edge pairs)
   r = v < kInf ? root_bound(c, set.fb, variant, p) : kInf;  // (inf, NaN: no bound, an exact value is due)
   return true;
+}
+
+// refine_tight's tie order for a QP value: of the near-tied candidates c[0..n) (ascending
+// canonical order), the position of the first whose exact value is the least; -1 when none is
+// in the family. Exact ties are the common case (an aligned contact: a face and the edge pairs
+// of its plane, one direction, the same vertices at the plane), and then the first, position 0,
+// is certain without rationals: where every candidate's status pattern is verified on
+// compensated heights (compensated_valued: the pattern of the exact heights too) and equal to
+// the first's, and its exact direction is the first's (same_direction_exact, expansions), the
+// closed forms (closed_form) are one function of one set of heights up to a common positive
+// scale and shift, under which F / (20 n.n) is invariant: the exact values are equal. Equal
+// patterns: the vertices at the plane on both sides (case 2, relaxed); B's only in case 1,
+// where C is A's highest height for every feasible candidate (its constrained vertices lie on
+// the plane and A below it). Otherwise the exact values, in rationals.
+// `patterns`: tight_interval's for each candidate index (atA = ~0u: none verified).
+template <class List, class Variant, class ExactValue>
+int tied_first(const List& set, const int* c, int n, const Variant&, const VerifiedPattern* patterns,
+               ExactValue exact_value) {
+  if (!set.A) return -1;
+  auto pattern_of = [&](int i, VerifiedPattern& p) {
+    p = patterns[i];
+    return p.atA != ~0u;
+  };
+  const bool a_static = Variant::kKind == QpKind::Static;
+  VerifiedPattern first;
+  bool equal = pattern_of(c[0], first);
+  if (equal) {
+    const ExactDirection d(*set.A, *set.B, unpack_label(label_code(set, c[0])));
+    for (int k = 1; k < n && equal; ++k) {
+      VerifiedPattern p;
+      equal = pattern_of(c[k], p) && p.atB == first.atB && (a_static || p.atA == first.atA) &&
+              d.same_as(unpack_label(label_code(set, c[k]))).value_or(false);
+    }
+  }
+  if (equal) return 0;
+  const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
+  detail::Q best, v;
+  int at = -1;
+  for (int k = 0; k < n; ++k)
+    if (exact_value(detail::exact_candidate(f, unpack_label(label_code(set, c[k]))), v) && (at < 0 || v < best))
+      best = v, at = k;
+  return at;
 }
 
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
@@ -459,11 +508,20 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   // Not certified: the contenders exactly (refine.h), with every bound. A skipped candidate's
   // exact value is >= lower(i) (the pruning bound); an infeasible one (v = +inf) is not in the
   // family.
+  // Compensated intervals first (refine.h's refine_tight: the contenders of a shallow contact,
+  // whose double bounds carry u L^3 beside a value ~|n| depth, certify there at ~1 us each);
+  // the near ties they leave in the exact order (tied_first), so that the label is the exact
+  // engine's; the rationals for every contender (refine_minimum) where that fails.
   if (!ch.certified) {
     for (int j = 0; j < n_evaluated; ++j) bound(evaluated[j]);
-    auto interval = [&](int i, double& v, double& r) { return tight_interval(set, i, variant, v, r); };
-    if (!detail::refine_minimum(set, lower, hi, exact_value, ch))
-      detail::refine_tight(set, lower, hi, interval, exact_value, [](const int*, int) { return -1; }, ch);
+    VerifiedPattern patterns[kMaxCandidates];  // (written by `interval` for each tie member)
+    for (int i = 0; i < set.count; ++i) patterns[i].atA = ~0u;
+    auto interval = [&](int i, double& v, double& r) {
+      return tight_interval(set, i, variant, v, r, true, &patterns[i]);
+    };
+    auto tie_order = [&](const int* c, int n) { return tied_first(set, c, n, variant, patterns, exact_value); };
+    if (!detail::refine_tight(set, lower, hi, interval, exact_value, tie_order, ch))
+      detail::refine_minimum(set, lower, hi, exact_value, ch);
   }
   return ch;
 }
