@@ -11,9 +11,9 @@
 //    certified in doubles (to ~1e-4 of the size) but the double heights cannot certify
 //    pdd2_accel1, rigid_and_accel1 now does (>= 95% of those pairs; ~75% at 1e-3 and none at
 //    1e-4 before);
-//  - compensated_positions (deformable_depth.h) puts every coordinate within 3u Q of the exact
-//    case-2 positions P + d* of the pdd2 label (Q the pair's largest |coordinate|), on shallow
-//    contacts and on contacts made by rounding (structured_cells.h);
+//  - compensated_positions (deformable_depth.h) puts every coordinate q within 3u max(Q, |q|)
+//    of the exact case-2 positions P + d* of the pdd2 label (Q the pair's largest |coordinate|),
+//    on shallow contacts and on contacts made by rounding (structured_cells.h);
 //  - on the same pairs pdd2_static, whose contenders (VF ones included: C is then A's highest
 //    height) certify on compensated heights, is within 1e-9 of the exact minimum over the
 //    case-1 family, computed here in rationals.
@@ -185,7 +185,7 @@ BOOST_AUTO_TEST_CASE(shallow_accel1_certified_and_exact) {
 }
 
 // Each coordinate of compensated_positions against the exact positions P + d* (d* = T*/n.n n*
-// of the exact case-2 solution along the same label, direction_qp.h), in units of u Q.
+// of the exact case-2 solution along the same label, direction_qp.h), in units of u max(Q, |q|).
 BOOST_AUTO_TEST_CASE(compensated_positions_within_their_bound) {
   Rng rng(5);
   int offered = 0, given = 0;
@@ -209,14 +209,15 @@ BOOST_AUTO_TEST_CASE(compensated_positions_within_their_bound) {
     for (const TetVertices* T : {&sp.A, &sp.B})
       for (const auto& v : *T)
         for (double y : v) Qmax = std::max(Qmax, std::fabs(y));
-    const Q unit = Q(std::ldexp(Qmax, -53));  // u Q
+    auto unit = [Qmax](double q) { return Q(std::ldexp(std::max(Qmax, std::fabs(q)), -53)); };  // u max(Q, |q|)
     for (int i = 0; i < 4; ++i) {
       const Q tA = displacement_below(x.hA[i], (x.conA >> i & 1u) != 0, sol) / x.nn;
       const Q tB = displacement_above(x.hB[i], (x.conB >> i & 1u) != 0, sol) / x.nn;
       for (int k = 0; k < 3; ++k) {
         const Q eA = Q(sp.A[i][k]) + detail::unscaled(f, tA * x.n.x[k], 1);
         const Q eB = Q(sp.B[i][k]) + detail::unscaled(f, tB * x.n.x[k], 1);
-        const double e = std::max(Q(abs(Q(qA[i][k]) - eA) / unit).get_d(), Q(abs(Q(qB[i][k]) - eB) / unit).get_d());
+        const double e = std::max(Q(abs(Q(qA[i][k]) - eA) / unit(qA[i][k])).get_d(),
+                                  Q(abs(Q(qB[i][k]) - eB) / unit(qB[i][k])).get_d());
         worst = std::max(worst, e);
         BOOST_TEST(e <= 3.0, "vertex " << i << " coordinate " << k << ": " << e << " u Q");
       }

@@ -103,9 +103,9 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 
 // The same positions where the double heights cannot give them (a contact far shallower than
 // the pair: its displacements have no correct digit in doubles), on compensated_heights.h's
-// heights: each position within 3u Q of the exact positions P + d* for c's exact direction
-// (Q the pair's largest coordinate magnitude), as the exact positions rounded once are within
-// u Q. False (qA, qB unchanged) when the pattern cannot be verified or that bound fails.
+// heights: each coordinate q within 3u max(Q, |q|) of the exact positions P + d* for c's exact
+// direction (Q the pair's largest coordinate magnitude), as the exact positions rounded once are
+// within u |q|. False (qA, qB unchanged) when the pattern cannot be verified or that bound fails.
 // Argument. valued_on_heights verifies the status pattern of the heights H~ and of the exact
 // H* alike, so both solutions are its closed form: the computed displacement T~_i is within
 // 2^9 u Ha of the closed form on H~ (value_bounds.h's tight solver bound), which moves by at
@@ -115,9 +115,11 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 // 0.01 required), which moves 1/|n| by <= 1.02 rho and n/|n| by <= 2.04 rho; the double
 // operations (n~.n~, the division, the product) add <= 5u. So |d~_ik - d*_ik| <= eta =
 // (dT + (|T~| + dT)(4 rho + 8u)) / |n~| (1.01 covering the second-order terms), and the sum
-// P + d~ rounded adds u |q|. Required: eta <= 2u Q, so each coordinate is within 3u Q of P +
-// d*, which attains c's exact value exactly; compare/'s judge allows 4u Q a coordinate for
-// positions rounded to doubles (engine_comparison.cpp, position_tolerance).
+// P + d~ rounded adds u |q|. Required: eta <= 2u Q, so each coordinate is within 3u max(Q, |q|)
+// of P + d*, which attains c's exact value exactly; compare/'s judge allows 4u Q' a coordinate
+// for positions rounded to doubles, Q' the largest magnitude of the pair's and the positions'
+// coordinates (engine_comparison.cpp, position_tolerance). (The normal's term is rho / (1 -
+// rho) <= 1.0102 rho exactly: 4 rho is slack.)
 bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                            Positions<double>& qA, Positions<double>& qB);
 
