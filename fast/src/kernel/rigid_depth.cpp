@@ -23,9 +23,17 @@ namespace {
 
 // refine_tight's tie order for delta²: the position in c[0..n) (canonical order) of the first
 // exact minimum, compared by expansions (exact_predicates.h: D_p² n_q.n_q against D_q² n_p.n_p),
-// or -1 where they cannot decide.
+// or -1 where they cannot decide. Where every candidate points exactly the way the first does
+// (same_direction_exact: an aligned contact's face and the edge pairs of its plane), their
+// delta, a function of the direction alone, are equal: the first, without their parts.
 template <class List>
 int exact_first(const List& s, const int* c, int n) {
+  {
+    const ExactDirection d(*s.A, *s.B, unpack_label(label_code(s, c[0])));
+    bool one = true;
+    for (int k = 1; k < n && one; ++k) one = d.same_as(unpack_label(label_code(s, c[k]))).value_or(false);
+    if (one) return 0;
+  }
   std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each: on the heap)
   for (int k = 0; k < n; ++k) {
     parts[k] = depth_parts_exact(*s.A, *s.B, unpack_label(label_code(s, c[k])));
