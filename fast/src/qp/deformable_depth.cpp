@@ -364,9 +364,9 @@ inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
 // A contender's interval for refine_tight (refine.h): compensated_valued's where it applies,
 // else the double one (none, r = inf, where the doubles give no finite value: a face normal
 // that underflows beside a far vertex); false when the candidate is not in the family.
-template <class List, class Variant>
 // `pattern` (optional): the verified pattern where the compensated value is taken, else its
 // atA = atB = ~0u (no pattern).
+template <class List, class Variant>
 bool tight_interval(const List& set, int i, const Variant& variant, double& v, double& r, bool tight = true,
                     VerifiedPattern* pattern = nullptr) {
   const Candidate c = candidate(set, i);
