@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "certification/filter_bounds.h"
+#include "exact/exact_heights.h"
 #include "exact/expansion.h"
 #include "pdd/tet_tables.h"
 
@@ -28,84 +29,6 @@ inline double height(const double* n, const Vec3d& p, const Vec3d& q) {
 }
 // The certain sign of a filtered value: ±1, or 0 when |v| <= e3 (undecided, not "zero").
 inline int certain(double v, double e3) { return v > e3 ? 1 : (v < -e3 ? -1 : 0); }
-
-// x·y − z·w exactly (expansion.h's two_by_two), a product with a zero factor skipped: aligned
-// inputs have many zero coordinate differences, and then no Dekker split is needed.
-void minor2(double x, double y, double z, double w, Expansion& e) {
-  const bool first = x != 0.0 && y != 0.0, second = z != 0.0 && w != 0.0;
-  e.n = 0;
-  e.ok = true;
-  if (first && second) {
-    double h, l;
-    two_product(x, y, h, l);
-    if (l != 0.0) e.push(l);
-    e.push(h);
-    two_product(z, w, h, l);
-    grow(e, -l);
-    grow(e, -h);
-    return;
-  }
-  if (!first && !second) return;
-  double h, l;
-  if (first) {
-    two_product(x, y, h, l);
-  } else {
-    two_product(z, w, h, l);
-    h = -h, l = -l;
-  }
-  if (l != 0.0) e.push(l);
-  e.push(h);
-}
-
-// d = p − q when every coordinate difference is exact in doubles (its two_sum error is 0).
-bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
-  bool exact = true;
-  for (int k = 0; k < 3; ++k) {
-    double y;
-    two_sum(p[k], -q[k], d[k], y);
-    exact = exact && y == 0.0;
-  }
-  return exact;
-}
-
-// The exact normal (p1 − p0) × (q1 − q0), each component computed when first asked for: 2x2
-// minors of the differences when these are exact in doubles (the common case), else
-// expansion.h's cross of the exact differences (all components at once). A height along a
-// touching face's normal often needs one component or none (zero coordinate differences).
-struct LazyNormal {
-  double u[3], v[3];
-  bool have[3] = {false, false, false};
-  bool ok = true;  // false: an expansion exceeded its capacity
-  ExpVec n;
-  LazyNormal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
-    if (exact_difference(p1, p0, u) && exact_difference(q1, q0, v)) return;
-    n = cross(difference(p1, p0), difference(q1, q0));
-    ok = n.ok();
-    have[0] = have[1] = have[2] = true;
-  }
-  const Expansion& operator[](int k) {
-    if (!have[k]) {
-      const int i = (k + 1) % 3, j = (k + 2) % 3;
-      minor2(u[i], v[j], u[j], v[i], n.x[k]);
-      have[k] = true;
-    }
-    return n.x[k];
-  }
-};
-
-// The exact sign of n.(p − q) (header): terms with p_k == q_k vanish without computing n_k;
-// zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else the expansions' dot.
-int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
-  int terms = 0, last = 0;
-  for (int k = 0; k < 3; ++k)
-    if (p[k] != q[k] && n[k].n != 0) ++terms, last = k;
-  if (terms == 0) return 0;
-  if (terms == 1) return n[last].sign() * (p[last] > q[last] ? 1 : -1);
-  for (int k = 0; k < 3; ++k) n[k];
-  const Expansion d = dot(n.n, difference(p, q));
-  ok = ok && d.ok;
-  return d.sign();
-}
 
 LazyNormal face_normal_exact(const TetVertices& T, int f) {
   const auto& v = kFace[f];

@@ -1,0 +1,100 @@
+// exact_heights.h — internal to fast/src: exact signs of heights along a face normal,
+// n.(p − q) with n = (p1 − p0) × (q1 − q0), by floating-point expansions (expansion.h): the
+// degree-3 determinants of exact_sat.h's separating axes and of the superset kernel's exact
+// direction ties (superset_depth.cpp). No rationals, no tolerance.
+//
+// Input:  doubles whose non-zero coordinates lie in in_exact_range (expansion.h; the callers
+//         check it): every product and sum below is then exact.
+// Output: exact_height_sign: the exact sign of n.(p − q), ok = false when an expansion exceeded
+//         its capacity (the sign may then not be used).
+// Method: a term n_k (p_k − q_k) vanishes when p_k == q_k (n_k is then not computed) or n_k = 0;
+// n_k is the exact 2x2 minor of the differences (two products by Dekker's two_product when the
+// differences are exact in doubles, the common case on aligned inputs; else expansion.h's cross
+// of the exact differences); one term left: sign(n_k) sign(p_k − q_k) (the comparison is exact);
+// otherwise the expansions' dot product.
+#pragma once
+
+#include "exact/expansion.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd::fast::detail {
+
+// x·y − z·w exactly (expansion.h's two_by_two), a product with a zero factor skipped: aligned
+// inputs have many zero coordinate differences, and then no Dekker split is needed.
+inline void minor2(double x, double y, double z, double w, Expansion& e) {
+  const bool first = x != 0.0 && y != 0.0, second = z != 0.0 && w != 0.0;
+  e.n = 0;
+  e.ok = true;
+  if (first && second) {
+    double h, l;
+    two_product(x, y, h, l);
+    if (l != 0.0) e.push(l);
+    e.push(h);
+    two_product(z, w, h, l);
+    grow(e, -l);
+    grow(e, -h);
+    return;
+  }
+  if (!first && !second) return;
+  double h, l;
+  if (first) {
+    two_product(x, y, h, l);
+  } else {
+    two_product(z, w, h, l);
+    h = -h, l = -l;
+  }
+  if (l != 0.0) e.push(l);
+  e.push(h);
+}
+
+// d = p − q when every coordinate difference is exact in doubles (its two_sum error is 0).
+inline bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
+  bool exact = true;
+  for (int k = 0; k < 3; ++k) {
+    double y;
+    two_sum(p[k], -q[k], d[k], y);
+    exact = exact && y == 0.0;
+  }
+  return exact;
+}
+
+// The exact normal (p1 − p0) × (q1 − q0), each component computed when first asked for: 2x2
+// minors of the differences when these are exact in doubles (the common case), else
+// expansion.h's cross of the exact differences (all components at once). A height along a
+// touching face's normal often needs one component or none (zero coordinate differences).
+struct LazyNormal {
+  double u[3], v[3];
+  bool have[3] = {false, false, false};
+  bool ok = true;  // false: an expansion exceeded its capacity
+  ExpVec n;
+  LazyNormal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
+    if (exact_difference(p1, p0, u) && exact_difference(q1, q0, v)) return;
+    n = cross(difference(p1, p0), difference(q1, q0));
+    ok = n.ok();
+    have[0] = have[1] = have[2] = true;
+  }
+  const Expansion& operator[](int k) {
+    if (!have[k]) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      minor2(u[i], v[j], u[j], v[i], n.x[k]);
+      have[k] = true;
+    }
+    return n.x[k];
+  }
+};
+
+// The exact sign of n.(p − q) (above): terms with p_k == q_k vanish without computing n_k;
+// zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else the expansions' dot.
+inline int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
+  int terms = 0, last = 0;
+  for (int k = 0; k < 3; ++k)
+    if (p[k] != q[k] && n[k].n != 0) ++terms, last = k;
+  if (terms == 0) return 0;
+  if (terms == 1) return n[last].sign() * (p[last] > q[last] ? 1 : -1);
+  for (int k = 0; k < 3; ++k) n[k];
+  const Expansion d = dot(n.n, difference(p, q));
+  ok = ok && d.ok;
+  return d.sign();
+}
+
+}  // namespace pdd::fast::detail
