@@ -170,6 +170,9 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_stay_off_the_exact_path) {
 // canonical order) over the exact engine's candidate list. On aligned pairs the pick ties
 // exactly with the parallel face and the edge pairs in its plane (same direction, same delta),
 // which `unique` accepts when they come after it: those ties are counted, and must occur.
+// Measured: 770 unique picks, 727 of them tied. Directions shown by structural zeros alone (not
+// a Kuhn grid's diagonal faces), with every edge pair left to near_parallel_bound required
+// above the pick, give 300 and 264: the bounds below fail then.
 BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   std::size_t uniques = 0, tied = 0;
   for (const Case& c : aligned_cases()) {
@@ -199,8 +202,8 @@ BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
     }
   }
   BOOST_TEST_MESSAGE(uniques << " unique picks, " << tied << " of them tied exactly with later candidates");
-  BOOST_TEST(uniques > 100u);
-  BOOST_TEST(tied > 100u);
+  BOOST_TEST(uniques > 600u);
+  BOOST_TEST(tied > 600u);
 }
 
 // The stacked case's geometry, which the benchmarks' "stacked" rows rely on: B's columns exactly

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "certification/filter_bounds.h"
 #include "certification/tie_tolerance.h"
 #include "certification/value_bounds.h"
+#include "exact/exact_heights.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/near_parallel_bound.h"
 #include "kernel/superset_kernel.h"
@@ -20,6 +22,15 @@ namespace {
 using namespace detail;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The edge pairs left out of K's lanes (choice_without_unresolved: nearly or exactly parallel
+// edges): their lane bits, each one's certified lower bound lo2 (near_parallel_bound, indexed by
+// lane) and the least of those, extra_lo (+inf: none).
+struct Unresolved {
+  std::uint64_t bits = 0;
+  double lo2[64];
+  double extra_lo = kInf;
+};
 
 // An entry of S near the minimum that is a real candidate: its value and label.
 struct Near {
@@ -216,13 +227,48 @@ bool normal_component_zero(const SupersetLanes& K, int t, int f, int k) {
          (K.X[j][p1] == K.X[j][p0] || K.X[i][p2] == K.X[i][p0]);
 }
 
-// Edge e of tetrahedron te exactly orthogonal to the normal of face f of the other one: every
-// term of the dot product has an exactly zero factor.
-bool edge_in_face_plane(const SupersetLanes& K, int te, int e, int f) {
+// The picked face's plane: exact heights along its normal N = (p1 − p0) × (p2 − p0) (kFace,
+// the kernel's scaled coordinates) for the edges whose structural zeros leave N.(y − x) open: a
+// face parallel to the pick but not along a coordinate plane (a Kuhn grid's diagonal faces),
+// decided by exact_heights.h's expansions. Built on first use; undecided (an expansion over its
+// capacity, a coordinate outside in_exact_range) counts as not orthogonal.
+class PickPlane {
+ public:
+  PickPlane(const SupersetLanes& K, int face) : K_(K), t_(face / 4), f_(face % 4) {}
+  // N.(y − x) = 0 exactly for vertices x, y (0..7) of the kernel's pair
+  bool orthogonal(int x, int y) {
+    if (!n_) {
+      in_range_ = true;
+      for (int v = 0; v < 8; ++v)
+        for (int k = 0; k < 3; ++k) {
+          const double a = std::fabs(K_.X[k][v]);
+          in_range_ = in_range_ && (a == 0.0 || (a >= 0x1p-200 && a <= 0x1p200));
+        }
+      const int o = 4 * t_;
+      n_.emplace(point(o + kFace[f_][1]), point(o + kFace[f_][0]), point(o + kFace[f_][2]), point(o + kFace[f_][0]));
+    }
+    if (!in_range_ || !n_->ok) return false;
+    bool ok = true;
+    const int s = exact_height_sign(*n_, point(y), point(x), ok);
+    return ok && s == 0;
+  }
+
+ private:
+  Vec3d point(int v) const { return {K_.X[0][v], K_.X[1][v], K_.X[2][v]}; }
+  const SupersetLanes& K_;
+  int t_, f_;
+  std::optional<LazyNormal> n_;
+  bool in_range_ = false;
+};
+
+// Edge e of tetrahedron te exactly orthogonal to the normal of face f of the other one, the
+// pick's face (plane): every term of the dot product has an exactly zero factor, else exactly.
+bool edge_in_face_plane(const SupersetLanes& K, int te, int e, int f, PickPlane& plane) {
   const int x = 4 * te + kEdges[e][0], y = 4 * te + kEdges[e][1];
-  for (int k = 0; k < 3; ++k)
-    if (!(K.X[k][y] == K.X[k][x]) && !normal_component_zero(K, 1 - te, f, k)) return false;
-  return true;
+  bool structural = true;
+  for (int k = 0; k < 3 && structural; ++k)
+    structural = K.X[k][y] == K.X[k][x] || normal_component_zero(K, 1 - te, f, k);
+  return structural || plane.orthogonal(x, y);
 }
 
 // Face g (FV:g for g < 4, VF:(g − 4)) points exactly the way of face p of the other tetrahedron.
@@ -231,12 +277,12 @@ bool edge_in_face_plane(const SupersetLanes& K, int te, int e, int f) {
 // is A's face (FV: outward normal) and above it when g is B's (VF: B on the positive side); in
 // the kernel's heights H[.][p] (face_draft: hB = −H for an A face, hA = H for a B face) both read
 // H[v0][p] − H[w][p] > 0, v0 a vertex of g.
-bool face_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int g) {
+bool face_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int g, PickPlane& plane) {
   const int tg = g / 4, w = g % 4;
   if (p / 4 == tg) return false;  // two faces of one tetrahedron are never parallel
   int in_plane = 0;
-  for (int e = 0; e < 6; ++e)
-    if (kEdges[e][0] != w && kEdges[e][1] != w) in_plane += edge_in_face_plane(K, tg, e, p % 4);
+  for (int e = 0; e < 6 && in_plane < 2; ++e)
+    if (kEdges[e][0] != w && kEdges[e][1] != w) in_plane += edge_in_face_plane(K, tg, e, p % 4, plane);
   if (in_plane < 2) return false;
   return K.H[kFace[w][0]][p] - K.H[w][p] > fb.deg3;
 }
@@ -246,17 +292,17 @@ bool face_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int 
 // to p's normal, so n = eB × eA is parallel to it (n != 0: the lane is in S, not an exactly
 // parallel pair). Its way: p's opposite vertex is below p's plane for an A face (s·g < 0, g its
 // height in the lane, lane_geometry), above for a B face (s·q > 0).
-bool lane_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int lane, double s) {
+bool lane_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int lane, double s, PickPlane& plane) {
   const int a = lane / kLaneStride, b = lane % kLaneStride;
   if (p < 4) {
     const int m = kOffEdge[a][0] == p ? 0 : kOffEdge[a][1] == p ? 1 : -1;
-    if (m < 0 || !edge_in_face_plane(K, 1, b, p)) return false;
+    if (m < 0 || !edge_in_face_plane(K, 1, b, p, plane)) return false;
     const double g = kOffFaces.eps[a][m] * K.G[kOffFaces.face[a][m]][b];
     return std::fabs(g) > fb.deg3 && s * g < 0.0;
   }
   const int j = p - 4;
   const int m = kOffEdge[b][0] == j ? 0 : kOffEdge[b][1] == j ? 1 : -1;
-  if (m < 0 || !edge_in_face_plane(K, 0, a, j)) return false;
+  if (m < 0 || !edge_in_face_plane(K, 0, a, j, plane)) return false;
   const int f = 4 + kOffFaces.face[b][m];
   const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
   const double nb[3] = {K.NAB[0][f], K.NAB[1][f], K.NAB[2][f]};
@@ -264,15 +310,50 @@ bool lane_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int 
   return std::fabs(q) > fb.deg3 && s * q > 0.0;
 }
 
+// The unresolved edge pairs (un) of a face pick p that are not certainly above it (lo2 <=
+// hi_pick): each must have both edges exactly orthogonal to p's normal n_p, so that its normal
+// n = eB x eA is 0 (an exactly parallel pair) or along ±n_p. Then:
+//  - n = 0: no facet normal of M (two parallel edges sum to a segment), so its candidate in the
+//    list ties with PD only along a direction attaining PD; those are facet normals (the nearest
+//    point of ∂M to the origin lies inside a facet: a ball inside M touching ∂M at an edge or a
+//    vertex of M would touch two facets' planes at one point), all along n_p when every other
+//    entry not certainly above is (the caller's test): a tie along n_p, after the face.
+//  - n along +n_p: the same direction, the same delta, an edge pair after the face.
+//  - n along −n_p: delta(n_p) + delta(−n_p) is M's width along n_p, at least the height of the
+//    pick's tetrahedron T over face p, |det T| / |n_p|; with delta(n_p) <= sqrt(hi_pick) (the
+//    pick's exact value is <= hi_pick), delta(−n_p) > delta(n_p) when |det T| > 2 sqrt(hi_pick)
+//    |n_p|: certified as (|det~| − E3) > 2 sqrt(hi_pick) (|n~_p| + sqrt(3) E2) (1 + 2^-40) (the
+//    kernel's det within E3, n~_p's components within E2: value_bounds.h; the factor covers this
+//    test's few roundings). Then −n_p attains no tie with PD either.
+// An edge of T is orthogonal to n_p only if it lies in face p (else it joins p's plane to T's
+// opposite vertex, off the plane): topology; the other tetrahedron's edge, PickPlane's test.
+bool unresolved_along_pick(const SupersetLanes& K, const FilterBounds& fb, int p, double hi_pick,
+                           const Unresolved& un, PickPlane& plane) {
+  const int t = p / 4, w = p % 4;  // the pick's tetrahedron and its vertex opposite face p
+  const double nn = K.NAB[0][p] * K.NAB[0][p] + K.NAB[1][p] * K.NAB[1][p] + K.NAB[2][p] * K.NAB[2][p];
+  const double height = std::fabs(K.det[4 * t + 3]) - fb.deg3;
+  if (!(height > 2 * std::sqrt(hi_pick) * (std::sqrt(nn) + std::sqrt(3.0) * fb.deg2) * (1 + 0x1p-40))) return false;
+  for (std::uint64_t bits = un.bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    if (un.lo2[lane] > hi_pick) continue;
+    const int own = t == 0 ? a : b, other = t == 0 ? b : a;
+    if (kEdges[own][0] == w || kEdges[own][1] == w) return false;
+    if (!edge_in_face_plane(K, 1 - t, other, w, plane)) return false;
+  }
+  return true;
+}
+
 // `unique` for a face pick c whose certificate found entries not certainly above it: true when
-// each of them points exactly the pick's way and comes after it (above). extra_lo: the lower
-// bound of the entries left out of K's bound bits (unresolved edge pairs), which must be
-// certainly above. Lower bounds as certify's exact pass computes them.
+// each of them points exactly the pick's way and comes after it (above). un: the entries left
+// out of K's bound bits (unresolved edge pairs), certainly above or along the pick
+// (unresolved_along_pick). Lower bounds as certify's exact pass computes them.
 bool ties_share_direction(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
-                          double hi_pick, double extra_lo) {
-  if (c.lane >= 0 || !(extra_lo > hi_pick)) return false;
+                          double hi_pick, const Unresolved& un) {
+  if (c.lane >= 0) return false;
   const DegreeBounds db = degree_bounds(fb, false);
   auto above = [&](double v, double r) { return lower_of(v, r) > hi_pick; };
+  PickPlane plane(K, c.face);
+  if (!(un.extra_lo > hi_pick) && !unresolved_along_pick(K, fb, c.face, hi_pick, un, plane)) return false;
   for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
     const int f = __builtin_ctz(bits);
     if (f == c.face) continue;
@@ -280,22 +361,22 @@ bool ties_share_direction(const SupersetLanes& K, const FilterBounds& fb, const 
                       K.NAB[2][f] * K.NAB[2][f];
     const double v = K.face_val[f];
     if (above(v, rigid_root_rel(std::sqrt(v * nn), nn, db))) continue;
-    if (f < c.face || !face_along_face(K, fb, c.face, f)) return false;
+    if (f < c.face || !face_along_face(K, fb, c.face, f, plane)) return false;
   }
   for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
     const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
-    if (!above(dp * dp * inv, rigid_root_rel(dp, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, 1.0))
+    if (!above(dp * dp * inv, rigid_root_rel(dp, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, 1.0, plane))
       return false;
-    if (!above(dm * dm * inv, rigid_root_rel(dm, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, -1.0))
+    if (!above(dm * dm * inv, rigid_root_rel(dm, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, -1.0, plane))
       return false;
   }
   return true;
 }
 
 // The pick among the entries of K's tie band (face_bits, lane_bits) and its certificate
-// (K's bound bits, and extra_lo for entries outside them).
-bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, double extra_lo, Choice& ch,
+// (K's bound bits, and un for entries outside them).
+bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, const Unresolved& un, Choice& ch,
                       Candidate* geometry, bool* unique, bool with_certificate) {
   Near near[kMaxCandidates];
   int count = 0;
@@ -312,8 +393,8 @@ bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, double ext
   ch.code = c.code;
   if (with_certificate) {
     double hi_pick = kInf;
-    certify(K, fb, c, ch, unique, extra_lo, hi_pick);
-    if (unique && ch.certified && !*unique) *unique = ties_share_direction(K, fb, c, hi_pick, extra_lo);
+    certify(K, fb, c, ch, unique, un.extra_lo, hi_pick);
+    if (unique && ch.certified && !*unique) *unique = ties_share_direction(K, fb, c, hi_pick, un);
   }
   if (!geometry) return true;
   if (c.lane >= 0)
@@ -393,19 +474,20 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice&
                                Candidate* geometry, bool* unique) {
   const std::uint64_t unresolved = unresolved_edge_pairs(K, fb);
   if (!unresolved) return false;
-  double extra_lo = kInf;
+  Unresolved un;
+  un.bits = unresolved;
   for (std::uint64_t bits = unresolved; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits);
-    double lo2;
+    double& lo2 = un.lo2[lane];
     if (!near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2)) return false;
-    extra_lo = min2(extra_lo, lo2);
+    un.extra_lo = min2(un.extra_lo, lo2);
   }
-  if (!(extra_lo > 0.0)) return false;
+  if (!(un.extra_lo > 0.0)) return false;
   if (!drop_edge_pairs(K, fb, unresolved)) return false;
   Choice c;
   Candidate g;
   bool u = false;
-  if (!pick_and_certify(K, fb, extra_lo, c, geometry ? &g : nullptr, unique ? &u : nullptr, true) ||
+  if (!pick_and_certify(K, fb, un, c, geometry ? &g : nullptr, unique ? &u : nullptr, true) ||
       !c.certified)
     return false;
   const DirectionLabel l = c.label();
@@ -428,7 +510,7 @@ bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* un
   // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
   if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
   const bool chosen =
-      K.lo > fb.deg3 && pick_and_certify(K, fb, kInf, ch, geometry, unique, with_certificate);
+      K.lo > fb.deg3 && pick_and_certify(K, fb, Unresolved{}, ch, geometry, unique, with_certificate);
   if (chosen && (!with_certificate || ch.certified)) return true;
   if (unresolved) *unresolved = unresolved_edge_pairs(K, fb) != 0;
   if (with_certificate && choice_without_unresolved(K, fb, ch, geometry, unique)) return true;
