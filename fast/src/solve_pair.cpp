@@ -185,7 +185,7 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
     missing |= accel6.certified ? 0 : kAccel6;
   }
   if (asked(kIdxAccel1)) {
-    accel1 = pdd2_accel(set, 1);
+    accel1 = pdd2_accel(set, 1, &rigid);
     r.pdd2_accel1 = accel1.value;
     missing |= accel1.certified ? 0 : kAccel1;
   }

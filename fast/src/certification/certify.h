@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "certification/value_bounds.h"
+#include "exact/exact_predicates.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/quick_candidates.h"
 
@@ -54,6 +55,22 @@ inline double max_height(const DirectionGeometry& c) {
 // Root bound of a QP value v = F/(20 n.n) along candidate c.
 inline double qp_rel(const Candidate& c, double v, const FilterBounds& fb) {
   return qp_root_rel(v * 20.0 * c.nn, c.nn, max_height(c), degree_bounds_of(fb, c));
+}
+
+// The position in c[0..n) (candidate indices in canonical order) of the first least exact
+// delta², exact ties to the earliest; -1 where expansions cannot decide
+// (first_least_delta2_exact, given each candidate's double normal and its bound e_n so that
+// directions certainly apart are not compared with expansions).
+template <class List>
+int first_least_delta2(const List& s, const int* c, int n) {
+  DirectionLabel l[kMaxCandidates];
+  ApproxNormal a[kMaxCandidates];
+  for (int k = 0; k < n; ++k) {
+    l[k] = unpack_label(label_code(s, c[k]));
+    const Candidate x = candidate(s, c[k]);
+    a[k] = ApproxNormal{{x.n[0], x.n[1], x.n[2]}, bounds_of(s, c[k]).e_n};
+  }
+  return first_least_delta2_exact(*s.A, *s.B, l, n, a);
 }
 
 }  // namespace pdd::fast::detail

@@ -72,7 +72,7 @@ bool refine_minimum(const List& s, Lo lo, double hi, ExactValue exact_value, Cho
   ch.value = d;
   ch.index = bi;
   ch.code = label_code(s, bi);
-  ch.certified = ch.refined = true;
+  ch.certified = ch.refined = ch.exact_first = true;  // (every contender's exact value compared)
   return true;
 }
 
@@ -166,19 +166,24 @@ bool refine_tight(const List& s, Lo lo, double hi, Interval interval, ExactValue
   for (int j = 0; j < m; ++j) lo_min = lower[j] < lo_min ? lower[j] : lo_min;
   if (!certified_choice(upper[b], lo_min)) return false;
   // near ties (above): ordered by tie_order, else the first in canonical order
+  // Every exact minimiser is among the ties: its exact value x* <= H <= upper[b] puts it, and
+  // each candidate exactly equal to it, in the ties (lower <= x*), and its lo <= x* <= H had it
+  // reached above. One tie, or the tie order's first kept: the exact engine's choice.
   int ties[kMaxCandidates], cand[kMaxCandidates], t = 0;
   for (int j = 0; j < m; ++j)
     if (lower[j] <= upper[b] && v[j] < kInf) ties[t++] = j;
+  bool exact_first = t == 1;
   if (t > 1) {
     std::sort(ties, ties + t, [&idx](int x, int y) { return idx[x] < idx[y]; });
     for (int k = 0; k < t; ++k) cand[k] = idx[ties[k]];
     const int first = tie_order(cand, t), w = ties[first >= 0 ? first : 0];
-    if (certified_choice(upper[w], lo_min)) b = w;  // (its interval within the contract too)
+    if (certified_choice(upper[w], lo_min)) b = w, exact_first = first >= 0;  // (its interval within the contract too)
   }
   ch.value = v[b];
   ch.index = idx[b];
   ch.code = label_code(s, idx[b]);
   ch.certified = ch.refined = true;
+  ch.exact_first = exact_first;
   return true;
 }
 

@@ -4,7 +4,9 @@
 // each other and with the exact engine by construction.
 #include "exact/exact_predicates.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "exact/exact_geometry.h"
 #include "exact/expansion.h"
@@ -352,6 +354,53 @@ std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDep
       difference(product(product(p.D, p.D), q.nn), product(product(q.D, q.D), p.nn));
   if (!d.ok) return std::nullopt;
   return d.sign();
+}
+
+namespace {
+// The exact normals of p and q certainly are not parallel: some component of the computed
+// p~ x q~ exceeds its error. With |p - p~|, |q - q~| <= ep, eq per component and M the largest
+// |component|, each exact product p_a q_b is within Mp eq + Mq ep + ep eq of p~_a q~_b, a
+// component of p x q (two products) within twice that; the roundings of the two products (u Mp
+// Mq each) and of their difference (u 2 Mp Mq (1 + u)) add < 5u Mp Mq, taken as 8u Mp Mq; a
+// product that underflows errs by 2^-1075 more (2^-1060 covers them). The factor 1 + 2^-40
+// covers the bound's own roundings.
+bool certainly_not_parallel(const ApproxNormal& p, const ApproxNormal& q) {
+  const double Mp = std::max({std::fabs(p.n[0]), std::fabs(p.n[1]), std::fabs(p.n[2])});
+  const double Mq = std::max({std::fabs(q.n[0]), std::fabs(q.n[1]), std::fabs(q.n[2])});
+  const double bound =
+      (2 * (Mp * q.e + Mq * p.e + p.e * q.e) + 8 * 0x1p-53 * Mp * Mq + 0x1p-1060) * (1 + 0x1p-40);
+  const double c[3] = {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2],
+                       p.n[0] * q.n[1] - p.n[1] * q.n[0]};
+  return std::fabs(c[0]) > bound || std::fabs(c[1]) > bound || std::fabs(c[2]) > bound;  // (NaN: false)
+}
+}  // namespace
+
+int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
+                             const ApproxNormal* approx) {
+  if (n <= 1) return n == 1 ? 0 : -1;
+  // groups by direction, each as the position of its first label (canonical order: ascending)
+  std::vector<int> first;
+  std::vector<ExactDirection> direction;
+  first.reserve(n), direction.reserve(n);
+  for (int k = 0; k < n; ++k) {
+    bool grouped = false;
+    for (size_t g = 0; g < direction.size() && !grouped; ++g)
+      grouped = !(approx && certainly_not_parallel(approx[first[g]], approx[k])) &&
+                direction[g].same_as(l[k]).value_or(false);
+    if (!grouped) first.push_back(k), direction.emplace_back(A, B, l[k]);
+  }
+  if (first.size() == 1) return 0;
+  int w = 0;
+  ExactDepthParts least = depth_parts_exact(A, B, l[first[0]]);
+  if (!least.ok) return -1;
+  for (size_t g = 1; g < first.size(); ++g) {
+    ExactDepthParts p = depth_parts_exact(A, B, l[first[g]]);
+    if (!p.ok) return -1;
+    const std::optional<int> below = compare_delta2_exact(p, least);
+    if (!below) return -1;
+    if (*below < 0) w = first[g], least = std::move(p);  // strictly below: a tie keeps the earlier
+  }
+  return w;
 }
 
 }  // namespace pdd::fast

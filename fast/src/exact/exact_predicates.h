@@ -87,4 +87,22 @@ bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const Dire
 // when an expansion exceeds its capacity. Both parts from depth_parts_exact (ok).
 std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q);
 
+// The position in l[0..n) (labels of the pair's candidates in canonical order) of the first
+// least exact delta², exact ties to the earliest; -1 where expansions cannot decide. The labels
+// are grouped by exact direction first (same_direction_exact: delta depends on the direction
+// only, so a group's delta are equal), each group standing as its first label, and only the
+// groups are compared (depth_parts_exact, compare_delta2_exact): a group's first precedes its
+// other labels, so the earliest least group's first is the earliest least label. On an aligned
+// pair the near ties of the least delta² are mostly one direction (a face and the edge pairs of
+// its plane): one group, no parts. An undecided direction test only makes a group of its own.
+// `approx` (optional, per label): its double normal and a bound on each component's error
+// (value_bounds.h's e_n); two labels whose double cross product certainly is not 0 are not
+// tested with expansions.
+struct ApproxNormal {
+  double n[3];
+  double e;
+};
+int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
+                             const ApproxNormal* approx = nullptr);
+
 }  // namespace pdd::fast

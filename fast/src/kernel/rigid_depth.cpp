@@ -22,30 +22,11 @@ namespace pdd::fast {
 namespace {
 
 // refine_tight's tie order for delta²: the position in c[0..n) (canonical order) of the first
-// exact minimum, compared by expansions (exact_predicates.h: D_p² n_q.n_q against D_q² n_p.n_p),
-// or -1 where they cannot decide. Where every candidate points exactly the way the first does
-// (same_direction_exact: an aligned contact's face and the edge pairs of its plane), their
-// delta, a function of the direction alone, are equal: the first, without their parts.
+// exact minimum, or -1 where expansions cannot decide (first_least_delta2_exact: by exact
+// direction, then D_p² n_q.n_q against D_q² n_p.n_p).
 template <class List>
 int exact_first(const List& s, const int* c, int n) {
-  {
-    const ExactDirection d(*s.A, *s.B, unpack_label(label_code(s, c[0])));
-    bool one = true;
-    for (int k = 1; k < n && one; ++k) one = d.same_as(unpack_label(label_code(s, c[k]))).value_or(false);
-    if (one) return 0;
-  }
-  std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each: on the heap)
-  for (int k = 0; k < n; ++k) {
-    parts[k] = depth_parts_exact(*s.A, *s.B, unpack_label(label_code(s, c[k])));
-    if (!parts[k].ok) return -1;
-  }
-  int w = 0;
-  for (int k = 1; k < n; ++k) {
-    const std::optional<int> below = compare_delta2_exact(parts[k], parts[w]);
-    if (!below) return -1;
-    if (*below < 0) w = k;
-  }
-  return w;
+  return detail::first_least_delta2(s, c, n);
 }
 
 // First tied minimum of delta², certified (value_bounds.h: every candidate's exact delta² is
@@ -57,16 +38,20 @@ Choice rigid_of(const List& s) {
   if (ch.index < 0) return {};  // NaN: not certified
   ch.value = s.delta_sq[ch.index];
   ch.code = label_code(s, ch.index);
-  double lo_min = std::numeric_limits<double>::infinity();
+  double lo_min = std::numeric_limits<double>::infinity(), lo_others = lo_min;
   const double far = 2 * ch.value;  // certify.h: candidates above it with a small bound skipped
   for (int i = 0; i < s.count; ++i) {
     if (s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) continue;
     double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
     if (!(lo >= 0.0)) lo = 0.0;
     lo_min = lo < lo_min ? lo : lo_min;
+    if (i != ch.index) lo_others = lo < lo_others ? lo : lo_others;
   }
   const double hi = upper_of(ch.value, detail::rigid_rel(s, ch.index));
   ch.certified = certified_choice(hi, lo_min);
+  // every other exact delta² above the choice's (the skipped ones too: certified, hi is within
+  // 1e-9 of the value, below their 1.96 v): the choice is the exact minimum, alone
+  ch.exact_first = ch.certified && lo_others > hi;
   if (ch.certified) return ch;
   auto lower = [&s](int i) { return lower_of(s.delta_sq[i], detail::rigid_rel(s, i)); };
   auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {

@@ -26,6 +26,10 @@ struct Choice {
   bool certified = false;
   // Certified by evaluating the contenders exactly (refine.h) rather than in doubles alone.
   bool refined = false;
+  // index is certainly the exact engine's choice: the first candidate in canonical order
+  // attaining the exact minimum (every other candidate's exact value is above it, or ordered
+  // exactly), not only one within definitions §8 of it (a near tie may name either side).
+  bool exact_first = false;
   DirectionLabel label() const { return unpack_label(code); }
 };
 

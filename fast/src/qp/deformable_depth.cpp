@@ -680,24 +680,19 @@ bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch, bool
 
 // pos[0..first): the first `first` of the contenders idx[0..n) (canonical order) in ascending
 // exact delta², exact ties in canonical order (a stable insertion sort; for first = 1 the first
-// least one, n - 1 comparisons), compared by expansions (depth_parts_exact,
+// least one, first_least_delta2_exact), compared by expansions (depth_parts_exact,
 // compare_delta2_exact: D_a² n_b.n_b against D_b² n_a.n_a, no division); false when the
 // expansions cannot decide a comparison (pos then unspecified).
 template <class List>
 bool exact_delta_order(const List& set, const int* idx, int n, int first, int* pos) {
+  if (first == 1) {  // (grouped by exact direction first: exact_predicates.h)
+    pos[0] = detail::first_least_delta2(set, idx, n);
+    return pos[0] >= 0;
+  }
   std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each, up to kMaxCandidates: on the heap)
   for (int j = 0; j < n; ++j) {
     parts[j] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[j])));
     if (!parts[j].ok) return false;
-  }
-  if (first == 1) {
-    pos[0] = 0;
-    for (int j = 1; j < n; ++j) {
-      const std::optional<int> s = compare_delta2_exact(parts[j], parts[pos[0]]);
-      if (!s) return false;
-      if (*s < 0) pos[0] = j;  // strictly below: an exact tie keeps the earlier one
-    }
-    return true;
   }
   for (int j = 0; j < n; ++j) {
     int t = j;
@@ -901,8 +896,32 @@ void accel_by_directions(const List& set, int k, double hi_chosen, DeltaBounds<L
   }
 }
 
+// k = 1 when the double path cannot certify the first in delta² order: the exact first is the
+// rigid depth's exact choice (definitions §4 and §5: the same candidates in the same canonical
+// order, ties to the first; delta > 0 on every candidate of an intersecting pair, so delta²
+// orders as delta). Where rigid_pd2 certifies that its choice is it (exact_first: on aligned
+// pairs its contenders' compensated intervals and exact direction ties settle what the double
+// bounds leave tied), the case-2 value there is certified as a separated choice's: on its own
+// interval in doubles, on compensated heights (accel1_compensated), else exactly (refine_accel).
+// `given`: the caller's rigid_pd2 of the same list, or null (computed here).
 template <class List>
-Choice accel_of(const List& set, int k) {
+bool accel1_at_rigid(const List& set, const Choice* given, double hi_chosen, DeltaBounds<List>& db, Choice& ch) {
+  const Choice rigid = given ? *given : rigid_pd2(set);
+  if (!rigid.certified || !rigid.exact_first || rigid.index < 0 || !set.A) return false;
+  const int first = rigid.index;
+  if (certify_first_k(set, &first, 1, ch, false)) return true;
+  double value = 0;
+  if (accel1_compensated(*set.A, *set.B, candidate(set, first), value)) {
+    ch = Choice{value, first, label_code(set, first)};
+    ch.certified = true;
+    return true;
+  }
+  refine_accel(set, 1, &first, 1, hi_chosen, db, ch);
+  return ch.certified;
+}
+
+template <class List>
+Choice accel_of(const List& set, int k, const Choice* rigid = nullptr) {
   if (!usable(set) || k <= 0) return {};
   int order[kMaxCandidates];
   const int m = accel_order_of(set, k, order);
@@ -953,6 +972,7 @@ Choice accel_of(const List& set, int k) {
   }
   if (!ch.certified && !separated) accel_over_ties(set, hi_chosen, db, ch);
   if (!ch.certified && !separated) accel_by_directions(set, k, hi_chosen, db, ch);
+  if (!ch.certified && !separated && k == 1 && accel1_at_rigid(set, rigid, hi_chosen, db, ch)) return ch;
   if (!ch.certified) refine_accel(set, k, separated ? order : nullptr, m, hi_chosen, db, ch);
   return ch;
 }
@@ -992,7 +1012,7 @@ Choice pdd2_relaxed(const QuickCandidates& q, int hint) {
   return sweep(q, kDeformableBoundCoeff, hint, RelaxedVariant{}, exact_relaxed);
 }
 
-Choice pdd2_accel(const CandidateSet& set, int k) { return accel_of(set, k); }
+Choice pdd2_accel(const CandidateSet& set, int k, const Choice* rigid) { return accel_of(set, k, rigid); }
 Choice pdd2_accel(const QuickCandidates& q, int k) { return accel_of(q, k); }
 
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,

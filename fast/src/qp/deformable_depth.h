@@ -54,7 +54,9 @@ double relaxed_value(const Candidate& c);
 Choice pdd2_static(const CandidateSet& set, int hint = -1);
 Choice pdd2(const CandidateSet& set, int hint = -1);
 Choice pdd2_relaxed(const CandidateSet& set, int hint = -1);
-Choice pdd2_accel(const CandidateSet& set, int k);
+// `rigid` (pdd2_accel): rigid_pd2(set) when the caller has it (k = 1 may use its choice), else
+// null: computed where needed. The result does not depend on it.
+Choice pdd2_accel(const CandidateSet& set, int k, const Choice* rigid = nullptr);
 
 // The same over the hot-path list (quick_candidates): identical results.
 Choice pdd2_static(const QuickCandidates& q, int hint = -1);
