@@ -262,13 +262,18 @@ class PickPlane {
 };
 
 // Edge e of tetrahedron te exactly orthogonal to the normal of face f of the other one, the
-// pick's face (plane): every term of the dot product has an exactly zero factor, else exactly.
-bool edge_in_face_plane(const SupersetLanes& K, int te, int e, int f, PickPlane& plane) {
+// pick's face (plane): every term of the dot product has an exactly zero factor; else not when
+// the kernel's heights of its ends along that normal certainly differ (H, each difference of
+// two within E3 of the exact one, above); else exactly.
+bool edge_in_face_plane(const SupersetLanes& K, const FilterBounds& fb, int te, int e, int f, PickPlane& plane) {
   const int x = 4 * te + kEdges[e][0], y = 4 * te + kEdges[e][1];
   bool structural = true;
   for (int k = 0; k < 3 && structural; ++k)
     structural = K.X[k][y] == K.X[k][x] || normal_component_zero(K, 1 - te, f, k);
-  return structural || plane.orthogonal(x, y);
+  if (structural) return true;
+  const int p = 4 * (1 - te) + f;
+  if (!(std::fabs(K.H[kEdges[e][1]][p] - K.H[kEdges[e][0]][p]) <= fb.deg3)) return false;  // (NaN: false)
+  return plane.orthogonal(x, y);
 }
 
 // Face g (FV:g for g < 4, VF:(g − 4)) points exactly the way of face p of the other tetrahedron.
@@ -282,7 +287,7 @@ bool face_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int 
   if (p / 4 == tg) return false;  // two faces of one tetrahedron are never parallel
   int in_plane = 0;
   for (int e = 0; e < 6 && in_plane < 2; ++e)
-    if (kEdges[e][0] != w && kEdges[e][1] != w) in_plane += edge_in_face_plane(K, tg, e, p % 4, plane);
+    if (kEdges[e][0] != w && kEdges[e][1] != w) in_plane += edge_in_face_plane(K, fb, tg, e, p % 4, plane);
   if (in_plane < 2) return false;
   return K.H[kFace[w][0]][p] - K.H[w][p] > fb.deg3;
 }
@@ -296,13 +301,13 @@ bool lane_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int 
   const int a = lane / kLaneStride, b = lane % kLaneStride;
   if (p < 4) {
     const int m = kOffEdge[a][0] == p ? 0 : kOffEdge[a][1] == p ? 1 : -1;
-    if (m < 0 || !edge_in_face_plane(K, 1, b, p, plane)) return false;
+    if (m < 0 || !edge_in_face_plane(K, fb, 1, b, p, plane)) return false;
     const double g = kOffFaces.eps[a][m] * K.G[kOffFaces.face[a][m]][b];
     return std::fabs(g) > fb.deg3 && s * g < 0.0;
   }
   const int j = p - 4;
   const int m = kOffEdge[b][0] == j ? 0 : kOffEdge[b][1] == j ? 1 : -1;
-  if (m < 0 || !edge_in_face_plane(K, 0, a, j, plane)) return false;
+  if (m < 0 || !edge_in_face_plane(K, fb, 0, a, j, plane)) return false;
   const int f = 4 + kOffFaces.face[b][m];
   const double eA[3] = {K.EA[0][a], K.EA[1][a], K.EA[2][a]};
   const double nb[3] = {K.NAB[0][f], K.NAB[1][f], K.NAB[2][f]};
@@ -338,7 +343,7 @@ bool unresolved_along_pick(const SupersetLanes& K, const FilterBounds& fb, int p
     if (un.lo2[lane] > hi_pick) continue;
     const int own = t == 0 ? a : b, other = t == 0 ? b : a;
     if (kEdges[own][0] == w || kEdges[own][1] == w) return false;
-    if (!edge_in_face_plane(K, 1 - t, other, w, plane)) return false;
+    if (!edge_in_face_plane(K, fb, 1 - t, other, w, plane)) return false;
   }
   return true;
 }
