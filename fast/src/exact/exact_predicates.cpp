@@ -378,16 +378,21 @@ bool certainly_not_parallel(const ApproxNormal& p, const ApproxNormal& q) {
 int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
                              const ApproxNormal* approx) {
   if (n <= 1) return n == 1 ? 0 : -1;
-  // groups by direction, each as the position of its first label (canonical order: ascending)
+  // groups by direction, each as the position of its first label (canonical order: ascending);
+  // a group's exact normal built when a label is first tested against it, for the first
+  // kGroups groups (later ones stay apart: only fewer labels grouped, the comparisons exact)
+  constexpr int kGroups = 8;
   std::vector<int> first;
-  std::vector<ExactDirection> direction;
-  first.reserve(n), direction.reserve(n);
+  first.reserve(n);
+  std::optional<ExactDirection> direction[kGroups];
   for (int k = 0; k < n; ++k) {
     bool grouped = false;
-    for (size_t g = 0; g < direction.size() && !grouped; ++g)
-      grouped = !(approx && certainly_not_parallel(approx[first[g]], approx[k])) &&
-                direction[g].same_as(l[k]).value_or(false);
-    if (!grouped) first.push_back(k), direction.emplace_back(A, B, l[k]);
+    for (size_t g = 0; g < first.size() && g < size_t(kGroups) && !grouped; ++g) {
+      if (approx && certainly_not_parallel(approx[first[g]], approx[k])) continue;
+      if (!direction[g]) direction[g].emplace(A, B, l[first[g]]);
+      grouped = direction[g]->same_as(l[k]).value_or(false);
+    }
+    if (!grouped) first.push_back(k);
   }
   if (first.size() == 1) return 0;
   int w = 0;
