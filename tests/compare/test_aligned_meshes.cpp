@@ -17,8 +17,11 @@
 #include "pdd/reference/oriented_depth.h"
 #include "pdd/reference/solve_exact.h"
 
-// the fast engine's internals (pdd_fast_internal): the superset's rigid choice
+// the fast engine's internals (pdd_fast_internal): the superset's and the candidate list's rigid
+// choices
+#include "kernel/candidate_directions.h"
 #include "kernel/power_scale.h"
+#include "kernel/rigid_depth.h"
 #include "kernel/superset_depth.h"
 
 using namespace pdd;
@@ -204,6 +207,56 @@ BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   BOOST_TEST_MESSAGE(uniques << " unique picks, " << tied << " of them tied exactly with later candidates");
   BOOST_TEST(uniques > 600u);
   BOOST_TEST(tied > 600u);
+}
+
+// rigid_pd2's Choice::exact_first (rigid_depth.h) is what pdd2_accel(set, 1) takes when its own
+// double bounds cannot tell the first candidate in delta² order: the flagged label must be the
+// first of the exact order over the exact engine's candidate list, as for the superset's
+// `unique` above. On aligned pairs the flag comes from the double bounds (a choice separated
+// from every other candidate) or from refine_tight's exact tie order (the contacts made by
+// rounding of the next test's meshes); both occur here, and pairs without the flag occur too
+// (near ties the doubles certify without ordering them). Measured: 1,706 flagged, 306 of them
+// through refine_tight, 3,513 not.
+BOOST_AUTO_TEST_CASE(the_rigid_choice_flagged_exact_first_is_the_exact_first) {
+  std::size_t flagged = 0, unflagged = 0, refined = 0;
+  std::vector<Case> cases = aligned_cases();
+  cases.push_back({"Kuhn grids, a tenth of a cell along (1, 1, 1)",
+                   compare::make_structured_block({3, 3, 3}, 0.25, {0, 0, 0}, compare::CubeSplit::Kuhn6),
+                   compare::make_structured_block({3, 3, 3}, 0.25, {0.1, 0.1, 0.1}, compare::CubeSplit::Kuhn6)});
+  for (const Case& c : cases) {
+    mesh::ContactOptions o;
+    o.variants = mesh::kRigid;
+    const auto contacts = mesh::contacts(c.a, c.b, o);
+    for (const auto& cp : contacts.pairs) {
+      const TetPair p{c.name, {}, mesh::element(c.a, cp.a), mesh::element(c.b, cp.b)};
+      const fast::detail::ScaledPair sp = fast::detail::power_scaled(p.A, p.B);
+      if (!sp.finite || !sp.exact) continue;
+      fast::CandidateSet set;
+      if (fast::build_candidates(sp.A, sp.B, set) != fast::BuildStatus::Ok || !set.intersecting) continue;
+      const fast::Choice ch = fast::rigid_pd2(set);
+      if (!ch.certified || !ch.exact_first) {
+        ++unflagged;
+        continue;
+      }
+      ++flagged;
+      refined += ch.refined;
+      const reference::ExactPair x = reference::to_exact(p);
+      const auto cands = reference::candidate_directions(x);
+      std::size_t first = 0;
+      std::vector<reference::Rational> d;
+      for (const auto& cand : cands) d.push_back(reference::oriented_depth_signed_square(x, cand.n));
+      for (std::size_t k = 1; k < cands.size(); ++k)
+        if (d[k] < d[first]) first = k;
+      BOOST_TEST(cands[first].label == ch.label(),
+                 p.name << " " << cp.a << "," << cp.b << ": flagged " << ch.label().str() << ", exact first "
+                        << cands[first].label.str());
+    }
+  }
+  BOOST_TEST_MESSAGE(flagged << " rigid choices flagged exact_first (" << refined << " refined), " << unflagged
+                             << " not");
+  BOOST_TEST(flagged > 100u);
+  BOOST_TEST(refined > 0u);
+  BOOST_TEST(unflagged > 0u);
 }
 
 // The stacked case's geometry, which the benchmarks' "stacked" rows rely on: B's columns exactly
