@@ -73,6 +73,41 @@ std::vector<Case> aligned_cases() {
   return out;
 }
 
+// The first candidate of the exact order (delta² ascending, stable in canonical order) over the
+// exact engine's candidate list, and how many others tie with it exactly.
+struct ExactFirst {
+  DirectionLabel label;
+  std::size_t ties = 0;
+};
+ExactFirst exact_first_candidate(const TetPair& p) {
+  const reference::ExactPair x = reference::to_exact(p);
+  const auto cands = reference::candidate_directions(x);
+  std::vector<reference::Rational> d;
+  for (const auto& cand : cands) d.push_back(reference::oriented_depth_signed_square(x, cand.n));
+  std::size_t first = 0;
+  for (std::size_t k = 1; k < cands.size(); ++k)
+    if (d[k] < d[first]) first = k;
+  ExactFirst out{cands[first].label};
+  for (std::size_t k = 0; k < cands.size(); ++k) out.ties += k != first && d[k] == d[first];
+  return out;
+}
+
+// f(p, sp) for every intersecting element pair p of the cases whose power scaling is exact
+// (sp: the rescaled pair the fast engine's internals take).
+template <class F>
+void for_each_scaled_pair(const std::vector<Case>& cases, F f) {
+  for (const Case& c : cases) {
+    mesh::ContactOptions o;
+    o.variants = mesh::kRigid;
+    for (const auto& cp : mesh::contacts(c.a, c.b, o).pairs) {
+      const TetPair p{c.name + " " + std::to_string(cp.a) + "," + std::to_string(cp.b), {}, mesh::element(c.a, cp.a),
+                      mesh::element(c.b, cp.b)};
+      const fast::detail::ScaledPair sp = fast::detail::power_scaled(p.A, p.B);
+      if (sp.finite && sp.exact) f(p, sp);
+    }
+  }
+}
+
 }  // namespace
 
 // Every intersecting element pair through solve_pair (every value, pdd2_global included).
@@ -178,32 +213,16 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_stay_off_the_exact_path) {
 // above the pick, give 300 and 264: the bounds below fail then.
 BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   std::size_t uniques = 0, tied = 0;
-  for (const Case& c : aligned_cases()) {
-    mesh::ContactOptions o;
-    o.variants = mesh::kRigid;
-    const auto contacts = mesh::contacts(c.a, c.b, o);
-    for (const auto& cp : contacts.pairs) {
-      const TetPair p{c.name, {}, mesh::element(c.a, cp.a), mesh::element(c.b, cp.b)};
-      const fast::detail::ScaledPair sp = fast::detail::power_scaled(p.A, p.B);
-      if (!sp.finite || !sp.exact) continue;
-      fast::Choice ch;
-      bool unique = false;
-      if (!fast::rigid_superset(sp.A, sp.B, ch, nullptr, &unique) || !unique) continue;
-      ++uniques;
-      const reference::ExactPair x = reference::to_exact(p);
-      const auto cands = reference::candidate_directions(x);
-      std::size_t first = 0, equal_to_first = 0;
-      std::vector<reference::Rational> d;
-      for (const auto& cand : cands) d.push_back(reference::oriented_depth_signed_square(x, cand.n));
-      for (std::size_t k = 1; k < cands.size(); ++k)
-        if (d[k] < d[first]) first = k;
-      for (std::size_t k = 0; k < cands.size(); ++k) equal_to_first += k != first && d[k] == d[first];
-      tied += equal_to_first > 0;
-      BOOST_TEST(cands[first].label == ch.label(),
-                 p.name << " " << cp.a << "," << cp.b << ": picked " << ch.label().str() << ", exact first "
-                        << cands[first].label.str());
-    }
-  }
+  for_each_scaled_pair(aligned_cases(), [&](const TetPair& p, const fast::detail::ScaledPair& sp) {
+    fast::Choice ch;
+    bool unique = false;
+    if (!fast::rigid_superset(sp.A, sp.B, ch, nullptr, &unique) || !unique) return;
+    ++uniques;
+    const ExactFirst first = exact_first_candidate(p);
+    tied += first.ties > 0;
+    BOOST_TEST(first.label == ch.label(),
+               p.name << ": picked " << ch.label().str() << ", exact first " << first.label.str());
+  });
   BOOST_TEST_MESSAGE(uniques << " unique picks, " << tied << " of them tied exactly with later candidates");
   BOOST_TEST(uniques > 600u);
   BOOST_TEST(tied > 600u);
@@ -223,35 +242,20 @@ BOOST_AUTO_TEST_CASE(the_rigid_choice_flagged_exact_first_is_the_exact_first) {
   cases.push_back({"Kuhn grids, a tenth of a cell along (1, 1, 1)",
                    compare::make_structured_block({3, 3, 3}, 0.25, {0, 0, 0}, compare::CubeSplit::Kuhn6),
                    compare::make_structured_block({3, 3, 3}, 0.25, {0.1, 0.1, 0.1}, compare::CubeSplit::Kuhn6)});
-  for (const Case& c : cases) {
-    mesh::ContactOptions o;
-    o.variants = mesh::kRigid;
-    const auto contacts = mesh::contacts(c.a, c.b, o);
-    for (const auto& cp : contacts.pairs) {
-      const TetPair p{c.name, {}, mesh::element(c.a, cp.a), mesh::element(c.b, cp.b)};
-      const fast::detail::ScaledPair sp = fast::detail::power_scaled(p.A, p.B);
-      if (!sp.finite || !sp.exact) continue;
-      fast::CandidateSet set;
-      if (fast::build_candidates(sp.A, sp.B, set) != fast::BuildStatus::Ok || !set.intersecting) continue;
-      const fast::Choice ch = fast::rigid_pd2(set);
-      if (!ch.certified || !ch.exact_first) {
-        ++unflagged;
-        continue;
-      }
-      ++flagged;
-      refined += ch.refined;
-      const reference::ExactPair x = reference::to_exact(p);
-      const auto cands = reference::candidate_directions(x);
-      std::size_t first = 0;
-      std::vector<reference::Rational> d;
-      for (const auto& cand : cands) d.push_back(reference::oriented_depth_signed_square(x, cand.n));
-      for (std::size_t k = 1; k < cands.size(); ++k)
-        if (d[k] < d[first]) first = k;
-      BOOST_TEST(cands[first].label == ch.label(),
-                 p.name << " " << cp.a << "," << cp.b << ": flagged " << ch.label().str() << ", exact first "
-                        << cands[first].label.str());
+  for_each_scaled_pair(cases, [&](const TetPair& p, const fast::detail::ScaledPair& sp) {
+    fast::CandidateSet set;
+    if (fast::build_candidates(sp.A, sp.B, set) != fast::BuildStatus::Ok || !set.intersecting) return;
+    const fast::Choice ch = fast::rigid_pd2(set);
+    if (!ch.certified || !ch.exact_first) {
+      ++unflagged;
+      return;
     }
-  }
+    ++flagged;
+    refined += ch.refined;
+    const ExactFirst first = exact_first_candidate(p);
+    BOOST_TEST(first.label == ch.label(),
+               p.name << ": flagged " << ch.label().str() << ", exact first " << first.label.str());
+  });
   BOOST_TEST_MESSAGE(flagged << " rigid choices flagged exact_first (" << refined << " refined), " << unflagged
                              << " not");
   BOOST_TEST(flagged > 100u);
