@@ -32,6 +32,7 @@ namespace {
 
 struct Tally {
   int pairs = 0, intersecting = 0, touching_or_apart = 0, undecided = 0, wrong = 0;
+  int face_disjoint = 0;  // pairs face_axes_sat decides Disjoint
 };
 
 // One pair, both orders: the SAT verdict (when decided) and interiors_intersect equal the judge.
@@ -42,10 +43,14 @@ void check(const TetVertices& A, const TetVertices& B, Tally& t, const std::stri
     const bool want = pdd::test::exact_interiors_intersect(P, Q);
     const SatVerdict v = interiors_intersect_sat(P, Q);
     const bool got = fast::interiors_intersect(P, Q);
+    // the face axes alone: Disjoint only for pairs whose interiors are disjoint
+    const SatVerdict faces = fast::detail::face_axes_sat(P, Q);
     ++t.pairs;
     (want ? t.intersecting : t.touching_or_apart) += 1;
     if (v == SatVerdict::Undecided) ++t.undecided;
-    const bool sat_wrong = v != SatVerdict::Undecided && (v == SatVerdict::Intersecting) != want;
+    if (faces == SatVerdict::Disjoint) ++t.face_disjoint;
+    const bool sat_wrong = (v != SatVerdict::Undecided && (v == SatVerdict::Intersecting) != want) ||
+                           (faces == SatVerdict::Disjoint && want);
     if (sat_wrong || got != want) {
       ++t.wrong;
       if (t.wrong <= 5) BOOST_TEST_MESSAGE(what << ": order " << o << " judge " << want << " sat " << int(v));
@@ -125,6 +130,40 @@ BOOST_AUTO_TEST_CASE(structured_mesh_pairs) {
   // the family has both answers in numbers (the test can fail either way)
   BOOST_TEST(t.intersecting > t.pairs / 20);  // 1268 of 16200 with these seeds
   BOOST_TEST(t.touching_or_apart > t.pairs / 10);
+}
+
+// A Kuhn grid against its copy shifted along (1, 1, 1) by a fraction of a cell: B's vertices on
+// A's diagonal planes (x = y, y = z and x = z through grid points) and A's on B's. With the cell
+// a power of two and the shift a short binary fraction (1/2, 1/4) those contacts are exact
+// touching; with 1/10 or 1/3 the shifted coordinates round, and the faces that coincide in real
+// arithmetic overlap or part by ~1e-17 of the cell (contacts made by rounding). interiors_intersect
+// decides such pairs by their touching face planes first (overlap_filter.cpp).
+BOOST_AUTO_TEST_CASE(diagonally_shifted_grid_pairs) {
+  compare::ReproducibleRng r(111);
+  Tally exact_shift, rounded_shift;
+  for (int draw = 0; draw < 40; ++draw) {
+    const double h = std::ldexp(1.0, r.integer(-4, 1));
+    Grid g{{h * r.integer(-8, 8), h * r.integer(-8, 8), h * r.integer(-8, 8)}, h, 0};
+    const bool rounded = draw % 2 == 1;
+    const double frac = rounded ? (draw % 4 == 1 ? 0.1 : 1.0 / 3.0) : (draw % 4 == 0 ? 0.5 : 0.25);
+    Grid s = g;
+    for (int k = 0; k < 3; ++k) s.origin[k] += frac * h;
+    const TetVertices A = g.tet(0, 0, 0, r.integer(0, 5));
+    for (int i = -1; i <= 0; ++i)
+      for (int j = -1; j <= 0; ++j)
+        for (int l = -1; l <= 0; ++l)
+          for (int which = 0; which < 6; ++which)
+            check(A, s.tet(i, j, l, which), rounded ? rounded_shift : exact_shift, "diagonal shift");
+  }
+  for (const Tally* t : {&exact_shift, &rounded_shift}) {
+    BOOST_TEST_MESSAGE("pairs " << t->pairs << ", intersecting " << t->intersecting << ", face axes disjoint "
+                                << t->face_disjoint);
+    BOOST_TEST(t->wrong == 0);
+    BOOST_TEST(t->undecided == 0);
+    // both answers, and face planes that separate exactly, in numbers (the test can fail either way)
+    BOOST_TEST(t->intersecting > t->pairs / 20);
+    BOOST_TEST(t->face_disjoint > t->pairs / 10);
+  }
 }
 
 // Generic pairs, flat tetrahedra, and scales inside / outside the expansions' range.

@@ -196,37 +196,59 @@ int open_edge_pairs_in(const TetVertices& A, const TetVertices& B, double e3, st
   return count;
 }
 
-}  // namespace
-
-SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges) {
-  if (!in_exact_range(A, B)) return SatVerdict::Undecided;
-  const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+// The exact orientations of A and B (flat: 0); false when out of range or capacity.
+bool orientations(const TetVertices& A, const TetVertices& B, double e3, int& oa, int& ob) {
+  if (!in_exact_range(A, B)) return false;
   bool ok = true;
-  const int oa = orientation(A, e3, ok), ob = orientation(B, e3, ok);
-  if (!ok) return SatVerdict::Undecided;
-  if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
+  oa = orientation(A, e3, ok), ob = orientation(B, e3, ok);
+  return ok;
+}
 
-  // Pass 1, doubles: the axes certain signs do not rule out.
-  int face_s[8][4];
-  bool face_open[8];
+// The face axes, each in doubles and then exactly where certain signs do not rule it out (A and
+// B not flat: orientations oa, ob).
+SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int oa, int ob) {
+  bool ok = true;
   for (int t = 0; t < 2; ++t)
     for (int f = 0; f < 4; ++f) {
       const int sigma = (t == 0 ? oa : ob) * kFaceParity[f];
-      face_open[4 * t + f] = !face_ruled_out(t == 0 ? A : B, t == 0 ? B : A, f, sigma, e3, face_s[4 * t + f]);
+      const TetVertices& T = t == 0 ? A : B;
+      const TetVertices& O = t == 0 ? B : A;
+      int s[4];
+      if (face_ruled_out(T, O, f, sigma, e3, s)) continue;
+      if (face_separates_exact(T, O, f, sigma, s, ok)) return SatVerdict::Disjoint;
+      if (!ok) return SatVerdict::Undecided;
     }
+  return SatVerdict::Intersecting;
+}
+
+}  // namespace
+
+SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B) {
+  const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  int oa = 0, ob = 0;
+  if (!orientations(A, B, e3, oa, ob)) return SatVerdict::Undecided;
+  if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
+  return face_axes(A, B, e3, oa, ob);
+}
+
+SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges,
+                                   bool faces_decided) {
+  const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  int oa = 0, ob = 0;
+  if (!orientations(A, B, e3, oa, ob)) return SatVerdict::Undecided;
+  if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
+
+  // The face axes first: a touching face decides most touching pairs, before any edge-pair
+  // axis is computed.
+  if (!faces_decided) {
+    const SatVerdict v = face_axes(A, B, e3, oa, ob);
+    if (v != SatVerdict::Intersecting) return v;
+  }
+  // The edge-pair axes: pass 1 in doubles (the axes certain signs do not rule out), pass 2 exact.
+  bool ok = true;
   PendingEdge pending[36];
   const int npending = open_edges ? open_edge_pairs_in(A, B, e3, *open_edges, pending)
                                   : open_edge_pairs(A, B, e3, pending);
-
-  // Pass 2, exact: the open axes, faces first (a touching face decides most touching pairs).
-  for (int t = 0; t < 2; ++t)
-    for (int f = 0; f < 4; ++f) {
-      if (!face_open[4 * t + f]) continue;
-      const int sigma = (t == 0 ? oa : ob) * kFaceParity[f];
-      if (face_separates_exact(t == 0 ? A : B, t == 0 ? B : A, f, sigma, face_s[4 * t + f], ok))
-        return SatVerdict::Disjoint;
-      if (!ok) return SatVerdict::Undecided;
-    }
   for (int k = 0; k < npending; ++k) {
     PendingEdge& e = pending[k];
     LazyNormal n(A[kEdges[e.a][1]], A[kEdges[e.a][0]], B[kEdges[e.b][1]], B[kEdges[e.b][0]]);

@@ -25,7 +25,10 @@
 //
 // interiors_intersect, for Unknown: the exact separating-axis decision (exact_sat.h: the 44
 // axes in doubles, then floating-point expansions for the signs left open: no rationals), and
-// only when that is out of the expansions' range the candidate set's exact depth signs.
+// only when that is out of the expansions' range the candidate set's exact depth signs. A pair
+// with a touching face (stage 1: some face plane's computed gap within E3 of 0, the common case
+// of aligned meshes, where faces and vertices lie exactly in each other's planes) has its face
+// axes decided exactly first, before the kernel: most such pairs are separated by that plane.
 #include "certification/filter_bounds.h"
 #include "exact/exact_sat.h"
 #include "kernel/candidate_directions.h"
@@ -42,9 +45,13 @@ namespace pdd::fast {
 
 namespace {
 
-// Stage 1 (header): true when a face plane of T certainly separates T from O.
-inline bool face_separates(const TetVertices& T, const TetVertices& O, double e3) {
+// Stage 1 (header), for the face planes of T against O: Separate when one certainly separates;
+// Touching when none does but one's computed gap is within E3 of 0 (its test fails by <= E3:
+// min_m h_m − max(0, hl) >= −E3, or the mirror), so that only exact signs can tell; else Open.
+enum class FacePlanes { Separate, Touching, Open };
+inline FacePlanes face_planes(const TetVertices& T, const TetVertices& O, double e3) {
   static constexpr int kFace[4][4] = {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}};
+  bool touching = false;
   for (const auto& f : kFace) {
     const Vec3d& p = T[f[0]];
     double u[3], v[3], w[3], n[3];
@@ -63,9 +70,11 @@ inline bool face_separates(const TetVertices& T, const TetVertices& O, double e3
       lo = h < lo ? h : lo;
       hi = h > hi ? h : hi;
     }
-    if (lo - (hl > 0.0 ? hl : 0.0) > e3 || (hl < 0.0 ? hl : 0.0) - hi > e3) return true;
+    const double gap = std::max(lo - (hl > 0.0 ? hl : 0.0), (hl < 0.0 ? hl : 0.0) - hi);
+    if (gap > e3) return FacePlanes::Separate;
+    touching = touching || gap >= -e3;
   }
-  return false;
+  return touching ? FacePlanes::Touching : FacePlanes::Open;
 }
 
 // Stage 2 on an aligned pair: the kernel's minimum depth is spoilt by edge pairs the doubles cannot
@@ -93,18 +102,29 @@ bool intersecting_without_unresolved(const detail::SupersetLanes& K) {
   return true;
 }
 
-// overlap_filter with the kernel's lanes kept (K filled when `kernel` is set on return).
-Overlap filter(const TetVertices& A, const TetVertices& B, detail::SupersetLanes& K, bool& kernel) {
-  kernel = false;
+// Stage 1: Disjoint when a face plane certainly separates, else Unknown (touching: a face
+// plane's gap is within E3 of 0, face_planes; finite: every coordinate finite, else nothing is
+// computed).
+Overlap face_stage(const TetVertices& A, const TetVertices& B, bool& finite, bool& touching) {
+  touching = false;
   double z = 0.0;  // 0 when every coordinate is finite (x·0 is NaN for inf and NaN)
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) z += A[i][k] * 0.0 + B[i][k] * 0.0;
-  if (!(z == 0.0)) return Overlap::Unknown;
+  finite = z == 0.0;
+  if (!finite) return Overlap::Unknown;
   const double e3_faces = filter_bounds(A, B).deg3;  // +inf when L is out of range
-  if (face_separates(A, B, e3_faces) || face_separates(B, A, e3_faces)) return Overlap::Disjoint;
+  const FacePlanes a = face_planes(A, B, e3_faces);
+  if (a == FacePlanes::Separate) return Overlap::Disjoint;
+  const FacePlanes b = face_planes(B, A, e3_faces);
+  if (b == FacePlanes::Separate) return Overlap::Disjoint;
+  touching = a == FacePlanes::Touching || b == FacePlanes::Touching;
+  return Overlap::Unknown;
+}
+
+// Stage 2 on a finite pair stage 1 left Unknown, its lanes kept in K.
+Overlap kernel_stage(const TetVertices& A, const TetVertices& B, detail::SupersetLanes& K) {
   detail::superset_kernel(A, B, K, nullptr);
   if (!(K.finite == 0.0)) return Overlap::Unknown;  // non-finite input: garbage lanes
-  kernel = true;
   const double e3 = filter_bounds_of_extent(K.extent).deg3;  // +inf outside the range guard
   if (!(std::fabs(K.det[3]) > e3) || !(std::fabs(K.det[7]) > e3)) return Overlap::Unknown;
   if (K.lo < -e3) return Overlap::Disjoint;
@@ -127,26 +147,31 @@ std::uint64_t open_edge_pairs(const detail::SupersetLanes& K) {
 }  // namespace
 
 Overlap overlap_filter(const TetVertices& A, const TetVertices& B) {
+  bool finite = false, touching = false;
+  const Overlap o = face_stage(A, B, finite, touching);
+  if (o != Overlap::Unknown || !finite) return o;
   detail::SupersetLanes K;
-  bool kernel;
-  return filter(A, B, K, kernel);
+  return kernel_stage(A, B, K);
 }
 
 bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
-  detail::SupersetLanes K;
-  bool kernel;
-  switch (filter(A, B, K, kernel)) {
-    case Overlap::Disjoint:
-      return false;
-    case Overlap::Intersecting:
-      return true;
-    case Overlap::Unknown:
-      break;
+  bool finite = false, touching = false;
+  Overlap o = face_stage(A, B, finite, touching);
+  if (o == Overlap::Disjoint) return false;
+  // A touching face: the face axes exactly (exact_sat.h) before the kernel.
+  bool faces_decided = false;
+  if (touching) {
+    const detail::SatVerdict v = detail::face_axes_sat(A, B);
+    if (v == detail::SatVerdict::Disjoint) return false;
+    faces_decided = v == detail::SatVerdict::Intersecting;  // (no face axis separates)
   }
+  detail::SupersetLanes K;
+  if (finite) o = kernel_stage(A, B, K);
+  if (o != Overlap::Unknown) return o == Overlap::Intersecting;
   // The exact separating-axis decision (exact_sat.h: doubles, then expansions; no rationals).
   // Undecided only outside the expansions' range or capacity.
-  const std::uint64_t open = kernel ? open_edge_pairs(K) : ~std::uint64_t{0};
-  const detail::SatVerdict v = detail::interiors_intersect_sat(A, B, &open);
+  const std::uint64_t open = finite && K.finite == 0.0 ? open_edge_pairs(K) : ~std::uint64_t{0};
+  const detail::SatVerdict v = detail::interiors_intersect_sat(A, B, &open, faces_decided);
   if (v != detail::SatVerdict::Undecided) return v == detail::SatVerdict::Intersecting;
   // The decision alone (no depth to certify): the candidate set's exact depth signs on the pair
   // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
