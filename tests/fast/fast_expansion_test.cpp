@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "exact/exact_geometry.h"
+#include "exact/exact_heights.h"
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
 #include "pdd/compare/random.h"
@@ -151,6 +152,59 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
                                                       << ", near ties " << delta_near);
   BOOST_TEST_MESSAGE("parallel " << parallel << ", colinear " << colinear << ", zero g " << zero_g
                                  << ", zero depths " << zero_depth << ", same directions " << same_direction);
+}
+
+// exact_heights.h: the sign of ((p1 − p0) × (q1 − q0)).(p − q) against rationals, on the heights
+// the separating-axis decision and the superset's plane tests take: faces of one cell and edges
+// of two against vertices of either, for cells of a grid against a copy shifted along (1, 1, 1)
+// by a short binary fraction (exact zeros: a vertex in a diagonal plane), by a tenth of a cell
+// (the same up to rounding) and by a random offset. short_dot_sign, where it answers, gives the
+// same sign (its exact-in-doubles shortcut is taken on a share of the heights, and the test can
+// fail either way: both signs and zeros occur in numbers).
+BOOST_AUTO_TEST_CASE(height_signs_match_rationals) {
+  compare::ReproducibleRng r(5);
+  int zeros = 0, nonzero = 0, short_dots = 0, tested = 0;
+  for (int it = 0; it < 600; ++it) {
+    const double h = std::ldexp(1.0, r.integer(-3, 1));
+    const Vec3d o = {h * r.integer(-8, 8), h * r.integer(-8, 8), h * r.integer(-8, 8)};
+    const double frac = it % 3 == 0 ? 0.5 : (it % 3 == 1 ? 0.1 : r.uniform(0, 1));
+    Vec3d ob;
+    for (int k = 0; k < 3; ++k) ob[k] = o[k] + (frac + r.integer(-1, 0)) * h;
+    const TetVertices A = pdd::test::kuhn_cell_tet(o, h, r.integer(0, 5));
+    const TetVertices B = pdd::test::kuhn_cell_tet(ob, h, r.integer(0, 5));
+    BOOST_REQUIRE(detail::in_exact_range(A, B));
+    const Vec3d* pts[8];
+    for (int i = 0; i < 4; ++i) pts[i] = &A[i], pts[4 + i] = &B[i];
+    for (int trial = 0; trial < 20; ++trial) {
+      const Vec3d& p1 = *pts[r.integer(0, 7)];
+      const Vec3d& p0 = *pts[r.integer(0, 7)];
+      const Vec3d& q1 = *pts[r.integer(0, 7)];
+      const Vec3d& q0 = *pts[r.integer(0, 7)];
+      const Vec3d& p = *pts[r.integer(0, 7)];
+      const Vec3d& q = *pts[r.integer(0, 7)];
+      Q u[3], v[3], d[3];
+      for (int k = 0; k < 3; ++k) u[k] = Q(p1[k]) - Q(p0[k]), v[k] = Q(q1[k]) - Q(q0[k]), d[k] = Q(p[k]) - Q(q[k]);
+      const Q want = (u[1] * v[2] - u[2] * v[1]) * d[0] + (u[2] * v[0] - u[0] * v[2]) * d[1] +
+                     (u[0] * v[1] - u[1] * v[0]) * d[2];
+      detail::LazyNormal n(p1, p0, q1, q0);
+      bool ok = true;
+      const int got = detail::exact_height_sign(n, p, q, ok);
+      BOOST_TEST(ok);
+      BOOST_TEST(got == sgn(want));
+      detail::LazyNormal m(p1, p0, q1, q0);
+      int s = 2;
+      if (detail::short_dot_sign(m, p, q, s)) {
+        ++short_dots;
+        BOOST_TEST(s == sgn(want));
+      }
+      (sgn(want) == 0 ? zeros : nonzero) += 1;
+      ++tested;
+    }
+  }
+  BOOST_TEST_MESSAGE("heights " << tested << ", zeros " << zeros << ", short dots " << short_dots);
+  BOOST_TEST(zeros > tested / 10);
+  BOOST_TEST(nonzero > tested / 10);
+  BOOST_TEST(short_dots > tested / 10);
 }
 
 // Expansion arithmetic on sums that cancel exactly in doubles' rounding: (a + b) − a − b = 0,

@@ -11,7 +11,8 @@
 // n_k is the exact 2x2 minor of the differences (two products by Dekker's two_product when the
 // differences are exact in doubles, the common case on aligned inputs; else expansion.h's cross
 // of the exact differences); one term left: sign(n_k) sign(p_k − q_k) (the comparison is exact);
-// otherwise the expansions' dot product.
+// otherwise the doubles' dot product where each of its steps is exact (short_dot_sign), else
+// the expansions'.
 #pragma once
 
 #include "exact/expansion.h"
@@ -83,6 +84,32 @@ struct LazyNormal {
   }
 };
 
+// The sign of n.(p − q) when the doubles compute it exactly: every component of n a single
+// double (its expansion has at most one term), every difference p_k − q_k exact, every product
+// n_k (p_k − q_k) exact (two_product's error 0) and every partial sum exact (two_sum's error 0):
+// then the computed sum is the value. On aligned inputs most heights left to this point are
+// exact zeros of this kind (a vertex in a plane through grid points: c (d_x − d_y) with
+// d_x = d_y). False (s unchanged) when some step is not exact.
+inline bool short_dot_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, int& s) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const Expansion& e = n[k];
+    if (e.n > 1) return false;
+    double d, err;
+    two_sum(p[k], -q[k], d, err);
+    if (err != 0.0) return false;
+    double prod, perr;
+    two_product(e.n == 0 ? 0.0 : e.c[0], d, prod, perr);
+    if (perr != 0.0) return false;
+    double next;
+    two_sum(sum, prod, next, err);
+    if (err != 0.0) return false;
+    sum = next;
+  }
+  s = sum > 0.0 ? 1 : (sum < 0.0 ? -1 : 0);
+  return true;
+}
+
 // The exact sign of n.(p − q) (above): terms with p_k == q_k vanish without computing n_k;
 // zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else the expansions' dot.
 inline int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
@@ -91,6 +118,8 @@ inline int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool
     if (p[k] != q[k] && n[k].n != 0) ++terms, last = k;
   if (terms == 0) return 0;
   if (terms == 1) return n[last].sign() * (p[last] > q[last] ? 1 : -1);
+  int s = 0;
+  if (short_dot_sign(n, p, q, s)) return s;
   for (int k = 0; k < 3; ++k) n[k];
   const Expansion d = dot(n.n, difference(p, q));
   ok = ok && d.ok;
