@@ -151,8 +151,30 @@ ExactDirection::ExactDirection(const TetVertices& A, const TetVertices& B, const
   ok_ = ok && n_.ok();
 }
 
+// A vector that the exact normal n2 of label l is orthogonal to, whatever its kind: an edge of
+// the face (FV, VF), or either edge of the pair (EE: n2 = eB × eA is orthogonal to both; a
+// parallel pair's (e.e) w − (w.e) e is orthogonal to e, parallel to both edges; a colinear
+// pair's is 0). Two of them (k = 0, 1) span n2's orthogonal plane when n2 != 0 (a face's edges;
+// a generic pair's edges).
+static ExpVec orthogonal_to_normal(const TetVertices& A, const TetVertices& B, const DirectionLabel& l, int k) {
+  if (l.kind == ContactKind::FV || l.kind == ContactKind::VF) {
+    const TetVertices& T = l.kind == ContactKind::FV ? A : B;
+    const auto& f = kFace[l.a];
+    return difference(T[f[1 + k]], T[f[0]]);
+  }
+  return k == 0 ? difference(A[kEdges[l.a][1]], A[kEdges[l.a][0]]) : difference(B[kEdges[l.b][1]], B[kEdges[l.b][0]]);
+}
+
 std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const {
   if (!ok_) return std::nullopt;
+  // Not the same direction when n1 is not orthogonal to a vector n2 is orthogonal to (n2 = 0
+  // included: no direction): two degree-3 dots instead of n2 and n1 × n2 (degree 4); directions
+  // a rounding apart (aligned pairs) mostly end here.
+  for (int k = 0; k < 2; ++k) {
+    const Expansion d = dot(n_, orthogonal_to_normal(A_, B_, l, k));
+    if (!d.ok) return std::nullopt;
+    if (d.n != 0) return false;
+  }
   bool ok = true;
   const ExpVec n2 = oriented_normal_exp(A_, B_, l, ok);
   if (!ok || !n2.ok()) return std::nullopt;
