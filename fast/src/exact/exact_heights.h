@@ -111,7 +111,8 @@ inline bool short_dot_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, int& s
 }
 
 // The exact sign of n.(p − q) (above): terms with p_k == q_k vanish without computing n_k;
-// zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else the expansions' dot.
+// zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else short_dot_sign where
+// the doubles are exact, else the expansions' dot.
 inline int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
   int terms = 0, last = 0;
   for (int k = 0; k < 3; ++k)
