@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "certification/compensated_heights.h"
 #include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
 #include "kernel/candidate_directions.h"
@@ -58,19 +60,28 @@ inline double qp_rel(const Candidate& c, double v, const FilterBounds& fb) {
 }
 
 // The position in c[0..n) (candidate indices in canonical order) of the first least exact
-// delta², exact ties to the earliest; -1 where expansions cannot decide
-// (first_least_delta2_exact, given each candidate's double normal and its bound e_n so that
-// directions certainly apart are not compared with expansions).
+// delta², exact ties to the earliest; -1 where neither compensated depths nor expansions can
+// decide (first_least_delta2_exact's running minimum, each step decided first by
+// compare_delta2_compensated where both candidates have compensated depths: delta² a rounding
+// apart, aligned pairs; then by exact direction and expansions, given each candidate's double
+// normal and its bound e_n so that directions certainly apart are not tested for equality).
 template <class List>
 int first_least_delta2(const List& s, const int* c, int n) {
   DirectionLabel l[kMaxCandidates];
   ApproxNormal a[kMaxCandidates];
+  CompensatedDepth d[kMaxCandidates];
+  bool have[kMaxCandidates];
   for (int k = 0; k < n; ++k) {
     l[k] = unpack_label(label_code(s, c[k]));
     const Candidate x = candidate(s, c[k]);
     a[k] = ApproxNormal{{x.n[0], x.n[1], x.n[2]}, bounds_of(s, c[k]).e_n};
+    have[k] = compensated_depth(*s.A, *s.B, x, d[k]);
   }
-  return first_least_delta2_exact(*s.A, *s.B, l, n, a);
+  auto compensated = [&d, &have](int k, int w) -> std::optional<int> {
+    if (!have[k] || !have[w]) return std::nullopt;
+    return compare_delta2_compensated(d[k], d[w]);
+  };
+  return first_least_delta2_exact(*s.A, *s.B, l, n, a, compensated);
 }
 
 }  // namespace pdd::fast::detail

@@ -23,58 +23,78 @@ DV diff(const std::array<double, 3>& p, const std::array<double, 3>& o) {  // ex
   return {{two_sum(p[0], -o[0]), two_sum(p[1], -o[1]), two_sum(p[2], -o[2])}};
 }
 
-}  // namespace
+// A candidate's exact direction as double words (the header's normal, unrounded): n* = e1 x e2
+// up to the orientation `sign` (the candidate's c.n), the origin o, and N_k from the high parts.
+struct Span {
+  DW n[3];
+  double N[3];
+  double sign;
+  std::array<double, 3> o;
+};
 
-bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
-                         CompensatedHeights& out) {
+[[gnu::always_inline]] inline bool span_of(const TetVertices& A, const TetVertices& B, const Candidate& c, Span& sp) {
   if (c.parallel) return false;
   const DirectionLabel& l = c.label;
   // The direction's two spanning vectors e1, e2 (n* = e1 x e2 up to sign) and the origin o, a
   // vertex of the constrained set whose heights are exactly 0 (A's face or edge; B's face).
   const TetVertices* T = &A;
-  std::array<double, 3> o, p1, p2, q1, q2;
+  std::array<double, 3> p1, p2, q1, q2;
   switch (l.kind) {
     case ContactKind::FV:
     case ContactKind::VF: {
       T = l.kind == ContactKind::FV ? &A : &B;
       const auto& f = kFace[l.a];
-      o = (*T)[f[0]], p1 = (*T)[f[1]], q1 = o, p2 = (*T)[f[2]], q2 = o;
+      sp.o = (*T)[f[0]], p1 = (*T)[f[1]], q1 = sp.o, p2 = (*T)[f[2]], q2 = sp.o;
       break;
     }
     default: {
       const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
-      o = A[u], p1 = B[y], q1 = B[x], p2 = A[v], q2 = A[u];  // eB x eA (definitions §3)
+      sp.o = A[u], p1 = B[y], q1 = B[x], p2 = A[v], q2 = A[u];  // eB x eA (definitions §3)
       break;
     }
   }
   const DV e1 = diff(p1, q1), e2 = diff(p2, q2);
-  DW n[3];
-  double N[3];  // |e1_r e2_s| + |e1_s e2_r| from the high parts
   for (int k = 0; k < 3; ++k) {
     const int r = (k + 1) % 3, s = (k + 2) % 3;
-    n[k] = add(mul(e1.x[r], e2.x[s]), neg(mul(e1.x[s], e2.x[r])));
-    N[k] = std::fabs(e1.x[r].hi * e2.x[s].hi) + std::fabs(e1.x[s].hi * e2.x[r].hi);
+    sp.n[k] = add(mul(e1.x[r], e2.x[s]), neg(mul(e1.x[s], e2.x[r])));
+    sp.N[k] = std::fabs(e1.x[r].hi * e2.x[s].hi) + std::fabs(e1.x[s].hi * e2.x[r].hi);
   }
-  constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
-  for (int k = 0; k < 3; ++k) out.n[k] = n[k].hi;
   // orientation: the candidate's (c.n approximates +-n*; their product is ~|n|^2 either way)
-  const double orient = out.n[0] * c.n[0] + out.n[1] * c.n[1] + out.n[2] * c.n[2];
+  const double orient = sp.n[0].hi * c.n[0] + sp.n[1].hi * c.n[1] + sp.n[2].hi * c.n[2];
   if (!(std::fabs(orient) > 0) || !std::isfinite(orient)) return false;
-  const double sign = orient > 0 ? 1.0 : -1.0;
+  sp.sign = orient > 0 ? 1.0 : -1.0;
+  return true;
+}
+
+// sign n.(x − o) as a double word, within 25 u^2 M of the exact H* (header), M returned.
+[[gnu::always_inline]] inline DW height_of(const Span& sp, const std::array<double, 3>& x, double& M) {
+  const DV d = diff(x, sp.o);
+  DW s = mul(sp.n[0], d.x[0]);
+  s = add(s, mul(sp.n[1], d.x[1]));
+  s = add(s, mul(sp.n[2], d.x[2]));
+  M = sp.N[0] * std::fabs(d.x[0].hi) + sp.N[1] * std::fabs(d.x[1].hi) + sp.N[2] * std::fabs(d.x[2].hi);
+  return sp.sign > 0 ? s : neg(s);
+}
+
+constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
+
+}  // namespace
+
+PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                                        CompensatedHeights& out) {
+  Span sp;
+  if (!span_of(A, B, c, sp)) return false;
+  const DirectionLabel& l = c.label;
   out.e_n = 0;
   for (int k = 0; k < 3; ++k) {
-    out.n[k] *= sign;
-    out.e_n = std::fmax(out.e_n, (kU * std::fabs(out.n[k]) * (1 + kU) + 10.5 * kU * kU * N[k]) * kGrow);
+    out.n[k] = sp.sign * sp.n[k].hi;
+    out.e_n = std::fmax(out.e_n, (kU * std::fabs(out.n[k]) * (1 + kU) + 10.5 * kU * kU * sp.N[k]) * kGrow);
   }
   out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
   auto height = [&](const std::array<double, 3>& x, double& h, double& e) {
-    const DV d = diff(x, o);
-    DW s = mul(n[0], d.x[0]);
-    s = add(s, mul(n[1], d.x[1]));
-    s = add(s, mul(n[2], d.x[2]));
-    const double M = N[0] * std::fabs(d.x[0].hi) + N[1] * std::fabs(d.x[1].hi) + N[2] * std::fabs(d.x[2].hi);
-    h = sign * s.hi;
+    double M = 0;
+    h = height_of(sp, x, M).hi;
     e = (kU * std::fabs(h) + 25 * kU * kU * M) * kGrow + 0x1p-1040;
   };
   for (int i = 0; i < 4; ++i) {
@@ -99,8 +119,87 @@ bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candi
   return true;
 }
 
-bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
-                               CompensatedHeights& out) {
+// The extremes of four double-word heights: a normalised double word's value orders as (hi, lo)
+// lexicographically (hi = RN(hi + lo) and RN is monotone: hi1 > hi2 implies v1 >= v2), so the
+// one picked is the largest (smallest) value, within max e_i of the exact extreme
+// (|max a_i − max b_i| <= max |a_i − b_i|).
+namespace {
+bool above(const DW& x, const DW& y) { return x.hi > y.hi || (x.hi == y.hi && x.lo > y.lo); }
+}  // namespace
+
+PDD_FMA_CLONES bool compensated_depth(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                                      CompensatedDepth& out) {
+  Span sp;
+  if (!span_of(A, B, c, sp)) return false;
+  const DirectionLabel& l = c.label;
+  DW hA[4], hB[4];
+  double e = 0.0;  // the largest height error (header: 25 u^2 M, plus underflowed products)
+  for (int i = 0; i < 4; ++i) {
+    double MA = 0, MB = 0;
+    hA[i] = height_of(sp, A[i], MA), hB[i] = height_of(sp, B[i], MB);
+    e = std::fmax(e, 25 * kU * kU * std::fmax(MA, MB) * kGrow + 0x1p-1040);
+  }
+  // constrained vertices at their exact heights (compensated_heights)
+  for (int i = 0; i < 4; ++i) {
+    if ((l.kind == ContactKind::FV || l.kind == ContactKind::EE) && (c.conA >> i & 1u)) hA[i] = DW{0, 0};
+    if (l.kind == ContactKind::VF && (c.conB >> i & 1u)) hB[i] = DW{0, 0};
+  }
+  if (l.kind == ContactKind::EE) hB[kEdges[l.b][1]] = hB[kEdges[l.b][0]];
+  DW top = hA[0], bottom = hB[0];
+  for (int i = 1; i < 4; ++i) {
+    if (above(hA[i], top)) top = hA[i];
+    if (above(bottom, hB[i])) bottom = hB[i];
+  }
+  out.D = add(top, neg(bottom));
+  out.eD = (2 * e + 4 * kU * kU * (std::fabs(top.hi) + std::fabs(bottom.hi))) * kGrow;
+  // n.n: each |n~_k − n*_k| <= En_k = 10.5 u^2 N_k (header), so |n~_k² − n*_k²| <= En_k (2 |n~_k|
+  // + En_k); the squares' roundings 6.2 u² n_k², the two adds' 4 u² of their operands (< 8.1 u²
+  // sum n_k² in all).
+  out.nn = DW{0, 0};
+  out.enn = 0;
+  double sq = 0;
+  for (int k = 0; k < 3; ++k) {
+    out.nn = add(out.nn, mul(sp.n[k], sp.n[k]));
+    const double En = 10.5 * kU * kU * sp.N[k], a = std::fabs(sp.n[k].hi);
+    out.enn += En * (2 * a * (1 + kU) + En);
+    sq += a * a;
+  }
+  out.enn = (out.enn + 14.3 * kU * kU * sq) * kGrow;
+  // range: no overflow in compare_delta2_compensated's products, and each value far above the
+  // absolute terms (underflowed products) it carries
+  const double D = out.D.hi, nn = out.nn.hi;
+  return std::isfinite(D) && std::isfinite(nn) && std::isfinite(out.eD) && std::isfinite(out.enn) &&
+         D - out.eD > 0x1p-300 && D < 0x1p+100 && nn - out.enn > 0x1p-300 && nn < 0x1p+200;
+}
+
+// D_p² n_q.n_q − D_q² n_p.n_p in double words, each step's error bounded (double_word.h: mul
+// 6.2 u² of the high parts' product, add 4 u² of the operands'):
+//   a = D²: |a~ − D*²| <= eD (2|D~| + eD) + 6.2 u² D~²                             =: ea
+//   X = a nn': |X~ − D*² nn'*| <= ea |nn'~| + (|a~| + ea) enn' + 6.2 u² |a~| |nn'~| =: eX
+//   X − Y: within eX + eY + 4 u² (|X~| + |Y~|) of the exact difference.
+// |x~| is the high part's magnitude within (1 + u), absorbed with the bound's own roundings in
+// 1 + 2^-40; every underflowed product (each < 2^-1075, far fewer than 2^20 of them, times
+// factors < 2^310 by the range above) is covered by 2^-700. The difference's value is within
+// u |hi| of its high part: a sign when |hi| (1 − 2u) exceeds the bound.
+PDD_FMA_CLONES std::optional<int> compare_delta2_compensated(const CompensatedDepth& p, const CompensatedDepth& q) {
+  auto term = [](const CompensatedDepth& x, const CompensatedDepth& y, double& err) {
+    const DW a = mul(x.D, x.D);
+    const double D = std::fabs(x.D.hi), ea = x.eD * (2 * D + x.eD) + 6.2 * kU * kU * D * D;
+    const DW X = mul(a, y.nn);
+    const double A = std::fabs(a.hi), N = std::fabs(y.nn.hi);
+    err = ea * N + (A + ea) * y.enn + 6.2 * kU * kU * A * N;
+    return X;
+  };
+  double ex = 0, ey = 0;
+  const DW X = term(p, q, ex), Y = term(q, p, ey);
+  const DW d = add(X, neg(Y));
+  const double bound = (ex + ey + 4 * kU * kU * (std::fabs(X.hi) + std::fabs(Y.hi))) * kGrow + 0x1p-700;
+  if (!(std::fabs(d.hi) * (1 - 2 * kU) > bound)) return std::nullopt;  // (NaN: undecided)
+  return d.hi > 0 ? 1 : -1;
+}
+
+PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVertices& B,
+                                              const std::array<double, 3>& v, CompensatedHeights& out) {
   int top = 0;
   double best = -INFINITY;
   for (int i = 0; i < 4; ++i) {
@@ -112,7 +211,6 @@ bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const
   out.e_n = 0;
   out.nn = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
-  constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
   // A height v.(x − o): the difference exact (two_sum), three products of a double and a
   // double word (mul, at most the header's 6.2 u^2 each) and two adds: within the header's
   // 25 u^2 M, M = sum |v_k| |d_k| (no normal error here), then rounded to its high part (u).

@@ -34,6 +34,9 @@
 // The normal rounded to doubles: |n~_k − n*_k| <= u |n~_k| (1 + u) + 10.5 u² N_k =: <= e_n.
 #pragma once
 
+#include <optional>
+
+#include "certification/double_word.h"
 #include "kernel/candidate_directions.h"
 #include "pdd/tet_pair.h"
 
@@ -56,5 +59,23 @@ bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candi
 // the normal's share of the 25 u^2 M above. False on a zero or non-finite v or value.
 bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
                                CompensatedHeights& out);
+
+// A candidate's definitions §4 depth parts in double words, unrounded: D = max_i H*_A,i −
+// min_j H*_B,j and n*.n* of its exact oriented normal (the heights above before their rounding
+// to doubles), with certified absolute bounds |D~ − D*| <= eD, |nn~ − n*.n*| <= enn (derived in
+// the .cpp). For ordering candidates whose delta² are a rounding apart (a grid against its copy
+// shifted by a non-dyadic offset: directions parallel up to the rounding of the coordinates,
+// depths ~1e-16 apart relative), which the rounded heights cannot and which expansions order at
+// ~20 times the cost. False where compensated_heights is not applicable, D~ is not certainly
+// positive, or a value is out of the range the comparison's bound covers.
+struct CompensatedDepth {
+  dw::DW D, nn;
+  double eD = 0, enn = 0;
+};
+bool compensated_depth(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedDepth& out);
+
+// sign(delta²_p − delta²_q) = sign(D_p² n_q.n_q − D_q² n_p.n_p) from compensated depths; nullopt
+// where the bounds do not decide it (an exact tie among them).
+std::optional<int> compare_delta2_compensated(const CompensatedDepth& p, const CompensatedDepth& q);
 
 }  // namespace pdd::fast::detail

@@ -21,6 +21,15 @@
 #include <array>
 #include <cmath>
 
+// Run-time dispatch on x86-64 with GCC (as piece_screen.cpp) for functions built on these: a
+// clone where fma is an instruction rather than a library call. fma is correctly rounded either
+// way: the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PDD_FMA_CLONES __attribute__((target_clones("fma", "default")))
+#else
+#define PDD_FMA_CLONES
+#endif
+
 namespace pdd::fast::detail::dw {
 
 inline constexpr double kU = 0x1p-53;

@@ -398,34 +398,27 @@ bool certainly_not_parallel(const ApproxNormal& p, const ApproxNormal& q) {
 }  // namespace
 
 int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
-                             const ApproxNormal* approx) {
+                             const ApproxNormal* approx, const DeltaOrderHint& decided) {
   if (n <= 1) return n == 1 ? 0 : -1;
-  // groups by direction, each as the position of its first label (canonical order: ascending);
-  // a group's exact normal built when a label is first tested against it, for the first
-  // kGroups groups (later ones stay apart: only fewer labels grouped, the comparisons exact)
-  constexpr int kGroups = 8;
-  std::vector<int> first;
-  first.reserve(n);
-  std::optional<ExactDirection> direction[kGroups];
-  for (int k = 0; k < n; ++k) {
-    bool grouped = false;
-    for (size_t g = 0; g < first.size() && g < size_t(kGroups) && !grouped; ++g) {
-      if (approx && certainly_not_parallel(approx[first[g]], approx[k])) continue;
-      if (!direction[g]) direction[g].emplace(A, B, l[first[g]]);
-      grouped = direction[g]->same_as(l[k]).value_or(false);
-    }
-    if (!grouped) first.push_back(k);
-  }
-  if (first.size() == 1) return 0;
   int w = 0;
-  ExactDepthParts least = depth_parts_exact(A, B, l[first[0]]);
-  if (!least.ok) return -1;
-  for (size_t g = 1; g < first.size(); ++g) {
-    ExactDepthParts p = depth_parts_exact(A, B, l[first[g]]);
+  std::optional<ExactDirection> direction;  // l[w]'s, built at its first use
+  ExactDepthParts least;                    // l[w]'s, likewise (ok: built)
+  for (int k = 1; k < n; ++k) {
+    if (decided)
+      if (const std::optional<int> below = decided(k, w)) {
+        if (*below < 0) w = k, direction.reset(), least.ok = false;
+        continue;
+      }
+    if (!(approx && certainly_not_parallel(approx[w], approx[k]))) {
+      if (!direction) direction.emplace(A, B, l[w]);
+      if (direction->same_as(l[k]).value_or(false)) continue;  // equal delta: the earlier kept
+    }
+    if (!least.ok && !(least = depth_parts_exact(A, B, l[w])).ok) return -1;
+    ExactDepthParts p = depth_parts_exact(A, B, l[k]);
     if (!p.ok) return -1;
     const std::optional<int> below = compare_delta2_exact(p, least);
     if (!below) return -1;
-    if (*below < 0) w = first[g], least = std::move(p);  // strictly below: a tie keeps the earlier
+    if (*below < 0) w = k, direction.reset(), least = std::move(p);  // strictly below: a tie keeps the earlier
   }
   return w;
 }

@@ -7,6 +7,7 @@
 // (filter_bounds.h), which for generic inputs never happens.
 #pragma once
 
+#include <functional>
 #include <optional>
 
 #include "exact/expansion.h"
@@ -88,21 +89,23 @@ bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const Dire
 std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDepthParts& q);
 
 // The position in l[0..n) (labels of the pair's candidates in canonical order) of the first
-// least exact delta², exact ties to the earliest; -1 where expansions cannot decide. The labels
-// are grouped by exact direction first (same_direction_exact: delta depends on the direction
-// only, so a group's delta are equal), each group standing as its first label, and only the
-// groups are compared (depth_parts_exact, compare_delta2_exact): a group's first precedes its
-// other labels, so the earliest least group's first is the earliest least label. On an aligned
-// pair the near ties of the least delta² are mostly one direction (a face and the edge pairs of
-// its plane): one group, no parts. An undecided direction test only makes a group of its own.
-// `approx` (optional, per label): its double normal and a bound on each component's error
-// (value_bounds.h's e_n); two labels whose double cross product certainly is not 0 are not
-// tested with expansions.
+// least exact delta², exact ties to the earliest; -1 where expansions cannot decide. A running
+// minimum w: after step k it is the first least of l[0..k]. Each step takes, in this order,
+//  - `decided(k, w)` when given and it answers: the sign of delta²_k − delta²_w found by the
+//    caller by cheaper certified means (certify.h: compensated depths);
+//  - an exact tie of direction (same_direction_exact: delta depends on the oriented direction
+//    only, so they are equal and the earlier is kept), unless `approx` shows the two directions
+//    certainly apart (its double normal per label and a bound on each component's error,
+//    value_bounds.h's e_n: the double cross product certainly not 0);
+//  - the exact comparison (depth_parts_exact, compare_delta2_exact; w's parts kept).
+// On an aligned pair the near ties of the least delta² are mostly one direction (a face and the
+// edge pairs of its plane) or a rounding apart (decided by the caller): no parts.
 struct ApproxNormal {
   double n[3];
   double e;
 };
+using DeltaOrderHint = std::function<std::optional<int>(int k, int w)>;
 int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
-                             const ApproxNormal* approx = nullptr);
+                             const ApproxNormal* approx = nullptr, const DeltaOrderHint& decided = {});
 
 }  // namespace pdd::fast

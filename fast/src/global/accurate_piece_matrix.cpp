@@ -14,14 +14,6 @@ using detail::dw::kU;
 using detail::dw::mul;
 using detail::dw::neg;
 
-// Run-time dispatch on x86-64 with GCC (as piece_screen.cpp): a clone where fma is an
-// instruction rather than a library call. fma is correctly rounded either way: the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PDD_FMA_CLONES __attribute__((target_clones("fma", "default")))
-#else
-#define PDD_FMA_CLONES
-#endif
-
 namespace {
 constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
 DW dw(double x) { return {x, 0.0}; }
