@@ -326,7 +326,7 @@ BOOST_AUTO_TEST_CASE(compensated_depths_order_near_ties) {
       const Candidate c = candidate(set, k);
       d2[k] = detail::exact_delta2(detail::exact_candidate(f, c.label));
       detail::CompensatedDepth x;
-      if (!detail::compensated_depth(sp.A, sp.B, c, x)) continue;
+      if (c.parallel || !detail::compensated_depth(sp.A, sp.B, c.label, x)) continue;
       cd[k] = x;
       const Exact e = exact_of(sp.A, sp.B, c);
       Q top = e.hA[0], bottom = e.hB[0];

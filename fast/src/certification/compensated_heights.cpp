@@ -23,18 +23,18 @@ DV diff(const std::array<double, 3>& p, const std::array<double, 3>& o) {  // ex
   return {{two_sum(p[0], -o[0]), two_sum(p[1], -o[1]), two_sum(p[2], -o[2])}};
 }
 
-// A candidate's exact direction as double words (the header's normal, unrounded): n* = e1 x e2
-// up to the orientation `sign` (the candidate's c.n), the origin o, and N_k from the high parts.
+constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
+
+// A label's exact direction as double words, unoriented (the header's normal, unrounded):
+// n* = ±e1 x e2, the origin o, and N_k from the high parts.
 struct Span {
   DW n[3];
   double N[3];
-  double sign;
   std::array<double, 3> o;
 };
 
-[[gnu::always_inline]] inline bool span_of(const TetVertices& A, const TetVertices& B, const Candidate& c, Span& sp) {
-  if (c.parallel) return false;
-  const DirectionLabel& l = c.label;
+[[gnu::always_inline]] inline void span_of(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+                                           Span& sp) {
   // The direction's two spanning vectors e1, e2 (n* = e1 x e2 up to sign) and the origin o, a
   // vertex of the constrained set whose heights are exactly 0 (A's face or edge; B's face).
   const TetVertices* T = &A;
@@ -59,47 +59,82 @@ struct Span {
     sp.n[k] = add(mul(e1.x[r], e2.x[s]), neg(mul(e1.x[s], e2.x[r])));
     sp.N[k] = std::fabs(e1.x[r].hi * e2.x[s].hi) + std::fabs(e1.x[s].hi * e2.x[r].hi);
   }
-  // orientation: the candidate's (c.n approximates +-n*; their product is ~|n|^2 either way)
-  const double orient = sp.n[0].hi * c.n[0] + sp.n[1].hi * c.n[1] + sp.n[2].hi * c.n[2];
-  if (!(std::fabs(orient) > 0) || !std::isfinite(orient)) return false;
-  sp.sign = orient > 0 ? 1.0 : -1.0;
-  return true;
 }
 
-// sign n.(x − o) as a double word, within 25 u^2 M of the exact H* (header), M returned.
-[[gnu::always_inline]] inline DW height_of(const Span& sp, const std::array<double, 3>& x, double& M) {
+// The eight heights (e1 x e2).(x − o) as double words, each within e = 25 u^2 M of the exact
+// one (header), with that bound (and the absolute term of underflowed products).
+struct Heights {
+  DW hA[4], hB[4];
+  double eA[4], eB[4];
+};
+[[gnu::always_inline]] inline DW height_of(const Span& sp, const std::array<double, 3>& x, double& e) {
   const DV d = diff(x, sp.o);
   DW s = mul(sp.n[0], d.x[0]);
   s = add(s, mul(sp.n[1], d.x[1]));
   s = add(s, mul(sp.n[2], d.x[2]));
-  M = sp.N[0] * std::fabs(d.x[0].hi) + sp.N[1] * std::fabs(d.x[1].hi) + sp.N[2] * std::fabs(d.x[2].hi);
-  return sp.sign > 0 ? s : neg(s);
+  const double M = sp.N[0] * std::fabs(d.x[0].hi) + sp.N[1] * std::fabs(d.x[1].hi) + sp.N[2] * std::fabs(d.x[2].hi);
+  e = 25 * kU * kU * M * kGrow + 0x1p-1040;
+  return s;
+}
+[[gnu::always_inline]] inline void heights_of(const TetVertices& A, const TetVertices& B, const Span& sp,
+                                              Heights& h) {
+  for (int i = 0; i < 4; ++i) {
+    h.hA[i] = height_of(sp, A[i], h.eA[i]);
+    h.hB[i] = height_of(sp, B[i], h.eB[i]);
+  }
 }
 
-constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
+// The sign of a height when certain: the double word's value is within u |hi| of hi, so
+// |hi| (1 − 2u) above its bound e fixes the exact sign; 0 otherwise.
+inline int certain_sign(const DW& h, double e) {
+  return std::fabs(h.hi) * (1 - 2 * kU) > e ? (h.hi > 0 ? 1 : -1) : 0;
+}
+
+// The label's orientation of e1 x e2 (definitions §3), +1 or −1, from certain signs of its
+// heights, not from a rounded normal: FV, out of A (A's opposite vertex below); VF, into B (B's
+// opposite vertex above); EE, eB x eA kept or flipped by the orientation rule: Plus and Minus
+// (the rule undecidable) keep and flip; a Decided label keeps when A's off-edge vertices lie
+// below (both g <= 0), flips when above, and either certain non-zero g tells which. 0 when the
+// sign needed is not certain (a face of nearly zero height over its opposite vertex; both g
+// within their bounds; a parallel edge pair, e1 x e2 = 0).
+inline int orientation_of(const DirectionLabel& l, const Heights& h) {
+  switch (l.kind) {
+    case ContactKind::FV:
+      return -certain_sign(h.hA[l.a], h.eA[l.a]);
+    case ContactKind::VF:
+      return certain_sign(h.hB[l.a], h.eB[l.a]);
+    default: {
+      if (l.orientation != EdgeOrientation::Decided) return l.orientation == EdgeOrientation::Plus ? 1 : -1;
+      const int i = kOffEdge[l.a][0], j = kOffEdge[l.a][1];
+      const int g = certain_sign(h.hA[i], h.eA[i]);
+      return -(g != 0 ? g : certain_sign(h.hA[j], h.eA[j]));
+    }
+  }
+}
 
 }  // namespace
 
 PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
                                         CompensatedHeights& out) {
-  Span sp;
-  if (!span_of(A, B, c, sp)) return false;
+  if (c.parallel) return false;
   const DirectionLabel& l = c.label;
+  Span sp;
+  span_of(A, B, l, sp);
+  Heights h;
+  heights_of(A, B, sp, h);
+  const int sign = orientation_of(l, h);
+  if (sign == 0) return false;
   out.e_n = 0;
   for (int k = 0; k < 3; ++k) {
-    out.n[k] = sp.sign * sp.n[k].hi;
+    out.n[k] = sign * sp.n[k].hi;
     out.e_n = std::fmax(out.e_n, (kU * std::fabs(out.n[k]) * (1 + kU) + 10.5 * kU * kU * sp.N[k]) * kGrow);
   }
   out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
-  auto height = [&](const std::array<double, 3>& x, double& h, double& e) {
-    double M = 0;
-    h = height_of(sp, x, M).hi;
-    e = (kU * std::fabs(h) + 25 * kU * kU * M) * kGrow + 0x1p-1040;
-  };
+  // rounded to the high part: u |h~| more (header)
   for (int i = 0; i < 4; ++i) {
-    height(A[i], out.hA[i], out.eA[i]);
-    height(B[i], out.hB[i], out.eB[i]);
+    out.hA[i] = sign * h.hA[i].hi, out.eA[i] = h.eA[i] + kU * std::fabs(out.hA[i]) * kGrow;
+    out.hB[i] = sign * h.hB[i].hi, out.eB[i] = h.eB[i] + kU * std::fabs(out.hB[i]) * kGrow;
   }
   // Constrained vertices: exactly on the plane through o (0), or (B's edge of an edge pair)
   // at one common height, that of its first vertex.
@@ -127,24 +162,28 @@ namespace {
 bool above(const DW& x, const DW& y) { return x.hi > y.hi || (x.hi == y.hi && x.lo > y.lo); }
 }  // namespace
 
-PDD_FMA_CLONES bool compensated_depth(const TetVertices& A, const TetVertices& B, const Candidate& c,
+PDD_FMA_CLONES bool compensated_depth(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
                                       CompensatedDepth& out) {
   Span sp;
-  if (!span_of(A, B, c, sp)) return false;
-  const DirectionLabel& l = c.label;
+  span_of(A, B, l, sp);
+  Heights h;
+  heights_of(A, B, sp, h);
+  const int sign = orientation_of(l, h);
+  if (sign == 0) return false;
   DW hA[4], hB[4];
-  double e = 0.0;  // the largest height error (header: 25 u^2 M, plus underflowed products)
+  double e = 0.0;  // the largest height error
   for (int i = 0; i < 4; ++i) {
-    double MA = 0, MB = 0;
-    hA[i] = height_of(sp, A[i], MA), hB[i] = height_of(sp, B[i], MB);
-    e = std::fmax(e, 25 * kU * kU * std::fmax(MA, MB) * kGrow + 0x1p-1040);
+    hA[i] = sign > 0 ? h.hA[i] : neg(h.hA[i]), hB[i] = sign > 0 ? h.hB[i] : neg(h.hB[i]);
+    e = std::fmax(e, std::fmax(h.eA[i], h.eB[i]));
   }
-  // constrained vertices at their exact heights (compensated_heights)
-  for (int i = 0; i < 4; ++i) {
-    if ((l.kind == ContactKind::FV || l.kind == ContactKind::EE) && (c.conA >> i & 1u)) hA[i] = DW{0, 0};
-    if (l.kind == ContactKind::VF && (c.conB >> i & 1u)) hB[i] = DW{0, 0};
+  // constrained vertices at their exact heights: 0 on the face or A's edge through o, B's edge
+  // at one height (n* is orthogonal to it)
+  if (l.kind == ContactKind::FV || l.kind == ContactKind::VF) {
+    for (int i : kFace[l.a]) (l.kind == ContactKind::FV ? hA : hB)[i] = DW{0, 0};
+  } else {
+    hA[kEdges[l.a][0]] = hA[kEdges[l.a][1]] = DW{0, 0};
+    hB[kEdges[l.b][1]] = hB[kEdges[l.b][0]];
   }
-  if (l.kind == ContactKind::EE) hB[kEdges[l.b][1]] = hB[kEdges[l.b][0]];
   DW top = hA[0], bottom = hB[0];
   for (int i = 1; i < 4; ++i) {
     if (above(hA[i], top)) top = hA[i];

@@ -3,12 +3,16 @@
 // with its own certified error bound e_i, in double-word arithmetic.
 //
 // Input:  a pair rescaled by power_scale.h (|coordinates| < 2) and one of its candidates c
-//         (label, conA/conB, and c.n: its rounded normal, which gives the orientation).
+//         (label, conA/conB). The orientation of n* is the label's (definitions §3), taken from
+//         signs of double-word heights certain under the bound below: A's opposite vertex below
+//         an FV face, B's above a VF one, and for a Decided edge pair the side of A's off-edge
+//         vertices (Plus and Minus labels keep and flip eB × eA).
 // Output: heights hA, hB (constrained vertices share one height: exactly 0 for a face's, one
 //         computed value for B's edge of an edge pair), per-height bounds eA, eB with
 //         |h~_i − H*_i| <= e_i, the normal n~ rounded with a per-component bound e_n
 //         (|n~_k − n*_k| <= e_n), and false when not applicable (a parallel edge pair, whose
-//         normal has another formula; a non-finite or vanishing value).
+//         normal has another formula; an orientation sign within its bound; a non-finite or
+//         vanishing value).
 //
 // Why: the double heights of the engine carry errors of the order u L³ (value_bounds.h:
 // E3/4), which no bound can shrink: the normal itself is rounded. Along a shallow contact
@@ -72,7 +76,7 @@ struct CompensatedDepth {
   dw::DW D, nn;
   double eD = 0, enn = 0;
 };
-bool compensated_depth(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedDepth& out);
+bool compensated_depth(const TetVertices& A, const TetVertices& B, const DirectionLabel& l, CompensatedDepth& out);
 
 // sign(delta²_p − delta²_q) = sign(D_p² n_q.n_q − D_q² n_p.n_p) from compensated depths; nullopt
 // where the bounds do not decide it (an exact tie among them).
