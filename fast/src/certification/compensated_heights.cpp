@@ -112,6 +112,14 @@ inline int orientation_of(const DirectionLabel& l, const Heights& h) {
   }
 }
 
+// The span and heights of label l, and the orientation (orientation_of; 0: not certain).
+[[gnu::always_inline]] inline int oriented_span(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+                                                Span& sp, Heights& h) {
+  span_of(A, B, l, sp);
+  heights_of(A, B, sp, h);
+  return orientation_of(l, h);
+}
+
 }  // namespace
 
 PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
@@ -119,10 +127,8 @@ PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices&
   if (c.parallel) return false;
   const DirectionLabel& l = c.label;
   Span sp;
-  span_of(A, B, l, sp);
   Heights h;
-  heights_of(A, B, sp, h);
-  const int sign = orientation_of(l, h);
+  const int sign = oriented_span(A, B, l, sp, h);
   if (sign == 0) return false;
   out.e_n = 0;
   for (int k = 0; k < 3; ++k) {
@@ -165,10 +171,8 @@ bool above(const DW& x, const DW& y) { return x.hi > y.hi || (x.hi == y.hi && x.
 PDD_FMA_CLONES bool compensated_depth(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
                                       CompensatedDepth& out) {
   Span sp;
-  span_of(A, B, l, sp);
   Heights h;
-  heights_of(A, B, sp, h);
-  const int sign = orientation_of(l, h);
+  const int sign = oriented_span(A, B, l, sp, h);
   if (sign == 0) return false;
   DW hA[4], hB[4];
   double e = 0.0;  // the largest height error

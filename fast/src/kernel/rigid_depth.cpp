@@ -22,8 +22,8 @@ namespace pdd::fast {
 namespace {
 
 // refine_tight's tie order for delta²: the position in c[0..n) (canonical order) of the first
-// exact minimum, or -1 where expansions cannot decide (first_least_delta2_exact: by exact
-// direction, then D_p² n_q.n_q against D_q² n_p.n_p).
+// exact minimum, or -1 where it cannot be decided (certify.h's first_least_delta2: compensated
+// depths, exact direction, then expansions of D_p² n_q.n_q against D_q² n_p.n_p).
 template <class List>
 int exact_first(const List& s, const int* c, int n) {
   return detail::first_least_delta2(s, c, n);

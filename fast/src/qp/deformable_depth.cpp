@@ -680,12 +680,12 @@ bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch, bool
 
 // pos[0..first): the first `first` of the contenders idx[0..n) (canonical order) in ascending
 // exact delta², exact ties in canonical order (a stable insertion sort; for first = 1 the first
-// least one, first_least_delta2_exact), compared by expansions (depth_parts_exact,
+// least one, certify.h's first_least_delta2), compared by expansions (depth_parts_exact,
 // compare_delta2_exact: D_a² n_b.n_b against D_b² n_a.n_a, no division); false when the
 // expansions cannot decide a comparison (pos then unspecified).
 template <class List>
 bool exact_delta_order(const List& set, const int* idx, int n, int first, int* pos) {
-  if (first == 1) {  // (grouped by exact direction first: exact_predicates.h)
+  if (first == 1) {  // (compensated depths and exact directions first: certify.h)
     pos[0] = detail::first_least_delta2(set, idx, n);
     return pos[0] >= 0;
   }
