@@ -62,7 +62,10 @@ struct Span {
 }
 
 // The eight heights (e1 x e2).(x − o) as double words, each within e = 25 u^2 M of the exact
-// one (header), with that bound (and the absolute term of underflowed products).
+// one (header), with that bound and the absolute terms of underflowed products: each of the
+// normal's components errs by up to 6 · 2^-1075 more (two mul, three products each that may
+// underflow; the add is exact there), which reaches the height times |d_k| (2^-1066 sum |d_k|
+// covers it at any scale), and the height's own products add less than 2^-1070 (2^-1040).
 struct Heights {
   DW hA[4], hB[4];
   double eA[4], eB[4];
@@ -73,7 +76,8 @@ struct Heights {
   s = add(s, mul(sp.n[1], d.x[1]));
   s = add(s, mul(sp.n[2], d.x[2]));
   const double M = sp.N[0] * std::fabs(d.x[0].hi) + sp.N[1] * std::fabs(d.x[1].hi) + sp.N[2] * std::fabs(d.x[2].hi);
-  e = 25 * kU * kU * M * kGrow + 0x1p-1040;
+  e = 25 * kU * kU * M * kGrow + 0x1p-1040 +
+      0x1p-1066 * (std::fabs(d.x[0].hi) + std::fabs(d.x[1].hi) + std::fabs(d.x[2].hi));
   return s;
 }
 [[gnu::always_inline]] inline void heights_of(const TetVertices& A, const TetVertices& B, const Span& sp,
@@ -133,7 +137,7 @@ PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices&
   out.e_n = 0;
   for (int k = 0; k < 3; ++k) {
     out.n[k] = sign * sp.n[k].hi;
-    out.e_n = std::fmax(out.e_n, (kU * std::fabs(out.n[k]) * (1 + kU) + 10.5 * kU * kU * sp.N[k]) * kGrow);
+    out.e_n = std::fmax(out.e_n, (kU * std::fabs(out.n[k]) * (1 + kU) + 10.5 * kU * kU * sp.N[k]) * kGrow + 0x1p-1070);
   }
   out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
@@ -208,11 +212,12 @@ PDD_FMA_CLONES bool compensated_depth(const TetVertices& A, const TetVertices& B
     sq += a * a;
   }
   out.enn = (out.enn + 14.3 * kU * kU * sq) * kGrow;
-  // range: no overflow in compare_delta2_compensated's products, and each value far above the
-  // absolute terms (underflowed products) it carries
+  // range: no overflow in compare_delta2_compensated's products, and each value (within u of
+  // its high part) far above its bound and the absolute terms (underflowed products) it carries
   const double D = out.D.hi, nn = out.nn.hi;
   return std::isfinite(D) && std::isfinite(nn) && std::isfinite(out.eD) && std::isfinite(out.enn) &&
-         D - out.eD > 0x1p-300 && D < 0x1p+100 && nn - out.enn > 0x1p-300 && nn < 0x1p+200;
+         D * (1 - 2 * kU) - out.eD > 0x1p-300 && D < 0x1p+100 && nn * (1 - 2 * kU) - out.enn > 0x1p-300 &&
+         nn < 0x1p+200;
 }
 
 // D_p² n_q.n_q − D_q² n_p.n_p in double words, each step's error bounded (double_word.h: mul

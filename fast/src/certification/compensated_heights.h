@@ -33,9 +33,11 @@
 //   <= (6.2 + 10.5 + 8) u² M (1 + 2u) < 25 u² M, M = sum_k N_k |d_k| (|n_k| <= N_k (1 + O(u))).
 //   Rounding the double word to its high part adds u |h~|. So e_i = u |h~_i| + 25 u² M_i,
 //   computed with a factor (1 + 2^-40) over the few roundings of these products and sums, and
-//   the absolute 2^-1040 (at most ~40 underflowed two_prod errors of 2^-1075, each multiplied
-//   by factors < 8 at these magnitudes).
-// The normal rounded to doubles: |n~_k − n*_k| <= u |n~_k| (1 + u) + 10.5 u² N_k =: <= e_n.
+//   absolute terms for products that underflow (two_prod's error is then off by < 2^-1075):
+//   2^-1040 for the height's own, and 2^-1066 sum_k |d_k| for the normal's (< 6 · 2^-1075 a
+//   component, times |d_k|), which holds at any scale of the pair.
+// The normal rounded to doubles: |n~_k − n*_k| <= u |n~_k| (1 + u) + 10.5 u² N_k (+ 2^-1070 for
+//   underflowed products) =: <= e_n.
 #pragma once
 
 #include <optional>
