@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "exact/exact_geometry.h"
 #include "exact/expansion.h"
