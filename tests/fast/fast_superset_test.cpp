@@ -272,14 +272,13 @@ BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {
       const double hi = upper_of(ch.value, r_pick);
       const bool full_certified = certified_choice(hi, lo_all);
       BOOST_TEST(ch.certified == full_certified);
-      // `unique` by the bounds alone, or a face pick whose near entries all point exactly its
-      // way (superset_depth.cpp's ties_share_direction: judged against the exact engine's
-      // candidate order in tests/compare/test_aligned_meshes.cpp)
+      // `unique` by the bounds alone, or a pick whose near entries all point exactly its way
+      // or are ordered above it in double words (superset_depth.cpp's ties_share_direction:
+      // judged against the exact engine's candidate order in tests/compare/test_aligned_meshes.cpp)
       if (full_certified && hi < lo_other) BOOST_TEST(unique);
       if (unique && !(hi < lo_other)) {
         ++tie_uniques;
         BOOST_TEST(full_certified);
-        BOOST_TEST((lab.kind != ContactKind::EE));
       }
       certified += ch.certified;
       not_certified += !ch.certified;
@@ -291,7 +290,7 @@ BOOST_AUTO_TEST_CASE(certify_bound_bits_keep_the_verdict) {
   // both verdicts occur, so the equality is tested both ways (counts printed on failure)
   BOOST_TEST(certified > 1000);
   BOOST_TEST(not_certified > 0, "certified " << certified << ", unique " << uniques);
-  BOOST_TEST_MESSAGE(tie_uniques << " unique through exact ties of direction");
+  BOOST_TEST_MESSAGE(tie_uniques << " unique through exact ties or double-word order");
 }
 
 // superset_kernel_scaled (the scaling fused into the kernel, rigid_pd2's common case) against

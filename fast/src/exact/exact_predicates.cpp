@@ -164,7 +164,12 @@ static ExpVec orthogonal_to_normal(const TetVertices& A, const TetVertices& B, c
   return k == 0 ? difference(A[kEdges[l.a][1]], A[kEdges[l.a][0]]) : difference(B[kEdges[l.b][1]], B[kEdges[l.b][0]]);
 }
 
-std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const {
+std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const { return same(l, true); }
+
+std::optional<bool> ExactDirection::same_as_labelled(const DirectionLabel& l) const { return same(l, false); }
+
+// n2: the label's exact oriented candidate (rule), or for an edge pair ±(eB × eA) as labelled.
+std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule) const {
   if (!ok_) return std::nullopt;
   // Not the same direction when n1 is not orthogonal to a vector n2 is orthogonal to (n2 = 0
   // included: no direction): two degree-3 dots instead of n2 and n1 × n2 (degree 4); directions
@@ -175,7 +180,14 @@ std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const {
     if (d.n != 0) return false;
   }
   bool ok = true;
-  const ExpVec n2 = oriented_normal_exp(A_, B_, l, ok);
+  ExpVec n2;
+  if (rule || l.kind != ContactKind::EE) {
+    n2 = oriented_normal_exp(A_, B_, l, ok);
+  } else {
+    EdgePairKind kind;
+    n2 = edge_pair_normal_exp(A_, B_, l.a, l.b, &kind, ok);
+    if (l.orientation == EdgeOrientation::Minus) n2 = negated(n2);
+  }
   if (!ok || !n2.ok()) return std::nullopt;
   const ExpVec c = cross(n_, n2);
   if (!c.ok()) return std::nullopt;

@@ -47,8 +47,12 @@ class ExactDirection {
  public:
   ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l1);
   std::optional<bool> same_as(const DirectionLabel& l2) const;  // same_direction_exact(A, B, l1, l2)
+  // same_as with an edge pair's direction as labelled, not by the orientation rule: EE:a:b:+
+  // is eB × eA and EE:a:b:− its negation whatever the rule says (a face: same_as).
+  std::optional<bool> same_as_labelled(const DirectionLabel& l2) const;
 
  private:
+  std::optional<bool> same(const DirectionLabel& l2, bool rule) const;
   const TetVertices& A_;
   const TetVertices& B_;
   detail::ExpVec n_;

@@ -119,8 +119,6 @@ bool bound_of_pair(const SupersetLanes& K, const FilterBounds& fb, int a, int b,
   return true;
 }
 
-namespace {
-
 // Edges a of A and b of B exactly parallel, shown in doubles (else false: not known): both edge
 // vectors are computed exactly (two_sum's error of each coordinate difference is 0) and every
 // component of eB × eA is exactly 0, f_i e_j and f_j e_i equal as exact products (two_product's
@@ -149,8 +147,6 @@ bool exactly_parallel(const SupersetLanes& K, int a, int b) {
   }
   return true;
 }
-
-}  // namespace
 
 bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {
   if (exactly_parallel(K, a, b)) {

@@ -65,6 +65,9 @@ bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, 
 // without the values (no division).
 bool near_parallel_positive(const SupersetLanes& K, const FilterBounds& fb, int a, int b);
 
+// Edges a of A and b of B exactly parallel, shown in doubles (false: not known).
+bool exactly_parallel(const SupersetLanes& K, int a, int b);
+
 // The edge pairs (bit 8a + b) whose computed n = eB × eA has every component <= E2 in magnitude:
 // the exact n may be 0 (no direction, or definitions §3's common perpendicular) or point anywhere ⊥ eA.
 std::uint64_t unresolved_edge_pairs(const SupersetLanes& K, const FilterBounds& fb);

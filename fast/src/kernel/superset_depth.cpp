@@ -8,10 +8,12 @@
 #include <limits>
 #include <optional>
 
+#include "certification/compensated_heights.h"
 #include "certification/filter_bounds.h"
 #include "certification/tie_tolerance.h"
 #include "certification/value_bounds.h"
 #include "exact/exact_heights.h"
+#include "exact/exact_predicates.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/near_parallel_bound.h"
 #include "kernel/superset_kernel.h"
@@ -351,35 +353,125 @@ bool unresolved_along_pick(const SupersetLanes& K, const FilterBounds& fb, int p
   return true;
 }
 
-// `unique` for a face pick c whose certificate found entries not certainly above it: true when
-// each of them points exactly the pick's way and comes after it (above). un: the entries left
-// out of K's bound bits (unresolved edge pairs), certainly above or along the pick
-// (unresolved_along_pick). Lower bounds as certify's exact pass computes them.
+// ---- `unique` through depths in double words. An entry a rounding away from the pick (a grid
+// against its copy shifted by a non-dyadic offset: faces and edges parallel up to the rounding
+// of the coordinates, delta² ~1e-16 apart relative) is neither certainly above it in the rounded
+// values nor along it exactly; its exact delta² is ordered against the pick's by their depth
+// parts in double words (compensated_depth, compare_delta2_compensated:
+// compensated_heights.h), on the kernel's pair (the rescaled pair: that header's range).
+// An entry (lane, ±) is the direction ±(eB × eA), labelled Plus or Minus so that its depth is
+// that orientation's whatever the orientation rule says: every entry of S is bounded, a real
+// candidate or not (an entry certainly above the pick is no candidate that could precede it).
+// Where the comparison is not decided (an exact tie among its bounds) and the entry comes after
+// the pick in canonical order, the entry may still tie exactly: it does when it points exactly
+// the pick's way (same_as_labelled, exact_predicates.h: equal directions, equal delta — D is
+// the support function of M along the direction, whatever the label). Then it is either a real
+// candidate tied after the pick, or no candidate (the orientation its lane's rule discards:
+// aligned pairs have those along the pick, where A's edge of the lane is parallel to the
+// pick's but off A's support). Anything else declines (false).
+class PickDepthOrder {
+ public:
+  PickDepthOrder(const SupersetLanes& K, LabelCode pick) : K_(K), pick_(unpack_label(pick)) {}
+  // Entry l's exact delta² is certainly above the pick's, or (after: l comes after the pick in
+  // canonical order) exactly equal along the pick's direction.
+  bool after_pick(const DirectionLabel& l, bool after) {
+    if (state_ == State::Unset) {
+      for (int v = 0; v < 4; ++v)
+        for (int k = 0; k < 3; ++k) A_[v][k] = K_.X[k][v], B_[v][k] = K_.X[k][4 + v];
+      state_ = compensated_depth(A_, B_, pick_, pick_depth_) ? State::Ready : State::Declined;
+    }
+    CompensatedDepth d;
+    if (state_ != State::Ready || !compensated_depth(A_, B_, l, d)) return false;
+    const std::optional<int> s = compare_delta2_compensated(d, pick_depth_);
+    if (s) return *s > 0;
+    if (!after) return false;
+    if (!direction_) direction_.emplace(A_, B_, pick_);
+    const std::optional<bool> same = direction_->same_as_labelled(l);
+    return same && *same;
+  }
+  bool face_after_pick(int f, bool after) {
+    return after_pick(f < 4 ? DirectionLabel::fv(f) : DirectionLabel::vf(f - 4), after);
+  }
+  bool lane_after_pick(int lane, double sign, bool after) {
+    const EdgeOrientation o = sign > 0 ? EdgeOrientation::Plus : EdgeOrientation::Minus;
+    return after_pick(DirectionLabel::ee(lane / kLaneStride, lane % kLaneStride, o), after);
+  }
+
+ private:
+  enum class State { Unset, Ready, Declined };
+  const SupersetLanes& K_;
+  DirectionLabel pick_;
+  State state_ = State::Unset;
+  TetVertices A_, B_;
+  CompensatedDepth pick_depth_;
+  std::optional<ExactDirection> direction_;
+};
+
+// Orientation s of edge pair `lane` is the one the orientation rule discards (definitions §3),
+// certainly: both of A's off-edge heights g certain in doubles (|g| > E3, near_candidates) and
+// on s's side (both > 0: the rule flips, discarding +; both < 0: it keeps, discarding −). Such an
+// entry of S is no candidate: it cannot precede the pick in the list, whatever its value.
+bool discarded_orientation(const SupersetLanes& K, const FilterBounds& fb, int lane, double s) {
+  const int a = lane / kLaneStride, b = lane % kLaneStride;
+  const double g1 = kOffFaces.eps[a][0] * K.G[kOffFaces.face[a][0]][b];
+  const double g2 = kOffFaces.eps[a][1] * K.G[kOffFaces.face[a][1]][b];
+  return s * g1 > fb.deg3 && s * g2 > fb.deg3;
+}
+
+// The unresolved edge pairs (un) not certainly above the pick (lo2 <= hi_pick): both
+// orientations of each certainly above it (a nearly parallel pair's list candidate is one of
+// them, its normal eB × eA taken exactly; an exactly parallel pair has lo2 = +inf).
+bool unresolved_above_pick(const Near& c, double hi_pick, const Unresolved& un, PickDepthOrder& order) {
+  for (std::uint64_t bits = un.bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits);
+    const bool after = c.lane < lane;  // (a face pick: −1)
+    if (un.lo2[lane] > hi_pick) continue;
+    if (!order.lane_after_pick(lane, 1.0, after) || !order.lane_after_pick(lane, -1.0, after)) return false;
+  }
+  return true;
+}
+
+// `unique` for a pick c whose certificate found entries not certainly above it: true when each
+// of them, for a face pick, points exactly the pick's way and comes after it (above), or has
+// an exact delta² certainly above the pick's (PickDepthOrder). un: the entries left out of K's
+// bound bits (unresolved edge pairs), certainly above or along the pick
+// (unresolved_along_pick, unresolved_above_pick). Lower bounds as certify's exact pass computes
+// them; an orientation the rule certainly discards is no candidate and needs no bound. An
+// edge-pair pick is first over the list when every other candidate of S is above it or tied
+// after it, the caller's rule for exactly parallel pairs (choice_without_unresolved) applied.
 // (Not inlined: PickPlane's expansions, ~1.2 KB, stay off the frame of pick_and_certify, which
 // rigid_pd2's hot path runs on every pair; measured 10 instructions a call less.)
 __attribute__((noinline)) bool ties_share_direction(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
                           double hi_pick, const Unresolved& un) {
-  if (c.lane >= 0) return false;
+  const bool face_pick = c.lane < 0;
   const DegreeBounds db = degree_bounds(fb, false);
   auto above = [&](double v, double r) { return lower_of(v, r) > hi_pick; };
-  PickPlane plane(K, c.face);
-  if (!(un.extra_lo > hi_pick) && !unresolved_along_pick(K, fb, c.face, hi_pick, un, plane)) return false;
+  PickPlane plane(K, face_pick ? c.face : 0);
+  PickDepthOrder order(K, c.code);
+  if (!(un.extra_lo > hi_pick) && !(face_pick && unresolved_along_pick(K, fb, c.face, hi_pick, un, plane)) &&
+      !unresolved_above_pick(c, hi_pick, un, order))
+    return false;
   for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
     const int f = __builtin_ctz(bits);
-    if (f == c.face) continue;
+    if (face_pick && f == c.face) continue;
     const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
                       K.NAB[2][f] * K.NAB[2][f];
     const double v = K.face_val[f];
     if (above(v, rigid_root_rel(std::sqrt(v * nn), nn, db))) continue;
-    if (f < c.face || !face_along_face(K, fb, c.face, f, plane)) return false;
+    if (face_pick && f > c.face && face_along_face(K, fb, c.face, f, plane)) continue;
+    if (!order.face_after_pick(f, face_pick && f > c.face)) return false;
   }
   for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
     const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
-    if (!above(dp * dp * inv, rigid_root_rel(dp, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, 1.0, plane))
-      return false;
-    if (!above(dm * dm * inv, rigid_root_rel(dm, 1.0 / inv, db)) && !lane_along_face(K, fb, c.face, lane, -1.0, plane))
-      return false;
+    for (const double s : {1.0, -1.0}) {
+      if (!face_pick && lane == c.lane && s == c.sign) continue;
+      const double d = s > 0 ? dp : dm;
+      if (above(d * d * inv, rigid_root_rel(d, 1.0 / inv, db))) continue;
+      if (face_pick && lane_along_face(K, fb, c.face, lane, s, plane)) continue;
+      if (discarded_orientation(K, fb, lane, s)) continue;
+      if (!order.lane_after_pick(lane, s, c.lane < lane)) return false;
+    }
   }
   return true;
 }
@@ -466,6 +558,32 @@ bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unr
   return true;
 }
 
+// The list candidates of the unresolved edge pairs `bits` certainly point elsewhere than the
+// edge-pair pick (a, b), n = eB_b × eA_a. Each one's direction d is orthogonal to its edges
+// (definitions §3: eB' × eA', or for parallel edges their common perpendicular), so n not
+// orthogonal to eA' or to eB' rules a tie of direction out: |n.e| > E3 (a cross product of two
+// differences dotted with a third: computed within 48 u L³ < E3, near_parallel_bound.h). For
+// exactly parallel edges (d in the plane of eA' and w = r_x' − s_u', orthogonal to eA'), n
+// orthogonal to eA' is along d only if it is orthogonal to eA' × w too: |n.(eA' × w)| > E4 (a dot
+// of two cross products of differences: within 132 u L⁴ < E4) rules it out. (A colinear pair,
+// w along eA', is no candidate: its test fails, conservatively.)
+bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::uint64_t bits, int a, int b) {
+  double n[3];
+  edge_pair_normal(K.EA[0][a], K.EA[1][a], K.EA[2][a], K.EB[0][b], K.EB[1][b], K.EB[2][b], n[0], n[1], n[2]);
+  auto dot_n = [&n](const double* v) { return n[0] * v[0] + n[1] * v[1] + n[2] * v[2]; };
+  for (; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), e = lane / kLaneStride, f = lane % kLaneStride;
+    const double eA[3] = {K.EA[0][e], K.EA[1][e], K.EA[2][e]}, eB[3] = {K.EB[0][f], K.EB[1][f], K.EB[2][f]};
+    if (std::fabs(dot_n(eA)) > fb.deg3 || std::fabs(dot_n(eB)) > fb.deg3) continue;
+    if (!exactly_parallel(K, e, f)) return false;
+    const int u = kEdges[e][0], x = kEdges[f][0];
+    const double w[3] = {K.X[0][4 + x] - K.X[0][u], K.X[1][4 + x] - K.X[1][u], K.X[2][4 + x] - K.X[2][u]};
+    const double m[3] = {eA[1] * w[2] - eA[2] * w[1], eA[2] * w[0] - eA[0] * w[2], eA[0] * w[1] - eA[1] * w[0]};
+    if (!(std::fabs(dot_n(m)) > fb.deg4)) return false;
+  }
+  return true;
+}
+
 // The choice when edge pairs the doubles cannot resolve (nearly or exactly parallel edges: an
 // aligned pair) spoil the kernel's screens: those pairs bounded by near_parallel_bound, the
 // choice made among the others. True only with a certified choice (then in ch, geometry,
@@ -478,8 +596,7 @@ bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unr
 // where the supporting plane is tangent to the ball B(0, PD)); with the pick unique that is the
 // pick's own direction, so the two tie exactly and the list orders them canonically. A face pick
 // (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
-// pair precedes its lane: then `unique` is false (conservatively: that pair may be exactly
-// parallel).
+// pair that precedes its lane may point its way (unresolved_off_pick): then `unique` is false.
 bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice& ch,
                                Candidate* geometry, bool* unique) {
   const std::uint64_t unresolved = unresolved_edge_pairs(K, fb);
@@ -501,7 +618,8 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice&
       !c.certified)
     return false;
   const DirectionLabel l = c.label();
-  if (u && l.kind == ContactKind::EE && (unresolved & ((std::uint64_t{1} << (kLaneStride * l.a + l.b)) - 1)))
+  if (u && l.kind == ContactKind::EE &&
+      !unresolved_off_pick(K, fb, unresolved & ((std::uint64_t{1} << (kLaneStride * l.a + l.b)) - 1), l.a, l.b))
     u = false;
   ch = c;
   if (geometry) *geometry = g;
