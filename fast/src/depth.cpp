@@ -12,6 +12,7 @@
 #include "kernel/power_scale.h"
 #include "kernel/quick_candidates.h"
 #include "kernel/rigid_depth.h"
+#include "kernel/superset_depth.h"
 #include "pdd/pdd.h"
 #include "qp/deformable_depth.h"
 
@@ -96,22 +97,22 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   // The hot path: on the exactly scaled pair, the rigid value (the enumeration's lower bound
   // PD^2 / 32, global_depth.h), the start and a certified upper bound, from rigid_superset
-  // and accel1 along its direction (rigid_and_accel1, deformable_depth.h: ~0.3 us), or where
-  // they do not certify, from one quick candidate list (~1.1 us; the same values, label and
-  // normal: superset_depth.h). The start: the rigid direction's normal, whose relaxed value
-  // prunes every piece whose eigenvalues lie above it (with no start, nothing is pruned until
-  // the first offer). Measured on the paper's pairs: starting from the six shallowest
-  // candidates, or from pdd2_relaxed's candidate (its sweep costs ~2 us), prunes a few more
-  // pieces but costs more than it saves. The bound: pdd2_accel1, certified, >= relaxed along
-  // the rigid direction >= pdd2_global (global_depth.h's check of the double enumeration).
+  // and the case-2 value along its direction (case2_upper, deformable_depth.h: ~0.3 us; any
+  // direction's value bounds pdd2_global, so the superset's `unique`, which pdd2_accel1 needs,
+  // is not asked), or where they do not certify, from one quick candidate list (~1.1 us; the
+  // same values, label and normal: superset_depth.h). The start: the rigid direction's
+  // normal, whose relaxed value prunes every piece whose eigenvalues lie above it (with no
+  // start, nothing is pruned until the first offer). Measured on the paper's pairs: starting
+  // from the six shallowest candidates, or from pdd2_relaxed's candidate (its sweep costs
+  // ~2 us), prunes a few more pieces but costs more than it saves. The bound: the case-2
+  // value along the rigid direction, certified, >= relaxed along it >= pdd2_global
+  // (global_depth.h's check of the double enumeration).
   if (sp.finite && sp.exact) {
     Choice rigid, accel1;
     Candidate c;
-    bool have = rigid_and_accel1(sp.A, sp.B, rigid, c, accel1);
-    // Not `unique` (aligned pairs: parallel faces tie exactly) or accel1 not certified: the
-    // superset's certified rigid choice still gives the bound, the start and an upper bound
-    // (the case-2 value along its candidate, or +inf), with no candidate list.
-    if (!have && rigid.certified) accel1.value = case2_upper(sp.A, sp.B, c), have = true;
+    // The upper bound: the certified case-2 value along the candidate, or +inf.
+    bool have = rigid_superset(sp.A, sp.B, rigid, &c) && rigid.certified;
+    if (have) accel1.value = case2_upper(sp.A, sp.B, c);
     if (!have) {
       QuickCandidates q;
       if (quick_candidates(sp.A, sp.B, q)) {

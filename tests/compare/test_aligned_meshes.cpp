@@ -209,9 +209,9 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_stay_off_the_exact_path) {
 // exactly with the parallel face and the edge pairs in its plane (same direction, same delta),
 // which `unique` accepts when they come after it, and entries a rounding away from it are
 // ordered in double words (compensated_depth); edge-pair picks are unique that way, with the
-// parallel pairs before them shown to point elsewhere. Both occur and are counted. Measured:
-// 2,097 unique picks, 1,283 of them tied, 488 edge pairs (770 and 727 with the face ties alone;
-// 300 and 264 with directions shown by structural zeros alone).
+// parallel pairs before them shown to point elsewhere (in doubles, else exactly). Both occur
+// and are counted. Measured: 2,465 unique picks, 1,283 of them tied, 856 edge pairs (770 and
+// 727 with the face ties alone; 300 and 264 with directions shown by structural zeros alone).
 BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   std::size_t uniques = 0, tied = 0, edge_pairs = 0;
   for_each_scaled_pair(aligned_cases(), [&](const TetPair& p, const fast::detail::ScaledPair& sp) {
@@ -227,9 +227,9 @@ BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   });
   BOOST_TEST_MESSAGE(uniques << " unique picks, " << tied << " of them tied exactly with later candidates, "
                              << edge_pairs << " edge pairs");
-  BOOST_TEST(uniques > 1800u);
+  BOOST_TEST(uniques > 2200u);
   BOOST_TEST(tied > 1000u);
-  BOOST_TEST(edge_pairs > 400u);
+  BOOST_TEST(edge_pairs > 700u);
 }
 
 // rigid_pd2's Choice::exact_first (rigid_depth.h) is what pdd2_accel(set, 1) takes when its own

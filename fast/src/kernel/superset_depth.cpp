@@ -369,6 +369,12 @@ bool unresolved_along_pick(const SupersetLanes& K, const FilterBounds& fb, int p
 // candidate tied after the pick, or no candidate (the orientation its lane's rule discards:
 // aligned pairs have those along the pick, where A's edge of the lane is parallel to the
 // pick's but off A's support). Anything else declines (false).
+// The kernel's pair (the rescaled pair) as tetrahedra.
+void kernel_pair(const SupersetLanes& K, TetVertices& A, TetVertices& B) {
+  for (int v = 0; v < 4; ++v)
+    for (int k = 0; k < 3; ++k) A[v][k] = K.X[k][v], B[v][k] = K.X[k][4 + v];
+}
+
 class PickDepthOrder {
  public:
   PickDepthOrder(const SupersetLanes& K, LabelCode pick) : K_(K), pick_(unpack_label(pick)) {}
@@ -376,8 +382,7 @@ class PickDepthOrder {
   // canonical order) exactly equal along the pick's direction.
   bool after_pick(const DirectionLabel& l, bool after) {
     if (state_ == State::Unset) {
-      for (int v = 0; v < 4; ++v)
-        for (int k = 0; k < 3; ++k) A_[v][k] = K_.X[k][v], B_[v][k] = K_.X[k][4 + v];
+      kernel_pair(K_, A_, B_);
       state_ = compensated_depth(A_, B_, pick_, pick_depth_) ? State::Ready : State::Declined;
     }
     CompensatedDepth d;
@@ -559,27 +564,37 @@ bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unr
 }
 
 // The list candidates of the unresolved edge pairs `bits` certainly point elsewhere than the
-// edge-pair pick (a, b), n = eB_b × eA_a. Each one's direction d is orthogonal to its edges
-// (definitions §3: eB' × eA', or for parallel edges their common perpendicular), so n not
-// orthogonal to eA' or to eB' rules a tie of direction out: |n.e| > E3 (a cross product of two
-// differences dotted with a third: computed within 48 u L³ < E3, near_parallel_bound.h). For
-// exactly parallel edges (d in the plane of eA' and w = r_x' − s_u', orthogonal to eA'), n
-// orthogonal to eA' is along d only if it is orthogonal to eA' × w too: |n.(eA' × w)| > E4 (a dot
-// of two cross products of differences: within 132 u L⁴ < E4) rules it out. (A colinear pair,
-// w along eA', is no candidate: its test fails, conservatively.)
-bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::uint64_t bits, int a, int b) {
+// edge-pair pick l, n = eB_b × eA_a (a, b: l's edges). Each one's direction d is orthogonal to
+// its edges (definitions §3: eB' × eA', or for parallel edges their common perpendicular), so n
+// not orthogonal to eA' or to eB' rules a tie of direction out: |n.e| > E3 (a cross product of
+// two differences dotted with a third: computed within 48 u L³ < E3, near_parallel_bound.h).
+// For exactly parallel edges (d in the plane of eA' and w = r_x' − s_u', orthogonal to eA'), n
+// orthogonal to eA' is along d only if it is orthogonal to eA' × w too: |n.(eA' × w)| > E4 (a
+// dot of two cross products of differences: within 132 u L⁴ < E4) rules it out. Where the
+// doubles cannot tell, exactly: neither orientation of the pair's candidate (same_as_labelled:
+// ±d whatever the rule says) points the pick's way. (A colinear pair is no candidate: its d is
+// 0, never the pick's way.)
+bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::uint64_t bits, const DirectionLabel& l) {
   double n[3];
-  edge_pair_normal(K.EA[0][a], K.EA[1][a], K.EA[2][a], K.EB[0][b], K.EB[1][b], K.EB[2][b], n[0], n[1], n[2]);
+  edge_pair_normal(K.EA[0][l.a], K.EA[1][l.a], K.EA[2][l.a], K.EB[0][l.b], K.EB[1][l.b], K.EB[2][l.b], n[0], n[1], n[2]);
   auto dot_n = [&n](const double* v) { return n[0] * v[0] + n[1] * v[1] + n[2] * v[2]; };
+  TetVertices A, B;
+  std::optional<ExactDirection> exact;
   for (; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), e = lane / kLaneStride, f = lane % kLaneStride;
     const double eA[3] = {K.EA[0][e], K.EA[1][e], K.EA[2][e]}, eB[3] = {K.EB[0][f], K.EB[1][f], K.EB[2][f]};
     if (std::fabs(dot_n(eA)) > fb.deg3 || std::fabs(dot_n(eB)) > fb.deg3) continue;
-    if (!exactly_parallel(K, e, f)) return false;
-    const int u = kEdges[e][0], x = kEdges[f][0];
-    const double w[3] = {K.X[0][4 + x] - K.X[0][u], K.X[1][4 + x] - K.X[1][u], K.X[2][4 + x] - K.X[2][u]};
-    const double m[3] = {eA[1] * w[2] - eA[2] * w[1], eA[2] * w[0] - eA[0] * w[2], eA[0] * w[1] - eA[1] * w[0]};
-    if (!(std::fabs(dot_n(m)) > fb.deg4)) return false;
+    if (exactly_parallel(K, e, f)) {
+      const int u = kEdges[e][0], x = kEdges[f][0];
+      const double w[3] = {K.X[0][4 + x] - K.X[0][u], K.X[1][4 + x] - K.X[1][u], K.X[2][4 + x] - K.X[2][u]};
+      const double m[3] = {eA[1] * w[2] - eA[2] * w[1], eA[2] * w[0] - eA[0] * w[2], eA[0] * w[1] - eA[1] * w[0]};
+      if (std::fabs(dot_n(m)) > fb.deg4) continue;
+    }
+    if (!exact) kernel_pair(K, A, B), exact.emplace(A, B, l);
+    for (const EdgeOrientation o : {EdgeOrientation::Plus, EdgeOrientation::Minus}) {
+      const std::optional<bool> same = exact->same_as_labelled(DirectionLabel::ee(e, f, o));
+      if (!same || *same) return false;
+    }
   }
   return true;
 }
@@ -619,7 +634,7 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice&
     return false;
   const DirectionLabel l = c.label();
   if (u && l.kind == ContactKind::EE &&
-      !unresolved_off_pick(K, fb, unresolved & ((std::uint64_t{1} << (kLaneStride * l.a + l.b)) - 1), l.a, l.b))
+      !unresolved_off_pick(K, fb, unresolved & ((std::uint64_t{1} << (kLaneStride * l.a + l.b)) - 1), l))
     u = false;
   ch = c;
   if (geometry) *geometry = g;
