@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "certification/double_word.h"
 #include "exact/expansion.h"
 #include "pdd/tet_tables.h"
 
@@ -121,12 +122,14 @@ bool bound_of_pair(const SupersetLanes& K, const FilterBounds& fb, int a, int b,
 
 // Edges a of A and b of B exactly parallel, shown in doubles (else false: not known): both edge
 // vectors are computed exactly (two_sum's error of each coordinate difference is 0) and every
-// component of eB × eA is exactly 0, f_i e_j and f_j e_i equal as exact products (two_product's
-// pairs equal; exact when the factors are 0 or of magnitude >= 2^-400, so that no product or
+// component of eB × eA is exactly 0, f_i e_j and f_j e_i equal as exact products (each as its
+// rounded value and its error fma(x, y, −fl(x y)), the exact error of the product: equal pairs,
+// equal products; exact when the factors are 0 or of magnitude >= 2^-400, so that no product or
 // its error term underflows, checked). Parallel edges span no facet of A ⊕ (−B) (their sum is
 // a segment): no orientation of the pair is a facet normal, so lo2 = +inf (header). Grids and
-// copies of a mesh are full of them.
-bool exactly_parallel(const SupersetLanes& K, int a, int b) {
+// copies of a mesh are full of them. (Built with an fma clone, double_word.h: the error terms
+// are one instruction each instead of Dekker's splits.)
+PDD_FMA_CLONES bool exactly_parallel(const SupersetLanes& K, int a, int b) {
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
   double e[3], f[3];
   for (int k = 0; k < 3; ++k) {
@@ -140,10 +143,8 @@ bool exactly_parallel(const SupersetLanes& K, int a, int b) {
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     if ((f[i] == 0.0 || e[j] == 0.0) && (f[j] == 0.0 || e[i] == 0.0)) continue;  // 0 − 0 (axis edges)
-    double p, pe, q, qe;
-    two_product(f[i], e[j], p, pe);
-    two_product(f[j], e[i], q, qe);
-    if (p != q || pe != qe) return false;
+    const double p = f[i] * e[j], q = f[j] * e[i];
+    if (p != q || std::fma(f[i], e[j], -p) != std::fma(f[j], e[i], -q)) return false;
   }
   return true;
 }
