@@ -48,7 +48,8 @@ class ExactDirection {
   ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l1);
   std::optional<bool> same_as(const DirectionLabel& l2) const;  // same_direction_exact(A, B, l1, l2)
   // same_as with an edge pair's direction as labelled, not by the orientation rule: EE:a:b:+
-  // is eB × eA and EE:a:b:− its negation whatever the rule says (a face: same_as).
+  // is eB × eA (for parallel edges their common perpendicular, definitions §3) and EE:a:b:−
+  // its negation whatever the rule says (a face: same_as).
   std::optional<bool> same_as_labelled(const DirectionLabel& l2) const;
 
  private:

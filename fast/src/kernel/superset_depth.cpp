@@ -519,48 +519,11 @@ bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, const Unre
 // K without the edge pairs of `unresolved` (near_parallel_bound.h): positivity, minimum, tie
 // band and bound bits of the rest, by the kernel's rules (tie_and_certify_bits: the same
 // thresholds t1, t2 from the new minimum, the same far-entry skip, whose proof needs only that
-// the pick is <= t2 and a skipped entry passes the three tests).
+// the pick is <= t2 and a skipped entry passes the three tests): drop_lanes, lane-wise.
 bool drop_edge_pairs(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved) {
-  double lo = kInf, vmin = kInf;
-  for (int f = 0; f < 8; ++f) {
-    double D = K.H[0][f];
-    for (int j = 1; j < 4; ++j) D = max2(D, K.H[j][f]);
-    lo = min2(lo, D);
-    vmin = min2(vmin, K.face_val[f]);
-  }
-  const std::uint64_t kept = 0x3f3f3f3f3f3fULL & ~unresolved;
-  for (std::uint64_t bits = kept; bits; bits &= bits - 1) {
-    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
-    lo = min2(lo, min2(K.dp[a][b], K.dm[a][b]));
-    vmin = min2(vmin, K.val[a][b]);
-  }
-  if (!(lo > fb.deg3)) return false;
-  K.lo = lo;
-  K.vmin = vmin;
-  const double q = std::sqrt(vmin);
-  K.t1 = vmin + K.kappa * q;  // = tie_threshold(vmin, kappa)
-  const double t2 = K.t2 = K.t1 + K.kappa * (q + q + K.kappa), far = kFarFactor * t2;
   const DegreeBounds db = degree_bounds(fb, false);
   const double eh = kFarBoundScale * db.e_h, en = kFarBoundScale * db.e_n;
-  const double D_min2 = eh * eh, nn_min = en * en;
-  K.face_bits = K.face_bound_bits = 0;
-  for (int f = 0; f < 8; ++f) {
-    const double v = K.face_val[f];
-    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] +
-                      K.NAB[2][f] * K.NAB[2][f];
-    if (v <= t2) K.face_bits |= std::uint8_t(1u << f);
-    if (!(v > far && v * nn >= D_min2 && nn >= nn_min))  // (the kernel's D² = fl(v·nn))
-      K.face_bound_bits |= std::uint8_t(1u << f);
-  }
-  K.lane_bits = K.lane_bound_bits = 0;
-  for (std::uint64_t bits = kept; bits; bits &= bits - 1) {
-    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
-    const double v = K.val[a][b], dd = min2(K.dp[a][b], K.dm[a][b]);
-    if (v <= t2) K.lane_bits |= std::uint64_t{1} << lane;
-    if (!(v > far && dd * dd >= D_min2 && K.inv[a][b] * nn_min <= 1.0))
-      K.lane_bound_bits |= std::uint64_t{1} << lane;
-  }
-  return true;
+  return drop_lanes(K, fb.deg3, eh * eh, en * en, unresolved);
 }
 
 // The list candidates of the unresolved edge pairs `bits` certainly point elsewhere than the
@@ -609,7 +572,9 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
 // leaves out (lo2 = +inf: no facet). Its exact delta is >= PD², and equal only along a direction
 // attaining PD: a facet normal of M (the nearest point of ∂M to the origin lies inside a facet,
 // where the supporting plane is tangent to the ball B(0, PD)); with the pick unique that is the
-// pick's own direction, so the two tie exactly and the list orders them canonically. A face pick
+// pick's own direction, so the two tie exactly and the list orders them canonically. (An
+// orientation skipped as discarded by the rule hides no such direction: an outward facet normal
+// has A's off-edge heights <= 0 along itself, so the rule never discards it.) A face pick
 // (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
 // pair that precedes its lane may point its way (unresolved_off_pick): then `unique` is false.
 bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice& ch,

@@ -402,7 +402,53 @@ PDD_SUPERSET_CLONES bool kernel_rigid_scaling(const TetVertices& A, const TetVer
   return kernel_body<false, true>(A, B, K, nullptr, e);
 }
 
+// drop_lanes (header), lane-wise: the lanes of edge a are one v8 (b = 0..7, padding 6, 7
+// never kept), a kept lane's entries taken, a dropped one's replaced by +inf in the minima.
+PDD_SUPERSET_CLONES bool drop_lanes_body(SupersetLanes& K, double deg3, double D_min2, double nn_min,
+                                         std::uint64_t unresolved) {
+  const std::uint64_t kept = 0x3f3f3f3f3f3fULL & ~unresolved;
+  const v8 inf = bc(kInf);
+  v8 lo = max2(max2(K.H[0], K.H[1]), max2(K.H[2], K.H[3]));  // per face f: D = max_j H[j][f]
+  v8 best = K.face_val;
+  v8l keep[6];
+  for (int a = 0; a < 6; ++a) {
+    const long long k = (long long)(kept >> (8 * a) & 0xffu);
+    const v8l m = v8l{k, k, k, k, k, k, k, k} & kOne;
+    keep[a] = m;
+    const v4hl on_lo = m.lo != 0, on_hi = m.hi != 0;
+    const v8 dd = min2(K.dp[a], K.dm[a]);
+    lo = min2(lo, v8{on_lo ? dd.lo : inf.lo, on_hi ? dd.hi : inf.hi});
+    best = min2(best, v8{on_lo ? K.val[a].lo : inf.lo, on_hi ? K.val[a].hi : inf.hi});
+  }
+  const double lo_min = hmin(lo);
+  if (!(lo_min > deg3)) return false;
+  const double vmin = hmin(best);
+  K.lo = lo_min;
+  K.vmin = vmin;
+  const double q = std::sqrt(vmin);
+  K.t1 = vmin + K.kappa * q;  // = tie_threshold(vmin, kappa)
+  const double t2 = K.t2 = K.t1 + K.kappa * (q + q + K.kappa), far = kFarFactor * t2;
+  const v8 fv = K.face_val, fnn = K.NAB[0] * K.NAB[0] + K.NAB[1] * K.NAB[1] + K.NAB[2] * K.NAB[2];
+  K.face_bits = std::uint8_t(horizontal_or(le_bits(fv, t2, kOne)));
+  const v8l skip = gt_bits(fv, far, kOne) & ge_bits(fv * fnn, D_min2, kOne) & ge_bits(fnn, nn_min, kOne);
+  K.face_bound_bits = std::uint8_t(~horizontal_or(skip) & 0xff);
+  v8l tie{}, bound{};
+  for (int a = 0; a < 6; ++a) {
+    const v8 v = K.val[a], dd = min2(K.dp[a], K.dm[a]);
+    const v8l lane = keep[a] << (8 * a);
+    tie |= le_bits(v, t2, lane);
+    bound |= lane & ~(gt_bits(v, far, lane) & ge_bits(dd * dd, D_min2, lane) & le_bits(K.inv[a] * nn_min, 1.0, lane));
+  }
+  K.lane_bits = std::uint64_t(horizontal_or(tie));
+  K.lane_bound_bits = std::uint64_t(horizontal_or(bound));
+  return true;
+}
+
 }  // namespace
+
+bool drop_lanes(SupersetLanes& K, double deg3, double D_min2, double nn_min, std::uint64_t unresolved) {
+  return drop_lanes_body(K, deg3, D_min2, nn_min, unresolved);
+}
 
 void superset_kernel(const TetVertices& A, const TetVertices& B, SupersetLanes& K, EdgeLanes* full) {
   if (full)

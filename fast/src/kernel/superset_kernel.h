@@ -61,6 +61,14 @@ void superset_kernel(const TetVertices& A, const TetVertices& B, SupersetLanes& 
 // scales the general way).
 bool superset_kernel_scaled(const TetVertices& A, const TetVertices& B, SupersetLanes& K, int& e);
 
+// K without the edge pairs of `unresolved` (bit 8a + b; superset_depth.cpp's
+// choice_without_unresolved): K.lo, K.vmin over the faces and the other lanes, the thresholds
+// t1, t2 from the new minimum, and the tie and bound bits by tie_and_certify_bits' rules (the
+// far-entry skip tested on each entry's own D² and n.n against D_min2 = (kFarBoundScale e_h)²
+// and nn_min = (kFarBoundScale e_n)²). False, K unchanged, when the new lo is not above deg3 (a
+// possibly non-positive depth).
+bool drop_lanes(SupersetLanes& K, double deg3, double D_min2, double nn_min, std::uint64_t unresolved);
+
 // Face f (FV:f for f < 4, VF:(f − 4) otherwise) as face_of_A / face_of_B write it, from the
 // kernel's normals, determinants and heights; finish_face then gives the candidate.
 void face_draft(const SupersetLanes& K, int f, Draft& d);
