@@ -473,8 +473,8 @@ __attribute__((noinline)) bool ties_share_direction(const SupersetLanes& K, cons
       if (!face_pick && lane == c.lane && s == c.sign) continue;
       const double d = s > 0 ? dp : dm;
       if (above(d * d * inv, rigid_root_rel(d, 1.0 / inv, db))) continue;
-      if (face_pick && lane_along_face(K, fb, c.face, lane, s, plane)) continue;
       if (discarded_orientation(K, fb, lane, s)) continue;
+      if (face_pick && lane_along_face(K, fb, c.face, lane, s, plane)) continue;
       if (!order.lane_after_pick(lane, s, c.lane < lane)) return false;
     }
   }
@@ -562,9 +562,9 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
   return true;
 }
 
-// The choice when edge pairs the doubles cannot resolve (nearly or exactly parallel edges: an
-// aligned pair) spoil the kernel's screens: those pairs bounded by near_parallel_bound, the
-// choice made among the others. True only with a certified choice (then in ch, geometry,
+// The choice when edge pairs the doubles cannot resolve (`unresolved`: unresolved_edge_pairs,
+// nearly or exactly parallel edges: an aligned pair) spoil the kernel's screens: those pairs
+// bounded by near_parallel_bound, the choice made among the others. True only with a certified choice (then in ch, geometry,
 // unique); K is changed either way.
 // `unique` here: the pick is certainly below every entry of S (near_parallel_bound's lo2 bounds
 // the ±n entries of the nearly parallel pairs) — and the candidate list has one more kind of
@@ -577,9 +577,8 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
 // has A's off-edge heights <= 0 along itself, so the rule never discards it.) A face pick
 // (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
 // pair that precedes its lane may point its way (unresolved_off_pick): then `unique` is false.
-bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, Choice& ch,
+bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved, Choice& ch,
                                Candidate* geometry, bool* unique) {
-  const std::uint64_t unresolved = unresolved_edge_pairs(K, fb);
   if (!unresolved) return false;
   Unresolved un;
   un.bits = unresolved;
@@ -620,8 +619,10 @@ bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* un
   const bool chosen =
       K.lo > fb.deg3 && pick_and_certify(K, fb, kNoUnresolved, ch, geometry, unique, with_certificate);
   if (chosen && (!with_certificate || ch.certified)) return true;
-  if (unresolved) *unresolved = unresolved_edge_pairs(K, fb) != 0;
-  if (with_certificate && choice_without_unresolved(K, fb, ch, geometry, unique)) return true;
+  if (!unresolved && !with_certificate) return chosen;
+  const std::uint64_t un = unresolved_edge_pairs(K, fb);
+  if (unresolved) *unresolved = un != 0;
+  if (with_certificate && choice_without_unresolved(K, fb, un, ch, geometry, unique)) return true;
   return chosen;
 }
 
