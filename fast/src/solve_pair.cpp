@@ -266,7 +266,7 @@ bool unscale(PairResult<double>& r, int k, unsigned missing) {
   }
   for (Positions<double>* q : {&r.q1_A, &r.q1_B, &r.q1_A_global, &r.q1_B_global})
     for (auto& x : *q)
-      for (double& c : x) c = std::ldexp(c, k);
+      for (double& c : x) c = detail::times_pow2(c, k);
   return ok;
 }
 
