@@ -353,6 +353,12 @@ bool unresolved_along_pick(const SupersetLanes& K, const FilterBounds& fb, int p
   return true;
 }
 
+// The kernel's pair (the rescaled pair) as tetrahedra.
+void kernel_pair(const SupersetLanes& K, TetVertices& A, TetVertices& B) {
+  for (int v = 0; v < 4; ++v)
+    for (int k = 0; k < 3; ++k) A[v][k] = K.X[k][v], B[v][k] = K.X[k][4 + v];
+}
+
 // ---- `unique` through depths in double words. An entry a rounding away from the pick (a grid
 // against its copy shifted by a non-dyadic offset: faces and edges parallel up to the rounding
 // of the coordinates, delta² ~1e-16 apart relative) is neither certainly above it in the rounded
@@ -369,12 +375,6 @@ bool unresolved_along_pick(const SupersetLanes& K, const FilterBounds& fb, int p
 // candidate tied after the pick, or no candidate (the orientation its lane's rule discards:
 // aligned pairs have those along the pick, where A's edge of the lane is parallel to the
 // pick's but off A's support). Anything else declines (false).
-// The kernel's pair (the rescaled pair) as tetrahedra.
-void kernel_pair(const SupersetLanes& K, TetVertices& A, TetVertices& B) {
-  for (int v = 0; v < 4; ++v)
-    for (int k = 0; k < 3; ++k) A[v][k] = K.X[k][v], B[v][k] = K.X[k][4 + v];
-}
-
 class PickDepthOrder {
  public:
   PickDepthOrder(const SupersetLanes& K, LabelCode pick) : K_(K), pick_(unpack_label(pick)) {}
