@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "certification/double_word.h"
+#include "exact/exact_predicates.h"
+#include "exact/expansion.h"
 #include "kernel/direction_geometry.h"
 
 namespace pdd::fast::detail {
@@ -276,6 +278,47 @@ PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVer
     height(B[i], out.hB[i], out.eB[i]);
   }
   out.hA[top] = 0, out.eA[top] = 0;  // the origin itself: exactly 0
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
+        !std::isfinite(out.eB[i]))
+      return false;
+  return true;
+}
+
+bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
+  const DirectionLabel& l = c.label;
+  ExpVec n;
+  if (l.kind != ContactKind::EE) return false;
+  const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
+  if (c.conA != ((1u << u) | (1u << v)) || c.conB != ((1u << x) | (1u << y)) ||
+      !oriented_normal_expansion(A, B, l, n))
+    return false;
+  out.e_n = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Approx a = approx_of(compressed(n.x[k]));
+    out.n[k] = a.v, out.e_n = std::fmax(out.e_n, a.err);
+  }
+  out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
+  if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
+  // origin s_u, as compensated_heights': A's edge exactly at 0, B's edge at one common height
+  // (n*.eB = 0 exactly, so the exact heights of its vertices are equal)
+  const Vec3d& o = A[u];
+  auto height = [&](const Vec3d& x, double& h, double& e) {
+    const Expansion H = compressed(dot(n, difference(x, o)));
+    const Approx a = approx_of(H);
+    h = a.v, e = a.err;
+    return H.ok;
+  };
+  for (int i = 0; i < 4; ++i) {
+    if (c.conA >> i & 1u) {
+      out.hA[i] = 0, out.eA[i] = 0;
+    } else if (!height(A[i], out.hA[i], out.eA[i])) {
+      return false;
+    }
+  }
+  for (int i = 0; i < 4; ++i)
+    if (i != y && !height(B[i], out.hB[i], out.eB[i])) return false;
+  out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
   for (int i = 0; i < 4; ++i)
     if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
         !std::isfinite(out.eB[i]))

@@ -58,6 +58,18 @@ struct CompensatedHeights {
 bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
                          CompensatedHeights& out);
 
+// The same for an edge pair whose double words cannot give it: parallel edges (their normal,
+// (e.e) w − (w.e) e, has degree 3) and nearly parallel ones (eB × eA cancels to ~u |e|², so
+// its double word is off by ~10 u of itself, and so is every height along it). The exact
+// normal n* and heights n*.(x − s_u) by expansions (exact_predicates.h's
+// oriented_normal_expansion: the label's orientation; expansion.h), each compressed and rounded
+// once with approx_of's bound: every field within a few u of its own exact value, as above but
+// without the u² term. For the contenders of a contact made by rounding (a grid against its
+// copy shifted along a diagonal: edges parallel up to the rounding of the shift, depths ~1e-17
+// of the size), ~10 us a candidate less than the rationals. False for another label, outside
+// the expansions' range or capacity, and on a non-finite or vanishing value.
+bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out);
+
 // The heights along a given double normal v instead of a candidate's (pdd2_global's normals,
 // global_depth.h): n* = v exactly (e_n = 0), the origin A's vertex highest along v (so the
 // vertices at a shallow plane have small heights, each within its own u), every other field

@@ -66,12 +66,14 @@ Sign depth_sign_exp(const TetVertices& A, const TetVertices& B, const ExpVec& n,
   return sign_of(best);
 }
 
+// `kind` (optional): an edge pair's kind (a colinear pair's n is 0).
 ExpVec oriented_normal_exp(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
-                           bool& ok) {
+                           bool& ok, EdgePairKind* kind = nullptr) {
   if (label.kind == ContactKind::FV) return face_normal_out_of_exp(A, label.a, ok);
   if (label.kind == ContactKind::VF) return negated(face_normal_out_of_exp(B, label.a, ok));
-  EdgePairKind kind;
-  const ExpVec n = edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
+  EdgePairKind own;
+  if (!kind) kind = &own;
+  const ExpVec n = edge_pair_normal_exp(A, B, label.a, label.b, kind, ok);
   const EdgePairSide side = side_rule_exp(A, n, label.a, ok);
   const bool flip = side == EdgePairSide::Flip ||
                     (side == EdgePairSide::Undecidable && label.orientation == EdgeOrientation::Minus);
@@ -79,6 +81,15 @@ ExpVec oriented_normal_exp(const TetVertices& A, const TetVertices& B, const Dir
 }
 
 }  // namespace
+
+bool oriented_normal_expansion(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                               ExpVec& n) {
+  if (!in_exact_range(A, B)) return false;
+  bool ok = true;
+  EdgePairKind kind = EdgePairKind::Generic;
+  n = oriented_normal_exp(A, B, label, ok, &kind);
+  return ok && n.ok() && kind != EdgePairKind::Colinear;
+}
 
 Sign orientation_sign_exact(const TetVertices& T) {
   if (in_exact_range(T, T)) {
@@ -251,21 +262,6 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
 }
 
 namespace {
-// An expansion's value in doubles and a bound of its error, computed: the components summed in
-// increasing order (recursive summation: |error| <= gamma_(n-1) sum |c_i|, gamma_k = k u/(1 − k u),
-// u = 2^-53), with sum |c_i| itself computed; 2 (n + 1) u covers gamma_(n−1) and the relative
-// error gamma_n of the computed sum |c_i| for n <= kExpansionCapacity.
-struct Approx {
-  double v = 0.0, err = 0.0;
-};
-Approx approx_of(const Expansion& e) {
-  constexpr double u = 0x1p-53;
-  Approx a;
-  double m = 0.0;
-  for (int i = 0; i < e.n; ++i) a.v += e.c[i], m += std::fabs(e.c[i]);
-  a.err = 2.0 * (e.n + 1) * u * m;
-  return a;
-}
 // x · y with its error bound: |x̃ỹ − xy| <= |x̃| e_y + |ỹ| e_x + e_x e_y, plus the product's
 // rounding u |x̃ỹ|; (1 + 4u) covers the rounding of the bound's own terms. The components are
 // multiples of 2^-1008 (depth_parts_exact), so non-zero values and products are normal; a term

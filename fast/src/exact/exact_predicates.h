@@ -34,6 +34,14 @@ EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& 
 // Precondition: the label is a candidate of the pair (not a colinear edge pair).
 Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
 
+// The exact oriented candidate n of `label` (definitions §3: a face's outward or inward normal,
+// eB × eA, or for parallel edges their common perpendicular (e.e) w − (w.e) e; an edge pair
+// oriented by the rule, ':+' kept and ':−' flipped where it is undecidable), as expansions:
+// degree 2 in coordinate differences, 3 for parallel edges. False outside the expansions'
+// exact range (in_exact_range), beyond their capacity, or for a colinear edge pair.
+bool oriented_normal_expansion(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                               detail::ExpVec& n);
+
 // Whether the exact oriented candidates of labels l1 and l2 point the same way (n1 × n2 = 0 and
 // n1.n2 > 0), so that their depths delta are exactly equal (delta depends on the direction
 // only). nullopt when the expansions cannot decide it (every non-zero |coordinate| must lie in

@@ -263,4 +263,21 @@ inline ExpVec negated(ExpVec a) {
   return a;
 }
 
+// An expansion's value in doubles and a bound of its error, computed: the components summed in
+// increasing order (recursive summation: |error| <= gamma_(n-1) sum |c_i|, gamma_k = k u/(1 − k u),
+// u = 2^-53), with sum |c_i| itself computed; 2 (n + 1) u covers gamma_(n−1) and the relative
+// error gamma_n of the computed sum |c_i| for n <= kExpansionCapacity. On a compressed expansion
+// (a few components, the largest within an ulp of the value) the bound is a few u of the value.
+struct Approx {
+  double v = 0.0, err = 0.0;
+};
+inline Approx approx_of(const Expansion& e) {
+  constexpr double u = 0x1p-53;
+  Approx a;
+  double m = 0.0;
+  for (int i = 0; i < e.n; ++i) a.v += e.c[i], m += std::fabs(e.c[i]);
+  a.err = 2.0 * (e.n + 1) * u * m;
+  return a;
+}
+
 }  // namespace pdd::fast::detail

@@ -160,10 +160,13 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   const bool a_static = kind == QpKind::Static;
   if (a_static && c.label.orientation != EdgeOrientation::Decided) return false;
   detail::CompensatedHeights h;
-  if (!detail::compensated_heights(A, B, c, h)) return false;
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
   DirectionSolution s;
-  return valued_on_heights(h, conA, conB, kind, out, s, pattern);
+  if (detail::compensated_heights(A, B, c, h) && valued_on_heights(h, conA, conB, kind, out, s, pattern))
+    return true;
+  // parallel and nearly parallel edge pairs: exact heights (compensated_heights.h)
+  return (c.parallel || c.own_bounds) && detail::expansion_heights(A, B, c, h) &&
+         valued_on_heights(h, conA, conB, kind, out, s, pattern);
 }
 
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
