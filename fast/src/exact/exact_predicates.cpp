@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "exact/exact_geometry.h"
 #include "exact/expansion.h"
@@ -147,18 +148,38 @@ Sign depth_sign_exact(const TetVertices& A, const TetVertices& B, const Directio
 }
 
 ExactDirection::ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l)
-    : A_(A), B_(B) {
-  // Granularity: coordinates multiples of 2^-152, products of 6 differences of 2^-912 (normal);
-  // magnitudes below (2^101)^6 · 2^40 (no overflow). See expansion.h.
-  for (const TetVertices* T : {&A, &B})
-    for (const Vec3d& p : *T)
-      for (double x : p) {
-        const double a = std::fabs(x);
-        if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return;
-      }
-  bool ok = true;
-  n_ = oriented_normal_exp(A, B, l, ok);
-  ok_ = ok && n_.ok();
+    : A_(A), B_(B), l1_(l) {}
+
+namespace {
+// ExactDirection's memo (header): one pair's answers, keyed by both labels and the rule.
+struct SameMemo {
+  TetVertices A{}, B{};
+  bool valid = false;
+  struct Entry {
+    unsigned key;
+    std::optional<bool> value;
+  };
+  static constexpr int kEntries = 32;  // (more questions on one pair: computed, not kept)
+  Entry e[kEntries];
+  int n = 0;
+};
+thread_local SameMemo same_memo;
+
+unsigned label_bits(const DirectionLabel& l) {
+  return unsigned(l.kind) | unsigned(l.a) << 2 | unsigned(l.b) << 5 | unsigned(l.orientation) << 8;
+}
+bool same_pair(const TetVertices& X, const TetVertices& Y) { return std::memcmp(&X, &Y, sizeof X) == 0; }
+}  // namespace
+
+std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule) const {
+  SameMemo& m = same_memo;
+  if (!(m.valid && same_pair(m.A, A_) && same_pair(m.B, B_))) m.A = A_, m.B = B_, m.valid = true, m.n = 0;
+  const unsigned key = label_bits(l1_) | label_bits(l) << 10 | unsigned(rule) << 20;
+  for (int i = 0; i < m.n; ++i)
+    if (m.e[i].key == key) return m.e[i].value;
+  const std::optional<bool> value = computed(l, rule);
+  if (m.n < SameMemo::kEntries) m.e[m.n++] = {key, value};
+  return value;
 }
 
 // A vector that the exact normal n2 of label l is orthogonal to, whatever its kind: an edge of
@@ -180,8 +201,22 @@ std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const { ret
 std::optional<bool> ExactDirection::same_as_labelled(const DirectionLabel& l) const { return same(l, false); }
 
 // n2: the label's exact oriented candidate (rule), or for an edge pair ±(eB × eA) as labelled.
-std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule) const {
-  if (!ok_) return std::nullopt;
+std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule) const {
+  if (state_ == 0) {
+    // Granularity: coordinates multiples of 2^-152, products of 6 differences of 2^-912
+    // (normal); magnitudes below (2^101)^6 · 2^40 (no overflow). See expansion.h.
+    state_ = -1;
+    for (const TetVertices* T : {&A_, &B_})
+      for (const Vec3d& p : *T)
+        for (double x : p) {
+          const double a = std::fabs(x);
+          if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return std::nullopt;
+        }
+    bool ok = true;
+    n_ = oriented_normal_exp(A_, B_, l1_, ok);
+    state_ = ok && n_.ok() ? 1 : -1;
+  }
+  if (state_ < 0) return std::nullopt;
   // Not the same direction when n1 is not orthogonal to a vector n2 is orthogonal to (n2 = 0
   // included: no direction): two degree-3 dots instead of n2 and n1 × n2 (degree 4); directions
   // a rounding apart (aligned pairs) mostly end here.
@@ -192,17 +227,22 @@ std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule) con
   }
   bool ok = true;
   ExpVec n2;
+  EdgePairKind kind = EdgePairKind::Generic;
   if (rule || l.kind != ContactKind::EE) {
-    n2 = oriented_normal_exp(A_, B_, l, ok);
+    n2 = oriented_normal_exp(A_, B_, l, ok, &kind);
   } else {
-    EdgePairKind kind;
     n2 = edge_pair_normal_exp(A_, B_, l.a, l.b, &kind, ok);
     if (l.orientation == EdgeOrientation::Minus) n2 = negated(n2);
   }
   if (!ok || !n2.ok()) return std::nullopt;
-  const ExpVec c = cross(n_, n2);
-  if (!c.ok()) return std::nullopt;
-  if (!c.is_zero()) return false;
+  // Where the two vectors above span n2's orthogonal plane (a face's edges; the edges of a
+  // generic pair, n2 = ±eB × eA != 0), n1, orthogonal to both, is a multiple of n2: only the
+  // sign of n1.n2 is left. Parallel edges (both vectors along e) need n1 × n2 = 0 too.
+  if (kind != EdgePairKind::Generic) {
+    const ExpVec c = cross(n_, n2);
+    if (!c.ok()) return std::nullopt;
+    if (!c.is_zero()) return false;
+  }
   const Expansion d = dot(n_, n2);
   if (!d.ok) return std::nullopt;
   return d.sign() > 0;

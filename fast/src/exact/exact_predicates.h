@@ -50,7 +50,11 @@ bool oriented_normal_expansion(const TetVertices& A, const TetVertices& B, const
 std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices& B,
                                          const DirectionLabel& l1, const DirectionLabel& l2);
 
-// same_direction_exact against one label l1 for several l2: l1's exact normal computed once.
+// same_direction_exact against one label l1 for several l2: l1's exact normal computed once,
+// at the first answer not already known. The answers for one pair are memoised per thread
+// (keyed by the pair's coordinates, bit for bit, and both labels: a pure function of them):
+// the values of one solve_pair (the rigid tie order, the sweeps' tied_first, pdd2_accel's)
+// ask the same ties of the same pair, half of the questions on contacts made by rounding.
 class ExactDirection {
  public:
   ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l1);
@@ -62,10 +66,12 @@ class ExactDirection {
 
  private:
   std::optional<bool> same(const DirectionLabel& l2, bool rule) const;
+  std::optional<bool> computed(const DirectionLabel& l2, bool rule) const;
   const TetVertices& A_;
   const TetVertices& B_;
-  detail::ExpVec n_;
-  bool ok_ = false;
+  DirectionLabel l1_;
+  mutable detail::ExpVec n_;  // built at its first use (state_ 1; -1: not available)
+  mutable int state_ = 0;
 };
 
 // A candidate's definitions §4 depth in two exact parts, for comparing delta² = D²/(n.n) without
