@@ -42,6 +42,7 @@
 #include "pdd/compare/random.h"
 #include "pdd/pdd.h"
 #include "qp/deformable_depth.h"
+#include "qp/direction_qp_impl.h"
 #include "structured_cells.h"
 
 using namespace pdd;
@@ -459,4 +460,141 @@ BOOST_AUTO_TEST_CASE(expansion_heights_within_their_bounds) {
   // not vacuous: a bound a quarter as wide would fail
   BOOST_TEST(worst > 0.1);
   BOOST_TEST(worst <= 1.0);
+}
+
+namespace {
+
+// Kuhn cells of a 3^3 grid of side 1/4 against those of the same grid shifted by half a cell
+// along (1, 1, 1) (exact: B's vertices on A's cube diagonals, B's diagonal faces in A's
+// diagonal planes), the pairs whose interiors meet: degenerate contacts, vertices exactly at a
+// free vertex's threshold.
+std::vector<std::pair<TetVertices, TetVertices>> half_shifted_kuhn_pairs() {
+  const double h = 0.25, s = h / 2;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int perm = 0; perm < 6; ++perm) {
+          A.push_back(pdd::test::kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
+          B.push_back(pdd::test::kuhn_cell_tet({i * h + s, j * h + s, k * h + s}, h, perm));
+        }
+  std::vector<std::pair<TetVertices, TetVertices>> out;
+  for (const TetVertices& a : A)
+    for (const TetVertices& b : B) {
+      const Depth d = rigid_pd2(a, b);
+      if (d.status == DepthStatus::Ok && d.pd2 > 0) out.emplace_back(a, b);
+    }
+  return out;
+}
+
+}  // namespace
+
+// compensated_value (deformable_depth.h), the intervals refine.h's contenders certify on: for
+// every candidate and each of the three QPs (case 1 where the candidate is in its family, case
+// 2, relaxed) on degenerate contacts (a Kuhn grid against its copy shifted half a cell along
+// (1, 1, 1)), contacts made by rounding, Kuhn cells shifted by a non-dyadic offset and shallow
+// random contacts, the exact value (exact_candidate.h's rationals) lies in [lower_of(v, r),
+// upper_of(v, r)], for verified patterns and bracketed values alike; the bracket (weak duality
+// around a margin exactly at its threshold) is taken on the degenerate contacts and certifies
+// there (its interval within definitions §8 on its own).
+BOOST_AUTO_TEST_CASE(compensated_values_contain_the_exact_value) {
+  std::vector<std::pair<TetVertices, TetVertices>> pairs = half_shifted_kuhn_pairs();
+  const std::size_t half = pairs.size();
+  for (const TetPair& p : pdd::test::rounding_contact_pairs(2, 60)) pairs.emplace_back(p.A, p.B);
+  for (const auto& p : shifted_kuhn_pairs()) pairs.push_back(p);
+  Rng rng(29);
+  for (int trial = 0; trial < 200; ++trial) {
+    TetVertices A = random_tet(rng, 10), B = random_tet(rng, 10);
+    if (shallow(A, B, 10 * std::pow(10.0, -rng.uniform(3, 12)))) pairs.emplace_back(A, B);
+  }
+  int checked = 0, outside = 0, bracketed = 0, bracketed_certified = 0;
+  for (const auto& [A0, B0] : pairs) {
+    const detail::ScaledPair sp = detail::power_scaled(A0, B0);
+    CandidateSet set;
+    if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) continue;
+    const detail::ExactFrame f = detail::exact_frame(sp.A, sp.B);
+    for (int k = 0; k < set.count; ++k) {
+      const Candidate c = candidate(set, k);
+      std::optional<detail::ExactCandidate> x;
+      for (QpKind kind : {QpKind::Static, QpKind::Deformable, QpKind::Relaxed}) {
+        double v = 0, r = 0;
+        bool b = false;
+        if (!compensated_value(sp.A, sp.B, c, kind, v, r, &b)) continue;
+        if (!x) x = detail::exact_candidate(f, c.label);
+        const Q q = kind == QpKind::Static       ? detail::exact_static_value(*x)
+                    : kind == QpKind::Deformable ? detail::exact_deformable_value(*x)
+                                                 : detail::exact_relaxed_value(*x);
+        const Q exact = detail::unscaled(f, q, 2);
+        if (exact < Q(lower_of(v, r)) || exact > Q(upper_of(v, r))) ++outside;
+        ++checked;
+        if (b) ++bracketed, bracketed_certified += certified_choice(upper_of(v, r), lower_of(v, r));
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("compensated values: " << checked << " on " << pairs.size() << " pairs (" << half
+                                            << " degenerate), " << bracketed << " bracketed, "
+                                            << bracketed_certified << " of them certified");
+  BOOST_TEST(outside == 0);
+  BOOST_TEST(checked > 10000);
+  BOOST_TEST(bracketed > 100);
+  BOOST_TEST(bracketed_certified == bracketed);
+}
+
+// value_on_heights' bracket (deformable_depth.cpp) near degeneracy, where the two patterns it
+// brackets with differ: random heights (n.n = 1) with constrained sets of each kind (a face of A
+// at 0, or an edge of each side, or none), one free vertex moved to its exact threshold (margin
+// 0 for the exact solution, direction_qp_impl.h in rationals) and then by delta, |delta| <= e, of
+// either sign; that vertex's given height is the rounded threshold and its bound e_i = e, so
+// its margin is not certain and its exact status is either. For each of the three QPs the
+// reported interval holds the exact value of the exact heights H*, bracketed or not.
+BOOST_AUTO_TEST_CASE(bracketed_values_hold_near_degenerate_heights) {
+  Rng rng(1129);
+  int tried = 0, valued = 0, bracketed = 0, outside = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int shape = trial % 3;  // 0: A's face at 0; 1: an edge each side; 2: none (relaxed)
+    const QpKind kind = shape == 2 ? QpKind::Relaxed : (trial / 3) % 2 ? QpKind::Static : QpKind::Deformable;
+    const unsigned conA = shape == 0 ? 0x7u : shape == 1 ? 0x3u : 0u, conB = shape == 1 ? 0x3u : 0u;
+    detail::ExactCandidate x;
+    x.nn = 1;
+    x.conA = conA, x.conB = conB;
+    double hA[4], hB[4];
+    const double hb = rng.uniform(-0.5, 0.5);  // B's constrained height (an edge)
+    for (int i = 0; i < 4; ++i) {
+      hA[i] = conA >> i & 1u ? 0.0 : rng.uniform(-1, 0.5);
+      hB[i] = conB >> i & 1u ? hb : rng.uniform(-0.5, 1);
+    }
+    for (int i = 0; i < 4; ++i) x.hA[i] = hA[i], x.hB[i] = hB[i];
+    // the exact solution, and a free vertex moved to its threshold (its margin C - H + S = 0)
+    const Solution<Q> s0 = kind == QpKind::Relaxed ? detail::solve_relaxed_heights(x.hA, x.hB)
+                           : kind == QpKind::Static
+                               ? detail::solve_static_sides(side_of(x.hA, conA), side_of(x.hB, conB))
+                               : detail::solve_deformable_sorted(side_of(x.hA, conA), side_of(x.hB, conB));
+    const bool on_a = kind != QpKind::Static && rng.integer(0, 1) == 0;
+    const unsigned con = on_a ? conA : conB;
+    int v = int(rng.integer(0, 3));
+    for (int t = 0; t < 4 && (con >> v & 1u); ++t) v = (v + 1) % 4;
+    if (con >> v & 1u) continue;
+    const Q threshold = s0.c + (on_a ? s0.sumA : s0.sumB);
+    const double rounded = threshold.get_d(), e = 1e-9;
+    (on_a ? hA : hB)[v] = rounded;
+    (on_a ? x.hA : x.hB)[v] = Q(rounded) + Q(rng.uniform(-e, e));  // H*: the exact heights
+    detail::CompensatedHeights h;
+    for (int i = 0; i < 4; ++i) h.hA[i] = hA[i], h.hB[i] = hB[i], h.eA[i] = h.eB[i] = 0;
+    (on_a ? h.eA : h.eB)[v] = e;
+    h.n[0] = 1, h.n[1] = h.n[2] = 0, h.nn = 1, h.e_n = 0;
+    ++tried;
+    double value = 0, r = 0;
+    bool b = false;
+    if (!value_on_heights(h, conA, conB, kind, value, r, &b)) continue;
+    ++valued;
+    bracketed += b;
+    const Q exact = kind == QpKind::Static       ? detail::exact_static_value(x)
+                    : kind == QpKind::Deformable ? detail::exact_deformable_value(x)
+                                                 : detail::exact_relaxed_value(x);
+    if (exact < Q(lower_of(value, r)) || exact > Q(upper_of(value, r))) ++outside;
+  }
+  BOOST_TEST_MESSAGE("near degenerate heights: " << tried << " tried, " << valued << " valued, " << bracketed
+                                                 << " bracketed");
+  BOOST_TEST(outside == 0);
+  BOOST_TEST(bracketed > 1000);
 }

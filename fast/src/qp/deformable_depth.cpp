@@ -81,8 +81,6 @@ Valued deformable_valued(const Candidate& c, const FilterBounds& fb) {
   return valued(c, s, solver_bound(c, s, 0xFu & ~c.conA, 0xFu & ~c.conB), fb);
 }
 
-// Which per-direction QP (direction_qp.h) a compensated evaluation solves.
-enum class QpKind { Static, Deformable, Relaxed };
 
 // direction_qp.h's closed form for one status pattern: bit i of atA (atB) set for A's (B's)
 // vertices at the plane, constrained or active; case 1 (a_static): C = 0, A's constrained
@@ -143,15 +141,34 @@ bool closed_form(const double hA[4], const double hB[4], unsigned atA, unsigned 
 // Precondition: a pair rescaled by power_scale.h (every caller's); a cost or n.n below 2^-900
 // (an unscaled list of a tiny pair, where the solver's values underflow) is declined.
 // Returns false when not applicable or a margin is too small (the caller's next path decides).
+// Degenerate contacts (a vertex exactly at the threshold between free and at the plane: a
+// margin exactly 0, common where B's vertices lie on A's diagonal planes) leave a margin
+// within its error whatever the precision. With `bracket`, the value is then bracketed by weak
+// duality instead (direction_qp.h's Lagrangian L): let U be the vertices whose margins are not
+// certain, every other one certainly consistent with the pattern. A pattern's closed form
+// satisfies stationarity (dL/dT = 0 defines the multipliers l_i = -2 (T_i + S_A) of A's
+// vertices at the plane and m_j = 2 (T_j + S_B) of B's, 0 for free ones; dL/dC = 10 (S_A +
+// S_B) = 0 is how C is chosen), and L is convex, so the dual function there is L = F (every
+// constraint term vanishes: at the plane H + T = C, free ones have zero multipliers). With U
+// free (P_dual), every vertex still at the plane certainly of the multiplier's sign (A's margin
+// < 0, B's > 0): dual feasible, F(P_dual) <= the optimum. With U at the plane (P_primal), every
+// free vertex certainly on its side (A's margin > 0, B's < 0): primal feasible, F(P_primal) >=
+// the optimum. Each closed form's value at the exact heights lies within its own root bound
+// (the argument (2) above, per pattern: it uses only the fixed pattern's closed form and its
+// margins), so the exact value lies in [lower_of(v_dual, r_dual), upper_of(v_primal,
+// r_primal)]: reported as v_primal with the root bound covering both ends (no pattern: none is
+// verified). Case 2 and relaxed; case 1 with A's constrained vertex fixing C (not VF, whose C is
+// itself decided by a sign).
 // The same on given compensated heights h (constrained vertices conA, conB), with the solution
 // of the verified pattern in s; `pattern` (optional): that pattern (the vertices at the plane),
-// Ha and e_act.
+// Ha and e_act (left as it is when the value is bracketed).
 struct VerifiedPattern {
   unsigned atA = 0, atB = 0;
   double Ha = 0, e_act = 0;
 };
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
-                       Valued& out, DirectionSolution& s, VerifiedPattern* pattern = nullptr);
+                       Valued& out, DirectionSolution& s, VerifiedPattern* pattern = nullptr,
+                       bool bracket = false);
 bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
                         Valued& out, VerifiedPattern* pattern = nullptr);
 
@@ -162,15 +179,82 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   detail::CompensatedHeights h;
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
   DirectionSolution s;
-  if (detail::compensated_heights(A, B, c, h) && valued_on_heights(h, conA, conB, kind, out, s, pattern))
+  if (detail::compensated_heights(A, B, c, h) && valued_on_heights(h, conA, conB, kind, out, s, pattern, true))
     return true;
   // parallel and nearly parallel edge pairs: exact heights (compensated_heights.h)
   return (c.parallel || c.own_bounds) && detail::expansion_heights(A, B, c, h) &&
-         valued_on_heights(h, conA, conB, kind, out, s, pattern);
+         valued_on_heights(h, conA, conB, kind, out, s, pattern, true);
 }
 
+namespace {
+// One pattern's closed form on heights h, its value and root bound, and the verdict on each
+// vertex's margin (valued_on_heights' argument): bit i of unsure* set when its sign is not
+// certain, of wrong* when it is certainly of the other status. False when the closed form does
+// not apply (no vertex at the plane) or is out of range.
+struct PatternCheck {
+  DirectionSolution s;
+  Valued v;
+  double Ha = 0, e_act = 0;
+  unsigned unsureA = 0, unsureB = 0, wrongA = 0, wrongB = 0;
+};
+bool check_pattern(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, bool a_static,
+                   const detail::Extreme& top, unsigned atA, unsigned atB, PatternCheck& pc) {
+  DirectionSolution& s = pc.s;
+  if (!closed_form(h.hA, h.hB, atA, atB, a_static, s, top.value)) return false;
+  if (!(s.cost >= 0x1p-900) || !(h.nn >= 0x1p-900)) return false;  // (precondition, above)
+  double Ha = std::fabs(s.c), e_act = top.error;
+  for (int i = 0; i < 4; ++i) {
+    if (atA >> i & 1u) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
+    if (atB >> i & 1u) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
+  }
+  pc.Ha = Ha, pc.e_act = e_act;
+  // margin m of a free vertex of height hv and error ev: its sign certain, and whether it is
+  // `at` (at the plane when m < 0 on A, m > 0 on B)
+  auto verdict = [&](double hv, double ev, double m, bool at_if_negative, bool at, unsigned bit, unsigned& unsure,
+                     unsigned& wrong) {
+    const double err = (512 * kUnitRoundoff * Ha + 2 * kUnitRoundoff * (std::fabs(hv) + std::fabs(m))) * (1 + 0x1p-40);
+    if (!(std::fabs(m) > err + 9 * e_act + ev)) unsure |= bit;  // (NaN: unsure)
+    else if (((m < 0) == at_if_negative) != at) wrong |= bit;
+  };
+  pc.unsureA = pc.unsureB = pc.wrongA = pc.wrongB = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (!a_static && !(conA >> i & 1u))
+      verdict(h.hA[i], h.eA[i], s.c - h.hA[i] + s.sumA, true, atA >> i & 1u, 1u << i, pc.unsureA, pc.wrongA);
+    if (!(conB >> i & 1u))
+      verdict(h.hB[i], h.eB[i], s.c - h.hB[i] + s.sumB, false, atB >> i & 1u, 1u << i, pc.unsureB, pc.wrongB);
+  }
+  pc.v = {s.cost / (20.0 * h.nn), qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight)};
+  return true;
+}
+
+// The bracket of valued_on_heights (header): U free (dual) and U at the plane (primal).
+bool bracketed(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, bool a_static, unsigned atA,
+               unsigned atB, unsigned uA, unsigned uB, Valued& out, DirectionSolution& s) {
+  const detail::Extreme none{0.0, 0.0};
+  PatternCheck dual, primal;
+  const unsigned dA = atA & ~uA, dB = atB & ~uB, pA = atA | uA, pB = atB | uB;
+  if (!check_pattern(h, conA, conB, a_static, none, dA, dB, dual) ||
+      !check_pattern(h, conA, conB, a_static, none, pA, pB, primal))
+    return false;
+  // dual: every vertex at the plane (not constrained) certain; primal: every free one
+  const unsigned freeA = ~conA & 0xFu, freeB = ~conB & 0xFu;
+  if (((dual.unsureA | dual.wrongA) & dA & freeA) || ((dual.unsureB | dual.wrongB) & dB & freeB)) return false;
+  if (((primal.unsureA | primal.wrongA) & ~pA & freeA) || ((primal.unsureB | primal.wrongB) & ~pB & freeB))
+    return false;
+  const double lo = lower_of(dual.v.v, dual.v.r), hi = upper_of(primal.v.v, primal.v.r), v = primal.v.v;
+  if (!(dual.v.r < 1) || !(lo > 0) || !(hi >= lo) || !(v > 0)) return false;  // (NaN: false)
+  // v (1 - r)^2 <= lo and v (1 + r)^2 >= hi, with the roundings of these expressions
+  // (finish_root_rel's 4u) and of r's own (2^-40 relative) covered
+  const double r = std::max(1 - std::sqrt(lo / v), std::sqrt(hi / v) - 1) * (1 + 0x1p-40) + 8 * kUnitRoundoff;
+  if (!(r <= 0.01)) return false;
+  out = {v, r};
+  s = primal.s;
+  return true;
+}
+}  // namespace
+
 bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind,
-                       Valued& out, DirectionSolution& s, VerifiedPattern* pattern) {
+                       Valued& out, DirectionSolution& s, VerifiedPattern* pattern, bool bracket) {
   const bool a_static = kind == QpKind::Static;
   s = kind == QpKind::Relaxed ? solve_relaxed(h.hA, h.hB)
                         : a_static              ? solve_static(side_of(h.hA, conA), side_of(h.hB, conB))
@@ -184,28 +268,15 @@ bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsig
     if (!a_static && s.c - h.hA[i] + s.sumA < 0) atA |= 1u << i;
     if (s.c - h.hB[i] + s.sumB > 0) atB |= 1u << i;
   }
-  if (!closed_form(h.hA, h.hB, atA, atB, a_static, s, top.value)) return false;
-  if (!(s.cost >= 0x1p-900) || !(h.nn >= 0x1p-900)) return false;  // (precondition, above)
-  double Ha = std::fabs(s.c), e_act = top.error;
-  for (int i = 0; i < 4; ++i) {
-    if (atA >> i & 1u) Ha = std::max(Ha, std::fabs(h.hA[i])), e_act = std::max(e_act, h.eA[i]);
-    if (atB >> i & 1u) Ha = std::max(Ha, std::fabs(h.hB[i])), e_act = std::max(e_act, h.eB[i]);
-  }
-  // margin m of a free vertex of height hv and error ev: its sign must be certain and be `at`
-  auto certain = [&](double hv, double ev, double m, bool at_if_negative, bool at) {
-    const double err = (512 * kUnitRoundoff * Ha + 2 * kUnitRoundoff * (std::fabs(hv) + std::fabs(m))) * (1 + 0x1p-40);
-    return std::fabs(m) > err + 9 * e_act + ev && ((m < 0) == at_if_negative) == at;
-  };
-  if (top_pinned && !(s.sumB > (512 * kUnitRoundoff * Ha) * (1 + 0x1p-40) + 8 * e_act)) return false;
-  for (int i = 0; i < 4; ++i) {
-    if (!a_static && !(conA >> i & 1u) && !certain(h.hA[i], h.eA[i], s.c - h.hA[i] + s.sumA, true, atA >> i & 1u))
-      return false;
-    if (!(conB >> i & 1u) && !certain(h.hB[i], h.eB[i], s.c - h.hB[i] + s.sumB, false, atB >> i & 1u))
-      return false;
-  }
-  out.v = s.cost / (20.0 * h.nn);
-  out.r = qp_root_rel(s.cost, h.nn, Ha, DegreeBounds{e_act, h.e_n}, kSolverDisplacementCoeffTight);
-  if (pattern) *pattern = {atA, atB, Ha, e_act};
+  PatternCheck pc;
+  if (!check_pattern(h, conA, conB, a_static, top, atA, atB, pc)) return false;
+  if (top_pinned && !(pc.s.sumB > (512 * kUnitRoundoff * pc.Ha) * (1 + 0x1p-40) + 8 * pc.e_act)) return false;
+  if (pc.wrongA || pc.wrongB) return false;
+  if (pc.unsureA || pc.unsureB)
+    return bracket && !top_pinned && bracketed(h, conA, conB, a_static, atA, atB, pc.unsureA, pc.unsureB, out, s);
+  s = pc.s;
+  out = pc.v;
+  if (pattern) *pattern = {atA, atB, pc.Ha, pc.e_act};
   return true;
 }
 
@@ -249,6 +320,29 @@ bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::
     return false;
   value = x.v, r = x.r;
   for (int i = 0; i < 4; ++i) hA[i] = h.hA[i], hB[i] = h.hB[i];
+  return true;
+}
+
+bool compensated_value(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind, double& value,
+                       double& r, bool* bracketed) {
+  Valued x;
+  VerifiedPattern p;
+  p.atA = p.atB = ~0u;
+  if (!compensated_valued(A, B, c, kind, x, &p)) return false;
+  value = x.v, r = x.r;
+  if (bracketed) *bracketed = p.atA == ~0u;
+  return true;
+}
+
+bool value_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind, double& value,
+                      double& r, bool* bracketed) {
+  Valued x;
+  DirectionSolution s;
+  VerifiedPattern p;
+  p.atA = p.atB = ~0u;
+  if (!valued_on_heights(h, conA, conB, kind, x, s, &p, true)) return false;
+  value = x.v, r = x.r;
+  if (bracketed) *bracketed = p.atA == ~0u;
   return true;
 }
 

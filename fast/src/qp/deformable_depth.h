@@ -30,6 +30,7 @@
 // (the rigid one, `hint`) makes most bounds bite.
 #pragma once
 
+#include "certification/compensated_heights.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/quick_candidates.h"
 #include "kernel/rigid_depth.h"
@@ -98,6 +99,24 @@ double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate
 // a margin is too small. Precondition: a pair rescaled by power_scale.h.
 bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
                          double& value, double& r, DirectionSolution& s, double hA[4], double hB[4]);
+
+// Which per-direction QP (direction_qp.h) a compensated evaluation solves.
+enum class QpKind { Static, Deformable, Relaxed };
+
+// Candidate c's value of that QP where its double heights cannot certify it (the contenders of
+// refine.h's refine_tight): on compensated_heights.h's heights (expansion_heights' for parallel
+// and nearly parallel edge pairs), the status pattern verified by certain margins or, where a
+// margin is at its threshold exactly (degenerate contacts), the value bracketed by weak duality
+// (deformable_depth.cpp, valued_on_heights). value, r (value_bounds.h: the exact value lies in
+// [lower_of(value, r), upper_of(value, r)]); `bracketed` (optional): whether it was bracketed.
+// False when not applicable. Precondition: a pair rescaled by power_scale.h.
+bool compensated_value(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind, double& value,
+                       double& r, bool* bracketed = nullptr);
+
+// The same on given heights h (each within its e_i of the exact one, the normal within e_n;
+// constrained vertices conA, conB sharing one height a side).
+bool value_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsigned conB, QpKind kind, double& value,
+                      double& r, bool* bracketed = nullptr);
 
 // Case-2 deformed positions x + (T/n.n) n attaining deformable_value(c) (direction_qp.h).
 void deformed_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
