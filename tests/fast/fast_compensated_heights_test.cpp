@@ -278,13 +278,14 @@ BOOST_AUTO_TEST_CASE(shallow_static_values_exact) {
 
 namespace {
 
-// Kuhn cells of a 3^3 grid of side h against those of the same grid shifted by (0.37, 0.21,
-// 0.13) h, each coordinate rounded once: axis edges exactly parallel, faces and other edges
-// parallel up to that rounding (delta² of such candidates ~1e-16 apart relative), several
-// candidates of one exact direction; the pairs whose interiors meet.
-std::vector<std::pair<TetVertices, TetVertices>> shifted_kuhn_pairs() {
-  const double h = 0.125;
-  const Vec3d shift = {0.37 * h, 0.21 * h, 0.13 * h};
+// Kuhn cells of a 3^3 grid of side h against those of the same grid shifted by `shift`, the
+// pairs whose interiors meet. By default h = 1/8 and the shift (0.37, 0.21, 0.13) h, each
+// coordinate rounded once: axis edges exactly parallel, faces and other edges parallel up to
+// that rounding (delta² of such candidates ~1e-16 apart relative), several candidates of one
+// exact direction.
+std::vector<std::pair<TetVertices, TetVertices>> shifted_kuhn_pairs(double h = 0.125,
+                                                                    Vec3d shift = {0.37 * 0.125, 0.21 * 0.125,
+                                                                                   0.13 * 0.125}) {
   std::vector<TetVertices> A, B;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -462,33 +463,6 @@ BOOST_AUTO_TEST_CASE(expansion_heights_within_their_bounds) {
   BOOST_TEST(worst <= 1.0);
 }
 
-namespace {
-
-// Kuhn cells of a 3^3 grid of side 1/4 against those of the same grid shifted by half a cell
-// along (1, 1, 1) (exact: B's vertices on A's cube diagonals, B's diagonal faces in A's
-// diagonal planes), the pairs whose interiors meet: degenerate contacts, vertices exactly at a
-// free vertex's threshold.
-std::vector<std::pair<TetVertices, TetVertices>> half_shifted_kuhn_pairs() {
-  const double h = 0.25, s = h / 2;
-  std::vector<TetVertices> A, B;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int perm = 0; perm < 6; ++perm) {
-          A.push_back(pdd::test::kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
-          B.push_back(pdd::test::kuhn_cell_tet({i * h + s, j * h + s, k * h + s}, h, perm));
-        }
-  std::vector<std::pair<TetVertices, TetVertices>> out;
-  for (const TetVertices& a : A)
-    for (const TetVertices& b : B) {
-      const Depth d = rigid_pd2(a, b);
-      if (d.status == DepthStatus::Ok && d.pd2 > 0) out.emplace_back(a, b);
-    }
-  return out;
-}
-
-}  // namespace
-
 // compensated_value (deformable_depth.h), the intervals refine.h's contenders certify on: for
 // every candidate and each of the three QPs (case 1 where the candidate is in its family, case
 // 2, relaxed) on degenerate contacts (a Kuhn grid against its copy shifted half a cell along
@@ -498,7 +472,9 @@ std::vector<std::pair<TetVertices, TetVertices>> half_shifted_kuhn_pairs() {
 // around a margin exactly at its threshold) is taken on the degenerate contacts and certifies
 // there (its interval within definitions §8 on its own).
 BOOST_AUTO_TEST_CASE(compensated_values_contain_the_exact_value) {
-  std::vector<std::pair<TetVertices, TetVertices>> pairs = half_shifted_kuhn_pairs();
+  // degenerate contacts: h = 1/4 shifted by half a cell along (1, 1, 1), exactly (B's vertices
+  // on A's cube diagonals, B's diagonal faces in A's diagonal planes)
+  std::vector<std::pair<TetVertices, TetVertices>> pairs = shifted_kuhn_pairs(0.25, {0.125, 0.125, 0.125});
   const std::size_t half = pairs.size();
   for (const TetPair& p : pdd::test::rounding_contact_pairs(2, 60)) pairs.emplace_back(p.A, p.B);
   for (const auto& p : shifted_kuhn_pairs()) pairs.push_back(p);

@@ -27,6 +27,13 @@ DV diff(const std::array<double, 3>& p, const std::array<double, 3>& o) {  // ex
 
 constexpr double kGrow = 1 + 0x1p-40;  // the bounds' own roundings (header)
 
+bool finite_heights(const CompensatedHeights& h) {
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(h.hA[i]) || !std::isfinite(h.hB[i]) || !std::isfinite(h.eA[i]) || !std::isfinite(h.eB[i]))
+      return false;
+  return true;
+}
+
 // A label's exact direction as double words, unoriented (the header's normal, unrounded):
 // n* = ±e1 x e2, the origin o, and N_k from the high parts.
 struct Span {
@@ -159,11 +166,7 @@ PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices&
     const int x = kEdges[l.b][0], y = kEdges[l.b][1];
     out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
   }
-  for (int i = 0; i < 4; ++i)
-    if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
-        !std::isfinite(out.eB[i]))
-      return false;
-  return true;
+  return finite_heights(out);
 }
 
 // The extremes of four double-word heights: a normalised double word's value orders as (hi, lo)
@@ -278,11 +281,7 @@ PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVer
     height(B[i], out.hB[i], out.eB[i]);
   }
   out.hA[top] = 0, out.eA[top] = 0;  // the origin itself: exactly 0
-  for (int i = 0; i < 4; ++i)
-    if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
-        !std::isfinite(out.eB[i]))
-      return false;
-  return true;
+  return finite_heights(out);
 }
 
 bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
@@ -319,11 +318,7 @@ bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candida
   for (int i = 0; i < 4; ++i)
     if (i != y && !height(B[i], out.hB[i], out.eB[i])) return false;
   out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
-  for (int i = 0; i < 4; ++i)
-    if (!std::isfinite(out.hA[i]) || !std::isfinite(out.hB[i]) || !std::isfinite(out.eA[i]) ||
-        !std::isfinite(out.eB[i]))
-      return false;
-  return true;
+  return finite_heights(out);
 }
 
 }  // namespace pdd::fast::detail
