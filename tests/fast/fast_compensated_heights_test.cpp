@@ -37,6 +37,7 @@
 #include "exact/exact_candidate.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/direction_geometry.h"
+#include "kernel/pair_memo.h"
 #include "kernel/power_scale.h"
 #include "kernel/superset_depth.h"
 #include "pdd/compare/random.h"
@@ -573,4 +574,38 @@ BOOST_AUTO_TEST_CASE(bracketed_values_hold_near_degenerate_heights) {
                                                  << " bracketed");
   BOOST_TEST(outside == 0);
   BOOST_TEST(bracketed > 1000);
+}
+
+// kernel/pair_memo.h: an answer is computed once per pair and key; a pair differing in one
+// bit of one coordinate (here -0.0 against 0.0) is another pair; keys beyond its room are
+// computed every time, never confused.
+BOOST_AUTO_TEST_CASE(pair_memo_keys_the_pair) {
+  detail::PairMemo<int, 2> memo;
+  TetVertices A{}, B{};
+  B[3][2] = 1;
+  int calls = 0;
+  auto get = [&](const TetVertices& b, unsigned key) {
+    int v = -1;
+    const bool ok = memo.get(A, b, key, v, [&](int& out) {
+      ++calls;
+      out = int(key) * 10 + int(std::signbit(b[0][0]));
+      return key != 3;
+    });
+    return std::make_pair(ok, v);
+  };
+  BOOST_TEST((get(B, 1) == std::make_pair(true, 10)));
+  BOOST_TEST((get(B, 1) == std::make_pair(true, 10)));
+  BOOST_TEST(calls == 1);
+  BOOST_TEST((get(B, 3) == std::make_pair(false, 30)));  // a false verdict kept too
+  BOOST_TEST((get(B, 3) == std::make_pair(false, 30)));
+  BOOST_TEST(calls == 2);
+  BOOST_TEST((get(B, 5) == std::make_pair(true, 50)));  // no room: computed each time
+  BOOST_TEST((get(B, 5) == std::make_pair(true, 50)));
+  BOOST_TEST(calls == 4);
+  TetVertices B2 = B;
+  B2[0][0] = -0.0;
+  BOOST_TEST((get(B2, 1) == std::make_pair(true, 11)));  // another pair: computed afresh
+  BOOST_TEST(calls == 5);
+  BOOST_TEST((get(B, 1) == std::make_pair(true, 10)));
+  BOOST_TEST(calls == 6);
 }

@@ -7,6 +7,7 @@
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
 #include "kernel/direction_geometry.h"
+#include "kernel/pair_memo.h"
 
 namespace pdd::fast::detail {
 namespace {
@@ -135,8 +136,9 @@ inline int orientation_of(const DirectionLabel& l, const Heights& h) {
 
 }  // namespace
 
-PDD_FMA_CLONES bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
-                                        CompensatedHeights& out) {
+// compensated_heights, computed (the memo below asks it once a pair and candidate)
+PDD_FMA_CLONES bool compensated_heights_computed(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                                                 CompensatedHeights& out) {
   if (c.parallel) return false;
   const DirectionLabel& l = c.label;
   Span sp;
@@ -177,7 +179,7 @@ namespace {
 bool above(const DW& x, const DW& y) { return x.hi > y.hi || (x.hi == y.hi && x.lo > y.lo); }
 }  // namespace
 
-PDD_FMA_CLONES bool compensated_depth(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+PDD_FMA_CLONES bool compensated_depth_computed(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
                                       CompensatedDepth& out) {
   Span sp;
   Heights h;
@@ -284,7 +286,7 @@ PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVer
   return finite_heights(out);
 }
 
-bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
+bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
   const DirectionLabel& l = c.label;
   ExpVec n;
   if (l.kind != ContactKind::EE) return false;
@@ -319,6 +321,33 @@ bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candida
     if (i != y && !height(B[i], out.hB[i], out.eB[i])) return false;
   out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
   return finite_heights(out);
+}
+
+// The values of one pair ask the same candidates' heights and depths again (kernel/pair_memo.h):
+// memoised per thread, keyed by the label, and by the constrained sets and the parallel flag
+// the heights also depend on.
+namespace {
+unsigned candidate_key(const Candidate& c) {
+  return label_key(c.label) | unsigned(c.conA) << 10 | unsigned(c.conB) << 14 | unsigned(c.parallel) << 18;
+}
+thread_local PairMemo<CompensatedHeights, 32> heights_memo;
+thread_local PairMemo<CompensatedHeights, 16> expansion_memo;
+thread_local PairMemo<CompensatedDepth, 32> depth_memo;
+}  // namespace
+
+bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
+  return heights_memo.get(A, B, candidate_key(c), out,
+                          [&](CompensatedHeights& h) { return compensated_heights_computed(A, B, c, h); });
+}
+
+bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
+  return expansion_memo.get(A, B, candidate_key(c), out,
+                            [&](CompensatedHeights& h) { return expansion_heights_computed(A, B, c, h); });
+}
+
+bool compensated_depth(const TetVertices& A, const TetVertices& B, const DirectionLabel& l, CompensatedDepth& out) {
+  return depth_memo.get(A, B, label_key(l), out,
+                        [&](CompensatedDepth& d) { return compensated_depth_computed(A, B, l, d); });
 }
 
 }  // namespace pdd::fast::detail

@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "exact/exact_geometry.h"
 #include "exact/expansion.h"
+#include "kernel/pair_memo.h"
 
 namespace pdd::fast {
 
@@ -151,34 +151,16 @@ ExactDirection::ExactDirection(const TetVertices& A, const TetVertices& B, const
     : A_(A), B_(B), l1_(l) {}
 
 namespace {
-// ExactDirection's memo (header): one pair's answers, keyed by both labels and the rule.
-struct SameMemo {
-  TetVertices A{}, B{};
-  bool valid = false;
-  struct Entry {
-    unsigned key;
-    std::optional<bool> value;
-  };
-  static constexpr int kEntries = 32;  // (more questions on one pair: computed, not kept)
-  Entry e[kEntries];
-  int n = 0;
-};
-thread_local SameMemo same_memo;
-
-unsigned label_bits(const DirectionLabel& l) {
-  return unsigned(l.kind) | unsigned(l.a) << 2 | unsigned(l.b) << 5 | unsigned(l.orientation) << 8;
-}
-bool same_pair(const TetVertices& X, const TetVertices& Y) { return std::memcmp(&X, &Y, sizeof X) == 0; }
+thread_local PairMemo<std::optional<bool>, 32> same_memo;  // ExactDirection's (header)
 }  // namespace
 
 std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule) const {
-  SameMemo& m = same_memo;
-  if (!(m.valid && same_pair(m.A, A_) && same_pair(m.B, B_))) m.A = A_, m.B = B_, m.valid = true, m.n = 0;
-  const unsigned key = label_bits(l1_) | label_bits(l) << 10 | unsigned(rule) << 20;
-  for (int i = 0; i < m.n; ++i)
-    if (m.e[i].key == key) return m.e[i].value;
-  const std::optional<bool> value = computed(l, rule);
-  if (m.n < SameMemo::kEntries) m.e[m.n++] = {key, value};
+  std::optional<bool> value;
+  same_memo.get(A_, B_, label_key(l1_) | label_key(l) << 10 | unsigned(rule) << 20, value,
+                [&](std::optional<bool>& v) {
+                  v = computed(l, rule);
+                  return true;
+                });
   return value;
 }
 

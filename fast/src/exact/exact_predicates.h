@@ -52,9 +52,9 @@ std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices
 
 // same_direction_exact against one label l1 for several l2: l1's exact normal computed once,
 // at the first answer not already known. The answers for one pair are memoised per thread
-// (keyed by the pair's coordinates, bit for bit, and both labels: a pure function of them):
-// the values of one solve_pair (the rigid tie order, the sweeps' tied_first, pdd2_accel's)
-// ask the same ties of the same pair, half of the questions on contacts made by rounding.
+// (kernel/pair_memo.h, keyed by both labels): the values of one solve_pair (the rigid tie
+// order, the sweeps' tied_first, pdd2_accel's) ask the same ties of the same pair, half of the
+// questions on contacts made by rounding.
 class ExactDirection {
  public:
   ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l1);
