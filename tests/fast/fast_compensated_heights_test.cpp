@@ -608,4 +608,15 @@ BOOST_AUTO_TEST_CASE(pair_memo_keys_the_pair) {
   BOOST_TEST(calls == 5);
   BOOST_TEST((get(B, 1) == std::make_pair(true, 10)));
   BOOST_TEST(calls == 6);
+  // a computation that asks the memo of another pair: its answer is not kept for that pair
+  int v = 0;
+  memo.get(A, B, 7, v, [&](int& out) {
+    int w = 0;
+    memo.get(A, B2, 8, w, [](int& o) { return o = 1, true; });
+    return out = 2, true;
+  });
+  int again = 0;
+  memo.get(A, B2, 7, again, [](int& o) { return o = 3, true; });
+  BOOST_TEST(v == 2);
+  BOOST_TEST(again == 3);  // computed for B2, not B's answer
 }

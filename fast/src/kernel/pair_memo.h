@@ -30,14 +30,16 @@ class PairMemo {
  public:
   template <class F>
   bool get(const TetVertices& A, const TetVertices& B, unsigned key, Value& out, F&& f) {
-    if (!(valid_ && same(A_, A) && same(B_, B))) A_ = A, B_ = B, valid_ = true, n_ = 0;
+    if (!(valid_ && same(A_, A) && same(B_, B))) A_ = A, B_ = B, valid_ = true, n_ = 0, ++pair_;
     for (int i = 0; i < n_; ++i)
       if (key_[i] == key) {
         out = value_[i];
         return ok_[i];
       }
+    const unsigned pair = pair_;
     const bool ok = f(out);
-    if (n_ < kEntries) key_[n_] = key, value_[n_] = out, ok_[n_] = ok, ++n_;
+    // (kept only for the pair it was asked for: f may have asked this memo of another pair)
+    if (pair == pair_ && n_ < kEntries) key_[n_] = key, value_[n_] = out, ok_[n_] = ok, ++n_;
     return ok;
   }
 
@@ -45,6 +47,7 @@ class PairMemo {
   static bool same(const TetVertices& X, const TetVertices& Y) { return std::memcmp(&X, &Y, sizeof X) == 0; }
   TetVertices A_{}, B_{};
   bool valid_ = false;
+  unsigned pair_ = 0;  // counts the pairs seen
   int n_ = 0;
   unsigned key_[kEntries];
   Value value_[kEntries];
