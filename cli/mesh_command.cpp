@@ -28,6 +28,7 @@
 #include "pdd/cli/exit_codes.h"
 #include "pdd/io/output.h"
 #include "pdd/io/progress.h"
+#include "pdd/io/record_line.h"
 #include "pdd/io/result_json.h"
 #include "pdd/io/streaming.h"
 #include "pdd/io/summary_text.h"
@@ -37,12 +38,9 @@ namespace pdd::compare {
 using io::OrderedLines;
 using io::run_interruptible;
 using io::Json;
-using io::NumberWriter;
 using io::Progress;
 using io::close_error;
 using io::flush_error;
-using io::asked_keys;
-using io::result_json;
 using io::summary_line;
 using io::summary_number;
 using io::tetrahedra;
@@ -62,18 +60,6 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 double as_double(double x) { return x; }
 double as_double(const Rational& x) { return x.get_d(); }
-
-// The definitions §6 record of one contact, keys of unrequested variants dropped, a and b first.
-template <class R>
-Json contact_json(const mesh::Contact<R>& c, unsigned variants, const NumberWriter<R>& number) {
-  Json j;
-  j["a"] = c.a;
-  j["b"] = c.b;
-  const Json record = asked_keys(result_json(c.result, number), variants);
-  for (const auto& [key, value] : record.items())
-    if (key != "name") j[key] = value;
-  return j;
-}
 
 // The note on standard error that goes with a record (written when the record is).
 template <class R>
@@ -271,13 +257,13 @@ int run_mesh(const MeshArgs& args) {
     });
     progress->tick(n);
   };
-  static const NumberWriter<double> fast_number = [](const double& x) { return Json(x); };
-  static const NumberWriter<Rational> exact_number = [](const Rational& q) { return Json(q.get_str()); };
+  // (each line the definitions §6 record of one contact, keys of unrequested variants dropped,
+  // a and b first)
   options.fast_pair = [&](std::size_t h, const mesh::Contact<double>& c) {
-    lines.done(h, contact_json(c, variants, fast_number).dump(), contact_note(c, variants));
+    lines.done(h, io::contact_line(c.a, c.b, c.result, variants), contact_note(c, variants));
   };
   options.exact_pair = [&](std::size_t h, const mesh::Contact<Rational>& c) {
-    lines.done(h, contact_json(c, variants, exact_number).dump(), contact_note(c, variants));
+    lines.done(h, io::contact_line(c.a, c.b, c.result, variants), contact_note(c, variants));
   };
   std::optional<mesh::Contacts<double>> fast_result;
   std::optional<mesh::Contacts<Rational>> exact_result;

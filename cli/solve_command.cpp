@@ -20,6 +20,7 @@
 #include "pdd/compare/engines.h"
 #include "pdd/io/output.h"
 #include "pdd/io/progress.h"
+#include "pdd/io/record_line.h"
 #include "pdd/io/record_text.h"
 #include "pdd/io/result_json.h"
 #include "pdd/io/streaming.h"
@@ -202,7 +203,9 @@ int run_solve(const SolveArgs& args) {
         refined += r.stats.refined;
       }
       code = r.error || r.pdd2_global_error ? kExitPairRejected : kExitOk;
-      lines.done(k, record_row(fast_record(r, variants), format), record_note(r, args.global_gap));
+      // (JSON Lines: the record's text written directly, the same bytes: record_line.h)
+      lines.done(k, format == RecordFormat::Jsonl ? io::record_line(r, variants) : record_row(fast_record(r, variants), format),
+                 record_note(r, args.global_gap));
     } else {
       reference::ExactResult r;
       r.name = e.pair.name;

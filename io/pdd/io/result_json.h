@@ -11,6 +11,7 @@
 // reads such a record back with a number reader (the inverse of the writer).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "pdd/pair_result.h"
 
@@ -31,49 +33,86 @@ using NumberWriter = std::function<Json(const R&)>;
 template <class R>
 using NumberReader = std::function<R(const Json&)>;
 
-template <class R>
-Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
-  Json j;
-  j["name"] = r.name;
+// The record's keys in order (above), each with its value, handed to `out`: result_json builds
+// the JSON object from them, record_line.h writes the text directly. `out` provides
+//   key(k)      -> bool: write key k (false: its value is skipped);
+//   number(x)   a value R; null(); boolean(b); text(s) a string;
+//   rows(a)     an array of [x, y, z] arrays (positions, the gradient); row(v) one [x, y, z].
+template <class R, class Out>
+void emit_record(const PairResult<R>& r, Out& out) {
+  if (out.key("name")) out.text(r.name);
   if (r.error) {
-    j["error"] = *r.error;
-    return j;
+    if (out.key("error")) out.text(*r.error);
+    return;
   }
-  j["intersecting"] = r.intersecting;
-  for (std::size_t k = 0; k < kValueCount; ++k) j[kValueKeys[k]] = number(record_value(r, k));
-  for (std::size_t k = 0; k < kLabelCount; ++k) {
-    const auto& l = record_label(r, k);
-    j[kLabelKeys[k]] = l ? Json(l->str()) : Json(nullptr);
-  }
-  auto positions = [&](const Positions<R>& q) {
-    Json a = Json::array();
-    for (const auto& v : q) a.push_back(Json::array({number(v[0]), number(v[1]), number(v[2])}));
-    return a;
-  };
-  j["q1_A"] = positions(r.q1_A);
-  j["q1_B"] = positions(r.q1_B);
-  j["error"] = nullptr;
+  if (out.key("intersecting")) out.boolean(r.intersecting);
+  for (std::size_t k = 0; k < kValueCount; ++k)
+    if (out.key(kValueKeys[k])) out.number(record_value(r, k));
+  for (std::size_t k = 0; k < kLabelCount; ++k)
+    if (out.key(kLabelKeys[k])) {
+      const auto& l = record_label(r, k);
+      l ? out.text(l->str()) : out.null();
+    }
+  if (out.key("q1_A")) out.rows(r.q1_A);
+  if (out.key("q1_B")) out.rows(r.q1_B);
+  if (out.key("error")) out.null();
   // definitions §9 (the table's order: after error); null keys where pdd2_global alone could not be
   // had (fast engine: pdd2_global_error, written by the fast engine's records only)
   const bool global_ok = !r.pdd2_global_error;
-  j["pdd2_global"] = global_ok ? number(r.pdd2_global) : Json(nullptr);
-  if (r.pdd2_global_normal && global_ok) {
-    const auto& n = *r.pdd2_global_normal;
-    j["pdd2_global_normal"] = Json::array({number(n[0]), number(n[1]), number(n[2])});
-  } else {
-    j["pdd2_global_normal"] = nullptr;
-  }
-  j["q1_A_global"] = global_ok ? positions(r.q1_A_global) : Json(nullptr);
-  j["q1_B_global"] = global_ok ? positions(r.q1_B_global) : Json(nullptr);
-  if (r.pdd2_global_lower) j["pdd2_global_lower"] = number(*r.pdd2_global_lower);
+  if (out.key("pdd2_global")) global_ok ? out.number(r.pdd2_global) : out.null();
+  if (out.key("pdd2_global_normal")) r.pdd2_global_normal && global_ok ? out.row(*r.pdd2_global_normal) : out.null();
+  if (out.key("q1_A_global")) global_ok ? out.rows(r.q1_A_global) : out.null();
+  if (out.key("q1_B_global")) global_ok ? out.rows(r.q1_B_global) : out.null();
+  if (r.pdd2_global_lower && out.key("pdd2_global_lower")) out.number(*r.pdd2_global_lower);
   if constexpr (std::is_floating_point_v<R>)
-    j["pdd2_global_error"] = global_ok ? Json(nullptr) : Json(*r.pdd2_global_error);
-  if (r.pdd2_global_grad) {  // asked for (SolveOptions::gradient); null with pdd2_global
-    Json g = Json::array();
-    for (const auto& v : *r.pdd2_global_grad) g.push_back(Json::array({number(v[0]), number(v[1]), number(v[2])}));
-    j["pdd2_global_grad"] = global_ok ? g : Json(nullptr);
+    if (out.key("pdd2_global_error")) global_ok ? out.null() : out.text(*r.pdd2_global_error);
+  // asked for (SolveOptions::gradient); null with pdd2_global
+  if (r.pdd2_global_grad && out.key("pdd2_global_grad")) global_ok ? out.rows(*r.pdd2_global_grad) : out.null();
+}
+
+namespace detail {
+// emit_record's keys into a JSON object (result_json).
+template <class R>
+struct JsonBuilder {
+  Json& j;
+  const NumberWriter<R>& write;
+  const char* at = nullptr;
+  bool key(const char* k) {
+    at = k;
+    return true;
   }
+  void number(const R& x) { j[at] = write(x); }
+  void null() { j[at] = nullptr; }
+  void boolean(bool b) { j[at] = b; }
+  void text(const std::string& s) { j[at] = s; }
+  Json triple(const std::array<R, 3>& v) const { return Json::array({write(v[0]), write(v[1]), write(v[2])}); }
+  void row(const std::array<R, 3>& v) { j[at] = triple(v); }
+  template <class Rows>
+  void rows(const Rows& a) {
+    Json x = Json::array();
+    for (const auto& v : a) x.push_back(triple(v));
+    j[at] = std::move(x);
+  }
+};
+}  // namespace detail
+
+template <class R>
+Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
+  Json j;
+  detail::JsonBuilder<R> b{j, number};
+  emit_record(r, b);
   return j;
+}
+
+// Whether a record of `variants` (below) keeps key k.
+inline bool asked_key(std::string_view key, unsigned variants) {
+  bool keep = true;
+  for (std::size_t k = 0; k < kValueCount; ++k)
+    if (key == kValueKeys[k] || (kLabelOfValue[k] >= 0 && key == kLabelKeys[kLabelOfValue[k]]))
+      keep = variants >> k & 1u;
+  if (key == "q1_A" || key == "q1_B") keep = variants >> 3 & 1u;  // kValueKeys[3] = "pdd2"
+  if (key.find("_global") != std::string_view::npos) keep = variants >> kValueCount & 1u;
+  return keep;
 }
 
 // The record with only the keys of the values asked. `variants`: bit k < kValueCount asks for
@@ -84,15 +123,8 @@ Json result_json(const PairResult<R>& r, const NumberWriter<R>& number) {
 // intersecting and error stay; a rejected pair's record is unchanged.
 inline Json asked_keys(const Json& record, unsigned variants) {
   Json j;
-  for (const auto& [key, value] : record.items()) {
-    bool keep = true;
-    for (std::size_t k = 0; k < kValueCount; ++k)
-      if (key == kValueKeys[k] || (kLabelOfValue[k] >= 0 && key == kLabelKeys[kLabelOfValue[k]]))
-        keep = variants >> k & 1u;
-    if (key == "q1_A" || key == "q1_B") keep = variants >> 3 & 1u;  // kValueKeys[3] = "pdd2"
-    if (key.find("_global") != std::string::npos) keep = variants >> kValueCount & 1u;
-    if (keep) j[key] = value;
-  }
+  for (const auto& [key, value] : record.items())
+    if (asked_key(key, variants)) j[key] = value;
   return j;
 }
 static_assert(std::string_view(kValueKeys[3]) == "pdd2", "asked_keys: q1_A, q1_B come with bit 3");
