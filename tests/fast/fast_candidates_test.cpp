@@ -127,6 +127,10 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
   };
   const std::array<double, 3> shifts[] = {
       {0, 0, 0}, {h / 2, 0, 0}, {0, 0, h / 4}, {0.37 * h, 0.21 * h, 0.13 * h}, {0.37 * h, 0, 0}};
+  // Lanes whose verdict is unclear only through a g exactly 0 (a face of A whose plane holds
+  // eB's direction) are written from their lanes (build_candidates' clear_but_zero_g): counted,
+  // those flipped with a g = 0 apart (the rule a clear lane's g's never meet: 0 on neither side).
+  int zero_g = 0, zero_g_flipped = 0;
   for (const auto& t : shifts) {
     int checked = 0;
     for (int i = 0; i < 6; ++i)
@@ -137,9 +141,19 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
         if (!set.intersecting) continue;
         check_against_exact(p, set, true);
         ++checked;
+        for (int k = 8; k < set.count; ++k) {
+          const int l = set.lane[k];
+          if (l < 0 || set.edges.unclear[l] == 0.0) continue;
+          ++zero_g;
+          zero_g_flipped += set.sign[k] < 0 && label(set, k).orientation == EdgeOrientation::Decided &&
+                            (set.edges.g1[l] == 0.0 || set.edges.g2[l] == 0.0);
+        }
       }
     BOOST_TEST(checked > 0);  // every shift has intersecting pairs (A and B share a corner region)
   }
+  BOOST_TEST_MESSAGE("zero-g lanes written from their lanes: " << zero_g << ", flipped " << zero_g_flipped);
+  BOOST_TEST(zero_g > 100);
+  BOOST_TEST(zero_g_flipped > 10);
   // Colinear along a body diagonal: r0 r1 lies on the line of s0 s1 = (1,1,1) (no zero
   // coordinate difference: the exact path decides w × e = (1/2,1/2,1/2) × (1,1,1) = 0).
   const TetPair q = tet_pair({{{0, 0, 0}, {1, 1, 1}, {1, 0, 0}, {0, 1, 0}}},

@@ -12,6 +12,7 @@
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
 #include "kernel/direction_geometry.h"
+#include "kernel/edge_pair_formula.h"
 
 namespace pdd::fast {
 namespace {
@@ -188,6 +189,34 @@ struct Builder {
     return inversions == 1 ? -s : s;
   }
 
+  // eB.N_f certainly 0 by structural zeros (triple_zero), asked through g_sign_exact's cache.
+  bool g_zero(int b, int f) {
+    int& s = face_edge_sign[b][f];
+    if (s == 2 && triple_zero(b, f)) s = 0;
+    return s == 0;
+  }
+
+  // Lane i = (a, b) unclear only through g's within their bound that are exactly 0 by structural
+  // zeros (a face of A whose plane holds eB's direction: aligned pairs, about half their unclear
+  // lanes): n clear of the nearly parallel test, every other g beyond its bound, and the depths
+  // the orientation uses beyond theirs. classify() would give the side these signs give (a 0
+  // counts on neither side: Keep when no g > 0, Flip when no g < 0, else both orientations),
+  // and the lane's values carry the bounds edge_pair_general gives a generic pair (fb.deg3), so
+  // the lane is written as a clear one. (EdgeLanes' verdict stays unclear: the quick lists,
+  // which read g's signs without zeros, still decline the pair.)
+  bool clear_but_zero_g(int a, int b, int i) {
+    const EdgeLanes& L = out.edges;
+    const double e3 = fb.deg3;
+    const double n[3] = {L.n0[i], L.n1[i], L.n2[i]};
+    if (!(max_abs3(n) > kExactNormalBelow * fb.deg2)) return false;
+    const double g[2] = {L.g1[i], L.g2[i]};
+    for (int m = 0; m < 2; ++m)
+      if (!(std::fabs(g[m]) > e3) && !(g[m] == 0.0 && g_zero(b, kOffFaces.face[a][m]))) return false;
+    const bool pos = (g[0] > 0.0) | (g[1] > 0.0), neg = (g[0] < 0.0) | (g[1] < 0.0);
+    const bool flip = pos & !neg, undecidable = pos & neg;
+    return (L.dplus[i] > e3 || flip) && (L.dminus[i] > e3 || !(flip || undecidable));
+  }
+
   // eB.N exactly 0 (structural zeros, see cross_zero), N = (s_F1 − s_F0) × (s_F2 − s_F0) the raw
   // normal of A's face f (kFace order) and eB = r_y − r_x edge b of B: every term eB_k N_k has
   // an exactly zero factor.
@@ -296,35 +325,47 @@ struct Builder {
            emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound, cls, own);
   }
 
-  // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is
-  // written from its lane: the candidate and, branch-free, the ':-' one after it, the count
-  // advancing by 2 only for an undecidable pair; an unclear lane goes to edge_pair_general.
+  // Lane i = (a, b) written as candidate k and, branch-free, the ':-' one after it; returns the
+  // count after it (k + 2 only for an undecidable pair). first: delta² of the orientation kept.
+  int write_lane(int k, int a, int b, int i, bool flip, bool undecidable, double first) {
+    const EdgeLanes& L = out.edges;
+    out.code[k] = pack_label(ContactKind::EE, a, b, undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
+    out.code[k + 1] = pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus);
+    out.depth[k] = flip ? L.dminus[i] : L.dplus[i];
+    out.depth[k + 1] = L.dminus[i];
+    out.delta_sq[k] = first;
+    out.delta_sq[k + 1] = L.d2minus[i];
+    out.nn[k] = out.nn[k + 1] = L.nn[i];
+    out.sign[k] = flip ? -1 : 1;
+    out.sign[k + 1] = -1;
+    out.lane[k] = out.lane[k + 1] = std::int16_t(i);
+    return k + 1 + undecidable;
+  }
+
+  // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is written
+  // from its lane (its g's are not 0: flip when both are > 0, undecidable when their signs
+  // differ, its verdict's `first`); so is a lane unclear only through g's exactly 0
+  // (clear_but_zero_g), by the rule with a 0 on neither side; any other unclear lane goes to
+  // edge_pair_general.
   bool edge_pairs() {
     const EdgeLanes& L = out.edges;
     int k = out.count;
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) {
         const int i = kLaneStride * a + b;
-        if (L.unclear[i] != 0.0) {
+        const double g1 = L.g1[i], g2 = L.g2[i];
+        if (L.unclear[i] == 0.0) {
+          const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
+          k = write_lane(k, a, b, i, pos1 & pos2, pos1 ^ pos2, L.first[i]);
+        } else if (clear_but_zero_g(a, b, i)) {
+          const bool pos = (g1 > 0.0) | (g2 > 0.0), neg = (g1 < 0.0) | (g2 < 0.0);
+          const bool flip = pos & !neg;
+          k = write_lane(k, a, b, i, flip, pos & neg, flip ? L.d2minus[i] : L.d2plus[i]);
+        } else {
           out.count = k;
           if (!edge_pair_general(a, b)) return false;
           k = out.count;
-          continue;
         }
-        const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
-        const bool flip = pos1 & pos2, undecidable = pos1 ^ pos2;
-        out.code[k] = pack_label(ContactKind::EE, a, b,
-                                 undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
-        out.code[k + 1] = pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus);
-        out.depth[k] = flip ? L.dminus[i] : L.dplus[i];
-        out.depth[k + 1] = L.dminus[i];
-        out.delta_sq[k] = L.first[i];
-        out.delta_sq[k + 1] = L.d2minus[i];
-        out.nn[k] = out.nn[k + 1] = L.nn[i];
-        out.sign[k] = flip ? -1 : 1;
-        out.sign[k + 1] = -1;
-        out.lane[k] = out.lane[k + 1] = std::int16_t(i);
-        k += 1 + undecidable;
       }
     out.count = k;
     return true;
