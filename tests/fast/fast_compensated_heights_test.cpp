@@ -579,6 +579,67 @@ BOOST_AUTO_TEST_CASE(bracketed_values_hold_near_degenerate_heights) {
 // kernel/pair_memo.h: an answer is computed once per pair and key; a pair differing in one
 // bit of one coordinate (here -0.0 against 0.0) is another pair; keys beyond its room are
 // computed every time, never confused.
+// compensated_height_sign against the exact sign of ((p1 − p0) x (q1 − q0)).(p − q) (rationals):
+// every face plane of one Kuhn cell against every edge of the other, on grids shifted by an
+// offset with no short binary form (edges in the plane up to the rounding of the shift: the
+// heights ~1e-17 of the cell that the double words are for), by a dyadic offset (exact zeros:
+// never decided) and at scales 2^-300 to 2^300 (underflow's absolute terms; no overflow), and
+// random points. Decided only with the exact sign; undecided only near 0.
+BOOST_AUTO_TEST_CASE(compensated_height_signs_are_exact) {
+  auto exact_sign = [](const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0, const Vec3d& p,
+                       const Vec3d& q) {
+    Q e[3], f[3], d[3];
+    for (int k = 0; k < 3; ++k) e[k] = Q(p1[k]) - Q(p0[k]), f[k] = Q(q1[k]) - Q(q0[k]), d[k] = Q(p[k]) - Q(q[k]);
+    Q h = 0;
+    for (int k = 0; k < 3; ++k) h += (e[(k + 1) % 3] * f[(k + 2) % 3] - e[(k + 2) % 3] * f[(k + 1) % 3]) * d[k];
+    return sgn(h);
+  };
+  long decided = 0, undecided = 0, zeros = 0, tiny_decided = 0;
+  auto check = [&](const TetVertices& A, const TetVertices& B) {
+    for (int f = 0; f < 4; ++f) {
+      const auto& F = kFace[f];
+      const detail::CompensatedNormal n = detail::compensated_normal(A[F[1]], A[F[0]], A[F[2]], A[F[0]]);
+      for (int e = 0; e < 6; ++e) {
+        const Vec3d &p = B[kEdges[e][1]], &q = B[kEdges[e][0]];
+        const int want = exact_sign(A[F[1]], A[F[0]], A[F[2]], A[F[0]], p, q);
+        int got = 0;
+        if (detail::compensated_height_sign(n, p, q, got)) {
+          BOOST_TEST_REQUIRE(got == want);
+          ++decided;
+          // a height far below the doubles' own bound (u of the products): what they are for
+          double m = 0;
+          for (int k = 0; k < 3; ++k) m += std::fabs(n.n[k].hi) * std::fabs(p[k] - q[k]);
+          const double h = n.n[0].hi * (p[0] - q[0]) + n.n[1].hi * (p[1] - q[1]) + n.n[2].hi * (p[2] - q[2]);
+          tiny_decided += std::fabs(h) < 1e-14 * m;
+        } else {
+          ++undecided;
+          zeros += want == 0;
+        }
+      }
+    }
+  };
+  for (double scale : {1.0, 0x1p-300, 0x1p300})
+    for (const Vec3d& shift : {Vec3d{0.37 * 0.125, 0.21 * 0.125, 0.13 * 0.125}, Vec3d{0.1, 0.1, 0.1},
+                               Vec3d{0.0625, 0.03125, 0.0}})
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j) {
+          TetVertices A = pdd::test::kuhn_cell_tet({0, 0, 0}, 0.125, i);
+          TetVertices B = pdd::test::kuhn_cell_tet(shift, 0.125, j);
+          for (auto* T : {&A, &B})
+            for (auto& v : *T)
+              for (double& x : v) x *= scale;
+          check(A, B);
+          check(B, A);
+        }
+  Rng rng(29);
+  for (int t = 0; t < 2000; ++t) check(random_tet(rng, 1.0), random_tet(rng, 1.0));
+  BOOST_TEST_MESSAGE("compensated height signs: " << decided << " decided (" << tiny_decided
+                     << " below 1e-14 of their terms), " << undecided << " left to the exact sign (" << zeros
+                     << " exact zeros)");
+  BOOST_TEST(tiny_decided > 100);
+  BOOST_TEST(zeros > 100);
+}
+
 BOOST_AUTO_TEST_CASE(pair_memo_keys_the_pair) {
   detail::PairMemo<int, 2> memo;
   TetVertices A{}, B{};

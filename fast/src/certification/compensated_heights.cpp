@@ -43,6 +43,15 @@ struct Span {
   std::array<double, 3> o;
 };
 
+// n* = e1 x e2 of exact differences, in double words, and N_k from the high parts.
+[[gnu::always_inline]] inline void cross_of(const DV& e1, const DV& e2, Span& sp) {
+  for (int k = 0; k < 3; ++k) {
+    const int r = (k + 1) % 3, s = (k + 2) % 3;
+    sp.n[k] = add(mul(e1.x[r], e2.x[s]), neg(mul(e1.x[s], e2.x[r])));
+    sp.N[k] = std::fabs(e1.x[r].hi * e2.x[s].hi) + std::fabs(e1.x[s].hi * e2.x[r].hi);
+  }
+}
+
 [[gnu::always_inline]] inline void span_of(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
                                            Span& sp) {
   // The direction's two spanning vectors e1, e2 (n* = e1 x e2 up to sign) and the origin o, a
@@ -63,12 +72,7 @@ struct Span {
       break;
     }
   }
-  const DV e1 = diff(p1, q1), e2 = diff(p2, q2);
-  for (int k = 0; k < 3; ++k) {
-    const int r = (k + 1) % 3, s = (k + 2) % 3;
-    sp.n[k] = add(mul(e1.x[r], e2.x[s]), neg(mul(e1.x[s], e2.x[r])));
-    sp.N[k] = std::fabs(e1.x[r].hi * e2.x[s].hi) + std::fabs(e1.x[s].hi * e2.x[r].hi);
-  }
+  cross_of(diff(p1, q1), diff(p2, q2), sp);
 }
 
 // The eight heights (e1 x e2).(x − o) as double words, each within e = 25 u^2 M of the exact
@@ -343,6 +347,27 @@ bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candi
 bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
   return expansion_memo.get(A, B, candidate_key(c), out,
                             [&](CompensatedHeights& h) { return expansion_heights_computed(A, B, c, h); });
+}
+
+PDD_FMA_CLONES CompensatedNormal compensated_normal(const std::array<double, 3>& p1, const std::array<double, 3>& p0,
+                                                   const std::array<double, 3>& q1, const std::array<double, 3>& q0) {
+  Span sp;
+  cross_of(diff(p1, p0), diff(q1, q0), sp);
+  CompensatedNormal n;
+  for (int k = 0; k < 3; ++k) n.n[k] = sp.n[k], n.N[k] = sp.N[k];
+  return n;
+}
+
+PDD_FMA_CLONES bool compensated_height_sign(const CompensatedNormal& n, const std::array<double, 3>& p,
+                                            const std::array<double, 3>& q, int& sign) {
+  Span sp;
+  for (int k = 0; k < 3; ++k) sp.n[k] = n.n[k], sp.N[k] = n.N[k];
+  sp.o = q;
+  double e;
+  const DW h = height_of(sp, p, e);
+  if (!std::isfinite(h.hi) || !std::isfinite(e)) return false;
+  sign = certain_sign(h, e);
+  return sign != 0;
 }
 
 bool compensated_depth(const TetVertices& A, const TetVertices& B, const DirectionLabel& l, CompensatedDepth& out) {

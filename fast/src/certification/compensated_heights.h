@@ -78,6 +78,23 @@ bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candida
 bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
                                CompensatedHeights& out);
 
+// The normal (p1 − p0) x (q1 − q0) of exact differences in double words (as above: each
+// component within 10.5 u² N_k of the exact one), and the exact sign of its height n.(p − q)
+// where the double words certify it (within 25 u² M of the exact value, as above): for exact
+// tests that are most often not 0 by a rounding (an edge of a grid's shifted copy against a
+// face plane of the grid). compensated_height_sign: true with the sign (+1 or −1); false where
+// the bound does not decide it, or a value is not finite (an overflow at extreme coordinates;
+// the bounds' absolute terms cover underflow at any scale): the exact sign is then an
+// expansion's (exact_heights.h).
+struct CompensatedNormal {
+  dw::DW n[3];
+  double N[3];
+};
+CompensatedNormal compensated_normal(const std::array<double, 3>& p1, const std::array<double, 3>& p0,
+                                     const std::array<double, 3>& q1, const std::array<double, 3>& q0);
+bool compensated_height_sign(const CompensatedNormal& n, const std::array<double, 3>& p,
+                             const std::array<double, 3>& q, int& sign);
+
 // A candidate's definitions §4 depth parts in double words, unrounded: D = max_i H*_A,i −
 // min_j H*_B,j and n*.n* of its exact oriented normal (the heights above before their rounding
 // to doubles), with certified absolute bounds |D~ − D*| <= eD, |nn~ − n*.n*| <= enn (derived in

@@ -242,6 +242,13 @@ class PickPlane {
   PickPlane(const SupersetLanes& K, int face) : K_(K), t_(face / 4), f_(face % 4) {}
   // N.(y − x) = 0 exactly for vertices x, y (0..7) of the kernel's pair
   bool orthogonal(int x, int y) {
+    // most often not: a rounding apart, which double words show (compensated_heights.h)
+    const int o = 4 * t_;
+    if (!dw_)
+      dw_ = compensated_normal(point(o + kFace[f_][1]), point(o + kFace[f_][0]), point(o + kFace[f_][2]),
+                               point(o + kFace[f_][0]));
+    int sign = 0;
+    if (compensated_height_sign(*dw_, point(y), point(x), sign)) return false;
     if (!n_) {
       in_range_ = true;
       for (int v = 0; v < 8; ++v)
@@ -249,7 +256,6 @@ class PickPlane {
           const double a = std::fabs(K_.X[k][v]);
           in_range_ = in_range_ && (a == 0.0 || (a >= 0x1p-200 && a <= 0x1p200));
         }
-      const int o = 4 * t_;
       n_.emplace(point(o + kFace[f_][1]), point(o + kFace[f_][0]), point(o + kFace[f_][2]), point(o + kFace[f_][0]));
     }
     if (!in_range_ || !n_->ok) return false;
@@ -262,6 +268,7 @@ class PickPlane {
   Vec3d point(int v) const { return {K_.X[0][v], K_.X[1][v], K_.X[2][v]}; }
   const SupersetLanes& K_;
   int t_, f_;
+  std::optional<CompensatedNormal> dw_;
   std::optional<LazyNormal> n_;
   bool in_range_ = false;
 };
