@@ -244,29 +244,36 @@ std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices
 // non-zero |coordinate| in [2^-20, 2^20]: multiples of 2^-72, so every term of degree <= 14 is a
 // multiple of 2^-1008 (normal); differences < 2^21, D < 36 · 2^84, n.n < 108 · 2^126, so
 // |D² n.n| < 2^312 (2^339 with the splitter's 2^27).
-ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
-  ExactDepthParts parts;
+namespace {
+bool every_coordinate_within(const TetVertices& A, const TetVertices& B, double lo, double hi) {
   for (const TetVertices* T : {&A, &B})
     for (const Vec3d& p : *T)
       for (double x : p) {
         const double a = std::fabs(x);
-        if (a != 0.0 && !(a >= 0x1p-40 && a <= 0x1p40)) return parts;
+        if (a != 0.0 && !(a >= lo && a <= hi)) return false;
       }
+  return true;
+}
+}  // namespace
+
+bool normal_for_degree_ten(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, ExpVec& n) {
+  if (!every_coordinate_within(A, B, 0x1p-40, 0x1p40)) return false;
   bool ok = true;
   if (label.kind != ContactKind::FV && label.kind != ContactKind::VF) {
     EdgePairKind kind;
     (void)edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
-    if (!ok || kind == EdgePairKind::Colinear) return parts;
-    if (kind == EdgePairKind::Parallel)  // (the header: the narrower range of degree 14)
-      for (const TetVertices* T : {&A, &B})
-        for (const Vec3d& p : *T)
-          for (double x : p) {
-            const double a = std::fabs(x);
-            if (a != 0.0 && !(a >= 0x1p-20 && a <= 0x1p20)) return parts;
-          }
+    if (!ok || kind == EdgePairKind::Colinear) return false;
+    if (kind == EdgePairKind::Parallel && !every_coordinate_within(A, B, 0x1p-20, 0x1p20)) return false;
   }
-  const ExpVec n = oriented_normal_exp(A, B, label, ok);
-  if (!ok || !n.ok()) return parts;
+  n = oriented_normal_exp(A, B, label, ok);
+  return ok && n.ok();
+}
+
+ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
+  ExactDepthParts parts;
+  ExpVec n;
+  if (!normal_for_degree_ten(A, B, label, n)) return parts;
+  bool ok = true;
   Expansion hi, lo;
   for (int i = 0; i < 4; ++i) {
     const Expansion ha = dot(n, difference(A[i], A[0]));

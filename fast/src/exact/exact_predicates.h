@@ -84,6 +84,13 @@ class ExactDirection {
 // its parts are given only when every non-zero |coordinate| of the pair is in [2^-20, 2^20]
 // (multiples of 2^-72, products of 14 multiples of 2^-1008, still normal; magnitudes below
 // 2^339, far from overflow: exact_predicates.cpp).
+// The label's exact oriented normal (definitions §3) where the products of degree 10 in
+// coordinate differences built on it stay exact (14 for a parallel edge pair, whose normal has
+// degree 3): the range above; false outside it, for a colinear edge pair or past an
+// expansion's capacity. depth_parts_exact's and exact_qp_order.h's.
+bool normal_for_degree_ten(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                           detail::ExpVec& n);
+
 struct ExactDepthParts {
   detail::Expansion D, nn;
   bool ok = false;

@@ -12,6 +12,7 @@
 #include "certification/compensated_heights.h"
 #include "certification/qp_lower_bound.h"
 #include "certification/refine.h"
+#include "exact/exact_qp_order.h"
 #include "certification/tie_tolerance.h"
 #include "certification/tight_delta.h"
 #include "certification/value_bounds.h"
@@ -481,6 +482,31 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
   return true;
 }
 
+// The position in c[0..n) of the first least exact value by exact_qp_order.h's expansions,
+// each candidate's verified pattern (tight_interval's) being its exact optimum's; -1 where a
+// pattern is not verified or the expansions cannot decide. A running minimum, exact ties to
+// the earliest (canonical order), as the exact engine names them.
+template <class List>
+int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, const VerifiedPattern* patterns) {
+  auto parts = [&](int k, QpParts& p) {
+    const VerifiedPattern& v = patterns[c[k]];
+    if (v.atA == ~0u) return false;
+    p = qp_parts_exact(*set.A, *set.B, unpack_label(label_code(set, c[k])),
+                       QpPattern{v.atA, v.atB, candidate(set, c[k]).conA}, a_static);
+    return p.ok;
+  };
+  QpParts least, p;
+  if (!parts(0, least)) return -1;
+  int w = 0;
+  for (int k = 1; k < n; ++k) {
+    if (!parts(k, p)) return -1;
+    const std::optional<int> below = compare_qp_exact(p, least);
+    if (!below) return -1;
+    if (*below < 0) w = k, least = p;
+  }
+  return w;
+}
+
 // refine_tight's tie order for a QP value: of the near-tied candidates c[0..n) (ascending
 // canonical order), the position of the first whose exact value is the least; -1 when none is
 // in the family. Exact ties are the common case (an aligned contact: a face and the edge pairs
@@ -492,7 +518,8 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
 // scale and shift, under which F / (20 n.n) is invariant: the exact values are equal. Equal
 // patterns: the vertices at the plane on both sides (case 2, relaxed); B's only in case 1,
 // where C is A's highest height for every feasible candidate (its constrained vertices lie on
-// the plane and A below it). Otherwise the exact values, in rationals.
+// the plane and A below it). Otherwise the exact values by expansions where every pattern is
+// verified (first_least_qp_exact), else in rationals.
 // `patterns`: tight_interval's for each candidate index (atA = ~0u: none verified).
 template <class List, class Variant, class ExactValue>
 int tied_first(const List& set, const int* c, int n, const Variant&, const VerifiedPattern* patterns,
@@ -514,6 +541,8 @@ int tied_first(const List& set, const int* c, int n, const Variant&, const Verif
     }
   }
   if (equal) return 0;
+  const int by_expansions = first_least_qp_exact(set, c, n, a_static, patterns);
+  if (by_expansions >= 0) return by_expansions;
   const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
   detail::Q best, v;
   int at = -1;
