@@ -74,7 +74,7 @@ int first_least_delta2(const List& s, const int* c, int n) {
   for (int k = 0; k < n; ++k) {
     l[k] = unpack_label(label_code(s, c[k]));
     const Candidate x = candidate(s, c[k]);
-    a[k] = ApproxNormal{{x.n[0], x.n[1], x.n[2]}, bounds_of(s, c[k]).e_n};
+    a[k] = ApproxNormal{{x.n[0], x.n[1], x.n[2]}, bounds_of(s, c[k]).e_n, x.parallel};
     have[k] = !x.parallel && compensated_depth(*s.A, *s.B, l[k], d[k]);
   }
   auto compensated = [&d, &have](int k, int w) -> std::optional<int> {

@@ -154,11 +154,11 @@ namespace {
 thread_local PairMemo<std::optional<bool>, 32> same_memo;  // ExactDirection's (header)
 }  // namespace
 
-std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule) const {
-  std::optional<bool> value;
+std::optional<bool> ExactDirection::same(const DirectionLabel& l, bool rule, int side) const {
+  std::optional<bool> value;  // (the answer does not depend on `side`: one memo entry)
   same_memo.get(A_, B_, label_key(l1_) | label_key(l) << 10 | unsigned(rule) << 20, value,
                 [&](std::optional<bool>& v) {
-                  v = computed(l, rule);
+                  v = computed(l, rule, side);
                   return true;
                 });
   return value;
@@ -180,10 +180,12 @@ static ExpVec orthogonal_to_normal(const TetVertices& A, const TetVertices& B, c
 
 std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const { return same(l, true); }
 
+std::optional<bool> ExactDirection::same_as(const DirectionLabel& l, int side) const { return same(l, true, side); }
+
 std::optional<bool> ExactDirection::same_as_labelled(const DirectionLabel& l) const { return same(l, false); }
 
 // n2: the label's exact oriented candidate (rule), or for an edge pair ±(eB × eA) as labelled.
-std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule) const {
+std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule, int side) const {
   if (state_ == 0) {
     // Granularity: coordinates multiples of 2^-152, products of 6 differences of 2^-912
     // (normal); magnitudes below (2^101)^6 · 2^40 (no overflow). See expansion.h.
@@ -207,6 +209,8 @@ std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule)
     if (!d.ok) return std::nullopt;
     if (d.n != 0) return false;
   }
+  // (the caller's sign of n1.n2, for an l2 whose two vectors span n2's orthogonal plane)
+  if (side != 0) return side > 0;
   bool ok = true;
   ExpVec n2;
   EdgePairKind kind = EdgePairKind::Generic;
@@ -431,7 +435,21 @@ bool certainly_not_parallel(const ApproxNormal& p, const ApproxNormal& q) {
                        p.n[0] * q.n[1] - p.n[1] * q.n[0]};
   return std::fabs(c[0]) > bound || std::fabs(c[1]) > bound || std::fabs(c[2]) > bound;  // (NaN: false)
 }
+
 }  // namespace
+
+// As certainly_not_parallel: each exact product p_a q_a is within Mp eq + Mq ep + ep eq of
+// p~_a q~_a (three of them); the three products' and two sums' roundings are below
+// 3u · 3 Mp Mq (1 + O(u)), taken as 16u Mp Mq; 2^-1060 for products that underflow; the factor
+// 1 + 2^-40 for the bound's own roundings.
+int certain_dot_sign(const ApproxNormal& p, const ApproxNormal& q) {
+  const double Mp = std::max({std::fabs(p.n[0]), std::fabs(p.n[1]), std::fabs(p.n[2])});
+  const double Mq = std::max({std::fabs(q.n[0]), std::fabs(q.n[1]), std::fabs(q.n[2])});
+  const double bound =
+      (3 * (Mp * q.e + Mq * p.e + p.e * q.e) + 16 * 0x1p-53 * Mp * Mq + 0x1p-1060) * (1 + 0x1p-40);
+  const double d = p.n[0] * q.n[0] + p.n[1] * q.n[1] + p.n[2] * q.n[2];
+  return d > bound ? 1 : d < -bound ? -1 : 0;  // (NaN: 0)
+}
 
 int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
                              const ApproxNormal* approx, const DeltaOrderHint& decided) {
@@ -447,7 +465,8 @@ int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const D
       }
     if (!(approx && certainly_not_parallel(approx[w], approx[k]))) {
       if (!direction) direction.emplace(A, B, l[w]);
-      if (direction->same_as(l[k]).value_or(false)) continue;  // equal delta: the earlier kept
+      const int side = approx && !approx[k].parallel_pair ? certain_dot_sign(approx[w], approx[k]) : 0;
+      if (direction->same_as(l[k], side).value_or(false)) continue;  // equal delta: the earlier kept
     }
     if (!least.ok && !(least = depth_parts_exact(A, B, l[w])).ok) return -1;
     ExactDepthParts p = depth_parts_exact(A, B, l[k]);

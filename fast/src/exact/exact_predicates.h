@@ -59,14 +59,18 @@ class ExactDirection {
  public:
   ExactDirection(const TetVertices& A, const TetVertices& B, const DirectionLabel& l1);
   std::optional<bool> same_as(const DirectionLabel& l2) const;  // same_direction_exact(A, B, l1, l2)
+  // same_as given `side`, the sign of n1.n2 when known (+1, -1; 0: not known), for an l2 whose
+  // normal is fixed by its two vectors (a face, or an edge pair that is not parallel): once n1
+  // is orthogonal to both, n1 is a multiple of n2 and that sign is the answer, without n2.
+  std::optional<bool> same_as(const DirectionLabel& l2, int side) const;
   // same_as with an edge pair's direction as labelled, not by the orientation rule: EE:a:b:+
   // is eB × eA (for parallel edges their common perpendicular, definitions §3) and EE:a:b:−
   // its negation whatever the rule says (a face: same_as).
   std::optional<bool> same_as_labelled(const DirectionLabel& l2) const;
 
  private:
-  std::optional<bool> same(const DirectionLabel& l2, bool rule) const;
-  std::optional<bool> computed(const DirectionLabel& l2, bool rule) const;
+  std::optional<bool> same(const DirectionLabel& l2, bool rule, int side = 0) const;
+  std::optional<bool> computed(const DirectionLabel& l2, bool rule, int side) const;
   const TetVertices& A_;
   const TetVertices& B_;
   DirectionLabel l1_;
@@ -122,14 +126,20 @@ std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDep
 //  - an exact tie of direction (same_direction_exact: delta depends on the oriented direction
 //    only, so they are equal and the earlier is kept), unless `approx` shows the two directions
 //    certainly apart (its double normal per label and a bound on each component's error,
-//    value_bounds.h's e_n: the double cross product certainly not 0);
+//    value_bounds.h's e_n: the double cross product certainly not 0); where `approx` also
+//    shows the sign of their dot product and l[k] is not a parallel edge pair, that sign
+//    answers once the exact normals are shown parallel (ExactDirection::same_as(l, side));
 //  - the exact comparison (depth_parts_exact, compare_delta2_exact; w's parts kept).
 // On an aligned pair the near ties of the least delta² are mostly one direction (a face and the
 // edge pairs of its plane) or a rounding apart (decided by the caller): no parts.
 struct ApproxNormal {
   double n[3];
   double e;
+  bool parallel_pair = false;  // a parallel edge pair: its normal is not fixed by its edges
 };
+// The sign of the exact n_p.n_q from two double normals and their bounds, where the computed
+// dot product exceeds its error bound; 0 otherwise.
+int certain_dot_sign(const ApproxNormal& p, const ApproxNormal& q);
 using DeltaOrderHint = std::function<std::optional<int>(int k, int w)>;
 int first_least_delta2_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n,
                              const ApproxNormal* approx = nullptr, const DeltaOrderHint& decided = {});
