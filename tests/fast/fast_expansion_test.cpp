@@ -52,6 +52,26 @@ std::pair<TetVertices, TetVertices> aligned_pair(compare::ReproducibleRng& r) {
 
 int sign_of_q(const Q& q) { return sgn(q); }
 
+// Every definitions §3 candidate label of the pair (edge pairs classified exactly: colinear
+// ones left out, undecidable ones with both orientations).
+std::vector<DirectionLabel> candidate_labels(const TetVertices& A, const TetVertices& B) {
+  std::vector<DirectionLabel> labels;
+  for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::FV, f, 0, EdgeOrientation::Decided});
+  for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::VF, f, 0, EdgeOrientation::Decided});
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const EdgePairClass c = classify_edge_pair_exact(A, B, a, b);
+      if (c.kind == EdgePairKind::Colinear) continue;
+      if (c.side == EdgePairSide::Undecidable) {
+        labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Plus});
+        labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Minus});
+      } else {
+        labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Decided});
+      }
+    }
+  return labels;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
@@ -82,20 +102,7 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
       }
     // depth signs of every candidate label, and same_direction_exact against rational cross
     // products of the oriented normals
-    std::vector<DirectionLabel> labels;
-    for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::FV, f, 0, EdgeOrientation::Decided});
-    for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::VF, f, 0, EdgeOrientation::Decided});
-    for (int a = 0; a < 6; ++a)
-      for (int b = 0; b < 6; ++b) {
-        const EdgePairClass c = classify_edge_pair_exact(A, B, a, b);
-        if (c.kind == EdgePairKind::Colinear) continue;
-        if (c.side == EdgePairSide::Undecidable) {
-          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Plus});
-          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Minus});
-        } else {
-          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Decided});
-        }
-      }
+    const std::vector<DirectionLabel> labels = candidate_labels(A, B);
     auto exact_normal = [&](const DirectionLabel& l) {
       if (l.kind == ContactKind::FV) return detail::face_normal_out_of(qa, l.a);
       if (l.kind == ContactKind::VF) return detail::face_normal_into(qb, l.a);
@@ -293,20 +300,7 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
     }
     if (orientation_sign_exact(A) == Sign::Zero || orientation_sign_exact(B) == Sign::Zero) continue;
     const detail::ExactFrame f = detail::exact_frame(A, B);
-    std::vector<DirectionLabel> labels;
-    for (int k = 0; k < 4; ++k) labels.push_back({ContactKind::FV, k, 0, EdgeOrientation::Decided});
-    for (int k = 0; k < 4; ++k) labels.push_back({ContactKind::VF, k, 0, EdgeOrientation::Decided});
-    for (int a = 0; a < 6; ++a)
-      for (int b = 0; b < 6; ++b) {
-        const EdgePairClass c = classify_edge_pair_exact(A, B, a, b);
-        if (c.kind == EdgePairKind::Colinear) continue;
-        if (c.side == EdgePairSide::Undecidable) {
-          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Plus});
-          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Minus});
-        } else {
-          labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Decided});
-        }
-      }
+    const std::vector<DirectionLabel> labels = candidate_labels(A, B);
     for (int kind = 0; kind < 3; ++kind) {  // case 2, case 1 (static), relaxed
       const bool a_static = kind == 1;
       std::vector<QpParts> parts;
