@@ -58,9 +58,14 @@ PDD_SCREEN_CLONES void surviving_pieces(const double SA[3], const double QA[6], 
     const double c = std::max({std::fabs(C[0]), std::fabs(C[1]), std::fabs(C[2])});
     const double t = std::max({std::fabs(TA[0]), std::fabs(TA[1]), std::fabs(TA[2])});
     const double sm = std::max({std::fabs(S[0]), std::fabs(S[1]), std::fabs(S[2])});
-    const double n_error = 0x1p-39 * (qa + b.q[l] + 2 * c * sm + m * c * c + kk * t * t);  // (header)
-    out.n_error[l] = n_error;
-    const Edges e = window_edges(top, lower, n_error);
+    out.n_error[l] = 0x1p-39 * (qa + b.q[l] + 2 * c * sm + m * c * c + kk * t * t);  // (header)
+  }
+  // The counts in a second lane loop over the stored matrices: one loop doing both keeps more
+  // values live than AVX2's 16 vector registers hold, and its spills cost more than the
+  // reloads here (the same operations on the same values: the same bits).
+  for (int l = 0; l < 16; ++l) {
+    const double h[6] = {out.N[0][l], out.N[1][l], out.N[2][l], out.N[3][l], out.N[4][l], out.N[5][l]};
+    const Edges e = window_edges(top, lower, out.n_error[l]);
     const int below_top = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.hi);
     const int below_low = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.lo);
     out.keep[l] = !(below_top == 0 || (below_top > 0 && below_top == below_low));
