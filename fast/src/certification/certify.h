@@ -59,6 +59,14 @@ inline double qp_rel(const Candidate& c, double v, const FilterBounds& fb) {
   return qp_root_rel(v * 20.0 * c.nn, c.nn, max_height(c), degree_bounds_of(fb, c));
 }
 
+// Candidate i's double normal and the bound e_n on each component's error (value_bounds.h):
+// the exact direction tests' hints (exact_predicates.h's ApproxNormal).
+template <class List>
+ApproxNormal approx_normal(const List& s, int i) {
+  const Candidate x = candidate(s, i);
+  return ApproxNormal{{x.n[0], x.n[1], x.n[2]}, bounds_of(s, i).e_n, x.parallel};
+}
+
 // The position in c[0..n) (candidate indices in canonical order) of the first least exact
 // delta², exact ties to the earliest; -1 where neither compensated depths nor expansions can
 // decide (first_least_delta2_exact's running minimum, each step decided first by
@@ -73,9 +81,8 @@ int first_least_delta2(const List& s, const int* c, int n) {
   bool have[kMaxCandidates];
   for (int k = 0; k < n; ++k) {
     l[k] = unpack_label(label_code(s, c[k]));
-    const Candidate x = candidate(s, c[k]);
-    a[k] = ApproxNormal{{x.n[0], x.n[1], x.n[2]}, bounds_of(s, c[k]).e_n, x.parallel};
-    have[k] = !x.parallel && compensated_depth(*s.A, *s.B, l[k], d[k]);
+    a[k] = approx_normal(s, c[k]);
+    have[k] = !a[k].parallel_pair && compensated_depth(*s.A, *s.B, l[k], d[k]);
   }
   auto compensated = [&d, &have](int k, int w) -> std::optional<int> {
     if (!have[k] || !have[w]) return std::nullopt;

@@ -418,7 +418,6 @@ std::optional<int> compare_delta2_exact(const ExactDepthParts& p, const ExactDep
   return d.sign();
 }
 
-namespace {
 // The exact normals of p and q certainly are not parallel: some component of the computed
 // p~ x q~ exceeds its error. With |p - p~|, |q - q~| <= ep, eq per component and M the largest
 // |component|, each exact product p_a q_b is within Mp eq + Mq ep + ep eq of p~_a q~_b, a
@@ -435,8 +434,6 @@ bool certainly_not_parallel(const ApproxNormal& p, const ApproxNormal& q) {
                        p.n[0] * q.n[1] - p.n[1] * q.n[0]};
   return std::fabs(c[0]) > bound || std::fabs(c[1]) > bound || std::fabs(c[2]) > bound;  // (NaN: false)
 }
-
-}  // namespace
 
 // As certainly_not_parallel: each exact product p_a q_a is within Mp eq + Mq ep + ep eq of
 // p~_a q~_a (three of them); the three products' and two sums' roundings are below

@@ -137,6 +137,9 @@ struct ApproxNormal {
   double e;
   bool parallel_pair = false;  // a parallel edge pair: its normal is not fixed by its edges
 };
+// The exact normals of p and q certainly not parallel (a component of the computed cross
+// product beyond its error bound); false: not known.
+bool certainly_not_parallel(const ApproxNormal& p, const ApproxNormal& q);
 // The sign of the exact n_p.n_q from two double normals and their bounds, where the computed
 // dot product exceeds its error bound; 0 otherwise.
 int certain_dot_sign(const ApproxNormal& p, const ApproxNormal& q);
