@@ -7,6 +7,7 @@
 #include "exact/exact_candidate.h"
 #include "exact/exact_predicates.h"
 #include "global/global_depth.h"
+#include "kernel/anchor.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/power_scale.h"
@@ -40,19 +41,36 @@ Depth depth_of(const Choice& ch, const TetVertices& A, const TetVertices& B, boo
   return d;
 }
 
+// The pair the engine computes on (pdd.h, "Translation"): the anchored pair where there is one.
+// No function here returns positions, so nothing is moved back.
+template <class F>
+auto on_anchored(const TetVertices& A, const TetVertices& B, F f) {
+  TetVertices As, Bs;
+  if (detail::anchored(A, B, As, Bs)) return f(As, Bs);
+  return f(A, B);
+}
+
 }  // namespace
 
 Depth rigid_pd2(const TetVertices& A, const TetVertices& B) {
-  return depth_of(rigid_pd2_choice(A, B), A, B, true);
+  return on_anchored(A, B, [](const TetVertices& a, const TetVertices& b) {
+    return depth_of(rigid_pd2_choice(a, b), a, b, true);
+  });
 }
 Depth pdd2_static(const TetVertices& A, const TetVertices& B) {
-  return depth_of(pdd2_static_choice(A, B), A, B, true);
+  return on_anchored(A, B, [](const TetVertices& a, const TetVertices& b) {
+    return depth_of(pdd2_static_choice(a, b), a, b, true);
+  });
 }
 Depth pdd2(const TetVertices& A, const TetVertices& B) {
-  return depth_of(pdd2_choice(A, B), A, B, true);
+  return on_anchored(A, B, [](const TetVertices& a, const TetVertices& b) {
+    return depth_of(pdd2_choice(a, b), a, b, true);
+  });
 }
 Depth pdd2_relaxed(const TetVertices& A, const TetVertices& B) {
-  return depth_of(pdd2_relaxed_choice(A, B), A, B, true);
+  return on_anchored(A, B, [](const TetVertices& a, const TetVertices& b) {
+    return depth_of(pdd2_relaxed_choice(a, b), a, b, true);
+  });
 }
 Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
   if (k != 1 && k != kAccelWide) {
@@ -61,7 +79,9 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
     d.pd2 = std::numeric_limits<double>::quiet_NaN();
     return d;
   }
-  return depth_of(pdd2_accel_choice(A, B, k), A, B, false);
+  return on_anchored(A, B, [k](const TetVertices& a, const TetVertices& b) {
+    return depth_of(pdd2_accel_choice(a, b, k), a, b, false);
+  });
 }
 
 namespace {
@@ -90,9 +110,8 @@ bool relaxed_on_set(const detail::ScaledPair& sp, Choice& rigid, Choice& rel, Ca
   return true;
 }
 
-}  // namespace
 
-NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
+NormalDepth pdd2_global_as_given(const TetVertices& A, const TetVertices& B) {
   NormalDepth d;
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   // The hot path: on the exactly scaled pair, the rigid value (the enumeration's lower bound
@@ -179,6 +198,12 @@ NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
   d.normal = g.normal;
   detail::power_normalized(d.normal);
   return d;
+}
+
+}  // namespace
+
+NormalDepth pdd2_global(const TetVertices& A, const TetVertices& B) {
+  return on_anchored(A, B, pdd2_global_as_given);
 }
 
 }  // namespace pdd::fast

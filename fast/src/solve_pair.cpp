@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include "exact/exact_path.h"
 #include "exact/exact_predicates.h"
 #include "global/global_depth.h"
+#include "kernel/anchor.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/power_scale.h"
@@ -422,9 +424,8 @@ PairGradient<double> global_gradient(const TetPair& pair, const PairResult<doubl
   return g;
 }
 
-}  // namespace
-
-PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options) {
+// The record of the pair as given, without the gradient.
+PairResult<double> solve_as_given(const TetPair& pair, const SolveOptions& options) {
   bool slow = false, refined = false;
   unsigned computed = computed_values(options.values, options.with_global);
   PairResult<double> r = solve_record(pair, &slow, &refined, options.with_global, computed);
@@ -434,6 +435,48 @@ PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options) 
   }
   r.stats.slow_path = slow;
   r.stats.refined = refined;
+  return r;
+}
+
+}  // namespace
+
+std::optional<AnchoredPair> anchored_pair(const TetVertices& A, const TetVertices& B) {
+  AnchoredPair m;
+  if (!detail::anchored(A, B, m.A, m.B)) return std::nullopt;
+  m.origin = A[0];
+  return m;
+}
+
+bool move_positions(PairResult<double>& r, const AnchoredPair& m, const TetVertices& A, const TetVertices& B) {
+  bool ok = true;
+  auto move = [&](Positions<double>& q, const TetVertices& rest_m, const TetVertices& rest) {
+    for (int v = 0; v < 4; ++v)
+      for (int k = 0; k < 3; ++k) {
+        double& x = q[v][k];
+        if (std::memcmp(&x, &rest_m[v][k], sizeof x) == 0) {
+          x = rest[v][k];
+          continue;
+        }
+        const double moved = x + m.origin[k];
+        ok = ok && (std::isfinite(moved) || !std::isfinite(x));
+        x = moved;
+      }
+  };
+  move(r.q1_A, m.A, A), move(r.q1_B, m.B, B);
+  move(r.q1_A_global, m.A, A), move(r.q1_B_global, m.B, B);
+  return ok;
+}
+
+// On the anchored pair where there is one (pdd.h, "Translation"), moved back.
+PairResult<double> solve_pair(const TetPair& pair, const SolveOptions& options) {
+  PairResult<double> r;
+  if (const std::optional<AnchoredPair> m = anchored_pair(pair.A, pair.B)) {
+    r = solve_as_given(TetPair{"", {}, m->A, m->B}, options);
+    if (!move_positions(r, *m, pair.A, pair.B)) r = solve_as_given(pair, options);
+    r.name = pair.name;
+  } else {
+    r = solve_as_given(pair, options);
+  }
   if (options.gradient && options.with_global && !r.error) r.pdd2_global_grad = global_gradient(pair, r);
   return r;
 }

@@ -154,6 +154,36 @@ enum class Overlap { Disjoint, Intersecting, Unknown };
 Overlap overlap_filter(const TetVertices& A, const TetVertices& B);
 bool interiors_intersect(const TetVertices& A, const TetVertices& B);
 
+// Translation. Every value, label, normal and decision above is invariant under a translation
+// of both tetrahedra. Where moving the pair so that A's first vertex s0 is the origin is exact in
+// doubles (each of the 24 coordinate differences from s0 exact: dyadic coordinates such as a
+// grid of cell 2^-k or integer voxels, and most pairs of nearby vertices of like magnitude),
+// every function above computes on the moved pair and moves the positions back by s0, one
+// rounding per coordinate (at most 2^-53 |q|: an eighth of the positions' allowance of
+// definitions §8 as `pdd compare` judges it, and far inside its 1e-9 R separation). So two pairs
+// equal up to such a translation get the same values, labels and normals bit for bit.
+//   anchored_pair   the moved pair and s0; nothing when a difference is not exact (or not
+//                   finite), when a non-zero moved coordinate is below 2^-20 of the largest
+//                   (vertices a rounding apart: the exact comparisons' expansions would not
+//                   take the moved pair), or when s0 is already (+0, +0, +0) (the identity).
+//   move_positions  moves a record of m = anchored_pair(A, B) back to the pair (A, B): every
+//                   coordinate of q1_A, q1_B, q1_A_global, q1_B_global plus s0, except that a
+//                   coordinate equal to its rest vertex's in m (a value not asked, a vertex that
+//                   does not move) becomes the rest vertex's in (A, B), bit for bit (the same
+//                   value: only a −0 would otherwise come back as +0). False (r left partly
+//                   moved) when a finite coordinate would leave the double range:
+//                   solve_pair and global_minimiser then compute the pair as given.
+// With p anchored to m: solve_pair(p) equals solve_pair(m) moved, bit for bit, whenever the
+// move returns true (the gradient, when asked, is computed from the moved positions); a
+// caller meeting many pairs equal up to translation may compute one and move it to the others
+// (pdd/mesh/contacts.h does).
+struct AnchoredPair {
+  TetVertices A, B;
+  std::array<double, 3> origin{};
+};
+std::optional<AnchoredPair> anchored_pair(const TetVertices& A, const TetVertices& B);
+bool move_positions(PairResult<double>& r, const AnchoredPair& m, const TetVertices& A, const TetVertices& B);
+
 }  // namespace pdd::fast
 
 namespace pdd::reference {

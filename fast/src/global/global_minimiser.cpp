@@ -1,6 +1,7 @@
 // global_minimiser.cpp — pdd/global_minimiser.h: solve_pair's definitions §9 fields alone
 // (fast/src/solve_pair.cpp's solve_record with `global`, restricted to its common double path).
 #include "pdd/global_minimiser.h"
+#include "pdd/pdd.h"
 
 #include <cmath>
 
@@ -141,9 +142,7 @@ std::optional<GlobalMinimiser> minimiser_from_set(const TetVertices& A, const Te
   return minimiser_from(A, B, sp, set, rigid, rel, candidate(set, rel.index));
 }
 
-}  // namespace
-
-std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B) {
+std::optional<GlobalMinimiser> minimiser_as_given(const TetVertices& A, const TetVertices& B) {
   if (!detail::all_finite(A) || !detail::all_finite(B)) return std::nullopt;
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   if (!sp.exact) return std::nullopt;
@@ -171,6 +170,22 @@ std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetV
   if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   if (index < 0) return std::nullopt;
   return minimiser_from(A, B, sp, *q, rigid, rel, candidate(*q, index));
+}
+
+}  // namespace
+
+// On the anchored pair where there is one, its positions moved back (pdd.h, "Translation", as
+// solve_pair: the same fields bit for bit).
+std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B) {
+  const std::optional<AnchoredPair> m = anchored_pair(A, B);
+  if (!m) return minimiser_as_given(A, B);
+  std::optional<GlobalMinimiser> g = minimiser_as_given(m->A, m->B);
+  if (!g) return g;
+  PairResult<double> r;  // move_positions' fields: q1_* the rest pose, moved back exactly
+  r.q1_A = m->A, r.q1_B = m->B, r.q1_A_global = g->q1_A, r.q1_B_global = g->q1_B;
+  if (!move_positions(r, *m, A, B)) return minimiser_as_given(A, B);
+  g->q1_A = r.q1_A_global, g->q1_B = r.q1_B_global;
+  return g;
 }
 
 }  // namespace pdd::fast
