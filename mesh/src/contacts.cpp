@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "check_indices.h"
+#include "translation_memo.h"
 #include "pdd/mesh.h"
 #include "pdd/rejection.h"
 
@@ -193,8 +194,9 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   out.seconds_decision = since(t);
   stop_if_cancelled();
 
-  // Stage 4: the variants.
+  // Stage 4: the variants, through the translation memo (translation_memo.h: the same bits).
   t = Clock::now();
+  detail::TranslationMemo records;
   out.pairs.resize(hits.size());
   if (options.progress) options.progress(0, hits.size());
   tbb::parallel_for(std::size_t{0}, hits.size(), [&](std::size_t h) {
@@ -205,7 +207,9 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
     c.b = cand[k][1];
     const TetVertices Ta = element(A, c.a), Tb = element(BB, c.b);
     if constexpr (std::is_same_v<R, double>) {
-      c.result = fast_record(Ta, Tb, options.variants);
+      c.result = records.record(Ta, Tb, [&](const TetVertices& a, const TetVertices& b) {
+        return fast_record(a, b, options.variants);
+      });
     } else {
       reference::SolveOptions solve;
       solve.with_global = options.variants & kGlobal;

@@ -364,6 +364,60 @@ BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
   check_values(contacts_self(S, computing(kAllVariants)), S, S, kAllVariants);
 }
 
+// A Kuhn grid of n^3 cubes of side h (six tetrahedra a cube around its diagonal), moved by t.
+Mesh kuhn_grid(int n, double h, const std::array<double, 3>& t) {
+  Mesh m;
+  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.vertices.push_back({i * h + t[0], j * h + t[1], k * h + t[2]});
+  const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& ax : axes) {
+          int c[3] = {i, j, k};
+          std::array<std::size_t, 4> tet{id(i, j, k), 0, 0, 0};
+          for (int s = 0; s < 3; ++s) ++c[ax[s]], tet[s + 1] = id(c[0], c[1], c[2]);
+          m.tets.push_back(tet);
+        }
+  return m;
+}
+
+// Grids of cell 2^-2 against copies shifted by half a cell (along (1, 1, 1), and along x), and
+// one stacked a whole cell up a quarter deep: most element pairs repeat up to an exact
+// translation, and contacts() computes each kind once (translation_memo.h). The pairs are the
+// brute-force ones and every record is solve_pair's on its own pair, bit for bit: all the
+// requested fields (check_values).
+BOOST_AUTO_TEST_CASE(repeated_pairs_of_a_structured_mesh_equal_solve_pair) {
+  const Mesh A = kuhn_grid(5, 0.25, {0, 0, 0});
+  for (const std::array<double, 3>& t : {std::array<double, 3>{0.125, 0.125, 0.125},
+                                         std::array<double, 3>{0.125, 0, 0},
+                                         std::array<double, 3>{0, 0, 1.0625}}) {
+    const Mesh B = kuhn_grid(5, 0.25, t);
+    BOOST_TEST_CONTEXT("shift " << t[0] << " " << t[1] << " " << t[2]) {
+      const Contacts<double> c = contacts(A, B);
+      BOOST_TEST((pairs_of(c) == brute_force(A, &B)));
+      BOOST_TEST(c.pairs.size() > 100u);
+      check_values(c, A, B, kDefaultVariants);
+      for (unsigned v : {unsigned(kRigid | kAccel1), unsigned(kGlobal), kAllVariants})
+        BOOST_TEST_CONTEXT(variant_names(v)) { check_values(contacts(A, B, computing(v)), A, B, v); }
+    }
+  }
+  const Mesh S = kuhn_grid(4, 0.5, {0, 0, 0});
+  Mesh two = S;  // self-contact: the grid and its copy a quarter cell along (1, 1, 1), one mesh
+  const std::size_t nv = S.vertices.size();
+  for (std::size_t v = 0; v < nv; ++v)
+    two.vertices.push_back({S.vertices[v][0] + 0.125, S.vertices[v][1] + 0.125, S.vertices[v][2] + 0.125});
+  for (auto t : S.tets) {
+    for (auto& i : t) i += nv;
+    two.tets.push_back(t);
+  }
+  const Contacts<double> self = contacts_self(two, computing(kAllVariants));
+  BOOST_TEST((pairs_of(self) == brute_force(two, nullptr)));
+  check_values(self, two, two, kAllVariants);
+}
+
 BOOST_AUTO_TEST_CASE(progress_starts_at_zero_and_cancel_stops_the_call) {
   const Mesh A = load("slivers.msh"), B = load("sphere-a.msh");
   const std::size_t total = contacts(A, B).pairs.size();

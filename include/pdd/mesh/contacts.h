@@ -26,6 +26,10 @@
 //                   touching or nearly touching, parallel edges); touching is not intersecting;
 //   4. depth        the requested variants per intersecting pair, on all cores (TBB), through the
 //                   public engine calls of <pdd/pdd.h> only.
+// Stage 4 computes once the pairs that are equal up to an exact translation (pdd.h,
+// "Translation": a structured mesh of dyadic or integer coordinates against a shifted copy has
+// few kinds of pairs) and moves the record to each, the same bits as computing each; on meshes
+// where fewer than a quarter of the first 4096 pairs repeat this stops by itself.
 // Results are sorted by (a, b), independent of the number of threads.
 //
 // Self-contact (contacts_self, contacts_exact_self): pairs a < b of one mesh whose elements share no vertex index.
