@@ -26,6 +26,7 @@
 #include <string>
 #include <thread>
 
+#include "kuhn_grid_mesh.h"
 #include "pdd/mesh.h"
 
 using namespace pdd;
@@ -364,25 +365,6 @@ BOOST_AUTO_TEST_CASE(values_equal_solve_pair) {
   check_values(contacts_self(S, computing(kAllVariants)), S, S, kAllVariants);
 }
 
-// A Kuhn grid of n^3 cubes of side h (six tetrahedra a cube around its diagonal), moved by t.
-Mesh kuhn_grid(int n, double h, const std::array<double, 3>& t) {
-  Mesh m;
-  auto id = [n](int i, int j, int k) { return std::size_t((k * (n + 1) + j) * (n + 1) + i); };
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) m.vertices.push_back({i * h + t[0], j * h + t[1], k * h + t[2]});
-  const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        for (const auto& ax : axes) {
-          int c[3] = {i, j, k};
-          std::array<std::size_t, 4> tet{id(i, j, k), 0, 0, 0};
-          for (int s = 0; s < 3; ++s) ++c[ax[s]], tet[s + 1] = id(c[0], c[1], c[2]);
-          m.tets.push_back(tet);
-        }
-  return m;
-}
 
 // Grids of cell 2^-2 against copies shifted by half a cell (along (1, 1, 1), and along x), and
 // one stacked a whole cell up a quarter deep: most element pairs repeat up to an exact
@@ -390,6 +372,7 @@ Mesh kuhn_grid(int n, double h, const std::array<double, 3>& t) {
 // brute-force ones and every record is solve_pair's on its own pair, bit for bit: all the
 // requested fields (check_values).
 BOOST_AUTO_TEST_CASE(repeated_pairs_of_a_structured_mesh_equal_solve_pair) {
+  using test::kuhn_grid;  // (tests/support/kuhn_grid_mesh.h)
   const Mesh A = kuhn_grid(5, 0.25, {0, 0, 0});
   for (const std::array<double, 3>& t : {std::array<double, 3>{0.125, 0.125, 0.125},
                                          std::array<double, 3>{0.125, 0, 0},
