@@ -48,4 +48,11 @@ struct GlobalMinimiser {
 
 std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B);
 
+// pdd/pdd.h's "Translation" for a minimiser: with m = anchored_pair(A, B), global_minimiser(A, B)
+// is global_minimiser(m.A, m.B) with its positions moved by this (move_positions' rule), unless
+// it returns false (a coordinate would leave the double range: global_minimiser then computes
+// the pair as given).
+struct AnchoredPair;
+bool move_positions(GlobalMinimiser& g, const AnchoredPair& m, const TetVertices& A, const TetVertices& B);
+
 }  // namespace pdd::fast

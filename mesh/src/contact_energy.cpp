@@ -25,6 +25,7 @@
 
 #include "pdd/global_minimiser.h"
 #include "pdd/mesh.h"
+#include "translation_memo.h"
 
 namespace pdd::mesh {
 namespace {
@@ -259,8 +260,13 @@ Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p) {
 // One pair's global minimiser by the fast engine: fast::global_minimiser (solve_pair's
 // definitions §9 fields alone, bit for bit), else the whole solve_pair where that declines, else
 // (pdd2_global declined: no certified normal in doubles) the exact engine's witness.
-PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, const TetVertices& Tb) {
-  if (const auto m = fast::global_minimiser(Ta, Tb)) {
+// Through `memo` (translation_memo.h: pairs equal up to translation computed once, the same bits).
+PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, const TetVertices& Tb,
+                           detail::TranslationMemo<std::optional<fast::GlobalMinimiser>>& memo) {
+  const auto minimiser = [](const TetVertices& x, const TetVertices& y) { return fast::global_minimiser(x, y); };
+  const auto move = [](std::optional<fast::GlobalMinimiser>& g, const fast::AnchoredPair& m, const TetVertices& x,
+                       const TetVertices& y) { return !g || fast::move_positions(*g, m, x, y); };
+  if (const auto m = memo.get(Ta, Tb, minimiser, move)) {
     PairSolution s;
     s.a = a;
     s.b = b;
@@ -302,12 +308,13 @@ std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactE
   seconds_found = seconds_since(t0);
   const Mesh& Bm = B ? *B : A;
   out.resize(c.pairs.size());
+  detail::TranslationMemo<std::optional<fast::GlobalMinimiser>> memo;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, c.pairs.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       if (cancelled()) return;
                       for (std::size_t j = range.begin(); j != range.end(); ++j) {
                         const auto& k = c.pairs[j];
-                        out[j] = fast_solution(k.a, k.b, element(A, k.a), element(Bm, k.b));
+                        out[j] = fast_solution(k.a, k.b, element(A, k.a), element(Bm, k.b), memo);
                       }
                     });
   if (cancelled()) throw Cancelled();

@@ -196,7 +196,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
 
   // Stage 4: the variants, through the translation memo (translation_memo.h: the same bits).
   t = Clock::now();
-  detail::TranslationMemo records;
+  detail::TranslationMemo<PairResult<double>> records;
   out.pairs.resize(hits.size());
   if (options.progress) options.progress(0, hits.size());
   tbb::parallel_for(std::size_t{0}, hits.size(), [&](std::size_t h) {
@@ -207,9 +207,11 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
     c.b = cand[k][1];
     const TetVertices Ta = element(A, c.a), Tb = element(BB, c.b);
     if constexpr (std::is_same_v<R, double>) {
-      c.result = records.record(Ta, Tb, [&](const TetVertices& a, const TetVertices& b) {
-        return fast_record(a, b, options.variants);
-      });
+      c.result = records.get(
+          Ta, Tb, [&](const TetVertices& a, const TetVertices& b) { return fast_record(a, b, options.variants); },
+          [](PairResult<double>& r, const fast::AnchoredPair& m, const TetVertices& a, const TetVertices& b) {
+            return fast::move_positions(r, m, a, b);
+          });
     } else {
       reference::SolveOptions solve;
       solve.with_global = options.variants & kGlobal;

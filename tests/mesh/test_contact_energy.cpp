@@ -16,6 +16,7 @@
 
 #include "pdd/global_minimiser.h"
 #include "pdd/mesh.h"
+#include "kuhn_grid_mesh.h"
 
 using namespace pdd;
 using namespace pdd::mesh;
@@ -504,4 +505,37 @@ BOOST_AUTO_TEST_CASE(positions_at_rest_equal_a_copy_of_the_mesh) {
     BOOST_TEST(rest.pairs[j].pdd2_global == copy.pairs[j].pdd2_global);
     BOOST_TEST(rest.pairs[j].energy == copy.pairs[j].energy);
   }
+}
+
+// Grids of cell 1/4 half a cell apart along (1, 1, 1): most pairs repeat up to an exact
+// translation and the energy computes each kind once (mesh/src/translation_memo.h). Every
+// pair's pdd2_global is solve_pair's bit for bit, and the gradient is the weighted sum of
+// solve_pair's per-pair gradients (pdd.h: computed from the moved positions, so a position
+// moved wrongly would show; summed in another order: 1e-12 of the largest row).
+BOOST_AUTO_TEST_CASE(repeated_pairs_of_a_grid_equal_solve_pair) {
+  const Mesh A = test::kuhn_grid(4, 0.25, {0, 0, 0}), B = test::kuhn_grid(4, 0.25, {0.125, 0.125, 0.125});
+  ContactEnergyOptions o;
+  o.per_pair = true;
+  const ContactEnergy e = contact_energy(A, B, A.vertices, B.vertices, o);
+  BOOST_REQUIRE_GT(e.pair_count, 200u);
+  fast::SolveOptions so;
+  so.with_global = true;
+  so.gradient = true;
+  const std::size_t na = A.vertices.size();
+  std::vector<Vec3d> g(na + B.vertices.size(), Vec3d{0, 0, 0});
+  for (const EnergyPair& p : e.pairs) {
+    const TetVertices Ta = element(A, p.a), Tb = element(B, p.b);
+    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, Ta, Tb}, so);
+    BOOST_REQUIRE(!r.error && !r.pdd2_global_error && r.pdd2_global_grad);
+    BOOST_REQUIRE_EQUAL(p.pdd2_global, r.pdd2_global);
+    for (int i = 0; i < 8; ++i) {
+      const std::size_t v = i < 4 ? A.tets[p.a][i] : na + B.tets[p.b][i - 4];
+      for (int k = 0; k < 3; ++k) g[v][k] += p.weight * (*r.pdd2_global_grad)[i][k];
+    }
+  }
+  double scale = 0;
+  for (const Vec3d& x : g) scale = std::max({scale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+  BOOST_REQUIRE_GT(scale, 0.0);
+  for (std::size_t v = 0; v < g.size(); ++v)
+    for (int k = 0; k < 3; ++k) BOOST_REQUIRE_LE(std::abs(e.gradient[v][k] - g[v][k]), 1e-12 * scale);
 }

@@ -176,15 +176,19 @@ std::optional<GlobalMinimiser> minimiser_as_given(const TetVertices& A, const Te
 
 // On the anchored pair where there is one, its positions moved back (pdd.h, "Translation", as
 // solve_pair: the same fields bit for bit).
+bool move_positions(GlobalMinimiser& g, const AnchoredPair& m, const TetVertices& A, const TetVertices& B) {
+  PairResult<double> r;  // move_positions' fields: q1_* the rest pose, moved back exactly
+  r.q1_A = m.A, r.q1_B = m.B, r.q1_A_global = g.q1_A, r.q1_B_global = g.q1_B;
+  if (!move_positions(r, m, A, B)) return false;
+  g.q1_A = r.q1_A_global, g.q1_B = r.q1_B_global;
+  return true;
+}
+
 std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B) {
   const std::optional<AnchoredPair> m = anchored_pair(A, B);
   if (!m) return minimiser_as_given(A, B);
   std::optional<GlobalMinimiser> g = minimiser_as_given(m->A, m->B);
-  if (!g) return g;
-  PairResult<double> r;  // move_positions' fields: q1_* the rest pose, moved back exactly
-  r.q1_A = m->A, r.q1_B = m->B, r.q1_A_global = g->q1_A, r.q1_B_global = g->q1_B;
-  if (!move_positions(r, *m, A, B)) return minimiser_as_given(A, B);
-  g->q1_A = r.q1_A_global, g->q1_B = r.q1_B_global;
+  if (g && !move_positions(*g, *m, A, B)) return minimiser_as_given(A, B);
   return g;
 }
 
