@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -250,6 +251,31 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_within_contract_without_the_exact
     slow += fast::solve_pair(p, mesh_variants_only()).stats.slow_path;
   }
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
+}
+
+// The hot functions as a mesh's contacts call them (rigid_pd2, then pdd2_accel(·, 1) on the same
+// pair, which takes the rigid choice the first call left: rigid_depth.h's rigid_pd2_reusing)
+// on contacts made by rounding and resting contacts, where that choice is the exact tie order:
+// pdd2_accel1 the same bits as computed alone (another pair asked in between), and both values
+// and the rigid label within definitions §8 of the exact engine (compare_pair on solve_pair's
+// record with the hot functions' values put in).
+BOOST_AUTO_TEST_CASE(hot_functions_in_a_mesh_order_within_contract) {
+  std::vector<TetPair> pairs = pdd::test::rounding_contact_pairs(2, 16);
+  for (const TetPair& p : pdd::test::resting_contact_pairs(2, 1e-10 * 0.125, 8)) pairs.push_back(p);
+  BOOST_REQUIRE(pairs.size() == 24u);
+  const TetPair& other = pairs.back();
+  for (const TetPair& p : pairs) {
+    (void)fast::rigid_pd2(other.A, other.B);
+    const fast::Depth alone = fast::pdd2_accel(p.A, p.B, 1);
+    const fast::Depth rigid = fast::rigid_pd2(p.A, p.B);
+    const fast::Depth accel = fast::pdd2_accel(p.A, p.B, 1);
+    BOOST_REQUIRE(rigid.status == fast::DepthStatus::Ok && accel.status == fast::DepthStatus::Ok);
+    BOOST_TEST(std::memcmp(&alone.pd2, &accel.pd2, sizeof(double)) == 0, p.name);
+    PairResult<double> fast = fast::solve_pair(p);
+    fast.rigid_pd2 = rigid.pd2, fast.rigid_dir = rigid.dir, fast.pdd2_accel1 = accel.pd2;
+    const auto c = compare::compare_pair(p, reference::solve_exact(p, {QpFormulation::Reduced}), fast);
+    BOOST_TEST(!c.over_tolerance(), p.name);
+  }
 }
 
 // A resting contact of stacked blocks (structured_cells.h), 1e-7 and 1e-10 of the cell deep:

@@ -13,6 +13,7 @@
 #include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
 #include "hot_path.h"
+#include "kernel/pair_memo.h"
 
 #include "certification/tie_tolerance.h"
 #include "kernel/superset_depth.h"
@@ -212,6 +213,17 @@ double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
   return best > 0.0 ? best : 0.0;
 }
 
+Choice rigid_pd2_reusing(const CandidateSet& set) {
+  if (!set.A) return rigid_pd2(set);
+  thread_local detail::PairMemo<Choice, 1> last;
+  Choice ch;
+  last.get(*set.A, *set.B, 0, ch, [&set](Choice& c) {
+    c = rigid_pd2(set);
+    return true;
+  });
+  return ch;
+}
+
 Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
   // superset_uncertified: the fused branch ran on power_scaled(A, B) and declined or did not
   // certify. rigid_superset on that same scaled pair is the same computation bit for bit
@@ -230,7 +242,7 @@ Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
         if (!superset_uncertified && rigid_superset(As, Bs, ch) && ch.certified) return true;
         CandidateSet set;
         if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
-        ch = rigid_pd2(set);
+        ch = rigid_pd2_reusing(set);
         return true;
       },
       [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {

@@ -35,6 +35,10 @@ struct Choice {
 
 Choice rigid_pd2(const CandidateSet& set);
 Choice rigid_pd2(const QuickCandidates& q);  // same candidates, same result
+// rigid_pd2(set), kept per thread for the last pair it was asked of (kernel/pair_memo.h: the
+// pair's bits): one pair's values ask it again (rigid_pd2_choice, then pdd2_accel's k = 1 at
+// the rigid direction), and on a contact made by rounding it is the exact tie order's cost.
+Choice rigid_pd2_reusing(const CandidateSet& set);
 // `certified` (optional): the definitions §8 verdict (value_bounds.h; exact 0 is certified only
 // when some overlap is surely <= 0). Not certified in doubles: the contenders are evaluated exactly
 // (refine.h), `refined` (optional) then set.

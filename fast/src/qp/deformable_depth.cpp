@@ -1035,6 +1035,9 @@ void accel_by_directions(const List& set, int k, double hi_chosen, DeltaBounds<L
   }
 }
 
+inline Choice rigid_of_list(const CandidateSet& set) { return rigid_pd2_reusing(set); }
+inline Choice rigid_of_list(const QuickCandidates& q) { return rigid_pd2(q); }
+
 // k = 1 when the double path cannot certify the first in delta² order: the exact first is the
 // rigid depth's exact choice (definitions §4 and §5: the same candidates in the same canonical
 // order, ties to the first; delta > 0 on every candidate of an intersecting pair, so delta²
@@ -1042,10 +1045,11 @@ void accel_by_directions(const List& set, int k, double hi_chosen, DeltaBounds<L
 // pairs its contenders' compensated intervals and exact direction ties settle what the double
 // bounds leave tied), the case-2 value there is certified as a separated choice's: on its own
 // interval in doubles, on compensated heights (accel1_compensated), else exactly (refine_accel).
-// `given`: the caller's rigid_pd2 of the same list, or null (computed here).
+// `given`: the caller's rigid_pd2 of the same list, or null (computed here, or the one
+// rigid_pd2 left for this pair: rigid_depth.h's rigid_pd2_reusing).
 template <class List>
 bool accel1_at_rigid(const List& set, const Choice* given, double hi_chosen, DeltaBounds<List>& db, Choice& ch) {
-  const Choice rigid = given ? *given : rigid_pd2(set);
+  const Choice rigid = given ? *given : rigid_of_list(set);
   if (!rigid.certified || !rigid.exact_first || rigid.index < 0 || !set.A) return false;
   const int first = rigid.index;
   if (certify_first_k(set, &first, 1, ch, false)) return true;
