@@ -17,6 +17,7 @@
 #include "exact/exact_predicates.h"
 #include "exact/exact_qp_order.h"
 #include "exact/expansion.h"
+#include "certification/compensated_qp_order.h"
 #include "qp/direction_qp_impl.h"
 #include "pdd/compare/random.h"
 #include "structured_cells.h"
@@ -289,6 +290,7 @@ BOOST_AUTO_TEST_CASE(compressed_keeps_the_exact_value) {
 BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
   compare::ReproducibleRng r(45);
   int checked = 0, compared = 0, ties = 0, kinds[3] = {0, 0, 0};
+  int bounded = 0, decided = 0, near = 0;  // compensated_qp_order.h's parts and decided signs
   for (int it = 0; it < 400; ++it) {
     auto [A, B] = aligned_pair(r);
     if (it % 3 == 0) {  // two Kuhn paths of one cube (the same one every sixth pair)
@@ -304,6 +306,7 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
     for (int kind = 0; kind < 3; ++kind) {  // case 2, case 1 (static), relaxed
       const bool a_static = kind == 1;
       std::vector<QpParts> parts;
+      std::vector<std::optional<detail::CompensatedQpParts>> words;
       std::vector<Q> values;
       std::vector<std::string> names;
       for (const DirectionLabel& l : labels) {
@@ -343,6 +346,15 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
         const Q want = detail::unscaled(f, s.cost / (20 * c.nn), 2);
         BOOST_TEST((F / (20 * Knn) == want), "kind " << kind << " " << l.str() << ": " << F / (20 * Knn) << " vs " << want);
         parts.push_back(p);
+        // compensated_qp_order.h: the same parts in double words within their bounds
+        detail::CompensatedQpParts w;
+        const bool have = detail::compensated_qp_parts(A, B, l, QpPattern{atA, atB, conA}, a_static, w);
+        if (have) {
+          BOOST_TEST(abs(Q(w.F.v.hi) + Q(w.F.v.lo) - F) <= Q(w.F.e), "kind " << kind << " " << l.str() << ": F " << w.F.v.hi << " vs " << F.get_d());
+          BOOST_TEST(abs(Q(w.Knn.v.hi) + Q(w.Knn.v.lo) - Knn) <= Q(w.Knn.e), "kind " << kind << " " << l.str());
+          ++bounded;
+        }
+        words.push_back(have ? std::optional<detail::CompensatedQpParts>(w) : std::nullopt);
         values.push_back(want);
         names.push_back(l.str());
         ++checked, ++kinds[kind];
@@ -355,6 +367,12 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
           BOOST_TEST(*got == want, "kind " << kind << " " << names[i] << " " << names[j]);
           ++compared;
           ties += want == 0;
+          if (words[i] && words[j])
+            if (const std::optional<int> w = detail::compare_qp_compensated(*words[i], *words[j])) {
+              BOOST_TEST(*w == want, "double words: kind " << kind << " " << names[i] << " " << names[j]);
+              ++decided;
+              near += want != 0 && abs(values[i] - values[j]) < values[i] * Q(1, 1000000000);
+            }
         }
     }
   }
@@ -364,4 +382,9 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
   BOOST_TEST(kinds[1] > 1000);
   BOOST_TEST(kinds[2] > 1000);
   BOOST_TEST(ties > 1000);
+  BOOST_TEST_MESSAGE(bounded << " values in double words within their bounds, " << decided << " signs decided by them ("
+                             << near << " of values closer than 1e-9 relative)");
+  BOOST_TEST(bounded > 0.9 * checked);
+  BOOST_TEST(decided > 0.7 * (compared - ties));
+  BOOST_TEST(near > 1000);
 }

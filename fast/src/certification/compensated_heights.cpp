@@ -183,30 +183,48 @@ namespace {
 bool above(const DW& x, const DW& y) { return x.hi > y.hi || (x.hi == y.hi && x.lo > y.lo); }
 }  // namespace
 
-PDD_FMA_CLONES bool compensated_depth_computed(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
-                                      CompensatedDepth& out) {
+PDD_FMA_CLONES bool double_word_heights(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+                                        DoubleWordHeights& out) {
   Span sp;
   Heights h;
   const int sign = oriented_span(A, B, l, sp, h);
   if (sign == 0) return false;
-  DW hA[4], hB[4];
-  double e = 0.0;  // the largest height error
+  bool finite = true;
+  for (int k = 0; k < 3; ++k) {
+    out.n[k] = sign > 0 ? sp.n[k] : neg(sp.n[k]);
+    out.en[k] = 10.5 * kU * kU * sp.N[k] * kGrow;
+    finite = finite && std::isfinite(out.n[k].hi) && std::isfinite(out.en[k]);
+  }
   for (int i = 0; i < 4; ++i) {
-    hA[i] = sign > 0 ? h.hA[i] : neg(h.hA[i]), hB[i] = sign > 0 ? h.hB[i] : neg(h.hB[i]);
-    e = std::fmax(e, std::fmax(h.eA[i], h.eB[i]));
+    out.hA[i] = sign > 0 ? h.hA[i] : neg(h.hA[i]), out.hB[i] = sign > 0 ? h.hB[i] : neg(h.hB[i]);
+    out.eA[i] = h.eA[i], out.eB[i] = h.eB[i];
+    finite = finite && std::isfinite(out.hA[i].hi) && std::isfinite(out.hB[i].hi) && std::isfinite(out.eA[i]) &&
+             std::isfinite(out.eB[i]);
   }
   // constrained vertices at their exact heights: 0 on the face or A's edge through o, B's edge
   // at one height (n* is orthogonal to it)
   if (l.kind == ContactKind::FV || l.kind == ContactKind::VF) {
-    for (int i : kFace[l.a]) (l.kind == ContactKind::FV ? hA : hB)[i] = DW{0, 0};
+    DW* T = l.kind == ContactKind::FV ? out.hA : out.hB;
+    double* e = l.kind == ContactKind::FV ? out.eA : out.eB;
+    for (int i : kFace[l.a]) T[i] = DW{0, 0}, e[i] = 0;
   } else {
-    hA[kEdges[l.a][0]] = hA[kEdges[l.a][1]] = DW{0, 0};
-    hB[kEdges[l.b][1]] = hB[kEdges[l.b][0]];
+    for (int i : kEdges[l.a]) out.hA[i] = DW{0, 0}, out.eA[i] = 0;
+    const int x = kEdges[l.b][0], y = kEdges[l.b][1];
+    out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
   }
-  DW top = hA[0], bottom = hB[0];
+  return finite;
+}
+
+PDD_FMA_CLONES bool compensated_depth_computed(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+                                      CompensatedDepth& out) {
+  DoubleWordHeights h;
+  if (!double_word_heights(A, B, l, h)) return false;
+  double e = 0.0;  // the largest height error
+  for (int i = 0; i < 4; ++i) e = std::fmax(e, std::fmax(h.eA[i], h.eB[i]));
+  DW top = h.hA[0], bottom = h.hB[0];
   for (int i = 1; i < 4; ++i) {
-    if (above(hA[i], top)) top = hA[i];
-    if (above(bottom, hB[i])) bottom = hB[i];
+    if (above(h.hA[i], top)) top = h.hA[i];
+    if (above(bottom, h.hB[i])) bottom = h.hB[i];
   }
   out.D = add(top, neg(bottom));
   out.eD = (2 * e + 4 * kU * kU * (std::fabs(top.hi) + std::fabs(bottom.hi))) * kGrow;
@@ -217,8 +235,8 @@ PDD_FMA_CLONES bool compensated_depth_computed(const TetVertices& A, const TetVe
   out.enn = 0;
   double sq = 0;
   for (int k = 0; k < 3; ++k) {
-    out.nn = add(out.nn, mul(sp.n[k], sp.n[k]));
-    const double En = 10.5 * kU * kU * sp.N[k], a = std::fabs(sp.n[k].hi);
+    out.nn = add(out.nn, mul(h.n[k], h.n[k]));
+    const double En = h.en[k], a = std::fabs(h.n[k].hi);
     out.enn += En * (2 * a * (1 + kU) + En);
     sq += a * a;
   }

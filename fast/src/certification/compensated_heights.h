@@ -95,6 +95,20 @@ CompensatedNormal compensated_normal(const std::array<double, 3>& p1, const std:
 bool compensated_height_sign(const CompensatedNormal& n, const std::array<double, 3>& p,
                              const std::array<double, 3>& q, int& sign);
 
+// The label's exact oriented normal n* and heights H*_i = n*.(x_i − o) in double words,
+// unrounded (the header's, before their rounding to doubles), each with its bound: components
+// |n~_k − n*_k| <= 10.5 u² N_k (en), heights the header's 25 u² M (eA, eB). The constrained
+// vertices at their exact heights: 0 for the set through o (A's face or edge, B's face), one
+// height for B's edge of an edge pair (n* is orthogonal to it). False where compensated_heights
+// is not applicable (the orientation not certain; a parallel edge pair) or a value is not
+// finite. For the comparisons of values a rounding apart (compensated_depth,
+// compensated_qp_order.h).
+struct DoubleWordHeights {
+  dw::DW n[3], hA[4], hB[4];
+  double en[3], eA[4], eB[4];
+};
+bool double_word_heights(const TetVertices& A, const TetVertices& B, const DirectionLabel& l, DoubleWordHeights& out);
+
 // A candidate's definitions §4 depth parts in double words, unrounded: D = max_i H*_A,i −
 // min_j H*_B,j and n*.n* of its exact oriented normal (the heights above before their rounding
 // to doubles), with certified absolute bounds |D~ − D*| <= eD, |nn~ − n*.n*| <= enn (derived in

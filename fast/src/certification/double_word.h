@@ -57,4 +57,33 @@ inline DW add(DW x, DW y) {
 }
 inline DW neg(DW x) { return {-x.hi, -x.lo}; }
 
+// A double word with a certified bound on its distance to an exact value x*: |v − x*| <= e
+// (v = hi + lo, normalised: |v| <= |hi| (1 + u), taken as |hi| (1 + 2u) below). Each operation's
+// bound is the operands' propagated ones, the operation's own error (above), 2^-1060 for the
+// parts that round to subnormals (each error < 2^-1075, fewer than eight an operation), and a
+// factor 1 + 2^-40 for the bound's own few roundings (each <= u):
+//   plus:  e_x + e_y + 4u² (|x_h| + |y_h|);
+//   times: |x~ y~ − x* y*| <= |x~| e_y + (|y~| + e_y) e_x, plus 6.2 u² |x_h y_h|.
+// A non-finite value or bound decides nothing (certain_sign).
+struct Bounded {
+  DW v{0.0, 0.0};
+  double e = 0.0;
+};
+inline Bounded exactly(double x) { return {{x, 0.0}, 0.0}; }
+inline Bounded plus(const Bounded& x, const Bounded& y) {
+  return {add(x.v, y.v),
+          (x.e + y.e + 4 * kU * kU * (std::fabs(x.v.hi) + std::fabs(y.v.hi)) + 0x1p-1060) * (1 + 0x1p-40)};
+}
+inline Bounded minus(const Bounded& x, const Bounded& y) { return plus(x, {neg(y.v), y.e}); }
+inline Bounded times(const Bounded& x, const Bounded& y) {
+  const double X = std::fabs(x.v.hi) * (1 + 2 * kU), Y = std::fabs(y.v.hi) * (1 + 2 * kU);
+  return {mul(x.v, y.v),
+          (X * y.e + (Y + y.e) * x.e + 6.2 * kU * kU * std::fabs(x.v.hi * y.v.hi) + 0x1p-1060) * (1 + 0x1p-40)};
+}
+inline Bounded times(const Bounded& x, int k) { return times(x, exactly(double(k))); }
+// The sign of x* where |hi| (1 − 2u) exceeds the bound (|v − hi| <= u |hi|), else 0 (NaN: 0).
+inline int certain_sign(const Bounded& x) {
+  return std::fabs(x.v.hi) * (1 - 2 * kU) > x.e ? (x.v.hi > 0 ? 1 : -1) : 0;
+}
+
 }  // namespace pdd::fast::detail::dw

@@ -11,6 +11,7 @@
 
 #include "certification/certify.h"
 #include "certification/compensated_heights.h"
+#include "certification/compensated_qp_order.h"
 #include "certification/qp_lower_bound.h"
 #include "certification/refine.h"
 #include "exact/exact_qp_order.h"
@@ -483,23 +484,38 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
   return true;
 }
 
-// The position in c[0..n) of the first least exact value by exact_qp_order.h's expansions,
-// each candidate's verified pattern (tight_interval's) being its exact optimum's; -1 where a
-// pattern is not verified or the expansions cannot decide. A running minimum, exact ties to
-// the earliest (canonical order), as the exact engine names them.
+// The position in c[0..n) of the first least exact value, each candidate's verified pattern
+// (tight_interval's) being its exact optimum's; -1 where a pattern is not verified or the
+// expansions cannot decide. A running minimum, exact ties to the earliest (canonical order), as
+// the exact engine names them; each step decided by compensated_qp_order.h's double words
+// where their bounds decide it (values a rounding apart), else by exact_qp_order.h's
+// expansions (the running minimum's kept while it stays).
 template <class List>
 int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, const VerifiedPattern* patterns) {
-  auto parts = [&](int k, QpParts& p) {
+  QpPattern pattern[kMaxCandidates];
+  detail::CompensatedQpParts dw[kMaxCandidates];
+  bool have_dw[kMaxCandidates];
+  for (int k = 0; k < n; ++k) {
     const VerifiedPattern& v = patterns[c[k]];
-    if (v.atA == ~0u) return false;
-    p = qp_parts_exact(*set.A, *set.B, unpack_label(label_code(set, c[k])),
-                       QpPattern{v.atA, v.atB, candidate(set, c[k]).conA}, a_static);
+    if (v.atA == ~0u) return -1;
+    pattern[k] = QpPattern{v.atA, v.atB, candidate(set, c[k]).conA};
+    have_dw[k] = detail::compensated_qp_parts(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k],
+                                              a_static, dw[k]);
+  }
+  auto parts = [&](int k, QpParts& p) {
+    p = qp_parts_exact(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k], a_static);
     return p.ok;
   };
   QpParts least, p;
-  if (!parts(0, least)) return -1;
+  bool least_known = false;  // least: w's exact parts
   int w = 0;
   for (int k = 1; k < n; ++k) {
+    if (have_dw[k] && have_dw[w])
+      if (const std::optional<int> below = detail::compare_qp_compensated(dw[k], dw[w])) {
+        if (*below < 0) w = k, least_known = false;
+        continue;
+      }
+    if (!least_known && !(least_known = parts(w, least))) return -1;
     if (!parts(k, p)) return -1;
     const std::optional<int> below = compare_qp_exact(p, least);
     if (!below) return -1;
