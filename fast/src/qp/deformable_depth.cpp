@@ -488,8 +488,9 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
 // (tight_interval's) being its exact optimum's; -1 where a pattern is not verified or the
 // expansions cannot decide. A running minimum, exact ties to the earliest (canonical order), as
 // the exact engine names them; each step decided by compensated_qp_order.h's double words
-// where their bounds decide it (values a rounding apart), else by exact_qp_order.h's
-// expansions (the running minimum's kept while it stays).
+// where their bounds decide it (values a rounding apart), else as an exact tie where the two
+// patterns are equal and the directions the same (tied_first's argument, below), else by
+// exact_qp_order.h's expansions (the running minimum's kept while it stays).
 template <class List>
 int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, const VerifiedPattern* patterns) {
   QpPattern pattern[kMaxCandidates];
@@ -508,18 +509,23 @@ int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, co
   };
   QpParts least, p;
   bool least_known = false;  // least: w's exact parts
+  std::optional<ExactDirection> direction;  // w's, built at its first use
   int w = 0;
   for (int k = 1; k < n; ++k) {
     if (have_dw[k] && have_dw[w])
       if (const std::optional<int> below = detail::compare_qp_compensated(dw[k], dw[w])) {
-        if (*below < 0) w = k, least_known = false;
+        if (*below < 0) w = k, least_known = false, direction.reset();
         continue;
       }
+    if (pattern[k].atB == pattern[w].atB && (a_static || pattern[k].atA == pattern[w].atA)) {
+      if (!direction) direction.emplace(*set.A, *set.B, unpack_label(label_code(set, c[w])));
+      if (direction->same_as(unpack_label(label_code(set, c[k]))).value_or(false)) continue;  // tied: w kept
+    }
     if (!least_known && !(least_known = parts(w, least))) return -1;
     if (!parts(k, p)) return -1;
     const std::optional<int> below = compare_qp_exact(p, least);
     if (!below) return -1;
-    if (*below < 0) w = k, least = p;
+    if (*below < 0) w = k, least = p, direction.reset();
   }
   return w;
 }
