@@ -183,23 +183,21 @@ namespace {
 bool above(const DW& x, const DW& y) { return x.hi > y.hi || (x.hi == y.hi && x.lo > y.lo); }
 }  // namespace
 
-PDD_FMA_CLONES bool double_word_heights(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
-                                        DoubleWordHeights& out) {
+namespace {
+// double_word_heights (header), inlined into compensated_depth's hot loop
+[[gnu::always_inline]] inline bool oriented_words(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+                                                  DoubleWordHeights& out) {
   Span sp;
   Heights h;
   const int sign = oriented_span(A, B, l, sp, h);
   if (sign == 0) return false;
-  bool finite = true;
   for (int k = 0; k < 3; ++k) {
     out.n[k] = sign > 0 ? sp.n[k] : neg(sp.n[k]);
     out.en[k] = 10.5 * kU * kU * sp.N[k] * kGrow;
-    finite = finite && std::isfinite(out.n[k].hi) && std::isfinite(out.en[k]);
   }
   for (int i = 0; i < 4; ++i) {
     out.hA[i] = sign > 0 ? h.hA[i] : neg(h.hA[i]), out.hB[i] = sign > 0 ? h.hB[i] : neg(h.hB[i]);
     out.eA[i] = h.eA[i], out.eB[i] = h.eB[i];
-    finite = finite && std::isfinite(out.hA[i].hi) && std::isfinite(out.hB[i].hi) && std::isfinite(out.eA[i]) &&
-             std::isfinite(out.eB[i]);
   }
   // constrained vertices at their exact heights: 0 on the face or A's edge through o, B's edge
   // at one height (n* is orthogonal to it)
@@ -212,13 +210,19 @@ PDD_FMA_CLONES bool double_word_heights(const TetVertices& A, const TetVertices&
     const int x = kEdges[l.b][0], y = kEdges[l.b][1];
     out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
   }
-  return finite;
+  return true;
+}
+}  // namespace
+
+PDD_FMA_CLONES bool double_word_heights(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
+                                        DoubleWordHeights& out) {
+  return oriented_words(A, B, l, out);
 }
 
 PDD_FMA_CLONES bool compensated_depth_computed(const TetVertices& A, const TetVertices& B, const DirectionLabel& l,
                                       CompensatedDepth& out) {
   DoubleWordHeights h;
-  if (!double_word_heights(A, B, l, h)) return false;
+  if (!oriented_words(A, B, l, h)) return false;
   double e = 0.0;  // the largest height error
   for (int i = 0; i < 4; ++i) e = std::fmax(e, std::fmax(h.eA[i], h.eB[i]));
   DW top = h.hA[0], bottom = h.hB[0];

@@ -100,9 +100,9 @@ bool compensated_height_sign(const CompensatedNormal& n, const std::array<double
 // |n~_k − n*_k| <= 10.5 u² N_k (en), heights the header's 25 u² M (eA, eB). The constrained
 // vertices at their exact heights: 0 for the set through o (A's face or edge, B's face), one
 // height for B's edge of an edge pair (n* is orthogonal to it). False where compensated_heights
-// is not applicable (the orientation not certain; a parallel edge pair) or a value is not
-// finite. For the comparisons of values a rounding apart (compensated_depth,
-// compensated_qp_order.h).
+// is not applicable (the orientation not certain; a parallel edge pair); a value that is not
+// finite (an overflow) is passed on to the callers' own checks. For the comparisons of values a
+// rounding apart (compensated_depth, compensated_qp_order.h).
 struct DoubleWordHeights {
   dw::DW n[3], hA[4], hB[4];
   double en[3], eA[4], eB[4];

@@ -487,22 +487,28 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
 // The position in c[0..n) of the first least exact value, each candidate's verified pattern
 // (tight_interval's) being its exact optimum's; -1 where a pattern is not verified or the
 // expansions cannot decide. A running minimum, exact ties to the earliest (canonical order), as
-// the exact engine names them; each step decided by compensated_qp_order.h's double words
-// where their bounds decide it (values a rounding apart), else as an exact tie where the two
-// patterns are equal and the directions the same (tied_first's argument, below), else by
-// exact_qp_order.h's expansions (the running minimum's kept while it stays).
+// the exact engine names them. Each step is an exact tie where the two patterns are equal and
+// the directions the same (tied_first's argument, below), else decided by
+// compensated_qp_order.h's double words where their bounds decide it (values a rounding apart;
+// each candidate's taken at its first use), else by exact_qp_order.h's expansions (the running
+// minimum's kept while it stays).
 template <class List>
 int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, const VerifiedPattern* patterns) {
   QpPattern pattern[kMaxCandidates];
-  detail::CompensatedQpParts dw[kMaxCandidates];
-  bool have_dw[kMaxCandidates];
   for (int k = 0; k < n; ++k) {
     const VerifiedPattern& v = patterns[c[k]];
     if (v.atA == ~0u) return -1;
     pattern[k] = QpPattern{v.atA, v.atB, candidate(set, c[k]).conA};
-    have_dw[k] = detail::compensated_qp_parts(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k],
-                                              a_static, dw[k]);
   }
+  detail::CompensatedQpParts dw[kMaxCandidates];
+  signed char have_dw[kMaxCandidates];  // -1: not yet asked
+  for (int k = 0; k < n; ++k) have_dw[k] = -1;
+  auto words = [&](int k) {
+    if (have_dw[k] < 0)
+      have_dw[k] = detail::compensated_qp_parts(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k],
+                                                a_static, dw[k]);
+    return have_dw[k] == 1;
+  };
   auto parts = [&](int k, QpParts& p) {
     p = qp_parts_exact(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k], a_static);
     return p.ok;
@@ -512,15 +518,15 @@ int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, co
   std::optional<ExactDirection> direction;  // w's, built at its first use
   int w = 0;
   for (int k = 1; k < n; ++k) {
-    if (have_dw[k] && have_dw[w])
-      if (const std::optional<int> below = detail::compare_qp_compensated(dw[k], dw[w])) {
-        if (*below < 0) w = k, least_known = false, direction.reset();
-        continue;
-      }
     if (pattern[k].atB == pattern[w].atB && (a_static || pattern[k].atA == pattern[w].atA)) {
       if (!direction) direction.emplace(*set.A, *set.B, unpack_label(label_code(set, c[w])));
       if (direction->same_as(unpack_label(label_code(set, c[k]))).value_or(false)) continue;  // tied: w kept
     }
+    if (words(k) && words(w))
+      if (const std::optional<int> below = detail::compare_qp_compensated(dw[k], dw[w])) {
+        if (*below < 0) w = k, least_known = false, direction.reset();
+        continue;
+      }
     if (!least_known && !(least_known = parts(w, least))) return -1;
     if (!parts(k, p)) return -1;
     const std::optional<int> below = compare_qp_exact(p, least);
