@@ -291,6 +291,7 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
   compare::ReproducibleRng r(45);
   int checked = 0, compared = 0, ties = 0, kinds[3] = {0, 0, 0};
   int bounded = 0, decided = 0, near = 0;  // compensated_qp_order.h's parts and decided signs
+  int displaced = 0, tight = 0;            // its displacements, and vertices bounded to 2^-20 of theirs
   for (int it = 0; it < 400; ++it) {
     auto [A, B] = aligned_pair(r);
     if (it % 3 == 0) {  // two Kuhn paths of one cube (the same one every sixth pair)
@@ -355,6 +356,21 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
           ++bounded;
         }
         words.push_back(have ? std::optional<detail::CompensatedQpParts>(w) : std::nullopt);
+        // compensated_displacements: case 2's displacements T* (direction_qp.h's
+        // displacement_below/above on the rational solution) within their bounds. The frame's
+        // normal is 2^(2 shift) times the pair's (a cross product of differences scaled by
+        // 2^shift, oriented alike), its heights 2^(3 shift) times: T = T_frame / 2^(3 shift).
+        detail::CompensatedDisplacements moved;
+        if (kind == 0 && detail::compensated_displacements(A, B, l, QpPattern{atA, atB, conA}, moved)) {
+          for (int i = 0; i < 4; ++i) {
+            const Q tA = detail::unscaled(f, displacement_below(c.hA[i], (conA >> i & 1u) != 0, s), 3);
+            const Q tB = detail::unscaled(f, displacement_above(c.hB[i], (conB >> i & 1u) != 0, s), 3);
+            BOOST_TEST(abs(Q(moved.tA[i]) - tA) <= Q(moved.eA[i]), l.str() << " A" << i << ": " << moved.tA[i] << " vs " << tA.get_d());
+            BOOST_TEST(abs(Q(moved.tB[i]) - tB) <= Q(moved.eB[i]), l.str() << " B" << i << ": " << moved.tB[i] << " vs " << tB.get_d());
+            tight += Q(moved.eA[i]) <= abs(tA) * Q(1, 1 << 20) && Q(moved.eB[i]) <= abs(tB) * Q(1, 1 << 20);
+          }
+          ++displaced;
+        }
         values.push_back(want);
         names.push_back(l.str());
         ++checked, ++kinds[kind];
@@ -387,4 +403,8 @@ BOOST_AUTO_TEST_CASE(qp_values_by_expansions_match_rationals) {
   BOOST_TEST(bounded > 0.9 * checked);
   BOOST_TEST(decided > 0.7 * (compared - ties));
   BOOST_TEST(near > 1000);
+  BOOST_TEST_MESSAGE(displaced << " case-2 displacements in double words within their bounds (" << tight
+                               << " vertices within 2^-20 of their size)");
+  BOOST_TEST(displaced > 0.9 * kinds[0]);
+  BOOST_TEST(tight > 0.5 * 4 * displaced);
 }

@@ -95,6 +95,54 @@ bool compensated_qp_parts(const TetVertices& A, const TetVertices& B, const Dire
   return finite(out.F) && finite(out.Knn) && dw::certain_sign(out.Knn) > 0;
 }
 
+bool compensated_displacements(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                               const QpPattern& pattern, CompensatedDisplacements& out) {
+  DoubleWordHeights w;
+  if (!double_word_heights(A, B, label, w)) return false;
+  // n* = e1 x e2 certainly not 0: the label's direction (not an edge pair's taken as ± by its
+  // label while its edges are parallel, whose direction is another vector)
+  Bounded nn;
+  for (int k = 0; k < 3; ++k) nn = dw::plus(nn, dw::times(Bounded{w.n[k], w.en[k]}, Bounded{w.n[k], w.en[k]}));
+  if (!(dw::certain_sign(nn) > 0)) return false;
+  Bounded hA[4], hB[4];
+  for (int i = 0; i < 4; ++i) hA[i] = {w.hA[i], w.eA[i]}, hB[i] = {w.hB[i], w.eB[i]};
+  const int mA = __builtin_popcount(pattern.atA), mB = __builtin_popcount(pattern.atB);
+  const int wA = 5 - mB, wB = 5 - mA, den = mA * wA + mB * wB;
+  if (den == 0 || mA > 4 || mB > 4) return false;
+  Bounded PA, PB;
+  for (int i = 0; i < 4; ++i) {
+    if (pattern.atA >> i & 1u) PA = dw::plus(PA, hA[i]);
+    if (pattern.atB >> i & 1u) PB = dw::plus(PB, hB[i]);
+  }
+  const Bounded E = dw::plus(dw::times(PA, wA), dw::times(PB, wB));
+  // x / k rounded, and its distance to x* / k
+  auto divided = [](const Bounded& x, int k, double& t, double& e) {
+    t = x.v.hi / k;
+    e = ((x.e + kU * std::fabs(x.v.hi)) / k + kU * std::fabs(t)) * (1 + 0x1p-40);
+    return std::isfinite(t) && std::isfinite(e);
+  };
+  for (int side = 0; side < 2; ++side) {
+    const Bounded(&h)[4] = side ? hB : hA;
+    const unsigned at = side ? pattern.atB : pattern.atA;
+    const int m = side ? mB : mA;
+    double* t = side ? out.tB : out.tA;
+    double* e = side ? out.eB : out.eA;
+    Bounded total;
+    for (int i = 0; i < 4; ++i) {
+      if (!(at >> i & 1u)) continue;
+      const Bounded d = dw::minus(E, dw::times(h[i], den));
+      total = dw::plus(total, d);
+      if (!divided(d, den, t[i], e[i])) return false;
+    }
+    if (m == 4) continue;
+    double S = 0, eS = 0;
+    if (!divided(total, den * (5 - m), S, eS)) return false;
+    for (int i = 0; i < 4; ++i)
+      if (!(at >> i & 1u)) t[i] = -S, e[i] = eS;
+  }
+  return true;
+}
+
 std::optional<int> compare_qp_compensated(const CompensatedQpParts& p, const CompensatedQpParts& q) {
   const int s = dw::certain_sign(dw::minus(dw::times(p.F, q.Knn), dw::times(q.F, p.Knn)));
   if (s == 0) return std::nullopt;

@@ -36,4 +36,23 @@ bool compensated_qp_parts(const TetVertices& A, const TetVertices& B, const Dire
                           const QpPattern& pattern, bool a_static, CompensatedQpParts& out);
 std::optional<int> compare_qp_compensated(const CompensatedQpParts& p, const CompensatedQpParts& q);
 
+// Case 2's optimal displacements along the label's exact oriented normal n* for the verified
+// pattern (the deformed vertex is x_i + T*_i n* / (n*.n*)): at the plane T*_i = C* − H*_i =
+// d*_i / den, A's other vertices −S*_A and B's −S*_B, S*_X = (sum of X's d*_i at the plane) /
+// (den (5 − m_X)) (the closed form above; direction_qp.h's displacement_below/above). Each
+// rounded to a double tA[i], tB[i] with a bound eA[i], eB[i] on its distance to T*_i: the
+// Bounded part's e, its low part (|lo| <= u |hi|) and the division's rounding (u |t|), over
+// den or den (5 − m_X), times 1 + 2^-40. False where compensated_qp_parts' heights do not
+// apply, n* may be 0 (parallel edges labelled ±: their direction is not e1 x e2), the pattern
+// has no vertex at the plane, or a value is not finite.
+// Where the double solver's displacements carry 2^9 u Ha (value_bounds.h) and the contact is
+// made by rounding (displacements ~1e-17 of the size), these carry ~u of themselves: the
+// deformed positions within an ulp of the exact ones (deformable_depth.cpp's
+// compensated_positions).
+struct CompensatedDisplacements {
+  double tA[4], tB[4], eA[4], eB[4];
+};
+bool compensated_displacements(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                               const QpPattern& pattern, CompensatedDisplacements& out);
+
 }  // namespace pdd::fast::detail

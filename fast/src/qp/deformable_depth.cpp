@@ -1211,19 +1211,37 @@ bool compensated_positions(const TetVertices& A, const TetVertices& B, const Can
     return false;
   const double N = std::sqrt(h.nn), rho = std::sqrt(3.0) * h.e_n / N;
   if (!(rho <= 0.01)) return false;
+  // Each vertex's displacement T along n* (T n*/(n*.n*) in space) within dT of the exact one:
+  // the double solver's (above), else compensated_displacements' (double words, a bound each)
   const double dT = kSolverDisplacementCoeffTight * kUnitRoundoff * p.Ha + 8 * p.e_act;
-  double Q = 0, eta = 0, dA[4][3], dB[4][3];
+  double T[2][4], eT[2][4];
   for (int t = 0; t < 2; ++t)
     for (int i = 0; i < 4; ++i) {
       const bool at = ((t ? p.atB : p.atA) >> i & 1u) != 0;
-      const double T = at ? s.c - (t ? h.hB[i] : h.hA[i]) : -(t ? s.sumB : s.sumA), w = T / h.nn;
-      eta = std::fmax(eta, (dT + (std::fabs(T) + dT) * (4 * rho + 8 * kUnitRoundoff)) / N);
-      for (int k = 0; k < 3; ++k) {
-        (t ? dB : dA)[i][k] = w * h.n[k];
-        Q = std::fmax(Q, std::fabs((t ? B : A)[i][k]));
-      }
+      T[t][i] = at ? s.c - (t ? h.hB[i] : h.hA[i]) : -(t ? s.sumB : s.sumA), eT[t][i] = dT;
     }
-  if (!(eta * 1.01 <= 2 * kUnitRoundoff * Q)) return false;  // (NaN: false)
+  double Q = 0, dA[4][3], dB[4][3];
+  for (int t = 0; t < 2; ++t)
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) Q = std::fmax(Q, std::fabs((t ? B : A)[i][k]));
+  auto error = [&] {
+    double eta = 0;
+    for (int t = 0; t < 2; ++t)
+      for (int i = 0; i < 4; ++i)
+        eta = std::fmax(eta, (eT[t][i] + (std::fabs(T[t][i]) + eT[t][i]) * (4 * rho + 8 * kUnitRoundoff)) / N);
+    return eta;
+  };
+  if (!(error() * 1.01 <= 2 * kUnitRoundoff * Q)) {
+    detail::CompensatedDisplacements d;
+    if (!detail::compensated_displacements(A, B, c.label, QpPattern{p.atA, p.atB, c.conA}, d)) return false;
+    for (int i = 0; i < 4; ++i) T[0][i] = d.tA[i], eT[0][i] = d.eA[i], T[1][i] = d.tB[i], eT[1][i] = d.eB[i];
+    if (!(error() * 1.01 <= 2 * kUnitRoundoff * Q)) return false;  // (NaN: false)
+  }
+  for (int t = 0; t < 2; ++t)
+    for (int i = 0; i < 4; ++i) {
+      const double w = T[t][i] / h.nn;
+      for (int k = 0; k < 3; ++k) (t ? dB : dA)[i][k] = w * h.n[k];
+    }
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) qA[i][k] = A[i][k] + dA[i][k], qB[i][k] = B[i][k] + dB[i][k];
   return true;
