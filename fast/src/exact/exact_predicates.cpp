@@ -196,8 +196,17 @@ std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule,
           const double a = std::fabs(x);
           if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return std::nullopt;
         }
+    // l1's normal up to its sign (the orthogonality tests below need no orientation): a
+    // face's e1 x e2, an edge pair's eB x eA (the common perpendicular when parallel)
     bool ok = true;
-    n_ = oriented_normal_exp(A_, B_, l1_, ok);
+    if (l1_.kind == ContactKind::FV || l1_.kind == ContactKind::VF) {
+      const TetVertices& T = l1_.kind == ContactKind::FV ? A_ : B_;
+      const auto& f = kFace[l1_.a];
+      n_ = cross(difference(T[f[1]], T[f[0]]), difference(T[f[2]], T[f[0]]));
+    } else {
+      EdgePairKind kind;
+      n_ = edge_pair_normal_exp(A_, B_, l1_.a, l1_.b, &kind, ok);
+    }
     state_ = ok && n_.ok() ? 1 : -1;
   }
   if (state_ < 0) return std::nullopt;
@@ -211,6 +220,13 @@ std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule,
   }
   // (the caller's sign of n1.n2, for an l2 whose two vectors span n2's orthogonal plane)
   if (side != 0) return side > 0;
+  // the sign: l1's oriented normal from here on (built at its first use)
+  if (!oriented_) {
+    bool ok = true;
+    n_ = oriented_normal_exp(A_, B_, l1_, ok);
+    if (!ok || !n_.ok()) return state_ = -1, std::nullopt;
+    oriented_ = true;
+  }
   bool ok = true;
   ExpVec n2;
   EdgePairKind kind = EdgePairKind::Generic;

@@ -74,8 +74,10 @@ class ExactDirection {
   const TetVertices& A_;
   const TetVertices& B_;
   DirectionLabel l1_;
-  mutable detail::ExpVec n_;  // built at its first use (state_ 1; -1: not available)
+  mutable detail::ExpVec n_;  // l1's normal, built at its first use (state_ 1; -1: not available),
+                              // up to its sign until oriented_
   mutable int state_ = 0;
+  mutable bool oriented_ = false;
 };
 
 // A candidate's definitions §4 depth in two exact parts, for comparing delta² = D²/(n.n) without

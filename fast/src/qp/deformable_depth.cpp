@@ -484,6 +484,13 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
   return true;
 }
 
+// The sign of n1.n2 for two candidates' exact normals where their double normals and bounds
+// (certify.h's approx_normal) fix it, for ExactDirection::same_as's `side`; 0 where not, or
+// where the second is a parallel edge pair (its normal is not fixed by its two vectors).
+inline int same_side(const ApproxNormal& a, const ApproxNormal& b) {
+  return b.parallel_pair ? 0 : certain_dot_sign(a, b);
+}
+
 // The position in c[0..n) of the first least exact value, each candidate's verified pattern
 // (tight_interval's) being its exact optimum's; -1 where a pattern is not verified or the
 // expansions cannot decide. A running minimum, exact ties to the earliest (canonical order), as
@@ -520,7 +527,8 @@ int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, co
   for (int k = 1; k < n; ++k) {
     if (pattern[k].atB == pattern[w].atB && (a_static || pattern[k].atA == pattern[w].atA)) {
       if (!direction) direction.emplace(*set.A, *set.B, unpack_label(label_code(set, c[w])));
-      if (direction->same_as(unpack_label(label_code(set, c[k]))).value_or(false)) continue;  // tied: w kept
+      const int side = same_side(detail::approx_normal(set, c[w]), detail::approx_normal(set, c[k]));
+      if (direction->same_as(unpack_label(label_code(set, c[k])), side).value_or(false)) continue;  // tied: w kept
     }
     if (words(k) && words(w))
       if (const std::optional<int> below = detail::compare_qp_compensated(dw[k], dw[w])) {
@@ -563,10 +571,12 @@ int tied_first(const List& set, const int* c, int n, const Variant&, const Verif
   bool equal = pattern_of(c[0], first);
   if (equal) {
     const ExactDirection d(*set.A, *set.B, unpack_label(label_code(set, c[0])));
+    const ApproxNormal a0 = detail::approx_normal(set, c[0]);
     for (int k = 1; k < n && equal; ++k) {
       VerifiedPattern p;
       equal = pattern_of(c[k], p) && p.atB == first.atB && (a_static || p.atA == first.atA) &&
-              d.same_as(unpack_label(label_code(set, c[k]))).value_or(false);
+              d.same_as(unpack_label(label_code(set, c[k])), same_side(a0, detail::approx_normal(set, c[k])))
+                  .value_or(false);
     }
   }
   if (equal) return 0;
