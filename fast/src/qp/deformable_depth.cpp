@@ -702,6 +702,45 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
 // much larger A: many candidates of nearly equal value): the caller then builds the list and
 // runs sweep(), which can refine (refine.h).
 constexpr int kMaxLaneEvaluated = 40;  // (16 sent 3% of the nested family back to the list)
+
+// lane_sweep's choice b where its own double interval is too wide to certify it: a shallow
+// contact (a mesh against its copy shifted by a small offset: depth ~1e-4 of the size, the
+// double bound ~u L / depth relative, ~1e-9 of the value). Its interval on compensated heights
+// (compensated_valued, refine.h's tight intervals) against every other entry's bound as
+// lane_sweep has them: the other evaluated entries' own double intervals (each bounded here,
+// none deferred: their bounds were compared with b's double one), `above` for the entries
+// above threshold0 and lo for the ones of `pass` not evaluated; an evaluated entry whose double
+// interval reaches below b's, its compensated one too (both bound its exact value: the larger
+// lower bound holds). Certified as sweep's choices are (the value within its bounds, every
+// other exact value above the contract's share of it); false where the compensated heights do
+// not apply or that fails (the caller builds the list: refine.h).
+template <class Variant>
+bool shallow_choice(const QuickCandidates& q, Variant variant, const int* idx, int n, const double* v, Pending* p,
+                    int b, const int* pass, int m, double above, const double* lo, Choice& ch) {
+  Valued x;
+  if (!q.A || !compensated_valued(*q.A, *q.B, entry_candidate(q, idx[b]), Variant::kKind, x)) return false;
+  const double hi = upper_of(x.v, x.r);
+  double lo_min = std::min(safe_lower(x.v, x.r), above);
+  for (int j = 0; j < n; ++j) {
+    if (j == b || !(v[j] < kInf)) continue;
+    double l = safe_lower(v[j], root_bound(entry_candidate(q, idx[j]), q.fb, variant, p[j]));
+    // an entry tied with b (the same depth along the same plane: a face and the edge pairs in
+    // it) whose double interval reaches below b's: its compensated one
+    Valued y;
+    if (!certified_choice(hi, l) && compensated_valued(*q.A, *q.B, entry_candidate(q, idx[j]), Variant::kKind, y))
+      l = std::max(l, safe_lower(y.v, y.r));
+    lo_min = std::min(lo_min, l);
+  }
+  for (int j = 0; j < m; ++j) {
+    bool evaluated = false;
+    for (int t = 0; t < n; ++t) evaluated |= idx[t] == pass[j];
+    if (!evaluated) lo_min = std::min(lo_min, lo[pass[j]]);
+  }
+  if (!certified_choice(upper_of(x.v, x.r), lo_min)) return false;
+  ch = Choice{x.v, -1, entry_label_code(q, idx[b])};
+  ch.certified = ch.refined = true;
+  return true;
+}
 template <class Variant>
 bool lane_sweep(const QuickCandidates& q, const detail::QpLowerBounds& bounds, Variant variant, Choice& ch) {
   constexpr int kN = detail::kQpEntries;
@@ -760,10 +799,12 @@ bool lane_sweep(const QuickCandidates& q, const detail::QpLowerBounds& bounds, V
     for (int t = 0; t < n; ++t) evaluated |= idx[t] == e;
     if (!evaluated) lo_min = lo[e] < lo_min ? lo[e] : lo_min;
   }
-  if (!certified_choice(upper_of(v[b], r_b), lo_min)) return false;
-  ch = Choice{v[b], -1, entry_label_code(q, idx[b])};
-  ch.certified = true;
-  return true;
+  if (certified_choice(upper_of(v[b], r_b), lo_min)) {
+    ch = Choice{v[b], -1, entry_label_code(q, idx[b])};
+    ch.certified = true;
+    return true;
+  }
+  return shallow_choice(q, variant, idx, n, v, p, b, pass, m, split.above, lo, ch);
 }
 
 // delta²'s certified interval per candidate of a list, [safe_lower(delta², rigid_rel),
