@@ -18,6 +18,7 @@
 #include "pdd/compare/generate.h"
 #include "pdd/pdd.h"
 #include "pdd/reference/solve_exact.h"
+#include "shallow_contact.h"
 #include "structured_cells.h"
 
 using namespace pdd;
@@ -311,33 +312,12 @@ BOOST_AUTO_TEST_CASE(resting_contacts_within_contract_without_the_exact_path) {
 BOOST_AUTO_TEST_CASE(shallow_contacts_within_contract_without_the_exact_path) {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> U(-1, 1);
-  using V = std::array<double, 3>;
-  auto sub = [](const V& a, const V& b) { return V{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
-  auto dot = [](const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   int slow = 0, pairs = 0;
   for (double depth : {1e-4, 1e-5, 1e-6, 1e-7})
     for (int trial = 0; trial < 16; ++trial) {
-      TetPair p;
-      p.name = "shallow " + std::to_string(depth) + (trial % 2 ? " face " : " tip ") + std::to_string(trial);
-      for (auto& v : p.A)
-        for (double& x : v) x = U(rng);
-      const V e = sub(p.A[2], p.A[1]), f = sub(p.A[3], p.A[1]);
-      V n{e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]};
-      const double len = std::sqrt(dot(n, n));
-      if (dot(n, sub(p.A[0], p.A[1])) > 0) n = {-n[0], -n[1], -n[2]};
-      for (double& x : n) x /= len;  // unit, outward from face 1 2 3
-      V c{};
-      for (int i = 1; i < 4; ++i)
-        for (int k = 0; k < 3; ++k) c[k] += p.A[i][k] / 3;
-      // tip: B's vertex 0 inside A, the others above the face; face: B's face 0 1 2 a small
-      // triangle around the centroid, each vertex 0.7 to 1.3 times `depth` inside A
-      const int inside = trial % 2 ? 3 : 1;
-      for (int j = 0; j < 4; ++j) {
-        V r{U(rng), U(rng), U(rng)};
-        const double h = dot(r, n), s = j < inside ? 0.1 : 1.0;
-        const double height = j < inside ? -depth * (1 + 0.3 * U(rng)) : 0.2 + std::abs(U(rng));
-        for (int k = 0; k < 3; ++k) p.B[j][k] = c[k] + (j < inside && inside == 1 ? 0.0 : s * (r[k] - h * n[k])) + height * n[k];
-      }
+      const TetPair p = pdd::test::shallow_contact_pair(
+          depth, trial % 2, [&] { return U(rng); },
+          "shallow " + std::to_string(depth) + (trial % 2 ? " face " : " tip ") + std::to_string(trial));
       const auto exact = reference::solve_exact(p, {QpFormulation::Reduced});
       if (!exact.intersecting) continue;
       const auto fast = fast::solve_pair(p);

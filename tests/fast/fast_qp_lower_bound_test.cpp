@@ -16,6 +16,7 @@
 #include "kernel/power_scale.h"
 #include "kernel/quick_candidates.h"
 #include "qp/deformable_depth.h"
+#include "shallow_contact.h"
 #include "pdd/pdd.h"
 
 #include <algorithm>
@@ -191,32 +192,12 @@ BOOST_AUTO_TEST_CASE(refined_by_solve_pair_certified_by_the_lanes) {
 // intervals alone, none.
 BOOST_AUTO_TEST_CASE(shallow_contacts_certified_by_the_lanes) {
   pdd::compare::ReproducibleRng rng(23);
-  using V = std::array<double, 3>;
-  auto sub = [](const V& a, const V& b) { return V{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
-  auto dot = [](const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   int pairs = 0, certified[3] = {0, 0, 0};
   for (double depth : {1e-4, 1e-5, 1e-6, 1e-7})
     for (int trial = 0; trial < 30; ++trial) {
-      TetPair p;
-      p.name = "shallow " + std::to_string(depth) + (trial % 2 ? " face " : " tip ") + std::to_string(trial);
-      for (auto& v : p.A)
-        for (double& x : v) x = rng.uniform(-1, 1);
-      const V e = sub(p.A[2], p.A[1]), f = sub(p.A[3], p.A[1]);
-      V n{e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]};
-      const double len = std::sqrt(dot(n, n));
-      if (dot(n, sub(p.A[0], p.A[1])) > 0) n = {-n[0], -n[1], -n[2]};
-      for (double& x : n) x /= len;  // unit, outward from face 1 2 3
-      V c{};
-      for (int i = 1; i < 4; ++i)
-        for (int k = 0; k < 3; ++k) c[k] += p.A[i][k] / 3;
-      const int inside = trial % 2 ? 3 : 1;
-      for (int j = 0; j < 4; ++j) {
-        const V r{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
-        const double h = dot(r, n), sc = j < inside ? 0.1 : 1.0;
-        const double height = j < inside ? -depth * (1 + 0.3 * rng.uniform(-1, 1)) : 0.2 + std::fabs(rng.uniform(-1, 1));
-        for (int k = 0; k < 3; ++k)
-          p.B[j][k] = c[k] + (j < inside && inside == 1 ? 0.0 : sc * (r[k] - h * n[k])) + height * n[k];
-      }
+      const TetPair p = pdd::test::shallow_contact_pair(
+          depth, trial % 2, [&] { return rng.uniform(-1, 1); },
+          "shallow " + std::to_string(depth) + (trial % 2 ? " face " : " tip ") + std::to_string(trial));
       const detail::ScaledPair sp = detail::power_scaled(p.A, p.B);
       QuickCandidates q;
       if (!sp.finite || !sp.exact || !quick_lanes(sp.A, sp.B, q)) continue;

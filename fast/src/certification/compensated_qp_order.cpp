@@ -53,6 +53,26 @@ Deviations deviations(const Bounded& E, int k, const Bounded (&h)[4], unsigned a
 
 bool finite(const Bounded& x) { return std::isfinite(x.v.hi) && std::isfinite(x.v.lo) && std::isfinite(x.e); }
 
+// Case 2's plane for a pattern: m_X the counts at the plane, w_A = 5 − m_B, w_B = 5 − m_A,
+// den = m_A w_A + m_B w_B and E = w_A sum_A h + w_B sum_B h (C = E / den); false when no vertex
+// is at the plane (den = 0).
+struct Plane {
+  int mA = 0, mB = 0, wA = 0, wB = 0, den = 0;
+  Bounded E;
+};
+bool plane_of(const Bounded (&hA)[4], const Bounded (&hB)[4], const QpPattern& pattern, Plane& p) {
+  p.mA = __builtin_popcount(pattern.atA), p.mB = __builtin_popcount(pattern.atB);
+  p.wA = 5 - p.mB, p.wB = 5 - p.mA, p.den = p.mA * p.wA + p.mB * p.wB;
+  if (p.den == 0 || p.mA > 4 || p.mB > 4) return false;
+  Bounded PA, PB;
+  for (int i = 0; i < 4; ++i) {
+    if (pattern.atA >> i & 1u) PA = dw::plus(PA, hA[i]);
+    if (pattern.atB >> i & 1u) PB = dw::plus(PB, hB[i]);
+  }
+  p.E = dw::plus(dw::times(PA, p.wA), dw::times(PB, p.wB));
+  return true;
+}
+
 }  // namespace
 
 bool compensated_qp_parts(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
@@ -61,7 +81,7 @@ bool compensated_qp_parts(const TetVertices& A, const TetVertices& B, const Dire
   if (!double_word_heights(A, B, label, w)) return false;
   Bounded hA[4], hB[4];
   for (int i = 0; i < 4; ++i) hA[i] = {w.hA[i], w.eA[i]}, hB[i] = {w.hB[i], w.eB[i]};
-  const int mA = __builtin_popcount(pattern.atA), mB = __builtin_popcount(pattern.atB);
+  const int mB = __builtin_popcount(pattern.atB);
   Bounded F;
   int K;
   if (a_static) {
@@ -72,15 +92,10 @@ bool compensated_qp_parts(const TetVertices& A, const TetVertices& B, const Dire
     F = dw::plus(dw::times(b.squares, 5 - mB), dw::times(b.total, b.total));
     K = 5 - mB;
   } else {
-    const int wA = 5 - mB, wB = 5 - mA, den = mA * wA + mB * wB;
-    if (den == 0 || mA > 4 || mB > 4) return false;
-    Bounded PA, PB;
-    for (int i = 0; i < 4; ++i) {
-      if (pattern.atA >> i & 1u) PA = dw::plus(PA, hA[i]);
-      if (pattern.atB >> i & 1u) PB = dw::plus(PB, hB[i]);
-    }
-    const Bounded E = dw::plus(dw::times(PA, wA), dw::times(PB, wB));
-    const Deviations a = deviations(E, den, hA, pattern.atA), b = deviations(E, den, hB, pattern.atB);
+    Plane pl;
+    if (!plane_of(hA, hB, pattern, pl)) return false;
+    const int wA = pl.wA, wB = pl.wB, den = pl.den;
+    const Deviations a = deviations(pl.E, den, hA, pattern.atA), b = deviations(pl.E, den, hB, pattern.atB);
     F = dw::plus(dw::plus(dw::times(dw::plus(a.squares, b.squares), wA * wB), dw::times(dw::times(a.total, a.total), wA)),
                  dw::times(dw::times(b.total, b.total), wB));
     K = den * den * wA * wB;
@@ -106,15 +121,10 @@ bool compensated_displacements(const TetVertices& A, const TetVertices& B, const
   if (!(dw::certain_sign(nn) > 0)) return false;
   Bounded hA[4], hB[4];
   for (int i = 0; i < 4; ++i) hA[i] = {w.hA[i], w.eA[i]}, hB[i] = {w.hB[i], w.eB[i]};
-  const int mA = __builtin_popcount(pattern.atA), mB = __builtin_popcount(pattern.atB);
-  const int wA = 5 - mB, wB = 5 - mA, den = mA * wA + mB * wB;
-  if (den == 0 || mA > 4 || mB > 4) return false;
-  Bounded PA, PB;
-  for (int i = 0; i < 4; ++i) {
-    if (pattern.atA >> i & 1u) PA = dw::plus(PA, hA[i]);
-    if (pattern.atB >> i & 1u) PB = dw::plus(PB, hB[i]);
-  }
-  const Bounded E = dw::plus(dw::times(PA, wA), dw::times(PB, wB));
+  Plane pl;
+  if (!plane_of(hA, hB, pattern, pl)) return false;
+  const int mA = pl.mA, mB = pl.mB, den = pl.den;
+  const Bounded& E = pl.E;
   // x / k rounded, and its distance to x* / k
   auto divided = [](const Bounded& x, int k, double& t, double& e) {
     t = x.v.hi / k;
