@@ -207,16 +207,14 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_stay_off_the_exact_path) {
 // layers are A's upper ones exactly) and h = 1/10 (coincident up to the rounding of k h + h
 // against (k + 1) h: values a rounding apart). A cell against itself or a neighbour ties its
 // QP values between different directions (faces and edge pairs of equal value by the cell's
-// symmetry, FV and VF of one face); where they are a rounding apart the sweeps order them
-// exactly (deformable_depth.cpp's tied_first), by expansions (exact_qp_order.h) where every
-// contender's pattern is verified: 37 tie sets of 2 to 20 candidates on the pairs judged at
-// h = 1/10, all ordered by expansions. Where the cells coincide exactly every label must be
-// the exact engine's (LabelVerdict::Same: the first in canonical order of the exact minima);
-// up to rounding, near ties the doubles certify without ordering them may name either side
-// (definitions §8: not Differ). No pair on the slow path (eq11_pd2, which can take it on
-// exact zeros of overlap, not asked); values within definitions §8; ~50 pairs of each grid
-// judged (every n/50-th). Measured: h = 1/8, 204 of 204 labels the same; h = 1/10, 170 the
-// same, 34 near ties.
+// symmetry, FV and VF of one face). Where the cells coincide exactly every label must be the
+// exact engine's (LabelVerdict::Same: the first in canonical order of the exact minima, which
+// the sweeps' compensated intervals keep together); up to rounding, the near ties the sweeps
+// certify without ordering them (deformable_depth.cpp's sweep) may name either side
+// (definitions §8: not Differ). No pair on the slow path (eq11_pd2, which can take it on exact
+// zeros of overlap, not asked); values within definitions §8; ~50 pairs of each grid judged
+// (every n/50-th). Measured: h = 1/8, 204 of 204 labels the same; h = 1/10, 137 the same, 67
+// near ties.
 BOOST_AUTO_TEST_CASE(coincident_cells_name_the_exact_first_minimum) {
   fast::SolveOptions fo;
   fo.with_global = false;

@@ -283,8 +283,9 @@ BOOST_AUTO_TEST_CASE(hot_functions_in_a_mesh_order_within_contract) {
 // every value within definitions §8 of the exact engine and each label the exact engine's
 // (the contact's candidates tie exactly: a face and the edge pairs of its plane), none on the
 // exact path for the mesh variants (mesh_variants_only). The case-1 and case-2 contenders
-// certify on compensated heights and their exact ties are recognised without rationals
-// (deformable_depth.cpp, tied_first).
+// certify on compensated heights, which keep the exact ties together: the first of them in
+// canonical order, the exact engine's label, is named without rationals (deformable_depth.cpp's
+// sweep).
 BOOST_AUTO_TEST_CASE(resting_contacts_within_contract_without_the_exact_path) {
   int slow = 0, pairs = 0;
   for (double depth : {1e-7 * 0.125, 1e-10 * 0.125})

@@ -102,7 +102,7 @@ bool compensated_height_sign(const CompensatedNormal& n, const std::array<double
 // height for B's edge of an edge pair (n* is orthogonal to it). False where compensated_heights
 // is not applicable (the orientation not certain; a parallel edge pair); a value that is not
 // finite (an overflow) is passed on to the callers' own checks. For the comparisons of values a
-// rounding apart (compensated_depth, compensated_qp_order.h).
+// rounding apart (compensated_depth, compensated_displacements.h).
 struct DoubleWordHeights {
   dw::DW n[3], hA[4], hB[4];
   double en[3], eA[4], eB[4];

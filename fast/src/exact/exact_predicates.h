@@ -53,7 +53,7 @@ std::optional<bool> same_direction_exact(const TetVertices& A, const TetVertices
 // same_direction_exact against one label l1 for several l2: l1's exact normal computed once,
 // at the first answer not already known. The answers for one pair are memoised per thread
 // (kernel/pair_memo.h, keyed by both labels): the values of one solve_pair (the rigid tie
-// order, the sweeps' tied_first, pdd2_accel's) ask the same ties of the same pair, half of the
+// order, pdd2_accel's) ask the same ties of the same pair, half of the
 // questions on contacts made by rounding.
 class ExactDirection {
  public:
@@ -93,7 +93,7 @@ class ExactDirection {
 // The label's exact oriented normal (definitions §3) where the products of degree 10 in
 // coordinate differences built on it stay exact (14 for a parallel edge pair, whose normal has
 // degree 3): the range above; false outside it, for a colinear edge pair or past an
-// expansion's capacity. depth_parts_exact's and exact_qp_order.h's.
+// expansion's capacity. depth_parts_exact's.
 bool normal_for_degree_ten(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
                            detail::ExpVec& n);
 

@@ -11,10 +11,9 @@
 
 #include "certification/certify.h"
 #include "certification/compensated_heights.h"
-#include "certification/compensated_qp_order.h"
+#include "certification/compensated_displacements.h"
 #include "certification/qp_lower_bound.h"
 #include "certification/refine.h"
-#include "exact/exact_qp_order.h"
 #include "certification/tie_tolerance.h"
 #include "certification/tight_delta.h"
 #include "certification/value_bounds.h"
@@ -464,131 +463,19 @@ inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
 // A contender's interval for refine_tight (refine.h): compensated_valued's where it applies,
 // else the double one (none, r = inf, where the doubles give no finite value: a face normal
 // that underflows beside a far vertex); false when the candidate is not in the family.
-// `pattern` (optional): the verified pattern where the compensated value is taken, else its
-// atA = atB = ~0u (no pattern).
 template <class List, class Variant>
-bool tight_interval(const List& set, int i, const Variant& variant, double& v, double& r, bool tight = true,
-                    VerifiedPattern* pattern = nullptr) {
+bool tight_interval(const List& set, int i, const Variant& variant, double& v, double& r, bool tight = true) {
   const Candidate c = candidate(set, i);
   Valued x;
-  if (pattern) pattern->atA = pattern->atB = ~0u;
-  if (tight && set.A && compensated_valued(*set.A, *set.B, c, Variant::kKind, x, pattern)) {
+  if (tight && set.A && compensated_valued(*set.A, *set.B, c, Variant::kKind, x)) {
     v = x.v, r = x.r;
     return true;
   }
-  if (pattern) pattern->atA = pattern->atB = ~0u;  // (a pattern not verified)
   Pending p;
   v = evaluate(c, variant, p);
   if (!p.feasible) return false;  // (case 1's undecidable edge pairs)
   r = v < kInf ? root_bound(c, set.fb, variant, p) : kInf;  // (inf, NaN: no bound, an exact value is due)
   return true;
-}
-
-// The sign of n1.n2 for two candidates' exact normals where their double normals and bounds
-// (certify.h's approx_normal) fix it, for ExactDirection::same_as's `side`; 0 where not, or
-// where the second is a parallel edge pair (its normal is not fixed by its two vectors).
-inline int same_side(const ApproxNormal& a, const ApproxNormal& b) {
-  return b.parallel_pair ? 0 : certain_dot_sign(a, b);
-}
-
-// The position in c[0..n) of the first least exact value, each candidate's verified pattern
-// (tight_interval's) being its exact optimum's; -1 where a pattern is not verified or the
-// expansions cannot decide. A running minimum, exact ties to the earliest (canonical order), as
-// the exact engine names them. Each step is an exact tie where the two patterns are equal and
-// the directions the same (tied_first's argument, below), else decided by
-// compensated_qp_order.h's double words where their bounds decide it (values a rounding apart;
-// each candidate's taken at its first use), else by exact_qp_order.h's expansions (the running
-// minimum's kept while it stays).
-template <class List>
-int first_least_qp_exact(const List& set, const int* c, int n, bool a_static, const VerifiedPattern* patterns) {
-  QpPattern pattern[kMaxCandidates];
-  for (int k = 0; k < n; ++k) {
-    const VerifiedPattern& v = patterns[c[k]];
-    if (v.atA == ~0u) return -1;
-    pattern[k] = QpPattern{v.atA, v.atB, candidate(set, c[k]).conA};
-  }
-  detail::CompensatedQpParts dw[kMaxCandidates];
-  signed char have_dw[kMaxCandidates];  // -1: not yet asked
-  for (int k = 0; k < n; ++k) have_dw[k] = -1;
-  auto words = [&](int k) {
-    if (have_dw[k] < 0)
-      have_dw[k] = detail::compensated_qp_parts(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k],
-                                                a_static, dw[k]);
-    return have_dw[k] == 1;
-  };
-  auto parts = [&](int k, QpParts& p) {
-    p = qp_parts_exact(*set.A, *set.B, unpack_label(label_code(set, c[k])), pattern[k], a_static);
-    return p.ok;
-  };
-  QpParts least, p;
-  bool least_known = false;  // least: w's exact parts
-  std::optional<ExactDirection> direction;  // w's, built at its first use
-  int w = 0;
-  for (int k = 1; k < n; ++k) {
-    if (pattern[k].atB == pattern[w].atB && (a_static || pattern[k].atA == pattern[w].atA)) {
-      if (!direction) direction.emplace(*set.A, *set.B, unpack_label(label_code(set, c[w])));
-      const int side = same_side(detail::approx_normal(set, c[w]), detail::approx_normal(set, c[k]));
-      if (direction->same_as(unpack_label(label_code(set, c[k])), side).value_or(false)) continue;  // tied: w kept
-    }
-    if (words(k) && words(w))
-      if (const std::optional<int> below = detail::compare_qp_compensated(dw[k], dw[w])) {
-        if (*below < 0) w = k, least_known = false, direction.reset();
-        continue;
-      }
-    if (!least_known && !(least_known = parts(w, least))) return -1;
-    if (!parts(k, p)) return -1;
-    const std::optional<int> below = compare_qp_exact(p, least);
-    if (!below) return -1;
-    if (*below < 0) w = k, least = p, direction.reset();
-  }
-  return w;
-}
-
-// refine_tight's tie order for a QP value: of the near-tied candidates c[0..n) (ascending
-// canonical order), the position of the first whose exact value is the least; -1 when none is
-// in the family. Exact ties are the common case (an aligned contact: a face and the edge pairs
-// of its plane, one direction, the same vertices at the plane), and then the first, position 0,
-// is certain without rationals: where every candidate's status pattern is verified on
-// compensated heights (compensated_valued: the pattern of the exact heights too) and equal to
-// the first's, and its exact direction is the first's (same_direction_exact, expansions), the
-// closed forms (closed_form) are one function of one set of heights up to a common positive
-// scale and shift, under which F / (20 n.n) is invariant: the exact values are equal. Equal
-// patterns: the vertices at the plane on both sides (case 2, relaxed); B's only in case 1,
-// where C is A's highest height for every feasible candidate (its constrained vertices lie on
-// the plane and A below it). Otherwise the exact values by expansions where every pattern is
-// verified (first_least_qp_exact), else in rationals.
-// `patterns`: tight_interval's for each candidate index (atA = ~0u: none verified).
-template <class List, class Variant, class ExactValue>
-int tied_first(const List& set, const int* c, int n, const Variant&, const VerifiedPattern* patterns,
-               ExactValue exact_value) {
-  if (!set.A) return -1;
-  auto pattern_of = [&](int i, VerifiedPattern& p) {
-    p = patterns[i];
-    return p.atA != ~0u;
-  };
-  const bool a_static = Variant::kKind == QpKind::Static;
-  VerifiedPattern first;
-  bool equal = pattern_of(c[0], first);
-  if (equal) {
-    const ExactDirection d(*set.A, *set.B, unpack_label(label_code(set, c[0])));
-    const ApproxNormal a0 = detail::approx_normal(set, c[0]);
-    for (int k = 1; k < n && equal; ++k) {
-      VerifiedPattern p;
-      equal = pattern_of(c[k], p) && p.atB == first.atB && (a_static || p.atA == first.atA) &&
-              d.same_as(unpack_label(label_code(set, c[k])), same_side(a0, detail::approx_normal(set, c[k])))
-                  .value_or(false);
-    }
-  }
-  if (equal) return 0;
-  const int by_expansions = first_least_qp_exact(set, c, n, a_static, patterns);
-  if (by_expansions >= 0) return by_expansions;
-  const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);
-  detail::Q best, v;
-  int at = -1;
-  for (int k = 0; k < n; ++k)
-    if (exact_value(detail::exact_candidate(f, unpack_label(label_code(set, c[k]))), v) && (at < 0 || v < best))
-      best = v, at = k;
-  return at;
 }
 
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
@@ -675,17 +562,17 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   // family.
   // Compensated intervals first (refine.h's refine_tight: the contenders of a shallow contact,
   // whose double bounds carry u L^3 beside a value ~|n| depth, certify there at ~1 us each);
-  // the near ties they leave in the exact order (tied_first), so that the label is the exact
-  // engine's; the rationals for every contender (refine_minimum) where that fails.
+  // the rationals for every contender (refine_minimum) where that fails. The near ties the
+  // intervals leave are not ordered: each is within definitions §8 of the exact minimum (the
+  // contract lets either side be named), and the first in canonical order is named. (An exact
+  // order, so that the label is the exact engine's, takes expansions of degree 10 for each tied
+  // pair: a third of the depth stage on a grid against its copy shifted by whole cells of a
+  // decimal size, whose contenders tie a rounding apart.)
   if (!ch.certified) {
     for (int j = 0; j < n_evaluated; ++j) bound(evaluated[j]);
-    VerifiedPattern patterns[kMaxCandidates];  // (written by `interval` for each tie member)
-    for (int i = 0; i < set.count; ++i) patterns[i].atA = ~0u;
-    auto interval = [&](int i, double& v, double& r) {
-      return tight_interval(set, i, variant, v, r, true, &patterns[i]);
-    };
-    auto tie_order = [&](const int* c, int n) { return tied_first(set, c, n, variant, patterns, exact_value); };
-    if (!detail::refine_tight(set, lower, hi, interval, exact_value, tie_order, ch))
+    auto interval = [&](int i, double& v, double& r) { return tight_interval(set, i, variant, v, r); };
+    auto no_tie_order = [](const int*, int) { return -1; };
+    if (!detail::refine_tight(set, lower, hi, interval, exact_value, no_tie_order, ch))
       detail::refine_minimum(set, lower, hi, exact_value, ch);
   }
   return ch;
@@ -1284,7 +1171,7 @@ bool compensated_positions(const TetVertices& A, const TetVertices& B, const Can
   };
   if (!(error() * 1.01 <= 2 * kUnitRoundoff * Q)) {
     detail::CompensatedDisplacements d;
-    if (!detail::compensated_displacements(A, B, c.label, QpPattern{p.atA, p.atB, c.conA}, d)) return false;
+    if (!detail::compensated_displacements(A, B, c.label, detail::AtPlane{p.atA, p.atB}, d)) return false;
     for (int i = 0; i < 4; ++i) T[0][i] = d.tA[i], eT[0][i] = d.eA[i], T[1][i] = d.tB[i], eT[1][i] = d.eB[i];
     if (!(error() * 1.01 <= 2 * kUnitRoundoff * Q)) return false;  // (NaN: false)
   }

@@ -142,7 +142,7 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 // coordinates (engine_comparison.cpp, position_tolerance). (The normal's term is rho / (1 -
 // rho) <= 1.0102 rho exactly: 4 rho is slack.) Where dT is too wide for that (a contact made
 // by rounding on a deep pair: 2^9 u Ha is hundreds of ulps of the coordinates), the
-// displacements T~_i come from double-word heights instead (compensated_qp_order.h's
+// displacements T~_i come from double-word heights instead (compensated_displacements.h's
 // compensated_displacements: the same closed form of the same verified pattern, each within
 // its own bound dT_i of T*_i, ~u |T*_i|), and eta is taken with those.
 bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
