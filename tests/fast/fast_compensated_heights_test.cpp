@@ -538,6 +538,42 @@ BOOST_AUTO_TEST_CASE(compensated_values_contain_the_exact_value) {
   BOOST_TEST(bracketed_certified == bracketed);
 }
 
+// compensated_value's edge pairs on contacts made by rounding (a Kuhn grid of cell 0.1 against
+// its copy shifted by a quarter cell along (1, 1, 1): edges parallel up to the rounding of the
+// shift, case-2 values ~1e-33 to 1e-66 of the squared cell): the double words' u² M term
+// exceeds such heights at the plane, and the interval is then taken on the exact heights by
+// expansions (expansion_heights), which certifies it on its own (definitions §8) and holds the
+// exact value (exact_candidate.h's rationals). Measured: 2,022 such edge-pair values, every one
+// certified (2,004 on the double words alone: the 18 others have e_i ~1e-31 beside heights
+// ~1e-32 at the plane).
+BOOST_AUTO_TEST_CASE(rounding_contact_edge_pairs_certify_on_exact_heights) {
+  int tiny = 0, certified = 0, outside = 0;
+  for (const auto& [A0, B0] : shifted_kuhn_pairs(0.1, {0.025, 0.025, 0.025})) {
+    const detail::ScaledPair sp = detail::power_scaled(A0, B0);
+    CandidateSet set;
+    if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) continue;
+    const detail::ExactFrame f = detail::exact_frame(sp.A, sp.B);
+    for (int k = 0; k < set.count; ++k) {
+      const Candidate c = candidate(set, k);
+      if (c.label.kind != ContactKind::EE) continue;
+      const Q exact = detail::unscaled(f, detail::exact_deformable_value(detail::exact_candidate(f, c.label)), 2);
+      if (!(exact > 0 && exact < Q(1e-30))) continue;  // a contact made by rounding
+      ++tiny;
+      double v = 0, r = 0;
+      if (!compensated_value(sp.A, sp.B, c, QpKind::Deformable, v, r, nullptr)) continue;
+      const double lo = lower_of(v, r), hi = upper_of(v, r);
+      if (!certified_choice(hi, lo) || !std::isfinite(hi)) continue;  // (r = inf: no bound to check)
+      ++certified;
+      if (exact < Q(lo) || exact > Q(hi)) ++outside;
+    }
+  }
+  BOOST_TEST_MESSAGE("contacts made by rounding: " << tiny << " edge-pair case-2 values, " << certified
+                                                   << " certified on their own");
+  BOOST_TEST(outside == 0);
+  BOOST_TEST(tiny > 500);
+  BOOST_TEST(certified == tiny);
+}
+
 // value_on_heights' bracket (deformable_depth.cpp) near degeneracy, where the two patterns it
 // brackets with differ: random heights (n.n = 1) with constrained sets of each kind (a face of A
 // at 0, or an edge of each side, or none), one free vertex moved to its exact threshold (margin

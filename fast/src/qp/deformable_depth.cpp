@@ -181,11 +181,27 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   detail::CompensatedHeights h;
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
   DirectionSolution s;
-  if (detail::compensated_heights(A, B, c, h) && valued_on_heights(h, conA, conB, kind, out, s, pattern, true))
+  const VerifiedPattern given = pattern ? *pattern : VerifiedPattern{};  // (bracketed: left as given)
+  const bool words =
+      detail::compensated_heights(A, B, c, h) && valued_on_heights(h, conA, conB, kind, out, s, pattern, true);
+  if (words && (c.label.kind != ContactKind::EE || certified_choice(upper_of(out.v, out.r), lower_of(out.v, out.r))))
     return true;
-  // parallel and nearly parallel edge pairs: exact heights (compensated_heights.h)
-  return (c.parallel || c.own_bounds) && detail::expansion_heights(A, B, c, h) &&
-         valued_on_heights(h, conA, conB, kind, out, s, pattern, true);
+  // An edge pair's heights by expansions (compensated_heights.h's expansion_heights: each
+  // within a few u of its own exact value): parallel and nearly parallel edges, which have no
+  // double words, and a contact made by rounding whose double words' u² M term exceeds the
+  // heights at the plane (depths ~1e-17 of the size on a grid against its copy shifted by a
+  // quarter cell along the diagonal): their value's interval, too wide for definitions §8, is
+  // replaced by the exact heights' where those give one.
+  if (!(c.parallel || c.own_bounds || words)) return false;
+  detail::CompensatedHeights x;
+  Valued v;
+  DirectionSolution t;
+  VerifiedPattern p = given;
+  if (!detail::expansion_heights(A, B, c, x) || !valued_on_heights(x, conA, conB, kind, v, t, pattern ? &p : nullptr, true))
+    return words;
+  out = v;
+  if (pattern) *pattern = p;
+  return true;
 }
 
 namespace {
