@@ -31,19 +31,9 @@ bool plane_of(const Bounded (&hA)[4], const Bounded (&hB)[4], const AtPlane& pat
   return true;
 }
 
-}  // namespace
-
-bool compensated_displacements(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
-                               const AtPlane& pattern, CompensatedDisplacements& out) {
-  DoubleWordHeights w;
-  if (!double_word_heights(A, B, label, w)) return false;
-  // n* = e1 x e2 certainly not 0: the label's direction (not an edge pair's taken as ± by its
-  // label while its edges are parallel, whose direction is another vector)
-  Bounded nn;
-  for (int k = 0; k < 3; ++k) nn = dw::plus(nn, dw::times(Bounded{w.n[k], w.en[k]}, Bounded{w.n[k], w.en[k]}));
-  if (!(dw::certain_sign(nn) > 0)) return false;
-  Bounded hA[4], hB[4];
-  for (int i = 0; i < 4; ++i) hA[i] = {w.hA[i], w.eA[i]}, hB[i] = {w.hB[i], w.eB[i]};
+// The closed form (header) on heights given as Bounded values.
+bool displacements_of(const Bounded (&hA)[4], const Bounded (&hB)[4], const AtPlane& pattern,
+                      CompensatedDisplacements& out) {
   Plane pl;
   if (!plane_of(hA, hB, pattern, pl)) return false;
   const int mA = pl.mA, mB = pl.mB, den = pl.den;
@@ -74,6 +64,28 @@ bool compensated_displacements(const TetVertices& A, const TetVertices& B, const
       if (!(at >> i & 1u)) t[i] = -S, e[i] = eS;
   }
   return true;
+}
+
+}  // namespace
+
+bool compensated_displacements(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
+                               const AtPlane& pattern, CompensatedDisplacements& out) {
+  DoubleWordHeights w;
+  if (!double_word_heights(A, B, label, w)) return false;
+  // n* = e1 x e2 certainly not 0: the label's direction (not an edge pair's taken as ± by its
+  // label while its edges are parallel, whose direction is another vector)
+  Bounded nn;
+  for (int k = 0; k < 3; ++k) nn = dw::plus(nn, dw::times(Bounded{w.n[k], w.en[k]}, Bounded{w.n[k], w.en[k]}));
+  if (!(dw::certain_sign(nn) > 0)) return false;
+  Bounded hA[4], hB[4];
+  for (int i = 0; i < 4; ++i) hA[i] = {w.hA[i], w.eA[i]}, hB[i] = {w.hB[i], w.eB[i]};
+  return displacements_of(hA, hB, pattern, out);
+}
+
+bool compensated_displacements(const CompensatedHeights& h, const AtPlane& pattern, CompensatedDisplacements& out) {
+  Bounded hA[4], hB[4];
+  for (int i = 0; i < 4; ++i) hA[i] = {{h.hA[i], 0.0}, h.eA[i]}, hB[i] = {{h.hB[i], 0.0}, h.eB[i]};
+  return displacements_of(hA, hB, pattern, out);
 }
 
 }  // namespace pdd::fast::detail

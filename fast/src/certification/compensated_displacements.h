@@ -24,6 +24,7 @@
 // deformed positions within an ulp of the exact ones.
 #pragma once
 
+#include "certification/compensated_heights.h"
 #include "pdd/direction_label.h"
 #include "pdd/tet_pair.h"
 
@@ -37,5 +38,9 @@ struct CompensatedDisplacements {
 };
 bool compensated_displacements(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
                                const AtPlane& pattern, CompensatedDisplacements& out);
+// The same on given heights, each within its bound e_i of the exact height along the exact
+// normal they were taken on (compensated_heights.h's expansion_heights: an edge pair's, which
+// has no double words, each within a few u of itself): the displacements along that normal.
+bool compensated_displacements(const CompensatedHeights& h, const AtPlane& pattern, CompensatedDisplacements& out);
 
 }  // namespace pdd::fast::detail

@@ -1154,19 +1154,19 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
   }
 }
 
-bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
-                           Positions<double>& qA, Positions<double>& qB) {
-  detail::CompensatedHeights h;
+namespace {
+// compensated_positions on heights h: compensated_heights' (words) or expansion_heights'.
+bool positions_on(const TetVertices& A, const TetVertices& B, const Candidate& c, const detail::CompensatedHeights& h,
+                  bool words, Positions<double>& qA, Positions<double>& qB) {
   Valued x;
   DirectionSolution s;
   VerifiedPattern p;
-  if (!detail::compensated_heights(A, B, c, h) ||
-      !valued_on_heights(h, c.conA, c.conB, QpKind::Deformable, x, s, &p))
-    return false;
+  if (!valued_on_heights(h, c.conA, c.conB, QpKind::Deformable, x, s, &p)) return false;
   const double N = std::sqrt(h.nn), rho = std::sqrt(3.0) * h.e_n / N;
   if (!(rho <= 0.01)) return false;
   // Each vertex's displacement T along n* (T n*/(n*.n*) in space) within dT of the exact one:
-  // the double solver's (above), else compensated_displacements' (double words, a bound each)
+  // the double solver's (above), else compensated_displacements' (a bound each: on the double
+  // words of the label's heights, or on the given heights)
   const double dT = kSolverDisplacementCoeffTight * kUnitRoundoff * p.Ha + 8 * p.e_act;
   double T[2][4], eT[2][4];
   for (int t = 0; t < 2; ++t)
@@ -1187,7 +1187,9 @@ bool compensated_positions(const TetVertices& A, const TetVertices& B, const Can
   };
   if (!(error() * 1.01 <= 2 * kUnitRoundoff * Q)) {
     detail::CompensatedDisplacements d;
-    if (!detail::compensated_displacements(A, B, c.label, detail::AtPlane{p.atA, p.atB}, d)) return false;
+    const detail::AtPlane at{p.atA, p.atB};
+    if (!(words ? detail::compensated_displacements(A, B, c.label, at, d) : detail::compensated_displacements(h, at, d)))
+      return false;
     for (int i = 0; i < 4; ++i) T[0][i] = d.tA[i], eT[0][i] = d.eA[i], T[1][i] = d.tB[i], eT[1][i] = d.eB[i];
     if (!(error() * 1.01 <= 2 * kUnitRoundoff * Q)) return false;  // (NaN: false)
   }
@@ -1199,6 +1201,17 @@ bool compensated_positions(const TetVertices& A, const TetVertices& B, const Can
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) qA[i][k] = A[i][k] + dA[i][k], qB[i][k] = B[i][k] + dB[i][k];
   return true;
+}
+}  // namespace
+
+bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
+                           Positions<double>& qA, Positions<double>& qB) {
+  detail::CompensatedHeights h;
+  if (detail::compensated_heights(A, B, c, h) && positions_on(A, B, c, h, true, qA, qB)) return true;
+  // parallel and nearly parallel edge pairs: heights by expansions (no double words, or double
+  // words ~10 u off of themselves)
+  return c.label.kind == ContactKind::EE && (c.parallel || c.own_bounds) && detail::expansion_heights(A, B, c, h) &&
+         positions_on(A, B, c, h, false, qA, qB);
 }
 
 namespace {

@@ -144,7 +144,10 @@ void deformed_positions(const TetVertices& A, const TetVertices& B, const Candid
 // by rounding on a deep pair: 2^9 u Ha is hundreds of ulps of the coordinates), the
 // displacements T~_i come from double-word heights instead (compensated_displacements.h's
 // compensated_displacements: the same closed form of the same verified pattern, each within
-// its own bound dT_i of T*_i, ~u |T*_i|), and eta is taken with those.
+// its own bound dT_i of T*_i, ~u |T*_i|), and eta is taken with those. Parallel and nearly
+// parallel edge pairs, which have no double words or ones ~10 u off, take their heights by
+// expansions (expansion_heights: each within a few u of its own exact value) and, where needed,
+// their displacements from those (compensated_displacements on given heights).
 bool compensated_positions(const TetVertices& A, const TetVertices& B, const Candidate& c,
                            Positions<double>& qA, Positions<double>& qB);
 
