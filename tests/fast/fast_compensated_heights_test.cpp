@@ -336,6 +336,19 @@ std::vector<std::pair<TetVertices, TetVertices>> shifted_kuhn_pairs(double h = 0
   return out;
 }
 
+// f(sp, f, c) for every candidate c of every intersecting pair (power_scaled exactly to sp,
+// its exact frame f).
+template <class F>
+void for_each_candidate(const std::vector<std::pair<TetVertices, TetVertices>>& pairs, F each) {
+  for (const auto& [A0, B0] : pairs) {
+    const detail::ScaledPair sp = detail::power_scaled(A0, B0);
+    CandidateSet set;
+    if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) continue;
+    const detail::ExactFrame f = detail::exact_frame(sp.A, sp.B);
+    for (int k = 0; k < set.count; ++k) each(sp, f, candidate(set, k));
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(compensated_depths_order_near_ties) {
@@ -536,29 +549,22 @@ BOOST_AUTO_TEST_CASE(compensated_values_contain_the_exact_value) {
     if (shallow(A, B, 10 * std::pow(10.0, -rng.uniform(3, 12)))) pairs.emplace_back(A, B);
   }
   int checked = 0, outside = 0, bracketed = 0, bracketed_certified = 0;
-  for (const auto& [A0, B0] : pairs) {
-    const detail::ScaledPair sp = detail::power_scaled(A0, B0);
-    CandidateSet set;
-    if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) continue;
-    const detail::ExactFrame f = detail::exact_frame(sp.A, sp.B);
-    for (int k = 0; k < set.count; ++k) {
-      const Candidate c = candidate(set, k);
-      std::optional<detail::ExactCandidate> x;
-      for (QpKind kind : {QpKind::Static, QpKind::Deformable, QpKind::Relaxed}) {
-        double v = 0, r = 0;
-        bool b = false;
-        if (!compensated_value(sp.A, sp.B, c, kind, v, r, &b)) continue;
-        if (!x) x = detail::exact_candidate(f, c.label);
-        const Q q = kind == QpKind::Static       ? detail::exact_static_value(*x)
-                    : kind == QpKind::Deformable ? detail::exact_deformable_value(*x)
-                                                 : detail::exact_relaxed_value(*x);
-        const Q exact = detail::unscaled(f, q, 2);
-        if (exact < Q(lower_of(v, r)) || exact > Q(upper_of(v, r))) ++outside;
-        ++checked;
-        if (b) ++bracketed, bracketed_certified += certified_choice(upper_of(v, r), lower_of(v, r));
-      }
+  for_each_candidate(pairs, [&](const detail::ScaledPair& sp, const detail::ExactFrame& f, const Candidate& c) {
+    std::optional<detail::ExactCandidate> x;
+    for (QpKind kind : {QpKind::Static, QpKind::Deformable, QpKind::Relaxed}) {
+      double v = 0, r = 0;
+      bool b = false;
+      if (!compensated_value(sp.A, sp.B, c, kind, v, r, &b)) continue;
+      if (!x) x = detail::exact_candidate(f, c.label);
+      const Q q = kind == QpKind::Static       ? detail::exact_static_value(*x)
+                  : kind == QpKind::Deformable ? detail::exact_deformable_value(*x)
+                                               : detail::exact_relaxed_value(*x);
+      const Q exact = detail::unscaled(f, q, 2);
+      if (exact < Q(lower_of(v, r)) || exact > Q(upper_of(v, r))) ++outside;
+      ++checked;
+      if (b) ++bracketed, bracketed_certified += certified_choice(upper_of(v, r), lower_of(v, r));
     }
-  }
+  });
   BOOST_TEST_MESSAGE("compensated values: " << checked << " on " << pairs.size() << " pairs (" << half
                                             << " degenerate), " << bracketed << " bracketed, "
                                             << bracketed_certified << " of them certified");
@@ -578,25 +584,19 @@ BOOST_AUTO_TEST_CASE(compensated_values_contain_the_exact_value) {
 // ~1e-32 at the plane).
 BOOST_AUTO_TEST_CASE(rounding_contact_edge_pairs_certify_on_exact_heights) {
   int tiny = 0, certified = 0, outside = 0;
-  for (const auto& [A0, B0] : shifted_kuhn_pairs(0.1, {0.025, 0.025, 0.025})) {
-    const detail::ScaledPair sp = detail::power_scaled(A0, B0);
-    CandidateSet set;
-    if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) continue;
-    const detail::ExactFrame f = detail::exact_frame(sp.A, sp.B);
-    for (int k = 0; k < set.count; ++k) {
-      const Candidate c = candidate(set, k);
-      if (c.label.kind != ContactKind::EE) continue;
-      const Q exact = detail::unscaled(f, detail::exact_deformable_value(detail::exact_candidate(f, c.label)), 2);
-      if (!(exact > 0 && exact < Q(1e-30))) continue;  // a contact made by rounding
-      ++tiny;
-      double v = 0, r = 0;
-      if (!compensated_value(sp.A, sp.B, c, QpKind::Deformable, v, r, nullptr)) continue;
-      const double lo = lower_of(v, r), hi = upper_of(v, r);
-      if (!certified_choice(hi, lo) || !std::isfinite(hi)) continue;  // (r = inf: no bound to check)
-      ++certified;
-      if (exact < Q(lo) || exact > Q(hi)) ++outside;
-    }
-  }
+  for_each_candidate(shifted_kuhn_pairs(0.1, {0.025, 0.025, 0.025}),
+                     [&](const detail::ScaledPair& sp, const detail::ExactFrame& f, const Candidate& c) {
+    if (c.label.kind != ContactKind::EE) return;
+    const Q exact = detail::unscaled(f, detail::exact_deformable_value(detail::exact_candidate(f, c.label)), 2);
+    if (!(exact > 0 && exact < Q(1e-30))) return;  // a contact made by rounding
+    ++tiny;
+    double v = 0, r = 0;
+    if (!compensated_value(sp.A, sp.B, c, QpKind::Deformable, v, r, nullptr)) return;
+    const double lo = lower_of(v, r), hi = upper_of(v, r);
+    if (!certified_choice(hi, lo) || !std::isfinite(hi)) return;  // (r = inf: no bound to check)
+    ++certified;
+    if (exact < Q(lo) || exact > Q(hi)) ++outside;
+  });
   BOOST_TEST_MESSAGE("contacts made by rounding: " << tiny << " edge-pair case-2 values, " << certified
                                                    << " certified on their own");
   BOOST_TEST(outside == 0);
