@@ -1300,25 +1300,38 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
   if (k == 1) {
     // What the first branch learns, for the run's routes on the same rescaled pair: where the
     // kernel ran and `unique` failed, rigid_and_accel1 there computes the same choice and
-    // fails too (it needs `unique`); with unresolved edge pairs the quick list declines.
+    // fails too (it needs `unique`), as it does where the first branch's compensated value
+    // failed on that pair (compensated_tried); with unresolved edge pairs the quick list
+    // declines.
     // (Either route skipped is only time saved: the next one computes the same value.)
-    bool ran = false, unique = false, unresolved = false;
+    bool ran = false, unique = false, unresolved = false, compensated_tried = false;
     return detail::fused_hot_path(
         A, B,
         // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
         // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
         // of the kernel's extent: the same maxima, minima and differences)
+        // and, where the double heights cannot certify the value along the unique pick,
+        // rigid_and_accel1's compensated value on the same rescaled pair (power_scaled's, 2^e)
         [&](Choice& ch, int& e) {
           Choice rigid;
           Candidate c;
           double extent = 0;
-          return rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved) &&
-                 accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch);
+          if (!rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved)) return false;
+          if (accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch)) return true;
+          if (!unique) return false;
+          const detail::ScaledPair sp = detail::power_scaled(A, B);
+          if (!sp.finite || !sp.exact || sp.e != e) return false;
+          compensated_tried = true;
+          double v = 0;
+          if (!accel1_compensated(sp.A, sp.B, c, v)) return false;
+          ch = {v, -1, rigid.code};
+          ch.certified = true;
+          return true;
         },
         [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
           Choice rigid;
           Candidate c;
-          if (!(ran && !unique) && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
+          if (!(ran && !unique) && !compensated_tried && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
           QuickCandidates q;
           if (!(ran && unresolved) && quick_candidates(As, Bs, q)) {
             ch = pdd2_accel(q, 1);
