@@ -77,7 +77,7 @@ std::vector<DirectionLabel> candidate_labels(const TetVertices& A, const TetVert
 BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
   compare::ReproducibleRng r(38);
   int parallel = 0, colinear = 0, zero_g = 0, zero_depth = 0, same_direction = 0;
-  int delta_compared = 0, delta_ties = 0, delta_near = 0;
+  int delta_compared = 0, delta_ties = 0, delta_near = 0, parts_checked = 0;
   for (int it = 0; it < 3000; ++it) {
     const auto [A, B] = aligned_pair(r);
     BOOST_REQUIRE(detail::in_exact_range(A, B));
@@ -131,6 +131,19 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
     // the order of delta² by expansions (no division) against the rationals' order
     std::vector<ExactDepthParts> parts;
     for (const auto& l : labels) parts.push_back(depth_parts_exact(A, B, l));
+    // each part exact: D²/(n.n) from the expansions is the rationals' delta² (the heights'
+    // extremes taken among the vertices a double filter cannot rule out)
+    auto value_of = [](const detail::Expansion& e) {
+      Q v = 0;
+      for (int c = 0; c < e.n; ++c) v += Q(e.c[c]);
+      return v;
+    };
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      if (!parts[i].ok || delta2[i] == 0) continue;
+      const Q D = value_of(parts[i].D);
+      BOOST_TEST((D * D / value_of(parts[i].nn) == delta2[i]), "parts " << labels[i].str());
+      parts_checked += 1;
+    }
     for (std::size_t i = 0; i < labels.size(); i += 3)
       for (std::size_t j = i + 1; j < labels.size(); j += 5) {
         if (!parts[i].ok || !parts[j].ok) continue;
@@ -162,7 +175,8 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
   BOOST_TEST(delta_compared > 10000);
   BOOST_TEST(delta_ties > 100);
   BOOST_TEST(delta_near > 100);
-  BOOST_TEST_MESSAGE("delta² compared by expansions " << delta_compared << ", exact ties " << delta_ties
+  BOOST_TEST(parts_checked > 10000);
+  BOOST_TEST_MESSAGE("delta² compared by expansions " << delta_compared << ", parts checked " << parts_checked << ", exact ties " << delta_ties
                                                       << ", near ties " << delta_near);
   BOOST_TEST_MESSAGE("parallel " << parallel << ", colinear " << colinear << ", zero g " << zero_g
                                  << ", zero depths " << zero_depth << ", same directions " << same_direction);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "exact/exact_geometry.h"
 #include "exact/expansion.h"
@@ -279,15 +280,50 @@ bool every_coordinate_within(const TetVertices& A, const TetVertices& B, double 
 bool normal_for_degree_ten(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, ExpVec& n) {
   if (!every_coordinate_within(A, B, 0x1p-40, 0x1p40)) return false;
   bool ok = true;
-  if (label.kind != ContactKind::FV && label.kind != ContactKind::VF) {
-    EdgePairKind kind;
-    (void)edge_pair_normal_exp(A, B, label.a, label.b, &kind, ok);
-    if (!ok || kind == EdgePairKind::Colinear) return false;
-    if (kind == EdgePairKind::Parallel && !every_coordinate_within(A, B, 0x1p-20, 0x1p20)) return false;
-  }
-  n = oriented_normal_exp(A, B, label, ok);
-  return ok && n.ok();
+  EdgePairKind kind = EdgePairKind::Generic;  // (faces: stays Generic)
+  n = oriented_normal_exp(A, B, label, ok, &kind);
+  if (!ok || !n.ok() || kind == EdgePairKind::Colinear) return false;
+  return kind != EdgePairKind::Parallel || every_coordinate_within(A, B, 0x1p-20, 0x1p20);
 }
+
+namespace {
+// Vertices of T whose height h = s n.(p − o) (s = +1: A's vertices, for the largest; s = −1:
+// B's, for the least) may be the largest exactly; bit i: vertex i kept. From the double value
+// of n (approx_of: each component within e_k of n_k) and the coordinate differences rounded
+// (within u of themselves): |h − h~| <= sum_k |d~_k| (e_k (1 + u) + (u + gamma_3) |n~_k|) (the
+// products' and two sums' roundings, gamma_3 <= 3.0001 u), taken as e = sum_k |d~_k| (e_k +
+// 5u |n~_k|) (1 + 2^-40) (the bound's own roundings, a few u relative) + 2^-1000 (terms that
+// underflow). Vertex i is dropped when another one j is certainly higher: fl(h~_j − h~_i)
+// (1 − 2^-50) > fl(e_i + e_j) (1 + 2^-50), each side's two roundings (<= u each) inside the
+// 2^-50, so h_j >= h~_j − e_j > h~_i + e_i >= h_i. Grids tie several heights exactly: those
+// stay, and the expansions order them. (NaN: kept.)
+unsigned extreme_candidates(const ExpVec& n, const TetVertices& T, const Vec3d& o, double s) {
+  constexpr double u = 0x1p-53;
+  double nv[3], ne[3];
+  for (int k = 0; k < 3; ++k) {
+    const Approx a = approx_of(n.x[k]);
+    nv[k] = a.v, ne[k] = a.err;
+  }
+  double h[4], e[4];
+  for (int i = 0; i < 4; ++i) {
+    double x = 0.0, b = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = T[i][k] - o[k];
+      x += nv[k] * d;
+      b += std::fabs(d) * (ne[k] + 5 * u * std::fabs(nv[k]));
+    }
+    h[i] = s * x, e[i] = b * (1 + 0x1p-40) + 0x1p-1000;
+  }
+  unsigned keep = 0;
+  for (int i = 0; i < 4; ++i) {
+    bool below = false;
+    for (int j = 0; j < 4 && !below; ++j)
+      below = (h[j] - h[i]) * (1 - 0x1p-50) > (e[i] + e[j]) * (1 + 0x1p-50);
+    if (!below) keep |= 1u << i;
+  }
+  return keep;
+}
+}  // namespace
 
 ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
   ExactDepthParts parts;
@@ -295,12 +331,19 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
   if (!normal_for_degree_ten(A, B, label, n)) return parts;
   bool ok = true;
   Expansion hi, lo;
+  const unsigned keepA = extreme_candidates(n, A, A[0], 1.0), keepB = extreme_candidates(n, B, A[0], -1.0);
+  bool firstA = true, firstB = true;
   for (int i = 0; i < 4; ++i) {
-    const Expansion ha = dot(n, difference(A[i], A[0]));
-    const Expansion hb = dot(n, difference(B[i], A[0]));
-    if (i == 0 || difference(ha, hi).sign() > 0) hi = ha;
-    if (i == 0 || difference(hb, lo).sign() < 0) lo = hb;
-    ok = ok && ha.ok && hb.ok;
+    if (keepA >> i & 1) {
+      const Expansion ha = dot(n, difference(A[i], A[0]));
+      if (firstA || difference(ha, hi).sign() > 0) hi = ha;
+      ok = ok && ha.ok, firstA = false;
+    }
+    if (keepB >> i & 1) {
+      const Expansion hb = dot(n, difference(B[i], A[0]));
+      if (firstB || difference(hb, lo).sign() < 0) lo = hb;
+      ok = ok && hb.ok, firstB = false;
+    }
   }
   // compressed: the same values in a few components, so that the products of
   // compare_delta2_exact stay short
