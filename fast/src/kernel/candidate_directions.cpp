@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "certification/compensated_heights.h"
 #include "certification/filter_bounds.h"
@@ -13,6 +14,7 @@
 #include "exact/expansion.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/edge_pair_formula.h"
+#include "kernel/near_parallel_bound.h"
 
 namespace pdd::fast {
 namespace {
@@ -99,6 +101,7 @@ struct Builder {
                               {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet, 3: too long
   ExpVec face_normal[4];  // A's raw face normals, exactly, as g_sign_exact needs them
   bool face_normal_known[4] = {false, false, false, false};
+  std::optional<CompensatedNormal> face_normal_dw[4];  // the same in double words
   // parallel_heights of edge pair (a, b) as exactly_parallel computed them, lane 8a + b in
   // parallel_lane (−1: none); edge_pair_general takes them instead of computing them again
   // (the same function of the same inputs: the same bits).
@@ -166,13 +169,22 @@ struct Builder {
   // normal of A's face {u, v, i} (kFace order; + for an even permutation of it, a cross
   // product of a triangle's edges being invariant under cyclic shifts), so sign(g_i) =
   // ±sign(eB.N). The 24 signs eB.N (6 edges of B, 4 faces of A) are cached: aligned pairs
-  // ask for the same few many times. Precondition: the pair is in the expansions' range.
-  // Returns 3 when the expansions exceed their capacity (expansion.h).
+  // ask for the same few many times. Each is taken in double words where they certify it
+  // (compensated_heights.h: the same N and eB, a non-zero sign; a mesh against its shifted
+  // copy has B's edges in A's face planes up to a rounding: ~140 instructions a sign and ~230
+  // a face's normal, where the expansions take thousands), else by expansions. Precondition: the pair is in the expansions'
+  // range. Returns 3 when the expansions exceed their capacity (expansion.h).
   int g_sign_exact(int a, int b, int i) {
     const int u = kEdges[a][0], v = kEdges[a][1];
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
     int& s = face_edge_sign[b][f];
-    if (s == 2 && triple_zero(b, f)) s = 0;
+    if (s == 2 && (triple_zero(b, f) || edge_copy_in_face(b, f))) s = 0;
+    if (s == 2) {
+      const auto& F = kFace[f];
+      if (!face_normal_dw[f]) face_normal_dw[f] = compensated_normal(A[F[1]], A[F[0]], A[F[2]], A[F[0]]);
+      int sign = 0;
+      if (compensated_height_sign(*face_normal_dw[f], B[kEdges[b][1]], B[kEdges[b][0]], sign)) s = sign;
+    }
     if (s == 2) {
       if (!face_normal_known[f]) {
         const auto& F = kFace[f];
@@ -187,6 +199,31 @@ struct Builder {
     // parity of (u, v, i) against the increasing order (u < v always): inversions of i
     const int inversions = (i < u) + (i < v);
     return inversions == 1 ? -s : s;
+  }
+
+  // eB = ± an edge of A's face f, both differences exact in doubles (two_sum's error 0) and
+  // equal: eB lies in f's plane, so eB.N_f = 0 exactly. A mesh against its copy shifted by an
+  // offset whose roundings cancel at both ends of an edge (most edges of such a copy).
+  bool edge_copy_in_face(int b, int f) const {
+    double e[3];
+    if (!exact_difference(B[kEdges[b][1]], B[kEdges[b][0]], e)) return false;
+    const auto& F = kFace[f];
+    for (int m = 0; m < 3; ++m) {
+      double d[3];
+      if (!exact_difference(A[F[(m + 1) % 3]], A[F[m]], d)) continue;
+      const bool plus = d[0] == e[0] && d[1] == e[1] && d[2] == e[2];
+      const bool minus = d[0] == -e[0] && d[1] == -e[1] && d[2] == -e[2];
+      if (plus || minus) return true;
+    }
+    return false;
+  }
+  static bool exact_difference(const Vec3d& p, const Vec3d& q, double d[3]) {
+    for (int k = 0; k < 3; ++k) {
+      double err;
+      two_sum(p[k], -q[k], d[k], err);
+      if (err != 0.0) return false;
+    }
+    return true;
   }
 
   // eB.N_f certainly 0 by structural zeros (triple_zero), asked through g_sign_exact's cache.
@@ -268,8 +305,10 @@ struct Builder {
     bool parallel = false;
     // n = eB × eA exactly 0 by structural zeros: parallel or colinear without the expansions
     // (exactly_parallel's precondition, the expansions' range, as near_parallel_normal's).
+    // (or by exact products: a copy of an edge whose coordinate differences are exact)
     if (in_range && max_abs3(c.n) <= fb.deg2 &&
-        cross_zero(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]))
+        (cross_zero(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]) ||
+         cross_zero_in_doubles(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]])))
       return exactly_parallel(a, b);
     // n~ small (value_bounds.h, kExactNormalBelow): taken exactly, with its own bounds; where
     // the expansions cannot, n~ within the degree-2 filter is classified exactly, and a larger

@@ -120,22 +120,19 @@ bool bound_of_pair(const SupersetLanes& K, const FilterBounds& fb, int a, int b,
   return true;
 }
 
-// Edges a of A and b of B exactly parallel, shown in doubles (else false: not known): both edge
-// vectors are computed exactly (two_sum's error of each coordinate difference is 0) and every
-// component of eB × eA is exactly 0, f_i e_j and f_j e_i equal as exact products (each as its
-// rounded value and its error fma(x, y, −fl(x y)), the exact error of the product: equal pairs,
-// equal products; exact when the factors are 0 or of magnitude >= 2^-400, so that no product or
-// its error term underflows, checked). Parallel edges span no facet of A ⊕ (−B) (their sum is
-// a segment): no orientation of the pair is a facet normal, so lo2 = +inf (header). Grids and
-// copies of a mesh are full of them. (Built with an fma clone, double_word.h: the error terms
-// are one instruction each instead of Dekker's splits.)
-PDD_FMA_CLONES bool exactly_parallel(const SupersetLanes& K, int a, int b) {
-  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+// (p1 − p0) × (q1 − q0) exactly 0, shown in doubles (else false: not known): both vectors are
+// computed exactly (two_sum's error of each coordinate difference is 0) and every component
+// e_i f_j − e_j f_i is exactly 0, the two products equal as exact products (each as its
+// rounded value and its error fma(x, y, −fl(x y)), the exact error of the product: equal
+// pairs, equal products; exact when the factors are 0 or of magnitude >= 2^-400, so that no
+// product or its error term underflows, checked). (Built with an fma clone, double_word.h:
+// the error terms are one instruction each instead of Dekker's splits.)
+PDD_FMA_CLONES bool cross_zero_in_doubles(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
   double e[3], f[3];
   for (int k = 0; k < 3; ++k) {
     double err_e, err_f;
-    two_sum(K.X[k][v], -K.X[k][u], e[k], err_e);
-    two_sum(K.X[k][4 + y], -K.X[k][4 + x], f[k], err_f);
+    two_sum(p1[k], -p0[k], e[k], err_e);
+    two_sum(q1[k], -q0[k], f[k], err_f);
     if (err_e != 0.0 || err_f != 0.0) return false;
     if ((e[k] != 0.0 && !(std::fabs(e[k]) >= 0x1p-400)) || (f[k] != 0.0 && !(std::fabs(f[k]) >= 0x1p-400)))
       return false;
@@ -147,6 +144,13 @@ PDD_FMA_CLONES bool exactly_parallel(const SupersetLanes& K, int a, int b) {
     if (p != q || std::fma(f[i], e[j], -p) != std::fma(f[j], e[i], -q)) return false;
   }
   return true;
+}
+
+// Parallel edges span no facet of A ⊕ (−B) (their sum is a segment): no orientation of the
+// pair is a facet normal, so lo2 = +inf (header). Grids and copies of a mesh are full of them.
+bool exactly_parallel(const SupersetLanes& K, int a, int b) {
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  return cross_zero_in_doubles(vertex(K, u), vertex(K, v), vertex(K, 4 + x), vertex(K, 4 + y));
 }
 
 bool near_parallel_bound(const SupersetLanes& K, const FilterBounds& fb, int a, int b, double& lo2) {

@@ -67,6 +67,9 @@ bool near_parallel_positive(const SupersetLanes& K, const FilterBounds& fb, int 
 
 // Edges a of A and b of B exactly parallel, shown in doubles (false: not known).
 bool exactly_parallel(const SupersetLanes& K, int a, int b);
+// (p1 − p0) × (q1 − q0) exactly 0, shown in doubles (false: not known): exact coordinate
+// differences whose cross products cancel as exact products (the test exactly_parallel makes).
+bool cross_zero_in_doubles(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1);
 
 // The edge pairs (bit 8a + b) whose computed n = eB × eA has every component <= E2 in magnitude:
 // the exact n may be 0 (no direction, or definitions §3's common perpendicular) or point anywhere ⊥ eA.
