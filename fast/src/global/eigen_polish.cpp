@@ -2,33 +2,67 @@
 #include "global/eigen_polish.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+
+#include "global/integer_shift.h"
 
 namespace pdd::fast::global {
 
+namespace {
+// A double as an integer times 2^e (e the exponent of its last mantissa bit; 0 -> 0, e = 0).
+struct ScaledInt {
+  mpz_class m;
+  long e = 0;
+};
+ScaledInt scaled_int(double x) {
+  ScaledInt s;
+  if (x == 0.0) return s;
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 1/2 <= |f| < 1
+  s.m = std::ldexp(f, 53);             // exact: an integer below 2^53
+  s.e = long(e) - 53;
+  return s;
+}
+}  // namespace
+
+// The iteration over integers (integer_shift.h): x = adj(M) V with M = L (h - sigma I) and V =
+// 2^-E v integers is a positive multiple of adj(h - sigma I) v, so x_r / max |x| is the same
+// rational as on the rationals themselves, rounded by the same conversion: the same doubles.
 V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe) {
   using detail::Q;
   Q sigma = Q(mu) * (1 - Q(1, 1000000));
   detail::scale_pow2(sigma, pe);  // mu is in the piece's units, 2^-pe of h's
-  Q m[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : Q(0));
-  Q adj[3][3];
+  mpz_class m[3][3];
+  integer_shift(h, sigma, m);
+  mpz_class adj[3][3];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
       adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
     }
-  const Q det = m[0][0] * adj[0][0] + m[0][1] * adj[1][0] + m[0][2] * adj[2][0];
+  const mpz_class det = m[0][0] * adj[0][0] + m[0][1] * adj[1][0] + m[0][2] * adj[2][0];
   V3 v = v0;
   for (int it = 0; it < 3; ++it) {
-    Q x[3];
-    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * Q(v[0]) + adj[r][1] * Q(v[1]) + adj[r][2] * Q(v[2]);
-    Q big = 0;
-    for (const Q& c : x) big = std::max(big, Q(abs(c)));
+    ScaledInt s[3] = {scaled_int(v[0]), scaled_int(v[1]), scaled_int(v[2])};
+    long E = LONG_MAX;
+    for (const ScaledInt& x : s)
+      if (sgn(x.m) != 0) E = std::min(E, x.e);
+    mpz_class V[3];
+    for (int k = 0; k < 3; ++k)
+      if (sgn(s[k].m) != 0) mpz_mul_2exp(V[k].get_mpz_t(), s[k].m.get_mpz_t(), mp_bitcnt_t(s[k].e - E));
+    mpz_class x[3];
+    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * V[0] + adj[r][1] * V[1] + adj[r][2] * V[2];
+    mpz_class big = 0;
+    for (const mpz_class& c : x)
+      if (mpz_cmpabs(c.get_mpz_t(), big.get_mpz_t()) > 0) big = abs(c);
     if (sgn(big) == 0) return v;
     if (sgn(det) < 0) big = -big;
-    v = {Q(x[0] / big).get_d(), Q(x[1] / big).get_d(), Q(x[2] / big).get_d()};
+    for (int r = 0; r < 3; ++r) {
+      Q q(x[r], big);
+      q.canonicalize();
+      v[r] = q.get_d();
+    }
   }
   return v;
 }

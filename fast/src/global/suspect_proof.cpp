@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "global/eigen_polish.h"
+#include "global/integer_shift.h"
 
 namespace pdd::fast::global {
 namespace {
@@ -23,25 +24,23 @@ namespace {
 // eigenvalue equal to t (a zero root of the polynomial: its trailing zero coefficients) is.
 int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const detail::Q& t,
                       bool or_equal = false) {
-  using detail::Q;
-  Q a[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) a[r][c] = M[r][c] - (r == c ? t : Q(0));
-  const Q tr = a[0][0] + a[1][1] + a[2][2];
-  const Q c1 = a[0][0] * a[1][1] - a[0][1] * a[1][0] + a[0][0] * a[2][2] - a[0][2] * a[2][0] +
-               a[1][1] * a[2][2] - a[1][2] * a[2][1];
-  const Q det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  mpz_class a[3][3];  // L (M - t I), L > 0 (integer_shift.h): the same signs
+  integer_shift(M, t, a);
+  const mpz_class tr = a[0][0] + a[1][1] + a[2][2];
+  const mpz_class c1 = a[0][0] * a[1][1] - a[0][1] * a[1][0] + a[0][0] * a[2][2] - a[0][2] * a[2][0] +
+                       a[1][1] * a[2][2] - a[1][2] * a[2][1];
+  const mpz_class det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                        a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   int changes = 0, last = 1;
-  for (const Q* c : {&tr, &c1, &det}) {
+  for (const mpz_class* c : {&tr, &c1, &det}) {
     const int sg = sgn(*c);
     if (sg == 0) continue;
     if (sg != last) ++changes;
     last = sg;
   }
   if (or_equal)
-    for (const Q* c : {&det, &c1, &tr}) {
+    for (const mpz_class* c : {&det, &c1, &tr}) {
       if (sgn(*c) != 0) break;
       ++changes;
     }
