@@ -1,11 +1,13 @@
 // exact_sat.cpp — interiors_intersect_sat (exact_sat.h): the 8 face axes and the 36 edge-pair
-// axes in doubles with the static filter E3, then the exact signs the filter left open, axis by
-// axis, for the axes certain signs did not rule out.
+// axes in doubles with the static filter E3, then the exact signs the filter left open (double
+// words, then expansions), axis by axis, for the axes certain signs did not rule out.
 #include "exact/exact_sat.h"
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 
+#include "certification/compensated_heights.h"
 #include "certification/filter_bounds.h"
 #include "exact/exact_heights.h"
 #include "exact/expansion.h"
@@ -48,32 +50,59 @@ int orientation(const TetVertices& T, double e3, bool& ok) {
   return exact_height_sign(ne, T[3], T[0], ok);
 }
 
+// The sign of n.(p − q), n = (p1 − p0) × (q1 − q0), where the double words decide it
+// (compensated_heights.h: within 25 u² M of the exact value), else 0 (the expansions then
+// decide it). The normal in double words is built on first use (`words`), once per axis.
+int word_sign(std::optional<CompensatedNormal>& words, const Vec3d& p1, const Vec3d& p0, const Vec3d& q1,
+              const Vec3d& q0, const Vec3d& p, const Vec3d& q) {
+  if (!words) words = compensated_normal(p1, p0, q1, q0);
+  int sign = 0;
+  return compensated_height_sign(*words, p, q, sign) ? sign : 0;
+}
+
 // A face axis (header, case i): face f of T against the vertices of O, σ = orientation(T) ·
 // kFaceParity[f]. True when certain signs already violate the test (not separating); fills
-// the values' certain signs times σ (0: undecided).
-bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma, double e3, int* s) {
+// the values' certain signs times σ (0: undecided) and the computed heights h.
+bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma, double e3, int* s, double* h) {
   const auto& v = kFace[f];
   double u[3], w[3], n[3];
   sub3(T[v[1]], T[v[0]], u);
   sub3(T[v[2]], T[v[0]], w);
   cross3(u, w, n);
   for (int j = 0; j < 4; ++j) {
-    s[j] = sigma * certain(height(n, O[j], T[v[0]]), e3);
+    h[j] = height(n, O[j], T[v[0]]);
+    s[j] = sigma * certain(h[j], e3);
     if (s[j] > 0) return true;
   }
   return false;
 }
 
-// The face axis decided exactly, s[] its certain signs (times σ): true when it separates.
+// The face axis decided exactly, s[] its certain signs (times σ), h[] the computed heights:
+// true when it separates. An undecided height the doubles computed as exactly 0 is most often
+// an exact 0 (a vertex of a dyadic grid in a face plane of its copy: every product and sum
+// exact), which only the expansions decide (exact_height_sign tries the exact doubles first);
+// any other is most often not 0 by a rounding (a grid's copy shifted by a non-dyadic offset),
+// which the face's normal in double words decides (compensated_heights.h: within 25 u² M of
+// the exact height) at a fraction of the expansions' cost, the expansions taking the rest.
 bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
-                          bool& ok) {
+                          const double* h, bool& ok) {
+  const auto& v = kFace[f];
+  std::optional<CompensatedNormal> words;
+  int left[4], nleft = 0;  // the vertices the double words leave to the expansions
+  for (int j = 0; j < 4; ++j) {
+    if (s[j] < 0) continue;
+    // a vertex of the face itself: its height is exactly 0 (n is orthogonal to the face's edges)
+    if (O[j] == T[v[0]] || O[j] == T[v[1]] || O[j] == T[v[2]]) continue;
+    const int sj = h[j] != 0.0 ? sigma * word_sign(words, T[v[1]], T[v[0]], T[v[2]], T[v[0]], O[j], T[v[0]]) : 0;
+    if (sj > 0) return false;
+    if (sj == 0) left[nleft++] = j;
+  }
+  if (nleft == 0) return true;
   LazyNormal n = face_normal_exact(T, f);
   ok = ok && n.ok;
   if (!ok) return false;
-  for (int j = 0; j < 4; ++j) {
-    const int sj = s[j] != 0 ? s[j] : sigma * exact_height_sign(n, O[j], T[kFace[f][0]], ok);
-    if (sj > 0 || !ok) return false;
-  }
+  for (int i = 0; i < nleft; ++i)
+    if (sigma * exact_height_sign(n, O[left[i]], T[v[0]], ok) > 0 || !ok) return false;
   return true;
 }
 
@@ -100,7 +129,8 @@ inline void restrict_orientations(int sv, int i, bool& plus, bool& minus) {
 
 struct PendingEdge {
   int a, b;
-  int s[5];  // certain signs of the values (0: undecided)
+  int s[5];     // certain signs of the values (0: undecided)
+  double v[5];  // the values as computed
   bool plus, minus;
 };
 
@@ -166,7 +196,7 @@ int open_edge_pairs(const TetVertices& A, const TetVertices& B, double e3, Pendi
     if (normal_is_zero(ea[p / 6], eb[p % 6], exact_ea[p / 6] && exact_eb[p % 6])) continue;  // no facet
     PendingEdge& e = open[count++];
     e.a = p / 6, e.b = p % 6, e.plus = !(plus_out[p] > e3), e.minus = !(minus_out[p] < -e3);
-    for (int i = 0; i < 5; ++i) e.s[i] = certain(v[i][p], e3);
+    for (int i = 0; i < 5; ++i) e.s[i] = certain(v[i][p], e3), e.v[i] = v[i][p];
   }
   return count;
 }
@@ -188,7 +218,8 @@ int open_edge_pairs_in(const TetVertices& A, const TetVertices& B, double e3, st
       PendingEdge& e = open[count];
       e.a = a, e.b = b, e.plus = true, e.minus = true;
       for (int k = 0; k < 5; ++k) {
-        e.s[k] = certain(height(n, *ev.p[k], *ev.q[k]), e3);
+        e.v[k] = height(n, *ev.p[k], *ev.q[k]);
+        e.s[k] = certain(e.v[k], e3);
         restrict_orientations(e.s[k], k, e.plus, e.minus);
       }
       count += e.plus || e.minus;
@@ -214,8 +245,9 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
       const TetVertices& T = t == 0 ? A : B;
       const TetVertices& O = t == 0 ? B : A;
       int s[4];
-      if (face_ruled_out(T, O, f, sigma, e3, s)) continue;
-      if (face_separates_exact(T, O, f, sigma, s, ok)) return SatVerdict::Disjoint;
+      double h[4];
+      if (face_ruled_out(T, O, f, sigma, e3, s, h)) continue;
+      if (face_separates_exact(T, O, f, sigma, s, h, ok)) return SatVerdict::Disjoint;
       if (!ok) return SatVerdict::Undecided;
     }
   return SatVerdict::Intersecting;
@@ -251,19 +283,31 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, c
                                   : open_edge_pairs(A, B, e3, pending);
   for (int k = 0; k < npending; ++k) {
     PendingEdge& e = pending[k];
-    LazyNormal n(A[kEdges[e.a][1]], A[kEdges[e.a][0]], B[kEdges[e.b][1]], B[kEdges[e.b][0]]);
-    if (!n.ok) return SatVerdict::Undecided;
+    const Vec3d &a1 = A[kEdges[e.a][1]], &a0 = A[kEdges[e.a][0]], &b1 = B[kEdges[e.b][1]], &b0 = B[kEdges[e.b][0]];
     const EdgeValues ev = edge_values(A, B, e.a, e.b);
-    int alpha_nonzero = 0;
+    // n = e_a x e_b in double words first, as the face axes; the expansions for what is left
+    std::optional<CompensatedNormal> words;
+    int sv[5], left[5], nleft = 0;
     for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
-      const int sv = e.s[i] != 0 ? e.s[i] : exact_height_sign(n, *ev.p[i], *ev.q[i], ok);
-      if (!ok) return SatVerdict::Undecided;
-      if (i < 2) alpha_nonzero |= sv;
-      restrict_orientations(sv, i, e.plus, e.minus);
+      sv[i] = e.s[i];
+      if (sv[i] == 0 && e.v[i] != 0.0) sv[i] = word_sign(words, a1, a0, b1, b0, *ev.p[i], *ev.q[i]);
+      if (sv[i] != 0) restrict_orientations(sv[i], i, e.plus, e.minus);
+      else left[nleft++] = i;
+    }
+    if ((e.plus || e.minus) && nleft > 0) {
+      LazyNormal n(a1, a0, b1, b0);
+      if (!n.ok) return SatVerdict::Undecided;
+      for (int r = 0; r < nleft && (e.plus || e.minus); ++r) {
+        const int i = left[r];
+        sv[i] = exact_height_sign(n, *ev.p[i], *ev.q[i], ok);
+        if (!ok) return SatVerdict::Undecided;
+        restrict_orientations(sv[i], i, e.plus, e.minus);
+      }
     }
     // n = 0 (parallel edges: no facet, header) iff α_w1 = α_w2 = 0: n ⊥ e_a by construction,
-    // and e_a, s_w1 − s_u, s_w2 − s_u span space for a non-flat A. (Both α are known here.)
-    if ((e.plus || e.minus) && alpha_nonzero != 0) return SatVerdict::Disjoint;
+    // and e_a, s_w1 − s_u, s_w2 − s_u span space for a non-flat A. (Both α are known here: an
+    // orientation left possible means every value was decided.)
+    if ((e.plus || e.minus) && (sv[0] | sv[1]) != 0) return SatVerdict::Disjoint;
   }
   return SatVerdict::Intersecting;
 }

@@ -1,6 +1,6 @@
 // exact_sat.h — the exact intersection decision of definitions §4 (touching is not intersecting)
 // by the separating-axis theorem, with the signs the double filter cannot decide taken exactly by
-// floating-point expansions (expansion.h): no rationals. For the pairs overlap_filter leaves
+// double words or floating-point expansions (expansion.h): no rationals. For the pairs overlap_filter leaves
 // Unknown, typically aligned ones (parallel faces, parallel and colinear edges, touching and
 // coplanar faces), whose deciding signs are exact zeros.
 //
@@ -34,7 +34,12 @@
 // (filter_bounds.h, "triple product"); |value| > E3 fixes its sign. An axis is dropped as soon as
 // certain signs violate its test (both orientations for iii); an edge pair whose normal is 0
 // without arithmetic (each 2x2 minor with a zero factor in both products, or the same factors
-// for exact differences) is skipped. The remaining axes are decided exactly: each undecided value
+// for exact differences) is skipped. The remaining axes are decided exactly. An undecided value
+// of a face axis whose vertex is one of the face's own is 0. One the doubles computed as not
+// exactly 0 (most often not 0 by a rounding: a grid's copy shifted by a non-dyadic offset) is
+// taken next on the axis' normal in double words (compensated_heights.h's compensated_normal
+// and compensated_height_sign: the exact sign where their bound of 25 u² M decides it; a
+// certain sign is exact). Then each value still undecided (an exact 0, most often)
 // n.(p − q) = Σ_k n_k (p_k − q_k); a term vanishes when p_k == q_k (n_k is then not computed) or
 // n_k = 0; n_k is the exact 2x2 minor of the differences (expansions, when they are exact in
 // doubles; else expansion.h's cross); with one term left the sign is sign(n_k)·sign(p_k − q_k)
