@@ -110,37 +110,68 @@ bool refine_tight(const List& s, Lo lo, double hi, Interval interval, ExactValue
                   Choice& ch) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   if (!s.A) return false;
-  // The candidates by ascending lower bound; each takes its tight interval until the next
-  // lower bound exceeds H (the least upper bound so far): the rest cannot be least.
-  int idx[kMaxCandidates], m = 0;
-  double l[kMaxCandidates], lo_min = kInf;  // lo_min: first over the candidates above hi
+  // The candidates by ascending lower bound (equal ones in canonical order); each takes its
+  // tight interval until the next lower bound exceeds H (the least upper bound so far): the rest
+  // cannot be least. On aligned pairs nearly every candidate has lo(i) <= hi and only the first
+  // few are taken, so the least is taken first (one scan), and only the candidates whose lower
+  // bound is within its upper bound are then ordered (sorting all ~50 cost more than the
+  // intervals): the others cannot be reached, since H only decreases.
+  struct Key {  // a candidate's lower bound x and index i
+    double x;
+    int i;
+  };
+  Key keys[kMaxCandidates];
+  int count = 0;
+  double lo_min = kInf;  // lo_min: first over the candidates above hi
   for (int i = 0; i < s.count; ++i) {
     const double y = lo(i), x = y >= 0.0 ? y : 0.0;  // (NaN: no bound)
     if (x > hi) {
       lo_min = x < lo_min ? x : lo_min;
       continue;
     }
-    int t = m++;
-    for (; t > 0 && x < l[t - 1]; --t) idx[t] = idx[t - 1], l[t] = l[t - 1];
-    idx[t] = i, l[t] = x;
+    keys[count++] = {x, i};
   }
+  if (count == 0) return false;
+  int idx[kMaxCandidates];
   double v[kMaxCandidates], lower[kMaxCandidates], upper[kMaxCandidates], H = kInf;
   int n = 0;
-  for (; n < m && !(l[n] > H); ++n) {
+  auto take = [&](int i) {  // candidate i's interval as the n-th taken; H updated
+    idx[n] = i;
     double r = kInf;
-    if (!interval(idx[n], v[n], r)) {
+    if (!interval(i, v[n], r)) {
       v[n] = lower[n] = upper[n] = kInf;  // not in the family
+    } else {
+      lower[n] = r < 1 ? lower_of(v[n], r) : 0.0;
+      upper[n] = r < 1 ? upper_of(v[n], r) : kInf;
+      if (!(lower[n] >= 0.0)) lower[n] = 0.0;  // (NaN)
+      if (!(upper[n] >= lower[n])) upper[n] = v[n] = kInf;  // (NaN: no value; its exact one is due)
+      H = upper[n] < H ? upper[n] : H;
+    }
+    ++n;
+  };
+  int first = 0;
+  for (int j = 1; j < count; ++j) first = keys[j].x < keys[first].x ? j : first;  // (ties: the earlier)
+  take(keys[first].i);
+  // the others with x <= H, ascending (keys are in canonical order: insertion keeps ties so)
+  Key near[kMaxCandidates];
+  int q = 0;
+  double beyond = kInf;  // the least lower bound left out
+  for (int j = 0; j < count; ++j) {
+    if (j == first) continue;
+    const Key k = keys[j];
+    if (k.x > H) {
+      beyond = k.x < beyond ? k.x : beyond;
       continue;
     }
-    lower[n] = r < 1 ? lower_of(v[n], r) : 0.0;
-    upper[n] = r < 1 ? upper_of(v[n], r) : kInf;
-    if (!(lower[n] >= 0.0)) lower[n] = 0.0;  // (NaN)
-    if (!(upper[n] >= lower[n])) upper[n] = v[n] = kInf;  // (NaN: no value; its exact one is due)
-    H = upper[n] < H ? upper[n] : H;
+    int t = q++;
+    for (; t > 0 && k.x < near[t - 1].x; --t) near[t] = near[t - 1];
+    near[t] = k;
   }
-  if (n == 0) return false;
-  if (n < m) lo_min = l[n] < lo_min ? l[n] : lo_min;  // the ones not reached (ascending)
-  m = n;
+  int r = 0;
+  for (; r < q && !(near[r].x > H); ++r) take(near[r].i);
+  if (r < q) beyond = near[r].x < beyond ? near[r].x : beyond;
+  lo_min = beyond < lo_min ? beyond : lo_min;  // the least not reached
+  const int m = n;
   int exact = 0;
   std::optional<ExactFrame> f;
   // contender j exactly (rounded once: within 2^-52 of it)
