@@ -93,9 +93,10 @@ class ExactDirection {
 // The label's exact oriented normal (definitions §3) where the products of degree 10 in
 // coordinate differences built on it stay exact (14 for a parallel edge pair, whose normal has
 // degree 3): the range above; false outside it, for a colinear edge pair or past an
-// expansion's capacity. depth_parts_exact's.
+// expansion's capacity. depth_parts_exact's. `rule` (optional): an edge pair's orientation rule
+// as evaluated (Keep or Flip: decided; faces leave it unchanged).
 bool normal_for_degree_ten(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
-                           detail::ExpVec& n);
+                           detail::ExpVec& n, EdgePairSide* rule = nullptr);
 
 struct ExactDepthParts {
   detail::Expansion D, nn;
