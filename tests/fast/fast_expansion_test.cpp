@@ -154,7 +154,7 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
         delta_compared += 1;
         delta_ties += want == 0;
         // near ties (delta² within 1e-12 relative, not equal): beyond the double filter,
-        // decided by the truncated products or the full ones
+        // decided over integers
         const Q gap = delta2[i] - delta2[j];
         delta_near += want != 0 && abs(gap) <= Q(1, 1000000000000) * delta2[i];
       }
