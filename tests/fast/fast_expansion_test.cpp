@@ -77,7 +77,7 @@ std::vector<DirectionLabel> candidate_labels(const TetVertices& A, const TetVert
 BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
   compare::ReproducibleRng r(38);
   int parallel = 0, colinear = 0, zero_g = 0, zero_depth = 0, same_direction = 0;
-  int delta_compared = 0, delta_ties = 0, delta_near = 0, parts_checked = 0;
+  int delta_compared = 0, delta_ties = 0, delta_near = 0, parts_checked = 0, eq11_checked = 0, eq11_zero = 0;
   for (int it = 0; it < 3000; ++it) {
     const auto [A, B] = aligned_pair(r);
     BOOST_REQUIRE(detail::in_exact_range(A, B));
@@ -115,18 +115,35 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
       return n;
     };
     std::vector<Q> delta2;  // definitions §4: D²/(n.n), per label, in rationals
+    Q e11 = -1;              // eq. 11: the least overlap²/(n.n), 0 when some overlap is <= 0
     for (const auto& l : labels) {
       const detail::QV n = exact_normal(l);
-      Q hi = dot(n, qa[0]), lo = dot(n, qb[0]);
+      Q hi = dot(n, qa[0]), lo = dot(n, qb[0]), loA = hi, hiB = lo;
       for (int i = 1; i < 4; ++i) {
         const Q ha = dot(n, qa[i]), hb = dot(n, qb[i]);
         if (ha > hi) hi = ha;
         if (hb < lo) lo = hb;
+        if (ha < loA) loA = ha;
+        if (hb > hiB) hiB = hb;
       }
+      const Q overlap = (hi < hiB ? hi : hiB) - (loA > lo ? loA : lo);
+      const Q e = overlap > 0 ? Q(overlap * overlap / dot(n, n)) : Q(0);
+      if (e11 < 0 || e < e11) e11 = e;
       const int want = sgn(Q(hi - lo));
       zero_depth += want == 0;
       BOOST_TEST((depth_sign_exact(A, B, l) == sign_of(want)), l.str());
       delta2.push_back(Q(hi - lo) * Q(hi - lo) / dot(n, n));
+    }
+    // eq. 11 by expansions: the same zero, else the least value within a few u
+    {
+      bool zero = false;
+      double v = 0, r = 1;
+      if (eq11_by_expansions(A, B, labels.data(), int(labels.size()), zero, v, r)) {
+        BOOST_TEST(zero == (e11 == 0));
+        if (!zero) BOOST_TEST((abs(Q(v) - e11) <= Q(1, 1000000000000) * e11), "eq11 " << v);
+        eq11_checked += 1;
+        eq11_zero += zero;
+      }
     }
     // the order of delta² by expansions (no division) against the rationals' order
     std::vector<ExactDepthParts> parts;
@@ -176,6 +193,10 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
   BOOST_TEST(delta_ties > 100);
   BOOST_TEST(delta_near > 100);
   BOOST_TEST(parts_checked > 10000);
+  BOOST_TEST(eq11_checked > 1000);
+  BOOST_TEST(eq11_zero > 10);
+  BOOST_TEST(eq11_checked - eq11_zero > 100);
+  BOOST_TEST_MESSAGE("eq. 11 by expansions " << eq11_checked << " (zero " << eq11_zero << ")");
   BOOST_TEST_MESSAGE("delta² compared by expansions " << delta_compared << ", parts checked " << parts_checked << ", exact ties " << delta_ties
                                                       << ", near ties " << delta_near);
   BOOST_TEST_MESSAGE("parallel " << parallel << ", colinear " << colinear << ", zero g " << zero_g

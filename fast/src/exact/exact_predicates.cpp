@@ -398,6 +398,60 @@ bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const Dire
   return std::isfinite(v) && v > 0.0;
 }
 
+namespace {
+// The lesser (greater) of two exact values.
+const Expansion& lesser(const Expansion& a, const Expansion& b) { return difference(a, b).sign() <= 0 ? a : b; }
+const Expansion& greater(const Expansion& a, const Expansion& b) { return difference(a, b).sign() >= 0 ? a : b; }
+
+// A candidate's overlap and n.n (ExactDepthParts' D holds the overlap).
+ExactDepthParts overlap_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label) {
+  ExactDepthParts parts;
+  ExpVec n;
+  if (!normal_for_degree_ten(A, B, label, n)) return parts;
+  bool ok = true;
+  Expansion hiA, loA, hiB, loB;
+  for (int i = 0; i < 4; ++i) {
+    const Expansion ha = dot(n, difference(A[i], A[0])), hb = dot(n, difference(B[i], A[0]));
+    ok = ok && ha.ok && hb.ok;
+    hiA = i == 0 ? ha : greater(hiA, ha), loA = i == 0 ? ha : lesser(loA, ha);
+    hiB = i == 0 ? hb : greater(hiB, hb), loB = i == 0 ? hb : lesser(loB, hb);
+  }
+  parts.D = compressed(difference(lesser(hiA, hiB), greater(loA, loB)));
+  parts.nn = compressed(dot(n, n));
+  parts.ok = ok && parts.D.ok && parts.nn.ok && parts.nn.sign() > 0;
+  return parts;
+}
+}  // namespace
+
+bool eq11_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n, bool& zero,
+                        double& v, double& r) {
+  constexpr double u = 0x1p-53;
+  zero = false;
+  ExactDepthParts least;
+  for (int k = 0; k < n; ++k) {
+    ExactDepthParts p = overlap_parts_exact(A, B, l[k]);
+    if (!p.ok) return false;
+    if (p.D.sign() <= 0) {
+      zero = true;
+      return true;
+    }
+    if (k == 0) {
+      least = std::move(p);
+      continue;
+    }
+    const std::optional<int> below = compare_delta2_exact(p, least);
+    if (!below) return false;
+    if (*below < 0) least = std::move(p);
+  }
+  if (n == 0) return false;
+  const Approx O = approx_of(least.D), nn = approx_of(least.nn);
+  const double rho_O = O.err / std::fabs(O.v), rho_n = nn.err / nn.v;
+  if (!(rho_O <= 0.01 && rho_n <= 0.01)) return false;  // (NaN: false)
+  v = O.v * O.v / nn.v;
+  r = 1.02 * (rho_O + rho_n + 4 * u);
+  return std::isfinite(v) && v > 0.0;
+}
+
 // The two cases of compare_delta2_exact that need no product of expansions, common on aligned
 // pairs (parallel faces and edges give candidates of equal n.n or equal D, many of them exact
 // ties). With D_p, D_q > 0 and n.n > 0:
@@ -437,21 +491,9 @@ std::optional<int> compare_delta2_equal_part(const ExactDepthParts& p, const Exa
 // bits instead of the O(n² m) two_products of expansions of up to 48 components (measured: a
 // sixth of their instructions). The comparisons that reach it are near ties of nearly parallel
 // directions (aligned pairs: delta² ~1e-32 relative apart, or equal), which no truncated or
-// double filter decides. Written by hand on GMP's integers: an expansion is not a number GMP
-// reads. Per-thread integers keep their limbs between calls (no allocation once warm).
+// double filter decides. Each parts' D² and n.n are converted once (ExactDepthParts::integers).
+// Written by hand on GMP's integers: an expansion is not a number GMP reads.
 namespace {
-struct IntegerScratch {
-  mpz_t Dp, Dq, Np, Nq, a, b;
-  IntegerScratch() {
-    for (mpz_t* x : {&Dp, &Dq, &Np, &Nq, &a, &b}) mpz_init2(*x, 1024);
-  }
-  ~IntegerScratch() {
-    for (mpz_t* x : {&Dp, &Dq, &Np, &Nq, &a, &b}) mpz_clear(*x);
-  }
-  IntegerScratch(const IntegerScratch&) = delete;
-  IntegerScratch& operator=(const IntegerScratch&) = delete;
-};
-
 // out = x / 2^e exactly (an integer), e returned (0 for the value 0): each component is
 // (-1)^s m 2^k with m its 53-bit significand (subnormals: 52 bits, k = -1074), read from its
 // bits; Horner over the components by decreasing k (nonoverlapping components come in
@@ -480,14 +522,38 @@ long to_integer(const Expansion& x, mpz_t out) {
   }
   return e;
 }
+}  // namespace
+
+struct ExactDepthIntegers {
+  mpz_class D2, nn;  // D² = D2 2^eD2, n.n = nn 2^enn
+  long eD2 = 0, enn = 0;
+};
+
+namespace {
+const ExactDepthIntegers& integers_of(const ExactDepthParts& p) {
+  if (!p.integers) {
+    auto x = std::make_shared<ExactDepthIntegers>();
+    x->eD2 = 2 * to_integer(p.D, x->D2.get_mpz_t());
+    mpz_mul(x->D2.get_mpz_t(), x->D2.get_mpz_t(), x->D2.get_mpz_t());
+    x->enn = to_integer(p.nn, x->nn.get_mpz_t());
+    p.integers = std::move(x);
+  }
+  return *p.integers;
+}
 
 std::optional<int> compare_delta2_integers(const ExactDepthParts& p, const ExactDepthParts& q) {
-  thread_local IntegerScratch z;
-  const long ep = to_integer(p.D, z.Dp), eq = to_integer(q.D, z.Dq);
-  const long fp = to_integer(p.nn, z.Np), fq = to_integer(q.nn, z.Nq);
-  mpz_mul(z.a, z.Dp, z.Dp), mpz_mul(z.a, z.a, z.Nq);  // D_p² n_q.n_q = a 2^sa
-  mpz_mul(z.b, z.Dq, z.Dq), mpz_mul(z.b, z.b, z.Np);  // D_q² n_p.n_p = b 2^sb
-  const long sa = 2 * ep + fq, sb = 2 * eq + fp;
+  struct Scratch {  // per thread: the products keep their limbs between calls
+    mpz_t a, b;
+    Scratch() { mpz_init2(a, 1024), mpz_init2(b, 1024); }
+    ~Scratch() { mpz_clear(a), mpz_clear(b); }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+  };
+  thread_local Scratch z;
+  const ExactDepthIntegers &x = integers_of(p), &y = integers_of(q);
+  mpz_mul(z.a, x.D2.get_mpz_t(), y.nn.get_mpz_t());  // D_p² n_q.n_q = a 2^sa
+  mpz_mul(z.b, y.D2.get_mpz_t(), x.nn.get_mpz_t());  // D_q² n_p.n_p = b 2^sb
+  const long sa = x.eD2 + y.enn, sb = y.eD2 + x.enn;
   if (sa > sb) mpz_mul_2exp(z.a, z.a, static_cast<mp_bitcnt_t>(sa - sb));
   if (sb > sa) mpz_mul_2exp(z.b, z.b, static_cast<mp_bitcnt_t>(sb - sa));
   const int c = mpz_cmp(z.a, z.b);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "exact/expansion.h"
@@ -98,9 +99,13 @@ class ExactDirection {
 bool normal_for_degree_ten(const TetVertices& A, const TetVertices& B, const DirectionLabel& label,
                            detail::ExpVec& n, EdgePairSide* rule = nullptr);
 
+struct ExactDepthIntegers;  // D² and n.n as integers times powers of two (exact_predicates.cpp)
 struct ExactDepthParts {
   detail::Expansion D, nn;
   bool ok = false;
+  // built at the parts' first comparison over integers, then kept (copies share it): a running
+  // minimum or a sort compares one candidate's parts many times
+  mutable std::shared_ptr<const ExactDepthIntegers> integers;
 };
 ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, const DirectionLabel& label);
 
@@ -116,6 +121,15 @@ ExactDepthParts depth_parts_exact(const TetVertices& A, const TetVertices& B, co
 // and the roundings of lower_of and upper_of, as finish_root_rel's (value_bounds.h).
 bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, double& v,
                           double& r);
+
+// Eq. 11 (definitions §4) over the candidates l[0..n) by expansions: each one's overlap O =
+// min(hiA, hiB) − max(loA, loB) of the exact heights along its exact normal (the range of
+// normal_for_degree_ten). `zero`: some O <= 0 exactly (E11 = 0 whatever the rest); else v, r:
+// the least O²/(n.n) among them (exact comparisons, compare_delta2_exact on (O, n.n)) as a
+// double with a root bound, as delta2_by_expansions. False where an expansion cannot be had
+// (range, capacity) or a part's error exceeds 1%.
+bool eq11_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n, bool& zero,
+                        double& v, double& r);
 
 // sign(delta²_p − delta²_q) = sign(D_p² n_q.n_q − D_q² n_p.n_p) (n.n > 0), exactly; nullopt
 // when an expansion exceeds its capacity. Both parts from depth_parts_exact (ok).

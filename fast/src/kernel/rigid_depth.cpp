@@ -175,8 +175,25 @@ double eq11_pd2(const CandidateSet& set, bool* certified, bool* refined) {
   // apply (eq11_tight_overlap: contacts far shallower than the pair), then the contenders exactly.
   if (eq11_pass(set, false, lo, best, hi_sure, zero) || eq11_pass(set, true, lo, best, hi_sure, zero))
     return zero ? 0.0 : best;
-  // A zero first: the candidates whose overlap sign is uncertain, exactly (a contact made by
-  // rounding often has one exactly 0: E11 = 0 whatever the others).
+  // Expansions next, on every contender (any number of them: a contact made by rounding leaves
+  // most signs uncertain): an overlap exactly <= 0 gives E11 = 0 whatever the others; else the
+  // least O²/(n.n), decided exactly, within a few u (exact_predicates.h). Every non-contender's
+  // overlap is surely > 0 with a value above hi_sure, an upper bound of some candidate's value.
+  if (set.A) {
+    DirectionLabel l[kMaxCandidates];
+    int n = 0;
+    for (int i = 0; i < set.count; ++i)
+      if (!(lo[i] > hi_sure)) l[n++] = unpack_label(label_code(set, i));
+    bool exact_zero = false;
+    double v = 0, r = 1;
+    if (n > 0 && eq11_by_expansions(*set.A, *set.B, l, n, exact_zero, v, r) &&
+        (exact_zero || (r < 1 && certified_choice(upper_of(v, r), lower_of(v, r))))) {
+      if (refined) *refined = true;
+      return exact_zero ? 0.0 : v;
+    }
+  }
+  // Rationals where expansions cannot: a zero first, the candidates whose overlap sign is
+  // uncertain, exactly; then the contenders' values.
   int idx[detail::kMaxRefined], m = 0;
   if (detail::contenders(set, [&lo](int i) { return lo[i] < 0.0 ? -1.0 : INFINITY; }, 0.0, idx, m)) {
     const detail::ExactFrame f = detail::exact_frame(*set.A, *set.B);

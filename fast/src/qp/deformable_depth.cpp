@@ -788,26 +788,48 @@ bool certify_first_k(const List& set, const int* chosen, int k, Choice& ch, bool
 }
 
 // pos[0..first): the first `first` of the contenders idx[0..n) (canonical order) in ascending
-// exact delta², exact ties in canonical order (a stable insertion sort; for first = 1 the first
+// exact delta², exact ties in canonical order (a stable insertion sort keeping the first `first`
+// only: a later contender enters when strictly below the last kept; for first = 1 the first
 // least one, certify.h's first_least_delta2), compared by expansions (depth_parts_exact,
-// compare_delta2_exact: D_a² n_b.n_b against D_b² n_a.n_a, no division); false when the
-// expansions cannot decide a comparison (pos then unspecified).
+// compare_delta2_exact: D_a² n_b.n_b against D_b² n_a.n_a, no division) where their
+// certified intervals do not already order them; false when the expansions cannot decide a
+// comparison (pos then unspecified).
 template <class List>
 bool exact_delta_order(const List& set, const int* idx, int n, int first, int* pos) {
   if (first == 1) {  // (compensated depths and exact directions first: certify.h)
     pos[0] = detail::first_least_delta2(set, idx, n);
     return pos[0] >= 0;
   }
-  std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each, up to kMaxCandidates: on the heap)
+  // Each contender's certified interval (compensated heights where they apply, tight_delta.h)
+  // orders two contenders whose intervals are apart; the expansions' parts only the others.
+  double lo[kMaxCandidates], hi[kMaxCandidates];
   for (int j = 0; j < n; ++j) {
-    parts[j] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[j])));
-    if (!parts[j].ok) return false;
+    double v = 0, r = kInf;
+    const bool tight = detail::tight_delta2(set, idx[j], v, r) && r < 1;
+    lo[j] = tight ? lower_of(v, r) : 0.0, hi[j] = tight ? upper_of(v, r) : kInf;
+    if (!(lo[j] <= hi[j])) lo[j] = 0.0, hi[j] = kInf;  // (NaN: no interval)
   }
+  std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each, up to kMaxCandidates: on the heap)
+  auto compare = [&](int a, int b) -> std::optional<int> {  // sign(delta²_a − delta²_b)
+    if (hi[a] < lo[b]) return -1;
+    if (hi[b] < lo[a]) return 1;
+    for (const int x : {a, b})
+      if (!parts[x].ok && !(parts[x] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[x])))).ok)
+        return std::nullopt;
+    return compare_delta2_exact(parts[a], parts[b]);
+  };
+  int have = 0;  // pos[0..have): the first min(j, first) of idx[0..j) in exact order
   for (int j = 0; j < n; ++j) {
-    int t = j;
+    if (have == first) {  // full: j enters only strictly below the last (ties stay after)
+      const std::optional<int> s = compare(j, pos[have - 1]);
+      if (!s) return false;
+      if (*s >= 0) continue;
+      --have;
+    }
+    int t = have++;
     pos[t] = j;
     while (t > 0) {
-      const std::optional<int> s = compare_delta2_exact(parts[pos[t]], parts[pos[t - 1]]);
+      const std::optional<int> s = compare(pos[t], pos[t - 1]);
       if (!s) return false;
       if (*s >= 0) break;  // not below: stays after (stable)
       std::swap(pos[t], pos[t - 1]);
