@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -365,6 +366,15 @@ std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
     const mesh::Mesh C = make_structured_block({n, n, n}, hp, {hp / 10, hp / 10, hp / 10}, CubeSplit::Kuhn6);
     run("Kuhn grids, one shifted a tenth of a cell along (1, 1, 1)", A, C, moved(C, {0, 0, 0}, 0.3));
   }
+  {  // another decomposition: cubes cut into 24 tetrahedra around their centres, cell 0.1 (half
+     // as many cubes a side: four times the Kuhn grid's tetrahedra a cube), a copy shifted a
+     // quarter cell along (1, 1, 1): the diagonal planes coincide up to rounding, so about half
+     // the pairs are contacts made by rounding, the rest near ties of nearly parallel faces
+    const int m = std::max(2, n / 2);
+    const mesh::Mesh A = make_structured_block({m, m, m}, 0.1, {0, 0, 0}, CubeSplit::BodyCentred24);
+    const mesh::Mesh B = make_structured_block({m, m, m}, 0.1, {0.025, 0.025, 0.025}, CubeSplit::BodyCentred24);
+    run("24-tetrahedra grids of cell 0.1, shifted a quarter cell", A, B, moved(B, {0, 0, 0}, 0.3));
+  }
   {  // a jittered (unstructured-looking) mesh against a copy of itself shifted off the grid
     const mesh::Mesh A = make_bench_ball(std::size_t(6) * n * n * n, {0, 0, 0}, 1, {1, 2, 3}, 0.3, 7);
     run("a jittered mesh against its shifted copy", A, moved(A, {0.061, 0.043, 0.029}, 0),
@@ -381,6 +391,38 @@ std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
 
 }  // namespace
 
+namespace {
+// The 24 tetrahedra of cube (i, j, k) around its centre (make_structured_block's body-centred
+// split): per face, its centre (shared with the neighbour: keyed by the doubled index) and the
+// four triangles it cuts the face into, each joined to the cube's centre.
+template <class Corner>
+void body_centred_cube(mesh::Mesh& out, const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
+                       const std::array<int, 3>& cell, Corner corner,
+                       std::map<std::array<int, 3>, std::size_t>& face_centres) {
+  (void)n;
+  auto point = [&](const std::array<int, 3>& twice) {  // origin + (twice / 2)·h
+    Vec3d p;
+    for (int a = 0; a < 3; ++a) p[a] = origin[a] + (twice[a] / 2 + (twice[a] % 2 ? 0.5 : 0.0)) * h;
+    return p;
+  };
+  const std::size_t centre = out.vertices.size();
+  out.vertices.push_back(point({2 * cell[0] + 1, 2 * cell[1] + 1, 2 * cell[2] + 1}));
+  for (int ax = 0; ax < 3; ++ax)
+    for (int side = 0; side < 2; ++side) {
+      std::array<int, 3> twice = {2 * cell[0] + 1, 2 * cell[1] + 1, 2 * cell[2] + 1};
+      twice[ax] = 2 * (cell[ax] + side);
+      auto [it, fresh] = face_centres.try_emplace(twice, out.vertices.size());
+      if (fresh) out.vertices.push_back(point(twice));
+      const int u = (ax + 1) % 3, v = (ax + 2) % 3;
+      int ring[4];  // the face's corners in order around it (corner bits: 1 x, 2 y, 4 z)
+      const int step[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+      for (int q = 0; q < 4; ++q) ring[q] = (side << ax) | (step[q][0] << u) | (step[q][1] << v);
+      for (int q = 0; q < 4; ++q)
+        out.tets.push_back({centre, it->second, corner(ring[q]), corner(ring[(q + 1) % 4])});
+    }
+}
+}  // namespace
+
 mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
                                  CubeSplit split, double angle, const std::array<double, 3>& axis) {
   mesh::Mesh out;
@@ -393,6 +435,7 @@ mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const st
   // corners: bit 0 x, bit 1 y, bit 2 z; five tetrahedra: four corners cut off and the centre one
   static const int kEven[5][4] = {{0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}, {1, 2, 4, 7}};
   static const int kOdd[5][4] = {{1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}, {0, 3, 5, 6}};
+  std::map<std::array<int, 3>, std::size_t> face_centres;  // body-centred: by doubled index
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k) {
@@ -408,9 +451,11 @@ mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const st
             }
             out.tets.push_back(t);
           }
-        } else {
+        } else if (split == CubeSplit::Five) {
           const auto& T = ((i + j + k) & 1) ? kOdd : kEven;
           for (const auto& c : T) out.tets.push_back({corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])});
+        } else {
+          body_centred_cube(out, n, h, origin, {i, j, k}, corner, face_centres);
         }
       }
   return angle == 0 ? out : moved(out, {0, 0, 0}, angle, axis);

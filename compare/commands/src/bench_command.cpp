@@ -948,8 +948,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   mesh_cmd->add_option("--aligned-cells", ma->options.aligned_cells,
                        "Cells per axis of the aligned cases (Kuhn and 5-tetrahedra grids against a shifted "
                        "copy, a Kuhn grid against its copy shifted by half and by a tenth of a cell along "
-                       "(1, 1, 1), a mesh "
-                       "against its shifted copy, stacked blocks; each beside B rotated); 0: none")
+                       "(1, 1, 1), body-centred grids of cell 0.1 (24 tetrahedra a cube, half as many cubes a "
+                       "side) shifted a quarter cell along (1, 1, 1), a mesh against its shifted copy, stacked "
+                       "blocks; each beside B rotated); 0: none")
       ->capture_default_str()
       ->check(CLI::Range(0, 60));
   add_shared_options(mesh_cmd, ma->options.repeats, "Timed runs (median reported)", ma->json);

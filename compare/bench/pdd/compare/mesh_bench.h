@@ -107,9 +107,11 @@ struct AlignedCase {
 };
 
 // Structured blocks: n[0] x n[1] x n[2] cubes of side h from `origin`, each cut into six Kuhn
-// tetrahedra or five (alternating by cell parity), then rotated by `angle` about `axis` through
-// the block's centre (angle 0: coordinates origin + index·h, rounded once).
-enum class CubeSplit { Kuhn6, Five };
+// tetrahedra, five (alternating by cell parity) or 24 around its centre (body-centred: each
+// face cut into four triangles around its centre, each triangle joined to the cube's centre;
+// centres at origin + (index + 1/2)·h), then rotated by `angle` about `axis` through the
+// block's centre (angle 0: coordinates origin + index·h, rounded once).
+enum class CubeSplit { Kuhn6, Five, BodyCentred24 };
 mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
                                  CubeSplit split, double angle = 0, const std::array<double, 3>& axis = {1, 2, 3});
 
