@@ -385,17 +385,23 @@ Approx times(const Approx& x, const Approx& y) {
 }
 }  // namespace
 
-bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, double& v,
-                          double& r) {
+namespace {
+// D²/(n.n) of parts (D != 0) as a double with its root bound (delta2_by_expansions' bound).
+bool value_of_parts(const ExactDepthParts& parts, double& v, double& r) {
   constexpr double u = 0x1p-53;
-  const ExactDepthParts parts = depth_parts_exact(A, B, label);
-  if (!parts.ok || parts.D.sign() == 0) return false;
   const Approx D = approx_of(parts.D), nn = approx_of(parts.nn);
   const double rho_D = D.err / std::fabs(D.v), rho_n = nn.err / nn.v;
   if (!(rho_D <= 0.01 && rho_n <= 0.01)) return false;  // (NaN: false)
   v = D.v * D.v / nn.v;
   r = 1.02 * (rho_D + rho_n + 4 * u);
   return std::isfinite(v) && v > 0.0;
+}
+}  // namespace
+
+bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, double& v,
+                          double& r) {
+  const ExactDepthParts parts = depth_parts_exact(A, B, label);
+  return parts.ok && parts.D.sign() != 0 && value_of_parts(parts, v, r);
 }
 
 namespace {
@@ -425,7 +431,6 @@ ExactDepthParts overlap_parts_exact(const TetVertices& A, const TetVertices& B, 
 
 bool eq11_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel* l, int n, bool& zero,
                         double& v, double& r) {
-  constexpr double u = 0x1p-53;
   zero = false;
   ExactDepthParts least;
   for (int k = 0; k < n; ++k) {
@@ -443,13 +448,7 @@ bool eq11_by_expansions(const TetVertices& A, const TetVertices& B, const Direct
     if (!below) return false;
     if (*below < 0) least = std::move(p);
   }
-  if (n == 0) return false;
-  const Approx O = approx_of(least.D), nn = approx_of(least.nn);
-  const double rho_O = O.err / std::fabs(O.v), rho_n = nn.err / nn.v;
-  if (!(rho_O <= 0.01 && rho_n <= 0.01)) return false;  // (NaN: false)
-  v = O.v * O.v / nn.v;
-  r = 1.02 * (rho_O + rho_n + 4 * u);
-  return std::isfinite(v) && v > 0.0;
+  return n > 0 && value_of_parts(least, v, r);
 }
 
 // The two cases of compare_delta2_exact that need no product of expansions, common on aligned
