@@ -209,18 +209,24 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
 // by a short binary fraction (exact zeros: a vertex in a diagonal plane), by a tenth of a cell
 // (the same up to rounding) and by a random offset. short_dot_sign, where it answers, gives the
 // same sign (its exact-in-doubles shortcut is taken on a share of the heights, and the test can
-// fail either way: both signs and zeros occur in numbers).
+// fail either way: both signs and zeros occur in numbers). Every other cell pair is mirrored in
+// y (exact), so that diagonal planes x = y become x = -y: in_axis_or_diagonal_plane's shortcut
+// (zeros by comparisons) is checked to name only exact zeros, in both forms, and to take a share
+// of them.
 BOOST_AUTO_TEST_CASE(height_signs_match_rationals) {
   compare::ReproducibleRng r(5);
-  int zeros = 0, nonzero = 0, short_dots = 0, tested = 0;
+  int zeros = 0, nonzero = 0, short_dots = 0, tested = 0, planes[2] = {0, 0};
   for (int it = 0; it < 600; ++it) {
     const double h = std::ldexp(1.0, r.integer(-3, 1));
     const Vec3d o = {h * r.integer(-8, 8), h * r.integer(-8, 8), h * r.integer(-8, 8)};
     const double frac = it % 3 == 0 ? 0.5 : (it % 3 == 1 ? 0.1 : r.uniform(0, 1));
     Vec3d ob;
     for (int k = 0; k < 3; ++k) ob[k] = o[k] + (frac + r.integer(-1, 0)) * h;
-    const TetVertices A = pdd::test::kuhn_cell_tet(o, h, r.integer(0, 5));
-    const TetVertices B = pdd::test::kuhn_cell_tet(ob, h, r.integer(0, 5));
+    TetVertices A = pdd::test::kuhn_cell_tet(o, h, r.integer(0, 5));
+    TetVertices B = pdd::test::kuhn_cell_tet(ob, h, r.integer(0, 5));
+    const bool mirrored = it % 2 == 1;
+    if (mirrored)
+      for (int i = 0; i < 4; ++i) A[i][1] = -A[i][1], B[i][1] = -B[i][1];
     BOOST_REQUIRE(detail::in_exact_range(A, B));
     const Vec3d* pts[8];
     for (int i = 0; i < 4; ++i) pts[i] = &A[i], pts[4 + i] = &B[i];
@@ -246,11 +252,20 @@ BOOST_AUTO_TEST_CASE(height_signs_match_rationals) {
         ++short_dots;
         BOOST_TEST(s == sgn(want));
       }
+      double du[3], dv[3], dw[3];
+      if (detail::exact_difference(p1, p0, du) && detail::exact_difference(q1, q0, dv) &&
+          detail::exact_difference(p, q, dw) && detail::in_axis_or_diagonal_plane(du, dv, dw)) {
+        ++planes[mirrored];
+        BOOST_TEST(sgn(want) == 0);
+      }
       (sgn(want) == 0 ? zeros : nonzero) += 1;
       ++tested;
     }
   }
-  BOOST_TEST_MESSAGE("heights " << tested << ", zeros " << zeros << ", short dots " << short_dots);
+  BOOST_TEST_MESSAGE("heights " << tested << ", zeros " << zeros << ", short dots " << short_dots
+                                << ", zeros by planes " << planes[0] << " + " << planes[1] << " mirrored");
+  BOOST_TEST(planes[0] > zeros / 8);
+  BOOST_TEST(planes[1] > zeros / 8);
   BOOST_TEST(zeros > tested / 10);
   BOOST_TEST(nonzero > tested / 10);
   BOOST_TEST(short_dots > tested / 10);

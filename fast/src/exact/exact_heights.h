@@ -66,10 +66,12 @@ inline bool exact_difference(const Vec3d& p, const Vec3d& q, double* d) {
 struct LazyNormal {
   double u[3], v[3];
   bool have[3] = {false, false, false};
-  bool ok = true;  // false: an expansion exceeded its capacity
+  bool ok = true;        // false: an expansion exceeded its capacity
+  bool exact_uv = true;  // u and v are the exact differences (the minors are then taken lazily)
   ExpVec n;
   LazyNormal(const Vec3d& p1, const Vec3d& p0, const Vec3d& q1, const Vec3d& q0) {
     if (exact_difference(p1, p0, u) && exact_difference(q1, q0, v)) return;
+    exact_uv = false;
     n = cross(difference(p1, p0), difference(q1, q0));
     ok = n.ok();
     have[0] = have[1] = have[2] = true;
@@ -113,7 +115,22 @@ inline bool short_dot_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, int& s
 // The exact sign of n.(p − q) (above): terms with p_k == q_k vanish without computing n_k;
 // zero components vanish; one term left: sign(n_k)·sign(p_k − q_k); else short_dot_sign where
 // the doubles are exact, else the expansions' dot.
+// det[u, v, w] = 0 seen by comparisons: u, v, w (exact differences) all in one plane through 0
+// of the forms x_k = 0 or x_i = ±x_j (a grid's axis and diagonal planes: the exact zeros of
+// aligned inputs, which the terms below would otherwise take through the expansions).
+inline bool in_axis_or_diagonal_plane(const double* u, const double* v, const double* w) {
+  for (int k = 0; k < 3; ++k)
+    if (u[k] == 0.0 && v[k] == 0.0 && w[k] == 0.0) return true;
+  for (int i = 0; i < 2; ++i)
+    for (int j = i + 1; j < 3; ++j)
+      if ((u[i] == u[j] && v[i] == v[j] && w[i] == w[j]) || (u[i] == -u[j] && v[i] == -v[j] && w[i] == -w[j]))
+        return true;
+  return false;
+}
+
 inline int exact_height_sign(LazyNormal& n, const Vec3d& p, const Vec3d& q, bool& ok) {
+  // n = u x v, so n.(p - q) = det[u, v, p - q]: 0 when the three lie in a plane through 0
+  if (double w[3]; n.exact_uv && exact_difference(p, q, w) && in_axis_or_diagonal_plane(n.u, n.v, w)) return 0;
   int terms = 0, last = 0;
   for (int k = 0; k < 3; ++k)
     if (p[k] != q[k] && n[k].n != 0) ++terms, last = k;
