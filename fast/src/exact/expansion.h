@@ -245,8 +245,21 @@ inline ExpVec cross(const ExpVec& a, const ExpVec& b) {
   }
   return n;
 }
+// (product()'s partial products of the three components grown into one result: the same
+// exact value without the intermediate expansions)
 inline Expansion dot(const ExpVec& a, const ExpVec& b) {
-  return sum(sum(product(a.x[0], b.x[0]), product(a.x[1], b.x[1])), product(a.x[2], b.x[2]));
+  Expansion r;
+  r.ok = true;
+  for (int k = 0; k < 3; ++k) {
+    const Expansion &e = a.x[k], &f = b.x[k];
+    r.ok = r.ok && e.ok && f.ok;
+    for (int i = 0; i < f.n; ++i) {
+      const Expansion s = scaled(e, f.c[i]);
+      r.ok = r.ok && s.ok;
+      for (int j = 0; j < s.n; ++j) grow(r, s.c[j]);
+    }
+  }
+  return r;
 }
 inline ExpVec scaled(const ExpVec& a, const Expansion& s) {
   ExpVec r;
