@@ -37,14 +37,34 @@ LazyNormal face_normal_exact(const TetVertices& T, int f) {
   return LazyNormal(T[v[1]], T[v[0]], T[v[2]], T[v[0]]);
 }
 
-// The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]).
-int orientation(const TetVertices& T, double e3, bool& ok) {
+// The expansions' range (expansion.h's in_exact_range), checked once a pair and only where an
+// expansion is about to be formed: the filter's bound E3 (+inf outside its own range guard) and
+// the double words' bounds (absolute terms for underflow, non-finite values refused) hold at
+// any scale, and most pairs never reach the expansions.
+class ExactRange {
+ public:
+  ExactRange(const TetVertices& A, const TetVertices& B) : A_(A), B_(B) {}
+  bool ok() {
+    if (state_ < 0) state_ = in_exact_range(A_, B_) ? 1 : 0;
+    return state_ == 1;
+  }
+
+ private:
+  const TetVertices& A_;
+  const TetVertices& B_;
+  int state_ = -1;  // not checked yet
+};
+
+// The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]); ok = false outside the
+// expansions' range when they are needed.
+int orientation(const TetVertices& T, double e3, ExactRange& range, bool& ok) {
   double u[3], v[3], n[3];
   sub3(T[1], T[0], u);
   sub3(T[2], T[0], v);
   cross3(u, v, n);
   const int s = certain(height(n, T[3], T[0]), e3);
   if (s != 0) return s;
+  if (!range.ok()) return ok = false, 0;
   LazyNormal ne = face_normal_exact(T, 3);  // (t1 − t0) × (t2 − t0)
   ok = ok && ne.ok;
   return exact_height_sign(ne, T[3], T[0], ok);
@@ -85,7 +105,7 @@ bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma
 // which the face's normal in double words decides (compensated_heights.h: within 25 u² M of
 // the exact height) at a fraction of the expansions' cost, the expansions taking the rest.
 bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
-                          const double* h, bool& ok) {
+                          const double* h, ExactRange& range, bool& ok) {
   const auto& v = kFace[f];
   std::optional<CompensatedNormal> words;
   int left[4], nleft = 0;  // the vertices the double words leave to the expansions
@@ -98,6 +118,7 @@ bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int
     if (sj == 0) left[nleft++] = j;
   }
   if (nleft == 0) return true;
+  if (!range.ok()) return ok = false;
   LazyNormal n = face_normal_exact(T, f);
   ok = ok && n.ok;
   if (!ok) return false;
@@ -228,16 +249,16 @@ int open_edge_pairs_in(const TetVertices& A, const TetVertices& B, double e3, st
 }
 
 // The exact orientations of A and B (flat: 0); false when out of range or capacity.
-bool orientations(const TetVertices& A, const TetVertices& B, double e3, int& oa, int& ob) {
-  if (!in_exact_range(A, B)) return false;
+bool orientations(const TetVertices& A, const TetVertices& B, double e3, ExactRange& range, int& oa, int& ob) {
   bool ok = true;
-  oa = orientation(A, e3, ok), ob = orientation(B, e3, ok);
+  oa = orientation(A, e3, range, ok);
+  if (ok) ob = orientation(B, e3, range, ok);
   return ok;
 }
 
 // The face axes, each in doubles and then exactly where certain signs do not rule it out (A and
 // B not flat: orientations oa, ob).
-SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int oa, int ob) {
+SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int oa, int ob, ExactRange& range) {
   bool ok = true;
   for (int t = 0; t < 2; ++t)
     for (int f = 0; f < 4; ++f) {
@@ -247,7 +268,7 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
       int s[4];
       double h[4];
       if (face_ruled_out(T, O, f, sigma, e3, s, h)) continue;
-      if (face_separates_exact(T, O, f, sigma, s, h, ok)) return SatVerdict::Disjoint;
+      if (face_separates_exact(T, O, f, sigma, s, h, range, ok)) return SatVerdict::Disjoint;
       if (!ok) return SatVerdict::Undecided;
     }
   return SatVerdict::Intersecting;
@@ -257,23 +278,25 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
 
 SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B) {
   const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  ExactRange range(A, B);
   int oa = 0, ob = 0;
-  if (!orientations(A, B, e3, oa, ob)) return SatVerdict::Undecided;
+  if (!orientations(A, B, e3, range, oa, ob)) return SatVerdict::Undecided;
   if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
-  return face_axes(A, B, e3, oa, ob);
+  return face_axes(A, B, e3, oa, ob, range);
 }
 
 SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges,
                                    bool faces_decided) {
   const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  ExactRange range(A, B);
   int oa = 0, ob = 0;
-  if (!orientations(A, B, e3, oa, ob)) return SatVerdict::Undecided;
+  if (!orientations(A, B, e3, range, oa, ob)) return SatVerdict::Undecided;
   if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
 
   // The face axes first: a touching face decides most touching pairs, before any edge-pair
   // axis is computed.
   if (!faces_decided) {
-    const SatVerdict v = face_axes(A, B, e3, oa, ob);
+    const SatVerdict v = face_axes(A, B, e3, oa, ob, range);
     if (v != SatVerdict::Intersecting) return v;
   }
   // The edge-pair axes: pass 1 in doubles (the axes certain signs do not rule out), pass 2 exact.
@@ -295,6 +318,7 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, c
       else left[nleft++] = i;
     }
     if ((e.plus || e.minus) && nleft > 0) {
+      if (!range.ok()) return SatVerdict::Undecided;
       LazyNormal n(a1, a0, b1, b0);
       if (!n.ok) return SatVerdict::Undecided;
       for (int r = 0; r < nleft && (e.plus || e.minus); ++r) {

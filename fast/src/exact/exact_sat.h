@@ -6,8 +6,10 @@
 //
 // Input:  tetrahedra A (s0..s3), B (r0..r3), raw doubles; precondition: every coordinate finite.
 // Output: SatVerdict::Intersecting or Disjoint, exact; Disjoint when A or B is flat (no interior,
-//         definitions §1). Undecided when the pair is outside in_exact_range (expansion.h) or an
-//         expansion exceeded its capacity: the caller then decides on its rational path.
+//         definitions §1). Undecided when an expansion is needed and the pair is outside
+//         in_exact_range (expansion.h), or an expansion exceeded its capacity: the caller then
+//         decides on its rational path. (Signs the filter or the double words decide are exact
+//         at any scale.)
 //
 // Theorem (the axes). For non-flat A and B, M = A ⊕ (−B) is a full-dimensional polytope and the
 // interiors meet iff 0 is interior to M, iff every facet of M (outward normal m) has offset
