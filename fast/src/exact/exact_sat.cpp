@@ -11,6 +11,7 @@
 #include "certification/filter_bounds.h"
 #include "exact/exact_heights.h"
 #include "exact/expansion.h"
+#include "exact/integer_heights.h"
 #include "pdd/tet_tables.h"
 
 namespace pdd::fast::detail {
@@ -57,13 +58,15 @@ class ExactRange {
 
 // The exact orientation sign of T (det[t1 − t0, t2 − t0, t3 − t0]); ok = false outside the
 // expansions' range when they are needed.
-int orientation(const TetVertices& T, double e3, ExactRange& range, bool& ok) {
+// (base: T's first vertex index in the integer frame, 0 for A, 4 for B)
+int orientation(const TetVertices& T, int base, double e3, IntegerFrame& frame, ExactRange& range, bool& ok) {
   double u[3], v[3], n[3];
   sub3(T[1], T[0], u);
   sub3(T[2], T[0], v);
   cross3(u, v, n);
   const int s = certain(height(n, T[3], T[0]), e3);
   if (s != 0) return s;
+  if (frame.usable()) return frame.height_sign(base + 1, base, base + 2, base, base + 3, base);
   if (!range.ok()) return ok = false, 0;
   LazyNormal ne = face_normal_exact(T, 3);  // (t1 − t0) × (t2 − t0)
   ok = ok && ne.ok;
@@ -98,15 +101,25 @@ bool face_ruled_out(const TetVertices& T, const TetVertices& O, int f, int sigma
 }
 
 // The face axis decided exactly, s[] its certain signs (times σ), h[] the computed heights:
-// true when it separates. An undecided height the doubles computed as exactly 0 is most often
-// an exact 0 (a vertex of a dyadic grid in a face plane of its copy: every product and sum
-// exact), which only the expansions decide (exact_height_sign tries the exact doubles first);
-// any other is most often not 0 by a rounding (a grid's copy shifted by a non-dyadic offset),
-// which the face's normal in double words decides (compensated_heights.h: within 25 u² M of
-// the exact height) at a fraction of the expansions' cost, the expansions taking the rest.
-bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int sigma, const int* s,
-                          const double* h, ExactRange& range, bool& ok) {
+// true when it separates. Where the pair has an integer frame (integer_heights.h) every
+// undecided height is taken there. Otherwise: an undecided height the doubles computed as
+// exactly 0 is most often an exact 0 (a vertex of a dyadic grid in a face plane of its copy:
+// every product and sum exact), which only the expansions decide (exact_height_sign tries the
+// exact doubles first); any other is most often not 0 by a rounding (a grid's copy shifted by
+// a non-dyadic offset), which the face's normal in double words decides
+// (compensated_heights.h: within 25 u² M of the exact height) at a fraction of the expansions'
+// cost, the expansions taking the rest.
+// (tb, ob: T's and O's first vertex indices in the integer frame)
+bool face_separates_exact(const TetVertices& T, const TetVertices& O, int tb, int ob, int f, int sigma, const int* s,
+                          const double* h, IntegerFrame& frame, ExactRange& range, bool& ok) {
   const auto& v = kFace[f];
+  if (frame.usable()) {
+    __int128 n[3];
+    frame.normal(tb + v[1], tb + v[0], tb + v[2], tb + v[0], n);
+    for (int j = 0; j < 4; ++j)
+      if (s[j] == 0 && sigma * frame.dot_sign(n, ob + j, tb + v[0]) > 0) return false;
+    return true;
+  }
   std::optional<CompensatedNormal> words;
   int left[4], nleft = 0;  // the vertices the double words leave to the expansions
   for (int j = 0; j < 4; ++j) {
@@ -128,18 +141,23 @@ bool face_separates_exact(const TetVertices& T, const TetVertices& O, int f, int
 }
 
 // The five values of an edge-pair axis (header, case iii) in the order α_w1, α_w2, β_j1, β_j2,
-// γ, as (p, q) of n.(p − q), and the sign each must have for m = +n (−n: the opposite).
+// γ, as (p, q) of n.(p − q) (and as vertex indices of the integer frame: 0..3 A, 4..7 B), and
+// the sign each must have for m = +n (−n: the opposite).
 struct EdgeValues {
   const Vec3d* p[5];
   const Vec3d* q[5];
+  int ip[5], iq[5];
 };
 constexpr int kPlusSign[5] = {-1, -1, +1, +1, -1};  // α <= 0, β >= 0, γ <= 0
 
 EdgeValues edge_values(const TetVertices& A, const TetVertices& B, int a, int b) {
   const Vec3d& su = A[kEdges[a][0]];
   const Vec3d& rx = B[kEdges[b][0]];
+  const int u = kEdges[a][0], x = 4 + kEdges[b][0];
   return {{&A[kOffEdge[a][0]], &A[kOffEdge[a][1]], &B[kOffEdge[b][0]], &B[kOffEdge[b][1]], &su},
-          {&su, &su, &rx, &rx, &rx}};
+          {&su, &su, &rx, &rx, &rx},
+          {kOffEdge[a][0], kOffEdge[a][1], 4 + kOffEdge[b][0], 4 + kOffEdge[b][1], u},
+          {u, u, x, x, x}};
 }
 
 // Updates the orientations still allowed by a value of sign sv (certain or exact).
@@ -249,16 +267,18 @@ int open_edge_pairs_in(const TetVertices& A, const TetVertices& B, double e3, st
 }
 
 // The exact orientations of A and B (flat: 0); false when out of range or capacity.
-bool orientations(const TetVertices& A, const TetVertices& B, double e3, ExactRange& range, int& oa, int& ob) {
+bool orientations(const TetVertices& A, const TetVertices& B, double e3, IntegerFrame& frame, ExactRange& range,
+                  int& oa, int& ob) {
   bool ok = true;
-  oa = orientation(A, e3, range, ok);
-  if (ok) ob = orientation(B, e3, range, ok);
+  oa = orientation(A, 0, e3, frame, range, ok);
+  if (ok) ob = orientation(B, 4, e3, frame, range, ok);
   return ok;
 }
 
 // The face axes, each in doubles and then exactly where certain signs do not rule it out (A and
 // B not flat: orientations oa, ob).
-SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int oa, int ob, ExactRange& range) {
+SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int oa, int ob, IntegerFrame& frame,
+                     ExactRange& range) {
   bool ok = true;
   for (int t = 0; t < 2; ++t)
     for (int f = 0; f < 4; ++f) {
@@ -268,7 +288,7 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
       int s[4];
       double h[4];
       if (face_ruled_out(T, O, f, sigma, e3, s, h)) continue;
-      if (face_separates_exact(T, O, f, sigma, s, h, range, ok)) return SatVerdict::Disjoint;
+      if (face_separates_exact(T, O, 4 * t, 4 - 4 * t, f, sigma, s, h, frame, range, ok)) return SatVerdict::Disjoint;
       if (!ok) return SatVerdict::Undecided;
     }
   return SatVerdict::Intersecting;
@@ -276,27 +296,31 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
 
 }  // namespace
 
-SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B) {
+SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B, IntegerFrame* shared) {
   const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  IntegerFrame own(A, B);
+  IntegerFrame& frame = shared ? *shared : own;
   ExactRange range(A, B);
   int oa = 0, ob = 0;
-  if (!orientations(A, B, e3, range, oa, ob)) return SatVerdict::Undecided;
+  if (!orientations(A, B, e3, frame, range, oa, ob)) return SatVerdict::Undecided;
   if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
-  return face_axes(A, B, e3, oa, ob, range);
+  return face_axes(A, B, e3, oa, ob, frame, range);
 }
 
 SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges,
-                                   bool faces_decided) {
+                                   bool faces_decided, IntegerFrame* shared) {
   const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
+  IntegerFrame own(A, B);
+  IntegerFrame& frame = shared ? *shared : own;
   ExactRange range(A, B);
   int oa = 0, ob = 0;
-  if (!orientations(A, B, e3, range, oa, ob)) return SatVerdict::Undecided;
+  if (!orientations(A, B, e3, frame, range, oa, ob)) return SatVerdict::Undecided;
   if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
 
   // The face axes first: a touching face decides most touching pairs, before any edge-pair
   // axis is computed.
   if (!faces_decided) {
-    const SatVerdict v = face_axes(A, B, e3, oa, ob, range);
+    const SatVerdict v = face_axes(A, B, e3, oa, ob, frame, range);
     if (v != SatVerdict::Intersecting) return v;
   }
   // The edge-pair axes: pass 1 in doubles (the axes certain signs do not rule out), pass 2 exact.
@@ -308,13 +332,18 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, c
     PendingEdge& e = pending[k];
     const Vec3d &a1 = A[kEdges[e.a][1]], &a0 = A[kEdges[e.a][0]], &b1 = B[kEdges[e.b][1]], &b0 = B[kEdges[e.b][0]];
     const EdgeValues ev = edge_values(A, B, e.a, e.b);
-    // n = e_a x e_b in double words first, as the face axes; the expansions for what is left
+    // n = e_a x e_b over integers where the pair has an integer frame; else in double words
+    // first, as the face axes, and the expansions for what is left
+    const bool integers = frame.usable();
+    __int128 ni[3] = {0, 0, 0};
+    if (integers) frame.normal(kEdges[e.a][1], kEdges[e.a][0], 4 + kEdges[e.b][1], 4 + kEdges[e.b][0], ni);
     std::optional<CompensatedNormal> words;
     int sv[5], left[5], nleft = 0;
     for (int i = 0; i < 5 && (e.plus || e.minus); ++i) {
       sv[i] = e.s[i];
-      if (sv[i] == 0 && e.v[i] != 0.0) sv[i] = word_sign(words, a1, a0, b1, b0, *ev.p[i], *ev.q[i]);
-      if (sv[i] != 0) restrict_orientations(sv[i], i, e.plus, e.minus);
+      if (sv[i] == 0 && integers) sv[i] = frame.dot_sign(ni, ev.ip[i], ev.iq[i]);
+      else if (sv[i] == 0 && e.v[i] != 0.0) sv[i] = word_sign(words, a1, a0, b1, b0, *ev.p[i], *ev.q[i]);
+      if (sv[i] != 0 || integers) restrict_orientations(sv[i], i, e.plus, e.minus);
       else left[nleft++] = i;
     }
     if ((e.plus || e.minus) && nleft > 0) {

@@ -53,6 +53,7 @@
 
 #include <cstdint>
 
+#include "exact/integer_heights.h"
 #include "pdd/tet_pair.h"
 
 namespace pdd::fast::detail {
@@ -63,13 +64,16 @@ enum class SatVerdict { Intersecting, Disjoint, Undecided };
 // the superset kernel's depths D(±n) (superset_kernel.h: computed D(±n) > E3 means the exact one
 // is > 0, so ±n does not separate); null: all 36 are filtered here. faces_decided: the caller's
 // face_axes_sat found no face axis separating (they are not tested again).
+// frame (optional): the pair's integer frame (integer_heights.h), shared by a caller that makes
+// both calls on one pair (its scale is then found once); null: a frame of its own.
 SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B,
-                                   const std::uint64_t* open_edges = nullptr, bool faces_decided = false);
+                                   const std::uint64_t* open_edges = nullptr, bool faces_decided = false,
+                                   IntegerFrame* frame = nullptr);
 
 // The face axes alone (cases i and ii), decided as above: Disjoint when one separates;
 // Intersecting when none does — a verdict on the face axes only (the edge-pair axes are still
 // to be tested: interiors_intersect_sat with faces_decided); Undecided as above.
-SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B);
+SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B, IntegerFrame* frame = nullptr);
 
 // sign det[t_f1 − t_f0, t_f2 − t_f0, t_f3 − t_f0] / sign det[t1 − t0, t2 − t0, t3 − t0] for face f
 // (kFace[f] = (f0, f1, f2), f3 = f): the sign of the permutation (f0, f1, f2, f) of (0, 1, 2, 3).

@@ -158,10 +158,12 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
   bool finite = false, touching = false;
   Overlap o = face_stage(A, B, finite, touching);
   if (o == Overlap::Disjoint) return false;
-  // A touching face: the face axes exactly (exact_sat.h) before the kernel.
+  // A touching face: the face axes exactly (exact_sat.h) before the kernel. (One integer frame
+  // for both exact calls: its scale found once, where a sign needs it.)
+  detail::IntegerFrame frame(A, B);
   bool faces_decided = false;
   if (touching) {
-    const detail::SatVerdict v = detail::face_axes_sat(A, B);
+    const detail::SatVerdict v = detail::face_axes_sat(A, B, &frame);
     if (v == detail::SatVerdict::Disjoint) return false;
     faces_decided = v == detail::SatVerdict::Intersecting;  // (no face axis separates)
   }
@@ -171,7 +173,7 @@ bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
   // The exact separating-axis decision (exact_sat.h: doubles, then expansions; no rationals).
   // Undecided only outside the expansions' range or capacity.
   const std::uint64_t open = finite && K.finite == 0.0 ? open_edge_pairs(K) : ~std::uint64_t{0};
-  const detail::SatVerdict v = detail::interiors_intersect_sat(A, B, &open, faces_decided);
+  const detail::SatVerdict v = detail::interiors_intersect_sat(A, B, &open, faces_decided, &frame);
   if (v != detail::SatVerdict::Undecided) return v == detail::SatVerdict::Intersecting;
   // The decision alone (no depth to certify): the candidate set's exact depth signs on the pair
   // rescaled by a power of two (power_scale.h: signs unchanged when the scaling is exact).
