@@ -278,7 +278,7 @@ bool orientations(const TetVertices& A, const TetVertices& B, double e3, Integer
 // The face axes, each in doubles and then exactly where certain signs do not rule it out (A and
 // B not flat: orientations oa, ob).
 SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int oa, int ob, IntegerFrame& frame,
-                     ExactRange& range) {
+                     ExactRange& range, const FacePlaneValues* values = nullptr) {
   bool ok = true;
   for (int t = 0; t < 2; ++t)
     for (int f = 0; f < 4; ++f) {
@@ -287,7 +287,17 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
       const TetVertices& O = t == 0 ? B : A;
       int s[4];
       double h[4];
-      if (face_ruled_out(T, O, f, sigma, e3, s, h)) continue;
+      if (values) {
+        bool out = false;
+        for (int j = 0; j < 4; ++j) {
+          h[j] = values->h[4 * t + f][j];
+          s[j] = sigma * certain(h[j], e3);
+          out = out || s[j] > 0;
+        }
+        if (out) continue;
+      } else if (face_ruled_out(T, O, f, sigma, e3, s, h)) {
+        continue;
+      }
       if (face_separates_exact(T, O, 4 * t, 4 - 4 * t, f, sigma, s, h, frame, range, ok)) return SatVerdict::Disjoint;
       if (!ok) return SatVerdict::Undecided;
     }
@@ -296,15 +306,23 @@ SatVerdict face_axes(const TetVertices& A, const TetVertices& B, double e3, int 
 
 }  // namespace
 
-SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B, IntegerFrame* shared) {
+SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B, IntegerFrame* shared,
+                         const FacePlaneValues* values) {
   const double e3 = filter_bounds(A, B).deg3;  // +inf outside its range guard: all exact
   IntegerFrame own(A, B);
   IntegerFrame& frame = shared ? *shared : own;
   ExactRange range(A, B);
   int oa = 0, ob = 0;
-  if (!orientations(A, B, e3, frame, range, oa, ob)) return SatVerdict::Undecided;
+  // A certain hl of a face is the orientation times the face's parity (exact_sat.h's kFaceParity)
+  auto known = [&](int t) {
+    for (int f = 0; f < 4; ++f)
+      if (const int s = certain(values->hl[4 * t + f], e3)) return s * kFaceParity[f];
+    return 0;
+  };
+  const bool from_values = values && (oa = known(0)) != 0 && (ob = known(1)) != 0;
+  if (!from_values && !orientations(A, B, e3, frame, range, oa, ob)) return SatVerdict::Undecided;
   if (oa == 0 || ob == 0) return SatVerdict::Disjoint;  // flat: no interior (definitions §1)
-  return face_axes(A, B, e3, oa, ob, frame, range);
+  return face_axes(A, B, e3, oa, ob, frame, range, values);
 }
 
 SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B, const std::uint64_t* open_edges,

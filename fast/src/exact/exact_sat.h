@@ -70,10 +70,23 @@ SatVerdict interiors_intersect_sat(const TetVertices& A, const TetVertices& B,
                                    const std::uint64_t* open_edges = nullptr, bool faces_decided = false,
                                    IntegerFrame* frame = nullptr);
 
+// The face planes' values in doubles, as a caller computed them with the operations of the
+// filter above (overlap_filter.cpp's face stage): for face f of A (f = 0..3, against B) and of
+// B (4 + f, against A), N = (t1 − t0) × (t2 − t0) over kFace[f] (differences from t0),
+// hl = N.(t_f − t0) and h[j] = N.(o_j − t0). Each is a triple product of differences (error
+// <= 48 u L³ < E3), so any correctly rounded evaluation serves.
+struct FacePlaneValues {
+  double hl[8];
+  double h[8][4];
+};
+
 // The face axes alone (cases i and ii), decided as above: Disjoint when one separates;
 // Intersecting when none does — a verdict on the face axes only (the edge-pair axes are still
-// to be tested: interiors_intersect_sat with faces_decided); Undecided as above.
-SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B, IntegerFrame* frame = nullptr);
+// to be tested: interiors_intersect_sat with faces_decided); Undecided as above. values
+// (optional): the face planes' values already computed (the filter's signs then come from
+// them, and each tetrahedron's orientation from a certain hl).
+SatVerdict face_axes_sat(const TetVertices& A, const TetVertices& B, IntegerFrame* frame = nullptr,
+                         const FacePlaneValues* values = nullptr);
 
 // sign det[t_f1 − t_f0, t_f2 − t_f0, t_f3 − t_f0] / sign det[t1 − t0, t2 − t0, t3 − t0] for face f
 // (kFace[f] = (f0, f1, f2), f3 = f): the sign of the permutation (f0, f1, f2, f) of (0, 1, 2, 3).

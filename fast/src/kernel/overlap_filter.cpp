@@ -48,11 +48,14 @@ namespace {
 // Stage 1 (header), for the face planes of T against O: Separate when one certainly separates;
 // Touching when none does but one's computed gap is within E3 of 0 (its test fails by <= E3:
 // min_m h_m − max(0, hl) >= −E3, or the mirror), so that only exact signs can tell; else Open.
+// The values it computed go to `hl` and `h` (exact_sat.h's FacePlaneValues, faces of T).
 enum class FacePlanes { Separate, Touching, Open };
-inline FacePlanes face_planes(const TetVertices& T, const TetVertices& O, double e3) {
+inline FacePlanes face_planes(const TetVertices& T, const TetVertices& O, double e3, double* hl_out,
+                              double (*h_out)[4]) {
   static constexpr int kFace[4][4] = {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}};
   bool touching = false;
-  for (const auto& f : kFace) {
+  for (int i = 0; i < 4; ++i) {
+    const auto& f = kFace[i];
     const Vec3d& p = T[f[0]];
     double u[3], v[3], w[3], n[3];
     for (int k = 0; k < 3; ++k) {
@@ -64,9 +67,11 @@ inline FacePlanes face_planes(const TetVertices& T, const TetVertices& O, double
     n[1] = u[2] * v[0] - u[0] * v[2];
     n[2] = u[0] * v[1] - u[1] * v[0];
     const double hl = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
+    hl_out[i] = hl;
     double lo = HUGE_VAL, hi = -HUGE_VAL;
     for (int m = 0; m < 4; ++m) {
       const double h = n[0] * (O[m][0] - p[0]) + n[1] * (O[m][1] - p[1]) + n[2] * (O[m][2] - p[2]);
+      h_out[i][m] = h;
       lo = h < lo ? h : lo;
       hi = h > hi ? h : hi;
     }
@@ -105,7 +110,8 @@ bool intersecting_without_unresolved(const detail::SupersetLanes& K) {
 // Stage 1: Disjoint when a face plane certainly separates, else Unknown (touching: a face
 // plane's gap is within E3 of 0, face_planes; finite: every coordinate finite, else nothing is
 // computed).
-Overlap face_stage(const TetVertices& A, const TetVertices& B, bool& finite, bool& touching) {
+Overlap face_stage(const TetVertices& A, const TetVertices& B, bool& finite, bool& touching,
+                   detail::FacePlaneValues& values) {
   touching = false;
   double z = 0.0;  // 0 when every coordinate is finite (x·0 is NaN for inf and NaN)
   for (int i = 0; i < 4; ++i)
@@ -113,9 +119,9 @@ Overlap face_stage(const TetVertices& A, const TetVertices& B, bool& finite, boo
   finite = z == 0.0;
   if (!finite) return Overlap::Unknown;
   const double e3_faces = filter_bounds(A, B).deg3;  // +inf when L is out of range
-  const FacePlanes a = face_planes(A, B, e3_faces);
+  const FacePlanes a = face_planes(A, B, e3_faces, values.hl, values.h);
   if (a == FacePlanes::Separate) return Overlap::Disjoint;
-  const FacePlanes b = face_planes(B, A, e3_faces);
+  const FacePlanes b = face_planes(B, A, e3_faces, values.hl + 4, values.h + 4);
   if (b == FacePlanes::Separate) return Overlap::Disjoint;
   touching = a == FacePlanes::Touching || b == FacePlanes::Touching;
   return Overlap::Unknown;
@@ -148,7 +154,8 @@ std::uint64_t open_edge_pairs(const detail::SupersetLanes& K) {
 
 Overlap overlap_filter(const TetVertices& A, const TetVertices& B) {
   bool finite = false, touching = false;
-  const Overlap o = face_stage(A, B, finite, touching);
+  detail::FacePlaneValues values;
+  const Overlap o = face_stage(A, B, finite, touching, values);
   if (o != Overlap::Unknown || !finite) return o;
   detail::SupersetLanes K;
   return kernel_stage(A, B, K);
@@ -156,14 +163,15 @@ Overlap overlap_filter(const TetVertices& A, const TetVertices& B) {
 
 bool interiors_intersect(const TetVertices& A, const TetVertices& B) {
   bool finite = false, touching = false;
-  Overlap o = face_stage(A, B, finite, touching);
+  detail::FacePlaneValues values;  // (the face stage's values, for the face axes' signs)
+  Overlap o = face_stage(A, B, finite, touching, values);
   if (o == Overlap::Disjoint) return false;
   // A touching face: the face axes exactly (exact_sat.h) before the kernel. (One integer frame
   // for both exact calls: its scale found once, where a sign needs it.)
   detail::IntegerFrame frame(A, B);
   bool faces_decided = false;
   if (touching) {
-    const detail::SatVerdict v = detail::face_axes_sat(A, B, &frame);
+    const detail::SatVerdict v = detail::face_axes_sat(A, B, &frame, &values);
     if (v == detail::SatVerdict::Disjoint) return false;
     faces_decided = v == detail::SatVerdict::Intersecting;  // (no face axis separates)
   }
