@@ -204,6 +204,15 @@ void check_le(const TetPair& p, const char* lhs, double a, const char* rhs, doub
 // its own (definitions §8), so each is within 1e-9 (1 + 1e-9) of the exact value, as solve_pair's
 // is: the two differ by < 2.1e-9 relative, and are 0 together.
 void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
+  // the decision alone (pdd.h: rigid_pd2(A, B).pd2 > 0, NaN counted as intersecting; false for a
+  // rejected pair), and solve_pair's decision where it has a record
+  const bool decided = pdd::fast::interiors_intersect(p.A, p.B);
+  const pdd::fast::Depth rigid = pdd::fast::rigid_pd2(p.A, p.B);
+  const bool want = rigid.status != pdd::fast::DepthStatus::Rejected && !(rigid.pd2 <= 0);
+  if (decided != want || (!r.error && decided != r.intersecting))
+    fail(p, std::string("interiors_intersect gives ") + (decided ? "true" : "false") + ", rigid_pd2 " +
+                std::to_string(rigid.pd2) + " (status " + std::to_string(int(rigid.status)) + "), solve_pair " +
+                (r.error ? *r.error : r.intersecting ? "intersecting" : "not intersecting"));
   if (r.error) {  // rejected (flat, non-finite): no hot path may give a number that reads as a depth
     if (r.error->rfind("not representable", 0) == 0) return;  // some value only: others may be had
     for (const pdd::fast::Depth d : {pdd::fast::rigid_pd2(p.A, p.B), pdd::fast::pdd2(p.A, p.B)})
