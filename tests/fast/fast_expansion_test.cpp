@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <optional>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "exact/exact_candidate.h"
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
+#include "exact/integer_depth.h"
 #include "certification/compensated_displacements.h"
 #include "qp/direction_qp_impl.h"
 #include "pdd/compare/random.h"
@@ -72,6 +74,29 @@ std::vector<DirectionLabel> candidate_labels(const TetVertices& A, const TetVert
   return labels;
 }
 
+// The label's oriented normal in rationals (definitions §3).
+detail::QV oriented_normal_q(const detail::QTet& qa, const detail::QTet& qb, const DirectionLabel& l) {
+  if (l.kind == ContactKind::FV) return detail::face_normal_out_of(qa, l.a);
+  if (l.kind == ContactKind::VF) return detail::face_normal_into(qb, l.a);
+  EdgePairKind kind;
+  detail::QV n = detail::edge_pair_normal(qa, qb, l.a, l.b, &kind);
+  const EdgePairSide side = detail::side_rule(qa, n, l.a);
+  if (side == EdgePairSide::Flip || (side == EdgePairSide::Undecidable && l.orientation == EdgeOrientation::Minus))
+    n = detail::negated(n);
+  return n;
+}
+
+// D = max_i n.s_i − min_j n.r_j along n, in rationals (definitions §4).
+Q depth_q(const detail::QTet& qa, const detail::QTet& qb, const detail::QV& n) {
+  Q hi = dot(n, qa[0]), lo = dot(n, qb[0]);
+  for (int i = 1; i < 4; ++i) {
+    const Q ha = dot(n, qa[i]), hb = dot(n, qb[i]);
+    if (ha > hi) hi = ha;
+    if (hb < lo) lo = hb;
+  }
+  return hi - lo;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
@@ -103,17 +128,7 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
     // depth signs of every candidate label, and same_direction_exact against rational cross
     // products of the oriented normals
     const std::vector<DirectionLabel> labels = candidate_labels(A, B);
-    auto exact_normal = [&](const DirectionLabel& l) {
-      if (l.kind == ContactKind::FV) return detail::face_normal_out_of(qa, l.a);
-      if (l.kind == ContactKind::VF) return detail::face_normal_into(qb, l.a);
-      EdgePairKind kind;
-      detail::QV n = detail::edge_pair_normal(qa, qb, l.a, l.b, &kind);
-      const EdgePairSide side = detail::side_rule(qa, n, l.a);
-      if (side == EdgePairSide::Flip ||
-          (side == EdgePairSide::Undecidable && l.orientation == EdgeOrientation::Minus))
-        n = detail::negated(n);
-      return n;
-    };
+    auto exact_normal = [&](const DirectionLabel& l) { return oriented_normal_q(qa, qb, l); };
     std::vector<Q> delta2;  // definitions §4: D²/(n.n), per label, in rationals
     Q e11 = -1;              // eq. 11: the least overlap²/(n.n), 0 when some overlap is <= 0
     for (const auto& l : labels) {
@@ -213,6 +228,113 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
 // y (exact), so that diagonal planes x = y become x = -y: in_axis_or_diagonal_plane's shortcut
 // (zeros by comparisons) is checked to name only exact zeros, in both forms, and to take a share
 // of them.
+// integer_depth.h: on pairs with an integer frame (decimal grids and their copies shifted a
+// quarter cell, a cell or half a cell; cells at random origins, some nudged by an ulp), every
+// edge pair's framed kind and orientation rule are the rationals', every label's framed D and
+// n.n equal the rationals' (times the frame's units), every framed comparison of delta² is the
+// rationals' order, first_least_delta2_framed is the rationals' first least delta² (and refuses
+// a list holding a colinear edge pair), and framed_delta2's value holds the exact delta² within
+// its root bound.
+namespace {
+Q limbs_value(const mp_limb_t* x, int k, int unit_exponent) {
+  mpz_class z = 0;
+  for (int i = k - 1; i >= 0; --i) z = (z << 64) + mpz_class(static_cast<unsigned long>(x[i]));
+  Q v(z);
+  if (unit_exponent >= 0) v *= Q(mpz_class(1) << unit_exponent);
+  else v /= Q(mpz_class(1) << -unit_exponent);
+  return v;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
+  compare::ReproducibleRng r(20261201);
+  long framed = 0, parallel = 0, colinear = 0, compared = 0, ties = 0, firsts = 0, refused = 0, values = 0;
+  const double cells[] = {0.1, 0.025, 0.3, 1.0 / 3};
+  for (int it = 0; it < 3000; ++it) {
+    TetVertices A, B;
+    if (it % 2 == 0) {
+      std::tie(A, B) = aligned_pair(r);
+    } else {
+      const double h = cells[r.integer(0, 3)];
+      const int shift = r.integer(0, 3);  // a quarter cell along (1, 1, 1), one cell up, half a cell in x and y, none
+      Vec3d oa, ob;
+      for (int k = 0; k < 3; ++k) {
+        oa[k] = r.integer(-8, 8) * h;
+        const double s = shift == 0 ? 0.25 * h : shift == 1 ? (k == 2 ? h : 0.0) : shift == 2 ? (k < 2 ? 0.5 * h : 0.0) : 0.0;
+        ob[k] = oa[k] + r.integer(-1, 1) * h + s;
+      }
+      A = pdd::test::kuhn_cell_tet(oa, h, r.integer(0, 5));
+      B = pdd::test::kuhn_cell_tet(ob, h, r.integer(0, 5));
+    }
+    detail::IntegerFrame frame(A, B);
+    if (!frame.usable() || orientation_sign_exact(A) == Sign::Zero || orientation_sign_exact(B) == Sign::Zero)
+      continue;
+    ++framed;
+    const int e = frame.unit_exponent();
+    const detail::QTet qa = detail::exact_tet(A), qb = detail::exact_tet(B);
+    std::vector<DirectionLabel> colinear_labels;
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        EdgePairKind kind;
+        const detail::QV n = detail::edge_pair_normal(qa, qb, a, b, &kind);
+        const EdgePairClass c = detail::classify_edge_pair_framed(frame, a, b);
+        BOOST_TEST((c.kind == kind), "kind " << a << ":" << b);
+        if (kind == EdgePairKind::Colinear) {
+          colinear_labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Decided});
+          continue;
+        }
+        BOOST_TEST((c.side == detail::side_rule(qa, n, a)), "side " << a << ":" << b);
+      }
+    const std::vector<DirectionLabel> labels = candidate_labels(A, B);
+    std::vector<detail::FramedDepth> fd(labels.size());
+    std::vector<Q> delta2(labels.size());
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      const detail::QV n = oriented_normal_q(qa, qb, labels[i]);
+      const Q D = depth_q(qa, qb, n), nn = dot(n, n);
+      delta2[i] = D * D / nn;
+      BOOST_REQUIRE(detail::framed_depth(frame, labels[i], fd[i]));
+      parallel += fd[i].parallel;
+      const int degree = fd[i].parallel ? 1 : 0;  // units 2^((3 + degree) e) and 2^((4 + 2 degree) e)
+      BOOST_TEST((limbs_value(fd[i].D, 4, (3 + degree) * e) == abs(D)), labels[i].str());
+      BOOST_TEST((fd[i].D_sign == sgn(D)), labels[i].str());
+      BOOST_TEST((limbs_value(fd[i].nn, 6, (4 + 2 * degree) * e) == nn), labels[i].str());
+      double v = 0, rr = 1;
+      if (detail::framed_delta2(frame, fd[i], v, rr)) {
+        BOOST_TEST((Q(v) * Q(1 - rr) * Q(1 - rr) <= delta2[i] && delta2[i] <= Q(v) * Q(1 + rr) * Q(1 + rr)), labels[i].str());
+        ++values;
+      } else {
+        BOOST_TEST((D == 0), labels[i].str());
+      }
+    }
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      for (std::size_t j = i + 1; j < labels.size(); ++j) {
+        const int want = delta2[i] < delta2[j] ? -1 : (delta2[j] < delta2[i] ? 1 : 0);
+        BOOST_TEST(detail::compare_framed_delta2(fd[i], fd[j]) == want, labels[i].str() << " " << labels[j].str());
+        ++compared;
+        ties += want == 0;
+      }
+    int want_first = 0;
+    for (std::size_t i = 1; i < labels.size(); ++i)
+      if (delta2[i] < delta2[want_first]) want_first = int(i);
+    BOOST_TEST(detail::first_least_delta2_framed(frame, labels.data(), int(labels.size())) == want_first);
+    ++firsts;
+    if (!colinear_labels.empty()) {
+      std::vector<DirectionLabel> with = labels;
+      with.insert(with.begin() + int(with.size() / 2), colinear_labels[0]);
+      BOOST_TEST(detail::first_least_delta2_framed(frame, with.data(), int(with.size())) == -1);
+      ++refused, colinear += int(colinear_labels.size());
+    }
+  }
+  BOOST_TEST_MESSAGE(framed << " framed pairs, " << parallel << " parallel and " << colinear << " colinear edge pairs, "
+                            << compared << " comparisons (" << ties << " exact ties), " << firsts
+                            << " first least (" << refused << " refused), " << values << " values");
+  BOOST_TEST(framed > 1500);     // the kind of pair the frame is for
+  BOOST_TEST(parallel > 5000);   // parallel edge pairs (degree 3) are exercised
+  BOOST_TEST(ties > 10000);      // and exact ties
+  BOOST_TEST(refused > 300);
+  BOOST_TEST(values > 30000);
+}
+
 BOOST_AUTO_TEST_CASE(height_signs_match_rationals) {
   compare::ReproducibleRng r(5);
   int zeros = 0, nonzero = 0, short_dots = 0, tested = 0, planes[2] = {0, 0};

@@ -9,6 +9,7 @@
 #include "certification/compensated_heights.h"
 #include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
+#include "exact/integer_depth.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/quick_candidates.h"
 
@@ -73,14 +74,20 @@ ApproxNormal approx_normal(const List& s, int i) {
 // compare_delta2_compensated where both candidates have compensated depths: delta² a rounding
 // apart, aligned pairs; then by exact direction and expansions, given each candidate's double
 // normal and its bound e_n so that directions certainly apart are not tested for equality).
+// Where the pair has an integer frame (integer_heights.h), the whole order is taken over
+// integers instead (integer_depth.h: a few hundred instructions a comparison, exact ties
+// included).
 template <class List>
 int first_least_delta2(const List& s, const int* c, int n) {
   DirectionLabel l[kMaxCandidates];
+  for (int k = 0; k < n; ++k) l[k] = unpack_label(label_code(s, c[k]));
+  IntegerFrame frame(*s.A, *s.B);
+  if (frame.usable())
+    if (const int w = first_least_delta2_framed(frame, l, n); w >= 0) return w;
   ApproxNormal a[kMaxCandidates];
   CompensatedDepth d[kMaxCandidates];
   bool have[kMaxCandidates];
   for (int k = 0; k < n; ++k) {
-    l[k] = unpack_label(label_code(s, c[k]));
     a[k] = approx_normal(s, c[k]);
     have[k] = !a[k].parallel_pair && compensated_depth(*s.A, *s.B, l[k], d[k]);
   }

@@ -12,6 +12,7 @@
 
 #include "exact/exact_geometry.h"
 #include "exact/expansion.h"
+#include "exact/integer_depth.h"
 #include "kernel/pair_memo.h"
 
 namespace pdd::fast {
@@ -107,6 +108,7 @@ Sign orientation_sign_exact(const TetVertices& T) {
 }
 
 EdgePairClass classify_edge_pair_exact(const TetVertices& A, const TetVertices& B, int a, int b) {
+  if (IntegerFrame frame(A, B); frame.usable()) return classify_edge_pair_framed(frame, a, b);
   EdgePairClass c;
   if (in_exact_range(A, B)) {
     bool ok = true;
@@ -400,6 +402,9 @@ bool value_of_parts(const ExactDepthParts& parts, double& v, double& r) {
 
 bool delta2_by_expansions(const TetVertices& A, const TetVertices& B, const DirectionLabel& label, double& v,
                           double& r) {
+  IntegerFrame frame(A, B);  // (over integers where the pair has a frame: integer_depth.h)
+  FramedDepth framed;
+  if (frame.usable() && framed_depth(frame, label, framed) && framed_delta2(frame, framed, v, r)) return true;
   const ExactDepthParts parts = depth_parts_exact(A, B, label);
   return parts.ok && parts.D.sign() != 0 && value_of_parts(parts, v, r);
 }

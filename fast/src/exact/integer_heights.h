@@ -65,8 +65,13 @@ class IntegerFrame {
     n[2] = __int128(u[0]) * v[1] - __int128(u[1]) * v[0];
   }
 
-  // The exact sign of n.(p − q) for n from normal() (header).
-  int dot_sign(const __int128 (&n)[3], int p, int q) const {
+  // n.(p − q) for n from normal(), exactly: hi 2^64 + lo (units 2^(3e); header: hi = S, lo =
+  // L mod 2^64), |n.(p − q)| < 2^186 (so |hi| < 2^122).
+  struct Wide {
+    __int128 hi;
+    std::uint64_t lo;
+  };
+  Wide dot(const __int128 (&n)[3], int p, int q) const {
     __int128 H = 0, L = 0;
     for (int k = 0; k < 3; ++k) {
       const std::int64_t w = X_[p][k] - X_[q][k];
@@ -76,10 +81,21 @@ class IntegerFrame {
       const unsigned __int128 m = static_cast<unsigned __int128>(l) * (w < 0 ? 0 - std::uint64_t(w) : std::uint64_t(w));
       L += w < 0 ? -__int128(m) : __int128(m);  // |l w| < 2^125
     }
-    const __int128 S = H + (L >> 64);
-    if (S != 0) return S > 0 ? 1 : -1;
-    return std::uint64_t(L) != 0 ? 1 : 0;
+    return Wide{H + (L >> 64), std::uint64_t(L)};
   }
+
+  // The exact sign of n.(p − q) for n from normal() (header).
+  int dot_sign(const __int128 (&n)[3], int p, int q) const {
+    const Wide d = dot(n, p, q);
+    if (d.hi != 0) return d.hi > 0 ? 1 : -1;
+    return d.lo != 0 ? 1 : 0;
+  }
+
+  // e: a coordinate x is X 2^e (precondition: usable()).
+  int unit_exponent() const { return e_; }
+
+  // Vertex i's X (|X_k| < 2^60; precondition: usable()).
+  const std::int64_t (&vertex(int i) const)[3] { return X_[i]; }
 
   // The exact sign of det[p1 − p0, q1 − q0, p − q].
   int height_sign(int p1, int p0, int q1, int q0, int p, int q) const {
@@ -106,12 +122,14 @@ class IntegerFrame {
     }
     if (!(top < 0x1p60)) return false;  // (inf and NaN too)
     double unit_inverse = 1.0;          // (every coordinate 0: any unit)
+    e_ = 0;
     if (top > 0.0) {
       std::uint64_t b;
       std::memcpy(&b, &top, sizeof b);
       const int h = int(b >> 52 & 0x7ff) - 1023;  // 2^h <= top < 2^(h + 1) (top normal)
       if (59 - h > 1023) return false;            // (2^(59 − h) a normal double; top subnormal too)
       const std::uint64_t scale_bits = std::uint64_t(59 - h + 1023) << 52;
+      e_ = h - 59;
       std::memcpy(&unit_inverse, &scale_bits, sizeof unit_inverse);
     }
     std::int64_t* out = &X_[0][0];
@@ -129,6 +147,7 @@ class IntegerFrame {
   const TetVertices& A_;
   const TetVertices& B_;
   int state_ = -1;        // not computed yet
+  int e_ = 0;             // the unit's exponent (usable())
   std::int64_t X_[8][3];  // the vertices in units 2^e (usable())
 };
 

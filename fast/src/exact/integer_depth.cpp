@@ -1,0 +1,256 @@
+// integer_depth.cpp — classification, depth and delta² order over machine integers. See
+// integer_depth.h.
+#include "exact/integer_depth.h"
+
+#include <boost/multiprecision/cpp_int.hpp>
+
+#include <cmath>
+#include <cstring>
+
+#include "pdd/tet_tables.h"
+
+namespace pdd::fast::detail {
+
+static_assert(GMP_NUMB_BITS == 64 && sizeof(mp_limb_t) == 8, "64-bit limbs without nails");
+
+namespace {
+
+namespace bmp = boost::multiprecision;
+using Int256 = bmp::int256_t;  // parallel edge pairs: |n_k| < 2^186, heights < 2^249
+using Int512 = bmp::int512_t;  // their n.n < 2^374
+using Wide = IntegerFrame::Wide;
+
+bool less(const Wide& a, const Wide& b) { return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo); }
+
+// a − b (|a − b| < 2^187: the high part fits).
+Wide minus(const Wide& a, const Wide& b) { return Wide{a.hi - b.hi - (a.lo < b.lo ? 1 : 0), a.lo - b.lo}; }
+
+int sign_of_wide(const Wide& x) { return x.hi != 0 ? (x.hi > 0 ? 1 : -1) : (x.lo != 0 ? 1 : 0); }
+
+// |x| as limbs (least significant first); |x| < 2^191.
+void magnitude(const Wide& x, mp_limb_t* out) {
+  Wide m = x;
+  if (x.hi < 0) m = Wide{-x.hi - (x.lo != 0 ? 1 : 0), 0 - x.lo};
+  out[0] = m.lo;
+  out[1] = mp_limb_t(std::uint64_t(m.hi));
+  out[2] = mp_limb_t(std::uint64_t(m.hi >> 64));
+}
+
+template <class Int>
+void magnitude(const Int& x, mp_limb_t* out, int limbs) {
+  std::memset(out, 0, sizeof(mp_limb_t) * limbs);
+  bmp::export_bits(Int(abs(x)), out, 64, false);  // (at most `limbs` chunks: the callers' bounds)
+}
+
+template <class Int>
+int sign_of_int(const Int& x) {
+  return x > 0 ? 1 : x < 0 ? -1 : 0;
+}
+
+// The orientation rule on the two signs g_k of the normal at edge a's off-edge vertices.
+EdgePairSide side_rule(int g1, int g2) {
+  if (g1 <= 0 && g2 <= 0) return EdgePairSide::Keep;
+  if (g1 >= 0 && g2 >= 0) return EdgePairSide::Flip;
+  return EdgePairSide::Undecidable;
+}
+
+bool flipped(EdgePairSide side, EdgeOrientation o) {
+  return side == EdgePairSide::Flip || (side == EdgePairSide::Undecidable && o == EdgeOrientation::Minus);
+}
+
+// The common perpendicular of parallel edges a of A and b of B (exact_predicates.cpp's
+// edge_pair_normal_exp): n = (e.e) w − (w.e) e, e = s_v − s_u, w = r_x − s_u.
+struct ParallelNormal {
+  Int256 n[3];
+  bool zero() const { return n[0] == 0 && n[1] == 0 && n[2] == 0; }
+  // n.(p − q), vertices by frame index
+  Int256 dot(const IntegerFrame& f, int p, int q) const {
+    const auto &P = f.vertex(p), &Q = f.vertex(q);
+    Int256 s = 0;
+    for (int k = 0; k < 3; ++k) s += n[k] * (P[k] - Q[k]);
+    return s;
+  }
+};
+ParallelNormal parallel_normal(const IntegerFrame& f, int a, int b) {
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
+  const auto &U = f.vertex(u), &V = f.vertex(v), &X = f.vertex(4 + x);
+  __int128 ee = 0, we = 0;
+  std::int64_t e[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = V[k] - U[k], w[k] = X[k] - U[k];
+    ee += __int128(e[k]) * e[k], we += __int128(w[k]) * e[k];
+  }
+  ParallelNormal p;
+  for (int k = 0; k < 3; ++k) p.n[k] = Int256(ee) * w[k] - Int256(we) * e[k];
+  return p;
+}
+
+EdgePairSide parallel_side(const IntegerFrame& f, const ParallelNormal& p, int a) {
+  const int u = kEdges[a][0];
+  return side_rule(sign_of_int(p.dot(f, kOffEdge[a][0], u)), sign_of_int(p.dot(f, kOffEdge[a][1], u)));
+}
+
+// The outward normal of face i of the tetrahedron whose vertices are frame indices o..o+3
+// (face_normal_out_of_exp): (p1 − p0) × (p2 − p0), negated when the opposite vertex is on its
+// positive side.
+void face_normal_out_of(const IntegerFrame& f, int o, int i, __int128 (&n)[3]) {
+  const auto& F = kFace[i];
+  f.normal(o + F[1], o + F[0], o + F[2], o + F[0], n);
+  if (f.dot_sign(n, o + i, o + F[0]) > 0)
+    for (__int128& x : n) x = -x;
+}
+
+// n.n of a normal of degree 2 as four limbs: each |n_k| < 2^123 squared, summed (< 2^248).
+void norm2(const __int128 (&n)[3], mp_limb_t* out) {
+  std::memset(out, 0, 4 * sizeof(mp_limb_t));
+  for (const __int128 x : n) {
+    const unsigned __int128 m = x < 0 ? -static_cast<unsigned __int128>(x) : static_cast<unsigned __int128>(x);
+    const mp_limb_t limbs[2] = {mp_limb_t(std::uint64_t(m)), mp_limb_t(std::uint64_t(m >> 64))};
+    mp_limb_t sq[4];
+    mpn_sqr(sq, limbs, 2);
+    mpn_add_n(out, out, sq, 4);
+  }
+}
+
+// D and n.n along a normal of degree 2 (a face or a generic edge pair), heights from s0.
+void depth_of(const IntegerFrame& f, const __int128 (&n)[3], FramedDepth& out) {
+  Wide hi{0, 0}, lo = f.dot(n, 4, 0);
+  for (int i = 1; i < 4; ++i) {
+    const Wide a = f.dot(n, i, 0), b = f.dot(n, 4 + i, 0);
+    if (less(hi, a)) hi = a;
+    if (less(b, lo)) lo = b;
+  }
+  const Wide D = minus(hi, lo);
+  out.D_sign = sign_of_wide(D);
+  magnitude(D, out.D);
+  out.D[3] = 0;
+  norm2(n, out.nn);
+  out.nn[4] = out.nn[5] = 0;
+}
+
+// The same along a parallel edge pair's oriented normal.
+void depth_of(const IntegerFrame& f, const ParallelNormal& p, FramedDepth& out) {
+  Int256 hi = 0, lo = p.dot(f, 4, 0);
+  for (int i = 1; i < 4; ++i) {
+    const Int256 a = p.dot(f, i, 0), b = p.dot(f, 4 + i, 0);
+    if (a > hi) hi = a;
+    if (b < lo) lo = b;
+  }
+  const Int256 D = hi - lo;
+  out.D_sign = sign_of_int(D);
+  magnitude(D, out.D, 4);
+  Int512 nn = 0;
+  for (const Int256& x : p.n) nn += Int512(x) * Int512(x);
+  magnitude(nn, out.nn, 6);
+  out.parallel = true;
+}
+
+// The significant limbs of x[0..k) (at least one).
+int size_of(const mp_limb_t* x, int k) {
+  while (k > 1 && x[k - 1] == 0) --k;
+  return k;
+}
+
+// x² y as 14 limbs (x: 4, y: 6, zero-padded).
+void square_times(const mp_limb_t* x, const mp_limb_t* y, mp_limb_t (&out)[14]) {
+  const int nx = size_of(x, 4), ny = size_of(y, 6);
+  mp_limb_t x2[8];
+  mpn_sqr(x2, x, nx);
+  std::memset(out, 0, sizeof out);
+  if (2 * nx >= ny) mpn_mul(out, x2, 2 * nx, y, ny);
+  else mpn_mul(out, y, ny, x2, 2 * nx);
+}
+
+// A K-limb magnitude (least significant limb first) as a double: Horner from the top limb,
+// each step exact but for the limb's conversion and the sum (non-negative terms: relative
+// error below (2K − 1) u, with the roundings compounded 1.0001 times that).
+template <int K>
+double to_double(const mp_limb_t (&x)[K]) {
+  double t = 0.0;
+  for (int i = K - 1; i >= 0; --i) t = t * 0x1p64 + double(x[i]);
+  return t;
+}
+
+}  // namespace
+
+EdgePairClass classify_edge_pair_framed(const IntegerFrame& f, int a, int b) {
+  const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+  EdgePairClass c;
+  __int128 n[3];
+  f.normal(4 + y, 4 + x, v, u, n);
+  if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
+    c.side = side_rule(f.dot_sign(n, kOffEdge[a][0], u), f.dot_sign(n, kOffEdge[a][1], u));
+    return c;
+  }
+  const ParallelNormal p = parallel_normal(f, a, b);
+  c.kind = p.zero() ? EdgePairKind::Colinear : EdgePairKind::Parallel;
+  if (c.kind == EdgePairKind::Parallel) c.side = parallel_side(f, p, a);
+  return c;
+}
+
+bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
+  __int128 n[3];
+  out.parallel = false;
+  switch (label.kind) {
+    case ContactKind::FV: face_normal_out_of(f, 0, label.a, n); break;
+    case ContactKind::VF:
+      face_normal_out_of(f, 4, label.a, n);
+      for (__int128& x : n) x = -x;
+      break;
+    case ContactKind::EE: {
+      const int u = kEdges[label.a][0], v = kEdges[label.a][1];
+      f.normal(4 + kEdges[label.b][1], 4 + kEdges[label.b][0], v, u, n);
+      if (n[0] == 0 && n[1] == 0 && n[2] == 0) {
+        ParallelNormal p = parallel_normal(f, label.a, label.b);
+        if (p.zero()) return false;  // colinear: no direction
+        if (flipped(parallel_side(f, p, label.a), label.orientation))
+          for (Int256& x : p.n) x = -x;
+        depth_of(f, p, out);
+        return true;
+      }
+      const EdgePairSide side = side_rule(f.dot_sign(n, kOffEdge[label.a][0], u), f.dot_sign(n, kOffEdge[label.a][1], u));
+      if (flipped(side, label.orientation))
+        for (__int128& x : n) x = -x;
+      break;
+    }
+  }
+  depth_of(f, n, out);
+  return true;
+}
+
+int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q) {
+  auto sign = [](int c) { return c > 0 ? 1 : c < 0 ? -1 : 0; };
+  const bool same_D = std::memcmp(p.D, q.D, sizeof p.D) == 0, same_nn = std::memcmp(p.nn, q.nn, sizeof p.nn) == 0;
+  if (same_D && same_nn) return 0;
+  if (same_nn) return sign(mpn_cmp(p.D, q.D, 4));                         // m (D_p² − D_q²)
+  if (same_D) return p.D_sign == 0 ? 0 : sign(mpn_cmp(q.nn, p.nn, 6));  // D² (n_q.n_q − n_p.n_p)
+  mp_limb_t a[14], b[14];
+  square_times(p.D, q.nn, a);  // D_p² n_q.n_q
+  square_times(q.D, p.nn, b);  // D_q² n_p.n_p
+  return sign(mpn_cmp(a, b, 14));
+}
+
+int first_least_delta2_framed(const IntegerFrame& f, const DirectionLabel* l, int n) {
+  if (n <= 0) return -1;
+  int w = 0;
+  FramedDepth least, p;
+  if (!framed_depth(f, l[0], least)) return -1;
+  for (int k = 1; k < n; ++k) {
+    if (!framed_depth(f, l[k], p)) return -1;
+    if (compare_framed_delta2(p, least) < 0) w = k, least = p;  // strictly below: a tie keeps the earlier
+  }
+  return w;
+}
+
+bool framed_delta2(const IntegerFrame& f, const FramedDepth& p, double& v, double& r) {
+  constexpr double u = 0x1p-53, rho = 16 * u;
+  if (p.D_sign == 0) return false;
+  const double D = to_double(p.D), nn = to_double(p.nn);
+  // D² / n.n in units 2^(2e) (2^(6e) / 2^(4e), or 2^(8e) / 2^(6e)); ldexp is exact while the
+  // result is normal
+  v = std::ldexp(D * D / nn, 2 * f.unit_exponent());
+  r = 1.02 * (rho + rho + 4 * u);
+  return std::isnormal(v);
+}
+
+}  // namespace pdd::fast::detail

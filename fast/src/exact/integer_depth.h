@@ -1,0 +1,67 @@
+// integer_depth.h — internal to fast/src: a candidate direction's classification, depth D and
+// n.n (definitions §3–§4: delta² = D²/(n.n)) exactly in machine integers, on a pair's integer
+// frame (integer_heights.h), and the exact order of two candidates' delta².
+//
+// Input:  an IntegerFrame of the pair (usable()), an edge pair (a, b) or a candidate's label.
+// Output: classify_edge_pair_framed: the edge pair's kind and orientation rule
+//         (exact_predicates.h's classify_edge_pair_exact).
+//         framed_depth: the label's oriented normal n (eB × eA for an edge pair, or the common
+//         perpendicular (e.e) w − (w.e) e of parallel edges, w = r_x − s_u; oriented by the rule;
+//         a face's outward normal, −outward for VF), its depth D = max_i n.s_i − min_j n.r_j
+//         and n.n, all exact; false for a colinear edge pair (no direction).
+//         compare_framed_delta2: sign(delta²_p − delta²_q) = sign(D_p² n_q.n_q − D_q² n_p.n_p).
+//         framed_delta2: delta² as a double with a root bound (value_bounds.h).
+//
+// The same polynomials as exact_predicates.cpp's expansions (term for term: face_normal_out_of,
+// edge_pair_normal, side_rule, depth_parts_exact, compare_delta2_exact), evaluated over
+// integers. In units of the frame (2^e), with coordinate differences below 2^61:
+//   faces and generic edge pairs: |n_k| < 2^123, heights n.(p − s0) < 2^186 (IntegerFrame::dot),
+//     |D| < 2^187 (units 2^(3e)), n.n < 2^248 (2^(4e));
+//   parallel edge pairs (degree 3 in the differences): e.e, w.e < 2^124, |n_k| < 2^186,
+//     heights < 2^249, |D| < 2^250 (2^(4e)), n.n < 2^374 (2^(6e));
+// delta² = D²/(n.n) is in units 2^(2e) either way, so any two candidates compare as integers:
+// D² n.n < 2^(500 + 374), fourteen 64-bit limbs. The products are GMP's mpn functions on limbs
+// on the stack (mpz allocates); the degree-3 normal and its heights are boost::multiprecision's
+// fixed 256- and 512-bit integers (rare: only parallel edge pairs). Written here rather than on
+// expansions (expansion.h) because a comparison is then ~100 limb products instead of thousands
+// of two_products; the callers keep the expansions where the pair has no frame.
+#pragma once
+
+#include <gmp.h>
+
+#include "exact/exact_predicates.h"
+#include "exact/integer_heights.h"
+#include "pdd/direction_label.h"
+
+namespace pdd::fast::detail {
+
+// The edge pair's kind and orientation rule, exactly. Precondition: f.usable().
+EdgePairClass classify_edge_pair_framed(const IntegerFrame& f, int a, int b);
+
+struct FramedDepth {
+  mp_limb_t D[4] = {};   // |D|, least significant limb first, units 2^(3e) (2^(4e): parallel)
+  mp_limb_t nn[6] = {};  // n.n, units 2^(4e) (2^(6e): parallel)
+  int D_sign = 0;        // sign of D
+  bool parallel = false; // a parallel edge pair (the units above)
+};
+
+// The label's exact depth and n.n (header); false for a colinear edge pair. Precondition:
+// f.usable().
+bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out);
+
+// sign(delta²_p − delta²_q), exactly (both from one frame).
+int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q);
+
+// The position in l[0..n) of the first least exact delta², exact ties to the earliest
+// (exact_predicates.h's first_least_delta2_exact, over integers); −1 when a label has no
+// direction (a colinear edge pair) or n = 0. Precondition: f.usable().
+int first_least_delta2_framed(const IntegerFrame& f, const DirectionLabel* l, int n);
+
+// delta² = D²/(n.n) as a double v with a root bound r (the exact value lies in
+// [lower_of(v, r), upper_of(v, r)], value_bounds.h); false when D = 0 or v is not a normal
+// double. Each part is converted from its K limbs with a relative error below (2K − 1) u < 12u
+// (non-negative terms), taken as rho = 16u each; then as delta2_by_expansions:
+// r = 1.02 (rho_D + rho_n + 4u).
+bool framed_delta2(const IntegerFrame& f, const FramedDepth& p, double& v, double& r);
+
+}  // namespace pdd::fast::detail
