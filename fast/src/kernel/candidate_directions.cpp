@@ -12,6 +12,8 @@
 #include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
+#include "exact/integer_depth.h"
+#include "exact/integer_heights.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/edge_pair_formula.h"
 #include "kernel/near_parallel_bound.h"
@@ -107,6 +109,10 @@ struct Builder {
   // (the same function of the same inputs: the same bits).
   Draft parallel_draft;
   int parallel_lane = -1;
+  // The pair's integer frame (integer_heights.h), found at its first use: where it exists the
+  // exact signs below are taken over integers (a few dozen instructions each, exact zeros
+  // included) before the double words and the expansions.
+  detail::IntegerFrame frame{A, B};
 
   // Exact sign of candidate k's depth when the filter cannot decide it; false if <= 0.
   // D > 0 for candidate k: its computed depth beyond the bound, else compensated_depth's D
@@ -115,6 +121,7 @@ struct Builder {
   bool depth_positive(int k, double bound) {
     if (out.depth[k] > bound) return true;
     if (out.depth[k] < -bound) return false;
+    if (detail::FramedDepth f; frame.usable() && detail::framed_depth(frame, label(out, k), f)) return f.D_sign > 0;
     detail::CompensatedDepth d;
     if (out.parallel[k] != 1 && detail::compensated_depth(A, B, label(out, k), d)) return true;
     return depth_sign_exact(A, B, label(out, k)) == Sign::Positive;
@@ -147,11 +154,7 @@ struct Builder {
     parallel = false;
     if (!in_range) return false;
     const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
-    const ExpVec n = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));
-    if (!n.ok()) return false;  // (expansion.h's capacity: the exact classification decides)
-    parallel = n.is_zero();
-    if (parallel) return false;
-    for (int k = 0; k < 3; ++k) c.n[k] = n.x[k].approx();
+    if (!exact_normal(a, b, c.n, parallel) || parallel) return false;
     for (int k = 0; k < 4; ++k) {
       double sk[3];
       sub(A[k], A[u], sk);
@@ -161,6 +164,31 @@ struct Builder {
     c.hA[u] = c.hA[v] = 0.0;  // exactly: n.eA = 0
     c.hB[y] = c.hB[x];        // exactly: n.eB = 0
     own = own_degree_bounds(c.n, extent);
+    return true;
+  }
+
+  // The edge pair's exact kind and rule: over the frame's integers, else exact_predicates.h's.
+  EdgePairClass classify_exact(int a, int b) {
+    return frame.usable() ? detail::classify_edge_pair_framed(frame, a, b) : classify_edge_pair_exact(A, B, a, b);
+  }
+
+  // n = eB × eA of edge pair (a, b) exactly, rounded (each n~_k within 3u |n_k|): over the frame's
+  // integers (converted with one rounding, then scaled by a power of two: exact, the pair being in
+  // the expansions' range, so that 2^(2e) >= 2^-520), else by expansions. `parallel`: n = 0.
+  // False where the expansions exceed their capacity (the exact classification then decides).
+  bool exact_normal(int a, int b, double (&n)[3], bool& parallel) {
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+    if (frame.usable()) {
+      __int128 m[3];
+      frame.normal(4 + y, 4 + x, v, u, m);
+      parallel = m[0] == 0 && m[1] == 0 && m[2] == 0;
+      for (int k = 0; k < 3; ++k) n[k] = std::ldexp(double(m[k]), 2 * frame.unit_exponent());
+      return true;
+    }
+    const ExpVec e = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));
+    if (!e.ok()) return false;
+    parallel = e.is_zero();
+    for (int k = 0; k < 3; ++k) n[k] = e.x[k].approx();
     return true;
   }
 
@@ -179,6 +207,10 @@ struct Builder {
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
     int& s = face_edge_sign[b][f];
     if (s == 2 && (triple_zero(b, f) || edge_copy_in_face(b, f))) s = 0;
+    if (s == 2 && frame.usable()) {
+      const auto& F = kFace[f];
+      s = frame.height_sign(F[1], F[0], F[2], F[0], 4 + kEdges[b][1], 4 + kEdges[b][0]);
+    }
     if (s == 2) {
       const auto& F = kFace[f];
       if (!face_normal_dw[f]) face_normal_dw[f] = compensated_normal(A[F[1]], A[F[0]], A[F[2]], A[F[0]]);
@@ -278,8 +310,9 @@ struct Builder {
       return k;
     }
     if (!cross_nonzero_filtered(A[u], B[x], A[u], A[v])) {
+      if (frame.usable()) return classify_exact(a, b);
       const ExpVec m = detail::cross(difference(B[x], A[u]), difference(A[v], A[u]));
-      if (!m.ok()) return classify_edge_pair_exact(A, B, a, b);
+      if (!m.ok()) return classify_exact(a, b);
       if (m.is_zero()) {
         k.kind = EdgePairKind::Colinear;
         return k;
@@ -292,7 +325,7 @@ struct Builder {
     int lo = 0, hi = 0;
     for (int i : kOffEdge[a]) {
       const double g = d.hA[i];
-      if (std::fabs(g) <= fb.deg4 / 4) return classify_edge_pair_exact(A, B, a, b);
+      if (std::fabs(g) <= fb.deg4 / 4) return classify_exact(a, b);
       lo += g < 0;
       hi += g > 0;
     }
@@ -315,16 +348,16 @@ struct Builder {
     // one (certainly not 0) keeps the filter bounds
     if (max_abs3(c.n) <= kExactNormalBelow * fb.deg2 && !near_parallel_normal(a, b, c, own, parallel) &&
         (parallel || max_abs3(c.n) <= fb.deg2))
-      return parallel ? exactly_parallel(a, b) : classify_edge_pair_exact(A, B, a, b);
+      return parallel ? exactly_parallel(a, b) : classify_exact(a, b);
     const double eg = own.e_h > 0.0 ? own.e_h : fb.deg3;
     EdgePairClass k;
     int lo = 0, hi = 0;
     for (int i : kOffEdge[a]) {
       int g = c.hA[i] > 0.0 ? 1 : -1;
       if (std::fabs(c.hA[i]) <= eg) {
-        if (!in_range) return classify_edge_pair_exact(A, B, a, b);
+        if (!in_range) return classify_exact(a, b);
         g = g_sign_exact(a, b, i);
-        if (g == 3) return classify_edge_pair_exact(A, B, a, b);
+        if (g == 3) return classify_exact(a, b);
       }
       lo += g < 0;
       hi += g > 0;
