@@ -2,6 +2,7 @@
 #include "qp/deformable_depth.h"
 
 #include "exact/exact_predicates.h"
+#include "exact/integer_depth.h"
 
 #include <algorithm>
 #include <cmath>
@@ -809,10 +810,22 @@ bool exact_delta_order(const List& set, const int* idx, int n, int first, int* p
     lo[j] = tight ? lower_of(v, r) : 0.0, hi[j] = tight ? upper_of(v, r) : kInf;
     if (!(lo[j] <= hi[j])) lo[j] = 0.0, hi[j] = kInf;  // (NaN: no interval)
   }
-  std::vector<ExactDepthParts> parts(n);  // (~0.8 KB each, up to kMaxCandidates: on the heap)
+  std::vector<ExactDepthParts> parts;  // (~0.8 KB each, up to kMaxCandidates: on the heap)
+  // over the pair's integer frame where it has one (integer_depth.h), else by expansions
+  detail::IntegerFrame frame(*set.A, *set.B);
+  const bool framed = frame.usable();
+  detail::FramedDepth fd[kMaxCandidates];
+  bool have_fd[kMaxCandidates] = {};
+  if (!framed) parts.resize(n);
   auto compare = [&](int a, int b) -> std::optional<int> {  // sign(delta²_a − delta²_b)
     if (hi[a] < lo[b]) return -1;
     if (hi[b] < lo[a]) return 1;
+    if (framed) {
+      for (const int x : {a, b})
+        if (!have_fd[x] && !(have_fd[x] = detail::framed_depth(frame, unpack_label(label_code(set, idx[x])), fd[x])))
+          return std::nullopt;
+      return detail::compare_framed_delta2(fd[a], fd[b]);
+    }
     for (const int x : {a, b})
       if (!parts[x].ok && !(parts[x] = depth_parts_exact(*set.A, *set.B, unpack_label(label_code(set, idx[x])))).ok)
         return std::nullopt;
