@@ -100,25 +100,48 @@ void face_normal_out_of(const IntegerFrame& f, int o, int i, __int128 (&n)[3]) {
     for (__int128& x : n) x = -x;
 }
 
-// n.n of a normal of degree 2 as four limbs: each |n_k| < 2^123 squared, summed (< 2^248).
+// n.n of a normal of degree 2 as four limbs: each |n_k| = h 2^64 + l < 2^123 (h < 2^59) squared,
+// h² 2^128 + 2hl 2^64 + l² (2hl < 2^124), summed (< 2^248) in two 128-bit halves with carries.
 void norm2(const __int128 (&n)[3], mp_limb_t* out) {
-  std::memset(out, 0, 4 * sizeof(mp_limb_t));
+  using U = unsigned __int128;
+  U lo = 0, hi = 0;
   for (const __int128 x : n) {
-    const unsigned __int128 m = x < 0 ? -static_cast<unsigned __int128>(x) : static_cast<unsigned __int128>(x);
-    const mp_limb_t limbs[2] = {mp_limb_t(std::uint64_t(m)), mp_limb_t(std::uint64_t(m >> 64))};
-    mp_limb_t sq[4];
-    mpn_sqr(sq, limbs, 2);
-    mpn_add_n(out, out, sq, 4);
+    const U m = x < 0 ? -static_cast<U>(x) : static_cast<U>(x);
+    const std::uint64_t h = std::uint64_t(m >> 64), l = std::uint64_t(m);
+    const U ll = U(l) * l, hl2 = 2 * (U(h) * l);
+    lo += ll;
+    hi += lo < ll;  // carry
+    const U mid = hl2 << 64;
+    lo += mid;
+    hi += (hl2 >> 64) + (lo < mid) + U(h) * h;
   }
+  out[0] = mp_limb_t(std::uint64_t(lo)), out[1] = mp_limb_t(std::uint64_t(lo >> 64));
+  out[2] = mp_limb_t(std::uint64_t(hi)), out[3] = mp_limb_t(std::uint64_t(hi >> 64));
 }
 
+// The vertices that may attain A's largest height along a label's oriented normal (bit i: s_i)
+// and B's least (bit j: r_j): a face of A holds A's largest (the opposite vertex is below its
+// outward normal), a face of B B's least, a decided edge pair's edge of A A's largest (the rule
+// puts both off-edge vertices at or below it); else every vertex.
+struct Extremes {
+  unsigned A = 0xFu, B = 0xFu;
+};
+
 // D and n.n along a normal of degree 2 (a face or a generic edge pair), heights from s0.
-void depth_of(const IntegerFrame& f, const __int128 (&n)[3], FramedDepth& out) {
-  Wide hi{0, 0}, lo = f.dot(n, 4, 0);
-  for (int i = 1; i < 4; ++i) {
-    const Wide a = f.dot(n, i, 0), b = f.dot(n, 4 + i, 0);
-    if (less(hi, a)) hi = a;
-    if (less(b, lo)) lo = b;
+void depth_of(const IntegerFrame& f, const __int128 (&n)[3], const Extremes& x, FramedDepth& out) {
+  bool firstA = true, firstB = true;
+  Wide hi{0, 0}, lo{0, 0};
+  for (int i = 0; i < 4; ++i) {
+    if (x.A >> i & 1) {
+      const Wide a = i == 0 ? Wide{0, 0} : f.dot(n, i, 0);
+      if (firstA || less(hi, a)) hi = a;
+      firstA = false;
+    }
+    if (x.B >> i & 1) {
+      const Wide b = f.dot(n, 4 + i, 0);
+      if (firstB || less(b, lo)) lo = b;
+      firstB = false;
+    }
   }
   const Wide D = minus(hi, lo);
   out.D_sign = sign_of_wide(D);
@@ -189,13 +212,18 @@ EdgePairClass classify_edge_pair_framed(const IntegerFrame& f, int a, int b) {
 }
 
 bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
-  __int128 n[3];
+  __int128 n[3] = {0, 0, 0};
+  Extremes x;
   out.parallel = false;
   switch (label.kind) {
-    case ContactKind::FV: face_normal_out_of(f, 0, label.a, n); break;
+    case ContactKind::FV:
+      face_normal_out_of(f, 0, label.a, n);
+      x.A = 1u << kFace[label.a][0];
+      break;
     case ContactKind::VF:
       face_normal_out_of(f, 4, label.a, n);
-      for (__int128& x : n) x = -x;
+      for (__int128& v : n) v = -v;
+      x.B = 1u << kFace[label.a][0];
       break;
     case ContactKind::EE: {
       const int u = kEdges[label.a][0], v = kEdges[label.a][1];
@@ -204,17 +232,18 @@ bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDept
         ParallelNormal p = parallel_normal(f, label.a, label.b);
         if (p.zero()) return false;  // colinear: no direction
         if (flipped(parallel_side(f, p, label.a), label.orientation))
-          for (Int256& x : p.n) x = -x;
+          for (Int256& c : p.n) c = -c;
         depth_of(f, p, out);
         return true;
       }
       const EdgePairSide side = side_rule(f.dot_sign(n, kOffEdge[label.a][0], u), f.dot_sign(n, kOffEdge[label.a][1], u));
       if (flipped(side, label.orientation))
-        for (__int128& x : n) x = -x;
+        for (__int128& c : n) c = -c;
+      if (side != EdgePairSide::Undecidable) x.A = 1u << u;
       break;
     }
   }
-  depth_of(f, n, out);
+  depth_of(f, n, x, out);
   return true;
 }
 
