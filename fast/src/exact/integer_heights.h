@@ -8,7 +8,9 @@
 //         height_sign(p1, p0, q1, q0, p, q): six of the pair's vertices by index (0..3: A's
 //         s0..s3, 4..7: B's r0..r3).
 // Output: usable(): such an e exists (computed once, on first use); then height_sign is the
-//         exact sign of n.(p − q): −1, 0 or +1 (normal() and dot_sign() share n between heights).
+//         exact sign of n.(p − q): −1, 0 or +1 (normal() and dot_sign() share n between heights);
+//         dot() the exact value n.(p − q), vertex() the integers X and unit_exponent() e, for
+//         integer_depth.h's depths.
 //
 // Why it applies: a grid of decimal cell (0.1, 0.025 ...) and a copy shifted by a decimal
 // offset have coordinates whose lowest set bits lie within ~60 bits of their highest ones, and
