@@ -233,8 +233,8 @@ BOOST_AUTO_TEST_CASE(predicates_match_rationals_on_aligned_pairs) {
 // edge pair's framed kind and orientation rule are the rationals', every label's framed D and
 // n.n equal the rationals' (times the frame's units), every framed comparison of delta² is the
 // rationals' order, first_least_delta2_framed is the rationals' first least delta² (and refuses
-// a list holding a colinear edge pair), and framed_delta2's value holds the exact delta² within
-// its root bound.
+// a list holding a colinear edge pair), framed_depth_sign is the sign of D, and framed_delta2's
+// value holds the exact delta² within its root bound.
 namespace {
 Q limbs_value(const mp_limb_t* x, int k, int unit_exponent) {
   mpz_class z = 0;
@@ -248,7 +248,8 @@ Q limbs_value(const mp_limb_t* x, int k, int unit_exponent) {
 
 BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
   compare::ReproducibleRng r(20261201);
-  long framed = 0, parallel = 0, colinear = 0, compared = 0, ties = 0, firsts = 0, refused = 0, values = 0;
+  long framed = 0, parallel = 0, colinear = 0, compared = 0, ties = 0, firsts = 0, refused = 0, values = 0,
+       zero_depths = 0;
   const double cells[] = {0.1, 0.025, 0.3, 1.0 / 3};
   for (int it = 0; it < 3000; ++it) {
     TetVertices A, B;
@@ -297,6 +298,8 @@ BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
       const int degree = fd[i].parallel ? 1 : 0;  // units 2^((3 + degree) e) and 2^((4 + 2 degree) e)
       BOOST_TEST((limbs_value(fd[i].D, 4, (3 + degree) * e) == abs(D)), labels[i].str());
       BOOST_TEST((fd[i].D_sign == sgn(D)), labels[i].str());
+      BOOST_TEST((detail::framed_depth_sign(frame, labels[i]) == sgn(D)), labels[i].str());
+      zero_depths += D == 0;
       BOOST_TEST((limbs_value(fd[i].nn, 6, (4 + 2 * degree) * e) == nn), labels[i].str());
       double v = 0, rr = 1;
       if (detail::framed_delta2(frame, fd[i], v, rr)) {
@@ -327,8 +330,9 @@ BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
   }
   BOOST_TEST_MESSAGE(framed << " framed pairs, " << parallel << " parallel and " << colinear << " colinear edge pairs, "
                             << compared << " comparisons (" << ties << " exact ties), " << firsts
-                            << " first least (" << refused << " refused), " << values << " values");
-  BOOST_TEST(framed > 1500);     // the kind of pair the frame is for
+                            << " first least (" << refused << " refused), " << values << " values, " << zero_depths << " zero depths");
+  BOOST_TEST(framed > 1500);
+  BOOST_TEST(zero_depths > 100);   // touching candidates: the depth signs' hard case     // the kind of pair the frame is for
   BOOST_TEST(parallel > 5000);   // parallel edge pairs (degree 3) are exercised
   BOOST_TEST(ties > 10000);      // and exact ties
   BOOST_TEST(refused > 300);

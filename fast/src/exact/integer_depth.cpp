@@ -211,40 +211,74 @@ EdgePairClass classify_edge_pair_framed(const IntegerFrame& f, int a, int b) {
   return c;
 }
 
-bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
-  __int128 n[3] = {0, 0, 0};
-  Extremes x;
-  out.parallel = false;
+namespace {
+
+// The label's oriented normal when it has degree 2 (a face or a generic edge pair) and the
+// vertices that may hold the extreme heights; false for a parallel or colinear edge pair.
+bool oriented_normal(const IntegerFrame& f, const DirectionLabel& label, __int128 (&n)[3], Extremes& x) {
   switch (label.kind) {
     case ContactKind::FV:
       face_normal_out_of(f, 0, label.a, n);
       x.A = 1u << kFace[label.a][0];
-      break;
+      return true;
     case ContactKind::VF:
       face_normal_out_of(f, 4, label.a, n);
       for (__int128& v : n) v = -v;
       x.B = 1u << kFace[label.a][0];
-      break;
-    case ContactKind::EE: {
-      const int u = kEdges[label.a][0], v = kEdges[label.a][1];
-      f.normal(4 + kEdges[label.b][1], 4 + kEdges[label.b][0], v, u, n);
-      if (n[0] == 0 && n[1] == 0 && n[2] == 0) {
-        ParallelNormal p = parallel_normal(f, label.a, label.b);
-        if (p.zero()) return false;  // colinear: no direction
-        if (flipped(parallel_side(f, p, label.a), label.orientation))
-          for (Int256& c : p.n) c = -c;
-        depth_of(f, p, out);
-        return true;
-      }
-      const EdgePairSide side = side_rule(f.dot_sign(n, kOffEdge[label.a][0], u), f.dot_sign(n, kOffEdge[label.a][1], u));
-      if (flipped(side, label.orientation))
-        for (__int128& c : n) c = -c;
-      if (side != EdgePairSide::Undecidable) x.A = 1u << u;
-      break;
-    }
+      return true;
+    case ContactKind::EE: break;
   }
-  depth_of(f, n, x, out);
+  const int u = kEdges[label.a][0], v = kEdges[label.a][1];
+  f.normal(4 + kEdges[label.b][1], 4 + kEdges[label.b][0], v, u, n);
+  if (n[0] == 0 && n[1] == 0 && n[2] == 0) return false;
+  const EdgePairSide side = side_rule(f.dot_sign(n, kOffEdge[label.a][0], u), f.dot_sign(n, kOffEdge[label.a][1], u));
+  if (flipped(side, label.orientation))
+    for (__int128& c : n) c = -c;
+  if (side != EdgePairSide::Undecidable) x.A = 1u << u;
   return true;
+}
+
+// A parallel edge pair's oriented normal; false when colinear.
+bool oriented_parallel_normal(const IntegerFrame& f, const DirectionLabel& label, ParallelNormal& p) {
+  p = parallel_normal(f, label.a, label.b);
+  if (p.zero()) return false;
+  if (flipped(parallel_side(f, p, label.a), label.orientation))
+    for (Int256& c : p.n) c = -c;
+  return true;
+}
+
+}  // namespace
+
+bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
+  __int128 n[3] = {0, 0, 0};
+  Extremes x;
+  out.parallel = false;
+  if (oriented_normal(f, label, n, x)) {
+    depth_of(f, n, x, out);
+    return true;
+  }
+  ParallelNormal p;
+  if (label.kind != ContactKind::EE || !oriented_parallel_normal(f, label, p)) return false;
+  depth_of(f, p, out);
+  return true;
+}
+
+int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label) {
+  __int128 n[3] = {0, 0, 0};
+  Extremes x;
+  if (!oriented_normal(f, label, n, x)) {
+    FramedDepth d;
+    return framed_depth(f, label, d) ? d.D_sign : 2;
+  }
+  // D = max_i n.s_i − min_j n.r_j > 0 iff some n.(s_i − r_j) > 0 (i, j among the extremes)
+  int best = -1;
+  for (int i = 0; i < 4 && best < 1; ++i)
+    for (int j = 0; j < 4 && best < 1; ++j)
+      if ((x.A >> i & 1) && (x.B >> j & 1)) {
+        const int s = f.dot_sign(n, i, 4 + j);
+        best = s > best ? s : best;
+      }
+  return best;
 }
 
 int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q) {

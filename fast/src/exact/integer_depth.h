@@ -49,6 +49,11 @@ struct FramedDepth {
 // f.usable().
 bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out);
 
+// The sign of the label's D, exactly (−1, 0, +1; framed_depth's D_sign, from the extreme
+// heights' differences alone: at most 16 signs, one to four where the label fixes an extreme);
+// 2 for a colinear edge pair. Precondition: f.usable().
+int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label);
+
 // sign(delta²_p − delta²_q), exactly (both from one frame).
 int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q);
 

@@ -121,7 +121,7 @@ struct Builder {
   bool depth_positive(int k, double bound) {
     if (out.depth[k] > bound) return true;
     if (out.depth[k] < -bound) return false;
-    if (detail::FramedDepth f; frame.usable() && detail::framed_depth(frame, label(out, k), f)) return f.D_sign > 0;
+    if (frame.usable()) return detail::framed_depth_sign(frame, label(out, k)) == 1;
     detail::CompensatedDepth d;
     if (out.parallel[k] != 1 && detail::compensated_depth(A, B, label(out, k), d)) return true;
     return depth_sign_exact(A, B, label(out, k)) == Sign::Positive;
