@@ -14,6 +14,7 @@
 #include "certification/value_bounds.h"
 #include "exact/exact_heights.h"
 #include "exact/exact_predicates.h"
+#include "exact/integer_heights.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/near_parallel_bound.h"
 #include "kernel/superset_kernel.h"
@@ -242,8 +243,16 @@ class PickPlane {
   PickPlane(const SupersetLanes& K, int face) : K_(K), t_(face / 4), f_(face % 4) {}
   // N.(y − x) = 0 exactly for vertices x, y (0..7) of the kernel's pair
   bool orthogonal(int x, int y) {
-    // most often not: a rounding apart, which double words show (compensated_heights.h)
     const int o = 4 * t_;
+    // over the pair's integer frame where it has one (integer_heights.h: the kernel's scaling
+    // by a power of two keeps it), a few dozen instructions a sign, zeros included
+    if (!frame_) {
+      for (int v = 0; v < 4; ++v) a_[v] = point(v), b_[v] = point(4 + v);
+      frame_.emplace(a_, b_);
+    }
+    if (frame_->usable())
+      return frame_->height_sign(o + kFace[f_][1], o + kFace[f_][0], o + kFace[f_][2], o + kFace[f_][0], y, x) == 0;
+    // else most often not: a rounding apart, which double words show (compensated_heights.h)
     if (!dw_)
       dw_ = compensated_normal(point(o + kFace[f_][1]), point(o + kFace[f_][0]), point(o + kFace[f_][2]),
                                point(o + kFace[f_][0]));
@@ -271,6 +280,8 @@ class PickPlane {
   std::optional<CompensatedNormal> dw_;
   std::optional<LazyNormal> n_;
   bool in_range_ = false;
+  TetVertices a_, b_;                    // the kernel's pair, for frame_ (filled on first use)
+  std::optional<IntegerFrame> frame_;
 };
 
 // Edge e of tetrahedron te exactly orthogonal to the normal of face f of the other one, the
