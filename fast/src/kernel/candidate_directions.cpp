@@ -17,6 +17,7 @@
 #include "kernel/direction_geometry.h"
 #include "kernel/edge_pair_formula.h"
 #include "kernel/near_parallel_bound.h"
+#include "kernel/quick_candidates.h"
 
 namespace pdd::fast {
 namespace {
@@ -443,6 +444,26 @@ struct Builder {
     return true;
   }
 
+  // The faces and lanes of a quick list that declined on its lanes alone (its faces' depths
+  // > E3: depth_positive's first test), then the edge pairs as run() does.
+  bool run_on(const QuickCandidates& q) {
+    for (int f = 0; f < 8; ++f) {
+      const int k = out.count++;
+      out.explicit_[k] = q.faces[f];
+      out.code[k] = f < 4 ? pack_label(ContactKind::FV, f, 0, EdgeOrientation::Decided)
+                          : pack_label(ContactKind::VF, f - 4, 0, EdgeOrientation::Decided);
+      out.depth[k] = q.depth[f];
+      out.nn[k] = q.nn[f];
+      out.delta_sq[k] = q.delta_sq[f];
+      out.lane[k] = -1;
+      out.sign[k] = 1;
+      out.parallel[k] = 0;
+      out.own_eh[k] = out.own_en[k] = 0.0;
+    }
+    out.edges = q.edges;
+    return edge_pairs();
+  }
+
   bool run() {
     for (int f = 0; f < 8; ++f) {
       const int k = out.count++;
@@ -487,39 +508,36 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
   return BuildStatus::Ok;
 }
 
+BuildStatus build_candidates(const QuickCandidates& q, CandidateSet& out) {
+  const TetVertices& A = *q.A;
+  const TetVertices& B = *q.B;
+  out.count = 0;
+  out.intersecting = false;
+  out.A = &A;
+  out.B = &B;
+  out.tie_kappa = q.tie_kappa;
+  out.fb = q.fb;
+  // What the Builder reads of Precomputed besides the faces and lanes: A's edge vectors and the
+  // differences r_j − s_i (parallel and nearly parallel edge pairs), as precompute computes them.
+  Precomputed p;
+  for (int a = 0; a < 6; ++a) sub(A[kEdges[a][1]], A[kEdges[a][0]], p.eA[a]);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) sub(B[j], A[i], p.d[i][j]);
+  out.intersecting = Builder(A, B, q.fb, p, out, pair_extent(A, B)).run_on(q);
+  return BuildStatus::Ok;
+}
+
 namespace {
 
 bool same_bits(const TetVertices& x, const TetVertices& y) {
   return std::memcmp(x.data(), y.data(), sizeof(TetVertices)) == 0;
 }
 
-// to = from, reading only what candidate(), label() and the lists use: the first `count`
-// entries, all edge lanes, and the explicit geometries of non-lane candidates (a full copy of
-// the ~20 KB set would cost a good part of a build).
-void copy_used(const CandidateSet& from, CandidateSet& to) {
-  const int n = from.count;
-  to.count = n;
-  to.intersecting = from.intersecting;
-  to.tie_kappa = from.tie_kappa;
-  to.fb = from.fb;
-  std::memcpy(to.code, from.code, n * sizeof from.code[0]);
-  std::memcpy(to.depth, from.depth, n * sizeof from.depth[0]);
-  std::memcpy(to.nn, from.nn, n * sizeof from.nn[0]);
-  std::memcpy(to.delta_sq, from.delta_sq, n * sizeof from.delta_sq[0]);
-  std::memcpy(to.lane, from.lane, n * sizeof from.lane[0]);
-  std::memcpy(to.sign, from.sign, n * sizeof from.sign[0]);
-  std::memcpy(to.parallel, from.parallel, n * sizeof from.parallel[0]);
-  std::memcpy(to.own_eh, from.own_eh, n * sizeof from.own_eh[0]);
-  std::memcpy(to.own_en, from.own_en, n * sizeof from.own_en[0]);
-  to.edges = from.edges;
-  for (int k = 0; k < n; ++k)
-    if (from.lane[k] < 0) to.explicit_[k] = from.explicit_[k];
-}
-
 struct LastBuild {
-  bool valid = false;
+  bool valid = false;  // set and status are build_candidates(A, B)'s
+  BuildStatus status = BuildStatus::Ok;
   TetVertices A, B;
-  CandidateSet set;  // (Ok and intersecting: edges.unclear are all set)
+  CandidateSet set;
 };
 
 }  // namespace
@@ -531,22 +549,20 @@ int exact_lanes(const CandidateSet& set) {
   return m;
 }
 
-BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out) {
+const CandidateSet& build_candidates_reusing(const TetVertices& A, const TetVertices& B, BuildStatus& status,
+                                             const QuickCandidates* declined) {
   thread_local LastBuild last;  // (~20 KB: off the stack, once per thread)
-  if (last.valid && same_bits(last.A, A) && same_bits(last.B, B)) {
-    copy_used(last.set, out);
-    out.A = &A;
-    out.B = &B;
-    return BuildStatus::Ok;
-  }
-  const BuildStatus s = build_candidates(A, B, out);
-  if (s == BuildStatus::Ok && out.intersecting && exact_lanes(out) >= kReuseExactLanes) {
+  if (!(last.valid && same_bits(last.A, A) && same_bits(last.B, B))) {
+    last.valid = false;
+    last.status = declined ? build_candidates(*declined, last.set) : build_candidates(A, B, last.set);
     last.A = A;
     last.B = B;
-    copy_used(out, last.set);
     last.valid = true;
   }
-  return s;
+  last.set.A = &A;
+  last.set.B = &B;
+  status = last.status;
+  return last.set;
 }
 
 Candidate candidate(const CandidateSet& set, int k) {

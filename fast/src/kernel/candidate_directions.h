@@ -108,14 +108,26 @@ enum class BuildStatus { Ok, NonFiniteA, NonFiniteB, DegenerateA, DegenerateB };
 // at the first exactly separating candidate): only `intersecting == false` is then meaningful.
 BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, CandidateSet& out);
 
+struct QuickCandidates;  // quick_candidates.h
+
+// build_candidates on the faces and lanes of a quick list that declined on its lanes alone
+// (quick_lanes returned false with q.count == 8: the pair's orientations and every face depth
+// certain, some lane unclear): the lanes are build_candidates' own bit for bit (the superset
+// kernel computes them with its verdicts, superset_kernel.h), and so are the faces, the filter
+// bounds and the tie band, so only the lanes' exact decisions are left to do. The same set as
+// build_candidates(*q.A, *q.B) (tested); Ok always (the orientations are certain).
+BuildStatus build_candidates(const QuickCandidates& q, CandidateSet& out);
+
 // build_candidates for callers that often ask for the same pair twice in a row on one thread
-// (the depth stage: rigid_pd2 then pdd2_accel on the same rescaled pair). The thread's last
-// costly build (intersecting, at least kReuseExactLanes edge pairs through the exact path) is
-// kept with its input; an input equal to it bit for bit gets a copy with A, B pointing to the
-// caller's pair. build_candidates is a function of the coordinates' bits, so the set is the one
-// build_candidates would return.
-inline constexpr int kReuseExactLanes = 8;
-BuildStatus build_candidates_reusing(const TetVertices& A, const TetVertices& B, CandidateSet& out);
+// (the depth stage: rigid_pd2 then pdd2_accel on the same rescaled pair), built into the
+// thread's own set (no copy of its ~20 KB either way). The set returned stays valid until the
+// thread's next call; an input equal to the last one bit for bit gets it again, with A, B
+// pointing to the caller's pair. build_candidates is a function of the coordinates' bits, so the
+// set is the one build_candidates would return. `status`: build_candidates' return value.
+// `declined`: a quick list of the same A, B that declined on its lanes alone (above), to build
+// from; else null.
+const CandidateSet& build_candidates_reusing(const TetVertices& A, const TetVertices& B, BuildStatus& status,
+                                             const QuickCandidates* declined = nullptr);
 
 // The number of edge lanes of an intersecting set that took the exact path (edges.unclear set):
 // where it is not 0, quick_lanes (quick_candidates.h), whose lanes are these bit for bit,

@@ -257,8 +257,9 @@ Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
       },
       [&superset_uncertified](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
         if (!superset_uncertified && rigid_superset(As, Bs, ch) && ch.certified) return true;
-        CandidateSet set;
-        if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        BuildStatus status;
+        const CandidateSet& set = build_candidates_reusing(As, Bs, status);
+        if (status != BuildStatus::Ok || !set.intersecting) return false;
         ch = rigid_pd2_reusing(set);
         return true;
       },

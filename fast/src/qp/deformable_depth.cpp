@@ -1273,8 +1273,9 @@ Choice on_list(const TetVertices& A, const TetVertices& B, F f, Pick pick, Lanes
           ch = f(q);
           return true;
         }
-        CandidateSet set;
-        if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+        BuildStatus status;
+        const CandidateSet& set = build_candidates_reusing(As, Bs, status, q.count == 8 ? &q : nullptr);
+        if (status != BuildStatus::Ok || !set.intersecting) return false;
         ch = f(set);
         return true;
       },
@@ -1372,8 +1373,9 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
             ch = pdd2_accel(q, 1);
             return true;
           }
-          CandidateSet set;
-          if (build_candidates_reusing(As, Bs, set) != BuildStatus::Ok || !set.intersecting) return false;
+          BuildStatus status;
+          const CandidateSet& set = build_candidates_reusing(As, Bs, status, q.count == 8 ? &q : nullptr);
+          if (status != BuildStatus::Ok || !set.intersecting) return false;
           ch = pdd2_accel(set, 1);
           return true;
         },
