@@ -187,3 +187,120 @@ BOOST_AUTO_TEST_CASE(double_eigenvalues_stay_in_doubles) {
     BOOST_TEST(!g.exact_value);
   }
 }
+
+// Nearly aligned resting contacts: stacked Kuhn blocks of cell h = 1/8, B's bottom a third of a
+// cell into A's top, B tilted 1e-6 rad about (1, 2, 3) (a simulator's blocks a step after
+// touching). Pairs across the cells' vertical faces meet ~1e-7 of h deep (pdd2_global ~1e-14),
+// where a piece's in-window eigenvalue (~1e-13 |H|) sits beside a near-zero one (three or four
+// nearly coplanar active vertices): the accuracy estimate saw a gap of the eigenvalue itself and
+// sent about a quarter of these pairs to the exact pieces (milliseconds each); piece_visit.h's
+// ritz_pair keeps them in doubles. Pinned without timing:
+//  - four such pairs (8 x 8 x 3 blocks, pairs 1, 22, 46 and 70 of their 2552), each against
+//    `pdd solve --engine reference --variants global`'s exact pdd2_global, taken in doubles
+//    (no slow path, global_depth not in rationals);
+//  - 3 x 3 blocks built here: no pair whose pdd2_global exceeds 1e-24 takes the exact path (the
+//    ones below, contacts made by the rotation's rounding ~1e-13 of h deep, are exact by
+//    design: global_depth.cpp's kCompactTiny), and each value is the relaxed value along its
+//    own normal (exact_relaxed_value) within definitions §8.
+BOOST_AUTO_TEST_CASE(nearly_aligned_resting_contacts_stay_in_doubles) {
+  struct Case {
+    TetVertices A, B;
+    const char* exact;
+  };
+  const Case cases[] = {
+      {{{{0, 0, 0.25}, {0.125, 0, 0.25}, {0.125, 0.125, 0.25}, {0.125, 0.125, 0.375}}},
+       {{{4.0089205927129612e-07, -4.0089172004265095e-07, 0.33333346696379357},
+         {3.0066910250425849e-07, 0.12499959910823538, 0.33333350037147558},
+         {0.12500030066904444, 0.12499969933121002, 0.3333334335561785},
+         {0.12500036748436832, 0.12499966592358158, 0.45833343355615619}}},
+       "14197790448792241464606517212346394298681910440168260031835661/"
+       "904621979960145150968308256614330273693888676846142765862118373014280077312"},
+      {{{{0, 0, 0.25}, {0, 0, 0.375}, {0.125, 0, 0.375}, {0.125, 0.125, 0.375}}},
+       {{{4.0089205927129612e-07, -4.0089172004265095e-07, 0.33333346696379357},
+         {3.0066910250425849e-07, 0.12499959910823538, 0.33333350037147558},
+         {3.6748442638900869e-07, 0.12499956570060694, 0.45833350037145326},
+         {0.12500036748436832, 0.12499966592358158, 0.45833343355615619}}},
+       "612085398265998499579449869524855436787691797032300630641974291/"
+       "29400244550903814557174647938578586375438628023908184463538736592862283038720"},
+      {{{{0, 0.125, 0.25}, {0, 0.25, 0.25}, {0, 0.25, 0.375}, {0.125, 0.25, 0.375}}},
+       {{{2.0044614573722086e-07, 0.2499995991081907, 0.33333353377915759},
+         {0.12500020044608767, 0.24999969933116534, 0.33333346696386051},
+         {0.12500026726141156, 0.2499996659235369, 0.45833346696383814},
+         {0.12500016703845473, 0.37499966592349226, 0.45833350037152021}}},
+       "29417361084468454020838325937996744342696792692399972256698174347/"
+       "1736881338564380281493342187508301124310212337228375677148726259477532786032640"},
+      {{{{0, 0.25, 0.25}, {0.125, 0.25, 0.25}, {0.125, 0.25, 0.375}, {0.125, 0.375, 0.375}}},
+       {{{2.0044614573722086e-07, 0.2499995991081907, 0.33333353377915759},
+         {1.0022318891467208e-07, 0.37499959910814606, 0.3333335671868396},
+         {0.12500010022313085, 0.37499969933112071, 0.33333350037154252},
+         {0.12500016703845473, 0.37499966592349226, 0.45833350037152021}}},
+       "556552349694455469138457973778574983563595166943272220005560529/"
+       "72369812793749080090896157345362994709894703832013985312016451765207144857600"},
+  };
+  const double none[3] = {0, 0, 0};
+  for (const Case& c : cases) {
+    const double exact = mpq_class(c.exact).get_d();
+    const fast::NormalDepth d = fast::pdd2_global(c.A, c.B);
+    BOOST_TEST(std::fabs(d.pd2 - exact) <= 1e-9 * exact, d.pd2 << " vs exact " << exact);
+    fast::SolveOptions o;
+    o.with_global = true;
+    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
+    BOOST_REQUIRE(!r.pdd2_global_error);
+    BOOST_TEST(std::fabs(r.pdd2_global - exact) <= 1e-9 * exact);
+    BOOST_TEST(!r.stats.slow_path);
+    const fast::GlobalOptimum g = fast::global_depth(c.A, c.B, none, r.pdd2_relaxed, {}, r.rigid_pd2);
+    BOOST_TEST(g.certified);
+    BOOST_TEST(!g.exact_value);
+  }
+
+  // 3 x 3 blocks, one layer each (A's top, B's bottom), B tilted as above about its bottom
+  // face's centre.
+  const int n = 3;
+  const double h = 0.125, zb = h - h / 3, t = 1e-6;
+  const double ax = 1 / std::sqrt(14.0), ay = 2 / std::sqrt(14.0), az = 3 / std::sqrt(14.0);
+  const double co = std::cos(t), si = std::sin(t), C = 1 - co;
+  const double R[3][3] = {{co + ax * ax * C, ax * ay * C - az * si, ax * az * C + ay * si},
+                          {ay * ax * C + az * si, co + ay * ay * C, ay * az * C - ax * si},
+                          {az * ax * C - ay * si, az * ay * C + ax * si, co + az * az * C}};
+  const Vec3d centre = {n * h / 2, n * h / 2, zb};
+  std::vector<TetVertices> A, B;
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (const auto& p : kPerm) {
+        TetVertices a, b;
+        int step[3] = {0, 0, 0};
+        for (int v = 0; v < 4; ++v) {
+          if (v > 0) step[p[v - 1]] = 1;
+          const Vec3d local = {(i + step[0]) * h, (j + step[1]) * h, step[2] * h};
+          a[v] = {local[0], local[1], local[2]};
+          const Vec3d q = {local[0] - centre[0], local[1] - centre[1], local[2] + zb - centre[2]};
+          for (int r = 0; r < 3; ++r) b[v][r] = centre[r] + R[r][0] * q[0] + R[r][1] * q[1] + R[r][2] * q[2];
+        }
+        A.push_back(a);
+        B.push_back(b);
+      }
+  int pairs = 0, slow = 0, slow_above = 0, shallow = 0;
+  for (const TetVertices& a : A)
+    for (const TetVertices& b : B) {
+      fast::SolveOptions o;
+      o.with_global = true;
+      const PairResult<double> r = fast::solve_pair(TetPair{"", {}, a, b}, o);
+      if (r.error || !r.intersecting) continue;
+      BOOST_REQUIRE(!r.pdd2_global_error);
+      ++pairs;
+      slow += r.stats.slow_path;
+      const bool above = r.pdd2_global > 1e-24;
+      slow_above += above && r.stats.slow_path;
+      shallow += above && r.pdd2_global < 1e-10;
+      bool ok = true;
+      const double along = fast::exact_relaxed_value(a, b, *r.pdd2_global_normal, ok);
+      BOOST_TEST(ok);
+      BOOST_TEST(std::fabs(along - r.pdd2_global) <= 1e-9 * along);
+    }
+  BOOST_TEST_MESSAGE("nearly aligned blocks: " << pairs << " intersecting pairs, " << shallow
+                                               << " shallow (1e-24 < pdd2_global < 1e-10), " << slow
+                                               << " on the exact path, " << slow_above << " of them above 1e-24");
+  BOOST_TEST(shallow >= 20);
+  BOOST_TEST(slow_above == 0);
+}

@@ -61,7 +61,7 @@ PDD_FMA_CLONES void AccurateMoments::fill(const std::array<std::array<double, 3>
 // fewer than 2^9 of them), each carried through later products by at most the coefficients
 // (< 2^13) times the sums' magnitudes (< 2^110: the double path's |coordinates| < 2^102,
 // global_depth.cpp): < 2^-943 in all.
-PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, Eigen::Matrix3d& H, double& h_error) const {
+PDD_FMA_CLONES bool AccurateMoments::scaled(unsigned ma, unsigned mb, DW (&Ms)[6], double (&aMs)[6], double& c20) const {
   const int mA = __builtin_popcount(ma), mB = __builtin_popcount(mb);
   if (mA == 0 || mB == 0 || ma > 15 || mb > 15) return false;
   const int g = 5 - mA, d = mA * (5 - mB) + mB * (5 - mA), m = mA + mB, k = 10 - m;
@@ -76,8 +76,6 @@ PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, Eigen::Mat
     aU[r] = mA * aCn[r] + d * aSA[ma][r];
     aS[r] = aSA[ma][r] + aSB[mb][r];
   }
-  constexpr double kGrow = 1 + 0x1p-40;
-  h_error = 0;
   for (int q = 0; q < 6; ++q) {
     const int r = kR[q], c = kC[q];
     const DW cross = add(mul(Cn[r], S[c]), mul(S[r], Cn[c]));
@@ -87,11 +85,46 @@ PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, Eigen::Mat
     M = add(M, mul(dw(k), mul(U[r], U[c])));
     const double aM = D * (aQA[ma][q] + aQB[mb][q]) + dg2 * (aCn[r] * aS[c] + aS[r] * aCn[c]) +
                       mg2 * aCn[r] * aCn[c] + k * aU[r] * aU[c];
-    const double h = (M.hi + M.lo) / (20 * D);
+    Ms[q] = M;
+    aMs[q] = aM;
+  }
+  c20 = 20 * D;
+  return true;
+}
+
+PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, Eigen::Matrix3d& H, double& h_error) const {
+  DW M[6];
+  double aM[6], c20 = 0;
+  if (!scaled(ma, mb, M, aM, c20)) return false;
+  constexpr double kGrow = 1 + 0x1p-40;
+  h_error = 0;
+  for (int q = 0; q < 6; ++q) {
+    const int r = kR[q], c = kC[q];
+    const double h = (M[q].hi + M[q].lo) / c20;
     H(r, c) = H(c, r) = h;
-    const double err = (2 * kU * (1 + kU) * std::fabs(h) + 96 * kU * kU * aM / (20 * D)) * kGrow + 0x1p-940;
+    const double err = (2 * kU * (1 + kU) * std::fabs(h) + 96 * kU * kU * aM[q] / c20) * kGrow + 0x1p-940;
     if (!std::isfinite(h) || !std::isfinite(err)) return false;
     h_error = std::max(h_error, err);
+  }
+  return true;
+}
+
+// The same M, then H = M / (20 D) as a double word: hi = fl(M.hi / c), the remainder M.hi - hi c
+// exactly (fma: the remainder of a rounded quotient is a double), lo = fl((remainder + M.lo) /
+// c), renormalised exactly (two_sum). |lo| <= 2u |H| (1 + u), and its two roundings cost
+// <= 2u |lo|: within 5 u^2 |H| of M~ / c, so |v - H*| <= 96 u^2 |M| / c + 5 u^2 |H| (+ the
+// absolute 2^-940, as above), the bound's own roundings in the factor 1 + 2^-40.
+PDD_FMA_CLONES bool AccurateMoments::matrix(unsigned ma, unsigned mb, detail::dw::Bounded (&Hb)[3][3]) const {
+  DW M[6];
+  double aM[6], c20 = 0;
+  if (!scaled(ma, mb, M, aM, c20)) return false;
+  for (int q = 0; q < 6; ++q) {
+    const int r = kR[q], c = kC[q];
+    const double hi = M[q].hi / c20, lo = (std::fma(-hi, c20, M[q].hi) + M[q].lo) / c20;
+    const DW v = detail::dw::two_sum(hi, lo);
+    const double err = (96 * kU * kU * aM[q] / c20 + 5 * kU * kU * std::fabs(hi)) * (1 + 0x1p-40) + 0x1p-940;
+    if (!std::isfinite(v.hi) || !std::isfinite(v.lo) || !std::isfinite(err)) return false;
+    Hb[r][c] = Hb[c][r] = detail::dw::Bounded{v, err};
   }
   return true;
 }

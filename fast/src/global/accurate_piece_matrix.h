@@ -41,9 +41,15 @@ class AccurateMoments {
   // H_S of active set (ma, mb) (both non-empty) rounded entrywise, h_error >= every entry's
   // absolute error; false when not finite.
   bool matrix(unsigned ma, unsigned mb, Eigen::Matrix3d& H, double& h_error) const;
+  // The same H_S as double words, each entry with its own certified bound (Bounded: |v - H*| <=
+  // e, double_word.h): the entries before their rounding to doubles. False when not finite.
+  bool matrix(unsigned ma, unsigned mb, detail::dw::Bounded (&H)[3][3]) const;
 
  private:
   void fill(const std::array<std::array<double, 3>, 4>& pA, const std::array<std::array<double, 3>, 4>& pB);
+  // M = 20 H D's six entries (xx xy xz yy yz zz) as double words, the same expressions on the
+  // magnitudes (aM), and 20 D; false for an empty side.
+  bool scaled(unsigned ma, unsigned mb, detail::dw::DW (&M)[6], double (&aM)[6], double& c20) const;
   // Each sum as a double word, and the same sum of the terms' magnitudes (|a_k|, |a_r a_c|).
   detail::dw::DW SA[16][3], SB[16][3], QA[16][6], QB[16][6];
   double aSA[16][3], aSB[16][3], aQA[16][6], aQB[16][6];

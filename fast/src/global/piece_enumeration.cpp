@@ -310,7 +310,7 @@ class PieceEnumeration {
                                         [](const V3&, const V3&, V3 (&)[2]) { return false; }, [](int) {});
       // (a pair already sent to the exact pieces: the cheaper double visit, its offers only)
       if (accurate && !best.needs_exact && accurate->matrix(ma, mb, Hw, ew)) {
-        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, accurate_calls, search);
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros, &*accurate, ma, mb}, accurate_calls, search);
         return;
       }
       const bool needed_exact = best.needs_exact;
@@ -319,7 +319,7 @@ class PieceEnumeration {
       if (!accurate) accurate.emplace(dA, dB);
       if (accurate->matrix(ma, mb, Hw, ew)) {
         best.needs_exact = false;
-        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros}, accurate_calls, search);
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros, &*accurate, ma, mb}, accurate_calls, search);
       }
     } else {
       consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);

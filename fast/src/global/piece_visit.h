@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "global/accurate_piece_matrix.h"
 #include "global/best_offer.h"
 #include "global/piece_screen.h"
 #include "global/vec3.h"
@@ -72,6 +73,8 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out);
 // they are never in the window, whatever the margin (a shallow contact's margin exceeds its
 // floor: they would send the pair to the exact pieces). An in-window eigenvalue beside them
 // keeps them in its gap (gap_of), so its accuracy estimate sees them.
+// `moments`, `ma`, `mb` (accurate visits): where H's double words come from (the Ritz step of
+// PieceVisit::ritz_pair); null: none.
 struct PieceMatrix {
   const Eigen::Matrix3d& H;
   double h_error;
@@ -79,6 +82,8 @@ struct PieceMatrix {
   long pe;
   bool accurate = false;
   int zeros = 0;
+  const AccurateMoments* moments = nullptr;
+  unsigned ma = 0, mb = 0;
 };
 
 // What the enumeration offers to and prunes with: the evaluations' problem, the best so far,
@@ -120,7 +125,8 @@ class PieceVisit {
  public:
   PieceVisit(const PieceMatrix& piece, Calls& calls, const Search& search)
       : H(piece.H), h_error(piece.h_error), exact(piece.exact), accurate(piece.accurate), zeros(piece.zeros),
-        pe(piece.pe), calls(calls), P(search.P), best(search.best), lower(search.lower) {}
+        moments(piece.moments), ma(piece.ma), mb(piece.mb), pe(piece.pe), calls(calls), P(search.P),
+        best(search.best), lower(search.lower) {}
 
   void run() {
     hnorm = H.norm();
@@ -259,8 +265,81 @@ class PieceVisit {
     planes(pair_of);
     for (int k = 0; k < 3; ++k)
       if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here)) &&
-          !(pair_of[k] >= 0 && plane_accurate(pair_of[k], E)))
+          !(pair_of[k] >= 0 && plane_accurate(pair_of[k], E)) && !(pair_of[k] < 0 && ritz_pair(k, E)))
         best.needs_exact = true;
+    return true;
+  }
+
+  // An in-window mu_k whose small gap is to one neighbour (its partner p = k - 1 or k + 1), the
+  // third eigenvalue apart: a contact far shallower than the pair beside a near-zero eigenvalue
+  // (three or four nearly coplanar active vertices of a nearly aligned resting contact: mu_1
+  // ~1e-13 |H| beside mu_0 ~0, faces 1e-6 rad apart). The estimate above sees a gap of about
+  // mu_k itself and fails. The vector is taken instead as a Rayleigh-Ritz vector of the computed
+  // plane Q = [v_lo v_hi] (lo < hi the two indices) on H's double words (AccurateMoments, each
+  // entry within its certified bound). With H's exact unit eigenvectors e_i (lambda_0 <=
+  // lambda_1 <= lambda_2) and a unit v = sum c_i e_i, v^T H v - lambda_k = sum_i (lambda_i -
+  // lambda_k) c_i^2, whose terms below k are <= 0:
+  // (1) Q spans the exact invariant plane of lambda_lo, lambda_hi up to sin <= s = E / delta +
+  // 2 o (Davis-Kahan: Q's vectors are exact for H + F, |F| <= E, so H Q - Q Lambda = -F Q;
+  // delta = the distance from Q's eigenvalues to the third one's interval [mu_j - E, mu_j + E];
+  // o: Q's departure from orthonormality).
+  // (2) K = Q^T H Q in double words (Bounded: certified), rounded (entries within `bound`, so
+  // |.|_2 <= 2 bound); it differs from H's restriction to the exact plane (in the bases
+  // matched by projection, Q = Q* + W, |W| <= s: cross terms vanish, H Q* lying in the plane) by
+  // |H| s^2, and the Gram matrix of Q* from I by 2 (o + s^2), which moves the 2x2 problem by
+  // 4 (o + s^2) |K|; with the closed form's 8 u |K|: eps in all. Davis-Kahan on the 2x2 puts each
+  // Ritz vector within phi <= eps / (gap of K - 2 eps) + 2 o of its eigenvector's image, inside
+  // the plane (the 2 o: coordinates mapped back through Q).
+  // (3) So the Ritz vector r of k (K's upper one for k = hi, lower for k = lo) is within s + phi
+  // + 8 u of e_k; its component along the third e_j is at most s + 8 u, along the partner's at
+  // most phi + 8 u, and v^T H v - lambda_k <= (lambda_p - lambda_k)^+ (phi + 8u)^2 +
+  // (lambda_j - lambda_k)^+ (s + 8u)^2, each lambda_i - lambda_k <= mu_i - mu_k + 2 E. Required:
+  // that excess within half of the 1e-11 above, and r within 1e-9 of e_k (far inside the
+  // conditions' kSign). True with r kept as vector k; false (the pair goes to the exact pieces)
+  // otherwise.
+  bool ritz_pair(int k, double E) {
+    using detail::dw::Bounded;
+    if (!accurate || !moments) return false;
+    const int p = k == 0 ? 1 : k == 2 ? 1 : (mu(1) - mu(0) <= mu(2) - mu(1) ? 0 : 2);
+    const int lo = std::min(k, p), hi = std::max(k, p), j = 3 - lo - hi;  // j: the third index
+    const double delta = std::min(std::fabs(mu(j) - mu(lo)), std::fabs(mu(j) - mu(hi))) - E;
+    if (!(delta > 0) || !(mu(hi) - mu(lo) < std::fabs(mu(j) - mu(k)))) return false;
+    const V3 q0 = raw_vector(lo), q1 = raw_vector(hi);
+    const double o = std::max({std::fabs(dot(q0, q1)), std::fabs(dot(q0, q0) - 1), std::fabs(dot(q1, q1) - 1)}) +
+                     4 * kU;
+    const double s = E / delta + 2 * o;
+    Bounded Hb[3][3];
+    if (!moments->matrix(ma, mb, Hb)) return false;
+    auto form = [&](const V3& x, const V3& y) {
+      Bounded f;
+      for (int c = 0; c < 3; ++c) {
+        Bounded t;
+        for (int r = 0; r < 3; ++r) t = detail::dw::plus(t, detail::dw::times(Hb[r][c], detail::dw::exactly(x[r])));
+        f = detail::dw::plus(f, detail::dw::times(t, detail::dw::exactly(y[c])));
+      }
+      return f;
+    };
+    const Bounded K00 = form(q0, q0), K01 = form(q0, q1), K11 = form(q1, q1);
+    const double k00 = K00.v.hi + K00.v.lo, k01 = K01.v.hi + K01.v.lo, k11 = K11.v.hi + K11.v.lo;
+    const double kmax = std::max({std::fabs(k00), std::fabs(k01), std::fabs(k11)});
+    const double bound = std::max({K00.e, K01.e, K11.e}) + 2 * kU * kmax;
+    const double eps = (2 * bound + 4 * (o + s * s) * kmax + hnorm * s * s + 8 * kU * kmax) * (1 + 0x1p-40);
+    const double rad = std::hypot((k00 - k11) / 2, k01);
+    if (!(2 * rad > 2 * eps)) return false;
+    const double phi = eps / (2 * rad - 2 * eps) + 2 * o;
+    auto above = [&](int i, double c) { return i > k ? (mu(i) - mu(k) + 2 * E) * c * c : 0.0; };
+    const double excess = above(p, phi + 8 * kU) + above(j, s + 8 * kU);
+    if (!(excess <= 0.5e-11 * std::max(mu(k), lower_here)) || !(s + phi + 8 * kU <= 1e-9)) return false;
+    // K's eigenvector for its eigenvalue of k: a normal of a row of K - ev I, the longer one
+    const double ev = (k00 + k11) / 2 + (k == hi ? rad : -rad);
+    const double a0 = k01, b0 = ev - k00, a1 = ev - k11, b1 = k01;
+    const bool first = std::hypot(a0, b0) >= std::hypot(a1, b1);
+    const double ua = first ? a0 : a1, ub = first ? b0 : b1;
+    const double big = std::max(std::fabs(ua), std::fabs(ub));
+    if (!(big > 0)) return false;
+    const V3 w = add(mul(q0, ua / big), mul(q1, ub / big));
+    ritz[k] = mul(w, 1 / norm(w));
+    has_ritz[k] = true;
     return true;
   }
 
@@ -296,7 +375,8 @@ class PieceVisit {
     return spread <= 1e-10 * std::max(mu(j), lower_here) && E <= 1e-9 * delta;
   }
 
-  V3 vector(int k) const {
+  V3 vector(int k) const { return has_ritz[k] ? ritz[k] : raw_vector(k); }
+  V3 raw_vector(int k) const {  // the solver's
     const Eigen::Vector3d e = eig.eigenvectors().col(k);
     return V3{e(0), e(1), e(2)};
   }
@@ -420,6 +500,8 @@ class PieceVisit {
   const bool exact;
   const bool accurate;  // PieceMatrix::accurate
   const int zeros;      // PieceMatrix::zeros
+  const AccurateMoments* moments;  // PieceMatrix::moments, ma, mb
+  const unsigned ma, mb;
   const long pe;
   Calls& calls;
   const Problem& P;
@@ -432,6 +514,8 @@ class PieceVisit {
   double m[3] = {0, 0, 0};  // each eigenvalue's margin (above)
   Conditions cond;
   bool held[3] = {false, false, false};  // exact path: eigenvector k held the signs
+  V3 ritz[3] = {};  // ritz_pair's vectors, kept as vector k where has_ritz[k]
+  bool has_ritz[3] = {false, false, false};
 };
 
 template <class Calls>
