@@ -92,7 +92,7 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
   tbb::task_arena one(1), all(tbb::info::default_concurrency());
   std::vector<std::string> names;
   for (const std::string& name : split(options.cases))
-    if (name == "stacked") names.insert(names.end(), {"stacked", "stacked-tilted"});
+    if (name == "stacked") names.insert(names.end(), {"stacked", "stacked-tilted", "stacked-nearly"});
     else names.push_back(name);
   for (const std::string& name : names) {
     EnergyCase c;
@@ -115,8 +115,9 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
       std::ostringstream d;
       d << "jittered Kuhn balls of radius 1, centres " << options.ball_distance << " apart";
       c.description = d.str();
-    } else if (name == "stacked" || name == "stacked-tilted") {
-      BlockPair blocks = stacked_blocks(options.stacked_cells, 3, 1.0 / 3, name == "stacked" ? 0 : 0.01);
+    } else if (name == "stacked" || name == "stacked-tilted" || name == "stacked-nearly") {
+      const double tilt = name == "stacked" ? 0 : name == "stacked-tilted" ? 0.01 : 1e-6;
+      BlockPair blocks = stacked_blocks(options.stacked_cells, 3, 1.0 / 3, tilt);
       A = std::move(blocks.a);
       B = std::move(blocks.b);
       c.description = blocks.description;

@@ -64,9 +64,16 @@ struct Best {
   std::vector<Suspect> suspects;
   // The best value in units scaled by 2^-extra (a piece's own scale, exact path), or as is.
   double value_in(long extra) const;
+  // Exact path: the pair's own scale (Problem::scale of the pair, not of the scaled pieces).
+  double pair_scale = 0;
+  // Exact path: relaxed(v) certainly above qvalue, shown on compensated heights (best_offer.cpp);
+  // false when not shown. Such an offer is not taken (offer() keeps only a lower exact value),
+  // so skipping its rational evaluation changes nothing.
+  bool certainly_above(const V3& v) const;
   void offer(const Problem& P, const V3& v) {
     if (!nonzero(v)) return;
     if (A) {
+      if (have_q && certainly_above(v)) return;  // relaxed(v) > qvalue: the offer would not be taken
       detail::Q hA[4], hB[4];
       Solution<detail::Q> s;
       const detail::Q q = relaxed_exact(*A, *B, v, hA, hB, s);

@@ -233,7 +233,7 @@ void enumerate_exact(GlobalRun& g, const ExactStart& exact_start) {
       for (Q& c : x) detail::scale_pow2(c, -unit);
   Problem Ps = g.P;  // the conditions' floor in the scaled units
   Ps.scale = 4.0;    // |x| 2^-unit < 4 (bit lengths give log2 |x| within 1)
-  best.A = &A, best.B = &B, best.unit = unit;
+  best.A = &A, best.B = &B, best.unit = unit, best.pair_scale = g.P.scale;
   best.value = INFINITY;
   best.offer(Ps, best.n);
   if (exact_start) best.offer(Ps, exact_start());

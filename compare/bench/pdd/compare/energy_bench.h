@@ -17,8 +17,10 @@
 //        `size` tetrahedra and radius 1 at centre distance `ball_distance` (a shallow overlap);
 //        "stacked": two Kuhn blocks of stacked_cells x stacked_cells x 3 cubes, B on A's columns a
 //        third of a cell deep (stacked_blocks, mesh_bench.h: faces parallel, vertical faces
-//        coplanar), then the same with B tilted 0.01 rad ("stacked-tilted": no face parallel);
-//        the aligned case names its twin (rotated_twin), and the ratios of the times per pair.
+//        coplanar), then the same with B tilted 0.01 rad ("stacked-tilted": no face parallel)
+//        and 1e-6 rad ("stacked-nearly": a resting contact a step after touching, the vertical
+//        faces crossing ~1e-7 of a cell deep); the aligned case names its twin (rotated_twin),
+//        and the ratios of the times per pair.
 #pragma once
 
 #include <cstddef>
