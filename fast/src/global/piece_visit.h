@@ -128,7 +128,9 @@ class PieceVisit {
         moments(piece.moments), ma(piece.ma), mb(piece.mb), pe(piece.pe), calls(calls), P(search.P),
         best(search.best), lower(search.lower) {}
 
-  void run() {
+  // The window and the cheap tests alone: true when the piece certainly holds no eigenvalue of
+  // the exact H_S in the window (run() returns there).
+  bool outside() {
     hnorm = H.norm();
     // (accurate: no solver yet; the trace's and determinant's own roundings, a few u |H|; the
     // solver's error is bounded after it ran, backward_error())
@@ -137,7 +139,11 @@ class PieceVisit {
     lower_here = std::ldexp(lower, int(std::clamp(-pe, -4000L, 4000L)));
     threshold = best_here * (1 - kPrune) + margin;
     floor = lower_here - margin;
-    if (outside_window_cheaply() || !solve()) return;
+    return outside_window_cheaply();
+  }
+
+  void run() {
+    if (outside() || !solve()) return;
     if (!exact && !double_path_accuracy()) return;
     cond = calls.make_conditions();
     if (exact) {
@@ -155,11 +161,28 @@ class PieceVisit {
   // Cheap tests first. mu_min >= 4 det / trace^2 (mu2 mu3 <= (trace / 2)^2), with the
   // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and the
   // entries' own errors): 64 u |H|_F^3 + 6 |H|_F^2 (3 h_error). mu_max <= trace (H is PSD).
+  // With `zeros` (double path: the exact H_S's first `zeros` eigenvalues are 0, PieceMatrix),
+  // the others follow from the invariants, where the determinant (0) says nothing: for zeros ==
+  // 2 the third is tr(H*); for zeros == 1 the two others have sum tr(H*) and product c2(H*), the
+  // sum of the principal 2x2 minors (lambda_0 = 0), so the smaller is >= c2(H*) / tr(H*). With
+  // each entry within e = h_error: tr within 3e, and 4 u |H|_F for its two additions; each of
+  // c2's six products within (2 |H|_F + e) e, and its eleven roundings within 32 u |H|_F^2 (the
+  // products' magnitudes sum to <= 2 |H|_F^2); the quotient's rounding in the factor 1 - 4u.
+  // A piece whose nonzero eigenvalues all lie above the window is left: the drop that shallow
+  // contacts need, their windows ~1e-13 |H| far below what the screen resolves.
   bool outside_window_cheaply() const {
     const double tr = H.trace();
     const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm - 18 * hnorm * hnorm * h_error;
     if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return true;
     if (tr + 3 * margin < floor) return true;
+    if (zeros == 2 && tr - 3 * h_error - 4 * kU * hnorm > threshold) return true;
+    if (zeros == 1) {
+      const double c2 = H(0, 0) * H(1, 1) - H(0, 1) * H(0, 1) + H(0, 0) * H(2, 2) - H(0, 2) * H(0, 2) +
+                        H(1, 1) * H(2, 2) - H(1, 2) * H(1, 2);
+      const double c2_low = c2 - 6 * (2 * hnorm + h_error) * h_error - 32 * kU * hnorm * hnorm;
+      const double tr_up = tr + 3 * h_error + 4 * kU * hnorm;
+      if (c2_low > 0 && tr_up > 0 && c2_low / tr_up * (1 - 4 * kU) > threshold) return true;
+    }
     return false;
   }
 
@@ -521,6 +544,13 @@ class PieceVisit {
 template <class Calls>
 void consider_piece(const PieceMatrix& piece, Calls& calls, const Search& search) {
   PieceVisit<Calls>(piece, calls, search).run();
+}
+
+// consider_piece's first step alone: the piece certainly holds no eigenvalue of the exact H_S in
+// the window (nothing to offer), shown by the cheap tests on this H and its error.
+template <class Calls>
+bool outside_window(const PieceMatrix& piece, Calls& calls, const Search& search) {
+  return PieceVisit<Calls>(piece, calls, search).outside();
 }
 
 }  // namespace pdd::fast::global
