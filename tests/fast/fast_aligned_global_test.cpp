@@ -63,6 +63,31 @@ std::vector<Solved> solved_pairs(const std::vector<const char*>& files = {std::b
   return out;
 }
 
+// A pair and its exact pdd2_global (`pdd solve --engine reference`'s, a rational string).
+struct ExactCase {
+  TetVertices A, B;
+  const char* exact;
+};
+
+// The pair stays in doubles: the public function (its start from the superset) and solve_pair's
+// record within definitions §8 of the exact value, no slow path, and the enumeration itself,
+// from solve_pair's bounds, certified and not in rationals.
+void check_in_doubles(const ExactCase& c) {
+  const double exact = mpq_class(c.exact).get_d();
+  const fast::NormalDepth d = fast::pdd2_global(c.A, c.B);
+  BOOST_TEST(std::fabs(d.pd2 - exact) <= 1e-9 * exact, d.pd2 << " vs exact " << exact);
+  fast::SolveOptions o;
+  o.with_global = true;
+  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
+  BOOST_REQUIRE(!r.pdd2_global_error);
+  BOOST_TEST(std::fabs(r.pdd2_global - exact) <= 1e-9 * exact);
+  BOOST_TEST(!r.stats.slow_path);  // not in rationals
+  const double none[3] = {0, 0, 0};
+  const fast::GlobalOptimum g = fast::global_depth(c.A, c.B, none, r.pdd2_relaxed, {}, r.rigid_pd2);
+  BOOST_TEST(g.certified);
+  BOOST_TEST(!g.exact_value);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(global_depth_without_start_stays_in_doubles) {
@@ -133,11 +158,7 @@ BOOST_AUTO_TEST_CASE(global_minimiser_takes_exact_enumerations) {
 // --count 1000`, the pairs of three seeds whose enumeration met such a plane; each exact value is
 // `pdd solve --engine reference`'s pdd2_global of the pair (its lower bound within 1e-12).
 BOOST_AUTO_TEST_CASE(double_eigenvalues_stay_in_doubles) {
-  struct Case {
-    TetVertices A, B;
-    const char* exact;
-  };
-  const Case cases[] = {
+  const ExactCase cases[] = {
       {{{{-3.5062469909220626, -1.737735460655986, 4.685418596745679},
          {-4.064606358716736, -1.1793760928613126, 4.685418596745679},
          {-4.064606358716736, -1.737735460655986, 5.243777964540352},
@@ -169,23 +190,7 @@ BOOST_AUTO_TEST_CASE(double_eigenvalues_stay_in_doubles) {
        "4591725926317378701245555944957639217103318787059032607750672507/"
        "11215383268277739161133030883667830058032849160102051611187662783774720"},
   };
-  for (const Case& c : cases) {
-    const double exact = mpq_class(c.exact).get_d();
-    // the public function (its start from the superset) and solve_pair's record
-    const fast::NormalDepth d = fast::pdd2_global(c.A, c.B);
-    BOOST_TEST(std::fabs(d.pd2 - exact) <= 1e-9 * exact, d.pd2 << " vs exact " << exact);
-    fast::SolveOptions o;
-    o.with_global = true;
-    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
-    BOOST_REQUIRE(!r.pdd2_global_error);
-    BOOST_TEST(std::fabs(r.pdd2_global - exact) <= 1e-9 * exact);
-    BOOST_TEST(!r.stats.slow_path);  // not in rationals
-    // and the enumeration itself, from solve_pair's bounds as above: in doubles
-    const double none[3] = {0, 0, 0};
-    const fast::GlobalOptimum g = fast::global_depth(c.A, c.B, none, r.pdd2_relaxed, {}, r.rigid_pd2);
-    BOOST_TEST(g.certified);
-    BOOST_TEST(!g.exact_value);
-  }
+  for (const ExactCase& c : cases) check_in_doubles(c);
 }
 
 // Nearly aligned resting contacts: stacked Kuhn blocks of cell h = 1/8, B's bottom a third of a
@@ -203,11 +208,7 @@ BOOST_AUTO_TEST_CASE(double_eigenvalues_stay_in_doubles) {
 //    design: global_depth.cpp's kCompactTiny), and each value is the relaxed value along its
 //    own normal (exact_relaxed_value) within definitions §8.
 BOOST_AUTO_TEST_CASE(nearly_aligned_resting_contacts_stay_in_doubles) {
-  struct Case {
-    TetVertices A, B;
-    const char* exact;
-  };
-  const Case cases[] = {
+  const ExactCase cases[] = {
       {{{{0, 0, 0.25}, {0.125, 0, 0.25}, {0.125, 0.125, 0.25}, {0.125, 0.125, 0.375}}},
        {{{4.0089205927129612e-07, -4.0089172004265095e-07, 0.33333346696379357},
          {3.0066910250425849e-07, 0.12499959910823538, 0.33333350037147558},
@@ -237,21 +238,7 @@ BOOST_AUTO_TEST_CASE(nearly_aligned_resting_contacts_stay_in_doubles) {
        "556552349694455469138457973778574983563595166943272220005560529/"
        "72369812793749080090896157345362994709894703832013985312016451765207144857600"},
   };
-  const double none[3] = {0, 0, 0};
-  for (const Case& c : cases) {
-    const double exact = mpq_class(c.exact).get_d();
-    const fast::NormalDepth d = fast::pdd2_global(c.A, c.B);
-    BOOST_TEST(std::fabs(d.pd2 - exact) <= 1e-9 * exact, d.pd2 << " vs exact " << exact);
-    fast::SolveOptions o;
-    o.with_global = true;
-    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
-    BOOST_REQUIRE(!r.pdd2_global_error);
-    BOOST_TEST(std::fabs(r.pdd2_global - exact) <= 1e-9 * exact);
-    BOOST_TEST(!r.stats.slow_path);
-    const fast::GlobalOptimum g = fast::global_depth(c.A, c.B, none, r.pdd2_relaxed, {}, r.rigid_pd2);
-    BOOST_TEST(g.certified);
-    BOOST_TEST(!g.exact_value);
-  }
+  for (const ExactCase& c : cases) check_in_doubles(c);
 
   // 3 x 3 blocks, one layer each (A's top, B's bottom), B tilted as above about its bottom
   // face's centre.
