@@ -164,6 +164,13 @@ NormalDepth pdd2_global_as_given(const TetVertices& A, const TetVertices& B) {
         detail::power_normalized(d.normal);
         return d;
       }
+      // Certified along a rational witness only (global_depth.h): no double normal attains the
+      // value, here or in the search below (the same suspects): declined without it.
+      if (g.witness) {
+        d.pd2 = std::numeric_limits<double>::quiet_NaN();
+        d.status = DepthStatus::NotRepresentable;
+        return d;
+      }
     }
   }
   const Depth rigid = depth_of(rigid_pd2_choice(A, B), A, B, false);  // intersecting, exactly

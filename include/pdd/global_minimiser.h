@@ -28,6 +28,12 @@
 // position outside the double range; at a tie, a value of the chain not certified in doubles
 // or outside the double range (solve_pair's exact path). The caller
 // then takes solve_pair (which gives the same fields, or declines pdd2_global itself).
+// Witnesses: where solve_pair declines pdd2_global because no normal in doubles attains it
+// (kGlobalNotRepresentable: a depth ~1e-17 of the pair's size, faces meant to coincide that
+// rounding made cross — blocks stacked face to face, a grid against its shifted copy), the
+// value may still be certified along an exact rational normal; global_minimiser then returns
+// it with `witness` set, its normal and positions that witness's rounded (as the exact
+// engine's witness is rounded to doubles), instead of declining.
 #pragma once
 
 #include <array>
@@ -44,6 +50,10 @@ struct GlobalMinimiser {
   double pd2 = 0.0;
   std::array<double, 3> normal{};
   Positions<double> q1_A{}, q1_B{};
+  // pd2 certified (definitions §8), attained along a rational normal that no double triple
+  // represents; `normal` and the positions are that witness rounded componentwise and do not
+  // attain pd2 ("Witnesses" above). false on every pair solve_pair computes pdd2_global of.
+  bool witness = false;
 };
 
 std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B);

@@ -539,3 +539,43 @@ BOOST_AUTO_TEST_CASE(repeated_pairs_of_a_grid_equal_solve_pair) {
   for (std::size_t v = 0; v < g.size(); ++v)
     for (int k = 0; k < 3; ++k) BOOST_REQUIRE_LE(std::abs(e.gradient[v][k] - g[v][k]), 1e-12 * scale);
 }
+
+// Contacts made by rounding: blocks built from k h (h = 0.1) stacked face to face, B = A moved
+// up by 0.3 (A's top at 3 h = 0.30000000000000004, B's bottom at 0.3: every pair across the two
+// faces crosses ~5e-17 deep, pdd2_global ~1e-34), and a grid against its copy moved by 0.01 along
+// (1, 1, 1) (faces x = y coinciding up to rounding, beside deep pairs). The fast engine computes
+// every pair's minimiser itself (global_minimiser: a double normal, or a rational witness where
+// none attains the value: pdd/global_minimiser.h), none left to the exact engine; on a sample of
+// the shallow pairs each value lies within definitions §8 of the exact engine's interval
+// [pdd2_global_lower, pdd2_global].
+BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_stay_in_the_fast_engine) {
+  const Mesh grid = test::kuhn_grid(3, 0.1, {0, 0, 0});
+  const Scene scenes[] = {{grid, test::kuhn_grid(3, 0.1, {0, 0, 0.3})},
+                          {test::kuhn_grid(2, 0.1, {0, 0, 0}), test::kuhn_grid(2, 0.1, {0.01, 0.01, 0.01})}};
+  int sampled = 0, shallow = 0;
+  for (const Scene& s : scenes) {
+    ContactEnergyOptions o;
+    o.per_pair = true;
+    const ContactEnergy e = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices, o);
+    BOOST_REQUIRE_GT(e.pair_count, 50u);
+    reference::SolveOptions ro;
+    ro.with_global = true;
+    for (std::size_t j = 0; j < e.pairs.size(); ++j) {
+      const EnergyPair& p = e.pairs[j];
+      const TetVertices Ta = element(s.A, p.a), Tb = element(s.B, p.b);
+      const auto g = fast::global_minimiser(Ta, Tb);
+      BOOST_REQUIRE(g);
+      BOOST_TEST(g->pd2 == p.pdd2_global);
+      if (!(p.pdd2_global < 1e-30)) continue;
+      if (shallow++ % 16 != 0) continue;
+      const PairResult<Rational> x = reference::solve_pair(TetPair{"", {}, Ta, Tb}, ro);
+      BOOST_REQUIRE(!x.error);
+      BOOST_REQUIRE(x.pdd2_global_lower);
+      const mpq_class v(p.pdd2_global), hi = x.pdd2_global, lo = *x.pdd2_global_lower;
+      BOOST_TEST(v <= hi * mpq_class(1 + 1e-9));
+      BOOST_TEST(v >= lo * mpq_class(1 - 1e-9));
+      ++sampled;
+    }
+  }
+  BOOST_TEST(sampled >= 8);
+}

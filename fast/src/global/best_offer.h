@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "global/relaxed_value.h"
@@ -62,6 +63,25 @@ struct Best {
     std::array<int, 8> sign;
   };
   std::vector<Suspect> suspects;
+  // Exact path: the lowest relaxed value along a rational normal offered by suspect_proof.h (a
+  // stationary point that no double normal represents), when it is below qvalue: the witness
+  // normal n (A -> B, the pair's frame), its value (the pair's units), the QP solution and
+  // heights along it. An offer only lowers it; the double offers' best is kept apart.
+  struct Witness {
+    QNormal n;
+    detail::Q value;
+    detail::Q hA[4], hB[4];
+    Solution<detail::Q> sol;
+    bool have = false;
+  } witness;
+  void offer_witness(const QNormal& v) {
+    Witness w;
+    w.n = v;
+    w.value = relaxed_exact(*A, *B, v, w.hA, w.hB, w.sol);
+    if ((have_q && !(w.value < qvalue)) || (witness.have && !(w.value < witness.value))) return;
+    w.have = true;
+    witness = std::move(w);
+  }
   // The best value in units scaled by 2^-extra (a piece's own scale, exact path), or as is.
   double value_in(long extra) const;
   // Exact path: the pair's own scale (Problem::scale of the pair, not of the scaled pieces).

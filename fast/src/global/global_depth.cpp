@@ -37,7 +37,8 @@ using global::refine;
 using global::relaxed_exact;
 using global::Search;
 using global::sub;
-using global::unrepresented;
+using global::represented;
+using global::Representation;
 using global::V3;
 
 // One step from v towards a local minimum (double path, before the enumeration): v's active
@@ -348,6 +349,26 @@ bool report_double(const GlobalRun& g, const Placement& place) {
   return false;
 }
 
+// The value certified along the witness (suspect_proof.h) alone: its value, and its normal and
+// positions q1 = x + t / n.n n rounded (each coordinate rounded once from its exact value).
+void report_witness(const GlobalRun& g, GlobalOptimum& out) {
+  using detail::Q;
+  const Best::Witness& w = g.best.witness;
+  out.value = w.value.get_d();
+  const Q nn = w.n[0] * w.n[0] + w.n[1] * w.n[1] + w.n[2] * w.n[2];
+  for (int i = 0; i < 4; ++i) {
+    const Q tA = displacement_below(w.hA[i], false, w.sol) / nn;
+    const Q tB = displacement_above(w.hB[i], false, w.sol) / nn;
+    for (int k = 0; k < 3; ++k) {
+      out.q1_A[i][k] = Q(Q(g.A[i][k]) + tA * w.n[k]).get_d();
+      out.q1_B[i][k] = Q(Q(g.B[i][k]) + tB * w.n[k]).get_d();
+    }
+  }
+  for (int k = 0; k < 3; ++k) out.normal[k] = w.n[k].get_d();  // integers below 2^256: finite
+  out.exact_value = true;
+  out.witness = std::isfinite(out.value);
+}
+
 // Slow path: the same closed form in rationals along the same (exact) normal.
 void report_exact(GlobalRun& g, Placement& place, double start_value) {
   using detail::Q;
@@ -362,7 +383,9 @@ void report_exact(GlobalRun& g, Placement& place, double start_value) {
   bool missed = false;
   if (g.exact_pieces && value.get_d() < kUnrepresentedDepth * near_extent_sq(g.A, g.B)) {
     const V3 before = best.n;
-    missed = unrepresented(best, g.lower_scaled);
+    const Representation r = represented(best, g.lower_scaled);
+    if (r == Representation::ByWitness) return report_witness(g, out);
+    missed = r == Representation::None;
     if (best.n != before) {
       out.normal = best.n;
       place.vv = dot(v, v);

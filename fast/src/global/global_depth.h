@@ -46,7 +46,7 @@
 // rationals (the exact closed form, direction_qp_impl.h on mpq).
 // Where the depth is far below the pair's size (exact pieces), an eigenvector that held its
 // signs only within the tolerance may hide a stationary value below the best offer; each such
-// suspect is settled exactly before the pair is given up (suspect_proof.h's unrepresented():
+// suspect is settled exactly before the pair is given up (suspect_proof.h's represented():
 // proved outside its cone, or its eigenvalue bounded below and reached by a double normal --
 // the eigenvector rounded, its neighbours, integer normals along it).
 #pragma once
@@ -65,6 +65,12 @@ struct GlobalOptimum {
   Positions<double> q1_A{}, q1_B{};
   bool certified = false;           // false: not representable (the caller reports it)
   bool exact_value = false;         // the value was recomputed in rationals (slow path)
+  // Not certified, but the value is (definitions §8), attained along a rational normal that no
+  // double triple represents (suspect_proof.h's witness: a depth ~1e-17 of the pair's size, a
+  // contact made by rounding); `normal` and the positions are that witness's, rounded
+  // componentwise: they do not attain the value (the depth is below their rounding). For a
+  // caller that needs the value and only an approximate plane (the contact energy).
+  bool witness = false;
 };
 
 // rigid_pd2: a value within 1e-8 relative of the pair's exact PD^2 (the engine's certified

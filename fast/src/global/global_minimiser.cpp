@@ -88,17 +88,22 @@ std::optional<GlobalMinimiser> minimiser_from(const TetVertices& A, const TetVer
     return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
   };
   const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
-  if (!g.certified) return std::nullopt;
+  if (!g.certified && !g.witness) return std::nullopt;
   if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
   bool in_range = true;
   GlobalMinimiser m;
+  m.witness = g.witness;
   // Computed in rationals (global_depth's exact pieces: a depth far below the pair's size): its
   // value in the rescaled units may have left the double range, so solve_pair takes it again,
   // exactly, on the pair as given along the same normal, and declines it where that is not 0
   // or a normal double; the same here (global_depth.h's exact_relaxed_value). Declining such a
   // pair instead made the caller's solve_pair redo the whole exact enumeration (~7 M
   // instructions a pair on the shallow contacts of the tilted stacked blocks).
-  m.pd2 = g.exact_value ? exact_relaxed_value(A, B, g.normal, in_range) : detail::unscaled(g.value, 2 * -sp.e, in_range);
+  // A witness's value (exact, rounded down once in the rescaled units) is scaled back by the
+  // power of two, exactly where it is a normal double there.
+  m.pd2 = g.witness        ? (std::isnormal(g.value) ? detail::unscaled(g.value, 2 * -sp.e, in_range) : NAN)
+          : g.exact_value ? exact_relaxed_value(A, B, g.normal, in_range)
+                          : detail::unscaled(g.value, 2 * -sp.e, in_range);
   const double relaxed = detail::unscaled(rel.value, 2 * -sp.e, in_range);
   if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
   if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(cands, sp.e, rigid, rel, m.pd2))

@@ -266,7 +266,7 @@ class PieceEnumeration {
     return cond;
   }
 
-  // Exact path: eigenvector k of the piece held its signs (unrepresented()): its exact H and
+  // Exact path: eigenvector k of the piece held its signs (represented()): its exact H and
   // conditions (conditions()' vectors, exact: d_i = a_i - c - T_A, e_j = c - b_j + T_B).
   void suspect(const PieceGeometry<T>& g, int k) {
     if constexpr (kExact) {

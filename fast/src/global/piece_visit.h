@@ -96,7 +96,7 @@ struct Search {
 
 // The piece's own operations: make_conditions() its sign conditions (built only when an
 // eigenpair survives), refine(v, mu) and ritz(e, f, out) on its H (eigen_polish.h),
-// suspect(k) (exact path: eigenvector k held its signs, for unrepresented()).
+// suspect(k) (exact path: eigenvector k held its signs, for represented()).
 template <class MakeConditions, class Refine, class Ritz, class Suspect>
 struct PieceCalls {
   MakeConditions make_conditions;

@@ -8,8 +8,13 @@ namespace pdd::fast::global {
 
 detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v, detail::Q hA[4],
                         detail::Q hB[4], Solution<detail::Q>& s) {
+  return relaxed_exact(A, B, QNormal{detail::Q(v[0]), detail::Q(v[1]), detail::Q(v[2])}, hA, hB, s);
+}
+
+detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const QNormal& v, detail::Q hA[4],
+                        detail::Q hB[4], Solution<detail::Q>& s) {
   using detail::Q;
-  const Q v0(v[0]), v1(v[1]), v2(v[2]);
+  const Q &v0 = v[0], &v1 = v[1], &v2 = v[2];
   for (int i = 0; i < 4; ++i) {
     hA[i] = v0 * (Q(A[i][0]) - Q(A[0][0])) + v1 * (Q(A[i][1]) - Q(A[0][1])) + v2 * (Q(A[i][2]) - Q(A[0][2]));
     hB[i] = v0 * (Q(B[i][0]) - Q(A[0][0])) + v1 * (Q(B[i][1]) - Q(A[0][1])) + v2 * (Q(B[i][2]) - Q(A[0][2]));

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "exact/exact_candidate.h"
@@ -51,8 +52,12 @@ inline double relaxed_at(const Problem& P, const V3& v, DirectionSolution* sol =
   return s.cost / (20.0 * dot(v, v));
 }
 
-// relaxed(v) in rationals (the exact closed form along the exact normal v), with its solution.
+// relaxed(v) in rationals (the exact closed form along the exact normal v), with its solution;
+// v a double normal or a rational one (suspect_proof.h's witnesses).
+using QNormal = std::array<detail::Q, 3>;
 detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const V3& v, detail::Q hA[4],
+                        detail::Q hB[4], Solution<detail::Q>& s);
+detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const QNormal& v, detail::Q hA[4],
                         detail::Q hB[4], Solution<detail::Q>& s);
 
 // The certified relative error of relaxed_at's value along v (value_bounds.h's QP bound):

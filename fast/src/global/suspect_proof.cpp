@@ -195,19 +195,12 @@ class SuspectProof {
 
   // (a) and (b) above for the vector q of the last rayleigh(): which orientations are proved
   // outside the cone (excluded_pos, excluded_neg), and the bound rho - R2 / (g (1 - s2));
-  // false where g or s2 fails. g: half the distance from rho to the solver's nearest other
-  // eigenvalue (a guess; the counts decide).
+  // false where g or s2 fails (gap()).
   bool settle(const Q (&q)[3]) {
     excluded_pos = excluded_neg = false;
-    const double rho_d = in_units(rho);
-    double gap_d = INFINITY;
-    for (int j = 0; j < 3; ++j)
-      if (j != s.k) gap_d = std::min(gap_d, std::fabs(mu_d(j) - rho_d));
-    if (!(gap_d > 0) || !std::isfinite(gap_d)) return false;
-    Q g(gap_d / 2);
-    if (sgn(g) == 0) return false;  // (underflow)
-    detail::scale_pow2(g, pe);
-    if (eigenvalues_below(s.h, rho - g, true) != s.k || eigenvalues_below(s.h, rho + g) != s.k + 1) return false;
+    undecided = 0;
+    Q g;
+    if (!gap(g)) return false;
     const Q s2 = R2 / (g * g);
     if (!(s2 < 1)) return false;
     for (int c = 0; c < 8; ++c) {
@@ -215,33 +208,150 @@ class SuspectProof {
       const Q p = s.sign[c] * (l[0] * q[0] + l[1] * q[1] + l[2] * q[2]);
       const Q ll = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
       if (p * p > 2 * ll * qq * s2) (sgn(p) < 0 ? excluded_pos : excluded_neg) = true;
+      else if (sgn(p) != 0) ++undecided;
     }
     bound = rho - R2 / (g * (1 - s2));
     return true;
   }
   bool excluded() const { return excluded_pos && excluded_neg; }
+  // settle(): the conditions l with l.y != 0 whose sign at the eigenvector it left open (a
+  // vector nearer the eigenvector, smaller s2, may decide them).
+  int undecided = 0;
+  // lo within 2^-40 of the last Rayleigh quotient (the bound as tight as the contract needs).
+  bool tight(const Q& lo) const {
+    Q slack = rho;
+    detail::scale_pow2(slack, -40);
+    return rho - lo <= slack;
+  }
+
+  // g > 0 with exactly one eigenvalue of h, the k-th, in (rho - g, rho + g), counted exactly;
+  // false when no guess passes. Guesses: half the distance from rho to the solver's nearest
+  // other eigenvalue; then |rho| 2^-j, j = 1..kGapHalvings (the solver's small eigenvalues are
+  // its own rounding, ~u |H|, where an eigenvalue rho ~1e-31 |H| lies just above a zero one,
+  // or beside another as small: a contact made by rounding, the piece's two or three active
+  // vertices giving H a structural zero, or two nearly so).
+  static constexpr int kGapHalvings = 8;
+  bool gap(Q& g) const {
+    const double rho_d = in_units(rho);
+    double gap_d = INFINITY;
+    for (int j = 0; j < 3; ++j)
+      if (j != s.k) gap_d = std::min(gap_d, std::fabs(mu_d(j) - rho_d));
+    double guesses[1 + kGapHalvings] = {gap_d / 2};
+    for (int j = 1; j <= kGapHalvings; ++j) guesses[j] = std::ldexp(std::fabs(rho_d), -j);
+    for (const double guess : guesses) {
+      if (!(guess > 0) || !std::isfinite(guess)) continue;  // (no gap, or rho underflowed)
+      g = Q(guess);
+      detail::scale_pow2(g, pe);
+      if (eigenvalues_below(s.h, rho - g, true) == s.k && eigenvalues_below(s.h, rho + g) == s.k + 1) return true;
+    }
+    return false;
+  }
 
   // y = adj(h - rho I) x: one more step of inverse iteration, exact, shifted by x's Rayleigh
   // quotient. It damps x's components along the other eigenvectors by |mu - rho| /
   // |lambda_j - rho| (rho is within ~|H| u^2 of mu), so y's direction is far more accurate than
   // x's (x is rounded to doubles: its Rayleigh quotient, and the bound from it, would miss mu
   // by ~|H| u^2, not small beside a depth of 1e-26 |H|). Oriented as x. Then rho and R2 of y.
-  void exact_step() {
+  void exact_step() { step_from(qx); }
+
+  // One more step from y (shortened: its components grow with every exact step), shifted by
+  // y's Rayleigh quotient: where mu lies next to an eigenvalue closer than |H| u^2 (a zero one
+  // beside mu ~1e-33 |H|), x's quotient is no shift near mu (measured: 4 mu) and one step damps
+  // the neighbour's component by a factor ~0.8 only; each further step is a Rayleigh quotient
+  // iteration step (cubic).
+  void next_step() {
+    Q v[3];
+    shortened(y, v);
+    rayleigh(v);
+    step_from(v);
+  }
+
+  // Where that iteration heads for a neighbour (two eigenvalues within ~|H| u^2 of each other,
+  // a zero one and mu ~1e-33 |H|: the solver's vector is any mix of the two, or exactly the
+  // zero one's, and the quotients converge to whichever dominates), mu is located by exact
+  // counts instead: a power of two t_lo = 2^e with #at_or_below(t_lo) <= k < #below(2 t_lo)
+  // (t_hi = 2 t_lo), e found by bisection on [pe - 1100, pe + 3] (h's entries are below 2^(pe + 1),
+  // its eigenvalues below 2^(pe + 3); the window's floor is far above 2^(pe - 1100) in this
+  // class), then kBisections halvings of [t_lo, t_hi]. With sigma at the middle, the column of
+  // adj(h - sigma I) (= det (h - sigma I)^-1) of largest norm is y: each column is that inverse
+  // applied to a unit vector, which amplifies its component along mu's eigenvector by 1 / |mu -
+  // sigma| (>= 2^kBisections / mu) against 1 / |lambda_j - sigma| for the others; one of the
+  // three unit vectors has a component along it. (Not from x: an x that is exactly another
+  // eigenvector stays one.) false where the ends' counts do not bracket mu.
+  static constexpr int kBisections = 12;
+  bool locate_and_step() {
+    auto pow2 = [](long e) {
+      Q t(1);
+      detail::scale_pow2(t, e);
+      return t;
+    };
+    long lo_e = pe - 1100, hi_e = pe + 3;  // #at_or_below(2^lo_e) <= k < #below(2^hi_e)
+    if (eigenvalues_below(s.h, pow2(lo_e), true) > s.k || eigenvalues_below(s.h, pow2(hi_e)) <= s.k) return false;
+    while (hi_e - lo_e > 1) {
+      const long mid = lo_e + (hi_e - lo_e) / 2;
+      (eigenvalues_below(s.h, pow2(mid)) > s.k ? hi_e : lo_e) = mid;
+    }
+    Q lo_t = pow2(lo_e), hi = pow2(hi_e);
+    for (int i = 0; i < kBisections; ++i) {
+      const Q mid = (lo_t + hi) / 2;
+      (eigenvalues_below(s.h, mid) > s.k ? hi : lo_t) = mid;
+    }
+    const Q sigma = (lo_t + hi) / 2;
     Q m[3][3], adj[3][3];
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? rho : Q(0));
+      for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : Q(0));
+    adjugate(m, adj);
+    int best_c = -1;
+    Q best_norm;
+    for (int c = 0; c < 3; ++c) {
+      const Q norm = adj[0][c] * adj[0][c] + adj[1][c] * adj[1][c] + adj[2][c] * adj[2][c];
+      if (best_c < 0 || norm > best_norm) best_c = c, best_norm = norm;
+    }
+    if (sgn(best_norm) == 0) return false;
+    for (int r = 0; r < 3; ++r) y[r] = adj[r][best_c];
+    rayleigh(y);
+    return true;
+  }
+
+  // adj(m), m symmetric: cofactors.
+  static void adjugate(const Q (&m)[3][3], Q (&adj)[3][3]) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) {
         const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
         adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
       }
-    for (int r = 0; r < 3; ++r) y[r] = adj[r][0] * qx[0] + adj[r][1] * qx[1] + adj[r][2] * qx[2];
-    const Q yx = y[0] * qx[0] + y[1] * qx[1] + y[2] * qx[2];
-    if (sgn(yx) == 0)
-      for (int c = 0; c < 3; ++c) y[c] = qx[c];  // (x orthogonal to adj's range: keep x)
-    else if (sgn(yx) < 0)
-      for (Q& c : y) c = -c;
+  }
+
+  // y = adj(h - rho I) v, rho the Rayleigh quotient of the last rayleigh(); oriented as v (v
+  // itself when orthogonal to adj's range); then rho and R2 of y.
+  void step_from(const Q (&v)[3]) {
+    Q m[3][3], adj[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? rho : Q(0));
+    adjugate(m, adj);
+    Q w[3];
+    for (int r = 0; r < 3; ++r) w[r] = adj[r][0] * v[0] + adj[r][1] * v[1] + adj[r][2] * v[2];
+    const Q wv = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
+    for (int c = 0; c < 3; ++c) y[c] = sgn(wv) == 0 ? v[c] : sgn(wv) < 0 ? Q(-w[c]) : w[c];
     rayleigh(y);
+  }
+
+  // v's direction as integers of at most kShortBits bits: v_c 2^b / |v_m| rounded down, v_m the
+  // largest component, b = kShortBits - 1 (the largest is then exactly +-2^b); the angle to v
+  // is below sqrt(2) 2^-b (~1e-77). Every proof above holds for any non-zero vector.
+  static constexpr int kShortBits = 256;
+  static void shortened(const Q (&v)[3], Q (&out)[3]) {
+    int m = 0;
+    for (int c = 1; c < 3; ++c)
+      if (abs(v[c]) > abs(v[m])) m = c;
+    const Q vm = abs(v[m]);
+    for (int c = 0; c < 3; ++c) {
+      Q t = v[c] / vm;
+      detail::scale_pow2(t, kShortBits - 1);
+      mpz_class z;
+      mpz_fdiv_q(z.get_mpz_t(), t.get_num_mpz_t(), t.get_den_mpz_t());
+      out[c] = Q(z);
+    }
   }
 
   // Offers, each stage only while the bound lo is not met (met() below): x in each orientation
@@ -254,7 +364,7 @@ class SuspectProof {
     Q scale_top(1);
     detail::scale_pow2(scale_top, -2 * best.unit);
     // The offers go on until q (1 + 2^-53) <= lo (1 + kGlobalRel), q in the suspects' units: the
-    // double path's budget, a tenth of what unrepresented() accepts (definitions §8's 1e-9), so
+    // double path's budget, a tenth of what represented() accepts (definitions §8's 1e-9), so
     // that a value accepted there is not needlessly near the contract's edge where a better normal
     // is cheap to find.
     auto met = [&] {
@@ -276,6 +386,20 @@ class SuspectProof {
         if (mm % 3 != 1) v[c] = std::nextafter(v[c], mm % 3 == 0 ? -INFINITY : INFINITY);
       offer(v);
     }
+    if (met()) return;
+    // No double normal meets lo: y itself, shortened (witness() below), is the rational
+    // witness (Best::offer_witness: kept apart from the double offers).
+    const QNormal w = witness();
+    for (int sg : {1, -1})
+      if (!(sg > 0 ? excluded_pos : excluded_neg))
+        best.offer_witness(sg > 0 ? w : QNormal{-w[0], -w[1], -w[2]});
+  }
+
+  // y shortened (kShortBits), as a normal.
+  QNormal witness() const {
+    Q w[3];
+    shortened(y, w);
+    return {w[0], w[1], w[2]};
   }
 
   Q qx[3], y[3];
@@ -297,6 +421,10 @@ class SuspectProof {
   bool excluded_pos = false, excluded_neg = false;
 };
 
+// Steps after the first exact step, at most: mu located by counts, then Rayleigh quotient
+// iteration (SuspectProof::locate_and_step, next_step).
+constexpr int kMoreSteps = 4;
+
 bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bottom, detail::Q& lo) {
   lo = bottom;
   SuspectProof p(s);
@@ -306,9 +434,17 @@ bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bott
   if (p.settle(p.qx) && p.excluded()) return true;
   p.exact_step();
   bool bounded = false;
-  if (p.settle(p.y)) {
-    if (p.excluded()) return true;
-    if (eigenvalues_below(s.h, p.bound, true) <= s.k && p.bound > bottom) lo = p.bound, bounded = true;
+  for (int step = 0;; ++step) {
+    if (p.settle(p.y)) {
+      if (p.excluded()) return true;
+      if (eigenvalues_below(s.h, p.bound, true) <= s.k && p.bound > bottom) lo = p.bound, bounded = true;
+    }
+    // Further steps while the bound is missing or looser than 2^-40 of rho, or a condition is
+    // left open (a vector y still far from the eigenvector: a condition ~1e-17 of its scale
+    // at the eigenvector, an eigenvector outside the cone whose witness's value lies far above
+    // mu): mu located by counts, then Rayleigh quotient iteration.
+    if (step == kMoreSteps || (bounded && p.tight(lo) && p.undecided == 0)) break;
+    if (step > 0 || !p.locate_and_step()) p.next_step();
   }
   p.offer_near(best, lo, bounded);
   return false;
@@ -316,9 +452,9 @@ bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bott
 
 }  // namespace
 
-bool unrepresented(Best& best, double floor_scaled) {
+Representation represented(Best& best, double floor_scaled) {
   using detail::Q;
-  if (!best.have_q || best.suspects.empty()) return false;
+  if (!best.have_q || best.suspects.empty()) return Representation::ByDouble;
   // top: the reported value, qvalue rounded to a double (<= qvalue (1 + 2^-53)), is within
   // 1e-9 of every stationary value mu >= top (qvalue (1 + 2^-53) <= mu (1 + 1e-9)). (Was
   // qvalue (1 - 1e-9): it let the rounded value exceed such a mu by up to 1e-9 + 1.2e-16.)
@@ -331,7 +467,7 @@ bool unrepresented(Best& best, double floor_scaled) {
     const int below_top = eigenvalues_below(h, top), below_floor = eigenvalues_below(h, bottom, true);
     if (below_floor <= k && k < below_top) window.push_back(i);
   }
-  if (window.empty()) return false;
+  if (window.empty()) return Representation::ByDouble;
   std::vector<Q> lows;  // the settled suspects' lower bounds
   for (std::size_t i : window) {
     Q lo;
@@ -352,11 +488,18 @@ bool unrepresented(Best& best, double floor_scaled) {
       represent_suspect(best, best.suspects[i], top, lo);
     }
   }
-  Q q = best.qvalue * (Q(1) + Q(1, 1ul << 53));  // (the final best, after every offer)
-  detail::scale_pow2(q, -2 * best.unit);
-  for (const Q& lo : lows)
-    if (q > lo * (Q(1) + Q(1, 1000000000))) return true;
-  return false;
+  // q (1 + 2^-53) <= lo (1 + 1e-9) for every settled suspect, q the best double offer's value,
+  // else the witness's (Best::witness: below the double offers' best, or absent).
+  auto meets = [&](const Q& value) {
+    Q q = value * (Q(1) + Q(1, 1ul << 53));
+    detail::scale_pow2(q, -2 * best.unit);
+    for (const Q& lo : lows)
+      if (q > lo * (Q(1) + Q(1, 1000000000))) return false;
+    return true;
+  };
+  if (meets(best.qvalue)) return Representation::ByDouble;
+  if (best.witness.have && meets(best.witness.value)) return Representation::ByWitness;
+  return Representation::None;
 }
 
 double near_extent_sq(const TetVertices& A, const TetVertices& B) {

@@ -78,7 +78,14 @@
 // pdd::fast::global_minimiser (pdd/global_minimiser.h: solve_pair's definitions §9 value,
 // normal and positions bit for bit, without the rest of the record), or where it declines the
 // whole pdd::fast::solve_pair; a pair whose fast pdd2_global is declined (pdd2_global_error) is
-// recomputed by the exact engine. Pairs run in parallel (TBB); the gradient and the Hessian are
+// recomputed by the exact engine. A contact made by rounding (faces meant to coincide that
+// rounding made cross, ~1e-17 of the element deep: blocks stacked face to face, a grid against
+// its shifted copy) has pdd2_global certified along a rational normal that no double normal
+// attains; global_minimiser returns it (`witness`) with that normal and its positions rounded, as
+// the exact engine's witness is rounded below, and the energy takes it (milliseconds a pair, not
+// the exact engine's tens to hundreds). Its gradient there is the rounded positions' (their
+// displacement, ~1e-17 of the element, is below their rounding: accurate in absolute terms
+// only, as for the exact engine's). Pairs run in parallel (TBB); the gradient and the Hessian are
 // summed per vertex over its pairs in pair order (the same doubles on any number of threads),
 // the Hessian written row by row straight into its compressed storage.
 // Exact: contacts_exact (pdd::reference::solve_pair; exact witness positions, rounded to double
