@@ -271,6 +271,32 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding) {
   BOOST_TEST(!r.report.rounds.empty());
 }
 
+// Blocks stacked face to face as a user builds them: a Kuhn block of cell h = 0.1 (coordinates
+// k h, rounded once: its top at 3 h = 0.30000000000000004) and the same moved up by 0.3 (its
+// bottom at 0.3). The 108 pairs across the two faces overlap by ~5e-17: contacts made by
+// rounding. Each pair's plane is pdd2's (its label's axis, the horizontal face here:
+// local_step.cpp's pdd2_normal), opened by the plane gap, 1e-3 of the pair's longest edge
+// (sqrt(3) h); no vertex needs to move much further than that. (The direction of the
+// displacements themselves, rounding noise at this depth, is no normal: taken as one it shears
+// these blocks sideways by 0.068, two thirds of a cell.) Bounded here by 10 plane gaps.
+BOOST_AUTO_TEST_CASE(blocks_stacked_by_rounding) {
+  const double h = 0.1;
+  const Mesh A = kuhn_grid(3, h, {0, 0, 0}), B = kuhn_grid(3, h, {0, 0, 0.3});
+  BOOST_REQUIRE(3 * h != 0.3);  // (the rounding this case is about)
+  for (ResolveVariant v : {ResolveVariant::Global, ResolveVariant::Pdd2}) {
+    ResolveOptions o;
+    o.variant = v;
+    const Resolution r = resolve(A, B, o);
+    log_report("Kuhn blocks stacked by rounding", r);
+    judge(A, &B, r, {}, {});
+    BOOST_TEST(r.report.resolved);
+    BOOST_REQUIRE(!r.report.rounds.empty());
+    BOOST_TEST(r.report.rounds[0].pairs == 108u);
+    BOOST_TEST(r.report.rounds[0].max_pd2 < 1e-30);
+    BOOST_TEST(r.report.max_displacement <= 10 * 1e-3 * std::sqrt(3.0) * h);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(fixed_mesh_and_fixed_vertices) {
   const Mesh A = load("touching-a.msh"), B = translated(load("touching-b.msh"), {-kDelta, 0, 0});
   {

@@ -119,6 +119,32 @@ bool shallower_than_doubles(const TetVertices& A, const TetVertices& B) {
   return d.status == fast::DepthStatus::Ok && d.pd2 < 1e-24 * E2;
 }
 
+// pdd2's normal (A -> B): its label's axis (definitions §3), along which every displacement of
+// q1_A, q1_B lies. Oriented by the displacements (B's forward, A's backward) where their sums
+// stand clear of the coordinates' rounding (2^-40 of the largest |coordinate|), else by the
+// smaller clearance (a contact made by rounding: displacements ~1e-17 of the pair, below the
+// rounding of q1, whose differences point anywhere; taken as the normal they sheared stacked
+// blocks half a cell sideways). Nothing (the direction of the displacements' sums, from_positions)
+// without a label or a non-zero axis.
+std::optional<std::array<double, 3>> pdd2_normal(const PairResult<double>& r, const TetVertices& A,
+                                                 const TetVertices& B) {
+  if (!r.pdd2_dir) return std::nullopt;
+  const std::optional<Vec3d> u = unit(label_axis(*r.pdd2_dir, A, B));
+  if (!u) return std::nullopt;
+  Vec3d s = {0, 0, 0};
+  double coord = 0;
+  for (int i = 0; i < 4; ++i) {
+    add_to(s, sub(r.q1_B[i], B[i]));
+    add_to(s, sub(A[i], r.q1_A[i]));
+    for (int k = 0; k < 3; ++k) coord = std::max({coord, std::fabs(A[i][k]), std::fabs(B[i][k])});
+  }
+  const Vec3d v = scaled(*u, -1);
+  const bool forward = std::sqrt(dot(s, s)) > 0x1p-40 * coord ? dot(s, *u) >= 0
+                                                              : clearance(*u, A, B) <= clearance(v, A, B);
+  const Vec3d n = forward ? *u : v;
+  return std::array<double, 3>{n[0], n[1], n[2]};
+}
+
 }  // namespace
 
 PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
@@ -133,7 +159,7 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
       PairMove m = from_positions(r.q1_A_global, r.q1_B_global, A, B, r.pdd2_global, r.pdd2_global_normal);
       if (m.ok) return m;
     }
-    PairMove m = from_positions(r.q1_A, r.q1_B, A, B, r.pdd2, std::nullopt);  // pdd2's positions
+    PairMove m = from_positions(r.q1_A, r.q1_B, A, B, r.pdd2, pdd2_normal(r, A, B));  // pdd2's positions
     if (m.ok) return m;
   }
   return rigid_move(A, B);
