@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "global/integer_shift.h"
 #include "global/relaxed_value.h"
 
 namespace pdd::fast::global {
@@ -61,6 +62,7 @@ struct Best {
     int k;  // the index (ascending) of the eigenvalue whose vector held its signs
     std::array<std::array<detail::Q, 3>, 8> l;
     std::array<int, 8> sign;
+    IntegerMatrix hi;  // h over one denominator (integer_shift.h: its exact counts and polish)
   };
   std::vector<Suspect> suspects;
   // Exact path: the lowest relaxed value along a rational normal offered by suspect_proof.h (a

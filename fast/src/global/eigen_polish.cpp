@@ -26,10 +26,14 @@ ScaledInt scaled_int(double x) {
 }
 }  // namespace
 
-// The iteration over integers (integer_shift.h): x = adj(M) V with M = L (h - sigma I) and V =
+V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe) {
+  return refine(integer_matrix(h), v0, mu, pe);
+}
+
+// The iteration over integers (integer_shift.h): x = adj(M) V with M = L q (h - sigma I) and V =
 // 2^-E v integers is a positive multiple of adj(h - sigma I) v, so x_r / max |x| is the same
 // rational as on the rationals themselves, rounded by the same conversion: the same doubles.
-V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe) {
+V3 refine(const IntegerMatrix& h, const V3& v0, double mu, long pe) {
   using detail::Q;
   Q sigma = Q(mu) * (1 - Q(1, 1000000));
   detail::scale_pow2(sigma, pe);  // mu is in the piece's units, 2^-pe of h's

@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "exact/exact_geometry.h"
+#include "global/integer_shift.h"
 #include "global/vec3.h"
 
 namespace pdd::fast::global {
@@ -27,6 +28,9 @@ namespace pdd::fast::global {
 // |H| u^2, swamps a depth of 1e-38. Rounded componentwise, every component keeps its relative
 // accuracy. sigma = mu (1 - 1e-6): the iteration contracts by about 1e-6 towards mu's vector.
 V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe);
+// The same on h as integers over one denominator (integer_shift.h; a piece refined more than
+// once builds it once): the same doubles.
+V3 refine(const IntegerMatrix& h, const V3& v0, double mu, long pe);
 
 // Rayleigh-Ritz on the plane of e and f (consider_piece's exact path): K = [e f]^T h [e f] in
 // rationals; its eigenvectors make the angles t and t + pi/2 with e, tan 2t = 2 K01 / (K00 -

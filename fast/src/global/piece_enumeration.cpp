@@ -268,11 +268,12 @@ class PieceEnumeration {
 
   // Exact path: eigenvector k of the piece held its signs (represented()): its exact H and
   // conditions (conditions()' vectors, exact: d_i = a_i - c - T_A, e_j = c - b_j + T_B).
-  void suspect(const PieceGeometry<T>& g, int k) {
+  void suspect(const PieceGeometry<T>& g, int k, std::optional<IntegerMatrix>& hi) {
     if constexpr (kExact) {
       const auto& h = g.h;
+      if (!hi) hi = integer_matrix(h);
       Best::Suspect x{{{{h[0][0], h[0][1], h[0][2]}, {h[1][0], h[1][1], h[1][2]}, {h[2][0], h[2][1], h[2][2]}}},
-                      k, {}, {}};
+                      k, {}, {}, *hi};
       for (int i = 0; i < 4; ++i) {
         const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
         for (int q = 0; q < 3; ++q) x.l[i][q] = d[q], x.l[4 + i][q] = e[q];
@@ -289,13 +290,21 @@ class PieceEnumeration {
     build(g);
     Eigen::Matrix3d H;
     rounded_matrix(g, H);
+    std::optional<IntegerMatrix> hi;  // exact path: g.h over one denominator, on the first refine
     auto calls = piece_calls([&] { return conditions(g); },
-                             [&](const V3& v, double mu) { return refine(g.h, v, mu, g.pe); },
+                             [&](const V3& v, double mu) {
+                               if constexpr (kExact) {
+                                 if (!hi) hi = integer_matrix(g.h);
+                                 return refine(*hi, v, mu, g.pe);
+                               } else {
+                                 return refine(g.h, v, mu, g.pe);
+                               }
+                             },
                              [&](const V3& e, const V3& f, V3 (&r)[2]) {
                                if constexpr (kExact) return ritz(g.h, e, f, r);
                                else return false;
                              },
-                             [&](int k) { suspect(g, k); });
+                             [&](int k) { suspect(g, k, hi); });
     // The double H too coarse for this piece's in-window eigenvalue (consider_piece's accuracy
     // estimate: a contact far shallower than the pair): the piece again on its H to about its
     // own rounding (accurate_piece_matrix.h) before the pair goes to the exact pieces, and every

@@ -22,9 +22,8 @@ namespace {
 // -(x^3 + tr(N) x^2 + c1 x + det(N)), number the sign changes of (1, tr N, c1, det N).
 // An eigenvalue equal to t is not counted (it is not below t) unless `or_equal`: then each
 // eigenvalue equal to t (a zero root of the polynomial: its trailing zero coefficients) is.
-int eigenvalues_below(const std::array<std::array<detail::Q, 3>, 3>& M, const detail::Q& t,
-                      bool or_equal = false) {
-  mpz_class a[3][3];  // L (M - t I), L > 0 (integer_shift.h): the same signs
+int eigenvalues_below(const IntegerMatrix& M, const detail::Q& t, bool or_equal = false) {
+  mpz_class a[3][3];  // L q (M - t I), L q > 0 (integer_shift.h): the same signs
   integer_shift(M, t, a);
   const mpz_class tr = a[0][0] + a[1][1] + a[2][2];
   const mpz_class c1 = a[0][0] * a[1][1] - a[0][1] * a[1][0] + a[0][0] * a[2][2] - a[0][2] * a[2][0] +
@@ -172,7 +171,7 @@ class SuspectProof {
     qx[0] = Q(e0(0)), qx[1] = Q(e0(1)), qx[2] = Q(e0(2));
     if (sgn(qx[0]) == 0 && sgn(qx[1]) == 0 && sgn(qx[2]) == 0) return false;
     rayleigh(qx);
-    x = refine(h, V3{e0(0), e0(1), e0(2)}, in_units(rho), pe);
+    x = refine(s.hi, V3{e0(0), e0(1), e0(2)}, in_units(rho), pe);
     if (!nonzero(x)) return false;
     for (int c = 0; c < 3; ++c) qx[c] = Q(x[c]);
     rayleigh(qx);
@@ -242,7 +241,7 @@ class SuspectProof {
       if (!(guess > 0) || !std::isfinite(guess)) continue;  // (no gap, or rho underflowed)
       g = Q(guess);
       detail::scale_pow2(g, pe);
-      if (eigenvalues_below(s.h, rho - g, true) == s.k && eigenvalues_below(s.h, rho + g) == s.k + 1) return true;
+      if (eigenvalues_below(s.hi, rho - g, true) == s.k && eigenvalues_below(s.hi, rho + g) == s.k + 1) return true;
     }
     return false;
   }
@@ -286,15 +285,15 @@ class SuspectProof {
       return t;
     };
     long lo_e = pe - 1100, hi_e = pe + 3;  // #at_or_below(2^lo_e) <= k < #below(2^hi_e)
-    if (eigenvalues_below(s.h, pow2(lo_e), true) > s.k || eigenvalues_below(s.h, pow2(hi_e)) <= s.k) return false;
+    if (eigenvalues_below(s.hi, pow2(lo_e), true) > s.k || eigenvalues_below(s.hi, pow2(hi_e)) <= s.k) return false;
     while (hi_e - lo_e > 1) {
       const long mid = lo_e + (hi_e - lo_e) / 2;
-      (eigenvalues_below(s.h, pow2(mid)) > s.k ? hi_e : lo_e) = mid;
+      (eigenvalues_below(s.hi, pow2(mid)) > s.k ? hi_e : lo_e) = mid;
     }
     Q lo_t = pow2(lo_e), hi = pow2(hi_e);
     for (int i = 0; i < kBisections; ++i) {
       const Q mid = (lo_t + hi) / 2;
-      (eigenvalues_below(s.h, mid) > s.k ? hi : lo_t) = mid;
+      (eigenvalues_below(s.hi, mid) > s.k ? hi : lo_t) = mid;
     }
     const Q sigma = (lo_t + hi) / 2;
     Q m[3][3], adj[3][3];
@@ -437,7 +436,7 @@ bool represent_suspect(Best& best, const Best::Suspect& s, const detail::Q& bott
   for (int step = 0;; ++step) {
     if (p.settle(p.y)) {
       if (p.excluded()) return true;
-      if (eigenvalues_below(s.h, p.bound, true) <= s.k && p.bound > bottom) lo = p.bound, bounded = true;
+      if (eigenvalues_below(s.hi, p.bound, true) <= s.k && p.bound > bottom) lo = p.bound, bounded = true;
     }
     // Further steps while the bound is missing or looser than 2^-40 of rho, or a condition is
     // left open (a vector y still far from the eigenvector: a condition ~1e-17 of its scale
@@ -463,8 +462,9 @@ Representation represented(Best& best, double floor_scaled) {
   const Q bottom(floor_scaled);
   std::vector<std::size_t> window;
   for (std::size_t i = 0; i < best.suspects.size(); ++i) {  // eigenvalue k (ascending) in (bottom, top)?
-    const auto& [h, k, l, sign] = best.suspects[i];
-    const int below_top = eigenvalues_below(h, top), below_floor = eigenvalues_below(h, bottom, true);
+    const Best::Suspect& s = best.suspects[i];
+    const int below_top = eigenvalues_below(s.hi, top), below_floor = eigenvalues_below(s.hi, bottom, true);
+    const int k = s.k;
     if (below_floor <= k && k < below_top) window.push_back(i);
   }
   if (window.empty()) return Representation::ByDouble;
@@ -482,8 +482,8 @@ Representation represented(Best& best, double floor_scaled) {
   Q q0 = best.qvalue * (Q(1) + Q(1, 1ul << 53)) / (Q(1) + Q(kGlobalRel));
   detail::scale_pow2(q0, -2 * best.unit);
   for (std::size_t i = 0; i < best.suspects.size(); ++i) {
-    const auto& [h, k, l, sign] = best.suspects[i];
-    if (eigenvalues_below(h, top) <= k && k < eigenvalues_below(h, q0)) {
+    const Best::Suspect& s = best.suspects[i];
+    if (eigenvalues_below(s.hi, top) <= s.k && s.k < eigenvalues_below(s.hi, q0)) {
       Q lo;
       represent_suspect(best, best.suspects[i], top, lo);
     }
