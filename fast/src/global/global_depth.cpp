@@ -239,7 +239,10 @@ void enumerate_exact(GlobalRun& g, const ExactStart& exact_start) {
   best.offer(Ps, best.n);
   if (exact_start) best.offer(Ps, exact_start());
   g.lower_scaled = std::ldexp(g.lower, int(std::clamp(-2 * unit, -4000L, 4000L)));
-  enumerate_pieces(qA, qB, Search{Ps, best, g.lower_scaled});
+  // Wall offers for a pair with a vertex far from the others only (compact: needs_exact_pieces'
+  // class, every piece's |H| <= 48 scale^2, no steep piece; Search::walls).
+  const bool compact = near_extent_sq(A, B) >= g.P.scale * g.P.scale / 256;
+  enumerate_pieces(qA, qB, Search{Ps, best, g.lower_scaled, !compact});
   // (lower is in the pair's units; each piece takes it, and the best value, in its own)
 }
 

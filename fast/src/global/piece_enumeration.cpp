@@ -181,15 +181,31 @@ class PieceEnumeration {
   // window, and no wall offer either (a wall's value lies between H's two smallest
   // eigenvalues, Cauchy interlacing: above the top, or below the bottom edge); the pieces
   // with eigenvalues on both sides of the window keep their wall offers (a far vertex's
-  // minimiser, consider_piece).
+  // minimiser, consider_piece). A compact pair needs no wall offers (search.walls false,
+  // global_depth.cpp): a piece with two or three active vertices (1 or 2 eigenvalues exactly 0,
+  // below the window: PieceMatrix's zeros) whose other eigenvalues lie certainly above the top
+  // edge holds no stationary value in the window and is dropped too, before its rational H is
+  // built; on contacts made by rounding, whose windows (~1e-33 |H|) lie far below the counts'
+  // resolution, those are most of the pieces. The test on N = 20 H, entries within n_error of
+  // the exact 20 H (piece_screen.h; on the exact positions rounded once, as the counts).
   void survivors_exact() {
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
       surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
       survivors[ma] = 0;
-      for (unsigned mb = 1; mb < 16; ++mb)
-        if (!(row.below_top[mb] == 0 || row.below_low[mb] == 3)) survivors[ma] |= 1u << mb;
+      for (unsigned mb = 1; mb < 16; ++mb) {
+        if (row.below_top[mb] == 0 || row.below_low[mb] == 3) continue;
+        const int zeros = std::max(0, 4 - kPopcount[ma] - kPopcount[mb]);
+        if (!search.walls && zeros > 0 && nonzero_above(row, mb, zeros)) continue;
+        survivors[ma] |= 1u << mb;
+      }
     }
+  }
+  bool nonzero_above(const RowLanes& row, unsigned mb, int zeros) const {
+    Eigen::Matrix3d N;
+    for (int q = 0; q < 6; ++q) N(kR[q], kC[q]) = N(kC[q], kR[q]) = row.N[q][mb];
+    const double e = row.n_error[mb];
+    return nonzero_eigenvalues_above(N, N.norm(), e, zeros, detail::window_edges(top, search.lower, e).hi);
   }
 
   // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B; 20 H by moments (above).

@@ -87,12 +87,36 @@ struct PieceMatrix {
 };
 
 // What the enumeration offers to and prunes with: the evaluations' problem, the best so far,
-// and the lower bound on every G(u) (global_depth.h), in the pair's units.
+// and the lower bound on every G(u) (global_depth.h), in the pair's units. `walls` (exact
+// path): the pair has a vertex far from the others, whose minimiser may sit on the wall of a
+// steep piece (PieceVisit::offer_wall); false for a compact pair (global_depth.cpp), whose
+// pieces are then pruned by eigenvalues in the window alone, as on the double path.
 struct Search {
   const Problem& P;
   Best& best;
   double lower;
+  bool walls = true;
 };
+
+// With `zeros` of H's exact eigenvalues exactly 0 (PieceMatrix), whether the others certainly
+// exceed `threshold`, H's entries within h_error of the exact ones and hnorm = |H|_F as computed:
+// for zeros == 2 the third is tr(H*); for zeros == 1 the two others have sum tr(H*) and product
+// c2(H*), the sum of the principal 2x2 minors (lambda_0 = 0), so the smaller is >= c2(H*) /
+// tr(H*). With each entry within e = h_error: tr within 3e, and 4 u |H|_F for its two
+// additions; each of c2's six products within (2 |H|_F + e) e, and its eleven roundings within
+// 32 u |H|_F^2 (the products' magnitudes sum to <= 2 |H|_F^2); the quotient's rounding in the
+// factor 1 - 4u. False for zeros == 0 (the determinant, not 0, is PieceVisit's own test).
+inline bool nonzero_eigenvalues_above(const Eigen::Matrix3d& H, double hnorm, double h_error, int zeros,
+                                      double threshold) {
+  const double tr = H.trace();
+  if (zeros == 2) return tr - 3 * h_error - 4 * kU * hnorm > threshold;
+  if (zeros != 1) return false;
+  const double c2 = H(0, 0) * H(1, 1) - H(0, 1) * H(0, 1) + H(0, 0) * H(2, 2) - H(0, 2) * H(0, 2) +
+                    H(1, 1) * H(2, 2) - H(1, 2) * H(1, 2);
+  const double c2_low = c2 - 6 * (2 * hnorm + h_error) * h_error - 32 * kU * hnorm * hnorm;
+  const double tr_up = tr + 3 * h_error + 4 * kU * hnorm;
+  return c2_low > 0 && tr_up > 0 && c2_low / tr_up * (1 - 4 * kU) > threshold;
+}
 
 // The piece's own operations: make_conditions() its sign conditions (built only when an
 // eigenpair survives), refine(v, mu) and ritz(e, f, out) on its H (eigen_polish.h),
@@ -162,28 +186,16 @@ class PieceVisit {
   // determinant lowered by a bound on its rounding (6 products of 3 entries <= |H|_F, and the
   // entries' own errors): 64 u |H|_F^3 + 6 |H|_F^2 (3 h_error). mu_max <= trace (H is PSD).
   // With `zeros` (double path: the exact H_S's first `zeros` eigenvalues are 0, PieceMatrix),
-  // the others follow from the invariants, where the determinant (0) says nothing: for zeros ==
-  // 2 the third is tr(H*); for zeros == 1 the two others have sum tr(H*) and product c2(H*), the
-  // sum of the principal 2x2 minors (lambda_0 = 0), so the smaller is >= c2(H*) / tr(H*). With
-  // each entry within e = h_error: tr within 3e, and 4 u |H|_F for its two additions; each of
-  // c2's six products within (2 |H|_F + e) e, and its eleven roundings within 32 u |H|_F^2 (the
-  // products' magnitudes sum to <= 2 |H|_F^2); the quotient's rounding in the factor 1 - 4u.
-  // A piece whose nonzero eigenvalues all lie above the window is left: the drop that shallow
-  // contacts need, their windows ~1e-13 |H| far below what the screen resolves.
+  // the others follow from the invariants, where the determinant (0) says nothing
+  // (nonzero_eigenvalues_above). A piece whose nonzero eigenvalues all lie above the window is
+  // left: the drop that shallow contacts need, their windows ~1e-13 |H| far below what the
+  // screen resolves.
   bool outside_window_cheaply() const {
     const double tr = H.trace();
     const double det_low = H.determinant() - 64 * kU * hnorm * hnorm * hnorm - 18 * hnorm * hnorm * h_error;
     if (tr > 0 && 4 * det_low / (tr * tr) > threshold) return true;
     if (tr + 3 * margin < floor) return true;
-    if (zeros == 2 && tr - 3 * h_error - 4 * kU * hnorm > threshold) return true;
-    if (zeros == 1) {
-      const double c2 = H(0, 0) * H(1, 1) - H(0, 1) * H(0, 1) + H(0, 0) * H(2, 2) - H(0, 2) * H(0, 2) +
-                        H(1, 1) * H(2, 2) - H(1, 2) * H(1, 2);
-      const double c2_low = c2 - 6 * (2 * hnorm + h_error) * h_error - 32 * kU * hnorm * hnorm;
-      const double tr_up = tr + 3 * h_error + 4 * kU * hnorm;
-      if (c2_low > 0 && tr_up > 0 && c2_low / tr_up * (1 - 4 * kU) > threshold) return true;
-    }
-    return false;
+    return nonzero_eigenvalues_above(H, hnorm, h_error, zeros, threshold);
   }
 
   // The eigenpairs and each eigenvalue's margin (above); false when none can matter.
