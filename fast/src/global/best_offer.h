@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -69,19 +70,19 @@ struct Best {
   // stationary point that no double normal represents), when it is below qvalue: the witness
   // normal n (A -> B, the pair's frame), its value (the pair's units), the QP solution and
   // heights along it. An offer only lowers it; the double offers' best is kept apart.
+  // (Built only when offered: its 16 rationals would cost every call allocations otherwise.)
   struct Witness {
     QNormal n;
     detail::Q value;
     detail::Q hA[4], hB[4];
     Solution<detail::Q> sol;
-    bool have = false;
-  } witness;
+  };
+  std::optional<Witness> witness;
   void offer_witness(const QNormal& v) {
     Witness w;
     w.n = v;
     w.value = relaxed_exact(*A, *B, v, w.hA, w.hB, w.sol);
-    if ((have_q && !(w.value < qvalue)) || (witness.have && !(w.value < witness.value))) return;
-    w.have = true;
+    if ((have_q && !(w.value < qvalue)) || (witness && !(w.value < witness->value))) return;
     witness = std::move(w);
   }
   // The best value in units scaled by 2^-extra (a piece's own scale, exact path), or as is.

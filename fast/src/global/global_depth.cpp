@@ -356,7 +356,7 @@ bool report_double(const GlobalRun& g, const Placement& place) {
 // positions q1 = x + t / n.n n rounded (each coordinate rounded once from its exact value).
 void report_witness(const GlobalRun& g, GlobalOptimum& out) {
   using detail::Q;
-  const Best::Witness& w = g.best.witness;
+  const Best::Witness& w = *g.best.witness;
   out.value = w.value.get_d();
   const Q nn = w.n[0] * w.n[0] + w.n[1] * w.n[1] + w.n[2] * w.n[2];
   for (int i = 0; i < 4; ++i) {

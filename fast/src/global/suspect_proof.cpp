@@ -498,7 +498,7 @@ Representation represented(Best& best, double floor_scaled) {
     return true;
   };
   if (meets(best.qvalue)) return Representation::ByDouble;
-  if (best.witness.have && meets(best.witness.value)) return Representation::ByWitness;
+  if (best.witness && meets(best.witness->value)) return Representation::ByWitness;
   return Representation::None;
 }
 
