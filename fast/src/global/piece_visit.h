@@ -31,6 +31,7 @@ using detail::kSign;
 inline constexpr double kPrune = 1e-10;       // an eigenvalue must beat the best by this, relative
 inline constexpr double kEigen = 1e-12;       // eigenvalue error of the 3x3 solver, times |H|_F
 inline constexpr double kDegenerate = 1e-6;   // eigenvalues this close (times |H|_F) span a plane
+inline constexpr double kDirectBackward = 32 * 0x1p-53;  // closed form kept on an accurate H (solve)
 inline constexpr double kNearDouble = 1e-2;   // a gap below this (times |H|_F): the iterative solver
 
 // The sign conditions of active set (ma, mb) at v, with tolerance: l.v >= -tol (active) or
@@ -60,9 +61,10 @@ bool arc_middle(const Conditions& c, const V3& p, const V3& q, V3& out);
 // One active set's piece as consider_piece takes it: H, its entries within h_error (absolute;
 // on the exact path H is the exact one times 2^-pe, rounded once), and which path builds it.
 // `accurate` (double path): H from accurate_piece_matrix.h, its error near its own rounding;
-// then the iterative solver throughout, its error bounded a posteriori (backward_error), and its
-// vectors offered as computed (the caller's refine is the identity: the double polish of
-// eigen_polish.h would not add accuracy to a backward-stable vector).
+// then the solver's error bounded a posteriori (backward_error: the closed form where that bound
+// is within a few u |H|, else the iterative solver), and its vectors offered as computed (the
+// caller's refine is the identity: the double polish of eigen_polish.h would not add accuracy
+// to a vector exact for H + F with |F| a few u |H|).
 // `zeros` (double path): a count of eigenvalues of the exact H_S that are exactly 0: G_S(n), the
 // least norm of a deformation putting S's vertices on one plane of normal n (20 G_S(n) = sum
 // over S of (p_i.n - c)^2 + k (T_A.n)^2), vanishes for every n orthogonal to their affine span,
@@ -203,15 +205,24 @@ class PieceVisit {
   // along one exceeds the stationary value by ~|H| (u |H| / gap)^2, below 1e-13 of any depth
   // this path takes, >= 1e-10 scale^2). Exact path: the iterative solver (Householder + QR),
   // whose vectors keep structure such as a zero row, then inverse iteration (refine).
+  // Accurate H: the closed form first, kept where its a-posteriori bound (backward_error) is
+  // within kDirectBackward |H| (on shallow contacts' pieces typically 12-13 u |H|, the
+  // iterative solver's 14-19 u |H|); else (near-double eigenvalues: the closed form's
+  // vectors anywhere in their plane) the iterative solver. Either way the margins are the bound
+  // of the pairs actually used.
   bool solve() {
-    if (exact || accurate) eig.compute(H);
-    else eig.computeDirect(H);
+    bool direct = !exact;
+    if (direct) {
+      eig.computeDirect(H);
+      direct = !accurate || direct_is_tight();
+    }
+    if (!direct) eig.compute(H);
     if (eig.info() != Eigen::Success) {
       if (accurate) best.needs_exact = true;  // (as double_path_accuracy's own failure)
       return false;
     }
     mu = eig.eigenvalues();
-    if (accurate && !backward_error()) {
+    if (accurate && !direct && !backward_error()) {
       best.needs_exact = true;
       return false;
     }
@@ -225,6 +236,13 @@ class PieceVisit {
     bool any = exact;  // exact: the smallest eigenvector is tried below (if not under the floor)
     for (int k = 0; k < 3; ++k) any = any || in_window(k);
     return any;
+  }
+
+  // The closed form's pairs on an accurate H, bounded by backward_error within kDirectBackward |H|.
+  bool direct_is_tight() {
+    if (eig.info() != Eigen::Success) return false;
+    mu = eig.eigenvalues();
+    return backward_error() && solver_error <= kDirectBackward * hnorm;
   }
 
   // The computed pairs' backward error, a posteriori (accurate H): with R = H V - V Lambda (V the
