@@ -91,8 +91,10 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     S.n_error[p] = S.n_error[q], S.below_low[p] = S.below_low[q], S.one[p] = S.one[q];
   }
   double a[ScreenLanes::kMax], b[ScreenLanes::kMax], d[ScreenLanes::kMax], lo[ScreenLanes::kMax],
-      hi[ScreenLanes::kMax], x[ScreenLanes::kMax], x0[ScreenLanes::kMax], x1[ScreenLanes::kMax];
+      hi[ScreenLanes::kMax], x[ScreenLanes::kMax], x0[ScreenLanes::kMax], x1[ScreenLanes::kMax],
+      clear_lo[ScreenLanes::kMax], clear_hi[ScreenLanes::kMax];
   int lo_positive[ScreenLanes::kMax], done[ScreenLanes::kMax];
+  int narrow = 0;  // some window narrower than kNarrowWindow n_error
   for (int p = 0; p < n; ++p) {
     const double h00 = S.N[0][p], h01 = S.N[1][p], h02 = S.N[2][p], h11 = S.N[3][p], h12 = S.N[4][p],
                  h22 = S.N[5][p];
@@ -101,9 +103,27 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     d[p] = h00 * (h11 * h22 - h12 * h12) - h01 * (h01 * h22 - h12 * h02) + h02 * (h01 * h12 - h11 * h02);
     const Edges e = window_edges(top, lower, S.n_error[p]);
     lo[p] = e.lo, hi[p] = e.hi;
+    clear_lo[p] = e.lo, clear_hi[p] = e.hi;
     x0[p] = lo[p], x1[p] = hi[p], x[p] = 0.5 * (lo[p] + hi[p]);
     lo_positive[p] = int(S.below_low[p]) % 2 == 0;  // f > 0 at lo
     done[p] = 0;
+    narrow |= int(hi[p] - lo[p] < kNarrowWindow * S.n_error[p]);
+  }
+  // [clear_lo, clear_hi): the window widened by g = kClearWidening tr N on both sides where the
+  // counts show no eigenvalue of N in the margins (header: the other eigenvalues' gap); only
+  // when some window is narrow enough for it to matter (a shallow contact's), else the window
+  if (narrow) {
+    for (int p = 0; p < n; ++p) {
+      const double g = kClearWidening * a[p], l2 = lo[p] - g, h2 = hi[p] + g;
+      const double h00 = S.N[0][p], h01 = S.N[1][p], h02 = S.N[2][p], h11 = S.N[3][p], h12 = S.N[4][p],
+                   h22 = S.N[5][p];
+      const int below = int(S.below_low[p]);
+      const int clear = int(g > 0) & int(below >= 0) &
+                        int(eigenvalues_below_certain(h00, h01, h02, h11, h12, h22, l2) == below) &
+                        int(eigenvalues_below_certain(h00, h01, h02, h11, h12, h22, h2) == below + 1);
+      clear_lo[p] = clear ? l2 : lo[p];
+      clear_hi[p] = clear ? h2 : hi[p];
+    }
   }
   for (int it = 0; it < kNewton; ++it) {
     for (int p = 0; p < n; ++p) {
@@ -152,7 +172,7 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     const double res = (std::sqrt(w0 * w0 + w1 * w1 + w2 * w2) * (1 + 3 * kScreenU) + 5 * kScreenU * spread) /
                        (1 - 5 * kScreenU) * (1 + 4 * kScreenU);
     const double e3 = 3 * S.n_error[p] * (1 + 4 * kScreenU);  // |E|_2 bound (header)
-    const double delta = std::min(mu - lo[p], hi[p] - mu) * (1 - 4 * kScreenU) - e3;
+    const double delta = std::min(mu - clear_lo[p], clear_hi[p] - mu) * (1 - 4 * kScreenU) - e3;
     const double sin_t = (res + e3) * (1 + 4 * kScreenU) / delta;
     const double slack = std::sqrt(2.0) * sin_t + 8 * kScreenU;
     const double C0 = S.C[0][p], C1 = S.C[1][p], C2 = S.C[2][p], T0 = S.TA[0][p], T1 = S.TA[1][p],

@@ -27,6 +27,13 @@ inline constexpr double kScreenU = 0x1p-53;  // unit roundoff
 // A sign condition l.v >= 0 (or <= 0) holds within tolerance kSign |l|_1 + floor (|l|_1 >=
 // |l|_2: a wider tolerance, no square root; piece_visit.h's Conditions).
 inline constexpr double kSign = 1e-6;
+// screen()'s widening of the window for the other eigenvalues' gap, times tr N (one pair of
+// counts: 2^-6 and 2^-14 together kept 18.8 pieces a pair on shallow contacts, 2^-10 alone 19.7).
+inline constexpr double kClearWidening = 0x1p-10;
+// ... computed only when some piece's window is narrower than this times its n_error: a wider
+// window bounds sin t by ~3 n_error / (2^15 n_error) ~ 1e-4 on its own (mu mid-window), and
+// pairs whose windows are all wide (the paper's: ~1e10 n_error) pay nothing for the counts.
+inline constexpr double kNarrowWindow = 0x1p16;
 // Bits of an active set (a subset of a tetrahedron's four vertices), and each vertex's sign
 // condition in it: +1 active (l.v >= 0), -1 free (l.v <= 0). Tables: no branch per lane.
 inline constexpr int kPopcount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
@@ -133,13 +140,22 @@ inline unsigned row_mask(const RowLanes& row) {
   for (int l = 1; l < 16; ++l) mask |= unsigned(row.keep[l] != 0) << l;
   return mask;
 }
+// Bit mb: one[mb] (as row_mask).
+inline unsigned one_mask(const RowLanes& row) {
+  unsigned mask = 0;
+  for (int l = 1; l < 16; ++l) mask |= unsigned(row.one[l] != 0) << l;
+  return mask;
+}
 
-// The pieces that passed surviving_pieces, gathered as lanes for screen().
+// The pieces that passed surviving_pieces with exactly one eigenvalue in the window (RowLanes'
+// one), gathered as lanes for screen().
 struct ScreenLanes {
   static constexpr int kMax = 232;  // 225 pieces, padded to whole 8-lane vectors
   int n = 0;
   double N[6][kMax], n_error[kMax], C[3][kMax], TA[3][kMax], below_low[kMax];  // as RowLanes
   double sign[8][kMax];  // each condition's sign (+1: active, l.v >= 0; -1: free, l.v <= 0)
+  // RowLanes' one (1 on every lane gathered; read by screen(): without an int lane value first
+  // in its verdict's chain of &, GCC 12 does not vectorise its last loop)
   int one[kMax];
   unsigned char ma[kMax], mb[kMax];
   int keep[kMax];
@@ -172,11 +188,21 @@ struct ScreenLanes {
 //    (the 1-norm of the error vector bounds its 2-norm), and |v~| >= 1 - 5u: r, the bound.
 //    Then for the exact 20 H = N + E (|E|_2 <= 3 n_error, surviving_pieces): its residual is
 //    <= r + 3 n_error, and by Weyl its other two eigenvalues lie within 3 n_error of N's,
-//    outside [lo, hi): with rho = mu~ in (lo, hi), delta >= min(mu~ - lo, hi - mu~) - 3 n_error,
-//    required > 0. So the angle t to the exact piece's eigenvector (the one whose eigenvalue
-//    is within 3 n_error of mu, the only one that can lie in the window) has sin t <= (r + 3
-//    n_error) / delta. (N's own angle is not the exact H's: their gap is ~u mag / delta.) The relative bounds need normal results: decided only when
-//    the sum above and |v~|'s square are >= 2^-900 (as for eigenvalues_below_certain).
+//    outside [lo', hi') (below): with rho = mu~ in (lo, hi), delta >= min(mu~ - lo', hi' -
+//    mu~) - 3 n_error, required > 0. So the angle t to the exact piece's eigenvector (the one
+//    whose eigenvalue is within 3 n_error of mu, the only one that can lie in the window) has
+//    sin t <= (r + 3 n_error) / delta. (N's own angle is not the exact H's: their gap is ~u
+//    mag / delta.) The relative bounds need normal results: decided only when the sum above
+//    and |v~|'s square are >= 2^-900 (as for eigenvalues_below_certain).
+//  - The other eigenvalues' gap: [lo', hi') = [lo - g, hi + g), g = kClearWidening tr N (a
+//    scale only: N is positive semi-definite up to rounding, so tr N is about its largest
+//    eigenvalue or more), where the exact counts at lo - g and hi + g (eigenvalues_below_certain,
+//    at the computed ends) equal those at lo and hi: N's other two eigenvalues then lie outside
+//    the widened interval, whatever g is; else [lo, hi) itself. A shallow contact's window (~1e-13 |N|) is far narrower than 3 n_error
+//    (~2^-37 of the moments), so the window alone never gives delta > 0 there, while the other
+//    eigenvalues of most of its pieces lie ~|N| away: on such pairs (depth 5e-7 of the size)
+//    the pieces kept drop from 86 to 19 a pair (the rest have structural zero eigenvalues in
+//    the window: two or three there, never `one`).
 //  - For the orientation of v nearer v~ (angle t <= pi / 2), |v~ / |v~| - v| = 2 sin(t / 2) <=
 //    sqrt(2) sin t. A condition's computed l.v~ is within 3u |l|_1 (1 + 4u) of the exact one,
 //    and v~ / |v~| moves it by 4u |l|_2 more; |l|_2 <= |l|_1. So sign_k s l_k.v~ < -(tol_k +
