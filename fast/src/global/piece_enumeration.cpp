@@ -160,9 +160,14 @@ class PieceEnumeration {
       if (kPopcount[ma] == 3)
         for (unsigned mb : {1u, 2u, 4u, 8u}) single_b_above |= unsigned(row.below_top[mb] == 0) * mb;
       // the screen's lanes: the survivors with exactly one eigenvalue in the window (the only
-      // case it decides; the others are kept as they are)
-      for (unsigned bits = survivors[ma] & detail::one_mask(row); bits; bits &= bits - 1) {
-        const unsigned mb = unsigned(__builtin_ctz(bits));  // (set bits: no branch per piece)
+      // case it decides; the others are kept as they are). (Over set bits: no branch per piece.)
+      unsigned one = 0;
+      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
+        const unsigned mb = unsigned(__builtin_ctz(bits));
+        one |= unsigned(row.one[mb] != 0) << mb;
+      }
+      for (unsigned bits = one; bits; bits &= bits - 1) {
+        const unsigned mb = unsigned(__builtin_ctz(bits));
         const int p = lanes.n++;
         for (int q = 0; q < 6; ++q) lanes.N[q][p] = row.N[q][mb];
         for (int k = 0; k < 3; ++k) lanes.C[k][p] = row.C[k][mb], lanes.TA[k][p] = row.TA[k][mb];

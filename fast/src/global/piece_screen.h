@@ -140,12 +140,6 @@ inline unsigned row_mask(const RowLanes& row) {
   for (int l = 1; l < 16; ++l) mask |= unsigned(row.keep[l] != 0) << l;
   return mask;
 }
-// Bit mb: one[mb] (as row_mask).
-inline unsigned one_mask(const RowLanes& row) {
-  unsigned mask = 0;
-  for (int l = 1; l < 16; ++l) mask |= unsigned(row.one[l] != 0) << l;
-  return mask;
-}
 
 // The pieces that passed surviving_pieces with exactly one eigenvalue in the window (RowLanes'
 // one), gathered as lanes for screen().
