@@ -8,7 +8,9 @@
 //    prune nothing).
 //  - screen: a piece it drops has its single in-window eigenvector (long-double Eigen, an
 //    independent solver) violating one of the piece's sign conditions beyond the tolerance in
-//    both orientations; a piece whose eigenvector satisfies every condition is always kept.
+//    both orientations; a piece whose eigenvector satisfies every condition is always kept;
+//    the same with windows far narrower than the matrices' error (shallow contacts), where
+//    only the counts around the widened window give the screen its gap.
 #define BOOST_TEST_MODULE fast_piece_screen
 #include <boost/test/unit_test.hpp>
 
@@ -213,6 +215,88 @@ BOOST_AUTO_TEST_CASE(screen_drops_only_pieces_whose_vector_violates_a_condition)
     }
   }
   BOOST_TEST(dropped > 1000);  // the screen does drop pieces (not vacuous)
+  BOOST_TEST(kept > 100);
+  BOOST_TEST(forced_kept > 100);
+}
+
+// A shallow contact's pieces: the window (~1e-14) far narrower than the matrices' error bound
+// (n_error 1e-12), one eigenvalue of N inside it, the other two ~0.01 to 1 away (three in
+// four lanes) or just above it (the fourth: inside the widening, whose counts then fail). The
+// window's own edges never give the screen a gap (delta <= 0); the counts around the widened
+// window do. Every dropped piece has its in-window eigenvector violating a condition beyond
+// its tolerance in both orientations, both N's own and that of N + E for random E with
+// entries within n_error (an exact 20 H the bound admits); a piece whose vector satisfies
+// every condition is kept; and pieces are dropped (without the widening none would be).
+BOOST_AUTO_TEST_CASE(screen_sees_the_gap_beyond_a_narrow_window) {
+  Rng rng(78);
+  const double floor = 1e-12, n_error = 1e-12;
+  int dropped = 0, kept = 0, forced_kept = 0;
+  for (int round = 0; round < 200; ++round) {
+    double pA[4][3], pB[4][3];
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 3; ++j) pA[i][j] = rng.uniform(-1, 1), pB[i][j] = rng.uniform(-1, 1);
+    const double top = 1e-15 * rng.uniform(0.2, 1), lower = top * rng.uniform(0.01, 0.03);
+    const Edges e = window_edges(top, lower, n_error);
+    ScreenLanes S;
+    std::vector<Lane> lanes;
+    std::vector<int> must_keep;
+    for (int p = 0; p < 40; ++p) {
+      Lane x;
+      double l[3] = {20 * top * rng.uniform(0.05, 0.95), rng.uniform(0.01, 1), rng.uniform(0.01, 1)};
+      if (p % 4 == 0) l[1] = e.hi * (1 + rng.uniform(0.01, 10));  // a neighbour beside the window
+      rotated(rng, l, x.N);
+      for (int j = 0; j < 3; ++j) x.C[j] = rng.uniform(-0.5, 0.5), x.TA[j] = rng.uniform(-0.5, 0.5);
+      for (double& s : x.sign) s = rng.uniform01() < 0.5 ? 1 : -1;
+      x.lo = e.lo, x.hi = e.hi;
+      Eigen::Matrix<long double, 3, 1> v;
+      const bool one = in_window_vector(x, v);
+      const bool forced = one && p % 3 == 0;
+      if (forced)
+        for (int k = 0; k < 8; ++k) {
+          x.sign[k] = 1;
+          if (margin(x, pA, pB, k, v, floor) < 0) x.sign[k] = -1;
+        }
+      for (int q = 0; q < 6; ++q) S.N[q][p] = x.N[q];
+      for (int j = 0; j < 3; ++j) S.C[j][p] = x.C[j], S.TA[j][p] = x.TA[j];
+      for (int k = 0; k < 8; ++k) S.sign[k][p] = x.sign[k];
+      S.n_error[p] = n_error;
+      const int below_lo = count(x.N, e.lo), below_hi = count(x.N, e.hi);
+      S.below_low[p] = below_lo;
+      S.one[p] = below_lo >= 0 && below_hi == below_lo + 1;
+      lanes.push_back(x);
+      must_keep.push_back(forced);
+    }
+    S.n = int(lanes.size());
+    screen(S, pA, pB, floor, top, lower);
+    for (int p = 0; p < S.n; ++p) {
+      BOOST_TEST_CONTEXT("round " << round << " lane " << p) {
+        if (must_keep[p]) {
+          BOOST_TEST(S.keep[p] == 1);
+          ++forced_kept;
+        }
+        if (S.keep[p]) {
+          ++kept;
+          continue;
+        }
+        ++dropped;
+        for (int trial = 0; trial < 3; ++trial) {
+          Lane y = lanes[p];  // trial 0: N itself; then N + E, |E_rc| <= n_error
+          for (int q = 0; q < 6 && trial > 0; ++q) y.N[q] += rng.uniform(-n_error, n_error);
+          y.lo = -1, y.hi = 1e-6;  // its in-window eigenvalue (the others are >= 1e-2)
+          Eigen::Matrix<long double, 3, 1> v;
+          if (p % 4 == 0 && !in_window_vector(y, v)) continue;  // (the neighbour moved inside)
+          BOOST_TEST(in_window_vector(y, v));
+          for (long double s : {1.0L, -1.0L}) {
+            long double worst = INFINITY;
+            for (int k = 0; k < 8; ++k) worst = std::min(worst, margin(y, pA, pB, k, s * v, floor));
+            BOOST_TEST(worst < -1e-15L, "trial " << trial << " orientation " << double(s) << " margin "
+                                                 << double(worst));
+          }
+        }
+      }
+    }
+  }
+  BOOST_TEST(dropped > 1000);  // the widened gap decides (the window alone: none)
   BOOST_TEST(kept > 100);
   BOOST_TEST(forced_kept > 100);
 }
