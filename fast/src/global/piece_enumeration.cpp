@@ -160,11 +160,21 @@ class PieceEnumeration {
       if (kPopcount[ma] == 3)
         for (unsigned mb : {1u, 2u, 4u, 8u}) single_b_above |= unsigned(row.below_top[mb] == 0) * mb;
       // the screen's lanes: the survivors with exactly one eigenvalue in the window (the only
-      // case it decides; the others are kept as they are). (Over set bits: no branch per piece.)
+      // case it decides). (Over set bits: no branch per piece.) Of the others, a piece with
+      // structural zero eigenvalues (4 - |S| of them, |S| <= 3) whose nonzero ones lie certainly
+      // above the window is dropped here, as its visit would drop it (outside_window_cheaply's
+      // test, on N = 20 H within n_error as survivors_exact takes it): a shallow contact's
+      // window counts the zeros in, so such pieces are never `one`, ~17 a pair at 5e-7 of the
+      // size, and each visit would build its matrix first.
       unsigned one = 0;
       for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
         one |= unsigned(row.one[mb] != 0) << mb;
+      }
+      for (unsigned bits = survivors[ma] & ~one; bits; bits &= bits - 1) {
+        const unsigned mb = unsigned(__builtin_ctz(bits));
+        const int zeros = 4 - kPopcount[ma] - kPopcount[mb];
+        if (zeros > 0 && nonzero_above(row, mb, zeros)) survivors[ma] &= ~(1u << mb);
       }
       for (unsigned bits = one; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
