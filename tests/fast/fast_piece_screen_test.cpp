@@ -7,8 +7,9 @@
 //    1e150; and it decides most well-separated cases (a function that never decides would
 //    prune nothing).
 //  - screen: a piece it drops has its single in-window eigenvector (long-double Eigen, an
-//    independent solver) violating one of the piece's sign conditions beyond the tolerance in
-//    both orientations; a piece whose eigenvector satisfies every condition is always kept;
+//    independent solver) violating one of the piece's sign conditions beyond their rounding
+//    floor in both orientations (certainly outside the piece's cone); a piece whose
+//    eigenvector satisfies every condition is always kept;
 //    the same with windows far narrower than the matrices' error (shallow contacts), where
 //    only the counts around the widened window give the screen its gap.
 #define BOOST_TEST_MODULE fast_piece_screen
@@ -135,16 +136,16 @@ bool in_window_vector(const Lane& x, Eigen::Matrix<long double, 3, 1>& v) {
   return found == 1;
 }
 
-// Condition k's vector l and its verdict at s v: the margin s sign (l.v) + tol (>= 0: holds).
+// Condition k's vector l and its verdict at s v: the margin s sign (l.v) + floor (>= 0: holds
+// up to the conditions' own rounding; < 0: s v is certainly outside the piece's cone).
 long double margin(const Lane& x, const double pA[4][3], const double pB[4][3], int k,
                    const Eigen::Matrix<long double, 3, 1>& v, double floor) {
-  long double l[3], n1 = 0, dot = 0;
+  long double l[3], dot = 0;
   for (int j = 0; j < 3; ++j) {
     l[j] = k < 4 ? (pA[k][j] - x.C[j]) - x.TA[j] : (x.C[j] - pB[k - 4][j]) - x.TA[j];
-    n1 += std::fabs(l[j]);
     dot += l[j] * v(j);
   }
-  return x.sign[k] * dot + (kSign * n1 + floor);
+  return x.sign[k] * dot + floor;
 }
 
 }  // namespace

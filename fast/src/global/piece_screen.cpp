@@ -180,9 +180,8 @@ PDD_SCREEN_CLONES void screen(ScreenLanes& __restrict S, const double (&pA)[4][3
     int violated_plus = 0, violated_minus = 0;
     auto condition = [&](double l0, double l1, double l2, double sign) {
       const double n1 = std::fabs(l0) + std::fabs(l1) + std::fabs(l2);
-      const double tol = kSign * n1 + floor;
       const double lv = sign * (l0 * v0 + l1 * v1 + l2 * v2);
-      const double beyond = tol + n1 * slack;
+      const double beyond = floor + n1 * slack;  // (header: certainly outside the cone)
       violated_plus |= int(lv < -beyond);
       violated_minus |= int(-lv < -beyond);
     };

@@ -159,11 +159,11 @@ struct ScreenLanes {
 // p certainly cannot hold the minimiser, decided without the eigensolver. It works on N = 20 H
 // (the eigenvectors of H) and handles the common case only: exactly one eigenvalue mu of the
 // double N between the window's edges [lo, hi) (window_edges; counted exactly by
-// surviving_pieces; the other two lie outside), and its eigenvector violating one of the
-// piece's sign conditions by more than
-// consider_piece's tolerance in both orientations. Every other piece (two or three eigenvalues
-// in the window, a vector not resolved, a condition met or nearly met) is kept: consider_piece
-// decides it. Lane loops (the pieces side by side) so that each step vectorises.
+// surviving_pieces; the other two lie outside), and its eigenvector certainly outside the
+// piece's cone R_S in both orientations (a sign condition violated beyond its rounding floor).
+// Every other piece (two or three eigenvalues in the window, a vector not resolved, a condition
+// met or nearly met) is kept: consider_piece decides it. Lane loops (the pieces side by side)
+// so that each step vectorises.
 //  (H below: the lanes' N.)
 //  - mu~: a root of f(x) = det(H - xI) = prod (lambda_i - x) in (lo, hi), where f changes
 //    sign exactly once (f's sign is (-1)^(eigenvalues below x)); safeguarded Newton (a step
@@ -199,12 +199,20 @@ struct ScreenLanes {
 //    the window: two or three there, never `one`).
 //  - For the orientation of v nearer v~ (angle t <= pi / 2), |v~ / |v~| - v| = 2 sin(t / 2) <=
 //    sqrt(2) sin t. A condition's computed l.v~ is within 3u |l|_1 (1 + 4u) of the exact one,
-//    and v~ / |v~| moves it by 4u |l|_2 more; |l|_2 <= |l|_1. So sign_k s l_k.v~ < -(tol_k +
-//    |l_k|_1 (sqrt(2) sin t + 8u)) (computed) implies the exact unit eigenvector s v violates
-//    condition k beyond tol_k, consider_piece's criterion for not offering it (Conditions::hold
-//    with |v| = 1). Both orientations s = +1 and -1 are tested (v~ may be near either).
-//    The conditions' vectors l (d_i = (a_i - c) - T_A, e_j = (c - b_j) - T_A) and tolerances
-//    are computed as make_conditions computes them (same operations).
+//    and v~ / |v~| moves it by 4u |l|_2 more; |l|_2 <= |l|_1. So sign_k s l_k.v~ < -(floor +
+//    |l_k|_1 (sqrt(2) sin t + 8u)) (computed) implies sign_k s l_k.v < -floor for the exact
+//    unit eigenvector s v. The conditions' vectors l (d_i = (a_i - c) - T_A, e_j = (c - b_j) -
+//    T_A) are computed as make_conditions computes them (same operations), each within its
+//    rounding floor (Conditions: floor = 1e-12 of the pair's scale, far above the few roundings
+//    of coordinates within the scale) of the exact one l*: so l*_k.(s v) < 0, s v lies outside
+//    the cone R_S, for both orientations s = +1 and -1 (v~ may be near either). A piece holding
+//    the minimiser u* has u* = +-v in R_S (global_depth.h: a stationary point of G is an
+//    eigenvector of the S optimal there, in its cone): it is never dropped. consider_piece
+//    offers more (every vector within kSign of its cone, a tolerance of its own that only costs
+//    evaluations); the screen drops what it would not offer and the pieces it would offer in
+//    vain, whose vectors lie outside their cones by less than kSign (shallow contacts, where
+//    the conditions' values are of the order of the depth: at 5e-8 of the size the pieces kept
+//    drop from 38 to a few a pair).
 void screen(ScreenLanes& S, const double (&pA)[4][3], const double (&pB)[4][3], double floor, double top,
             double lower);
 
