@@ -476,6 +476,13 @@ double root_bound(const List& set, int i, const Variant& variant, const Pending&
 inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
   return e.feasible && qp_root_rel_small(e.s.cost, e.nn, e.Hm, degree_bounds_of(fb, e));
 }
+// The lower bound of an evaluated candidate whose double value is not finite: +inf when it is
+// not in the family (infeasible: case 1's undecidable edge pairs); else 0, nothing known. A
+// feasible candidate's value is not finite when its n.n is 0 or below the double range: a face
+// of A through a vertex ~1e17 times farther than the others (the rescaled pair's differences
+// to it absorb the near vertices' coordinates and the normal comes out 0), whose exact value
+// may be the minimum.
+inline double infeasible_or_unknown(const Pending& e) { return e.feasible ? 0.0 : kInf; }
 
 // A contender's interval for refine_tight (refine.h): compensated_valued's where it applies,
 // else the double one (none, r = inf, where the doubles give no finite value: a face normal
@@ -541,7 +548,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   ch.value = v[ch.index];
   ch.code = label_code(set, ch.index);
   auto lower = [&](int i) {
-    return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : kInf)
+    return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : infeasible_or_unknown(p[i]))
                    : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
@@ -550,7 +557,9 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   // shows lower(i) > kSmallRigidLower · coeff delta² > lo_min so far. Either way lower(i)
   // exceeds a value >= the final lo_min, so it cannot be the minimum, and the minimum is
   // unchanged (min is exact in any order). Only the few others pay the divisions and square
-  // roots of their bounds. (v = +inf or NaN: lower = +inf, never the minimum.)
+  // roots of their bounds. (v = +inf or NaN: infeasible, lower = +inf, never the minimum; or
+  // a feasible candidate whose double value is not finite, lower = 0: no certificate, and the
+  // refinement below takes it among its contenders.)
   // (Without short-circuits where the test is almost always true: its branch predicts well.)
   // (The choice is an evaluated candidate unless every evaluated value is NaN; then r = 0
   // gives hi = +inf and no certificate, as any bound would.)
@@ -558,9 +567,12 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   double lo_min = lower(ch.index);
   for (int j = 0; j < n_evaluated; ++j) {
     const int i = evaluated[j];
-    if ((i == ch.index) | !(v[i] < kInf) ||
-        ((kSmallQpLower * v[i] > lo_min) & deferred_small(p[i], set.fb)))
+    if (i == ch.index) continue;
+    if (!(v[i] < kInf)) {
+      lo_min = std::min(lo_min, infeasible_or_unknown(p[i]));
       continue;
+    }
+    if ((kSmallQpLower * v[i] > lo_min) & deferred_small(p[i], set.fb)) continue;
     bound(i);
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;
@@ -626,7 +638,11 @@ bool shallow_choice(const QuickCandidates& q, Variant variant, const int* idx, i
   const double hi = upper_of(x.v, x.r);
   double lo_min = std::min(safe_lower(x.v, x.r), above);
   for (int j = 0; j < n; ++j) {
-    if (j == b || !(v[j] < kInf)) continue;
+    if (j == b) continue;
+    if (!(v[j] < kInf)) {
+      if (p[j].feasible) return false;  // (infeasible_or_unknown: nothing known)
+      continue;
+    }
     double l = safe_lower(v[j], root_bound(entry_candidate(q, idx[j]), q.fb, variant, p[j]));
     // an entry tied with b (the same depth along the same plane: a face and the edge pairs in
     // it) whose double interval reaches below b's: its compensated one
@@ -691,8 +707,12 @@ bool lane_sweep(const QuickCandidates& q, const detail::QpLowerBounds& bounds, V
   // the other evaluated entries (deferred_small as in sweep), then every skipped entry's lo:
   // those above threshold0 (one vectorised pass), and those of `pass` not evaluated
   for (int j = 0; j < n; ++j) {
-    if ((j == b) | !(v[j] < kInf) || ((kSmallQpLower * v[j] > lo_min) & deferred_small(p[j], q.fb)))
+    if (j == b) continue;
+    if (!(v[j] < kInf)) {
+      if (p[j].feasible) return false;  // (infeasible_or_unknown: the list's sweep refines it)
       continue;
+    }
+    if ((kSmallQpLower * v[j] > lo_min) & deferred_small(p[j], q.fb)) continue;
     const double l = safe_lower(v[j], root_bound(entry_candidate(q, idx[j]), q.fb, variant, p[j]));
     lo_min = l < lo_min ? l : lo_min;
   }
@@ -1114,10 +1134,16 @@ Choice accel_of(const List& set, int k, const Choice* rigid = nullptr) {
   // lo_min = the minimum of safe_lower(v, root bound) over the k, as in sweep: the choice's
   // own first; another one's bound only when deferred_small cannot show its lower bound above
   // kSmallQpLower · v > lo_min so far (then it is not the minimum). (NaN v: never left out.)
+  // (A value that is not finite: infeasible_or_unknown, case 2 having no infeasible candidate.)
   const double rel_best = root_bound(set, order[best], variant, p[best]);
-  double lo_min = safe_lower(v[best], rel_best);
+  double lo_min = v[best] < kInf ? safe_lower(v[best], rel_best) : infeasible_or_unknown(p[best]);
   for (int r = 0; r < m; ++r) {
-    if ((r == best) | ((kSmallQpLower * v[r] > lo_min) & deferred_small(p[r], set.fb))) continue;
+    if (r == best) continue;
+    if (!(v[r] < kInf)) {
+      lo_min = std::min(lo_min, infeasible_or_unknown(p[r]));
+      continue;
+    }
+    if ((kSmallQpLower * v[r] > lo_min) & deferred_small(p[r], set.fb)) continue;
     const double lo = safe_lower(v[r], root_bound(set, order[r], variant, p[r]));
     lo_min = lo < lo_min ? lo : lo_min;
   }
