@@ -150,156 +150,129 @@ long double margin(const Lane& x, const double pA[4][3], const double pB[4][3], 
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(screen_drops_only_pieces_whose_vector_violates_a_condition) {
-  Rng rng(77);
-  const double floor = 1e-12;
+namespace {
+
+struct Tally {
   int dropped = 0, kept = 0, forced_kept = 0;
-  for (int round = 0; round < 200; ++round) {
-    double pA[4][3], pB[4][3];
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 3; ++j) pA[i][j] = rng.uniform(-1, 1), pB[i][j] = rng.uniform(-1, 1);
-    const double top = rng.uniform(0.2, 1), lower = top * rng.uniform(0.1, 0.5);
-    ScreenLanes S;
-    std::vector<Lane> lanes;
-    std::vector<int> must_keep;
-    for (int p = 0; p < 40; ++p) {
-      Lane x;
-      // 20 H with one eigenvalue inside the window (in 20 H's units), the others outside
-      const Edges e = window_edges(top, lower, 1e-16);
-      double l[3] = {rng.uniform(e.lo, e.hi), rng.uniform(e.hi, 3 * e.hi), rng.uniform(0, e.lo)};
-      if (p % 4 == 0) l[2] = e.hi * (1 + rng.uniform(1e-9, 1e-3));  // a close neighbour
-      rotated(rng, l, x.N);
-      for (int j = 0; j < 3; ++j) x.C[j] = rng.uniform(-0.5, 0.5), x.TA[j] = rng.uniform(-0.5, 0.5);
-      for (double& s : x.sign) s = rng.uniform01() < 0.5 ? 1 : -1;
-      x.lo = e.lo, x.hi = e.hi;
-      Eigen::Matrix<long double, 3, 1> v;
-      const bool one = in_window_vector(x, v);
-      const bool forced = one && p % 3 == 0;
-      if (forced)  // signs that the vector satisfies: the piece must be kept
-        for (int k = 0; k < 8; ++k) {
-          x.sign[k] = 1;
-          if (margin(x, pA, pB, k, v, floor) < 0) x.sign[k] = -1;
-        }
-      S.N[0][p] = x.N[0], S.N[1][p] = x.N[1], S.N[2][p] = x.N[2], S.N[3][p] = x.N[3], S.N[4][p] = x.N[4],
-      S.N[5][p] = x.N[5];
-      for (int j = 0; j < 3; ++j) S.C[j][p] = x.C[j], S.TA[j][p] = x.TA[j];
-      for (int k = 0; k < 8; ++k) S.sign[k][p] = x.sign[k];
-      S.n_error[p] = 1e-16;
-      const int below_lo = count(x.N, e.lo), below_hi = count(x.N, e.hi);
-      S.below_low[p] = below_lo;
-      S.one[p] = below_lo >= 0 && below_hi == below_lo + 1;
-      lanes.push_back(x);
-      must_keep.push_back(forced);
-    }
-    S.n = int(lanes.size());
-    screen(S, pA, pB, floor, top, lower);
-    for (int p = 0; p < S.n; ++p) {
-      BOOST_TEST_CONTEXT("round " << round << " lane " << p) {
-        if (must_keep[p]) {
-          BOOST_TEST(S.keep[p] == 1);
-          ++forced_kept;
-        }
-        if (S.keep[p]) {
-          ++kept;
-          continue;
-        }
-        ++dropped;
+};
+
+// One round: 40 lanes whose N = a random rotation of diag(eig(p)), with random C, T_A and
+// signs; every third lane with one eigenvalue in the window [lo, hi) = window_edges(top, lower,
+// n_error) gets signs its vector satisfies (it must be kept). After screen(), every dropped
+// lane's in-window eigenvector violates a condition beyond the floor in both orientations: N's
+// own (in [lo, hi)), and that of N + E for `perturbed` random E with entries within n_error
+// (an exact 20 H the bound admits; its eigenvalue sought in [check_lo, check_hi), where the
+// lane is skipped if E moved a neighbour in too).
+template <class Eigenvalues>
+void screen_round(Rng& rng, int round, double top, double lower, double n_error, Eigenvalues eig, int perturbed,
+                  double check_lo, double check_hi, Tally& tally) {
+  const double floor = 1e-12;
+  double pA[4][3], pB[4][3];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) pA[i][j] = rng.uniform(-1, 1), pB[i][j] = rng.uniform(-1, 1);
+  const Edges e = window_edges(top, lower, n_error);
+  ScreenLanes S;
+  std::vector<Lane> lanes;
+  std::vector<int> must_keep;
+  for (int p = 0; p < 40; ++p) {
+    Lane x;
+    double l[3];
+    eig(p, e, l);
+    rotated(rng, l, x.N);
+    for (int j = 0; j < 3; ++j) x.C[j] = rng.uniform(-0.5, 0.5), x.TA[j] = rng.uniform(-0.5, 0.5);
+    for (double& s : x.sign) s = rng.uniform01() < 0.5 ? 1 : -1;
+    x.lo = e.lo, x.hi = e.hi;
+    Eigen::Matrix<long double, 3, 1> v;
+    const bool forced = in_window_vector(x, v) && p % 3 == 0;
+    if (forced)  // signs that the vector satisfies: the piece must be kept
+      for (int k = 0; k < 8; ++k) {
+        x.sign[k] = 1;
+        if (margin(x, pA, pB, k, v, floor) < 0) x.sign[k] = -1;
+      }
+    for (int q = 0; q < 6; ++q) S.N[q][p] = x.N[q];
+    for (int j = 0; j < 3; ++j) S.C[j][p] = x.C[j], S.TA[j][p] = x.TA[j];
+    for (int k = 0; k < 8; ++k) S.sign[k][p] = x.sign[k];
+    S.n_error[p] = n_error;
+    const int below_lo = count(x.N, e.lo), below_hi = count(x.N, e.hi);
+    S.below_low[p] = below_lo;
+    S.one[p] = below_lo >= 0 && below_hi == below_lo + 1;
+    lanes.push_back(x);
+    must_keep.push_back(forced);
+  }
+  S.n = int(lanes.size());
+  screen(S, pA, pB, floor, top, lower);
+  for (int p = 0; p < S.n; ++p) {
+    BOOST_TEST_CONTEXT("round " << round << " lane " << p) {
+      if (must_keep[p]) {
+        BOOST_TEST(S.keep[p] == 1);
+        ++tally.forced_kept;
+      }
+      if (S.keep[p]) {
+        ++tally.kept;
+        continue;
+      }
+      ++tally.dropped;
+      for (int trial = 0; trial <= perturbed; ++trial) {
+        Lane y = lanes[p];
         Eigen::Matrix<long double, 3, 1> v;
-        BOOST_TEST(in_window_vector(lanes[p], v));
-        // both orientations violate some condition beyond its tolerance (long double slack)
+        if (trial == 0) {
+          BOOST_TEST(in_window_vector(y, v));
+        } else {
+          for (int q = 0; q < 6; ++q) y.N[q] += rng.uniform(-n_error, n_error);
+          y.lo = check_lo, y.hi = check_hi;
+          if (!in_window_vector(y, v)) continue;
+        }
+        // both orientations outside the cone beyond the floor (long double slack)
         for (long double s : {1.0L, -1.0L}) {
           long double worst = INFINITY;
-          for (int k = 0; k < 8; ++k) worst = std::min(worst, margin(lanes[p], pA, pB, k, s * v, floor));
-          BOOST_TEST(worst < -1e-15L, "orientation " << double(s) << " margin " << double(worst));
+          for (int k = 0; k < 8; ++k) worst = std::min(worst, margin(y, pA, pB, k, s * v, floor));
+          BOOST_TEST(worst < -1e-15L, "trial " << trial << " orientation " << double(s) << " margin "
+                                               << double(worst));
         }
       }
     }
   }
-  BOOST_TEST(dropped > 1000);  // the screen does drop pieces (not vacuous)
-  BOOST_TEST(kept > 100);
-  BOOST_TEST(forced_kept > 100);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(screen_drops_only_pieces_whose_vector_violates_a_condition) {
+  Rng rng(77);
+  Tally tally;
+  for (int round = 0; round < 200; ++round) {
+    const double top = rng.uniform(0.2, 1), lower = top * rng.uniform(0.1, 0.5);
+    // 20 H with one eigenvalue inside the window (in 20 H's units), the others outside; every
+    // fourth lane a close neighbour above it
+    auto eig = [&](int p, const Edges& e, double (&l)[3]) {
+      l[0] = rng.uniform(e.lo, e.hi), l[1] = rng.uniform(e.hi, 3 * e.hi), l[2] = rng.uniform(0, e.lo);
+      if (p % 4 == 0) l[2] = e.hi * (1 + rng.uniform(1e-9, 1e-3));
+    };
+    screen_round(rng, round, top, lower, 1e-16, eig, 0, 0, 0, tally);
+  }
+  BOOST_TEST(tally.dropped > 1000);  // the screen does drop pieces (not vacuous)
+  BOOST_TEST(tally.kept > 100);
+  BOOST_TEST(tally.forced_kept > 100);
 }
 
 // A shallow contact's pieces: the window (~1e-14) far narrower than the matrices' error bound
 // (n_error 1e-12), one eigenvalue of N inside it, the other two ~0.01 to 1 away (three in
 // four lanes) or just above it (the fourth: inside the widening, whose counts then fail). The
 // window's own edges never give the screen a gap (delta <= 0); the counts around the widened
-// window do. Every dropped piece has its in-window eigenvector violating a condition beyond
-// its tolerance in both orientations, both N's own and that of N + E for random E with
-// entries within n_error (an exact 20 H the bound admits); a piece whose vector satisfies
-// every condition is kept; and pieces are dropped (without the widening none would be).
+// window do. Dropped pieces are checked on N and on two N + E each.
 BOOST_AUTO_TEST_CASE(screen_sees_the_gap_beyond_a_narrow_window) {
   Rng rng(78);
-  const double floor = 1e-12, n_error = 1e-12;
-  int dropped = 0, kept = 0, forced_kept = 0;
+  Tally tally;
   for (int round = 0; round < 200; ++round) {
-    double pA[4][3], pB[4][3];
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 3; ++j) pA[i][j] = rng.uniform(-1, 1), pB[i][j] = rng.uniform(-1, 1);
     const double top = 1e-15 * rng.uniform(0.2, 1), lower = top * rng.uniform(0.01, 0.03);
-    const Edges e = window_edges(top, lower, n_error);
-    ScreenLanes S;
-    std::vector<Lane> lanes;
-    std::vector<int> must_keep;
-    for (int p = 0; p < 40; ++p) {
-      Lane x;
-      double l[3] = {20 * top * rng.uniform(0.05, 0.95), rng.uniform(0.01, 1), rng.uniform(0.01, 1)};
+    auto eig = [&](int p, const Edges& e, double (&l)[3]) {
+      l[0] = 20 * top * rng.uniform(0.05, 0.95), l[1] = rng.uniform(0.01, 1), l[2] = rng.uniform(0.01, 1);
       if (p % 4 == 0) l[1] = e.hi * (1 + rng.uniform(0.01, 10));  // a neighbour beside the window
-      rotated(rng, l, x.N);
-      for (int j = 0; j < 3; ++j) x.C[j] = rng.uniform(-0.5, 0.5), x.TA[j] = rng.uniform(-0.5, 0.5);
-      for (double& s : x.sign) s = rng.uniform01() < 0.5 ? 1 : -1;
-      x.lo = e.lo, x.hi = e.hi;
-      Eigen::Matrix<long double, 3, 1> v;
-      const bool one = in_window_vector(x, v);
-      const bool forced = one && p % 3 == 0;
-      if (forced)
-        for (int k = 0; k < 8; ++k) {
-          x.sign[k] = 1;
-          if (margin(x, pA, pB, k, v, floor) < 0) x.sign[k] = -1;
-        }
-      for (int q = 0; q < 6; ++q) S.N[q][p] = x.N[q];
-      for (int j = 0; j < 3; ++j) S.C[j][p] = x.C[j], S.TA[j][p] = x.TA[j];
-      for (int k = 0; k < 8; ++k) S.sign[k][p] = x.sign[k];
-      S.n_error[p] = n_error;
-      const int below_lo = count(x.N, e.lo), below_hi = count(x.N, e.hi);
-      S.below_low[p] = below_lo;
-      S.one[p] = below_lo >= 0 && below_hi == below_lo + 1;
-      lanes.push_back(x);
-      must_keep.push_back(forced);
-    }
-    S.n = int(lanes.size());
-    screen(S, pA, pB, floor, top, lower);
-    for (int p = 0; p < S.n; ++p) {
-      BOOST_TEST_CONTEXT("round " << round << " lane " << p) {
-        if (must_keep[p]) {
-          BOOST_TEST(S.keep[p] == 1);
-          ++forced_kept;
-        }
-        if (S.keep[p]) {
-          ++kept;
-          continue;
-        }
-        ++dropped;
-        for (int trial = 0; trial < 3; ++trial) {
-          Lane y = lanes[p];  // trial 0: N itself; then N + E, |E_rc| <= n_error
-          for (int q = 0; q < 6 && trial > 0; ++q) y.N[q] += rng.uniform(-n_error, n_error);
-          y.lo = -1, y.hi = 1e-6;  // its in-window eigenvalue (the others are >= 1e-2)
-          Eigen::Matrix<long double, 3, 1> v;
-          if (p % 4 == 0 && !in_window_vector(y, v)) continue;  // (the neighbour moved inside)
-          BOOST_TEST(in_window_vector(y, v));
-          for (long double s : {1.0L, -1.0L}) {
-            long double worst = INFINITY;
-            for (int k = 0; k < 8; ++k) worst = std::min(worst, margin(y, pA, pB, k, s * v, floor));
-            BOOST_TEST(worst < -1e-15L, "trial " << trial << " orientation " << double(s) << " margin "
-                                                 << double(worst));
-          }
-        }
-      }
-    }
+    };
+    screen_round(rng, round, top, lower, 1e-12, eig, 2, -1, 1e-6, tally);
   }
-  BOOST_TEST(dropped > 1000);  // the widened gap decides (the window alone: none)
-  BOOST_TEST(kept > 100);
-  BOOST_TEST(forced_kept > 100);
+  BOOST_TEST(tally.dropped > 1000);  // the widened gap decides (the window alone: none)
+  BOOST_TEST(tally.kept > 100);
+  BOOST_TEST(tally.forced_kept > 100);
 }
 
 BOOST_AUTO_TEST_CASE(tables_are_the_bits) {  // kPopcount and kSignOf against the bits themselves
