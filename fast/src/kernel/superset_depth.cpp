@@ -14,6 +14,7 @@
 #include "certification/value_bounds.h"
 #include "exact/exact_heights.h"
 #include "exact/exact_predicates.h"
+#include "exact/expansion.h"
 #include "exact/integer_heights.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/near_parallel_bound.h"
@@ -88,7 +89,7 @@ bool near_candidates(const SupersetLanes& K, const FilterBounds& fb, Near* out, 
 }
 
 // The chosen edge-pair candidate, as lane_candidate builds it from the lanes.
-void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
+inline __attribute__((always_inline)) void lane_geometry(const SupersetLanes& K, const Near& c, Candidate& g) {
   const int a = c.lane / kLaneStride, b = c.lane % kLaneStride;
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
   const int k1 = kOffEdge[a][0], k2 = kOffEdge[a][1];
@@ -462,18 +463,24 @@ bool unresolved_above_pick(const Near& c, double hi_pick, const Unresolved& un, 
 // them; an orientation the rule certainly discards is no candidate and needs no bound. An
 // edge-pair pick is first over the list when every other candidate of S is above it or tied
 // after it, the caller's rule for exactly parallel pairs (choice_without_unresolved) applied.
+// Without `depth_order` the entries that need PickDepthOrder (a rounding away from the pick)
+// are not ordered: Undecided (the caller's tie band may settle them for less).
 // (Not inlined: PickPlane's expansions, ~1.2 KB, stay off the frame of pick_and_certify, which
 // rigid_pd2's hot path runs on every pair; measured 10 instructions a call less.)
-__attribute__((noinline)) bool ties_share_direction(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
-                          double hi_pick, const Unresolved& un) {
+enum class Shared { Yes, No, Undecided };
+__attribute__((noinline)) Shared ties_share_direction(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
+                                                      double hi_pick, const Unresolved& un, bool depth_order) {
   const bool face_pick = c.lane < 0;
   const DegreeBounds db = degree_bounds(fb, false);
   auto above = [&](double v, double r) { return lower_of(v, r) > hi_pick; };
   PickPlane plane(K, face_pick ? c.face : 0);
   PickDepthOrder order(K, c.code);
-  if (!(un.extra_lo > hi_pick) && !(face_pick && unresolved_along_pick(K, fb, c.face, hi_pick, un, plane)) &&
-      !unresolved_above_pick(c, hi_pick, un, order))
-    return false;
+  // an entry ordered by depth parts: No when not after the pick, Undecided without the order
+  auto ordered = [&](auto after_pick) { return !depth_order ? Shared::Undecided : after_pick() ? Shared::Yes : Shared::No; };
+  if (!(un.extra_lo > hi_pick) && !(face_pick && unresolved_along_pick(K, fb, c.face, hi_pick, un, plane))) {
+    const Shared s = ordered([&] { return unresolved_above_pick(c, hi_pick, un, order); });
+    if (s != Shared::Yes) return s;
+  }
   for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
     const int f = __builtin_ctz(bits);
     if (face_pick && f == c.face) continue;
@@ -482,7 +489,8 @@ __attribute__((noinline)) bool ties_share_direction(const SupersetLanes& K, cons
     const double v = K.face_val[f];
     if (above(v, rigid_root_rel(std::sqrt(v * nn), nn, db))) continue;
     if (face_pick && f > c.face && face_along_face(K, fb, c.face, f, plane)) continue;
-    if (!order.face_after_pick(f, face_pick && f > c.face)) return false;
+    const Shared s = ordered([&] { return order.face_after_pick(f, face_pick && f > c.face); });
+    if (s != Shared::Yes) return s;
   }
   for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
@@ -493,16 +501,21 @@ __attribute__((noinline)) bool ties_share_direction(const SupersetLanes& K, cons
       if (above(d * d * inv, rigid_root_rel(d, 1.0 / inv, db))) continue;
       if (discarded_orientation(K, fb, lane, s)) continue;
       if (face_pick && lane_along_face(K, fb, c.face, lane, s, plane)) continue;
-      if (!order.lane_after_pick(lane, s, c.lane < lane)) return false;
+      const Shared t = ordered([&] { return order.lane_after_pick(lane, s, c.lane < lane); });
+      if (t != Shared::Yes) return t;
     }
   }
-  return true;
+  return Shared::Yes;
 }
 
+bool band_accepted(const SupersetLanes& K, const FilterBounds& fb, const Near& c, double hi_pick,
+                   const Unresolved& un, TieBandTest& test);
+
 // The pick among the entries of K's tie band (face_bits, lane_bits) and its certificate
-// (K's bound bits, and un for entries outside them).
+// (K's bound bits, and un for entries outside them). `band`: asked where `unique` needs depth
+// parts in double words (superset_depth.h).
 bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, const Unresolved& un, Choice& ch,
-                      Candidate* geometry, bool* unique, bool with_certificate) {
+                      Candidate* geometry, bool* unique, bool with_certificate, TieBandTest* band = nullptr) {
   Near near[kMaxCandidates];
   int count = 0;
   if (!near_candidates(K, fb, near, count)) return false;
@@ -519,7 +532,14 @@ bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, const Unre
   if (with_certificate) {
     double hi_pick = kInf;
     certify(K, fb, c, ch, unique, un.extra_lo, hi_pick);
-    if (unique && ch.certified && !*unique) *unique = ties_share_direction(K, fb, c, hi_pick, un);
+    if (unique && ch.certified && !*unique) {
+      // exact directions first (structural zeros: cheap on aligned pairs), then the band where
+      // the rest needs depth parts in double words, then those
+      Shared s = band && band->always ? Shared::Undecided : ties_share_direction(K, fb, c, hi_pick, un, !band);
+      if (s == Shared::Undecided && !(band->accepted = band_accepted(K, fb, c, hi_pick, un, *band)))
+        s = ties_share_direction(K, fb, c, hi_pick, un, true);
+      *unique = s == Shared::Yes;
+    }
   }
   if (!geometry) return true;
   if (c.lane >= 0)
@@ -580,6 +600,159 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
   return true;
 }
 
+// The list candidates of nearly parallel edge pairs (left out of S) against a bound: the
+// pair's normal n = eB × eA taken exactly (over the kernel pair's integer frame, else by
+// expansions) and rounded, each component within 3u of its exact value, its heights in doubles
+// with their own bounds (value_bounds.h's own_degree_bounds), as candidate_directions.cpp's
+// near_parallel_normal builds the list's candidate. above(): both orientations' certified
+// lower bounds of delta² exceed hi (whatever definitions §3's rule keeps, and so do the
+// pair's facets, which are along ±n); false where it cannot be shown (n exactly 0: the
+// common perpendicular of parallel edges is not bounded here; out of the expansions' range).
+class UnresolvedNormals {
+ public:
+  explicit UnresolvedNormals(const SupersetLanes& K) : K_(K), frame_(A_, B_) {
+    kernel_pair(K, A_, B_);
+    in_range_ = in_exact_range(A_, B_);
+  }
+  bool above(int a, int b, double hi) {
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+    double n[3];
+    if (!in_range_ || !exact_normal(u, v, x, y, n)) return false;
+    double hA[4], hB[4];
+    for (int k = 0; k < 4; ++k) {
+      hA[k] = n[0] * (A_[k][0] - A_[u][0]) + n[1] * (A_[k][1] - A_[u][1]) + n[2] * (A_[k][2] - A_[u][2]);
+      hB[k] = n[0] * (B_[k][0] - A_[u][0]) + n[1] * (B_[k][1] - A_[u][1]) + n[2] * (B_[k][2] - A_[u][2]);
+    }
+    hA[u] = hA[v] = 0.0;  // exactly: n.eA = 0
+    hB[y] = hB[x];        // exactly: n.eB = 0
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const DegreeBounds own = own_degree_bounds(n, K_.extent);
+    double hiA = hA[0], loA = hA[0], hiB = hB[0], loB = hB[0];
+    for (int k = 1; k < 4; ++k) hiA = max2(hiA, hA[k]), loA = min2(loA, hA[k]), hiB = max2(hiB, hB[k]), loB = min2(loB, hB[k]);
+    // D(+n) = max hA − min hB, D(−n) = max hB − min hA (A below the plane along the direction)
+    for (const double D : {hiA - loB, hiB - loA})
+      if (!(lower_of(D * D / nn, rigid_root_rel(D, nn, own)) > hi)) return false;
+    return true;
+  }
+
+ private:
+  // n = (r_y − r_x) × (s_v − s_u) exactly, rounded; false when exactly 0 or out of capacity
+  bool exact_normal(int u, int v, int x, int y, double (&n)[3]) {
+    if (frame_.usable()) {
+      __int128 m[3];
+      frame_.normal(4 + y, 4 + x, v, u, m);
+      if (m[0] == 0 && m[1] == 0 && m[2] == 0) return false;
+      for (int k = 0; k < 3; ++k) n[k] = std::ldexp(double(m[k]), 2 * frame_.unit_exponent());
+      return true;
+    }
+    const ExpVec e = detail::cross(difference(B_[y], B_[x]), difference(A_[v], A_[u]));
+    if (!e.ok() || e.is_zero()) return false;
+    for (int k = 0; k < 3; ++k) n[k] = e.x[k].approx();
+    return true;
+  }
+  const SupersetLanes& K_;
+  TetVertices A_, B_;
+  IntegerFrame frame_;
+  bool in_range_ = false;
+};
+
+// ---- The tie band (superset_depth.h's TieBand) of a certified pick c that is not `unique`, and
+// why it holds the exact first x* of the list (the first in canonical order among the
+// candidates whose exact delta² is PD²). Every candidate attaining PD points along a facet
+// normal of M attaining it (the nearest point of ∂M to the origin lies inside a facet:
+// ties_share_direction above). The entries of S outside K's bound bits are certainly above
+// the pick (certify), and so are those whose certified lower bound exceeds hi_pick, the pick's
+// upper bound (>= PD²): the rest, less the orientations the rule certainly discards (no
+// candidates), are the band with the pick; they are the list's face and lane candidates,
+// geometry included (lane_geometry, face_draft). The list's other candidates are those of the
+// unresolved edge pairs (un, left out of S). One of them is no exact minimiser when its
+// candidate (both orientations) is certainly above hi_pick (UnresolvedNormals); that is
+// required where the pair's facets may reach hi_pick (lo2 <= hi_pick, near_parallel_bound.h).
+// Otherwise its facets are above hi_pick and its candidate attains PD only along the facet
+// normal of a band entry e attaining it: if e is a face, x* is a face (faces precede every edge
+// pair), in the band; if e is an edge pair, the unresolved candidate precedes e only from a
+// lower lane, and unresolved_off_pick shows it points elsewhere than e (as
+// choice_without_unresolved does for an edge-pair pick). So x* is in the band, and its case-2
+// value is one of the band's.
+// More than TieBand::kMax entries, the test's disagreement, an unresolved pair whose facets may
+// reach hi_pick and whose candidate is not shown above it, or one not shown off a band edge
+// pair of a higher lane: false.
+// (Not inlined: the band, ~1 KB, stays off the frame of pick_and_certify.)
+__attribute__((noinline)) bool band_accepted(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
+                                             double hi_pick, const Unresolved& un, TieBandTest& test) {
+  const DegreeBounds db = degree_bounds(fb, false);
+  auto above = [&](double v, double r) { return lower_of(v, r) > hi_pick; };
+  TieBand band;
+  std::uint64_t lanes = 0;  // the band's edge-pair lanes
+  auto add_face = [&](int f, LabelCode code) {
+    Draft d;
+    face_draft(K, f, d);
+    Candidate& g = band.entry[band.count++];
+    finish_face(d, g);
+    g.label = unpack_label(code);
+  };
+  auto add_lane = [&](const Near& e) {  // labelled EE:a:b:+ for +(eB × eA), EE:a:b:- for −(eB × eA)
+    const EdgeOrientation o = e.sign > 0 ? EdgeOrientation::Plus : EdgeOrientation::Minus;
+    Candidate& g = band.entry[band.count++];
+    lane_geometry(K, e, g);
+    g.label = DirectionLabel::ee(e.lane / kLaneStride, e.lane % kLaneStride, o);
+    lanes |= std::uint64_t{1} << e.lane;
+  };
+  if (c.lane < 0)
+    add_face(c.face, c.code);
+  else
+    add_lane(c);
+  for (unsigned bits = K.face_bound_bits; bits; bits &= bits - 1) {
+    const int f = __builtin_ctz(bits);
+    if (c.lane < 0 && f == c.face) continue;
+    const double nn = K.NAB[0][f] * K.NAB[0][f] + K.NAB[1][f] * K.NAB[1][f] + K.NAB[2][f] * K.NAB[2][f];
+    const double v = K.face_val[f];
+    if (above(v, rigid_root_rel(std::sqrt(v * nn), nn, db))) continue;
+    if (band.count == TieBand::kMax) return false;
+    add_face(f, f < 4 ? pack_label(ContactKind::FV, f, 0, EdgeOrientation::Decided)
+                      : pack_label(ContactKind::VF, f - 4, 0, EdgeOrientation::Decided));
+  }
+  for (std::uint64_t bits = K.lane_bound_bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits), a = lane / kLaneStride, b = lane % kLaneStride;
+    const double inv = K.inv[a][b], dp = K.dp[a][b], dm = K.dm[a][b];
+    for (const double s : {1.0, -1.0}) {
+      if (lane == c.lane && s == c.sign) continue;
+      const double d = s > 0 ? dp : dm;
+      if (above(d * d * inv, rigid_root_rel(d, 1.0 / inv, db))) continue;
+      if (discarded_orientation(K, fb, lane, s)) continue;
+      if (band.count == TieBand::kMax) return false;
+      add_lane(Near{d * d * inv, LabelCode{0}, lane, -1, s});
+    }
+  }
+  // the caller's test first (a few closed forms), then the unresolved pairs (exact normals)
+  if (!test.agree(band, fb)) return false;
+  // An unresolved pair is no exact first when its list candidate is certainly above hi_pick
+  // (UnresolvedNormals: required where its facets may reach hi_pick, lo2 <= hi_pick), or
+  // else when it points elsewhere than every band edge pair of a higher lane.
+  std::optional<UnresolvedNormals> normals;
+  auto shown_above = [&](int lane) {
+    if (!normals) normals.emplace(K);
+    return normals->above(lane / kLaneStride, lane % kLaneStride, hi_pick);
+  };
+  const int top = lanes ? 63 - __builtin_clzll(lanes) : -1;  // the band's highest lane
+  for (std::uint64_t bits = un.bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits);
+    const bool facets_below = !(un.lo2[lane] > hi_pick);
+    if (!facets_below && lane > top) continue;  // no band edge pair after it
+    if (shown_above(lane)) continue;
+    if (facets_below) return false;
+    for (std::uint64_t after = lanes & ~((std::uint64_t{2} << lane) - 1); after; after &= after - 1) {
+      const int l = __builtin_ctzll(after);
+      for (int i = 0; i < band.count; ++i) {
+        const DirectionLabel& e = band.entry[i].label;
+        if (e.kind != ContactKind::EE || kLaneStride * e.a + e.b != l) continue;
+        if (!unresolved_off_pick(K, fb, std::uint64_t{1} << lane, e)) return false;
+      }
+    }
+  }
+  return true;
+}
+
 // The choice when edge pairs the doubles cannot resolve (`unresolved`: unresolved_edge_pairs,
 // nearly or exactly parallel edges: an aligned pair) spoil the kernel's screens: those pairs
 // bounded by near_parallel_bound, the choice made among the others. True only with a certified choice (then in ch, geometry,
@@ -596,7 +769,7 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
 // (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
 // pair that precedes its lane may point its way (unresolved_off_pick): then `unique` is false.
 bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved, Choice& ch,
-                               Candidate* geometry, bool* unique) {
+                               Candidate* geometry, bool* unique, TieBandTest* band) {
   if (!unresolved) return false;
   Unresolved un;
   un.bits = unresolved;
@@ -611,7 +784,7 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::ui
   Choice c;
   Candidate g;
   bool u = false;
-  if (!pick_and_certify(K, fb, un, c, geometry ? &g : nullptr, unique ? &u : nullptr, true) ||
+  if (!pick_and_certify(K, fb, un, c, geometry ? &g : nullptr, unique ? &u : nullptr, true, band) ||
       !c.certified)
     return false;
   const DirectionLabel l = c.label();
@@ -629,45 +802,45 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::ui
 // retried without the edge pairs the doubles cannot resolve; when that fails too, the first
 // choice stands (uncertified) or the pair is declined, as the screens said.
 bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique,
-                     bool with_certificate, bool* unresolved = nullptr) {
+                     bool with_certificate, bool* unresolved = nullptr, TieBandTest* band = nullptr) {
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);
   // valid tetrahedra (orientation trusted by the kernel), clearly intersecting: else exact path
   if (!(std::fabs(K.det[3]) > fb.deg3) || !(std::fabs(K.det[7]) > fb.deg3)) return false;
   const bool chosen =
-      K.lo > fb.deg3 && pick_and_certify(K, fb, kNoUnresolved, ch, geometry, unique, with_certificate);
+      K.lo > fb.deg3 && pick_and_certify(K, fb, kNoUnresolved, ch, geometry, unique, with_certificate, band);
   if (chosen && (!with_certificate || ch.certified)) return true;
   if (!unresolved && !with_certificate) return chosen;
   const std::uint64_t un = unresolved_edge_pairs(K, fb);
   if (unresolved) *unresolved = un != 0;
-  if (with_certificate && choice_without_unresolved(K, fb, un, ch, geometry, unique)) return true;
+  if (with_certificate && choice_without_unresolved(K, fb, un, ch, geometry, unique, band)) return true;
   return chosen;
 }
 
 bool superset_choice(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
-                     bool* unique, bool with_certificate) {
+                     bool* unique, bool with_certificate, TieBandTest* band = nullptr) {
   SupersetLanes K;
   superset_kernel(A, B, K, nullptr);  // (non-finite input: garbage values, rejected next)
-  return choice_of_lanes(K, ch, geometry, unique, with_certificate);
+  return choice_of_lanes(K, ch, geometry, unique, with_certificate, nullptr, band);
 }
 
 }  // namespace
 
 bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
                            Candidate* geometry, bool* unique, double* extent, bool* kernel_ran,
-                           bool* unresolved) {
+                           bool* unresolved, TieBandTest* band) {
   SupersetLanes K;
   const bool ran = superset_kernel_scaled(A, B, K, e);
   if (kernel_ran) *kernel_ran = ran;
   if (unresolved) *unresolved = false;
   if (!ran) return false;
   if (extent) *extent = K.extent;
-  return choice_of_lanes(K, ch, geometry, unique, true, unresolved);
+  return choice_of_lanes(K, ch, geometry, unique, true, unresolved, band);
 }
 
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Candidate* geometry,
-                    bool* unique) {
-  return superset_choice(A, B, ch, geometry, unique, true);
+                    bool* unique, TieBandTest* band) {
+  return superset_choice(A, B, ch, geometry, unique, true, band);
 }
 
 bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch) {

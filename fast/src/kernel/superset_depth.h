@@ -67,8 +67,11 @@ namespace pdd::fast {
 // power_scale.h (largest |coordinate| in [1, 2)), as hot_path.h does; the error bounds assume
 // that range (value_bounds.h), and so does the kernel's choice of entries to bound
 // (tie_and_certify_bits in superset_kernel.cpp: no underflow in its thresholds).
+// `band` (optional, with `unique`): asked where the choice is certified and not certainly
+// `unique` (TieBandTest below).
+class TieBandTest;
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
-                    Candidate* geometry = nullptr, bool* unique = nullptr);
+                    Candidate* geometry = nullptr, bool* unique = nullptr, TieBandTest* band = nullptr);
 
 // rigid_superset(power_scaled(A, B)...) on the raw pair, the scaling fused into the kernel
 // (superset_kernel_scaled): the same choice, geometry and `unique` bit for bit (value and
@@ -82,11 +85,44 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
 // (optional): when no certified choice was reached at the first try, whether the kernel found
 // edge pairs whose n the doubles cannot resolve (near_parallel_bound.h: aligned pairs); the
 // candidate list's lanes of such pairs are unclear, so quick_candidates.h would decline: a hint
-// for the caller's next route.
+// for the caller's next route. `band`: as for rigid_superset.
 bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& ch, int& e,
                            Candidate* geometry = nullptr, bool* unique = nullptr,
                            double* extent = nullptr, bool* kernel_ran = nullptr,
-                           bool* unresolved = nullptr);
+                           bool* unresolved = nullptr, TieBandTest* band = nullptr);
+
+// The candidates of the list that may be its exact first (stable delta order, what
+// pdd2_accel(A, B, 1) takes) when the choice is certified but not `unique`: entry[0] the choice,
+// then every entry of S not certainly above it that is a candidate of the list (its
+// orientation not certainly discarded by definitions §3's rule), as geometry for the
+// per-direction solvers (lane and face geometry as `geometry` above; an edge pair labelled by
+// its direction, EE:a:b:+ for +(eB × eA) and EE:a:b:- for its opposite). Accepted only where
+// every edge pair left out of S (unresolved: nearly or exactly parallel) is shown to be no exact
+// first: its candidate certainly above the choice, or its facets so and its direction not along
+// a band edge pair that it precedes (superset_depth.cpp's band_accepted, with the proof).
+struct TieBand {
+  static constexpr int kMax = 8;  // more: no band (aligned pairs have 2 to 4)
+  int count = 0;
+  Candidate entry[kMax];
+};
+
+// What a caller does with a tie band (pdd2_accel1: its case-2 values within definitions §8 of
+// each other). rigid_superset and rigid_superset_scaled build the band where `unique` is not
+// settled by the doubles and exact directions alone (the rest would take depth parts in double
+// words: superset_depth.cpp's ties_share_direction), or, with `always`, wherever the choice is
+// certified and not certainly `unique` (tests: every band). agree() runs first, then the
+// unresolved edge pairs are checked (TieBand above); `accepted` is set when both pass: the band
+// holds the exact first and the caller's test agreed (then `unique` stays false, unsought).
+// agree() may run on a band that is then not accepted.
+class TieBandTest {
+ public:
+  virtual bool agree(const TieBand& band, const FilterBounds& fb) = 0;
+  bool always = false;
+  bool accepted = false;
+
+ protected:
+  ~TieBandTest() = default;
+};
 
 // A benchmark baseline only, NOT definitions §8: the same kernel and pick on the pair as given,
 // with none of the certification (no power-of-two rescaling, no certify pass, no exact path;

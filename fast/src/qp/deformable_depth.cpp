@@ -321,6 +321,30 @@ bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const
   return ch.certified;
 }
 
+// pdd2_accel(A, B, 1) where the superset's choice is certified but its exact first unknown
+// (superset_depth.h's TieBand: the exact first is one of the band's candidates): every band
+// entry's case-2 value v_i with its interval [lo_i, hi_i] (value_bounds.h); the exact value,
+// some entry's, lies in [min lo_i, max hi_i], and so does the choice's computed value v_0. When
+// that interval passes certified_choice, v_0 meets definitions §8 (accel_over_ties' argument on
+// the candidate list). A translated copy's pairs: a face and its copy's, a rounding apart.
+class Accel1OverBand final : public TieBandTest {
+ public:
+  bool agree(const TieBand& band, const FilterBounds& fb) override {
+    double lo_min = kInf, hi_max = 0.0;
+    for (int i = 0; i < band.count; ++i) {
+      const Valued x = deformable_valued(band.entry[i], fb);
+      if (!(x.v > 0.0) || !(x.v < kInf)) return false;
+      const double lo = lower_of(x.v, x.r);
+      lo_min = std::min(lo_min, lo >= 0.0 ? lo : 0.0);
+      hi_max = std::max(hi_max, upper_of(x.v, x.r));
+      if (!certified_choice(hi_max, lo_min)) return false;
+      if (i == 0) value = x.v;
+    }
+    return band.count > 0;
+  }
+  double value = 0.0;  // the choice's case-2 value (entry 0)
+};
+
 }  // namespace
 
 double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate& c) {
@@ -368,7 +392,13 @@ bool value_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsign
 bool rigid_and_accel1(const TetVertices& As, const TetVertices& Bs, Choice& rigid, Candidate& c,
                       Choice& accel1) {
   bool unique = false;
-  if (!rigid_superset(As, Bs, rigid, &c, &unique)) return false;
+  Accel1OverBand band;
+  if (!rigid_superset(As, Bs, rigid, &c, &unique, &band)) return false;
+  if (band.accepted) {
+    accel1 = {band.value, -1, rigid.code};
+    accel1.certified = true;
+    return true;
+  }
   if (accel1_of_rigid(rigid, c, unique, filter_bounds(As, Bs), accel1)) return true;
   double v = 0;
   if (!unique || !accel1_compensated(As, Bs, c, v)) return false;
@@ -1378,7 +1408,13 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
           Choice rigid;
           Candidate c;
           double extent = 0;
-          if (!rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved)) return false;
+          Accel1OverBand band;
+          if (!rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved, &band)) return false;
+          if (band.accepted) {
+            ch = {band.value, -1, rigid.code};
+            ch.certified = true;
+            return true;
+          }
           if (accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch)) return true;
           if (!unique) return false;
           const detail::ScaledPair sp = detail::power_scaled(A, B);
