@@ -288,8 +288,9 @@ BOOST_AUTO_TEST_CASE(coincident_cells_name_the_exact_first_minimum) {
 // which `unique` accepts when they come after it, and entries a rounding away from it are
 // ordered in double words (compensated_depth); edge-pair picks are unique that way, with the
 // parallel pairs before them shown to point elsewhere (in doubles, else exactly). Both occur
-// and are counted. Measured: 2,465 unique picks, 1,283 of them tied, 856 edge pairs (770 and
-// 727 with the face ties alone; 300 and 264 with directions shown by structural zeros alone).
+// and are counted; so do unresolved edge pairs exactly parallel over the integer frame (no
+// facet), which the doubles could not show. Measured: 3,048 unique picks, 1,451 of them tied,
+// 1,270 edge pairs (2,465, 1,283 and 856 without that recheck).
 BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   std::size_t uniques = 0, tied = 0, edge_pairs = 0;
   for_each_scaled_pair(aligned_cases(), [&](const TetPair& p, const fast::detail::ScaledPair& sp) {
@@ -305,7 +306,7 @@ BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
   });
   BOOST_TEST_MESSAGE(uniques << " unique picks, " << tied << " of them tied exactly with later candidates, "
                              << edge_pairs << " edge pairs");
-  BOOST_TEST(uniques > 2200u);
+  BOOST_TEST(uniques > 2900u);
   BOOST_TEST(tied > 1000u);
   BOOST_TEST(edge_pairs > 700u);
 }

@@ -378,6 +378,97 @@ void kernel_pair(const SupersetLanes& K, TetVertices& A, TetVertices& B) {
     for (int k = 0; k < 3; ++k) A[v][k] = K.X[k][v], B[v][k] = K.X[k][4 + v];
 }
 
+// The list candidates of nearly parallel edge pairs (left out of S) against a bound: the
+// pair's normal n = eB × eA taken exactly (over the kernel pair's integer frame, else by
+// expansions) and rounded, each component within 3u of its exact value, its heights in doubles
+// with their own bounds (value_bounds.h's own_degree_bounds), as candidate_directions.cpp's
+// near_parallel_normal builds the list's candidate. above(): both orientations' certified
+// lower bounds of delta² exceed hi (whatever definitions §3's rule keeps, and so do the
+// pair's facets, which are along ±n); false where it cannot be shown (n exactly 0: the
+// common perpendicular of parallel edges is not bounded here; out of the expansions' range).
+// parallel(): n exactly 0 over the pair's integer frame (what exactly_parallel could not show
+// in doubles; false without a frame).
+class UnresolvedNormals {
+ public:
+  explicit UnresolvedNormals(const SupersetLanes& K) : K_(K), frame_(A_, B_) {
+    kernel_pair(K, A_, B_);
+    in_range_ = in_exact_range(A_, B_);
+  }
+  bool above(int a, int b, double hi) {
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+    double n[3];
+    bool parallel = false;
+    if (!in_range_ || !exact_normal(u, v, x, y, n, parallel)) return false;
+    double hA[4], hB[4];
+    for (int k = 0; k < 4; ++k) {
+      hA[k] = n[0] * (A_[k][0] - A_[u][0]) + n[1] * (A_[k][1] - A_[u][1]) + n[2] * (A_[k][2] - A_[u][2]);
+      hB[k] = n[0] * (B_[k][0] - A_[u][0]) + n[1] * (B_[k][1] - A_[u][1]) + n[2] * (B_[k][2] - A_[u][2]);
+    }
+    hA[u] = hA[v] = 0.0;  // exactly: n.eA = 0
+    hB[y] = hB[x];        // exactly: n.eB = 0
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const DegreeBounds own = own_degree_bounds(n, K_.extent);
+    double hiA = hA[0], loA = hA[0], hiB = hB[0], loB = hB[0];
+    for (int k = 1; k < 4; ++k) hiA = max2(hiA, hA[k]), loA = min2(loA, hA[k]), hiB = max2(hiB, hB[k]), loB = min2(loB, hB[k]);
+    // D(+n) = max hA − min hB, D(−n) = max hB − min hA (A below the plane along the direction)
+    for (const double D : {hiA - loB, hiB - loA})
+      if (!(lower_of(D * D / nn, rigid_root_rel(D, nn, own)) > hi)) return false;
+    return true;
+  }
+  bool parallel(int a, int b) {  // (over the integer frame only: a few instructions; else false)
+    if (!frame_.usable()) return false;
+    __int128 m[3];
+    frame_.normal(4 + kEdges[b][1], 4 + kEdges[b][0], kEdges[a][1], kEdges[a][0], m);
+    return m[0] == 0 && m[1] == 0 && m[2] == 0;
+  }
+
+ private:
+  // n = (r_y − r_x) × (s_v − s_u) exactly, rounded; false when exactly 0 (`parallel`) or out
+  // of capacity
+  bool exact_normal(int u, int v, int x, int y, double (&n)[3], bool& parallel) {
+    if (frame_.usable()) {
+      __int128 m[3];
+      frame_.normal(4 + y, 4 + x, v, u, m);
+      parallel = m[0] == 0 && m[1] == 0 && m[2] == 0;
+      if (parallel) return false;
+      for (int k = 0; k < 3; ++k) n[k] = std::ldexp(double(m[k]), 2 * frame_.unit_exponent());
+      return true;
+    }
+    const ExpVec e = detail::cross(difference(B_[y], B_[x]), difference(A_[v], A_[u]));
+    parallel = e.ok() && e.is_zero();
+    if (!e.ok() || parallel) return false;
+    for (int k = 0; k < 3; ++k) n[k] = e.x[k].approx();
+    return true;
+  }
+  const SupersetLanes& K_;
+  TetVertices A_, B_;
+  IntegerFrame frame_;
+  bool in_range_ = false;
+};
+
+// un with its pairs whose facets may reach hi_pick (lo2 <= hi_pick) looked at again: an edge
+// pair exactly parallel over the kernel pair's integer frame (what exactly_parallel could not
+// show in doubles; a grid of decimal cell and its copy) defines no facet, so its lo2 is +inf
+// (near_parallel_bound.h's contract). `un` itself where nothing changes, else `out`.
+const Unresolved& facets_rechecked(const SupersetLanes& K, const Unresolved& un, double hi_pick, Unresolved& out) {
+  if (un.extra_lo > hi_pick) return un;
+  std::optional<UnresolvedNormals> normals;
+  bool changed = false;
+  for (std::uint64_t bits = un.bits; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits);
+    if (un.lo2[lane] > hi_pick) continue;
+    if (!normals) normals.emplace(K);
+    if (!normals->parallel(lane / kLaneStride, lane % kLaneStride)) continue;
+    if (!changed) out = un, changed = true;
+    out.lo2[lane] = kInf;
+  }
+  if (!changed) return un;
+  out.extra_lo = kInf;
+  for (std::uint64_t bits = out.bits; bits; bits &= bits - 1) out.extra_lo = min2(out.extra_lo, out.lo2[__builtin_ctzll(bits)]);
+  return out;
+}
+
+
 // ---- `unique` through depths in double words. An entry a rounding away from the pick (a grid
 // against its copy shifted by a non-dyadic offset: faces and edges parallel up to the rounding
 // of the coordinates, delta² ~1e-16 apart relative) is neither certainly above it in the rounded
@@ -511,6 +602,19 @@ __attribute__((noinline)) Shared ties_share_direction(const SupersetLanes& K, co
 bool band_accepted(const SupersetLanes& K, const FilterBounds& fb, const Near& c, double hi_pick,
                    const Unresolved& un, TieBandTest& test);
 
+// `unique` for a certified pick that certify could not show alone: exact directions first
+// (structural zeros: cheap on aligned pairs), then the band (where given) where the rest needs
+// depth parts in double words, then those, with the unresolved pairs' facets rechecked for exact
+// parallelism. (Not inlined: off the hot path's frame.)
+__attribute__((noinline)) bool unique_after_ties(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
+                                                 double hi_pick, const Unresolved& un, TieBandTest* band) {
+  Shared s = band && band->always ? Shared::Undecided : ties_share_direction(K, fb, c, hi_pick, un, !band);
+  if (s != Shared::Undecided || (band->accepted = band_accepted(K, fb, c, hi_pick, un, *band)))
+    return s == Shared::Yes;
+  Unresolved rechecked;
+  return ties_share_direction(K, fb, c, hi_pick, facets_rechecked(K, un, hi_pick, rechecked), true) == Shared::Yes;
+}
+
 // The pick among the entries of K's tie band (face_bits, lane_bits) and its certificate
 // (K's bound bits, and un for entries outside them). `band`: asked where `unique` needs depth
 // parts in double words (superset_depth.h).
@@ -532,14 +636,7 @@ bool pick_and_certify(const SupersetLanes& K, const FilterBounds& fb, const Unre
   if (with_certificate) {
     double hi_pick = kInf;
     certify(K, fb, c, ch, unique, un.extra_lo, hi_pick);
-    if (unique && ch.certified && !*unique) {
-      // exact directions first (structural zeros: cheap on aligned pairs), then the band where
-      // the rest needs depth parts in double words, then those
-      Shared s = band && band->always ? Shared::Undecided : ties_share_direction(K, fb, c, hi_pick, un, !band);
-      if (s == Shared::Undecided && !(band->accepted = band_accepted(K, fb, c, hi_pick, un, *band)))
-        s = ties_share_direction(K, fb, c, hi_pick, un, true);
-      *unique = s == Shared::Yes;
-    }
+    if (unique && ch.certified && !*unique) *unique = unique_after_ties(K, fb, c, hi_pick, un, band);
   }
   if (!geometry) return true;
   if (c.lane >= 0)
@@ -599,62 +696,6 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
   }
   return true;
 }
-
-// The list candidates of nearly parallel edge pairs (left out of S) against a bound: the
-// pair's normal n = eB × eA taken exactly (over the kernel pair's integer frame, else by
-// expansions) and rounded, each component within 3u of its exact value, its heights in doubles
-// with their own bounds (value_bounds.h's own_degree_bounds), as candidate_directions.cpp's
-// near_parallel_normal builds the list's candidate. above(): both orientations' certified
-// lower bounds of delta² exceed hi (whatever definitions §3's rule keeps, and so do the
-// pair's facets, which are along ±n); false where it cannot be shown (n exactly 0: the
-// common perpendicular of parallel edges is not bounded here; out of the expansions' range).
-class UnresolvedNormals {
- public:
-  explicit UnresolvedNormals(const SupersetLanes& K) : K_(K), frame_(A_, B_) {
-    kernel_pair(K, A_, B_);
-    in_range_ = in_exact_range(A_, B_);
-  }
-  bool above(int a, int b, double hi) {
-    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
-    double n[3];
-    if (!in_range_ || !exact_normal(u, v, x, y, n)) return false;
-    double hA[4], hB[4];
-    for (int k = 0; k < 4; ++k) {
-      hA[k] = n[0] * (A_[k][0] - A_[u][0]) + n[1] * (A_[k][1] - A_[u][1]) + n[2] * (A_[k][2] - A_[u][2]);
-      hB[k] = n[0] * (B_[k][0] - A_[u][0]) + n[1] * (B_[k][1] - A_[u][1]) + n[2] * (B_[k][2] - A_[u][2]);
-    }
-    hA[u] = hA[v] = 0.0;  // exactly: n.eA = 0
-    hB[y] = hB[x];        // exactly: n.eB = 0
-    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const DegreeBounds own = own_degree_bounds(n, K_.extent);
-    double hiA = hA[0], loA = hA[0], hiB = hB[0], loB = hB[0];
-    for (int k = 1; k < 4; ++k) hiA = max2(hiA, hA[k]), loA = min2(loA, hA[k]), hiB = max2(hiB, hB[k]), loB = min2(loB, hB[k]);
-    // D(+n) = max hA − min hB, D(−n) = max hB − min hA (A below the plane along the direction)
-    for (const double D : {hiA - loB, hiB - loA})
-      if (!(lower_of(D * D / nn, rigid_root_rel(D, nn, own)) > hi)) return false;
-    return true;
-  }
-
- private:
-  // n = (r_y − r_x) × (s_v − s_u) exactly, rounded; false when exactly 0 or out of capacity
-  bool exact_normal(int u, int v, int x, int y, double (&n)[3]) {
-    if (frame_.usable()) {
-      __int128 m[3];
-      frame_.normal(4 + y, 4 + x, v, u, m);
-      if (m[0] == 0 && m[1] == 0 && m[2] == 0) return false;
-      for (int k = 0; k < 3; ++k) n[k] = std::ldexp(double(m[k]), 2 * frame_.unit_exponent());
-      return true;
-    }
-    const ExpVec e = detail::cross(difference(B_[y], B_[x]), difference(A_[v], A_[u]));
-    if (!e.ok() || e.is_zero()) return false;
-    for (int k = 0; k < 3; ++k) n[k] = e.x[k].approx();
-    return true;
-  }
-  const SupersetLanes& K_;
-  TetVertices A_, B_;
-  IntegerFrame frame_;
-  bool in_range_ = false;
-};
 
 // ---- The tie band (superset_depth.h's TieBand) of a certified pick c that is not `unique`, and
 // why it holds the exact first x* of the list (the first in canonical order among the
