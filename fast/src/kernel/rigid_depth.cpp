@@ -250,9 +250,10 @@ Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
       A, B,
       // rigid_superset on the rescaled pair, the run's first branch (superset_depth.h)
       [&A, &B, &superset_uncertified](Choice& ch, int& e) {
-        bool ran = false;
-        const bool done = rigid_superset_scaled(A, B, ch, e, nullptr, nullptr, nullptr, &ran);
+        bool ran = false, unresolved = false;
+        const bool done = rigid_superset_scaled(A, B, ch, e, nullptr, nullptr, nullptr, &ran, &unresolved);
         superset_uncertified = ran && !(done && ch.certified);
+        if (superset_uncertified) remember_uncertified_superset(A, B, unresolved);
         return done;
       },
       [&superset_uncertified](const TetVertices& As, const TetVertices& Bs, Choice& ch) {

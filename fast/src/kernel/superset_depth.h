@@ -51,6 +51,8 @@
 // ---- Cost. See src/kernel/superset_kernel.cpp for the flop count per pair (≈ 1900 flops, ≈ 115 ns).
 #pragma once
 
+#include <cstring>
+
 #include "kernel/candidate_directions.h"
 #include "kernel/rigid_depth.h"
 
@@ -123,6 +125,32 @@ class TieBandTest {
  protected:
   ~TieBandTest() = default;
 };
+
+// The last pair on this thread whose rigid_superset_scaled gave no certified choice (rigid_pd2
+// records it, with its `unresolved`), so that pdd2_accel(A, B, 1) right after rigid_pd2(A, B) on
+// the same pair, the depth stage's order, does not run the same kernel and choice again: the
+// same bits give the same outcome (the choice is certified or not whatever `geometry`,
+// `unique` and `band` ask). recall: true, with `unresolved`, when A and B are that pair bit for
+// bit.
+namespace detail {
+struct UncertifiedSuperset {
+  TetVertices A, B;
+  bool valid = false, unresolved = false;
+};
+inline thread_local UncertifiedSuperset last_uncertified_superset;
+}  // namespace detail
+inline void remember_uncertified_superset(const TetVertices& A, const TetVertices& B, bool unresolved) {
+  detail::UncertifiedSuperset& m = detail::last_uncertified_superset;
+  m.A = A, m.B = B, m.valid = true, m.unresolved = unresolved;
+}
+inline bool recall_uncertified_superset(const TetVertices& A, const TetVertices& B, bool& unresolved) {
+  const detail::UncertifiedSuperset& m = detail::last_uncertified_superset;
+  // (the first coordinate first: most calls meet another pair and stop there)
+  if (!m.valid || m.A[0][0] != A[0][0] || std::memcmp(&m.A, &A, sizeof A) != 0 || std::memcmp(&m.B, &B, sizeof B) != 0)
+    return false;
+  unresolved = m.unresolved;
+  return true;
+}
 
 // A benchmark baseline only, NOT definitions §8: the same kernel and pick on the pair as given,
 // with none of the certification (no power-of-two rescaling, no certify pass, no exact path;

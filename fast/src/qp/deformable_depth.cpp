@@ -1405,6 +1405,8 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
         // and, where the double heights cannot certify the value along the unique pick,
         // rigid_and_accel1's compensated value on the same rescaled pair (power_scaled's, 2^e)
         [&](Choice& ch, int& e) {
+          // rigid_pd2 just found no certified choice on this pair: the same run would not either
+          if (recall_uncertified_superset(A, B, unresolved)) return ran = true, false;
           Choice rigid;
           Candidate c;
           double extent = 0;
