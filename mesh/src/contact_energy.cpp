@@ -125,13 +125,61 @@ Eigen::Matrix<double, 8, 8> qs_kkt(const std::array<bool, 8>& active) {
   return Qs;
 }
 
+// The eight heights along u relative to A's first vertex, s_k = u.(p_k - A[0]): every value of
+// the header's "Hessian" is invariant under a common shift of the heights (Qs 1 = 0), and
+// heights of differences carry rounding relative to the pair's extent, not to its distance from
+// the origin.
 std::array<double, 8> projections(const TetVertices& A, const TetVertices& B, const Vec3d& u) {
+  auto height = [&](const Vec3d& p) {
+    return u[0] * (p[0] - A[0][0]) + u[1] * (p[1] - A[0][1]) + u[2] * (p[2] - A[0][2]);
+  };
   std::array<double, 8> s{};
   for (int i = 0; i < 4; ++i) {
-    s[i] = dot(u, A[i]);
-    s[4 + i] = dot(u, B[i]);
+    s[i] = height(A[i]);
+    s[4 + i] = height(B[i]);
   }
   return s;
+}
+
+// The active set of V_u at the heights s (header, "Hessian"): the piece whose KKT conditions
+// hold. With multipliers lambda (A's constraints) and mu (B's), stationarity gives t_A = -10
+// (lambda - sum lambda / 5) and t_B = 10 (mu - sum mu / 5): a free vertex of A moves by
+// 2 sum lambda, one of B by -2 sum mu. On S (d_k = c - s_k, D_g = sum over S_g of d_k,
+// alpha_g = 1 / (5 - n_g)) that is 2 sum lambda = -alpha_A D_A and 2 sum mu = alpha_B D_B, and
+// sum lambda = sum mu fixes c as piece_factors' comment has it. Then lambda_k >= 0 on S_A and
+// feasibility off it read as one threshold: s_k >= c + alpha_A D_A on S_A and s_i <= it off
+// S_A; for B, s_k <= c + alpha_B D_B on S_B and s_j >= it off S_B. So S_A is a top set of A's
+// heights and S_B a bottom set of B's: the sixteen pieces (n_A, n_B) are tried, each with its
+// largest violation of those inequalities (0 on the optimal piece, up to rounding), and the
+// least violated is S (the first of equals, n_A then n_B ascending). No tolerance: a vertex
+// off the plane at P by any fraction of a shallow contact's depth is off S (a tolerance
+// relative to the pair's extent would count it on the plane and give a neighbouring piece's
+// Hessian); within rounding of a kink of V_u either piece is a one-sided Hessian.
+std::array<bool, 8> fixed_plane_active_set(const std::array<double, 8>& s) {
+  int a[4] = {0, 1, 2, 3}, b[4] = {4, 5, 6, 7};  // A's by height descending, B's ascending
+  std::stable_sort(a, a + 4, [&s](int x, int y) { return s[x] > s[y]; });
+  std::stable_sort(b, b + 4, [&s](int x, int y) { return s[x] < s[y]; });
+  double best = std::numeric_limits<double>::infinity();
+  int best_a = 4, best_b = 4;
+  double sum_a = 0;
+  for (int na = 1; na <= 4; ++na) {
+    sum_a += s[a[na - 1]];
+    double sum_b = 0;
+    for (int nb = 1; nb <= 4; ++nb) {
+      sum_b += s[b[nb - 1]];
+      const double alpha_a = 1.0 / (5 - na), alpha_b = 1.0 / (5 - nb);
+      const double c = (alpha_a * sum_a + alpha_b * sum_b) / (alpha_a * na + alpha_b * nb);
+      const double top = c + alpha_a * (na * c - sum_a), bottom = c + alpha_b * (nb * c - sum_b);
+      double v = std::max(top - s[a[na - 1]], s[b[nb - 1]] - bottom);
+      if (na < 4) v = std::max(v, s[a[na]] - top);
+      if (nb < 4) v = std::max(v, bottom - s[b[nb]]);
+      if (v < best) best = v, best_a = na, best_b = nb;
+    }
+  }
+  std::array<bool, 8> active{};
+  for (int k = 0; k < best_a; ++k) active[a[k]] = true;
+  for (int k = 0; k < best_b; ++k) active[b[k]] = true;
+  return active;
 }
 
 Vec3d unit(const Vec3d& n) {
@@ -157,19 +205,7 @@ PairTerms plane_terms(const TetVertices& A, const TetVertices& B, const TetVerti
   object_norm_gradient(B, qB, t.gradient.data() + 4);
   const Vec3d u = unit(normal);
   t.unit_normal = u;
-  const std::array<double, 8> s = projections(A, B, u);
-  const std::array<double, 8> q = projections(qA, qB, u);
-  double cA = -std::numeric_limits<double>::infinity(), cB = std::numeric_limits<double>::infinity();
-  double lo = s[0], hi = s[0];
-  for (int i = 0; i < 8; ++i) {
-    lo = std::min(lo, s[i]);
-    hi = std::max(hi, s[i]);
-    if (i < 4) cA = std::max(cA, q[i]);
-    else cB = std::min(cB, q[i]);
-  }
-  const double c = (cA + cB) / 2;
-  const double tol = kActiveTolerance * (hi - lo);
-  for (int i = 0; i < 8; ++i) t.active[i] = i < 4 ? q[i] >= c - tol : q[i] <= c + tol;
+  t.active = fixed_plane_active_set(projections(A, B, u));
   return t;
 }
 

@@ -205,6 +205,97 @@ BOOST_AUTO_TEST_CASE(hessian_is_the_fixed_plane_second_derivative) {
   BOOST_TEST(checked > 0);
 }
 
+// A shallow pair (a block resting on a slab, 1e-6 of its size deep, Gmsh meshes at h = 0.1;
+// pdd2_global 7.1e-14): at its minimiser B's third vertex lies 1.23e-8 off the plane, 5% of the
+// depth and 6e-8 of the pair's extent along u. The Hessian is that of the piece at P: finite
+// differences of the fixed-plane gradient with h = 1e-10 (each vertex stays on its side of the
+// plane) equal Qs (x) u u^T. Tolerance: the gradients (~1e-8) carry rounding below 1e-16 x 0.4
+// (heights relative to A's first vertex: the extent, 0.4) times a few terms, so each quotient
+// is within ~1e-6 of its value; a neighbouring piece's entries differ by O(0.1).
+BOOST_AUTO_TEST_CASE(shallow_pair_hessian_is_the_piece_at_p) {
+  const TetVertices A = {{{0.04999999999999738, -0.27942286340599543, 0},
+                          {0.099999999999997952, -0.2505533082886211, -0.09999999999999945},
+                          {0.099999999999998868, -0.34641016151377613, 0},
+                          {0.099999999999999978, -0.39856406460551058, -0.1000000000000001}}};
+  const TetVertices B = {{{0.03019569671339031, -0.3044114612382397, -9.9999999999999995e-07},
+                          {0.10897367174764531, -0.29059056530802801, -9.9999999999999995e-07},
+                          {0.071645231802398998, -0.22338983520924044, -9.9999999999999995e-07},
+                          {0.045288219671967098, -0.26101927036160327, 0.099999000000000005}}};
+  const auto m = fast::global_minimiser(A, B);
+  BOOST_REQUIRE(m.has_value());
+  const Vec3d n = m->normal;
+  const PairTerms t = pair_terms(A, B, m->q1_A, m->q1_B, n);
+  BOOST_TEST(!t.active[6]);  // B's third vertex: off the plane
+  const double h = 1e-10;
+  for (int j = 0; j < 8; ++j)
+    for (int b = 0; b < 3; ++b) {
+      TetVertices Ap = A, Am = A, Bp = B, Bm = B;
+      (j < 4 ? Ap[j] : Bp[j - 4])[b] += h;
+      (j < 4 ? Am[j] : Bm[j - 4])[b] -= h;
+      const FixedPlane fp = fixed_plane(Ap, Bp, n), fm = fixed_plane(Am, Bm, n);
+      for (int i = 0; i < 8; ++i)
+        for (int a = 0; a < 3; ++a) {
+          const double fd = (fp.gradient[i][a] - fm.gradient[i][a]) / (2 * h);
+          const double hess = t.qs[i][j] * t.unit_normal[a] * t.unit_normal[b];
+          BOOST_TEST(std::abs(fd - hess) <= 1e-4, "entry " << 3 * i + a << "," << 3 * j + b);
+        }
+    }
+}
+
+// The Hessian's active set is the fixed-plane QP's optimum: on random pairs and normals, with
+// overlaps along u from 1e-1 to 1e-9 of the extent, Qs s (x) u (pair_terms, the sixteen pieces'
+// KKT test) equals the gradient of fixed_plane (every one of the 255 active sets solved and the
+// feasible one of least value kept). Tolerance: each gradient is a sum of eight products of
+// entries of Qs (|Qs_ik| <= 1/5) and heights (|s_k| <= smax) that cancels down to ~ depth / 10,
+// rounded in both routes (fixed_plane's through an LU solve of a well-conditioned 9 + |S|
+// system): within 1e-13 smax of each other, while a neighbouring piece's differs by ~ depth /
+// 10 >= 1e-10 smax here (random heights lie within rounding of a kink only by chance: none
+// does in these draws).
+BOOST_AUTO_TEST_CASE(active_set_is_the_fixed_plane_optimum) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    TetVertices A, B;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) A[i][k] = U(rng), B[i][k] = U(rng);
+    Vec3d u{U(rng), U(rng), U(rng)};
+    const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (double& x : u) x /= l;
+    // B moved along u so that A's top and B's bottom overlap by `depth` along u
+    double topA = -1e300, botB = 1e300;
+    for (int i = 0; i < 4; ++i) {
+      topA = std::max(topA, u[0] * A[i][0] + u[1] * A[i][1] + u[2] * A[i][2]);
+      botB = std::min(botB, u[0] * B[i][0] + u[1] * B[i][1] + u[2] * B[i][2]);
+    }
+    const double depth = std::pow(10.0, -1 - trial % 9);
+    const double shift = topA - depth - botB;
+    for (auto& p : B)
+      for (int k = 0; k < 3; ++k) p[k] += shift * u[k];
+    const PairTerms t = pair_terms(A, B, A, B, u);
+    const FixedPlane f = fixed_plane(A, B, u);
+    std::array<double, 8> s{};
+    for (int i = 0; i < 8; ++i) {
+      const Vec3d& p = i < 4 ? A[i] : B[i - 4];
+      s[i] = u[0] * (p[0] - A[0][0]) + u[1] * (p[1] - A[0][1]) + u[2] * (p[2] - A[0][2]);
+    }
+    double smax = 0, scale = 0, diff = 0;
+    for (double x : s) smax = std::max(smax, std::abs(x));
+    for (int i = 0; i < 8; ++i) {
+      double g = 0;
+      for (int k = 0; k < 8; ++k) g += t.qs[i][k] * s[k];
+      for (int a = 0; a < 3; ++a) {
+        scale = std::max(scale, std::abs(f.gradient[i][a]));
+        diff = std::max(diff, std::abs(g * u[a] - f.gradient[i][a]));
+      }
+    }
+    BOOST_TEST(diff <= 1e-13 * smax, "trial " << trial << " depth " << depth);
+    BOOST_TEST(scale >= 1e-3 * depth);  // (the gradient, ~ depth / 10: far above the tolerance)
+    ++checked;
+  }
+  BOOST_TEST(checked == 400);
+}
+
 // The majorizer: with the normal held at P's minimiser, V_u(P + W) >= pdd2_global(P + W) for
 // random W (pdd2_global is the minimum over normals; tolerance: both values to 1e-9 relative),
 // and equal at P (previous test).

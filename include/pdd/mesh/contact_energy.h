@@ -67,12 +67,16 @@
 // positive semi-definite, and its gradient Qs s (x) u equals the gradient above on the piece.
 // Summed with the weights over all pairs into one sparse 3n x 3n matrix (row 3v + k). It omits
 // the curvature of the normal's motion (pdd2_global is semiconcave: that part is concave), so it
-// is the Hessian of the majorizer: V_u(s(P')) >= pdd2_global(P') for every P' (pdd2_global is the
-// minimum over normals), with equality at P. A step that lowers sum w V_u lowers E
-// (majorization–minimization). The active set is read from the engine's positions: a vertex is
-// on the plane when its distance to it is <= kActiveTolerance times the pair's extent along u
-// (the positions attain the value to 2e-9 relative: definitions §8; vertices off the plane by less
-// are at a kink of V_u, where either piece is a one-sided Hessian).
+// is the Hessian of a majorizer: V_u(s(P')) >= pdd2_global(P') for every P' (pdd2_global is the
+// minimum over normals), with equality at P. Per pair only: M(P') = sum over the pairs
+// intersecting at P of w V_u(s(P')) majorizes those pairs' share of E, not E itself, whose sum
+// also takes the pairs that begin to intersect at P' (a ball sliding 0.03 of its radius on a
+// block: M(P') = 2.69e-9 below E(P) = 3.38e-9, while E(P') = 3.63e-9). A step that lowers M
+// lowers E when it creates no new intersecting pair; a line search on E itself (as
+// examples/soft_body.py does) makes no such assumption. The active set S is V_u's at s(P),
+// from the heights alone (fixed_plane_active_set in contact_energy.cpp: the piece whose KKT
+// conditions hold, with no tolerance); where s(P) lies within rounding of a kink of V_u, either
+// piece is a one-sided Hessian.
 //
 // Engine. Fast (default): the intersecting pairs of mesh contacts (no variant), then per pair
 // pdd::fast::global_minimiser (pdd/global_minimiser.h: solve_pair's definitions §9 value,
@@ -152,10 +156,6 @@ ContactEnergy contact_energy_self(const Mesh& A, const std::vector<Vec3d>& pa,
 
 // ---------------------------------------------------------------------------------------------
 // Building blocks (one pair; for tests and for callers with their own pair lists).
-
-// Distance to the plane, relative to the pair's extent along u, below which a vertex counts as
-// on the plane (see "Hessian").
-inline constexpr double kActiveTolerance = 1e-7;
 
 // One pair's terms at positions P = (A's s0..s3, B's r0..r3), from its global minimiser
 // Q = (q1_A_global, q1_B_global) and normal (any length, A -> B).
