@@ -158,7 +158,9 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
 
 // --energy: the contact energy (definitions §12) at the meshes' positions, one JSON object:
 // energy, pairs, max_pdd2_global, max_force (largest |dE/dp| over the vertices), max_force_vertex
-// (its index, A's vertices first), seconds (docs/definitions.md "Contact energy").
+// (its index, A's vertices first), skipped (the elements left out, as pdd.contact_energy's),
+// seconds (docs/definitions.md "Contact energy"). Exit status as without --energy: 1 when an
+// element was skipped.
 int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
   mesh::ContactEnergyOptions o;
   o.engine = args.engine == "fast" ? mesh::EnergyEngine::Fast : mesh::EnergyEngine::Exact;
@@ -174,8 +176,13 @@ int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
   }
   Json j = {{"energy", e.energy}, {"pairs", e.pair_count}, {"max_pdd2_global", e.max_pdd2_global},
             {"max_force", max_force}, {"max_force_vertex", e.pair_count ? Json(at) : Json(nullptr)},
-            {"seconds", since(t0)}};
-  for (const auto& s : e.skipped) std::cerr << "pdd mesh: skipped: " << s.reason << '\n';
+            {"skipped", Json::array()}, {"seconds", since(t0)}};
+  int status = kExitOk;
+  for (const auto& s : e.skipped) {
+    j["skipped"].push_back({{"mesh", std::string(1, s.mesh)}, {"index", s.index}, {"reason", s.reason}});
+    std::cerr << "pdd mesh: skipped " << s.reason << '\n';
+    status = kExitPairRejected;
+  }
   if (args.output.empty()) {
     std::cout << j.dump() << '\n';
   } else {
@@ -186,7 +193,7 @@ int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
       return kExitFileError;
     }
   }
-  return 0;
+  return status;
 }
 
 int run_mesh(const MeshArgs& args) {
@@ -224,7 +231,8 @@ int run_mesh(const MeshArgs& args) {
   const bool fast = args.engine == "fast";
   std::cerr << "pdd mesh: A " << tetrahedra(A.tets.size());
   if (!args.self) std::cerr << ", B " << tetrahedra(B.tets.size());
-  std::cerr << ", " << (fast ? "fast" : "reference") << " engine, variants " << mesh::variant_names(variants) << '\n';
+  std::cerr << ", " << (fast ? "fast" : "reference") << " engine, "
+            << (args.energy ? std::string("contact energy") : "variants " + mesh::variant_names(variants)) << '\n';
 
   if (args.energy) return run_energy(args, A, args.self ? nullptr : &B);
 

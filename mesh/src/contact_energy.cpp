@@ -37,16 +37,31 @@ double seconds_since(Clock::time_point t0) {
 
 double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// |det| / 6 of tetrahedron i of m at its `vertices` (the rest volume).
-double rest_volume(const Mesh& m, std::size_t i) {
+// The cube root of tetrahedron i's rest volume, (|det| / 6)^(1/3) of m's `vertices`, at any
+// scale: the edge vectors are first scaled exactly by 2^-k, 2^k the binade above their largest
+// component, so the determinant (a degree-3 product) neither overflows nor underflows where the
+// root itself is a normal double, and the root is scaled back by 2^k. (The weight is the product
+// of two roots: (V_a V_b)^(1/3) formed directly overflows for elements larger than ~1e51 and
+// underflows below ~1e-51, where E and the weight themselves are ordinary doubles.) 0: flat; not
+// finite: a coordinate or an edge vector is not.
+double rest_volume_root(const Mesh& m, std::size_t i) {
   const TetVertices t = element(m, i);
-  double e[3][3];
+  double e[3][3], big = 0;
   for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) e[k][c] = t[k + 1][c] - t[0][c];
+    for (int c = 0; c < 3; ++c) {
+      e[k][c] = t[k + 1][c] - t[0][c];
+      big = std::max(big, std::abs(e[k][c]));
+    }
+  if (!std::isfinite(big)) return std::numeric_limits<double>::infinity();
+  if (big == 0) return 0;
+  int k = 0;
+  std::frexp(big, &k);  // big in [2^(k-1), 2^k)
+  for (auto& row : e)
+    for (double& x : row) x = std::ldexp(x, -k);
   const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
                      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-  return std::abs(det) / 6;
+  return std::ldexp(std::cbrt(std::abs(det) / 6), k);
 }
 
 // The header's Qs in closed form. On an active set S = (S_A, S_B) with n_g = |S_g| (g = A, B),
@@ -528,15 +543,15 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   const std::size_t n = nA + (B ? B->vertices.size() : 0);
   const std::size_t offset_b = B ? nA : 0;
 
-  // Weights from the rest volumes (each pair's two, in parallel); an element flat at rest has
-  // no weight: listed once (per side, in pair order), its pairs left out.
-  std::vector<std::array<double, 2>> volume(sol.size());
+  // Weights from the rest volumes' cube roots (each pair's two, in parallel); an element flat at
+  // rest has no weight: listed once (per side, in pair order), its pairs left out.
+  std::vector<std::array<double, 2>> volume(sol.size());  // the two cube roots
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j)
-      volume[j] = {rest_volume(A, sol[j].a), rest_volume(Bm, sol[j].b)};
+      volume[j] = {rest_volume_root(A, sol[j].a), rest_volume_root(Bm, sol[j].b)};
   });
   // No weight: flat at rest, or a rest volume that is not finite (a non-finite rest coordinate,
-  // or one whose products overflow).
+  // or an edge vector that overflows).
   const auto unweighted = [](double w) { return w == 0 || !std::isfinite(w); };
   std::unordered_set<std::size_t> listed[2];  // the elements listed, per side (rare)
   auto list_unweighted = [&](double w, int side, const Mesh& rest, std::size_t i, char which) {
@@ -545,7 +560,7 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
     std::string why = element_i + " is flat at rest (volume 0): it has no contact weight";
     if (!std::isfinite(w)) {
       const auto problem = element_problem(rest, i, which);
-      why = (problem ? *problem + " at rest" : element_i + ": its rest volume is not finite") +
+      why = (problem ? *problem + " at rest" : element_i + ": an edge at rest exceeds the double range") +
             ": it has no contact weight";
     }
     e.skipped.push_back({which, i, why});
@@ -577,7 +592,7 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
         const auto& s = sol[j];
         PairShare& p = shares.construct(j);
         p.v = vertices(j);
-        p.w = o.weight == EnergyWeight::Unit ? 1.0 : std::cbrt(volume[j][0] * volume[j][1]);
+        p.w = o.weight == EnergyWeight::Unit ? 1.0 : volume[j][0] * volume[j][1];
         const PairTerms t = plane_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
         p.gradient = t.gradient;
         p.u = t.unit_normal;
@@ -599,6 +614,12 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
     e.max_pdd2_global = std::max(e.max_pdd2_global, s.value);
     if (o.per_pair) e.pairs.push_back({s.a, s.b, shares[j].w, s.value, shares[j].w * s.value});
   }
+  // Every weight and value is a normal double (or 0); their sum E ~ L^4 leaves the double range
+  // for coordinates beyond ~1e77, where no double can report it.
+  if (!std::isfinite(e.energy))
+    throw std::overflow_error("contact_energy: the energy exceeds the double range (" + std::to_string(sol.size()) +
+                              " pairs, largest pdd2_global " + std::to_string(e.max_pdd2_global) +
+                              "): scale the positions down");
   e.gradient.assign(n, Vec3d{0, 0, 0});
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t x = r.begin(); x != r.end(); ++x)

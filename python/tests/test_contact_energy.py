@@ -1,6 +1,7 @@
 """pdd.contact_energy (docs/definitions.md "Contact energy"): the dict, the gradient against
 central differences of E, the Hessian symmetric and positive semi-definite, the per-pair terms
 against pdd.mesh_contacts, the exact engine against the fast one, self-contact, bad input."""
+import json
 import os
 
 import numpy as np
@@ -124,8 +125,8 @@ def test_self_contact_and_errors():
 
 def test_elements_without_a_rest_weight_are_skipped_and_named():
     """An element whose rest shape has no finite volume (a non-finite rest coordinate, or one
-    whose products overflow) gets no weight, as a flat one: skipped with the reason, its pairs
-    left out, the energy finite. B's element 1 uses vertex 4; element 0 does not."""
+    whose edge vectors overflow) gets no weight, as a flat one: skipped with the reason, its
+    pairs left out, the energy finite. B's element 1 uses vertex 4; element 0 does not."""
     V = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4], [1, 1, 1]], dtype=float)
     T = np.array([[0, 1, 2, 3], [0, 1, 2, 4]])
     P = V + 0.5
@@ -140,15 +141,21 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     # the same pairs of element 0, with the same weights: the same energy, term by term
     keep = whole["b"] == 0
     assert list(e["pair_energy"]) == list(whole["pair_energy"][keep])
-    huge = pdd.contact_energy(V, T, P, T, rest_B=P * 1e300)  # volumes overflow to inf
+    # rest volumes ~1e900 (not doubles) whose cube roots are: the weights (V_a V_b)^(1/3) ~1e300
+    # and the energy are ordinary doubles, the same pairs as at rest
+    big = pdd.contact_energy(V, T, P, T, rest_B=P * 1e300, per_pair=True)
+    assert big["skipped"] == [] and list(big["b"]) == list(whole["b"])
+    assert np.allclose(big["weight"], whole["weight"] * 1e300, rtol=1e-14)
+    assert np.isfinite(big["energy"]) and big["energy"] == pytest.approx(whole["energy"] * 1e300, rel=1e-14)
+    huge = pdd.contact_energy(V, T, P, T, rest_B=(P - 2.5) * 8e307)  # coordinates within +-1.6e308, edges not
     assert huge["pairs"] == 0 and huge["energy"] == 0
     assert [s[2] for s in huge["skipped"]] == [
-        f"element {i} of mesh B: its rest volume is not finite: it has no contact weight" for i in (0, 1)]
+        f"element {i} of mesh B: an edge at rest exceeds the double range: it has no contact weight" for i in (0, 1)]
 
 
 # ---- `pdd mesh --energy` (docs/definitions.md "Contact energy": its keys) ------------------
 
-ENERGY_KEYS = {"energy", "pairs", "max_pdd2_global", "max_force", "max_force_vertex", "seconds"}
+ENERGY_KEYS = {"energy", "pairs", "max_pdd2_global", "max_force", "max_force_vertex", "skipped", "seconds"}
 
 
 def write_vtk(path, V, T):
@@ -186,6 +193,8 @@ def check_cli_energy(out, e):
     forces = np.sqrt((e["gradient"] ** 2).sum(axis=1))
     assert j["max_force"] == pytest.approx(forces.max(), rel=1e-15)
     assert j["max_force_vertex"] == int(np.argmax(forces))
+    # (the tool names a vertex by its line in the file, the module by its row)
+    assert [(k["mesh"], k["index"]) for k in j["skipped"]] == [(m, i) for m, i, _ in e["skipped"]]
     assert j["seconds"] >= 0
 
 
@@ -247,3 +256,15 @@ def test_cli_energy_exit_codes(tmp_path):
     # an unwritable --output: exit 2
     r = run_cli("--a", a, "--self", "--energy", "--quiet", "--output", str(tmp_path / "no" / "dir" / "e.json"))
     assert r.returncode == 2 and "cannot write" in r.stderr
+    # a vertex that is not finite: its elements skipped and named (standard error and the
+    # object's `skipped`), the energy of the rest, exit 1 (as `pdd mesh` without --energy)
+    b = str(tmp_path / "b.vtk")
+    VBn = VB.copy()
+    VBn[0] = [np.nan, 0.0, 0.0]
+    write_vtk(b, VBn, TB)
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet")
+    assert r.returncode == 1, r.stderr
+    e = pdd.contact_energy(VA, TA, VBn, TB)
+    assert e["skipped"] and all(s[0] == "B" for s in e["skipped"])
+    check_cli_energy(r.stdout, e)
+    assert all(("pdd mesh: skipped " + k["reason"]) in r.stderr for k in json.loads(r.stdout)["skipped"])

@@ -357,6 +357,34 @@ BOOST_AUTO_TEST_CASE(self_contact_of_two_bodies_equals_two_meshes) {
   BOOST_TEST(e.pair_count == contacts_self(m, co).pairs.size());
 }
 
+// Scale: E ~ L^4 (pdd2_global ~ L^2, the weight ~ L^2), so scaling every coordinate by a power
+// of two 2^k multiplies E by exactly 2^4k up to the engine's own accuracy (definitions §8: 1e-9
+// per value). At 2^180 (~1.5e54) and 2^-180 the rest volumes themselves (~L^3: 1e163 x 1e163 as
+// a product, 1e-163 x 1e-163) leave the double range, the weights and E do not; at 2^260
+// (~1.9e78) E ~ 1e313 does not either: std::overflow_error, no inf.
+BOOST_AUTO_TEST_CASE(energy_at_extreme_scales) {
+  const Scene s = tiny();
+  const double E0 = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices).energy;
+  BOOST_REQUIRE(E0 > 0);
+  auto scaled = [&](int k) {
+    Scene t = s;
+    for (Mesh* m : {&t.A, &t.B})
+      for (Vec3d& v : m->vertices)
+        for (double& x : v) x = std::ldexp(x, k);
+    return t;
+  };
+  for (int k : {180, -180}) {
+    const Scene t = scaled(k);
+    const ContactEnergy e = contact_energy(t.A, t.B, t.A.vertices, t.B.vertices);
+    BOOST_TEST(e.skipped.empty());
+    BOOST_TEST(std::ldexp(e.energy, -4 * k) == E0, boost::test_tools::tolerance(1e-9));
+    for (const Vec3d& g : e.gradient)
+      for (double x : g) BOOST_TEST(std::isfinite(x));
+  }
+  const Scene t = scaled(260);
+  BOOST_CHECK_THROW(contact_energy(t.A, t.B, t.A.vertices, t.B.vertices), std::overflow_error);
+}
+
 BOOST_AUTO_TEST_CASE(positions_must_match_the_mesh) {
   const Scene s = tiny();
   std::vector<Vec3d> pa = s.A.vertices;
