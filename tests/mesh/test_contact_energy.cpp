@@ -60,6 +60,25 @@ double max_abs(const std::vector<Vec3d>& g) {
   return m;
 }
 
+// Central differences (step h) of fixed_plane's gradient, with the normal n held, against the
+// pair's Hessian Qs (x) u u^T, entry by entry within tol.
+void check_hessian_by_differences(const TetVertices& A, const TetVertices& B, const Vec3d& n, const PairTerms& t,
+                                  double h, double tol) {
+  for (int j = 0; j < 8; ++j)
+    for (int b = 0; b < 3; ++b) {
+      TetVertices Ap = A, Am = A, Bp = B, Bm = B;
+      (j < 4 ? Ap[j] : Bp[j - 4])[b] += h;
+      (j < 4 ? Am[j] : Bm[j - 4])[b] -= h;
+      const FixedPlane fp = fixed_plane(Ap, Bp, n), fm = fixed_plane(Am, Bm, n);
+      for (int i = 0; i < 8; ++i)
+        for (int a = 0; a < 3; ++a) {
+          const double fd = (fp.gradient[i][a] - fm.gradient[i][a]) / (2 * h);
+          const double hess = t.qs[i][j] * t.unit_normal[a] * t.unit_normal[b];
+          BOOST_TEST(std::abs(fd - hess) <= tol, "entry " << 3 * i + a << "," << 3 * j + b);
+        }
+    }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(energy_is_the_weighted_sum_of_the_pairs) {
@@ -186,20 +205,7 @@ BOOST_AUTO_TEST_CASE(hessian_is_the_fixed_plane_second_derivative) {
     for (int i = 0; i < 8; ++i)
       for (int a = 0; a < 3; ++a)
         BOOST_TEST(std::abs(f.gradient[i][a] - t.gradient[i][a]) <= 1e-6 * gscale);
-    const double h = 1e-7;
-    for (int j = 0; j < 8; ++j)
-      for (int b = 0; b < 3; ++b) {
-        TetVertices Ap = A, Am = A, Bp = B, Bm = B;
-        (j < 4 ? Ap[j] : Bp[j - 4])[b] += h;
-        (j < 4 ? Am[j] : Bm[j - 4])[b] -= h;
-        const FixedPlane fp = fixed_plane(Ap, Bp, n), fm = fixed_plane(Am, Bm, n);
-        for (int i = 0; i < 8; ++i)
-          for (int a = 0; a < 3; ++a) {
-            const double fd = (fp.gradient[i][a] - fm.gradient[i][a]) / (2 * h);
-            const double hess = t.qs[i][j] * t.unit_normal[a] * t.unit_normal[b];
-            BOOST_TEST(std::abs(fd - hess) <= 1e-6, "pair " << k.a << "," << k.b);
-          }
-      }
+    BOOST_TEST_CONTEXT("pair " << k.a << "," << k.b) { check_hessian_by_differences(A, B, n, t, 1e-7, 1e-6); }
     ++checked;
   }
   BOOST_TEST(checked > 0);
@@ -226,20 +232,7 @@ BOOST_AUTO_TEST_CASE(shallow_pair_hessian_is_the_piece_at_p) {
   const Vec3d n = m->normal;
   const PairTerms t = pair_terms(A, B, m->q1_A, m->q1_B, n);
   BOOST_TEST(!t.active[6]);  // B's third vertex: off the plane
-  const double h = 1e-10;
-  for (int j = 0; j < 8; ++j)
-    for (int b = 0; b < 3; ++b) {
-      TetVertices Ap = A, Am = A, Bp = B, Bm = B;
-      (j < 4 ? Ap[j] : Bp[j - 4])[b] += h;
-      (j < 4 ? Am[j] : Bm[j - 4])[b] -= h;
-      const FixedPlane fp = fixed_plane(Ap, Bp, n), fm = fixed_plane(Am, Bm, n);
-      for (int i = 0; i < 8; ++i)
-        for (int a = 0; a < 3; ++a) {
-          const double fd = (fp.gradient[i][a] - fm.gradient[i][a]) / (2 * h);
-          const double hess = t.qs[i][j] * t.unit_normal[a] * t.unit_normal[b];
-          BOOST_TEST(std::abs(fd - hess) <= 1e-4, "entry " << 3 * i + a << "," << 3 * j + b);
-        }
-    }
+  check_hessian_by_differences(A, B, n, t, 1e-10, 1e-4);
 }
 
 // The Hessian's active set is the fixed-plane QP's optimum: on random pairs and normals, with
