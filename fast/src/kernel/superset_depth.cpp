@@ -809,19 +809,21 @@ __attribute__((noinline)) bool band_accepted(const SupersetLanes& K, const Filte
 // has A's off-edge heights <= 0 along itself, so the rule never discards it.) A face pick
 // (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
 // pair that precedes its lane may point its way (unresolved_off_pick): then `unique` is false.
-bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved, Choice& ch,
-                               Candidate* geometry, bool* unique, TieBandTest* band) {
+// un: the bounds of the lanes in un.bits (near_parallel_bound), kept for a second call with
+// more lanes; `unresolved` a superset of un.bits.
+bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved, Unresolved& un,
+                               Choice& ch, Candidate* geometry, bool* unique, TieBandTest* band) {
   if (!unresolved) return false;
-  Unresolved un;
-  un.bits = unresolved;
-  for (std::uint64_t bits = unresolved; bits; bits &= bits - 1) {
+  // the lanes left first (vectorised, cheap): their least depth must clear E3
+  if (!drop_edge_pairs(K, fb, unresolved)) return false;
+  for (std::uint64_t bits = unresolved & ~un.bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits);
     double& lo2 = un.lo2[lane];
     if (!near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2)) return false;
     un.extra_lo = min2(un.extra_lo, lo2);
+    un.bits |= std::uint64_t{1} << lane;
   }
   if (!(un.extra_lo > 0.0)) return false;
-  if (!drop_edge_pairs(K, fb, unresolved)) return false;
   Choice c;
   Candidate g;
   bool u = false;
@@ -836,6 +838,30 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::ui
   if (geometry) *geometry = g;
   if (unique) *unique = u;
   return true;
+}
+
+// The edge pairs (bit 8a + b) whose own bounds are too loose to certify a tie: in either
+// orientation the root's relative bound (rigid_root_rel, as certify_pass takes it) exceeds
+// kLooseRel, or the depth is not certainly positive. Nearly parallel edges whose n clears E2 but
+// is short (|n| ~ 1e-13 L²: a depth ~ |n| times the overlap, a few E3) are of this kind; stacked
+// blocks are full of them (edges parallel up to the rounding of a shift), each an exact tie of
+// the pick whose loose bound refuses the certificate. Taken as unresolved they are bounded by
+// near_parallel_bound instead, whose argument uses no n (its bound holds for every edge pair),
+// and the exact n of such a pair (within E2 of the computed one, ⊥ eA) is one of the
+// directions an unresolved pair is allowed to have. kLooseRel: a tie certifies only when each
+// bound is within ~5e-10 of its value (certified_choice: 1e-9 between the pick's upper and the
+// others' lower bounds).
+constexpr double kLooseRel = 1e-10;
+std::uint64_t loose_edge_pairs(const SupersetLanes& K, const FilterBounds& fb) {
+  const DegreeBounds db = degree_bounds(fb, false);
+  std::uint64_t mask = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const double inv = K.inv[a][b], d = min2(K.dp[a][b], K.dm[a][b]);
+      if (!(d > fb.deg3) || !(rigid_root_rel(d, 1.0 / inv, db) <= kLooseRel))
+        mask |= std::uint64_t{1} << (kLaneStride * a + b);
+    }
+  return mask;
 }
 
 // The choice from the kernel's lanes K (K is changed where unresolved edge pairs are dropped).
@@ -854,7 +880,13 @@ bool choice_of_lanes(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* un
   if (!unresolved && !with_certificate) return chosen;
   const std::uint64_t un = unresolved_edge_pairs(K, fb);
   if (unresolved) *unresolved = un != 0;
-  if (with_certificate && choice_without_unresolved(K, fb, un, ch, geometry, unique, band)) return true;
+  if (!with_certificate) return chosen;
+  Unresolved bounds;  // (lo2 filled lane by lane: no value-initialisation)
+  if (choice_without_unresolved(K, fb, un, bounds, ch, geometry, unique, band)) return true;
+  // then without the edge pairs whose own bounds are loose as well (loose_edge_pairs): only
+  // where the first attempt failed, which keeps every choice it makes
+  const std::uint64_t loose = loose_edge_pairs(K, fb) & ~un;
+  if (loose && choice_without_unresolved(K, fb, un | loose, bounds, ch, geometry, unique, band)) return true;
   return chosen;
 }
 
