@@ -5,9 +5,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include "certification/certify.h"
 #include "certification/tie_tolerance.h"
+#include "exact/exact_path.h"
+#include "exact/exact_predicates.h"
 #include "fast_test_util.h"
 #include "kernel/candidate_directions.h"
+#include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
 #include "pdd/pdd.h"
 
@@ -108,4 +112,57 @@ BOOST_AUTO_TEST_CASE(gap_of_1e_11_is_not_a_tie) {
   BOOST_TEST(rigid_pd2_choice(p.A, p.B).label() == DirectionLabel::vf(3));
   BOOST_TEST(rigid_pd2_choice(p.A, p.B).value == vf);
   BOOST_TEST(*solve_pair(p).rigid_dir == DirectionLabel::vf(3));
+}
+
+// Blocks resting on each other 1e-9 deep, as `pdd mesh` meets them (element pairs of Gmsh
+// transfinite plates, transfinite boxes and unstructured boxes, B moved up by the blocks'
+// height less 1e-9): every candidate that can still be the rigid minimum is A's top face, B's
+// bottom face or an edge pair lying in the resting plane z = const, all along +z, so their
+// exact delta² are one value and the first of them in canonical order is the exact minimum's
+// label. The structural test (certify.h's one_axis_direction) shows it without expansions: it
+// must agree with the exact test (same_direction_exact) on every candidate along z, and refuse
+// candidates of another direction; rigid_pd2 then certifies its choice as the exact first
+// (what pdd2_accel1 takes), with the exact path's label and value (definitions §8).
+BOOST_AUTO_TEST_CASE(resting_contacts_tie_along_one_axis) {
+  const std::pair<TetVertices, TetVertices> pairs[] = {
+      {TetVertices{{{0.03333333333326933, 0.0, 0.1}, {0.0, 0.0, 0.1}, {0.0, 0.03333333333347199, 0.1}, {0.03333333333326933, 0.0, 0.06666666666666667}}},
+       TetVertices{{{0.012333333333333333, 0.006999999999999999, 0.099999999}, {0.045666666666602664, 0.006999999999999999, 0.099999999}, {0.012333333333333333, 0.04033333333347199, 0.099999999}, {0.012333333333333333, 0.04033333333347199, 0.13333333233333333}}}},
+      {TetVertices{{{0.09999999999981414, 0.0, 0.5}, {0.0, 0.0, 0.5}, {0.0, 0.1000000000004162, 0.5}, {0.09999999999981414, 0.0, 0.4}}},
+       TetVertices{{{0.037, 0.021, 0.499999999}, {0.13699999999981413, 0.021, 0.499999999}, {0.037, 0.1210000000004162, 0.499999999}, {0.037, 0.1210000000004162, 0.599999999}}}},
+      {TetVertices{{{0.4620521328144115, 0.2003573719672778, 0.5}, {0.5197124346345628, 0.2336396521624281, 0.5}, {0.5205495546830375, 0.1685045796412356, 0.5}, {0.5099002544735984, 0.2123673020763618, 0.3756176197465442}}},
+       TetVertices{{{0.4587401997669926, 0.1559086873115354, 0.499999999}, {0.5096877871109982, 0.13091310271246, 0.499999999}, {0.5163236381787243, 0.1895045796412355, 0.499999999}, {0.4732523597702786, 0.2071978808784119, 0.5828749703456607}}}},
+  };
+  for (const auto& [A, B] : pairs) {
+    const detail::ScaledPair sp = detail::power_scaled(A, B);
+    CandidateSet set;
+    BOOST_REQUIRE((build_candidates(sp.A, sp.B, set) == BuildStatus::Ok));
+    BOOST_REQUIRE(set.intersecting);
+    int up[kMaxCandidates], off[kMaxCandidates], n = 0, others = 0;
+    for (int k = 0; k < set.count; ++k) {
+      const Candidate c = candidate(set, k);
+      const unsigned zeros = c.parallel ? 0u : detail::structural_zero_components(sp.A, sp.B, label(set, k));
+      if (zeros == 3u && c.n[2] > 0) up[n++] = k;  // x and y exactly 0: along +z (the sign is far from 0 here)
+      else if (zeros != 3u && !c.parallel) off[others++] = k;
+    }
+    BOOST_REQUIRE(n > 0);
+    for (int j = 1; j < n; ++j)
+      BOOST_TEST(same_direction_exact(sp.A, sp.B, label(set, up[0]), label(set, up[j])).value_or(false));
+    for (int j = 0; j < others; ++j) {
+      const int two[2] = {up[0], off[j]};
+      BOOST_TEST(!detail::one_axis_direction(set, two, 2));
+      BOOST_TEST(!same_direction_exact(sp.A, sp.B, label(set, up[0]), label(set, off[j])).value_or(true));
+    }
+    BOOST_TEST(n >= 4);  // both faces and edge pairs of the plane
+    BOOST_TEST(others > 0);
+    BOOST_TEST(detail::one_axis_direction(set, up, n));
+    const Choice ch = rigid_pd2(set);
+    BOOST_TEST((ch.certified && ch.exact_first));
+    const PairResult<double> ex = detail::solve_pair_exact_path(A, B).result;
+    BOOST_TEST(ch.label() == *ex.rigid_dir);
+    BOOST_TEST(std::abs(std::ldexp(ch.value, -2 * sp.e) - ex.rigid_pd2) <= 1e-9 * ex.rigid_pd2);
+    const double a1 = pdd2_accel(A, B, 1).pd2, rigid = fast::rigid_pd2(A, B).pd2, a1_after = pdd2_accel(A, B, 1).pd2;
+    BOOST_TEST(std::abs(rigid - ex.rigid_pd2) <= 1e-9 * ex.rigid_pd2);
+    BOOST_TEST(std::abs(a1 - ex.pdd2_accel1) <= 1e-9 * ex.pdd2_accel1);
+    BOOST_TEST(std::abs(a1_after - ex.pdd2_accel1) <= 1e-9 * ex.pdd2_accel1);
+  }
 }

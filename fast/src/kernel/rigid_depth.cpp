@@ -30,6 +30,36 @@ int exact_first(const List& s, const int* c, int n) {
   return detail::first_least_delta2(s, c, n);
 }
 
+// The contenders {i : lower(i) <= hi} (refine.h: the exact minimisers and their ties among
+// them, every other candidate's exact delta² above hi >= the minimum) along one axis direction
+// (certify.h's one_axis_direction: an aligned pair's face, the edge pairs in its plane and the
+// touching face of the other tetrahedron, as blocks resting on each other meet them):
+// their exact delta² are one value, the minimum, first attained by the first of them in
+// canonical order. One interval then certifies it (its width within definitions §8), instead of
+// an interval for each contender and their exact order. False: not so, or the interval too wide.
+// (A candidate with rigid_rel_small and 0.98 delta² > hi has lower bound > hi: certify.h.)
+template <class List, class Lower, class Interval>
+bool one_direction_choice(const List& s, Lower lower, double hi, Interval interval, Choice& ch) {
+  // the double choice is a contender: along no axis, no test (two components exactly 0)
+  const unsigned zeros = detail::structural_zero_components(*s.A, *s.B, unpack_label(label_code(s, ch.index)));
+  if (zeros != 3u && zeros != 5u && zeros != 6u) return false;
+  int idx[kMaxCandidates], m = 0;
+  ApproxNormal a[kMaxCandidates];
+  for (int i = 0; i < s.count; ++i) {
+    if ((detail::kSmallRigidLower * s.delta_sq[i] > hi && detail::rigid_rel_small(s, i)) || lower(i) > hi) continue;
+    idx[m] = i;
+    if (!detail::one_axis_direction(s, idx, m + 1, a, m)) return false;  // (the first one off ends it)
+    ++m;
+  }
+  double v = 0, r = 1;
+  if (m < 2 || !interval(idx[0], v, r) || !(r < 1) || !certified_choice(upper_of(v, r), lower_of(v, r))) return false;
+  ch.value = v;
+  ch.index = idx[0];
+  ch.code = label_code(s, idx[0]);
+  ch.certified = ch.refined = ch.exact_first = true;
+  return true;
+}
+
 // First tied minimum of delta², certified (value_bounds.h: every candidate's exact delta² is
 // >= lower_of(delta~², its bound)).
 template <class List>
@@ -41,9 +71,11 @@ Choice rigid_of(const List& s) {
   ch.code = label_code(s, ch.index);
   double lo_min = std::numeric_limits<double>::infinity(), lo_others = lo_min;
   const double far = 2 * ch.value;  // certify.h: candidates above it with a small bound skipped
+  double bound[kMaxCandidates];     // lower_of(delta², rigid_rel), kept for the refinement; -inf: not computed
   for (int i = 0; i < s.count; ++i) {
+    bound[i] = -std::numeric_limits<double>::infinity();
     if (s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) continue;
-    double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
+    double lo = bound[i] = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
     if (!(lo >= 0.0)) lo = 0.0;
     lo_min = lo < lo_min ? lo : lo_min;
     if (i != ch.index) lo_others = lo < lo_others ? lo : lo_others;
@@ -54,7 +86,9 @@ Choice rigid_of(const List& s) {
   // 1e-9 of the value, below their 1.96 v): the choice is the exact minimum, alone
   ch.exact_first = ch.certified && lo_others > hi;
   if (ch.certified) return ch;
-  auto lower = [&s](int i) { return lower_of(s.delta_sq[i], detail::rigid_rel(s, i)); };
+  auto lower = [&s, &bound](int i) {
+    return bound[i] != -std::numeric_limits<double>::infinity() ? bound[i] : lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
+  };
   auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {
     v = detail::exact_delta2(c);
     return true;
@@ -68,6 +102,7 @@ Choice rigid_of(const List& s) {
     return true;
   };
   auto tie_order = [&s](const int* c, int n) { return exact_first(s, c, n); };
+  if (one_direction_choice(s, lower, hi, interval, ch)) return ch;
   // Compensated intervals first (refine.h: ~1 us for the contenders of a shallow contact, whose
   // double bounds carry u L^3 beside a value ~|n| depth), then expansions for the contenders
   // those leave too wide (exact_predicates.h), the contenders in rationals (~10-30 us each) only

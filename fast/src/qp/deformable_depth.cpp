@@ -1077,22 +1077,7 @@ void accel_by_directions(const List& set, int k, double hi_chosen, DeltaBounds<L
       for (int q = 0; q < s; ++q) in_s = in_s || sorted[q] == P[j];
       if (!in_s) T[m++] = P[j];
     }
-    // each member's double normal first (first_least_delta2's hints): certainly not parallel
-    // to T[0]'s ends the test; else, once the exact normals are shown parallel, the certain
-    // sign of their dot product answers without the member's exact normal
-    const ApproxNormal a0 = detail::approx_normal(set, T[0]);
-    bool one = true;
-    std::optional<ExactDirection> first;
-    for (int j = 1; j < m && one; ++j) {
-      const ApproxNormal aj = detail::approx_normal(set, T[j]);
-      if (certainly_not_parallel(a0, aj)) {
-        one = false;
-        break;
-      }
-      if (!first) first.emplace(*set.A, *set.B, unpack_label(label_code(set, T[0])));
-      const int side = aj.parallel_pair ? 0 : certain_dot_sign(a0, aj);
-      one = first->same_as(unpack_label(label_code(set, T[j])), side).value_or(false);
-    }
+    const bool one = detail::one_exact_direction(set, T, m);  // (certify.h)
     if (!one) continue;
     int chosen[kMax], c = 0;
     for (int j = 0; j < s; ++j) chosen[c++] = sorted[j];
