@@ -71,11 +71,9 @@ Choice rigid_of(const List& s) {
   ch.code = label_code(s, ch.index);
   double lo_min = std::numeric_limits<double>::infinity(), lo_others = lo_min;
   const double far = 2 * ch.value;  // certify.h: candidates above it with a small bound skipped
-  double bound[kMaxCandidates];     // lower_of(delta², rigid_rel), kept for the refinement; -inf: not computed
   for (int i = 0; i < s.count; ++i) {
-    bound[i] = -std::numeric_limits<double>::infinity();
     if (s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) continue;
-    double lo = bound[i] = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
+    double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
     if (!(lo >= 0.0)) lo = 0.0;
     lo_min = lo < lo_min ? lo : lo_min;
     if (i != ch.index) lo_others = lo < lo_others ? lo : lo_others;
@@ -86,9 +84,7 @@ Choice rigid_of(const List& s) {
   // 1e-9 of the value, below their 1.96 v): the choice is the exact minimum, alone
   ch.exact_first = ch.certified && lo_others > hi;
   if (ch.certified) return ch;
-  auto lower = [&s, &bound](int i) {
-    return bound[i] != -std::numeric_limits<double>::infinity() ? bound[i] : lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
-  };
+  auto lower = [&s](int i) { return lower_of(s.delta_sq[i], detail::rigid_rel(s, i)); };
   auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {
     v = detail::exact_delta2(c);
     return true;
