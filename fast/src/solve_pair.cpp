@@ -202,9 +202,11 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   exact_q1 = false;
   if (asked(kIdxPdd2) && def.index >= 0 && def.certified) {
     deformed_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
-    // refined, or the double positions miss the contract: on compensated heights where they
-    // give them (deformable_depth.h), else the exact ones for the label
-    if (def.refined || !positions_attain(pair, r, def.value)) {
+    // the double positions where their cost is the reported value's (positions_attain: the
+    // exact cost of the rounded positions, to its own roundings; a refined choice's too, its
+    // label being the one solved); else on compensated heights where they give them
+    // (deformable_depth.h), else the exact ones for the label
+    if (!positions_attain(pair, r, def.value)) {
       refined = true;
       exact_q1 = !compensated_positions(pair.A, pair.B, candidate(set, def.index), r.q1_A, r.q1_B);
     }

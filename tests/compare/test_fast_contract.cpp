@@ -261,6 +261,29 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_within_contract_without_the_exact
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
 }
 
+// Cells that coincide up to rounding (structured_cells.h: a Kuhn grid of decimal cells against
+// its copy one cell up): deep overlaps tied along several directions, so that pdd2 is refined
+// while its displacements are of the cell's size, far above the rounding of the coordinates.
+// solve_pair keeps the double solver's positions for the refined label where their cost is
+// the reported value's (positions_attain), and takes compensated or exact ones only where not.
+// Every value and the positions (their cost and their separation by the label's exact plane)
+// within definitions §8 of the exact engine, none on the exact path.
+BOOST_AUTO_TEST_CASE(refined_pairs_positions_within_contract) {
+  int refined_deep = 0, pairs = 0, slow = 0;
+  for (const TetPair& p : pdd::test::coincident_cell_pairs(2, 36)) {
+    PairResult<double> fast;
+    const auto c = judged(p, &fast);
+    BOOST_TEST(c.position_error <= c.position_tolerance, p.name);
+    refined_deep += fast.stats.refined && fast.pdd2 > 1e-4;
+    slow += fast::solve_pair(p, mesh_variants_only()).stats.slow_path;
+    ++pairs;
+  }
+  BOOST_TEST_MESSAGE("coincident cells: " << pairs << " pairs, " << refined_deep << " refined and deep");
+  BOOST_TEST(pairs == 36);
+  BOOST_TEST(refined_deep >= 8);
+  BOOST_TEST(slow == 0, slow << " of " << pairs << " on the slow path");
+}
+
 // The hot functions as a mesh's contacts call them (rigid_pd2, then pdd2_accel(·, 1) on the same
 // pair, which takes the rigid choice the first call left: rigid_depth.h's rigid_pd2_reusing)
 // on contacts made by rounding and resting contacts, where that choice is the exact tie order:

@@ -99,4 +99,40 @@ inline std::vector<TetPair> resting_contact_pairs(int n, double depth, int max_p
   return out;
 }
 
+// Cells that coincide up to rounding: the Kuhn tetrahedra of an n x n x 1 layer of cubes of
+// the decimal side h = 0.1 at height index 5 (vertex coordinates (i + v) h, each rounded once)
+// against those of the same grid one cell up, its layer 4 (coordinates h + (i + v) h): 6 h
+// rounds to 0.6000000000000001 and h + 5 h to 0.6, so each cube of B lies on a cube of A up to a
+// rounding of its top. Its six tetrahedra overlap A's six deeply, tied along several
+// directions, and touch the neighbouring cubes' through the rounding. The element pairs whose
+// interiors meet, up to `max_pairs`.
+inline std::vector<TetPair> coincident_cell_pairs(int n, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  auto layer = [h, n](double oz, int k, std::vector<TetVertices>& out) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int perm = 0; perm < 6; ++perm) {
+          TetVertices t = kuhn_cell_tet({0, 0, 0}, 1.0, perm);
+          const int c[3] = {i, j, k};
+          for (auto& v : t)
+            for (int a = 0; a < 3; ++a) v[a] = (a == 2 ? oz : 0.0) + (c[a] + v[a]) * h;
+          out.push_back(t);
+        }
+  };
+  layer(0.0, 5, A);
+  layer(h, 4, B);
+  std::vector<TetPair> out;
+  for (std::size_t a = 0; a < A.size(); ++a)
+    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
+      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
+      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0)) continue;
+      TetPair p;
+      p.name = "coincident a" + std::to_string(a) + " b" + std::to_string(b);
+      p.A = A[a], p.B = B[b];
+      out.push_back(p);
+    }
+  return out;
+}
+
 }  // namespace pdd::test
