@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
       {{"bench", "energy"}, "pdd bench energy --cases balls --size 5000 --repeats 3"},
       {{"mesh"},
        "pdd mesh --a fixtures/meshes/sphere-a.msh --b fixtures/meshes/sphere-b.msh --output pairs.jsonl --summary\n"
-       "  pdd mesh --a fixtures/meshes/two-spheres.msh --self --variants global --energy"},
+       "  pdd mesh --a fixtures/meshes/two-spheres.msh --self --energy"},
       {{"resolve"},
        "pdd resolve --a fixtures/meshes/tiny-a.msh --b fixtures/meshes/tiny-b.msh --fix a --out-a a1.msh \\\n"
        "      --out-b b1.vtk --report report.json --summary"},

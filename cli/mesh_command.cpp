@@ -1,5 +1,6 @@
 // `pdd mesh --a A.msh [--b B.msh | --self] [--variants LIST] [--engine fast|reference]
 //           [--output pairs.jsonl] [--vtk out.vtk] [--summary] [--threads N] [--quiet]`
+//          or `pdd mesh --a A [--b B | --self] --energy [--engine E] [--output energy.json]`
 // Every intersecting element pair of two tetrahedral meshes (or of one mesh with itself) and
 // its penetration depths (definitions §10; library: include/pdd/mesh.h). One JSON Lines record per
 // pair, sorted by (a, b): {"a": i, "b": j, "intersecting", the requested values and their
@@ -229,10 +230,12 @@ int run_mesh(const MeshArgs& args) {
   }
   const double read_seconds = since(t0);
   const bool fast = args.engine == "fast";
-  std::cerr << "pdd mesh: A " << tetrahedra(A.tets.size());
-  if (!args.self) std::cerr << ", B " << tetrahedra(B.tets.size());
-  std::cerr << ", " << (fast ? "fast" : "reference") << " engine, "
-            << (args.energy ? std::string("contact energy") : "variants " + mesh::variant_names(variants)) << '\n';
+  if (!args.quiet) {
+    std::cerr << "pdd mesh: A " << tetrahedra(A.tets.size());
+    if (!args.self) std::cerr << ", B " << tetrahedra(B.tets.size());
+    std::cerr << ", " << (fast ? "fast" : "reference") << " engine, "
+              << (args.energy ? std::string("contact energy") : "variants " + mesh::variant_names(variants)) << '\n';
+  }
 
   if (args.energy) return run_energy(args, A, args.self ? nullptr : &B);
 
@@ -307,7 +310,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--a", args->a, "Mesh A (.msh or .vtk)")->required();
   cmd->add_option("--b", args->b, "Mesh B (.msh or .vtk); not with --self");
   cmd->add_flag("--self", args->self, "Self-contact of A: element pairs a < b sharing no vertex");
-  cmd->add_option("--variants", args->variants,
+  CLI::Option* variants = cmd->add_option("--variants", args->variants,
                   "Comma-separated: rigid, eq11, static, pdd2, relaxed, accel1, accel6, global "
                   "(pdd2_global, PD_d² over every separating plane; tens of microseconds a pair "
                   "with the fast engine), or all")
@@ -319,21 +322,25 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"fast", "reference"}))
       ->capture_default_str();
   cmd->add_option("--output", args->output, "Write JSON Lines here instead of standard output");
-  cmd->add_option("--vtk", args->vtk,
+  CLI::Option* vtk = cmd->add_option("--vtk", args->vtk,
                   "Also write both meshes with per-element contact data and a per-vertex "
                   "displacement field (legacy VTK, for ParaView; fields: docs/definitions.md §10)");
-  cmd->add_flag("--summary", args->summary,
+  CLI::Option* summary = cmd->add_flag("--summary", args->summary,
                 "A readable summary: elements, pairs, time per stage, and the sum and maximum of "
                 "each value with the pair attaining it; on standard output with --output, else "
                 "on standard error (standard output holds the records)");
   cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")
       ->check(integer_in(0, 4096))
       ->capture_default_str();
-  cmd->add_flag("--quiet", args->quiet, "No progress lines on standard error");
+  cmd->add_flag("--quiet", args->quiet, "Nothing on standard error but errors and skipped elements");
+  // (the energy has no per-pair records, variants, VTK file or summary: asked with it, refused)
   cmd->add_flag("--energy", args->energy,
                 "Instead of the pairs, the contact energy E = sum (V_a V_b)^(1/3) pdd2_global "
                 "(docs/definitions.md \"Contact energy\") as one JSON object: energy, pairs, "
-                "max_pdd2_global, max_force (largest |dE/dp| of a vertex), max_force_vertex");
+                "max_pdd2_global, max_force (largest |dE/dp| of a vertex), max_force_vertex")
+      ->excludes(vtk)
+      ->excludes(summary)
+      ->excludes(variants);
   cmd->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }
 

@@ -205,6 +205,7 @@ def test_cli_energy_two_meshes(tmp_path):
     write_vtk(b, VB, TB)
     r = run_cli("--a", a, "--b", b, "--energy", "--quiet")
     assert r.returncode == 0, r.stderr
+    assert r.stderr == ""  # --quiet: nothing but errors and skipped elements
     e = pdd.contact_energy(VA, TA, VB, TB)
     assert e["pairs"] > 0
     check_cli_energy(r.stdout, e)
@@ -253,6 +254,12 @@ def test_cli_energy_exit_codes(tmp_path):
     # neither --b nor --self: exit 2 (usage)
     r = run_cli("--a", a, "--energy", "--quiet")
     assert r.returncode == 2 and r.stdout == "" and "--self" in r.stderr
+    # what the energy does not make (per-pair variants, a VTK file of the pairs, their summary):
+    # refused, exit 2 (usage), nothing computed or written
+    for extra in (["--vtk", str(tmp_path / "e.vtk")], ["--summary"], ["--variants", "global"]):
+        r = run_cli("--a", a, "--self", "--energy", *extra)
+        assert r.returncode == 2 and r.stdout == "" and extra[0] + " excludes --energy" in r.stderr, extra
+    assert not (tmp_path / "e.vtk").exists()
     # an unwritable --output: exit 2
     r = run_cli("--a", a, "--self", "--energy", "--quiet", "--output", str(tmp_path / "no" / "dir" / "e.json"))
     assert r.returncode == 2 and "cannot write" in r.stderr
