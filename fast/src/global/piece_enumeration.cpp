@@ -11,6 +11,7 @@
 
 #include "global/accurate_piece_matrix.h"
 #include "global/eigen_polish.h"
+#include "global/piece_region.h"
 #include "global/piece_screen.h"
 
 namespace pdd::fast::global {
@@ -115,14 +116,35 @@ class PieceEnumeration {
       qa[m] = qb[m] = 0;
       for (int q = 0; q < 6; ++q) qa[m] = std::max(qa[m], std::fabs(dQA[m][q])), qb[m] = std::max(qb[m], std::fabs(dQB[m][q]));
     }
-    for (unsigned mb = 0; mb < 16; ++mb) {
-      for (int k = 0; k < 3; ++k) cols.S[k][mb] = dSB[mb][k];
-      for (int q = 0; q < 6; ++q) cols.Q[q][mb] = dQB[mb][q];
-      cols.q[mb] = qb[mb];
-      cols.m[mb] = kPopcount[mb];
-      cols.w[mb] = 1.0 / (5 - kPopcount[mb]);
-    }
     top = best.value_in(0) * (1 - kPrune);
+  }
+
+  // B's sets of `sets` (bit mb) as the lanes of cols, by size then value (the sets a row drops
+  // as dominated, the larger ones, come last: a row then needs fewer lanes), padded with the
+  // empty set to a multiple of 4 lanes; lane[mb] is set mb's lane.
+  void columns(unsigned sets) {
+    int n = 0;
+    for (int size = 1; size <= 4; ++size)
+      for (unsigned mb = 1; mb < 16; ++mb)
+        if ((sets >> mb & 1u) && kPopcount[mb] == size) column(n++, mb);
+    cols.lanes = (n + 3) & ~3;
+    while (n < cols.lanes) column(n++, 0);
+  }
+  void column(int l, unsigned mb) {
+    for (int k = 0; k < 3; ++k) cols.S[k][l] = dSB[mb][k];
+    for (int q = 0; q < 6; ++q) cols.Q[q][l] = dQB[mb][q];
+    cols.q[l] = qb[mb];
+    cols.m[l] = kPopcount[mb];
+    cols.w[l] = 1.0 / (5 - kPopcount[mb]);
+    for (int mA = 1; mA <= 4; ++mA) cols.r[mA][l] = detail::kLaneR.r[mA][mb];
+    cols.mb[l] = static_cast<unsigned char>(mb);
+    if (mb) lane[mb] = l;
+  }
+  // The lanes a row needs for its sets `need` (bit mb): up to the last of them, in 4s.
+  int lanes_for(unsigned need) const {
+    int last = 0;
+    for (unsigned bits = need; bits; bits &= bits - 1) last = std::max(last, lane[__builtin_ctz(bits)]);
+    return (last + 4) & ~3;
   }
 
   // Pieces above the window. A piece's G_S(n) = n^T H_S n is the least object norm of a
@@ -133,32 +155,54 @@ class PieceEnumeration {
   // same centred vertices as every piece) has no eigenvalue below 20 top (window_edges: its
   // edge lies above 20 top by more than H_S's error): then no superset of S has an exact
   // eigenvalue in the window either, and such a piece is dropped as surviving_pieces drops its
-  // own (no stationary value in the window, piece_screen.h). Every piece of the last row
-  // (S_A all of A, any S_B) contains a piece (S_A less one vertex, one vertex of S_B): when each
-  // vertex of B has such a piece certainly above, for some three vertices of A, the whole row
-  // is above and is not computed (on the energy bench's contacts most pairs).
-  static constexpr unsigned kSingleB = 1u | 2u | 4u | 8u;
+  // own (no stationary value in the window, piece_screen.h). The rows go by increasing ma, so
+  // that every row of a subset of ma comes first: above[ma'] holds the sets mb' of the pieces
+  // (ma', mb') found above, and a row drops every set mb containing some mb' of a row ma'
+  // within ma (ma' != ma; ma' = ma would need the row's own counts first): on the paper's pairs
+  // ~66 pieces a pair before the region test (piece_region.h), and whole rows (all of A active,
+  // most of the energy bench's contacts).
+  static unsigned up_closure(unsigned sets) {  // every mb containing some mb' of sets (bit sets)
+    sets |= (sets & 0x5555u) << 1;
+    sets |= (sets & 0x3333u) << 2;
+    sets |= (sets & 0x0F0Fu) << 4;
+    sets |= (sets & 0x00FFu) << 8;
+    return sets;
+  }
 
-  // Double path: every row's pieces outside the window are dropped (surviving_pieces), the
-  // rest gathered and screened side by side (screen); survivors[ma] keeps the bits of the
-  // pieces left for consider_piece. Both use the best value offered so far (the start's): a
+  // Double path: the pieces outside the region of the window's top (piece_region.h) are not
+  // built; every row's pieces outside the window are dropped (surviving_pieces), the rest
+  // gathered and screened side by side (screen); survivors[ma] keeps the bits of the
+  // pieces left for consider_piece. All use the best value offered so far (the start's): a
   // higher threshold than later ones, so nothing is dropped that a later one would keep.
-  // The last row (all of A active) is skipped when every piece with three vertices of A and one
-  // of B lies certainly above the window (pieces above the window, above): its pieces are too.
   void survivors_double() {
     static thread_local ScreenLanes lanes;  // (~42 KB: off the stack)
     lanes.n = 0;
-    unsigned single_b_above = 0;  // bit mb (one vertex of B): some piece (|S_A| = 3, mb) is above
+    unsigned region[16];
+    {
+      double qA[4][3], qB[4][3];
+      for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) qA[i][k] = dA[i][k], qB[i][k] = dB[i][k];
+      if (!detail::region_pieces(qA, qB, top, region))
+        for (unsigned& r : region) r = 0xFFFEu;
+    }
+    unsigned all = 0;
+    for (unsigned ma = 1; ma < 16; ++ma) all |= region[ma];
+    columns(all & 0xFFFEu);
+    unsigned above[16] = {}, reach[16] = {};  // reach[ma]: the sets above in rows strictly within ma
     for (unsigned ma = 1; ma < 16; ++ma) {
-      if (ma == 15 && single_b_above == kSingleB) {
-        survivors[ma] = 0;
-        continue;
+      for (unsigned bits = ma; bits; bits &= bits - 1) {
+        const unsigned sub = ma & ~(1u << __builtin_ctz(bits));
+        reach[ma] |= reach[sub] | above[sub];
       }
+      const unsigned need = region[ma] & ~up_closure(reach[ma]) & 0xFFFEu;
+      survivors[ma] = 0;
+      if (!need) continue;
+      const int n = lanes_for(need);
       RowLanes row;
-      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
-      survivors[ma] = detail::row_mask(row);
-      if (kPopcount[ma] == 3)
-        for (unsigned mb : {1u, 2u, 4u, 8u}) single_b_above |= unsigned(row.below_top[mb] == 0) * mb;
+      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, n, top, search.lower, row);
+      survivors[ma] = detail::row_mask(row, cols, n) & need;
+      for (int l = 0; l < n; ++l) above[ma] |= unsigned(row.below_top[l] == 0) << cols.mb[l];
+      above[ma] &= 0xFFFEu;
       // the screen's lanes: the survivors with exactly one eigenvalue in the window (the only
       // case it decides). (Over set bits: no branch per piece.) Of the others, a piece with
       // structural zero eigenvalues (4 - |S| of them, |S| <= 3) whose nonzero ones lie certainly
@@ -169,19 +213,20 @@ class PieceEnumeration {
       unsigned one = 0;
       for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
-        one |= unsigned(row.one[mb] != 0) << mb;
+        one |= unsigned(row.one[lane[mb]] != 0) << mb;
       }
       for (unsigned bits = survivors[ma] & ~one; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
         const int zeros = 4 - kPopcount[ma] - kPopcount[mb];
-        if (zeros > 0 && nonzero_above(row, mb, zeros)) survivors[ma] &= ~(1u << mb);
+        if (zeros > 0 && nonzero_above(row, lane[mb], zeros)) survivors[ma] &= ~(1u << mb);
       }
       for (unsigned bits = one; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
+        const int l = lane[mb];
         const int p = lanes.n++;
-        for (int q = 0; q < 6; ++q) lanes.N[q][p] = row.N[q][mb];
-        for (int k = 0; k < 3; ++k) lanes.C[k][p] = row.C[k][mb], lanes.TA[k][p] = row.TA[k][mb];
-        lanes.n_error[p] = row.n_error[mb], lanes.below_low[p] = row.below_low[mb], lanes.one[p] = row.one[mb];
+        for (int q = 0; q < 6; ++q) lanes.N[q][p] = row.N[q][l];
+        for (int k = 0; k < 3; ++k) lanes.C[k][p] = row.C[k][l], lanes.TA[k][p] = row.TA[k][l];
+        lanes.n_error[p] = row.n_error[l], lanes.below_low[p] = row.below_low[l], lanes.one[p] = row.one[l];
         for (int i = 0; i < 4; ++i) lanes.sign[i][p] = kSignOf[ma][i], lanes.sign[4 + i][p] = kSignOf[mb][i];
         lanes.ma[p] = static_cast<unsigned char>(ma), lanes.mb[p] = static_cast<unsigned char>(mb);
       }
@@ -206,22 +251,25 @@ class PieceEnumeration {
   // resolution, those are most of the pieces. The test on N = 20 H, entries within n_error of
   // the exact 20 H (piece_screen.h; on the exact positions rounded once, as the counts).
   void survivors_exact() {
+    columns(0xFFFEu);
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
-      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, top, search.lower, row);
+      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, cols.lanes, top, search.lower,
+                       row);
       survivors[ma] = 0;
       for (unsigned mb = 1; mb < 16; ++mb) {
-        if (row.below_top[mb] == 0 || row.below_low[mb] == 3) continue;
+        const int l = lane[mb];
+        if (row.below_top[l] == 0 || row.below_low[l] == 3) continue;
         const int zeros = std::max(0, 4 - kPopcount[ma] - kPopcount[mb]);
-        if (!search.walls && zeros > 0 && nonzero_above(row, mb, zeros)) continue;
+        if (!search.walls && zeros > 0 && nonzero_above(row, l, zeros)) continue;
         survivors[ma] |= 1u << mb;
       }
     }
   }
-  bool nonzero_above(const RowLanes& row, unsigned mb, int zeros) const {
+  bool nonzero_above(const RowLanes& row, int l, int zeros) const {  // (lane l)
     Eigen::Matrix3d N;
-    for (int q = 0; q < 6; ++q) N(kR[q], kC[q]) = N(kC[q], kR[q]) = row.N[q][mb];
-    const double e = row.n_error[mb];
+    for (int q = 0; q < 6; ++q) N(kR[q], kC[q]) = N(kC[q], kR[q]) = row.N[q][l];
+    const double e = row.n_error[l];
     return nonzero_eigenvalues_above(N, N.norm(), e, zeros, detail::window_edges(top, search.lower, e).hi);
   }
 
@@ -389,6 +437,7 @@ class PieceEnumeration {
   const M6 *QA = nullptr, *QB = nullptr;
   double qa[16], qb[16];  // max |QA|, |QB| (doubles)
   ColumnsB cols{};        // B's sums as lanes (surviving_pieces)
+  int lane[16] = {};      // lane[mb]: set mb's lane in cols
   unsigned survivors[16];
   double top = 0;         // the window's top edge: the best value so far, less kPrune
   std::optional<AccurateMoments> accurate;  // double path: built on the first piece that needs it

@@ -14,31 +14,15 @@ namespace pdd::fast::detail {
 #endif
 
 namespace {
-// r = 1 / (mA wA + mB wB), w = 1 / (5 - m), per A size mA (1..4) and lane mb (mB its popcount):
-// the lane loop's operations, folded at compile time instead of one vector division per 8
-// lanes (the same bits: each operation correctly rounded, as at run time; no contraction).
-// constexpr: no dynamic initialisation, so no order to depend on.
-struct LaneReciprocals {
-  double r[5][16] = {};
-  constexpr LaneReciprocals() {
-    for (int mA = 1; mA <= 4; ++mA)
-      for (int l = 0; l < 16; ++l) {
-        const double wA = 1.0 / (5 - mA), dA = double(mA);
-        const double wB = 1.0 / (5 - kPopcount[l]), mB = double(kPopcount[l]);
-        r[mA][l] = 1.0 / (dA * wA + mB * wB);
-      }
-  }
-};
-constexpr LaneReciprocals kLaneR;
-}  // namespace
-
-PDD_SCREEN_CLONES void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA,
-                                        const ColumnsB& __restrict b, double top, double lower,
-                                        RowLanes& __restrict out) {
+// surviving_pieces on the first L lanes (the same operations per lane at every L).
+template <int L>
+inline __attribute__((always_inline)) void surviving_lanes(const double SA[3], const double QA[6], double qa, int mA,
+                                                           const ColumnsB& __restrict b, double top, double lower,
+                                                           RowLanes& __restrict out) {
   constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
   const double wA = 1.0 / (5 - mA), dA = double(mA);
-  const double* __restrict rA = kLaneR.r[mA];
-  for (int l = 0; l < 16; ++l) {
+  const double* __restrict rA = b.r[mA];
+  for (int l = 0; l < L; ++l) {
     const double wB = b.w[l], mB = b.m[l];
     const double r = rA[l];  // 1 / (dA wA + mB wB)
     double C[3], TA[3], S[3];
@@ -63,7 +47,7 @@ PDD_SCREEN_CLONES void surviving_pieces(const double SA[3], const double QA[6], 
   // The counts in a second lane loop over the stored matrices: one loop doing both keeps more
   // values live than AVX2's 16 vector registers hold, and its spills cost more than the
   // reloads here (the same operations on the same values: the same bits).
-  for (int l = 0; l < 16; ++l) {
+  for (int l = 0; l < L; ++l) {
     const double h[6] = {out.N[0][l], out.N[1][l], out.N[2][l], out.N[3][l], out.N[4][l], out.N[5][l]};
     const Edges e = window_edges(top, lower, out.n_error[l]);
     const int below_top = eigenvalues_below_certain(h[0], h[1], h[2], h[3], h[4], h[5], e.hi);
@@ -72,6 +56,34 @@ PDD_SCREEN_CLONES void surviving_pieces(const double SA[3], const double QA[6], 
     out.one[l] = below_low >= 0 && below_top == below_low + 1;
     out.below_low[l] = below_low;
     out.below_top[l] = below_top;
+  }
+}
+
+PDD_SCREEN_CLONES void surviving_4(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
+                                   double top, double lower, RowLanes& out) {
+  surviving_lanes<4>(SA, QA, qa, mA, b, top, lower, out);
+}
+PDD_SCREEN_CLONES void surviving_8(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
+                                   double top, double lower, RowLanes& out) {
+  surviving_lanes<8>(SA, QA, qa, mA, b, top, lower, out);
+}
+PDD_SCREEN_CLONES void surviving_12(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
+                                    double top, double lower, RowLanes& out) {
+  surviving_lanes<12>(SA, QA, qa, mA, b, top, lower, out);
+}
+PDD_SCREEN_CLONES void surviving_16(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b,
+                                    double top, double lower, RowLanes& out) {
+  surviving_lanes<16>(SA, QA, qa, mA, b, top, lower, out);
+}
+}  // namespace
+
+void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b, int lanes,
+                      double top, double lower, RowLanes& out) {
+  switch (lanes) {
+    case 4: return surviving_4(SA, QA, qa, mA, b, top, lower, out);
+    case 8: return surviving_8(SA, QA, qa, mA, b, top, lower, out);
+    case 12: return surviving_12(SA, QA, qa, mA, b, top, lower, out);
+    default: return surviving_16(SA, QA, qa, mA, b, top, lower, out);
   }
 }
 

@@ -115,9 +115,29 @@ struct Edges {
 inline Edges window_edges(double top, double lower, double n_error) {  // top, lower >= 0
   return {20 * lower * (1 - 0x1p-40) - 4 * n_error, 20 * top * (1 + 0x1p-40) + 4 * n_error};
 }
-struct ColumnsB {  // B's active sets, lane mb (structure of arrays)
-  double S[3][16], Q[6][16], q[16], m[16], w[16];
+// B's active sets as lanes (structure of arrays): lane l holds the set mb[l] (0: padding, the
+// empty set's zero sums), its sums, max |Q| q, size m, w = 1 / (5 - m) and, per A size mA = 1..4,
+// r[mA][l] = 1 / (mA wA + m w) (kLaneR's values); lanes, a multiple of 4, are in use.
+struct ColumnsB {
+  double S[3][16], Q[6][16], q[16], m[16], w[16], r[5][16];
+  unsigned char mb[16];
+  int lanes;
 };
+// r = 1 / (mA wA + mB wB), w = 1 / (5 - m), per A size mA (1..4) and B set mb (mB its popcount):
+// the lane loop's operations, folded at compile time instead of one vector division per 8
+// lanes (the same bits: each operation correctly rounded, as at run time; no contraction).
+struct LaneReciprocals {
+  double r[5][16] = {};
+  constexpr LaneReciprocals() {
+    for (int mA = 1; mA <= 4; ++mA)
+      for (int l = 0; l < 16; ++l) {
+        const double wA = 1.0 / (5 - mA), dA = double(mA);
+        const double wB = 1.0 / (5 - kPopcount[l]), mB = double(kPopcount[l]);
+        r[mA][l] = 1.0 / (dA * wA + mB * wB);
+      }
+  }
+};
+inline constexpr LaneReciprocals kLaneR;
 // One row's pieces as lanes (lane mb): N = 20 H (xx xy xz yy yz zz), n_error, c and T_A's
 // vectors, and the number of N's eigenvalues below the window's bottom edge (parity: f's sign
 // there, screen()) and below its top edge (-1: undecided).
@@ -128,16 +148,18 @@ struct RowLanes {
   int below_top[16];
   int keep[16];
 };
-void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b, double top,
-                      double lower, RowLanes& out);
-// Bit mb of the result: keep[mb], mb = 1..15 (lane 0 is padding). Scalar, in the caller: inside
+// Lanes 0 .. `lanes` - 1 of b (4, 8, 12 or 16; RowLanes' lane l is b's lane l).
+void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b, int lanes,
+                      double top, double lower, RowLanes& out);
+// Bit mb of the result: keep[l] of the lane l holding set mb, over the first `lanes` lanes (bit 0,
+// the padding's, is left for the caller to clear). Scalar, in the caller: inside
 // surviving_pieces' vector clones a call or a reduction after the lanes' vector stores cost
 // more (vectorised: 15% of the function; called from the clone, a helper left the AVX-512
 // clone's upper registers dirty on return, no vzeroupper, and every SSE instruction of the
 // caller after it paid for that: ~40% of enumerate_pieces' own time, measured with perf).
-inline unsigned row_mask(const RowLanes& row) {
+inline unsigned row_mask(const RowLanes& row, const ColumnsB& b, int lanes) {
   unsigned mask = 0;
-  for (int l = 1; l < 16; ++l) mask |= unsigned(row.keep[l] != 0) << l;
+  for (int l = 0; l < lanes; ++l) mask |= unsigned(row.keep[l] != 0) << b.mb[l];
   return mask;
 }
 
