@@ -12,15 +12,22 @@
 //    eigenvector satisfies every condition is always kept;
 //    the same with windows far narrower than the matrices' error (shallow contacts), where
 //    only the counts around the widened window give the screen its gap.
+//  - region_pieces (piece_region.h): every piece whose cone holds a direction u of the region
+//    D(u)^2 < 32 top (D, the overlap along u, in long double) is kept, on random directions
+//    and on directions beside the 50 lines where the region's least values lie; and it does
+//    drop pieces (not vacuous).
 #define BOOST_TEST_MODULE fast_piece_screen
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Dense>
 #include <gmpxx.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
+#include "global/piece_region.h"
 #include "global/piece_screen.h"
 #include "pdd/compare/random.h"
 
@@ -280,4 +287,113 @@ BOOST_AUTO_TEST_CASE(tables_are_the_bits) {  // kPopcount and kSignOf against th
     BOOST_TEST(kPopcount[m] == __builtin_popcount(m));
     for (int i = 0; i < 4; ++i) BOOST_TEST(kSignOf[m][i] == ((m >> i & 1u) ? 1.0 : -1.0));
   }
+}
+
+namespace {
+
+// D(u) (long double): the highest vertex of A less the lowest of B along u, and the top sets
+// of A and bottom sets of B along u (the prefixes of the heights' order), none when two of A's
+// or of B's heights lie within `tie` of each other (the order there is the region's tolerance).
+struct Along {
+  long double D;
+  unsigned a_sets[4], b_sets[4];
+  bool clear;
+};
+Along along(const double (&pA)[4][3], const double (&pB)[4][3], const long double (&u)[3], long double tie) {
+  Along r;
+  long double ha[4], hb[4];
+  for (int i = 0; i < 4; ++i) {
+    ha[i] = pA[i][0] * u[0] + pA[i][1] * u[1] + pA[i][2] * u[2];
+    hb[i] = pB[i][0] * u[0] + pB[i][1] * u[1] + pB[i][2] * u[2];
+  }
+  int oa[4] = {0, 1, 2, 3}, ob[4] = {0, 1, 2, 3};
+  std::sort(oa, oa + 4, [&](int x, int y) { return ha[x] > ha[y]; });
+  std::sort(ob, ob + 4, [&](int x, int y) { return hb[x] < hb[y]; });
+  r.D = ha[oa[0]] - hb[ob[0]];
+  r.clear = true;
+  unsigned ma = 0, mb = 0;
+  for (int k = 0; k < 4; ++k) {
+    ma |= 1u << oa[k], mb |= 1u << ob[k];
+    r.a_sets[k] = ma, r.b_sets[k] = mb;
+    if (k < 3 && (ha[oa[k]] - ha[oa[k + 1]] < tie || hb[ob[k + 1]] - hb[ob[k]] < tie)) r.clear = false;
+  }
+  return r;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(region_keeps_every_piece_its_region_reaches) {
+  Rng rng(79);
+  long checked = 0, dropped = 0, applied = 0, wrong = 0, intersecting = 0;
+  static const int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (int trial = 0; trial < 300; ++trial) {
+    // two overlapping tetrahedra about the origin (centred as the enumeration centres them)
+    double pA[4][3], pB[4][3], c[3] = {0, 0, 0};
+    const double shift = rng.uniform(0, 0.8);
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        pA[i][k] = rng.uniform(-1, 1), pB[i][k] = rng.uniform(-1, 1) + (k == 0 ? shift : 0);
+        c[k] += (pA[i][k] + pB[i][k]) / 8;
+      }
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) pA[i][k] -= c[k], pB[i][k] -= c[k];
+    // directions beside the lines of the edges' cross products, where the region's least D lies,
+    // and the least D itself, PD (the least over the facet normals, which lie on these lines;
+    // not positive: the pair does not intersect)
+    double E[12][3];
+    for (int e = 0; e < 6; ++e)
+      for (int k = 0; k < 3; ++k)
+        E[e][k] = pA[kEdge[e][1]][k] - pA[kEdge[e][0]][k], E[6 + e][k] = pB[kEdge[e][1]][k] - pB[kEdge[e][0]][k];
+    long double least = INFINITY;
+    std::vector<std::array<long double, 3>> dirs;
+    for (int f = 0; f < 12; ++f)
+      for (int g = f + 1; g < 12; ++g) {
+        long double x[3] = {(long double)E[f][1] * E[g][2] - (long double)E[f][2] * E[g][1],
+                            (long double)E[f][2] * E[g][0] - (long double)E[f][0] * E[g][2],
+                            (long double)E[f][0] * E[g][1] - (long double)E[f][1] * E[g][0]};
+        const long double n = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (!(n > 1e-9)) continue;
+        for (int s : {1, -1})
+          for (int j = 0; j < 6; ++j) {
+            const long double eps = j == 0 ? 0 : std::pow(10.0L, -rng.uniform(2, 9));
+            long double u[3], m = 0;
+            for (int k = 0; k < 3; ++k) u[k] = s * x[k] / n + eps * rng.uniform(-1, 1), m += u[k] * u[k];
+            for (long double& y : u) y /= std::sqrt(m);
+            dirs.push_back({u[0], u[1], u[2]});
+            if (j == 0) least = std::min(least, along(pA, pB, u, 0).D);
+          }
+      }
+    if (!(least > 1e-6)) continue;  // (not intersecting, or barely)
+    ++intersecting;
+    for (int j = 0; j < 20000; ++j) {  // and random directions
+      long double u[3];
+      long double n = 0;
+      for (long double& x : u) x = rng.uniform(-1, 1), n += x * x;
+      if (n > 1 || n < 1e-6) continue;
+      for (long double& x : u) x /= std::sqrt(n);
+      dirs.push_back({u[0], u[1], u[2]});
+    }
+    const double top = double(least * least / 32) * rng.uniform(1.0, 4.0);
+    unsigned rows[16];
+    if (!region_pieces(pA, pB, top, rows)) continue;
+    ++applied;
+    for (unsigned ma = 1; ma < 16; ++ma) dropped += 15 - __builtin_popcount(rows[ma] & 0xFFFEu);
+    for (const auto& d : dirs) {
+      const long double u[3] = {d[0], d[1], d[2]};
+      const Along r = along(pA, pB, u, 1e-12L);
+      if (!r.clear || !(r.D * r.D < 32.0L * top * (1 - 1e-9L))) continue;
+      for (int k = 0; k < 4; ++k)
+        for (int m = 0; m < 4; ++m) {
+          ++checked;
+          if (!(rows[r.a_sets[k]] >> r.b_sets[m] & 1u)) ++wrong;
+        }
+    }
+  }
+  BOOST_TEST_MESSAGE("region: " << applied << " of " << intersecting << " pairs, " << checked << " pieces checked, "
+                                  << dropped << " dropped");
+  BOOST_TEST(wrong == 0);
+  BOOST_TEST(applied == intersecting);  // (every intersecting pair here: the test applies)
+  BOOST_TEST(applied > 100);
+  BOOST_TEST(checked > 100000);
+  BOOST_TEST(dropped > 100 * applied);  // most pieces dropped (not vacuous)
 }

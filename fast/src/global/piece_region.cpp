@@ -1,6 +1,8 @@
 // piece_region.cpp — see piece_region.h for what is dropped and why it is safe.
 #include "global/piece_region.h"
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -37,7 +39,9 @@ struct Lines {
   double f[3][16], g[3][16];             // the other lines' two edges
   double hA[4][kLanes], hB[4][kLanes];  // the vertices' heights along the line's x, as computed
   double tol[kLanes];                    // |x| w (1 + 2^-40), w = M (3.47 delta + 16u) (header)
-  int code[kLanes];  // bit 0: x close, bit 1: -x close, bit 2: x below its accuracy (header)
+  // bit 0: x close, bit 1: -x close, bit 2: x below its accuracy, or D along x or -x not
+  // certainly positive (header); 0 on padding lanes
+  int code[kLanes];
 };
 
 // One line's cross product x = f x g, accuracy, closeness and heights (header), into lane l.
@@ -59,12 +63,12 @@ inline __attribute__((always_inline)) void line_lane(Lines& __restrict L, int l,
     mxA = std::max(mxA, a), mnA = std::min(mnA, a), mxB = std::max(mxB, b), mnB = std::min(mnB, b);
   }
   const double w = M * (3.47 * delta + 16 * kU);
-  const double far = nx * (rho + w) * (1 + 0x1p-40);
-  L.tol[l] = nx * w * (1 + 0x1p-40);
+  const double far = nx * (rho + w) * (1 + 0x1p-40), tol = nx * w * (1 + 0x1p-40);
+  const double plus = mxA - mnB, minus = mxB - mnA;  // D along x and along -x, times |x|
+  L.tol[l] = tol;
   // (& | ! on ints: no branch, so that the lanes vectorise; comparisons false on NaN)
-  const int close_plus = !int(mxA - mnB > far), close_minus = !int(mxB - mnA > far);
-  const int bad = !(int(delta <= 0x1p-20) & int(xx >= 0x1p-900));
-  L.code[l] = kLineFlags.line[l] * (close_plus | close_minus << 1 | bad << 2);
+  const int bad = !(int(delta <= 0x1p-20) & int(xx >= 0x1p-900) & int(plus > tol) & int(minus > tol));
+  L.code[l] = kLineFlags.line[l] * (int(!(plus > far)) | int(!(minus > far)) << 1 | bad << 2);
 }
 
 // Every line, side by side. E: the edge vectors (E[e][k], e = 0..12).
@@ -95,18 +99,37 @@ struct TopSetTable {
   }
 };
 constexpr TopSetTable kTopSets;
-// The top sets of the heights h of lane l (up = true) or of their negations (up = false: the
-// comparisons transposed, -h_i + h_j = -(h_i - h_j), exactly).
-unsigned top_sets(const double (&h)[4][kLanes], int l, double tol, bool up) {
-  unsigned c = 0;
-  for (unsigned i = 0; i < 4; ++i)
-    for (unsigned j = i + 1; j < 4; ++j) {
-      const double d = h[i][l] - h[j][l];
-      const unsigned ij = 3 * i + j - 1, ji = 3 * j + i;  // (i < j)
-      const unsigned ge = unsigned(!(d < -tol)), le = unsigned(!(d > tol));
-      c |= up ? ge << ij | le << ji : le << ij | ge << ji;
-    }
-  return kTopSets.sets[c];
+// The comparisons of the heights h of lane l (bit 3 i + j - (j > i): h_i - h_j >= -tol) for h
+// (up) and for -h (down: -h_i + h_j = -(h_i - h_j) exactly, the comparisons transposed): the
+// six differences d_ij, i < j, in three pairs, each compared with -tol (ge: d >= -tol) and tol
+// (le: d <= tol), true on NaN as the table's definition.
+struct PairBits {  // 6 bits (pairs 01 02 03 12 13 23) to their positions ij and ji
+  unsigned short ij[64] = {}, ji[64] = {};
+  constexpr PairBits() {
+    constexpr int kI[6] = {0, 0, 0, 1, 1, 2}, kJ[6] = {1, 2, 3, 2, 3, 3};
+    for (unsigned c = 0; c < 64; ++c)
+      for (int p = 0; p < 6; ++p)
+        if (c >> p & 1u) {
+          ij[c] |= static_cast<unsigned short>(1u << (3 * kI[p] + kJ[p] - 1));
+          ji[c] |= static_cast<unsigned short>(1u << (3 * kJ[p] + kI[p]));
+        }
+  }
+};
+constexpr PairBits kPairBits;
+void comparisons(const double (&h)[4][kLanes], int l, double tol, unsigned& up, unsigned& down) {
+  const double h0 = h[0][l], h1 = h[1][l], h2 = h[2][l], h3 = h[3][l];
+  const __m128d d0 = _mm_sub_pd(_mm_setr_pd(h0, h0), _mm_setr_pd(h1, h2));  // h0 - h1, h0 - h2
+  const __m128d d1 = _mm_sub_pd(_mm_setr_pd(h0, h1), _mm_setr_pd(h3, h2));  // h0 - h3, h1 - h2
+  const __m128d d2 = _mm_sub_pd(_mm_setr_pd(h1, h2), _mm_setr_pd(h3, h3));  // h1 - h3, h2 - h3
+  const __m128d lo = _mm_set1_pd(-tol), hi = _mm_set1_pd(tol);
+  const unsigned ge = unsigned(_mm_movemask_pd(_mm_cmpnlt_pd(d0, lo))) |
+                      unsigned(_mm_movemask_pd(_mm_cmpnlt_pd(d1, lo))) << 2 |
+                      unsigned(_mm_movemask_pd(_mm_cmpnlt_pd(d2, lo))) << 4;
+  const unsigned le = unsigned(_mm_movemask_pd(_mm_cmpngt_pd(d0, hi))) |
+                      unsigned(_mm_movemask_pd(_mm_cmpngt_pd(d1, hi))) << 2 |
+                      unsigned(_mm_movemask_pd(_mm_cmpngt_pd(d2, hi))) << 4;
+  up = kPairBits.ij[ge] | kPairBits.ji[le];
+  down = kPairBits.ij[le] | kPairBits.ji[ge];
 }
 
 }  // namespace
@@ -135,13 +158,16 @@ bool region_pieces(const double (&pA)[4][3], const double (&pB)[4][3], double to
     if (!code) continue;
     if (code & 4) return false;
     // x close: A's top sets along x and B's bottom sets (the top sets of -h_B); -x: the reverse
+    unsigned a_up, a_down, b_up, b_down;
+    comparisons(L.hA, l, L.tol[l], a_up, a_down);
+    comparisons(L.hB, l, L.tol[l], b_up, b_down);
     if (code & 1) {
-      const unsigned b = top_sets(L.hB, l, L.tol[l], false);
-      for (unsigned a = top_sets(L.hA, l, L.tol[l], true); a; a &= a - 1) rows[__builtin_ctz(a)] |= b;
+      const unsigned b = kTopSets.sets[b_down];
+      for (unsigned a = kTopSets.sets[a_up]; a; a &= a - 1) rows[__builtin_ctz(a)] |= b;
     }
     if (code & 2) {
-      const unsigned b = top_sets(L.hB, l, L.tol[l], true);
-      for (unsigned a = top_sets(L.hA, l, L.tol[l], false); a; a &= a - 1) rows[__builtin_ctz(a)] |= b;
+      const unsigned b = kTopSets.sets[b_up];
+      for (unsigned a = kTopSets.sets[a_down]; a; a &= a - 1) rows[__builtin_ctz(a)] |= b;
     }
   }
   return true;

@@ -20,7 +20,9 @@
 // b_j.n <= (c - T_A).n exactly for j in S_B: S_A is a top set of A along n, S_B a bottom set of
 // B). So a piece can hold u* only if K(S) meets Omega, i.e. the least D on K(S) and the unit
 // sphere is below rho. Where is that least value attained? D = h_P, the support function of
-// P = A - B = conv{a_i - b_j}, positive on the sphere (the pair intersects). At a minimiser n of
+// P = A - B = conv{a_i - b_j}, positive on the sphere when the origin is inside P (checked
+// below: the pair of centred doubles intersects, as it does wherever the double path runs;
+// else the test does not apply, for the arguments below need h > 0). At a minimiser n of
 // D over K(S) and the sphere, let W be the walls of K(S) active at n (planes e.n = 0, e an edge
 // vector of A or B):
 //  - two independent walls: n is along e1 x e2;
@@ -40,6 +42,9 @@
 // edges of A or of B, or of an edge of A and one of B: 50 lines, 100 directions X. Hence: if
 // every direction x of X with D(x) < rho (unit x; "close") lies outside K(S), K(S) misses Omega
 // and S is dropped. (Parallel edges have no cross product, and no such minimiser either.)
+// Positivity: the origin lies inside P exactly when every facet inequality of P holds strictly
+// at it, h_P(facet normal) > 0; the facet normals are among the directions of X, so h > 0 on X
+// (certified, below) gives h_P > 0 on the whole sphere.
 //
 // In doubles. The vertices are exact doubles, |coordinates| <= M. Each edge vector is rounded
 // once (u relative per component), each cross product component x_c = f_a g_b - f_b g_a of
@@ -55,13 +60,15 @@
 // (|h| <= 2 sqrt(3) M |x|). h_P is R-Lipschitz on the sphere with R = max |a_i - b_j| <=
 // 2 sqrt(3) M < 3.47 M. A direction is "far" when its computed h exceeds
 // |x| (rho + w) (1 + 2^-40), w = M (3.47 delta + 16u) (every rounding of that expression inside
-// the 2^-40): then the exact direction x*/|x*| has D >= h(x)/|x| - R delta > rho. Each exact
-// direction of X whose D is below rho is therefore the computed x (or -x) of a direction that
-// is not far ("close", kept). For a close x, piece (S_A, S_B) is kept when every condition of
-// K(S) holds at x within tol = |x| w (1 + 2^-40): if x*/|x*| is in K(S), (a_i - a_j).x >=
-// -|a_i - a_j| delta |x| >= -3.47 M delta |x| exactly, and the computed heights' difference
-// errs by <= 10.6u M |x| more, and its rounding by <= 3.5u M |x| (|a_i - a_j| <= 2 sqrt(3) M). So a piece holding
-// u* is never dropped: the minimiser of D on K(S) is such an x*, below rho.
+// the 2^-40): then the exact direction x*/|x*| has D >= h(x)/|x| - R delta > rho; likewise a
+// computed h above tol = |x| w (1 + 2^-40) certifies D > 0 along x* (positivity, for x and -x
+// of every line). Each exact direction of X whose D is below rho is therefore the computed x
+// (or -x) of a direction that is not far ("close", kept). For a close x, piece (S_A, S_B) is
+// kept when every condition of K(S) holds at x within tol: if x*/|x*| is in K(S),
+// (a_i - a_j).x >= -|a_i - a_j| delta |x| >= -3.47 M delta |x| exactly, the computed heights'
+// difference errs by <= 10.6u M |x| more, and its rounding by <= 3.5u M |x| (|a_i - a_j| <=
+// 2 sqrt(3) M). So a piece holding u* is never dropped: the minimiser of D on K(S) is such an
+// x*, below rho.
 #pragma once
 
 namespace pdd::fast::detail {
