@@ -2,6 +2,7 @@
 #include "global/piece_enumeration.h"
 
 #include <Eigen/Eigenvalues>
+#include <emmintrin.h>
 
 #include <algorithm>
 #include <climits>
@@ -47,6 +48,33 @@ void subset_sums(const std::array<std::array<T, 3>, 4>& pA, const std::array<std
     for (int k = 0; k < 3; ++k) SA[m][k] = SA[rest][k] + pA[i][k], SB[m][k] = SB[rest][k] + pB[i][k];
     for (int q = 0; q < 6; ++q)
       QA[m][q] = QA[rest][q] + pA[i][kR[q]] * pA[i][kC[q]], QB[m][q] = QB[rest][q] + pB[i][kR[q]] * pB[i][kC[q]];
+  }
+}
+
+// Doubles, by subset as lanes (lane m: subset m): the same operations, each subset's sum from
+// the subset without its highest vertex (the lanes [2^i, 2^(i+1)) from [0, 2^i), i = 0..3), so
+// that each step vectorises; and qmax[m], the largest |second moment| of subset m.
+struct SubsetLanes {
+  double s[3][16], q[6][16], qmax[16];
+};
+void subset_lanes(const std::array<std::array<double, 3>, 4>& p, SubsetLanes& out) {
+  constexpr int kR[6] = {0, 0, 0, 1, 1, 2}, kC[6] = {0, 1, 2, 1, 2, 2};
+  for (int k = 0; k < 3; ++k) out.s[k][0] = 0;
+  for (int q = 0; q < 6; ++q) out.q[q][0] = 0;
+#pragma GCC unroll 4
+  for (int i = 0; i < 4; ++i) {
+    const int w = 1 << i;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < w; ++l) out.s[k][w + l] = out.s[k][l] + p[i][k];
+    for (int q = 0; q < 6; ++q) {
+      const double x = p[i][kR[q]] * p[i][kC[q]];
+      for (int l = 0; l < w; ++l) out.q[q][w + l] = out.q[q][l] + x;
+    }
+  }
+  for (int m = 0; m < 16; ++m) {
+    double x = std::fabs(out.q[0][m]);
+    for (int q = 1; q < 6; ++q) x = std::max(x, std::fabs(out.q[q][m]));
+    out.qmax[m] = x;
   }
 }
 
@@ -105,17 +133,8 @@ class PieceEnumeration {
   void sums() {
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) dA[i][k] = to_d(pA[i][k]), dB[i][k] = to_d(pB[i][k]);
-    subset_sums(dA, dB, dSA, dSB, dQA, dQB);
-    if constexpr (kExact) {
-      subset_sums(pA, pB, xSA, xSB, xQA, xQB);
-      SA = xSA, SB = xSB, QA = xQA, QB = xQB;
-    } else {
-      SA = dSA, SB = dSB, QA = dQA, QB = dQB;  // (the double path's own: dA = pA)
-    }
-    for (unsigned m = 0; m < 16; ++m) {
-      qa[m] = qb[m] = 0;
-      for (int q = 0; q < 6; ++q) qa[m] = std::max(qa[m], std::fabs(dQA[m][q])), qb[m] = std::max(qb[m], std::fabs(dQB[m][q]));
-    }
+    subset_lanes(dA, sa), subset_lanes(dB, sb);
+    if constexpr (kExact) subset_sums(pA, pB, xSA, xSB, xQA, xQB);
     top = best.value_in(0) * (1 - kPrune);
   }
 
@@ -123,28 +142,31 @@ class PieceEnumeration {
   // as dominated, the larger ones, come last: a row then needs fewer lanes), padded with the
   // empty set to a multiple of 4 lanes; lane[mb] is set mb's lane.
   void columns(unsigned sets) {
+    static constexpr unsigned char kBySize[15] = {1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14, 15};
     int n = 0;
-    for (int size = 1; size <= 4; ++size)
-      for (unsigned mb = 1; mb < 16; ++mb)
-        if ((sets >> mb & 1u) && kPopcount[mb] == size) column(n++, mb);
+    for (unsigned mb : kBySize)
+      if (sets >> mb & 1u) column(n++, mb);
     cols.lanes = (n + 3) & ~3;
     while (n < cols.lanes) column(n++, 0);
   }
   void column(int l, unsigned mb) {
-    for (int k = 0; k < 3; ++k) cols.S[k][l] = dSB[mb][k];
-    for (int q = 0; q < 6; ++q) cols.Q[q][l] = dQB[mb][q];
-    cols.q[l] = qb[mb];
+    for (int k = 0; k < 3; ++k) cols.S[k][l] = sb.s[k][mb];
+    for (int q = 0; q < 6; ++q) cols.Q[q][l] = sb.q[q][mb];
+    cols.q[l] = sb.qmax[mb];
     cols.m[l] = kPopcount[mb];
     cols.w[l] = 1.0 / (5 - kPopcount[mb]);
     for (int mA = 1; mA <= 4; ++mA) cols.r[mA][l] = detail::kLaneR.r[mA][mb];
     cols.mb[l] = static_cast<unsigned char>(mb);
     if (mb) lane[mb] = l;
   }
-  // The lanes a row needs for its sets `need` (bit mb): up to the last of them, in 4s.
-  int lanes_for(unsigned need) const {
-    int last = 0;
-    for (unsigned bits = need; bits; bits &= bits - 1) last = std::max(last, lane[__builtin_ctz(bits)]);
-    return (last + 4) & ~3;
+  // The lanes l < n (a multiple of 4) of x equal to 0 (zero) or not (bit l).
+  static unsigned lanes_where(const int (&x)[16], int n, bool zero) {
+    unsigned mask = 0;
+    for (int l = 0; l < n; l += 4) {
+      const __m128i v = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + l)), _mm_setzero_si128());
+      mask |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(v))) << l;
+    }
+    return zero ? mask : ~mask & ((1u << n) - 1);
   }
 
   // Pieces above the window. A piece's G_S(n) = n^T H_S n is the least object norm of a
@@ -197,11 +219,23 @@ class PieceEnumeration {
       const unsigned need = region[ma] & ~up_closure(reach[ma]) & 0xFFFEu;
       survivors[ma] = 0;
       if (!need) continue;
-      const int n = lanes_for(need);
+      unsigned need_lanes = 0;  // need's lanes (bit l)
+      for (unsigned bits = need; bits; bits &= bits - 1) need_lanes |= 1u << lane[__builtin_ctz(bits)];
+      const int n = (35 - __builtin_clz(need_lanes)) & ~3;  // up to the last lane needed, in 4s
       RowLanes row;
-      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, n, top, search.lower, row);
-      survivors[ma] = detail::row_mask(row, cols, n) & need;
-      for (int l = 0; l < n; ++l) above[ma] |= unsigned(row.below_top[l] == 0) << cols.mb[l];
+      surviving_pieces(row_sums(ma).data(), row_moments(ma).data(), sa.qmax[ma], kPopcount[ma], cols, n, top,
+                       search.lower, row);
+      // The kept pieces' and the pieces above's bits, here (SSE2, 4 lanes a step): inside
+      // surviving_pieces' vector clones a call or a reduction after the lanes' vector stores
+      // cost more (vectorised: 15% of the function; called from the clone, a helper left the
+      // AVX-512 clone's upper registers dirty on return, no vzeroupper, and every SSE
+      // instruction of the caller after it paid for that: ~40% of enumerate_pieces' own time,
+      // measured with perf).
+      const unsigned kept = lanes_where(row.keep, n, false) & need_lanes;
+      survivors[ma] = above[ma] = 0;
+      for (unsigned bits = kept; bits; bits &= bits - 1) survivors[ma] |= 1u << cols.mb[__builtin_ctz(bits)];
+      for (unsigned bits = lanes_where(row.below_top, n, true); bits; bits &= bits - 1)
+        above[ma] |= 1u << cols.mb[__builtin_ctz(bits)];
       above[ma] &= 0xFFFEu;
       // the screen's lanes: the survivors with exactly one eigenvalue in the window (the only
       // case it decides). (Over set bits: no branch per piece.) Of the others, a piece with
@@ -254,8 +288,8 @@ class PieceEnumeration {
     columns(0xFFFEu);
     for (unsigned ma = 1; ma < 16; ++ma) {
       RowLanes row;
-      surviving_pieces(dSA[ma].data(), dQA[ma].data(), qa[ma], kPopcount[ma], cols, cols.lanes, top, search.lower,
-                       row);
+      surviving_pieces(row_sums(ma).data(), row_moments(ma).data(), sa.qmax[ma], kPopcount[ma], cols, cols.lanes, top,
+                       search.lower, row);
       survivors[ma] = 0;
       for (unsigned mb = 1; mb < 16; ++mb) {
         const int l = lane[mb];
@@ -273,19 +307,38 @@ class PieceEnumeration {
     return nonzero_eigenvalues_above(N, N.norm(), e, zeros, detail::window_edges(top, search.lower, e).hi);
   }
 
+  // A's sums and second moments of subset m in doubles (surviving_pieces' rows).
+  std::array<double, 3> row_sums(unsigned m) const { return {sa.s[0][m], sa.s[1][m], sa.s[2][m]}; }
+  std::array<double, 6> row_moments(unsigned m) const {
+    return {sa.q[0][m], sa.q[1][m], sa.q[2][m], sa.q[3][m], sa.q[4][m], sa.q[5][m]};
+  }
+  // The sums and moments of the path's own type (build): exact, or the doubles'.
+  TV sum_of(bool a, unsigned m) const {
+    if constexpr (kExact) return a ? xSA[m] : xSB[m];
+    else {
+      const SubsetLanes& x = a ? sa : sb;
+      return TV{x.s[0][m], x.s[1][m], x.s[2][m]};
+    }
+  }
+  T moment_of(bool a, unsigned m, int q) const {
+    if constexpr (kExact) return a ? xQA[m][q] : xQB[m][q];
+    else return (a ? sa : sb).q[q][m];
+  }
+
   // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B; 20 H by moments (above).
   void build(PieceGeometry<T>& g) const {
     const unsigned ma = g.ma, mb = g.mb;
     const int mA = g.mA = kPopcount[ma], mB = g.mB = kPopcount[mb];
     const T wA = T(1) / T(5 - mA), wB = T(1) / T(5 - mB);
-    g.C = vmul(vadd(vmul(SA[ma], wA), vmul(SB[mb], wB)), T(1) / (T(mA) * wA + T(mB) * wB));
-    g.TA = vmul(vsub(vmul(g.C, T(mA)), SA[ma]), wA);
-    g.S = vadd(SA[ma], SB[mb]);
+    const TV SA = sum_of(true, ma), SB = sum_of(false, mb);
+    g.C = vmul(vadd(vmul(SA, wA), vmul(SB, wB)), T(1) / (T(mA) * wA + T(mB) * wB));
+    g.TA = vmul(vsub(vmul(g.C, T(mA)), SA), wA);
+    g.S = vadd(SA, SB);
     const TV &C = g.C, &TA = g.TA, &S = g.S;
     const T m = T(mA + mB), k = T(10 - mA - mB);
     for (int q = 0; q < 6; ++q) {
       const int r = kR[q], c = kC[q];
-      g.h[r][c] = (QA[ma][q] + QB[mb][q] - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
+      g.h[r][c] = (moment_of(true, ma, q) + moment_of(false, mb, q) - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
                    k * TA[r] * TA[c]) / T(20);
       g.h[c][r] = g.h[r][c];
     }
@@ -316,7 +369,7 @@ class PieceEnumeration {
   double h_error(const PieceGeometry<T>& g) const {
     if constexpr (kExact) return 0;
     const double c = amax(g.C), t = amax(g.TA);
-    return 0x1p-39 * (qa[g.ma] + qb[g.mb] + 2 * c * amax(g.S) + (g.mA + g.mB) * c * c + (10 - g.mA - g.mB) * t * t) /
+    return 0x1p-39 * (sa.qmax[g.ma] + sb.qmax[g.mb] + 2 * c * amax(g.S) + (g.mA + g.mB) * c * c + (10 - g.mA - g.mB) * t * t) /
            20;
   }
 
@@ -429,15 +482,11 @@ class PieceEnumeration {
   Best& best;
   ToDouble to_d;
   std::array<std::array<double, 3>, 4> dA, dB;
-  std::array<double, 3> dSA[16], dSB[16];
-  std::array<double, 6> dQA[16], dQB[16];
+  SubsetLanes sa, sb;    // the subsets' sums and moments in doubles (both paths: the counts)
   TV xSA[16], xSB[16];  // exact path: the exact sums
   M6 xQA[16], xQB[16];
-  const TV *SA = nullptr, *SB = nullptr;
-  const M6 *QA = nullptr, *QB = nullptr;
-  double qa[16], qb[16];  // max |QA|, |QB| (doubles)
-  ColumnsB cols{};        // B's sums as lanes (surviving_pieces)
-  int lane[16] = {};      // lane[mb]: set mb's lane in cols
+  ColumnsB cols;          // B's sums as lanes (surviving_pieces; every lane in use written)
+  int lane[16];           // lane[mb]: set mb's lane in cols (written for every set in cols)
   unsigned survivors[16];
   double top = 0;         // the window's top edge: the best value so far, less kPrune
   std::optional<AccurateMoments> accurate;  // double path: built on the first piece that needs it

@@ -13,7 +13,8 @@
 // reach screen() and 1.5 reach consider_piece. The vectorisation is fragile: check
 // `-fopt-info-vec` after any change (a chain of && on six comparisons once made GCC give up on
 // the row loop: pdd2_global 13.4 us instead of 7.4), and that each clone ends with vzeroupper
-// (objdump: without it the caller's SSE code runs with dirty upper registers, row_mask below).
+// (objdump: without it the caller's SSE code runs with dirty upper registers: the caller's
+// scalar pass over a row's lanes, piece_enumeration.cpp).
 // Written by hand: no library counts a symmetric 3x3 matrix's eigenvalues in an interval with
 // certified signs, or screens 8 lanes of them at once.
 #pragma once
@@ -141,7 +142,7 @@ inline constexpr LaneReciprocals kLaneR;
 // One row's pieces as lanes (lane mb): N = 20 H (xx xy xz yy yz zz), n_error, c and T_A's
 // vectors, and the number of N's eigenvalues below the window's bottom edge (parity: f's sign
 // there, screen()) and below its top edge (-1: undecided).
-// keep[mb]: the piece is not certainly outside the pruning window (row_mask gathers the bits).
+// keep[l]: the piece is not certainly outside the pruning window (the caller gathers the bits).
 struct RowLanes {
   double N[6][16], n_error[16], C[3][16], TA[3][16], below_low[16];
   int one[16];        // exactly one eigenvalue in the window, both counts decided
@@ -151,18 +152,6 @@ struct RowLanes {
 // Lanes 0 .. `lanes` - 1 of b (4, 8, 12 or 16; RowLanes' lane l is b's lane l).
 void surviving_pieces(const double SA[3], const double QA[6], double qa, int mA, const ColumnsB& b, int lanes,
                       double top, double lower, RowLanes& out);
-// Bit mb of the result: keep[l] of the lane l holding set mb, over the first `lanes` lanes (bit 0,
-// the padding's, is left for the caller to clear). Scalar, in the caller: inside
-// surviving_pieces' vector clones a call or a reduction after the lanes' vector stores cost
-// more (vectorised: 15% of the function; called from the clone, a helper left the AVX-512
-// clone's upper registers dirty on return, no vzeroupper, and every SSE instruction of the
-// caller after it paid for that: ~40% of enumerate_pieces' own time, measured with perf).
-inline unsigned row_mask(const RowLanes& row, const ColumnsB& b, int lanes) {
-  unsigned mask = 0;
-  for (int l = 0; l < lanes; ++l) mask |= unsigned(row.keep[l] != 0) << b.mb[l];
-  return mask;
-}
-
 // The pieces that passed surviving_pieces with exactly one eigenvalue in the window (RowLanes'
 // one), gathered as lanes for screen().
 struct ScreenLanes {
