@@ -2,7 +2,9 @@
 #include "global/piece_enumeration.h"
 
 #include <Eigen/Eigenvalues>
+#if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <climits>
@@ -162,10 +164,14 @@ class PieceEnumeration {
   // The lanes l < n (a multiple of 4) of x equal to 0 (zero) or not (bit l).
   static unsigned lanes_where(const int (&x)[16], int n, bool zero) {
     unsigned mask = 0;
+#if defined(__SSE2__)
     for (int l = 0; l < n; l += 4) {
       const __m128i v = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + l)), _mm_setzero_si128());
       mask |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(v))) << l;
     }
+#else  // (the same bits, one lane at a time)
+    for (int l = 0; l < n; ++l) mask |= unsigned(x[l] == 0) << l;
+#endif
     return zero ? mask : ~mask & ((1u << n) - 1);
   }
 

@@ -1,7 +1,9 @@
 // piece_region.cpp — see piece_region.h for what is dropped and why it is safe.
 #include "global/piece_region.h"
 
+#if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -118,6 +120,7 @@ struct PairBits {  // 6 bits (pairs 01 02 03 12 13 23) to their positions ij and
 constexpr PairBits kPairBits;
 void comparisons(const double (&h)[4][kLanes], int l, double tol, unsigned& up, unsigned& down) {
   const double h0 = h[0][l], h1 = h[1][l], h2 = h[2][l], h3 = h[3][l];
+#if defined(__SSE2__)
   const __m128d d0 = _mm_sub_pd(_mm_setr_pd(h0, h0), _mm_setr_pd(h1, h2));  // h0 - h1, h0 - h2
   const __m128d d1 = _mm_sub_pd(_mm_setr_pd(h0, h1), _mm_setr_pd(h3, h2));  // h0 - h3, h1 - h2
   const __m128d d2 = _mm_sub_pd(_mm_setr_pd(h1, h2), _mm_setr_pd(h3, h3));  // h1 - h3, h2 - h3
@@ -128,6 +131,11 @@ void comparisons(const double (&h)[4][kLanes], int l, double tol, unsigned& up, 
   const unsigned le = unsigned(_mm_movemask_pd(_mm_cmpngt_pd(d0, hi))) |
                       unsigned(_mm_movemask_pd(_mm_cmpngt_pd(d1, hi))) << 2 |
                       unsigned(_mm_movemask_pd(_mm_cmpngt_pd(d2, hi))) << 4;
+#else  // (the same bits: bit p for pair p of 01 02 03 12 13 23, true on NaN)
+  const double d[6] = {h0 - h1, h0 - h2, h0 - h3, h1 - h2, h1 - h3, h2 - h3};
+  unsigned ge = 0, le = 0;
+  for (int p = 0; p < 6; ++p) ge |= unsigned(!(d[p] < -tol)) << p, le |= unsigned(!(d[p] > tol)) << p;
+#endif
   up = kPairBits.ij[ge] | kPairBits.ji[le];
   down = kPairBits.ij[le] | kPairBits.ji[ge];
 }
