@@ -38,6 +38,24 @@ inline TetVertices five_cell_tet(const Vec3d& o, double h, int which, bool odd) 
   return {corner(c[0]), corner(c[1]), corner(c[2]), corner(c[3])};
 }
 
+// The pairs of A x B whose interiors meet (fast rigid PD² > 0) and whose PD² `keep` accepts, up
+// to `max_pairs`, named "<name> a<i> b<j>".
+template <class Keep>
+std::vector<TetPair> intersecting_pairs(const std::vector<TetVertices>& A, const std::vector<TetVertices>& B,
+                                        const std::string& name, int max_pairs, Keep keep) {
+  std::vector<TetPair> out;
+  for (std::size_t a = 0; a < A.size(); ++a)
+    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
+      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
+      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0) || !keep(d.pd2)) continue;
+      TetPair p;
+      p.name = name + " a" + std::to_string(a) + " b" + std::to_string(b);
+      p.A = A[a], p.B = B[b];
+      out.push_back(p);
+    }
+  return out;
+}
+
 // Contacts made by rounding: the Kuhn tetrahedra of an n^3 grid of cubes of side h = 1/8
 // against those of the same grid shifted by h/10 along (1, 1, 1) (each coordinate i h + h/10
 // rounded once). In exact arithmetic the shift lies in the planes x - y = c, y - z = c of the
@@ -58,17 +76,7 @@ inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
             for (double& x : v) x += s;
           B.push_back(b);
         }
-  std::vector<TetPair> out;
-  for (std::size_t a = 0; a < A.size(); ++a)
-    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
-      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
-      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0) || !(d.pd2 < 1e-20)) continue;
-      TetPair p;
-      p.name = "rounding a" + std::to_string(a) + " b" + std::to_string(b);
-      p.A = A[a], p.B = B[b];
-      out.push_back(p);
-    }
-  return out;
+  return intersecting_pairs(A, B, "rounding", max_pairs, [](double pd2) { return pd2 < 1e-20; });
 }
 
 // A resting contact of structured blocks: the Kuhn tetrahedra of an n x n x 1 layer of cubes
@@ -86,17 +94,7 @@ inline std::vector<TetPair> resting_contact_pairs(int n, double depth, int max_p
         A.push_back(kuhn_cell_tet({i * h, j * h, 0.0}, h, perm));
         B.push_back(kuhn_cell_tet({i * h + shift[0], j * h + shift[1], shift[2]}, h, perm));
       }
-  std::vector<TetPair> out;
-  for (std::size_t a = 0; a < A.size(); ++a)
-    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
-      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
-      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0)) continue;
-      TetPair p;
-      p.name = "resting a" + std::to_string(a) + " b" + std::to_string(b);
-      p.A = A[a], p.B = B[b];
-      out.push_back(p);
-    }
-  return out;
+  return intersecting_pairs(A, B, "resting", max_pairs, [](double) { return true; });
 }
 
 // Cells that coincide up to rounding: the Kuhn tetrahedra of an n x n x 1 layer of cubes of
@@ -122,17 +120,7 @@ inline std::vector<TetPair> coincident_cell_pairs(int n, int max_pairs) {
   };
   layer(0.0, 5, A);
   layer(h, 4, B);
-  std::vector<TetPair> out;
-  for (std::size_t a = 0; a < A.size(); ++a)
-    for (std::size_t b = 0; b < B.size() && int(out.size()) < max_pairs; ++b) {
-      const fast::Depth d = fast::rigid_pd2(A[a], B[b]);
-      if (d.status != fast::DepthStatus::Ok || !(d.pd2 > 0)) continue;
-      TetPair p;
-      p.name = "coincident a" + std::to_string(a) + " b" + std::to_string(b);
-      p.A = A[a], p.B = B[b];
-      out.push_back(p);
-    }
-  return out;
+  return intersecting_pairs(A, B, "coincident", max_pairs, [](double) { return true; });
 }
 
 }  // namespace pdd::test
