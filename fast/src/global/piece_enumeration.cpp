@@ -187,7 +187,7 @@ class PieceEnumeration {
   // that every row of a subset of ma comes first: above[ma'] holds the sets mb' of the pieces
   // (ma', mb') found above, and a row drops every set mb containing some mb' of a row ma'
   // within ma (ma' != ma; ma' = ma would need the row's own counts first): on the paper's pairs
-  // ~66 pieces a pair before the region test (piece_region.h), and whole rows (all of A active,
+  // ~66 pieces a pair without the region test (piece_region.h), and whole rows (all of A active,
   // most of the energy bench's contacts).
   static unsigned up_closure(unsigned sets) {  // every mb containing some mb' of sets (bit sets)
     sets |= (sets & 0x5555u) << 1;
