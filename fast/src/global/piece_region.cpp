@@ -89,15 +89,17 @@ PDD_REGION_CLONES void line_lanes(Lines& __restrict L, const double (&E)[13][3],
 // comparisons (i != j, bit 3 i + j - (j > i); each difference rounded once) by a table.
 struct TopSetTable {
   unsigned short sets[4096] = {};
+  // (the comparisons each set needs first: a constant expression within the compilers' step
+  // limits, clang's 2^20 included)
   constexpr TopSetTable() {
+    unsigned need[16] = {};
+    for (unsigned m = 1; m < 16; ++m)
+      for (unsigned i = 0; i < 4; ++i)
+        for (unsigned j = 0; j < 4; ++j)
+          if ((m >> i & 1u) && !(m >> j & 1u)) need[m] |= 1u << (3 * i + j - (j > i));
     for (unsigned c = 0; c < 4096; ++c)
-      for (unsigned m = 1; m < 16; ++m) {
-        bool ok = true;
-        for (unsigned i = 0; i < 4; ++i)
-          for (unsigned j = 0; j < 4; ++j)
-            if ((m >> i & 1u) && !(m >> j & 1u) && !(c >> (3 * i + j - (j > i)) & 1u)) ok = false;
-        if (ok) sets[c] |= static_cast<unsigned short>(1u << m);
-      }
+      for (unsigned m = 1; m < 16; ++m)
+        if ((c & need[m]) == need[m]) sets[c] |= static_cast<unsigned short>(1u << m);
   }
 };
 constexpr TopSetTable kTopSets;
