@@ -123,4 +123,28 @@ inline std::vector<TetPair> coincident_cell_pairs(int n, int max_pairs) {
   return intersecting_pairs(A, B, "coincident", max_pairs, [](double) { return true; });
 }
 
+// Blocks stacked by rounding, as users place them: the Kuhn tetrahedra of an n x n x 3 block of
+// decimal cells (coordinates c h, h = 0.1, each rounded once: its top 3 h = 0.30000000000000004)
+// and those of an n x n x 1 block set on it at 0.3, moved across by (0.37 h, 0.21 h) (its
+// coordinates 0.3 + c h and c h + 0.037 ...); B's bottom lies ~5.6e-17 below A's top. The
+// element pairs whose interiors meet only through that rounding (rigid PD² below 1e-30), up
+// to `max_pairs`: every value ~1e-34, the minimiser of definitions §9 tilted ~1e-16 off the
+// axis.
+inline std::vector<TetPair> rounding_stack_pairs(int n, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int perm = 0; perm < 6; ++perm) {
+        const TetVertices t = kuhn_cell_tet({0, 0, 0}, 1.0, perm);
+        TetVertices a = t, b = t;
+        for (int v = 0; v < 4; ++v) {
+          a[v] = {(i + t[v][0]) * h, (j + t[v][1]) * h, (2 + t[v][2]) * h};
+          b[v] = {(i + t[v][0]) * h + 0.037, (j + t[v][1]) * h + 0.021, 0.3 + t[v][2] * h};
+        }
+        A.push_back(a), B.push_back(b);
+      }
+  return intersecting_pairs(A, B, "stacked by rounding", max_pairs, [](double pd2) { return pd2 < 1e-30; });
+}
+
 }  // namespace pdd::test

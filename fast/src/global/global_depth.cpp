@@ -1,6 +1,7 @@
 // global_depth.cpp — the driver of global_depth (see global_depth.h for the method and its
 // argument): the start's offer and one descent step, the pieces enumerated in doubles
-// (piece_enumeration.h) or, where doubles cannot resolve the depth, exactly; the winning
+// (piece_enumeration.h) or, where doubles cannot resolve the depth, certified without them
+// (shallow_certificate.h) or else exactly; the winning
 // offer chosen among near ties, its value certified (relaxed_value.h's bounds) or recomputed
 // in rationals, and on the exact pieces the suspects settled (suspect_proof.h).
 #include "global/global_depth.h"
@@ -14,6 +15,7 @@
 #include "global/eigen_polish.h"
 #include "global/piece_enumeration.h"
 #include "global/relaxed_value.h"
+#include "global/shallow_certificate.h"
 #include "global/suspect_proof.h"
 
 namespace pdd::fast {
@@ -23,6 +25,8 @@ using detail::kPopcount;
 using global::add;
 using global::cross;
 using global::Best;
+using global::certify_shallow;
+using global::ShallowResult;
 using global::dot;
 using global::enumerate_pieces;
 using global::evaluate_tight;
@@ -95,6 +99,7 @@ struct GlobalRun {
   double lower = 0;          // every G(u) >= lower (the pair's units)
   double lower_scaled = 0;   // the exact path's floor in its units
   bool exact_pieces = false;  // the pieces were built exactly
+  GlobalOptimum shallow;      // report_shallow's result
 };
 
 // No start given (a caller whose candidate list could not be built: the pair has parallel
@@ -151,16 +156,7 @@ void offer_geometric_starts(GlobalRun& g) {
 void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
   // G >= PD^2 / 32 (global_depth.h), with the given PD^2's 1e-8: a lower bound on every G(u).
   g.lower = std::isfinite(rigid_pd2) && rigid_pd2 > 0 ? rigid_pd2 * (1 - 1e-8) * kDeformableBoundCoeff : 0.0;
-  const TetVertices &A = g.A, &B = g.B;
-  Problem& P = g.P;
-  V3 centroid{0, 0, 0};
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      P.relA[i][k] = A[i][k] - A[0][k], P.relB[i][k] = B[i][k] - A[0][k];
-      P.scale = std::max({P.scale, std::fabs(P.relA[i][k]), std::fabs(P.relB[i][k])});
-      centroid[k] += (P.relA[i][k] + P.relB[i][k]) / 8;
-    }
-  for (int i = 0; i < 4; ++i) P.pA[i] = sub(P.relA[i], centroid), P.pB[i] = sub(P.relB[i], centroid);
+  Problem& P = g.P = global::problem_of(g.A, g.B);
   g.best.value = INFINITY;
   g.best.n = {start_normal[0], start_normal[1], start_normal[2]};
   if (nonzero(g.best.n)) g.best.offer(P, g.best.n);
@@ -406,6 +402,20 @@ void report_exact(GlobalRun& g, Placement& place, double start_value) {
                   !missed;
 }
 
+// A contact far shallower than the pair certified without the pieces (shallow_certificate.h):
+// its value, normal and the positions along it.
+bool report_shallow(GlobalRun& g) {
+  ShallowResult r;
+  if (!certify_shallow(g.A, g.B, g.P, g.best.n, r)) return false;
+  GlobalOptimum& out = g.shallow;
+  out.normal = r.normal;
+  Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
+  place(r.eval.sol, r.eval.hA, r.eval.hB, [](double x) { return x; });
+  out.value = r.eval.value;
+  out.certified = true;
+  return true;
+}
+
 GlobalOptimum report(GlobalRun& g, double start_value) {
   GlobalOptimum out;
   out.normal = g.best.n;
@@ -434,6 +444,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   GlobalRun g(A, B);
   set_up(g, start_normal, rigid_pd2);
   g.exact_pieces = needs_exact_pieces(g, start_value);
+  if (g.exact_pieces && report_shallow(g)) return g.shallow;
   if (g.exact_pieces) enumerate_exact(g, exact_start);
   else choose_offer(g);
   return report(g, start_value);

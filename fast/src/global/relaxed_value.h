@@ -36,6 +36,20 @@ struct Problem {
   double scale = 0;     // max |relA|, |relB| component
 };
 
+// The pair's Problem (each coordinate difference rounded once, the centroid in doubles).
+inline Problem problem_of(const TetVertices& A, const TetVertices& B) {
+  Problem P;
+  V3 centroid{0, 0, 0};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      P.relA[i][k] = A[i][k] - A[0][k], P.relB[i][k] = B[i][k] - A[0][k];
+      P.scale = std::max({P.scale, std::fabs(P.relA[i][k]), std::fabs(P.relB[i][k])});
+      centroid[k] += (P.relA[i][k] + P.relB[i][k]) / 8;
+    }
+  for (int i = 0; i < 4; ++i) P.pA[i] = sub(P.relA[i], centroid), P.pB[i] = sub(P.relB[i], centroid);
+  return P;
+}
+
 // relaxed(v) = cost / (20 v.v) by direction_qp.h's closed form on heights relative to A[0].
 // (hA, hB: the heights, when wanted.)
 inline double relaxed_at(const Problem& P, const V3& v, DirectionSolution* sol = nullptr, double* hmax = nullptr,

@@ -1,0 +1,354 @@
+// shallow_certificate.cpp — see shallow_certificate.h for the argument.
+#include "global/shallow_certificate.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include <gmpxx.h>
+
+namespace pdd::fast::global {
+namespace {
+
+
+// The vertices at the plane (direction_qp.h: A's i when T_i = C - H_i < -S_A, B's j when
+// C - H_j > -S_B), bit i of ma / mb.
+void active_sets(const Evaluation& ev, unsigned& ma, unsigned& mb) {
+  ma = mb = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (ev.hA[i] > ev.sol.c + ev.sol.sumA) ma |= 1u << i;
+    if (ev.hB[i] < ev.sol.c + ev.sol.sumB) mb |= 1u << i;
+  }
+}
+
+// Two vectors across v, each of v's length (a frame for the tilt; any such pair will do).
+void frame(const V3& v, V3& e1, V3& e2) {
+  int k = 0;
+  for (int j = 1; j < 3; ++j)
+    if (std::fabs(v[j]) < std::fabs(v[k])) k = j;
+  V3 axis{0, 0, 0};
+  axis[k] = 1;
+  e1 = cross(v, axis);
+  e1 = mul(e1, norm(v) / norm(e1));
+  e2 = mul(cross(v, e1), 1 / norm(v));
+}
+
+// The least of F on S's piece along v + E y (shallow_certificate.h): v moved, or false when
+// S's positions across v do not fix the tilt (fewer than three of them off one line).
+bool tilt_step(const Problem& P, const Evaluation& ev, unsigned ma, unsigned mb, V3& v) {
+  V3 e1, e2;
+  frame(v, e1, e2);
+  const int mA = __builtin_popcount(ma), mB = __builtin_popcount(mb);
+  const double wA = 1.0 / (5 - mA), wB = 1.0 / (5 - mB), k = 10 - mA - mB;
+  double SAh = 0, SBh = 0, SA[2] = {0, 0}, SB[2] = {0, 0};
+  for (int i = 0; i < 4; ++i) {
+    if (ma >> i & 1u) SAh += ev.hA[i], SA[0] += dot(e1, P.relA[i]), SA[1] += dot(e2, P.relA[i]);
+    if (mb >> i & 1u) SBh += ev.hB[i], SB[0] += dot(e1, P.relB[i]), SB[1] += dot(e2, P.relB[i]);
+  }
+  const double W = mA * wA + mB * wB;
+  const double ch = (wA * SAh + wB * SBh) / W;
+  const double cx[2] = {(wA * SA[0] + wB * SB[0]) / W, (wA * SA[1] + wB * SB[1]) / W};
+  double M[3] = {0, 0, 0}, r[2] = {0, 0};  // M: xx xy yy
+  auto term = [&](double eta, double x0, double x1, double w) {
+    M[0] += w * x0 * x0, M[1] += w * x0 * x1, M[2] += w * x1 * x1;
+    r[0] += w * x0 * eta, r[1] += w * x1 * eta;
+  };
+  double tau = 0, tx[2] = {0, 0};
+  for (int i = 0; i < 4; ++i) {
+    if (ma >> i & 1u) {
+      const double x0 = dot(e1, P.relA[i]) - cx[0], x1 = dot(e2, P.relA[i]) - cx[1];
+      term(ev.hA[i] - ch, x0, x1, 1);
+      tau -= ev.hA[i] - ch, tx[0] -= x0, tx[1] -= x1;
+    }
+    if (mb >> i & 1u) term(ev.hB[i] - ch, dot(e1, P.relB[i]) - cx[0], dot(e2, P.relB[i]) - cx[1], 1);
+  }
+  term(wA * tau, wA * tx[0], wA * tx[1], k);
+  const double det = M[0] * M[2] - M[1] * M[1];
+  if (!(det > 1e-12 * (M[0] + M[2]) * (M[0] + M[2]))) return false;
+  const double y0 = -(M[2] * r[0] - M[1] * r[1]) / det, y1 = -(M[0] * r[1] - M[1] * r[0]) / det;
+  v = add(v, add(mul(e1, y0), mul(e2, y1)));
+  return std::isfinite(v[0] + v[1] + v[2]);
+}
+
+
+// v moved to the least of its pieces' charts until its active set stays (at most 8 steps, each
+// kept only where it lowers the certified value). False when no step can be taken or an
+// evaluation is not certified.
+bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V3& v, Evaluation& ev) {
+  ev = evaluate_tight(A, B, P, v);
+  if (!(ev.error <= kGlobalRel)) return false;
+  unsigned ma, mb;
+  active_sets(ev, ma, mb);
+  for (int step = 0; step < 8; ++step) {
+    if (!ma || !mb) return false;
+    V3 w = v;
+    if (!tilt_step(P, ev, ma, mb, w)) return step > 0;
+    const Evaluation ew = evaluate_tight(A, B, P, w);
+    if (!(ew.error <= kGlobalRel) || !(ew.value <= ev.value)) return true;
+    unsigned na, nb;
+    active_sets(ew, na, nb);
+    v = w, ev = ew;
+    if (na == ma && nb == mb) return true;
+    ma = na, mb = nb;
+  }
+  return true;
+}
+
+// Exact integers over a power of two: x = X 2^e for every double x of a set, e the least of
+// their exponents (a double's 53-bit mantissa times 2^(exponent - 53)). Products and sums of
+// such integers need no reduction to lowest terms (rationals take a gcd after every
+// operation: 70% of this certificate's time with them).
+long low_exponent(double x) {
+  int e = 0;
+  std::frexp(x, &e);
+  return x == 0 ? LONG_MAX : long(e) - 53;
+}
+void to_integer(double x, long e, mpz_class& out) {
+  if (x == 0) {
+    out = 0;
+    return;
+  }
+  int ex = 0;
+  const double m = std::frexp(x, &ex);
+  out = std::ldexp(m, 53);  // an integer below 2^53: exact
+  mpz_mul_2exp(out.get_mpz_t(), out.get_mpz_t(), static_cast<unsigned long>(long(ex) - 53 - e));
+}
+
+using ZV = std::array<mpz_class, 3>;
+mpz_class zdot(const ZV& a, const ZV& b) { return mpz_class(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]); }
+ZV zcross(const ZV& a, const ZV& b) {
+  return ZV{mpz_class(a[1] * b[2] - a[2] * b[1]), mpz_class(a[2] * b[0] - a[0] * b[2]),
+            mpz_class(a[0] * b[1] - a[1] * b[0])};
+}
+mpz_class det3(const mpz_class (&m)[3][3]) {
+  return mpz_class(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                   m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
+}
+
+// The multipliers of the evaluation (direction_qp.h's KKT: l_i = -2 (T_i + S_A) at A's vertices
+// at the plane, m_j = 2 (T_j + S_B) at B's, 0 elsewhere), moved exactly so that sum l = sum m
+// and g = sum l_i a_i - sum m_j b_j is parallel to v (shallow_certificate.h), as integers M (a
+// positive multiple of them: B0 does not change when every multiplier is scaled by one s > 0);
+// [0..3] A's, [4..7] B's. x: the positions relative to A[0] as integers (one power of two), V:
+// v's components as integers. False when no three of them give a regular system or a
+// multiplier would turn negative.
+bool parallel_multipliers(const Evaluation& ev, const ZV (&x)[8], const ZV& V, mpz_class (&M)[8]) {
+  double l[8];
+  long el = LONG_MAX;
+  for (int i = 0; i < 4; ++i) {
+    l[i] = std::max(0.0, 2 * (ev.hA[i] - ev.sol.c - ev.sol.sumA));
+    l[4 + i] = std::max(0.0, 2 * (ev.sol.c + ev.sol.sumB - ev.hB[i]));
+  }
+  for (double y : l) el = std::min(el, low_exponent(y));
+  if (el == LONG_MAX) return false;
+  // e1, e2 across v, exactly
+  int k = 0;
+  for (int j = 1; j < 3; ++j)
+    if (abs(V[j]) < abs(V[k])) k = j;
+  ZV axis{mpz_class(0), mpz_class(0), mpz_class(0)};
+  axis[k] = 1;
+  const ZV e1 = zcross(V, axis), e2 = zcross(V, e1);
+  // columns (s_p, s_p x_p.e1, s_p x_p.e2), s = +1 on A, -1 on B (each row in its own power of
+  // two, which Cramer's rule cancels); the residual of the double multipliers
+  mpz_class col[8][3], res[3] = {0, 0, 0};
+  double cd[8][3];
+  for (int p = 0; p < 8; ++p) {
+    const int s = p < 4 ? 1 : -1;
+    col[p][0] = s, col[p][1] = s * zdot(x[p], e1), col[p][2] = s * zdot(x[p], e2);
+    if (l[p] > 0) to_integer(l[p], el, M[p]);
+    else M[p] = 0;
+    for (int r = 0; r < 3; ++r) res[r] += M[p] * col[p][r], cd[p][r] = col[p][r].get_d();
+  }
+  // the three largest multipliers whose columns are best conditioned (in doubles: a choice)
+  int best[3] = {-1, -1, -1};
+  double best_score = 0;
+  for (int p = 0; p < 8; ++p)
+    for (int q = p + 1; q < 8; ++q)
+      for (int r = q + 1; r < 8; ++r) {
+        if (!(l[p] > 0 && l[q] > 0 && l[r] > 0)) continue;
+        double d = 0, n = 1;
+        for (int row = 0; row < 3; ++row) {
+          const int r1 = (row + 1) % 3, r2 = (row + 2) % 3;
+          d += cd[p][row] * (cd[q][r1] * cd[r][r2] - cd[q][r2] * cd[r][r1]);
+        }
+        for (int t : {p, q, r}) n *= std::sqrt(cd[t][0] * cd[t][0] + cd[t][1] * cd[t][1] + cd[t][2] * cd[t][2]);
+        const double score = std::fabs(d) / n * std::min({l[p], l[q], l[r]});
+        if (score > best_score) best_score = score, best[0] = p, best[1] = q, best[2] = r;
+      }
+  if (best[0] < 0) return false;
+  mpz_class m[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m[r][c] = col[best[c]][r];
+  mpz_class d = det3(m);
+  if (sgn(d) == 0) return false;
+  // Cramer: change_c = det(m with column c replaced by -res) / d; M scaled by |d|
+  mpz_class change[3];
+  for (int c = 0; c < 3; ++c) {
+    mpz_class mc[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int j = 0; j < 3; ++j) mc[r][j] = j == c ? mpz_class(-res[r]) : m[r][j];
+    change[c] = det3(mc);
+    if (sgn(d) < 0) change[c] = -change[c];
+  }
+  if (sgn(d) < 0) d = -d;
+  for (mpz_class& y : M) y *= d;
+  for (int c = 0; c < 3; ++c) {
+    M[best[c]] += change[c];
+    if (sgn(M[best[c]]) < 0) return false;
+  }
+  return true;
+}
+
+// A lower bound on the signed distance from q to the plane of x1 x2 x3, positive on the side
+// away from x4 (every point exact: doubles): the cross product and dot product in doubles, each
+// within 16u of their permanents (coordinate differences rounded once, products and sums
+// rounded: 8u, doubled for room), the norm bounded above. -inf when the orientation is not
+// certain.
+double facet_distance_lower(const V3& x1, const V3& x2, const V3& x3, const V3& x4, const V3& q) {
+  const V3 a = sub(x2, x1), b = sub(x3, x1), c = sub(x1, q), o = sub(x4, x1);
+  const V3 N = cross(a, b);
+  V3 pn;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    pn[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
+  }
+  auto perm = [&pn](const V3& y) {
+    return (pn[0] * std::fabs(y[0]) + pn[1] * std::fabs(y[1]) + pn[2] * std::fabs(y[2])) * (1 + 8 * kU);
+  };
+  const double no = dot(N, o), eo = 16 * kU * perm(o);
+  if (!(std::fabs(no) > eo)) return -INFINITY;
+  const double side = no < 0 ? 1 : -1;  // N side: outward
+  const double num = side * dot(N, c) - 16 * kU * perm(c);
+  const double den = (norm(N) * (1 + 3 * kU) + 5 * kU * norm(pn)) * (1 + 4 * kU);
+  if (!(num > 0) || !(den > 0)) return -INFINITY;
+  return num / den * (1 - 4 * kU);
+}
+
+// Off the cap u.v/|v| < c0 (c0 >= cos of the cap's radius, rounded up): D(u) >= d0 for every such
+// unit u, by a ball B(q, R1) inside a simplex of four points of M = A - B (shallow_certificate.h).
+bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, double c0, double d0) {
+  const V3 vh = mul(v, 1 / norm(v));  // within 8u of v/|v|
+  const double e = 8 * kU;
+  V3 w[16];
+  double z[16], zmax = -INFINITY, zmin = INFINITY, wmax = 0;
+  int apex = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const int p = 4 * i + j;
+      for (int k = 0; k < 3; ++k) w[p][k] = A[i][k] - B[j][k];
+      z[p] = dot(vh, w[p]);
+      wmax = std::max(wmax, norm(w[p]));
+      zmax = std::max(zmax, z[p]);
+      if (z[p] < zmin) zmin = z[p], apex = p;
+    }
+  const double delta = 2 * kU * wmax;  // |w - (a - b)| (each component rounded once)
+  if (!(zmax - zmin > 0)) return false;
+  // the top points (M's face beneath the contact) across v, and their triangle around 0 with
+  // the largest distance rho from 0 to its sides (a choice; the ball test below decides)
+  V3 e1, e2;
+  frame(vh, e1, e2);
+  int top[16], nt = 0;
+  for (int p = 0; p < 16; ++p)
+    if (z[p] >= zmax - 1e-6 * (zmax - zmin)) top[nt++] = p;
+  double rho = 0;
+  int tri[3] = {-1, -1, -1};
+  for (int a = 0; a < nt; ++a)
+    for (int b = a + 1; b < nt; ++b)
+      for (int c = b + 1; c < nt; ++c) {
+        const int t[3] = {top[a], top[b], top[c]};
+        double px[3], py[3];
+        for (int s = 0; s < 3; ++s) px[s] = dot(e1, w[t[s]]), py[s] = dot(e2, w[t[s]]);
+        const double area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
+        if (!(area != 0)) continue;
+        double r = INFINITY;
+        for (int s = 0; s < 3; ++s) {
+          const int s1 = (s + 1) % 3;
+          const double ex = px[s1] - px[s], ey = py[s1] - py[s];
+          const double len = std::sqrt(ex * ex + ey * ey);
+          // distance of 0 from side s, positive inside (area's orientation)
+          const double d = (area > 0 ? 1 : -1) * (ex * (0 - py[s]) - ey * (0 - px[s])) / len;
+          r = std::min(r, d);
+        }
+        if (r > rho && std::isfinite(r)) rho = r, tri[0] = t[0], tri[1] = t[1], tri[2] = t[2];
+      }
+  if (tri[0] < 0) return false;
+  const V3 &x1 = w[tri[0]], &x2 = w[tri[1]], &x3 = w[tri[2]], &x4 = w[apex];
+  // R a power of two (q = -R vh exact), from rho / 2 down
+  for (double R = std::exp2(std::floor(std::log2(rho))) / 2, stop = R / 64; R >= stop; R /= 2) {
+    const V3 q = mul(vh, -R);
+    const double R1 = std::min({facet_distance_lower(x1, x2, x3, x4, q), facet_distance_lower(x1, x2, x4, x3, q),
+                                facet_distance_lower(x1, x3, x4, x2, q), facet_distance_lower(x2, x3, x4, x1, q)});
+    // D(u) >= R1 - delta - R (c0 + e), the subtraction and product within 2u R
+    if (R1 - R * (c0 + e) - 2 * kU * R - delta >= d0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out) {
+  if (!nonzero(v0) || !(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return false;
+  V3 v = v0;
+  Evaluation ev;
+  if (!find_normal(A, B, P, v, ev)) return false;
+  const double V = ev.value;
+  if (!(V >= 0x1p-900 * P.scale * P.scale) || !std::isfinite(V)) return false;
+  // exact: positions relative to A[0] over 2^ex, v over 2^ev, the multipliers (integers)
+  long ex = LONG_MAX, ev_ = LONG_MAX;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) ex = std::min({ex, low_exponent(A[i][k]), low_exponent(B[i][k])});
+  for (double c : v) ev_ = std::min(ev_, low_exponent(c));
+  if (ex == LONG_MAX || ev_ == LONG_MAX) return false;
+  ZV x[8], Vz;
+  mpz_class o[3], y;
+  for (int k = 0; k < 3; ++k) to_integer(A[0][k], ex, o[k]), to_integer(v[k], ev_, Vz[k]);
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      to_integer(A[i][k], ex, y), x[i][k] = y - o[k];
+      to_integer(B[i][k], ex, y), x[4 + i][k] = y - o[k];
+    }
+  mpz_class M[8];
+  if (!parallel_multipliers(ev, x, Vz, M)) return false;
+  // g = sum_A M a - sum_B M b (over 2^ex), K = 20 kappa (over the multipliers' unit squared):
+  // B0 = (g.v)^2 / (v.v 80 kappa) = 2^(2 ex) gv^2 / (4 vv K)
+  ZV g{mpz_class(0), mpz_class(0), mpz_class(0)};
+  mpz_class sl = 0, sm = 0, ql = 0, qm = 0;
+  for (int p = 0; p < 8; ++p) {
+    for (int k = 0; k < 3; ++k) {
+      if (p < 4) g[k] += M[p] * x[p][k];
+      else g[k] -= M[p] * x[p][k];
+    }
+    (p < 4 ? sl : sm) += M[p];
+    (p < 4 ? ql : qm) += M[p] * M[p];
+  }
+  const mpz_class K = 5 * ql - sl * sl + 5 * qm - sm * sm;
+  const mpz_class gv = zdot(g, Vz), vv = zdot(Vz, Vz);
+  if (sgn(K) <= 0 || sgn(gv) <= 0) return false;
+  const double L = V * (1 - kShallowGap);
+  // L / B0 = Lm 2^le 4 vv K / (2^(2 ex) gv^2), Lm the integer of L over 2^le
+  const long le = low_exponent(L);
+  mpz_class num;
+  to_integer(L, le, num);
+  num *= 4 * vv * K;
+  const mpz_class den = gv * gv;
+  const long shift = le - 2 * ex;  // L / B0 = num 2^shift / den
+  {
+    mpz_class lhs = num, rhs = den;  // L <= B0: num 2^shift <= den
+    if (shift >= 0) mpz_mul_2exp(lhs.get_mpz_t(), lhs.get_mpz_t(), static_cast<unsigned long>(shift));
+    else mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), static_cast<unsigned long>(-shift));
+    if (lhs > rhs) return false;
+  }
+  // c0 >= sqrt(L / B0): mpz_get_d_2exp truncates; the numerator rounded up, the quotient and
+  // the root each rounded up
+  long en = 0, ed = 0;
+  const double fn = std::nextafter(mpz_get_d_2exp(&en, num.get_mpz_t()), 2.0);
+  const double fd = mpz_get_d_2exp(&ed, den.get_mpz_t());
+  const double ratio = std::ldexp(std::nextafter(fn / fd, 4.0), int(std::clamp(en - ed + shift, -2000L, 2000L)));
+  const double c0 = std::nextafter(std::sqrt(ratio), 2.0);
+  const double d0 = std::sqrt(32 * L) * (1 + 4 * kU);
+  if (!(c0 < 1) || !overlap_off_cap(A, B, v, c0, d0)) return false;
+  out.normal = v, out.eval = ev, out.lower = L;
+  return true;
+}
+
+}  // namespace pdd::fast::global

@@ -1,0 +1,60 @@
+// shallow_certificate.h — internal to fast/src/global: pdd2_global certified without the pieces
+// for a contact far shallower than the pair (the contacts made by rounding: depths ~1e-17 of the
+// size, values ~1e-34 of its square), where the double pieces cannot resolve the value and the
+// exact ones cost milliseconds.
+//
+// Input : the pair (engine units, global_depth.h), its Problem, a start normal v0 (A -> B).
+// Output: true with a double normal v, its certified evaluation (relaxed_value.h's
+//         evaluate_tight: value V within kGlobalRel of relaxed(v)) and a proved lower bound
+//         L >= V (1 - kShallowGap) on relaxed(u) over every unit u; false when any step below
+//         fails (the caller then searches the exact pieces).
+//
+// Math. The relaxed QP along n (direction_qp.h's form: heights H = n.x, displacements T, plane
+// C, cost F = sum_tets T^T (I + J) T, relaxed(n) = F* / (20 n.n)) has, for multipliers l, m >= 0
+// with sum l = sum m, the Lagrangian dual value
+//     q(n) = n.g - kappa,   g = sum_i l_i a_i - sum_j m_j b_j,
+//     kappa = (l^T (I - J/5) l + m^T (I - J/5) m) / 4            ((I + J)^-1 = I - J/5),
+// and weak duality F*(n) >= q(n) holds for every n with the same (l, m) (the dual's feasible set
+// does not depend on n). Scaling (l, m) by s >= 0 gives F*(n) >= s n.g - s^2 kappa, so for a
+// unit u with u.g >= 0:
+//     relaxed(u) >= (u.g)^2 / (80 kappa).                                              (1)
+// (1) is sharp only where u is parallel to g. At a contact by rounding the double multipliers'
+// g points anywhere (its part across v is ~|l| size, the value ~|l| depth), so the multipliers
+// are moved, exactly, by the least change of three of them that makes sum l = sum m and g
+// parallel to v (a 3 x 3 rational system; the change is ~1e-16 of them, and must keep them
+// >= 0). Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
+// relaxed(u) >= B0 cos^2(theta), B0 = (g.v)^2 / (v.v 80 kappa) (B0 = relaxed(v) for the exact
+// multipliers at a stationary v): on the cap cos(theta) >= c0 = sqrt(L / B0), relaxed >= L.
+// Off the cap, relaxed(u) >= D(u)^2 / 32 (deformable_depth.h; D(u) the overlap along u, the
+// support function of M = A - B): a ball B(q, R1) inside a simplex T of four points of M, with
+// q = -R v/|v|, gives D(u) >= u.q + R1 >= R1 - R (cos(theta) + e) > R1 - R (c0 + e) for every
+// unit u off the cap (e: v/|v| rounded); D(u) >= d0 = sqrt(32 L) there gives relaxed >= L.
+// With L = V (1 - kShallowGap), 1 - c0 ~ kShallowGap / 2, and the ball needs a margin R
+// kShallowGap / 2 above d0 ~ the depth and the roundings of its test (~u size): R ~ 1e-3 of
+// the size suffices, a ball beneath the contact's face of M well inside it (contacts whose
+// overlap region reaches the edge of that face, an edge against an edge, fail and go exact).
+// Finding v (heuristic, checked by the certificate): the minimiser tilts from the contact's
+// face normal by ~depth / size, below a double normal's rounding unless solved for: on the
+// active set S of v, F(v + E y) = sum_S (eta_i + y.xi_i)^2 + k (tau + y.xi_T)^2 (the piece's
+// H_S in the frame v, E: eta the heights about the plane, from compensated heights, accurate
+// to their own u; xi the positions across v, doubles), least at the 2 x 2 solve; repeated until
+// S no longer changes.
+#pragma once
+
+#include "global/relaxed_value.h"
+
+namespace pdd::fast::global {
+
+// The certified gap between the reported value and the lower bound (definitions §8's 1e-9,
+// with kGlobalRel's evaluation: 3e-10 + 1e-10 relative, well inside).
+inline constexpr double kShallowGap = 3e-10;
+
+struct ShallowResult {
+  V3 normal{};      // v (A -> B, unnormalised)
+  Evaluation eval;  // relaxed(v): value, error <= kGlobalRel, solution and heights
+  double lower = 0; // L: every relaxed(u) >= L
+};
+
+bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out);
+
+}  // namespace pdd::fast::global

@@ -1,0 +1,103 @@
+// shallow_certificate.h (the fast engine's pdd2_global for contacts far shallower than the pair,
+// without the exact pieces) against the exact engine:
+//  - sound wherever it answers: from every start normal offered (the pair's face normals both
+//    ways, random normals, the exact minimiser's normal rounded), on pairs of every depth
+//    (blocks stacked by rounding, resting contacts 1e-9 deep, shallow tips and faces in general
+//    position, cells coinciding up to rounding, contacts by rounding on diagonal planes, deep
+//    paper pairs), its lower bound L never exceeds the exact engine's pdd2_global (an exact
+//    upper bound on the minimum, within 1e-12 of it: a bound above the minimum by more than
+//    that would show), and its value lies within definitions §8 of it;
+//  - it answers the contacts it is for: blocks stacked by rounding (A's top at 3 x 0.1, B's
+//    bottom at 0.3) get pdd2_global from solve_pair without the slow path, within definitions
+//    §8 of the exact engine.
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "global/shallow_certificate.h"
+#include "pdd/compare/engine_comparison.h"
+#include "pdd/compare/generate.h"
+#include "pdd/pdd.h"
+#include "pdd/reference/solve_exact.h"
+#include "shallow_contact.h"
+#include "structured_cells.h"
+
+using namespace pdd;
+
+namespace {
+
+reference::ExactResult exact_with_global(const TetPair& p) {
+  return reference::solve_exact(p);  // (definitions §9 on by default)
+}
+
+// Start normals: the eight face normals, each way, four random ones, and the exact minimiser's
+// normal rounded.
+std::vector<fast::global::V3> starts(const TetPair& p, const reference::ExactResult& exact, std::mt19937_64& rng) {
+  std::vector<fast::global::V3> out;
+  using fast::global::cross;
+  using fast::global::sub;
+  for (const TetVertices* T : {&p.A, &p.B})
+    for (int f = 0; f < 4; ++f) {
+      const auto& t = *T;
+      const int a = (f + 1) % 4, b = (f + 2) % 4, c = (f + 3) % 4;
+      const fast::global::V3 n = cross(sub(t[b], t[a]), sub(t[c], t[a]));
+      out.push_back(n), out.push_back(fast::global::mul(n, -1.0));
+    }
+  std::normal_distribution<double> N;
+  for (int k = 0; k < 4; ++k) out.push_back({N(rng), N(rng), N(rng)});
+  if (exact.pdd2_global_normal) {
+    const auto& n = *exact.pdd2_global_normal;
+    out.push_back({CGAL::to_double(n[0]), CGAL::to_double(n[1]), CGAL::to_double(n[2])});
+  }
+  return out;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
+  std::vector<TetPair> pairs = pdd::test::rounding_stack_pairs(2, 16);
+  for (const auto& p : pdd::test::resting_contact_pairs(2, 1e-9, 10)) pairs.push_back(p);
+  for (const auto& p : pdd::test::coincident_cell_pairs(2, 8)) pairs.push_back(p);
+  for (const auto& p : pdd::test::rounding_contact_pairs(2, 8)) pairs.push_back(p);
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int trial = 0; trial < 8; ++trial)
+    pairs.push_back(pdd::test::shallow_contact_pair(1e-7, trial % 2, [&] { return U(rng); },
+                                                    "shallow " + std::to_string(trial)));
+  const auto paper = compare::generate_family("paper", 5, 12);
+  pairs.insert(pairs.end(), paper.begin(), paper.end());
+  int answered = 0, asked = 0;
+  for (const TetPair& p : pairs) {
+    const auto exact = exact_with_global(p);
+    if (!exact.intersecting) continue;
+    const double ex = CGAL::to_double(exact.pdd2_global);
+    const fast::global::Problem P = fast::global::problem_of(p.A, p.B);
+    for (const auto& v : starts(p, exact, rng)) {
+      ++asked;
+      fast::global::ShallowResult r;
+      if (!fast::global::certify_shallow(p.A, p.B, P, v, r)) continue;
+      ++answered;
+      BOOST_TEST(reference::Rational(r.lower) <= exact.pdd2_global, p.name << ": lower " << r.lower << " > " << ex);
+      BOOST_TEST(std::fabs(r.eval.value - ex) <= 1e-9 * ex, p.name << ": " << r.eval.value << " vs " << ex);
+    }
+  }
+  BOOST_TEST_MESSAGE("shallow certificate: " << answered << " of " << asked << " starts answered");
+  BOOST_TEST(answered > 0);
+}
+
+BOOST_AUTO_TEST_CASE(blocks_stacked_by_rounding_without_the_slow_path) {
+  const std::vector<TetPair> pairs = pdd::test::rounding_stack_pairs(3, 30);
+  BOOST_REQUIRE(pairs.size() == 30u);
+  const fast::SolveOptions o;  // (definitions §9 on by default)
+  int slow = 0;
+  for (const TetPair& p : pairs) {
+    const auto exact = exact_with_global(p);
+    const auto fast = fast::solve_pair(p, o);
+    BOOST_TEST(!compare::compare_pair(p, exact, fast).over_tolerance(), p.name);
+    slow += fast.stats.slow_path;
+  }
+  BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
+}
