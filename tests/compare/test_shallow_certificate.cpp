@@ -8,8 +8,9 @@
 //    upper bound on the minimum, within 1e-12 of it: a bound above the minimum by more than
 //    that would show), and its value lies within definitions §8 of it;
 //  - it answers the contacts it is for: blocks stacked by rounding (A's top at 3 x 0.1, B's
-//    bottom at 0.3) get pdd2_global from solve_pair without the slow path, within definitions
-//    §8 of the exact engine.
+//    bottom at 0.3) and resting on each other 1e-10 and 1e-12 deep (below the double pieces'
+//    reach) get pdd2_global from solve_pair without the slow path, within definitions §8 of
+//    the exact engine.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -55,11 +56,25 @@ std::vector<fast::global::V3> starts(const TetPair& p, const reference::ExactRes
   return out;
 }
 
+// A vertex of B just inside A by d1 through A's face y = 0 and by d2 through its face z = 0 (near
+// their common edge): two shallow local minima of relaxed(u), near -y and near -z; the one not
+// least must not be certified from its own normal.
+TetPair edge_tip_pair(double d1, double d2) {
+  TetPair p;
+  p.name = "edge tip " + std::to_string(d1) + " " + std::to_string(d2);
+  p.A = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  const Vec3d t = {0.3, d1, d2};
+  p.B = {{t, {t[0] - 0.3, t[1] - 1, t[2] - 0.5}, {t[0] + 0.3, t[1] - 1, t[2] - 0.6}, {t[0], t[1] - 0.5, t[2] - 1}}};
+  return p;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
   std::vector<TetPair> pairs = pdd::test::rounding_stack_pairs(2, 16);
-  for (const auto& p : pdd::test::resting_contact_pairs(2, 1e-9, 10)) pairs.push_back(p);
+  for (double depth : {1e-9, 1e-11, 1e-13})
+    for (const auto& p : pdd::test::resting_contact_pairs(2, depth, 6)) pairs.push_back(p);
+  for (double d2 : {1e-12, 1.5e-12, 4e-12}) pairs.push_back(edge_tip_pair(1e-12, d2));
   for (const auto& p : pdd::test::coincident_cell_pairs(2, 8)) pairs.push_back(p);
   for (const auto& p : pdd::test::rounding_contact_pairs(2, 8)) pairs.push_back(p);
   std::mt19937_64 rng(41);
@@ -69,7 +84,7 @@ BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
                                                     "shallow " + std::to_string(trial)));
   const auto paper = compare::generate_family("paper", 5, 12);
   pairs.insert(pairs.end(), paper.begin(), paper.end());
-  int answered = 0, asked = 0;
+  int answered = 0, asked = 0, edge_tips = 0;
   for (const TetPair& p : pairs) {
     const auto exact = exact_with_global(p);
     if (!exact.intersecting) continue;
@@ -80,17 +95,22 @@ BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
       fast::global::ShallowResult r;
       if (!fast::global::certify_shallow(p.A, p.B, P, v, r)) continue;
       ++answered;
+      edge_tips += p.name.rfind("edge tip", 0) == 0;
       BOOST_TEST(reference::Rational(r.lower) <= exact.pdd2_global, p.name << ": lower " << r.lower << " > " << ex);
       BOOST_TEST(std::fabs(r.eval.value - ex) <= 1e-9 * ex, p.name << ": " << r.eval.value << " vs " << ex);
     }
   }
-  BOOST_TEST_MESSAGE("shallow certificate: " << answered << " of " << asked << " starts answered");
+  BOOST_TEST_MESSAGE("shallow certificate: " << answered << " of " << asked << " starts answered, " << edge_tips
+                                              << " on the edge tips");
   BOOST_TEST(answered > 0);
 }
 
-BOOST_AUTO_TEST_CASE(blocks_stacked_by_rounding_without_the_slow_path) {
-  const std::vector<TetPair> pairs = pdd::test::rounding_stack_pairs(3, 30);
+BOOST_AUTO_TEST_CASE(stacked_and_resting_blocks_without_the_slow_path) {
+  std::vector<TetPair> pairs = pdd::test::rounding_stack_pairs(3, 30);
   BOOST_REQUIRE(pairs.size() == 30u);
+  for (double depth : {1e-10, 1e-12})
+    for (const auto& p : pdd::test::resting_contact_pairs(3, depth, 15)) pairs.push_back(p);
+  BOOST_REQUIRE(pairs.size() == 60u);
   const fast::SolveOptions o;  // (definitions §9 on by default)
   int slow = 0;
   for (const TetPair& p : pairs) {

@@ -199,13 +199,13 @@ bool parallel_multipliers(const Evaluation& ev, const ZV (&x)[8], const ZV& V, m
   return true;
 }
 
-// A lower bound on the signed distance from q to the plane of x1 x2 x3, positive on the side
-// away from x4 (every point exact: doubles): the cross product and dot product in doubles, each
-// within 16u of their permanents (coordinate differences rounded once, products and sums
-// rounded: 8u, doubled for room), the norm bounded above. -inf when the orientation is not
+// A lower bound on the signed distance of a point q from the plane through x1 spanned by a and b,
+// positive on the side o points to; given a, b, o (each component the rounded difference of two
+// doubles, or a double itself) and c = x1 - q (likewise). The cross product and the dot product
+// in doubles, each within 16u of their permanents (the differences rounded once, products and
+// sums rounded: 8u, doubled for room), the norm bounded above. -inf when the side of o is not
 // certain.
-double facet_distance_lower(const V3& x1, const V3& x2, const V3& x3, const V3& x4, const V3& q) {
-  const V3 a = sub(x2, x1), b = sub(x3, x1), c = sub(x1, q), o = sub(x4, x1);
+double plane_distance_lower(const V3& a, const V3& b, const V3& c, const V3& o) {
   const V3 N = cross(a, b);
   V3 pn;
   for (int k = 0; k < 3; ++k) {
@@ -217,15 +217,25 @@ double facet_distance_lower(const V3& x1, const V3& x2, const V3& x3, const V3& 
   };
   const double no = dot(N, o), eo = 16 * kU * perm(o);
   if (!(std::fabs(no) > eo)) return -INFINITY;
-  const double side = no < 0 ? 1 : -1;  // N side: outward
+  const double side = no < 0 ? 1 : -1;  // side N: away from o
   const double num = side * dot(N, c) - 16 * kU * perm(c);
   const double den = (norm(N) * (1 + 3 * kU) + 5 * kU * norm(pn)) * (1 + 4 * kU);
   if (!(num > 0) || !(den > 0)) return -INFINITY;
   return num / den * (1 - 4 * kU);
 }
 
-// Off the cap u.v/|v| < c0 (c0 >= cos of the cap's radius, rounded up): D(u) >= d0 for every such
-// unit u, by a ball B(q, R1) inside a simplex of four points of M = A - B (shallow_certificate.h).
+// Off the cap u.v/|v| < c0 (c0 >= the cosine of the cap's radius, rounded up): D(u) >= d0 for
+// every such unit u, from four points of M = A - B, each the rounded difference w of a vertex
+// of A and one of B (within delta of the exact point: D(u) >= max_k u.w_k - delta).
+//  - u.v >= 0 (angle theta to v in [theta0, pi/2], cos(theta0) = c0): u = cos(theta) vh +
+//    sin(theta) t, t unit across v. Three points of M's face beneath the contact whose
+//    projection across v holds a disc of radius rho about 0 (each side's line at least rho from
+//    0: the distance of 0 from the plane through the side along v) and whose heights along vh
+//    are >= -Z give D(u) >= -Z cos(theta) + rho sin(theta) - delta, increasing in theta on
+//    [0, pi/2]: >= rho sin(theta0) - Z - delta.
+//  - u.v <= 0: a ball B(q, R1) inside the simplex of those three and the point deepest along
+//    v, q = -R vh (R a power of two: exact), gives D(u) >= u.q + R1 - delta >= R1 - R e - delta
+//    (e: vh within 8u of v/|v|, so u.vh <= e).
 bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, double c0, double d0) {
   const V3 vh = mul(v, 1 / norm(v));  // within 8u of v/|v|
   const double e = 8 * kU;
@@ -243,14 +253,14 @@ bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, do
     }
   const double delta = 2 * kU * wmax;  // |w - (a - b)| (each component rounded once)
   if (!(zmax - zmin > 0)) return false;
-  // the top points (M's face beneath the contact) across v, and their triangle around 0 with
-  // the largest distance rho from 0 to its sides (a choice; the ball test below decides)
+  // the top points (M's face beneath the contact) and their triangle whose projection across v
+  // holds the largest disc about 0 (a choice in doubles; the bounds below decide)
   V3 e1, e2;
   frame(vh, e1, e2);
   int top[16], nt = 0;
   for (int p = 0; p < 16; ++p)
     if (z[p] >= zmax - 1e-6 * (zmax - zmin)) top[nt++] = p;
-  double rho = 0;
+  double best = 0;
   int tri[3] = {-1, -1, -1};
   for (int a = 0; a < nt; ++a)
     for (int b = a + 1; b < nt; ++b)
@@ -264,22 +274,35 @@ bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, do
         for (int s = 0; s < 3; ++s) {
           const int s1 = (s + 1) % 3;
           const double ex = px[s1] - px[s], ey = py[s1] - py[s];
-          const double len = std::sqrt(ex * ex + ey * ey);
-          // distance of 0 from side s, positive inside (area's orientation)
-          const double d = (area > 0 ? 1 : -1) * (ex * (0 - py[s]) - ey * (0 - px[s])) / len;
-          r = std::min(r, d);
+          r = std::min(r, (area > 0 ? 1 : -1) * (ex * (0 - py[s]) - ey * (0 - px[s])) / std::sqrt(ex * ex + ey * ey));
         }
-        if (r > rho && std::isfinite(r)) rho = r, tri[0] = t[0], tri[1] = t[1], tri[2] = t[2];
+        if (r > best && std::isfinite(r)) best = r, tri[0] = t[0], tri[1] = t[1], tri[2] = t[2];
       }
   if (tri[0] < 0) return false;
   const V3 &x1 = w[tri[0]], &x2 = w[tri[1]], &x3 = w[tri[2]], &x4 = w[apex];
-  // R a power of two (q = -R vh exact), from rho / 2 down
+  // u.v >= 0: rho (each side's plane along v from 0, the third point's side positive) and Z
+  const V3 x[3] = {x1, x2, x3};
+  double rho = INFINITY, Z = 0;
+  const double vn_low = norm(v) * (1 - 3 * kU);
+  for (int s = 0; s < 3; ++s) {
+    const V3 &p = x[s], &p1 = x[(s + 1) % 3], &p2 = x[(s + 2) % 3];
+    rho = std::min(rho, plane_distance_lower(sub(p1, p), v, p, sub(p2, p)));
+    // -vh.p <= (-(v.p) + 4u sum |v_k p_k|) / |v|
+    const double err = 4 * kU * (std::fabs(v[0] * p[0]) + std::fabs(v[1] * p[1]) + std::fabs(v[2] * p[2]));
+    Z = std::max(Z, (err - dot(v, p)) / vn_low * (1 + 2 * kU));
+  }
+  // sin(theta0) >= sqrt((1 - c0)(1 + c0)) rounded down (1 - c0 exact: c0 in [1/2, 1])
+  if (!(c0 >= 0.5) || !(rho > 0)) return false;
+  const double s0 = std::sqrt((1 - c0) * (1 + c0) * (1 - 2 * kU)) * (1 - 2 * kU);
+  if (!(rho * s0 * (1 - 2 * kU) - Z * (1 + 2 * kU) - delta >= d0 * (1 + 2 * kU))) return false;
+  // u.v <= 0: a ball about q = -R vh, R a power of two from rho / 2 down
   for (double R = std::exp2(std::floor(std::log2(rho))) / 2, stop = R / 64; R >= stop; R /= 2) {
     const V3 q = mul(vh, -R);
-    const double R1 = std::min({facet_distance_lower(x1, x2, x3, x4, q), facet_distance_lower(x1, x2, x4, x3, q),
-                                facet_distance_lower(x1, x3, x4, x2, q), facet_distance_lower(x2, x3, x4, x1, q)});
-    // D(u) >= R1 - delta - R (c0 + e), the subtraction and product within 2u R
-    if (R1 - R * (c0 + e) - 2 * kU * R - delta >= d0) return true;
+    const double R1 = std::min({plane_distance_lower(sub(x2, x1), sub(x3, x1), sub(x1, q), sub(x4, x1)),
+                                plane_distance_lower(sub(x2, x1), sub(x4, x1), sub(x1, q), sub(x3, x1)),
+                                plane_distance_lower(sub(x3, x1), sub(x4, x1), sub(x1, q), sub(x2, x1)),
+                                plane_distance_lower(sub(x3, x2), sub(x4, x2), sub(x2, q), sub(x1, x2))});
+    if ((R1 - R * e - delta) * (1 - 2 * kU) >= d0) return true;
   }
   return false;
 }
