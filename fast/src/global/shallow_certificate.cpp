@@ -97,7 +97,9 @@ bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V
 // Exact integers over a power of two: x = X 2^e for every double x of a set, e the least of
 // their exponents (a double's 53-bit mantissa times 2^(exponent - 53)). Products and sums of
 // such integers need no reduction to lowest terms (rationals take a gcd after every
-// operation: 70% of this certificate's time with them).
+// operation: 70% of this certificate's time with them). Written with GMP's mpz calls on a
+// per-thread workspace (fused multiply-adds, no temporaries: allocation was ~40% of the time
+// with gmpxx's expressions).
 long low_exponent(double x) {
   int e = 0;
   std::frexp(x, &e);
@@ -110,29 +112,52 @@ void to_integer(double x, long e, mpz_class& out) {
   }
   int ex = 0;
   const double m = std::frexp(x, &ex);
-  out = std::ldexp(m, 53);  // an integer below 2^53: exact
+  mpz_set_d(out.get_mpz_t(), std::ldexp(m, 53));  // an integer below 2^53: exact
   mpz_mul_2exp(out.get_mpz_t(), out.get_mpz_t(), static_cast<unsigned long>(long(ex) - 53 - e));
 }
 
 using ZV = std::array<mpz_class, 3>;
-mpz_class zdot(const ZV& a, const ZV& b) { return mpz_class(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]); }
-ZV zcross(const ZV& a, const ZV& b) {
-  return ZV{mpz_class(a[1] * b[2] - a[2] * b[1]), mpz_class(a[2] * b[0] - a[0] * b[2]),
-            mpz_class(a[0] * b[1] - a[1] * b[0])};
+mpz_ptr z(mpz_class& x) { return x.get_mpz_t(); }
+mpz_srcptr z(const mpz_class& x) { return x.get_mpz_t(); }
+void zdot(mpz_class& r, const ZV& a, const ZV& b) {
+  mpz_mul(z(r), z(a[0]), z(b[0]));
+  mpz_addmul(z(r), z(a[1]), z(b[1]));
+  mpz_addmul(z(r), z(a[2]), z(b[2]));
 }
-mpz_class det3(const mpz_class (&m)[3][3]) {
-  return mpz_class(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                   m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
+void zcross(ZV& r, const ZV& a, const ZV& b) {  // (r not a or b)
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    mpz_mul(z(r[k]), z(a[i]), z(b[j]));
+    mpz_submul(z(r[k]), z(a[j]), z(b[i]));
+  }
 }
+void det3(mpz_class& r, const mpz_class (&m)[3][3], mpz_class& t) {
+  mpz_mul(z(t), z(m[1][1]), z(m[2][2]));
+  mpz_submul(z(t), z(m[1][2]), z(m[2][1]));
+  mpz_mul(z(r), z(m[0][0]), z(t));
+  mpz_mul(z(t), z(m[1][0]), z(m[2][2]));
+  mpz_submul(z(t), z(m[1][2]), z(m[2][0]));
+  mpz_submul(z(r), z(m[0][1]), z(t));
+  mpz_mul(z(t), z(m[1][0]), z(m[2][1]));
+  mpz_submul(z(t), z(m[1][1]), z(m[2][0]));
+  mpz_addmul(z(r), z(m[0][2]), z(t));
+}
+
+// The exact part's integers, kept per thread (their limbs reused from pair to pair).
+struct Workspace {
+  ZV x[8], V, e1, e2, g;
+  mpz_class o[3], y, col[8][3], res[3], M[8], m[3][3], mc[3][3], d, change[3], t;
+  mpz_class sl, sm, ql, qm, K, gv, vv, num, den;
+};
 
 // The multipliers of the evaluation (direction_qp.h's KKT: l_i = -2 (T_i + S_A) at A's vertices
 // at the plane, m_j = 2 (T_j + S_B) at B's, 0 elsewhere), moved exactly so that sum l = sum m
-// and g = sum l_i a_i - sum m_j b_j is parallel to v (shallow_certificate.h), as integers M (a
+// and g = sum l_i a_i - sum m_j b_j is parallel to v (shallow_certificate.h), as integers w.M (a
 // positive multiple of them: B0 does not change when every multiplier is scaled by one s > 0);
-// [0..3] A's, [4..7] B's. x: the positions relative to A[0] as integers (one power of two), V:
-// v's components as integers. False when no three of them give a regular system or a
+// [0..3] A's, [4..7] B's. w.x: the positions relative to A[0] as integers (one power of two),
+// w.V: v's components as integers. False when no three of them give a regular system or a
 // multiplier would turn negative.
-bool parallel_multipliers(const Evaluation& ev, const ZV (&x)[8], const ZV& V, mpz_class (&M)[8]) {
+bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
   double l[8];
   long el = LONG_MAX;
   for (int i = 0; i < 4; ++i) {
@@ -144,20 +169,24 @@ bool parallel_multipliers(const Evaluation& ev, const ZV (&x)[8], const ZV& V, m
   // e1, e2 across v, exactly
   int k = 0;
   for (int j = 1; j < 3; ++j)
-    if (abs(V[j]) < abs(V[k])) k = j;
+    if (mpz_cmpabs(z(w.V[j]), z(w.V[k])) < 0) k = j;
   ZV axis{mpz_class(0), mpz_class(0), mpz_class(0)};
   axis[k] = 1;
-  const ZV e1 = zcross(V, axis), e2 = zcross(V, e1);
+  zcross(w.e1, w.V, axis);
+  zcross(w.e2, w.V, w.e1);
   // columns (s_p, s_p x_p.e1, s_p x_p.e2), s = +1 on A, -1 on B (each row in its own power of
   // two, which Cramer's rule cancels); the residual of the double multipliers
-  mpz_class col[8][3], res[3] = {0, 0, 0};
   double cd[8][3];
+  for (mpz_class& r : w.res) r = 0;
   for (int p = 0; p < 8; ++p) {
     const int s = p < 4 ? 1 : -1;
-    col[p][0] = s, col[p][1] = s * zdot(x[p], e1), col[p][2] = s * zdot(x[p], e2);
-    if (l[p] > 0) to_integer(l[p], el, M[p]);
-    else M[p] = 0;
-    for (int r = 0; r < 3; ++r) res[r] += M[p] * col[p][r], cd[p][r] = col[p][r].get_d();
+    w.col[p][0] = s;
+    zdot(w.col[p][1], w.x[p], w.e1);
+    zdot(w.col[p][2], w.x[p], w.e2);
+    if (s < 0) mpz_neg(z(w.col[p][1]), z(w.col[p][1])), mpz_neg(z(w.col[p][2]), z(w.col[p][2]));
+    if (l[p] > 0) to_integer(l[p], el, w.M[p]);
+    else w.M[p] = 0;
+    for (int r = 0; r < 3; ++r) mpz_addmul(z(w.res[r]), z(w.M[p]), z(w.col[p][r])), cd[p][r] = w.col[p][r].get_d();
   }
   // the three largest multipliers whose columns are best conditioned (in doubles: a choice)
   int best[3] = {-1, -1, -1};
@@ -176,25 +205,26 @@ bool parallel_multipliers(const Evaluation& ev, const ZV (&x)[8], const ZV& V, m
         if (score > best_score) best_score = score, best[0] = p, best[1] = q, best[2] = r;
       }
   if (best[0] < 0) return false;
-  mpz_class m[3][3];
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) m[r][c] = col[best[c]][r];
-  mpz_class d = det3(m);
-  if (sgn(d) == 0) return false;
+    for (int c = 0; c < 3; ++c) w.m[r][c] = w.col[best[c]][r];
+  det3(w.d, w.m, w.t);
+  const int sd = sgn(w.d);
+  if (sd == 0) return false;
   // Cramer: change_c = det(m with column c replaced by -res) / d; M scaled by |d|
-  mpz_class change[3];
   for (int c = 0; c < 3; ++c) {
-    mpz_class mc[3][3];
     for (int r = 0; r < 3; ++r)
-      for (int j = 0; j < 3; ++j) mc[r][j] = j == c ? mpz_class(-res[r]) : m[r][j];
-    change[c] = det3(mc);
-    if (sgn(d) < 0) change[c] = -change[c];
+      for (int j = 0; j < 3; ++j) {
+        if (j == c) mpz_neg(z(w.mc[r][j]), z(w.res[r]));
+        else w.mc[r][j] = w.m[r][j];
+      }
+    det3(w.change[c], w.mc, w.t);
+    if (sd < 0) mpz_neg(z(w.change[c]), z(w.change[c]));
   }
-  if (sgn(d) < 0) d = -d;
-  for (mpz_class& y : M) y *= d;
+  mpz_abs(z(w.d), z(w.d));
+  for (mpz_class& y : w.M) mpz_mul(z(y), z(y), z(w.d));
   for (int c = 0; c < 3; ++c) {
-    M[best[c]] += change[c];
-    if (sgn(M[best[c]]) < 0) return false;
+    mpz_add(z(w.M[best[c]]), z(w.M[best[c]]), z(w.change[c]));
+    if (sgn(w.M[best[c]]) < 0) return false;
   }
   return true;
 }
@@ -322,50 +352,57 @@ bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& 
     for (int k = 0; k < 3; ++k) ex = std::min({ex, low_exponent(A[i][k]), low_exponent(B[i][k])});
   for (double c : v) ev_ = std::min(ev_, low_exponent(c));
   if (ex == LONG_MAX || ev_ == LONG_MAX) return false;
-  ZV x[8], Vz;
-  mpz_class o[3], y;
-  for (int k = 0; k < 3; ++k) to_integer(A[0][k], ex, o[k]), to_integer(v[k], ev_, Vz[k]);
+  static thread_local Workspace w;
+  for (int k = 0; k < 3; ++k) to_integer(A[0][k], ex, w.o[k]), to_integer(v[k], ev_, w.V[k]);
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
-      to_integer(A[i][k], ex, y), x[i][k] = y - o[k];
-      to_integer(B[i][k], ex, y), x[4 + i][k] = y - o[k];
+      to_integer(A[i][k], ex, w.y), mpz_sub(z(w.x[i][k]), z(w.y), z(w.o[k]));
+      to_integer(B[i][k], ex, w.y), mpz_sub(z(w.x[4 + i][k]), z(w.y), z(w.o[k]));
     }
-  mpz_class M[8];
-  if (!parallel_multipliers(ev, x, Vz, M)) return false;
+  if (!parallel_multipliers(ev, w)) return false;
   // g = sum_A M a - sum_B M b (over 2^ex), K = 20 kappa (over the multipliers' unit squared):
   // B0 = (g.v)^2 / (v.v 80 kappa) = 2^(2 ex) gv^2 / (4 vv K)
-  ZV g{mpz_class(0), mpz_class(0), mpz_class(0)};
-  mpz_class sl = 0, sm = 0, ql = 0, qm = 0;
+  for (mpz_class* y : {&w.g[0], &w.g[1], &w.g[2], &w.sl, &w.sm, &w.ql, &w.qm}) *y = 0;
   for (int p = 0; p < 8; ++p) {
     for (int k = 0; k < 3; ++k) {
-      if (p < 4) g[k] += M[p] * x[p][k];
-      else g[k] -= M[p] * x[p][k];
+      if (p < 4) mpz_addmul(z(w.g[k]), z(w.M[p]), z(w.x[p][k]));
+      else mpz_submul(z(w.g[k]), z(w.M[p]), z(w.x[p][k]));
     }
-    (p < 4 ? sl : sm) += M[p];
-    (p < 4 ? ql : qm) += M[p] * M[p];
+    mpz_add(z(p < 4 ? w.sl : w.sm), z(p < 4 ? w.sl : w.sm), z(w.M[p]));
+    mpz_addmul(z(p < 4 ? w.ql : w.qm), z(w.M[p]), z(w.M[p]));
   }
-  const mpz_class K = 5 * ql - sl * sl + 5 * qm - sm * sm;
-  const mpz_class gv = zdot(g, Vz), vv = zdot(Vz, Vz);
-  if (sgn(K) <= 0 || sgn(gv) <= 0) return false;
+  mpz_mul_ui(z(w.K), z(w.ql), 5);             // K = 5 ql - sl^2 + 5 qm - sm^2
+  mpz_addmul_ui(z(w.K), z(w.qm), 5);
+  mpz_submul(z(w.K), z(w.sl), z(w.sl));
+  mpz_submul(z(w.K), z(w.sm), z(w.sm));
+  zdot(w.gv, w.g, w.V);
+  zdot(w.vv, w.V, w.V);
+  if (sgn(w.K) <= 0 || sgn(w.gv) <= 0) return false;
   const double L = V * (1 - kShallowGap);
   // L / B0 = Lm 2^le 4 vv K / (2^(2 ex) gv^2), Lm the integer of L over 2^le
   const long le = low_exponent(L);
-  mpz_class num;
-  to_integer(L, le, num);
-  num *= 4 * vv * K;
-  const mpz_class den = gv * gv;
+  to_integer(L, le, w.num);
+  mpz_mul(z(w.num), z(w.num), z(w.vv));
+  mpz_mul(z(w.num), z(w.num), z(w.K));
+  mpz_mul_2exp(z(w.num), z(w.num), 2);
+  mpz_mul(z(w.den), z(w.gv), z(w.gv));
   const long shift = le - 2 * ex;  // L / B0 = num 2^shift / den
   {
-    mpz_class lhs = num, rhs = den;  // L <= B0: num 2^shift <= den
-    if (shift >= 0) mpz_mul_2exp(lhs.get_mpz_t(), lhs.get_mpz_t(), static_cast<unsigned long>(shift));
-    else mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), static_cast<unsigned long>(-shift));
-    if (lhs > rhs) return false;
+    // L <= B0: num 2^shift <= den (the shift on a copy)
+    mpz_class& scaled = w.y;
+    if (shift >= 0) {
+      mpz_mul_2exp(z(scaled), z(w.num), static_cast<unsigned long>(shift));
+      if (mpz_cmp(z(scaled), z(w.den)) > 0) return false;
+    } else {
+      mpz_mul_2exp(z(scaled), z(w.den), static_cast<unsigned long>(-shift));
+      if (mpz_cmp(z(w.num), z(scaled)) > 0) return false;
+    }
   }
   // c0 >= sqrt(L / B0): mpz_get_d_2exp truncates; the numerator rounded up, the quotient and
   // the root each rounded up
   long en = 0, ed = 0;
-  const double fn = std::nextafter(mpz_get_d_2exp(&en, num.get_mpz_t()), 2.0);
-  const double fd = mpz_get_d_2exp(&ed, den.get_mpz_t());
+  const double fn = std::nextafter(mpz_get_d_2exp(&en, z(w.num)), 2.0);
+  const double fd = mpz_get_d_2exp(&ed, z(w.den));
   const double ratio = std::ldexp(std::nextafter(fn / fd, 4.0), int(std::clamp(en - ed + shift, -2000L, 2000L)));
   const double c0 = std::nextafter(std::sqrt(ratio), 2.0);
   const double d0 = std::sqrt(32 * L) * (1 + 4 * kU);
