@@ -92,7 +92,9 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
   tbb::task_arena one(1), all(tbb::info::default_concurrency());
   std::vector<std::string> names;
   for (const std::string& name : split(options.cases))
-    if (name == "stacked") names.insert(names.end(), {"stacked", "stacked-tilted", "stacked-nearly"});
+    if (name == "stacked")
+      names.insert(names.end(),
+                   {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned"});
     else names.push_back(name);
   for (const std::string& name : names) {
     EnergyCase c;
@@ -122,6 +124,18 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
       B = std::move(blocks.b);
       c.description = blocks.description;
       if (name == "stacked") c.rotated_twin = "stacked-tilted";
+    } else if (name == "stacked-rounding" || name == "stacked-rounding-turned") {
+      // decimal cells placed as users place them: A's top 3 x 0.1 = 0.30000000000000004, B's
+      // bottom 0.3 (touching by rounding, ~5.6e-17 deep); the twin B turned 0.3 rad
+      const int n = options.stacked_cells;
+      const bool turned = name == "stacked-rounding-turned";
+      A = make_structured_block({n, n, 3}, 0.1, {0, 0, 0}, CubeSplit::Kuhn6);
+      B = make_structured_block({n, n, 3}, 0.1, {0.037, 0.021, 0.3}, CubeSplit::Kuhn6, turned ? 0.3 : 0.0);
+      std::ostringstream d;
+      d << "Kuhn blocks of " << n << "x" << n << "x3 cubes of 0.1, B set on A at 0.3 (A's top 3 x 0.1: touching by "
+        << "rounding), moved by (0.037, 0.021)" << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
+      c.description = d.str();
+      if (!turned) c.rotated_twin = "stacked-rounding-turned";
     } else {
       throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls, stacked)");
     }

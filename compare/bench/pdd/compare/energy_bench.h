@@ -19,8 +19,10 @@
 //        third of a cell deep (stacked_blocks, mesh_bench.h: faces parallel, vertical faces
 //        coplanar), then the same with B tilted 0.01 rad ("stacked-tilted": no face parallel)
 //        and 1e-6 rad ("stacked-nearly": a resting contact a step after touching, the vertical
-//        faces crossing ~1e-7 of a cell deep); the aligned case names its twin (rotated_twin),
-//        and the ratios of the times per pair.
+//        faces crossing ~1e-7 of a cell deep); and two blocks of decimal cells 0.1 set on each
+//        other at 0.3, A's top 3 x 0.1 = 0.30000000000000004 ("stacked-rounding": touching by
+//        rounding, ~5.6e-17 deep) beside B turned 0.3 rad ("stacked-rounding-turned"); each
+//        aligned case names its twin (rotated_twin), and the ratios of the times per pair.
 #pragma once
 
 #include <cstddef>
