@@ -280,7 +280,8 @@ PDD_FMA_CLONES std::optional<int> compare_delta2_compensated(const CompensatedDe
 }
 
 PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVertices& B,
-                                              const std::array<double, 3>& v, CompensatedHeights& out) {
+                                              const std::array<double, 3>& v, CompensatedHeights& out,
+                                              const std::array<double, 3>& lo) {
   int top = 0;
   double best = -INFINITY;
   for (int i = 0; i < 4; ++i) {
@@ -289,7 +290,7 @@ PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVer
   }
   const std::array<double, 3> o = A[top];
   for (int k = 0; k < 3; ++k) out.n[k] = v[k];
-  out.e_n = 0;
+  out.e_n = std::fmax(std::fabs(lo[0]), std::fmax(std::fabs(lo[1]), std::fabs(lo[2])));  // n* - n~ = lo
   out.nn = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
   // A height v.(x − o): the difference exact (two_sum), three products of a double and a
@@ -297,9 +298,9 @@ PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVer
   // 25 u^2 M, M = sum |v_k| |d_k| (no normal error here), then rounded to its high part (u).
   auto height = [&](const std::array<double, 3>& x, double& h, double& e) {
     const DV d = diff(x, o);
-    DW s = mul(DW{v[0], 0.0}, d.x[0]);
-    s = add(s, mul(DW{v[1], 0.0}, d.x[1]));
-    s = add(s, mul(DW{v[2], 0.0}, d.x[2]));
+    DW s = mul(DW{v[0], lo[0]}, d.x[0]);
+    s = add(s, mul(DW{v[1], lo[1]}, d.x[1]));
+    s = add(s, mul(DW{v[2], lo[2]}, d.x[2]));
     const double M = std::fabs(v[0] * d.x[0].hi) + std::fabs(v[1] * d.x[1].hi) + std::fabs(v[2] * d.x[2].hi);
     h = s.hi;
     e = (kU * std::fabs(h) + 25 * kU * kU * M) * kGrow + 0x1p-1040;

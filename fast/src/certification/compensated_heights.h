@@ -75,8 +75,11 @@ bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candida
 // vertices at a shallow plane have small heights, each within its own u), every other field
 // as above; the products of a double-word difference by a double component err by less than
 // the normal's share of the 25 u^2 M above. False on a zero or non-finite v or value.
+// With `lo` (a normal in double words, n* = v + lo exactly, |lo_k| <= u |v_k|: a direction no
+// double triple represents, global/shallow_certificate.h): the products are double word by
+// double word (the same 6.2 u² bound, the normal exact), n~ = v with e_n = max |lo_k|.
 bool compensated_heights_along(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
-                               CompensatedHeights& out);
+                               CompensatedHeights& out, const std::array<double, 3>& lo = {0, 0, 0});
 
 // The normal (p1 − p0) x (q1 − q0) of exact differences in double words (as above: each
 // component within 10.5 u² N_k of the exact one), and the exact sign of its height n.(p − q)

@@ -64,4 +64,13 @@ Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Prob
   return ev;
 }
 
+Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, const V3& lo) {
+  if (!nonzero(lo)) return evaluate_tight(A, B, P, v);
+  Evaluation ev;
+  double rc = 1;
+  if (relaxed_compensated(A, B, v, ev.value, rc, ev.sol, ev.hA, ev.hB, lo) && rc < 1)
+    ev.error = (2 + rc) * rc + 8 * kU;  // (as evaluate_tight's compensated branch)
+  return ev;
+}
+
 }  // namespace pdd::fast::global

@@ -100,5 +100,8 @@ struct Evaluation {
   double hA[4], hB[4];
 };
 Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v);
+// The same along the double-word normal v + lo (|lo_k| <= u |v_k|; lo = 0: evaluate_tight), on
+// compensated heights only (the double heights cannot see lo).
+Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, const V3& lo);
 
 }  // namespace pdd::fast::global

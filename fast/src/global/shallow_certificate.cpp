@@ -1,6 +1,8 @@
 // shallow_certificate.cpp — see shallow_certificate.h for the argument.
 #include "global/shallow_certificate.h"
 
+#include "certification/double_word.h"
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -35,7 +37,7 @@ void frame(const V3& v, V3& e1, V3& e2) {
 
 // The least of F on S's piece along v + E y (shallow_certificate.h): v moved, or false when
 // S's positions across v do not fix the tilt (fewer than three of them off one line).
-bool tilt_step(const Problem& P, const Evaluation& ev, unsigned ma, unsigned mb, V3& v) {
+bool tilt_step(const Problem& P, const Evaluation& ev, unsigned ma, unsigned mb, V3& v, V3& lo, bool words) {
   V3 e1, e2;
   frame(v, e1, e2);
   const int mA = __builtin_popcount(ma), mB = __builtin_popcount(mb);
@@ -66,28 +68,38 @@ bool tilt_step(const Problem& P, const Evaluation& ev, unsigned ma, unsigned mb,
   const double det = M[0] * M[2] - M[1] * M[1];
   if (!(det > 1e-12 * (M[0] + M[2]) * (M[0] + M[2]))) return false;
   const double y0 = -(M[2] * r[0] - M[1] * r[1]) / det, y1 = -(M[0] * r[1] - M[1] * r[0]) / det;
-  v = add(v, add(mul(e1, y0), mul(e2, y1)));
-  return std::isfinite(v[0] + v[1] + v[2]);
+  const V3 t = add(mul(e1, y0), mul(e2, y1));
+  for (int k = 0; k < 3; ++k) {
+    if (!words) {
+      v[k] += t[k];
+      continue;
+    }
+    const detail::dw::DW x = detail::dw::two_sum(v[k], lo[k] + t[k]);  // v + lo + t in double words
+    v[k] = x.hi, lo[k] = x.lo;
+  }
+  return std::isfinite(v[0] + v[1] + v[2]) && std::isfinite(lo[0] + lo[1] + lo[2]);
 }
 
 
 // v moved to the least of its pieces' charts until its active set stays (at most 8 steps, each
-// kept only where it lowers the certified value). False when no step can be taken or an
-// evaluation is not certified.
-bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V3& v, Evaluation& ev) {
-  ev = evaluate_tight(A, B, P, v);
+// kept only where it lowers the certified value); `words`: v + lo in double words (a tilt below
+// v's rounding: a contact plane off the axes), else lo stays 0. False when no step can be taken
+// or an evaluation is not certified.
+bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V3& v, V3& lo, bool words,
+                 Evaluation& ev) {
+  ev = evaluate_tight(A, B, P, v, lo);
   if (!(ev.error <= kGlobalRel)) return false;
   unsigned ma, mb;
   active_sets(ev, ma, mb);
   for (int step = 0; step < 8; ++step) {
     if (!ma || !mb) return false;
-    V3 w = v;
-    if (!tilt_step(P, ev, ma, mb, w)) return step > 0;
-    const Evaluation ew = evaluate_tight(A, B, P, w);
+    V3 w = v, wl = lo;
+    if (!tilt_step(P, ev, ma, mb, w, wl, words)) return step > 0;
+    const Evaluation ew = evaluate_tight(A, B, P, w, wl);
     if (!(ew.error <= kGlobalRel) || !(ew.value <= ev.value)) return true;
     unsigned na, nb;
     active_sets(ew, na, nb);
-    v = w, ev = ew;
+    v = w, lo = wl, ev = ew;
     if (na == ma && nb == mb) return true;
     ma = na, mb = nb;
   }
@@ -266,9 +278,13 @@ double plane_distance_lower(const V3& a, const V3& b, const V3& c, const V3& o) 
 //  - u.v <= 0: a ball B(q, R1) inside the simplex of those three and the point deepest along
 //    v, q = -R vh (R a power of two: exact), gives D(u) >= u.q + R1 - delta >= R1 - R e - delta
 //    (e: vh within 8u of v/|v|, so u.vh <= e).
-bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, double c0, double d0) {
+bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, const V3& lo, double c0, double d0) {
   const V3 vh = mul(v, 1 / norm(v));  // within 8u of v/|v|
-  const double e = 8 * kU;
+  // alpha >= |v/|v| - n/|n||, n = v + lo (2 |lo| / |v|): the tests below run along v; across n
+  // a point p's projection moves by <= 2 alpha |p| and its height by <= alpha |p|
+  const double alpha = 2 * std::sqrt(3.0) * std::fmax(std::fabs(lo[0]), std::fmax(std::fabs(lo[1]), std::fabs(lo[2]))) /
+                       (norm(v) * (1 - 3 * kU)) * (1 + 8 * kU);
+  const double e = 8 * kU + alpha;
   V3 w[16];
   double z[16], zmax = -INFINITY, zmin = INFINITY, wmax = 0;
   int apex = 0;
@@ -316,10 +332,10 @@ bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, do
   const double vn_low = norm(v) * (1 - 3 * kU);
   for (int s = 0; s < 3; ++s) {
     const V3 &p = x[s], &p1 = x[(s + 1) % 3], &p2 = x[(s + 2) % 3];
-    rho = std::min(rho, plane_distance_lower(sub(p1, p), v, p, sub(p2, p)));
+    rho = std::min(rho, plane_distance_lower(sub(p1, p), v, p, sub(p2, p)) - 2 * alpha * norm(p) * (1 + 4 * kU));
     // -vh.p <= (-(v.p) + 4u sum |v_k p_k|) / |v|
     const double err = 4 * kU * (std::fabs(v[0] * p[0]) + std::fabs(v[1] * p[1]) + std::fabs(v[2] * p[2]));
-    Z = std::max(Z, (err - dot(v, p)) / vn_low * (1 + 2 * kU));
+    Z = std::max(Z, (err - dot(v, p)) / vn_low * (1 + 2 * kU) + alpha * norm(p) * (1 + 4 * kU));
   }
   // sin(theta0) >= sqrt((1 - c0)(1 + c0)) rounded down (1 - c0 exact: c0 in [1/2, 1])
   if (!(c0 >= 0.5) || !(rho > 0)) return false;
@@ -339,21 +355,27 @@ bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, do
 
 }  // namespace
 
-bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out) {
-  if (!nonzero(v0) || !(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return false;
-  V3 v = v0;
+namespace {
+
+// One attempt (certify_shallow): the normal in doubles, or in double words.
+bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, bool words,
+             ShallowResult& out) {
+  V3 v = v0, lo{0, 0, 0};
   Evaluation ev;
-  if (!find_normal(A, B, P, v, ev)) return false;
+  if (!find_normal(A, B, P, v, lo, words, ev)) return false;
   const double V = ev.value;
   if (!(V >= 0x1p-900 * P.scale * P.scale) || !std::isfinite(V)) return false;
   // exact: positions relative to A[0] over 2^ex, v over 2^ev, the multipliers (integers)
   long ex = LONG_MAX, ev_ = LONG_MAX;
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) ex = std::min({ex, low_exponent(A[i][k]), low_exponent(B[i][k])});
-  for (double c : v) ev_ = std::min(ev_, low_exponent(c));
+  for (int k = 0; k < 3; ++k) ev_ = std::min({ev_, low_exponent(v[k]), low_exponent(lo[k])});
   if (ex == LONG_MAX || ev_ == LONG_MAX) return false;
   static thread_local Workspace w;
-  for (int k = 0; k < 3; ++k) to_integer(A[0][k], ex, w.o[k]), to_integer(v[k], ev_, w.V[k]);
+  for (int k = 0; k < 3; ++k) {  // V = v + lo exactly
+    to_integer(A[0][k], ex, w.o[k]), to_integer(v[k], ev_, w.V[k]), to_integer(lo[k], ev_, w.y);
+    w.V[k] += w.y;
+  }
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
       to_integer(A[i][k], ex, w.y), mpz_sub(z(w.x[i][k]), z(w.y), z(w.o[k]));
@@ -406,9 +428,16 @@ bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& 
   const double ratio = std::ldexp(std::nextafter(fn / fd, 4.0), int(std::clamp(en - ed + shift, -2000L, 2000L)));
   const double c0 = std::nextafter(std::sqrt(ratio), 2.0);
   const double d0 = std::sqrt(32 * L) * (1 + 4 * kU);
-  if (!(c0 < 1) || !overlap_off_cap(A, B, v, c0, d0)) return false;
-  out.normal = v, out.eval = ev, out.lower = L;
+  if (!(c0 < 1) || !overlap_off_cap(A, B, v, lo, c0, d0)) return false;
+  out.normal = v, out.low = lo, out.eval = ev, out.lower = L;
   return true;
+}
+
+}  // namespace
+
+bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out) {
+  if (!nonzero(v0) || !(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return false;
+  return attempt(A, B, P, v0, false, out) || attempt(A, B, P, v0, true, out);
 }
 
 }  // namespace pdd::fast::global

@@ -51,6 +51,8 @@ inline constexpr double kShallowGap = 3e-10;
 
 struct ShallowResult {
   V3 normal{};      // v (A -> B, unnormalised)
+  V3 low{};         // the normal is v + low in double words (0: v itself; else no double
+                    // triple represents it: v is its rounding)
   Evaluation eval;  // relaxed(v): value, error <= kGlobalRel, solution and heights
   double lower = 0; // L: every relaxed(u) >= L
 };

@@ -356,10 +356,11 @@ double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate
 }
 
 bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
-                         double& value, double& r, DirectionSolution& s, double hA[4], double hB[4]) {
+                         double& value, double& r, DirectionSolution& s, double hA[4], double hB[4],
+                         const std::array<double, 3>& lo) {
   detail::CompensatedHeights h;
   Valued x;
-  if (!detail::compensated_heights_along(A, B, v, h) || !valued_on_heights(h, 0u, 0u, QpKind::Relaxed, x, s))
+  if (!detail::compensated_heights_along(A, B, v, h, lo) || !valued_on_heights(h, 0u, 0u, QpKind::Relaxed, x, s))
     return false;
   value = x.v, r = x.r;
   for (int i = 0; i < 4; ++i) hA[i] = h.hA[i], hB[i] = h.hB[i];

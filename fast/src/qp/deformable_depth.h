@@ -97,8 +97,10 @@ double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate
 // [lower_of(value, r), upper_of(value, r)]), the solution s of that pattern and the heights
 // (relative to A's vertex highest along v) it was computed on. False when not applicable or
 // a margin is too small. Precondition: a pair rescaled by power_scale.h.
+// With `lo`: along the double-word normal v + lo (compensated_heights_along's).
 bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
-                         double& value, double& r, DirectionSolution& s, double hA[4], double hB[4]);
+                         double& value, double& r, DirectionSolution& s, double hA[4], double hB[4],
+                         const std::array<double, 3>& lo = {0, 0, 0});
 
 // Which per-direction QP (direction_qp.h) a compensated evaluation solves.
 enum class QpKind { Static, Deformable, Relaxed };
