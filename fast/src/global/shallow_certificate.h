@@ -4,7 +4,7 @@
 // exact ones cost milliseconds.
 //
 // Input : the pair (engine units, global_depth.h), its Problem, a start normal v0 (A -> B).
-// Output: true with a double normal v, its certified evaluation (relaxed_value.h's
+// Output: true with a normal v (+ low, in double words), its certified evaluation (relaxed_value.h's
 //         evaluate_tight: value V within kGlobalRel of relaxed(v)) and a proved lower bound
 //         L >= V (1 - kShallowGap) on relaxed(u) over every unit u; false when any step below
 //         fails (the caller then searches the exact pieces).
@@ -38,7 +38,13 @@
 // active set S of v, F(v + E y) = sum_S (eta_i + y.xi_i)^2 + k (tau + y.xi_T)^2 (the piece's
 // H_S in the frame v, E: eta the heights about the plane, from compensated heights, accurate
 // to their own u; xi the positions across v, doubles), least at the 2 x 2 solve; repeated until
-// S no longer changes.
+// S no longer changes. Where the contact plane is off the axes, the tilt is below a double
+// normal's rounding: a second walk keeps the normal in double words, v + lo (heights along it
+// on compensated heights, relaxed_value.h; the multipliers' integers of v + lo; the overlap
+// tests along v, their margins widened by the angle alpha <= 2 |lo| / |v| between v and v +
+// lo: a point p's projection across the normal moves by <= 2 alpha |p|, its height by <= alpha
+// |p|). Such a value is certified along a normal no double triple represents (ShallowResult's
+// low; global_depth.cpp decides what its callers get).
 #pragma once
 
 #include "global/relaxed_value.h"
