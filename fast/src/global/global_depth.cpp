@@ -100,7 +100,6 @@ struct GlobalRun {
   double lower_scaled = 0;   // the exact path's floor in its units
   bool exact_pieces = false;  // the pieces were built exactly
   GlobalOptimum shallow;      // report_shallow's result
-  bool witness_enough = false;  // (global_depth.h)
 };
 
 // No start given (a caller whose candidate list could not be built: the pair has parallel
@@ -412,10 +411,10 @@ bool report_shallow(GlobalRun& g) {
   // Along a normal in double words: a double normal v near it where relaxed(v) is within
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
-  // within 8e-10 + 1e-10 < 1e-9 of the minimum); else, for a caller that takes
-  // it, the value as a witness (the normal and positions its rounding, as suspect_proof.h's
-  // rational witnesses), and for the others the exact pieces' search for a double normal.
-  // The rounding and its neighbours one ulp away per component (27 double normals) are tried.
+  // within 8e-10 + 1e-10 < 1e-9 of the minimum): the rounding and its neighbours one ulp away
+  // per component (27 double normals). Else the exact pieces' search for a double normal
+  // (whose suspects' integer normals along the minimiser reach further), so that every caller
+  // gets the same value and normal (global_minimiser.h: bit for bit solve_pair's).
   if (nonzero(r.low)) {
     const V3 n = r.normal;
     for (int m = 0; m < 27 && nonzero(r.low); ++m) {
@@ -426,14 +425,13 @@ bool report_shallow(GlobalRun& g) {
       if (ev.error <= kGlobalRel && ev.value * (1 + kGlobalRel) <= r.lower * (1 + 8e-10))
         r.eval = ev, r.normal = w, r.low = {0, 0, 0};
     }
-    if (nonzero(r.low) && !g.witness_enough) return false;
+    if (nonzero(r.low)) return false;
   }
   out.normal = r.normal;
   Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
   place(r.eval.sol, r.eval.hA, r.eval.hB, [](double x) { return x; });
   out.value = r.eval.value;
-  if (nonzero(r.low)) out.witness = true;
-  else out.certified = true;
+  out.certified = true;
   return true;
 }
 
@@ -461,10 +459,8 @@ double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std
 }
 
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           double start_value, const ExactStart& exact_start, double rigid_pd2,
-                           bool witness_enough) {
+                           double start_value, const ExactStart& exact_start, double rigid_pd2) {
   GlobalRun g(A, B);
-  g.witness_enough = witness_enough;
   set_up(g, start_normal, rigid_pd2);
   g.exact_pieces = needs_exact_pieces(g, start_value);
   if (g.exact_pieces && report_shallow(g)) return g.shallow;

@@ -94,11 +94,7 @@ using ExactStart = std::function<std::array<double, 3>()>;
 // start_value: the start's certified relaxed value (same units), or +inf when none: a double
 // enumeration that ends above it could not evaluate the start's own normal, and is redone
 // exactly.
-// witness_enough: a caller that takes a value certified along a normal no double triple
-// represents (`witness`; the contact energy) gets it from shallow_certificate.h's normals in
-// double words too, instead of the exact pieces' search for a double normal.
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           double start_value, const ExactStart& exact_start, double rigid_pd2,
-                           bool witness_enough = false);
+                           double start_value, const ExactStart& exact_start, double rigid_pd2);
 
 }  // namespace pdd::fast

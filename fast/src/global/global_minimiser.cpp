@@ -87,7 +87,7 @@ std::optional<GlobalMinimiser> minimiser_from(const TetVertices& A, const TetVer
   const ExactStart exact_start = [&]() -> std::array<double, 3> {
     return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
   };
-  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value, true);
+  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
   if (!g.certified && !g.witness) return std::nullopt;
   if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
   bool in_range = true;

@@ -44,7 +44,7 @@
 // tests along v, their margins widened by the angle alpha <= 2 |lo| / |v| between v and v +
 // lo: a point p's projection across the normal moves by <= 2 alpha |p|, its height by <= alpha
 // |p|). Such a value is certified along a normal no double triple represents (ShallowResult's
-// low; global_depth.cpp decides what its callers get).
+// low; global_depth.cpp looks for a double normal near it).
 #pragma once
 
 #include "global/relaxed_value.h"
