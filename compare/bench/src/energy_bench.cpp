@@ -94,7 +94,8 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
   for (const std::string& name : split(options.cases))
     if (name == "stacked")
       names.insert(names.end(),
-                   {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned"});
+                   {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned",
+                    "stacked-resting", "stacked-resting-turned"});
     else names.push_back(name);
   for (const std::string& name : names) {
     EnergyCase c;
@@ -136,6 +137,19 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
         << "rounding), moved by (0.037, 0.021)" << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
       c.description = d.str();
       if (!turned) c.rotated_twin = "stacked-rounding-turned";
+    } else if (name == "stacked-resting" || name == "stacked-resting-turned") {
+      // B on A's columns (the same x and y), its bottom 1e-9 below A's top: a resting contact as
+      // a simulator leaves it, every contact of a face, an edge or a vertex of B's bottom on
+      // the same element of A's top; the twin B turned 0.3 rad
+      const int n = options.stacked_cells;
+      const bool turned = name == "stacked-resting-turned";
+      A = make_structured_block({n, n, 3}, 0.1, {0, 0, 0}, CubeSplit::Kuhn6);
+      B = make_structured_block({n, n, 3}, 0.1, {0, 0, 0.3 - 1e-9}, CubeSplit::Kuhn6, turned ? 0.3 : 0.0);
+      std::ostringstream d;
+      d << "Kuhn blocks of " << n << "x" << n << "x3 cubes of 0.1, B on A's columns 1e-9 deep"
+        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
+      c.description = d.str();
+      if (!turned) c.rotated_twin = "stacked-resting-turned";
     } else {
       throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls, stacked)");
     }
