@@ -97,6 +97,29 @@ inline std::vector<TetPair> resting_contact_pairs(int n, double depth, int max_p
   return intersecting_pairs(A, B, "resting", max_pairs, [](double) { return true; });
 }
 
+// Blocks resting on each other's columns: the Kuhn tetrahedra of an n x n x 1 layer of decimal
+// cells (h = 0.1, coordinates (i + v) h each rounded once, its top 0.1) and those of the same
+// layer moved up by h - depth, its columns exactly over A's (the same x and y coordinates).
+// Every contact is a face, an edge or a vertex of B's bottom on the same one of A's top, and a
+// vertex of one on the line of a vertical edge of the other makes three active vertices nearly
+// (or exactly) collinear: pieces with a second eigenvalue ~depth^2 beside a structural 0. The
+// element pairs whose interiors meet, up to `max_pairs`.
+inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int perm = 0; perm < 6; ++perm) {
+        TetVertices a = kuhn_cell_tet({0, 0, 0}, 1.0, perm), b = a;
+        for (int v = 0; v < 4; ++v) {
+          a[v] = {(i + a[v][0]) * h, (j + a[v][1]) * h, a[v][2] * h};
+          b[v] = {(i + b[v][0]) * h, (j + b[v][1]) * h, h - depth + b[v][2] * h};
+        }
+        A.push_back(a), B.push_back(b);
+      }
+  return intersecting_pairs(A, B, "on columns", max_pairs, [](double) { return true; });
+}
+
 // Cells that coincide up to rounding: the Kuhn tetrahedra of an n x n x 1 layer of cubes of
 // the decimal side h = 0.1 at height index 5 (vertex coordinates (i + v) h, each rounded once)
 // against those of the same grid one cell up, its layer 4 (coordinates h + (i + v) h): 6 h

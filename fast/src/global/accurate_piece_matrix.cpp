@@ -22,7 +22,8 @@ DW dw(double x) { return {x, 0.0}; }
 // Each subset's sums from the subset without its highest vertex (piece_enumeration.cpp's
 // subset_sums).
 AccurateMoments::AccurateMoments(const std::array<std::array<double, 3>, 4>& pA,
-                                 const std::array<std::array<double, 3>, 4>& pB) {
+                                 const std::array<std::array<double, 3>, 4>& pB)
+    : pA_(pA), pB_(pB) {
   fill(pA, pB);
 }
 

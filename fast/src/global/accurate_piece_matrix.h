@@ -44,6 +44,8 @@ class AccurateMoments {
   // The same H_S as double words, each entry with its own certified bound (Bounded: |v - H*| <=
   // e, double_word.h): the entries before their rounding to doubles. False when not finite.
   bool matrix(unsigned ma, unsigned mb, detail::dw::Bounded (&H)[3][3]) const;
+  // The vertices H_S is built from (A's, or B's).
+  const std::array<std::array<double, 3>, 4>& vertices(bool a) const { return a ? pA_ : pB_; }
 
  private:
   void fill(const std::array<std::array<double, 3>, 4>& pA, const std::array<std::array<double, 3>, 4>& pB);
@@ -53,6 +55,7 @@ class AccurateMoments {
   // Each sum as a double word, and the same sum of the terms' magnitudes (|a_k|, |a_r a_c|).
   detail::dw::DW SA[16][3], SB[16][3], QA[16][6], QB[16][6];
   double aSA[16][3], aSB[16][3], aQA[16][6], aQB[16][6];
+  std::array<std::array<double, 3>, 4> pA_, pB_;
 };
 
 }  // namespace pdd::fast::global

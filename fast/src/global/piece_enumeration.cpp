@@ -12,6 +12,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "exact/expansion.h"
 #include "global/accurate_piece_matrix.h"
 #include "global/eigen_polish.h"
 #include "global/piece_region.h"
@@ -78,6 +79,49 @@ void subset_lanes(const std::array<std::array<double, 3>, 4>& p, SubsetLanes& ou
     for (int q = 1; q < 6; ++q) x = std::max(x, std::fabs(out.q[q][m]));
     out.qmax[m] = x;
   }
+}
+
+// The exact zero eigenvalues of a piece's H_S on the enumeration's own vertices pA, pB (the
+// points its H is built from): 3 - dim aff(S), S's active vertices. 20 H_S = sum_S (C - x)(C -
+// x)^T + k T_A T_A^T with C an affine combination of S's vertices and T_A a combination of their
+// differences (piece_enumeration.h), so H_S's range lies in the directions of aff(S), and as a
+// sum of outer products with positive weights of vectors spanning them it has that rank: the
+// generic count 4 - |S| (|S| <= 3 points span at most |S| - 1 directions) plus one for each
+// direction the points fail to span, exactly. Blocks stacked on each other's columns put a vertex
+// of A on the line of a vertical edge of B (three active vertices on one line: two exact zeros,
+// not one); the third eigenvalue, ~1e-17 |H| as computed, is then 0, not a stationary value in
+// a resting contact's window. Decided by exact signs (expansion.h: differences, their cross
+// products, and the triple product against the plane's normal); `generic` where an expansion
+// does not fit or a coordinate lies outside its exact range (nothing is claimed then).
+int affine_zeros(const Corners<double>& pA, const Corners<double>& pB, unsigned ma, unsigned mb, int generic) {
+  if (!detail::in_exact_range(pA, pB)) return generic;
+  Vec3d x[8];
+  int m = 0;
+  for (int i = 0; i < 4; ++i)
+    if (ma >> i & 1u) x[m++] = pA[i];
+  for (int i = 0; i < 4; ++i)
+    if (mb >> i & 1u) x[m++] = pB[i];
+  int p = -1;  // a point off x[0]
+  for (int i = 1; i < m && p < 0; ++i)
+    if (x[i] != x[0]) p = i;
+  if (p < 0) return 3;  // (one point: dim 0)
+  const detail::ExpVec dp = detail::difference(x[p], x[0]);
+  detail::ExpVec n;
+  int q = -1;  // a point off the line x[0] x[p]
+  for (int i = 1; i < m && q < 0; ++i) {
+    if (i == p) continue;
+    const detail::ExpVec c = detail::cross(dp, detail::difference(x[i], x[0]));
+    if (!c.ok()) return generic;
+    if (c.x[0].sign() != 0 || c.x[1].sign() != 0 || c.x[2].sign() != 0) n = c, q = i;
+  }
+  if (q < 0) return std::max(generic, 2);  // on one line
+  for (int i = 1; i < m; ++i) {
+    if (i == p || i == q) continue;
+    const detail::Expansion d = detail::dot(n, detail::difference(x[i], x[0]));
+    if (!d.ok) return generic;
+    if (d.sign() != 0) return generic;  // (three directions: no zero)
+  }
+  return std::max(generic, 1);  // in one plane
 }
 
 // One piece's geometry (relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B), its
@@ -461,10 +505,21 @@ class PieceEnumeration {
       // (a pair on the accurate H already: first the cheap tests on the double H, whose bounds
       // decide the pieces with structural zeros far above a shallow window, ~1,800 instructions
       // of double words each saved)
+      // The visit on the accurate H; where it still cannot resolve an eigenvalue, once more with
+      // the piece's exact zeros (affine_zeros) where its active vertices are degenerate: an
+      // eigenvalue that is exactly 0 is not one to resolve.
+      auto consider_accurate = [&] {
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros, &*accurate, ma, mb}, accurate_calls, search);
+        if (!best.needs_exact) return;
+        const int exact_zeros = affine_zeros(dA, dB, ma, mb, zeros);
+        if (exact_zeros == zeros) return;
+        best.needs_exact = false;
+        consider_piece(PieceMatrix{Hw, ew, false, 0, true, exact_zeros, &*accurate, ma, mb}, accurate_calls, search);
+      };
       if (accurate && !best.needs_exact) {
         if (outside_window(PieceMatrix{H, h_error(g), false, 0, false, zeros}, calls, search)) return;
         if (accurate->matrix(ma, mb, Hw, ew)) {
-          consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros, &*accurate, ma, mb}, accurate_calls, search);
+          consider_accurate();
           return;
         }
       }
@@ -474,7 +529,7 @@ class PieceEnumeration {
       if (!accurate) accurate.emplace(dA, dB);
       if (accurate->matrix(ma, mb, Hw, ew)) {
         best.needs_exact = false;
-        consider_piece(PieceMatrix{Hw, ew, false, 0, true, zeros, &*accurate, ma, mb}, accurate_calls, search);
+        consider_accurate();
       }
     } else {
       consider_piece(PieceMatrix{H, h_error(g), kExact, g.pe}, calls, search);

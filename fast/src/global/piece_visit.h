@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "exact/expansion.h"
 #include "global/accurate_piece_matrix.h"
 #include "global/best_offer.h"
 #include "global/piece_screen.h"
@@ -318,7 +319,8 @@ class PieceVisit {
     planes(pair_of);
     for (int k = 0; k < 3; ++k)
       if (in_window(k) && !(2 * E * E / gap_of(k) <= 1e-11 * std::max(mu(k), lower_here)) &&
-          !(pair_of[k] >= 0 && plane_accurate(pair_of[k], E)) && !(pair_of[k] < 0 && ritz_pair(k, E)))
+          !(pair_of[k] >= 0 && plane_accurate(pair_of[k], E)) && !(pair_of[k] < 0 && ritz_pair(k, E)) &&
+          !partner_of_zero(k, E))
         best.needs_exact = true;
     return true;
   }
@@ -393,6 +395,58 @@ class PieceVisit {
     const V3 w = add(mul(q0, ua / big), mul(q1, ub / big));
     ritz[k] = mul(w, 1 / norm(w));
     has_ritz[k] = true;
+    return true;
+  }
+
+  // Three active vertices nearly on one line (zeros == 1: H's exact eigenvalues 0 <= lambda_1
+  // <= lambda_2, the 0 structural): lambda_1, a resting contact's window value, lies within E of
+  // the structural 0, so no estimate on the computed pairs resolves its vector (blocks on each
+  // other's columns: a vertex of A 1e-8 above the line of an edge of B). Its exact eigenvector
+  // is known from the other two: the 0's is the plane's normal n0 = (x1 - x0) x (x2 - x0) of the
+  // three vertices (H_S n0 = 0: they lie on a plane of normal n0), so e_1 = n0 x e_2 / |n0 x e_2|.
+  // n0 is taken by expansions (expansion.h: exact, then each component rounded within err of it,
+  // |n0~ - n0| <= sqrt(3) err: an angle an <= sqrt(3) err / (|n0~| - sqrt(3) err)); e_2, the
+  // computed vector of mu_2, is an exact eigenvector of H + F, |F| <= E, so within s2 = E /
+  // delta + 2 o of e_2's direction (Davis-Kahan: delta = mu_2 - mu_1 - 2 E, the distance to the
+  // other two eigenvalues' intervals; o its departure from unit length). n0 is orthogonal to
+  // e_2 exactly, so the cross product of the two is within an + s2 (to first order, the factor
+  // 1 + 1e-3 for the second) of e_1's direction, and the rounding of the cross product and its
+  // normalisation add 16 u. Along that w, v^T H v - lambda_1 <= (lambda_2 - lambda_1) sin^2 phi
+  // <= (mu_2 + E) phi^2 (the component along n0 only lowers it): required within half of the
+  // 1e-11 of double_path_accuracy, relative to the window's floor (every stationary value
+  // that matters is above it), and phi <= 1e-9 (the conditions' kSign). True with w kept as
+  // vector 1; false otherwise (the pair goes to the exact pieces).
+  bool partner_of_zero(int k, double E) {
+    if (!accurate || !moments || zeros != 1 || k != 1 || !(lower_here > 0)) return false;
+    Vec3d x[3];
+    int n = 0;
+    for (int i = 0; i < 4; ++i)
+      if (ma >> i & 1u) x[n++] = moments->vertices(true)[i];
+    for (int i = 0; i < 4; ++i)
+      if (mb >> i & 1u) x[n++] = moments->vertices(false)[i];
+    if (n != 3 || !detail::in_exact_range(moments->vertices(true), moments->vertices(false))) return false;
+    const detail::ExpVec c = detail::cross(detail::difference(x[1], x[0]), detail::difference(x[2], x[0]));
+    if (!c.ok()) return false;
+    V3 n0;
+    double err = 0;
+    for (int q = 0; q < 3; ++q) {
+      const detail::Approx a = detail::approx_of(c.x[q]);
+      n0[q] = a.v, err = std::max(err, a.err);
+    }
+    const double n0_norm = norm(n0) * (1 - 4 * kU), slack = std::sqrt(3.0) * err * (1 + 4 * kU);
+    if (!(n0_norm > 2 * slack)) return false;
+    const double an = slack / (n0_norm - slack) * (1 + 4 * kU);
+    const V3 e2 = raw_vector(2);
+    const double o = std::fabs(dot(e2, e2) - 1) + 4 * kU;
+    const double delta = mu(2) - mu(1) - 2 * E;
+    if (!(delta > 0)) return false;
+    const double phi = ((an + E / delta + 2 * o) * (1 + 1e-3) + 16 * kU) * (1 + 4 * kU);
+    if (!((mu(2) + E) * phi * phi <= 0.5e-11 * lower_here) || !(phi <= 1e-9)) return false;
+    const V3 w = cross(n0, e2);
+    const double wn = norm(w);
+    if (!(wn > 0) || !std::isfinite(wn)) return false;
+    ritz[1] = mul(w, 1 / wn);
+    has_ritz[1] = true;
     return true;
   }
 
