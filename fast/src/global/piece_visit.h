@@ -418,13 +418,14 @@ class PieceVisit {
   // vector 1; false otherwise (the pair goes to the exact pieces).
   bool partner_of_zero(int k, double E) {
     if (!accurate || !moments || zeros != 1 || k != 1 || !(lower_here > 0)) return false;
+    if (__builtin_popcount(ma) + __builtin_popcount(mb) != 3) return false;  // (four in one plane: affine_zeros')
     Vec3d x[3];
     int n = 0;
     for (int i = 0; i < 4; ++i)
       if (ma >> i & 1u) x[n++] = moments->vertices(true)[i];
     for (int i = 0; i < 4; ++i)
       if (mb >> i & 1u) x[n++] = moments->vertices(false)[i];
-    if (n != 3 || !detail::in_exact_range(moments->vertices(true), moments->vertices(false))) return false;
+    if (!detail::in_exact_range(moments->vertices(true), moments->vertices(false))) return false;
     const detail::ExpVec c = detail::cross(detail::difference(x[1], x[0]), detail::difference(x[2], x[0]));
     if (!c.ok()) return false;
     V3 n0;
