@@ -11,9 +11,10 @@
 //    bottom at 0.3) and resting on each other 1e-10 and 1e-12 deep (below the double pieces'
 //    reach) get pdd2_global from solve_pair without the slow path, within definitions §8 of
 //    the exact engine;
-//  - the double pieces resolve resting contacts on each other's columns 1e-8 deep
-//    (piece_enumeration.cpp's affine_zeros, piece_visit.h's partner_of_zero: three active
-//    vertices on one line, or nearly), without the exact pieces, within definitions §8.
+//  - the double pieces resolve blocks resting on each other's columns 1e-8 deep, and 1e-9 deep
+//    above their floor (piece_enumeration.cpp's affine_zeros, piece_visit.h's partner_of_zero:
+//    three active vertices on one line or four on one plane, or nearly), without the exact
+//    pieces, within definitions §8.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -125,23 +126,31 @@ BOOST_AUTO_TEST_CASE(stacked_and_resting_blocks_without_the_slow_path) {
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
 }
 
-// Blocks resting on each other's columns 1e-8 deep (structured_cells.h): below the double
-// pieces' H (~1e-17 |H|), within the accurate H's reach except for the pieces of three active
-// vertices on or near one line, whose second eigenvalue lies within the H's error of the
-// structural 0. Each such pair took the exact pieces (~2 ms); now every one is answered in
-// doubles (solve_pair's slow_path counts a pdd2_global computed in rationals), within
-// definitions §8 of the exact engine.
+// Blocks resting on each other's columns 1e-8 and 1e-9 deep (structured_cells.h): below the
+// double pieces' H (~1e-17 |H|), within the accurate H's reach except for the pieces of three
+// active vertices on or near one line (or four on one plane), whose second eigenvalue lies
+// within the H's error of a zero. Each such pair took the exact pieces (~2 ms); now they are
+// answered in doubles (solve_pair's slow_path counts a pdd2_global computed in rationals),
+// within definitions §8 of the exact engine.
 BOOST_AUTO_TEST_CASE(blocks_on_columns_resting_without_the_exact_pieces) {
-  const std::vector<TetPair> pairs = pdd::test::column_resting_pairs(2, 1e-8, 48);
-  BOOST_REQUIRE(pairs.size() >= 40u);
-  const fast::SolveOptions o;
-  int slow = 0;
-  for (const TetPair& p : pairs) {
-    const auto exact = exact_with_global(p);
-    const auto fast = fast::solve_pair(p, o);
-    BOOST_REQUIRE(!fast.pdd2_global_error);
-    BOOST_TEST(!compare::compare_pair(p, exact, fast).over_tolerance(), p.name);
-    slow += fast.stats.slow_path;
+  for (double depth : {1e-8, 1e-9}) {
+    const std::vector<TetPair> pairs = pdd::test::column_resting_pairs(2, depth, 48);
+    BOOST_REQUIRE(pairs.size() >= 40u);
+    const fast::SolveOptions o;
+    int slow = 0;
+    for (const TetPair& p : pairs) {
+      const auto exact = exact_with_global(p);
+      const auto fast = fast::solve_pair(p, o);
+      BOOST_REQUIRE(!fast.pdd2_global_error);
+      BOOST_TEST(!compare::compare_pair(p, exact, fast).over_tolerance(), p.name << " " << depth);
+      slow += fast.stats.slow_path;
+    }
+    BOOST_TEST_MESSAGE(depth << " deep: " << slow << " of " << pairs.size() << " in rationals");
+    // 1e-9 deep: the pairs whose start value (pdd2_accel1, ~1e-18 of the pair's size squared)
+    // lies below the double pieces' floor (global_depth.cpp's kCompactTiny) take the exact
+    // pieces, half of these (the contacts of an edge or a vertex of B's bottom); the others stay
+    // in doubles (every one took rationals without affine_zeros and partner_of_zero)
+    const int allowed = depth < 1e-8 ? int(pairs.size()) / 2 : 0;
+    BOOST_TEST(slow <= allowed, slow << " of " << pairs.size() << " in rationals " << depth << " deep");
   }
-  BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " in rationals");
 }

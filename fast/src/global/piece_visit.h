@@ -398,12 +398,14 @@ class PieceVisit {
     return true;
   }
 
-  // Three active vertices nearly on one line (zeros == 1: H's exact eigenvalues 0 <= lambda_1
-  // <= lambda_2, the 0 structural): lambda_1, a resting contact's window value, lies within E of
-  // the structural 0, so no estimate on the computed pairs resolves its vector (blocks on each
-  // other's columns: a vertex of A 1e-8 above the line of an edge of B). Its exact eigenvector
-  // is known from the other two: the 0's is the plane's normal n0 = (x1 - x0) x (x2 - x0) of the
-  // three vertices (H_S n0 = 0: they lie on a plane of normal n0), so e_1 = n0 x e_2 / |n0 x e_2|.
+  // Three active vertices nearly on one line, or four on one plane nearly on one line (zeros ==
+  // 1: H's exact eigenvalues 0 <= lambda_1 <= lambda_2, the 0 structural or affine_zeros'):
+  // lambda_1, a resting contact's window value, lies within E of the 0, so no estimate on the
+  // computed pairs resolves its vector (blocks on each other's columns: a vertex of A 1e-8 above
+  // the line of an edge of B, or an edge of A 1e-9 above the same edge of B). Its exact
+  // eigenvector is known from the other two: the 0's is the vertices' plane's normal n0 = (x1 -
+  // x0) x (x2 - x0) (H_S n0 = 0: they lie on a plane of normal n0), so e_1 = n0 x e_2 / |n0 x
+  // e_2|.
   // n0 is taken by expansions (expansion.h: exact, then each component rounded within err of it,
   // |n0~ - n0| <= sqrt(3) err: an angle an <= sqrt(3) err / (|n0~| - sqrt(3) err)); e_2, the
   // computed vector of mu_2, is an exact eigenvector of H + F, |F| <= E, so within s2 = E /
@@ -418,16 +420,28 @@ class PieceVisit {
   // vector 1; false otherwise (the pair goes to the exact pieces).
   bool partner_of_zero(int k, double E) {
     if (!accurate || !moments || zeros != 1 || k != 1 || !(lower_here > 0)) return false;
-    if (__builtin_popcount(ma) + __builtin_popcount(mb) != 3) return false;  // (four in one plane: affine_zeros')
-    Vec3d x[3];
+    const int m = __builtin_popcount(ma) + __builtin_popcount(mb);
+    if (m != 3 && m != 4) return false;
+    Vec3d x[4];
     int n = 0;
     for (int i = 0; i < 4; ++i)
       if (ma >> i & 1u) x[n++] = moments->vertices(true)[i];
     for (int i = 0; i < 4; ++i)
       if (mb >> i & 1u) x[n++] = moments->vertices(false)[i];
     if (!detail::in_exact_range(moments->vertices(true), moments->vertices(false))) return false;
-    const detail::ExpVec c = detail::cross(detail::difference(x[1], x[0]), detail::difference(x[2], x[0]));
-    if (!c.ok()) return false;
+    // (four vertices: zeros == 1 only from affine_zeros, so they lie on one plane exactly and
+    // any three of them off one line give its normal; the longest cross product is taken)
+    static constexpr int kTriple[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    detail::ExpVec c;
+    double longest = -1;
+    for (int t = 0; t < (m == 3 ? 1 : 4); ++t) {
+      const Vec3d &p = x[kTriple[t][0]], &q = x[kTriple[t][1]], &r = x[kTriple[t][2]];
+      const detail::ExpVec ct = detail::cross(detail::difference(q, p), detail::difference(r, p));
+      if (!ct.ok()) return false;
+      double len = 0;
+      for (int a = 0; a < 3; ++a) len += detail::approx_of(ct.x[a]).v * detail::approx_of(ct.x[a]).v;
+      if (len > longest) longest = len, c = ct;
+    }
     V3 n0;
     double err = 0;
     for (int q = 0; q < 3; ++q) {
