@@ -175,6 +175,25 @@ bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsig
 bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
                         Valued& out, VerifiedPattern* pattern = nullptr);
 
+// The heights moved by one of them, t = A's highest: a common shift of every height moves the
+// QP's plane offset with it and leaves its cost and displacements as they are, while the
+// solver's rounding, bounded relative to the heights at the plane (check_pattern's Ha), then
+// scales with the contact's depth instead of the heights' distance from the frame's origin (a
+// resting contact 1e-6 deep at heights ~0.5: intervals 3.6e-8 wide before, within definitions
+// §8 after). Each x - t rounded once (exact by Sterbenz where x lies within a factor 2 of t),
+// its error u |x - t| added to the height's own. Only where no pattern is kept (a verified
+// pattern's Ha is read with the heights as given).
+detail::CompensatedHeights shifted_heights(const detail::CompensatedHeights& h) {
+  detail::CompensatedHeights s = h;
+  double t = h.hA[0];
+  for (int i = 1; i < 4; ++i) t = std::max(t, h.hA[i]);
+  for (int i = 0; i < 4; ++i) {
+    s.hA[i] = h.hA[i] - t, s.eA[i] = h.eA[i] + kUnitRoundoff * std::fabs(s.hA[i]) * (1 + 0x1p-40);
+    s.hB[i] = h.hB[i] - t, s.eB[i] = h.eB[i] + kUnitRoundoff * std::fabs(s.hB[i]) * (1 + 0x1p-40);
+  }
+  return s;
+}
+
 bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind,
                         Valued& out, VerifiedPattern* pattern) {
   const bool a_static = kind == QpKind::Static;
@@ -183,8 +202,8 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   const unsigned conA = kind == QpKind::Relaxed ? 0u : c.conA, conB = kind == QpKind::Relaxed ? 0u : c.conB;
   DirectionSolution s;
   const VerifiedPattern given = pattern ? *pattern : VerifiedPattern{};  // (bracketed: left as given)
-  const bool words =
-      detail::compensated_heights(A, B, c, h) && valued_on_heights(h, conA, conB, kind, out, s, pattern, true);
+  const bool words = detail::compensated_heights(A, B, c, h) &&
+                     valued_on_heights(pattern ? h : shifted_heights(h), conA, conB, kind, out, s, pattern, true);
   if (words && (c.label.kind != ContactKind::EE || certified_choice(upper_of(out.v, out.r), lower_of(out.v, out.r))))
     return true;
   // An edge pair's heights by expansions (compensated_heights.h's expansion_heights: each
@@ -198,7 +217,8 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   Valued v;
   DirectionSolution t;
   VerifiedPattern p = given;
-  if (!detail::expansion_heights(A, B, c, x) || !valued_on_heights(x, conA, conB, kind, v, t, pattern ? &p : nullptr, true))
+  if (!detail::expansion_heights(A, B, c, x) ||
+      !valued_on_heights(pattern ? x : shifted_heights(x), conA, conB, kind, v, t, pattern ? &p : nullptr, true))
     return words;
   out = v;
   if (pattern) *pattern = p;
