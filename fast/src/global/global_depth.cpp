@@ -412,9 +412,11 @@ bool report_shallow(GlobalRun& g) {
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
   // within 8e-10 + 1e-10 < 1e-9 of the minimum): the rounding and its neighbours one ulp away
-  // per component (27 double normals). Else the exact pieces' search for a double normal
-  // (whose suspects' integer normals along the minimiser reach further), so that every caller
-  // gets the same value and normal (global_minimiser.h: bit for bit solve_pair's).
+  // per component (27 double normals). Else the value is certified along v + lo alone, which
+  // no double triple near it represents: a witness (global_depth.h), its normal v (lo's
+  // rounding) and the positions along v. The exact pieces' own search for a double normal
+  // (integer normals along the minimiser) costs milliseconds and found none on the contacts
+  // this certificate answers (docs/performance.md, "Contacts by rounding on diagonal planes").
   if (nonzero(r.low)) {
     const V3 n = r.normal;
     for (int m = 0; m < 27 && nonzero(r.low); ++m) {
@@ -425,13 +427,13 @@ bool report_shallow(GlobalRun& g) {
       if (ev.error <= kGlobalRel && ev.value * (1 + kGlobalRel) <= r.lower * (1 + 8e-10))
         r.eval = ev, r.normal = w, r.low = {0, 0, 0};
     }
-    if (nonzero(r.low)) return false;
   }
   out.normal = r.normal;
   Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
   place(r.eval.sol, r.eval.hA, r.eval.hB, [](double x) { return x; });
   out.value = r.eval.value;
-  out.certified = true;
+  out.certified = !nonzero(r.low);
+  out.witness = !out.certified && std::isfinite(out.value);
   return true;
 }
 

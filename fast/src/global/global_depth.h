@@ -71,8 +71,9 @@ struct GlobalOptimum {
   bool certified = false;           // false: not representable (the caller reports it)
   bool exact_value = false;         // the value was recomputed in rationals (slow path)
   // Not certified, but the value is (definitions §8), attained along a rational normal that no
-  // double triple represents (suspect_proof.h's witness: a depth ~1e-17 of the pair's size, a
-  // contact made by rounding); `normal` and the positions are that witness's, rounded
+  // double triple represents (suspect_proof.h's witness, or shallow_certificate.h's normal in
+  // double words: a depth ~1e-17 of the pair's size, a contact made by rounding); `normal` and
+  // the positions are that witness's, rounded
   // componentwise: they do not attain the value (the depth is below their rounding). For a
   // caller that needs the value and only an approximate plane (the contact energy).
   bool witness = false;

@@ -88,8 +88,9 @@
 // rounding made cross, ~1e-17 of the element deep: blocks stacked face to face, a grid against
 // its shifted copy) has pdd2_global certified along a rational normal that no double normal
 // attains; global_minimiser returns it (`witness`) with that normal and its positions rounded, as
-// the exact engine's witness is rounded below, and the energy takes it (milliseconds a pair, not
-// the exact engine's tens to hundreds). Its gradient there is the rounded positions' (their
+// the exact engine's witness is rounded below, and the energy takes it (tens of microseconds a
+// pair where the shallow certificate answers it, else milliseconds on the exact pieces; the
+// exact engine takes tens to hundreds). Its gradient there is the rounded positions' (their
 // displacement, ~1e-17 of the element, is below their rounding: accurate in absolute terms
 // only, as for the exact engine's). Pairs run in parallel (TBB); the gradient and the Hessian are
 // summed per vertex over its pairs in pair order (the same doubles on any number of threads),
