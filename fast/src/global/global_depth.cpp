@@ -13,6 +13,7 @@
 
 #include "global/best_offer.h"
 #include "global/eigen_polish.h"
+#include "global/integer_normals.h"
 #include "global/piece_enumeration.h"
 #include "global/relaxed_value.h"
 #include "global/shallow_certificate.h"
@@ -26,6 +27,7 @@ using global::add;
 using global::cross;
 using global::Best;
 using global::certify_shallow;
+using global::integer_normals;
 using global::ShallowResult;
 using global::dot;
 using global::enumerate_pieces;
@@ -412,20 +414,31 @@ bool report_shallow(GlobalRun& g) {
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
   // within 8e-10 + 1e-10 < 1e-9 of the minimum): the rounding and its neighbours one ulp away
-  // per component (27 double normals). Else the value is certified along v + lo alone, which
-  // no double triple near it represents: a witness (global_depth.h), its normal v (lo's
-  // rounding) and the positions along v. The exact pieces' own search for a double normal
-  // (integer normals along the minimiser) costs milliseconds and found none on the contacts
-  // this certificate answers (docs/performance.md, "Contacts by rounding on diagonal planes").
+  // per component (27 double normals); then the integer normals along v + lo (integer_normals.h,
+  // the exact pieces' own search along a minimiser: a generic direction off the axes). Else the
+  // value is certified along v + lo alone, which no double triple near it represents: a witness
+  // (global_depth.h), its normal v (lo's rounding) and the positions along v, without the exact
+  // pieces, whose search for a double normal tries no more than these along the same direction
+  // (docs/performance.md, "Contacts by rounding on diagonal planes").
   if (nonzero(r.low)) {
-    const V3 n = r.normal;
+    const V3 n = r.normal, lo = r.low;
+    auto offer = [&](const V3& w) {
+      const Evaluation ev = evaluate_tight(g.A, g.B, g.P, w);
+      if (ev.error <= kGlobalRel && ev.value * (1 + kGlobalRel) <= r.lower * (1 + 8e-10))
+        r.eval = ev, r.normal = w, r.low = {0, 0, 0};
+    };
     for (int m = 0; m < 27 && nonzero(r.low); ++m) {
       V3 w = n;
       for (int k = 0, q = m; k < 3; ++k, q /= 3)
         if (q % 3) w[k] = std::nextafter(n[k], q % 3 == 1 ? INFINITY : -INFINITY);
-      const Evaluation ev = evaluate_tight(g.A, g.B, g.P, w);
-      if (ev.error <= kGlobalRel && ev.value * (1 + kGlobalRel) <= r.lower * (1 + 8e-10))
-        r.eval = ev, r.normal = w, r.low = {0, 0, 0};
+      offer(w);
+    }
+    if (nonzero(r.low)) {
+      const detail::Q y[3] = {detail::Q(n[0]) + detail::Q(lo[0]), detail::Q(n[1]) + detail::Q(lo[1]),
+                              detail::Q(n[2]) + detail::Q(lo[2])};
+      std::vector<V3> normals;
+      integer_normals(y, 1 << 18, 4, normals);
+      for (std::size_t i = 0; i < normals.size() && nonzero(r.low); ++i) offer(normals[i]);
     }
   }
   out.normal = r.normal;
