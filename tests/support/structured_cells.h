@@ -170,4 +170,30 @@ inline std::vector<TetPair> rounding_stack_pairs(int n, int max_pairs) {
   return intersecting_pairs(A, B, "stacked by rounding", max_pairs, [](double pd2) { return pd2 < 1e-30; });
 }
 
+// Blocks stacked by rounding on each other's columns, as two copies of one mesh are set on each
+// other: the tetrahedra of an n x n x 3 block of decimal cells cut into five (coordinates c h,
+// h = 0.1, each rounded once: its top 3 h = 0.30000000000000004) and those of an n x n x 1
+// block of the same cells set on it at 0.3 (coordinates 0.3 + c h, the same x and y), the cuts
+// alternating as in one mesh. Every contact is a face, an edge or a vertex of B's bottom on the
+// same one of A's top, ~5.6e-17 deep; the minimisers of definitions §9 lie where several pieces
+// meet (a vertex on a vertex: the edge of the separating cone). The element pairs whose
+// interiors meet, up to `max_pairs`.
+inline std::vector<TetPair> column_rounding_stack_pairs(int n, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int which = 0; which < 5; ++which) {
+        const TetVertices ta = five_cell_tet({0, 0, 0}, 1.0, which, (i + j + 2) % 2 == 1);
+        const TetVertices tb = five_cell_tet({0, 0, 0}, 1.0, which, (i + j) % 2 == 1);
+        TetVertices a = ta, b = tb;
+        for (int v = 0; v < 4; ++v) {
+          a[v] = {(i + ta[v][0]) * h, (j + ta[v][1]) * h, (2 + ta[v][2]) * h};
+          b[v] = {(i + tb[v][0]) * h, (j + tb[v][1]) * h, 0.3 + tb[v][2] * h};
+        }
+        A.push_back(a), B.push_back(b);
+      }
+  return intersecting_pairs(A, B, "five on columns by rounding", max_pairs, [](double) { return true; });
+}
+
 }  // namespace pdd::test

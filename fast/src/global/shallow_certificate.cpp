@@ -158,17 +158,19 @@ void det3(mpz_class& r, const mpz_class (&m)[3][3], mpz_class& t) {
 // The exact part's integers, kept per thread (their limbs reused from pair to pair).
 struct Workspace {
   ZV x[8], V, e1, e2, g;
-  mpz_class o[3], y, col[8][3], res[3], M[8], m[3][3], mc[3][3], d, change[3], t;
+  mpz_class o[3], y, col[8][3], res[3], M[8], M0[8], m[3][3], mc[3][3], d, change[3], t;
   mpz_class sl, sm, ql, qm, K, gv, vv, num, den;
 };
+
+bool move_three(const int (&best)[3], Workspace& w);
 
 // The multipliers of the evaluation (direction_qp.h's KKT: l_i = -2 (T_i + S_A) at A's vertices
 // at the plane, m_j = 2 (T_j + S_B) at B's, 0 elsewhere), moved exactly so that sum l = sum m
 // and g = sum l_i a_i - sum m_j b_j is parallel to v (shallow_certificate.h), as integers w.M (a
 // positive multiple of them: B0 does not change when every multiplier is scaled by one s > 0);
 // [0..3] A's, [4..7] B's. w.x: the positions relative to A[0] as integers (one power of two),
-// w.V: v's components as integers. False when no three of them give a regular system or a
-// multiplier would turn negative.
+// w.V: v's components as integers. False when no triple tried gives a regular system keeping
+// every multiplier >= 0.
 bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
   double l[8];
   long el = LONG_MAX;
@@ -200,23 +202,45 @@ bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
     else w.M[p] = 0;
     for (int r = 0; r < 3; ++r) mpz_addmul(z(w.res[r]), z(w.M[p]), z(w.col[p][r])), cd[p][r] = w.col[p][r].get_d();
   }
-  // the three largest multipliers whose columns are best conditioned (in doubles: a choice)
-  int best[3] = {-1, -1, -1};
-  double best_score = 0;
+  // The triple to move (in doubles: a choice, the exact part below decides): first the three
+  // largest multipliers whose columns are best conditioned; where the change turns one of them
+  // negative (a vertex at the plane with a multiplier ~0: a minimiser where pieces meet), any
+  // other triple, zero multipliers included (the dual allows a multiplier on every vertex, active
+  // or not), best conditioned first; at most kTriples of them.
+  constexpr int kTriples = 12;
+  struct Triple {
+    double score;
+    int p[3];
+  };
+  Triple order[56];
+  int count = 0;
   for (int p = 0; p < 8; ++p)
     for (int q = p + 1; q < 8; ++q)
       for (int r = q + 1; r < 8; ++r) {
-        if (!(l[p] > 0 && l[q] > 0 && l[r] > 0)) continue;
         double d = 0, n = 1;
         for (int row = 0; row < 3; ++row) {
           const int r1 = (row + 1) % 3, r2 = (row + 2) % 3;
           d += cd[p][row] * (cd[q][r1] * cd[r][r2] - cd[q][r2] * cd[r][r1]);
         }
         for (int t : {p, q, r}) n *= std::sqrt(cd[t][0] * cd[t][0] + cd[t][1] * cd[t][1] + cd[t][2] * cd[t][2]);
-        const double score = std::fabs(d) / n * std::min({l[p], l[q], l[r]});
-        if (score > best_score) best_score = score, best[0] = p, best[1] = q, best[2] = r;
+        const double cond = std::fabs(d) / n;
+        if (l[p] > 0 && l[q] > 0 && l[r] > 0) {  // positive scores: the moved multipliers all > 0
+          if (cond * std::min({l[p], l[q], l[r]}) > 0) order[count++] = {cond * std::min({l[p], l[q], l[r]}), {p, q, r}};
+        } else if (cond > 1e-8) {  // negative: after every positive one, best conditioned first
+          order[count++] = {-1 / cond, {p, q, r}};
+        }
       }
-  if (best[0] < 0) return false;
+  std::stable_sort(order, order + count, [](const Triple& a, const Triple& b) { return a.score > b.score; });
+  for (int p = 0; p < 8; ++p) w.M0[p] = w.M[p];
+  for (int t = 0; t < std::min(count, kTriples); ++t)
+    if (move_three(order[t].p, w)) return true;
+  return false;
+}
+
+// parallel_multipliers' exact step on one triple: w.M = |d| w.M0 + the change of the three
+// (Cramer's rule on their columns against the residual); false when singular or one turns
+// negative.
+bool move_three(const int (&best)[3], Workspace& w) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) w.m[r][c] = w.col[best[c]][r];
   det3(w.d, w.m, w.t);
@@ -233,7 +257,7 @@ bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
     if (sd < 0) mpz_neg(z(w.change[c]), z(w.change[c]));
   }
   mpz_abs(z(w.d), z(w.d));
-  for (mpz_class& y : w.M) mpz_mul(z(y), z(y), z(w.d));
+  for (int p = 0; p < 8; ++p) mpz_mul(z(w.M[p]), z(w.M0[p]), z(w.d));
   for (int c = 0; c < 3; ++c) {
     mpz_add(z(w.M[best[c]]), z(w.M[best[c]]), z(w.change[c]));
     if (sgn(w.M[best[c]]) < 0) return false;

@@ -22,7 +22,9 @@
 // g points anywhere (its part across v is ~|l| size, the value ~|l| depth), so the multipliers
 // are moved, exactly, by the least change of three of them that makes sum l = sum m and g
 // parallel to v (a 3 x 3 rational system; the change is ~1e-16 of them, and must keep them
-// >= 0). Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
+// >= 0; where a minimiser lies where pieces meet, a multiplier at the plane is ~0 and the
+// change may turn it negative: then another three, a vertex off the plane among them, since
+// weak duality holds for multipliers >= 0 on every vertex). Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
 // relaxed(u) >= B0 cos^2(theta), B0 = (g.v)^2 / (v.v 80 kappa) (B0 = relaxed(v) for the exact
 // multipliers at a stationary v): on the cap cos(theta) >= c0 = sqrt(L / B0), relaxed >= L.
 // Off the cap, relaxed(u) >= D(u)^2 / 32 (deformable_depth.h; D(u) the overlap along u, the
