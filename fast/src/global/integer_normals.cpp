@@ -7,6 +7,49 @@
 #include <utility>
 
 namespace pdd::fast::global {
+namespace {
+
+// The window's tries where both fractional parts drift by little (a direction a rounding away
+// from a coordinate plane or a diagonal: alpha_t within ~2^-19 of an integer, 2^18 tries) and
+// stay nearer one integer than any other over the window: the signed parts are then s_t - j a_t
+// exactly (s_t, a_t: F_t and A_t read as signed 64-bit integers; |s_t| + tries |a_t| < 2^63, so
+// no wrap), and the metric sum_t (s_t - j a_t)^2 is a convex quadratic in j, least at its vertex
+// j* clamped to the window. Its least values over the window lie at the integers nearest j*;
+// those, and the window's first and last tries, are considered in increasing j by the loop's
+// own `consider` (the same metric from the same integers, the same insertion): the same outputs
+// wherever the quadratic's steps exceed the metric's rounding; where they do not (the whole
+// window within a few roundings of one metric), the tries returned are as near y's direction as
+// the loop's, to that rounding. False (the caller runs the loop over every try) otherwise.
+template <class Consider>
+bool slow_drift(const std::uint64_t (&F)[2], const std::uint64_t (&A)[2], int tries, int keep, Consider&& consider) {
+  __int128 s[2], a[2];
+  for (int t = 0; t < 2; ++t) {
+    s[t] = std::int64_t(F[t]), a[t] = std::int64_t(A[t]);
+    const __int128 reach = (s[t] < 0 ? -s[t] : s[t]) + __int128(tries) * (a[t] < 0 ? -a[t] : a[t]);
+    if (reach >= (__int128(1) << 63)) return false;
+  }
+  const long double sa = (long double)(s[0] * a[0] + s[1] * a[1]);  // (each product below 2^126)
+  const long double aa = (long double)(a[0] * a[0] + a[1] * a[1]);
+  long double vertex = aa > 0 ? sa / aa : 0;
+  vertex = std::clamp(vertex, (long double)0, (long double)(tries - 1));
+  const int j0 = int(vertex);
+  int js[24], n = 0;
+  auto add = [&](int j) {
+    if (j >= 0 && j < tries) js[n++] = j;
+  };
+  for (int j = 0; j < keep; ++j) add(j);
+  for (int j = j0 - keep; j <= j0 + keep + 1; ++j) add(j);
+  for (int j = tries - keep; j < tries; ++j) add(j);
+  std::sort(js, js + n);
+  n = int(std::unique(js, js + n) - js);
+  for (int i = 0; i < n; ++i) {
+    const __int128 f0 = s[0] - __int128(js[i]) * a[0], f1 = s[1] - __int128(js[i]) * a[1];
+    consider(js[i], std::fabs(double(std::int64_t(f0))), std::fabs(double(std::int64_t(f1))));
+  }
+  return true;
+}
+
+}  // namespace
 
 // A double triple rounded from a unit vector misses y's direction by ~u, and along a generic
 // direction (a contact not along a coordinate plane) the neighbouring doubles do no better; but
@@ -55,15 +98,20 @@ void integer_normals(const detail::Q (&y)[3], int tries, int keep, std::vector<V
   // (the unsigned one takes a branch and several instructions without AVX-512).
   auto dist = [](std::uint64_t f) { return std::fabs(double(std::int64_t(f))); };
   double worst = INFINITY;  // the largest kept metric once `keep` are kept (else +inf)
-  for (int j = 0; j < tries; ++j) {
-    const double d0 = dist(F[0]), d1 = dist(F[1]), metric = d0 * d0 + d1 * d1;
+  auto consider = [&](int j, double d0, double d1) {
+    const double metric = d0 * d0 + d1 * d1;
     if (metric < worst) {
       int i = kept < keep ? kept++ : keep - 1;  // (full: the last one goes)
       for (; i > 0 && top[i - 1].first >= metric; --i) top[i] = top[i - 1];
       top[i] = {metric, c0 - std::uint64_t(j)};
       if (kept == keep) worst = top[keep - 1].first;
     }
-    F[0] -= A[0], F[1] -= A[1];  // c -> c - 1 (mod 2^64: mod 1)
+  };
+  if (!slow_drift(F, A, tries, keep, consider)) {
+    for (int j = 0; j < tries; ++j) {
+      consider(j, dist(F[0]), dist(F[1]));
+      F[0] -= A[0], F[1] -= A[1];  // c -> c - 1 (mod 2^64: mod 1)
+    }
   }
   const double s = sgn(y[m]) > 0 ? 1.0 : -1.0;
   for (int r = 0; r < kept; ++r) {
