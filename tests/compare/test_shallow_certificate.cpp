@@ -44,6 +44,21 @@ reference::ExactResult exact_with_global(const TetPair& p) {
   return reference::solve_exact(p);  // (definitions §9 on by default)
 }
 
+// Each pair through solve_pair (definitions §9 on), its pdd2_global given and every value within
+// definitions §8 of the exact engine; returns how many took the slow path (a value in rationals).
+int slow_within_contract(const std::vector<TetPair>& pairs, const std::string& tag) {
+  const fast::SolveOptions o;
+  int slow = 0;
+  for (const TetPair& p : pairs) {
+    const auto exact = exact_with_global(p);
+    const auto fast = fast::solve_pair(p, o);
+    BOOST_REQUIRE(!fast.pdd2_global_error);
+    BOOST_TEST(!compare::compare_pair(p, exact, fast).over_tolerance(), p.name << " " << tag);
+    slow += fast.stats.slow_path;
+  }
+  return slow;
+}
+
 // Start normals: the eight face normals, each way, four random ones, and the exact minimiser's
 // normal rounded.
 std::vector<fast::global::V3> starts(const TetPair& p, const reference::ExactResult& exact, std::mt19937_64& rng) {
@@ -142,15 +157,7 @@ BOOST_AUTO_TEST_CASE(blocks_on_columns_resting_without_the_exact_pieces) {
   for (double depth : {1e-8, 1e-9}) {
     const std::vector<TetPair> pairs = pdd::test::column_resting_pairs(2, depth, 48);
     BOOST_REQUIRE(pairs.size() >= 40u);
-    const fast::SolveOptions o;
-    int slow = 0;
-    for (const TetPair& p : pairs) {
-      const auto exact = exact_with_global(p);
-      const auto fast = fast::solve_pair(p, o);
-      BOOST_REQUIRE(!fast.pdd2_global_error);
-      BOOST_TEST(!compare::compare_pair(p, exact, fast).over_tolerance(), p.name << " " << depth);
-      slow += fast.stats.slow_path;
-    }
+    const int slow = slow_within_contract(pairs, std::to_string(depth));
     BOOST_TEST_MESSAGE(depth << " deep: " << slow << " of " << pairs.size() << " in rationals");
     // 1e-9 deep: the pairs whose start value (pdd2_accel1, ~1e-18 of the pair's size squared)
     // lies below the double pieces' floor (global_depth.cpp's kCompactTiny) take the exact
@@ -201,15 +208,7 @@ BOOST_AUTO_TEST_CASE(contacts_by_rounding_on_diagonal_planes_as_witnesses) {
 BOOST_AUTO_TEST_CASE(five_tetrahedra_blocks_stacked_by_rounding_on_columns) {
   const std::vector<TetPair> pairs = pdd::test::column_rounding_stack_pairs(3, 40);
   BOOST_REQUIRE(pairs.size() == 40u);
-  const fast::SolveOptions o;
-  int slow = 0;
-  for (const TetPair& p : pairs) {
-    const auto exact = exact_with_global(p);
-    const auto fast = fast::solve_pair(p, o);
-    BOOST_REQUIRE(!fast.pdd2_global_error);
-    BOOST_TEST(!compare::compare_pair(p, exact, fast).over_tolerance(), p.name);
-    slow += fast.stats.slow_path;
-  }
+  const int slow = slow_within_contract(pairs, "stacked by rounding");
   BOOST_TEST_MESSAGE("five tetrahedra stacked by rounding on columns: " << slow << " of " << pairs.size()
                                                                         << " in rationals");
   BOOST_TEST(slow <= int(pairs.size()) / 2, slow << " of " << pairs.size() << " in rationals");

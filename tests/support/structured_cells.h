@@ -173,8 +173,9 @@ inline std::vector<TetPair> rounding_stack_pairs(int n, int max_pairs) {
 // Blocks stacked by rounding on each other's columns, as two copies of one mesh are set on each
 // other: the tetrahedra of an n x n x 3 block of decimal cells cut into five (coordinates c h,
 // h = 0.1, each rounded once: its top 3 h = 0.30000000000000004) and those of an n x n x 1
-// block of the same cells set on it at 0.3 (coordinates 0.3 + c h, the same x and y), the cuts
-// alternating as in one mesh. Every contact is a face, an edge or a vertex of B's bottom on the
+// block of the same cells set on it at 0.3 (coordinates 0.3 + c h, the same x and y), each cell
+// of B cut as the cell of A below it (the cuts alternate with i + j + k, and A's top layer k = 2
+// has the parity of B's bottom layer k = 0, as for a copy of one mesh). Every contact is a face, an edge or a vertex of B's bottom on the
 // same one of A's top, ~5.6e-17 deep; the minimisers of definitions §9 lie where several pieces
 // meet (a vertex on a vertex: the edge of the separating cone). The element pairs whose
 // interiors meet, up to `max_pairs`.
@@ -184,12 +185,11 @@ inline std::vector<TetPair> column_rounding_stack_pairs(int n, int max_pairs) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int which = 0; which < 5; ++which) {
-        const TetVertices ta = five_cell_tet({0, 0, 0}, 1.0, which, (i + j + 2) % 2 == 1);
-        const TetVertices tb = five_cell_tet({0, 0, 0}, 1.0, which, (i + j) % 2 == 1);
-        TetVertices a = ta, b = tb;
+        const TetVertices t = five_cell_tet({0, 0, 0}, 1.0, which, (i + j) % 2 == 1);
+        TetVertices a = t, b = t;
         for (int v = 0; v < 4; ++v) {
-          a[v] = {(i + ta[v][0]) * h, (j + ta[v][1]) * h, (2 + ta[v][2]) * h};
-          b[v] = {(i + tb[v][0]) * h, (j + tb[v][1]) * h, 0.3 + tb[v][2] * h};
+          a[v] = {(i + t[v][0]) * h, (j + t[v][1]) * h, (2 + t[v][2]) * h};
+          b[v] = {(i + t[v][0]) * h, (j + t[v][1]) * h, 0.3 + t[v][2] * h};
         }
         A.push_back(a), B.push_back(b);
       }
