@@ -175,10 +175,10 @@ inline std::vector<TetPair> rounding_stack_pairs(int n, int max_pairs) {
 // h = 0.1, each rounded once: its top 3 h = 0.30000000000000004) and those of an n x n x 1
 // block of the same cells set on it at 0.3 (coordinates 0.3 + c h, the same x and y), each cell
 // of B cut as the cell of A below it (the cuts alternate with i + j + k, and A's top layer k = 2
-// has the parity of B's bottom layer k = 0, as for a copy of one mesh). Every contact is a face, an edge or a vertex of B's bottom on the
-// same one of A's top, ~5.6e-17 deep; the minimisers of definitions §9 lie where several pieces
-// meet (a vertex on a vertex: the edge of the separating cone). The element pairs whose
-// interiors meet, up to `max_pairs`.
+// has the parity of B's bottom layer k = 0, as for a copy of one mesh). Every contact is a face,
+// an edge or a vertex of B's bottom on the same one of A's top, ~5.6e-17 deep; the minimisers
+// of definitions §9 lie where several pieces meet (a vertex on a vertex: the edge of the
+// separating cone). The element pairs whose interiors meet, up to `max_pairs`.
 inline std::vector<TetPair> column_rounding_stack_pairs(int n, int max_pairs) {
   const double h = 0.1;
   std::vector<TetVertices> A, B;

@@ -225,8 +225,12 @@ bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
         for (int t : {p, q, r}) n *= std::sqrt(cd[t][0] * cd[t][0] + cd[t][1] * cd[t][1] + cd[t][2] * cd[t][2]);
         const double cond = std::fabs(d) / n;
         if (l[p] > 0 && l[q] > 0 && l[r] > 0) {  // positive scores: the moved multipliers all > 0
-          if (cond * std::min({l[p], l[q], l[r]}) > 0) order[count++] = {cond * std::min({l[p], l[q], l[r]}), {p, q, r}};
+          const double score = cond * std::min({l[p], l[q], l[r]});
+          if (score > 0) order[count++] = {score, {p, q, r}};
         } else if (cond > 1e-8) {  // negative: after every positive one, best conditioned first
+          // (a triple whose columns are nearly dependent, |det| below 1e-8 of their norms'
+          // product, would move its multipliers by ~1e8 of the residual: skipped as hopeless;
+          // the exact step decides every triple tried)
           order[count++] = {-1 / cond, {p, q, r}};
         }
       }
