@@ -417,9 +417,11 @@ bool report_shallow(GlobalRun& g) {
   // per component (27 double normals); then the integer normals along v + lo (integer_normals.h,
   // the exact pieces' own search along a minimiser: a generic direction off the axes). Else the
   // value is certified along v + lo alone, which no double triple near it represents: a witness
-  // (global_depth.h), its normal v (lo's rounding) and the positions along v, without the exact
-  // pieces, whose search for a double normal tries no more than these along the same direction
-  // (docs/performance.md, "Contacts by rounding on diagonal planes").
+  // (global_depth.h), its normal v (the rounding of v + lo) and the positions along v, without
+  // the exact pieces, whose search tries the same kinds of normals along the same direction (the
+  // rounded minimiser, its neighbours, these integer normals) and, measured, found one on none
+  // of the pairs where these find none (docs/performance.md, "Contacts by rounding on diagonal
+  // planes").
   if (nonzero(r.low)) {
     const V3 n = r.normal, lo = r.low;
     auto offer = [&](const V3& w) {
