@@ -202,14 +202,15 @@ BOOST_AUTO_TEST_CASE(contacts_by_rounding_on_diagonal_planes_as_witnesses) {
 // Blocks cut into five tetrahedra a cube, stacked by rounding on each other's columns
 // (structured_cells.h's column_rounding_stack_pairs): the minimisers lie where pieces meet, where
 // the multipliers moved to make g parallel to the normal may turn one at the plane negative;
-// another triple (a vertex off the plane among them) certifies them. Every value within
-// definitions §8 of the exact engine, at least half of the pairs without the exact pieces
-// (measured: 24 of 40; 10 of 40 with only the largest three moved).
+// another triple (a vertex off the plane among them) certifies them, and where one vertex of each
+// side moves, lone_pair_certificate.h. Every value within definitions §8 of the exact engine,
+// at most an eighth of the pairs on the exact pieces (measured: 3 of 40; 16 without the lone
+// pairs' certificate, 30 with only the largest three multipliers moved).
 BOOST_AUTO_TEST_CASE(five_tetrahedra_blocks_stacked_by_rounding_on_columns) {
   const std::vector<TetPair> pairs = pdd::test::column_rounding_stack_pairs(3, 40);
   BOOST_REQUIRE(pairs.size() == 40u);
   const int slow = slow_within_contract(pairs, "stacked by rounding");
   BOOST_TEST_MESSAGE("five tetrahedra stacked by rounding on columns: " << slow << " of " << pairs.size()
                                                                         << " in rationals");
-  BOOST_TEST(slow <= int(pairs.size()) / 2, slow << " of " << pairs.size() << " in rationals");
+  BOOST_TEST(slow <= int(pairs.size()) / 8, slow << " of " << pairs.size() << " in rationals");
 }

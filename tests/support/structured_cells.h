@@ -170,6 +170,26 @@ inline std::vector<TetPair> rounding_stack_pairs(int n, int max_pairs) {
   return intersecting_pairs(A, B, "stacked by rounding", max_pairs, [](double pd2) { return pd2 < 1e-30; });
 }
 
+// A's cells (n x n columns at height index 2, top 3 h = 0.30000000000000004) and B's (bottom at
+// 0.3 + c h), from cell(i, j, c, b): cell c of column (i, j) in unit coordinates, B's when b.
+template <class Cell>
+std::vector<TetPair> column_rounding_blocks(int n, int cells, Cell cell, const std::string& name, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int c = 0; c < cells; ++c) {
+        const TetVertices ta = cell(i, j, c, false), tb = cell(i, j, c, true);
+        TetVertices a = ta, b = tb;
+        for (int v = 0; v < 4; ++v) {
+          a[v] = {(i + ta[v][0]) * h, (j + ta[v][1]) * h, (2 + ta[v][2]) * h};
+          b[v] = {(i + tb[v][0]) * h, (j + tb[v][1]) * h, 0.3 + tb[v][2] * h};
+        }
+        A.push_back(a), B.push_back(b);
+      }
+  return intersecting_pairs(A, B, name, max_pairs, [](double) { return true; });
+}
+
 // Blocks stacked by rounding on each other's columns, as two copies of one mesh are set on each
 // other: the tetrahedra of an n x n x 3 block of decimal cells cut into five (coordinates c h,
 // h = 0.1, each rounded once: its top 3 h = 0.30000000000000004) and those of an n x n x 1
@@ -179,21 +199,25 @@ inline std::vector<TetPair> rounding_stack_pairs(int n, int max_pairs) {
 // an edge or a vertex of B's bottom on the same one of A's top, ~5.6e-17 deep; the minimisers
 // of definitions §9 lie where several pieces meet (a vertex on a vertex: the edge of the
 // separating cone). The element pairs whose interiors meet, up to `max_pairs`.
-inline std::vector<TetPair> column_rounding_stack_pairs(int n, int max_pairs) {
-  const double h = 0.1;
-  std::vector<TetVertices> A, B;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int which = 0; which < 5; ++which) {
-        const TetVertices t = five_cell_tet({0, 0, 0}, 1.0, which, (i + j) % 2 == 1);
-        TetVertices a = t, b = t;
-        for (int v = 0; v < 4; ++v) {
-          a[v] = {(i + t[v][0]) * h, (j + t[v][1]) * h, (2 + t[v][2]) * h};
-          b[v] = {(i + t[v][0]) * h, (j + t[v][1]) * h, 0.3 + t[v][2] * h};
-        }
-        A.push_back(a), B.push_back(b);
-      }
-  return intersecting_pairs(A, B, "five on columns by rounding", max_pairs, [](double) { return true; });
+// With `alternate`, B's cubes are cut the other way (B's cube (i, j) as A's (i + 1, j)): the cuts
+// alternate across the contact, and a vertex of B's bottom rests on a vertex of A's top
+// whose edges leave it the other way (lone_pair_certificate.h's contacts).
+inline std::vector<TetPair> column_rounding_stack_pairs(int n, int max_pairs, bool alternate = false) {
+  const auto cell = [alternate](int i, int j, int c, bool b) {
+    return five_cell_tet({0, 0, 0}, 1.0, c, (i + j + (b && alternate)) % 2 == 1);
+  };
+  return column_rounding_blocks(n, 5, cell,
+                                alternate ? "five alternating on columns by rounding" : "five on columns by rounding",
+                                max_pairs);
+}
+
+// The same with Kuhn cells (six tetrahedra a cube, A's and B's cut alike). A vertex of B's bottom
+// on a vertex of A's top with their edges leaving it on different sides makes a minimiser that
+// moves one vertex of each (a tilted normal, value PD^2 / 32), an edge on an edge one with two
+// of each.
+inline std::vector<TetPair> kuhn_column_rounding_stack_pairs(int n, int max_pairs) {
+  const auto cell = [](int, int, int c, bool) { return kuhn_cell_tet({0, 0, 0}, 1.0, c); };
+  return column_rounding_blocks(n, 6, cell, "Kuhn on columns by rounding", max_pairs);
 }
 
 }  // namespace pdd::test

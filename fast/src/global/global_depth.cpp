@@ -14,6 +14,7 @@
 #include "global/best_offer.h"
 #include "global/eigen_polish.h"
 #include "global/integer_normals.h"
+#include "global/lone_pair_certificate.h"
 #include "global/piece_enumeration.h"
 #include "global/relaxed_value.h"
 #include "global/shallow_certificate.h"
@@ -28,6 +29,7 @@ using global::cross;
 using global::Best;
 using global::certify_shallow;
 using global::integer_normals;
+using global::LonePairResult;
 using global::ShallowResult;
 using global::dot;
 using global::enumerate_pieces;
@@ -452,6 +454,20 @@ bool report_shallow(GlobalRun& g) {
   return true;
 }
 
+// A minimiser moving one vertex of each side, certified by the rigid depth's bound
+// (lone_pair_certificate.h): its value, normal and the positions along it.
+bool report_lone_pair(GlobalRun& g, GlobalOptimum& out) {
+  LonePairResult r;
+  if (!global::certify_lone_pair(g.A, g.B, g.P, r)) return false;
+  out = GlobalOptimum{};
+  out.normal = r.normal;
+  Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
+  place(r.eval.sol, r.eval.hA, r.eval.hB, [](double x) { return x; });
+  out.value = r.eval.value;
+  out.certified = true;
+  return true;
+}
+
 GlobalOptimum report(GlobalRun& g, double start_value) {
   GlobalOptimum out;
   out.normal = g.best.n;
@@ -480,9 +496,19 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   GlobalRun g(A, B);
   set_up(g, start_normal, rigid_pd2);
   g.exact_pieces = needs_exact_pieces(g, start_value);
-  if (g.exact_pieces && report_shallow(g)) return g.shallow;
-  if (g.exact_pieces) enumerate_exact(g, exact_start);
-  else choose_offer(g);
+  if (g.exact_pieces) {
+    // Without the pieces where a certificate applies: the shallow one (a contact whose overlap
+    // lies under a face of A - B), else the lone pair's (a vertex on a vertex); a witness of the
+    // shallow one (certified along a normal in double words only) after the lone pair's fails.
+    const bool shallow = report_shallow(g);
+    if (shallow && g.shallow.certified) return g.shallow;
+    GlobalOptimum lone;
+    if (report_lone_pair(g, lone)) return lone;
+    if (shallow) return g.shallow;
+    enumerate_exact(g, exact_start);
+  } else {
+    choose_offer(g);
+  }
   return report(g, start_value);
 }
 
