@@ -1,7 +1,7 @@
 // global_depth.cpp — the driver of global_depth (see global_depth.h for the method and its
 // argument): the start's offer and one descent step, the pieces enumerated in doubles
 // (piece_enumeration.h) or, where doubles cannot resolve the depth, certified without them
-// (shallow_certificate.h) or else exactly; the winning
+// (shallow_certificate.h, lone_pair_certificate.h) or else exactly; the winning
 // offer chosen among near ties, its value certified (relaxed_value.h's bounds) or recomputed
 // in rationals, and on the exact pieces the suspects settled (suspect_proof.h).
 #include "global/global_depth.h"
