@@ -454,11 +454,12 @@ bool report_shallow(GlobalRun& g) {
   return true;
 }
 
-// A minimiser moving one vertex of each side, certified by the rigid depth's bound
-// (lone_pair_certificate.h): its value, normal and the positions along it.
+// A minimiser moving one vertex of each side, certified by the rigid depth's bound, or an edge
+// of each on translates of one line (lone_pair_certificate.h): its value, normal and the
+// positions along it.
 bool report_lone_pair(GlobalRun& g, GlobalOptimum& out) {
   LonePairResult r;
-  if (!global::certify_lone_pair(g.A, g.B, g.P, r)) return false;
+  if (!global::certify_lone_pair(g.A, g.B, g.P, r) && !global::certify_edge_pair(g.A, g.B, g.P, r)) return false;
   out = GlobalOptimum{};
   out.normal = r.normal;
   Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
@@ -498,8 +499,9 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
   g.exact_pieces = needs_exact_pieces(g, start_value);
   if (g.exact_pieces) {
     // Without the pieces where a certificate applies: the shallow one (a contact whose overlap
-    // lies under a face of A - B), else the lone pair's (a vertex on a vertex); a witness of the
-    // shallow one (certified along a normal in double words only) after the lone pair's fails.
+    // lies under a face of A - B), else the lone pairs' (a vertex on a vertex, an edge on a
+    // collinear edge); a witness of the shallow one (certified along a normal in double words
+    // only) after those fail.
     const bool shallow = report_shallow(g);
     if (shallow && g.shallow.certified) return g.shallow;
     GlobalOptimum lone;

@@ -30,15 +30,21 @@ const Expansion& extreme(const Expansion (&h)[4], bool largest) {
   return h[at];
 }
 
-// PD^2 along the exact direction n, rounded down: min(D(n), D(-n))^2 / n.n, each overlap a
-// lower bound of its exact value, n.n an upper bound. +inf when n = 0 (parallel edges: no
-// facet of M); false when an expansion overflowed its capacity or an overlap is not positive.
-bool direction_lower(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[4], double& out) {
+// One candidate facet normal n of M = A - B (exact), as bounds: its overlaps D(n) = max_i n.a_i -
+// min_j n.b_j and D(-n) bounded below (in n's units: D(n) = |n| times the overlap along n / |n|),
+// n.n bounded above, and n rounded componentwise (each component within 4u of its exact value,
+// approx_of's bound on a compressed expansion). zero: n = 0 exactly (parallel edges: no facet).
+struct DirectionBounds {
+  V3 n{};
+  double nn_up = 0, plus_low = 0, minus_low = 0;
+  bool zero = false;
+};
+
+// false when an expansion overflowed its capacity or an overlap is not certainly positive.
+bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[4], DirectionBounds& out) {
   if (!n.ok()) return false;
-  if (n.is_zero()) {
-    out = INFINITY;
-    return true;
-  }
+  out.zero = n.is_zero();
+  if (out.zero) return true;
   ExpVec c;  // n with each component compressed: shorter products below
   for (int k = 0; k < 3; ++k) c.x[k] = detail::compressed(n.x[k]);
   Expansion ha[4], hb[4];
@@ -47,25 +53,29 @@ bool direction_lower(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[
     hb[i] = detail::compressed(detail::dot(c, xb[i]));
     if (!ha[i].ok || !hb[i].ok) return false;
   }
-  const Expansion plus = detail::difference(extreme(ha, true), extreme(hb, false));   // D(n) |n|
-  const Expansion minus = detail::difference(extreme(hb, true), extreme(ha, false));  // D(-n) |n|
+  const Expansion plus = detail::difference(extreme(ha, true), extreme(hb, false));   // D(n)
+  const Expansion minus = detail::difference(extreme(hb, true), extreme(ha, false));  // D(-n)
   if (!plus.ok || !minus.ok) return false;
-  const double d = std::min(lower_of(detail::compressed(plus)), lower_of(detail::compressed(minus)));
-  if (!(d > 0)) return false;
+  out.plus_low = lower_of(detail::compressed(plus));
+  out.minus_low = lower_of(detail::compressed(minus));
+  if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
   double nn = 0;
   for (int k = 0; k < 3; ++k) {
     const detail::Approx a = approx_of(c.x[k]);
+    out.n[k] = a.v;
     const double m = (std::fabs(a.v) + a.err) * (1 + 4 * kU);
     nn += m * m;
   }
-  nn *= 1 + 8 * kU;  // the squares' and sums' roundings, upward
-  out = d * d / nn * (1 - 8 * kU);
+  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
   return true;
 }
 
-}  // namespace
-
-bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low) {
+// The 44 candidate facet normals of M (SPEC §3's directions): A's and B's face normals (the
+// cross product of two edges from one vertex: edges 0-1 and 0-2 for face 012, and so on; any two
+// edges of a face span its plane) and the 36 cross products of an edge of A and an edge of B.
+// Every facet normal of M is among them (up to orientation: both are bounded).
+constexpr int kDirections = 44;
+bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBounds (&out)[kDirections]) {
   if (!detail::in_exact_range(A, B)) return false;
   ExpVec xa[4], xb[4];  // the vertices relative to A[0], exactly
   for (int i = 0; i < 4; ++i) xa[i] = detail::difference(A[i], A[0]), xb[i] = detail::difference(B[i], A[0]);
@@ -75,21 +85,29 @@ bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, doubl
     ea[e] = detail::difference(A[kEdge[e][1]], A[kEdge[e][0]]);
     eb[e] = detail::difference(B[kEdge[e][1]], B[kEdge[e][0]]);
   }
-  double low = INFINITY, x = 0;
-  // Face normals (the cross product of two edges from one vertex: edges 0-1 and 0-2 for face
-  // 012, and so on; any two edges of a face span its plane).
   static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};  // faces 012, 013, 023, 123
+  int k = 0;
   for (const auto& f : kFaceEdges) {
-    if (!direction_lower(detail::cross(ea[f[0]], ea[f[1]]), xa, xb, x)) return false;
-    low = std::min(low, x);
-    if (!direction_lower(detail::cross(eb[f[0]], eb[f[1]]), xa, xb, x)) return false;
-    low = std::min(low, x);
+    if (!direction_bounds(detail::cross(ea[f[0]], ea[f[1]]), xa, xb, out[k++])) return false;
+    if (!direction_bounds(detail::cross(eb[f[0]], eb[f[1]]), xa, xb, out[k++])) return false;
   }
   for (const ExpVec& a : ea)
-    for (const ExpVec& b : eb) {
-      if (!direction_lower(detail::cross(a, b), xa, xb, x)) return false;
-      low = std::min(low, x);
-    }
+    for (const ExpVec& b : eb)
+      if (!direction_bounds(detail::cross(a, b), xa, xb, out[k++])) return false;
+  return true;
+}
+
+}  // namespace
+
+bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low) {
+  DirectionBounds dirs[kDirections];
+  if (!candidate_bounds(A, B, dirs)) return false;
+  double low = INFINITY;
+  for (const DirectionBounds& d : dirs) {
+    if (d.zero) continue;
+    const double m = std::min(d.plus_low, d.minus_low);
+    low = std::min(low, m * m / d.nn_up * (1 - 8 * kU));
+  }
   if (!(low > 0) || !std::isfinite(low)) return false;
   pd2_low = low;
   return true;
@@ -112,7 +130,27 @@ constexpr double kNudge = 0x1p-40;
 struct Candidate {
   V3 v;
   double key;
+  V3 d;  // the offset a - b of the pair it was built for
 };
+
+// best[0 .. kept) sorted by key, the kEvaluated least kept.
+void keep_shallowest(Candidate (&best)[kEvaluated], int& kept, const Candidate& c) {
+  if (kept == kEvaluated && !(c.key < best[kept - 1].key)) return;
+  int at = kept < kEvaluated ? kept++ : kept - 1;
+  for (; at > 0 && best[at - 1].key > c.key; --at) best[at] = best[at - 1];
+  best[at] = c;
+}
+
+// The least certified evaluation among the candidates (value +inf when none).
+Evaluation least_evaluation(const TetVertices& A, const TetVertices& B, const Problem& P,
+                            const Candidate (&best)[kEvaluated], int kept, Candidate& chosen) {
+  Evaluation ev;
+  for (int c = 0; c < kept; ++c) {
+    const Evaluation e = evaluate_tight(A, B, P, best[c].v);
+    if (e.error <= kGlobalRel && e.value < ev.value) ev = e, chosen = best[c];
+  }
+  return ev;
+}
 
 // The extreme rays of the lone pair (a = A's vertex i, b = B's vertex j)'s cone (header): each
 // oriented so that A's other vertices lie below p_A and B's above p_B (within a loose
@@ -153,11 +191,8 @@ void lone_pair_rays(const Problem& P, int i, int j, Candidate (&best)[kEvaluated
       if (!inside) continue;
       // A third vertex at its bound (the ray where three planes meet, as on grids) leaves the
       // lone pair to the rounding of the heights: such rays are evaluated after the clear ones.
-      const double vd = dot(v, d), key = vd * vd / vv * (clear ? 1 : 2);
-      if (kept == kEvaluated && !(key < best[kept - 1].key)) continue;
-      int at = kept < kEvaluated ? kept++ : kept - 1;
-      for (; at > 0 && best[at - 1].key > key; --at) best[at] = best[at - 1];
-      best[at] = {v, key};
+      const double vd = dot(v, d);
+      keep_shallowest(best, kept, {v, vd * vd / vv * (clear ? 1 : 2), d});
     }
 }
 
@@ -174,18 +209,168 @@ bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem
         lone_pair_rays(P, i, j, best, kept);
     }
   if (kept == 0) return false;
-  Evaluation ev;
-  V3 v{};
-  for (int c = 0; c < kept; ++c) {
-    const Evaluation e = evaluate_tight(A, B, P, best[c].v);
-    if (e.error <= kGlobalRel && e.value < ev.value) ev = e, v = best[c].v;
-  }
+  Candidate chosen{};
+  const Evaluation ev = least_evaluation(A, B, P, best, kept, chosen);
   if (!(ev.value < INFINITY)) return false;
   double pd2_low = 0;
   if (!rigid_depth_squared_lower(A, B, pd2_low)) return false;
   const double lower = pd2_low * kDeformableBoundCoeff;  // (an exact power of two)
   if (!(ev.value * (1 + kGlobalRel) <= lower * (1 + 8e-10))) return false;
-  out.normal = v;
+  out.normal = chosen.v;
+  out.eval = ev;
+  out.lower = lower;
+  return true;
+}
+
+namespace {
+
+// Every unit u has u.d >= c0 or D(u) >= d0 (header, "Edge pairs"): the polytope W' = {u : D(u) <=
+// d0, u.d <= c0} lies inside the open unit ball. W = {u : D(u) <= d0} is the convex hull of the
+// points d0 n / D(n) over M's facet normals n, each orientation (D is M's support function; each
+// such point lies on W's boundary, the facets' are its vertices, and every facet normal is a
+// candidate), so every vertex of W' is one of those points with p.d <= c0 or the crossing of
+// the plane u.d = c0 with a segment from such a point to one beyond it, and |u| is convex: W'
+// lies inside the ball iff those do. The points are taken with D's lower bound (each moved
+// outward along its ray: a larger polytope, the test only stricter) and n rounded (each point
+// within 8u of its exact direction's, |p| <= d0 / PD < 2 here: ~2e-15, inside the margin
+// kInside leaves). Which side of the plane a point lies on is decided with a tolerance that
+// covers p.d's rounding, a point near the plane taken on both; a crossing's t is bounded by an
+// interval from the rounding of its numerator and denominator, and |p(t)|^2, convex in t, is
+// checked at both ends.
+constexpr double kInside = 1 - 0x1p-36;  // |p|^2 <= this (margin ~1.5e-11 >> the roundings)
+
+bool polytope_inside_ball(const DirectionBounds (&dirs)[kDirections], const V3& d, double c0, double d0) {
+  V3 pts[2 * kDirections];
+  int n = 0;
+  for (const DirectionBounds& x : dirs) {
+    if (x.zero) continue;
+    pts[n++] = mul(x.n, d0 / x.plus_low);
+    pts[n++] = mul(x.n, -(d0 / x.minus_low));
+  }
+  auto side_error = [&](const V3& p) {  // |fl(p.d) - p.d| bound, and c0's own rounding
+    return 4 * kU * (std::fabs(p[0] * d[0]) + std::fabs(p[1] * d[1]) + std::fabs(p[2] * d[2]) + c0);
+  };
+  auto inside = [](const V3& p) { return dot(p, p) <= kInside; };
+  for (int i = 0; i < n; ++i) {
+    const double vi = dot(pts[i], d), ei = side_error(pts[i]);
+    if (!(vi <= c0 + ei)) continue;  // (beyond the plane for certain)
+    if (!inside(pts[i])) return false;
+    for (int j = 0; j < n; ++j) {
+      const double vj = dot(pts[j], d), ej = side_error(pts[j]);
+      if (!(vj > c0 - ej)) continue;  // (on the near side for certain: no crossing)
+      const double num = c0 - vi, den = vj - vi, e = ei + ej;
+      double lo = 0, hi = 1;
+      if (den - e > 0) lo = std::max(0.0, (num - e) / (den + e) * (1 - 4 * kU)),
+                       hi = std::min(1.0, (num + e) / (den - e) * (1 + 4 * kU));
+      for (const double t : {lo, hi})
+        if (!inside(add(pts[i], mul(sub(pts[j], pts[i]), t)))) return false;
+    }
+  }
+  return true;
+}
+
+// A's vertices i -> i2 and B's j -> j2 with A[i2] - A[i] = B[j2] - B[j] exactly (translates:
+// the same edge vector l, exact in doubles) and A[i] - B[j] exact in doubles (d).
+bool translate_pair(const TetVertices& A, const TetVertices& B, int i, int i2, int j, int j2, V3& l, V3& d) {
+  for (int k = 0; k < 3; ++k) {
+    const Expansion ea = detail::difference(A[i2][k], A[i][k]), eb = detail::difference(B[j2][k], B[j][k]);
+    if (ea.n > 1 || detail::difference(ea, eb).sign() != 0) return false;
+    if (detail::difference(A[i][k], B[j][k]).n > 1) return false;  // (the difference is not a double)
+    l[k] = A[i2][k] - A[i][k];
+    d[k] = A[i][k] - B[j][k];
+  }
+  return true;
+}
+
+// v turned, within its plane through l's normal, into a double triple exactly perpendicular to
+// l: where l has a zero component k, (l_j, -l_i) in the other two (times a power of two: exact)
+// plus t e_k is, for every double t (its dot with l is l_j l_i - l_i l_j = 0 exactly). A tilt
+// along l of u |v| would split the two edges' heights by ~u size, a fraction of the depth (the
+// value then ~1e-3 off); within the perpendicular plane t's rounding only moves the normal along
+// the regime (the nudge covers it). false when l has no zero component.
+bool exactly_across(const V3& l, V3& v) {
+  int k = -1;
+  for (int q = 0; q < 3 && k < 0; ++q)
+    if (l[q] == 0) k = q;
+  if (k < 0) return false;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double ri = l[j], rj = -l[i];  // l turned a quarter in the plane (i, j)
+  const double a = (v[i] * ri + v[j] * rj) / (ri * ri + rj * rj);  // v's part along (ri, rj)
+  if (!(a != 0) || !std::isfinite(a)) return false;
+  int e = 0;
+  std::frexp(a, &e);
+  const double sa = a > 0 ? 1.0 : -1.0;  // v ~ a (ri, rj) + v_k e_k, scaled by 2^e / |a| in (1, 2]
+  V3 w;
+  w[i] = sa * std::ldexp(ri, e), w[j] = sa * std::ldexp(rj, e), w[k] = std::ldexp(v[k] / std::fabs(a), e);
+  if (!std::isfinite(w[i]) || !std::isfinite(w[j]) || !std::isfinite(w[k])) return false;
+  v = w;
+  return true;
+}
+
+// The normals perpendicular to the edge vector l where a third vertex x reaches its bound (the
+// midpoint m of a and b, less d/3 for A's, plus d/3 for B's: the two free vertices of a
+// tetrahedron whose other two move by t follow by -2t/3), nudged into the regime in the plane
+// perpendicular to l (a tilt along l splits the edges' heights), oriented along d.
+void edge_pair_rays(const Problem& P, int i, int i2, int j, int j2, const V3& l, const V3& d,
+                    Candidate (&best)[kEvaluated], int& kept) {
+  const double ll = dot(l, l);
+  if (!(ll > 0)) return;
+  const V3 mid = mul(add(P.relA[i], P.relB[j]), 0.5);
+  const V3 pA = sub(mid, mul(d, 1.0 / 3)), pB = add(mid, mul(d, 1.0 / 3));
+  V3 u[4];
+  bool onA[4];
+  int m = 0;
+  for (int k = 0; k < 4; ++k)
+    if (k != i && k != i2) u[m] = sub(P.relA[k], pA), onA[m++] = true;
+  for (int k = 0; k < 4; ++k)
+    if (k != j && k != j2) u[m] = sub(P.relB[k], pB), onA[m++] = false;
+  for (int s = 0; s < m; ++s) {
+    V3 v = cross(l, u[s]);
+    const double nv = norm(v);
+    if (!(nv > 0) || !std::isfinite(nv)) continue;
+    if (dot(v, d) < 0) v = mul(v, -1.0);
+    const V3 w = sub(u[s], mul(l, dot(u[s], l) / ll));  // u[s] across l
+    const double nw = norm(w);
+    if (!(nw > 0)) continue;
+    v = add(mul(v, 1 / nv), mul(w, (onA[s] ? -kNudge : kNudge) / nw));
+    if (!exactly_across(l, v)) continue;
+    const double vv = dot(v, v), tol = 1e-9 * std::sqrt(vv) * P.scale;
+    bool ok = dot(v, d) > 0;
+    for (int q = 0; q < m && ok; ++q) ok = (onA[q] ? -dot(v, u[q]) : dot(v, u[q])) >= -tol;
+    if (!ok) continue;
+    const double vd = dot(v, d);
+    keep_shallowest(best, kept, {v, vd * vd / vv, d});
+  }
+}
+
+}  // namespace
+
+bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  const double near = kNear * P.scale;
+  Candidate best[kEvaluated];
+  int kept = 0;
+  for (const auto& ea : kEdge)
+    for (const auto& eb : kEdge)
+      for (int flip = 0; flip < 2; ++flip) {
+        const int i = ea[0], i2 = ea[1], j = flip ? eb[1] : eb[0], j2 = flip ? eb[0] : eb[1];
+        V3 l, d;
+        if (!translate_pair(A, B, i, i2, j, j2, l, d)) continue;
+        if (std::fabs(d[0]) <= near && std::fabs(d[1]) <= near && std::fabs(d[2]) <= near)
+          edge_pair_rays(P, i, i2, j, j2, l, d, best, kept);
+      }
+  if (kept == 0) return false;
+  Candidate chosen{};
+  const Evaluation ev = least_evaluation(A, B, P, best, kept, chosen);
+  if (!(ev.value < INFINITY)) return false;
+  DirectionBounds dirs[kDirections];
+  if (!candidate_bounds(A, B, dirs)) return false;
+  // L = V (1 - 9e-10): the reported V then lies within 9e-10 / (1 - 9e-10) < 1e-9 above every
+  // lower bound, and below the minimum by at most its own kGlobalRel.
+  const double lower = ev.value * (1 - 9e-10) * (1 - 2 * kU);
+  const double c0 = std::sqrt(12 * lower) * (1 + 4 * kU), d0 = std::sqrt(32 * lower) * (1 + 4 * kU);
+  if (!(lower > 0) || !polytope_inside_ball(dirs, chosen.d, c0, d0)) return false;
+  out.normal = chosen.v;
   out.eval = ev;
   out.lower = lower;
   return true;

@@ -1,7 +1,8 @@
-// lone_pair_certificate.h — internal to fast/src/global: pdd2_global certified by the rigid
-// depth's bound, without the pieces, where the minimiser moves one vertex of each tetrahedron
-// (a vertex of one block resting on a vertex of the other, as blocks set on each other's
-// columns are: A's top at 3 x 0.1 = 0.30000000000000004, B's bottom at 0.3).
+// lone_pair_certificate.h — internal to fast/src/global: pdd2_global certified without the
+// pieces where the minimiser moves one vertex of each tetrahedron (the rigid depth's bound,
+// attained: a vertex of one block resting on a vertex of the other, as blocks set on each
+// other's columns are: A's top at 3 x 0.1 = 0.30000000000000004, B's bottom at 0.3), or one
+// edge of each on translates of one line (certify_edge_pair, below).
 //
 // Input : the pair (engine units, global_depth.h) and its Problem.
 // Output: true with a normal v (A -> B, doubles), its certified evaluation (relaxed_value.h's
@@ -46,6 +47,30 @@ struct LonePairResult {
 };
 
 bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
+
+// Edge pairs: an edge of A on the collinear edge of B, as two decimal blocks set on each other's
+// columns put them (A's top edge 5.6e-17 above B's bottom edge). Where two vertices a, a2 of A
+// and b, b2 of B are translates (a2 - a = b2 - b exactly) with d = a - b, the relaxed QP kept to
+// their four constraints moves a and a2 down, b and b2 up; along a unit u its heights are h,
+// h + w for A and h - p, h + w - p for B (p = u.d, w = u.(a2 - a)), its value V(p, w) is convex
+// in (p, w) (a convex QP whose right-hand side is linear in them) and even in w (the two ends
+// exchanged and shifted by w: the same problem), so V(p, w) >= V(p, 0) = p^2 / 12 (two vertices
+// of a tetrahedron moved by t, its two free ones following by -2t/3, cost t^2 / 6 a side, the
+// depth p split evenly). Dropping constraints lowers the minimum: relaxed(u) >= (u.d)^2 / 12
+// where u.d >= 0, beside relaxed(u) >= D(u)^2 / 32 everywhere. With L = V (1 - 9e-10), V the
+// candidate's certified value, every unit u then has relaxed(u) >= L when u.d >= c0 = sqrt(12 L)
+// or D(u) >= d0 = sqrt(32 L): checked by the polytope {u : D(u) <= d0, u.d <= c0} lying inside
+// the unit ball (its vertices, from the facet normals of M bounded exactly as above). The
+// candidate normals: perpendicular to the edge and to a third vertex's offset from its bound
+// (the midpoint of a and b, -d/3 for A's, +d/3 for B's: a tetrahedron's free vertices follow by
+// -2t/3), nudged into the regime across the edge, and exactly across it: a double normal tilted
+// along the edge by its rounding splits the two ends' heights by a fraction of the depth (the
+// value ~1e-3 off), so the edge needs a zero component (an edge in a coordinate plane, as
+// every edge of a grid's faces: then a double triple lies exactly across it). Measured on the
+// same blocks: every edge on a collinear edge, 256 Kuhn pairs and 320 five-tetrahedra ones
+// (120 of which pdd2_global declined: no double normal near the rounded ones attained the
+// value), docs/performance.md, "Vertex on vertex".
+bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
 
 // A proved lower bound on PD^2, the rigid depth squared (the least squared overlap over unit
 // directions), within a few u of it; false where expansion.h cannot take the pair (a coordinate
