@@ -95,7 +95,7 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
     if (name == "stacked")
       names.insert(names.end(),
                    {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned",
-                    "stacked-resting", "stacked-resting-turned"});
+                    "stacked-resting", "stacked-resting-turned", "stacked-columns", "stacked-columns-turned"});
     else names.push_back(name);
   for (const std::string& name : names) {
     EnergyCase c;
@@ -137,19 +137,24 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
         << "rounding), moved by (0.037, 0.021)" << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
       c.description = d.str();
       if (!turned) c.rotated_twin = "stacked-rounding-turned";
-    } else if (name == "stacked-resting" || name == "stacked-resting-turned") {
-      // B on A's columns (the same x and y), its bottom 1e-9 below A's top: a resting contact as
-      // a simulator leaves it, every contact of a face, an edge or a vertex of B's bottom on
+    } else if (name == "stacked-resting" || name == "stacked-resting-turned" || name == "stacked-columns" ||
+               name == "stacked-columns-turned") {
+      // B on A's columns (the same x and y), its bottom 1e-9 below A's top (resting: a contact as
+      // a simulator leaves it) or at 0.3 (columns: touching by rounding, as two copies of one
+      // mesh set on each other), every contact of a face, an edge or a vertex of B's bottom on
       // the same element of A's top; the twin B turned 0.3 rad
       const int n = options.stacked_cells;
-      const bool turned = name == "stacked-resting-turned";
+      const bool turned = name.size() > 7 && name.compare(name.size() - 7, 7, "-turned") == 0;
+      const bool resting = name.rfind("stacked-resting", 0) == 0;
       A = make_structured_block({n, n, 3}, 0.1, {0, 0, 0}, CubeSplit::Kuhn6);
-      B = make_structured_block({n, n, 3}, 0.1, {0, 0, 0.3 - 1e-9}, CubeSplit::Kuhn6, turned ? 0.3 : 0.0);
+      B = make_structured_block({n, n, 3}, 0.1, {0, 0, resting ? 0.3 - 1e-9 : 0.3}, CubeSplit::Kuhn6,
+                                turned ? 0.3 : 0.0);
       std::ostringstream d;
-      d << "Kuhn blocks of " << n << "x" << n << "x3 cubes of 0.1, B on A's columns 1e-9 deep"
+      d << "Kuhn blocks of " << n << "x" << n << "x3 cubes of 0.1, B on A's columns "
+        << (resting ? "1e-9 deep" : "at 0.3 (A's top 3 x 0.1: touching by rounding)")
         << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
       c.description = d.str();
-      if (!turned) c.rotated_twin = "stacked-resting-turned";
+      if (!turned) c.rotated_twin = name + "-turned";
     } else {
       throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls, stacked)");
     }

@@ -23,9 +23,9 @@
 //        other at 0.3, A's top 3 x 0.1 = 0.30000000000000004 ("stacked-rounding": touching by
 //        rounding, ~5.6e-17 deep) beside B turned 0.3 rad ("stacked-rounding-turned"); the same
 //        blocks with B on A's columns, its bottom 1e-9 below A's top ("stacked-resting": faces,
-//        edges and vertices of B resting on the same ones of A) beside B turned 0.3 rad
-//        ("stacked-resting-turned"); each aligned case names its twin (rotated_twin), and the
-//        ratios of the times per pair.
+//        edges and vertices of B resting on the same ones of A) or at 0.3 ("stacked-columns":
+//        the same contacts by rounding), each beside B turned 0.3 rad ("-turned"); each aligned
+//        case names its twin (rotated_twin), and the ratios of the times per pair.
 #pragma once
 
 #include <cstddef>
