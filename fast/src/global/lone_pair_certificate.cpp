@@ -231,12 +231,14 @@ namespace {
 // candidate), so every vertex of W' is one of those points with p.d <= c0 or the crossing of
 // the plane u.d = c0 with a segment from such a point to one beyond it, and |u| is convex: W'
 // lies inside the ball iff those do. The points are taken with D's lower bound (each moved
-// outward along its ray: a larger polytope, the test only stricter) and n rounded (each point
-// within 8u of its exact direction's, |p| <= d0 / PD < 2 here: ~2e-15, inside the margin
-// kInside leaves). Which side of the plane a point lies on is decided with a tolerance that
-// covers p.d's rounding, a point near the plane taken on both; a crossing's t is bounded by an
-// interval from the rounding of its numerator and denominator, and |p(t)|^2, convex in t, is
-// checked at both ends.
+// outward along its ray: a larger polytope, the test only stricter) and n rounded (each
+// component within 4u of its exact direction's: every point of W within 8u |p| of the computed
+// hull, and a point that passes has |p| < 1: ~1e-15, far inside the margin kInside leaves).
+// Which side of the plane a point lies on is decided with a tolerance covering p.d's error
+// (the direction's rounding, 4u sum |p_k d_k|, the scale's and the dot product's, 4u more: 16u
+// taken), a point near the plane taken on both sides; a crossing's t is bounded by an interval
+// from its numerator's and denominator's errors, and |p(t)|^2, convex in t, is checked at both
+// ends (a crossing lies within ~8u (|v| + t |w|) <= 8u (1 + 2 |p|) of its computed place).
 constexpr double kInside = 1 - 0x1p-36;  // |p|^2 <= this (margin ~1.5e-11 >> the roundings)
 
 bool polytope_inside_ball(const DirectionBounds (&dirs)[kDirections], const V3& d, double c0, double d0) {
@@ -247,8 +249,8 @@ bool polytope_inside_ball(const DirectionBounds (&dirs)[kDirections], const V3& 
     pts[n++] = mul(x.n, d0 / x.plus_low);
     pts[n++] = mul(x.n, -(d0 / x.minus_low));
   }
-  auto side_error = [&](const V3& p) {  // |fl(p.d) - p.d| bound, and c0's own rounding
-    return 4 * kU * (std::fabs(p[0] * d[0]) + std::fabs(p[1] * d[1]) + std::fabs(p[2] * d[2]) + c0);
+  auto side_error = [&](const V3& p) {  // |fl(p.d) - p_exact.d| bound, and c0's own rounding
+    return 16 * kU * (std::fabs(p[0] * d[0]) + std::fabs(p[1] * d[1]) + std::fabs(p[2] * d[2]) + c0);
   };
   auto inside = [](const V3& p) { return dot(p, p) <= kInside; };
   for (int i = 0; i < n; ++i) {
