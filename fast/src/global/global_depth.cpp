@@ -459,7 +459,7 @@ bool report_shallow(GlobalRun& g) {
 // positions along it.
 bool report_lone_pair(GlobalRun& g, GlobalOptimum& out) {
   LonePairResult r;
-  if (!global::certify_lone_pair(g.A, g.B, g.P, r) && !global::certify_edge_pair(g.A, g.B, g.P, r)) return false;
+  if (!global::certify_lone_pairs(g.A, g.B, g.P, r)) return false;
   out = GlobalOptimum{};
   out.normal = r.normal;
   Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};

@@ -20,11 +20,22 @@ double lower_of(const Expansion& e) {
   return (a.v - a.err) - 4 * kU * (std::fabs(a.v) + a.err);
 }
 
+// sign(a - b), exactly: from approx_of's intervals where they are apart (distinct vertices'
+// heights, most of them), else the exact difference's sign.
+int compare(const Expansion& a, const Expansion& b) {
+  const detail::Approx x = approx_of(a), y = approx_of(b);
+  // (each interval widened by 4u of its magnitude: the roundings of v -+ err themselves)
+  const double ex = x.err + 4 * kU * std::fabs(x.v), ey = y.err + 4 * kU * std::fabs(y.v);
+  if (x.v - ex > y.v + ey) return 1;
+  if (x.v + ex < y.v - ey) return -1;
+  return detail::difference(a, b).sign();
+}
+
 // The largest (or least) of four exact heights, compared exactly.
 const Expansion& extreme(const Expansion (&h)[4], bool largest) {
   int at = 0;
   for (int i = 1; i < 4; ++i) {
-    const int s = detail::difference(h[i], h[at]).sign();
+    const int s = compare(h[i], h[at]);
     if (largest ? s > 0 : s < 0) at = i;
   }
   return h[at];
@@ -97,13 +108,24 @@ bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBound
   return true;
 }
 
-}  // namespace
-
-bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low) {
+// A pair's candidate bounds, computed on first use (the vertex pairs' and the edge pairs'
+// certificates share them).
+struct PairBounds {
+  PairBounds(const TetVertices& A, const TetVertices& B) : A(A), B(B) {}
+  const TetVertices& A;
+  const TetVertices& B;
   DirectionBounds dirs[kDirections];
-  if (!candidate_bounds(A, B, dirs)) return false;
+  int state = 0;  // 0: not computed, 1: computed, -1: candidate_bounds failed
+  bool get() {
+    if (state == 0) state = candidate_bounds(A, B, dirs) ? 1 : -1;
+    return state > 0;
+  }
+};
+
+bool pd2_lower(PairBounds& bounds, double& pd2_low) {
+  if (!bounds.get()) return false;
   double low = INFINITY;
-  for (const DirectionBounds& d : dirs) {
+  for (const DirectionBounds& d : bounds.dirs) {
     if (d.zero) continue;
     const double m = std::min(d.plus_low, d.minus_low);
     low = std::min(low, m * m / d.nn_up * (1 - 8 * kU));
@@ -111,6 +133,13 @@ bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, doubl
   if (!(low > 0) || !std::isfinite(low)) return false;
   pd2_low = low;
   return true;
+}
+
+}  // namespace
+
+bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low) {
+  PairBounds bounds(A, B);
+  return pd2_lower(bounds, pd2_low);
 }
 
 namespace {
@@ -196,9 +225,8 @@ void lone_pair_rays(const Problem& P, int i, int j, Candidate (&best)[kEvaluated
     }
 }
 
-}  // namespace
-
-bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+bool lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, PairBounds& bounds,
+               LonePairResult& out) {
   Candidate best[kEvaluated];
   int kept = 0;
   const double near = kNear * P.scale;
@@ -213,7 +241,7 @@ bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem
   const Evaluation ev = least_evaluation(A, B, P, best, kept, chosen);
   if (!(ev.value < INFINITY)) return false;
   double pd2_low = 0;
-  if (!rigid_depth_squared_lower(A, B, pd2_low)) return false;
+  if (!pd2_lower(bounds, pd2_low)) return false;
   const double lower = pd2_low * kDeformableBoundCoeff;  // (an exact power of two)
   if (!(ev.value * (1 + kGlobalRel) <= lower * (1 + 8e-10))) return false;
   out.normal = chosen.v;
@@ -221,8 +249,6 @@ bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem
   out.lower = lower;
   return true;
 }
-
-namespace {
 
 // Every unit u has u.d >= c0 or D(u) >= d0 (header, "Edge pairs"): the polytope W' = {u : D(u) <=
 // d0, u.d <= c0} lies inside the open unit ball. W = {u : D(u) <= d0} is the convex hull of the
@@ -345,9 +371,7 @@ void edge_pair_rays(const Problem& P, int i, int i2, int j, int j2, const V3& l,
   }
 }
 
-}  // namespace
-
-bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, PairBounds& bounds, LonePairResult& out) {
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   const double near = kNear * P.scale;
   Candidate best[kEvaluated];
@@ -365,17 +389,33 @@ bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem
   Candidate chosen{};
   const Evaluation ev = least_evaluation(A, B, P, best, kept, chosen);
   if (!(ev.value < INFINITY)) return false;
-  DirectionBounds dirs[kDirections];
-  if (!candidate_bounds(A, B, dirs)) return false;
+  if (!bounds.get()) return false;
   // L = V (1 - 9e-10): the reported V then lies within 9e-10 / (1 - 9e-10) < 1e-9 above every
   // lower bound, and below the minimum by at most its own kGlobalRel.
   const double lower = ev.value * (1 - 9e-10) * (1 - 2 * kU);
   const double c0 = std::sqrt(12 * lower) * (1 + 4 * kU), d0 = std::sqrt(32 * lower) * (1 + 4 * kU);
-  if (!(lower > 0) || !polytope_inside_ball(dirs, chosen.d, c0, d0)) return false;
+  if (!(lower > 0) || !polytope_inside_ball(bounds.dirs, chosen.d, c0, d0)) return false;
   out.normal = chosen.v;
   out.eval = ev;
   out.lower = lower;
   return true;
+}
+
+}  // namespace
+
+bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+  PairBounds bounds(A, B);
+  return lone_pair(A, B, P, bounds, out);
+}
+
+bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+  PairBounds bounds(A, B);
+  return edge_pair(A, B, P, bounds, out);
+}
+
+bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+  PairBounds bounds(A, B);
+  return lone_pair(A, B, P, bounds, out) || edge_pair(A, B, P, bounds, out);
 }
 
 }  // namespace pdd::fast::global

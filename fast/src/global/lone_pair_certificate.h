@@ -72,6 +72,9 @@ bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem
 // value), docs/performance.md, "Vertex on vertex".
 bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
 
+// The vertex pairs' certificate, else the edge pairs' (the facet normals' bounds computed once).
+bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
+
 // A proved lower bound on PD^2, the rigid depth squared (the least squared overlap over unit
 // directions), within a few u of it; false where expansion.h cannot take the pair (a coordinate
 // outside its exact range, an expansion over its capacity) or the pair does not intersect.
