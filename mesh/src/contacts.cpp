@@ -197,7 +197,15 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   // Stage 4: the variants, through the translation memo (translation_memo.h: the same bits).
   t = Clock::now();
   detail::TranslationMemo<PairResult<double>> records;
-  out.pairs.resize(hits.size());
+  // The records (~1 KB each) constructed a chunk at a time, the cancel flag checked between
+  // chunks: 542,400 of them (a torus against 200 copies of a box, ~0.5 GB) took ~1.4 s of first
+  // touches in one resize, during which Ctrl-C waited. Within the reserved capacity: no move.
+  constexpr std::size_t kChunk = std::size_t(1) << 14;
+  out.pairs.reserve(hits.size());
+  for (std::size_t k = 0; k < hits.size(); k += kChunk) {
+    stop_if_cancelled();
+    out.pairs.resize(std::min(hits.size(), k + kChunk));
+  }
   if (options.progress) options.progress(0, hits.size());
   tbb::parallel_for(std::size_t{0}, hits.size(), [&](std::size_t h) {
     if (cancelled()) return;
