@@ -1,8 +1,9 @@
 // shallow_certificate.h (the fast engine's pdd2_global for contacts far shallower than the pair,
 // without the exact pieces) against the exact engine:
 //  - sound wherever it answers: from every start normal offered (the pair's face normals both
-//    ways, random normals, the exact minimiser's normal rounded), on pairs of every depth
-//    (blocks stacked by rounding, resting contacts 1e-9 deep, shallow tips and faces in general
+//    ways, random normals, the exact minimiser's normal rounded, a declining lone pair's ray),
+//    on pairs of every depth (blocks stacked by rounding, resting contacts 1e-9 deep, blocks
+//    resting on each other's columns 1e-9 deep, shallow tips and faces in general
 //    position, cells coinciding up to rounding, contacts by rounding on diagonal planes, deep
 //    paper pairs), its lower bound L never exceeds the exact engine's pdd2_global (an exact
 //    upper bound on the minimum, within 1e-12 of it: a bound above the minimum by more than
@@ -27,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "global/lone_pair_certificate.h"
 #include "global/shallow_certificate.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/generate.h"
@@ -59,8 +61,9 @@ int slow_within_contract(const std::vector<TetPair>& pairs, const std::string& t
   return slow;
 }
 
-// Start normals: the eight face normals, each way, four random ones, and the exact minimiser's
-// normal rounded.
+// Start normals: the eight face normals, each way, four random ones, the exact minimiser's
+// normal rounded, and the lone pair's ray where that certificate declines with one (the start
+// global_depth gives after it).
 std::vector<fast::global::V3> starts(const TetPair& p, const reference::ExactResult& exact, std::mt19937_64& rng) {
   std::vector<fast::global::V3> out;
   using fast::global::cross;
@@ -78,6 +81,10 @@ std::vector<fast::global::V3> starts(const TetPair& p, const reference::ExactRes
     const auto& n = *exact.pdd2_global_normal;
     out.push_back({CGAL::to_double(n[0]), CGAL::to_double(n[1]), CGAL::to_double(n[2])});
   }
+  fast::global::LonePairResult lone;
+  if (!fast::global::certify_lone_pairs(p.A, p.B, fast::global::problem_of(p.A, p.B), lone) &&
+      fast::global::nonzero(lone.near_minimiser))
+    out.push_back(lone.near_minimiser);
   return out;
 }
 
@@ -102,6 +109,7 @@ BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
   for (double d2 : {1e-12, 1.5e-12, 4e-12}) pairs.push_back(edge_tip_pair(1e-12, d2));
   for (const auto& p : pdd::test::coincident_cell_pairs(2, 8)) pairs.push_back(p);
   for (const auto& p : pdd::test::rounding_contact_pairs(2, 8)) pairs.push_back(p);
+  for (const auto& p : pdd::test::column_resting_pairs(2, 1e-9, 12)) pairs.push_back(p);
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 8; ++trial)
@@ -115,10 +123,11 @@ BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
     if (!exact.intersecting) continue;
     const double ex = CGAL::to_double(exact.pdd2_global);
     const fast::global::Problem P = fast::global::problem_of(p.A, p.B);
+    fast::global::FacetBounds bounds(p.A, p.B);  // (the overlap off the cap by M's facets too)
     for (const auto& v : starts(p, exact, rng)) {
       ++asked;
       fast::global::ShallowResult r;
-      if (!fast::global::certify_shallow(p.A, p.B, P, v, r)) continue;
+      if (!fast::global::certify_shallow(p.A, p.B, P, v, r, &bounds)) continue;
       ++answered;
       edge_tips += p.name.rfind("edge tip", 0) == 0;
       BOOST_TEST(reference::Rational(r.lower) <= exact.pdd2_global, p.name << ": lower " << r.lower << " > " << ex);
@@ -147,24 +156,24 @@ BOOST_AUTO_TEST_CASE(stacked_and_resting_blocks_without_the_slow_path) {
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " on the slow path");
 }
 
-// Blocks resting on each other's columns 1e-8 and 1e-9 deep (structured_cells.h): below the
+// Blocks resting on each other's columns 1e-8 to 1e-11 deep (structured_cells.h): below the
 // double pieces' H (~1e-17 |H|), within the accurate H's reach except for the pieces of three
 // active vertices on or near one line (or four on one plane), whose second eigenvalue lies
-// within the H's error of a zero. Each such pair took the exact pieces (~2 ms); now they are
-// answered in doubles (solve_pair's slow_path counts a pdd2_global computed in rationals),
-// within definitions §8 of the exact engine.
+// within the H's error of a zero: answered in doubles (piece_enumeration.cpp's affine_zeros,
+// piece_visit.h's partner_of_zero). Deeper than 1e-8, the pairs whose start value lies below the
+// double pieces' floor (global_depth.cpp's kCompactTiny) are certified without the pieces: the
+// contacts of a vertex of B's bottom on one of A's top have their minimiser where the lone
+// pair's cone meets the piece of two more vertices, ~1e-8 above PD^2 / 32, which the shallow
+// certificate proves from the lone pair's ray (lone_pair_certificate.h's near_minimiser, the
+// overlap off the cap by M's facets). solve_pair's slow_path counts a pdd2_global computed in
+// rationals; every value within definitions §8 of the exact engine.
 BOOST_AUTO_TEST_CASE(blocks_on_columns_resting_without_the_exact_pieces) {
-  for (double depth : {1e-8, 1e-9}) {
+  for (double depth : {1e-8, 1e-9, 1e-11}) {
     const std::vector<TetPair> pairs = pdd::test::column_resting_pairs(2, depth, 48);
     BOOST_REQUIRE(pairs.size() >= 40u);
     const int slow = slow_within_contract(pairs, std::to_string(depth));
     BOOST_TEST_MESSAGE(depth << " deep: " << slow << " of " << pairs.size() << " in rationals");
-    // 1e-9 deep: the pairs whose start value (pdd2_accel1, ~1e-18 of the pair's size squared)
-    // lies below the double pieces' floor (global_depth.cpp's kCompactTiny) take the exact
-    // pieces, half of these (the contacts of an edge or a vertex of B's bottom); the others stay
-    // in doubles (every one took rationals without affine_zeros and partner_of_zero)
-    const int allowed = depth < 1e-8 ? int(pairs.size()) / 2 : 0;
-    BOOST_TEST(slow <= allowed, slow << " of " << pairs.size() << " in rationals " << depth << " deep");
+    BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " in rationals " << depth << " deep");
   }
 }
 

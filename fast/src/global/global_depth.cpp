@@ -29,6 +29,7 @@ using global::cross;
 using global::Best;
 using global::certify_shallow;
 using global::integer_normals;
+using global::FacetBounds;
 using global::LonePairResult;
 using global::ShallowResult;
 using global::dot;
@@ -408,10 +409,9 @@ void report_exact(GlobalRun& g, Placement& place, double start_value) {
 
 // A contact far shallower than the pair certified without the pieces (shallow_certificate.h):
 // its value, normal and the positions along it.
-bool report_shallow(GlobalRun& g) {
+bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOptimum& out) {
   ShallowResult r;
-  if (!certify_shallow(g.A, g.B, g.P, g.best.n, r)) return false;
-  GlobalOptimum& out = g.shallow;
+  if (!certify_shallow(g.A, g.B, g.P, start, r, &bounds)) return false;
   // Along a normal in double words: a double normal v near it where relaxed(v) is within
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
@@ -457,9 +457,15 @@ bool report_shallow(GlobalRun& g) {
 // A minimiser moving one vertex of each side, certified by the rigid depth's bound, or an edge
 // of each on translates of one line (lone_pair_certificate.h): its value, normal and the
 // positions along it.
-bool report_lone_pair(GlobalRun& g, GlobalOptimum& out) {
+// declined: where a lone pair's candidate was evaluated but its value lies above the bound (a
+// minimiser where the lone pair's cone meets a neighbouring piece, ~1e-8 above PD^2 / 32 on
+// blocks resting 1e-9 deep on each other's columns), that normal, else 0.
+bool report_lone_pair(GlobalRun& g, FacetBounds& bounds, GlobalOptimum& out, V3& declined) {
   LonePairResult r;
-  if (!global::certify_lone_pairs(g.A, g.B, g.P, r)) return false;
+  if (!global::certify_lone_pairs(g.A, g.B, g.P, bounds, r)) {
+    declined = r.near_minimiser;
+    return false;
+  }
   out = GlobalOptimum{};
   out.normal = r.normal;
   Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
@@ -502,10 +508,16 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     // lies under a face of A - B), else the lone pairs' (a vertex on a vertex, an edge on a
     // collinear edge); a witness of the shallow one (certified along a normal in double words
     // only) after those fail.
-    const bool shallow = report_shallow(g);
+    FacetBounds bounds(g.A, g.B);  // (M's facet bounds: computed once, where first needed)
+    const bool shallow = report_shallow(g, g.best.n, bounds, g.shallow);
     if (shallow && g.shallow.certified) return g.shallow;
     GlobalOptimum lone;
-    if (report_lone_pair(g, lone)) return lone;
+    V3 declined{0, 0, 0};
+    if (report_lone_pair(g, bounds, lone, declined)) return lone;
+    // the shallow certificate again from the lone pair's ray: the start's walk may end in
+    // another piece's chart, while the ray lies next to a minimiser where the lone pair's cone
+    // meets a neighbouring piece
+    if (nonzero(declined) && report_shallow(g, declined, bounds, lone) && lone.certified) return lone;
     if (shallow) return g.shallow;
     enumerate_exact(g, exact_start);
   } else {

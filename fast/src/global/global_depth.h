@@ -50,8 +50,11 @@
 // which answers the faces that touch by rounding (blocks stacked at 3 x 0.1 and 0.3) in ~20 us
 // instead of ~1 ms; then, where the minimiser moves one vertex of each side (a vertex resting on
 // a vertex), by the bound PD^2 / 32 attained, or an edge of each on translates of one line, by
-// (u.d)^2 / 12 beside D(u)^2 / 32 (lone_pair_certificate.h, ~50-150 us); where they all
-// decline, the exact pieces below.
+// (u.d)^2 / 12 beside D(u)^2 / 32 (lone_pair_certificate.h, ~50-150 us); where the vertex pair's
+// value lies above its bound (the minimiser where the lone pair's cone meets a neighbouring
+// piece: blocks resting 1e-9 deep on each other's columns), the shallow certificate again from
+// the lone pair's ray, its overlap off the cap shown on M's facets (facet_bounds.h, ~40-70 us);
+// where they all decline, the exact pieces below.
 // Where the depth is far below the pair's size (exact pieces), an eigenvector that held its
 // signs only within the tolerance may hide a stationary value below the best offer; each such
 // suspect is settled exactly before the pair is given up (suspect_proof.h's represented():

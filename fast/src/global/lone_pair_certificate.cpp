@@ -9,140 +9,8 @@
 namespace pdd::fast::global {
 namespace {
 
-using detail::approx_of;
 using detail::Expansion;
 using detail::ExpVec;
-
-// A lower bound of an exact expansion's value: approx_of's value less its error bound, less 4u of
-// their magnitudes for the rounding of v - err itself.
-double lower_of(const Expansion& e) {
-  const detail::Approx a = approx_of(e);
-  return (a.v - a.err) - 4 * kU * (std::fabs(a.v) + a.err);
-}
-
-// sign(a - b), exactly: from approx_of's intervals where they are apart (distinct vertices'
-// heights, most of them), else the exact difference's sign.
-int compare(const Expansion& a, const Expansion& b) {
-  const detail::Approx x = approx_of(a), y = approx_of(b);
-  // (each interval widened by 4u of its magnitude: the roundings of v -+ err themselves)
-  const double ex = x.err + 4 * kU * std::fabs(x.v), ey = y.err + 4 * kU * std::fabs(y.v);
-  if (x.v - ex > y.v + ey) return 1;
-  if (x.v + ex < y.v - ey) return -1;
-  return detail::difference(a, b).sign();
-}
-
-// The largest (or least) of four exact heights, compared exactly.
-const Expansion& extreme(const Expansion (&h)[4], bool largest) {
-  int at = 0;
-  for (int i = 1; i < 4; ++i) {
-    const int s = compare(h[i], h[at]);
-    if (largest ? s > 0 : s < 0) at = i;
-  }
-  return h[at];
-}
-
-// One candidate facet normal n of M = A - B (exact), as bounds: its overlaps D(n) = max_i n.a_i -
-// min_j n.b_j and D(-n) bounded below (in n's units: D(n) = |n| times the overlap along n / |n|),
-// n.n bounded above, and n rounded componentwise (each component within 4u of its exact value,
-// approx_of's bound on a compressed expansion). zero: n = 0 exactly (parallel edges: no facet).
-struct DirectionBounds {
-  V3 n{};
-  double nn_up = 0, plus_low = 0, minus_low = 0;
-  bool zero = false;
-};
-
-// false when an expansion overflowed its capacity or an overlap is not certainly positive.
-bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[4], DirectionBounds& out) {
-  if (!n.ok()) return false;
-  out.zero = n.is_zero();
-  if (out.zero) return true;
-  ExpVec c;  // n with each component compressed: shorter products below
-  for (int k = 0; k < 3; ++k) c.x[k] = detail::compressed(n.x[k]);
-  Expansion ha[4], hb[4];
-  for (int i = 0; i < 4; ++i) {
-    ha[i] = detail::compressed(detail::dot(c, xa[i]));
-    hb[i] = detail::compressed(detail::dot(c, xb[i]));
-    if (!ha[i].ok || !hb[i].ok) return false;
-  }
-  const Expansion plus = detail::difference(extreme(ha, true), extreme(hb, false));   // D(n)
-  const Expansion minus = detail::difference(extreme(hb, true), extreme(ha, false));  // D(-n)
-  if (!plus.ok || !minus.ok) return false;
-  out.plus_low = lower_of(detail::compressed(plus));
-  out.minus_low = lower_of(detail::compressed(minus));
-  if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
-  double nn = 0;
-  for (int k = 0; k < 3; ++k) {
-    const detail::Approx a = approx_of(c.x[k]);
-    out.n[k] = a.v;
-    const double m = (std::fabs(a.v) + a.err) * (1 + 4 * kU);
-    nn += m * m;
-  }
-  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
-  return true;
-}
-
-// The 44 candidate facet normals of M (SPEC §3's directions): A's and B's face normals (the
-// cross product of two edges from one vertex: edges 0-1 and 0-2 for face 012, and so on; any two
-// edges of a face span its plane) and the 36 cross products of an edge of A and an edge of B.
-// Every facet normal of M is among them (up to orientation: both are bounded).
-constexpr int kDirections = 44;
-bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBounds (&out)[kDirections]) {
-  if (!detail::in_exact_range(A, B)) return false;
-  ExpVec xa[4], xb[4];  // the vertices relative to A[0], exactly
-  for (int i = 0; i < 4; ++i) xa[i] = detail::difference(A[i], A[0]), xb[i] = detail::difference(B[i], A[0]);
-  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  ExpVec ea[6], eb[6];
-  for (int e = 0; e < 6; ++e) {
-    ea[e] = detail::difference(A[kEdge[e][1]], A[kEdge[e][0]]);
-    eb[e] = detail::difference(B[kEdge[e][1]], B[kEdge[e][0]]);
-  }
-  static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};  // faces 012, 013, 023, 123
-  int k = 0;
-  for (const auto& f : kFaceEdges) {
-    if (!direction_bounds(detail::cross(ea[f[0]], ea[f[1]]), xa, xb, out[k++])) return false;
-    if (!direction_bounds(detail::cross(eb[f[0]], eb[f[1]]), xa, xb, out[k++])) return false;
-  }
-  for (const ExpVec& a : ea)
-    for (const ExpVec& b : eb)
-      if (!direction_bounds(detail::cross(a, b), xa, xb, out[k++])) return false;
-  return true;
-}
-
-// A pair's candidate bounds, computed on first use (the vertex pairs' and the edge pairs'
-// certificates share them).
-struct PairBounds {
-  PairBounds(const TetVertices& A, const TetVertices& B) : A(A), B(B) {}
-  const TetVertices& A;
-  const TetVertices& B;
-  DirectionBounds dirs[kDirections];
-  int state = 0;  // 0: not computed, 1: computed, -1: candidate_bounds failed
-  bool get() {
-    if (state == 0) state = candidate_bounds(A, B, dirs) ? 1 : -1;
-    return state > 0;
-  }
-};
-
-bool pd2_lower(PairBounds& bounds, double& pd2_low) {
-  if (!bounds.get()) return false;
-  double low = INFINITY;
-  for (const DirectionBounds& d : bounds.dirs) {
-    if (d.zero) continue;
-    const double m = std::min(d.plus_low, d.minus_low);
-    low = std::min(low, m * m / d.nn_up * (1 - 8 * kU));
-  }
-  if (!(low > 0) || !std::isfinite(low)) return false;
-  pd2_low = low;
-  return true;
-}
-
-}  // namespace
-
-bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low) {
-  PairBounds bounds(A, B);
-  return pd2_lower(bounds, pd2_low);
-}
-
-namespace {
 
 // Vertex pairs closer than this (relative to the pair's scale, in every coordinate) are taken
 // as lone pairs: the certificate needs |a - b| / size far below its 8e-10 (header).
@@ -159,7 +27,8 @@ constexpr double kNudge = 0x1p-40;
 struct Candidate {
   V3 v;
   double key;
-  V3 d;  // the offset a - b of the pair it was built for
+  V3 d;      // the offset a - b of the pair it was built for
+  V3 nudge;  // v = the extreme ray + nudge (into the lone pair's cone)
 };
 
 // best[0 .. kept) sorted by key, the kEvaluated least kept.
@@ -206,8 +75,8 @@ void lone_pair_rays(const Problem& P, int i, int j, Candidate (&best)[kEvaluated
       // depth): each moved away from the plane by ~kNudge |u|, the value moved by ~kNudge
       // relative.
       v = mul(v, 1 / n);
-      v = add(v, mul(u[s], (onA[s] ? -kNudge : kNudge) / ns));
-      v = add(v, mul(u[t], (onA[t] ? -kNudge : kNudge) / nt));
+      const V3 nudge = add(mul(u[s], (onA[s] ? -kNudge : kNudge) / ns), mul(u[t], (onA[t] ? -kNudge : kNudge) / nt));
+      v = add(v, nudge);
       const double vv = dot(v, v);
       const double tol = 1e-9 * std::sqrt(vv) * P.scale;
       bool inside = dot(v, d) > 0;
@@ -221,11 +90,11 @@ void lone_pair_rays(const Problem& P, int i, int j, Candidate (&best)[kEvaluated
       // A third vertex at its bound (the ray where three planes meet, as on grids) leaves the
       // lone pair to the rounding of the heights: such rays are evaluated after the clear ones.
       const double vd = dot(v, d);
-      keep_shallowest(best, kept, {v, vd * vd / vv * (clear ? 1 : 2), d});
+      keep_shallowest(best, kept, {v, vd * vd / vv * (clear ? 1 : 2), d, nudge});
     }
 }
 
-bool lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, PairBounds& bounds,
+bool lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds,
                LonePairResult& out) {
   Candidate best[kEvaluated];
   int kept = 0;
@@ -243,59 +112,18 @@ bool lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Pai
   double pd2_low = 0;
   if (!pd2_lower(bounds, pd2_low)) return false;
   const double lower = pd2_low * kDeformableBoundCoeff;  // (an exact power of two)
-  if (!(ev.value * (1 + kGlobalRel) <= lower * (1 + 8e-10))) return false;
+  if (!(ev.value * (1 + kGlobalRel) <= lower * (1 + 8e-10))) {
+    // the ray nudged out of the cone instead: its two vertices just across their bounds, in the
+    // neighbouring piece, whose chart holds the minimiser when it lies there
+    out.near_minimiser = sub(chosen.v, mul(chosen.nudge, 2.0));
+    return false;
+  }
   out.normal = chosen.v;
   out.eval = ev;
   out.lower = lower;
   return true;
 }
 
-// Every unit u has u.d >= c0 or D(u) >= d0 (header, "Edge pairs"): the polytope W' = {u : D(u) <=
-// d0, u.d <= c0} lies inside the open unit ball. W = {u : D(u) <= d0} is the convex hull of the
-// points d0 n / D(n) over M's facet normals n, each orientation (D is M's support function; each
-// such point lies on W's boundary, the facets' are its vertices, and every facet normal is a
-// candidate), so every vertex of W' is one of those points with p.d <= c0 or the crossing of
-// the plane u.d = c0 with a segment from such a point to one beyond it, and |u| is convex: W'
-// lies inside the ball iff those do. The points are taken with D's lower bound (each moved
-// outward along its ray: a larger polytope, the test only stricter) and n rounded (each
-// component within 4u of its exact direction's: every point of W within 8u |p| of the computed
-// hull, and a point that passes has |p| < 1: ~1e-15, far inside the margin kInside leaves).
-// Which side of the plane a point lies on is decided with a tolerance covering p.d's error
-// (the direction's rounding, 4u sum |p_k d_k|, the scale's and the dot product's, 4u more: 16u
-// taken), a point near the plane taken on both sides; a crossing's t is bounded by an interval
-// from its numerator's and denominator's errors, and |p(t)|^2, convex in t, is checked at both
-// ends (a crossing lies within ~8u (|v| + t |w|) <= 8u (1 + 2 |p|) of its computed place).
-constexpr double kInside = 1 - 0x1p-36;  // |p|^2 <= this (margin ~1.5e-11 >> the roundings)
-
-bool polytope_inside_ball(const DirectionBounds (&dirs)[kDirections], const V3& d, double c0, double d0) {
-  V3 pts[2 * kDirections];
-  int n = 0;
-  for (const DirectionBounds& x : dirs) {
-    if (x.zero) continue;
-    pts[n++] = mul(x.n, d0 / x.plus_low);
-    pts[n++] = mul(x.n, -(d0 / x.minus_low));
-  }
-  auto side_error = [&](const V3& p) {  // |fl(p.d) - p_exact.d| bound, and c0's own rounding
-    return 16 * kU * (std::fabs(p[0] * d[0]) + std::fabs(p[1] * d[1]) + std::fabs(p[2] * d[2]) + c0);
-  };
-  auto inside = [](const V3& p) { return dot(p, p) <= kInside; };
-  for (int i = 0; i < n; ++i) {
-    const double vi = dot(pts[i], d), ei = side_error(pts[i]);
-    if (!(vi <= c0 + ei)) continue;  // (beyond the plane for certain)
-    if (!inside(pts[i])) return false;
-    for (int j = 0; j < n; ++j) {
-      const double vj = dot(pts[j], d), ej = side_error(pts[j]);
-      if (!(vj > c0 - ej)) continue;  // (on the near side for certain: no crossing)
-      const double num = c0 - vi, den = vj - vi, e = ei + ej;
-      double lo = 0, hi = 1;
-      if (den - e > 0) lo = std::max(0.0, (num - e) / (den + e) * (1 - 4 * kU)),
-                       hi = std::min(1.0, (num + e) / (den - e) * (1 + 4 * kU));
-      for (const double t : {lo, hi})
-        if (!inside(add(pts[i], mul(sub(pts[j], pts[i]), t)))) return false;
-    }
-  }
-  return true;
-}
 
 // A's vertices i -> i2 and B's j -> j2 with A[i2] - A[i] = B[j2] - B[j] exactly (translates:
 // the same edge vector l, exact in doubles) and A[i] - B[j] exact in doubles (d).
@@ -367,11 +195,11 @@ void edge_pair_rays(const Problem& P, int i, int i2, int j, int j2, const V3& l,
     for (int q = 0; q < m && ok; ++q) ok = (onA[q] ? -dot(v, u[q]) : dot(v, u[q])) >= -tol;
     if (!ok) continue;
     const double vd = dot(v, d);
-    keep_shallowest(best, kept, {v, vd * vd / vv, d});
+    keep_shallowest(best, kept, {v, vd * vd / vv, d, V3{0, 0, 0}});
   }
 }
 
-bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, PairBounds& bounds, LonePairResult& out) {
+bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds, LonePairResult& out) {
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   const double near = kNear * P.scale;
   Candidate best[kEvaluated];
@@ -394,7 +222,7 @@ bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Pai
   // lower bound, and below the minimum by at most its own kGlobalRel.
   const double lower = ev.value * (1 - 9e-10) * (1 - 2 * kU);
   const double c0 = std::sqrt(12 * lower) * (1 + 4 * kU), d0 = std::sqrt(32 * lower) * (1 + 4 * kU);
-  if (!(lower > 0) || !polytope_inside_ball(bounds.dirs, chosen.d, c0, d0)) return false;
+  if (!(lower > 0) || !polytope_inside_ball(bounds, chosen.d, c0, d0)) return false;
   out.normal = chosen.v;
   out.eval = ev;
   out.lower = lower;
@@ -404,18 +232,23 @@ bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Pai
 }  // namespace
 
 bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
-  PairBounds bounds(A, B);
+  FacetBounds bounds(A, B);
   return lone_pair(A, B, P, bounds, out);
 }
 
 bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
-  PairBounds bounds(A, B);
+  FacetBounds bounds(A, B);
   return edge_pair(A, B, P, bounds, out);
 }
 
-bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
-  PairBounds bounds(A, B);
+bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds,
+                        LonePairResult& out) {
   return lone_pair(A, B, P, bounds, out) || edge_pair(A, B, P, bounds, out);
+}
+
+bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out) {
+  FacetBounds bounds(A, B);
+  return certify_lone_pairs(A, B, P, bounds, out);
 }
 
 }  // namespace pdd::fast::global

@@ -29,13 +29,17 @@
 // leaves. Measured on 5-tetrahedra and Kuhn blocks set on each other's columns by rounding:
 // 896 of 1310 and 384 of 743 pairs that took the exact pieces have pdd2_global = rigid_pd2 / 32
 // within 1e-10 (docs/performance.md, "Vertex on vertex").
-// L is computed rigorously: each candidate direction n exactly (expansion.h: cross products of
-// coordinate differences), its overlaps D(+-n) = max of the exact heights' differences, each
-// rounded down from its exact expansion (approx_of's bound), n.n rounded up; L = min over the
-// directions of D^2 / (32 n.n), rounded down. A candidate normal v is only a guess: its value
-// is evaluate_tight's, certified or not taken.
+// L is computed rigorously (facet_bounds.h: each candidate direction n exactly, its overlaps
+// rounded down, n.n rounded up; L = min over the directions of D^2 / (32 n.n), rounded down).
+// A candidate normal v is only a guess: its value is evaluate_tight's, certified or not taken.
+// Where the lone pair's cone meets a neighbouring piece whose two more vertices are close to the
+// plane (a vertex resting 1e-9 deep on a vertex, A's and B's edges at it leaving along common
+// lines), the minimiser lies just inside that piece, its value ~1e-8 above L: the certificate
+// declines, and gives the extreme ray nudged out of the cone (near_minimiser) for the shallow
+// certificate to start from (global_depth.cpp).
 #pragma once
 
+#include "global/facet_bounds.h"
 #include "global/relaxed_value.h"
 
 namespace pdd::fast::global {
@@ -44,6 +48,9 @@ struct LonePairResult {
   V3 normal{};      // v (A -> B, unnormalised)
   Evaluation eval;  // relaxed(v): value, error <= kGlobalRel, solution and heights
   double lower = 0; // L = PD^2 / 32 rounded down: every relaxed(u) >= L
+  // Declined with a lone pair's candidate evaluated (certified) above the bound: that normal
+  // (next to the minimiser where the lone pair's cone meets another piece), else 0.
+  V3 near_minimiser{};
 };
 
 bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
@@ -74,6 +81,11 @@ bool certify_edge_pair(const TetVertices& A, const TetVertices& B, const Problem
 
 // The vertex pairs' certificate, else the edge pairs' (the facet normals' bounds computed once).
 bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
+
+// The same with the pair's facet bounds given (global_depth.cpp shares them with the shallow
+// certificate's overlap test).
+bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds,
+                        LonePairResult& out);
 
 // A proved lower bound on PD^2, the rigid depth squared (the least squared overlap over unit
 // directions), within a few u of it; false where expansion.h cannot take the pair (a coordinate

@@ -83,8 +83,8 @@ bool tilt_step(const Problem& P, const Evaluation& ev, unsigned ma, unsigned mb,
 
 // v moved to the least of its pieces' charts until its active set stays (at most 8 steps, each
 // kept only where it lowers the certified value); `words`: v + lo in double words (a tilt below
-// v's rounding: a contact plane off the axes), else lo stays 0. False when no step can be taken
-// or an evaluation is not certified.
+// v's rounding: a contact plane off the axes), else lo stays 0. False when an evaluation is not
+// certified or a side has no vertex at the plane.
 bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V3& v, V3& lo, bool words,
                  Evaluation& ev) {
   ev = evaluate_tight(A, B, P, v, lo);
@@ -94,7 +94,9 @@ bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V
   for (int step = 0; step < 8; ++step) {
     if (!ma || !mb) return false;
     V3 w = v, wl = lo;
-    if (!tilt_step(P, ev, ma, mb, w, wl, words)) return step > 0;
+    // (no tilt: S's positions across v on one line, as a lone pair's two; v stays, and the
+    // certificate below decides it)
+    if (!tilt_step(P, ev, ma, mb, w, wl, words)) return true;
     const Evaluation ew = evaluate_tight(A, B, P, w, wl);
     if (!(ew.error <= kGlobalRel) || !(ew.value <= ev.value)) return true;
     unsigned na, nb;
@@ -294,6 +296,14 @@ double plane_distance_lower(const V3& a, const V3& b, const V3& c, const V3& o) 
   return num / den * (1 - 4 * kU);
 }
 
+// A bound on |vh - n/|n||, vh = v/|v| rounded and n = v + lo (the cap's axis): vh within 8u of
+// v/|v|, and alpha (overlap_off_cap's) between v/|v| and n/|n|.
+double cap_slack(const V3& v, const V3& lo) {
+  const double alpha = 2 * std::sqrt(3.0) * std::fmax(std::fabs(lo[0]), std::fmax(std::fabs(lo[1]), std::fabs(lo[2]))) /
+                       (norm(v) * (1 - 3 * kU)) * (1 + 8 * kU);
+  return (8 * kU + alpha) * (1 + 4 * kU);
+}
+
 // Off the cap u.v/|v| < c0 (c0 >= the cosine of the cap's radius, rounded up): D(u) >= d0 for
 // every such unit u, from four points of M = A - B, each the rounded difference w of a vertex
 // of A and one of B (within delta of the exact point: D(u) >= max_k u.w_k - delta).
@@ -387,7 +397,7 @@ namespace {
 
 // One attempt (certify_shallow): the normal in doubles, or in double words.
 bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, bool words,
-             ShallowResult& out) {
+             ShallowResult& out, FacetBounds* bounds) {
   V3 v = v0, lo{0, 0, 0};
   Evaluation ev;
   if (!find_normal(A, B, P, v, lo, words, ev)) return false;
@@ -456,16 +466,20 @@ bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const
   const double ratio = std::ldexp(std::nextafter(fn / fd, 4.0), int(std::clamp(en - ed + shift, -2000L, 2000L)));
   const double c0 = std::nextafter(std::sqrt(ratio), 2.0);
   const double d0 = std::sqrt(32 * L) * (1 + 4 * kU);
-  if (!(c0 < 1) || !overlap_off_cap(A, B, v, lo, c0, d0)) return false;
+  if (!(c0 < 1)) return false;
+  if (!overlap_off_cap(A, B, v, lo, c0, d0) &&
+      !(bounds && polytope_inside_ball(*bounds, mul(v, 1 / norm(v)), (c0 + cap_slack(v, lo)) * (1 + 2 * kU), d0)))
+    return false;
   out.normal = v, out.low = lo, out.eval = ev, out.lower = L;
   return true;
 }
 
 }  // namespace
 
-bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out) {
+bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out,
+                     FacetBounds* bounds) {
   if (!nonzero(v0) || !(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return false;
-  return attempt(A, B, P, v0, false, out) || attempt(A, B, P, v0, true, out);
+  return attempt(A, B, P, v0, false, out, bounds) || attempt(A, B, P, v0, true, out, bounds);
 }
 
 }  // namespace pdd::fast::global

@@ -33,14 +33,19 @@
 // unit u off the cap (e: v/|v| rounded); D(u) >= d0 = sqrt(32 L) there gives relaxed >= L.
 // With L = V (1 - kShallowGap), 1 - c0 ~ kShallowGap / 2, and the ball needs a margin R
 // kShallowGap / 2 above d0 ~ the depth and the roundings of its test (~u size): R ~ 1e-3 of
-// the size suffices, a ball beneath the contact's face of M well inside it (contacts whose
-// overlap region reaches the edge of that face, an edge against an edge, fail and go exact).
+// the size suffices, a ball beneath the contact's face of M well inside it. Where none fits
+// (the overlap region reaches the edge of that face: a vertex resting on a vertex, an edge on
+// an edge), the same is shown on M's facets (facet_bounds.h's polytope_inside_ball: the
+// polytope {u : D(u) <= d0, u.vh <= c0 + e} inside the unit ball, e covering vh's and lo's
+// roundings), which needs no room beneath the face: only that D grows off the cap, as it does
+// at first order away from a facet normal whose foot lies inside its facet.
 // Finding v (heuristic, checked by the certificate): the minimiser tilts from the contact's
 // face normal by ~depth / size, below a double normal's rounding unless solved for: on the
 // active set S of v, F(v + E y) = sum_S (eta_i + y.xi_i)^2 + k (tau + y.xi_T)^2 (the piece's
 // H_S in the frame v, E: eta the heights about the plane, from compensated heights, accurate
 // to their own u; xi the positions across v, doubles), least at the 2 x 2 solve; repeated until
-// S no longer changes. Where the contact plane is off the axes, the tilt is below a double
+// S no longer changes (or S's positions across v lie on one line, a lone pair's two: v stays,
+// the bound decides it). Where the contact plane is off the axes, the tilt is below a double
 // normal's rounding: a second walk keeps the normal in double words, v + lo (heights along it
 // on compensated heights, relaxed_value.h; the multipliers' integers of v + lo; the overlap
 // tests along v, their margins widened by the angle alpha <= 2 |lo| / |v| between v and v +
@@ -49,6 +54,7 @@
 // low; global_depth.cpp looks for a double normal near it).
 #pragma once
 
+#include "global/facet_bounds.h"
 #include "global/relaxed_value.h"
 
 namespace pdd::fast::global {
@@ -65,6 +71,9 @@ struct ShallowResult {
   double lower = 0; // L: every relaxed(u) >= L
 };
 
-bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out);
+// bounds: the pair's facet bounds (facet_bounds.h), for the overlap off the cap where the ball
+// beneath the contact's face does not fit; null: that test is not made.
+bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out,
+                     FacetBounds* bounds = nullptr);
 
 }  // namespace pdd::fast::global

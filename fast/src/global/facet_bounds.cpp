@@ -1,0 +1,186 @@
+// facet_bounds.cpp — see facet_bounds.h.
+#include "global/facet_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "exact/expansion.h"
+#include "global/lone_pair_certificate.h"
+
+namespace pdd::fast::global {
+namespace {
+
+using detail::approx_of;
+using detail::Expansion;
+using detail::ExpVec;
+
+// A lower bound of an exact expansion's value: approx_of's value less its error bound, less 4u of
+// their magnitudes for the rounding of v - err itself.
+double lower_of(const Expansion& e) {
+  const detail::Approx a = approx_of(e);
+  return (a.v - a.err) - 4 * kU * (std::fabs(a.v) + a.err);
+}
+
+// sign(a - b), exactly: from approx_of's intervals where they are apart (distinct vertices'
+// heights, most of them), else the exact difference's sign.
+int compare(const Expansion& a, const Expansion& b) {
+  const detail::Approx x = approx_of(a), y = approx_of(b);
+  // (each interval widened by 4u of its magnitude: the roundings of v -+ err themselves)
+  const double ex = x.err + 4 * kU * std::fabs(x.v), ey = y.err + 4 * kU * std::fabs(y.v);
+  if (x.v - ex > y.v + ey) return 1;
+  if (x.v + ex < y.v - ey) return -1;
+  return detail::difference(a, b).sign();
+}
+
+// The largest (or least) of four exact heights, compared exactly.
+const Expansion& extreme(const Expansion (&h)[4], bool largest) {
+  int at = 0;
+  for (int i = 1; i < 4; ++i) {
+    const int s = compare(h[i], h[at]);
+    if (largest ? s > 0 : s < 0) at = i;
+  }
+  return h[at];
+}
+
+// false when an expansion overflowed its capacity or an overlap is not certainly positive.
+bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[4], DirectionBounds& out) {
+  if (!n.ok()) return false;
+  out.zero = n.is_zero();
+  if (out.zero) return true;
+  ExpVec c;  // n with each component compressed: shorter products below
+  for (int k = 0; k < 3; ++k) c.x[k] = detail::compressed(n.x[k]);
+  Expansion ha[4], hb[4];
+  for (int i = 0; i < 4; ++i) {
+    ha[i] = detail::compressed(detail::dot(c, xa[i]));
+    hb[i] = detail::compressed(detail::dot(c, xb[i]));
+    if (!ha[i].ok || !hb[i].ok) return false;
+  }
+  const Expansion plus = detail::difference(extreme(ha, true), extreme(hb, false));   // D(n)
+  const Expansion minus = detail::difference(extreme(hb, true), extreme(ha, false));  // D(-n)
+  if (!plus.ok || !minus.ok) return false;
+  out.plus_low = lower_of(detail::compressed(plus));
+  out.minus_low = lower_of(detail::compressed(minus));
+  if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
+  double nn = 0;
+  for (int k = 0; k < 3; ++k) {
+    const detail::Approx a = approx_of(c.x[k]);
+    out.n[k] = a.v;
+    const double m = (std::fabs(a.v) + a.err) * (1 + 4 * kU);
+    nn += m * m;
+  }
+  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
+  return true;
+}
+
+// The 44 candidate facet normals of M (SPEC §3's directions): A's and B's face normals (the
+// cross product of two edges from one vertex: edges 0-1 and 0-2 for face 012, and so on; any two
+// edges of a face span its plane) and the 36 cross products of an edge of A and an edge of B.
+// Every facet normal of M is among them (up to orientation: both are bounded).
+bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBounds (&out)[kDirections]) {
+  if (!detail::in_exact_range(A, B)) return false;
+  ExpVec xa[4], xb[4];  // the vertices relative to A[0], exactly
+  for (int i = 0; i < 4; ++i) xa[i] = detail::difference(A[i], A[0]), xb[i] = detail::difference(B[i], A[0]);
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  ExpVec ea[6], eb[6];
+  for (int e = 0; e < 6; ++e) {
+    ea[e] = detail::difference(A[kEdge[e][1]], A[kEdge[e][0]]);
+    eb[e] = detail::difference(B[kEdge[e][1]], B[kEdge[e][0]]);
+  }
+  static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};  // faces 012, 013, 023, 123
+  int k = 0;
+  for (const auto& f : kFaceEdges) {
+    if (!direction_bounds(detail::cross(ea[f[0]], ea[f[1]]), xa, xb, out[k++])) return false;
+    if (!direction_bounds(detail::cross(eb[f[0]], eb[f[1]]), xa, xb, out[k++])) return false;
+  }
+  for (const ExpVec& a : ea)
+    for (const ExpVec& b : eb)
+      if (!direction_bounds(detail::cross(a, b), xa, xb, out[k++])) return false;
+  return true;
+}
+
+}  // namespace
+
+bool FacetBounds::get() {
+  if (state_ == 0) state_ = candidate_bounds(A_, B_, dirs_) ? 1 : -1;
+  return state_ > 0;
+}
+
+bool pd2_lower(FacetBounds& bounds, double& pd2_low) {
+  if (!bounds.get()) return false;
+  double low = INFINITY;
+  for (const DirectionBounds& d : bounds.dirs()) {
+    if (d.zero) continue;
+    const double m = std::min(d.plus_low, d.minus_low);
+    low = std::min(low, m * m / d.nn_up * (1 - 8 * kU));
+  }
+  if (!(low > 0) || !std::isfinite(low)) return false;
+  pd2_low = low;
+  return true;
+}
+
+bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low) {
+  FacetBounds bounds(A, B);
+  return pd2_lower(bounds, pd2_low);
+}
+
+namespace {
+
+// Every unit u has u.d >= c0 or D(u) >= d0: the polytope W' = {u : D(u) <= d0, u.d <= c0} lies
+// inside the open unit ball. W = {u : D(u) <= d0} is the convex hull of the points d0 n / D(n)
+// over M's facet normals n, each orientation (D is M's support function; each such point lies on
+// W's boundary, the facets' are its vertices, and every facet normal is a candidate), so every
+// vertex of W' is one of those points with p.d <= c0 or the crossing of the plane u.d = c0 with a
+// segment from such a point to one beyond it, and |u| is convex: W' lies inside the ball iff those
+// do. A crossing lies on its segment, so where both ends pass it does too (|u|^2 convex): only
+// the segments to a point beyond the plane and outside the ball are crossed (the few near the
+// cap's rim; 88 x 88 segments otherwise). The points are taken with D's lower bound (each moved
+// outward along its ray: a larger polytope, the test only stricter) and n rounded (each
+// component within 4u of its exact direction's: every point of W within 8u |p| of the computed
+// hull, and a point that passes has |p| < 1: ~1e-15, far inside the margin kInside leaves).
+// Which side of the plane a point lies on is decided with a tolerance covering p.d's error
+// (the direction's rounding, 4u sum |p_k d_k|, the scale's and the dot product's, 4u more: 16u
+// taken), a point near the plane taken on both sides; a crossing's t is bounded by an interval
+// from its numerator's and denominator's errors, and |p(t)|^2, convex in t, is checked at both
+// ends (a crossing lies within ~8u (|v| + t |w|) <= 8u (1 + 2 |p|) of its computed place).
+constexpr double kInside = 1 - 0x1p-36;  // |p|^2 <= this (margin ~1.5e-11 >> the roundings)
+
+}  // namespace
+
+bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0) {
+  if (!bounds.get()) return false;
+  V3 pts[2 * kDirections];
+  int n = 0;
+  for (const DirectionBounds& x : bounds.dirs()) {
+    if (x.zero) continue;
+    pts[n++] = mul(x.n, d0 / x.plus_low);
+    pts[n++] = mul(x.n, -(d0 / x.minus_low));
+  }
+  auto side_error = [&](const V3& p) {  // |fl(p.d) - p_exact.d| bound, and c0's own rounding
+    return 16 * kU * (std::fabs(p[0] * d[0]) + std::fabs(p[1] * d[1]) + std::fabs(p[2] * d[2]) + c0);
+  };
+  auto inside = [](const V3& p) { return dot(p, p) <= kInside; };
+  double side[2 * kDirections], err[2 * kDirections];
+  int outer[2 * kDirections], m = 0;  // the points beyond the plane (possibly) and outside the ball
+  for (int j = 0; j < n; ++j) {
+    side[j] = dot(pts[j], d), err[j] = side_error(pts[j]);
+    if (side[j] > c0 - err[j] && !inside(pts[j])) outer[m++] = j;
+  }
+  for (int i = 0; i < n; ++i) {
+    const double vi = side[i], ei = err[i];
+    if (!(vi <= c0 + ei)) continue;  // (beyond the plane for certain)
+    if (!inside(pts[i])) return false;
+    for (int k = 0; k < m; ++k) {
+      const int j = outer[k];
+      const double vj = side[j], ej = err[j];
+      const double num = c0 - vi, den = vj - vi, e = ei + ej;
+      double lo = 0, hi = 1;
+      if (den - e > 0) lo = std::max(0.0, (num - e) / (den + e) * (1 - 4 * kU)),
+                       hi = std::min(1.0, (num + e) / (den - e) * (1 + 4 * kU));
+      for (const double t : {lo, hi})
+        if (!inside(add(pts[i], mul(sub(pts[j], pts[i]), t)))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace pdd::fast::global

@@ -1,0 +1,60 @@
+// facet_bounds.h — internal to fast/src/global: the candidate facet normals of M = A - B
+// bounded exactly, and the two things the certificates prove with them: a lower bound on the
+// rigid depth's square, and that the overlap is at least d0 along every unit normal off a cap.
+//
+// Input : the pair (engine units, global_depth.h).
+// Output: FacetBounds::get(): the 44 candidate directions (SPEC §3's: A's and B's face normals,
+//         the cross products of an edge of A and an edge of B), each n rounded componentwise, its
+//         overlaps D(n), D(-n) bounded below and n.n above; computed exactly on first use (~20 us:
+//         expansions), false where the pair is outside the expansions' range or does not
+//         intersect. pd2_lower: PD^2 rounded down. polytope_inside_ball: every unit u with
+//         u.d <= c0 has D(u) >= d0.
+//
+// Math. D(u) = max_i u.a_i - min_j u.b_j, the overlap along u, is the support function of M;
+// the rigid depth PD is its least value over unit u, attained at a facet normal of M, and every
+// facet normal is a candidate (up to orientation: both are bounded). Each candidate n is formed
+// exactly (expansion.h: cross products of coordinate differences), its heights exactly, the
+// extreme ones compared exactly, and each overlap rounded down from its exact expansion
+// (approx_of's bound); n.n rounded up. So PD^2 >= min D(n)^2 / n.n, rounded down. The polytope
+// test is argued at polytope_inside_ball (facet_bounds.cpp).
+#pragma once
+
+#include "global/vec3.h"
+#include "pdd/tet_pair.h"
+
+namespace pdd::fast::global {
+
+// One candidate direction n of M (exact), as bounds: its overlaps D(n) and D(-n) bounded below
+// (in n's units: |n| times the overlap along n / |n|), n.n bounded above, and n rounded
+// componentwise (each component within 4u of its exact value, approx_of's bound on a compressed
+// expansion). zero: n = 0 exactly (parallel edges: no facet).
+struct DirectionBounds {
+  V3 n{};
+  double nn_up = 0, plus_low = 0, minus_low = 0;
+  bool zero = false;
+};
+
+inline constexpr int kDirections = 44;
+
+// A pair's candidate bounds, computed on first use (shared by the certificates of one pair).
+class FacetBounds {
+ public:
+  FacetBounds(const TetVertices& A, const TetVertices& B) : A_(A), B_(B) {}
+  bool get();
+  const DirectionBounds (&dirs() const)[kDirections] { return dirs_; }
+
+ private:
+  const TetVertices& A_;
+  const TetVertices& B_;
+  DirectionBounds dirs_[kDirections];
+  int state_ = 0;  // 0: not computed, 1: computed, -1: failed
+};
+
+// PD^2 rounded down; false where the bounds are not available.
+bool pd2_lower(FacetBounds& bounds, double& pd2_low);
+
+// Every unit u with u.d <= c0 has D(u) >= d0: the polytope {u : D(u) <= d0, u.d <= c0} lies inside
+// the open unit ball (with the margin kInside); d is taken as given (exact).
+bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0);
+
+}  // namespace pdd::fast::global
