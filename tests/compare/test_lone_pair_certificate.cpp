@@ -13,6 +13,8 @@
 //  - certify_edge_pair likewise, on the blocks and on random edges resting on a translate of an
 //    edge of the other 2^-56 to 2^-34 deep (along a line in a coordinate plane, where a double
 //    normal lies exactly across it, and tilted out of it, where none does);
+//  - the facet bounds over the pair's integer frame (facet_bounds.h), direction by direction,
+//    never above the exact overlaps and within 1e-12 of them;
 //  - they answer the contacts they are for: Kuhn and 5-tetrahedra blocks set on each other's
 //    columns by rounding (A's top at 3 x 0.1, B's bottom at 0.3), through solve_pair without
 //    the exact pieces, every value within definitions §8.
@@ -105,6 +107,80 @@ BOOST_AUTO_TEST_CASE(rigid_depth_lower_bound_below_the_exact_depth) {
   BOOST_TEST_MESSAGE("rigid depth lower bound: " << answered << " of " << intersecting << " intersecting pairs");
   BOOST_TEST(intersecting >= 150);
   BOOST_TEST(answered == intersecting);  // (coordinates within expansion.h's range: every one)
+}
+
+// facet_bounds.h, over the pair's integer frame and by expansions alone, direction by direction
+// against the overlaps in rationals (the same 44 exact normals, each D(n) = max n.a - min n.b):
+// every bound at or below the exact overlap and within 1e-12 of it, n within 4u, n.n bounded
+// above, the zero directions exactly; on the blocks (decimal grids) and the shipped families
+// (whose coordinates lie on grids of 60 bits too: every pair has a frame).
+BOOST_AUTO_TEST_CASE(facet_bounds_below_the_exact_overlaps) {
+  using reference::Rational;
+  std::vector<TetPair> pairs = column_pairs();
+  for (const auto& p : pdd::test::column_resting_pairs(2, 1e-9, 24)) pairs.push_back(p);
+  for (const char* family : {"paper", "parallel-edges", "aligned", "sliver"}) {
+    const auto f = compare::generate_family(family, 11, 10);
+    pairs.insert(pairs.end(), f.begin(), f.end());
+  }
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};
+  int framed = 0, checked = 0;
+  for (const TetPair& p : pairs) {
+    fast::global::FacetBounds fb(p.A, p.B), eb(p.A, p.B, fast::global::FacetArithmetic::Expansions);
+    if (!fb.get()) continue;
+    BOOST_REQUIRE(eb.get());
+    framed += fb.by_integers();
+    using RV = std::array<Rational, 3>;
+    auto diff = [](const Vec3d& x, const Vec3d& y) {
+      return RV{Rational(x[0]) - Rational(y[0]), Rational(x[1]) - Rational(y[1]), Rational(x[2]) - Rational(y[2])};
+    };
+    auto cross = [](const RV& a, const RV& b) {
+      return RV{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    std::vector<RV> normals;  // facet_bounds.cpp's order: faces (A's, B's) then edge pairs
+    for (const auto& f : kFaceEdges)
+      for (const TetVertices* T : {&p.A, &p.B}) {
+        const TetVertices& t = *T;
+        normals.push_back(cross(diff(t[kEdge[f[0]][1]], t[kEdge[f[0]][0]]), diff(t[kEdge[f[1]][1]], t[kEdge[f[1]][0]])));
+      }
+    for (const auto& a : kEdge)
+      for (const auto& b : kEdge) normals.push_back(cross(diff(p.A[a[1]], p.A[a[0]]), diff(p.B[b[1]], p.B[b[0]])));
+    BOOST_REQUIRE(normals.size() == std::size_t(fast::global::kDirections));
+    for (int k = 0; k < fast::global::kDirections; ++k)
+      for (const fast::global::FacetBounds* bounds : {&fb, &eb}) {
+      const auto& d = bounds->dirs()[k];
+      const RV& n = normals[k];
+      const bool zero = n[0] == 0 && n[1] == 0 && n[2] == 0;
+      BOOST_TEST(d.zero == zero, p.name << " direction " << k);
+      if (zero) continue;
+      Rational hi_a, lo_a, hi_b, lo_b;
+      for (int i = 0; i < 4; ++i) {
+        const Rational ha = n[0] * p.A[i][0] + n[1] * p.A[i][1] + n[2] * p.A[i][2];
+        const Rational hb = n[0] * p.B[i][0] + n[1] * p.B[i][1] + n[2] * p.B[i][2];
+        if (i == 0 || ha > hi_a) hi_a = ha;
+        if (i == 0 || ha < lo_a) lo_a = ha;
+        if (i == 0 || hb > hi_b) hi_b = hb;
+        if (i == 0 || hb < lo_b) lo_b = hb;
+      }
+      const Rational plus = hi_a - lo_b, minus = hi_b - lo_a;
+      BOOST_TEST(Rational(d.plus_low) <= plus, p.name << " direction " << k);
+      BOOST_TEST(Rational(d.minus_low) <= minus, p.name << " direction " << k);
+      BOOST_TEST(d.plus_low >= CGAL::to_double(plus) * (1 - 1e-12), p.name << " direction " << k);
+      BOOST_TEST(d.minus_low >= CGAL::to_double(minus) * (1 - 1e-12), p.name << " direction " << k);
+      Rational nn = 0;
+      for (int c = 0; c < 3; ++c) {
+        BOOST_TEST(std::fabs(d.n[c] - CGAL::to_double(n[c])) <= 4 * 0x1p-53 * std::fabs(CGAL::to_double(n[c])),
+                   p.name << " direction " << k);
+        nn += n[c] * n[c];
+      }
+      BOOST_TEST(Rational(d.nn_up) >= nn, p.name << " direction " << k);
+      ++checked;
+      }
+  }
+  BOOST_TEST_MESSAGE("facet bounds: " << checked << " directions checked, " << framed << " of " << pairs.size()
+                                      << " pairs over the integer frame");
+  BOOST_TEST(framed == int(pairs.size()));
+  BOOST_TEST(checked > 10000);
 }
 
 BOOST_AUTO_TEST_CASE(lone_pair_certificates_never_above_the_exact_minimum) {

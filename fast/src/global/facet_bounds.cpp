@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "exact/expansion.h"
+#include "exact/integer_heights.h"
 #include "global/lone_pair_certificate.h"
 
 namespace pdd::fast::global {
@@ -76,6 +77,79 @@ bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)
 // cross product of two edges from one vertex: edges 0-1 and 0-2 for face 012, and so on; any two
 // edges of a face span its plane) and the 36 cross products of an edge of A and an edge of B.
 // Every facet normal of M is among them (up to orientation: both are bounded).
+// Over the pair's integer frame (integer_heights.h: every coordinate X 2^e, |X| < 2^60, the
+// normal's components exact in __int128, each height difference n.(p - q) exact in a wide
+// integer): the same bounds as direction_bounds' expansions at a tenth of their cost. The extreme
+// vertices along n are found by exact signs; D(n) = n.(a_max - b_min) and D(-n) = n.(b_max -
+// a_min), each one exact wide integer rounded down (wide_lower); n's components rounded to
+// nearest (within u, inside the 4u DirectionBounds promises). Units: n in 2^(2e), D in 2^(3e),
+// n.n in 2^(4e), as a double product n.x is. False where a value would leave the normal range.
+constexpr double kFramedFloor = 0x1p-900;  // (the smallest scaled value taken: no underflow)
+
+// A lower bound of w = hi 2^64 + lo (lo in [0, 2^64)) times 2^s: hi converted within u |hi|,
+// lo within 2^11 (a double below 2^64 has an ulp <= 2^12), the sum within u of itself, so
+// |v - w| <= 2u |w| + 2^13 <= 2.1u |v| + 2^13; 8u |v| + 2^14 is taken, the two roundings of
+// this line covered by the factor (1 - 4u). NaN-free: |hi| < 2^122.
+double wide_lower(const detail::IntegerFrame::Wide& w, int s) {
+  const double v = std::ldexp(double(w.hi), 64) + double(w.lo);
+  const double low = (v - (8 * kU * std::fabs(v) + 0x1p14)) * (1 - 4 * kU);
+  if (!(low > 0)) return low;
+  const double scaled = std::ldexp(low, s);
+  return scaled >= kFramedFloor ? scaled : 0.0;  // (0: not certainly positive, declined)
+}
+
+using Wide = detail::IntegerFrame::Wide;
+bool less(const Wide& a, const Wide& b) { return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo); }
+// a - b exactly (|a|, |b| < 2^186: the difference's high part below 2^123)
+Wide minus(const Wide& a, const Wide& b) { return Wide{a.hi - b.hi - (a.lo < b.lo ? 1 : 0), a.lo - b.lo}; }
+
+bool direction_bounds_framed(const detail::IntegerFrame& f, const __int128 (&m)[3], DirectionBounds& out) {
+  out.zero = m[0] == 0 && m[1] == 0 && m[2] == 0;
+  if (out.zero) return true;
+  Wide h[8];  // n.(x_i - x_0), exactly (A's vertices 0..3, B's 4..7)
+  for (int i = 0; i < 8; ++i) h[i] = f.dot(m, i, 0);
+  int amax = 0, amin = 0, bmax = 4, bmin = 4;
+  for (int i = 1; i < 4; ++i) {
+    if (less(h[amax], h[i])) amax = i;
+    if (less(h[i], h[amin])) amin = i;
+    if (less(h[bmax], h[4 + i])) bmax = 4 + i;
+    if (less(h[4 + i], h[bmin])) bmin = 4 + i;
+  }
+  const int e = f.unit_exponent();
+  out.plus_low = wide_lower(minus(h[amax], h[bmin]), 3 * e);
+  out.minus_low = wide_lower(minus(h[bmax], h[amin]), 3 * e);
+  if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
+  double nn = 0;
+  for (int k = 0; k < 3; ++k) {
+    out.n[k] = std::ldexp(double(m[k]), 2 * e);
+    if (out.n[k] != 0 && !(std::fabs(out.n[k]) >= kFramedFloor)) return false;
+    const double a = std::fabs(out.n[k]) * (1 + 2 * kU);
+    nn += a * a;
+  }
+  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
+  return true;
+}
+
+// candidate_bounds over the frame (the same 44 directions in the same order).
+bool candidate_bounds_framed(const detail::IntegerFrame& f, DirectionBounds (&out)[kDirections]) {
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};  // faces 012, 013, 023, 123
+  __int128 m[3];
+  int k = 0;
+  for (const auto& fe : kFaceEdges)
+    for (const int t : {0, 4}) {  // A's face, then B's
+      const auto &e0 = kEdge[fe[0]], &e1 = kEdge[fe[1]];
+      f.normal(t + e0[1], t + e0[0], t + e1[1], t + e1[0], m);
+      if (!direction_bounds_framed(f, m, out[k++])) return false;
+    }
+  for (const auto& a : kEdge)
+    for (const auto& b : kEdge) {
+      f.normal(a[1], a[0], 4 + b[1], 4 + b[0], m);
+      if (!direction_bounds_framed(f, m, out[k++])) return false;
+    }
+  return true;
+}
+
 bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBounds (&out)[kDirections]) {
   if (!detail::in_exact_range(A, B)) return false;
   ExpVec xa[4], xb[4];  // the vertices relative to A[0], exactly
@@ -101,7 +175,12 @@ bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBound
 }  // namespace
 
 bool FacetBounds::get() {
-  if (state_ == 0) state_ = candidate_bounds(A_, B_, dirs_) ? 1 : -1;
+  if (state_ != 0) return state_ > 0;
+  if (arithmetic_ == FacetArithmetic::IntegersWhereExact) {
+    detail::IntegerFrame frame(A_, B_);
+    by_integers_ = frame.usable() && candidate_bounds_framed(frame, dirs_);
+  }
+  state_ = by_integers_ || candidate_bounds(A_, B_, dirs_) ? 1 : -1;
   return state_ > 0;
 }
 

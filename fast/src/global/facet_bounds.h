@@ -5,18 +5,19 @@
 // Input : the pair (engine units, global_depth.h).
 // Output: FacetBounds::get(): the 44 candidate directions (SPEC §3's: A's and B's face normals,
 //         the cross products of an edge of A and an edge of B), each n rounded componentwise, its
-//         overlaps D(n), D(-n) bounded below and n.n above; computed exactly on first use (~20 us:
-//         expansions), false where the pair is outside the expansions' range or does not
-//         intersect. pd2_lower: PD^2 rounded down. polytope_inside_ball: every unit u with
+//         overlaps D(n), D(-n) bounded below and n.n above; computed exactly on first use (~2 us
+//         over an integer frame, ~20 us by expansions), false where the pair is outside the
+//         expansions' range or does not intersect. pd2_lower: PD^2 rounded down. polytope_inside_ball: every unit u with
 //         u.d <= c0 has D(u) >= d0.
 //
 // Math. D(u) = max_i u.a_i - min_j u.b_j, the overlap along u, is the support function of M;
 // the rigid depth PD is its least value over unit u, attained at a facet normal of M, and every
 // facet normal is a candidate (up to orientation: both are bounded). Each candidate n is formed
-// exactly (expansion.h: cross products of coordinate differences), its heights exactly, the
-// extreme ones compared exactly, and each overlap rounded down from its exact expansion
-// (approx_of's bound); n.n rounded up. So PD^2 >= min D(n)^2 / n.n, rounded down. The polytope
-// test is argued at polytope_inside_ball (facet_bounds.cpp).
+// exactly, its heights exactly, the extreme ones compared exactly, and each overlap rounded down
+// from its exact value; n.n rounded up. So PD^2 >= min D(n)^2 / n.n, rounded down. Exactly: over
+// the pair's integer frame where it has one (integer_heights.h: n in __int128, each height a wide
+// integer), else by expansions (expansion.h). The polytope test is argued at
+// polytope_inside_ball (facet_bounds.cpp).
 #pragma once
 
 #include "global/vec3.h"
@@ -36,18 +37,28 @@ struct DirectionBounds {
 
 inline constexpr int kDirections = 44;
 
+// How the bounds are computed: over the pair's integer frame where it has one (integer_heights.h:
+// coordinates on one grid of 60 bits, as decimal grids and their shifted copies are; ~10x faster),
+// else by expansions; or by expansions only (tests compare the two).
+enum class FacetArithmetic { IntegersWhereExact, Expansions };
+
 // A pair's candidate bounds, computed on first use (shared by the certificates of one pair).
 class FacetBounds {
  public:
-  FacetBounds(const TetVertices& A, const TetVertices& B) : A_(A), B_(B) {}
+  FacetBounds(const TetVertices& A, const TetVertices& B,
+              FacetArithmetic arithmetic = FacetArithmetic::IntegersWhereExact)
+      : A_(A), B_(B), arithmetic_(arithmetic) {}
   bool get();
   const DirectionBounds (&dirs() const)[kDirections] { return dirs_; }
+  bool by_integers() const { return by_integers_; }  // (after get(): the frame's arithmetic was used)
 
  private:
   const TetVertices& A_;
   const TetVertices& B_;
+  FacetArithmetic arithmetic_;
   DirectionBounds dirs_[kDirections];
   int state_ = 0;  // 0: not computed, 1: computed, -1: failed
+  bool by_integers_ = false;
 };
 
 // PD^2 rounded down; false where the bounds are not available.
