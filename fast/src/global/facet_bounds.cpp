@@ -6,7 +6,6 @@
 
 #include "exact/expansion.h"
 #include "exact/integer_heights.h"
-#include "global/lone_pair_certificate.h"
 
 namespace pdd::fast::global {
 namespace {

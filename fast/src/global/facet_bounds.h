@@ -64,6 +64,12 @@ class FacetBounds {
 // PD^2 rounded down; false where the bounds are not available.
 bool pd2_lower(FacetBounds& bounds, double& pd2_low);
 
+// A proved lower bound on PD^2, the rigid depth squared (the least squared overlap over unit
+// directions), within a few u of it; false where neither arithmetic can take the pair (a
+// coordinate outside the expansions' exact range, an expansion over its capacity) or the pair
+// does not intersect.
+bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low);
+
 // Every unit u with u.d <= c0 has D(u) >= d0: the polytope {u : D(u) <= d0, u.d <= c0} lies inside
 // the open unit ball (with the margin kInside); d is taken as given (exact).
 bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0);

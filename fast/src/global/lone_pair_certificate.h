@@ -87,9 +87,5 @@ bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Proble
 bool certify_lone_pairs(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds,
                         LonePairResult& out);
 
-// A proved lower bound on PD^2, the rigid depth squared (the least squared overlap over unit
-// directions), within a few u of it; false where expansion.h cannot take the pair (a coordinate
-// outside its exact range, an expansion over its capacity) or the pair does not intersect.
-bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, double& pd2_low);
 
 }  // namespace pdd::fast::global
