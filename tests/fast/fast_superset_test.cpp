@@ -11,9 +11,11 @@
 #include "certification/value_bounds.h"
 #include "exact/exact_candidate.h"
 #include "exact/exact_path.h"
+#include "exact/expansion.h"
 #include "fast_test_util.h"
 #include "structured_cells.h"
 #include "kernel/candidate_directions.h"
+#include "kernel/near_parallel_bound.h"
 #include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
 #include "kernel/superset_depth.h"
@@ -171,6 +173,28 @@ BOOST_AUTO_TEST_CASE(translated_copies_with_parallel_edges) {
   // parallel pairs' D of ~0).
   BOOST_TEST(10 * decided > 9 * tried);
   BOOST_TEST_MESSAGE("translated copies: " << decided << " of " << tried << " decided");
+}
+
+// Edges along one axis are parallel whatever their coordinate differences round to: each
+// component of e × f is a sum of products with an exactly zero factor (near_parallel_bound.h's
+// structural zeros). A grid shifted by a non-grid offset has such edges whose differences are
+// not exact (1 − 2^-60 below), where the test on exact differences alone could not tell; an
+// edge tilted by one ulp in y is not shown parallel (its cross product with f is not 0).
+BOOST_AUTO_TEST_CASE(axis_edges_parallel_without_exact_differences) {
+  const Vec3d p0 = {0x1p-60, 0.5, 0.25}, p1 = {1.0, 0.5, 0.25};  // e = (1 − 2^-60, 0, 0), rounded
+  const Vec3d q0 = {0.3, 0.1, 0.7}, q1 = {0.9, 0.1, 0.7};
+  double s, err;
+  detail::two_sum(p1[0], -p0[0], s, err);
+  BOOST_REQUIRE(err != 0.0);  // the difference is not a double
+  BOOST_TEST(detail::cross_zero(p0, p1, q0, q1));
+  BOOST_TEST(detail::cross_zero_in_doubles(p0, p1, q0, q1));
+  BOOST_TEST(detail::cross_zero_in_doubles(q0, q1, p0, p1));
+  const Vec3d tilted = {0.9, std::nextafter(0.1, 1.0), 0.7};  // f = (0.6, 1 ulp, 0): e × f != 0
+  BOOST_TEST(!detail::cross_zero(p0, p1, q0, tilted));
+  BOOST_TEST(!detail::cross_zero_in_doubles(p0, p1, q0, tilted));
+  // exact differences and cancelling products (the other test): (1, 1, 0) and (2, 2, 0)
+  BOOST_TEST(detail::cross_zero_in_doubles({0, 0, 0}, {1, 1, 0}, {1, 0, 3}, {3, 2, 3}));
+  BOOST_TEST(!detail::cross_zero(Vec3d{0, 0, 0}, Vec3d{1, 1, 0}, Vec3d{1, 0, 3}, Vec3d{3, 2, 3}));
 }
 
 // certify() (superset_depth.cpp) bounds only the entries of the kernel's face_bound_bits /

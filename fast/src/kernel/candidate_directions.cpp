@@ -48,24 +48,6 @@ void parallel_heights(const TetVertices& A, const Precomputed& p, int a, int b, 
   c.hB[y] = c.hB[x];        // exactly: n.(r_y − r_x) = 0 (parallel to e)
 }
 
-// Structural zeros. For finite doubles, fl(a − b) = 0 iff a = b (gradual underflow), so a
-// coordinate difference computed as 0 is exactly 0; a product with an exactly zero factor is
-// exactly 0, and so is a sum of exactly zero terms. These tests are sufficient, not necessary:
-// "false" only means "not known to be 0" (the expansions then decide). Aligned pairs (shared
-// axis directions, faces in the same coordinate planes) meet them often.
-//
-// Component k of e × f, e = p1 − p0 and f = q1 − q0 (coordinate differences), is
-// e_i f_j − e_j f_i with (i, j) = (k + 1, k + 2) mod 3: exactly 0 when both products have an
-// exactly zero factor.
-bool cross_component_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1, int k) {
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
-  return (p1[i] == p0[i] || q1[j] == q0[j]) && (p1[j] == p0[j] || q1[i] == q0[i]);
-}
-bool cross_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
-  return cross_component_zero(p0, p1, q0, q1, 0) && cross_component_zero(p0, p1, q0, q1, 1) &&
-         cross_component_zero(p0, p1, q0, q1, 2);
-}
-
 // (p1 − p0) × (q1 − q0) exactly non-zero, decided by a filter on the computed components, for
 // pairs in the expansions' exact range (expansion.h: every coordinate difference and every
 // product of two is then 0 or a normal double, so each operation below has relative error
@@ -341,8 +323,7 @@ struct Builder {
     // (exactly_parallel's precondition, the expansions' range, as near_parallel_normal's).
     // (or by exact products: a copy of an edge whose coordinate differences are exact)
     if (in_range && max_abs3(c.n) <= fb.deg2 &&
-        (cross_zero(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]) ||
-         cross_zero_in_doubles(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]])))
+        cross_zero_in_doubles(B[kEdges[b][0]], B[kEdges[b][1]], A[kEdges[a][0]], A[kEdges[a][1]]))
       return exactly_parallel(a, b);
     // n~ small (value_bounds.h, kExactNormalBelow): taken exactly, with its own bounds; where
     // the expansions cannot, n~ within the degree-2 filter is classified exactly, and a larger

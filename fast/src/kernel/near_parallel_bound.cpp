@@ -120,14 +120,16 @@ bool bound_of_pair(const SupersetLanes& K, const FilterBounds& fb, int a, int b,
   return true;
 }
 
-// (p1 − p0) × (q1 − q0) exactly 0, shown in doubles (else false: not known): both vectors are
-// computed exactly (two_sum's error of each coordinate difference is 0) and every component
-// e_i f_j − e_j f_i is exactly 0, the two products equal as exact products (each as its
-// rounded value and its error fma(x, y, −fl(x y)), the exact error of the product: equal
-// pairs, equal products; exact when the factors are 0 or of magnitude >= 2^-400, so that no
-// product or its error term underflows, checked). (Built with an fma clone, double_word.h:
-// the error terms are one instruction each instead of Dekker's splits.)
+// (p1 − p0) × (q1 − q0) exactly 0, shown in doubles (else false: not known): by structural
+// zeros (header), else both vectors are computed exactly (two_sum's error of each coordinate
+// difference is 0) and every component e_i f_j − e_j f_i is exactly 0, the two products equal
+// as exact products (each as its rounded value and its error fma(x, y, −fl(x y)), the exact
+// error of the product: equal pairs, equal products; exact when the factors are 0 or of
+// magnitude >= 2^-400, so that no product or its error term underflows, checked). (Built with
+// an fma clone, double_word.h: the error terms are one instruction each instead of Dekker's
+// splits.)
 PDD_FMA_CLONES bool cross_zero_in_doubles(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  if (cross_zero(p0, p1, q0, q1)) return true;
   double e[3], f[3];
   for (int k = 0; k < 3; ++k) {
     double err_e, err_f;

@@ -67,7 +67,27 @@ bool near_parallel_positive(const SupersetLanes& K, const FilterBounds& fb, int 
 
 // Edges a of A and b of B exactly parallel, shown in doubles (false: not known).
 bool exactly_parallel(const SupersetLanes& K, int a, int b);
-// (p1 − p0) × (q1 − q0) exactly 0, shown in doubles (false: not known): exact coordinate
+
+// Structural zeros. For finite doubles, fl(a − b) = 0 iff a = b (gradual underflow), so a
+// coordinate difference computed as 0 is exactly 0; a product with an exactly zero factor is
+// exactly 0, and so is a sum of exactly zero terms. These tests are sufficient, not necessary:
+// "false" only means "not known to be 0". Aligned pairs (shared axis directions, faces in the
+// same coordinate planes) meet them often, without a single rounding.
+//
+// Component k of e × f, e = p1 − p0 and f = q1 − q0 (coordinate differences), is
+// e_i f_j − e_j f_i with (i, j) = (k + 1, k + 2) mod 3: exactly 0 when both products have an
+// exactly zero factor.
+inline bool cross_component_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  return (p1[i] == p0[i] || q1[j] == q0[j]) && (p1[j] == p0[j] || q1[i] == q0[i]);
+}
+inline bool cross_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
+  return cross_component_zero(p0, p1, q0, q1, 0) && cross_component_zero(p0, p1, q0, q1, 1) &&
+         cross_component_zero(p0, p1, q0, q1, 2);
+}
+
+// (p1 − p0) × (q1 − q0) exactly 0, shown in doubles (false: not known): by structural zeros
+// (cross_zero, no arithmetic: axis edges, edges in a coordinate plane), else exact coordinate
 // differences whose cross products cancel as exact products (the test exactly_parallel makes).
 bool cross_zero_in_doubles(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1);
 
