@@ -7,6 +7,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <tuple>
 #include <string>
@@ -307,6 +308,19 @@ BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
         ++values;
       } else {
         BOOST_TEST((D == 0), labels[i].str());
+      }
+    }
+    // asked again (integer_depth.cpp's per-pair memo), after another pair's depth in between
+    // (the memo is the last pair's: that pair's answers, never this one's): the same limbs
+    {
+      detail::IntegerFrame other_frame(B, A);  // (B against A: another pair)
+      detail::FramedDepth x;
+      if (other_frame.usable()) detail::framed_depth(other_frame, labels[0], x);
+      for (std::size_t i = 0; i < labels.size(); ++i) {
+        BOOST_REQUIRE(detail::framed_depth(frame, labels[i], x));
+        BOOST_TEST((std::memcmp(x.D, fd[i].D, sizeof x.D) == 0 && std::memcmp(x.nn, fd[i].nn, sizeof x.nn) == 0 &&
+                    x.D_sign == fd[i].D_sign && x.parallel == fd[i].parallel),
+                   "asked again: " << labels[i].str());
       }
     }
     for (std::size_t i = 0; i < labels.size(); ++i)

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "kernel/pair_memo.h"
 #include "pdd/tet_tables.h"
 
 namespace pdd::fast::detail {
@@ -249,7 +250,8 @@ bool oriented_parallel_normal(const IntegerFrame& f, const DirectionLabel& label
 
 }  // namespace
 
-bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
+namespace {
+bool framed_depth_computed(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
   __int128 n[3] = {0, 0, 0};
   Extremes x;
   out.parallel = false;
@@ -263,22 +265,22 @@ bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDept
   return true;
 }
 
+// The values of one pair ask the same labels' depths again (kernel/pair_memo.h): the candidate
+// set's depth signs, then the refinement's intervals and exact order of the same contenders
+// (a contact made by rounding: ~7 of them, ~1,300 instructions each), and pdd2_accel's after
+// rigid_pd2's. The depth is a function of the pair and the label alone (the frame's units are
+// the pair's).
+thread_local PairMemo<FramedDepth, 48> framed_memo;
+}  // namespace
+
+bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out) {
+  return framed_memo.get(f.a(), f.b(), label_key(label), out,
+                         [&](FramedDepth& d) { return framed_depth_computed(f, label, d); });
+}
+
 int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label) {
-  __int128 n[3] = {0, 0, 0};
-  Extremes x;
-  if (!oriented_normal(f, label, n, x)) {
-    FramedDepth d;
-    return framed_depth(f, label, d) ? d.D_sign : 2;
-  }
-  // D = max_i n.s_i − min_j n.r_j > 0 iff some n.(s_i − r_j) > 0 (i, j among the extremes)
-  int best = -1;
-  for (int i = 0; i < 4 && best < 1; ++i)
-    for (int j = 0; j < 4 && best < 1; ++j)
-      if ((x.A >> i & 1) && (x.B >> j & 1)) {
-        const int s = f.dot_sign(n, i, 4 + j);
-        best = s > best ? s : best;
-      }
-  return best;
+  FramedDepth d;
+  return framed_depth(f, label, d) ? d.D_sign : 2;
 }
 
 int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q) {

@@ -56,6 +56,9 @@ class IntegerFrame {
     if (state_ < 0) state_ = find_scale() ? 1 : 0;
     return state_ == 1;
   }
+  // The pair the frame was made of (a memo's key: what the frame computes depends on it alone).
+  const TetVertices& a() const { return A_; }
+  const TetVertices& b() const { return B_; }
 
   // Vertices by index: 0..3 A's s0..s3, 4..7 B's r0..r3. Precondition of both: usable().
   // n = (p1 − p0) × (q1 − q0) in units 2^(2e) (header: each component below 2^123).

@@ -12,6 +12,7 @@
 #include "certification/tight_delta.h"
 #include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
+#include "exact/integer_depth.h"
 #include "hot_path.h"
 #include "kernel/pair_memo.h"
 
@@ -89,7 +90,15 @@ Choice rigid_of(const List& s) {
     v = detail::exact_delta2(c);
     return true;
   };
-  auto interval = [&s](int i, double& v, double& r) {
+  // Over the pair's integer frame where it has one (integer_depth.h: the exact depth and n.n,
+  // each rounded once, memoised per pair: the tie order below and the pair's other values take
+  // the same depths again at no cost), else on compensated heights, then expansions.
+  detail::IntegerFrame frame(*s.A, *s.B);
+  auto interval = [&s, &frame](int i, double& v, double& r) {
+    detail::FramedDepth framed;
+    if (frame.usable() && detail::framed_depth(frame, unpack_label(label_code(s, i)), framed) &&
+        detail::framed_delta2(frame, framed, v, r))
+      return true;
     if (!detail::tight_delta2(s, i, v, r)) return false;
     double ve, re;
     if (!(r < 1 && certified_choice(upper_of(v, r), lower_of(v, r))) &&
