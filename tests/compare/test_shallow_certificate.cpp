@@ -3,19 +3,20 @@
 //  - sound wherever it answers: from every start normal offered (the pair's face normals both
 //    ways, random normals, the exact minimiser's normal rounded, a declining lone pair's ray),
 //    on pairs of every depth (blocks stacked by rounding, resting contacts 1e-9 deep, blocks
-//    resting on each other's columns 1e-9 deep, shallow tips and faces in general
+//    resting on each other's columns 1e-9 and 1e-10 deep, shallow tips and faces in general
 //    position, cells coinciding up to rounding, contacts by rounding on diagonal planes, deep
-//    paper pairs), its lower bound L never exceeds the exact engine's pdd2_global (an exact
-//    upper bound on the minimum, within 1e-12 of it: a bound above the minimum by more than
-//    that would show), and its value lies within definitions §8 of it;
+//    paper pairs; with a declining edge pair's plane beside its own where one is found), its
+//    lower bound L never exceeds the exact engine's pdd2_global (an exact upper bound on the
+//    minimum, within 1e-12 of it: a bound above the minimum by more than that would show), and
+//    its value lies within definitions §8 of it;
 //  - it answers the contacts it is for: blocks stacked by rounding (A's top at 3 x 0.1, B's
 //    bottom at 0.3) and resting on each other 1e-10 and 1e-12 deep (below the double pieces'
 //    reach) get pdd2_global from solve_pair without the slow path, within definitions §8 of
 //    the exact engine;
 //  - the double pieces resolve blocks resting on each other's columns 1e-8 deep, and 1e-9 deep
 //    above their floor (piece_enumeration.cpp's affine_zeros, piece_visit.h's partner_of_zero:
-//    three active vertices on one line or four on one plane, or nearly), without the exact
-//    pieces, within definitions §8;
+//    three active vertices on one line or four on one plane, or nearly), the certificates the
+//    rest down to 1e-11 deep, without the exact pieces, within definitions §8;
 //  - contacts by rounding on diagonal planes (a grid against its copy moved along (1, 1, 1)): the
 //    certificate's value along its normal in double words is the witness global_minimiser
 //    returns, without the exact pieces where it answers, within definitions §8;
@@ -82,10 +83,19 @@ std::vector<fast::global::V3> starts(const TetPair& p, const reference::ExactRes
     out.push_back({CGAL::to_double(n[0]), CGAL::to_double(n[1]), CGAL::to_double(n[2])});
   }
   fast::global::LonePairResult lone;
-  if (!fast::global::certify_lone_pairs(p.A, p.B, fast::global::problem_of(p.A, p.B), lone) &&
-      fast::global::nonzero(lone.near_minimiser))
-    out.push_back(lone.near_minimiser);
+  if (!fast::global::certify_lone_pairs(p.A, p.B, fast::global::problem_of(p.A, p.B), lone)) {
+    if (fast::global::nonzero(lone.near_minimiser)) out.push_back(lone.near_minimiser);
+    if (fast::global::nonzero(lone.edge_v)) out.push_back(lone.edge_v);
+  }
   return out;
+}
+
+// The edge pair's d a declining lone pair certificate gives (LonePairResult::edge_d), else 0:
+// the certificate's second plane (shallow_certificate.h).
+fast::global::V3 edge_d_of(const TetPair& p) {
+  fast::global::LonePairResult lone;
+  if (fast::global::certify_lone_pairs(p.A, p.B, fast::global::problem_of(p.A, p.B), lone)) return {0, 0, 0};
+  return lone.edge_d;
 }
 
 // A vertex of B just inside A by d1 through A's face y = 0 and by d2 through its face z = 0 (near
@@ -109,7 +119,8 @@ BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
   for (double d2 : {1e-12, 1.5e-12, 4e-12}) pairs.push_back(edge_tip_pair(1e-12, d2));
   for (const auto& p : pdd::test::coincident_cell_pairs(2, 8)) pairs.push_back(p);
   for (const auto& p : pdd::test::rounding_contact_pairs(2, 8)) pairs.push_back(p);
-  for (const auto& p : pdd::test::column_resting_pairs(2, 1e-9, 12)) pairs.push_back(p);
+  for (double depth : {1e-9, 1e-10})
+    for (const auto& p : pdd::test::column_resting_pairs(2, depth, 12)) pairs.push_back(p);
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 8; ++trial)
@@ -124,10 +135,12 @@ BOOST_AUTO_TEST_CASE(shallow_certificate_never_above_the_exact_minimum) {
     const double ex = CGAL::to_double(exact.pdd2_global);
     const fast::global::Problem P = fast::global::problem_of(p.A, p.B);
     fast::global::FacetBounds bounds(p.A, p.B);  // (the overlap off the cap by M's facets too)
+    const fast::global::V3 edge_d = edge_d_of(p);  // (and the edge pair's plane, where one is found)
     for (const auto& v : starts(p, exact, rng)) {
       ++asked;
       fast::global::ShallowResult r;
-      if (!fast::global::certify_shallow(p.A, p.B, P, v, r, &bounds)) continue;
+      if (!fast::global::certify_shallow(p.A, p.B, P, v, r, &bounds, fast::global::nonzero(edge_d) ? &edge_d : nullptr))
+        continue;
       ++answered;
       edge_tips += p.name.rfind("edge tip", 0) == 0;
       BOOST_TEST(reference::Rational(r.lower) <= exact.pdd2_global, p.name << ": lower " << r.lower << " > " << ex);
@@ -165,10 +178,14 @@ BOOST_AUTO_TEST_CASE(stacked_and_resting_blocks_without_the_slow_path) {
 // contacts of a vertex of B's bottom on one of A's top have their minimiser where the lone
 // pair's cone meets the piece of two more vertices, ~1e-8 above PD^2 / 32, which the shallow
 // certificate proves from the lone pair's ray (lone_pair_certificate.h's near_minimiser, the
-// overlap off the cap by M's facets). solve_pair's slow_path counts a pdd2_global computed in
-// rationals; every value within definitions §8 of the exact engine.
+// overlap off the cap by M's facets). 1e-10 deep, an edge of B's bottom on the collinear edge of
+// A's top whose tetrahedron's diagonal face reaches the plane has its minimiser ~1.6e-7 above
+// the edge pair's bound, between the overlap's and the edge pair's caps: certified with both
+// (shallow_certificate.h's edge_d; 16 of the 48 in rationals without it). solve_pair's
+// slow_path counts a pdd2_global computed in rationals; every value within definitions §8 of
+// the exact engine.
 BOOST_AUTO_TEST_CASE(blocks_on_columns_resting_without_the_exact_pieces) {
-  for (double depth : {1e-8, 1e-9, 1e-11}) {
+  for (double depth : {1e-8, 1e-9, 1e-10, 1e-11}) {
     const std::vector<TetPair> pairs = pdd::test::column_resting_pairs(2, depth, 48);
     BOOST_REQUIRE(pairs.size() >= 40u);
     const int slow = slow_within_contract(pairs, std::to_string(depth));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "exact/expansion.h"
 #include "exact/integer_heights.h"
@@ -256,6 +257,117 @@ bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0
                        hi = std::min(1.0, (num + e) / (den - e) * (1 + 4 * kU));
       for (const double t : {lo, hi})
         if (!inside(add(pts[i], mul(sub(pts[j], pts[i]), t)))) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace pdd::fast::global
+
+namespace pdd::fast::global {
+
+namespace {
+
+// A point of the clipped polytope's superset, with a bound on its distance from the point it
+// stands for (its roundings), and an upper bound on its length.
+struct Loose {
+  V3 p;
+  double r, len;
+};
+Loose loose(const V3& p, double r) { return {p, r, norm(p) * (1 + 4 * kU)}; }
+
+// |x| + r < sqrt(kInside) / (1 + 4u) (the one plane's test, |x| rounded up), without the square
+// root: s_in = sqrt(kInside) (1 - 6u) is below that bound whatever its rounding, and
+// fl(x.x) (1 + 4u) >= |x|^2 covers the dot's three roundings and the product's.
+const double kSqrtInside = std::sqrt(kInside) * (1 - 6 * kU);
+bool inside_at(double xx, double r) {
+  const double room = kSqrtInside - r;
+  return room > 0 && xx * (1 + 4 * kU) <= room * room * (1 - 4 * kU);
+}
+
+// The crossing of the plane u.d = c on the segment from a (value va, error ea; in the plane's
+// half-space) to b (vb, eb; beyond it): its parameter t in [lo, hi] (the one plane's
+// interval), both ends inside the ball; and, for a later plane, the two ends as points (the
+// crossing between them), each within a.r + b.r + 8u (|a| + |w|) <= 8u (2 |a| + |b|) of its
+// exact place (w = b - a).
+struct Crossing {
+  double lo, hi, r;
+};
+Crossing crossing(const Loose& a, double va, double ea, const Loose& b, double vb, double eb, double c) {
+  const double num = c - va, den = vb - va, e = ea + eb;
+  Crossing x{0, 1, (a.r + b.r + 8 * kU * (2 * a.len + b.len)) * (1 + 4 * kU)};
+  if (den - e > 0) x.lo = std::max(0.0, (num - e) / (den + e) * (1 - 4 * kU)),
+                   x.hi = std::min(1.0, (num + e) / (den - e) * (1 + 4 * kU));
+  return x;
+}
+V3 at(const Loose& a, const Loose& b, double t) { return add(a.p, mul(sub(b.p, a.p), t)); }
+
+}  // namespace
+
+// polytope_inside_ball with two planes: W'' = W ∩ {u.d1 <= c1} ∩ {u.d2 <= c2} inside the open unit
+// ball. conv(P) ∩ H = conv(P ∩ H, the crossings of the plane with the segments from a point of
+// P in H to one beyond it): so S1, the points of W in H1 and every such crossing (each taken at
+// the middle of its parameter's interval, the interval's half length in its bound), spans
+// W ∩ H1; and W''
+// lies inside the ball iff the points of S1 in H2 do and the crossings of the plane u.d2 = c2 on
+// the segments from those to the points of S1 beyond it do: where both ends of a segment are
+// inside, its crossing is (|u|^2 convex), so only the segments to a point outside the ball are
+// crossed, as in the one plane's test. Each point of S1 carries a bound r on its distance from
+// the point it stands for (P's points: their direction's rounding, 8u |p|; a crossing: its
+// ends' bounds and its own roundings), which widens every side test by r |d| and every ball
+// test to |p| + r. (On an edge resting on a collinear edge: ~450 points in S1, ~30 of them
+// outside the ball and beyond the second plane.)
+bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3& d2, double c2, double d0) {
+  if (!bounds.get()) return false;
+  Loose pts[2 * kDirections];
+  int n = 0;
+  for (const DirectionBounds& x : bounds.dirs()) {
+    if (x.zero) continue;
+    const V3 p = mul(x.n, d0 / x.plus_low), q = mul(x.n, -(d0 / x.minus_low));
+    pts[n] = loose(p, 8 * kU * norm(p)), ++n;
+    pts[n] = loose(q, 8 * kU * norm(q)), ++n;
+  }
+  // p.d against c: the value and its error (the direction's rounding and the dot's, 16u, as
+  // the one plane's test; the point's own bound r |d|)
+  auto side = [](const Loose& x, const V3& d, double nd, double c, double& err) {
+    err = 16 * kU * (std::fabs(x.p[0] * d[0]) + std::fabs(x.p[1] * d[1]) + std::fabs(x.p[2] * d[2]) + c) +
+          x.r * nd;
+    return dot(x.p, d);
+  };
+  const double nd1 = norm(d1) * (1 + 4 * kU), nd2 = norm(d2) * (1 + 4 * kU);
+  static thread_local std::vector<Loose> s1;
+  s1.clear();
+  double v1[2 * kDirections], e1[2 * kDirections];
+  for (int j = 0; j < n; ++j) v1[j] = side(pts[j], d1, nd1, c1, e1[j]);
+  for (int i = 0; i < n; ++i) {
+    if (!(v1[i] <= c1 + e1[i])) continue;  // (beyond the plane for certain)
+    s1.push_back(pts[i]);
+    for (int j = 0; j < n; ++j) {
+      if (!(v1[j] > c1 - e1[j])) continue;  // (in H1 for certain: no crossing)
+      // (one point for the crossing: the interval's middle, rounded, its distance from the
+      // crossing |w| ((hi - lo) / 2 + 2u) added to the bound, |w| <= |a| + |b|)
+      const Crossing x = crossing(pts[i], v1[i], e1[i], pts[j], v1[j], e1[j], c1);
+      const double half = (pts[i].len + pts[j].len) * ((x.hi - x.lo) * 0.5 + 2 * kU) * (1 + 4 * kU);
+      s1.push_back(loose(at(pts[i], pts[j], 0.5 * (x.lo + x.hi)), (x.r + half) * (1 + 2 * kU)));
+    }
+  }
+  const std::size_t m = s1.size();
+  static thread_local std::vector<double> v2, e2;
+  static thread_local std::vector<std::size_t> outer;
+  v2.resize(m), e2.resize(m), outer.clear();
+  for (std::size_t j = 0; j < m; ++j) {
+    v2[j] = side(s1[j], d2, nd2, c2, e2[j]);
+    if (v2[j] > c2 - e2[j] && !inside_at(dot(s1[j].p, s1[j].p), s1[j].r)) outer.push_back(j);
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    if (!(v2[i] <= c2 + e2[i])) continue;
+    const Loose& a = s1[i];
+    if (!inside_at(dot(a.p, a.p), a.r)) return false;
+    for (const std::size_t j : outer) {
+      const Loose& b = s1[j];
+      const Crossing x = crossing(a, v2[i], e2[i], b, v2[j], e2[j], c2);
+      const V3 lo = at(a, b, x.lo), hi = at(a, b, x.hi);
+      if (!inside_at(dot(lo, lo), x.r) || !inside_at(dot(hi, hi), x.r)) return false;
     }
   }
   return true;

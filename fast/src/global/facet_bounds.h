@@ -74,4 +74,8 @@ bool rigid_depth_squared_lower(const TetVertices& A, const TetVertices& B, doubl
 // the open unit ball (with the margin kInside); d is taken as given (exact).
 bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0);
 
+// The same with two planes: every unit u with u.d1 <= c1 and u.d2 <= c2 has D(u) >= d0 (two
+// lower bounds on the relaxed value that hold beyond a plane each, the overlap's between them).
+bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3& d2, double c2, double d0);
+
 }  // namespace pdd::fast::global

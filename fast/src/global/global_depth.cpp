@@ -409,9 +409,10 @@ void report_exact(GlobalRun& g, Placement& place, double start_value) {
 
 // A contact far shallower than the pair certified without the pieces (shallow_certificate.h):
 // its value, normal and the positions along it.
-bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOptimum& out) {
+bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOptimum& out,
+                    const V3* edge_d = nullptr) {
   ShallowResult r;
-  if (!certify_shallow(g.A, g.B, g.P, start, r, &bounds)) return false;
+  if (!certify_shallow(g.A, g.B, g.P, start, r, &bounds, edge_d)) return false;
   // Along a normal in double words: a double normal v near it where relaxed(v) is within
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
@@ -460,12 +461,8 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
 // declined: where a lone pair's candidate was evaluated but its value lies above the bound (a
 // minimiser where the lone pair's cone meets a neighbouring piece, ~1e-8 above PD^2 / 32 on
 // blocks resting 1e-9 deep on each other's columns), that normal, else 0.
-bool report_lone_pair(GlobalRun& g, FacetBounds& bounds, GlobalOptimum& out, V3& declined) {
-  LonePairResult r;
-  if (!global::certify_lone_pairs(g.A, g.B, g.P, bounds, r)) {
-    declined = r.near_minimiser;
-    return false;
-  }
+bool report_lone_pair(GlobalRun& g, FacetBounds& bounds, GlobalOptimum& out, LonePairResult& r) {
+  if (!global::certify_lone_pairs(g.A, g.B, g.P, bounds, r)) return false;
   out = GlobalOptimum{};
   out.normal = r.normal;
   Placement place{g.A, g.B, r.normal, dot(r.normal, r.normal), out};
@@ -512,12 +509,18 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     const bool shallow = report_shallow(g, g.best.n, bounds, g.shallow);
     if (shallow && g.shallow.certified) return g.shallow;
     GlobalOptimum lone;
-    V3 declined{0, 0, 0};
+    LonePairResult declined;
     if (report_lone_pair(g, bounds, lone, declined)) return lone;
     // the shallow certificate again from the lone pair's ray: the start's walk may end in
     // another piece's chart, while the ray lies next to a minimiser where the lone pair's cone
-    // meets a neighbouring piece
-    if (nonzero(declined) && report_shallow(g, declined, bounds, lone) && lone.certified) return lone;
+    // meets a neighbouring piece; with an edge pair's bound beside its own where one was found
+    // (an edge on a collinear edge: the overlap between the two caps is as small as the depth),
+    // the pair's start again with that bound, and the edge pair's normal (exactly across the
+    // edge): the walk's multipliers move from these where the ray's nudge leaves them none
+    const V3* edge_d = nonzero(declined.edge_d) ? &declined.edge_d : nullptr;
+    const V3 none{0, 0, 0};
+    for (const V3& start : {edge_d ? g.best.n : none, declined.near_minimiser, declined.edge_v})
+      if (nonzero(start) && report_shallow(g, start, bounds, lone, edge_d) && lone.certified) return lone;
     if (shallow) return g.shallow;
     enumerate_exact(g, exact_start);
   } else {

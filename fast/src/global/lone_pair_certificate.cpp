@@ -222,7 +222,10 @@ bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
   // lower bound, and below the minimum by at most its own kGlobalRel.
   const double lower = ev.value * (1 - 9e-10) * (1 - 2 * kU);
   const double c0 = std::sqrt(12 * lower) * (1 + 4 * kU), d0 = std::sqrt(32 * lower) * (1 + 4 * kU);
-  if (!(lower > 0) || !polytope_inside_ball(bounds, chosen.d, c0, d0)) return false;
+  if (!(lower > 0) || !polytope_inside_ball(bounds, chosen.d, c0, d0)) {
+    out.edge_d = chosen.d, out.edge_v = chosen.v;
+    return false;
+  }
   out.normal = chosen.v;
   out.eval = ev;
   out.lower = lower;

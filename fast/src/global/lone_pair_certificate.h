@@ -51,6 +51,12 @@ struct LonePairResult {
   // Declined with a lone pair's candidate evaluated (certified) above the bound: that normal
   // (next to the minimiser where the lone pair's cone meets another piece), else 0.
   V3 near_minimiser{};
+  // Declined with an edge pair's candidate evaluated: its d = a - b (exact), for which
+  // relaxed(u) >= (u.d)^2 / 12 wherever u.d >= 0 (certify_edge_pair), else 0: a bound the
+  // shallow certificate can take beside its own where the minimiser lies off the edge pair's
+  // regime (an edge on a collinear edge whose tetrahedron's face through it reaches the plane).
+  V3 edge_d{};
+  V3 edge_v{};  // that edge pair's candidate normal (a start for the shallow certificate), else 0
 };
 
 bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);

@@ -397,7 +397,7 @@ namespace {
 
 // One attempt (certify_shallow): the normal in doubles, or in double words.
 bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, bool words,
-             ShallowResult& out, FacetBounds* bounds) {
+             ShallowResult& out, FacetBounds* bounds, const V3* edge_d) {
   V3 v = v0, lo{0, 0, 0};
   Evaluation ev;
   if (!find_normal(A, B, P, v, lo, words, ev)) return false;
@@ -467,9 +467,14 @@ bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const
   const double c0 = std::nextafter(std::sqrt(ratio), 2.0);
   const double d0 = std::sqrt(32 * L) * (1 + 4 * kU);
   if (!(c0 < 1)) return false;
-  if (!overlap_off_cap(A, B, v, lo, c0, d0) &&
-      !(bounds && polytope_inside_ball(*bounds, mul(v, 1 / norm(v)), (c0 + cap_slack(v, lo)) * (1 + 2 * kU), d0)))
-    return false;
+  if (!overlap_off_cap(A, B, v, lo, c0, d0)) {
+    const V3 vh = mul(v, 1 / norm(v));
+    const double cv = (c0 + cap_slack(v, lo)) * (1 + 2 * kU);
+    // (the edge pair's plane: relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L), rounded up)
+    if (!(bounds && (polytope_inside_ball(*bounds, vh, cv, d0) ||
+                     (edge_d && polytope_inside_ball(*bounds, vh, cv, *edge_d, std::sqrt(12 * L) * (1 + 4 * kU), d0)))))
+      return false;
+  }
   out.normal = v, out.low = lo, out.eval = ev, out.lower = L;
   return true;
 }
@@ -477,9 +482,15 @@ bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const
 }  // namespace
 
 bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out,
-                     FacetBounds* bounds) {
+                     FacetBounds* bounds, const V3* edge_d) {
   if (!nonzero(v0) || !(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return false;
-  return attempt(A, B, P, v0, false, out, bounds) || attempt(A, B, P, v0, true, out, bounds);
+  if (attempt(A, B, P, v0, false, out, bounds, edge_d) || attempt(A, B, P, v0, true, out, bounds, edge_d)) return true;
+  // Once more from the start scaled to unit length: the same direction, other roundings. The
+  // walk's normal and the multipliers moved on it follow the start's bits, and at a contact made
+  // by rounding those can leave the dual bound B0 below L by less than the gap (a face resting
+  // on a face 1e-10 deep: from (0, 0, 0.16) B0 < L, from (0, 0, 1) and (0, 0, 0.64) certified).
+  const V3 u = mul(v0, 1 / norm(v0));
+  return u != v0 && (attempt(A, B, P, u, false, out, bounds, edge_d) || attempt(A, B, P, u, true, out, bounds, edge_d));
 }
 
 }  // namespace pdd::fast::global

@@ -72,8 +72,14 @@ struct ShallowResult {
 };
 
 // bounds: the pair's facet bounds (facet_bounds.h), for the overlap off the cap where the ball
-// beneath the contact's face does not fit; null: that test is not made.
+// beneath the contact's face does not fit; null: that test is not made. edge_d: an edge pair's
+// d (lone_pair_certificate.h's LonePairResult::edge_d), whose bound relaxed(u) >= (u.d)^2 / 12
+// (u.d >= 0) holds beyond the plane u.d = sqrt(12 L): where the overlap alone does not cover
+// what lies off the cap, the polytope test with both planes (an edge resting on a collinear
+// edge, the minimiser where the face of its tetrahedron through the edge reaches the plane,
+// ~1.6e-7 above the edge pair's bound: between the two, around the edge's own normal, the
+// overlap is as small as the depth); null: not taken.
 bool certify_shallow(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, ShallowResult& out,
-                     FacetBounds* bounds = nullptr);
+                     FacetBounds* bounds = nullptr, const V3* edge_d = nullptr);
 
 }  // namespace pdd::fast::global
