@@ -21,7 +21,9 @@
 //    certificate's value along its normal in double words is the witness global_minimiser
 //    returns, without the exact pieces where it answers, within definitions §8;
 //  - five-tetrahedra blocks stacked by rounding on each other's columns: minimisers where pieces
-//    meet, certified with multipliers moved on a vertex off the plane, within definitions §8.
+//    meet, certified with multipliers moved on a vertex off the plane, within definitions §8;
+//  - faces resting on faces 1e-10 deep from the starts pdd2_global gives them: certified by the
+//    retries at other scales of the start, within definitions §8.
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -31,6 +33,7 @@
 
 #include "global/lone_pair_certificate.h"
 #include "global/shallow_certificate.h"
+#include "kernel/power_scale.h"
 #include "pdd/compare/engine_comparison.h"
 #include "pdd/compare/generate.h"
 #include "pdd/global_minimiser.h"
@@ -239,4 +242,40 @@ BOOST_AUTO_TEST_CASE(five_tetrahedra_blocks_stacked_by_rounding_on_columns) {
   BOOST_TEST_MESSAGE("five tetrahedra stacked by rounding on columns: " << slow << " of " << pairs.size()
                                                                         << " in rationals");
   BOOST_TEST(slow <= int(pairs.size()) / 8, slow << " of " << pairs.size() << " in rationals");
+}
+
+// Faces resting on faces 1e-10 deep (Kuhn blocks of 8 x 8 x 3 cells of 0.1, vertices i 0.1 each
+// rounded once, B's bottom 1e-10 under A's top, over A's columns: two of their element pairs),
+// from the start pdd2_global gives each on the pair it rescales (the fast engine's units,
+// power_scale.h): the walk's normal and the multipliers moved on it follow the start's bits, and
+// from these starts the dual bound falls below L by less than the gap; the certificate's
+// retries from the start at unit length (the first pair) and at three units (the second)
+// answer, within definitions §8 of the exact engine, L below its minimum.
+BOOST_AUTO_TEST_CASE(faces_on_faces_certified_from_the_starts_given) {
+  struct Case {
+    TetPair pair;
+    fast::global::V3 start;
+  };
+  const double t = 0.30000000000000004, b = 0.29999999990000004;  // 3 x 0.1 and 3 x 0.1 - 1e-10
+  const Case cases[] = {
+      {{"face on face, unit start", {}, {{{t, 0.0, t}, {t, 0.0, 0.2}, {t, 0.1, t}, {0.4, 0.1, t}}},
+        {{{t, 0.1, b}, {t, 0.0, b}, {0.4, 0.1, b}, {0.4, 0.1, 0.3999999999}}}},
+       {-0.0, -0.0, 0.15999999999999998}},
+      {{"face on face, three units", {}, {{{0.2, t, t}, {0.2, t, 0.2}, {0.2, 0.4, t}, {t, 0.4, t}}},
+        {{{0.2, 0.4, b}, {0.2, t, b}, {t, 0.4, b}, {t, 0.4, 0.3999999999}}}},
+       {-0.0, -0.0, 0.16000000000000003}},
+  };
+  for (const Case& c : cases) {
+    const fast::detail::ScaledPair sp = fast::detail::power_scaled(c.pair.A, c.pair.B);
+    BOOST_REQUIRE((sp.finite && sp.exact));
+    const auto exact = exact_with_global(TetPair{c.pair.name, {}, sp.A, sp.B});  // (in the same units)
+    BOOST_REQUIRE(exact.intersecting);
+    const double ex = CGAL::to_double(exact.pdd2_global);
+    fast::global::FacetBounds bounds(sp.A, sp.B);
+    fast::global::ShallowResult r;
+    BOOST_TEST(fast::global::certify_shallow(sp.A, sp.B, fast::global::problem_of(sp.A, sp.B), c.start, r, &bounds),
+               c.pair.name);
+    BOOST_TEST(std::fabs(r.eval.value - ex) <= 1e-9 * ex, c.pair.name << ": " << r.eval.value << " vs " << ex);
+    BOOST_TEST(reference::Rational(r.lower) <= exact.pdd2_global, c.pair.name);
+  }
 }
