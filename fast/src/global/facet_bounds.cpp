@@ -280,6 +280,7 @@ Loose loose(const V3& p, double r) { return {p, r, norm(p) * (1 + 4 * kU)}; }
 // root: s_in = sqrt(kInside) (1 - 6u) is below that bound whatever its rounding, and
 // fl(x.x) (1 + 4u) >= |x|^2 covers the dot's three roundings and the product's.
 const double kSqrtInside = std::sqrt(kInside) * (1 - 6 * kU);
+constexpr double kMaxCrossings = 1 << 20;  // (polytope_inside_ball's second plane)
 bool inside_at(double xx, double r) {
   const double room = kSqrtInside - r;
   return room > 0 && xx * (1 + 4 * kU) <= room * room * (1 - 4 * kU);
@@ -359,6 +360,9 @@ bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3
     v2[j] = side(s1[j], d2, nd2, c2, e2[j]);
     if (v2[j] > c2 - e2[j] && !inside_at(dot(s1[j].p, s1[j].p), s1[j].r)) outer.push_back(j);
   }
+  // (at most 88 + 88^2 points and as many outside: where the crossings would number more than
+  // kMaxCrossings, not shown, rather than seconds on one pair; the contacts it is for have ~10^4)
+  if (double(m) * double(outer.size()) > kMaxCrossings) return false;
   for (std::size_t i = 0; i < m; ++i) {
     if (!(v2[i] <= c2 + e2[i])) continue;
     const Loose& a = s1[i];
