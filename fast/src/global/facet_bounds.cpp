@@ -280,7 +280,7 @@ Loose loose(const V3& p, double r) { return {p, r, norm(p) * (1 + 4 * kU)}; }
 // root: s_in = sqrt(kInside) (1 - 6u) is below that bound whatever its rounding, and
 // fl(x.x) (1 + 4u) >= |x|^2 covers the dot's three roundings and the product's.
 const double kSqrtInside = std::sqrt(kInside) * (1 - 6 * kU);
-constexpr double kMaxCrossings = 1 << 20;  // (polytope_inside_ball's second plane)
+constexpr double kMaxCrossings = 1 << 20;  // (polytope_inside_ball's clipped points and crossings)
 bool inside_at(double xx, double r) {
   const double room = kSqrtInside - r;
   return room > 0 && xx * (1 + 4 * kU) <= room * room * (1 - 4 * kU);
@@ -305,29 +305,29 @@ V3 at(const Loose& a, const Loose& b, double t) { return add(a.p, mul(sub(b.p, a
 
 }  // namespace
 
-// polytope_inside_ball with two planes: W'' = W ∩ {u.d1 <= c1} ∩ {u.d2 <= c2} inside the open unit
-// ball. conv(P) ∩ H = conv(P ∩ H, the crossings of the plane with the segments from a point of
-// P in H to one beyond it): so S1, the points of W in H1 and every such crossing (each taken at
-// the middle of its parameter's interval, the interval's half length in its bound), spans
-// W ∩ H1; and W''
-// lies inside the ball iff the points of S1 in H2 do and the crossings of the plane u.d2 = c2 on
-// the segments from those to the points of S1 beyond it do: where both ends of a segment are
-// inside, its crossing is (|u|^2 convex), so only the segments to a point outside the ball are
-// crossed, as in the one plane's test. Each point of S1 carries a bound r on its distance from
-// the point it stands for (P's points: their direction's rounding, 8u |p|; a crossing: its
-// ends' bounds and its own roundings), which widens every side test by r |d| and every ball
-// test to |p| + r. (On an edge resting on a collinear edge: ~450 points in S1, ~30 of them
-// outside the ball and beyond the second plane.)
-bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3& d2, double c2, double d0) {
-  if (!bounds.get()) return false;
-  Loose pts[2 * kDirections];
-  int n = 0;
-  for (const DirectionBounds& x : bounds.dirs()) {
-    if (x.zero) continue;
-    const V3 p = mul(x.n, d0 / x.plus_low), q = mul(x.n, -(d0 / x.minus_low));
-    pts[n] = loose(p, 8 * kU * norm(p)), ++n;
-    pts[n] = loose(q, 8 * kU * norm(q)), ++n;
-  }
+// polytope_inside_ball with k planes: W_k = W ∩ {u.d_1 <= c_1} ∩ .. ∩ {u.d_k <= c_k} inside the
+// open unit ball. conv(P) ∩ H = conv(P ∩ H, the crossings of the plane with the segments from a
+// point of P in H to one beyond it), and any larger set of points of W spans a polytope that
+// holds it: so S_1 (every point of S_0 = P not beyond H_1 for certain, and each crossing of a
+// segment from one of those to one beyond for certain; a point near the plane is kept, which
+// spans its segments' crossings with the others kept) spans a superset of W ∩ H_1 inside W, S_2
+// one of W ∩ H_1 ∩ H_2 from S_1 the same way, and so on to S_(k-1); W_k lies inside the ball if
+// the points of S_(k-1) in H_k do and the crossings of the last plane on the segments from those
+// to the points of S_(k-1) beyond it do: where both ends of a segment are inside, its crossing is
+// (|u|^2 convex), so only the segments to a point outside the ball are crossed, as in the one
+// plane's test. A crossing of a clip is one point, the middle of its parameter's interval (its
+// distance from the crossing in its bound) where the interval is narrow, else the interval's two
+// ends, between which it lies (a segment nearly along the plane). Each point carries a bound r on
+// its distance from the point it stands for (P's points: their direction's rounding, 8u |p|; a
+// crossing: its ends' bounds and its own roundings), which widens every side test by r |d| and
+// every ball test to |p| + r. P's points within 2^-20 of 0 (directions far deeper than d0: most
+// of them on a shallow contact) are replaced by the corners of the cube [-2^-20, 2^-20]^3, which
+// holds them. (An edge resting on a collinear edge, two planes: ~450 points in S_1, ~30 of them
+// outside the ball and beyond the second plane. Caps about tied minimisers: a cap is ~1e-5 rad
+// wide and few points lie beyond it: ~20 points, ~80 after an edge pair's plane, ~1500 after a
+// cap more, ~20 of them beyond the last cap.)
+bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, double d0) {
+  if (!bounds.get() || k < 1) return false;
   // p.d against c: the value and its error (the direction's rounding and the dot's, 16u, as
   // the one plane's test; the point's own bound r |d|)
   auto side = [](const Loose& x, const V3& d, double nd, double c, double& err) {
@@ -335,46 +335,91 @@ bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3
           x.r * nd;
     return dot(x.p, d);
   };
-  const double nd1 = norm(d1) * (1 + 4 * kU), nd2 = norm(d2) * (1 + 4 * kU);
-  static thread_local std::vector<Loose> s1;
-  s1.clear();
-  double v1[2 * kDirections], e1[2 * kDirections];
-  for (int j = 0; j < n; ++j) v1[j] = side(pts[j], d1, nd1, c1, e1[j]);
-  for (int i = 0; i < n; ++i) {
-    if (!(v1[i] <= c1 + e1[i])) continue;  // (beyond the plane for certain)
-    s1.push_back(pts[i]);
-    for (int j = 0; j < n; ++j) {
-      if (!(v1[j] > c1 - e1[j])) continue;  // (in H1 for certain: no crossing)
-      // (one point for the crossing: the interval's middle, rounded, its distance from the
-      // crossing |w| ((hi - lo) / 2 + 2u) added to the bound, |w| <= |a| + |b|)
-      const Crossing x = crossing(pts[i], v1[i], e1[i], pts[j], v1[j], e1[j], c1);
-      const double half = (pts[i].len + pts[j].len) * ((x.hi - x.lo) * 0.5 + 2 * kU) * (1 + 4 * kU);
-      s1.push_back(loose(at(pts[i], pts[j], 0.5 * (x.lo + x.hi)), (x.r + half) * (1 + 2 * kU)));
+  static thread_local std::vector<Loose> s, next;
+  static thread_local std::vector<double> v, e;
+  static thread_local std::vector<std::size_t> outer, beyond;
+  s.clear();
+  auto add_point = [&](const V3& p) {  // (candidates of one direction give one point: kept once)
+    for (const Loose& x : s)
+      if (x.p == p) return;
+    s.push_back(loose(p, 8 * kU * norm(p)));
+  };
+  for (const DirectionBounds& x : bounds.dirs()) {
+    if (x.zero) continue;
+    add_point(mul(x.n, d0 / x.plus_low));
+    add_point(mul(x.n, -(d0 / x.minus_low)));
+  }
+  // The points within 2^-20 of 0 (with their bounds: the directions far deeper than d0, most
+  // of them on a shallow contact) lie in the cube [-2^-20, 2^-20]^3: its eight corners (exact)
+  // stand for them, a larger hull with fewer points, each crossing from one within ~2^-20 of
+  // the one it replaces.
+  constexpr double kNear = 0x1p-20;
+  auto near = [&](const Loose& x) { return x.len + x.r <= kNear; };
+  if (std::count_if(s.begin(), s.end(), near) > 8) {
+    s.erase(std::remove_if(s.begin(), s.end(), near), s.end());
+    for (int c = 0; c < 8; ++c)
+      s.push_back({{c & 1 ? kNear : -kNear, c & 2 ? kNear : -kNear, c & 4 ? kNear : -kNear}, 0, 2 * kNear});
+  }
+  for (int t = 0; t + 1 < k; ++t) {  // S_(t+1) from S_t
+    const V3& d = planes[t].d;
+    const double c = planes[t].c, nd = norm(d) * (1 + 4 * kU);
+    const std::size_t n = s.size();
+    v.resize(n), e.resize(n), beyond.clear();
+    for (std::size_t j = 0; j < n; ++j) {
+      v[j] = side(s[j], d, nd, c, e[j]);
+      if (!(v[j] <= c + e[j])) beyond.push_back(j);  // (beyond the plane for certain)
     }
+    next.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(v[i] <= c + e[i])) continue;
+      next.push_back(s[i]);  // (in the half-space, or near its plane: kept either way)
+      // The crossings of the segments to the points beyond for certain (a point kept already
+      // spans its segments' crossings with the others kept): where the parameter's interval is
+      // narrow, one point, its middle, whose distance from the crossing |w| ((hi - lo) / 2 +
+      // 2u) is added to the bound (|w| <= |a| + |b|); else its two ends, between which the
+      // crossing lies (a segment nearly along the plane: two points near a cap's rim).
+      for (const std::size_t j : beyond) {
+        const Crossing x = crossing(s[i], v[i], e[i], s[j], v[j], e[j], c);
+        if (x.hi - x.lo <= 0x1p-40) {
+          const double half = (s[i].len + s[j].len) * ((x.hi - x.lo) * 0.5 + 2 * kU) * (1 + 4 * kU);
+          next.push_back(loose(at(s[i], s[j], 0.5 * (x.lo + x.hi)), (x.r + half) * (1 + 2 * kU)));
+        } else {
+          next.push_back(loose(at(s[i], s[j], x.lo), x.r));
+          next.push_back(loose(at(s[i], s[j], x.hi), x.r));
+        }
+      }
+      if (double(next.size()) > kMaxCrossings) return false;
+    }
+    s.swap(next);
   }
-  const std::size_t m = s1.size();
-  static thread_local std::vector<double> v2, e2;
-  static thread_local std::vector<std::size_t> outer;
-  v2.resize(m), e2.resize(m), outer.clear();
+  const V3& d = planes[k - 1].d;
+  const double c = planes[k - 1].c, nd = norm(d) * (1 + 4 * kU);
+  const std::size_t m = s.size();
+  v.resize(m), e.resize(m), outer.clear();
   for (std::size_t j = 0; j < m; ++j) {
-    v2[j] = side(s1[j], d2, nd2, c2, e2[j]);
-    if (v2[j] > c2 - e2[j] && !inside_at(dot(s1[j].p, s1[j].p), s1[j].r)) outer.push_back(j);
+    v[j] = side(s[j], d, nd, c, e[j]);
+    if (v[j] > c - e[j] && !inside_at(dot(s[j].p, s[j].p), s[j].r)) outer.push_back(j);
   }
-  // (at most 88 + 88^2 points and as many outside: where the crossings would number more than
-  // kMaxCrossings, not shown, rather than seconds on one pair; the contacts it is for have ~10^4)
+  // (where the crossings would number more than kMaxCrossings, not shown, rather than seconds
+  // on one pair; the contacts it is for have ~10^4)
   if (double(m) * double(outer.size()) > kMaxCrossings) return false;
   for (std::size_t i = 0; i < m; ++i) {
-    if (!(v2[i] <= c2 + e2[i])) continue;
-    const Loose& a = s1[i];
+    if (!(v[i] <= c + e[i])) continue;
+    const Loose& a = s[i];
     if (!inside_at(dot(a.p, a.p), a.r)) return false;
     for (const std::size_t j : outer) {
-      const Loose& b = s1[j];
-      const Crossing x = crossing(a, v2[i], e2[i], b, v2[j], e2[j], c2);
+      const Loose& b = s[j];
+      const Crossing x = crossing(a, v[i], e[i], b, v[j], e[j], c);
       const V3 lo = at(a, b, x.lo), hi = at(a, b, x.hi);
       if (!inside_at(dot(lo, lo), x.r) || !inside_at(dot(hi, hi), x.r)) return false;
     }
   }
   return true;
+}
+
+bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3& d2, double c2, double d0) {
+  const Halfspace planes[2] = {{d1, c1}, {d2, c2}};
+  return polytope_inside_ball(bounds, planes, 2, d0);
 }
 
 }  // namespace pdd::fast::global
