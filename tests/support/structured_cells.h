@@ -120,6 +120,28 @@ inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pa
   return intersecting_pairs(A, B, "on columns", max_pairs, [](double) { return true; });
 }
 
+// The same with cubes cut into five, the cuts alternating across the contact (A's cube (i, j)
+// cut odd where i + j is, B's the other way): a vertex of B's bottom rests on a vertex of A's
+// top, or an edge on the collinear edge, and the overlap is least along two to four facet
+// normals of A - B through that vertex at once (the minimisers of definitions §9 tied or ~1e-8
+// apart, on either side of the vertical).
+inline std::vector<TetPair> five_column_resting_pairs(int n, double depth, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int c = 0; c < 5; ++c) {
+        TetVertices a = five_cell_tet({0, 0, 0}, 1.0, c, (i + j) % 2 == 1);
+        TetVertices b = five_cell_tet({0, 0, 0}, 1.0, c, (i + j) % 2 == 0);
+        for (int v = 0; v < 4; ++v) {
+          a[v] = {(i + a[v][0]) * h, (j + a[v][1]) * h, a[v][2] * h};
+          b[v] = {(i + b[v][0]) * h, (j + b[v][1]) * h, h - depth + b[v][2] * h};
+        }
+        A.push_back(a), B.push_back(b);
+      }
+  return intersecting_pairs(A, B, "five alternating on columns", max_pairs, [](double) { return true; });
+}
+
 // Cells that coincide up to rounding: the Kuhn tetrahedra of an n x n x 1 layer of cubes of
 // the decimal side h = 0.1 at height index 5 (vertex coordinates (i + v) h, each rounded once)
 // against those of the same grid one cell up, its layer 4 (coordinates h + (i + v) h): 6 h

@@ -472,6 +472,41 @@ bool report_lone_pair(GlobalRun& g, FacetBounds& bounds, GlobalOptimum& out, Lon
   return true;
 }
 
+// Starts for the shallow certificate where the pair's own fail: the candidate directions of M
+// (either orientation) whose overlap lies within 1e-6 of the least, one a direction (kept: up
+// to four). Where the least overlap is tied between facets of M through one vertex (a vertex
+// of five-tetrahedra cells resting on a vertex), a walk from one of them may find no
+// multipliers (its active set degenerate there) while from another it does, and
+// certify_shallow's caps then cover the others. (Taken only where two or more tie: a single
+// least direction is where the pair's own start lies.)
+int least_overlap_starts(FacetBounds& bounds, V3 (&out)[4]) {
+  if (!bounds.get()) return 0;
+  struct Oriented {
+    V3 n;
+    double overlap;
+  };
+  Oriented all[2 * global::kDirections];
+  int m = 0;
+  double least = INFINITY;
+  for (const global::DirectionBounds& x : bounds.dirs()) {
+    if (x.zero) continue;
+    const double len = std::sqrt(x.nn_up);
+    for (const double s : {1.0, -1.0}) {
+      all[m] = {mul(x.n, s), (s > 0 ? x.plus_low : x.minus_low) / len};
+      least = std::min(least, all[m++].overlap);
+    }
+  }
+  int k = 0;
+  for (int i = 0; i < m && k < 4; ++i) {
+    if (!(all[i].overlap <= least * (1 + 1e-6))) continue;
+    const V3 u = mul(all[i].n, 1 / global::norm(all[i].n));
+    bool seen = false;
+    for (int j = 0; j < k; ++j) seen |= dot(u, out[j]) > 1 - 1e-9;
+    if (!seen) out[k++] = u;
+  }
+  return k;
+}
+
 GlobalOptimum report(GlobalRun& g, double start_value) {
   GlobalOptimum out;
   out.normal = g.best.n;
@@ -521,6 +556,10 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     const V3 none{0, 0, 0};
     for (const V3& start : {edge_d ? g.best.n : none, declined.near_minimiser, declined.edge_v})
       if (nonzero(start) && report_shallow(g, start, bounds, lone, edge_d) && lone.certified) return lone;
+    V3 tied[4];
+    const int k = least_overlap_starts(bounds, tied);
+    for (int i = 0; i < k && k > 1; ++i)
+      if (report_shallow(g, tied[i], bounds, lone, edge_d) && lone.certified) return lone;
     if (shallow) return g.shallow;
     enumerate_exact(g, exact_start);
   } else {

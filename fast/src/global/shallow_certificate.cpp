@@ -395,9 +395,13 @@ bool overlap_off_cap(const TetVertices& A, const TetVertices& B, const V3& v, co
 
 namespace {
 
-// One attempt (certify_shallow): the normal in doubles, or in double words.
-bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, bool words,
-             ShallowResult& out, FacetBounds* bounds, const V3* edge_d) {
+// The cap of one attempt (certify_shallow): the normal in doubles, or in double words; cap.c0
+// >= sqrt(L / B0) and cap.d0 >= sqrt(32 L), L = cap.result.lower.
+struct Cap {
+  ShallowResult result;
+  double c0 = 1, d0 = 0;
+};
+bool cap_of(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, bool words, Cap& cap) {
   V3 v = v0, lo{0, 0, 0};
   Evaluation ev;
   if (!find_normal(A, B, P, v, lo, words, ev)) return false;
@@ -465,17 +469,102 @@ bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const
   const double fd = mpz_get_d_2exp(&ed, z(w.den));
   const double ratio = std::ldexp(std::nextafter(fn / fd, 4.0), int(std::clamp(en - ed + shift, -2000L, 2000L)));
   const double c0 = std::nextafter(std::sqrt(ratio), 2.0);
-  const double d0 = std::sqrt(32 * L) * (1 + 4 * kU);
   if (!(c0 < 1)) return false;
-  if (!overlap_off_cap(A, B, v, lo, c0, d0)) {
-    const V3 vh = mul(v, 1 / norm(v));
-    const double cv = (c0 + cap_slack(v, lo)) * (1 + 2 * kU);
-    // (the edge pair's plane: relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L), rounded up)
-    if (!(bounds && (polytope_inside_ball(*bounds, vh, cv, d0) ||
-                     (edge_d && polytope_inside_ball(*bounds, vh, cv, *edge_d, std::sqrt(12 * L) * (1 + 4 * kU), d0)))))
-      return false;
+  cap.result.normal = v, cap.result.low = lo, cap.result.eval = ev, cap.result.lower = L;
+  cap.c0 = c0, cap.d0 = std::sqrt(32 * L) * (1 + 4 * kU);
+  return true;
+}
+
+// The off-cap region of a cap as a half-space: u.vh <= cv covers every unit u with u.(v + lo) /
+// |v + lo| <= c0 (vh's rounding and lo's angle in cap_slack).
+Halfspace off_cap(const Cap& cap) {
+  const V3& v = cap.result.normal;
+  return {mul(v, 1 / norm(v)), (cap.c0 + cap_slack(v, cap.result.low)) * (1 + 2 * kU)};
+}
+
+// A cap from a start: in doubles, then in double words (a cap about a tied minimiser, where
+// tied_caps has no other use for the start).
+bool cap_from(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, Cap& cap) {
+  return cap_of(A, B, P, v0, false, cap) || cap_of(A, B, P, v0, true, cap);
+}
+
+// Minimisers tied at a vertex of M (several facets through it at the same distance from 0:
+// blocks cut into five tetrahedra a cube whose cuts alternate across the contact, resting on
+// each other's columns, where a vertex rests on a vertex and the overlap is least along two to
+// four facet normals of M, ~1e-8 apart in value): one cap does not cover the others, where
+// D(u) is the depth itself. A cap about each: the facet directions (either orientation) whose
+// point d0 n / D(n) lies outside the ball and off every cap so far, the least deep first, each
+// the start of a walk to its own minimiser (whose cap must then hold that direction); then,
+// with L the least of the caps' bounds, every unit u off all of them has D(u) >= sqrt(32 L)
+// (polytope_inside_ball with their planes): relaxed(u) >= L_i >= L on cap i, >= D(u)^2 / 32
+// >= L off them. The least cap's value is reported, its own bound being L.
+constexpr int kMaxCaps = 6;
+bool tied_caps(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds, const Cap& first,
+               const V3* edge_d, ShallowResult& out) {
+  if (!bounds.get()) return false;
+  Cap caps[kMaxCaps];
+  Halfspace planes[kMaxCaps + 1];
+  caps[0] = first, planes[0] = off_cap(first);
+  int k = 1, least = 0;
+  auto off_caps = [&](const V3& p) {
+    const double np = norm(p);
+    for (int i = 0; i < k; ++i)
+      if (dot(p, planes[i].d) > planes[i].c * np) return false;
+    return true;
+  };
+  for (;;) {
+    const double d0 = caps[least].d0;
+    V3 start{0, 0, 0};
+    double far = 1 - 0x1p-30;  // (|p|^2 beyond the ball less the test's margin; the largest first)
+    for (const DirectionBounds& x : bounds.dirs()) {
+      if (x.zero) continue;
+      for (const double s : {1.0, -1.0}) {
+        const V3 p = mul(x.n, s * d0 / (s > 0 ? x.plus_low : x.minus_low));
+        const double pp = dot(p, p);
+        if (pp > far && off_caps(p)) far = pp, start = p;
+      }
+    }
+    if (!nonzero(start)) break;
+    if (k == kMaxCaps || !cap_from(A, B, P, start, caps[k])) return false;
+    planes[k] = off_cap(caps[k]);
+    ++k;
+    if (off_caps(start)) return false;  // (the walk left its start's direction: no progress)
+    if (caps[k - 1].result.lower < caps[least].result.lower) least = k - 1;
   }
-  out.normal = v, out.low = lo, out.eval = ev, out.lower = L;
+  if (k == 1) return false;
+  const ShallowResult& r = caps[least].result;
+  if (!polytope_inside_ball(bounds, planes, k, caps[least].d0)) {
+    // (with the edge pair's plane as attempt's: two caps on either side of an edge resting on a
+    // collinear edge, the overlap between them as small as the depth; that plane first: beyond
+    // it lie many of the points, and the last plane's crossings number the points kept times
+    // those beyond it, few beyond a cap)
+    if (!edge_d) return false;
+    std::rotate(planes, planes + k, planes + k + 1);
+    planes[0] = {*edge_d, std::sqrt(12 * r.lower) * (1 + 4 * kU)};
+    if (!polytope_inside_ball(bounds, planes, k + 1, caps[least].d0)) return false;
+  }
+  out = r;
+  return true;
+}
+
+// One attempt (certify_shallow): the cap, then the overlap off it.
+bool attempt(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, bool words,
+             ShallowResult& out, FacetBounds* bounds, const V3* edge_d) {
+  Cap cap;
+  if (!cap_of(A, B, P, v0, words, cap)) return false;
+  const ShallowResult& r = cap.result;
+  if (!overlap_off_cap(A, B, r.normal, r.low, cap.c0, cap.d0)) {
+    if (!bounds) return false;
+    const Halfspace h = off_cap(cap);
+    // (the edge pair's plane: relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L), rounded up)
+    if (polytope_inside_ball(*bounds, h.d, h.c, cap.d0) ||
+        (edge_d && polytope_inside_ball(*bounds, h.d, h.c, *edge_d, std::sqrt(12 * r.lower) * (1 + 4 * kU), cap.d0))) {
+      out = r;
+      return true;
+    }
+    return tied_caps(A, B, P, *bounds, cap, edge_d, out);
+  }
+  out = r;
   return true;
 }
 

@@ -39,6 +39,13 @@
 // polytope {u : D(u) <= d0, u.vh <= c0 + e} inside the unit ball, e covering vh's and lo's
 // roundings), which needs no room beneath the face: only that D grows off the cap, as it does
 // at first order away from a facet normal whose foot lies inside its facet.
+// Minimisers tied at a vertex of M (blocks cut into five tetrahedra a cube whose cuts alternate
+// across the contact: a vertex resting on a vertex, the overlap least along two to four facet
+// normals through it, the relaxed values there equal or ~1e-8 apart): off one cap lie the
+// others, where D is the depth itself. A cap about each (a walk from each facet direction whose
+// point lies outside the ball off the caps so far), L_i on cap i, and with L = min L_i and
+// d0 = sqrt(32 L) the polytope {u : D(u) <= d0, u off every cap} inside the unit ball (a plane
+// a cap): relaxed >= L everywhere, the least cap's value reported.
 // Finding v (heuristic, checked by the certificate): the minimiser tilts from the contact's
 // face normal by ~depth / size, below a double normal's rounding unless solved for: on the
 // active set S of v, F(v + E y) = sum_S (eta_i + y.xi_i)^2 + k (tau + y.xi_T)^2 (the piece's
