@@ -95,7 +95,8 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
     if (name == "stacked")
       names.insert(names.end(),
                    {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned",
-                    "stacked-resting", "stacked-resting-turned", "stacked-columns", "stacked-columns-turned"});
+                    "stacked-resting", "stacked-resting-turned", "stacked-columns", "stacked-columns-turned",
+                    "stacked-five-resting", "stacked-five-resting-turned"});
     else names.push_back(name);
   for (const std::string& name : names) {
     EnergyCase c;
@@ -155,6 +156,21 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
         << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
       c.description = d.str();
       if (!turned) c.rotated_twin = name + "-turned";
+    } else if (name == "stacked-five-resting" || name == "stacked-five-resting-turned") {
+      // cubes cut into five, alternating with i + j + k: A two layers high (its top layer odd
+      // where B's bottom one is even), B on A's columns 1e-9 deep, so the cuts alternate across
+      // the contact (a vertex on a vertex, the overlap least along several facet normals at
+      // once); the twin B turned 0.3 rad
+      const int n = options.stacked_cells;
+      const bool turned = name == "stacked-five-resting-turned";
+      A = make_structured_block({n, n, 2}, 0.1, {0, 0, 0}, CubeSplit::Five);
+      B = make_structured_block({n, n, 3}, 0.1, {0, 0, 0.2 - 1e-9}, CubeSplit::Five, turned ? 0.3 : 0.0);
+      std::ostringstream d;
+      d << "blocks of " << n << "x" << n << " cubes of 0.1 cut into five (A 2 layers, B 3), B on A's columns 1e-9 "
+        << "deep, the cuts alternating across the contact"
+        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
+      c.description = d.str();
+      if (!turned) c.rotated_twin = "stacked-five-resting-turned";
     } else {
       throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls, stacked)");
     }

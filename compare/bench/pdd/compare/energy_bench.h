@@ -24,8 +24,10 @@
 //        rounding, ~5.6e-17 deep) beside B turned 0.3 rad ("stacked-rounding-turned"); the same
 //        blocks with B on A's columns, its bottom 1e-9 below A's top ("stacked-resting": faces,
 //        edges and vertices of B resting on the same ones of A) or at 0.3 ("stacked-columns":
-//        the same contacts by rounding), each beside B turned 0.3 rad ("-turned"); each aligned
-//        case names its twin (rotated_twin), and the ratios of the times per pair.
+//        the same contacts by rounding), each beside B turned 0.3 rad ("-turned"); blocks of
+//        cubes cut into five, B on A's columns 1e-9 deep with the cuts alternating across the
+//        contact ("stacked-five-resting": minimisers tied at a vertex) beside B turned 0.3 rad;
+//        each aligned case names its twin (rotated_twin), and the ratios of the times per pair.
 #pragma once
 
 #include <cstddef>
