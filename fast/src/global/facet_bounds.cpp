@@ -280,7 +280,8 @@ Loose loose(const V3& p, double r) { return {p, r, norm(p) * (1 + 4 * kU)}; }
 // root: s_in = sqrt(kInside) (1 - 6u) is below that bound whatever its rounding, and
 // fl(x.x) (1 + 4u) >= |x|^2 covers the dot's three roundings and the product's.
 const double kSqrtInside = std::sqrt(kInside) * (1 - 6 * kU);
-constexpr double kMaxCrossings = 1 << 20;  // (polytope_inside_ball's clipped points and crossings)
+constexpr double kMaxCrossings = 1 << 20;  // (polytope_inside_ball's last plane's crossings)
+constexpr double kMaxPoints = 1 << 16;     // (the points a clip keeps: a few thousand where it answers)
 bool inside_at(double xx, double r) {
   const double room = kSqrtInside - r;
   return room > 0 && xx * (1 + 4 * kU) <= room * room * (1 - 4 * kU);
@@ -378,6 +379,7 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
       // narrow, one point, its middle, whose distance from the crossing |w| ((hi - lo) / 2 +
       // 2u) is added to the bound (|w| <= |a| + |b|); else its two ends, between which the
       // crossing lies (a segment nearly along the plane: two points near a cap's rim).
+      if (double(next.size()) + 2 * double(beyond.size()) > kMaxPoints) return false;
       for (const std::size_t j : beyond) {
         const Crossing x = crossing(s[i], v[i], e[i], s[j], v[j], e[j], c);
         if (x.hi - x.lo <= 0x1p-40) {
@@ -388,7 +390,6 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
           next.push_back(loose(at(s[i], s[j], x.hi), x.r));
         }
       }
-      if (double(next.size()) > kMaxCrossings) return false;
     }
     s.swap(next);
   }

@@ -79,8 +79,8 @@ bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0
 bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3& d2, double c2, double d0);
 
 // The same with k >= 1 planes: every unit u with u.d_i <= c_i for every i has D(u) >= d0 (caps
-// about several tied minimisers). False also where the clipped polytope's points would number
-// more than 2^20 (not shown).
+// about several tied minimisers). False also where a clip would keep more than 2^16 points or
+// the last plane's crossings number more than 2^20 (not shown).
 struct Halfspace {
   V3 d{};
   double c = 0;

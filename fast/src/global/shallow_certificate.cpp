@@ -521,7 +521,7 @@ bool tied_caps(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
       for (const double s : {1.0, -1.0}) {
         const V3 p = mul(x.n, s * d0 / (s > 0 ? x.plus_low : x.minus_low));
         const double pp = dot(p, p);
-        if (pp > far && off_caps(p)) far = pp, start = p;
+        if (pp > far && pp < INFINITY && off_caps(p)) far = pp, start = p;
       }
     }
     if (!nonzero(start)) break;
