@@ -193,6 +193,44 @@ BOOST_AUTO_TEST_CASE(double_eigenvalues_stay_in_doubles) {
   for (const ExactCase& c : cases) check_in_doubles(c);
 }
 
+// Minimisers tied at a vertex of A - B: blocks of cubes of 0.1 cut into five (vertex coordinates
+// i 0.1, each rounded once, A's top 3 x 0.1 = 0.30000000000000004), B's bottom 1e-9 under it
+// (1e-10 for the last pair), on A's columns with the cuts alternating across the contact. The
+// overlap is least along two facet normals at once (the first, third and fourth pairs: (1, -1,
+// 1) and (-1, -1, 1), d / sqrt(3) each, or an edge on the collinear edge on either side of it)
+// or three (the second); one cap of the shallow certificate leaves the other minimisers outside
+// the ball, a cap about each covers them (shallow_certificate.h), and on the third pair the walk
+// from the pair's own starts finds no multipliers, from the other least-overlap direction it
+// does (global_depth.cpp's least_overlap_starts). Each exact value is `pdd solve --engine
+// reference`'s pdd2_global of the pair (its lower bound within 1e-12).
+BOOST_AUTO_TEST_CASE(minimisers_tied_at_a_vertex_stay_in_doubles) {
+  const double t = 0.30000000000000004, b9 = 0.299999999, u9 = 0.39999999900000005;
+  const double b10 = 0.29999999990000004, u10 = 0.3999999999;
+  const ExactCase cases[] = {
+      {{{{0.1, 0.0, 0.2}, {0.1, 0.1, 0.2}, {0.1, 0.1, t}, {0.2, 0.1, 0.2}}},
+       {{{0.1, 0.0, b9}, {0.2, 0.0, b9}, {0.1, 0.1, b9}, {0.1, 0.0, u9}}},
+       "18170968945527974473497014903549913360719293741163996554947855668687586933194114451123906661796"
+       "458511803029323037/"
+       "17444129092359044943792171795211013513103976240769830462485691110414445586505631043624972996415"
+       "07375915130000546110152982486048571392"},
+      {{{{0.1, 0.0, 0.2}, {0.0, 0.1, 0.2}, {0.0, 0.0, t}, {0.1, 0.1, t}}},
+       {{{0.0, 0.0, b9}, {0.0, 0.0, u9}, {0.1, 0.0, u9}, {0.0, 0.1, u9}}},
+       "89949018136949952562857665503020609849754065232576479893550807619299287729484887293264120338604"
+       "00602130699125095706588332682262174172678232304676638215607572112859757753644111/"
+       "86351051989336218449022529393349154968688216210410736020574207665747468881755742670285237308592"
+       "35463140612052199663108749308772187498610188172184446293048942824657616511593621574312399121793"
+       "67936"},
+      {{{{0.5, 0.0, 0.2}, {0.4, 0.1, 0.2}, {0.4, 0.0, t}, {0.5, 0.1, t}}},
+       {{{0.5, 0.1, b9}, {0.4, 0.0, b9}, {0.5, 0.0, u9}, {0.4, 0.1, u9}}},
+       "702081982691335567223148465761053386400093224023/"
+       "25274949719620954890162990498165569009348437376801389702160287006720"},
+      {{{{0.1, 0.0, 0.2}, {0.0, 0.1, 0.2}, {0.0, 0.0, t}, {0.1, 0.1, t}}},
+       {{{0.1, 0.1, b10}, {0.0, 0.0, b10}, {0.1, 0.0, u10}, {0.0, 0.1, u10}}},
+       "9522597404218056104161349882228713430025/34281344944191784183045706266634214036936743604805767463436288"},
+  };
+  for (const ExactCase& c : cases) check_in_doubles(c);
+}
+
 // Nearly aligned resting contacts: stacked Kuhn blocks of cell h = 1/8, B's bottom a third of a
 // cell into A's top, B tilted 1e-6 rad about (1, 2, 3) (a simulator's blocks a step after
 // touching). Pairs across the cells' vertical faces meet ~1e-7 of h deep (pdd2_global ~1e-14),
