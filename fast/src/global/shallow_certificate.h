@@ -24,7 +24,9 @@
 // parallel to v (a 3 x 3 rational system; the change is ~1e-16 of them, and must keep them
 // >= 0; where a minimiser lies where pieces meet, a multiplier at the plane is ~0 and the
 // change may turn it negative: then another three, a vertex off the plane among them, since
-// weak duality holds for multipliers >= 0 on every vertex). Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
+// weak duality holds for multipliers >= 0 on every vertex; likewise where the moved g points
+// away from v, g.v <= 0: a vertex of one grid on the collinear edge of its shifted copy puts
+// the active vertices on one line, and the three of them move to any g). Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
 // relaxed(u) >= B0 cos^2(theta), B0 = (g.v)^2 / (v.v 80 kappa) (B0 = relaxed(v) for the exact
 // multipliers at a stationary v): on the cap cos(theta) >= c0 = sqrt(L / B0), relaxed >= L.
 // Off the cap, relaxed(u) >= D(u)^2 / 32 (deformable_depth.h; D(u) the overlap along u, the
@@ -52,8 +54,10 @@
 // H_S in the frame v, E: eta the heights about the plane, from compensated heights, accurate
 // to their own u; xi the positions across v, doubles), least at the 2 x 2 solve; repeated until
 // S no longer changes (or S's positions across v lie on one line, a lone pair's two: v stays,
-// the bound decides it). Where the contact plane is off the axes, the tilt is below a double
-// normal's rounding: a second walk keeps the normal in double words, v + lo (heights along it
+// the bound decides it). The walk keeps the normal in double words, v + lo: where the contact
+// plane is off the axes, the tilt is below a double normal's rounding (lo stays 0 where every
+// step's sum is a double; a walk in doubles, cheaper a step, ends where the exact part fails
+// on about half the resting contacts measured: docs/performance.md) (heights along v + lo
 // on compensated heights, relaxed_value.h; the multipliers' integers of v + lo; the overlap
 // tests along v, their margins widened by the angle alpha <= 2 |lo| / |v| between v and v +
 // lo: a point p's projection across the normal moves by <= 2 alpha |p|, its height by <= alpha

@@ -97,7 +97,10 @@ double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate
 // [lower_of(value, r), upper_of(value, r)]), the solution s of that pattern and the heights
 // (relative to A's vertex highest along v) it was computed on. False when not applicable or
 // a margin is too small. Precondition: a pair rescaled by power_scale.h.
-// With `lo`: along the double-word normal v + lo (compensated_heights_along's).
+// With `lo`: along the double-word normal v + lo (compensated_heights_along's), a pattern with
+// unsure margins bracketed (valued_on_heights' bracket: r covers the vertex on either side,
+// s the pattern with it at the plane), as where a walk's tilt ends on a minimiser at which
+// another vertex reaches the plane.
 bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
                          double& value, double& r, DirectionSolution& s, double hA[4], double hB[4],
                          const std::array<double, 3>& lo = {0, 0, 0});
