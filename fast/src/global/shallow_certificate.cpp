@@ -205,8 +205,8 @@ bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
   // words), each scaled to at most 1. (A row's scale multiplies every determinant by one factor
   // but the column norms unevenly: unscaled, |det| / norms goes as 1 / |V|, below the 1e-8
   // filter for every triple once V's integers are large, and no triple with a zero multiplier
-  // would be tried: measured on grids against their copies moved along (1, 1, 1), 17% fewer
-  // pairs on the exact pieces with the rows scaled.)
+  // would be tried: on 300 contacts by rounding of 24-tetrahedra grids against their copy moved
+  // a quarter cell along (1, 1, 1), 175 on the exact pieces unscaled, 156 scaled.)
   for (int r = 1; r < 3; ++r) {
     double big = 0;
     for (int p = 0; p < 8; ++p) big = std::max(big, std::fabs(cd[p][r]));
