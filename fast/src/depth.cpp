@@ -84,6 +84,14 @@ Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k) {
   });
 }
 
+RigidAndAccel1 rigid_pd2_and_accel1(const TetVertices& A, const TetVertices& B) {
+  return on_anchored(A, B, [](const TetVertices& a, const TetVertices& b) {
+    Choice rigid, accel1;
+    rigid_and_accel1_choices(a, b, rigid, accel1);
+    return RigidAndAccel1{depth_of(rigid, a, b, true), depth_of(accel1, a, b, false)};
+  });
+}
+
 namespace {
 
 // pdd2_global's start where the quick list declines (parallel edges, coplanar faces): one

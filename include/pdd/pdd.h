@@ -121,6 +121,15 @@ Depth pdd2_relaxed(const TetVertices& A, const TetVertices& B);  // case 2, ineq
 // The paper's acceleration: case 2 on the k shallowest candidates; k = 1 or 6 (pdd2_accel1,
 // pdd2_accel6), any other k is DepthStatus::Rejected.
 Depth pdd2_accel(const TetVertices& A, const TetVertices& B, int k);
+// rigid_pd2(A, B) and pdd2_accel(A, B, 1) of one pair, the same two Depths bit for bit, their
+// common work (the candidate directions' kernel and the certified rigid choice that pdd2_accel1
+// takes its direction from) done once: for a caller that wants both, as pdd::mesh's contacts
+// with variants rigid,accel1.
+struct RigidAndAccel1 {
+  Depth rigid;   // rigid_pd2(A, B)
+  Depth accel1;  // pdd2_accel(A, B, 1)
+};
+RigidAndAccel1 rigid_pd2_and_accel1(const TetVertices& A, const TetVertices& B);
 
 // definitions §9: PD_d² over every separating plane (the paper's eq. 5 as defined, not restricted
 // to the candidate directions): the minimum over unit normals of the relaxed QP, with the normal

@@ -130,8 +130,14 @@ PairResult<double> fast_record(const TetVertices& A, const TetVertices& B, unsig
     v = d.pd2;
     if (label) *label = d.dir;
   };
-  if (variants & kRigid) put(fast::rigid_pd2(A, B), r.rigid_pd2, &r.rigid_dir);
-  if (variants & kAccel1) put(fast::pdd2_accel(A, B, 1), r.pdd2_accel1, nullptr);
+  if ((variants & kRigid) && (variants & kAccel1)) {
+    const fast::RigidAndAccel1 d = fast::rigid_pd2_and_accel1(A, B);
+    put(d.rigid, r.rigid_pd2, &r.rigid_dir);
+    put(d.accel1, r.pdd2_accel1, nullptr);
+  } else {
+    if (variants & kRigid) put(fast::rigid_pd2(A, B), r.rigid_pd2, &r.rigid_dir);
+    if (variants & kAccel1) put(fast::pdd2_accel(A, B, 1), r.pdd2_accel1, nullptr);
+  }
   // solve_pair keeps pdd2_static <= rigid_pd2 (definitions §5, value_relations.h): the same
   // here, against the same bound, for the same doubles.
   if (variants & kStatic) {

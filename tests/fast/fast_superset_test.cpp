@@ -475,3 +475,44 @@ BOOST_AUTO_TEST_CASE(aligned_pairs_certified_by_the_superset) {
   BOOST_TEST(intersecting > 250);
   BOOST_TEST(certified * 10 >= intersecting * 9, certified << " of " << intersecting);  // measured: all
 }
+
+// rigid_pd2_and_accel1 (pdd.h) runs the superset's kernel and choice once for both values; it
+// must return rigid_pd2(A, B) and pdd2_accel(A, B, 1) bit for bit (value, status, label),
+// whatever route each takes: random pairs (the superset certifies most), aligned cells (ties
+// and unresolved edge pairs: the tie band, the candidate list) and Kuhn cells of size 0.1
+// against copies moved a tenth of a cell along (1, 1, 1), whose contacts made by rounding the
+// superset cannot certify (rigid_pd2 remembers them, pdd2_accel1 recalls). Asked before and
+// after the separate calls, so that neither order's per-thread memos decide the outcome.
+BOOST_AUTO_TEST_CASE(rigid_and_accel1_together_equal_the_two_calls) {
+  auto same = [](const Depth& x, const Depth& y) {
+    return std::memcmp(&x.pd2, &y.pd2, sizeof x.pd2) == 0 && x.status == y.status && x.dir == y.dir;
+  };
+  std::vector<TetPair> pairs = random_pairs(500, 5, true);
+  const Vec3d offsets[] = {{0.37, 0.21, 0.13}, {0.5, 0.25, 0.125}, {0.1, 0.1, 0.1}};
+  for (double h : {1.0, 0.1})
+    for (const Vec3d& f : offsets)
+      for (int m = 0; m < 8; ++m)  // cells along a grid's diagonal: each rounds its own way
+        for (int kind = 0; kind < 2; ++kind)
+          for (int i = 0; i < (kind == 0 ? 6 : 5); ++i)
+            for (int j = 0; j < (kind == 0 ? 6 : 5); ++j) {
+              const Vec3d o = {(3 + m) * h, (7 + m) * h, (2 + m) * h};
+              const Vec3d q = {o[0] + f[0] * h, o[1] + f[1] * h, o[2] + f[2] * h};
+              TetPair p;
+              p.A = kind == 0 ? pdd::test::kuhn_cell_tet(o, h, i) : pdd::test::five_cell_tet(o, h, i, false);
+              p.B = kind == 0 ? pdd::test::kuhn_cell_tet(q, h, j) : pdd::test::five_cell_tet(q, h, j, false);
+              pairs.push_back(p);
+            }
+  int intersecting = 0, by_rounding = 0;
+  for (const TetPair& p : pairs) {
+    const RigidAndAccel1 before = rigid_pd2_and_accel1(p.A, p.B);
+    const Depth rigid = pdd::fast::rigid_pd2(p.A, p.B), accel1 = pdd::fast::pdd2_accel(p.A, p.B, 1);
+    const RigidAndAccel1 after = rigid_pd2_and_accel1(p.A, p.B);
+    intersecting += rigid.pd2 > 0.0;
+    by_rounding += rigid.pd2 > 0.0 && rigid.pd2 < 1e-20;
+    BOOST_TEST((same(before.rigid, rigid) && same(after.rigid, rigid)), before.rigid.pd2 << " vs " << rigid.pd2);
+    BOOST_TEST((same(before.accel1, accel1) && same(after.accel1, accel1)), before.accel1.pd2 << " vs " << accel1.pd2);
+  }
+  BOOST_TEST_MESSAGE(intersecting << " intersecting, " << by_rounding << " by rounding");
+  BOOST_TEST(intersecting > 1500);  // measured: 1801
+  BOOST_TEST(by_rounding > 40);      // measured: 53
+}

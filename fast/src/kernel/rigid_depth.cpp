@@ -281,7 +281,9 @@ Choice rigid_pd2_reusing(const CandidateSet& set) {
   return ch;
 }
 
-Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
+Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) { return rigid_pd2_choice(A, B, nullptr); }
+
+Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B, const SupersetFirstTry* first) {
   // superset_uncertified: the fused branch ran on power_scaled(A, B) and declined or did not
   // certify. rigid_superset on that same scaled pair is the same computation bit for bit
   // (superset_depth.h), so the run does not repeat it and goes to the candidate set.
@@ -289,9 +291,12 @@ Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B) {
   return detail::fused_hot_path(
       A, B,
       // rigid_superset on the rescaled pair, the run's first branch (superset_depth.h)
-      [&A, &B, &superset_uncertified](Choice& ch, int& e) {
-        bool ran = false, unresolved = false;
-        const bool done = rigid_superset_scaled(A, B, ch, e, nullptr, nullptr, nullptr, &ran, &unresolved);
+      [&A, &B, &superset_uncertified, first](Choice& ch, int& e) {
+        bool ran = false, unresolved = false, done = false;
+        if (first)
+          ran = first->ran, unresolved = first->unresolved, done = first->done, ch = first->ch, e = first->e;
+        else
+          done = rigid_superset_scaled(A, B, ch, e, nullptr, nullptr, nullptr, &ran, &unresolved);
         superset_uncertified = ran && !(done && ch.certified);
         if (superset_uncertified) remember_uncertified_superset(A, B, unresolved);
         return done;

@@ -49,4 +49,17 @@ double eq11_pd2(const CandidateSet& set, bool* certified = nullptr, bool* refine
 // value 0 when the pair does not intersect or is invalid. Same value and label either way.
 Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B);
 
+// What rigid_pd2_choice's first try (rigid_superset_scaled on the raw pair, superset_depth.h)
+// gave, where a caller ran it already asking more of it (pdd2_accel(A, B, 1)'s geometry,
+// `unique` and tie band): the choice and its verdict do not depend on what else is asked
+// (superset_depth.h), so rigid_pd2_choice(A, B, &first) is rigid_pd2_choice(A, B) without the
+// second kernel run. ran, unresolved: rigid_superset_scaled's kernel_ran and unresolved; done:
+// its return value; ch, e: its choice and exponent.
+struct SupersetFirstTry {
+  bool ran = false, done = false, unresolved = false;
+  Choice ch;
+  int e = 0;
+};
+Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B, const SupersetFirstTry* first);
+
 }  // namespace pdd::fast

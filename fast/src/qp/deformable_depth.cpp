@@ -1394,68 +1394,109 @@ Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B) {
       },
       [](const QuickCandidates& q, Choice& ch) { return pdd2_relaxed_lanes(q, ch); });
 }
+namespace {
+
+// rigid_superset_scaled's outputs on a raw pair with everything pdd2_accel(A, B, 1)'s first try
+// asks of it: `first` as rigid_pd2_choice takes them (rigid_depth.h), the chosen candidate, its
+// `unique`, the scaled pair's extent and the tie band's verdict.
+struct SharedSuperset {
+  SupersetFirstTry first;
+  Candidate c;
+  bool unique = false;
+  double extent = 0;
+  Accel1OverBand band;
+};
+
+// pdd2_accel_choice(A, B, 1); `shared` (optional): the first try's kernel and choice already run
+// on this pair (rigid_and_accel1_choices), taken instead of running them again.
+Choice accel1_choice(const TetVertices& A, const TetVertices& B, const SharedSuperset* shared) {
+  auto pick = [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
+    l = std::nullopt;
+    return r.pdd2_accel1;
+  };
+  // What the first branch learns, for the run's routes on the same rescaled pair: where the
+  // kernel ran and `unique` failed, rigid_and_accel1 there computes the same choice and
+  // fails too (it needs `unique`), as it does where the first branch's compensated value
+  // failed on that pair (compensated_tried); with unresolved edge pairs the quick list
+  // declines.
+  // (Either route skipped is only time saved: the next one computes the same value.)
+  bool ran = false, unique = false, unresolved = false, compensated_tried = false;
+  return detail::fused_hot_path(
+      A, B,
+      // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
+      // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
+      // of the kernel's extent: the same maxima, minima and differences)
+      // and, where the double heights cannot certify the value along the unique pick,
+      // rigid_and_accel1's compensated value on the same rescaled pair (power_scaled's, 2^e)
+      [&](Choice& ch, int& e) {
+        Choice rigid;
+        Candidate c;
+        double extent = 0;
+        Accel1OverBand own;
+        const Accel1OverBand* band = &own;
+        if (shared) {
+          const SupersetFirstTry& f = shared->first;
+          // no certified choice: what the recall below gives after rigid_pd2_choice(A, B, &f)
+          if (f.ran && !(f.done && f.ch.certified)) return unresolved = f.unresolved, ran = true, false;
+          ran = f.ran, unresolved = f.unresolved, e = f.e;
+          if (!f.done) return false;
+          rigid = f.ch, c = shared->c, unique = shared->unique, extent = shared->extent, band = &shared->band;
+        } else {
+          // rigid_pd2 just found no certified choice on this pair: the same run would not either
+          if (recall_uncertified_superset(A, B, unresolved)) return ran = true, false;
+          if (!rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved, &own)) return false;
+        }
+        if (band->accepted) {
+          ch = {band->value, -1, rigid.code};
+          ch.certified = true;
+          return true;
+        }
+        if (accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch)) return true;
+        if (!unique) return false;
+        const detail::ScaledPair sp = detail::power_scaled(A, B);
+        if (!sp.finite || !sp.exact || sp.e != e) return false;
+        compensated_tried = true;
+        double v = 0;
+        if (!accel1_compensated(sp.A, sp.B, c, v)) return false;
+        ch = {v, -1, rigid.code};
+        ch.certified = true;
+        return true;
+      },
+      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
+        Choice rigid;
+        Candidate c;
+        if (!(ran && !unique) && !compensated_tried && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
+        QuickCandidates q;
+        if (!(ran && unresolved) && quick_candidates(As, Bs, q)) {
+          ch = pdd2_accel(q, 1);
+          return true;
+        }
+        BuildStatus status;
+        const CandidateSet& set = build_candidates_reusing(As, Bs, status, q.count == 8 ? &q : nullptr);
+        if (status != BuildStatus::Ok || !set.intersecting) return false;
+        ch = pdd2_accel(set, 1);
+        return true;
+      },
+      pick);
+}
+
+}  // namespace
+
+void rigid_and_accel1_choices(const TetVertices& A, const TetVertices& B, Choice& rigid, Choice& accel1) {
+  SharedSuperset s;
+  SupersetFirstTry& f = s.first;
+  f.done = rigid_superset_scaled(A, B, f.ch, f.e, &s.c, &s.unique, &s.extent, &f.ran, &f.unresolved, &s.band);
+  rigid = rigid_pd2_choice(A, B, &f);
+  accel1 = accel1_choice(A, B, &s);
+}
+
 Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {
   auto pick = [k](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
     l = std::nullopt;
     return k == 1 ? r.pdd2_accel1 : r.pdd2_accel6;
   };
   if (k != 1 && k != kAccelWide) return {};  // the exact path reports the paper's k = 1 and 6
-  if (k == 1) {
-    // What the first branch learns, for the run's routes on the same rescaled pair: where the
-    // kernel ran and `unique` failed, rigid_and_accel1 there computes the same choice and
-    // fails too (it needs `unique`), as it does where the first branch's compensated value
-    // failed on that pair (compensated_tried); with unresolved edge pairs the quick list
-    // declines.
-    // (Either route skipped is only time saved: the next one computes the same value.)
-    bool ran = false, unique = false, unresolved = false, compensated_tried = false;
-    return detail::fused_hot_path(
-        A, B,
-        // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
-        // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
-        // of the kernel's extent: the same maxima, minima and differences)
-        // and, where the double heights cannot certify the value along the unique pick,
-        // rigid_and_accel1's compensated value on the same rescaled pair (power_scaled's, 2^e)
-        [&](Choice& ch, int& e) {
-          // rigid_pd2 just found no certified choice on this pair: the same run would not either
-          if (recall_uncertified_superset(A, B, unresolved)) return ran = true, false;
-          Choice rigid;
-          Candidate c;
-          double extent = 0;
-          Accel1OverBand band;
-          if (!rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved, &band)) return false;
-          if (band.accepted) {
-            ch = {band.value, -1, rigid.code};
-            ch.certified = true;
-            return true;
-          }
-          if (accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch)) return true;
-          if (!unique) return false;
-          const detail::ScaledPair sp = detail::power_scaled(A, B);
-          if (!sp.finite || !sp.exact || sp.e != e) return false;
-          compensated_tried = true;
-          double v = 0;
-          if (!accel1_compensated(sp.A, sp.B, c, v)) return false;
-          ch = {v, -1, rigid.code};
-          ch.certified = true;
-          return true;
-        },
-        [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
-          Choice rigid;
-          Candidate c;
-          if (!(ran && !unique) && !compensated_tried && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
-          QuickCandidates q;
-          if (!(ran && unresolved) && quick_candidates(As, Bs, q)) {
-            ch = pdd2_accel(q, 1);
-            return true;
-          }
-          BuildStatus status;
-          const CandidateSet& set = build_candidates_reusing(As, Bs, status, q.count == 8 ? &q : nullptr);
-          if (status != BuildStatus::Ok || !set.intersecting) return false;
-          ch = pdd2_accel(set, 1);
-          return true;
-        },
-        pick);
-  }
+  if (k == 1) return accel1_choice(A, B, nullptr);
   return on_list(A, B, [k](const auto& s) { return pdd2_accel(s, k); }, pick,
                  [](const QuickCandidates&, Choice&) { return false; });
 }

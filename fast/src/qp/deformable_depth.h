@@ -167,5 +167,9 @@ Choice pdd2_static_choice(const TetVertices& A, const TetVertices& B);
 Choice pdd2_choice(const TetVertices& A, const TetVertices& B);
 Choice pdd2_relaxed_choice(const TetVertices& A, const TetVertices& B);
 Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k);
+// pdd2_accel_choice(A, B, 1) and rigid_pd2_choice(A, B), the same choices, with their common
+// first try (rigid_superset_scaled on the raw pair: kernel, choice, certificate) run once: where
+// it certifies, rigid_pd2's half of the two calls' work.
+void rigid_and_accel1_choices(const TetVertices& A, const TetVertices& B, Choice& rigid, Choice& accel1);
 
 }  // namespace pdd::fast
