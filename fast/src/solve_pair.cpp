@@ -341,7 +341,15 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   static thread_local CandidateSet set_storage;
   static thread_local QuickCandidates lanes_storage;
   CandidateSet* const set = &set_storage;
-  if (build_candidates(sp.A, sp.B, *set) != BuildStatus::Ok) {
+  // The quick lanes first: where they hold the pair's faces (the orientations certain) the set
+  // is built from them (candidate_directions.h: the same set, the kernel not run twice);
+  // `have_lanes` where every face depth and lane is clear too (an edge lane through the exact
+  // path makes quick_lanes decline).
+  QuickCandidates* const lanes = &lanes_storage;
+  const bool have_lanes = quick_lanes(sp.A, sp.B, *lanes, true);
+  const BuildStatus built =
+      lanes->faces_filled ? build_candidates(*lanes, *set) : build_candidates(sp.A, sp.B, *set);
+  if (built != BuildStatus::Ok) {
     r.error = rejection_of(pair);  // flat (decided exactly); the scaling preserves flatness
     return r;
   }
@@ -354,9 +362,6 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   scaled.A = sp.A;
   scaled.B = sp.B;
   bool refined = false, exact_q1 = false, global_slow = false;
-  // (an edge lane through the exact path makes quick_lanes decline: not tried then)
-  QuickCandidates* const lanes = &lanes_storage;
-  const bool have_lanes = exact_lanes(*set) == 0 && quick_lanes(scaled.A, scaled.B, *lanes);
   unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes : nullptr, r, refined,
                                        exact_q1, global_slow, global, computed);
   PairResult<double> bad;

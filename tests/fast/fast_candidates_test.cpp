@@ -212,14 +212,17 @@ BOOST_AUTO_TEST_CASE(quick_candidates_match_the_set) {
   BOOST_TEST(quick > 100);
 }
 
-// build_candidates on a quick list that declined on its lanes alone (aligned pairs: exactly
-// parallel edges, g's and depths within their bounds) must be build_candidates on the pair, bit
-// for bit: the same status, count, tie band and filter bounds, the same label, depth, n.n,
-// delta², lane, sign, class and own bounds for each candidate, every lane's verdict, and every
-// materialised candidate equal. Pairs: the six Kuhn and the ten five-cut tetrahedra of a cube
-// of decimal side 0.1 at a decimal corner, against those of cubes shifted by offsets that are
-// not multiples of the side (a mesh against its shifted copy, stacked blocks touching).
-BOOST_AUTO_TEST_CASE(sets_built_from_declined_lanes_match) {
+// build_candidates on a quick list must be build_candidates on the pair, bit for bit: the same
+// status, count, tie band and filter bounds, the same label, depth, n.n, delta², lane, sign,
+// class and own bounds for each candidate, every lane's verdict, and every materialised
+// candidate equal — for a list that declined on its lanes alone (aligned pairs: exactly
+// parallel edges, g's and depths within their bounds), one filled with some face depth within
+// its bound (quick_lanes' all_faces: faces touching, contacts made by rounding), and a clear one
+// (solve_pair builds every set from its quick lanes where they hold the faces). Pairs: the six
+// Kuhn and the ten five-cut tetrahedra of a cube of decimal side 0.1 at a decimal corner,
+// against those of cubes shifted by offsets that are not multiples of the side (a mesh against
+// its shifted copy, stacked blocks touching), and random pairs.
+BOOST_AUTO_TEST_CASE(sets_built_from_quick_lanes_match) {
   const double h = 0.1;
   const Vec3d o = {0.3, -0.7, 1.1};
   auto add_cube = [&](const Vec3d& c) {
@@ -232,48 +235,56 @@ BOOST_AUTO_TEST_CASE(sets_built_from_declined_lanes_match) {
   const std::vector<TetVertices> A = add_cube(o);
   const Vec3d shifts[] = {{0.025, 0, 0}, {0.05, 0.05, 0}, {0, 0, 0.1 - 0.03}, {0.025, 0.025, 0.025},
                           {0.1 / 3, 0.1 / 7, 0}, {0.1, 0.1, 0.0375}};
-  int declined = 0, intersecting = 0, exact_lanes_seen = 0, classes[3] = {0, 0, 0};
+  std::vector<std::pair<TetVertices, TetVertices>> pairs;
   for (const Vec3d& t : shifts) {
     const std::vector<TetVertices> B = add_cube({o[0] + t[0], o[1] + t[1], o[2] + t[2]});
     for (const TetVertices& a : A)
-      for (const TetVertices& b : B) {
-        QuickCandidates q;
-        if (quick_lanes(a, b, q) || q.count != 8) continue;
-        ++declined;
-        CandidateSet from_q, direct;
-        BOOST_TEST((build_candidates(q, from_q) == BuildStatus::Ok));
-        BOOST_TEST((build_candidates(a, b, direct) == BuildStatus::Ok));
-        BOOST_REQUIRE(from_q.intersecting == direct.intersecting);
-        if (!direct.intersecting) continue;
-        ++intersecting;
-        exact_lanes_seen += exact_lanes(direct);
-        BOOST_REQUIRE(from_q.count == direct.count);
-        BOOST_TEST(from_q.tie_kappa == direct.tie_kappa);
-        BOOST_TEST((from_q.fb.deg2 == direct.fb.deg2 && from_q.fb.deg3 == direct.fb.deg3 &&
-                    from_q.fb.deg4 == direct.fb.deg4));
-        for (int i = 0; i < kLanes; ++i) BOOST_TEST(from_q.edges.unclear[i] == direct.edges.unclear[i]);
-        for (int k = 0; k < direct.count; ++k) {
-          BOOST_TEST((from_q.code[k] == direct.code[k] && from_q.lane[k] == direct.lane[k] &&
-                      from_q.sign[k] == direct.sign[k]));
-          BOOST_TEST((from_q.depth[k] == direct.depth[k] && from_q.nn[k] == direct.nn[k] &&
-                      from_q.delta_sq[k] == direct.delta_sq[k]));
-          // (class and own bounds are set for explicit candidates only: lanes are generic)
-          if (direct.lane[k] < 0) BOOST_TEST(from_q.parallel[k] == direct.parallel[k]);
-          if (direct.lane[k] < 0 && k >= 8) ++classes[direct.parallel[k]];
-          if (direct.lane[k] < 0 && direct.parallel[k] == 2)
-            BOOST_TEST((from_q.own_eh[k] == direct.own_eh[k] && from_q.own_en[k] == direct.own_en[k]));
-          const Candidate x = candidate(from_q, k), y = candidate(direct, k);
-          BOOST_TEST((x.conA == y.conA && x.conB == y.conB && x.parallel == y.parallel && x.own_bounds == y.own_bounds));
-          for (int m = 0; m < 4; ++m) BOOST_TEST((x.hA[m] == y.hA[m] && x.hB[m] == y.hB[m]));
-          for (int m = 0; m < 3; ++m) BOOST_TEST(x.n[m] == y.n[m]);
-        }
-      }
+      for (const TetVertices& b : B) pairs.push_back({a, b});
   }
-  BOOST_TEST_MESSAGE("declined on lanes: " << declined << " pairs, " << intersecting << " intersecting, "
+  for (const TetPair& p : random_pairs(300, 17, false)) pairs.push_back({p.A, p.B});
+  int declined = 0, faces_open = 0, clear = 0, intersecting = 0, exact_lanes_seen = 0, classes[3] = {0, 0, 0};
+  for (const auto& [a, b] : pairs) {
+    QuickCandidates q;
+    const bool lanes_clear = quick_lanes(a, b, q, true);
+    if (!q.faces_filled) continue;
+    clear += lanes_clear;
+    declined += !lanes_clear && q.count == 8;
+    faces_open += q.count != 8;
+    CandidateSet from_q, direct;
+    BOOST_TEST((build_candidates(q, from_q) == BuildStatus::Ok));
+    BOOST_TEST((build_candidates(a, b, direct) == BuildStatus::Ok));
+    BOOST_REQUIRE(from_q.intersecting == direct.intersecting);
+    if (!direct.intersecting) continue;
+    ++intersecting;
+    exact_lanes_seen += exact_lanes(direct);
+    BOOST_REQUIRE(from_q.count == direct.count);
+    BOOST_TEST(from_q.tie_kappa == direct.tie_kappa);
+    BOOST_TEST((from_q.fb.deg2 == direct.fb.deg2 && from_q.fb.deg3 == direct.fb.deg3 &&
+                from_q.fb.deg4 == direct.fb.deg4));
+    for (int i = 0; i < kLanes; ++i) BOOST_TEST(from_q.edges.unclear[i] == direct.edges.unclear[i]);
+    for (int k = 0; k < direct.count; ++k) {
+      BOOST_TEST((from_q.code[k] == direct.code[k] && from_q.lane[k] == direct.lane[k] &&
+                  from_q.sign[k] == direct.sign[k]));
+      BOOST_TEST((from_q.depth[k] == direct.depth[k] && from_q.nn[k] == direct.nn[k] &&
+                  from_q.delta_sq[k] == direct.delta_sq[k]));
+      // (class and own bounds are set for explicit candidates only: lanes are generic)
+      if (direct.lane[k] < 0) BOOST_TEST(from_q.parallel[k] == direct.parallel[k]);
+      if (direct.lane[k] < 0 && k >= 8) ++classes[direct.parallel[k]];
+      if (direct.lane[k] < 0 && direct.parallel[k] == 2)
+        BOOST_TEST((from_q.own_eh[k] == direct.own_eh[k] && from_q.own_en[k] == direct.own_en[k]));
+      const Candidate x = candidate(from_q, k), y = candidate(direct, k);
+      BOOST_TEST((x.conA == y.conA && x.conB == y.conB && x.parallel == y.parallel && x.own_bounds == y.own_bounds));
+      for (int m = 0; m < 4; ++m) BOOST_TEST((x.hA[m] == y.hA[m] && x.hB[m] == y.hB[m]));
+      for (int m = 0; m < 3; ++m) BOOST_TEST(x.n[m] == y.n[m]);
+    }
+  }
+  BOOST_TEST_MESSAGE("declined on lanes: " << declined << " pairs, a face depth open: " << faces_open
+                                           << ", clear: " << clear << "; " << intersecting << " intersecting, "
                                            << exact_lanes_seen << " lanes decided exactly; edge candidates stored in full: "
                                            << classes[0] << " generic, " << classes[1] << " parallel, " << classes[2]
                                            << " nearly parallel");
   BOOST_TEST(intersecting > 200);
   BOOST_TEST(exact_lanes_seen > 2000);
   for (int c : classes) BOOST_TEST(c > 50);
+  BOOST_TEST((declined > 100 && faces_open > 100 && clear > 100));
 }

@@ -425,8 +425,9 @@ struct Builder {
     return true;
   }
 
-  // The faces and lanes of a quick list that declined on its lanes alone (its faces' depths
-  // > E3: depth_positive's first test), then the edge pairs as run() does.
+  // The faces and lanes of a quick list (a face's depth > E3 is depth_positive's first test;
+  // the others, of a list with faces_filled, are decided as run() decides them), then the edge
+  // pairs as run() does.
   bool run_on(const QuickCandidates& q) {
     for (int f = 0; f < 8; ++f) {
       const int k = out.count++;
@@ -440,6 +441,7 @@ struct Builder {
       out.sign[k] = 1;
       out.parallel[k] = 0;
       out.own_eh[k] = out.own_en[k] = 0.0;
+      if (!depth_positive(k, fb.deg3)) return false;
     }
     out.edges = q.edges;
     return edge_pairs();

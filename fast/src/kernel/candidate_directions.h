@@ -110,12 +110,14 @@ BuildStatus build_candidates(const TetVertices& A, const TetVertices& B, Candida
 
 struct QuickCandidates;  // quick_candidates.h
 
-// build_candidates on the faces and lanes of a quick list that declined on its lanes alone
-// (quick_lanes returned false with q.count == 8: the pair's orientations and every face depth
-// certain, some lane unclear): the lanes are build_candidates' own bit for bit (the superset
-// kernel computes them with its verdicts, superset_kernel.h), and so are the faces, the filter
-// bounds and the tie band, so only the lanes' exact decisions are left to do. The same set as
-// build_candidates(*q.A, *q.B) (tested); Ok always (the orientations are certain).
+// build_candidates on the faces and lanes of a quick list: one whose faces are all certain
+// (q.count == 8: the pair's orientations and every face depth certain, declined on its lanes or
+// not), or one filled by quick_lanes(..., all_faces = true) (faces_filled: orientations
+// certain, some face depth within its bound, decided exactly here as build_candidates does).
+// The lanes are build_candidates' own bit for bit (the superset kernel computes them with its
+// verdicts, superset_kernel.h), and so are the faces, the filter bounds and the tie band, so
+// only the exact decisions are left to do. The same set as build_candidates(*q.A, *q.B)
+// (tested); Ok always (the orientations are certain).
 BuildStatus build_candidates(const QuickCandidates& q, CandidateSet& out);
 
 // build_candidates for callers that often ask for the same pair twice in a row on one thread

@@ -45,8 +45,9 @@ void quick_edge_list(QuickCandidates& q) {
 }
 
 // The arithmetic is the superset kernel's (superset_kernel.h), which also writes the lanes.
-bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q) {
+bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q, bool all_faces) {
   q.count = 0;
+  q.faces_filled = false;
   q.A = &A;
   q.B = &B;
   SupersetLanes K;
@@ -61,15 +62,21 @@ bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q)
   // load); eight calls later those stores have reached the cache.
   Draft drafts[8];
   for (int f = 0; f < 8; ++f) face_draft(K, f, drafts[f]);
+  bool certain = true;
   for (int f = 0; f < 8; ++f) {
     DirectionGeometry& g = q.faces[f];
     finish_face(drafts[f], g);
-    if (!(g.depth > fb.deg3)) return false;
+    if (!(g.depth > fb.deg3)) {
+      if (!all_faces) return false;
+      certain = false;
+    }
     q.delta_sq[f] = g.depth * g.depth / g.nn;
     q.depth[f] = g.depth;
     q.nn[f] = g.nn;
     q.src[f] = std::int16_t(f);
   }
+  q.faces_filled = all_faces;
+  if (!certain) return false;
   q.count = 8;
   return lanes_clear(q.edges);
 }

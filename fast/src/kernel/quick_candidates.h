@@ -32,6 +32,9 @@ struct QuickCandidates {
   std::int16_t src[kMaxCandidates];
   DirectionGeometry faces[8];
   EdgeLanes edges;
+  // quick_lanes(..., all_faces = true) only: the eight faces and the lanes are filled (the
+  // orientations certain), some face's depth within its filter bound where count is 0.
+  bool faces_filled = false;
 };
 
 // Fills `q` and returns true when the pair is valid, intersecting and every filter verdict
@@ -43,7 +46,9 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
 // 8, the faces; the lanes and their verdicts are set) and declines as quick_candidates does;
 // quick_edge_list then appends the edge candidates. Between the two, the lanes can be used
 // directly by entry (below), as deformable_depth.cpp's lane sweeps do.
-bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q);
+// `all_faces`: where a face's depth is within its filter bound, the other faces are still
+// finished (faces_filled) for build_candidates(q), which decides that depth exactly.
+bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q, bool all_faces = false);
 void quick_edge_list(QuickCandidates& q);
 
 // An entry is a candidate's `src` (a face f < 8, or 8 + 2·lane + [oriented by −n]), usable
