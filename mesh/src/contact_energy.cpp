@@ -50,7 +50,8 @@ double rest_volume_root(const Mesh& m, std::size_t i) {
   for (int k = 0; k < 3; ++k)
     for (int c = 0; c < 3; ++c) {
       e[k][c] = t[k + 1][c] - t[0][c];
-      big = std::max(big, std::abs(e[k][c]));
+      const double a = std::abs(e[k][c]);
+      if (!(a <= big)) big = a;  // (NaN kept: std::max would drop it, and a NaN vertex 0 read as flat)
     }
   if (!std::isfinite(big)) return std::numeric_limits<double>::infinity();
   if (big == 0) return 0;

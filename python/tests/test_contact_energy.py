@@ -138,6 +138,14 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     assert e["skipped"] == [("B", 1, "element 1 of mesh B: vertex 3 (mesh vertex 4: rest_B[4]) coordinate x "
                                      "is not finite (nan) at rest: it has no contact weight")]
     assert list(e["b"]) == [0, 0] and np.isfinite(e["energy"])
+    # the non-finite rest vertex first in both elements: every edge vector NaN, still "not
+    # finite", not "flat"
+    rest0 = P.copy()
+    rest0[0] = np.nan
+    e0 = pdd.contact_energy(V, T, P, T, rest_B=rest0)
+    assert [(m, i) for m, i, _ in e0["skipped"]] == [("B", 0), ("B", 1)]
+    assert all("rest_B[0]) coordinate x is not finite (nan) at rest" in why for _, _, why in e0["skipped"])
+    assert e0["pairs"] == 0 and e0["energy"] == 0
     # the same pairs of element 0, with the same weights: the same energy, term by term
     keep = whole["b"] == 0
     assert list(e["pair_energy"]) == list(whole["pair_energy"][keep])
