@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -36,6 +37,12 @@ double seconds_since(Clock::time_point t0) {
 }
 
 double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::string to_text(double x) {  // the shortest decimal that reads back as x
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
 
 // The cube root of tetrahedron i's rest volume, (|det| / 6)^(1/3) of m's `vertices`, at any
 // scale: the edge vectors are first scaled exactly by 2^-k, 2^k the binade above their largest
@@ -611,7 +618,15 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   e.pair_count = sol.size();
   for (std::size_t j = 0; j < sol.size(); ++j) {  // in pair order (one sum, its order fixed)
     const auto& s = sol[j];
-    e.energy += shares[j].w * s.value;
+    const double term = shares[j].w * s.value;
+    // Every term is > 0 (a weight and an intersecting pair's value, normal doubles); one below
+    // the normal range (E ~ L^4: coordinates below ~1e-67) has lost its relative accuracy, and
+    // an energy made of such terms would read as 0, "nothing intersects".
+    if (!(term >= std::numeric_limits<double>::min()))
+      throw std::underflow_error("contact_energy: the energy is below the double range (pair (" +
+                                 std::to_string(s.a) + ", " + std::to_string(s.b) + "): weight " + to_text(shares[j].w) +
+                                 " times pdd2_global " + to_text(s.value) + "): scale the positions up");
+    e.energy += term;
     e.max_pdd2_global = std::max(e.max_pdd2_global, s.value);
     if (o.per_pair) e.pairs.push_back({s.a, s.b, shares[j].w, s.value, shares[j].w * s.value});
   }

@@ -104,6 +104,8 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
         e = self ? pdd::mesh::contact_energy_self(A, pa, o) : pdd::mesh::contact_energy(A, B, pa, pb, o);
       } catch (const std::invalid_argument& x) {
         bad_input = x.what();
+      } catch (const std::underflow_error& x) {  // positions too small for the energy's doubles
+        bad_input = x.what();
       } catch (const pdd::mesh::Cancelled&) {  // call.run raises why
       }
     });
@@ -174,7 +176,9 @@ Returns a dict: energy (float), gradient ((nA + nB, 3), A's vertices first), hes
 (scipy.sparse.csr_matrix of size 3(nA + nB), row 3v + k for coordinate k of vertex v; None
 unless asked), pairs (int), max_pdd2_global (float), skipped (list of (mesh, index, reason)),
 seconds_contacts, seconds_assembly, and with per_pair: a, b, weight, pdd2_global, pair_energy.
-The GIL is released; Ctrl-C stops the call (KeyboardInterrupt).
+The GIL is released; Ctrl-C stops the call (KeyboardInterrupt). Raises ValueError on bad input
+(shapes, indices, options) and where a pair's term w_ab * pdd2_global falls below the double
+range (coordinates below ~1e-67: scale them up); OverflowError where E exceeds it (beyond ~1e77).
 
   >>> import pdd
   >>> VA, TA = pdd.read_mesh("fixtures/meshes/tiny-a.msh")

@@ -138,14 +138,6 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     assert e["skipped"] == [("B", 1, "element 1 of mesh B: vertex 3 (mesh vertex 4: rest_B[4]) coordinate x "
                                      "is not finite (nan) at rest: it has no contact weight")]
     assert list(e["b"]) == [0, 0] and np.isfinite(e["energy"])
-    # the non-finite rest vertex first in both elements: every edge vector NaN, still "not
-    # finite", not "flat"
-    rest0 = P.copy()
-    rest0[0] = np.nan
-    e0 = pdd.contact_energy(V, T, P, T, rest_B=rest0)
-    assert [(m, i) for m, i, _ in e0["skipped"]] == [("B", 0), ("B", 1)]
-    assert all("rest_B[0]) coordinate x is not finite (nan) at rest" in why for _, _, why in e0["skipped"])
-    assert e0["pairs"] == 0 and e0["energy"] == 0
     # the same pairs of element 0, with the same weights: the same energy, term by term
     keep = whole["b"] == 0
     assert list(e["pair_energy"]) == list(whole["pair_energy"][keep])
@@ -159,6 +151,27 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     assert huge["pairs"] == 0 and huge["energy"] == 0
     assert [s[2] for s in huge["skipped"]] == [
         f"element {i} of mesh B: an edge at rest exceeds the double range: it has no contact weight" for i in (0, 1)]
+    # the non-finite rest vertex first in both elements: every edge vector NaN, still "not
+    # finite", not "flat"
+    rest0 = P.copy()
+    rest0[0] = np.nan
+    e0 = pdd.contact_energy(V, T, P, T, rest_B=rest0)
+    assert [(m, i) for m, i, _ in e0["skipped"]] == [("B", 0), ("B", 1)]
+    assert all("rest_B[0]) coordinate x is not finite (nan) at rest" in why for _, _, why in e0["skipped"])
+    assert e0["pairs"] == 0 and e0["energy"] == 0
+
+
+def test_energy_outside_the_double_range_raises():
+    """E ~ L^4: at 2^-260 of the size a pair's term w_ab * pdd2_global is ~1e-313 (no normal
+    double: E would read ~0 with pairs intersecting), at 2^260 E ~ 1e313; both raise, naming it."""
+    V = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4]], dtype=float)
+    T = np.array([[0, 1, 2, 3]])
+    P = V + 0.5
+    assert pdd.contact_energy(V, T, P, T)["energy"] > 0
+    with pytest.raises(ValueError, match=r"below the double range \(pair \(0, 0\)"):
+        pdd.contact_energy(np.ldexp(V, -260), T, np.ldexp(P, -260), T)
+    with pytest.raises(OverflowError, match="exceeds the double range"):
+        pdd.contact_energy(np.ldexp(V, 260), T, np.ldexp(P, 260), T)
 
 
 # ---- `pdd mesh --energy` (docs/definitions.md "Contact energy": its keys) ------------------

@@ -354,7 +354,8 @@ BOOST_AUTO_TEST_CASE(self_contact_of_two_bodies_equals_two_meshes) {
 // of two 2^k multiplies E by exactly 2^4k up to the engine's own accuracy (definitions §8: 1e-9
 // per value). At 2^180 (~1.5e54) and 2^-180 the rest volumes themselves (~L^3: 1e163 x 1e163 as
 // a product, 1e-163 x 1e-163) leave the double range, the weights and E do not; at 2^260
-// (~1.9e78) E ~ 1e313 does not either: std::overflow_error, no inf.
+// (~1.9e78) E ~ 1e313 does not either: std::overflow_error, no inf; at 2^-260 E ~ 1e-313 (a
+// subnormal, or 0 for a smaller scene): std::underflow_error, never an energy that reads 0.
 BOOST_AUTO_TEST_CASE(energy_at_extreme_scales) {
   const Scene s = tiny();
   const double E0 = contact_energy(s.A, s.B, s.A.vertices, s.B.vertices).energy;
@@ -376,6 +377,8 @@ BOOST_AUTO_TEST_CASE(energy_at_extreme_scales) {
   }
   const Scene t = scaled(260);
   BOOST_CHECK_THROW(contact_energy(t.A, t.B, t.A.vertices, t.B.vertices), std::overflow_error);
+  const Scene u = scaled(-260);
+  BOOST_CHECK_THROW(contact_energy(u.A, u.B, u.A.vertices, u.B.vertices), std::underflow_error);
 }
 
 BOOST_AUTO_TEST_CASE(positions_must_match_the_mesh) {

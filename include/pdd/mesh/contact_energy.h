@@ -102,7 +102,9 @@
 // tetrahedron refers to a missing vertex; Cancelled when options.cancel is set;
 // std::length_error when the Hessian would have more than 2^31 - 1 entries (Eigen's int index);
 // std::overflow_error when E itself exceeds the double range (E ~ L^4: coordinates beyond
-// ~1e77; weights and values are formed without overflow wherever they are doubles).
+// ~1e77; weights and values are formed without overflow wherever they are doubles);
+// std::underflow_error when a pair's term w_ab pdd2_global falls below it (coordinates below
+// ~1e-67), naming the pair: E would lose its accuracy, or read 0 with pairs intersecting.
 #pragma once
 
 #include <Eigen/Sparse>
