@@ -165,6 +165,7 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
 int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
   mesh::ContactEnergyOptions o;
   o.engine = args.engine == "fast" ? mesh::EnergyEngine::Fast : mesh::EnergyEngine::Exact;
+  o.weights_follow_a = o.weights_follow_b = true;  // the files' positions are the rest, as Python's default
   const auto t0 = Clock::now();
   const mesh::ContactEnergy e = B ? mesh::contact_energy(A, *B, A.vertices, B->vertices, o)
                                   : mesh::contact_energy_self(A, A.vertices, o);

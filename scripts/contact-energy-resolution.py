@@ -9,8 +9,10 @@ resolution-independent weight gives ratios near 1. With a third argument N > 1, 
 ratios for N placements of B (turned by 0.37 rad plus up to 0.5 rad, its centre moved by up to
 0.05 in x and y, seed 1; B's bottom face stays within A's top face): their spread at one h
 beside the trend over h, and E over the integral of depth^2 (the contact area times depth^2).
+A fourth argument sets B's height (default 0.4; 0.3 or 0.2: a body one or two elements thick
+at the coarsest h).
 
-    PYTHONPATH=build/python /usr/bin/python3 scripts/contact-energy-resolution.py [h] [depth] [N]
+    PYTHONPATH=build/python /usr/bin/python3 scripts/contact-energy-resolution.py [h] [depth] [N] [height]
 """
 import os
 import subprocess
@@ -44,7 +46,7 @@ def rotation(axis, angle):
     return np.eye(3) + s * K + (1 - c) * K @ K
 
 
-def placements(h, depth, n):
+def placements(h, depth, n, height):
     """The area weight's E at h, h/2, h/4 for n placements of B (module docstring)."""
     rng = np.random.default_rng(1)
     poses = [(0.37 + rng.uniform(0, 0.5), rng.uniform(-0.05, 0.05, 2)) for _ in range(n)]
@@ -52,11 +54,12 @@ def placements(h, depth, n):
     with tempfile.TemporaryDirectory() as d:
         for k, hk in enumerate([h, h / 2, h / 4]):
             VA, TA = box(os.path.join(d, f"a{k}.msh"), 0, 1, 0, 1, 0, 0.5, hk)
-            VB0, TB = box(os.path.join(d, f"b{k}.msh"), -0.3, 0.3, -0.3, 0.3, 0, 0.4, hk)
+            VB0, TB = box(os.path.join(d, f"b{k}.msh"), -0.3, 0.3, -0.3, 0.3, 0, height, hk)
             for j, (th, c) in enumerate(poses):
                 VB = VB0 @ rotation([0, 0, 1], th).T + np.array([0.5 + c[0], 0.5 + c[1], 0.5 - depth])
                 E[j, k] = pdd.contact_energy(VA, TA, VB, TB)["energy"]
-    print(f"contact: depth {depth}, area 0.36; area weight, {n} placements, h = {h}, {h / 2}, {h / 4}")
+    print(f"contact: depth {depth}, area 0.36, B {height} high; area weight, {n} placements, h = {h}, {h / 2}, "
+          f"{h / 4}")
     for j in range(n):
         print(f"  placement {j}: E {E[j, 0]:.4e} {E[j, 1]:.4e} {E[j, 2]:.4e}  ratios {E[j, 1] / E[j, 0]:.3f} "
               f"{E[j, 2] / E[j, 0]:.3f}")
@@ -70,15 +73,16 @@ def placements(h, depth, n):
 def main():
     h = float(sys.argv[1]) if len(sys.argv) > 1 else 0.2
     depth = float(sys.argv[2]) if len(sys.argv) > 2 else 0.01
+    height = float(sys.argv[4]) if len(sys.argv) > 4 else 0.4
     if len(sys.argv) > 3 and int(sys.argv[3]) > 1:
-        return placements(h, depth, int(sys.argv[3]))
+        return placements(h, depth, int(sys.argv[3]), height)
     th = 0.37
     R = np.array([[np.cos(th), -np.sin(th), 0], [np.sin(th), np.cos(th), 0], [0, 0, 1]])
     rows = []
     with tempfile.TemporaryDirectory() as d:
         for k, hk in enumerate([h, h / 2, h / 4]):
             VA, TA = box(os.path.join(d, f"a{k}.msh"), 0, 1, 0, 1, 0, 0.5, hk)
-            VB, TB = box(os.path.join(d, f"b{k}.msh"), -0.3, 0.3, -0.3, 0.3, 0, 0.4, hk)
+            VB, TB = box(os.path.join(d, f"b{k}.msh"), -0.3, 0.3, -0.3, 0.3, 0, height, hk)
             VB = VB @ R.T + np.array([0.5, 0.5, 0.5 - depth])
             e = pdd.contact_energy(VA, TA, VB, TB, per_pair=True, weight="unit")
             va, vb = volumes(VA, TA)[e["a"]], volumes(VB, TB)[e["b"]]

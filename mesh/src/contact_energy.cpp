@@ -72,6 +72,38 @@ double rest_volume_root(const Mesh& m, std::size_t i) {
   return std::ldexp(std::cbrt(std::abs(det) / 6), k);
 }
 
+// d V / d x_i divided by V for tetrahedron t's vertex i (V its signed volume, dV/dx_i the cross
+// product of the two edges from x_0 opposite to it, x_0's the negated sum): the weight's
+// derivative is w / 3 times this (header, weights_follow_positions). On the edge vectors scaled
+// exactly by 2^-k as rest_volume_root scales them: cross / det in those units, times 2^-k (the
+// ratio has the units of 1 / length), so no product overflows where the ratio is a double. The
+// signs of V and dV cancel. Precondition: t not flat (its pairs have a weight).
+std::array<Vec3d, 4> volume_log_derivative(const TetVertices& t) {
+  double e[3][3], big = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) {
+      e[k][c] = t[k + 1][c] - t[0][c];
+      big = std::max(big, std::abs(e[k][c]));
+    }
+  int s = 0;
+  std::frexp(big, &s);
+  for (auto& row : e)
+    for (double& x : row) x = std::ldexp(x, -s);
+  auto cross = [](const double* a, const double* b) {
+    return Vec3d{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  const Vec3d c1 = cross(e[1], e[2]), c2 = cross(e[2], e[0]), c3 = cross(e[0], e[1]);
+  const double det = e[0][0] * c1[0] + e[0][1] * c1[1] + e[0][2] * c1[2];
+  std::array<Vec3d, 4> d;
+  for (int c = 0; c < 3; ++c) {
+    d[1][c] = std::ldexp(c1[c] / det, -s);
+    d[2][c] = std::ldexp(c2[c] / det, -s);
+    d[3][c] = std::ldexp(c3[c] / det, -s);
+    d[0][c] = -(d[1][c] + d[2][c] + d[3][c]);
+  }
+  return d;
+}
+
 // The header's Qs in closed form. On an active set S = (S_A, S_B) with n_g = |S_g| (g = A, B),
 // the free vertices of a tetrahedron share one displacement t = -D_g / (5 - n_g) (stationarity
 // of (|t|^2 + (sum t)^2) / 20 in them, D_g = sum over S_g of d_k, d_k = c - s_k), which leaves
@@ -530,6 +562,12 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
   return H;
 }
 
+// p's gradient rows first..first + 3 (one element's) += value / 3 times d (its dV/dx / V).
+void add_weight_derivative(PairShare& p, int first, const std::array<Vec3d, 4>& d, double value) {
+  for (int i = 0; i < 4; ++i)
+    for (int c = 0; c < 3; ++c) p.gradient[first + i][c] += value / 3 * d[i][c];
+}
+
 ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
                   const std::vector<Vec3d>* pb, const ContactEnergyOptions& o) {
   const auto t0 = Clock::now();
@@ -552,11 +590,15 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   const std::size_t offset_b = B ? nA : 0;
 
   // Weights from the rest volumes' cube roots (each pair's two, in parallel); an element flat at
-  // rest has no weight: listed once (per side, in pair order), its pairs left out.
+  // rest has no weight: listed once (per side, in pair order), its pairs left out. (With
+  // weights_follow_a / _b, that side's positions are its rest.)
+  const bool follow_a = o.weights_follow_a, follow_b = B ? o.weights_follow_b : o.weights_follow_a;
+  const Mesh& weighted_a = follow_a ? Ap : A;
+  const Mesh& weighted_b = follow_b ? Bpm : Bm;
   std::vector<std::array<double, 2>> volume(sol.size());  // the two cube roots
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sol.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j)
-      volume[j] = {rest_volume_root(A, sol[j].a), rest_volume_root(Bm, sol[j].b)};
+      volume[j] = {rest_volume_root(weighted_a, sol[j].a), rest_volume_root(weighted_b, sol[j].b)};
   });
   // No weight: flat at rest, or a rest volume that is not finite (a non-finite rest coordinate,
   // or an edge vector that overflows).
@@ -575,8 +617,8 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   };
   std::size_t kept = 0;  // the weighted pairs, moved to the front in pair order
   for (std::size_t j = 0; j < sol.size(); ++j) {
-    list_unweighted(volume[j][0], 0, A, sol[j].a, 'A');
-    list_unweighted(volume[j][1], 1, Bm, sol[j].b, B ? 'B' : 'A');
+    list_unweighted(volume[j][0], 0, weighted_a, sol[j].a, 'A');
+    list_unweighted(volume[j][1], 1, weighted_b, sol[j].b, B ? 'B' : 'A');
     if (unweighted(volume[j][0]) || unweighted(volume[j][1])) continue;
     if (kept != j) sol[kept] = sol[j], volume[kept] = volume[j];
     ++kept;
@@ -603,6 +645,12 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
         p.w = o.weight == EnergyWeight::Unit ? 1.0 : volume[j][0] * volume[j][1];
         const PairTerms t = plane_terms(element(Ap, s.a), element(Bpm, s.b), s.qA, s.qB, s.normal);
         p.gradient = t.gradient;
+        if (o.weight == EnergyWeight::Area) {
+          // + pdd2_global dw/dx on a side that follows, as w times pdd2_global / 3 dV/dx / V
+          // (the assembly's factor w)
+          if (follow_a) add_weight_derivative(p, 0, volume_log_derivative(element(Ap, s.a)), s.value);
+          if (follow_b) add_weight_derivative(p, 4, volume_log_derivative(element(Bpm, s.b)), s.value);
+        }
         p.u = t.unit_normal;
         p.qs = piece_factors(t.active);
         for (int a = 0; a < p.qs.count; ++a)

@@ -93,6 +93,9 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
   o.weight = weight == "area" ? pdd::mesh::EnergyWeight::Area : pdd::mesh::EnergyWeight::Unit;
   o.hessian = hessian;
   o.per_pair = per_pair;
+  // no rest given: that mesh's weights are its current volumes, and E's gradient their function's
+  o.weights_follow_a = rest_A.is_none();
+  o.weights_follow_b = rest_B.is_none();
   Progress progress(py::none(), "pdd.contact_energy");
   LongCall call(progress);
   o.cancel = &call.cancel;
@@ -162,9 +165,11 @@ The contact energy of two tetrahedral meshes at their current positions (docs/de
 Without VB and TB: self-contact of A (element pairs sharing no vertex).
 
 VA, VB     (n, 3) current vertex positions; TA, TB (m, 4) vertex indices.
-rest_A/B   (n, 3) rest positions, for the weights w_ab = (V_a V_b)^(1/3) (rest volumes; held
-           constant, so gradient and hessian are E's derivatives at fixed rest). Default: the
-           positions given, i.e. the weights of this configuration.
+rest_A/B   (n, 3) rest positions, for the weights w_ab = (V_a V_b)^(1/3) (rest volumes, held
+           constant: a simulator passes its rest shape). Default: the positions given, the
+           weights of this configuration, which then move with it: the gradient is that E's
+           whole gradient (the weights' derivative included; finite differences of E without
+           rest_A/B agree with it), the hessian still the Gauss-Newton one at fixed weights.
 hessian    also the Gauss-Newton Hessian (positive semi-definite, symmetric).
 per_pair   also each pair's a, b, weight, pdd2_global and pair_energy.
 engine     'fast' (certified doubles) or 'exact' (= 'reference', the exact engine; slow:

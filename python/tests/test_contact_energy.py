@@ -69,6 +69,35 @@ def test_gradient_central_differences():
     assert smooth > 0
 
 
+def test_gradient_without_rest_moves_the_weights():
+    """Without rest_A / rest_B the weights are the current volumes, E(P) = sum w(P) pdd2_global(P),
+    and the gradient is that function's (the weights' derivative dw/dx = w / 3 (dV_a/dx / V_a +
+    dV_b/dx / V_b) included): central differences of the default call agree with it as the
+    fixed-rest ones agree with the fixed-rest gradient, which it differs from by those terms. With
+    one rest given only the other side's weights move."""
+    VA, TA, VB, TB = scene()
+    fixed = pdd.contact_energy(VA, TA, VB, TB, rest_A=VA, rest_B=VB)
+    e = pdd.contact_energy(VA, TA, VB, TB)
+    assert e["energy"] == fixed["energy"]
+    g, gmax = e["gradient"], np.abs(e["gradient"]).max()
+    assert np.abs(g - fixed["gradient"]).max() > 1e-3 * gmax  # the weights' share is not small
+    h, n_a, smooth = 1e-6, len(VA), 0
+    half = pdd.contact_energy(VA, TA, VB, TB, rest_A=VA)["gradient"]  # B's weights move, A's held
+    for v in np.flatnonzero(np.abs(g).sum(axis=1) > 0)[::3]:
+        for k in range(3):
+            def E(d, **rest):
+                A, B = VA.copy(), VB.copy()
+                (A if v < n_a else B)[v if v < n_a else v - n_a, k] += d
+                return pdd.contact_energy(A, TA, B, TB, **rest)["energy"]
+            ep, em = E(h), E(-h)
+            if abs((ep - e["energy"]) / h - (e["energy"] - em) / h) <= 1e-6 * gmax:
+                smooth += 1
+                assert abs((ep - em) / (2 * h) - g[v, k]) <= 1e-5 * gmax
+                hp, hm = E(h, rest_A=VA), E(-h, rest_A=VA)
+                assert abs((hp - hm) / (2 * h) - half[v, k]) <= 1e-5 * gmax
+    assert smooth > 0
+
+
 def test_hessian_symmetric_psd():
     VA, TA, VB, TB = scene()
     e = pdd.contact_energy(VA, TA, VB, TB, hessian=True)

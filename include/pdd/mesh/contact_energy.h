@@ -26,7 +26,9 @@
 // volume at P, or at rest for the weight) or one with a non-finite coordinate is skipped and
 // listed in `skipped`, as contacts() does.
 //
-// Weights. w_ab = (V_a V_b)^(1/3), V the REST volumes (|det| / 6 of A's / B's `vertices`), held
+// Weights. w_ab = (V_a V_b)^(1/3), V the REST volumes (|det| / 6 of A's / B's `vertices`; with
+// options.weights_follow_a / _b that side's current volumes, and the gradient then includes the
+// weights' derivative: the options' comment), held
 // constant: E is a function of P alone, and the gradient and Hessian below are exactly its
 // derivatives (weights from the current volumes would add a non-convex term per pair). Why this
 // weight: for a shallow contact (depth delta << element size h) across an area S, each
@@ -35,10 +37,12 @@
 // are ~ S / h^2 such pairs; so the unweighted sum grows like S delta^2 / h^2 when the mesh is
 // refined. (V_a V_b)^(1/3) ~ h^2 is an area, making E ~ c S delta^2 = c times the integral of
 // the squared depth over the contact area, a penalty independent of the resolution; measured
-// c = 0.62-0.69. Measured (two Gmsh boxes overlapping by a fixed depth, meshed at h, h/2, h/4;
-// scripts/contact-energy-resolution.py): E(h/2)/E(h) and E(h/4)/E(h) within ~10% for one
-// placement and ~3% on average over placements (docs/definitions.md "Contact energy"), beside
-// ~4x per halving for w = 1 and ~1/2 for w = (V_a + V_b)/2. Weight::Unit gives w = 1. Formed as
+// c = 0.62-0.69 (0.71 on the coarsest mesh of a body 1.5 elements thick). Measured (two Gmsh
+// boxes overlapping by a fixed depth, meshed at h, h/2, h/4; scripts/contact-energy-resolution.py):
+// E(h/4)/E(h/2) within ~2% on average over placements; E(h/2)/E(h) and E(h/4)/E(h) within ~3% on
+// average (~10% for one placement) where the body is several elements thick at h, 7-12% on average
+// (up to ~20% for one placement) where it is one or two (docs/definitions.md "Contact energy"),
+// beside ~4x per halving for w = 1 and ~1/2 for w = (V_a + V_b)/2. Weight::Unit gives w = 1. Formed as
 // the product of the two volumes' cube roots, each from an exactly rescaled determinant (no
 // overflow or underflow where the weight is a double).
 //
@@ -130,6 +134,13 @@ struct ContactEnergyOptions {
   EnergyWeight weight = EnergyWeight::Area;
   bool hessian = false;   // fill ContactEnergy::hessian
   bool per_pair = false;  // fill ContactEnergy::pairs
+  // A's (B's) weights from its current volumes instead of its rest vertices (Python's default,
+  // rest_A=None; pdd mesh --energy): E(P) = sum w_ab(P) pdd2_global(P), and the gradient is that
+  // function's, each weight's derivative included (w_ab = (V_a V_b)^(1/3): dw/dx = w / 3
+  // (dV_a/dx / V_a + dV_b/dx / V_b), over the side that follows), so that finite differences of
+  // E agree with it. The Hessian stays the Gauss–Newton one at fixed weights (positive
+  // semi-definite). Self-contact: follow_a alone.
+  bool weights_follow_a = false, weights_follow_b = false;
   // As ContactOptions::cancel (checked between stages and per pair); throws Cancelled.
   const std::atomic<bool>* cancel = nullptr;
 };
