@@ -74,7 +74,7 @@ double rest_volume_root(const Mesh& m, std::size_t i) {
 
 // d V / d x_i divided by V for tetrahedron t's vertex i (V its signed volume, dV/dx_i the cross
 // product of the two edges from x_0 opposite to it, x_0's the negated sum): the weight's
-// derivative is w / 3 times this (header, weights_follow_positions). On the edge vectors scaled
+// derivative is w / 3 times this (header: weights_follow_a / _b). On the edge vectors scaled
 // exactly by 2^-k as rest_volume_root scales them: cross / det in those units, times 2^-k (the
 // ratio has the units of 1 / length), so no product overflows where the ratio is a double. The
 // signs of V and dV cancel. Precondition: t not flat (its pairs have a weight).
