@@ -44,6 +44,25 @@ std::string to_text(double x) {  // the shortest decimal that reads back as x
   return std::string(buf, r.ptr);
 }
 
+// t's edge vectors e[j] = t[j + 1] − t[0] scaled exactly by 2^-k, 2^k the binade above their
+// largest component (k set; 0 when that is 0); returns that component, NaN where one is (kept:
+// std::max would drop it, and a NaN vertex 0 would read as a flat element).
+double scaled_edges(const TetVertices& t, double (&e)[3][3], int& k) {
+  double big = 0;
+  for (int j = 0; j < 3; ++j)
+    for (int c = 0; c < 3; ++c) {
+      e[j][c] = t[j + 1][c] - t[0][c];
+      const double a = std::abs(e[j][c]);
+      if (!(a <= big)) big = a;
+    }
+  k = 0;
+  if (!std::isfinite(big) || big == 0) return big;
+  std::frexp(big, &k);  // big in [2^(k-1), 2^k)
+  for (auto& row : e)
+    for (double& x : row) x = std::ldexp(x, -k);
+  return big;
+}
+
 // The cube root of tetrahedron i's rest volume, (|det| / 6)^(1/3) of m's `vertices`, at any
 // scale: the edge vectors are first scaled exactly by 2^-k, 2^k the binade above their largest
 // component, so the determinant (a degree-3 product) neither overflows nor underflows where the
@@ -52,20 +71,11 @@ std::string to_text(double x) {  // the shortest decimal that reads back as x
 // underflows below ~1e-51, where E and the weight themselves are ordinary doubles.) 0: flat; not
 // finite: a coordinate or an edge vector is not.
 double rest_volume_root(const Mesh& m, std::size_t i) {
-  const TetVertices t = element(m, i);
-  double e[3][3], big = 0;
-  for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) {
-      e[k][c] = t[k + 1][c] - t[0][c];
-      const double a = std::abs(e[k][c]);
-      if (!(a <= big)) big = a;  // (NaN kept: std::max would drop it, and a NaN vertex 0 read as flat)
-    }
+  double e[3][3];
+  int k = 0;
+  const double big = scaled_edges(element(m, i), e, k);
   if (!std::isfinite(big)) return std::numeric_limits<double>::infinity();
   if (big == 0) return 0;
-  int k = 0;
-  std::frexp(big, &k);  // big in [2^(k-1), 2^k)
-  for (auto& row : e)
-    for (double& x : row) x = std::ldexp(x, -k);
   const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
                      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
@@ -79,16 +89,9 @@ double rest_volume_root(const Mesh& m, std::size_t i) {
 // ratio has the units of 1 / length), so no product overflows where the ratio is a double. The
 // signs of V and dV cancel. Precondition: t not flat (its pairs have a weight).
 std::array<Vec3d, 4> volume_log_derivative(const TetVertices& t) {
-  double e[3][3], big = 0;
-  for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) {
-      e[k][c] = t[k + 1][c] - t[0][c];
-      big = std::max(big, std::abs(e[k][c]));
-    }
+  double e[3][3];
   int s = 0;
-  std::frexp(big, &s);
-  for (auto& row : e)
-    for (double& x : row) x = std::ldexp(x, -s);
+  scaled_edges(t, e, s);
   auto cross = [](const double* a, const double* b) {
     return Vec3d{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
   };
