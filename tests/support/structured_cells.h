@@ -79,6 +79,28 @@ inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
   return intersecting_pairs(A, B, "rounding", max_pairs, [](double pd2) { return pd2 < 1e-20; });
 }
 
+// Contacts made by rounding on the diagonal planes of stacked blocks: the Kuhn tetrahedra of an
+// n^3 block of cubes of side h = 1/6 and those of the same block moved by (h/10, h/10, n h -
+// h/3) (each coordinate rounded once from A's): a third of a cell deep along z, and moved
+// across along x and y alike, so that the cells' diagonal faces x - y = c of the two blocks
+// coincide up to rounding. The element pairs whose interiors meet only through that rounding
+// (rigid PD² below 1e-20), up to `max_pairs`: an edge or a vertex of one on a face or an edge of
+// the other, the minimiser of definitions §9 where pieces meet.
+inline std::vector<TetPair> diagonal_stack_rounding_pairs(int n, int max_pairs) {
+  const double h = 1.0 / 6, s = h / 10, up = n * h - h / 3;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        for (int perm = 0; perm < 6; ++perm) {
+          A.push_back(kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
+          TetVertices b = A.back();
+          for (auto& v : b) v[0] += s, v[1] += s, v[2] += up;
+          B.push_back(b);
+        }
+  return intersecting_pairs(A, B, "diagonal stack by rounding", max_pairs, [](double pd2) { return pd2 < 1e-20; });
+}
+
 // A resting contact of structured blocks: the Kuhn tetrahedra of an n x n x 1 layer of cubes
 // of side h = 1/8 and those of the same layer moved by (0.37 h, 0.21 h, h - depth), B's bottom
 // `depth` below A's top; the element pairs whose interiors meet, up to `max_pairs`. A

@@ -103,6 +103,107 @@ bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V
   return true;
 }
 
+// The best multipliers for the cap about v, in doubles (the exact step below makes them exact):
+// the dual of relaxed over the plane across v,
+//     max q(w) = sum_p delta_p w_p - kappa(w)  over w >= 0 with sum_A l = sum_B m, g.e1 = g.e2 = 0,
+// delta_p the overlap of vertex p at the evaluation's plane (A's height above it, B's below it;
+// g.v = sum_p delta_p w_p when sum l = sum m). By weak duality (shallow_certificate.h) every such
+// w bounds relaxed on the cap, and its optimum, (g.v)^2 / (4 kappa) = 20 v.v B0, is the least of
+// |n|^2 relaxed(n / |n|) over the plane n.v = v.v (strong duality: a convex QP): where v is that
+// plane's minimiser, B0 = relaxed(v) and the cap's bound is as tight as it can be. The
+// multipliers of the evaluation at v give the same only where v lies inside one piece of G;
+// at a minimiser where pieces meet (a contact by rounding: several vertices at the plane, one
+// of them with a multiplier ~0) they can fall short by a factor of two. Solved by its KKT system
+// on each support S of the vertices within 1e-6 of the size from the plane (both sides
+// non-empty): [2 K_S, E_S^T; E_S, 0] (w_S, mu) = (delta_S, 0), E's rows (s_p, s_p xi_p) (s = +1
+// on A, -1 on B; xi the positions across v, scaled), by its 3 x 3 Schur complement (K_S's inverse
+// in closed form), kept where w_S > 0, the best q taken (any w >= 0 is valid: the exact step
+// decides). Written out rather than with a QP library: 8 variables, at most 2^8 supports, ~100
+// operations each, and the result only a start for the exact step. mu's tilt part is the
+// plane's minimiser: n = v - (mu_1 e1 + mu_2 e2) (the heights along n are delta_p + s_p y.xi_p,
+// y the tilt), returned in tilt.
+struct PlaneDual {
+  double w[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  double q = -INFINITY;
+  V3 tilt{0, 0, 0};
+};
+bool plane_dual(const Problem& P, const Evaluation& ev, const V3& v, PlaneDual& out) {
+  V3 e1, e2;
+  frame(v, e1, e2);
+  const double sigma = norm(v) * P.scale;  // the positions across v scaled to ~1
+  if (!(sigma > 0) || !std::isfinite(sigma)) return false;
+  double delta[8], xi[8][2], side[8];
+  unsigned near = 0;
+  for (int i = 0; i < 4; ++i) {
+    side[i] = 1, side[4 + i] = -1;
+    delta[i] = ev.hA[i] - ev.sol.c, delta[4 + i] = ev.sol.c - ev.hB[i];
+    xi[i][0] = dot(e1, P.relA[i]) / sigma, xi[i][1] = dot(e2, P.relA[i]) / sigma;
+    xi[4 + i][0] = dot(e1, P.relB[i]) / sigma, xi[4 + i][1] = dot(e2, P.relB[i]) / sigma;
+  }
+  for (int p = 0; p < 8; ++p)
+    if (delta[p] > -1e-6 * sigma) near |= 1u << p;
+  for (unsigned S = 1; S < 256; ++S) {
+    if ((S & ~near) || !(S & 0x0fu) || !(S & 0xf0u)) continue;
+    // G = (2 K_S)^-1 by sides: ((I - J/5) / 2)^-1 = 2 (I + J / (5 - k)) on a side of k members;
+    // M = E G E^T and b = E G delta, summed over the sides; then M mu = b, w = G (delta - E^T mu)
+    double M[3][3] = {}, b[3] = {};
+    for (int s = 0; s < 2; ++s) {
+      double e1s[3] = {0, 0, 0}, ds = 0;
+      int k = 0;
+      for (int p = 4 * s; p < 4 * s + 4; ++p) {
+        if (!(S >> p & 1u)) continue;
+        const double e[3] = {side[p], side[p] * xi[p][0], side[p] * xi[p][1]};
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) M[r][c] += 2 * e[r] * e[c];
+          b[r] += 2 * e[r] * delta[p];
+          e1s[r] += e[r];
+        }
+        ds += delta[p], ++k;
+      }
+      const double f = 2.0 / (5 - k);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) M[r][c] += f * e1s[r] * e1s[c];
+        b[r] += f * e1s[r] * ds;
+      }
+    }
+    const double c00 = M[1][1] * M[2][2] - M[1][2] * M[2][1], c01 = M[1][2] * M[2][0] - M[1][0] * M[2][2],
+                 c02 = M[1][0] * M[2][1] - M[1][1] * M[2][0];
+    const double det = M[0][0] * c00 + M[0][1] * c01 + M[0][2] * c02;
+    if (!(det > 1e-12 * M[0][0] * M[1][1] * M[2][2])) continue;  // (M is a Gram matrix: det >= 0)
+    double mu[3];
+    for (int c = 0; c < 3; ++c) {  // Cramer's rule
+      double Mc[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int j = 0; j < 3; ++j) Mc[r][j] = j == c ? b[r] : M[r][j];
+      mu[c] = (Mc[0][0] * (Mc[1][1] * Mc[2][2] - Mc[1][2] * Mc[2][1]) -
+               Mc[0][1] * (Mc[1][0] * Mc[2][2] - Mc[1][2] * Mc[2][0]) +
+               Mc[0][2] * (Mc[1][0] * Mc[2][1] - Mc[1][1] * Mc[2][0])) / det;
+    }
+    double w[8] = {0, 0, 0, 0, 0, 0, 0, 0}, q = 0;
+    bool positive = true;
+    for (int s = 0; s < 2; ++s) {
+      double res[4], sum = 0;
+      int k = 0;
+      for (int p = 4 * s; p < 4 * s + 4; ++p) {
+        if (!(S >> p & 1u)) continue;
+        res[p - 4 * s] = delta[p] - side[p] * (mu[0] + mu[1] * xi[p][0] + mu[2] * xi[p][1]);
+        sum += res[p - 4 * s], ++k;
+      }
+      for (int p = 4 * s; p < 4 * s + 4; ++p) {
+        if (!(S >> p & 1u)) continue;
+        w[p] = 2 * (res[p - 4 * s] + sum / (5 - k));
+        positive = positive && w[p] > 0;
+        q += delta[p] * w[p] / 2;  // at the KKT point q = delta.w - w K w = delta.w / 2
+      }
+    }
+    if (!positive || !(q > out.q) || !std::isfinite(q)) continue;
+    out.q = q;
+    for (int p = 0; p < 8; ++p) out.w[p] = w[p];
+    out.tilt = add(mul(e1, -mu[1] / sigma), mul(e2, -mu[2] / sigma));
+  }
+  return out.q > 0;
+}
+
 // Exact integers over a power of two: x = X 2^e for every double x of a set, e the least of
 // their exponents (a double's 53-bit mantissa times 2^(exponent - 53)). Products and sums of
 // such integers need no reduction to lowest terms (rationals take a gcd after every
@@ -162,20 +263,23 @@ struct Workspace {
 bool move_three(const int (&best)[3], Workspace& w);
 bool g_along_v(Workspace& w);
 
-// The multipliers of the evaluation (direction_qp.h's KKT: l_i = -2 (T_i + S_A) at A's vertices
-// at the plane, m_j = 2 (T_j + S_B) at B's, 0 elsewhere), moved exactly so that sum l = sum m
-// and g = sum l_i a_i - sum m_j b_j is parallel to v (shallow_certificate.h), as integers w.M (a
-// positive multiple of them: B0 does not change when every multiplier is scaled by one s > 0);
-// [0..3] A's, [4..7] B's. w.x: the positions relative to A[0] as integers (one power of two),
-// w.V: v's components as integers. False when no triple tried gives a regular system keeping
-// every multiplier >= 0.
-bool parallel_multipliers(const Evaluation& ev, Workspace& w) {
-  double l[8];
-  long el = LONG_MAX;
+// The evaluation's multipliers (direction_qp.h's KKT: l_i = -2 (T_i + S_A) at A's vertices at
+// the plane, m_j = 2 (T_j + S_B) at B's, 0 elsewhere), [0..3] A's, [4..7] B's.
+void multipliers_of(const Evaluation& ev, double (&l)[8]) {
   for (int i = 0; i < 4; ++i) {
     l[i] = std::max(0.0, 2 * (ev.hA[i] - ev.sol.c - ev.sol.sumA));
     l[4 + i] = std::max(0.0, 2 * (ev.sol.c + ev.sol.sumB - ev.hB[i]));
   }
+}
+
+// Multipliers l (multipliers_of's, or plane_dual's), moved exactly so that sum l = sum m and
+// g = sum l_i a_i - sum m_j b_j is parallel to v (shallow_certificate.h), as integers w.M (a
+// positive multiple of them: B0 does not change when every multiplier is scaled by one s > 0);
+// [0..3] A's, [4..7] B's. w.x: the positions relative to A[0] as integers (one power of two),
+// w.V: v's components as integers. False when no triple tried gives a regular system keeping
+// every multiplier >= 0.
+bool parallel_multipliers(const double (&l)[8], Workspace& w) {
+  long el = LONG_MAX;
   for (double y : l) el = std::min(el, low_exponent(y));
   if (el == LONG_MAX) return false;
   // e1, e2 across v, exactly
@@ -424,10 +528,9 @@ struct Cap {
   ShallowResult result;
   double c0 = 1, d0 = 0;
 };
-bool cap_of(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, Cap& cap) {
-  V3 v = v0, lo{0, 0, 0};
-  Evaluation ev;
-  if (!find_normal(A, B, P, v, lo, ev)) return false;
+// The cap about v + lo from multipliers l (parallel_multipliers), ev the evaluation there.
+bool cap_at(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, const V3& lo,
+            const Evaluation& ev, const double (&l)[8], Cap& cap) {
   const double V = ev.value;
   if (!(V >= 0x1p-900 * P.scale * P.scale) || !std::isfinite(V)) return false;
   // exact: positions relative to A[0] over 2^ex, v over 2^ev, the multipliers (integers)
@@ -446,7 +549,7 @@ bool cap_of(const TetVertices& A, const TetVertices& B, const Problem& P, const 
       to_integer(A[i][k], ex, w.y), mpz_sub(z(w.x[i][k]), z(w.y), z(w.o[k]));
       to_integer(B[i][k], ex, w.y), mpz_sub(z(w.x[4 + i][k]), z(w.y), z(w.o[k]));
     }
-  if (!parallel_multipliers(ev, w)) return false;
+  if (!parallel_multipliers(l, w)) return false;
   // K = 20 kappa (over the multipliers' unit squared), g and g.v from parallel_multipliers:
   // B0 = (g.v)^2 / (v.v 80 kappa) = 2^(2 ex) gv^2 / (4 vv K)
   for (mpz_class* y : {&w.sl, &w.sm, &w.ql, &w.qm}) *y = 0;
@@ -491,6 +594,27 @@ bool cap_of(const TetVertices& A, const TetVertices& B, const Problem& P, const 
   cap.result.normal = v, cap.result.low = lo, cap.result.eval = ev, cap.result.lower = L;
   cap.c0 = c0, cap.d0 = std::sqrt(32 * L) * (1 + 4 * kU);
   return true;
+}
+
+// The walk's normal and its evaluation's multipliers; where their bound falls short, the
+// plane's dual (plane_dual): v moved to the plane's minimiser, its multipliers there.
+bool cap_of(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v0, Cap& cap) {
+  V3 v = v0, lo{0, 0, 0};
+  Evaluation ev;
+  if (!find_normal(A, B, P, v, lo, ev)) return false;
+  double l[8];
+  multipliers_of(ev, l);
+  if (cap_at(A, B, P, v, lo, ev, l, cap)) return true;
+  PlaneDual d;
+  if (!plane_dual(P, ev, v, d)) return false;
+  for (int k = 0; k < 3; ++k) {
+    const detail::dw::DW x = detail::dw::two_sum(v[k], lo[k] + d.tilt[k]);  // v + lo + tilt
+    v[k] = x.hi, lo[k] = x.lo;
+  }
+  ev = evaluate_tight(A, B, P, v, lo);
+  if (!(ev.error <= kGlobalRel)) return false;
+  PlaneDual e;
+  return plane_dual(P, ev, v, e) && cap_at(A, B, P, v, lo, ev, e.w, cap);
 }
 
 // The off-cap region of a cap as a half-space: u.vh <= cv covers every unit u with u.(v + lo) /

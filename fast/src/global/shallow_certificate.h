@@ -26,7 +26,13 @@
 // change may turn it negative: then another three, a vertex off the plane among them, since
 // weak duality holds for multipliers >= 0 on every vertex; likewise where the moved g points
 // away from v, g.v <= 0: a vertex of one grid on the collinear edge of its shifted copy puts
-// the active vertices on one line, and the three of them move to any g). Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
+// the active vertices on one line, and the three of them move to any g). Where the bound below
+// then falls short of L (a minimiser where pieces meet: the evaluation's multipliers, even
+// moved, bound it at about half its value), the multipliers are the optimum of the dual over
+// the plane across v instead (g parallel to v among the constraints: its value is the least of
+// |n|^2 relaxed over the plane n.v = v.v, relaxed(v) where v is that plane's minimiser), v moved
+// to that minimiser first (shallow_certificate.cpp's plane_dual), and moved exactly as above.
+// Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
 // relaxed(u) >= B0 cos^2(theta), B0 = (g.v)^2 / (v.v 80 kappa) (B0 = relaxed(v) for the exact
 // multipliers at a stationary v): on the cap cos(theta) >= c0 = sqrt(L / B0), relaxed >= L.
 // Off the cap, relaxed(u) >= D(u)^2 / 32 (deformable_depth.h; D(u) the overlap along u, the
