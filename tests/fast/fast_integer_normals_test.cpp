@@ -2,11 +2,13 @@
 // first triple returned has the least distance of c alpha to the integers (both components), up
 // to the search's fixed-point error, along generic directions (the loop over every try) and along
 // directions a rounding away from a coordinate plane or a diagonal (its slow-drift path, which
-// considers a few tries only); every triple returned is c's integer normal.
+// considers a few tries only), those with a fractional part near a half included; every triple
+// returned is c's integer normal.
 #define BOOST_TEST_MODULE fast_integer_normals
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <sstream>
 #include <vector>
 
 #include "global/integer_normals.h"
@@ -29,10 +31,45 @@ struct Direction {
   double eps;      // perturbation of its components (0: as is)
 };
 
+// The search along y over `tries` against the brute force (header comment); m = 2, the largest
+// component of y.
+void check_window_best(const Q (&y)[3], int tries, const char* what) {
+  const int m = 2;
+  std::vector<global::V3> out;
+  global::integer_normals(y, tries, 4, out);
+  BOOST_REQUIRE(!out.empty());
+  const Q alpha[2] = {y[0] / y[m], y[1] / y[m]};
+  // brute force: the least sum of squared distances over the window
+  Q best = -1;
+  for (int j = 0; j < tries; ++j) {
+    const Q c((std::int64_t(1) << 53) - 1 - j);
+    const Q d0 = frac_distance(c * alpha[0]), d1 = frac_distance(c * alpha[1]);
+    const Q metric = d0 * d0 + d1 * d1;
+    if (best < 0 || metric < best) best = metric;
+  }
+  for (std::size_t r = 0; r < out.size(); ++r) {  // each one c's integer normal, along y
+    const Q c(std::fabs(out[r][m]));
+    BOOST_TEST(c.get_d() <= 0x1p53);
+    BOOST_TEST(sgn(Q(out[r][m])) == sgn(y[m]));
+    for (int t = 0; t < 2; ++t) {
+      const Q rest = Q(out[r][t]) * Q(sgn(y[m])) - c * alpha[t];
+      BOOST_TEST(abs(rest) <= Q(1, 2));
+    }
+  }
+  const Q c(std::fabs(out[0][m]));
+  const Q d0 = frac_distance(c * alpha[0]), d1 = frac_distance(c * alpha[1]);
+  // The search tracks each fractional part in 64-bit fixed point, off by < j 2^-64 after j
+  // tries, and compares metrics in doubles (relative rounding < 4 2^-53): sqrt(metric) within
+  // sqrt(2) tries 2^-64 + 4 2^-53 sqrt(metric) of the exact one.
+  const double got = std::sqrt(Q(d0 * d0 + d1 * d1).get_d()), least = std::sqrt(best.get_d());
+  BOOST_TEST(got <= least * (1 + 8 * 0x1p-53) + 4 * tries * 0x1p-64,
+             what << ": first triple at " << got << ", the window's best " << least);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(first_triple_is_the_window_best) {
-  const int tries = 1 << 12, m = 2;  // y_m = y[2], the largest component below
+  const int tries = 1 << 12;
   const std::vector<Direction> dirs = {
       {{0.7534, -0.2341234, 1}, 0},  {{0.1234567, 0.87654321, -1}, 0}, {{1, -1, 1}, 1e-8},
       {{0, -1, 1}, 1e-12},           {{-1, 0, 1}, 1e-16},               {{1, 1, -1}, 1e-17},
@@ -44,34 +81,30 @@ BOOST_AUTO_TEST_CASE(first_triple_is_the_window_best) {
     for (int k = 0; k < 3; ++k) y[k] = Q(d.base[k]);
     const Q tilt[2] = {Q(d.eps) * Q(3, 7), Q(d.eps) * Q(5, 11)};
     for (int t = 0; t < 2; ++t) y[t] += d.base[t] > 0 ? Q(-tilt[t]) : tilt[t];  // |y_0|, |y_1| < |y_2|
-    std::vector<global::V3> out;
-    global::integer_normals(y, tries, 4, out);
-    BOOST_REQUIRE(!out.empty());
-    const Q alpha[2] = {y[0] / y[m], y[1] / y[m]};
-    // brute force: the least sum of squared distances over the window
-    Q best = -1;
-    for (int j = 0; j < tries; ++j) {
-      const Q c((std::int64_t(1) << 53) - 1 - j);
-      const Q d0 = frac_distance(c * alpha[0]), d1 = frac_distance(c * alpha[1]);
-      const Q metric = d0 * d0 + d1 * d1;
-      if (best < 0 || metric < best) best = metric;
-    }
-    for (std::size_t r = 0; r < out.size(); ++r) {  // each one c's integer normal, along y
-      const Q c(std::fabs(out[r][m]));
-      BOOST_TEST(c.get_d() <= 0x1p53);
-      BOOST_TEST(sgn(Q(out[r][m])) == sgn(y[m]));
-      for (int t = 0; t < 2; ++t) {
-        const Q rest = Q(out[r][t]) * Q(sgn(y[m])) - c * alpha[t];
-        BOOST_TEST(abs(rest) <= Q(1, 2));
-      }
-    }
-    const Q c(std::fabs(out[0][m]));
-    const Q d0 = frac_distance(c * alpha[0]), d1 = frac_distance(c * alpha[1]);
-    // The search tracks each fractional part in 64-bit fixed point, off by < j 2^-64 after j
-    // tries, and compares metrics in doubles (relative rounding < 4 2^-53): sqrt(metric) within
-    // sqrt(2) tries 2^-64 + 4 2^-53 sqrt(metric) of the exact one.
-    const double got = std::sqrt(Q(d0 * d0 + d1 * d1).get_d()), least = std::sqrt(best.get_d());
-    BOOST_TEST(got <= least * (1 + 8 * 0x1p-53) + 4 * tries * 0x1p-64,
-               "eps " << d.eps << ": first triple at " << got << ", the window's best " << least);
+    std::ostringstream what;
+    what << "eps " << d.eps;
+    check_window_best(y, tries, what.str().c_str());
+  }
+}
+
+// Along a direction a rounding off a coordinate plane or a diagonal whose fractional part of
+// c alpha starts near a half at the window's first try c = 2^53 - 1 (alpha = 2^-54 + eta: c alpha
+// = 1/2 - 2^-54 + c eta), so that the offset's nearest integer changes inside the window (eta =
+// 2^-96: c alpha falls by ~2^-54 a try from 1/2 + ~2^-43, past 1/2 after ~2^11 of the 2^12
+// tries) or stays (eta = 0: just below a half throughout), beside a part a rounding off -1.
+BOOST_AUTO_TEST_CASE(parts_starting_near_a_half) {
+  const int tries = 1 << 12;
+  const Q two54 = Q(mpz_class(1) << 54), two96 = Q(mpz_class(1) << 96), two55 = Q(mpz_class(1) << 55);
+  const Q cases[][3] = {
+      {Q(1) / two54 + Q(1) / two96, Q(-1) + Q(3) / two55, Q(1)},  // crosses a half
+      {Q(1) / two54, Q(-1) + Q(3) / two55, Q(1)},                  // stays below a half
+      {Q(-1) + Q(3) / two55, Q(1) / two54 + Q(1) / two96, Q(-1)},  // the same, components swapped
+      {Q(1) / two54 + Q(1) / two96, Q(1) / two54 - Q(1) / two96, Q(1)},
+  };
+  int i = 0;
+  for (const auto& y : cases) {
+    std::ostringstream what;
+    what << "near a half, case " << i++;
+    check_window_best(y, tries, what.str().c_str());
   }
 }

@@ -10,41 +10,70 @@ namespace pdd::fast::global {
 namespace {
 
 // The window's tries where both fractional parts drift by little (a direction a rounding away
-// from a coordinate plane or a diagonal: alpha_t within ~2^-19 of an integer, 2^18 tries) and
-// stay nearer one integer than any other over the window: the signed parts are then s_t - j a_t
-// exactly (s_t, a_t: F_t and A_t read as signed 64-bit integers; |s_t| + tries |a_t| < 2^63, so
-// no wrap), and the metric sum_t (s_t - j a_t)^2 is a convex quadratic in j, least at its vertex
-// j* clamped to the window. Its least values over the window lie at the integers nearest j*;
-// those, and the window's first and last tries, are considered in increasing j by the loop's
-// own `consider` (the same metric from the same integers, the same insertion): the same outputs
-// wherever the quadratic's steps exceed the metric's rounding; where they do not (the whole
-// window within a few roundings of one metric), the tries returned are as near y's direction as
-// the loop's, to that rounding. False (the caller runs the loop over every try) otherwise.
+// from a coordinate plane, a diagonal, or a plane where a ratio of components is a half-integer:
+// alpha_t within ~2^-19 of an integer or a half-integer, 2^18 tries): each part's signed offset from its nearest integer is x_t - k_t 2^64 with x_t = s_t - j a_t (s_t,
+// a_t: F_t and A_t read as signed 64-bit integers, x_t exact in 128 bits) and k_t the integer
+// that puts it in [-2^63, 2^63). With tries |a_t| < 2^63, x_t spans less than 2^63 over the
+// window, so k_t changes at most once (where x_t crosses +-2^63: a part starting near a half,
+// as along a direction whose ratio of components is a half-integer up to a rounding); on each of
+// the (at most three) segments between such changes the metric sum_t (x_t - k_t 2^64)^2 is a
+// convex quadratic in j, least at its vertex j* clamped to the segment. Its least values on a
+// segment lie at the integers nearest j*; those, and each segment's first and last tries, are
+// considered in increasing j by the loop's own `consider` (the same metric from the same
+// integers, the same insertion): the same outputs wherever the quadratic's steps exceed the
+// metric's rounding; where they do not (the whole window within a few roundings of one metric),
+// the tries returned are as near y's direction as the loop's, to that rounding. False (the
+// caller runs the loop over every try) otherwise.
 template <class Consider>
 bool slow_drift(const std::uint64_t (&F)[2], const std::uint64_t (&A)[2], int tries, int keep, Consider&& consider) {
+  constexpr __int128 kHalf = __int128(1) << 63, kOne = __int128(1) << 64;
   __int128 s[2], a[2];
   for (int t = 0; t < 2; ++t) {
     s[t] = std::int64_t(F[t]), a[t] = std::int64_t(A[t]);
-    const __int128 reach = (s[t] < 0 ? -s[t] : s[t]) + __int128(tries) * (a[t] < 0 ? -a[t] : a[t]);
-    if (reach >= (__int128(1) << 63)) return false;
+    if (__int128(tries) * (a[t] < 0 ? -a[t] : a[t]) >= kHalf) return false;
   }
-  const long double sa = (long double)(s[0] * a[0] + s[1] * a[1]);  // (each product below 2^126)
-  const long double aa = (long double)(a[0] * a[0] + a[1] * a[1]);
-  long double vertex = aa > 0 ? sa / aa : 0;
-  vertex = std::clamp(vertex, (long double)0, (long double)(tries - 1));
-  const int j0 = int(vertex);
-  int js[24], n = 0;
-  auto add = [&](int j) {
-    if (j >= 0 && j < tries) js[n++] = j;
+  auto offset_integer = [&](int t, int j) -> __int128 {  // k_t at try j
+    const __int128 x = s[t] - __int128(j) * a[t];
+    return x >= kHalf ? 1 : x < -kHalf ? -1 : 0;
   };
-  for (int j = 0; j < keep; ++j) add(j);
-  for (int j = j0 - keep; j <= j0 + keep + 1; ++j) add(j);
-  for (int j = tries - keep; j < tries; ++j) add(j);
+  // the segments: k_t is monotone in j (x_t is), so its one change is found by bisection
+  int ends[4] = {0, tries, tries, tries}, n_ends = 1;
+  for (int t = 0; t < 2; ++t) {
+    const __int128 k0 = offset_integer(t, 0);
+    if (offset_integer(t, tries - 1) == k0) continue;
+    int lo = 0, hi = tries - 1;  // k(lo) = k0, k(hi) != k0
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      (offset_integer(t, mid) == k0 ? lo : hi) = mid;
+    }
+    ends[n_ends++] = hi;
+  }
+  ends[n_ends++] = tries;
+  if (n_ends == 4 && ends[1] > ends[2]) std::swap(ends[1], ends[2]);  // (the two changes in order)
+  int js[3 * (4 * 8 + 2)], n = 0;  // (per segment: keep at each end, 2 keep + 2 about j*; keep <= 8)
+  for (int e = 0; e + 1 < n_ends; ++e) {
+    const int first = ends[e], last = ends[e + 1] - 1;
+    if (first > last) continue;
+    auto add = [&](int j) {
+      if (j >= first && j <= last) js[n++] = j;
+    };
+    __int128 sk[2];
+    for (int t = 0; t < 2; ++t) sk[t] = s[t] - offset_integer(t, first) * kOne;
+    const long double sa = (long double)sk[0] * (long double)a[0] + (long double)sk[1] * (long double)a[1];
+    const long double aa = (long double)(a[0] * a[0] + a[1] * a[1]);  // (each product below 2^126)
+    long double vertex = aa > 0 ? sa / aa : first;
+    vertex = std::clamp(vertex, (long double)first, (long double)last);
+    const int j0 = int(vertex);
+    for (int j = first; j < first + keep; ++j) add(j);
+    for (int j = j0 - keep; j <= j0 + keep + 1; ++j) add(j);
+    for (int j = last - keep + 1; j <= last; ++j) add(j);
+  }
   std::sort(js, js + n);
   n = int(std::unique(js, js + n) - js);
   for (int i = 0; i < n; ++i) {
-    const __int128 f0 = s[0] - __int128(js[i]) * a[0], f1 = s[1] - __int128(js[i]) * a[1];
-    consider(js[i], std::fabs(double(std::int64_t(f0))), std::fabs(double(std::int64_t(f1))));
+    double d[2];
+    for (int t = 0; t < 2; ++t) d[t] = std::fabs(double(s[t] - __int128(js[i]) * a[t] - offset_integer(t, js[i]) * kOne));
+    consider(js[i], d[0], d[1]);
   }
   return true;
 }
