@@ -69,6 +69,31 @@ int slow_within_contract(const std::vector<TetPair>& pairs, const std::string& t
   return slow;
 }
 
+// global_minimiser on each pair: its value within definitions §8 of the exact engine's
+// pdd2_global, a witness exactly where solve_pair declines pdd2_global; counted: the witnesses,
+// those reported without the exact pieces, and the pairs on them (solve_pair's slow path).
+struct MinimiserCounts {
+  int witnesses = 0, without_pieces = 0, slow = 0;
+};
+MinimiserCounts minimisers_within_contract(const std::vector<TetPair>& pairs) {
+  const fast::SolveOptions o;
+  MinimiserCounts c;
+  for (const TetPair& p : pairs) {
+    const auto exact = exact_with_global(p);
+    BOOST_REQUIRE(exact.intersecting);
+    const double ex = CGAL::to_double(exact.pdd2_global);
+    const auto g = fast::global_minimiser(p.A, p.B);
+    BOOST_REQUIRE(g);
+    BOOST_TEST(std::fabs(g->pd2 - ex) <= 1e-9 * ex, p.name << ": " << g->pd2 << " vs " << ex);
+    const auto fast = fast::solve_pair(p, o);
+    BOOST_TEST(bool(fast.pdd2_global_error) == g->witness, p.name);
+    c.witnesses += g->witness;
+    c.without_pieces += g->witness && !fast.stats.slow_path;
+    c.slow += fast.stats.slow_path;
+  }
+  return c;
+}
+
 // Start normals: the eight face normals, each way, four random ones, the exact minimiser's
 // normal rounded, and the lone pair's ray where that certificate declines with one (the start
 // global_depth gives after it).
@@ -231,25 +256,12 @@ BOOST_AUTO_TEST_CASE(five_tetrahedra_blocks_resting_on_columns_with_tied_minimis
 BOOST_AUTO_TEST_CASE(contacts_by_rounding_on_diagonal_planes_as_witnesses) {
   const std::vector<TetPair> pairs = pdd::test::rounding_contact_pairs(2, 40);
   BOOST_REQUIRE(pairs.size() == 40u);
-  const fast::SolveOptions o;
-  int witnesses = 0, without_pieces = 0;
-  for (const TetPair& p : pairs) {
-    const auto exact = exact_with_global(p);
-    BOOST_REQUIRE(exact.intersecting);
-    const double ex = CGAL::to_double(exact.pdd2_global);
-    const auto g = fast::global_minimiser(p.A, p.B);
-    BOOST_REQUIRE(g);
-    BOOST_TEST(std::fabs(g->pd2 - ex) <= 1e-9 * ex, p.name << ": " << g->pd2 << " vs " << ex);
-    const auto fast = fast::solve_pair(p, o);
-    BOOST_TEST(bool(fast.pdd2_global_error) == g->witness, p.name);
-    witnesses += g->witness;
-    without_pieces += g->witness && !fast.stats.slow_path;
-  }
-  BOOST_TEST_MESSAGE("contacts by rounding on diagonal planes: " << witnesses << " witnesses of " << pairs.size()
-                                                                 << ", " << without_pieces
+  const MinimiserCounts c = minimisers_within_contract(pairs);
+  BOOST_TEST_MESSAGE("contacts by rounding on diagonal planes: " << c.witnesses << " witnesses of " << pairs.size()
+                                                                 << ", " << c.without_pieces
                                                                  << " without the exact pieces");
-  BOOST_TEST(witnesses == int(pairs.size()));
-  BOOST_TEST(without_pieces >= int(pairs.size()) / 4);
+  BOOST_TEST(c.witnesses == int(pairs.size()));
+  BOOST_TEST(c.without_pieces >= int(pairs.size()) / 4);
 }
 
 // Kuhn blocks stacked a third of a cell deep and moved across by a tenth of a cell along x and y
@@ -263,19 +275,7 @@ BOOST_AUTO_TEST_CASE(contacts_by_rounding_on_diagonal_planes_as_witnesses) {
 BOOST_AUTO_TEST_CASE(diagonal_contacts_of_stacked_blocks_without_the_exact_pieces) {
   const std::vector<TetPair> pairs = pdd::test::diagonal_stack_rounding_pairs(3, 60);
   BOOST_REQUIRE(pairs.size() >= 40u);
-  const fast::SolveOptions o;
-  int slow = 0;
-  for (const TetPair& p : pairs) {
-    const auto exact = exact_with_global(p);
-    BOOST_REQUIRE(exact.intersecting);
-    const double ex = CGAL::to_double(exact.pdd2_global);
-    const auto g = fast::global_minimiser(p.A, p.B);
-    BOOST_REQUIRE(g);
-    BOOST_TEST(std::fabs(g->pd2 - ex) <= 1e-9 * ex, p.name << ": " << g->pd2 << " vs " << ex);
-    const auto fast = fast::solve_pair(p, o);
-    BOOST_TEST(bool(fast.pdd2_global_error) == g->witness, p.name);
-    slow += fast.stats.slow_path;
-  }
+  const int slow = minimisers_within_contract(pairs).slow;
   BOOST_TEST_MESSAGE("diagonal contacts of stacked blocks: " << slow << " of " << pairs.size() << " in rationals");
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " in rationals");
 }

@@ -56,6 +56,22 @@ std::vector<TetPair> intersecting_pairs(const std::vector<TetVertices>& A, const
   return out;
 }
 
+// The Kuhn tetrahedra of an n^3 block of cubes of side h (A) and the same moved by `shift` (B:
+// each coordinate of A's plus the shift's, rounded once), in the same order.
+inline void kuhn_block_and_moved_copy(int n, double h, const Vec3d& shift, std::vector<TetVertices>& A,
+                                      std::vector<TetVertices>& B) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        for (int perm = 0; perm < 6; ++perm) {
+          A.push_back(kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
+          TetVertices b = A.back();
+          for (auto& v : b)
+            for (int c = 0; c < 3; ++c) v[c] += shift[c];
+          B.push_back(b);
+        }
+}
+
 // Contacts made by rounding: the Kuhn tetrahedra of an n^3 grid of cubes of side h = 1/8
 // against those of the same grid shifted by h/10 along (1, 1, 1) (each coordinate i h + h/10
 // rounded once). In exact arithmetic the shift lies in the planes x - y = c, y - z = c of the
@@ -66,16 +82,7 @@ std::vector<TetPair> intersecting_pairs(const std::vector<TetVertices>& A, const
 inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
   const double h = 0.125, s = h / 10;
   std::vector<TetVertices> A, B;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        for (int perm = 0; perm < 6; ++perm) {
-          A.push_back(kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
-          TetVertices b = A.back();
-          for (auto& v : b)
-            for (double& x : v) x += s;
-          B.push_back(b);
-        }
+  kuhn_block_and_moved_copy(n, h, {s, s, s}, A, B);
   return intersecting_pairs(A, B, "rounding", max_pairs, [](double pd2) { return pd2 < 1e-20; });
 }
 
@@ -87,17 +94,9 @@ inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
 // (rigid PD² below 1e-20), up to `max_pairs`: an edge or a vertex of one on a face or an edge of
 // the other, the minimiser of definitions §9 where pieces meet.
 inline std::vector<TetPair> diagonal_stack_rounding_pairs(int n, int max_pairs) {
-  const double h = 1.0 / 6, s = h / 10, up = n * h - h / 3;
+  const double h = 1.0 / 6, s = h / 10;
   std::vector<TetVertices> A, B;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        for (int perm = 0; perm < 6; ++perm) {
-          A.push_back(kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
-          TetVertices b = A.back();
-          for (auto& v : b) v[0] += s, v[1] += s, v[2] += up;
-          B.push_back(b);
-        }
+  kuhn_block_and_moved_copy(n, h, {s, s, n * h - h / 3}, A, B);
   return intersecting_pairs(A, B, "diagonal stack by rounding", max_pairs, [](double pd2) { return pd2 < 1e-20; });
 }
 
