@@ -96,7 +96,8 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
       names.insert(names.end(),
                    {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned",
                     "stacked-resting", "stacked-resting-turned", "stacked-columns", "stacked-columns-turned",
-                    "stacked-five-resting", "stacked-five-resting-turned"});
+                    "stacked-five-resting", "stacked-five-resting-turned", "stacked-diagonal",
+                    "stacked-diagonal-turned"});
     else names.push_back(name);
   for (const std::string& name : names) {
     EnergyCase c;
@@ -171,6 +172,20 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
         << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
       c.description = d.str();
       if (!turned) c.rotated_twin = "stacked-five-resting-turned";
+    } else if (name == "stacked-diagonal" || name == "stacked-diagonal-turned") {
+      // B a third of a cell deep, moved across by a tenth of a cell along x and y alike: the
+      // cells' diagonal faces x - y = c of the two blocks together up to rounding (contacts made
+      // by rounding there, beside the layers' real overlap); the twin B turned 0.3 rad
+      const int n = options.stacked_cells;
+      const bool turned = name == "stacked-diagonal-turned";
+      A = make_structured_block({n, n, 3}, 0.1, {0, 0, 0}, CubeSplit::Kuhn6);
+      B = make_structured_block({n, n, 3}, 0.1, {0.01, 0.01, 0.3 - 0.1 / 3}, CubeSplit::Kuhn6, turned ? 0.3 : 0.0);
+      std::ostringstream d;
+      d << "Kuhn blocks of " << n << "x" << n << "x3 cubes of 0.1, B a third of a cell deep on A, moved by (0.01, "
+        << "0.01): diagonal faces together by rounding"
+        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
+      c.description = d.str();
+      if (!turned) c.rotated_twin = "stacked-diagonal-turned";
     } else {
       throw std::invalid_argument("--cases: unknown case '" + name + "' (grids, balls, stacked)");
     }

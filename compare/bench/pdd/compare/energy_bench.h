@@ -27,6 +27,9 @@
 //        the same contacts by rounding), each beside B turned 0.3 rad ("-turned"); blocks of
 //        cubes cut into five, B on A's columns 1e-9 deep with the cuts alternating across the
 //        contact ("stacked-five-resting": minimisers tied at a vertex) beside B turned 0.3 rad;
+//        Kuhn blocks of decimal cells, B a third of a cell deep and moved by (0.01, 0.01)
+//        ("stacked-diagonal": the cells' diagonal faces x - y = c of both together by rounding)
+//        beside B turned 0.3 rad;
 //        each aligned case names its twin (rotated_twin), and the ratios of the times per pair.
 #pragma once
 
