@@ -7,6 +7,7 @@
 #define BOOST_TEST_MODULE fast_integer_normals
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -32,21 +33,23 @@ struct Direction {
 };
 
 // The search along y over `tries` against the brute force (header comment); m = 2, the largest
-// component of y.
+// component of y. Every triple returned is checked: the r-th one's metric is at most the
+// window's r-th least (up to the search's error), so a try the search skips cannot be better
+// than one it returns.
 void check_window_best(const Q (&y)[3], int tries, const char* what) {
   const int m = 2;
   std::vector<global::V3> out;
   global::integer_normals(y, tries, 4, out);
   BOOST_REQUIRE(!out.empty());
   const Q alpha[2] = {y[0] / y[m], y[1] / y[m]};
-  // brute force: the least sum of squared distances over the window
-  Q best = -1;
-  for (int j = 0; j < tries; ++j) {
-    const Q c((std::int64_t(1) << 53) - 1 - j);
+  auto metric_of = [&](const Q& c) {
     const Q d0 = frac_distance(c * alpha[0]), d1 = frac_distance(c * alpha[1]);
-    const Q metric = d0 * d0 + d1 * d1;
-    if (best < 0 || metric < best) best = metric;
-  }
+    return Q(d0 * d0 + d1 * d1);
+  };
+  // brute force: every try's sum of squared distances, least first
+  std::vector<Q> metrics;
+  for (int j = 0; j < tries; ++j) metrics.push_back(metric_of(Q((std::int64_t(1) << 53) - 1 - j)));
+  std::sort(metrics.begin(), metrics.end());
   for (std::size_t r = 0; r < out.size(); ++r) {  // each one c's integer normal, along y
     const Q c(std::fabs(out[r][m]));
     BOOST_TEST(c.get_d() <= 0x1p53);
@@ -55,15 +58,13 @@ void check_window_best(const Q (&y)[3], int tries, const char* what) {
       const Q rest = Q(out[r][t]) * Q(sgn(y[m])) - c * alpha[t];
       BOOST_TEST(abs(rest) <= Q(1, 2));
     }
+    // The search tracks each fractional part in 64-bit fixed point, off by < j 2^-64 after j
+    // tries, and compares metrics in doubles (relative rounding < 4 2^-53): sqrt(metric) within
+    // sqrt(2) tries 2^-64 + 4 2^-53 sqrt(metric) of the exact one.
+    const double got = std::sqrt(metric_of(c).get_d()), least = std::sqrt(metrics[r].get_d());
+    BOOST_TEST(got <= least * (1 + 8 * 0x1p-53) + 4 * tries * 0x1p-64,
+               what << ": triple " << r << " at " << got << ", the window's " << r << "-th least " << least);
   }
-  const Q c(std::fabs(out[0][m]));
-  const Q d0 = frac_distance(c * alpha[0]), d1 = frac_distance(c * alpha[1]);
-  // The search tracks each fractional part in 64-bit fixed point, off by < j 2^-64 after j
-  // tries, and compares metrics in doubles (relative rounding < 4 2^-53): sqrt(metric) within
-  // sqrt(2) tries 2^-64 + 4 2^-53 sqrt(metric) of the exact one.
-  const double got = std::sqrt(Q(d0 * d0 + d1 * d1).get_d()), least = std::sqrt(best.get_d());
-  BOOST_TEST(got <= least * (1 + 8 * 0x1p-53) + 4 * tries * 0x1p-64,
-             what << ": first triple at " << got << ", the window's best " << least);
 }
 
 }  // namespace
@@ -91,15 +92,27 @@ BOOST_AUTO_TEST_CASE(first_triple_is_the_window_best) {
 // c alpha starts near a half at the window's first try c = 2^53 - 1 (alpha = 2^-54 + eta: c alpha
 // = 1/2 - 2^-54 + c eta), so that the offset's nearest integer changes inside the window (eta =
 // 2^-96: c alpha falls by ~2^-54 a try from 1/2 + ~2^-43, past 1/2 after ~2^11 of the 2^12
-// tries) or stays (eta = 0: just below a half throughout), beside a part a rounding off -1.
+// tries) or stays (eta = 0: just below a half throughout), beside a part a rounding off -1; and
+// parts set at the first try and drifting at chosen rates (below), so that the least metric lies
+// inside a segment after a change, or both parts change.
 BOOST_AUTO_TEST_CASE(parts_starting_near_a_half) {
   const int tries = 1 << 12;
   const Q two54 = Q(mpz_class(1) << 54), two96 = Q(mpz_class(1) << 96), two55 = Q(mpz_class(1) << 55);
+  // alpha = (f - N) / c0 for the window's first try c0 = 2^53 - 1: c0 alpha = f mod 1 (the part
+  // at the first try) and the part moves by -alpha ~ N / c0 a try
+  const Q c0((std::int64_t(1) << 53) - 1);
+  auto part = [&](const Q& f, std::int64_t N) { return Q((f - Q(N)) / c0); };
+  const std::int64_t slow = std::int64_t(1) << 29, fast = std::int64_t(1) << 39;  // ~2^-24, ~2^-14 a try
   const Q cases[][3] = {
       {Q(1) / two54 + Q(1) / two96, Q(-1) + Q(3) / two55, Q(1)},  // crosses a half
       {Q(1) / two54, Q(-1) + Q(3) / two55, Q(1)},                  // stays below a half
       {Q(-1) + Q(3) / two55, Q(1) / two54 + Q(1) / two96, Q(-1)},  // the same, components swapped
       {Q(1) / two54 + Q(1) / two96, Q(1) / two54 - Q(1) / two96, Q(1)},
+      // part 0 crosses a half at try ~1,680 (0.4999 rising by 2^-24 a try), part 1 rises through
+      // 0 from -0.2 by 2^-14 a try (at ~3,280): the least metric inside the second segment
+      {part(Q(4999, 10000), slow), part(Q(8, 10), fast), Q(1)},
+      // both cross a half, part 0 after part 1 (at ~3,360 and ~1,680): two changes, taken in order
+      {part(Q(4998, 10000), slow), part(Q(4999, 10000), slow), Q(1)},
   };
   int i = 0;
   for (const auto& y : cases) {

@@ -10,20 +10,21 @@ namespace pdd::fast::global {
 namespace {
 
 // The window's tries where both fractional parts drift by little (a direction a rounding away
-// from a coordinate plane, a diagonal, or a plane where a ratio of components is a half-integer:
-// alpha_t within ~2^-19 of an integer or a half-integer, 2^18 tries): each part's signed offset from its nearest integer is x_t - k_t 2^64 with x_t = s_t - j a_t (s_t,
-// a_t: F_t and A_t read as signed 64-bit integers, x_t exact in 128 bits) and k_t the integer
-// that puts it in [-2^63, 2^63). With tries |a_t| < 2^63, x_t spans less than 2^63 over the
-// window, so k_t changes at most once (where x_t crosses +-2^63: a part starting near a half,
-// as along a direction whose ratio of components is a half-integer up to a rounding); on each of
-// the (at most three) segments between such changes the metric sum_t (x_t - k_t 2^64)^2 is a
-// convex quadratic in j, least at its vertex j* clamped to the segment. Its least values on a
-// segment lie at the integers nearest j*; those, and each segment's first and last tries, are
-// considered in increasing j by the loop's own `consider` (the same metric from the same
-// integers, the same insertion): the same outputs wherever the quadratic's steps exceed the
-// metric's rounding; where they do not (the whole window within a few roundings of one metric),
-// the tries returned are as near y's direction as the loop's, to that rounding. False (the
-// caller runs the loop over every try) otherwise.
+// from a coordinate plane or a diagonal: alpha_t within ~2^-19 of an integer, 2^18 tries),
+// including a part that starts near a half at the window's first try (c0 alpha_t ~1/2 mod 1,
+// as where alpha_t is an integer plus ~2^-54): each part's signed offset from its nearest
+// integer is x_t - k_t 2^64 with x_t = s_t - j a_t (s_t, a_t: F_t and A_t read as signed 64-bit
+// integers, x_t exact in 128 bits) and k_t the integer that puts it in [-2^63, 2^63). With
+// tries |a_t| < 2^63, x_t spans less than 2^63 over the window, so k_t changes at most once
+// (where x_t crosses +-2^63, the part crossing a half); on each of the (at most three) segments
+// between such changes the metric sum_t (x_t - k_t 2^64)^2 is a convex quadratic in j, least at
+// its vertex j* clamped to the segment. Its least values on a segment lie at the integers
+// nearest j*; those, and each segment's first and last tries, are considered in increasing j by
+// the loop's own `consider` (the same metric from the same integers, the same insertion): the
+// same outputs wherever the quadratic's steps exceed the metric's rounding; where they do not
+// (the whole window within a few roundings of one metric), the tries returned are as near y's
+// direction as the loop's, to that rounding. False (the caller runs the loop over every try)
+// otherwise.
 template <class Consider>
 bool slow_drift(const std::uint64_t (&F)[2], const std::uint64_t (&A)[2], int tries, int keep, Consider&& consider) {
   constexpr __int128 kHalf = __int128(1) << 63, kOne = __int128(1) << 64;

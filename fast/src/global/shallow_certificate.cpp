@@ -109,19 +109,20 @@ bool find_normal(const TetVertices& A, const TetVertices& B, const Problem& P, V
 // delta_p the overlap of vertex p at the evaluation's plane (A's height above it, B's below it;
 // g.v = sum_p delta_p w_p when sum l = sum m). By weak duality (shallow_certificate.h) every such
 // w bounds relaxed on the cap, and its optimum, (g.v)^2 / (4 kappa) = 20 v.v B0, is the least of
-// |n|^2 relaxed(n / |n|) over the plane n.v = v.v (strong duality: a convex QP): where v is that
-// plane's minimiser, B0 = relaxed(v) and the cap's bound is as tight as it can be. The
-// multipliers of the evaluation at v give the same only where v lies inside one piece of G;
-// at a minimiser where pieces meet (a contact by rounding: several vertices at the plane, one
-// of them with a multiplier ~0) they can fall short by a factor of two. Solved by its KKT system
-// on each support S of the vertices within 1e-6 of the size from the plane (both sides
-// non-empty): [2 K_S, E_S^T; E_S, 0] (w_S, mu) = (delta_S, 0), E's rows (s_p, s_p xi_p) (s = +1
-// on A, -1 on B; xi the positions across v, scaled), by its 3 x 3 Schur complement (K_S's inverse
-// in closed form), kept where w_S > 0, the best q taken (any w >= 0 is valid: the exact step
-// decides). Written out rather than with a QP library: 8 variables, at most 2^8 supports, ~100
-// operations each, and the result only a start for the exact step. mu's tilt part is the
-// plane's minimiser: n = v - (mu_1 e1 + mu_2 e2) (the heights along n are delta_p + s_p y.xi_p,
-// y the tilt), returned in tilt.
+// F*(n) = 20 |n|^2 relaxed(n / |n|) over the plane n.v = v.v (strong duality: a convex QP): where
+// v is that plane's minimiser, B0 = relaxed(v) and the cap's bound is as tight as it can be. The
+// multipliers of the evaluation at v give the same only where v lies inside one piece of the
+// relaxed value (one active set about it); at a minimiser where pieces meet (a contact by
+// rounding: several vertices at the plane, one of them with a multiplier ~0) they can fall short
+// by a factor of two. Solved by its KKT system on each support S of the vertices within 1e-6 of
+// the size from the plane (both sides non-empty): [2 K_S, E_S^T; E_S, 0] (w_S, mu) = (delta_S,
+// 0), E's rows (s_p, s_p xi_p) (s = +1 on A, -1 on B; xi the positions across v over sigma =
+// |v| scale), by its 3 x 3 Schur complement ((2 K_S)^-1 in closed form), kept where w_S > 0, the
+// best q taken (any w >= 0 is valid: the exact step decides). Written out rather than with a
+// QP library: 8 variables, at most 2^8 supports, ~100 operations each, and the result only a
+// start for the exact step. mu's tilt part is the plane's minimiser: n = v + y1 e1 + y2 e2 with
+// y = -(mu_1, mu_2) / sigma (along n the overlaps are delta_p + s_p sigma y.xi_p), returned in
+// tilt.
 struct PlaneDual {
   double w[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   double q = -INFINITY;

@@ -30,8 +30,9 @@
 // then falls short of L (a minimiser where pieces meet: the evaluation's multipliers, even
 // moved, bound it at about half its value), the multipliers are the optimum of the dual over
 // the plane across v instead (g parallel to v among the constraints: its value is the least of
-// |n|^2 relaxed over the plane n.v = v.v, relaxed(v) where v is that plane's minimiser), v moved
-// to that minimiser first (shallow_certificate.cpp's plane_dual), and moved exactly as above.
+// F*(n) = 20 |n|^2 relaxed(n/|n|) over the plane n.v = v.v, so B0 = relaxed(v) where v is that
+// plane's minimiser), v moved to that minimiser first (shallow_certificate.cpp's plane_dual),
+// and moved exactly as above.
 // Then u.g = (g.v) cos(theta) / |v| with theta the angle of u to v, and (1) reads
 // relaxed(u) >= B0 cos^2(theta), B0 = (g.v)^2 / (v.v 80 kappa) (B0 = relaxed(v) for the exact
 // multipliers at a stationary v): on the cap cos(theta) >= c0 = sqrt(L / B0), relaxed >= L.
