@@ -280,6 +280,37 @@ BOOST_AUTO_TEST_CASE(diagonal_contacts_of_stacked_blocks_without_the_exact_piece
   BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " in rationals");
 }
 
+// Two such contacts from Kuhn blocks of 6^3 cells of 1/6 (the mesh's coordinates i / 6 and B's
+// moved by (1/60, 1/60, 1 - 1/18), each rounded once): an edge of A (vertices 0 and 3) on a
+// face of B by rounding. At the plane's minimiser the double solver names a pattern that is
+// certainly wrong at A's vertex 0 (its sums rounded beside heights a rounding apart), and the
+// evaluation there was not certified; valued_on_heights now verifies the pattern with that
+// vertex flipped. Within definitions §8 of the exact engine, neither on the exact pieces.
+BOOST_AUTO_TEST_CASE(a_wrong_double_pattern_flipped_at_the_planes_minimiser) {
+  const std::vector<TetPair> pairs = {
+      {"edge on a face by rounding, x", {},
+       {{{0.16666666666666666, 0.33333333333333331, 0.83333333333333326},
+         {0.16666666666666666, 0.5, 0.83333333333333326},
+         {0.16666666666666666, 0.5, 1},
+         {0.33333333333333331, 0.5, 1}}},
+       {{{0.18333333333333332, 0.34999999999999998, 0.94444444444444442},
+         {0.34999999999999998, 0.34999999999999998, 0.94444444444444442},
+         {0.34999999999999998, 0.51666666666666672, 0.94444444444444442},
+         {0.34999999999999998, 0.51666666666666672, 1.1111111111111112}}}},
+      {"edge on a face by rounding, y", {},
+       {{{0.33333333333333331, 0.16666666666666666, 0.83333333333333326},
+         {0.5, 0.16666666666666666, 0.83333333333333326},
+         {0.5, 0.16666666666666666, 1},
+         {0.5, 0.33333333333333331, 1}}},
+       {{{0.34999999999999998, 0.18333333333333332, 0.94444444444444442},
+         {0.34999999999999998, 0.34999999999999998, 0.94444444444444442},
+         {0.51666666666666672, 0.34999999999999998, 0.94444444444444442},
+         {0.51666666666666672, 0.34999999999999998, 1.1111111111111112}}}},
+  };
+  const int slow = minimisers_within_contract(pairs).slow;
+  BOOST_TEST(slow == 0, slow << " of " << pairs.size() << " in rationals");
+}
+
 // Blocks cut into five tetrahedra a cube, stacked by rounding on each other's columns
 // (structured_cells.h's column_rounding_stack_pairs): the minimisers lie where pieces meet, where
 // the multipliers moved to make g parallel to the normal may turn one at the plane negative;

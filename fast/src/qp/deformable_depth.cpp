@@ -309,6 +309,13 @@ bool valued_on_heights(const detail::CompensatedHeights& h, unsigned conA, unsig
   }
   PatternCheck pc;
   if (!check_pattern(h, conA, conB, a_static, top, atA, atB, pc)) return false;
+  // The double solver's pattern certainly wrong at some vertex (its sums rounded beside heights
+  // a rounding apart: a contact made by rounding): once more with those vertices' status
+  // flipped, which check_pattern verifies as it verifies any pattern.
+  if ((pc.wrongA || pc.wrongB) && !top_pinned) {
+    atA ^= pc.wrongA, atB ^= pc.wrongB;
+    if (!check_pattern(h, conA, conB, a_static, top, atA, atB, pc)) return false;
+  }
   if (top_pinned && !(pc.s.sumB > (512 * kUnitRoundoff * pc.Ha) * (1 + 0x1p-40) + 8 * pc.e_act)) return false;
   if (pc.wrongA || pc.wrongB) return false;
   if (pc.unsureA || pc.unsureB)
