@@ -1,0 +1,74 @@
+"""scripts/aligned-survey.py: its grids are valid conforming meshes, and it runs.
+
+The survey's numbers (docs/performance.md, "Where structured grids stand") are only worth what
+its meshes are: each decomposition must fill the block exactly with positively oriented
+tetrahedra that meet face to face, as a mesh generator's would. Checked here exactly, in the
+grid's integer half-cell units (every vertex is h/2 times an integer vector)."""
+import importlib.util
+import os
+import subprocess
+import sys
+from collections import Counter
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+SCRIPT = SOURCE_DIR / "scripts" / "aligned-survey.py"
+
+
+@pytest.fixture(scope="module")
+def survey():
+    spec = importlib.util.spec_from_file_location("aligned_survey", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+# Triangles on the block's boundary: each boundary square of a cube is cut into 2 triangles by
+# the Kuhn, mirrored Kuhn and 5-tetrahedra cuts, into 4 (around its centre) by the 24-cut; the
+# block of n^3 cubes has 6 n^2 boundary squares.
+BOUNDARY_TRIANGLES_PER_SQUARE = {"kuhn": 2, "mirror": 2, "five": 2, "bc24": 4}
+
+
+@pytest.mark.parametrize("kind", ["kuhn", "mirror", "five", "bc24"])
+@pytest.mark.parametrize("n", [2, 3])
+def test_grid_fills_the_block_face_to_face(survey, kind, n):
+    h = 0.125  # dyadic: V / (h / 2) recovers the integer positions exactly
+    V, T = survey.grid(kind, n, h)
+    P = [tuple(int(round(c / (h / 2))) for c in v) for v in V]
+    assert all(tuple(x * h / 2 for x in P[i]) == tuple(V[i]) for i in range(len(P)))
+
+    def six_volume(t):  # det[b - a, c - a, d - a] over integers: 6 V in half-cell units
+        a, b, c, d = (P[i] for i in t)
+        u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+        return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                u[2] * (v[0] * w[1] - v[1] * w[0]))
+
+    volumes = [six_volume(t) for t in T]
+    assert min(volumes) > 0  # positively oriented, none flat
+    assert sum(volumes) == 6 * (2 * n) ** 3  # fills the block (side 2n half-cells) exactly
+    faces = Counter(tuple(sorted((t[i], t[j], t[k]))) for t in T for i, j, k in
+                    ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)))
+    assert max(faces.values()) == 2  # no face shared by three
+    once = [f for f, m in faces.items() if m == 1]
+
+    def on_boundary(f):  # all three vertices on one side of the block
+        return any(len({P[i][k] for i in f}) == 1 and P[f[0]][k] in (0, 2 * n) for k in range(3))
+
+    assert all(on_boundary(f) for f in once)  # inside, every face is shared: conforming
+    assert len(once) == 6 * n * n * BOUNDARY_TRIANGLES_PER_SQUARE[kind]
+
+
+def test_survey_prints_a_row_per_case():
+    env = dict(os.environ)
+    r = subprocess.run([sys.executable, str(SCRIPT), "--kinds", "kuhn,bc24", "--cells", "0.125,1/6",
+                        "--shifts", "off,diag", "--n", "2", "--repeats", "1"],
+                       capture_output=True, text=True, env=env, timeout=600)
+    assert r.returncode == 0, r.stderr
+    rows = r.stdout.strip().splitlines()[1:]
+    assert len(rows) == 2 * 2 * 2
+    for row in rows:
+        words = row.split()
+        assert words[-1].endswith("x") and words[-2].endswith("x"), row
+        assert int(words[3]) > 0 and int(words[5]) > 0, row  # intersecting pairs on both sides
