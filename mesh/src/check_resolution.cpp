@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "element_quality.h"
@@ -98,7 +99,7 @@ void check_elements(const Mesh& m0, const Mesh& m1, char which, const std::vecto
       const TetVertices t0 = element(m0, e[k]), t1 = element(m1, e[k]);
       verdict[k] = detail::element_quality(t0, t1, limits);
       if (verdict[k] == Quality::NonFinite) continue;
-      const detail::Ratios q = detail::ratios(detail::volume6(t0), detail::edge_square_sum(t0), t1);
+      const detail::Ratios q = detail::scaled_ratios(t0, t1);
       // The sign of V1/V0 from the exact verdict (a nearly flat element's volume in doubles can
       // have the wrong sign).
       volume_ratio[e[k]] = verdict[k] == Quality::Inverted ? -std::abs(q.volume) : std::abs(q.volume);
@@ -179,21 +180,39 @@ double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1) {
   struct Sum {
     double weighted = 0, volume = 0;
   };
+  // The sums take every coordinate scaled by 2^-scale (the largest |coordinate| of the elements
+  // and their positions in [1/2, 1) once scaled), the result scaled back by 2^(2 scale): V_e
+  // sigma_e grows as L^5 for a mesh of size L and left the double range beyond L ~ 1e+-61 while
+  // the cost itself (~L^2) did not. Scaling by a power of two commutes with every rounding
+  // while no value leaves the normal range: at ordinary scales the same bits as the sums on the
+  // coordinates as given.
+  double largest = 0;
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    const TetVertices t0 = element(m, e);
+    if (!is_finite(t0)) continue;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k)
+        largest = std::max({largest, std::abs(t0[i][k]), std::abs(p1[m.tets[e][i]][k])});
+  }
+  const int scale = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) + 1 : 0;
+  auto scaled = [scale](double x) { return std::ldexp(x, -scale); };
   // sigma_e = (sum_i |d_i|^2 + |sum_i d_i|^2) / 20 (definitions §2), weighted by |V_e| at rest;
   // elements with a non-finite rest coordinate are left out (flat ones weigh 0).
   const Sum s = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::size_t>(0, m.tets.size(), 4096), Sum{},
       [&](const tbb::blocked_range<std::size_t>& r, Sum acc) {
         for (std::size_t e = r.begin(); e != r.end(); ++e) {
-          const TetVertices t0 = element(m, e);
+          TetVertices t0 = element(m, e);
           if (!is_finite(t0)) continue;
+          for (auto& x : t0)
+            for (double& c : x) c = scaled(c);
           const double v = std::abs(detail::volume6(t0)) / 6;
           double sq = 0;
           Vec3d sum = {0, 0, 0};
           for (int i = 0; i < 4; ++i) {
             const Vec3d& q = p1[m.tets[e][i]];
             for (int k = 0; k < 3; ++k) {
-              const double d = q[k] - t0[i][k];
+              const double d = scaled(q[k]) - t0[i][k];
               sq += d * d;
               sum[k] += d;
             }
@@ -208,7 +227,11 @@ double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1) {
         x.volume += y.volume;
         return x;
       });
-  return s.volume > 0 ? s.weighted / s.volume : 0;
+  if (!(s.volume > 0)) return 0;
+  // Beyond the double range: +inf above it; NaN for a positive cost below the normal range
+  // (not representable: written as null, as an overflowing one is).
+  const double in_scale = s.weighted / s.volume, cost = std::ldexp(in_scale, 2 * scale);
+  return in_scale > 0 && !(cost >= std::numeric_limits<double>::min()) ? std::numeric_limits<double>::quiet_NaN() : cost;
 }
 
 }  // namespace pdd::mesh

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 namespace pdd::mesh::detail {
@@ -47,6 +48,13 @@ ElasticStep::ElasticStep(const Mesh& rest, const std::vector<std::size_t>& eleme
   std::ptrdiff_t n = 0;
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && !fixed[v]) unknown_[v] = n++;
+  // 2^-scale: the largest |rest edge vector entry| in [1/2, 1) once scaled (header: "Scale").
+  double largest = 0;
+  for (std::size_t e : elements)
+    for (int c = 1; c < 4; ++c)
+      for (int r = 0; r < 3; ++r)
+        largest = std::max(largest, std::abs(rest.vertices[rest.tets[e][c]][r] - rest.vertices[rest.tets[e][0]][r]));
+  const int scale = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) + 1 : 0;
   std::vector<Eigen::Triplet<double>> k;
   k.reserve(elements.size() * 16);
   std::vector<double> diag(std::size_t(n), 0);
@@ -54,7 +62,7 @@ ElasticStep::ElasticStep(const Mesh& rest, const std::vector<std::size_t>& eleme
     const auto& t = rest.tets[e];
     Eigen::Matrix3d D;
     for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) D(r, c) = rest.vertices[t[c + 1]][r] - rest.vertices[t[0]][r];
+      for (int r = 0; r < 3; ++r) D(r, c) = std::ldexp(rest.vertices[t[c + 1]][r] - rest.vertices[t[0]][r], -scale);
     const double volume = std::abs(D.determinant()) / 6;
     const Eigen::Matrix3d G = D.inverse();  // row i: grad phi_{i+1}
     Eigen::Matrix<double, 4, 3> grad;
@@ -89,10 +97,17 @@ bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delt
   delta.assign(pull.size(), {0, 0, 0});
   if (!ok_) return false;
   const std::ptrdiff_t n = std::ptrdiff_t(weight_.size());
+  // 2^-scale: the largest |pull| entry in [1/2, 1) once scaled (header: "Scale").
+  double largest = 0;
+  for (std::size_t v = 0; v < pull.size(); ++v)
+    if (unknown_[v] >= 0)
+      for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(pull[v][c]));
+  const int scale = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) + 1 : 0;
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 3);
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)
-      for (int c = 0; c < 3; ++c) rhs(unknown_[v], c) = weight_[std::size_t(unknown_[v])] * pull[v][c];
+      for (int c = 0; c < 3; ++c)
+        rhs(unknown_[v], c) = weight_[std::size_t(unknown_[v])] * std::ldexp(pull[v][c], -scale);
   // Free anchors: a copy of K + W whose vertices without pull keep kFreeAnchor of their anchor.
   Eigen::SparseMatrix<double> relaxed;
   Eigen::DiagonalPreconditioner<double> relaxed_preconditioner;
@@ -122,7 +137,7 @@ bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delt
   if (!x.allFinite()) return false;  // not converged within kMaxIterations: still a descent
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)
-      for (int c = 0; c < 3; ++c) delta[v][c] = x(unknown_[v], c);
+      for (int c = 0; c < 3; ++c) delta[v][c] = std::ldexp(x(unknown_[v], c), scale);
   return true;
 }
 

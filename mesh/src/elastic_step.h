@@ -25,6 +25,13 @@
 // sparse Cholesky factorisation (SimplicialLDLT) was measured at 19 s for a 10^5-element ball
 // (fill of a 3D mesh), against 0.1 s per round for these iterations. The solution need not be
 // exact: the step limit and the exact verdict judge the positions, not the solve.
+// Scale: the solution is that of the mesh and pulls scaled by powers of two (rest edge vectors by
+// 2^-k, k the exponent of the largest |entry|; the pulls by 2^-j, j that of the largest pull) and
+// scaled back. Scaling by a power of two commutes with every rounding while no value leaves the
+// normal range, so at ordinary scales the steps are bit for bit those of the unscaled system;
+// unscaled, K ~ L, the right side ~ L^2 and the iterations' squared norms ~ L^4 leave the double
+// range for meshes of size L beyond about 1e+-77 (Eigen's iteration returns 0 where the right
+// side's squared norm underflows: no vertex moved).
 // The three coordinates are three independent systems with one matrix: they are solved at once
 // on three workers (TBB), each exactly the iteration Eigen's ConjugateGradient runs for that
 // column (same matrix traversal, preconditioner and vectors), so the result does not depend on
@@ -51,7 +58,7 @@ class ElasticStep {
 
  private:
   std::vector<std::ptrdiff_t> unknown_;  // per vertex: its unknown, -1 when it does not move
-  std::vector<double> weight_;           // per unknown: w_v = kAnchor K_vv
+  std::vector<double> weight_;           // per unknown: w_v = kAnchor K_vv (scaled: above)
   Eigen::SparseMatrix<double> matrix_;   // K + W over the unknowns
   Eigen::DiagonalPreconditioner<double> preconditioner_;  // Jacobi, of matrix_
   bool ok_ = false;

@@ -3,6 +3,7 @@
 
 #include <CGAL/Interval_nt.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -99,6 +100,26 @@ Ratios ratios(double d0, double s0, const TetVertices& t1) {
   const double v = d1 / d0;
   // eta1/eta0 = (|V1|/|V0|)^(2/3) S0 / S1
   return {v, std::cbrt(v * v) * s0 / s1};
+}
+
+double edge_scale(const TetVertices& t0) {
+  double largest = 0;
+  for (int i = 1; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) largest = std::max(largest, std::abs(t0[i][k] - t0[0][k]));
+  return largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, -(std::ilogb(largest) + 1)) : 1.0;
+}
+
+TetVertices scaled(const TetVertices& t, double factor) {
+  TetVertices s = t;
+  for (auto& x : s)
+    for (double& c : x) c *= factor;
+  return s;
+}
+
+Ratios scaled_ratios(const TetVertices& t0, const TetVertices& t1) {
+  const double f = edge_scale(t0);
+  const TetVertices s0 = scaled(t0, f);
+  return ratios(volume6(s0), edge_square_sum(s0), scaled(t1, f));
 }
 
 }  // namespace pdd::mesh::detail

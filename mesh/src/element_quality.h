@@ -46,5 +46,14 @@ struct Ratios {
   double volume = 0, shape = 0;
 };
 Ratios ratios(double d0, double s0, const TetVertices& t1);
+// 2^-k, k such that the rest element's largest |edge vector entry| times it lies in [1/2, 1),
+// and t times such a factor. D (~L^3) and S (~L^2) of elements scaled so stay in the double range
+// whatever the mesh's size L, and the ratios of scaled elements (rest and deformed by the same
+// factor) are the unscaled ones bit for bit wherever those are in range (a power of two commutes
+// with every rounding of normal values); unscaled, D leaves the range beyond L ~ 1e+-102.
+double edge_scale(const TetVertices& t0);
+TetVertices scaled(const TetVertices& t, double factor);
+// ratios() of t1 against the rest element t0, each scaled by edge_scale(t0).
+Ratios scaled_ratios(const TetVertices& t0, const TetVertices& t1);
 
 }  // namespace pdd::mesh::detail

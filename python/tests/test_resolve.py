@@ -101,6 +101,32 @@ def test_pair_with_a_fixed():
     assert 0 < r["min_volume_ratio"]
 
 
+@pytest.mark.parametrize("exponent", [-400, -300, 300, 400])
+def test_a_mesh_scaled_by_a_power_of_two_resolves_as_at_its_own_scale(exponent):
+    """Resolving is covariant under scaling by 2^e: every value it computes on coordinates
+    scaled by a power of two (per-pair depths, the elastic step's solve, the step limit's ratios,
+    the cost) is the unscaled one's scaled, bit for bit, while nothing leaves the double range
+    (the library scales its sums so that nothing does: at 2^-300 the elastic step's squared norms,
+    ~L^4, and the cost's V sigma, ~L^5, would underflow; at 2^300 overflow). So the run takes the
+    same rounds and writes the same positions times 2^e, the cost times 2^(2e); at 2^+-400 the
+    elements' volumes (~L^3) themselves would leave the range, which the step limit's ratios and
+    the volume weights (variant rigid) are scaled for."""
+    VA, TA, VB, TB = shallow_balls()
+    s = 2.0 ** exponent
+    VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a", threads=1)
+    WA1, WB1, q = pdd.resolve(VA * s, TA, VB * s, TB, fix="a", threads=1)
+    for variant in ("rigid", "pdd2"):
+        _, XB1, _ = pdd.resolve(VA, TA, VB, TB, fix="a", variant=variant, threads=1)
+        _, YB1, _ = pdd.resolve(VA * s, TA, VB * s, TB, fix="a", variant=variant, threads=1)
+        assert (bits(YB1) == bits(XB1 * s)).all(), variant
+    assert r["resolved"] and q["resolved"] and q["method"] == r["method"] == "rounds"
+    assert [k["pairs"] for k in q["rounds"]] == [k["pairs"] for k in r["rounds"]]
+    assert [k["max_pd2"] for k in q["rounds"]] == [k["max_pd2"] * s * s for k in r["rounds"]]
+    assert (bits(WA1) == bits(VA1 * s)).all() and (bits(WB1) == bits(VB1 * s)).all()
+    assert q["cost"] == r["cost"] * s * s > 0 and q["max_displacement"] == r["max_displacement"] * s
+    assert q["min_volume_ratio"] == r["min_volume_ratio"]
+
+
 def test_self_contact():
     V, T = tiny_as_one_mesh()
     assert len(pdd.mesh_contacts(V, T, variants="rigid")["a"]) > 0

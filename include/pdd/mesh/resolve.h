@@ -142,7 +142,8 @@ struct Resolution {
 Resolution resolve(const Mesh& A, const Mesh& B, const ResolveOptions& options = {});
 Resolution resolve_self(const Mesh& A, const ResolveOptions& options = {});
 
-// The mesh object norm sigma_mesh(P0, P1) of one mesh (see above).
+// The mesh object norm sigma_mesh(P0, P1) of one mesh (see above), at any scale of the
+// coordinates: +inf above the double range, NaN where it is positive but below the normal range.
 double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1);
 
 }  // namespace pdd::mesh

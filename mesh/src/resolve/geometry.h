@@ -2,6 +2,7 @@
 // written: every function rounds exactly as its one-line body says) and its stopwatch.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -24,11 +25,16 @@ inline Vec3d moved_by(const Vec3d& p, double s, const Vec3d& d) {
   return {p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]};
 }
 inline bool finite(const Vec3d& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
-// a / |a|, or nullopt when a is zero or not finite.
+// a / |a|, or nullopt when a is zero or not finite. Taken on a scaled by the power of two that
+// brings its largest |component| into [1/2, 1): the same bits wherever a.a is a normal double,
+// and a result where it is not (a cross product of edges ~L^2 has a.a ~L^4, out of the double
+// range for a mesh of size L beyond ~1e+-77).
 inline std::optional<Vec3d> unit(const Vec3d& a) {
-  const double n = std::sqrt(dot(a, a));
-  if (!(n > 0) || !std::isfinite(n)) return std::nullopt;
-  return scaled(a, 1 / n);
+  if (!finite(a)) return std::nullopt;
+  const double m = std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2])});
+  if (!(m > 0)) return std::nullopt;
+  const Vec3d b = scaled(a, std::ldexp(1.0, -(std::ilogb(m) + 1)));
+  return scaled(b, 1 / std::sqrt(dot(b, b)));
 }
 // The largest squared edge length of the two tetrahedra.
 inline double longest_edge2(const TetVertices& A, const TetVertices& B) {

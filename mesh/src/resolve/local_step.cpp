@@ -33,7 +33,7 @@ Vec3d label_axis(const DirectionLabel& l, const TetVertices& A, const TetVertice
   const Vec3d e = sub(A[kEdges[l.a][1]], A[kEdges[l.a][0]]);
   const Vec3d f = sub(B[kEdges[l.b][1]], B[kEdges[l.b][0]]);
   const Vec3d n = cross(f, e);
-  if (dot(n, n) > 0) return n;
+  if (n[0] != 0 || n[1] != 0 || n[2] != 0) return n;  // (not n.n > 0: ~L^4, it underflows)
   const Vec3d w = sub(B[kEdges[l.b][0]], A[kEdges[l.a][0]]);  // parallel edges
   return sub(w, scaled(e, dot(w, e) / dot(e, e)));
 }

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "../check_indices.h"
@@ -53,15 +54,21 @@ void init_side(Side& s, const Mesh& m, char which, bool fix_all, const std::vect
   s.sign.assign(m.tets.size(), Sign::Zero);
   s.d0.assign(m.tets.size(), 0);
   s.s0.assign(m.tets.size(), 0);
+  s.factor.assign(m.tets.size(), 1);
   s.volume.assign(m.tets.size(), 0);
   tbb::parallel_for(std::size_t{0}, s.elems.size(), [&](std::size_t k) {
     const std::size_t e = s.elems[k];
     const TetVertices t = element(m, e);
     s.sign[e] = orientation(t[0], t[1], t[2], t[3]);
-    s.d0[e] = volume6(t);
-    s.s0[e] = edge_square_sum(t);
-    s.volume[e] = std::abs(s.d0[e]) / 6;
+    s.factor[e] = edge_scale(t);
+    s.d0[e] = volume6(scaled(t, s.factor[e]));
+    s.s0[e] = edge_square_sum(scaled(t, s.factor[e]));
   });
+  // The volume weights (step_limit.h's WeightedMean) only as ratios: every element scaled by the
+  // side's smallest factor (its largest element's), which keeps them in range at any mesh size.
+  double side = s.elems.empty() ? 1 : HUGE_VAL;
+  for (std::size_t e : s.elems) side = std::min(side, s.factor[e]);
+  for (std::size_t e : s.elems) s.volume[e] = std::abs(volume6(scaled(element(m, e), side))) / 6;
   vertex_elements(s, m);
   s.acc.assign(m.vertices.size(), {0, 0, 0});
   s.weight.assign(m.vertices.size(), 0);

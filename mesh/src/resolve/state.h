@@ -26,8 +26,10 @@ struct Side {
   std::vector<std::size_t> elems;   // valid at rest
   QualityLimits limits;             // R4's bounds, kept by the step limit
   std::vector<Sign> sign;           // rest orientation per element (Zero: not valid)
-  std::vector<double> d0, s0;       // per element: rest 6V (signed) and sum of squared edge lengths
-  std::vector<double> volume;       // |rest volume| per element
+  std::vector<double> d0, s0;       // per element: rest 6V (signed) and sum of squared edge lengths,
+                                    // of the element scaled by factor[e] (edge_scale)
+  std::vector<double> factor;
+  std::vector<double> volume;       // |rest volume| per element, of the side scaled by a power of two
   std::vector<Vec3d> acc;           // per vertex: the step proposed this round (step_limit.h)
   std::vector<double> weight;       // per vertex: sum of the weights in acc (0: no step)
   ElasticStep::Anchor anchor = ElasticStep::Anchor::Pulled;  // the global step's anchors

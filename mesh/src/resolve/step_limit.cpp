@@ -31,7 +31,7 @@ constexpr int kMaxHalvings = 24;
 // Element e of s passes R2 (same orientation as at rest) and R4 with the margin.
 bool passes(const Side& s, std::size_t e) {
   const TetVertices q = element(s.cur, e);
-  return orientation(q[0], q[1], q[2], q[3]) == s.sign[e] && usable_with_margin(s.limits, ratios(s.d0[e], s.s0[e], q));
+  return orientation(q[0], q[1], q[2], q[3]) == s.sign[e] && usable_with_margin(s.limits, ratios(s.d0[e], s.s0[e], scaled(q, s.factor[e])));
 }
 
 // The valid elements with a vertex v where t[v] > 0: the only ones a step can change.
