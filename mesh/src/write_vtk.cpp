@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "atomic_file.h"
+#include "element_quality.h"
 #include "pdd/mesh.h"
 
 namespace pdd::mesh {
@@ -148,11 +149,13 @@ static void resolution_vtk(const std::string& path, const Mesh& A, const std::ve
   if (B)
     for (const Vec3d& p : b1) point(p);
   write_cells(out, A, B, na);
-  // V1 / V0 from the doubles (display only: report.bad_elements is the exact verdict).
-  auto volume6 = [](const std::vector<Vec3d>& p, const std::array<std::size_t, 4>& t) {
+  // V1 / V0 from the doubles (display only: report.bad_elements is the exact verdict), each
+  // volume of the edges scaled by the rest element's power of two (element_quality.h's
+  // edge_scale: the same ratio, in range at any mesh size).
+  auto volume6 = [](const std::vector<Vec3d>& p, const std::array<std::size_t, 4>& t, double f) {
     double e[3][3];
     for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) e[r][k] = p[t[r + 1]][k] - p[t[0]][k];
+      for (int k = 0; k < 3; ++k) e[r][k] = (p[t[r + 1]][k] - p[t[0]][k]) * f;
     return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
            e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
            e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
@@ -160,7 +163,8 @@ static void resolution_vtk(const std::string& path, const Mesh& A, const std::ve
   out << "SCALARS volume_ratio double 1\nLOOKUP_TABLE default\n";
   auto ratios = [&](const Mesh& m, const std::vector<Vec3d>& p1) {
     for (const auto& t : m.tets) {
-      const double v0 = volume6(m.vertices, t), v1 = volume6(p1, t), r = v1 / v0;
+      const TetVertices t0 = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]};
+      const double f = detail::edge_scale(t0), v0 = volume6(m.vertices, t, f), v1 = volume6(p1, t, f), r = v1 / v0;
       out << (std::isfinite(r) ? r : 0.0) << '\n';
     }
   };

@@ -8,7 +8,7 @@
 //            temporary file, an existing file unchanged); a device is written in place, never
 //            renamed over;
 //   ParaView file: write_resolution_vtk's points read back as A's then B's new positions and
-//            its cells as A's then B's tetrahedra.
+//            its cells as A's then B's tetrahedra; its volume ratios the same at any scale.
 #define BOOST_TEST_MODULE write_mesh
 #include <boost/test/unit_test.hpp>
 
@@ -190,4 +190,31 @@ BOOST_AUTO_TEST_CASE(resolution_vtk_reads_back) {
   for (const char* field : {"VECTORS displacement double", "SCALARS volume_ratio double 1",
                             "SCALARS remaining int 1", "SCALARS bad int 1", "SCALARS mesh int 1"})
     BOOST_TEST(text.str().find(field) != std::string::npos, field);
+}
+
+// The volume_ratio field of a resolution scaled by 2^e is the unscaled one, line for line: the
+// ratios are taken on edges scaled to the element's size (V ~ L^3 would leave the double range
+// at e = +-400 and show 0).
+BOOST_AUTO_TEST_CASE(resolution_vtk_volume_ratios_at_any_scale) {
+  const fs::path d = scratch("vtk-scale");
+  auto volume_ratios = [&](int e) {
+    Mesh A = read_mesh(kDir + "tiny-a.msh"), B = read_mesh(kDir + "tiny-b.msh");
+    std::vector<Vec3d> a1 = A.vertices, b1 = B.vertices;
+    b1[0][2] += 0.25;  // B's elements at vertex 0 change volume
+    for (auto* p : {&A.vertices, &B.vertices, &a1, &b1})
+      for (Vec3d& v : *p)
+        for (double& c : v) c = std::ldexp(c, e);
+    const std::string path = (d / ("both" + std::to_string(e) + ".vtk")).string();
+    write_resolution_vtk(path, A, a1, B, b1, ResolveReport{});
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string all = text.str(), head = "SCALARS volume_ratio double 1\nLOOKUP_TABLE default\n";
+    const std::size_t from = all.find(head) + head.size();
+    return all.substr(from, all.find("SCALARS", from) - from);
+  };
+  const std::string unit = volume_ratios(0);
+  BOOST_TEST(unit.find("\n1\n") != std::string::npos);  // unchanged elements
+  BOOST_TEST(unit.find("\n0\n") == std::string::npos);  // no element shown as 0
+  for (int e : {-400, 400}) BOOST_TEST(volume_ratios(e) == unit);
 }
