@@ -216,7 +216,7 @@ int run_resolve(const ResolveArgs& args) {
     const auto now = Clock::now();
     if (said && now - last_line < std::chrono::seconds(2)) return;
     std::cerr << kName << ": round " << r.round << ": " << r.pairs << " intersecting pairs, max pd2 "
-              << summary_number(r.max_pd2) << ", cost " << summary_number(r.cost) << " ("
+              << summary_number(r.max_pd2) << ", cost " << summary_cost(r.cost) << " ("
               << summary_number(r.seconds) << " s)\n";
     said = true, last_line = now, last_said = r.round;
   };
@@ -329,7 +329,7 @@ int run_resolve(const ResolveArgs& args) {
       std::cerr << kName << ": resolved in " << rep.rounds.size()
                 << (rep.rounds.size() == 1 ? " round" : " rounds") << " (method " << mesh::resolve_method_name(rep.method)
                 << "; checked exactly: no pair intersects, no element inverted or flat, fixed vertices unchanged, "
-                << "every element usable); cost " << summary_number(rep.cost) << ", max displacement "
+                << "every element usable); cost " << summary_cost(rep.cost) << ", max displacement "
                 << summary_number(rep.max_displacement) << ", volume ratio " << summary_number(rep.min_volume_ratio)
                 << " to " << summary_number(rep.max_volume_ratio) << ", min shape ratio "
                 << summary_number(rep.min_shape_ratio) << "\n";

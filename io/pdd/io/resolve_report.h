@@ -233,9 +233,9 @@ inline std::string resolve_summary(const Json& j) {
       t += "\n" + j.at("skipped")[k].at("reason").get<std::string>();
     s += summary_line("skipped", t);
   }
-  s += summary_line("cost", summary_number(j.at("cost").get<double>()) +
-                                (self ? std::string() : "  (A " + summary_number(j.at("cost_a").get<double>()) + ", B " +
-                                                            summary_number(j.at("cost_b").get<double>()) + ")") +
+  s += summary_line("cost", summary_cost(j.at("cost").get<double>()) +
+                                (self ? std::string() : "  (A " + summary_cost(j.at("cost_a").get<double>()) + ", B " +
+                                                            summary_cost(j.at("cost_b").get<double>()) + ")") +
                                 "  volume-weighted mean squared displacement");
   s += summary_line("max displacement", summary_number(j.at("max_displacement").get<double>()));
   s += summary_line("volume ratio", summary_number(j.at("min_volume_ratio").get<double>()) + " to " +
@@ -281,7 +281,7 @@ inline std::string resolve_summary(const Json& j) {
       s += indent + padded_left(std::to_string(r.at("round").get<std::size_t>()), 6) +
            padded_left(std::to_string(r.at("pairs").get<std::size_t>()), 9) + "  " +
            padded_left(summary_number(r.at("max_pd2").get<double>()), 12) + "  " +
-           padded_left(summary_number(r.at("cost").get<double>()), 12) + "  " +
+           padded_left(summary_cost(r.at("cost").get<double>()), 12) + "  " +
            padded_left(summary_number(r.at("seconds").get<double>()), 9) + '\n';
     }
   }

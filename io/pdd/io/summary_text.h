@@ -4,6 +4,7 @@
 // (the JSON outputs keep every digit).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <string>
@@ -18,6 +19,12 @@ inline std::string summary_number(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
+}
+
+// A resolution's cost: summary_number, or "not representable" where the JSON report has null (a
+// cost outside the double range, mesh_cost's +inf or NaN).
+inline std::string summary_cost(double x) {
+  return std::isfinite(x) ? summary_number(x) : "not representable";
 }
 
 // "  label             text\n" (text's later lines, if any, indented to the text column).
