@@ -333,18 +333,20 @@ def test_docstring():
 def test_ctrl_c_stops_resolve():
     """A real SIGINT to a child interpreter one second into a long run: KeyboardInterrupt out of
     the call within test_long_calls.PROMPT seconds (the solver checks the cancel flag between
-    rounds and between their stages). The run: the shipped balls, 0.73 deep, as ONE mesh
-    (self-contact of two bodies), one vertex of each ball fixed: the rounds do not resolve it,
-    and the separating-translation fallback of the body pair declines (both bodies have fixed
-    vertices), so max_rounds=100000 keeps it going far past the signal (each round 0.05 to 0.5
-    s); without the fixed vertices the fallback resolves it in a few seconds."""
+    rounds and between their stages). The run: three copies of the shipped ball (radius 1) in ONE
+    mesh, centred at the corners of a triangle of side 1.4 (every two overlap by 0.6), one vertex
+    of each fixed: the rounds do not resolve it, the three bodies cannot be split into two meshes
+    and their spread declines (a cluster with fixed vertices in two bodies), so max_rounds=100000
+    keeps the self-contact rounds going far past the signal (measured: 300 rounds in 2.8 s, none
+    resolved)."""
     from test_long_calls import assert_keyboard_interrupt, interrupt
     delay, status, err = interrupt(f"""
         VA, TA = pdd.read_mesh({str(MESHES / "sphere-a.msh")!r})
-        VB, TB = pdd.read_mesh({str(MESHES / "sphere-b.msh")!r})
-        V, T = np.vstack([VA, VB]), np.vstack([TA, TB + len(VA)])
+        corners = [(0, 0, 0), (1.4, 0, 0), (0.7, 0.7 * 3 ** 0.5, 0)]
+        V = np.vstack([VA + np.array(c) for c in corners])
+        T = np.vstack([TA + k * len(VA) for k in range(3)])
         fixed = np.zeros(len(V), dtype=bool)
-        fixed[TA[0, 0]] = fixed[len(VA) + TB[0, 0]] = True
+        fixed[[TA[0, 0] + k * len(VA) for k in range(3)]] = True
         """,
         "pdd.resolve(V, T, max_rounds=100000, threads=2, fixed_a=fixed)")
     assert_keyboard_interrupt(delay, status, err)
@@ -359,6 +361,8 @@ def test_an_exception_from_progress_stops_resolve():
         calls.append((done, total))
         if done >= 1:
             raise KeyError("stop")
+    # A fixed: the deep balls take the translation fallback, ~190 rounds (~0.3 s), so the
+    # progress callback is called while the rounds run, not only at the end.
     with pytest.raises(KeyError, match="stop"):
-        pdd.resolve(VA, TA, VB, TB, max_rounds=100000, progress=progress)
+        pdd.resolve(VA, TA, VB, TB, fix="a", max_rounds=100000, progress=progress)
     assert calls[-1][0] >= 1 and all(t == 100000 for _, t in calls)

@@ -45,6 +45,17 @@ inline double longest_edge2(const TetVertices& A, const TetVertices& B) {
   return edge;
 }
 
+// How far B must move along the unit u for its projections to clear A's: max u.s - min u.r
+// (negative when they are already apart).
+inline double clearance(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
+  double hi = -HUGE_VAL, lo = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) {
+    hi = std::max(hi, dot(u, A[i]));
+    lo = std::min(lo, dot(u, B[i]));
+  }
+  return hi - lo;
+}
+
 using Clock = std::chrono::steady_clock;
 inline double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 

@@ -9,16 +9,6 @@
 namespace pdd::mesh::detail {
 namespace {
 
-// How far B must move along the unit u for its projections to clear A's: max u.s - min u.r.
-double clearance(const Vec3d& u, const TetVertices& A, const TetVertices& B) {
-  double hi = -HUGE_VAL, lo = HUGE_VAL;
-  for (int i = 0; i < 4; ++i) {
-    hi = std::max(hi, dot(u, A[i]));
-    lo = std::min(lo, dot(u, B[i]));
-  }
-  return hi - lo;
-}
-
 // The axis of a candidate direction (definitions §3's vectors, up to sign).
 Vec3d label_axis(const DirectionLabel& l, const TetVertices& A, const TetVertices& B) {
   auto face = [](const TetVertices& T, int i) {
@@ -165,17 +155,16 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
   return rigid_move(A, B);
 }
 
-double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, ResolveVariant variant,
-                    std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b) {
+double plane_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, const PairMove& m,
+                     const Vec3d* along, std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b) {
   const TetVertices A = element(sa.cur, ea), B = element(sb.cur, eb);
-  const PairMove m = solve_move(A, B, variant);
-  if (!m.ok) return 0;
+  const Vec3d u = along ? *along : m.u;
   double a_hi = -HUGE_VAL, b_lo = HUGE_VAL, fixed_a = -HUGE_VAL, fixed_b = HUGE_VAL;
   for (int i = 0; i < 4; ++i) {
-    a_hi = std::max(a_hi, dot(m.u, A[i]) + dot(m.u, m.da[i]));
-    b_lo = std::min(b_lo, dot(m.u, B[i]) + dot(m.u, m.db[i]));
-    if (sa.is_fixed(sa.rest->tets[ea][i])) fixed_a = std::max(fixed_a, dot(m.u, A[i]));
-    if (sb.is_fixed(sb.rest->tets[eb][i])) fixed_b = std::min(fixed_b, dot(m.u, B[i]));
+    a_hi = std::max(a_hi, dot(u, A[i]) + (along ? 0.0 : dot(u, m.da[i])));
+    b_lo = std::min(b_lo, dot(u, B[i]) + (along ? 0.0 : dot(u, m.db[i])));
+    if (sa.is_fixed(sa.rest->tets[ea][i])) fixed_a = std::max(fixed_a, dot(u, A[i]));
+    if (sb.is_fixed(sb.rest->tets[eb][i])) fixed_b = std::min(fixed_b, dot(u, B[i]));
   }
   const double gap = kPlaneGap * std::sqrt(longest_edge2(A, B));
   double lo = (a_hi + b_lo) / 2 - gap / 2, hi = lo + gap;
@@ -184,8 +173,8 @@ double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t 
   if (!std::isfinite(lo) || !std::isfinite(hi)) return 0;
   for (int i = 0; i < 4; ++i) {
     const std::size_t va = sa.rest->tets[ea][i], vb = sb.rest->tets[eb][i];
-    if (!sa.is_fixed(va) && dot(m.u, A[i]) > lo) out_a.push_back({va, {scaled(m.u, -1), -lo}});
-    if (!sb.is_fixed(vb) && dot(m.u, B[i]) < hi) out_b.push_back({vb, {m.u, hi}});
+    if (!sa.is_fixed(va) && dot(u, A[i]) > lo) out_a.push_back({va, {scaled(u, -1), -lo}});
+    if (!sb.is_fixed(vb) && dot(u, B[i]) < hi) out_b.push_back({vb, {u, hi}});
   }
   return m.value;
 }

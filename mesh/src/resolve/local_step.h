@@ -5,9 +5,10 @@
 //          current positions, which of their vertices are fixed, the variant.
 // Outputs: solve_move: the variant's per-pair solution as displacements of the eight vertices,
 //            all along the solution's unit normal u (A -> B), and its squared depth;
-//          pair_targets (the projective-dynamics rounds): the plane u.x = c midway between q1_A
-//            and q1_B, opened by the gap g = kPlaneGap (longest edge of the pair) and shifted past
-//            the fixed vertices of either side, as a half-space for every free vertex on the
+//          plane_targets (the projective-dynamics rounds): the plane u.x = c midway between q1_A
+//            and q1_B (or along a patch's direction, patch_direction.h), opened by the gap
+//            g = kPlaneGap (longest edge of the pair) and shifted past the fixed vertices of
+//            either side, as a half-space for every free vertex on the
 //            wrong side:  u.x <= c - g/2 (A's),  u.x >= c + g/2 (B's);
 //          finish_move (the per-pair rounds): the fixed vertices' share of a move handed to the
 //            other side and the two sides pushed mu = kMargin edge + kMarginUlp |x| apart.
@@ -47,10 +48,12 @@ struct VertexTarget {
   HalfSpace h;
 };
 
-// The projective-dynamics local step of pair (ea of sa, eb of sb): appends the half-spaces of
-// its free vertices to out_a / out_b; returns the variant's squared depth (0: no solution).
-double pair_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, ResolveVariant variant,
-                    std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b);
+// The projective-dynamics local step of pair (ea of sa, eb of sb), solved as m (m.ok): appends
+// the half-spaces of its free vertices to out_a / out_b; returns m.value (0: no finite plane).
+// along: null, the plane of m (its normal, midway between q1_A and q1_B); else the unit *along
+// (patch_direction.h), the plane then midway between the two tetrahedra's extents along it.
+double plane_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, const PairMove& m,
+                     const Vec3d* along, std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b);
 
 // The per-pair rounds' local step of pair (ea of sa, eb of sb): the variant's move with the fixed
 // vertices' share moved to the other side and the margin mu added (m.ok must hold).

@@ -10,6 +10,7 @@
 #include "../resolve.h"
 #include "geometry.h"
 #include "local_step.h"
+#include "patch_direction.h"
 #include "step_limit.h"
 
 namespace pdd::mesh::detail {
@@ -104,9 +105,17 @@ std::vector<double> local_step(Run& run, const std::vector<std::array<std::size_
                                std::vector<VertexTarget>& targets_a, std::vector<VertexTarget>& targets_b) {
   std::vector<std::vector<VertexTarget>> ta(pairs.size()), tb(pairs.size());
   std::vector<double> value(pairs.size(), 0);
+  std::vector<PairMove> moves(pairs.size());
   tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
     if (run.cancelled()) return;
-    value[k] = pair_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], run.pd_variant, ta[k], tb[k]);
+    moves[k] = solve_move(element(run.sa.cur, pairs[k][0]), element(run.second().cur, pairs[k][1]), run.pd_variant);
+  });
+  run.stop_if_cancelled();
+  const std::vector<std::optional<Vec3d>> along = patch_directions(run, pairs, moves);
+  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+    if (!moves[k].ok) return;
+    const Vec3d* u = along[k] ? &*along[k] : nullptr;
+    value[k] = plane_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], moves[k], u, ta[k], tb[k]);
   });
   auto& into_b = run.B ? targets_b : targets_a;
   for (std::size_t k = 0; k < pairs.size(); ++k) {

@@ -22,8 +22,9 @@ namespace pdd::mesh::detail {
 // (contact_list.h), two meshes by intersecting_pairs itself.
 std::vector<std::array<std::size_t, 2>> contacts(Run& run);
 
-// The projective-dynamics rounds: half-space targets (pair_targets), the elastic global step
-// (elastic_step.h) and the step limit. They stall after kStallRounds rounds without fewer pairs
+// The projective-dynamics rounds: half-space targets (plane_targets; along one direction per
+// disagreeing contact patch, patch_direction.h), the elastic global step (elastic_step.h) and
+// the step limit. They stall after kStallRounds rounds without fewer pairs
 // than the best round.
 bool run_pd_rounds(Run& run, std::size_t budget);
 

@@ -1,0 +1,33 @@
+// patch_direction.h — one separating direction per contact patch where the pairs' own planes
+// disagree (SPEC §11: "one consistent separating direction per contact patch").
+//
+// Inputs:  the run (two meshes), this round's intersecting pairs and their local steps (each
+//          pair's unit normal u_k, A -> B, and squared depth v_k; local_step.h).
+// Outputs: per pair, the direction its half-spaces are built along (plane_targets' `along`), or
+//          nothing: the pair keeps its own plane.
+// Method. Patches: the pairs joined when their elements share a vertex, on either side. A patch
+//   whose pairs agree, |sum_k w_k u_k| >= kAgree sum_k w_k with w_k = sqrt(v_k), keeps them. One
+//   that does not (neighbouring pairs push a vertex opposite ways: two blocks stacked, or a ball
+//   pressed deep, whose elements each find it cheapest to leave sideways, so the rounds hold the
+//   vertex where it is) is pushed along one direction: among the normals of its kCandidates
+//   deepest pairs and both signs of the principal axes of its vertices, the u that minimises
+//   sum_k c_k(u)^2, c_k(u) = max(0, max u.s - min u.r) the rigid clearance of pair k along u.
+// Self-contact keeps every pair's own plane: a pair names its elements in index order, so its
+//   normal's sign says nothing about the patch's sides.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "local_step.h"
+#include "state.h"
+
+namespace pdd::mesh::detail {
+
+std::vector<std::optional<Vec3d>> patch_directions(const Run& run,
+                                                   const std::vector<std::array<std::size_t, 2>>& pairs,
+                                                   const std::vector<PairMove>& moves);
+
+}  // namespace pdd::mesh::detail
