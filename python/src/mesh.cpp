@@ -505,7 +505,7 @@ Example:
   >>> VB, TB = pdd.read_mesh("fixtures/meshes/tiny-b.msh")
   >>> VA1, VB1, r = pdd.resolve(VA, TA, VB, TB, fix="a")
   >>> r["resolved"], len(r["rounds"]), bool((VA1 == VA).all())
-  (True, 14, True)
+  (True, 10, True)
   >>> V1, _, r = pdd.resolve(VA, TA)                # self-contact of one mesh
 )doc";
 
