@@ -12,6 +12,7 @@
 #include <limits>
 #include <sstream>
 
+#include "binary_scale.h"
 #include "element_quality.h"
 #include "resolve.h"
 #include "resolve/state.h"
@@ -194,7 +195,7 @@ double mesh_cost(const Mesh& m, const std::vector<Vec3d>& p1) {
       for (int k = 0; k < 3; ++k)
         largest = std::max({largest, std::abs(t0[i][k]), std::abs(p1[m.tets[e][i]][k])});
   }
-  const int scale = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) + 1 : 0;
+  const int scale = detail::binary_exponent(largest);
   auto scaled = [scale](double x) { return std::ldexp(x, -scale); };
   // sigma_e = (sum_i |d_i|^2 + |sum_i d_i|^2) / 20 (definitions §2), weighted by |V_e| at rest;
   // elements with a non-finite rest coordinate are left out (flat ones weigh 0).

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "binary_scale.h"
+
 namespace pdd::mesh::detail {
 namespace {
 
@@ -54,7 +56,7 @@ ElasticStep::ElasticStep(const Mesh& rest, const std::vector<std::size_t>& eleme
     for (int c = 1; c < 4; ++c)
       for (int r = 0; r < 3; ++r)
         largest = std::max(largest, std::abs(rest.vertices[rest.tets[e][c]][r] - rest.vertices[rest.tets[e][0]][r]));
-  const int scale = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) + 1 : 0;
+  const int scale = binary_exponent(largest);
   std::vector<Eigen::Triplet<double>> k;
   k.reserve(elements.size() * 16);
   std::vector<double> diag(std::size_t(n), 0);
@@ -102,7 +104,7 @@ bool ElasticStep::solve(const std::vector<Vec3d>& pull, std::vector<Vec3d>& delt
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)
       for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(pull[v][c]));
-  const int scale = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) + 1 : 0;
+  const int scale = binary_exponent(largest);
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 3);
   for (std::size_t v = 0; v < pull.size(); ++v)
     if (unknown_[v] >= 0)

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "binary_scale.h"
 #include "resolve.h"
 
 namespace pdd::mesh::detail {
@@ -106,7 +107,7 @@ double edge_scale(const TetVertices& t0) {
   double largest = 0;
   for (int i = 1; i < 4; ++i)
     for (int k = 0; k < 3; ++k) largest = std::max(largest, std::abs(t0[i][k] - t0[0][k]));
-  return largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, -(std::ilogb(largest) + 1)) : 1.0;
+  return std::ldexp(1.0, -binary_exponent(largest));
 }
 
 TetVertices scaled(const TetVertices& t, double factor) {

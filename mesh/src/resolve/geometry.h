@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "pdd/mesh.h"
+#include "../binary_scale.h"
 
 namespace pdd::mesh::detail {
 
@@ -33,7 +34,7 @@ inline std::optional<Vec3d> unit(const Vec3d& a) {
   if (!finite(a)) return std::nullopt;
   const double m = std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2])});
   if (!(m > 0)) return std::nullopt;
-  const Vec3d b = scaled(a, std::ldexp(1.0, -(std::ilogb(m) + 1)));
+  const Vec3d b = scaled(a, std::ldexp(1.0, -binary_exponent(m)));
   return scaled(b, 1 / std::sqrt(dot(b, b)));
 }
 // The largest squared edge length of the two tetrahedra.
