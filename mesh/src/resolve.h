@@ -13,9 +13,12 @@
 //     2. local step (local_step.h): each pair projected, in the object norm, onto the
 //        configurations in which a plane separates its two tetrahedra (the variant's per-pair
 //        solution, pdd2_global by default): a half-space for each of its free vertices on the
-//        wrong side of the plane, opened by a small gap. A vertex's target y_v is its position
-//        projected in turn onto each of its half-spaces of this round and the latest one it
-//        held before (a vertex once in contact stays constrained);
+//        wrong side of the plane, opened by a small gap; two meshes: the pairs of a contact
+//        patch (pairs sharing vertices) whose planes disagree all take one direction
+//        (patch_direction.h), each pair's plane then midway between its two tetrahedra's
+//        extents along it. A vertex's target y_v is its position projected in turn onto
+//        each of its half-spaces of this round and the latest one it held before (a vertex
+//        once in contact stays constrained);
 //     3. global step (../elastic_step.h): the displacement Delta minimising
 //            1/2 sum_e V_e |grad Delta|_e^2 + 1/2 sum_v w_v |Delta_v - omega (y_v - x_v)|^2,
 //        fixed vertices Dirichlet (Delta = 0): the contact vertices are pulled to their
