@@ -149,9 +149,12 @@ Eigen::Matrix<double, 8, 8> qs_closed(const std::array<bool, 8>& active) {
   return Qs;
 }
 
-// The KKT solve of the header's "Hessian" for the active set `active` (not empty): the 8 x 8
-// matrix Qs = S^T X^T H X S (fixed_plane's independent route).
-Eigen::Matrix<double, 8, 8> qs_kkt(const std::array<bool, 8>& active) {
+// The KKT matrix of the fixed-plane QP's equality problem on the active set `active`: unknowns
+// the eight moves x_k (A's vertices 0-3, B's 4-7), the plane offset c (index 8) and one
+// multiplier per active vertex (9 + r, in vertex order); H = the object norm's blocks (2 on the
+// diagonal, 1 off, over 10: definitions §2) on the moves, and the row x_k - c = -s_k of each
+// active vertex k (its right side set by the caller).
+Eigen::MatrixXd kkt_matrix(const std::array<bool, 8>& active) {
   int m = 0;
   for (bool a : active) m += a;
   const int n = 9 + m;
@@ -159,14 +162,22 @@ Eigen::Matrix<double, 8, 8> qs_kkt(const std::array<bool, 8>& active) {
   for (int blk = 0; blk < 2; ++blk)
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) K(4 * blk + i, 4 * blk + j) = (i == j ? 2.0 : 1.0) / 10;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, m);
   for (int k = 0, r = 0; k < 8; ++k) {
     if (!active[k]) continue;
     K(9 + r, k) = K(k, 9 + r) = 1;
     K(9 + r, 8) = K(8, 9 + r) = -1;
-    rhs(9 + r, r) = 1;
     ++r;
   }
+  return K;
+}
+
+// The KKT solve of the header's "Hessian" for the active set `active` (not empty): the 8 x 8
+// matrix Qs = S^T X^T H X S (fixed_plane's independent route).
+Eigen::Matrix<double, 8, 8> qs_kkt(const std::array<bool, 8>& active) {
+  const Eigen::MatrixXd K = kkt_matrix(active);
+  const int m = int(K.rows()) - 9;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(K.rows(), m);
+  for (int r = 0; r < m; ++r) rhs(9 + r, r) = 1;
   const Eigen::MatrixXd Z = K.partialPivLu().solve(rhs);
   const Eigen::MatrixXd X = Z.topRows(9);
   const Eigen::MatrixXd W = X.transpose() * K.topLeftCorner(9, 9) * X;  // X^T H X (m x m)
@@ -736,21 +747,10 @@ FixedPlane fixed_plane(const TetVertices& A, const TetVertices& B, const Vec3d& 
     std::array<bool, 8> active{};
     for (int k = 0; k < 8; ++k) active[k] = (mask >> k) & 1u;
     // The equality QP's solution x = (t, c) for this set: solve the KKT system directly.
-    int m = 0;
-    for (bool a : active) m += a;
-    const int n = 9 + m;
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-    for (int blk = 0; blk < 2; ++blk)
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) K(4 * blk + i, 4 * blk + j) = (i == j ? 2.0 : 1.0) / 10;
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-    for (int k = 0, r = 0; k < 8; ++k) {
-      if (!active[k]) continue;
-      K(9 + r, k) = K(k, 9 + r) = 1;
-      K(9 + r, 8) = K(8, 9 + r) = -1;
-      rhs(9 + r) = -s[k];
-      ++r;
-    }
+    const Eigen::MatrixXd K = kkt_matrix(active);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(K.rows());
+    for (int k = 0, r = 0; k < 8; ++k)
+      if (active[k]) rhs(9 + r++) = -s[k];
     const Eigen::VectorXd x = K.partialPivLu().solve(rhs);
     // Feasible: every constraint holds (to rounding relative to the pair's spread).
     const double spread = std::max(std::abs(maxA), std::abs(minB)) + (maxA - minB);
