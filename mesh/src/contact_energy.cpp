@@ -696,7 +696,7 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   // for coordinates beyond ~1e77, where no double can report it.
   if (!std::isfinite(e.energy))
     throw std::overflow_error("contact_energy: the energy exceeds the double range (" + std::to_string(sol.size()) +
-                              " pairs, largest pdd2_global " + std::to_string(e.max_pdd2_global) +
+                              " pairs, largest pdd2_global " + to_text(e.max_pdd2_global) +
                               "): scale the positions down");
   e.gradient.assign(n, Vec3d{0, 0, 0});
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {

@@ -3,6 +3,7 @@ central differences of E, the Hessian symmetric and positive semi-definite, the 
 against pdd.mesh_contacts, the exact engine against the fast one, self-contact, bad input."""
 import json
 import os
+import re
 
 import numpy as np
 import pytest
@@ -199,8 +200,11 @@ def test_energy_outside_the_double_range_raises():
     assert pdd.contact_energy(V, T, P, T)["energy"] > 0
     with pytest.raises(ValueError, match=r"below the double range \(pair \(0, 0\)"):
         pdd.contact_energy(np.ldexp(V, -260), T, np.ldexp(P, -260), T)
-    with pytest.raises(OverflowError, match="exceeds the double range"):
+    with pytest.raises(OverflowError, match="exceeds the double range") as e:
         pdd.contact_energy(np.ldexp(V, 260), T, np.ldexp(P, 260), T)
+    # the largest value as the shortest decimal that reads back as it (not ~300 digits)
+    largest = re.search(r"largest pdd2_global (\S+)\)", str(e.value))
+    assert largest and len(largest.group(1)) <= 24 and float(largest.group(1)) > 1e150
 
 
 # ---- `pdd mesh --energy` (docs/definitions.md "Contact energy": its keys) ------------------
