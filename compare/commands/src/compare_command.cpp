@@ -47,8 +47,12 @@ Json comparison_json(const PairComparison& c) {
   j["position_error"] = c.position_error;
   j["position_tolerance"] = c.position_tolerance;
   j["separated"] = c.separated;
-  j["pdd2_global"] = {{"exact", c.global_exact}, {"exact_lower", c.global_lower}, {"fast", c.global_fast},
-                      {"error", c.global_error}, {"normal_error", c.global_normal_error}};
+  j["pdd2_global"] = {{"exact", c.global_exact},
+                      {"exact_lower", c.global_lower},
+                      {"fast", c.global_declined ? Json(nullptr) : Json(c.global_fast)},
+                      {"declined", c.global_declined ? Json(c.global_decline) : Json(nullptr)},
+                      {"error", c.global_error},
+                      {"normal_error", c.global_normal_error}};
   for (std::size_t k = 0; k < kLabelCount; ++k)
     j[std::string(kLabelKeys[k])] = {{"exact", c.exact_label[k]}, {"fast", c.fast_label[k]}, {"verdict", to_string(c.labels[k])}};
   return j;
@@ -72,7 +76,10 @@ void print_over(const PairComparison& c) {
     std::cout << "  q1 positions: object norm off pdd2 by " << c.position_error << " > "
               << c.position_tolerance << "\n";
   if (!c.separated) std::cout << "  q1 positions: not separated by the pdd2 plane up to 1e-9 R\n";
-  if (!(c.global_error <= kContractRel))
+  if (c.global_declined && !(c.global_error <= kContractRel))
+    std::cout << "  pdd2_global: the fast engine declined it where the contract requires it ("
+              << c.global_decline << "); exact " << std::setprecision(17) << c.global_exact << "\n";
+  else if (!(c.global_error <= kContractRel))
     std::cout << "  pdd2_global: fast " << std::setprecision(17) << c.global_fast
               << " outside the exact interval [" << c.global_lower << ", " << c.global_exact
               << "] by " << std::setprecision(3) << c.global_error << " relative\n";

@@ -239,16 +239,21 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
 
   if (!fast.pdd2_global_error) {
     judge_global(p, exact, fast, c);
-  } else if ((*fast.pdd2_global_error == kGlobalNotRepresentable && global_normal_unresolvable(pair, exact)) ||
-             (*fast.pdd2_global_error == kGlobalOutOfRange && !representable_global(exact))) {
+  } else {
+    // declined: the exact values it is judged against, no fast value (global_decline says why)
     c.global_declined = true;
-    c.allowed_because = *fast.pdd2_global_error == kGlobalOutOfRange
-                            ? "pdd2_global declined: the exact engine confirms it is outside the double range"
-                            : "pdd2_global declined: the exact pdd2_relaxed is below 1e-14 of the pair's "
-                              "extent squared, where no double normal need attain it";
-  } else {  // declined where the contract requires a value
-    c.global_declined = true;
-    c.global_error = c.global_normal_error = std::numeric_limits<double>::infinity();
+    c.global_decline = *fast.pdd2_global_error;
+    c.global_exact = CGAL::to_double(exact.pdd2_global);
+    c.global_lower = CGAL::to_double(exact.pdd2_global_lower ? *exact.pdd2_global_lower : exact.pdd2_global);
+    c.global_fast = std::numeric_limits<double>::quiet_NaN();
+    if ((c.global_decline == kGlobalNotRepresentable && global_normal_unresolvable(pair, exact)) ||
+        (c.global_decline == kGlobalOutOfRange && !representable_global(exact)))
+      c.allowed_because = c.global_decline == kGlobalOutOfRange
+                              ? "pdd2_global declined: the exact engine confirms it is outside the double range"
+                              : "pdd2_global declined: the exact pdd2_relaxed is below 1e-14 of the pair's "
+                                "extent squared, where no double normal need attain it";
+    else  // declined where the contract requires a value
+      c.global_error = c.global_normal_error = std::numeric_limits<double>::infinity();
   }
 
   for (std::size_t k = 0; k < kLabelCount; ++k) {

@@ -62,9 +62,10 @@ struct PairComparison {
   // and |exact relaxed value along the fast normal − fast value| / that exact value.
   double global_error = 0, global_normal_error = 0;
   double global_exact = 0, global_lower = 0, global_fast = 0;
-  // The fast engine declined pdd2_global (pdd2_global_error): allowed when allowed_because says
-  // so, else global_error is infinite.
+  // The fast engine declined pdd2_global (pdd2_global_error, in global_decline; global_fast is
+  // then NaN): allowed when allowed_because says so, else global_error is infinite.
   bool global_declined = false;
+  std::string global_decline;
   std::array<LabelVerdict, kLabelCount> labels{};
   std::array<std::string, kLabelCount> exact_label, fast_label;
 
