@@ -156,8 +156,6 @@ void judge_global(const reference::ExactPair& p, const reference::ExactResult& e
                   const PairResult<double>& fast, PairComparison& c) {
   using namespace reference;
   const Rational lower = exact.pdd2_global_lower ? *exact.pdd2_global_lower : exact.pdd2_global;
-  c.global_exact = CGAL::to_double(exact.pdd2_global);
-  c.global_lower = CGAL::to_double(lower);
   c.global_fast = fast.pdd2_global;
   if (!std::isfinite(fast.pdd2_global)) {
     c.global_error = c.global_normal_error = std::numeric_limits<double>::infinity();
@@ -237,14 +235,15 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     c.separated = fast.pdd2_dir && separated_by(p, *fast.pdd2_dir, fast, Q);
   }
 
+  // the exact interval the fast pdd2_global is judged against (declined or not)
+  c.global_exact = CGAL::to_double(exact.pdd2_global);
+  c.global_lower = CGAL::to_double(exact.pdd2_global_lower ? *exact.pdd2_global_lower : exact.pdd2_global);
   if (!fast.pdd2_global_error) {
     judge_global(p, exact, fast, c);
   } else {
-    // declined: the exact values it is judged against, no fast value (global_decline says why)
+    // declined: no fast value (global_decline says why)
     c.global_declined = true;
     c.global_decline = *fast.pdd2_global_error;
-    c.global_exact = CGAL::to_double(exact.pdd2_global);
-    c.global_lower = CGAL::to_double(exact.pdd2_global_lower ? *exact.pdd2_global_lower : exact.pdd2_global);
     c.global_fast = std::numeric_limits<double>::quiet_NaN();
     if ((c.global_decline == kGlobalNotRepresentable && global_normal_unresolvable(pair, exact)) ||
         (c.global_decline == kGlobalOutOfRange && !representable_global(exact)))
