@@ -69,10 +69,12 @@ V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
   if (!ma || !mb) return {0, 0, 0};
   const int mA = kPopcount[ma], mB = kPopcount[mb];
   const double wA = 1.0 / (5 - mA), wB = 1.0 / (5 - mB);
+  // (each vertex added with weight 1 or 0, not under a test: the tests mispredicted; a sum
+  // with +0 terms is the same double, none of these sums being -0)
   V3 SA{0, 0, 0}, SB{0, 0, 0};
   for (int i = 0; i < 4; ++i) {
-    if (ma >> i & 1u) SA = add(SA, P.pA[i]);
-    if (mb >> i & 1u) SB = add(SB, P.pB[i]);
+    SA = add(SA, mul(P.pA[i], double(ma >> i & 1u)));
+    SB = add(SB, mul(P.pB[i], double(mb >> i & 1u)));
   }
   const V3 C = mul(add(mul(SA, wA), mul(SB, wB)), 1 / (mA * wA + mB * wB));
   const V3 TA = mul(sub(mul(C, mA), SA), wA);
@@ -82,8 +84,8 @@ V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
       for (int c = 0; c < 3; ++c) H[r][c] += w * d[r] * d[c];
   };
   for (int i = 0; i < 4; ++i) {
-    if (ma >> i & 1u) add_outer(sub(C, P.pA[i]), 1);
-    if (mb >> i & 1u) add_outer(sub(C, P.pB[i]), 1);
+    add_outer(sub(C, P.pA[i]), double(ma >> i & 1u));
+    add_outer(sub(C, P.pB[i]), double(mb >> i & 1u));
   }
   add_outer(TA, 10 - mA - mB);
   // Its smallest eigenvector by inverse iteration from v (refine with shift 0: x <- adj(H) x,

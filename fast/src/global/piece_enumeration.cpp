@@ -29,6 +29,19 @@ using detail::ScreenLanes;
 using detail::screen;
 using detail::surviving_pieces;
 
+// kSmallSets[mA]: the sets mb of B with mA + |mb| <= 3 (bit mb), the pieces (S_A, S_B) with
+// |S_A| = mA whose H_S has structural zero eigenvalues (4 - |S| of them).
+struct SmallSets {
+  unsigned sets[5] = {};
+  constexpr SmallSets() {
+    for (int mA = 0; mA <= 4; ++mA)
+      for (unsigned mb = 1; mb < 16; ++mb)
+        if (mA + kPopcount[mb] <= 3) sets[mA] |= 1u << mb;
+  }
+  constexpr unsigned operator[](int mA) const { return sets[mA]; }
+};
+inline constexpr SmallSets kSmallSets;
+
 // A coordinate as a double: itself, or a rational rounded once.
 struct AsDouble {
   double operator()(double x) const { return x; }
@@ -190,6 +203,7 @@ class PieceEnumeration {
   void columns(unsigned sets) {
     static constexpr unsigned char kBySize[15] = {1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14, 15};
     int n = 0;
+    for (int& l : lane) l = 0;  // (lane_bit below reads every set's)
     for (unsigned mb : kBySize)
       if (sets >> mb & 1u) column(n++, mb);
     cols.lanes = (n + 3) & ~3;
@@ -261,16 +275,21 @@ class PieceEnumeration {
     for (unsigned ma = 1; ma < 16; ++ma) all |= region[ma];
     columns(all & 0xFFFEu);
     unsigned above[16] = {}, reach[16] = {};  // reach[ma]: the sets above in rows strictly within ma
+    // (The bookkeeping below runs fixed loops over the 4 vertices and the lanes where it can:
+    // loops over a mask's set bits end at a data-dependent count, mispredicted about once a
+    // loop, ~6 loops a row.)
+    unsigned lane_bit[16];  // set mb's lane as a bit, 0 for a set not in cols
+    for (unsigned mb = 0; mb < 16; ++mb) lane_bit[mb] = (all >> mb & 0xFFFEu >> mb & 1u) << lane[mb];
     for (unsigned ma = 1; ma < 16; ++ma) {
-      for (unsigned bits = ma; bits; bits &= bits - 1) {
-        const unsigned sub = ma & ~(1u << __builtin_ctz(bits));
+      for (unsigned i = 0; i < 4; ++i) {  // (the rows ma less one vertex; ma itself adds 0 here)
+        const unsigned sub = ma & ~(1u << i);
         reach[ma] |= reach[sub] | above[sub];
       }
       const unsigned need = region[ma] & ~up_closure(reach[ma]) & 0xFFFEu;
       survivors[ma] = 0;
       if (!need) continue;
       unsigned need_lanes = 0;  // need's lanes (bit l)
-      for (unsigned bits = need; bits; bits &= bits - 1) need_lanes |= 1u << lane[__builtin_ctz(bits)];
+      for (unsigned mb = 1; mb < 16; ++mb) need_lanes |= lane_bit[mb] & (0u - (need >> mb & 1u));
       const int n = (35 - __builtin_clz(need_lanes)) & ~3;  // up to the last lane needed, in 4s
       RowLanes row;
       surviving_pieces(row_sums(ma).data(), row_moments(ma).data(), sa.qmax[ma], kPopcount[ma], cols, n, top,
@@ -282,27 +301,27 @@ class PieceEnumeration {
       // instruction of the caller after it paid for that: ~40% of enumerate_pieces' own time,
       // measured with perf).
       const unsigned kept = lanes_where(row.keep, n, false) & need_lanes;
-      survivors[ma] = above[ma] = 0;
-      for (unsigned bits = kept; bits; bits &= bits - 1) survivors[ma] |= 1u << cols.mb[__builtin_ctz(bits)];
-      for (unsigned bits = lanes_where(row.below_top, n, true); bits; bits &= bits - 1)
-        above[ma] |= 1u << cols.mb[__builtin_ctz(bits)];
-      above[ma] &= 0xFFFEu;
+      const unsigned above_lanes = lanes_where(row.below_top, n, true);
       // the screen's lanes: the survivors with exactly one eigenvalue in the window (the only
-      // case it decides). (Over set bits: no branch per piece.) Of the others, a piece with
-      // structural zero eigenvalues (4 - |S| of them, |S| <= 3) whose nonzero ones lie certainly
-      // above the window is dropped here, as its visit would drop it (outside_window_cheaply's
-      // test, on N = 20 H within n_error as survivors_exact takes it): a shallow contact's
-      // window counts the zeros in, so such pieces are never `one`, ~17 a pair at 5e-7 of the
-      // size, and each visit would build its matrix first.
+      // case it decides)
+      const unsigned one_lanes = lanes_where(row.one, n, false) & kept;
       unsigned one = 0;
-      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
-        const unsigned mb = unsigned(__builtin_ctz(bits));
-        one |= unsigned(row.one[lane[mb]] != 0) << mb;
+      above[ma] = 0;
+      for (int l = 0; l < cols.lanes; ++l) {  // (lanes to sets; the same count every row)
+        const unsigned m = 1u << cols.mb[l];
+        survivors[ma] |= m & (0u - (kept >> l & 1u));
+        above[ma] |= m & (0u - (above_lanes >> l & 1u));
+        one |= m & (0u - (one_lanes >> l & 1u));
       }
-      for (unsigned bits = survivors[ma] & ~one; bits; bits &= bits - 1) {
+      above[ma] &= 0xFFFEu;
+      // Of the others, a piece with structural zero eigenvalues (4 - |S| of them, |S| <= 3)
+      // whose nonzero ones lie certainly above the window is dropped here, as its visit would
+      // drop it (outside_window_cheaply's test, on N = 20 H within n_error as survivors_exact
+      // takes it): a shallow contact's window counts the zeros in, so such pieces are never
+      // `one`, ~17 a pair at 5e-7 of the size, and each visit would build its matrix first.
+      for (unsigned bits = survivors[ma] & ~one & kSmallSets[kPopcount[ma]]; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
-        const int zeros = 4 - kPopcount[ma] - kPopcount[mb];
-        if (zeros > 0 && nonzero_above(row, lane[mb], zeros)) survivors[ma] &= ~(1u << mb);
+        if (nonzero_above(row, lane[mb], 4 - kPopcount[ma] - kPopcount[mb])) survivors[ma] &= ~(1u << mb);
       }
       for (unsigned bits = one; bits; bits &= bits - 1) {
         const unsigned mb = unsigned(__builtin_ctz(bits));
@@ -442,9 +461,9 @@ class PieceEnumeration {
     for (int i = 0; i < 4; ++i) {
       const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
       cond.l[i] = rounded(d);        // d_i = a_i - c - T_A
-      cond.sign[i] = g.ma >> i & 1u ? 1 : -1;
+      cond.sign[i] = kSignOf[g.ma][i];  // (tables, not selects: GCC branches on those)
       cond.l[4 + i] = rounded(e);    // e_j = c - b_j + T_B
-      cond.sign[4 + i] = g.mb >> i & 1u ? 1 : -1;
+      cond.sign[4 + i] = kSignOf[g.mb][i];
     }
     cond.finish();
     return cond;
