@@ -3,6 +3,7 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 
+#include "certification/value_bounds.h"
 #include "exact/exact_predicates.h"
 #include "fast_test_util.h"
 #include "kernel/candidate_directions.h"
@@ -267,11 +268,15 @@ BOOST_AUTO_TEST_CASE(sets_built_from_quick_lanes_match) {
                   from_q.sign[k] == direct.sign[k]));
       BOOST_TEST((from_q.depth[k] == direct.depth[k] && from_q.nn[k] == direct.nn[k] &&
                   from_q.delta_sq[k] == direct.delta_sq[k]));
-      // (class and own bounds are set for explicit candidates only: lanes are generic)
-      if (direct.lane[k] < 0) BOOST_TEST(from_q.parallel[k] == direct.parallel[k]);
+      // (every candidate's class and bounds: lanes generic, their class's bounds unless own)
+      BOOST_TEST(from_q.parallel[k] == direct.parallel[k]);
+      if (direct.lane[k] >= 0) BOOST_TEST(direct.parallel[k] == 0);
       if (direct.lane[k] < 0 && k >= 8) ++classes[direct.parallel[k]];
-      if (direct.lane[k] < 0 && direct.parallel[k] == 2)
-        BOOST_TEST((from_q.own_eh[k] == direct.own_eh[k] && from_q.own_en[k] == direct.own_en[k]));
+      BOOST_TEST((from_q.e_h[k] == direct.e_h[k] && from_q.e_n[k] == direct.e_n[k]));
+      if (direct.parallel[k] != 2) {
+        const DegreeBounds cls = degree_bounds(direct.fb, direct.parallel[k] == 1);
+        BOOST_TEST((direct.e_h[k] == cls.e_h && direct.e_n[k] == cls.e_n));
+      }
       const Candidate x = candidate(from_q, k), y = candidate(direct, k);
       BOOST_TEST((x.conA == y.conA && x.conB == y.conB && x.parallel == y.parallel && x.own_bounds == y.own_bounds));
       for (int m = 0; m < 4; ++m) BOOST_TEST((x.hA[m] == y.hA[m] && x.hB[m] == y.hB[m]));

@@ -15,13 +15,11 @@
 
 namespace pdd::fast::detail {
 
-inline bool is_parallel(const CandidateSet& s, int k) { return s.lane[k] < 0 && s.parallel[k] == 1; }
+inline bool is_parallel(const CandidateSet& s, int k) { return s.parallel[k] == 1; }
 inline bool is_parallel(const QuickCandidates&, int) { return false; }  // quick declines them
-// Candidate k's degree bounds (value_bounds.h): its class's, or its own (nearly parallel).
-inline DegreeBounds bounds_of(const CandidateSet& s, int k) {
-  if (s.lane[k] < 0 && s.parallel[k] == 2) return DegreeBounds{s.own_eh[k], s.own_en[k]};
-  return degree_bounds(s.fb, is_parallel(s, k));
-}
+// Candidate k's degree bounds (value_bounds.h): its class's, or its own (nearly parallel), as
+// the set stores them.
+inline DegreeBounds bounds_of(const CandidateSet& s, int k) { return DegreeBounds{s.e_h[k], s.e_n[k]}; }
 inline DegreeBounds bounds_of(const QuickCandidates& s, int) { return degree_bounds(s.fb, false); }
 
 // Root bound of delta² of candidate k (value_bounds.h, rigid).

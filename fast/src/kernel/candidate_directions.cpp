@@ -78,6 +78,7 @@ struct Builder {
   const TetVertices& A;
   const TetVertices& B;
   const FilterBounds& fb;
+  const DegreeBounds generic = degree_bounds(fb, false);  // a generic candidate's bounds
   const Precomputed& p;
   CandidateSet& out;
   double extent;  // L (filter_bounds.h)
@@ -115,8 +116,9 @@ struct Builder {
   bool emit(const Draft& d, double s, LabelCode code, double bound, int cls, const DegreeBounds& own) {
     const int k = out.count++;
     out.parallel[k] = std::uint8_t(cls);
-    out.own_eh[k] = own.e_h;
-    out.own_en[k] = own.e_n;
+    const DegreeBounds e = cls == 2 ? own : degree_bounds(fb, cls == 1);
+    out.e_h[k] = e.e_h;
+    out.e_n[k] = e.e_n;
     DirectionGeometry& c = out.explicit_[k];
     orient_draft(d, s, c);
     out.code[k] = code;
@@ -393,6 +395,9 @@ struct Builder {
     out.sign[k] = flip ? -1 : 1;
     out.sign[k + 1] = -1;
     out.lane[k] = out.lane[k + 1] = std::int16_t(i);
+    out.parallel[k] = out.parallel[k + 1] = 0;
+    out.e_h[k] = out.e_h[k + 1] = generic.e_h;
+    out.e_n[k] = out.e_n[k + 1] = generic.e_n;
     return k + 1 + undecidable;
   }
 
@@ -440,7 +445,7 @@ struct Builder {
       out.lane[k] = -1;
       out.sign[k] = 1;
       out.parallel[k] = 0;
-      out.own_eh[k] = out.own_en[k] = 0.0;
+      out.e_h[k] = generic.e_h, out.e_n[k] = generic.e_n;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     out.edges = q.edges;
@@ -460,7 +465,7 @@ struct Builder {
       out.lane[k] = -1;
       out.sign[k] = 1;
       out.parallel[k] = 0;
-      out.own_eh[k] = out.own_en[k] = 0.0;
+      out.e_h[k] = generic.e_h, out.e_n[k] = generic.e_n;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     // (a lane whose n~ is small is unclear: edge_pair_general takes its n exactly)
@@ -555,7 +560,7 @@ Candidate candidate(const CandidateSet& set, int k) {
     static_cast<DirectionGeometry&>(c) = set.explicit_[k];
     c.parallel = set.parallel[k] == 1;
     c.own_bounds = set.parallel[k] == 2;
-    if (c.own_bounds) c.own_eh = set.own_eh[k], c.own_en = set.own_en[k];
+    if (c.own_bounds) c.own_eh = set.e_h[k], c.own_en = set.e_n[k];
     return c;
   }
   detail::lane_candidate(set.edges, set.lane[k], set.sign[k], c);

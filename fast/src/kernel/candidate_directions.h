@@ -95,9 +95,15 @@ struct CandidateSet {
   // (16-bit, not 8-bit: char types alias everything and would pessimise the build loop)
   std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
   std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
-  // explicit candidates: 1 a parallel edge pair, 2 a nearly parallel one (own_eh, own_en), else 0
+  // explicit candidates: 1 a parallel edge pair, 2 a nearly parallel one (its own bounds), else 0
+  // (0 on lane candidates too: every entry written)
   std::uint8_t parallel[kMaxCandidates];
-  double own_eh[kMaxCandidates], own_en[kMaxCandidates];  // set where parallel[k] == 2
+  // Each candidate's degree bounds (value_bounds.h: per-height e_h, per-component e_n of n): its
+  // class's (degree_bounds of fb) or, where parallel[k] == 2, its own (own_degree_bounds).
+  // Stored, not chosen where read: on aligned pairs the classes interleave in the list, and a
+  // choice by tests at every read mispredicted (~150 a pair on a Kuhn grid shifted a quarter cell
+  // along (1, 1, 1), cachegrind's model).
+  double e_h[kMaxCandidates], e_n[kMaxCandidates];
   EdgeLanes edges;
   DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
 };
