@@ -54,26 +54,10 @@ inline void cswap_asc(T& a, T& b) {  // afterwards a <= b (unless NaN)
     b = t;
   }
 }
+// Afterwards a >= b: cswap_asc with the arguments exchanged (its comparison is then a < b).
 template <class T>
-inline void cswap_desc(T& a, T& b) {  // afterwards a >= b: the swaps of cswap_asc on −a, −b
-#if defined(__SSE2__)
-  if constexpr (std::is_same_v<T, double>) {
-    const double hi = select_greater(b, a), lo = select_less(a, b);  // (a < b ? b : a, a < b ? a : b)
-    a = hi;
-    b = lo;
-    return;
-  }
-#endif
-  if constexpr (kSelects<T>) {
-    const bool swap = a < b;
-    const T hi = swap ? b : a, lo = swap ? a : b;
-    a = hi;
-    b = lo;
-  } else if (a < b) {
-    T t = a;
-    a = b;
-    b = t;
-  }
+inline void cswap_desc(T& a, T& b) {
+  cswap_asc(b, a);
 }
 
 // Sorting networks, n <= 4. The descending one is the ascending network on −v (the same
