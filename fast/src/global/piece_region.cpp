@@ -169,7 +169,8 @@ bool region_pieces(const double (&pA)[4][3], const double (&pB)[4][3], double to
   std::uint64_t coded = 0;
 #if defined(__SSE2__)
   for (int l = 0; l < kLanes; l += 4) {
-    const __m128i zero = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(L.code + l)), _mm_setzero_si128());
+    const __m128i codes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(L.code + l));
+    const __m128i zero = _mm_cmpeq_epi32(codes, _mm_setzero_si128());
     coded |= std::uint64_t(~unsigned(_mm_movemask_ps(_mm_castsi128_ps(zero))) & 15u) << l;
   }
 #else  // (the same bits, one lane at a time)
