@@ -69,8 +69,9 @@ V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
   if (!ma || !mb) return {0, 0, 0};
   const int mA = kPopcount[ma], mB = kPopcount[mb];
   const double wA = 1.0 / (5 - mA), wB = 1.0 / (5 - mB);
-  // (each vertex added with weight 1 or 0, not under a test: the tests mispredicted; a sum
-  // with +0 terms is the same double, none of these sums being -0)
+  // (each vertex added with weight 1 or 0, not under a test: the tests mispredicted; a term
+  // weighted 0 is +0 or -0, which leaves a sum unchanged unless the sum is -0, and these sums
+  // start at +0 and are never -0: a rounded sum is -0 only when both terms are)
   V3 SA{0, 0, 0}, SB{0, 0, 0};
   for (int i = 0; i < 4; ++i) {
     SA = add(SA, mul(P.pA[i], double(ma >> i & 1u)));

@@ -566,7 +566,7 @@ class PieceEnumeration {
   TV xSA[16], xSB[16];  // exact path: the exact sums
   M6 xQA[16], xQB[16];
   ColumnsB cols;          // B's sums as lanes (surviving_pieces; every lane in use written)
-  int lane[16];           // lane[mb]: set mb's lane in cols (written for every set in cols)
+  int lane[16];           // lane[mb]: set mb's lane in cols (0 for a set not in cols)
   unsigned survivors[16];
   double top = 0;         // the window's top edge: the best value so far, less kPrune
   std::optional<AccurateMoments> accurate;  // double path: built on the first piece that needs it

@@ -115,7 +115,7 @@ struct Builder {
   // cls: 0 generic, 1 parallel, 2 nearly parallel with its own bounds `own` (CandidateSet).
   bool emit(const Draft& d, double s, LabelCode code, double bound, int cls, const DegreeBounds& own) {
     const int k = out.count++;
-    out.parallel[k] = std::uint8_t(cls);
+    out.parallel[k] = std::int16_t(cls);
     const DegreeBounds e = cls == 2 ? own : degree_bounds(fb, cls == 1);
     out.e_h[k] = e.e_h;
     out.e_n[k] = e.e_n;

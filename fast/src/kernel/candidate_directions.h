@@ -96,8 +96,8 @@ struct CandidateSet {
   std::int16_t lane[kMaxCandidates];  // edge lane, or −1: stored in full in explicit_[k]
   std::int16_t sign[kMaxCandidates];  // orientation of a lane candidate: ±1
   // explicit candidates: 1 a parallel edge pair, 2 a nearly parallel one (its own bounds), else 0
-  // (0 on lane candidates too: every entry written)
-  std::uint8_t parallel[kMaxCandidates];
+  // (0 on lane candidates too: every entry written, in the build loop: 16-bit as lane and sign)
+  std::int16_t parallel[kMaxCandidates];
   // Each candidate's degree bounds (value_bounds.h: per-height e_h, per-component e_n of n): its
   // class's (degree_bounds of fb) or, where parallel[k] == 2, its own (own_degree_bounds).
   // Stored, not chosen where read: on aligned pairs the classes interleave in the list, and a

@@ -26,9 +26,11 @@ template <class T>
 using Count = std::conditional_t<kSelects<T>, T, int>;  // small integers: exact either way
 
 #if defined(__SSE2__)
-// The selects below as MINSD / MAXSD, which are exactly them (MINSD x, y = x < y ? x : y; MAXSD
-// x, y = x > y ? x : y, the second operand on ties and NaN): GCC 12 compiles the ternaries to
-// a branch and a swap each, about half of them mispredicted on random heights.
+// The selects below as MINSD / MAXSD, which execute exactly them (MINSD x, y = x < y ? x : y;
+// MAXSD x, y = x > y ? x : y, the second operand on ties and NaN; a compiler folding them on
+// constants may not follow that rule, but the heights sorted here are never constants): GCC
+// 12 compiles the ternaries to a branch and a swap each, about half of them mispredicted on
+// random heights.
 inline double select_less(double x, double y) { return _mm_cvtsd_f64(_mm_min_sd(_mm_set_sd(x), _mm_set_sd(y))); }
 inline double select_greater(double x, double y) { return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(x), _mm_set_sd(y))); }
 #endif
