@@ -35,41 +35,57 @@ V3 refine(const detail::Q (&h)[3][3], const V3& v0, double mu, long pe) {
 // rational as on the rationals themselves, rounded by the same conversion: the same doubles.
 V3 refine(const IntegerMatrix& h, const V3& v0, double mu, long pe) {
   using detail::Q;
+  // (explicit mpz calls on per-thread integers: the exact pieces call this for every suspect
+  // and offer, on integers of thousands of bits, where each expression's temporaries would be
+  // allocated and freed)
+  struct Scratch {
+    mpz_class m[3][3], adj[3][3], det, V[3], x[3], big;
+    Q q;
+  };
+  static thread_local Scratch w;
+  auto z = [](mpz_class& x) { return x.get_mpz_t(); };
   Q sigma = Q(mu) * (1 - Q(1, 1000000));
   detail::scale_pow2(sigma, pe);  // mu is in the piece's units, 2^-pe of h's
-  mpz_class m[3][3];
-  integer_shift(h, sigma, m);
-  mpz_class adj[3][3];
+  integer_shift(h, sigma, w.m);
+  auto& m = w.m;
+  auto& adj = w.adj;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-      adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
+      mpz_mul(z(adj[r][c]), z(m[r1][c1]), z(m[r2][c2]));  // cofactor (c, r)
+      mpz_submul(z(adj[r][c]), z(m[r1][c2]), z(m[r2][c1]));
     }
-  const mpz_class det = m[0][0] * adj[0][0] + m[0][1] * adj[1][0] + m[0][2] * adj[2][0];
+  mpz_mul(z(w.det), z(m[0][0]), z(adj[0][0]));
+  mpz_addmul(z(w.det), z(m[0][1]), z(adj[1][0]));
+  mpz_addmul(z(w.det), z(m[0][2]), z(adj[2][0]));
+  const bool flip = sgn(w.det) < 0;
   V3 v = v0;
   for (int it = 0; it < 3; ++it) {
     ScaledInt s[3] = {scaled_int(v[0]), scaled_int(v[1]), scaled_int(v[2])};
     long E = LONG_MAX;
     for (const ScaledInt& x : s)
       if (sgn(x.m) != 0) E = std::min(E, x.e);
-    mpz_class V[3];
-    for (int k = 0; k < 3; ++k)
-      if (sgn(s[k].m) != 0) mpz_mul_2exp(V[k].get_mpz_t(), s[k].m.get_mpz_t(), mp_bitcnt_t(s[k].e - E));
-    mpz_class x[3];
-    for (int r = 0; r < 3; ++r) x[r] = adj[r][0] * V[0] + adj[r][1] * V[1] + adj[r][2] * V[2];
-    mpz_class big = 0;
-    for (const mpz_class& c : x)
-      if (mpz_cmpabs(c.get_mpz_t(), big.get_mpz_t()) > 0) big = abs(c);
-    if (sgn(big) == 0) return v;
+    for (int k = 0; k < 3; ++k) {
+      if (sgn(s[k].m) != 0) mpz_mul_2exp(z(w.V[k]), s[k].m.get_mpz_t(), mp_bitcnt_t(s[k].e - E));
+      else mpz_set_ui(z(w.V[k]), 0);
+    }
+    for (int r = 0; r < 3; ++r) {
+      mpz_mul(z(w.x[r]), z(adj[r][0]), z(w.V[0]));
+      mpz_addmul(z(w.x[r]), z(adj[r][1]), z(w.V[1]));
+      mpz_addmul(z(w.x[r]), z(adj[r][2]), z(w.V[2]));
+    }
+    mpz_set_ui(z(w.big), 0);
+    for (mpz_class& c : w.x)
+      if (mpz_cmpabs(c.get_mpz_t(), w.big.get_mpz_t()) > 0) mpz_abs(z(w.big), c.get_mpz_t());
+    if (sgn(w.big) == 0) return v;
     // x_r / big as mpq_get_d rounds it (towards zero): it divides numerator by denominator
     // (> 0 here: the sign goes on the numerator), so the fraction need not be reduced first (a
     // gcd of integers of thousands of bits: a sixth of the exact pieces' time).
-    const bool flip = sgn(det) < 0;
+    mpz_set(mpq_denref(w.q.get_mpq_t()), z(w.big));
     for (int r = 0; r < 3; ++r) {
-      Q q;
-      q.get_num() = flip ? mpz_class(-x[r]) : x[r];
-      q.get_den() = big;
-      v[r] = q.get_d();
+      if (flip) mpz_neg(mpq_numref(w.q.get_mpq_t()), z(w.x[r]));
+      else mpz_set(mpq_numref(w.q.get_mpq_t()), z(w.x[r]));
+      v[r] = mpq_get_d(w.q.get_mpq_t());
     }
   }
   return v;

@@ -24,23 +24,41 @@ namespace {
 // An eigenvalue equal to t is not counted (it is not below t) unless `or_equal`: then each
 // eigenvalue equal to t (a zero root of the polynomial: its trailing zero coefficients) is.
 int eigenvalues_below(const IntegerMatrix& M, const detail::Q& t, bool or_equal = false) {
-  mpz_class a[3][3];  // L q (M - t I), L q > 0 (integer_shift.h): the same signs
+  // (explicit mpz calls on per-thread integers: called tens of times a suspect, on integers of
+  // thousands of bits, where each expression's temporaries would be allocated and freed)
+  struct Scratch {
+    mpz_class a[3][3], tr, c1, det, u;
+  };
+  static thread_local Scratch w;
+  auto z = [](mpz_class& x) { return x.get_mpz_t(); };
+  mpz_class(&a)[3][3] = w.a;  // L q (M - t I), L q > 0 (integer_shift.h): the same signs
   integer_shift(M, t, a);
-  const mpz_class tr = a[0][0] + a[1][1] + a[2][2];
-  const mpz_class c1 = a[0][0] * a[1][1] - a[0][1] * a[1][0] + a[0][0] * a[2][2] - a[0][2] * a[2][0] +
-                       a[1][1] * a[2][2] - a[1][2] * a[2][1];
-  const mpz_class det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                        a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  mpz_add(z(w.tr), z(a[0][0]), z(a[1][1]));
+  mpz_add(z(w.tr), z(w.tr), z(a[2][2]));
+  // c1: the principal 2x2 minors; det by the first row's cofactors (the last minor is one)
+  mpz_mul(z(w.c1), z(a[0][0]), z(a[1][1]));
+  mpz_submul(z(w.c1), z(a[0][1]), z(a[1][0]));
+  mpz_addmul(z(w.c1), z(a[0][0]), z(a[2][2]));
+  mpz_submul(z(w.c1), z(a[0][2]), z(a[2][0]));
+  mpz_mul(z(w.u), z(a[1][1]), z(a[2][2]));
+  mpz_submul(z(w.u), z(a[1][2]), z(a[2][1]));
+  mpz_add(z(w.c1), z(w.c1), z(w.u));
+  mpz_mul(z(w.det), z(a[0][0]), z(w.u));
+  mpz_mul(z(w.u), z(a[1][0]), z(a[2][2]));
+  mpz_submul(z(w.u), z(a[1][2]), z(a[2][0]));
+  mpz_submul(z(w.det), z(a[0][1]), z(w.u));
+  mpz_mul(z(w.u), z(a[1][0]), z(a[2][1]));
+  mpz_submul(z(w.u), z(a[1][1]), z(a[2][0]));
+  mpz_addmul(z(w.det), z(a[0][2]), z(w.u));
   int changes = 0, last = 1;
-  for (const mpz_class* c : {&tr, &c1, &det}) {
+  for (const mpz_class* c : {&w.tr, &w.c1, &w.det}) {
     const int sg = sgn(*c);
     if (sg == 0) continue;
     if (sg != last) ++changes;
     last = sg;
   }
   if (or_equal)
-    for (const mpz_class* c : {&det, &c1, &tr}) {
+    for (const mpz_class* c : {&w.det, &w.c1, &w.tr}) {
       if (sgn(*c) != 0) break;
       ++changes;
     }
@@ -76,23 +94,36 @@ int eigenvalues_below(const IntegerMatrix& M, const detail::Q& t, bool or_equal 
 // represent_suspect's exact arithmetic on one suspect (its argument above): the eigenvector x
 // (Eigen's, polished), y (one exact step more), the Rayleigh quotient rho of the last vector
 // given to rayleigh() with R2 = |h q - rho q|^2 / q.q and q.q, and what settle() proved.
+// Every vector is kept as integers, a positive multiple of the direction it stands for (h =
+// a / L over the suspect's IntegerMatrix): everything above depends on a vector only through
+// its direction and orientation (rho, R2 and the bound are ratios of degree 0 in it, each
+// condition's test is of degree 2 on both sides, the shortened vector is v / |v_m|, and an
+// adjugate of a positive multiple of h - t I is a positive multiple of adj(h - t I)), so the
+// integers give the rationals' results while no product is reduced to lowest terms (on
+// rationals, a gcd after every operation: ~60% of this proof's time on contacts made by
+// rounding, callgrind). rho and R2 are rationals, each reduced once.
 class SuspectProof {
   using Q = detail::Q;
+  using Z = mpz_class;
+  using ZV = Z[3];
+  static mpz_ptr z(Z& x) { return x.get_mpz_t(); }
+  static mpz_srcptr z(const Z& x) { return x.get_mpz_t(); }
 
  public:
   explicit SuspectProof(const Best::Suspect& s) : s(s) {}
 
-  // h (exact), its double image H = h 2^-pe and Eigen's eigenpairs of H; false when h = 0 or
-  // the solver fails.
+  // h (exact), its double image H = h 2^-pe and Eigen's eigenpairs of H; the conditions as
+  // integer vectors (each l times the least common multiple of its denominators) and their
+  // squared norms; false when h = 0 or the solver fails.
   bool setup() {
     pe = LONG_MIN;
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) h[r][c] = s.h[r][c], pe = std::max(pe, detail::log2_estimate(h[r][c]));
+      for (int c = 0; c < 3; ++c) pe = std::max(pe, detail::log2_estimate(s.h[r][c]));
     if (pe == LONG_MIN) return false;  // h = 0 (no eigenvalue in the window: not reached)
     Eigen::Matrix3d H;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) {
-        Q x = h[r][c];
+        Q x = s.h[r][c];
         detail::scale_pow2(x, -pe);
         H(r, c) = x.get_d();
       }
@@ -100,51 +131,82 @@ class SuspectProof {
     if (eig.info() != Eigen::Success) return false;
     mu_d = eig.eigenvalues();  // in units of 2^pe
     e0 = eig.eigenvectors().col(s.k);
+    for (int c = 0; c < 8; ++c) {
+      const auto& l = s.l[c];
+      Z den = 1;
+      for (int k = 0; k < 3; ++k) mpz_lcm(z(den), z(den), l[k].get_den_mpz_t());
+      for (int k = 0; k < 3; ++k) {
+        mpz_divexact(z(li[c][k]), z(den), l[k].get_den_mpz_t());
+        li[c][k] *= l[k].get_num();
+        if (s.sign[c] < 0) mpz_neg(z(li[c][k]), z(li[c][k]));
+      }
+      dot(ll[c], li[c], li[c]);
+    }
     return true;
   }
 
   // x: Eigen's vector polished by refine, shifted by its exact Rayleigh quotient; then rho and
   // R2 of x. false when a vector vanishes.
   bool polish() {
-    qx[0] = Q(e0(0)), qx[1] = Q(e0(1)), qx[2] = Q(e0(2));
-    if (sgn(qx[0]) == 0 && sgn(qx[1]) == 0 && sgn(qx[2]) == 0) return false;
+    if (!integers_of(V3{e0(0), e0(1), e0(2)}, qx)) return false;
     rayleigh(qx);
     x = refine(s.hi, V3{e0(0), e0(1), e0(2)}, in_units(rho), pe);
-    if (!nonzero(x)) return false;
-    for (int c = 0; c < 3; ++c) qx[c] = Q(x[c]);
+    if (!integers_of(x, qx)) return false;
     rayleigh(qx);
     return true;
   }
 
-  // The Rayleigh quotient rho of q, R2 = |h q - rho q|^2 / q.q and q.q, exactly.
-  void rayleigh(const Q (&q)[3]) {
-    Q hq[3];
-    for (int r = 0; r < 3; ++r) hq[r] = h[r][0] * q[0] + h[r][1] * q[1] + h[r][2] * q[2];
-    qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-    rho = (q[0] * hq[0] + q[1] * hq[1] + q[2] * hq[2]) / qq;
-    R2 = 0;
+  // The Rayleigh quotient rho of q, R2 = |h q - rho q|^2 / q.q and q.q, exactly: with h = a / L,
+  // t = q.(a q), rho = t / (L q.q) and h q - rho q = (q.q a q - t q) / (L q.q), so R2 =
+  // |q.q a q - t q|^2 / (L^2 (q.q)^3).
+  void rayleigh(const ZV& q) {
+    ZV aq;
     for (int r = 0; r < 3; ++r) {
-      const Q res = hq[r] - rho * q[r];
-      R2 += res * res;
+      mpz_mul(z(aq[r]), z(s.hi.a[r][0]), z(q[0]));
+      mpz_addmul(z(aq[r]), z(s.hi.a[r][1]), z(q[1]));
+      mpz_addmul(z(aq[r]), z(s.hi.a[r][2]), z(q[2]));
     }
-    R2 /= qq;
+    dot(qq, q, q);
+    Z t;
+    dot(t, q, aq);
+    Z den = s.hi.L * qq;
+    mpq_set_num(rho.get_mpq_t(), z(t));
+    mpq_set_den(rho.get_mpq_t(), z(den));
+    rho.canonicalize();
+    Z res, sum = 0;
+    for (int r = 0; r < 3; ++r) {
+      mpz_mul(z(res), z(qq), z(aq[r]));
+      mpz_submul(z(res), z(t), z(q[r]));
+      mpz_addmul(z(sum), z(res), z(res));
+    }
+    mpz_mul(z(den), z(s.hi.L), z(qq));  // L^2 (q.q)^3
+    mpz_mul(z(den), z(den), z(den));
+    mpz_mul(z(den), z(den), z(qq));
+    mpq_set_num(R2.get_mpq_t(), z(sum));
+    mpq_set_den(R2.get_mpq_t(), z(den));
+    R2.canonicalize();
   }
 
   // (a) and (b) above for the vector q of the last rayleigh(): which orientations are proved
   // outside the cone (excluded_pos, excluded_neg), and the bound rho - R2 / (g (1 - s2));
-  // false where g or s2 fails (gap()).
-  bool settle(const Q (&q)[3]) {
+  // false where g or s2 fails (gap()). A condition's test (l.q)^2 > 2 |l|^2 q.q s2 with s2 =
+  // n / d: (l.q)^2 d > 2 |l|^2 q.q n.
+  bool settle(const ZV& q) {
     excluded_pos = excluded_neg = false;
     undecided = 0;
     Q g;
     if (!gap(g)) return false;
     const Q s2 = R2 / (g * g);
     if (!(s2 < 1)) return false;
+    Z p, left, right;
+    Z rq = qq * s2.get_num();  // q.q n
+    mpz_mul_2exp(z(rq), z(rq), 1);
     for (int c = 0; c < 8; ++c) {
-      const auto& l = s.l[c];
-      const Q p = s.sign[c] * (l[0] * q[0] + l[1] * q[1] + l[2] * q[2]);
-      const Q ll = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
-      if (p * p > 2 * ll * qq * s2) (sgn(p) < 0 ? excluded_pos : excluded_neg) = true;
+      dot(p, li[c], q);  // (the condition's sign is in li)
+      mpz_mul(z(left), z(p), z(p));
+      mpz_mul(z(left), z(left), s2.get_den_mpz_t());
+      mpz_mul(z(right), z(ll[c]), z(rq));
+      if (mpz_cmp(z(left), z(right)) > 0) (sgn(p) < 0 ? excluded_pos : excluded_neg) = true;
       else if (sgn(p) != 0) ++undecided;
     }
     bound = rho - R2 / (g * (1 - s2));
@@ -197,7 +259,7 @@ class SuspectProof {
   // the neighbour's component by a factor ~0.8 only; each further step is a Rayleigh quotient
   // iteration step (cubic).
   void next_step() {
-    Q v[3];
+    ZV v;
     shortened(y, v);
     rayleigh(v);
     step_from(v);
@@ -233,15 +295,14 @@ class SuspectProof {
       const Q mid = (lo_t + hi) / 2;
       (eigenvalues_below(s.hi, mid) > s.k ? hi : lo_t) = mid;
     }
-    const Q sigma = (lo_t + hi) / 2;
-    Q m[3][3], adj[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? sigma : Q(0));
-    adjugate(m, adj);
+    Z adj[3][3];
+    adjugate_shifted((lo_t + hi) / 2, adj);
     int best_c = -1;
-    Q best_norm;
+    Z best_norm, norm;
     for (int c = 0; c < 3; ++c) {
-      const Q norm = adj[0][c] * adj[0][c] + adj[1][c] * adj[1][c] + adj[2][c] * adj[2][c];
+      mpz_mul(z(norm), z(adj[0][c]), z(adj[0][c]));
+      mpz_addmul(z(norm), z(adj[1][c]), z(adj[1][c]));
+      mpz_addmul(z(norm), z(adj[2][c]), z(adj[2][c]));
       if (best_c < 0 || norm > best_norm) best_c = c, best_norm = norm;
     }
     if (sgn(best_norm) == 0) return false;
@@ -250,26 +311,37 @@ class SuspectProof {
     return true;
   }
 
-  // adj(m), m symmetric: cofactors.
-  static void adjugate(const Q (&m)[3][3], Q (&adj)[3][3]) {
+  // adj(m) for m = L q (h - t I) (integer_shift.h, t = p / q: a positive multiple of h - t I,
+  // whose adjugate is then a positive multiple of adj(h - t I)); m symmetric: cofactors.
+  void adjugate_shifted(const Q& t, Z (&adj)[3][3]) const {
+    Z m[3][3];
+    integer_shift(s.hi, t, m);
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) {
         const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-        adj[r][c] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];  // cofactor (c, r)
+        mpz_mul(z(adj[r][c]), z(m[r1][c1]), z(m[r2][c2]));  // cofactor (c, r)
+        mpz_submul(z(adj[r][c]), z(m[r1][c2]), z(m[r2][c1]));
       }
   }
 
   // y = adj(h - rho I) v, rho the Rayleigh quotient of the last rayleigh(); oriented as v (v
   // itself when orthogonal to adj's range); then rho and R2 of y.
-  void step_from(const Q (&v)[3]) {
-    Q m[3][3], adj[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[r][c] = h[r][c] - (r == c ? rho : Q(0));
-    adjugate(m, adj);
-    Q w[3];
-    for (int r = 0; r < 3; ++r) w[r] = adj[r][0] * v[0] + adj[r][1] * v[1] + adj[r][2] * v[2];
-    const Q wv = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
-    for (int c = 0; c < 3; ++c) y[c] = sgn(wv) == 0 ? v[c] : sgn(wv) < 0 ? Q(-w[c]) : w[c];
+  void step_from(const ZV& v) {
+    Z adj[3][3];
+    adjugate_shifted(rho, adj);
+    ZV w;
+    for (int r = 0; r < 3; ++r) {
+      mpz_mul(z(w[r]), z(adj[r][0]), z(v[0]));
+      mpz_addmul(z(w[r]), z(adj[r][1]), z(v[1]));
+      mpz_addmul(z(w[r]), z(adj[r][2]), z(v[2]));
+    }
+    Z wv;
+    dot(wv, w, v);
+    for (int c = 0; c < 3; ++c) {
+      if (sgn(wv) == 0) y[c] = v[c];
+      else if (sgn(wv) < 0) mpz_neg(z(y[c]), z(w[c]));
+      else y[c] = w[c];
+    }
     rayleigh(y);
   }
 
@@ -277,17 +349,16 @@ class SuspectProof {
   // largest component, b = kShortBits - 1 (the largest is then exactly +-2^b); the angle to v
   // is below sqrt(2) 2^-b (~1e-77). Every proof above holds for any non-zero vector.
   static constexpr int kShortBits = 256;
-  static void shortened(const Q (&v)[3], Q (&out)[3]) {
+  static void shortened(const ZV& v, ZV& out) {
     int m = 0;
     for (int c = 1; c < 3; ++c)
-      if (abs(v[c]) > abs(v[m])) m = c;
-    const Q vm = abs(v[m]);
+      if (mpz_cmpabs(z(v[c]), z(v[m])) > 0) m = c;
+    Z vm;
+    mpz_abs(z(vm), z(v[m]));
+    Z t;
     for (int c = 0; c < 3; ++c) {
-      Q t = v[c] / vm;
-      detail::scale_pow2(t, kShortBits - 1);
-      mpz_class z;
-      mpz_fdiv_q(z.get_mpz_t(), t.get_num_mpz_t(), t.get_den_mpz_t());
-      out[c] = Q(z);
+      mpz_mul_2exp(z(t), z(v[c]), kShortBits - 1);
+      mpz_fdiv_q(z(out[c]), z(t), z(vm));
     }
   }
 
@@ -314,7 +385,8 @@ class SuspectProof {
     offer(x);
     if (!bounded || met()) return;  // (unbounded: lo = bottom, which no offer meets)
     std::vector<V3> normals;
-    integer_normals(y, 1 << 18, 4, normals);
+    const Q yq[3] = {Q(y[0]), Q(y[1]), Q(y[2])};
+    integer_normals(yq, 1 << 18, 4, normals);
     for (const V3& v : normals) offer(v);
     for (int m = 0; m < 27 && !met(); ++m) {
       if (m == 13) continue;  // all three components as they are: x
@@ -334,12 +406,12 @@ class SuspectProof {
 
   // y shortened (kShortBits), as a normal.
   QNormal witness() const {
-    Q w[3];
+    ZV w;
     shortened(y, w);
-    return {w[0], w[1], w[2]};
+    return {Q(w[0]), Q(w[1]), Q(w[2])};
   }
 
-  Q qx[3], y[3];
+  ZV qx, y;
   Q bound;  // settle()'s bound, when it succeeded
 
  private:
@@ -348,12 +420,38 @@ class SuspectProof {
     detail::scale_pow2(t, -pe);
     return t.get_d();
   }
+  static void dot(Z& out, const ZV& a, const ZV& b) {
+    mpz_mul(z(out), z(a[0]), z(b[0]));
+    mpz_addmul(z(out), z(a[1]), z(b[1]));
+    mpz_addmul(z(out), z(a[2]), z(b[2]));
+  }
+  // v's components as integers over one power of two (the least of their exponents: a
+  // positive multiple of v, exactly); false when v = 0.
+  static bool integers_of(const V3& v, ZV& out) {
+    int e = INT_MAX;
+    for (double c : v)
+      if (c != 0) {
+        int ex = 0;
+        std::frexp(c, &ex);
+        e = std::min(e, ex - 53);
+      }
+    if (e == INT_MAX) return false;
+    for (int c = 0; c < 3; ++c) {
+      int ex = 0;
+      const double m = std::frexp(v[c], &ex);  // v[c] = m 2^ex, |m| in [1/2, 1) (0 for 0)
+      mpz_set_d(z(out[c]), std::ldexp(m, 53));  // an integer below 2^53: exact
+      if (v[c] != 0) mpz_mul_2exp(z(out[c]), z(out[c]), static_cast<unsigned long>(ex - 53 - e));
+    }
+    return true;
+  }
 
   const Best::Suspect& s;
-  Q h[3][3];
   long pe = LONG_MIN;
   Eigen::Vector3d mu_d, e0;
-  Q rho, R2, qq;
+  ZV li[8];  // the conditions, integers, each with its sign
+  Z ll[8];   // |li|^2
+  Q rho, R2;
+  Z qq;
   V3 x{};
   bool excluded_pos = false, excluded_neg = false;
 };
