@@ -56,13 +56,13 @@ struct Best {
   bool needs_exact = false;
   // Exact path: the exact H (the scaled pair's units) and the eigenvalue's index of every
   // eigenvector that held its piece's sign conditions when offered (suspect_proof.h).
-  // With the piece's exact sign conditions (its cone R_S: sign[c] l[c].n >= 0 for every c, in
-  // the same units), for represent_suspect().
+  // With the piece's exact sign conditions (its cone R_S: l[c].n >= 0 for every c, each l[c]
+  // its condition's vector times its sign, as integers: a positive multiple of it, all that
+  // represent_suspect() needs of it), for represent_suspect().
   struct Suspect {
     std::array<std::array<detail::Q, 3>, 3> h;
     int k;  // the index (ascending) of the eigenvalue whose vector held its signs
-    std::array<std::array<detail::Q, 3>, 8> l;
-    std::array<int, 8> sign;
+    std::array<std::array<mpz_class, 3>, 8> l;
     IntegerMatrix hi;  // h over one denominator (integer_shift.h: its exact counts and polish)
   };
   std::vector<Suspect> suspects;

@@ -147,6 +147,13 @@ struct PieceGeometry {
   std::array<T, 3> C, TA, S;
   T h[3][3];
   long pe = 0;
+  // Exact path on the integer sums (PieceEnumeration::build_integers): C = NC / (d 2^E), T_A =
+  // NT / (d f 2^E); d = 0 where not built so.
+  struct Integers {
+    mpz_class NC[3], NT[3];
+    long d = 0, f = 0;
+  };
+  std::conditional_t<std::is_same_v<T, double>, char, Integers> ints{};
 };
 
 // The enumeration of enumerate_pieces (below) over one pair: the subset sums, the pieces that
@@ -193,8 +200,50 @@ class PieceEnumeration {
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) dA[i][k] = to_d(pA[i][k]), dB[i][k] = to_d(pB[i][k]);
     subset_lanes(dA, sa), subset_lanes(dB, sb);
-    if constexpr (kExact) subset_sums(pA, pB, xSA, xSB, xQA, xQB);
+    if constexpr (kExact) {
+      if (!integer_sums()) subset_sums(pA, pB, xSA, xSB, xQA, xQB);
+    }
     top = best.value_in(0) * (1 - kPrune);
+  }
+
+  // Exact path: the positions as integers over one power of two, X = x 2^E (the coordinates are
+  // dyadic: differences of doubles, scaled by a power of two), and the subsets' sums and second
+  // moments of those integers (units 2^-E and 2^-2E); false (the rationals' sums are taken) where
+  // a coordinate's denominator is not a power of two.
+  bool integer_sums() {
+    if constexpr (kExact) {
+      long e = 0;
+      for (const Corners<T>* side : {&pA, &pB})
+        for (const auto& x : *side)
+          for (const T& c : x) {
+            const mpz_srcptr den = c.get_den_mpz_t();
+            const long bits = long(mpz_sizeinbase(den, 2)) - 1;
+            if (long(mpz_scan1(den, 0)) != bits) return false;  // (not a power of two)
+            e = std::max(e, bits);
+          }
+      ints.E = e;
+      auto lanes = [&](const Corners<T>& p, mpz_class (&x)[4][3], mpz_class (&s)[16][3], mpz_class (&q)[16][6]) {
+        for (int i = 0; i < 4; ++i)
+          for (int k = 0; k < 3; ++k) {
+            const long bits = long(mpz_sizeinbase(p[i][k].get_den_mpz_t(), 2)) - 1;
+            mpz_mul_2exp(x[i][k].get_mpz_t(), p[i][k].get_num_mpz_t(), static_cast<mp_bitcnt_t>(ints.E - bits));
+          }
+        for (int k = 0; k < 3; ++k) s[0][k] = 0;
+        for (int r = 0; r < 6; ++r) q[0][r] = 0;
+        for (unsigned m = 1; m < 16; ++m) {  // (as subset_sums: from m without its highest vertex)
+          const int i = m >= 8 ? 3 : m >= 4 ? 2 : m >= 2 ? 1 : 0;
+          const unsigned rest = m & ~(1u << i);
+          for (int k = 0; k < 3; ++k) mpz_add(s[m][k].get_mpz_t(), s[rest][k].get_mpz_t(), x[i][k].get_mpz_t());
+          for (int r = 0; r < 6; ++r) {
+            q[m][r] = q[rest][r];
+            mpz_addmul(q[m][r].get_mpz_t(), x[i][kR[r]].get_mpz_t(), x[i][kC[r]].get_mpz_t());
+          }
+        }
+      };
+      lanes(pA, ints.XA, ints.SA, ints.QA), lanes(pB, ints.XB, ints.SB, ints.QB);
+      integers = true;
+    }
+    return true;
   }
 
   // B's sets of `sets` (bit mb) as the lanes of cols, by size then value (the sets a row drops
@@ -396,6 +445,9 @@ class PieceEnumeration {
 
   // relaxed_pieces.h's closed form: c = C.n, T_A = TA.n = -T_B; 20 H by moments (above).
   void build(PieceGeometry<T>& g) const {
+    if constexpr (kExact) {
+      if (integers) return build_integers(g);
+    }
     const unsigned ma = g.ma, mb = g.mb;
     const int mA = g.mA = kPopcount[ma], mB = g.mB = kPopcount[mb];
     const T wA = T(1) / T(5 - mA), wB = T(1) / T(5 - mB);
@@ -410,6 +462,56 @@ class PieceEnumeration {
       g.h[r][c] = (moment_of(true, ma, q) + moment_of(false, mb, q) - C[r] * S[c] - S[r] * C[c] + m * C[r] * C[c] +
                    k * TA[r] * TA[c]) / T(20);
       g.h[c][r] = g.h[r][c];
+    }
+  }
+
+  // build() on the integer sums (integer_sums): the same rationals, each reduced once. With f =
+  // 5 - mA, d = mA (5 - mB) + mB f (clearing wA and wB), SA, SB, QA, QB the integer sums and
+  // moments: C = NC / d with NC = SA (5 - mB) + SB f; T_A = NT / (d f) with NT = mA NC - d SA;
+  // S = SA + SB; and 20 d^2 f^2 H = (QA + QB) d^2 f^2 - (NC S^T + S NC^T) d f^2 + m NC NC^T f^2
+  // + k NT NT^T, each in units of 2^-E (vectors) or 2^-2E (H).
+  void build_integers(PieceGeometry<T>& g) const {
+    if constexpr (kExact) {
+      const unsigned ma = g.ma, mb = g.mb;
+      const int mA = g.mA = kPopcount[ma], mB = g.mB = kPopcount[mb];
+      const long f = 5 - mA, d = mA * (5 - mB) + mB * f;
+      mpz_class(&NC)[3] = g.ints.NC, (&NT)[3] = g.ints.NT, S[3];
+      g.ints.d = d, g.ints.f = f;
+      for (int k = 0; k < 3; ++k) {
+        mpz_mul_si(NC[k].get_mpz_t(), ints.SA[ma][k].get_mpz_t(), 5 - mB);
+        mpz_addmul_ui(NC[k].get_mpz_t(), ints.SB[mb][k].get_mpz_t(), static_cast<unsigned long>(f));
+        mpz_mul_si(NT[k].get_mpz_t(), NC[k].get_mpz_t(), mA);
+        mpz_submul_ui(NT[k].get_mpz_t(), ints.SA[ma][k].get_mpz_t(), static_cast<unsigned long>(d));
+        mpz_add(S[k].get_mpz_t(), ints.SA[ma][k].get_mpz_t(), ints.SB[mb][k].get_mpz_t());
+        set_ratio(g.C[k], NC[k], d, ints.E);
+        set_ratio(g.TA[k], NT[k], d * f, ints.E);
+        set_ratio(g.S[k], S[k], 1, ints.E);
+      }
+      const long dff = d * f * f, m = mA + mB, kk = 10 - mA - mB;
+      mpz_class x, t;
+      for (int q = 0; q < 6; ++q) {
+        const int r = kR[q], c = kC[q];
+        mpz_add(x.get_mpz_t(), ints.QA[ma][q].get_mpz_t(), ints.QB[mb][q].get_mpz_t());
+        mpz_mul_si(x.get_mpz_t(), x.get_mpz_t(), d * dff);
+        mpz_mul(t.get_mpz_t(), NC[r].get_mpz_t(), S[c].get_mpz_t());
+        mpz_addmul(t.get_mpz_t(), S[r].get_mpz_t(), NC[c].get_mpz_t());
+        mpz_submul_ui(x.get_mpz_t(), t.get_mpz_t(), static_cast<unsigned long>(dff));
+        mpz_mul(t.get_mpz_t(), NC[r].get_mpz_t(), NC[c].get_mpz_t());
+        mpz_addmul_ui(x.get_mpz_t(), t.get_mpz_t(), static_cast<unsigned long>(m * f * f));
+        mpz_mul(t.get_mpz_t(), NT[r].get_mpz_t(), NT[c].get_mpz_t());
+        mpz_addmul_ui(x.get_mpz_t(), t.get_mpz_t(), static_cast<unsigned long>(kk));
+        set_ratio(g.h[r][c], x, 20 * d * dff, 2 * ints.E);
+        g.h[c][r] = g.h[r][c];
+      }
+    }
+  }
+  // out = n / (den 2^e), reduced (den > 0, e >= 0).
+  static void set_ratio(T& out, const mpz_class& n, long den, long e) {
+    if constexpr (kExact) {
+      mpz_set(mpq_numref(out.get_mpq_t()), n.get_mpz_t());
+      mpz_set_ui(mpq_denref(out.get_mpq_t()), static_cast<unsigned long>(den));
+      mpz_mul_2exp(mpq_denref(out.get_mpq_t()), mpq_denref(out.get_mpq_t()), static_cast<mp_bitcnt_t>(e));
+      out.canonicalize();
     }
   }
 
@@ -455,11 +557,56 @@ class PieceEnumeration {
     }
     return V3{to_d(x[0]), to_d(x[1]), to_d(x[2])};
   }
+  // The conditions' vectors d_i = a_i - c - T_A (side A) and e_j = c - b_j - T_A (side B); on
+  // the integer sums, (X_i d f - NC f - NT) / (d f 2^E) and (NC f - X_j d f - NT) / (d f 2^E),
+  // each reduced once (the same rationals).
+  TV condition(const PieceGeometry<T>& g, bool a, int i) const {
+    if constexpr (kExact) {
+      if (g.ints.d != 0) {
+        std::array<mpz_class, 3> n;
+        condition_numerator(g, a, i, n);
+        TV out;
+        for (int k = 0; k < 3; ++k) set_ratio(out[k], n[k], g.ints.d * g.ints.f, ints.E);
+        return out;
+      }
+    }
+    return a ? vsub(vsub(pA[i], g.C), g.TA) : vsub(vsub(g.C, pB[i]), g.TA);
+  }
+  // A positive multiple of condition(g, a, i), as integers: on the integer sums its numerator;
+  // else the rationals times the least common multiple of their denominators.
+  void condition_integers(const PieceGeometry<T>& g, bool a, int i, std::array<mpz_class, 3>& out) const {
+    if constexpr (kExact) {
+      if (g.ints.d != 0) {
+        condition_numerator(g, a, i, out);
+        return;
+      }
+      const TV l = condition(g, a, i);
+      mpz_class den = 1;
+      for (int k = 0; k < 3; ++k) mpz_lcm(den.get_mpz_t(), den.get_mpz_t(), l[k].get_den_mpz_t());
+      for (int k = 0; k < 3; ++k) {
+        mpz_divexact(out[k].get_mpz_t(), den.get_mpz_t(), l[k].get_den_mpz_t());
+        out[k] *= l[k].get_num();
+      }
+    }
+  }
+  // condition()'s numerators over d f 2^E (integer sums only).
+  void condition_numerator(const PieceGeometry<T>& g, bool a, int i, std::array<mpz_class, 3>& out) const {
+    if constexpr (kExact) {
+      const long df = g.ints.d * g.ints.f;
+      for (int k = 0; k < 3; ++k) {
+        mpz_class& n = out[k];
+        mpz_mul_si(n.get_mpz_t(), (a ? ints.XA : ints.XB)[i][k].get_mpz_t(), a ? df : -df);
+        if (a) mpz_submul_ui(n.get_mpz_t(), g.ints.NC[k].get_mpz_t(), static_cast<unsigned long>(g.ints.f));
+        else mpz_addmul_ui(n.get_mpz_t(), g.ints.NC[k].get_mpz_t(), static_cast<unsigned long>(g.ints.f));
+        mpz_sub(n.get_mpz_t(), n.get_mpz_t(), g.ints.NT[k].get_mpz_t());
+      }
+    }
+  }
   Conditions conditions(const PieceGeometry<T>& g) const {
     Conditions cond;
     cond.floor = kExact ? 0.0 : 1e-12 * P.scale;
     for (int i = 0; i < 4; ++i) {
-      const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
+      const TV d = condition(g, true, i), e = condition(g, false, i);
       cond.l[i] = rounded(d);        // d_i = a_i - c - T_A
       cond.sign[i] = kSignOf[g.ma][i];  // (tables, not selects: GCC branches on those)
       cond.l[4 + i] = rounded(e);    // e_j = c - b_j + T_B
@@ -476,12 +623,13 @@ class PieceEnumeration {
       const auto& h = g.h;
       if (!hi) hi = integer_matrix(h);
       Best::Suspect x{{{{h[0][0], h[0][1], h[0][2]}, {h[1][0], h[1][1], h[1][2]}, {h[2][0], h[2][1], h[2][2]}}},
-                      k, {}, {}, *hi};
-      for (int i = 0; i < 4; ++i) {
-        const TV d = vsub(vsub(pA[i], g.C), g.TA), e = vsub(vsub(g.C, pB[i]), g.TA);
-        for (int q = 0; q < 3; ++q) x.l[i][q] = d[q], x.l[4 + i][q] = e[q];
-        x.sign[i] = g.ma >> i & 1u ? 1 : -1;
-        x.sign[4 + i] = g.mb >> i & 1u ? 1 : -1;
+                      k, {}, *hi};
+      for (int c = 0; c < 8; ++c) {
+        const bool a = c < 4;
+        const int i = c & 3;
+        condition_integers(g, a, i, x.l[c]);
+        if (!((a ? g.ma : g.mb) >> i & 1u))  // (the sign: + at an active vertex)
+          for (mpz_class& y : x.l[c]) mpz_neg(y.get_mpz_t(), y.get_mpz_t());
       }
       best.suspects.push_back(std::move(x));
     }
@@ -565,6 +713,14 @@ class PieceEnumeration {
   SubsetLanes sa, sb;    // the subsets' sums and moments in doubles (both paths: the counts)
   TV xSA[16], xSB[16];  // exact path: the exact sums
   M6 xQA[16], xQB[16];
+  // Exact path: the positions' integer sums (integer_sums), where taken (integers).
+  struct IntegerSums {
+    long E = 0;
+    mpz_class XA[4][3], XB[4][3];  // the positions
+    mpz_class SA[16][3], SB[16][3], QA[16][6], QB[16][6];
+  };
+  bool integers = false;
+  std::conditional_t<kExact, IntegerSums, char> ints{};
   ColumnsB cols;          // B's sums as lanes (surviving_pieces; every lane in use written)
   int lane[16];           // lane[mb]: set mb's lane in cols (0 for a set not in cols)
   unsigned survivors[16];

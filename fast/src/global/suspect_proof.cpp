@@ -112,9 +112,8 @@ class SuspectProof {
  public:
   explicit SuspectProof(const Best::Suspect& s) : s(s) {}
 
-  // h (exact), its double image H = h 2^-pe and Eigen's eigenpairs of H; the conditions as
-  // integer vectors (each l times the least common multiple of its denominators) and their
-  // squared norms; false when h = 0 or the solver fails.
+  // h (exact), its double image H = h 2^-pe and Eigen's eigenpairs of H; the conditions' squared
+  // norms; false when h = 0 or the solver fails.
   bool setup() {
     pe = LONG_MIN;
     for (int r = 0; r < 3; ++r)
@@ -132,14 +131,7 @@ class SuspectProof {
     mu_d = eig.eigenvalues();  // in units of 2^pe
     e0 = eig.eigenvectors().col(s.k);
     for (int c = 0; c < 8; ++c) {
-      const auto& l = s.l[c];
-      Z den = 1;
-      for (int k = 0; k < 3; ++k) mpz_lcm(z(den), z(den), l[k].get_den_mpz_t());
-      for (int k = 0; k < 3; ++k) {
-        mpz_divexact(z(li[c][k]), z(den), l[k].get_den_mpz_t());
-        li[c][k] *= l[k].get_num();
-        if (s.sign[c] < 0) mpz_neg(z(li[c][k]), z(li[c][k]));
-      }
+      for (int k = 0; k < 3; ++k) li[c][k] = s.l[c][k];
       dot(ll[c], li[c], li[c]);
     }
     return true;
@@ -448,7 +440,7 @@ class SuspectProof {
   const Best::Suspect& s;
   long pe = LONG_MIN;
   Eigen::Vector3d mu_d, e0;
-  ZV li[8];  // the conditions, integers, each with its sign
+  ZV li[8];  // the conditions (Best::Suspect::l: integers, each with its sign)
   Z ll[8];   // |li|^2
   Q rho, R2;
   Z qq;
