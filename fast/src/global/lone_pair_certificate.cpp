@@ -138,17 +138,48 @@ bool translate_pair(const TetVertices& A, const TetVertices& B, int i, int i2, i
   return true;
 }
 
+// Where l has no zero component: v's components i and j (k the largest of l's) on the grid of
+// 2^-40 of the larger of them, and v_k = -(v_i l_i + v_j l_j) / l_k in doubles, kept where the
+// triple's dot product with l is exactly 0 (its three products summed exactly: expansion.h).
+// On the diagonal edges of grids of cubes (|l_i| = |l_j| = |l_k|) the sum and the quotient are
+// exact; the grid moves v by at most 2^-40 of itself, within the perpendicular plane (the nudge
+// covers it). false where the dot product is not 0.
+bool exactly_across_solved(const V3& l, V3& v) {
+  int k = 0;
+  for (int q = 1; q < 3; ++q)
+    if (std::fabs(l[q]) > std::fabs(l[k])) k = q;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double big = std::fmax(std::fabs(v[i]), std::fabs(v[j]));
+  if (!(big > 0) || !std::isfinite(big)) return false;
+  int e = 0;
+  std::frexp(big, &e);
+  const double grid = std::ldexp(1.0, e - 40);
+  V3 w;
+  w[i] = std::nearbyint(v[i] / grid) * grid, w[j] = std::nearbyint(v[j] / grid) * grid;
+  w[k] = -(w[i] * l[i] + w[j] * l[j]) / l[k];
+  if (!std::isfinite(w[k]) || !(grid > 0)) return false;
+  detail::Expansion dot_wl;
+  for (int q = 0; q < 3; ++q) {
+    double x, y;
+    detail::two_product(w[q], l[q], x, y);
+    detail::grow(dot_wl, y), detail::grow(dot_wl, x);
+  }
+  if (!dot_wl.ok || dot_wl.sign() != 0) return false;
+  v = w;
+  return true;
+}
+
 // v turned, within its plane through l's normal, into a double triple exactly perpendicular to
 // l: where l has a zero component k, (l_j, -l_i) in the other two (times a power of two: exact)
 // plus t e_k is, for every double t (its dot with l is l_j l_i - l_i l_j = 0 exactly). A tilt
 // along l of u |v| would split the two edges' heights by ~u size, a fraction of the depth (the
 // value then ~1e-3 off); within the perpendicular plane t's rounding only moves the normal along
-// the regime (the nudge covers it). false when l has no zero component.
+// the regime (the nudge covers it). Else exactly_across_solved.
 bool exactly_across(const V3& l, V3& v) {
   int k = -1;
   for (int q = 0; q < 3 && k < 0; ++q)
     if (l[q] == 0) k = q;
-  if (k < 0) return false;
+  if (k < 0) return exactly_across_solved(l, v);
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const double ri = l[j], rj = -l[i];  // l turned a quarter in the plane (i, j)
   const double a = (v[i] * ri + v[j] * rj) / (ri * ri + rj * rj);  // v's part along (ri, rj)

@@ -78,8 +78,10 @@ bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem
 // (the midpoint of a and b, -d/3 for A's, +d/3 for B's: a tetrahedron's free vertices follow by
 // -2t/3), nudged into the regime across the edge, and exactly across it: a double normal tilted
 // along the edge by its rounding splits the two ends' heights by a fraction of the depth (the
-// value ~1e-3 off), so the edge needs a zero component (an edge in a coordinate plane, as
-// every edge of a grid's faces: then a double triple lies exactly across it). Measured on the
+// value ~1e-3 off), so the edge needs a double triple exactly across it: where it has a zero
+// component (an edge in a coordinate plane, as every edge of a grid's faces) one lies across it
+// by construction, else one is solved for and kept where its dot product with the edge is
+// exactly 0 (a cube's diagonal, (h, h, h)). Measured on the
 // same blocks: every edge on a collinear edge, 256 Kuhn pairs and 320 five-tetrahedra ones
 // (120 of which pdd2_global declined: no double normal near the rounded ones attained the
 // value), docs/performance.md, "Vertex on vertex".
