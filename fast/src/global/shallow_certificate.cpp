@@ -9,6 +9,8 @@
 
 #include <gmpxx.h>
 
+#include "exact/expansion.h"
+
 namespace pdd::fast::global {
 namespace {
 
@@ -625,6 +627,105 @@ Halfspace off_cap(const Cap& cap) {
   return {mul(v, 1 / norm(v)), (cap.c0 + cap_slack(v, cap.result.low)) * (1 + 2 * kU)};
 }
 
+// Vertices resting on edges (shallow_certificate.h, "A vertex on an edge"): multipliers on a
+// vertex and an edge's ends whose g is the vertex's offset across the edge; at most
+// kMaxIncidences, each bound's plane beside a cap's.
+constexpr int kMaxIncidences = 6;
+struct Incidence {
+  V3 g{};           // g = sum l_i a_i - sum m_j b_j, rounded componentwise
+  double err = 0;   // >= |g - g~| (the exact g, from expansions)
+  double k80 = 0;   // >= 80 kappa
+};
+
+// g rounded componentwise, with a bound on |g - g~|.
+bool rounded_incidence(const detail::ExpVec& g, Incidence& out) {
+  double e2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (!g.x[k].ok) return false;
+    const detail::Expansion c = detail::compressed(g.x[k]);
+    const detail::Approx r = detail::approx_of(c);
+    out.g[k] = r.v;
+    e2 += r.err * r.err;
+  }
+  out.err = std::sqrt(e2) * (1 + 4 * kU) + 0x1p-1074;
+  return nonzero(out.g) && std::isfinite(out.err);
+}
+
+// A vertex W of one side on the edge E0 E1 of the other (e = E1 - E0, w = W - E0, exact): the
+// multipliers e.e - w.e and w.e on the edge's ends, e.e on the vertex (w.e / e.e its exact
+// fraction along the edge, in (0, 1)), so that g = +-((w.e) e - (e.e) w) = -+(e.e) w_perp: the
+// vertex's offset across the edge, exactly (the sign: A's minus B's). 80 kappa =
+// 20 ((e.e - w.e)^2 + (w.e)^2 + 3/5 (e.e)^2), rounded up from the three values' bounds.
+bool vertex_on_edge(const Vec3d& E0, const Vec3d& E1, const Vec3d& W, bool edge_on_A, Incidence& out) {
+  using namespace detail;
+  const ExpVec e = difference(E1, E0), w = difference(W, E0);
+  const Expansion ee = compressed(dot(e, e)), we = compressed(dot(w, e));
+  if (!ee.ok || !we.ok) return false;
+  const Expansion rest = compressed(difference(ee, we));  // e.e - w.e
+  if (we.sign() <= 0 || rest.sign() <= 0 || !rest.ok) return false;
+  ExpVec g = difference(scaled(e, we), scaled(w, ee));
+  if (!edge_on_A) g = negated(g);
+  if (!rounded_incidence(g, out)) return false;
+  auto up = [](const Expansion& x) { const Approx a = approx_of(x); return std::fabs(a.v) + a.err; };
+  const double l1 = up(rest), l2 = up(we), m = up(ee);
+  out.k80 = 20 * (l1 * l1 + l2 * l2 + 0.6 * m * m) * (1 + 16 * kU);
+  return std::isfinite(out.k80) && out.k80 > 0;
+}
+
+// The vertices of one side within 2^-24 of the pair's scale of an edge of the other, strictly
+// between its ends (a guess of where the minimiser's multipliers are: any multipliers bound).
+int incidences(const TetVertices& A, const TetVertices& B, const Problem& P, Incidence (&out)[kMaxIncidences]) {
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  if (!detail::in_exact_range(A, B)) return 0;
+  const double near = 0x1p-24 * P.scale;
+  int k = 0;
+  for (int side = 0; side < 2; ++side) {
+    const V3* E = side == 0 ? P.relA : P.relB;  // the edge's tetrahedron
+    const V3* W = side == 0 ? P.relB : P.relA;  // the vertex's
+    const TetVertices& TE = side == 0 ? A : B;
+    const TetVertices& TW = side == 0 ? B : A;
+    for (const auto& e : kEdge) {
+      const V3 d = sub(E[e[1]], E[e[0]]);
+      const double dd = dot(d, d);
+      if (!(dd > 0)) continue;
+      for (int j = 0; j < 4 && k < kMaxIncidences; ++j) {
+        const V3 w = sub(W[j], E[e[0]]);
+        const double t = dot(w, d) / dd;
+        if (!(t > 0 && t < 1)) continue;
+        const V3 off = sub(w, mul(d, t));
+        if (!(std::fabs(off[0]) <= near && std::fabs(off[1]) <= near && std::fabs(off[2]) <= near)) continue;
+        if (vertex_on_edge(TE[e[0]], TE[e[1]], TW[j], side == 0, out[k])) ++k;
+      }
+    }
+  }
+  return k;
+}
+
+// The incidence's plane for the bound L: relaxed(u) >= (u.g)^2 / (80 kappa) >= L where u.g >=
+// sqrt(80 kappa L), so where u.g~ >= that + err (unit u); the uncovered side u.g~ <= c.
+Halfspace incidence_plane(const Incidence& x, double L) {
+  return {x.g, (std::sqrt(x.k80 * L) * (1 + 4 * kU) + x.err) * (1 + 4 * kU)};
+}
+
+// The region off the given planes (a cap's, or several caps') covered with the incidences'
+// planes beside them: one incidence at a time, then all of them (fewer planes keep the clip's
+// points few).
+bool covered_with_incidences(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds,
+                             const Halfspace* given, int k, double L, double d0) {
+  Incidence x[kMaxIncidences];
+  const int m = incidences(A, B, P, x);
+  constexpr int kRoom = 16;
+  if (m == 0 || k + m > kRoom) return false;
+  Halfspace planes[kRoom];
+  std::copy(given, given + k, planes);
+  for (int i = 0; i < m; ++i) {
+    planes[k] = incidence_plane(x[i], L);
+    if (polytope_inside_ball(bounds, planes, k + 1, d0)) return true;
+  }
+  for (int i = 0; i < m; ++i) planes[k + i] = incidence_plane(x[i], L);
+  return m > 1 && polytope_inside_ball(bounds, planes, k + m, d0);
+}
+
 // Minimisers tied at a vertex of M (several facets through it at the same distance from 0:
 // blocks cut into five tetrahedra a cube whose cuts alternate across the contact, resting on
 // each other's columns, where a vertex rests on a vertex and the overlap is least along two to
@@ -670,7 +771,8 @@ bool tied_caps(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
   }
   if (k == 1) return false;
   const ShallowResult& r = caps[least].result;
-  if (!polytope_inside_ball(bounds, planes, k, caps[least].d0)) {
+  if (!polytope_inside_ball(bounds, planes, k, caps[least].d0) &&
+      !covered_with_incidences(A, B, P, bounds, planes, k, r.lower, caps[least].d0)) {
     // (with the edge pair's plane as attempt's: two caps on either side of an edge resting on a
     // collinear edge, the overlap between them as small as the depth; that plane first: beyond
     // it lie many of the points, and the last plane's crossings number the points kept times
@@ -700,6 +802,10 @@ Attempt attempt(const TetVertices& A, const TetVertices& B, const Problem& P, co
     // (the edge pair's plane: relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L), rounded up)
     if (polytope_inside_ball(*bounds, h.d, h.c, cap.d0) ||
         (edge_d && polytope_inside_ball(*bounds, h.d, h.c, *edge_d, std::sqrt(12 * r.lower) * (1 + 4 * kU), cap.d0))) {
+      out = r;
+      return Attempt::Certified;
+    }
+    if (covered_with_incidences(A, B, P, *bounds, &h, 1, r.lower, cap.d0)) {
       out = r;
       return Attempt::Certified;
     }
