@@ -86,6 +86,46 @@ inline std::vector<TetPair> rounding_contact_pairs(int n, int max_pairs) {
   return intersecting_pairs(A, B, "rounding", max_pairs, [](double pd2) { return pd2 < 1e-20; });
 }
 
+// A vertex on an edge by rounding: the Kuhn tetrahedra of the n^3 cubes from cube (first, first,
+// first) of a grid of decimal cells (h = 0.1, coordinates i h rounded once) and those of the same grid moved a quarter cell along (1, 1, 1)
+// (each coordinate plus h / 4, rounded once). The shift runs along the cells' diagonals
+// (h, h, h), so a vertex of one grid lies on a diagonal edge of the other a quarter along it, up
+// to rounding. The element pairs whose interiors meet only through rounding (rigid PD² below
+// 1e-20) with such a vertex (within 1e-12 of an edge's line, strictly between its ends), up to
+// `max_pairs`.
+inline std::vector<TetPair> vertex_on_edge_rounding_pairs(int first, int n, int max_pairs) {
+  const double h = 0.1;
+  std::vector<TetVertices> A, B;
+  for (int i = first; i < first + n; ++i)
+    for (int j = first; j < first + n; ++j)
+      for (int k = first; k < first + n; ++k)
+        for (int perm = 0; perm < 6; ++perm) {
+          A.push_back(kuhn_cell_tet({i * h, j * h, k * h}, h, perm));
+          TetVertices b = A.back();
+          for (auto& v : b)
+            for (int c = 0; c < 3; ++c) v[c] += h / 4;
+          B.push_back(b);
+        }
+  auto on_edge = [](const TetVertices& E, const TetVertices& W) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        for (const Vec3d& w : W) {
+          double e[3], d[3], ee = 0, de = 0;
+          for (int c = 0; c < 3; ++c) e[c] = E[j][c] - E[i][c], d[c] = w[c] - E[i][c], ee += e[c] * e[c], de += d[c] * e[c];
+          const double t = de / ee;
+          double off = 0;
+          for (int c = 0; c < 3; ++c) off += (d[c] - t * e[c]) * (d[c] - t * e[c]);
+          if (t > 1e-6 && t < 1 - 1e-6 && off < 1e-24) return true;
+        }
+    return false;
+  };
+  std::vector<TetPair> out;
+  for (const TetPair& p : intersecting_pairs(A, B, "vertex on edge by rounding", 1 << 30,
+                                             [](double pd2) { return pd2 < 1e-20; }))
+    if (int(out.size()) < max_pairs && (on_edge(p.A, p.B) || on_edge(p.B, p.A))) out.push_back(p);
+  return out;
+}
+
 // Contacts made by rounding on the diagonal planes of stacked blocks: the Kuhn tetrahedra of an
 // n^3 block of cubes of side h = 1/6 and those of the same block moved by (h/10, h/10, n h -
 // h/3) (each coordinate rounded once from A's): a third of a cell deep along z, and moved

@@ -476,13 +476,18 @@ bool report_lone_pair(GlobalRun& g, FacetBounds& bounds, GlobalOptimum& out, Lon
 }
 
 // Starts for the shallow certificate where the pair's own fail: the candidate directions of M
-// (either orientation) whose overlap lies within 1e-6 of the least, one a direction (kept: up
-// to four). Where the least overlap is tied between facets of M through one vertex (a vertex
-// of five-tetrahedra cells resting on a vertex), a walk from one of them may find no
-// multipliers (its active set degenerate there) while from another it does, and
-// certify_shallow's caps then cover the others. (Taken only where two or more tie: a single
-// least direction is where the pair's own start lies.)
-int least_overlap_starts(FacetBounds& bounds, V3 (&out)[4]) {
+// (either orientation) whose overlap lies within 1e-6 of the least or below `tiny`, the least
+// first, one a direction (kept: up to four). Where the least overlap is tied between facets of M
+// through one vertex (a vertex of five-tetrahedra cells resting on a vertex), a walk from one of
+// them may find no multipliers (its active set degenerate there) while from another it does,
+// and certify_shallow's caps then cover the others. Where a vertex rests on an edge by rounding
+// (a grid against its copy moved along its cells' diagonals), the overlap stays that small over
+// an arc of normals about the edge, and the walk from a normal on the arc finds no multipliers
+// (the active vertices across it on one line: plane_dual's system is singular) while from the
+// facet directions at the arc's ends, where a fourth vertex reaches the plane, it does. (Taken
+// only where two or more qualify: a single least direction is where the pair's own start lies.)
+constexpr double kTinyOverlap = 0x1p-40;  // (of the pair's size: contacts by rounding, ~2^-53)
+int least_overlap_starts(FacetBounds& bounds, V3 (&out)[4], double tiny) {
   if (!bounds.get()) return 0;
   struct Oriented {
     V3 n;
@@ -499,9 +504,11 @@ int least_overlap_starts(FacetBounds& bounds, V3 (&out)[4]) {
       least = std::min(least, all[m++].overlap);
     }
   }
+  // (the least overlaps first: with the tiny ones more than four may qualify)
+  std::stable_sort(all, all + m, [](const Oriented& a, const Oriented& b) { return a.overlap < b.overlap; });
   int k = 0;
   for (int i = 0; i < m && k < 4; ++i) {
-    if (!(all[i].overlap <= least * (1 + 1e-6))) continue;
+    if (!(all[i].overlap <= std::max(least * (1 + 1e-6), tiny))) break;
     const V3 u = mul(all[i].n, 1 / global::norm(all[i].n));
     bool seen = false;
     for (int j = 0; j < k; ++j) seen |= dot(u, out[j]) > 1 - 1e-9;
@@ -555,15 +562,24 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     // (an edge on a collinear edge: the overlap between the two caps is as small as the depth),
     // the pair's start again with that bound, and the edge pair's normal (exactly across the
     // edge): the walk's multipliers move from these where the ray's nudge leaves them none
+    // (a start's witness kept where none was found before it: the first one is reported where
+    // no start certifies a double normal)
     const V3* edge_d = nonzero(declined.edge_d) ? &declined.edge_d : nullptr;
+    bool witness = shallow;
+    auto certified_from = [&](const V3& start) {
+      if (!nonzero(start) || !report_shallow(g, start, bounds, lone, edge_d)) return false;
+      if (lone.certified) return true;
+      if (!witness) g.shallow = lone, witness = true;
+      return false;
+    };
     const V3 none{0, 0, 0};
     for (const V3& start : {edge_d ? g.best.n : none, declined.near_minimiser, declined.edge_v})
-      if (nonzero(start) && report_shallow(g, start, bounds, lone, edge_d) && lone.certified) return lone;
+      if (certified_from(start)) return lone;
     V3 tied[4];
-    const int k = least_overlap_starts(bounds, tied);
+    const int k = least_overlap_starts(bounds, tied, kTinyOverlap * g.P.scale);
     for (int i = 0; i < k && k > 1; ++i)
-      if (report_shallow(g, tied[i], bounds, lone, edge_d) && lone.certified) return lone;
-    if (shallow) return g.shallow;
+      if (certified_from(tied[i])) return lone;
+    if (witness) return g.shallow;
     enumerate_exact(g, exact_start);
   } else {
     choose_offer(g);
