@@ -420,14 +420,18 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
   // within 8e-10 + 1e-10 < 1e-9 of the minimum): the rounding and its neighbours one ulp away
-  // per component (27 double normals); then the integer normals along v + lo (integer_normals.h,
-  // the exact pieces' own search along a minimiser: a generic direction off the axes). Else the
+  // per component (27 double normals), the same about v + lo scaled to a largest component of 1
+  // and of just below 2; then the integer normals along v + lo (integer_normals.h, the exact
+  // pieces' own search along a minimiser: a generic direction off the axes); then M's facet
+  // directions whose overlap allows the value. Else the
   // value is certified along v + lo alone, which no double triple near it represents: a witness
   // (global_depth.h), its normal v (the rounding of v + lo) and the positions along v, without
-  // the exact pieces, whose search tries the same kinds of normals along the same direction (the
-  // rounded minimiser, its neighbours, these integer normals) and, measured, found one on none
-  // of the pairs where these find none (docs/performance.md, "Contacts by rounding on diagonal
-  // planes").
+  // the exact pieces, whose search tries the same kinds of normals along the exact minimiser
+  // (its rounding, its neighbours, these integer normals). Measured, that found one on none of
+  // the pairs where these find none while the cap lay about the minimiser (docs/performance.md,
+  // "Contacts by rounding on diagonal planes"); with the vertex-on-edge planes the cap may lie
+  // beside it, and on 104 of the 23,396 pairs of two decimal grids it finds one where these do not
+  // ("A vertex on an edge by rounding").
   if (nonzero(r.low)) {
     const V3 n = r.normal, lo = r.low;
     auto offer = [&](const V3& w) {
@@ -435,11 +439,29 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
       if (ev.error <= kGlobalRel && ev.value * (1 + kGlobalRel) <= r.lower * (1 + 8e-10))
         r.eval = ev, r.normal = w, r.low = {0, 0, 0};
     };
-    for (int m = 0; m < 27 && nonzero(r.low); ++m) {
-      V3 w = n;
-      for (int k = 0, q = m; k < 3; ++k, q /= 3)
-        if (q % 3) w[k] = std::nextafter(n[k], q % 3 == 1 ? INFINITY : -INFINITY);
-      offer(w);
+    auto around = [&](const V3& c) {
+      for (int m = 0; m < 27 && nonzero(r.low); ++m) {
+        V3 w = c;
+        for (int k = 0, q = m; k < 3; ++k, q /= 3)
+          if (q % 3) w[k] = std::nextafter(c[k], q % 3 == 1 ? INFINITY : -INFINITY);
+        offer(w);
+      }
+    };
+    around(n);
+    // v + lo scaled so that its largest component is exactly 1, then just below 2, in
+    // magnitude: components just below a power of two lie on the finest grid of their binade
+    // (a normal near (1, -1, -1) or (-1, 2, -1), as grids' diagonal contacts have, is found there)
+    double big = 0;
+    for (int k = 0; k < 3; ++k) big = std::max(big, std::fabs(n[k]));
+    for (const double top : {1.0, 2 - 0x1p-51}) {
+      if (!nonzero(r.low) || !(big > 0) || !std::isfinite(big)) break;
+      V3 c;
+      for (int k = 0; k < 3; ++k) {  // (n_k + lo_k) top / big, rounded about once
+        const double q = n[k] / big;
+        const detail::dw::DW p = detail::dw::two_prod(q, big);
+        c[k] = (q + (((n[k] - p.hi) - p.lo) + lo[k]) / big) * top;
+      }
+      if (c != n) around(c);
     }
     if (nonzero(r.low)) {
       const detail::Q y[3] = {detail::Q(n[0]) + detail::Q(lo[0]), detail::Q(n[1]) + detail::Q(lo[1]),
@@ -447,6 +469,20 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
       std::vector<V3> normals;
       integer_normals(y, 1 << 18, 4, normals);
       for (std::size_t i = 0; i < normals.size() && nonzero(r.low); ++i) offer(normals[i]);
+    }
+    // then the candidate directions of M where the overlap allows the value (relaxed(u) >=
+    // D(u)^2 / 32: only where D <= sqrt(32 L (1 + 8e-10))): the minimiser at a facet normal of M
+    // whose rounding is exact (grids' edges' cross products), beside the certificate's normal
+    // or at a tie of it (symmetric contacts)
+    if (nonzero(r.low) && bounds.get()) {
+      const double d2 = 32 * r.lower * (1 + 1e-9);
+      for (const global::DirectionBounds& x : bounds.dirs()) {
+        if (x.zero) continue;
+        for (const double sgn : {1.0, -1.0}) {
+          const double over = sgn > 0 ? x.plus_low : x.minus_low;  // (D(n) |n| from below)
+          if (nonzero(r.low) && !(over > 0 && over * over > d2 * x.nn_up)) offer(mul(x.n, sgn));
+        }
+      }
     }
   }
   out.normal = r.normal;
