@@ -420,9 +420,9 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
   // definitions §8 of the proved bound (exact minimum in [L, relaxed(v)]: relaxed(v) (1 +
   // kGlobalRel) <= L (1 + 8e-10) puts the value reported, within kGlobalRel of relaxed(v),
   // within 8e-10 + 1e-10 < 1e-9 of the minimum): the rounding and its neighbours one ulp away
-  // per component (27 double normals), the same about v + lo scaled to a largest component of 1
-  // and of just below 2; then the integer normals along v + lo (integer_normals.h, the exact
-  // pieces' own search along a minimiser: a generic direction off the axes); then M's facet
+  // per component (27 double normals); then the integer normals along v + lo (integer_normals.h,
+  // the exact pieces' own search along a minimiser: a generic direction off the axes); then the
+  // 27 about v + lo scaled to a largest component of 1 and of just below 2, and M's facet
   // directions whose overlap allows the value. Else the
   // value is certified along v + lo alone, which no double triple near it represents: a witness
   // (global_depth.h), its normal v (the rounding of v + lo) and the positions along v, without
@@ -448,7 +448,14 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
       }
     };
     around(n);
-    // v + lo scaled so that its largest component is exactly 1, then just below 2, in
+    if (nonzero(r.low)) {
+      const detail::Q y[3] = {detail::Q(n[0]) + detail::Q(lo[0]), detail::Q(n[1]) + detail::Q(lo[1]),
+                              detail::Q(n[2]) + detail::Q(lo[2])};
+      std::vector<V3> normals;
+      integer_normals(y, 1 << 18, 4, normals);
+      for (std::size_t i = 0; i < normals.size() && nonzero(r.low); ++i) offer(normals[i]);
+    }
+    // then v + lo scaled so that its largest component is exactly 1, then just below 2, in
     // magnitude: components just below a power of two lie on the finest grid of their binade
     // (a normal near (1, -1, -1) or (-1, 2, -1), as grids' diagonal contacts have, is found there)
     double big = 0;
@@ -462,13 +469,6 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
         c[k] = (q + (((n[k] - p.hi) - p.lo) + lo[k]) / big) * top;
       }
       if (c != n) around(c);
-    }
-    if (nonzero(r.low)) {
-      const detail::Q y[3] = {detail::Q(n[0]) + detail::Q(lo[0]), detail::Q(n[1]) + detail::Q(lo[1]),
-                              detail::Q(n[2]) + detail::Q(lo[2])};
-      std::vector<V3> normals;
-      integer_normals(y, 1 << 18, 4, normals);
-      for (std::size_t i = 0; i < normals.size() && nonzero(r.low); ++i) offer(normals[i]);
     }
     // then the candidate directions of M where the overlap allows the value (relaxed(u) >=
     // D(u)^2 / 32: only where D <= sqrt(32 L (1 + 8e-10))): the minimiser at a facet normal of M
