@@ -672,8 +672,11 @@ bool vertex_on_edge(const Vec3d& E0, const Vec3d& E1, const Vec3d& W, bool edge_
   return std::isfinite(out.k80) && out.k80 > 0;
 }
 
-// The vertices of one side within 2^-24 of the pair's scale of an edge of the other, strictly
-// between its ends (a guess of where the minimiser's multipliers are: any multipliers bound).
+// The vertices of one side within 2^-24 of the pair's scale of an edge of the other and farther
+// than that from both its ends (a guess of where the minimiser's multipliers are: any
+// multipliers bound). A vertex that near an end rests on a vertex: there the multiplier w.e
+// is about the depth, the plane's g as small, and its test a wasted clip (five-tetrahedra
+// blocks resting on columns: up to six such guesses a pair, each tried from every start).
 int incidences(const TetVertices& A, const TetVertices& B, const Problem& P, Incidence (&out)[kMaxIncidences]) {
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   if (!detail::in_exact_range(A, B)) return 0;
@@ -688,10 +691,11 @@ int incidences(const TetVertices& A, const TetVertices& B, const Problem& P, Inc
       const V3 d = sub(E[e[1]], E[e[0]]);
       const double dd = dot(d, d);
       if (!(dd > 0)) continue;
+      const double end = near / std::sqrt(dd);  // (the fraction of the edge that is `near`)
       for (int j = 0; j < 4 && k < kMaxIncidences; ++j) {
         const V3 w = sub(W[j], E[e[0]]);
         const double t = dot(w, d) / dd;
-        if (!(t > 0 && t < 1)) continue;
+        if (!(t > end && t < 1 - end)) continue;
         const V3 off = sub(w, mul(d, t));
         if (!(std::fabs(off[0]) <= near && std::fabs(off[1]) <= near && std::fabs(off[2]) <= near)) continue;
         if (vertex_on_edge(TE[e[0]], TE[e[1]], TW[j], side == 0, out[k])) ++k;
