@@ -435,7 +435,7 @@ bool report_shallow(GlobalRun& g, const V3& start, FacetBounds& bounds, GlobalOp
   if (nonzero(r.low)) {
     const V3 n = r.normal, lo = r.low;
     auto offer = [&](const V3& w) {
-      const Evaluation ev = evaluate_tight(g.A, g.B, g.P, w);
+      const Evaluation ev = evaluate_below(g.A, g.B, g.P, w, r.lower * (1 + 8e-10));
       if (ev.error <= kGlobalRel && ev.value * (1 + kGlobalRel) <= r.lower * (1 + 8e-10))
         r.eval = ev, r.normal = w, r.low = {0, 0, 0};
     };

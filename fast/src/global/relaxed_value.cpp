@@ -23,6 +23,26 @@ detail::Q relaxed_exact(const TetVertices& A, const TetVertices& B, const QNorma
   return s.cost / (20 * (v0 * v0 + v1 * v1 + v2 * v2));
 }
 
+namespace {
+
+// evaluate_tight's second path: compensated heights, kept where they bound the value more
+// tightly than `ev`'s error (ev: the double path's evaluation, or none).
+Evaluation compensated_or(const TetVertices& A, const TetVertices& B, const V3& v, const Evaluation& ev) {
+  // The heights' absolute error (~u |v| size) against a depth far below the size: compensated
+  // heights (relaxed_compensated), whose error at the plane is the vertices' own u. The exact
+  // value lies within v (1 +- r)^2 (value_bounds.h): relative error (2 + r) r, and 8u for the
+  // roundings of these expressions.
+  Evaluation tight;
+  double rc = 1;
+  if (relaxed_compensated(A, B, v, tight.value, rc, tight.sol, tight.hA, tight.hB) && rc < 1) {
+    tight.error = (2 + rc) * rc + 8 * kU;
+    if (tight.error < ev.error) return tight;
+  }
+  return ev;
+}
+
+}  // namespace
+
 Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v) {
   Evaluation ev;
   int top = 0;
@@ -51,17 +71,18 @@ Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Prob
   ev.value = sol.cost / (20.0 * dot(v, v));
   if (margins) ev.error = 2 * r + 8 * kU;
   if (ev.error <= kGlobalRel) return ev;
-  // The heights' absolute error (~u |v| size) against a depth far below the size: compensated
-  // heights (relaxed_compensated), whose error at the plane is the vertices' own u. The exact
-  // value lies within v (1 +- r)^2 (value_bounds.h): relative error (2 + r) r, and 8u for the
-  // roundings of these expressions.
-  Evaluation tight;
-  double rc = 1;
-  if (relaxed_compensated(A, B, v, tight.value, rc, tight.sol, tight.hA, tight.hB) && rc < 1) {
-    tight.error = (2 + rc) * rc + 8 * kU;
-    if (tight.error < ev.error) return tight;
-  }
-  return ev;
+  return compensated_or(A, B, v, ev);
+}
+
+Evaluation evaluate_below(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, double wanted) {
+  // The double path's error is 2 r + 8u with r >= 20 u |v|_1 scale / Phi~, and Phi~^2 =
+  // value~ v.v (to a few u: 1 + 2^-40 covers it), so a value~ <= wanted that it certifies to
+  // kGlobalRel has 40 u |v|_1 scale <= kGlobalRel sqrt(wanted v.v) (1 + 2^-40). Where that
+  // fails, the double path would return no value the caller keeps: only the compensated one.
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double reach = kGlobalRel * std::sqrt(wanted * dot(v, v)) * (1 + 0x1p-40);
+  if (!(40 * kU * vn1 * P.scale <= reach)) return compensated_or(A, B, v, Evaluation{});
+  return evaluate_tight(A, B, P, v);
 }
 
 Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, const V3& lo) {

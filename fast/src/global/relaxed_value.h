@@ -100,6 +100,12 @@ struct Evaluation {
   double hA[4], hB[4];
 };
 Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v);
+// evaluate_tight for a caller that keeps only values <= wanted (with error <= kGlobalRel): the
+// double heights' path is skipped where its bound could certify no such value (a contact far
+// shallower than the pair's size, where its error ~u size / depth exceeds kGlobalRel). Either
+// path's result is certified; where the double one is skipped, only values the caller keeps
+// could differ.
+Evaluation evaluate_below(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, double wanted);
 // The same along the double-word normal v + lo (|lo_k| <= u |v_k|; lo = 0: evaluate_tight), on
 // compensated heights only (the double heights cannot see lo).
 Evaluation evaluate_tight(const TetVertices& A, const TetVertices& B, const Problem& P, const V3& v, const V3& lo);
