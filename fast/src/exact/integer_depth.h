@@ -43,6 +43,8 @@ struct FramedDepth {
   mp_limb_t nn[6] = {};  // n.n, units 2^(4e) (2^(6e): parallel)
   int D_sign = 0;        // sign of D
   bool parallel = false; // a parallel edge pair (the units above)
+  bool has_normal = false;    // n below is the label's oriented normal (not for a parallel pair)
+  __int128 n[3] = {0, 0, 0};  // units 2^(2e)
 };
 
 // The label's exact depth and n.n (header); false for a colinear edge pair. Precondition:

@@ -30,17 +30,25 @@ class PairMemo {
  public:
   template <class F>
   bool get(const TetVertices& A, const TetVertices& B, unsigned key, Value& out, F&& f) {
+    bool ok = false;
+    if (find(A, B, key, out, ok)) return ok;
+    const unsigned pair = pair_;
+    ok = f(out);
+    // (kept only for the pair it was asked for: f may have asked this memo of another pair)
+    if (pair == pair_ && n_ < kEntries) key_[n_] = key, value_[n_] = out, ok_[n_] = ok, ++n_;
+    return ok;
+  }
+
+  // Whether the pair's key is kept (then its value and verdict in out and ok); nothing computed.
+  bool find(const TetVertices& A, const TetVertices& B, unsigned key, Value& out, bool& ok) {
     if (!(valid_ && same(A_, A) && same(B_, B))) A_ = A, B_ = B, valid_ = true, n_ = 0, ++pair_;
     for (int i = 0; i < n_; ++i)
       if (key_[i] == key) {
         out = value_[i];
-        return ok_[i];
+        ok = ok_[i];
+        return true;
       }
-    const unsigned pair = pair_;
-    const bool ok = f(out);
-    // (kept only for the pair it was asked for: f may have asked this memo of another pair)
-    if (pair == pair_ && n_ < kEntries) key_[n_] = key, value_[n_] = out, ok_[n_] = ok, ++n_;
-    return ok;
+    return false;
   }
 
  private:
