@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "kernel/pair_memo.h"
+#include "kernel/power_scale.h"
 #include "pdd/tet_tables.h"
 
 namespace pdd::fast::detail {
@@ -378,9 +379,9 @@ bool framed_delta2(const IntegerFrame& f, const FramedDepth& p, double& v, doubl
   constexpr double u = 0x1p-53, rho = 16 * u;
   if (p.D_sign == 0) return false;
   const double D = to_double(p.D), nn = to_double(p.nn);
-  // D² / n.n in units 2^(2e) (2^(6e) / 2^(4e), or 2^(8e) / 2^(6e)); ldexp is exact while the
+  // D² / n.n in units 2^(2e) (2^(6e) / 2^(4e), or 2^(8e) / 2^(6e)); the scaling is exact while the
   // result is normal
-  v = std::ldexp(D * D / nn, 2 * f.unit_exponent());
+  v = times_pow2(D * D / nn, 2 * f.unit_exponent());
   r = 1.02 * (rho + rho + 4 * u);
   return std::isnormal(v);
 }

@@ -7,6 +7,7 @@
 
 #include "exact/expansion.h"
 #include "exact/integer_heights.h"
+#include "kernel/power_scale.h"
 
 namespace pdd::fast::global {
 namespace {
@@ -91,10 +92,10 @@ constexpr double kFramedFloor = 0x1p-900;  // (the smallest scaled value taken: 
 // |v - w| <= 2u |w| + 2^13 <= 2.1u |v| + 2^13; 8u |v| + 2^14 is taken, the two roundings of
 // this line covered by the factor (1 - 4u). NaN-free: |hi| < 2^122.
 double wide_lower(const detail::IntegerFrame::Wide& w, int s) {
-  const double v = std::ldexp(double(w.hi), 64) + double(w.lo);
+  const double v = double(w.hi) * 0x1p64 + double(w.lo);  // (the product exact: |hi| < 2^122)
   const double low = (v - (8 * kU * std::fabs(v) + 0x1p14)) * (1 - 4 * kU);
   if (!(low > 0)) return low;
-  const double scaled = std::ldexp(low, s);
+  const double scaled = detail::times_pow2(low, s);
   return scaled >= kFramedFloor ? scaled : 0.0;  // (0: not certainly positive, declined)
 }
 
@@ -121,7 +122,7 @@ bool direction_bounds_framed(const detail::IntegerFrame& f, const __int128 (&m)[
   if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
   double nn = 0;
   for (int k = 0; k < 3; ++k) {
-    out.n[k] = std::ldexp(double(m[k]), 2 * e);
+    out.n[k] = detail::times_pow2(double(m[k]), 2 * e);
     if (out.n[k] != 0 && !(std::fabs(out.n[k]) >= kFramedFloor)) return false;
     const double a = std::fabs(out.n[k]) * (1 + 2 * kU);
     nn += a * a;

@@ -225,7 +225,7 @@ void to_integer(double x, long e, mpz_class& out) {
   }
   int ex = 0;
   const double m = std::frexp(x, &ex);
-  mpz_set_d(out.get_mpz_t(), std::ldexp(m, 53));  // an integer below 2^53: exact
+  mpz_set_d(out.get_mpz_t(), m * 0x1p53);  // an integer below 2^53: exact
   mpz_mul_2exp(out.get_mpz_t(), out.get_mpz_t(), static_cast<unsigned long>(long(ex) - 53 - e));
 }
 
@@ -352,10 +352,17 @@ bool parallel_multipliers(const double (&l)[8], Workspace& w) {
           order[count++] = {-1 / cond, {p, q, r}};
         }
       }
-  std::stable_sort(order, order + count, [](const Triple& a, const Triple& b) { return a.score > b.score; });
+  // Tried in descending score, equal scores in the order listed (a stable sort's order), each
+  // picked when its turn comes: the first usually succeeds, so the rest are never ordered.
   for (int p = 0; p < 8; ++p) w.M0[p] = w.M[p];
-  for (int t = 0; t < std::min(count, kTriples); ++t)
-    if (move_three(order[t].p, w) && g_along_v(w)) return true;
+  bool tried[56] = {};
+  for (int t = 0; t < std::min(count, kTriples); ++t) {
+    int next = -1;
+    for (int i = 0; i < count; ++i)
+      if (!tried[i] && (next < 0 || order[i].score > order[next].score)) next = i;
+    tried[next] = true;
+    if (move_three(order[next].p, w) && g_along_v(w)) return true;
+  }
   return false;
 }
 

@@ -17,6 +17,7 @@
 #include "kernel/direction_geometry.h"
 #include "kernel/edge_pair_formula.h"
 #include "kernel/near_parallel_bound.h"
+#include "kernel/power_scale.h"
 #include "kernel/quick_candidates.h"
 
 namespace pdd::fast {
@@ -167,7 +168,7 @@ struct Builder {
       __int128 m[3];
       frame.normal(4 + y, 4 + x, v, u, m);
       parallel = m[0] == 0 && m[1] == 0 && m[2] == 0;
-      for (int k = 0; k < 3; ++k) n[k] = std::ldexp(double(m[k]), 2 * frame.unit_exponent());
+      for (int k = 0; k < 3; ++k) n[k] = detail::times_pow2(double(m[k]), 2 * frame.unit_exponent());
       return true;
     }
     const ExpVec e = detail::cross(difference(B[y], B[x]), difference(A[v], A[u]));

@@ -18,6 +18,7 @@
 #include "exact/integer_heights.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/near_parallel_bound.h"
+#include "kernel/power_scale.h"
 #include "kernel/superset_kernel.h"
 
 namespace pdd::fast {
@@ -431,7 +432,7 @@ class UnresolvedNormals {
       frame_.normal(4 + y, 4 + x, v, u, m);
       parallel = m[0] == 0 && m[1] == 0 && m[2] == 0;
       if (parallel) return false;
-      for (int k = 0; k < 3; ++k) n[k] = std::ldexp(double(m[k]), 2 * frame_.unit_exponent());
+      for (int k = 0; k < 3; ++k) n[k] = times_pow2(double(m[k]), 2 * frame_.unit_exponent());
       return true;
     }
     const ExpVec e = detail::cross(difference(B_[y], B_[x]), difference(A_[v], A_[u]));
