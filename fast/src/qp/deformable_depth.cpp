@@ -976,10 +976,13 @@ bool exact_delta_order(const List& set, const int* idx, int n, int first, int* p
 // The contenders of refine_accel without an order (canonical order, their number returned):
 // the candidates whose certified lower bound of delta² is <= U, U the k-th least upper bound
 // (<= hi_chosen). At least k candidates have exact delta² <= U, so every candidate above U
-// is not among the exact first k. The bounds are the double ones, and tight_delta2's for the
+// is not among the exact first k. The bounds are the double ones, and tighter ones for the
 // candidates taken in ascending lower bound until the next one exceeds U: on a contact made by
 // rounding every double bound is wide (hi_chosen ~ the pair's size), the tight ones leave the
-// few candidates of that depth instead of every candidate.
+// few candidates of that depth instead of every candidate. The tight ones are the exact depth
+// and n.n over the pair's integer frame, rounded (integer_depth.h's framed_delta2), where it
+// has one: the exact order of the contenders (exact_delta_order) takes the same depths again
+// from their memo; else tight_delta2's, on compensated heights.
 template <class List>
 int accel_contenders(const List& set, int k, double hi_chosen, DeltaBounds<List>& db, int* idx) {
   int order[kMaxCandidates], m = 0;
@@ -993,10 +996,16 @@ int accel_contenders(const List& set, int k, double hi_chosen, DeltaBounds<List>
   }
   int have = 0;
   double U = hi_chosen;
+  std::optional<detail::IntegerFrame> frame;
+  if (set.A) frame.emplace(*set.A, *set.B);
   for (int j = 0; j < m && !(lo[order[j]] > U); ++j) {
     const int i = order[j];
     double v = 0, r = kInf;
-    if (set.A) detail::tight_delta2(set, i, v, r);
+    detail::FramedDepth fd;
+    const bool framed = frame && frame->usable() &&
+                        detail::framed_depth(*frame, unpack_label(label_code(set, i)), fd) &&
+                        detail::framed_delta2(*frame, fd, v, r);
+    if (!framed && set.A) detail::tight_delta2(set, i, v, r);
     if (!(r < 1)) continue;
     lo[i] = std::max(lo[i], lower_of(v, r));
     const double up = upper_of(v, r);
