@@ -335,6 +335,31 @@ BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
       if (delta2[i] < delta2[want_first]) want_first = int(i);
     BOOST_TEST(detail::first_least_delta2_framed(frame, labels.data(), int(labels.size())) == want_first);
     ++firsts;
+    // The same with no depth known yet (another pair asked in between): each contender's oriented
+    // normal taken first, one along an earlier contender's direction passed over before its depth
+    // is computed; and on a subset of the labels (two of every three) with every other one of them
+    // asked beforehand, so that known and unknown depths alternate.
+    {
+      detail::IntegerFrame other_frame(B, A);
+      detail::FramedDepth x;
+      auto forget = [&] {
+        if (other_frame.usable()) detail::framed_depth(other_frame, labels[0], x);
+      };
+      forget();
+      BOOST_TEST(detail::first_least_delta2_framed(frame, labels.data(), int(labels.size())) == want_first,
+                 "no depth known");
+      std::vector<DirectionLabel> sub;
+      std::vector<std::size_t> at;
+      for (std::size_t i = 0; i < labels.size(); ++i)
+        if ((i + std::size_t(it)) % 3 != 0) sub.push_back(labels[i]), at.push_back(i);
+      forget();
+      for (std::size_t j = 0; j < sub.size(); j += 2) detail::framed_depth(frame, sub[j], x);
+      int want_sub = 0;
+      for (std::size_t j = 1; j < sub.size(); ++j)
+        if (delta2[at[j]] < delta2[at[want_sub]]) want_sub = int(j);
+      BOOST_TEST(detail::first_least_delta2_framed(frame, sub.data(), int(sub.size())) == want_sub, "subset");
+      ++firsts;
+    }
     if (!colinear_labels.empty()) {
       std::vector<DirectionLabel> with = labels;
       with.insert(with.begin() + int(with.size() / 2), colinear_labels[0]);
