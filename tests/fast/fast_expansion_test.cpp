@@ -247,6 +247,76 @@ Q limbs_value(const mp_limb_t* x, int k, int unit_exponent) {
 }
 }  // namespace
 
+// ExactDirection (exact_predicates.h) against rationals where its first test runs over the
+// pair's integer frame: a tetrahedron against its own translate by a random offset (each edge
+// of B parallel to its copy in A up to the roundings of the shift, exactly where they cancel),
+// and aligned grid cells (aligned_pair). For every pair of labels l1, l2 (faces, and both
+// labelled orientations of every edge pair that is not colinear): same_as_labelled(l2) is
+// n1 x n2 = 0 and n1.n2 > 0, n1 l1's oriented candidate, n2 l2's normal as labelled (an edge
+// pair's eB x eA or common perpendicular, negated for ':-'); same_as(l2) the same with l2
+// oriented by the rule.
+BOOST_AUTO_TEST_CASE(direction_tests_over_integers_match_rationals) {
+  compare::ReproducibleRng r(41);
+  int checked = 0, same = 0, framed = 0, translates = 0;
+  for (int it = 0; it < 150; ++it) {
+    TetVertices A, B;
+    if (it % 3 != 0) {  // a translate: coordinates in [0, 1), a shift of up to a tenth of that
+      const double t[3] = {r.uniform(-0.1, 0.1), r.uniform(-0.1, 0.1), r.uniform(-0.1, 0.1)};
+      for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) A[i][k] = r.uniform(0.0625, 1), B[i][k] = A[i][k] + t[k];
+      translates += 1;
+    } else {
+      std::tie(A, B) = aligned_pair(r);
+    }
+    if (orientation_sign_exact(A) == Sign::Zero || orientation_sign_exact(B) == Sign::Zero) continue;
+    BOOST_REQUIRE(detail::in_exact_range(A, B));
+    detail::IntegerFrame frame(A, B);
+    framed += frame.usable();
+    const detail::QTet qa = detail::exact_tet(A), qb = detail::exact_tet(B);
+    std::vector<DirectionLabel> labels;
+    for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::FV, f, 0, EdgeOrientation::Decided});
+    for (int f = 0; f < 4; ++f) labels.push_back({ContactKind::VF, f, 0, EdgeOrientation::Decided});
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        if (classify_edge_pair_exact(A, B, a, b).kind == EdgePairKind::Colinear) continue;
+        labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Plus});
+        labels.push_back({ContactKind::EE, a, b, EdgeOrientation::Minus});
+      }
+    auto as_labelled = [&](const DirectionLabel& l) {
+      if (l.kind != ContactKind::EE) return oriented_normal_q(qa, qb, l);
+      EdgePairKind kind;
+      const detail::QV n = detail::edge_pair_normal(qa, qb, l.a, l.b, &kind);
+      return l.orientation == EdgeOrientation::Minus ? detail::negated(n) : n;
+    };
+    auto same_way = [](const detail::QV& n1, const detail::QV& n2) {
+      return detail::is_zero(detail::cross(n1, n2)) && sgn(dot(n1, n2)) > 0;
+    };
+    for (const DirectionLabel& l1 : labels) {
+      if (l1.kind == ContactKind::EE && l1.orientation == EdgeOrientation::Minus) continue;  // (l1 by the rule)
+      const DirectionLabel first = l1.kind == ContactKind::EE ? DirectionLabel::ee(l1.a, l1.b, EdgeOrientation::Plus) : l1;
+      const detail::QV n1 = oriented_normal_q(qa, qb, first);
+      const ExactDirection d(A, B, first);
+      for (const DirectionLabel& l2 : labels) {
+        const bool want = same_way(n1, as_labelled(l2));
+        const std::optional<bool> got = d.same_as_labelled(l2);
+        BOOST_REQUIRE(got.has_value());
+        BOOST_TEST(*got == want, first.str() << " " << l2.str() << " (labelled)");
+        const std::optional<bool> rule = d.same_as(l2);
+        BOOST_REQUIRE(rule.has_value());
+        BOOST_TEST(*rule == same_way(n1, oriented_normal_q(qa, qb, l2)), first.str() << " " << l2.str());
+        checked += 1;
+        same += want;
+      }
+    }
+  }
+  // the integer frame is there on most pairs, and the answers include both verdicts
+  BOOST_TEST(translates > 90);
+  BOOST_TEST(framed > 120);
+  BOOST_TEST(checked > 100000);
+  BOOST_TEST(same > 1000);
+  BOOST_TEST_MESSAGE("direction tests " << checked << " (same " << same << "), pairs with a frame " << framed);
+}
+
 BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
   compare::ReproducibleRng r(20261201);
   long framed = 0, parallel = 0, colinear = 0, compared = 0, ties = 0, firsts = 0, refused = 0, values = 0,

@@ -184,6 +184,41 @@ static ExpVec orthogonal_to_normal(const TetVertices& A, const TetVertices& B, c
   return k == 0 ? difference(A[kEdges[l.a][1]], A[kEdges[l.a][0]]) : difference(B[kEdges[l.b][1]], B[kEdges[l.b][0]]);
 }
 
+// computed()'s first test over the pair's integer frame: false when n1 is not orthogonal to
+// one of the two vectors of orthogonal_to_normal (then n1 and n2 differ in direction), true
+// when it is orthogonal to both; nullopt where the frame does not apply (no frame, or n1 of
+// degree 3: a parallel edge pair). The same two signs as the expansions' dots, exactly
+// (integer_heights.h: n1 a cross product of frame differences, each sign n1.(X_p − X_q)).
+std::optional<bool> ExactDirection::orthogonal_over_integers(const DirectionLabel& l) const {
+  if (integer_state_ == 0) {
+    integer_state_ = -1;
+    if (!frame_.usable()) return std::nullopt;
+    if (l1_.kind == ContactKind::EE) {
+      const int u = kEdges[l1_.a][0], v = kEdges[l1_.a][1], x = kEdges[l1_.b][0], y = kEdges[l1_.b][1];
+      frame_.normal(4 + y, 4 + x, v, u, ni_);  // eB x eA
+    } else {
+      const int o = l1_.kind == ContactKind::FV ? 0 : 4;
+      const auto& f = kFace[l1_.a];
+      frame_.normal(o + f[1], o + f[0], o + f[2], o + f[0], ni_);
+    }
+    if (ni_[0] == 0 && ni_[1] == 0 && ni_[2] == 0) return std::nullopt;  // parallel edges
+    integer_state_ = 1;
+  }
+  if (integer_state_ < 0) return std::nullopt;
+  for (int k = 0; k < 2; ++k) {
+    int p, q;  // orthogonal_to_normal(l, k) as frame indices: X_p − X_q
+    if (l.kind == ContactKind::EE) {
+      const int o = k == 0 ? 0 : 4, e = k == 0 ? l.a : l.b;
+      p = o + kEdges[e][1], q = o + kEdges[e][0];
+    } else {
+      const int o = l.kind == ContactKind::FV ? 0 : 4;
+      p = o + kFace[l.a][1 + k], q = o + kFace[l.a][0];
+    }
+    if (frame_.dot_sign(ni_, p, q) != 0) return false;
+  }
+  return true;
+}
+
 std::optional<bool> ExactDirection::same_as(const DirectionLabel& l) const { return same(l, true); }
 
 std::optional<bool> ExactDirection::same_as(const DirectionLabel& l, int side) const { return same(l, true, side); }
@@ -192,16 +227,23 @@ std::optional<bool> ExactDirection::same_as_labelled(const DirectionLabel& l) co
 
 // n2: the label's exact oriented candidate (rule), or for an edge pair ±(eB × eA) as labelled.
 std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule, int side) const {
-  if (state_ == 0) {
+  if (in_range_ < 0) {
     // Granularity: coordinates multiples of 2^-152, products of 6 differences of 2^-912
     // (normal); magnitudes below (2^101)^6 · 2^40 (no overflow). See expansion.h.
-    state_ = -1;
+    in_range_ = 1;
     for (const TetVertices* T : {&A_, &B_})
       for (const Vec3d& p : *T)
         for (double x : p) {
           const double a = std::fabs(x);
-          if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) return std::nullopt;
+          if (a != 0.0 && !(a >= 0x1p-100 && a <= 0x1p100)) in_range_ = 0;
         }
+  }
+  if (in_range_ == 0) return std::nullopt;
+  // The first test below (n1 orthogonal to n2's two vectors) over integers where it can be
+  const std::optional<bool> orthogonal = orthogonal_over_integers(l);
+  if (orthogonal == false) return false;
+  if (state_ == 0) {
+    state_ = -1;
     // l1's normal up to its sign (the orthogonality tests below need no orientation): a
     // face's e1 x e2, an edge pair's eB x eA (the common perpendicular when parallel)
     bool ok = true;
@@ -219,7 +261,7 @@ std::optional<bool> ExactDirection::computed(const DirectionLabel& l, bool rule,
   // Not the same direction when n1 is not orthogonal to a vector n2 is orthogonal to (n2 = 0
   // included: no direction): two degree-3 dots instead of n2 and n1 × n2 (degree 4); directions
   // a rounding apart (aligned pairs) mostly end here.
-  for (int k = 0; k < 2; ++k) {
+  for (int k = 0; k < 2 && !orthogonal; ++k) {
     const Expansion d = dot(n_, orthogonal_to_normal(A_, B_, l, k));
     if (!d.ok) return std::nullopt;
     if (d.n != 0) return false;
