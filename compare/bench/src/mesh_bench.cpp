@@ -15,6 +15,9 @@
 #include <fcl/broadphase/broadphase_interval_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/narrowphase/collision_object.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
@@ -301,8 +304,9 @@ mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double ang
   return out;
 }
 
-// One aligned case's meshes (A, B) on one core: contacts() `repeats` times (medians per stage),
-// then solve_pair's record statistics (the values of `variants`) on up to 2000 intersecting pairs.
+// One aligned case's meshes (A, B) on one core: contacts() `repeats` times after a warm-up call
+// (medians per stage), then solve_pair's record statistics (the values of `variants`) on up to
+// 2000 intersecting pairs.
 AlignedRun aligned_run(const mesh::Mesh& A, const mesh::Mesh& B, unsigned variants, int repeats) {
   tbb::task_arena one(1);
   AlignedRun a;
@@ -310,6 +314,7 @@ AlignedRun aligned_run(const mesh::Mesh& A, const mesh::Mesh& B, unsigned varian
   a.elements_b = B.tets.size();
   std::vector<double> dec, dep;
   mesh::Contacts<double> c;
+  one.execute([&] { c = mesh::contacts(A, B, computing(variants)); });
   for (int r = 0; r < repeats; ++r)
     one.execute([&] {
       c = mesh::contacts(A, B, computing(variants));
@@ -333,10 +338,27 @@ AlignedRun aligned_run(const mesh::Mesh& A, const mesh::Mesh& B, unsigned varian
   return a;
 }
 
+// The records' storage reused from call to call (glibc). contacts() returns ~0.9 KB a record
+// (PairResult<double>), and glibc maps every block above its mmap threshold (at most 32 MiB:
+// ~36,000 records) afresh, so such a call pays the first touch of every page of its records
+// each time (page faults: 1.5-2.5 us a record on the 2-CPU VM of docs/performance.md, several
+// times rigid and accel1's own work on a pair), while a smaller block comes back from the heap.
+// The depth stage's time per pair then followed a case's pair count and its place in the run,
+// not its alignment: the rotated twins of the 8^3 Kuhn grids (~39,000 pairs) took 2.8-2.9 us a
+// pair, a smaller twin 0.6 us. With mmap off and freed memory kept, every case runs on storage a
+// warm-up call left (aligned_run), and the per-pair times compare the engine's work.
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
 std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
   std::vector<AlignedCase> out;
   const int n = o.aligned_cells;
   if (n <= 0) return out;
+  keep_freed_memory();
   const double h = 1.0 / n;
   const std::array<double, 3> shift = {0.37 * h, 0.21 * h, 0.13 * h};  // not on the grid
   auto run = [&](const std::string& name, const mesh::Mesh& A, const mesh::Mesh& B, const mesh::Mesh& Brot) {
