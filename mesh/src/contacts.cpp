@@ -7,10 +7,14 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "check_indices.h"
@@ -152,6 +156,28 @@ std::vector<std::array<std::size_t, 2>> pairs_of_boxes(const Mesh& A, std::vecto
                                                        std::vector<Box>* bbp,
                                                        const BroadphaseOptions& options);
 
+// The records' storage (~0.9 KB a record: PairResult's values, positions and strings) asked
+// for in transparent huge pages where the kernel gives them on request (Linux, THP "madvise";
+// under "always" it does anyway, under "never" this changes nothing). glibc maps a block above
+// its largest mmap threshold (32 MiB: ~36,000 records) afresh on every call, and the first
+// touch of each of its 4 KB pages (the records' construction) is a page fault: on a 2-CPU VM
+// ~10 us a page, ~2 us a record, near the engine's own work on a pair for the default variants
+// and several times it for rigid and accel1 (docs/performance.md, "Direction tests over
+// integers"). One 2 MB page takes the faults of 512. A smaller block comes back from the heap
+// after the first calls, without faults: only the 2 MB-aligned part of a buffer of 32 MiB or
+// more is advised. The advice is a hint: its failure changes nothing.
+void advise_huge_pages(const void* data, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHuge = std::uintptr_t(1) << 21;
+  if (bytes < 16 * kHuge) return;
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
+  if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+  (void)data, (void)bytes;
+#endif
+}
+
 template <class R>
 Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   detail::check_indices(A, 'A');
@@ -208,6 +234,7 @@ Contacts<R> run(const Mesh& A, const Mesh* B, const ContactOptions& options) {
   // touches in one resize, during which Ctrl-C waited. Within the reserved capacity: no move.
   constexpr std::size_t kChunk = std::size_t(1) << 14;
   out.pairs.reserve(hits.size());
+  advise_huge_pages(out.pairs.data(), out.pairs.capacity() * sizeof(Contact<R>));
   for (std::size_t k = 0; k < hits.size(); k += kChunk) {
     stop_if_cancelled();
     out.pairs.resize(std::min(hits.size(), k + kChunk));
