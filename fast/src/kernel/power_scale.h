@@ -163,9 +163,9 @@ inline void power_normalized(std::array<double, 3>& n) {
   if (!(m > 0) || !std::isfinite(m)) return;
   const int e = std::ilogb(m);
   std::array<double, 3> out;
-  for (int k = 0; k < 3; ++k) {
-    out[k] = std::ldexp(n[k], -e);
-    if (std::ldexp(out[k], e) != n[k]) return;
+  for (int k = 0; k < 3; ++k) {  // (times_pow2: ldexp's values, one product each)
+    out[k] = times_pow2(n[k], -e);
+    if (times_pow2(out[k], e) != n[k]) return;
   }
   n = out;
 }
