@@ -11,7 +11,8 @@
 // Output:  true with lo2 <= delta(n)² (definitions §4: the squared oriented depth along n) for
 //          every orientation of n that is a facet normal of M = A ⊕ (−B); lo2 = +inf when no
 //          orientation can be. False when the bound cannot be had in doubles (the caller then
-//          takes the path that computes the pair's candidates).
+//          decides the pair's facets exactly where it can, superset_depth.cpp's facet_bounds,
+//          else takes the path that computes the pair's candidates).
 //
 // Why a bound on facet normals suffices: PD = max(0, min over candidates of delta) and every
 // facet normal of M is a candidate (definitions §4); when every facet's delta is bounded below by

@@ -416,6 +416,51 @@ class UnresolvedNormals {
       if (!(lower_of(D * D / nn, rigid_root_rel(D, nn, own)) > hi)) return false;
     return true;
   }
+  // near_parallel_bound's contract for edge pair (a, b) where its doubles cannot show d_x off
+  // F (nearly colinear edges: r_x a rounding away from the line of edge a, every degree-4 sign
+  // it needs within E4 of 0): over the integer frame, exactly. n = eB × eA exactly 0: parallel
+  // edges span no facet, lo2 = +inf. Else ±n is a facet normal of M = A ⊕ (−B) only if A's
+  // support along it contains edge a and B's lowest vertices along it contain edge b: for +n,
+  // n.(s_k − s_u) <= 0 for A's two vertices s_k off edge a and n.(r_j − r_x) >= 0 for B's two
+  // off edge b; for −n the reverse (exact signs, IntegerFrame::dot_sign). An orientation that
+  // fails is no facet normal and needs no bound; one that passes is bounded below as above()
+  // bounds it (the rounded exact normal, its own degree bounds): lo2 the least of those (+inf
+  // when neither passes; 0 when a depth is not certainly positive, which the caller's
+  // positivity test then refuses). False without a frame (the caller's other path).
+  bool facet_bound(int a, int b, double& lo2) {
+    if (!frame_.usable()) return false;
+    const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0], y = kEdges[b][1];
+    __int128 m[3];
+    frame_.normal(4 + y, 4 + x, v, u, m);
+    lo2 = kInf;
+    if (m[0] == 0 && m[1] == 0 && m[2] == 0) return true;
+    bool facet[2] = {true, true};  // +n, −n
+    for (const int k : {kOffEdge[a][0], kOffEdge[a][1]}) {
+      const int sg = frame_.dot_sign(m, k, u);
+      facet[0] = facet[0] && sg <= 0, facet[1] = facet[1] && sg >= 0;
+    }
+    for (const int j : {kOffEdge[b][0], kOffEdge[b][1]}) {
+      const int sg = frame_.dot_sign(m, 4 + j, 4 + x);
+      facet[0] = facet[0] && sg >= 0, facet[1] = facet[1] && sg <= 0;
+    }
+    if (!facet[0] && !facet[1]) return true;
+    double n[3];
+    for (int k = 0; k < 3; ++k) n[k] = times_pow2(double(m[k]), 2 * frame_.unit_exponent());
+    double hiA = -kInf, loA = kInf, hiB = -kInf, loB = kInf;
+    for (int k = 0; k < 4; ++k) {
+      const double hA = n[0] * (A_[k][0] - A_[u][0]) + n[1] * (A_[k][1] - A_[u][1]) + n[2] * (A_[k][2] - A_[u][2]);
+      const double hB = n[0] * (B_[k][0] - A_[u][0]) + n[1] * (B_[k][1] - A_[u][1]) + n[2] * (B_[k][2] - A_[u][2]);
+      hiA = max2(hiA, hA), loA = min2(loA, hA), hiB = max2(hiB, hB), loB = min2(loB, hB);
+    }
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const DegreeBounds own = own_degree_bounds(n, K_.extent);
+    for (int o = 0; o < 2; ++o) {
+      if (!facet[o]) continue;
+      const double D = o == 0 ? hiA - loB : hiB - loA;  // as above()
+      lo2 = min2(lo2, D > 0 ? lower_of(D * D / nn, rigid_root_rel(D, nn, own)) : 0.0);
+    }
+    return true;
+  }
   bool parallel(int a, int b) {  // (over the integer frame only: a few instructions; else false)
     if (!frame_.usable()) return false;
     __int128 m[3];
@@ -446,6 +491,21 @@ class UnresolvedNormals {
   IntegerFrame frame_;
   bool in_range_ = false;
 };
+
+// near_parallel_bound's lo2 for the lanes `bits` over the kernel pair's integer frame
+// (UnresolvedNormals::facet_bound), added to un; false where one cannot be had. (Not inlined:
+// nearly colinear edges are rare outside grids shifted along their own diagonals.)
+__attribute__((noinline)) bool facet_bounds(const SupersetLanes& K, std::uint64_t bits, Unresolved& un) {
+  UnresolvedNormals normals(K);
+  for (; bits; bits &= bits - 1) {
+    const int lane = __builtin_ctzll(bits);
+    double& lo2 = un.lo2[lane];
+    if (!normals.facet_bound(lane / kLaneStride, lane % kLaneStride, lo2)) return false;
+    un.extra_lo = min2(un.extra_lo, lo2);
+    un.bits |= std::uint64_t{1} << lane;
+  }
+  return true;
+}
 
 // un with its pairs whose facets may reach hi_pick (lo2 <= hi_pick) looked at again: an edge
 // pair exactly parallel over the kernel pair's integer frame (what exactly_parallel could not
@@ -797,7 +857,8 @@ __attribute__((noinline)) bool band_accepted(const SupersetLanes& K, const Filte
 
 // The choice when edge pairs the doubles cannot resolve (`unresolved`: unresolved_edge_pairs,
 // nearly or exactly parallel edges: an aligned pair) spoil the kernel's screens: those pairs
-// bounded by near_parallel_bound, the choice made among the others. True only with a certified choice (then in ch, geometry,
+// bounded by near_parallel_bound (nearly colinear ones, which it cannot bound, by facet_bounds),
+// the choice made among the others. True only with a certified choice (then in ch, geometry,
 // unique); K is changed either way.
 // `unique` here: the pick is certainly below every entry of S (near_parallel_bound's lo2 bounds
 // the ±n entries of the nearly parallel pairs) — and the candidate list has one more kind of
@@ -817,13 +878,18 @@ bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::ui
   if (!unresolved) return false;
   // the lanes left first (vectorised, cheap): their least depth must clear E3
   if (!drop_edge_pairs(K, fb, unresolved)) return false;
+  std::uint64_t colinear = 0;  // the lanes near_parallel_bound leaves to facet_bounds
   for (std::uint64_t bits = unresolved & ~un.bits; bits; bits &= bits - 1) {
     const int lane = __builtin_ctzll(bits);
     double& lo2 = un.lo2[lane];
-    if (!near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2)) return false;
+    if (!near_parallel_bound(K, fb, lane / kLaneStride, lane % kLaneStride, lo2)) {
+      colinear |= std::uint64_t{1} << lane;
+      continue;
+    }
     un.extra_lo = min2(un.extra_lo, lo2);
     un.bits |= std::uint64_t{1} << lane;
   }
+  if (colinear && !facet_bounds(K, colinear, un)) return false;
   if (!(un.extra_lo > 0.0)) return false;
   Choice c;
   Candidate g;
