@@ -661,19 +661,23 @@ __attribute__((noinline)) Shared ties_share_direction(const SupersetLanes& K, co
 }
 
 bool band_accepted(const SupersetLanes& K, const FilterBounds& fb, const Near& c, double hi_pick,
-                   const Unresolved& un, TieBandTest& test);
+                   const Unresolved& un, TieBandTest& test, bool settle);
 
 // `unique` for a certified pick that certify could not show alone: exact directions first
 // (structural zeros: cheap on aligned pairs), then the band (where given) where the rest needs
 // depth parts in double words, then those, with the unresolved pairs' facets rechecked for exact
-// parallelism. (Not inlined: off the hot path's frame.)
+// parallelism, and last the band settled where its test disagreed (TieBandTest::settle). (Not
+// inlined: off the hot path's frame.)
 __attribute__((noinline)) bool unique_after_ties(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
                                                  double hi_pick, const Unresolved& un, TieBandTest* band) {
   Shared s = band && band->always ? Shared::Undecided : ties_share_direction(K, fb, c, hi_pick, un, !band);
-  if (s != Shared::Undecided || (band->accepted = band_accepted(K, fb, c, hi_pick, un, *band)))
+  if (s != Shared::Undecided || (band->accepted = band_accepted(K, fb, c, hi_pick, un, *band, false)))
     return s == Shared::Yes;
   Unresolved rechecked;
-  return ties_share_direction(K, fb, c, hi_pick, facets_rechecked(K, un, hi_pick, rechecked), true) == Shared::Yes;
+  const Unresolved& r = facets_rechecked(K, un, hi_pick, rechecked);
+  if (ties_share_direction(K, fb, c, hi_pick, r, true) == Shared::Yes) return true;
+  if (band && band->disagreed) band->accepted = band_accepted(K, fb, c, hi_pick, r, *band, true);
+  return false;
 }
 
 // The pick among the entries of K's tie band (face_bits, lane_bits) and its certificate
@@ -781,7 +785,7 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
 // pair of a higher lane: false.
 // (Not inlined: the band, ~1 KB, stays off the frame of pick_and_certify.)
 __attribute__((noinline)) bool band_accepted(const SupersetLanes& K, const FilterBounds& fb, const Near& c,
-                                             double hi_pick, const Unresolved& un, TieBandTest& test) {
+                                             double hi_pick, const Unresolved& un, TieBandTest& test, bool settle) {
   const DegreeBounds db = degree_bounds(fb, false);
   auto above = [&](double v, double r) { return lower_of(v, r) > hi_pick; };
   TieBand band;
@@ -827,7 +831,8 @@ __attribute__((noinline)) bool band_accepted(const SupersetLanes& K, const Filte
     }
   }
   // the caller's test first (a few closed forms), then the unresolved pairs (exact normals)
-  if (!test.agree(band, fb)) return false;
+  kernel_pair(K, band.A, band.B);
+  if (!(settle ? test.settle(band, fb) : test.agree(band, fb))) return false;
   // An unresolved pair is no exact first when its list candidate is certainly above hi_pick
   // (UnresolvedNormals: required where its facets may reach hi_pick, lo2 <= hi_pick), or
   // else when it points elsewhere than every band edge pair of a higher lane.

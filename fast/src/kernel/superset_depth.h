@@ -103,9 +103,10 @@ bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& c
 // first: its candidate certainly above the choice, or its facets so and its direction not along
 // a band edge pair that it precedes (superset_depth.cpp's band_accepted, with the proof).
 struct TieBand {
-  static constexpr int kMax = 8;  // more: no band (aligned pairs have 2 to 4)
+  static constexpr int kMax = 12;  // more: no band (aligned pairs have 2 to 10)
   int count = 0;
   Candidate entry[kMax];
+  TetVertices A{}, B{};  // the pair the entries are of (the kernel's, rescaled)
 };
 
 // What a caller does with a tie band (pdd2_accel1: its case-2 values within definitions §8 of
@@ -115,12 +116,17 @@ struct TieBand {
 // certified and not certainly `unique` (tests: every band). agree() runs first, then the
 // unresolved edge pairs are checked (TieBand above); `accepted` is set when both pass: the band
 // holds the exact first and the caller's test agreed (then `unique` stays false, unsought).
-// agree() may run on a band that is then not accepted.
+// agree() may run on a band that is then not accepted. Where agree() set `disagreed` and the
+// depth parts in double words do not show the choice unique either, the band is built again
+// and settle() asked instead (pdd2_accel1: the exact first's own value, decided exactly: more
+// than those depth parts cost where they decide), with the same checks after it.
 class TieBandTest {
  public:
   virtual bool agree(const TieBand& band, const FilterBounds& fb) = 0;
+  virtual bool settle(const TieBand&, const FilterBounds&) { return false; }
   bool always = false;
   bool accepted = false;
+  bool disagreed = false;
 
  protected:
   ~TieBandTest() = default;

@@ -354,6 +354,9 @@ bool accel1_of_rigid(const Choice& rigid, const Candidate& c, bool unique, const
 // some entry's, lies in [min lo_i, max hi_i], and so does the choice's computed value v_0. When
 // that interval passes certified_choice, v_0 meets definitions §8 (accel_over_ties' argument on
 // the candidate list). A translated copy's pairs: a face and its copy's, a rounding apart.
+// Where the values differ (a grid against its copy shifted along its cube diagonals: exact ties
+// of delta² between candidates whose case-2 values differ), the exact first itself
+// (exact_first_of_band), and its own value when that passes certified_choice alone.
 class Accel1OverBand final : public TieBandTest {
  public:
   bool agree(const TieBand& band, const FilterBounds& fb) override {
@@ -364,12 +367,53 @@ class Accel1OverBand final : public TieBandTest {
       const double lo = lower_of(x.v, x.r);
       lo_min = std::min(lo_min, lo >= 0.0 ? lo : 0.0);
       hi_max = std::max(hi_max, upper_of(x.v, x.r));
-      if (!certified_choice(hi_max, lo_min)) return false;
+      if (!certified_choice(hi_max, lo_min)) return disagreed = true, false;
       if (i == 0) value = x.v;
     }
     return band.count > 0;
   }
-  double value = 0.0;  // the choice's case-2 value (entry 0)
+  bool settle(const TieBand& band, const FilterBounds& fb) override {
+    const int first = exact_first_of_band(band);
+    if (first < 0) return false;
+    const Valued x = deformable_valued(band.entry[first], fb);
+    if (!(x.v > 0.0) || !(x.v < kInf) || !certified_choice(upper_of(x.v, x.r), lower_of(x.v, x.r))) return false;
+    value = x.v;
+    return true;
+  }
+  double value = 0.0;  // the exact first's case-2 value (any entry's where they all agree)
+
+ private:
+  // The band entry that is the list's exact first (stable delta order, definitions §5's case 3),
+  // or −1: over the band pair's integer frame, each edge-pair entry's orientation kept only
+  // where definitions §3's rule, decided exactly (classify_edge_pair_framed), makes it a
+  // candidate (a decided pair has the one orientation; an undecidable pair both, + first); the
+  // candidates in canonical order (faces FV then VF, then EE:a:b by a, b), and the first least
+  // exact delta² among them (first_least_delta2_framed). −1 without a frame, or for an entry
+  // that is no candidate the band could hold (a parallel or colinear pair: the band has none).
+  static int exact_first_of_band(const TieBand& band) {
+    detail::IntegerFrame frame(band.A, band.B);
+    if (!frame.usable()) return -1;
+    int order[TieBand::kMax], key[TieBand::kMax], n = 0;
+    DirectionLabel labels[TieBand::kMax];
+    for (int i = 0; i < band.count; ++i) {
+      const DirectionLabel& l = band.entry[i].label;
+      int k = l.kind == ContactKind::FV ? l.a : 4 + l.a;
+      DirectionLabel as_listed = l;
+      if (l.kind == ContactKind::EE) {
+        const EdgePairClass c = detail::classify_edge_pair_framed(frame, l.a, l.b);
+        if (c.kind != EdgePairKind::Generic) return -1;
+        const bool plus = l.orientation == EdgeOrientation::Plus;
+        if ((c.side == EdgePairSide::Keep && !plus) || (c.side == EdgePairSide::Flip && plus)) continue;
+        if (c.side != EdgePairSide::Undecidable) as_listed.orientation = EdgeOrientation::Decided;
+        k = 8 + 2 * (6 * l.a + l.b) + (plus ? 0 : 1);
+      }
+      int at = n++;  // insertion by key
+      for (; at > 0 && key[at - 1] > k; --at) key[at] = key[at - 1], order[at] = order[at - 1], labels[at] = labels[at - 1];
+      key[at] = k, order[at] = i, labels[at] = as_listed;
+    }
+    const int first = detail::first_least_delta2_framed(frame, labels, n);
+    return first < 0 ? -1 : order[first];
+  }
 };
 
 }  // namespace
