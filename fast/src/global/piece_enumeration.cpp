@@ -42,6 +42,25 @@ struct SmallSets {
 };
 inline constexpr SmallSets kSmallSets;
 
+// B's sets in the order of the lanes (columns(): by size, then value) and each set's rank in it;
+// kByRank[lo|hi][bits]: a set mask's bits moved to their ranks (bit rank[mb] for bit mb), for
+// the last needed lane (survivors_double: the lanes keep that order, less the sets not in use).
+inline constexpr unsigned char kBySize[15] = {1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14, 15};
+struct ByRank {
+  unsigned short lo[256] = {}, hi[256] = {};
+  constexpr ByRank() {
+    int rank[16] = {};
+    for (int r = 0; r < 15; ++r) rank[kBySize[r]] = r;
+    for (unsigned m = 0; m < 256; ++m)
+      for (int b = 0; b < 8; ++b) {
+        if (!(m >> b & 1u)) continue;
+        if (b > 0) lo[m] = static_cast<unsigned short>(lo[m] | 1u << rank[b]);
+        hi[m] = static_cast<unsigned short>(hi[m] | 1u << rank[8 + b]);
+      }
+  }
+};
+inline constexpr ByRank kByRank;
+
 // A coordinate as a double: itself, or a rational rounded once.
 struct AsDouble {
   double operator()(double x) const { return x; }
@@ -250,9 +269,8 @@ class PieceEnumeration {
   // as dominated, the larger ones, come last: a row then needs fewer lanes), padded with the
   // empty set to a multiple of 4 lanes; lane[mb] is set mb's lane.
   void columns(unsigned sets) {
-    static constexpr unsigned char kBySize[15] = {1, 2, 4, 8, 3, 5, 6, 9, 10, 12, 7, 11, 13, 14, 15};
     int n = 0;
-    for (int& l : lane) l = 0;  // (lane_bit below reads every set's)
+    for (int& l : lane) l = 0;
     for (unsigned mb : kBySize)
       if (sets >> mb & 1u) column(n++, mb);
     cols.lanes = (n + 3) & ~3;
@@ -266,20 +284,27 @@ class PieceEnumeration {
     cols.w[l] = 1.0 / (5 - kPopcount[mb]);
     for (int mA = 1; mA <= 4; ++mA) cols.r[mA][l] = detail::kLaneR.r[mA][mb];
     cols.mb[l] = static_cast<unsigned char>(mb);
+    lane_set[l] = int(1u << mb & 0xFFFEu);
     if (mb) lane[mb] = l;
   }
-  // The lanes l < n (a multiple of 4) of x equal to 0 (zero) or not (bit l).
-  static unsigned lanes_where(const int (&x)[16], int n, bool zero) {
-    unsigned mask = 0;
+  // The sets (bit mb) of the lanes l < n (a multiple of 4) of x equal to 0 (zero) or not, from
+  // lane_set[l] = bit cols.mb[l] (0 on padding lanes), 4 lanes a step.
+  unsigned sets_where(const int (&x)[16], int n, bool zero) const {
 #if defined(__SSE2__)
+    __m128i acc = _mm_setzero_si128();
     for (int l = 0; l < n; l += 4) {
-      const __m128i v = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + l)), _mm_setzero_si128());
-      mask |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(v))) << l;
+      const __m128i z = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + l)), _mm_setzero_si128());
+      const __m128i set = _mm_loadu_si128(reinterpret_cast<const __m128i*>(lane_set + l));
+      acc = _mm_or_si128(acc, zero ? _mm_and_si128(z, set) : _mm_andnot_si128(z, set));
     }
+    acc = _mm_or_si128(acc, _mm_shuffle_epi32(acc, 0x4E));
+    acc = _mm_or_si128(acc, _mm_shuffle_epi32(acc, 0xB1));
+    return unsigned(_mm_cvtsi128_si32(acc));
 #else  // (the same bits, one lane at a time)
-    for (int l = 0; l < n; ++l) mask |= unsigned(x[l] == 0) << l;
+    unsigned sets = 0;
+    for (int l = 0; l < n; ++l) sets |= unsigned(lane_set[l]) & (0u - unsigned((x[l] == 0) == zero));
+    return sets;
 #endif
-    return zero ? mask : ~mask & ((1u << n) - 1);
   }
 
   // Pieces above the window. A piece's G_S(n) = n^T H_S n is the least object norm of a
@@ -327,8 +352,6 @@ class PieceEnumeration {
     // (The bookkeeping below runs fixed loops over the 4 vertices and the lanes where it can:
     // loops over a mask's set bits end at a data-dependent count, mispredicted about once a
     // loop, ~6 loops a row.)
-    unsigned lane_bit[16];  // set mb's lane as a bit, 0 for a set not in cols
-    for (unsigned mb = 0; mb < 16; ++mb) lane_bit[mb] = (all >> mb & 0xFFFEu >> mb & 1u) << lane[mb];
     for (unsigned ma = 1; ma < 16; ++ma) {
       for (unsigned i = 0; i < 4; ++i) {  // (the rows ma less one vertex; ma itself adds 0 here)
         const unsigned sub = ma & ~(1u << i);
@@ -337,9 +360,10 @@ class PieceEnumeration {
       const unsigned need = region[ma] & ~up_closure(reach[ma]) & 0xFFFEu;
       survivors[ma] = 0;
       if (!need) continue;
-      unsigned need_lanes = 0;  // need's lanes (bit l)
-      for (unsigned mb = 1; mb < 16; ++mb) need_lanes |= lane_bit[mb] & (0u - (need >> mb & 1u));
-      const int n = (35 - __builtin_clz(need_lanes)) & ~3;  // up to the last lane needed, in 4s
+      // up to the last lane needed, in 4s: the lane of need's set of highest rank (the lanes go
+      // by rank)
+      const unsigned ranks = kByRank.lo[need & 0xFFu] | kByRank.hi[need >> 8];
+      const int n = (lane[kBySize[31 - __builtin_clz(ranks)]] + 4) & ~3;
       RowLanes row;
       surviving_pieces(row_sums(ma).data(), row_moments(ma).data(), sa.qmax[ma], kPopcount[ma], cols, n, top,
                        search.lower, row);
@@ -349,20 +373,11 @@ class PieceEnumeration {
       // AVX-512 clone's upper registers dirty on return, no vzeroupper, and every SSE
       // instruction of the caller after it paid for that: ~40% of enumerate_pieces' own time,
       // measured with perf).
-      const unsigned kept = lanes_where(row.keep, n, false) & need_lanes;
-      const unsigned above_lanes = lanes_where(row.below_top, n, true);
-      // the screen's lanes: the survivors with exactly one eigenvalue in the window (the only
+      survivors[ma] = sets_where(row.keep, n, false) & need;
+      above[ma] = sets_where(row.below_top, n, true);
+      // the screen's pieces: the survivors with exactly one eigenvalue in the window (the only
       // case it decides)
-      const unsigned one_lanes = lanes_where(row.one, n, false) & kept;
-      unsigned one = 0;
-      above[ma] = 0;
-      for (int l = 0; l < cols.lanes; ++l) {  // (lanes to sets; the same count every row)
-        const unsigned m = 1u << cols.mb[l];
-        survivors[ma] |= m & (0u - (kept >> l & 1u));
-        above[ma] |= m & (0u - (above_lanes >> l & 1u));
-        one |= m & (0u - (one_lanes >> l & 1u));
-      }
-      above[ma] &= 0xFFFEu;
+      const unsigned one = sets_where(row.one, n, false) & survivors[ma];
       // Of the others, a piece with structural zero eigenvalues (4 - |S| of them, |S| <= 3)
       // whose nonzero ones lie certainly above the window is dropped here, as its visit would
       // drop it (outside_window_cheaply's test, on N = 20 H within n_error as survivors_exact
@@ -723,6 +738,7 @@ class PieceEnumeration {
   std::conditional_t<kExact, IntegerSums, char> ints{};
   ColumnsB cols;          // B's sums as lanes (surviving_pieces; every lane in use written)
   int lane[16];           // lane[mb]: set mb's lane in cols (0 for a set not in cols)
+  alignas(16) int lane_set[16];  // lane l's set as a bit (cols.mb[l]; 0 on padding lanes)
   unsigned survivors[16];
   double top = 0;         // the window's top edge: the best value so far, less kPrune
   std::optional<AccurateMoments> accurate;  // double path: built on the first piece that needs it

@@ -106,7 +106,7 @@ struct TieBand {
   static constexpr int kMax = 12;  // more: no band (aligned pairs have 2 to 10)
   int count = 0;
   Candidate entry[kMax];
-  TetVertices A{}, B{};  // the pair the entries are of (the kernel's, rescaled)
+  TetVertices A, B;  // the pair the entries are of (the kernel's, rescaled; set before the test sees it)
 };
 
 // What a caller does with a tie band (pdd2_accel1: its case-2 values within definitions §8 of
