@@ -5,7 +5,8 @@ What a user of a structured mesh meets (docs/performance.md, "Where structured g
 a block of n^3 cubes cut into tetrahedra one of four ways (Kuhn: six around the cube's
 diagonal; mirror: Kuhn cubes mirrored in alternate cells, conforming; five: five a cube,
 alternating; bc24: 24 around the cube's centre and its faces' centres), against the same block
-shifted by a few fractions of a cell h, with pdd.mesh_contacts' default variants on one thread.
+shifted by a few fractions of a cell h, with pdd.mesh_contacts on one thread (its default
+variants, or --variants as pdd.mesh_contacts takes them, e.g. global).
 Beside each, the same call with the shifted copy turned 0.3 rad about (1, 2, 3) through its
 centroid (no face or edge parallel). Per case: intersecting pairs and the time per
 intersecting pair (the best of --repeats calls) of both, their ratio, and the ratio of the
@@ -16,6 +17,7 @@ the coordinates as a user would type them, 0.1 * i rounded once, then + s rounde
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/aligned-survey.py [--kinds kuhn,five]
         [--cells 0.1,1/6,0.125] [--shifts off,half-xy,q111,diag] [--n 6] [--repeats 3]
+        [--variants global]
 """
 import argparse
 import time
@@ -83,11 +85,12 @@ def turned(V, angle=0.3, axis=(1, 2, 3)):
     return (V - c) @ R.T + c
 
 
-def best_call(repeats, *args):
+def best_call(repeats, variants, *args):
     best, pairs = float("inf"), 0
     for _ in range(repeats):
         t = time.perf_counter()
-        c = pdd.mesh_contacts(*args, threads=1)
+        options = {"variants": variants} if variants else {}
+        c = pdd.mesh_contacts(*args, threads=1, **options)
         best, pairs = min(best, time.perf_counter() - t), len(c["a"])
     return best, pairs
 
@@ -99,6 +102,7 @@ def main():
     p.add_argument("--shifts", default=",".join(SHIFTS))
     p.add_argument("--n", type=int, default=6, help="cubes a side (bc24: two thirds of it)")
     p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--variants", help="as pdd.mesh_contacts takes them (default: its own)")
     a = p.parse_args()
     print(f"{'grid':8s} {'cell':>6s} {'shift':8s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} "
           f"{'us/pair':>8s} {'ratio':>6s} {'whole':>6s}")
@@ -109,8 +113,8 @@ def main():
             VA, T = grid(kind, n, h)
             for name in a.shifts.split(","):
                 VB = VA + np.array(SHIFTS[name](n)) * h
-                ta, na = best_call(a.repeats, VA, T, VB, T)
-                tb, nb = best_call(a.repeats, VA, T, turned(VB), T)
+                ta, na = best_call(a.repeats, a.variants, VA, T, VB, T)
+                tb, nb = best_call(a.repeats, a.variants, VA, T, turned(VB), T)
                 if na == 0 or nb == 0:
                     print(f"{kind:8s} {cell:>6s} {name:8s} no intersecting pairs")
                     continue
