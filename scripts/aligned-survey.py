@@ -20,6 +20,7 @@ the coordinates as a user would type them, 0.1 * i rounded once, then + s rounde
         [--variants global]
 """
 import argparse
+import sys
 import time
 from fractions import Fraction
 
@@ -35,6 +36,7 @@ FACES = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (
 # B's shift in cells (the last coordinate of `diag` puts B on A's top, a third of a cell deep).
 SHIFTS = {"off": lambda n: (0.37, 0.21, 0.13), "half-xy": lambda n: (0.5, 0.5, 0.0),
           "q111": lambda n: (0.25, 0.25, 0.25), "diag": lambda n: (0.1, 0.1, n - 1 / 3)}
+KINDS = ("kuhn", "mirror", "five", "bc24")  # grid()'s cuts
 
 
 def corner(i, j, k, b):
@@ -95,15 +97,43 @@ def best_call(repeats, variants, *args):
     return best, pairs
 
 
+def check_arguments(p, a):
+    """Every argument checked before any grid is built: p.error (exit 2) naming the one at fault.
+    The variants by the call itself (one tetrahedron against itself moved), so that they mean
+    what they mean to pdd.mesh_contacts."""
+    for kind in a.kinds.split(","):
+        if kind not in KINDS:
+            p.error(f"--kinds: unknown kind {kind!r} ({', '.join(KINDS)})")
+    for cell in a.cells.split(","):
+        try:
+            if not Fraction(cell) > 0:
+                raise ValueError
+        except (ValueError, ZeroDivisionError):
+            p.error(f"--cells: {cell!r} is not a positive number or fraction")
+    for name in a.shifts.split(","):
+        if name not in SHIFTS:
+            p.error(f"--shifts: unknown shift {name!r} ({', '.join(SHIFTS)})")
+    if a.n < 1 or a.repeats < 1:
+        p.error("--n and --repeats: at least 1")
+    if a.variants is not None:
+        V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+        T = np.array([[0, 1, 2, 3]], dtype=np.int64)
+        try:
+            pdd.mesh_contacts(V, T, V + 0.1, T, variants=a.variants, threads=1)
+        except ValueError as e:
+            p.error(f"--variants: {e}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--kinds", default="kuhn,mirror,five,bc24")
+    p.add_argument("--kinds", default=",".join(KINDS))
     p.add_argument("--cells", default="0.1,1/6,0.125", help="cell sizes (fractions allowed)")
     p.add_argument("--shifts", default=",".join(SHIFTS))
     p.add_argument("--n", type=int, default=6, help="cubes a side (bc24: two thirds of it)")
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--variants", help="as pdd.mesh_contacts takes them (default: its own)")
     a = p.parse_args()
+    check_arguments(p, a)
     print(f"{'grid':8s} {'cell':>6s} {'shift':8s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} "
           f"{'us/pair':>8s} {'ratio':>6s} {'whole':>6s}")
     for kind in a.kinds.split(","):
@@ -123,4 +153,8 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except KeyboardInterrupt:  # (the rows printed so far stand: each is flushed whole)
+        sys.stderr.write("aligned-survey.py: interrupted\n")
+        raise SystemExit(130)

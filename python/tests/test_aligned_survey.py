@@ -77,6 +77,35 @@ def test_survey_prints_a_row_per_case():
         assert int(words[3]) > 0 and int(words[5]) > 0, row  # intersecting pairs on both sides
 
 
+@pytest.mark.parametrize("argument, message", [
+    (["--variants", "bogus"], "--variants: variants: unknown variant 'bogus'"),
+    (["--kinds", "kuhn,hex"], "--kinds: unknown kind 'hex'"),
+    (["--cells", "0.1,-1/6"], "--cells: '-1/6' is not a positive number or fraction"),
+    (["--shifts", "off,up"], "--shifts: unknown shift 'up'"),
+    (["--repeats", "0"], "--n and --repeats: at least 1"),
+])
+def test_survey_names_a_bad_argument_before_any_work(argument, message):
+    r = subprocess.run([sys.executable, str(SCRIPT), *argument], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert message in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert r.stdout == ""  # (no header: nothing measured)
+
+
+def test_survey_passes_its_variants_to_the_call(survey, monkeypatch):
+    # --variants reaches pdd.mesh_contacts as given; without it the call keeps its own default
+    # (no variants keyword at all)
+    seen = []
+
+    def recorder(*args, **kwargs):
+        seen.append(kwargs)
+        return {"a": [0]}
+
+    monkeypatch.setattr(survey.pdd, "mesh_contacts", recorder)
+    survey.best_call(1, "global", None, None, None, None)
+    survey.best_call(1, None, None, None, None, None)
+    assert seen == [{"threads": 1, "variants": "global"}, {"threads": 1}]
+
+
 # Blocks of 3^3 cubes of each cut, B on A's top a third of a cell deep and moved across as a user
 # types offsets (the README's limits: 40 runs, 1-32 rounds, none through a fallback). In the
 # first round each element pair's cheapest plane points sideways, neighbours opposite ways; the
