@@ -4,8 +4,9 @@
 // pdd/mesh/contact_energy.h).
 //
 // Inputs:  A, B  the tetrahedra's vertices s0..s3 and r0..r3 (any orientation).
+//          options  MinimiserOptions (defaults in the struct: every value certified).
 // Outputs: GlobalMinimiser, or nothing ("declined" below).
-//   pd2       pdd2_global (definitions §9; the definitions §8 contract)
+//   pd2       pdd2_global (definitions §9; the definitions §8 contract), unless `bounded`
 //   normal    the normal attaining it (A -> B), scaled as solve_pair's pdd2_global_normal
 //   q1_A, q1_B  the deformed positions attaining it (q1_*_global)
 // Equal bit for bit to the fields of the same name of pdd::fast::solve_pair(pair, with_global)
@@ -34,6 +35,12 @@
 // value may still be certified along an exact rational normal; global_minimiser then returns
 // it with `witness` set, its normal and positions that witness's rounded (as the exact
 // engine's witness is rounded to doubles), instead of declining.
+// Bounds (options.bound_shallow): such a pair, and any whose depth is as far below its size,
+// returned `bounded` instead (an estimate and a certified upper bound, not a certified value)
+// in about a microsecond, where the quick lanes decline and one of the eight face normals'
+// overlaps D(d) puts the bound D(d)^2 / d.d below 1e-18 of the pair's scale squared (a uniform
+// move of B by the overlap along d separates at object-norm cost D(d)^2), else where the
+// search's start is that shallow (its value's bound from value_error's chain).
 #pragma once
 
 #include <array>
@@ -54,9 +61,25 @@ struct GlobalMinimiser {
   // represents; `normal` and the positions are that witness rounded componentwise and do not
   // attain pd2 ("Witnesses" above). false on every pair solve_pair computes pdd2_global of.
   bool witness = false;
+  // pd2 NOT certified (MinimiserOptions::bound_shallow): `upper` is a certified upper bound on
+  // pdd2_global, pd2 the doubles' estimate (0 < pd2 <= upper), `normal` the best double normal
+  // found and the positions along it (accurate in absolute terms, to rounding of the pair's
+  // size). false on every other result.
+  bool bounded = false;
+  double upper = 0;
 };
 
-std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B);
+struct MinimiserOptions {
+  // A depth so far below the pair's size (~1e-9 of it or less: a contact made by rounding,
+  // faces meant to coincide) that certifying pd2 would take the shallow certificate or the
+  // exact pieces (tens of microseconds to milliseconds): return `bounded` instead, in about the
+  // time of a certified pair. For a caller summing many pairs that can bound such pairs' share
+  // of the sum and compute in full only those whose share matters (the contact energy).
+  bool bound_shallow = false;
+};
+
+std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B,
+                                                const MinimiserOptions& options = {});
 
 // pdd/pdd.h's "Translation" for a minimiser: with m = anchored_pair(A, B), global_minimiser(A, B)
 // is global_minimiser(m.A, m.B) with its positions moved by this (move_positions' rule), unless

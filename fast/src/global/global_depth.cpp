@@ -37,6 +37,7 @@ using global::enumerate_pieces;
 using global::evaluate_tight;
 using global::Evaluation;
 using global::kGlobalRel;
+using global::kU;
 using global::kUnrepresentedDepth;
 using global::mul;
 using global::near_extent_sq;
@@ -107,6 +108,7 @@ struct GlobalRun {
   double lower = 0;          // every G(u) >= lower (the pair's units)
   double lower_scaled = 0;   // the exact path's floor in its units
   bool exact_pieces = false;  // the pieces were built exactly
+  bool tiny_start = false;    // ... because the start's value is below their depth
   GlobalOptimum shallow;      // report_shallow's result
 };
 
@@ -201,7 +203,8 @@ bool needs_exact_pieces(GlobalRun& g, double start_value) {
   Best& best = g.best;
   const double tiny_rel = near_extent_sq(g.A, g.B) >= P.scale * P.scale / 256 ? kCompactTiny : 1e-10;
   auto tiny = [&](double value) { return !(value >= tiny_rel * P.scale * P.scale); };
-  if (!(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || tiny(best.value)) return true;
+  if (!(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return true;
+  if (tiny(best.value)) return g.tiny_start = true;
   if (nonzero(best.n) && std::isfinite(best.value)) best.offer(P, descent_step(P, best.n, best.last));
   std::array<std::array<double, 3>, 4> dA, dB;
   for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
@@ -553,6 +556,22 @@ int least_overlap_starts(FacetBounds& bounds, V3 (&out)[4], double tiny) {
   return k;
 }
 
+// The double offers' best, bounded (global_depth.h's bound_shallow): its certified upper bound,
+// its estimate and the positions along its normal. False where the bound is not finite.
+bool report_bound(const GlobalRun& g, GlobalOptimum& out) {
+  const Best& best = g.best;
+  const V3& v = best.n;
+  if (!nonzero(v) || !(best.win.n == v)) return false;
+  out.upper = value_upper(g.P, v);
+  if (!std::isfinite(out.upper)) return false;
+  out.value = best.value > 0 && best.value <= out.upper ? best.value : out.upper;
+  out.normal = v;
+  Placement place{g.A, g.B, v, dot(v, v), out};
+  place(best.win.sol, best.win.hA, best.win.hB, [](double x) { return x; });
+  out.bounded = true;
+  return true;
+}
+
 GlobalOptimum report(GlobalRun& g, double start_value) {
   GlobalOptimum out;
   out.normal = g.best.n;
@@ -576,11 +595,59 @@ double exact_relaxed_value(const TetVertices& A, const TetVertices& B, const std
   return detail::rounded_value(relaxed_exact(A, B, n, hA, hB, s), ok);
 }
 
+GlobalOptimum face_bound(const TetVertices& A, const TetVertices& B) {
+  GlobalOptimum out;
+  const Problem P = global::problem_of(A, B);
+  if (!(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return out;
+  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  double least = INFINITY;
+  V3 n{0, 0, 0};
+  for (const V3* T : {P.relA, P.relB})
+    for (const auto& f : kFace) {
+      V3 d = cross(sub(T[f[1]], T[f[0]]), sub(T[f[2]], T[f[0]]));
+      double maxA = -INFINITY, minA = INFINITY, maxB = -INFINITY, minB = INFINITY;
+      for (int i = 0; i < 4; ++i) {
+        const double a = dot(d, P.relA[i]), b = dot(d, P.relB[i]);
+        maxA = std::max(maxA, a), minA = std::min(minA, a), maxB = std::max(maxB, b), minB = std::min(minB, b);
+      }
+      double D = maxA - minB;  // the overlap along d; along -d: maxB - minA
+      if (maxB - minA < D) D = maxB - minA, d = mul(d, -1.0);
+      const double dd = dot(d, d);
+      if (!(dd > 0) || !std::isfinite(dd) || !std::isfinite(D)) continue;
+      // D_up = (|D~| (1 + u) + 2 e_h) (1 + 8u): the bound above and its own roundings (< 8u);
+      // its square over d.d (3u) and the square and quotient (2u) within the final (1 + 8u),
+      // which one more rounding (< u) leaves above
+      const double e_h = 5 * kU * (std::fabs(d[0]) + std::fabs(d[1]) + std::fabs(d[2])) * P.scale;
+      const double D_up = (std::fabs(D) * (1 + kU) + 2 * e_h) * (1 + 8 * kU);
+      const double upper = D_up * D_up / dd * (1 + 8 * kU);
+      if (upper < least) least = upper, n = d;
+    }
+  if (!(least < kCompactTiny * P.scale * P.scale)) return out;
+  DirectionSolution sol;
+  double hA[4], hB[4];
+  const double x = global::relaxed_at(P, n, &sol, nullptr, hA, hB);
+  out.upper = least;
+  out.value = x > 0 && x <= least ? x : least;
+  out.normal = n;
+  Placement place{A, B, n, dot(n, n), out};
+  place(sol, hA, hB, [](double v) { return v; });
+  out.bounded = true;
+  return out;
+}
+
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],
-                           double start_value, const ExactStart& exact_start, double rigid_pd2) {
+                           double start_value, const ExactStart& exact_start, double rigid_pd2,
+                           bool bound_shallow) {
   GlobalRun g(A, B);
   set_up(g, start_normal, rigid_pd2);
   g.exact_pieces = needs_exact_pieces(g, start_value);
+  // (not after the double enumeration: a pair found that shallow only there, a resting contact
+  // ~1e-9 of its size deep, has a bound about its value, which a sum rarely lets stand, and
+  // certifying it again from the start would cost the enumeration twice)
+  if (g.exact_pieces && g.tiny_start && bound_shallow) {
+    GlobalOptimum bounded;
+    if (report_bound(g, bounded)) return bounded;
+  }
   if (g.exact_pieces) {
     // Without the pieces where a certificate applies: the shallow one (a contact whose overlap
     // lies under a face of A - B), else the lone pairs' (a vertex on a vertex, an edge on a

@@ -73,6 +73,38 @@ bool lower_at_tie(const CandidateSet& set, int e, const Choice& rigid, const Cho
   return lower_along_chain(e, rigid, st, accel1, def, rel, value);
 }
 
+// g's positions and normal on the pair as given (m's value set): the positions scaled back by
+// 2^-e, the normal power-normalised. std::nullopt where a position leaves the double range.
+std::optional<GlobalMinimiser> placed_back(const GlobalOptimum& g, const detail::ScaledPair& sp, GlobalMinimiser& m) {
+  // x 2^-e: a product with a normal power of two is rounded once, as ldexp rounds (the same
+  // bits, subnormal results included), without a libm call per coordinate.
+  const double unit = std::ldexp(1.0, -sp.e);
+  const bool by_product = std::isnormal(unit);
+  auto back = [&](double x) { return by_product ? x * unit : std::ldexp(x, -sp.e); };
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      m.q1_A[i][k] = back(g.q1_A[i][k]);
+      m.q1_B[i][k] = back(g.q1_B[i][k]);
+      if (!std::isfinite(m.q1_A[i][k]) || !std::isfinite(m.q1_B[i][k])) return std::nullopt;
+    }
+  m.normal = g.normal;
+  detail::power_normalized(m.normal);
+  return m;
+}
+
+// A bounded optimum (global_depth.h: face_bound, or global_depth's bound_shallow): its estimate
+// and upper bound scaled back by the power of two, exactly where both are normal doubles (else
+// declined), and its positions.
+std::optional<GlobalMinimiser> bounded_back(const GlobalOptimum& g, const detail::ScaledPair& sp) {
+  bool in_range = true;
+  GlobalMinimiser m;
+  m.bounded = true;
+  m.pd2 = detail::unscaled(g.value, 2 * -sp.e, in_range);
+  m.upper = detail::unscaled(g.upper, 2 * -sp.e, in_range);
+  if (!in_range || !std::isnormal(m.pd2) || !std::isnormal(m.upper)) return std::nullopt;
+  return placed_back(g, sp, m);
+}
+
 // definitions §9 from the relaxed choice `rel` (a candidate `c` of the list or set `cands`,
 // certified, its label) and the certified rigid choice, on the rescaled pair: solve_pair's
 // fill_global, its scaling back and its relations (above). std::nullopt where solve_pair's
@@ -80,16 +112,17 @@ bool lower_at_tie(const CandidateSet& set, int e, const Choice& rigid, const Cho
 template <class Candidates>
 std::optional<GlobalMinimiser> minimiser_from(const TetVertices& A, const TetVertices& B, const detail::ScaledPair& sp,
                                               const Candidates& cands, const Choice& rigid, const Choice& rel,
-                                              const Candidate& c) {
+                                              const Candidate& c, const MinimiserOptions& o) {
   const double start[3] = {c.n[0], c.n[1], c.n[2]};
   const DirectionLabel label = rel.label();
   const TetVertices &As = sp.A, &Bs = sp.B;
   const ExactStart exact_start = [&]() -> std::array<double, 3> {
     return detail::rounded_normal(detail::exact_candidate(detail::exact_frame(As, Bs), label).n);
   };
-  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value);
-  if (!g.certified && !g.witness) return std::nullopt;
+  const GlobalOptimum g = global_depth(As, Bs, start, rel.value, exact_start, rigid.value, o.bound_shallow);
+  if (!g.certified && !g.witness && !g.bounded) return std::nullopt;
   if (!(g.normal[0] != 0 || g.normal[1] != 0 || g.normal[2] != 0)) return std::nullopt;
+  if (g.bounded) return bounded_back(g, sp);
   bool in_range = true;
   GlobalMinimiser m;
   m.witness = g.witness;
@@ -108,20 +141,7 @@ std::optional<GlobalMinimiser> minimiser_from(const TetVertices& A, const TetVer
   if (!in_range || !(m.pd2 == 0 || std::isnormal(m.pd2))) return std::nullopt;
   if (!(m.pd2 <= (1 - kClampMargin) * relaxed) && !lower_at_tie(cands, sp.e, rigid, rel, m.pd2))
     return std::nullopt;
-  // x 2^-e: a product with a normal power of two is rounded once, as ldexp rounds (the same
-  // bits, subnormal results included), without a libm call per coordinate.
-  const double unit = std::ldexp(1.0, -sp.e);
-  const bool by_product = std::isnormal(unit);
-  auto back = [&](double x) { return by_product ? x * unit : std::ldexp(x, -sp.e); };
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      m.q1_A[i][k] = back(g.q1_A[i][k]);
-      m.q1_B[i][k] = back(g.q1_B[i][k]);
-      if (!std::isfinite(m.q1_A[i][k]) || !std::isfinite(m.q1_B[i][k])) return std::nullopt;
-    }
-  m.normal = g.normal;
-  detail::power_normalized(m.normal);
-  return m;
+  return placed_back(g, sp, m);
 }
 
 // Pairs whose quick lanes decline (parallel edges, coplanar faces: the aligned pairs of
@@ -136,18 +156,23 @@ std::optional<GlobalMinimiser> minimiser_from(const TetVertices& A, const TetVer
 // the lanes): solve_pair ~250 us a pair there (its exact path for the rest of the record on
 // about one pair in six), this route ~25 us.
 std::optional<GlobalMinimiser> minimiser_from_set(const TetVertices& A, const TetVertices& B,
-                                                  const detail::ScaledPair& sp) {
+                                                  const detail::ScaledPair& sp, const MinimiserOptions& o) {
   // One set per thread (~20 KB: off TBB's worker stacks); build_candidates sets what is read.
+  if (o.bound_shallow) {
+    const GlobalOptimum g = face_bound(sp.A, sp.B);
+    if (g.bounded) return bounded_back(g, sp);
+  }
   static thread_local CandidateSet set;
   if (build_candidates(sp.A, sp.B, set) != BuildStatus::Ok || !set.intersecting) return std::nullopt;
   const Choice rigid = rigid_pd2(set);
   if (!rigid.certified) return std::nullopt;
   const Choice rel = pdd2_relaxed(set, rigid.index);
   if (!rel.certified || !(rel.value > 0) || rel.index < 0) return std::nullopt;
-  return minimiser_from(A, B, sp, set, rigid, rel, candidate(set, rel.index));
+  return minimiser_from(A, B, sp, set, rigid, rel, candidate(set, rel.index), o);
 }
 
-std::optional<GlobalMinimiser> minimiser_as_given(const TetVertices& A, const TetVertices& B) {
+std::optional<GlobalMinimiser> minimiser_as_given(const TetVertices& A, const TetVertices& B,
+                                                  const MinimiserOptions& o) {
   if (!detail::all_finite(A) || !detail::all_finite(B)) return std::nullopt;
   const detail::ScaledPair sp = detail::power_scaled(A, B);
   if (!sp.exact) return std::nullopt;
@@ -159,7 +184,7 @@ std::optional<GlobalMinimiser> minimiser_as_given(const TetVertices& A, const Te
   // global_minimiser does not recurse.
   static thread_local QuickCandidates list;
   QuickCandidates* q = &list;
-  if (!quick_lanes(sp.A, sp.B, *q)) return minimiser_from_set(A, B, sp);
+  if (!quick_lanes(sp.A, sp.B, *q)) return minimiser_from_set(A, B, sp, o);
   Choice rel;
   const bool rel_lanes = pdd2_relaxed_lanes(*q, rel);
   quick_edge_list(*q);  // (appends the edge candidates; the lanes and faces the sweeps read stay)
@@ -174,7 +199,7 @@ std::optional<GlobalMinimiser> minimiser_as_given(const TetVertices& A, const Te
   }
   if (!rel.certified || !(rel.value > 0)) return std::nullopt;
   if (index < 0) return std::nullopt;
-  return minimiser_from(A, B, sp, *q, rigid, rel, candidate(*q, index));
+  return minimiser_from(A, B, sp, *q, rigid, rel, candidate(*q, index), o);
 }
 
 }  // namespace
@@ -189,11 +214,12 @@ bool move_positions(GlobalMinimiser& g, const AnchoredPair& m, const TetVertices
   return true;
 }
 
-std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B) {
+std::optional<GlobalMinimiser> global_minimiser(const TetVertices& A, const TetVertices& B,
+                                                const MinimiserOptions& options) {
   const std::optional<AnchoredPair> m = anchored_pair(A, B);
-  if (!m) return minimiser_as_given(A, B);
-  std::optional<GlobalMinimiser> g = minimiser_as_given(m->A, m->B);
-  if (g && !move_positions(*g, *m, A, B)) return minimiser_as_given(A, B);
+  if (!m) return minimiser_as_given(A, B, options);
+  std::optional<GlobalMinimiser> g = minimiser_as_given(m->A, m->B, options);
+  if (g && !move_positions(*g, *m, A, B)) return minimiser_as_given(A, B, options);
   return g;
 }
 

@@ -87,6 +87,25 @@ inline double value_error(const Problem& P, const V3& v, double cost, double hm)
   return 2 * r + 8 * kU;
 }
 
+// A certified upper bound on the exact relaxed value along v whatever value_error's relative
+// bound (which is +inf at Phi~ = 0 and loses its meaning above 1/100): from value_error's
+// chain, Phi <= Phi~ (1 + 4u) + 2 e_h + sqrt(2) dT, and the value Phi^2 / v.v with v.v computed
+// to 3u. Phi_up below is that sum inflated by (1 + 16u) (its four roundings, and those of e_h
+// and dT's products, each <= u); its square over the computed v.v, times (1 + 3u) for v.v and
+// 2u for the square and the quotient, is covered by the final (1 + 8u) rounded up by one more
+// rounding of the product (< u). For a depth far below the pair's size (Phi~ ~ the depth, e_h
+// and dT ~ u times the size) the bound is ~(2^12 u size)^2: a depth bound, not the value.
+inline double value_upper(const Problem& P, const V3& v) {
+  DirectionSolution s;
+  double hm = 0;
+  relaxed_at(P, v, &s, &hm);
+  const double vn1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  const double phi = std::sqrt(std::max(s.cost, 0.0) / 20.0);
+  const double phi_up =
+      (phi * (1 + 4 * kU) + 2 * 5 * kU * vn1 * P.scale + std::sqrt(2.0) * 0x1p12 * kU * hm) * (1 + 16 * kU);
+  return phi_up * phi_up / dot(v, v) * (1 + 8 * kU);
+}
+
 // The relaxed value along v (a double normal, A -> B) with a certified relative error bound,
 // on heights relative to A's highest vertex along v (near the plane), so that value_bounds.h's
 // tight case applies: when every vertex's KKT margin at the computed solution exceeds 2 dT,
