@@ -285,6 +285,10 @@ struct PairSolution {
   double value = 0;
   TetVertices qA{}, qB{};
   Vec3d normal{};
+  // fast::global_minimiser's `bounded` (a contact made by rounding, not certified): value is
+  // its estimate, `upper` a certified upper bound on its pdd2_global (settle_bounded below)
+  bool bounded = false;
+  double upper = 0;
 };
 
 template <class R>
@@ -364,11 +368,14 @@ Mesh at_positions(const Mesh& m, const std::vector<Vec3d>& p) {
 
 // One pair's global minimiser by the fast engine: fast::global_minimiser (solve_pair's
 // definitions §9 fields alone, bit for bit), else the whole solve_pair where that declines, else
-// (pdd2_global declined: no certified normal in doubles) the exact engine's witness.
+// (pdd2_global declined: no certified normal in doubles) the exact engine's witness. With
+// `bound` (MinimiserOptions::bound_shallow), a contact made by rounding is returned bounded.
 // Through `memo` (translation_memo.h: pairs equal up to translation computed once, the same bits).
 PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, const TetVertices& Tb,
-                           detail::TranslationMemo<std::optional<fast::GlobalMinimiser>>& memo) {
-  const auto minimiser = [](const TetVertices& x, const TetVertices& y) { return fast::global_minimiser(x, y); };
+                           detail::TranslationMemo<std::optional<fast::GlobalMinimiser>>& memo, bool bound) {
+  fast::MinimiserOptions mo;
+  mo.bound_shallow = bound;
+  const auto minimiser = [&mo](const TetVertices& x, const TetVertices& y) { return fast::global_minimiser(x, y, mo); };
   const auto move = [](std::optional<fast::GlobalMinimiser>& g, const fast::AnchoredPair& m, const TetVertices& x,
                        const TetVertices& y) { return !g || fast::move_positions(*g, m, x, y); };
   if (const auto m = memo.get(Ta, Tb, minimiser, move)) {
@@ -379,6 +386,8 @@ PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, 
     s.qA = m->q1_A;
     s.qB = m->q1_B;
     s.normal = m->normal;
+    s.bounded = m->bounded;
+    s.upper = m->upper;
     return s;
   }
   fast::SolveOptions fo;
@@ -391,7 +400,8 @@ PairSolution fast_solution(std::size_t a, std::size_t b, const TetVertices& Ta, 
 }
 
 // The intersecting pairs at the current positions (definitions §10's decision, no variant),
-// each with its global minimiser; `seconds_found`: the time to find them.
+// each with its global minimiser (contacts made by rounding bounded unless options.per_pair asks
+// for every pair's value: settle_bounded); `seconds_found`: the time to find them.
 std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactEnergyOptions& o,
                                     std::vector<SkippedElement>& skipped, double& seconds_found) {
   const auto t0 = Clock::now();
@@ -419,7 +429,7 @@ std::vector<PairSolution> solutions(const Mesh& A, const Mesh* B, const ContactE
                       if (cancelled()) return;
                       for (std::size_t j = range.begin(); j != range.end(); ++j) {
                         const auto& k = c.pairs[j];
-                        out[j] = fast_solution(k.a, k.b, element(A, k.a), element(Bm, k.b), memo);
+                        out[j] = fast_solution(k.a, k.b, element(A, k.a), element(Bm, k.b), memo, !o.per_pair);
                       }
                     });
   if (cancelled()) throw Cancelled();
@@ -576,6 +586,57 @@ Eigen::SparseMatrix<double> hessian(const ShareArray& shares, const Incidence& i
   return H;
 }
 
+// The bounded pairs' share of E (fast engine: a contact made by rounding, ~1e-17 of its elements
+// deep, whose certificate takes the shallow certificate or the exact pieces: tens of
+// microseconds to milliseconds a pair, where its term is ~1e-30 of a real overlap's). Each
+// bounded pair's term w * value lies in (0, w * upper] (its exact pdd2_global is > 0: the pair
+// intersects). Kept bounded: the pairs of least w * upper while their bounds sum to at most
+// kBoundedShare of the certified terms' sum (so E is within kBoundedShare of the sum of exact
+// terms beyond what the certified terms' own definitions §8 error allows), and none whose upper
+// bound reaches the largest certified pdd2_global (max_pdd2_global stays a certified value).
+// Every other bounded pair is computed in full (fast_solution without `bound`: certified or a
+// witness, as without bounds). Where no pair is certified (blocks resting on each other by
+// rounding alone: E is made of such terms) every pair is computed in full.
+constexpr double kBoundedShare = 1e-12;
+
+// Returns the pairs kept bounded.
+std::size_t settle_bounded(std::vector<PairSolution>& sol, const std::vector<double>& weight, const Mesh& A,
+                           const Mesh& Bm, const ContactEnergyOptions& o) {
+  double certified = 0, largest = 0;
+  std::vector<std::size_t> bounded;
+  for (std::size_t j = 0; j < sol.size(); ++j) {
+    if (sol[j].bounded) {
+      bounded.push_back(j);
+    } else {
+      certified += weight[j] * sol[j].value;
+      largest = std::max(largest, sol[j].value);
+    }
+  }
+  if (bounded.empty()) return 0;
+  // least w * upper first; the longest such prefix whose sum stays within the share is kept
+  std::stable_sort(bounded.begin(), bounded.end(), [&](std::size_t x, std::size_t y) {
+    return weight[x] * sol[x].upper < weight[y] * sol[y].upper;
+  });
+  const double share = kBoundedShare * certified * (1 - 1e-6);  // (the sums' rounding: < 1e-6 of them)
+  double kept = 0;
+  std::vector<std::size_t> full;
+  for (std::size_t j : bounded) {
+    const double term = weight[j] * sol[j].upper;
+    if (kept + term <= share && sol[j].upper < largest) kept += term;
+    else full.push_back(j);
+  }
+  detail::TranslationMemo<std::optional<fast::GlobalMinimiser>> memo;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, full.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
+    if (o.cancel && o.cancel->load(std::memory_order_relaxed)) return;
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      PairSolution& s = sol[full[i]];
+      s = fast_solution(s.a, s.b, element(A, s.a), element(Bm, s.b), memo, false);
+    }
+  });
+  if (o.cancel && o.cancel->load()) throw Cancelled();
+  return bounded.size() - full.size();
+}
+
 // p's gradient rows first..first + 3 (one element's) += value / 3 times d (its dV/dx / V).
 void add_weight_derivative(PairShare& p, int first, const std::array<Vec3d, 4>& d, double value) {
   for (int i = 0; i < 4; ++i)
@@ -638,6 +699,12 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
     ++kept;
   }
   sol.resize(kept);
+  volume.resize(kept);
+  {
+    std::vector<double> weight(kept);
+    for (std::size_t j = 0; j < kept; ++j) weight[j] = o.weight == EnergyWeight::Unit ? 1.0 : volume[j][0] * volume[j][1];
+    e.bounded_pairs = settle_bounded(sol, weight, Ap, Bpm, o);
+  }
 
   const auto vertices = [&](std::size_t j) {
     std::array<std::size_t, 8> v;

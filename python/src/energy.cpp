@@ -126,6 +126,7 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
   d["hessian"] = hessian ? hessian_csr(e->hessian) : py::object(py::none());
   d["pairs"] = e->pair_count;
   d["max_pdd2_global"] = e->max_pdd2_global;
+  d["bounded_pairs"] = e->bounded_pairs;
   if (per_pair) {
     const auto m = static_cast<py::ssize_t>(e->pairs.size());
     py::array_t<std::int64_t> a(m), b(m);
@@ -171,7 +172,8 @@ rest_A/B   (n, 3) rest positions, for the weights w_ab = (V_a V_b)^(1/3) (rest v
            whole gradient (the weights' derivative included; finite differences of E without
            rest_A/B agree with it), the hessian still the Gauss-Newton one at fixed weights.
 hessian    also the Gauss-Newton Hessian (positive semi-definite, symmetric).
-per_pair   also each pair's a, b, weight, pdd2_global and pair_energy.
+per_pair   also each pair's a, b, weight, pdd2_global and pair_energy (each certified: no pair
+           is then taken at a bound).
 engine     'fast' (certified doubles) or 'exact' (= 'reference', the exact engine; slow:
            small meshes).
 weight     'area' ((V_a V_b)^(1/3), resolution-independent) or 'unit' (w = 1).
@@ -179,8 +181,10 @@ threads    None or 0: all cores; k from 1 to 4096: at most k threads.
 
 Returns a dict: energy (float), gradient ((nA + nB, 3), A's vertices first), hessian
 (scipy.sparse.csr_matrix of size 3(nA + nB), row 3v + k for coordinate k of vertex v; None
-unless asked), pairs (int), max_pdd2_global (float), skipped (list of (mesh, index, reason)),
-seconds_contacts, seconds_assembly, and with per_pair: a, b, weight, pdd2_global, pair_energy.
+unless asked), pairs (int), max_pdd2_global (float), bounded_pairs (int: of the pairs, contacts
+made by rounding taken at a certified upper bound; 0 with per_pair), skipped (list of (mesh,
+index, reason)), seconds_contacts, seconds_assembly, and with per_pair: a, b, weight,
+pdd2_global, pair_energy.
 The GIL is released; Ctrl-C stops the call (KeyboardInterrupt). Raises ValueError on bad input
 (shapes, indices, options) and where a pair's term w_ab * pdd2_global falls below the double
 range (coordinates below ~1e-67: scale them up); OverflowError where E exceeds it (beyond ~1e77).

@@ -329,3 +329,36 @@ def test_cli_energy_exit_codes(tmp_path):
     assert e["skipped"] and all(s[0] == "B" for s in e["skipped"])
     check_cli_energy(r.stdout, e)
     assert all(("pdd mesh: skipped " + k["reason"]) in r.stderr for k in json.loads(r.stdout)["skipped"])
+
+
+def test_contacts_made_by_rounding_taken_at_a_bound():
+    # A Kuhn grid of cell 0.1 (0.1 * i rounded once) against its copy moved by 0.01 along
+    # (1, 1, 1): faces x = y meet by rounding (~1e-34 of a cell squared) beside deep pairs. By
+    # default those pairs are taken at a certified bound (docs/definitions.md "Contact energy",
+    # Accuracy): E within 1e-12 of the per_pair call's (every pair certified; the certified
+    # terms are the same bits, the bounded ones' bounds sum to <= 1e-12 of E), the same pairs and
+    # max_pdd2_global, gradients within 1e-12 of the largest entry.
+    corners = [(0, 1, 3, 7), (0, 1, 5, 7), (0, 2, 3, 7), (0, 2, 6, 7), (0, 4, 5, 7), (0, 4, 6, 7)]
+    n = 2
+    index = {}
+    V, T = [], []
+    for i in range(n):
+        for j in range(n):
+            for k in range(n):
+                c = []
+                for b in range(8):
+                    key = (i + (b & 1), j + (b >> 1 & 1), k + (b >> 2 & 1))
+                    if key not in index:
+                        index[key] = len(V)
+                        V.append([0.1 * x for x in key])
+                    c.append(index[key])
+                T += [[c[q] for q in t] for t in corners]
+    V, T = np.array(V), np.array(T)
+    e = pdd.contact_energy(V, T, V + 0.01, T)
+    f = pdd.contact_energy(V, T, V + 0.01, T, per_pair=True)
+    assert e["pairs"] == f["pairs"] > 50
+    assert e["bounded_pairs"] > 0 and f["bounded_pairs"] == 0
+    assert abs(e["energy"] - f["energy"]) <= 1e-12 * f["energy"] + 2e-16 * f["pairs"] * f["energy"]
+    assert e["max_pdd2_global"] == f["max_pdd2_global"]
+    assert np.abs(e["gradient"] - f["gradient"]).max() <= 1e-12 * np.abs(f["gradient"]).max()
+    assert (f["pdd2_global"] < 1e-30).sum() >= e["bounded_pairs"]

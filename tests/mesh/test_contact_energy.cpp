@@ -16,6 +16,7 @@
 
 #include "pdd/global_minimiser.h"
 #include "pdd/mesh.h"
+#include "pdd/reference/relaxed_pieces.h"
 #include "kuhn_grid_mesh.h"
 
 using namespace pdd;
@@ -695,4 +696,89 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_stay_in_the_fast_engine) {
     }
   }
   BOOST_TEST(sampled >= 8);
+}
+
+namespace {
+// The exact relaxed value along the double normal n (definitions §9's G(n) / n.n): the piece of
+// relaxed_pieces.h whose KKT conditions hold at n.
+reference::Rational exact_relaxed_along(const TetVertices& A, const TetVertices& B, const Vec3d& n) {
+  using reference::Rational;
+  const reference::ExactPair p = reference::to_exact(TetPair{"", {}, A, B});
+  const reference::Vector v{Rational(n[0]), Rational(n[1]), Rational(n[2])};
+  for (unsigned a = 1; a < 16; ++a)
+    for (unsigned b = 1; b < 16; ++b) {
+      const reference::RelaxedPiece piece = reference::relaxed_piece(p, {a, b});
+      if (reference::piece_is_optimal_at(piece, v)) return reference::piece_quadratic(piece, v) / v.squared_length();
+    }
+  return Rational(0);  // no piece optimal: n separates the pair (every KKT set needs an overlap)
+}
+}  // namespace
+
+// Contacts made by rounding taken at a bound (contact_energy.h, "Engine"): a Kuhn grid of cell
+// 0.1 against its copy moved by 0.01 along (1, 1, 1), faces x = y coinciding up to rounding
+// beside deep pairs. By default those pairs are bounded: E within 1e-12 of the energy with every
+// pair certified (per_pair) beyond the summation's rounding (the certified terms are the same
+// bits; each bounded term lies in (0, w upper], the bounds summing to <= 1e-12 of E), the same
+// max_pdd2_global, and gradients within 1e-12 of the largest entry (a bounded pair's gradient is
+// ~1e-17 of the element: below the deep pairs' by ~1e-14). Each bounded pair's upper bound lies
+// at or above the exact relaxed value along its own normal (so above pdd2_global, the minimum
+// over normals) and at or above the certified value; its estimate in (0, upper]. A pair that
+// is not bounded is global_minimiser's bit for bit with or without the option.
+BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_are_bounded_within_the_share) {
+  const Mesh A = test::kuhn_grid(2, 0.1, {0, 0, 0}), B = test::kuhn_grid(2, 0.1, {0.01, 0.01, 0.01});
+  ContactEnergyOptions o;
+  o.hessian = true;
+  const ContactEnergy bounded = contact_energy(A, B, A.vertices, B.vertices, o);
+  o.per_pair = true;
+  const ContactEnergy full = contact_energy(A, B, A.vertices, B.vertices, o);
+  BOOST_REQUIRE_GT(full.pair_count, 50u);
+  BOOST_TEST(bounded.pair_count == full.pair_count);
+  BOOST_TEST(bounded.bounded_pairs > 0u);
+  BOOST_TEST(full.bounded_pairs == 0u);
+  BOOST_TEST(std::abs(bounded.energy - full.energy) <= 1e-12 * full.energy + 2e-16 * full.pair_count * full.energy);
+  BOOST_TEST(bounded.max_pdd2_global == full.max_pdd2_global);
+  const double g = max_abs(full.gradient);
+  for (std::size_t v = 0; v < full.gradient.size(); ++v)
+    for (int k = 0; k < 3; ++k) BOOST_TEST(std::abs(bounded.gradient[v][k] - full.gradient[v][k]) <= 1e-12 * g);
+  fast::MinimiserOptions mo;
+  mo.bound_shallow = true;
+  int checked = 0, same = 0, shallow = 0;
+  for (const EnergyPair& p : full.pairs) {
+    const TetVertices Ta = element(A, p.a), Tb = element(B, p.b);
+    const auto b = fast::global_minimiser(Ta, Tb, mo);
+    BOOST_REQUIRE(b);
+    if (!b->bounded) {
+      const auto c = fast::global_minimiser(Ta, Tb);
+      BOOST_REQUIRE(c);
+      BOOST_TEST(b->pd2 == c->pd2);
+      BOOST_TEST(b->normal == c->normal);
+      BOOST_TEST((b->q1_A == c->q1_A && b->q1_B == c->q1_B));
+      ++same;
+      continue;
+    }
+    BOOST_TEST(p.pdd2_global < 1e-30);  // only contacts made by rounding are bounded
+    BOOST_TEST(b->pd2 > 0);
+    BOOST_TEST(b->pd2 <= b->upper);
+    BOOST_TEST(b->upper >= p.pdd2_global * (1 - 1e-9));
+    if (shallow++ % 4 != 0) continue;
+    BOOST_TEST(reference::Rational(b->upper) >= exact_relaxed_along(Ta, Tb, b->normal));
+    ++checked;
+  }
+  BOOST_TEST(checked >= 8);
+  BOOST_TEST(same >= 8);
+}
+
+// Where no pair is certified (blocks stacked face to face, every pair across the faces a contact
+// made by rounding), no share is left for bounds: every pair is certified, and E is the
+// per_pair call's bit for bit.
+BOOST_AUTO_TEST_CASE(rounding_alone_is_certified) {
+  const Mesh A = test::kuhn_grid(3, 0.1, {0, 0, 0}), B = test::kuhn_grid(3, 0.1, {0, 0, 0.3});
+  ContactEnergyOptions o;
+  const ContactEnergy e = contact_energy(A, B, A.vertices, B.vertices, o);
+  o.per_pair = true;
+  const ContactEnergy full = contact_energy(A, B, A.vertices, B.vertices, o);
+  BOOST_REQUIRE_GT(e.pair_count, 20u);
+  BOOST_TEST(e.bounded_pairs == 0u);
+  BOOST_TEST(e.energy == full.energy);
+  BOOST_TEST(e.max_pdd2_global == full.max_pdd2_global);
 }
