@@ -7,6 +7,8 @@ diagonal; mirror: Kuhn cubes mirrored in alternate cells, conforming; five: five
 alternating; bc24: 24 around the cube's centre and its faces' centres), against the same block
 shifted by a few fractions of a cell h, with pdd.mesh_contacts on one thread (its default
 variants, or --variants as pdd.mesh_contacts takes them, e.g. global).
+With --energy, pdd.contact_energy with its Hessian instead (one thread; the pairs taken at a
+certified bound, docs/definitions.md "Contact energy", counted in the column "bounded").
 Beside each, the same call with the shifted copy turned 0.3 rad about (1, 2, 3) through its
 centroid (no face or edge parallel). Per case: intersecting pairs and the time per
 intersecting pair (the best of --repeats calls) of both, their ratio, and the ratio of the
@@ -17,7 +19,7 @@ the coordinates as a user would type them, 0.1 * i rounded once, then + s rounde
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/aligned-survey.py [--kinds kuhn,five]
         [--cells 0.1,1/6,0.125] [--shifts off,half-xy,q111,diag] [--n 6] [--repeats 3]
-        [--variants global]
+        [--variants global | --energy]
 """
 import argparse
 import sys
@@ -87,14 +89,19 @@ def turned(V, angle=0.3, axis=(1, 2, 3)):
     return (V - c) @ R.T + c
 
 
-def best_call(repeats, variants, *args):
-    best, pairs = float("inf"), 0
+def best_call(repeats, variants, energy, *args):
+    """The best time of `repeats` calls, the intersecting pairs and the pairs taken at a bound."""
+    best, pairs, bounded = float("inf"), 0, 0
     for _ in range(repeats):
         t = time.perf_counter()
-        options = {"variants": variants} if variants else {}
-        c = pdd.mesh_contacts(*args, threads=1, **options)
-        best, pairs = min(best, time.perf_counter() - t), len(c["a"])
-    return best, pairs
+        if energy:
+            c = pdd.contact_energy(*args, hessian=True, threads=1)
+            best, pairs, bounded = min(best, time.perf_counter() - t), c["pairs"], c["bounded_pairs"]
+        else:
+            options = {"variants": variants} if variants else {}
+            c = pdd.mesh_contacts(*args, threads=1, **options)
+            best, pairs = min(best, time.perf_counter() - t), len(c["a"])
+    return best, pairs, bounded
 
 
 def check_arguments(p, a):
@@ -113,6 +120,8 @@ def check_arguments(p, a):
     for name in a.shifts.split(","):
         if name not in SHIFTS:
             p.error(f"--shifts: unknown shift {name!r} ({', '.join(SHIFTS)})")
+    if a.energy and a.variants is not None:
+        p.error("--energy: not with --variants (the energy takes pdd2_global alone)")
     if a.n < 1 or a.repeats < 1:
         p.error("--n and --repeats: at least 1")
     if a.variants is not None:
@@ -132,10 +141,11 @@ def main():
     p.add_argument("--n", type=int, default=6, help="cubes a side (bc24: two thirds of it)")
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--variants", help="as pdd.mesh_contacts takes them (default: its own)")
+    p.add_argument("--energy", action="store_true", help="time pdd.contact_energy (with its Hessian)")
     a = p.parse_args()
     check_arguments(p, a)
     print(f"{'grid':8s} {'cell':>6s} {'shift':8s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} "
-          f"{'us/pair':>8s} {'ratio':>6s} {'whole':>6s}")
+          f"{'us/pair':>8s} {'ratio':>6s} {'whole':>6s}" + (f" {'bounded':>7s}" if a.energy else ""))
     for kind in a.kinds.split(","):
         n = max(2, 2 * a.n // 3) if kind == "bc24" else a.n
         for cell in a.cells.split(","):
@@ -143,13 +153,13 @@ def main():
             VA, T = grid(kind, n, h)
             for name in a.shifts.split(","):
                 VB = VA + np.array(SHIFTS[name](n)) * h
-                ta, na = best_call(a.repeats, a.variants, VA, T, VB, T)
-                tb, nb = best_call(a.repeats, a.variants, VA, T, turned(VB), T)
+                ta, na, ba = best_call(a.repeats, a.variants, a.energy, VA, T, VB, T)
+                tb, nb, _ = best_call(a.repeats, a.variants, a.energy, VA, T, turned(VB), T)
                 if na == 0 or nb == 0:
                     print(f"{kind:8s} {cell:>6s} {name:8s} no intersecting pairs")
                     continue
                 print(f"{kind:8s} {cell:>6s} {name:8s} {na:7d} {ta / na * 1e6:8.2f} {nb:7d} {tb / nb * 1e6:8.2f} "
-                      f"{ta / na / (tb / nb):5.2f}x {ta / tb:5.2f}x", flush=True)
+                      f"{ta / na / (tb / nb):5.2f}x {ta / tb:5.2f}x" + (f" {ba:7d}" if a.energy else ""), flush=True)
 
 
 if __name__ == "__main__":
