@@ -83,6 +83,7 @@ def test_survey_prints_a_row_per_case():
     (["--cells", "0.1,-1/6"], "--cells: '-1/6' is not a positive number or fraction"),
     (["--shifts", "off,up"], "--shifts: unknown shift 'up'"),
     (["--repeats", "0"], "--n and --repeats: at least 1"),
+    (["--energy", "--variants", "rigid"], "--energy: not with --variants"),
 ])
 def test_survey_names_a_bad_argument_before_any_work(argument, message):
     r = subprocess.run([sys.executable, str(SCRIPT), *argument], capture_output=True, text=True, timeout=120)
@@ -101,9 +102,23 @@ def test_survey_passes_its_variants_to_the_call(survey, monkeypatch):
         return {"a": [0]}
 
     monkeypatch.setattr(survey.pdd, "mesh_contacts", recorder)
-    survey.best_call(1, "global", None, None, None, None)
-    survey.best_call(1, None, None, None, None, None)
+    survey.best_call(1, "global", False, None, None, None, None)
+    survey.best_call(1, None, False, None, None, None, None)
     assert seen == [{"threads": 1, "variants": "global"}, {"threads": 1}]
+
+
+def test_survey_times_the_energy():
+    # --energy: pdd.contact_energy in place of pdd.mesh_contacts, a column of the pairs taken at
+    # a bound; the Kuhn grid of cell 0.1 a quarter cell along (1, 1, 1) has contacts made by
+    # rounding (faces x = y meeting by rounding), its stacked copy on the cell 1/8 none
+    r = subprocess.run([sys.executable, str(SCRIPT), "--energy", "--kinds", "kuhn", "--cells", "0.1,0.125",
+                        "--shifts", "q111", "--n", "2", "--repeats", "1"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    header, *rows = r.stdout.strip().splitlines()
+    assert header.split()[-1] == "bounded" and len(rows) == 2
+    bounded = {row.split()[1]: int(row.split()[-1]) for row in rows}
+    assert bounded["0.1"] > 0 and bounded["0.125"] == 0, r.stdout
 
 
 # Blocks of 3^3 cubes of each cut, B on A's top a third of a cell deep and moved across as a user
