@@ -35,12 +35,13 @@
 // value may still be certified along an exact rational normal; global_minimiser then returns
 // it with `witness` set, its normal and positions that witness's rounded (as the exact
 // engine's witness is rounded to doubles), instead of declining.
-// Bounds (options.bound_shallow): such a pair, and any whose depth is as far below its size,
-// returned `bounded` instead (an estimate and a certified upper bound, not a certified value)
-// in about a microsecond, where the quick lanes decline and one of the eight face normals'
-// overlaps D(d) puts the bound D(d)^2 / d.d below 1e-18 of the pair's scale squared (a uniform
-// move of B by the overlap along d separates at object-norm cost D(d)^2), else where the
-// search's start is that shallow (its value's bound from value_error's chain).
+// Bounds (options.bound_shallow): such a pair, and any valid intersecting pair whose depth is as
+// far below its size, returned `bounded` instead (an estimate and a certified upper bound, not a
+// certified value) in a few microseconds: where the quick lanes decline and one of the eight
+// face normals' overlaps D(d) puts the bound D(d)^2 / d.d below 1e-20 of the pair's scale
+// squared (a uniform move of B by the overlap along d separates at object-norm cost D(d)^2),
+// else where the search's start is that shallow (its value's bound from value_error's chain).
+// Where a bound's value or positions leave the double range, the pair is computed as without it.
 #pragma once
 
 #include <array>
@@ -62,15 +63,16 @@ struct GlobalMinimiser {
   // attain pd2 ("Witnesses" above). false on every pair solve_pair computes pdd2_global of.
   bool witness = false;
   // pd2 NOT certified (MinimiserOptions::bound_shallow): `upper` is a certified upper bound on
-  // pdd2_global, pd2 the doubles' estimate (0 < pd2 <= upper), `normal` the best double normal
-  // found and the positions along it (accurate in absolute terms, to rounding of the pair's
-  // size). false on every other result.
+  // pdd2_global (below 1e-20 of the pair's scale squared), pd2 the doubles' estimate (0 < pd2
+  // <= upper), `normal` the face normal of least bound or the search's start, and the positions
+  // along it (displacements of object norm below sqrt(upper), as the minimiser's: within ~1e-9
+  // of the pair's size of them). false on every other result.
   bool bounded = false;
   double upper = 0;
 };
 
 struct MinimiserOptions {
-  // A depth so far below the pair's size (~1e-9 of it or less: a contact made by rounding,
+  // A depth so far below the pair's size (~1e-10 of it or less: a contact made by rounding,
   // faces meant to coincide) that certifying pd2 would take the shallow certificate or the
   // exact pieces (tens of microseconds to milliseconds): return `bounded` instead, in about the
   // time of a certified pair. For a caller summing many pairs that can bound such pairs' share

@@ -110,7 +110,7 @@ def test_survey_passes_its_variants_to_the_call(survey, monkeypatch):
 def test_survey_times_the_energy():
     # --energy: pdd.contact_energy in place of pdd.mesh_contacts, a column of the pairs taken at
     # a bound; the Kuhn grid of cell 0.1 a quarter cell along (1, 1, 1) has contacts made by
-    # rounding (faces x = y meeting by rounding), its stacked copy on the cell 1/8 none
+    # rounding (faces x = y meeting by rounding), the same on the dyadic cell 1/8 none
     r = subprocess.run([sys.executable, str(SCRIPT), "--energy", "--kinds", "kuhn", "--cells", "0.1,0.125",
                         "--shifts", "q111", "--n", "2", "--repeats", "1"],
                        capture_output=True, text=True, timeout=600)

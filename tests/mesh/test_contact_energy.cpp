@@ -712,6 +712,23 @@ reference::Rational exact_relaxed_along(const TetVertices& A, const TetVertices&
     }
   return Rational(0);  // no piece optimal: n separates the pair (every KKT set needs an overlap)
 }
+
+// fast::global_minimiser with bound_shallow on one pair: bounded, 0 < pd2 <= upper, and upper at
+// or above the exact relaxed value along the returned normal, which must be positive (a normal
+// along which the pair still overlaps: an upper bound on pdd2_global that a bound of 0 could
+// not pass); the exact value along it returned.
+reference::Rational check_bound(const TetVertices& A, const TetVertices& B) {
+  fast::MinimiserOptions mo;
+  mo.bound_shallow = true;
+  const auto b = fast::global_minimiser(A, B, mo);
+  BOOST_REQUIRE(b);
+  BOOST_REQUIRE(b->bounded);
+  BOOST_TEST(b->pd2 > 0);
+  BOOST_TEST(b->pd2 <= b->upper);
+  const reference::Rational exact = exact_relaxed_along(A, B, b->normal);
+  BOOST_TEST(reference::Rational(b->upper) >= exact);
+  return exact;
+}
 }  // namespace
 
 // Contacts made by rounding taken at a bound (contact_energy.h, "Engine"): a Kuhn grid of cell
@@ -742,7 +759,7 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_are_bounded_within_the_share) {
     for (int k = 0; k < 3; ++k) BOOST_TEST(std::abs(bounded.gradient[v][k] - full.gradient[v][k]) <= 1e-12 * g);
   fast::MinimiserOptions mo;
   mo.bound_shallow = true;
-  int checked = 0, same = 0, shallow = 0;
+  int checked = 0, same = 0, shallow = 0, positive = 0;
   for (const EnergyPair& p : full.pairs) {
     const TetVertices Ta = element(A, p.a), Tb = element(B, p.b);
     const auto b = fast::global_minimiser(Ta, Tb, mo);
@@ -757,15 +774,59 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_are_bounded_within_the_share) {
       continue;
     }
     BOOST_TEST(p.pdd2_global < 1e-30);  // only contacts made by rounding are bounded
-    BOOST_TEST(b->pd2 > 0);
-    BOOST_TEST(b->pd2 <= b->upper);
     BOOST_TEST(b->upper >= p.pdd2_global * (1 - 1e-9));
     if (shallow++ % 4 != 0) continue;
-    BOOST_TEST(reference::Rational(b->upper) >= exact_relaxed_along(Ta, Tb, b->normal));
+    positive += check_bound(Ta, Tb) > 0;
     ++checked;
   }
   BOOST_TEST(checked >= 8);
+  BOOST_TEST(positive * 2 >= checked);  // (most: a face normal across the crossing faces)
   BOOST_TEST(same >= 8);
+}
+
+// The other route to a bound: pairs whose quick lanes hold, so that the search starts and finds
+// its start already below the exact pieces' depth (global_depth's bound_shallow, value_upper's
+// bound ~1e-26 where the face normals' is ~1e-31). Two pairs of a grid of Kuhn cubes mirrored in
+// alternate cells, cell 0.1 (0.1 k rounded once), against its copy moved (0.05, 0.05, 0) (half a
+// cell in x and y): faces on the diagonal planes meeting by rounding. Bounds checked as above.
+BOOST_AUTO_TEST_CASE(bounds_from_the_search_start) {
+  const TetVertices A1{{{0x0p+0, 0x1.999999999999ap-3, 0x0p+0}, {0x1.999999999999ap-4, 0x1.999999999999ap-3, 0x0p+0},
+                        {0x1.999999999999ap-4, 0x1.999999999999ap-3, 0x1.999999999999ap-4},
+                        {0x1.999999999999ap-4, 0x1.999999999999ap-4, 0x1.999999999999ap-4}}};
+  const TetVertices B1{{{0x1.999999999999ap-5, 0x1.999999999999ap-5, 0x0p+0}, {0x1.3333333333334p-3, 0x1.3333333333334p-3, 0x0p+0},
+                        {0x1.999999999999ap-5, 0x1.3333333333334p-3, 0x0p+0},
+                        {0x1.3333333333334p-3, 0x1.3333333333334p-3, 0x1.999999999999ap-4}}};
+  const TetVertices A3{{{0x0p+0, 0x1.999999999999ap-3, 0x1.999999999999ap-3}, {0x1.999999999999ap-4, 0x1.999999999999ap-3, 0x1.999999999999ap-3},
+                        {0x1.999999999999ap-4, 0x1.999999999999ap-3, 0x1.3333333333334p-2},
+                        {0x1.999999999999ap-4, 0x1.999999999999ap-4, 0x1.3333333333334p-2}}};
+  const TetVertices B3{{{0x1.999999999999ap-5, 0x1.999999999999ap-5, 0x1.999999999999ap-3}, {0x1.3333333333334p-3, 0x1.3333333333334p-3, 0x1.999999999999ap-3},
+                        {0x1.999999999999ap-5, 0x1.3333333333334p-3, 0x1.999999999999ap-3},
+                        {0x1.3333333333334p-3, 0x1.3333333333334p-3, 0x1.3333333333334p-2}}};
+  int positive = 0;
+  for (const auto& [A, B] : {std::pair{A1, B1}, std::pair{A3, B3}}) positive += check_bound(A, B) > 0;
+  BOOST_TEST(positive >= 1);
+}
+
+// Self-contact takes the same bounds: one mesh holding the grid and its moved copy as two bodies
+// gives the two-mesh energy (the same pairs, the same bounded ones, E and max_pdd2_global).
+BOOST_AUTO_TEST_CASE(self_contact_bounds_as_two_meshes) {
+  const Mesh A = test::kuhn_grid(2, 0.1, {0, 0, 0}), B = test::kuhn_grid(2, 0.1, {0.01, 0.01, 0.01});
+  Mesh both = A;
+  const std::size_t na = A.vertices.size();
+  both.vertices.insert(both.vertices.end(), B.vertices.begin(), B.vertices.end());
+  for (auto t : B.tets) {
+    for (auto& v : t) v += na;
+    both.tets.push_back(t);
+  }
+  both.source_ids.clear();
+  both.vertex_sources.clear();
+  const ContactEnergy two = contact_energy(A, B, A.vertices, B.vertices);
+  const ContactEnergy self = contact_energy_self(both, both.vertices);
+  BOOST_REQUIRE_GT(two.bounded_pairs, 0u);
+  BOOST_TEST(self.pair_count == two.pair_count);
+  BOOST_TEST(self.bounded_pairs == two.bounded_pairs);
+  BOOST_TEST(self.energy == two.energy, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(self.max_pdd2_global == two.max_pdd2_global);
 }
 
 // Where no pair is certified (blocks stacked face to face, every pair across the faces a contact
@@ -781,4 +842,19 @@ BOOST_AUTO_TEST_CASE(rounding_alone_is_certified) {
   BOOST_TEST(e.bounded_pairs == 0u);
   BOOST_TEST(e.energy == full.energy);
   BOOST_TEST(e.max_pdd2_global == full.max_pdd2_global);
+}
+
+// bound_shallow bounds valid intersecting pairs only: a pair touching face to face exactly (no
+// interior point in common, overlap 0 along the face normal) and a separated one are declined
+// with the option as without it.
+BOOST_AUTO_TEST_CASE(bounds_only_for_intersecting_pairs) {
+  const TetVertices A{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  const TetVertices touching{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}}};
+  const TetVertices apart{{{0, 0, -0.5}, {1, 0, -0.5}, {0, 1, -0.5}, {0, 0, -1}}};
+  fast::MinimiserOptions mo;
+  mo.bound_shallow = true;
+  for (const TetVertices& B : {touching, apart}) {
+    BOOST_TEST(!fast::global_minimiser(A, B));
+    BOOST_TEST(!fast::global_minimiser(A, B, mo));
+  }
 }

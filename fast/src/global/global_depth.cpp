@@ -7,6 +7,7 @@
 #include "global/global_depth.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <climits>
 #include <cmath>
 #include <vector>
@@ -97,6 +98,12 @@ V3 descent_step(const Problem& P, const V3& v, const DirectionSolution& s) {
 }
 
 constexpr double kCompactTiny = 1e-18;  // global_depth(): the compact pairs' exact-pieces depth
+// Bounds (bound_shallow, face_bound) are returned only below kBoundedDepth scale^2 (a depth below
+// ~1e-10 of the pair's size; a contact made by rounding's are ~1e-30): the positions returned
+// move the vertices by an object norm below sqrt(upper), as the minimiser's do, so a gradient
+// taken from them (-(d_i + sum d) / 10 per vertex, |d_i| <= sqrt(20 sigma)) is within ~5e-10 of
+// the pair's scale of the minimiser's, in absolute terms.
+constexpr double kBoundedDepth = 1e-20;
 
 // One global_depth() call: the pair, the evaluations' problem, the offers and the bounds.
 struct GlobalRun {
@@ -563,7 +570,7 @@ bool report_bound(const GlobalRun& g, GlobalOptimum& out) {
   const V3& v = best.n;
   if (!nonzero(v) || !(best.win.n == v)) return false;
   out.upper = value_upper(g.P, v);
-  if (!std::isfinite(out.upper)) return false;
+  if (!(out.upper < kBoundedDepth * g.P.scale * g.P.scale)) return false;  // (NaN, +inf: false)
   out.value = best.value > 0 && best.value <= out.upper ? best.value : out.upper;
   out.normal = v;
   Placement place{g.A, g.B, v, dot(v, v), out};
@@ -613,16 +620,20 @@ GlobalOptimum face_bound(const TetVertices& A, const TetVertices& B) {
       double D = maxA - minB;  // the overlap along d; along -d: maxB - minA
       if (maxB - minA < D) D = maxB - minA, d = mul(d, -1.0);
       const double dd = dot(d, d);
-      if (!(dd > 0) || !std::isfinite(dd) || !std::isfinite(D)) continue;
+      // (a subnormal d.d or square would round by more than the slack below: such a face is
+      // skipped, as one with no bound)
+      if (!(dd >= DBL_MIN) || !std::isfinite(dd) || !std::isfinite(D)) continue;
       // D_up = (|D~| (1 + u) + 2 e_h) (1 + 8u): the bound above and its own roundings (< 8u);
       // its square over d.d (3u) and the square and quotient (2u) within the final (1 + 8u),
       // which one more rounding (< u) leaves above
       const double e_h = 5 * kU * (std::fabs(d[0]) + std::fabs(d[1]) + std::fabs(d[2])) * P.scale;
       const double D_up = (std::fabs(D) * (1 + kU) + 2 * e_h) * (1 + 8 * kU);
-      const double upper = D_up * D_up / dd * (1 + 8 * kU);
+      const double square = D_up * D_up;
+      if (!(square >= DBL_MIN)) continue;
+      const double upper = square / dd * (1 + 8 * kU);
       if (upper < least) least = upper, n = d;
     }
-  if (!(least < kCompactTiny * P.scale * P.scale)) return out;
+  if (!(least < kBoundedDepth * P.scale * P.scale) || !(least >= DBL_MIN)) return out;
   DirectionSolution sol;
   double hA[4], hB[4];
   const double x = global::relaxed_at(P, n, &sol, nullptr, hA, hB);

@@ -84,9 +84,10 @@ struct GlobalOptimum {
   // componentwise: they do not attain the value (the depth is below their rounding). For a
   // caller that needs the value and only an approximate plane (the contact energy).
   bool witness = false;
-  // Not certified (bound_shallow): a depth far below the pair's size whose certificate would take
-  // the shallow certificate or the exact pieces; `upper` is a certified upper bound on
-  // pdd2_global (value_upper along `normal`), `value` the doubles' estimate along `normal`
+  // Not certified (bound_shallow, face_bound): a depth far below the pair's size whose certificate
+  // would take the shallow certificate or the exact pieces; `upper` is a certified upper bound
+  // on pdd2_global below kBoundedDepth scale^2 (value_upper along `normal`, or face_bound's
+  // D^2 / d.d), `value` the doubles' estimate along `normal`
   // (0 < value <= upper, or upper where the estimate is not in that range) and the positions
   // along it. For a caller summing many pairs that can bound their share (the contact energy).
   bool bounded = false;
@@ -110,18 +111,19 @@ using ExactStart = std::function<std::array<double, 3>()>;
 // enumeration that ends above it could not evaluate the start's own normal, and is redone
 // exactly.
 // bound_shallow: where the start's value is already below the exact pieces' depth (so that only
-// the shallow certificate, the lone pairs' or the exact pieces could certify it), return it
-// `bounded` instead (GlobalOptimum::bounded).
-// A contact made by rounding told apart without the candidates (for bound_shallow's callers):
-// along each of the eight face normals d (A's and B's, from the rounded edge vectors, oriented by
-// the lesser overlap), moving B's four vertices by the overlap D(d) along d / |d| separates the
-// pair at object-norm cost D^2 (a uniform displacement t of a tetrahedron costs (4 t^2 + 16
-// t^2) / 20 = t^2, definitions §2), so relaxed(d / |d|) <= D(d)^2 / d.d >= pdd2_global. With
-// the heights' error e_h = 5 u |d|_1 scale (value_error's), D <= D~ + 2 e_h + u |D~|: a certified
-// upper bound. Where the least is below kCompactTiny scale^2 (a depth ~1e-9 of the pair's size
-// or less: what global_depth would send to the shallow certificate or the exact pieces), the
-// pair is returned `bounded` along that face normal (value: relaxed there in doubles, clamped
-// into (0, upper]; the positions along it); else nothing is set (bounded false). ~0.2 us.
+// the shallow certificate, the lone pairs' or the exact pieces could certify it) and its bound
+// (value_upper) below kBoundedDepth scale^2, return it `bounded` instead (GlobalOptimum::bounded).
+// A contact made by rounding told apart without the search (for bound_shallow's callers, on a
+// valid intersecting pair): along each of the eight face normals d (A's and B's, from the
+// rounded edge vectors, oriented by the lesser overlap), moving B's four vertices by the overlap
+// D(d) along d / |d| separates the pair at object-norm cost D^2 (a uniform displacement t of a
+// tetrahedron costs (4 t^2 + 16 t^2) / 20 = t^2, definitions §2), so pdd2_global <=
+// relaxed(d / |d|) <= D(d)^2 / d.d. With the heights' error e_h = 5 u |d|_1 scale
+// (value_error's), D <= D~ + 2 e_h + u |D~|: a certified upper bound. Where the least is below
+// kBoundedDepth = 1e-20 scale^2 (a depth below ~1e-10 of the pair's size: global_depth would
+// send it to the shallow certificate or the exact pieces), the pair is returned `bounded` along
+// that face normal (value: relaxed there in doubles, clamped into (0, upper]; the positions
+// along it); else nothing is set (bounded false). ~0.2 us.
 GlobalOptimum face_bound(const TetVertices& A, const TetVertices& B);
 
 GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const double start_normal[3],

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 
 #include "exact/exact_candidate.h"
@@ -95,6 +96,8 @@ inline double value_error(const Problem& P, const V3& v, double cost, double hm)
 // 2u for the square and the quotient, is covered by the final (1 + 8u) rounded up by one more
 // rounding of the product (< u). For a depth far below the pair's size (Phi~ ~ the depth, e_h
 // and dT ~ u times the size) the bound is ~(2^12 u size)^2: a depth bound, not the value.
+// +inf where v.v, the square or the bound is below the normal range (their rounding would
+// exceed the slack).
 inline double value_upper(const Problem& P, const V3& v) {
   DirectionSolution s;
   double hm = 0;
@@ -103,7 +106,9 @@ inline double value_upper(const Problem& P, const V3& v) {
   const double phi = std::sqrt(std::max(s.cost, 0.0) / 20.0);
   const double phi_up =
       (phi * (1 + 4 * kU) + 2 * 5 * kU * vn1 * P.scale + std::sqrt(2.0) * 0x1p12 * kU * hm) * (1 + 16 * kU);
-  return phi_up * phi_up / dot(v, v) * (1 + 8 * kU);
+  const double vv = dot(v, v), square = phi_up * phi_up;
+  const double upper = square / vv * (1 + 8 * kU);
+  return vv >= DBL_MIN && square >= DBL_MIN && upper >= DBL_MIN ? upper : INFINITY;
 }
 
 // The relaxed value along v (a double normal, A -> B) with a certified relative error bound,

@@ -98,19 +98,22 @@
 // displacement, ~1e-17 of the element, is below their rounding: accurate in absolute terms
 // only, as for the exact engine's). Such a pair's term is ~1e-30 of a real overlap's, so unless
 // options.per_pair asks for every value, it is first taken bounded (MinimiserOptions::
-// bound_shallow: the doubles' estimate along the best double normal, with a certified upper
-// bound, in about the time of a certified pair) and kept so while the bounded pairs' weighted
-// bounds together stay below 1e-12 of the certified terms' sum and none reaches the largest
-// certified pdd2_global; the rest are certified as above (all of them where no pair is
-// certified: blocks resting by rounding alone). E is then within definitions §8's 1e-9 plus
-// 1e-12 of the exact terms' sum, max_pdd2_global certified, and a bounded pair's gradient and
-// Hessian are its plane's (V_u of "Hessian" for that normal: a majorizer touching its term at P
-// to within the bound); bounded_pairs counts them. Measured on a decimal Kuhn grid against its
-// copy moved a quarter cell along (1, 1, 1) (7,884 of 11,910 pairs made by rounding): 7.0 us a
-// pair against 259 us with every pair certified, 6.8 us for the copy turned.
-// Pairs run in parallel (TBB); the gradient and the Hessian are
-// summed per vertex over its pairs in pair order (the same doubles on any number of threads),
-// the Hessian written row by row straight into its compressed storage.
+// bound_shallow: the doubles' estimate along a face normal or the search's start, with a
+// certified upper bound below 1e-20 of the pair's size squared, in a few microseconds) and kept
+// so while the bounded pairs' weighted bounds together stay below 1e-12 of the certified terms'
+// sum and none reaches the largest certified pdd2_global; the rest are certified as above (all
+// of them where no pair is certified: blocks resting by rounding alone; their time counts in
+// seconds_contacts). E is then within definitions §8's 1e-9 plus 1e-12 of the exact terms' sum,
+// max_pdd2_global certified, a bounded pair's gradient its plane's positions' (displacements of
+// object norm below sqrt(bound), as the minimiser's: within ~1e-9 of the pair's size of its
+// gradient, in absolute terms) and its Hessian its plane's (V_u of "Hessian" for that normal: a
+// majorizer touching its term at P to within the bound); bounded_pairs counts them. Measured on
+// a decimal Kuhn grid against its copy moved a quarter cell along (1, 1, 1) (7,884 of 11,910
+// pairs made by rounding): 8.4 us a pair against 259 us with every pair certified, 6.9 us for
+// the copy turned.
+// Pairs run in parallel (TBB); the gradient and the Hessian are summed per vertex over its pairs
+// in pair order (the same doubles on any number of threads), the Hessian written row by row
+// straight into its compressed storage.
 // Exact: contacts_exact (pdd::reference::solve_pair; exact witness positions, rounded to double
 // here), milliseconds a pair: the judge for small meshes.
 //
