@@ -9,6 +9,11 @@ shifted by a few fractions of a cell h, with pdd.mesh_contacts on one thread (it
 variants, or --variants as pdd.mesh_contacts takes them, e.g. global).
 With --energy, pdd.contact_energy with its Hessian instead (one thread; the pairs taken at a
 certified bound, docs/definitions.md "Contact energy", counted in the column "bounded").
+With --resolve, pdd.resolve on one thread instead (its default variant, global): per case the
+rounds, the pair solves (the intersecting pairs summed over the rounds) and the time, beside the
+turned twin's, the ratio of the times and of the time per pair solve. A twin turned about its
+centroid overlaps A in another shape, so its rounds and pair solves differ; the time per pair
+solve tells what the alignment itself costs, the time how long a user waits.
 Beside each, the same call with the shifted copy turned 0.3 rad about (1, 2, 3) through its
 centroid (no face or edge parallel). Per case: intersecting pairs and the time per
 intersecting pair (the best of --repeats calls) of both, their ratio, and the ratio of the
@@ -19,7 +24,7 @@ the coordinates as a user would type them, 0.1 * i rounded once, then + s rounde
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/aligned-survey.py [--kinds kuhn,five]
         [--cells 0.1,1/6,0.125] [--shifts off,half-xy,q111,diag] [--n 6] [--repeats 3]
-        [--variants global | --energy]
+        [--variants global | --energy | --resolve]
 """
 import argparse
 import sys
@@ -104,6 +109,27 @@ def best_call(repeats, variants, energy, *args):
     return best, pairs, bounded
 
 
+def resolve_call(repeats, *args):
+    """pdd.resolve: the best time of `repeats` calls, its rounds, pair solves and verdict."""
+    best = float("inf")
+    for _ in range(repeats):
+        t = time.perf_counter()
+        *_, report = pdd.resolve(*args, threads=1)
+        best = min(best, time.perf_counter() - t)
+    rounds = report["rounds"]
+    return best, len(rounds), sum(r["pairs"] for r in rounds), report["resolved"]
+
+
+def resolve_row(kind, cell, name, repeats, VA, T, VB):
+    ta, ra, sa, oka = resolve_call(repeats, VA, T, VB, T)
+    tb, rb, sb, okb = resolve_call(repeats, VA, T, turned(VB), T)
+    verdict = "" if oka and okb else f" not resolved: {'aligned' if not oka else ''} {'turned' if not okb else ''}"
+    if sa == 0 or sb == 0:
+        return f"{kind:8s} {cell:>6s} {name:8s} no intersecting pairs"
+    return (f"{kind:8s} {cell:>6s} {name:8s} {ra:6d} {sa:7d} {ta:8.3f} {rb:6d} {sb:7d} {tb:8.3f} "
+            f"{ta / tb:5.2f}x {ta / sa / (tb / sb):8.2f}x" + verdict)
+
+
 def check_arguments(p, a):
     """Every argument checked before any grid is built: p.error (exit 2) naming the one at fault.
     The variants by the call itself (one tetrahedron against itself moved), so that they mean
@@ -122,6 +148,8 @@ def check_arguments(p, a):
             p.error(f"--shifts: unknown shift {name!r} ({', '.join(SHIFTS)})")
     if a.energy and a.variants is not None:
         p.error("--energy: not with --variants (the energy takes pdd2_global alone)")
+    if a.resolve and (a.energy or a.variants is not None):
+        p.error("--resolve: not with --energy or --variants (it times pdd.resolve alone)")
     if a.n < 1 or a.repeats < 1:
         p.error("--n and --repeats: at least 1")
     if a.variants is not None:
@@ -142,10 +170,15 @@ def main():
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--variants", help="as pdd.mesh_contacts takes them (default: its own)")
     p.add_argument("--energy", action="store_true", help="time pdd.contact_energy (with its Hessian)")
+    p.add_argument("--resolve", action="store_true", help="time pdd.resolve (rounds, pair solves)")
     a = p.parse_args()
     check_arguments(p, a)
-    print(f"{'grid':8s} {'cell':>6s} {'shift':8s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} "
-          f"{'us/pair':>8s} {'ratio':>6s} {'whole':>6s}" + (f" {'bounded':>7s}" if a.energy else ""))
+    if a.resolve:
+        print(f"{'grid':8s} {'cell':>6s} {'shift':8s} {'rounds':>6s} {'solves':>7s} {'seconds':>8s} {'rounds':>6s} "
+              f"{'solves':>7s} {'turned':>8s} {'ratio':>6s} {'per-solve':>9s}")
+    else:
+        print(f"{'grid':8s} {'cell':>6s} {'shift':8s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} "
+              f"{'us/pair':>8s} {'ratio':>6s} {'whole':>6s}" + (f" {'bounded':>7s}" if a.energy else ""))
     for kind in a.kinds.split(","):
         n = max(2, 2 * a.n // 3) if kind == "bc24" else a.n
         for cell in a.cells.split(","):
@@ -153,6 +186,9 @@ def main():
             VA, T = grid(kind, n, h)
             for name in a.shifts.split(","):
                 VB = VA + np.array(SHIFTS[name](n)) * h
+                if a.resolve:
+                    print(resolve_row(kind, cell, name, a.repeats, VA, T, VB), flush=True)
+                    continue
                 ta, na, ba = best_call(a.repeats, a.variants, a.energy, VA, T, VB, T)
                 tb, nb, _ = best_call(a.repeats, a.variants, a.energy, VA, T, turned(VB), T)
                 if na == 0 or nb == 0:

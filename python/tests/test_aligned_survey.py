@@ -84,6 +84,8 @@ def test_survey_prints_a_row_per_case():
     (["--shifts", "off,up"], "--shifts: unknown shift 'up'"),
     (["--repeats", "0"], "--n and --repeats: at least 1"),
     (["--energy", "--variants", "rigid"], "--energy: not with --variants"),
+    (["--resolve", "--energy"], "--resolve: not with --energy or --variants"),
+    (["--resolve", "--variants", "global"], "--resolve: not with --energy or --variants"),
 ])
 def test_survey_names_a_bad_argument_before_any_work(argument, message):
     r = subprocess.run([sys.executable, str(SCRIPT), *argument], capture_output=True, text=True, timeout=120)
@@ -119,6 +121,23 @@ def test_survey_times_the_energy():
     assert header.split()[-1] == "bounded" and len(rows) == 2
     bounded = {row.split()[1]: int(row.split()[-1]) for row in rows}
     assert bounded["0.1"] > 0 and bounded["0.125"] == 0, r.stdout
+
+
+def test_survey_times_resolve():
+    # --resolve: pdd.resolve on both sides; a row per case with the rounds, the pair solves (at
+    # least the first round's intersecting pairs) and two ratios, nothing left unresolved
+    r = subprocess.run([sys.executable, str(SCRIPT), "--resolve", "--kinds", "kuhn,five", "--cells", "0.125",
+                        "--shifts", "diag", "--n", "2", "--repeats", "1"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    header, *rows = r.stdout.strip().splitlines()
+    assert header.split()[3:] == ["rounds", "solves", "seconds", "rounds", "solves", "turned", "ratio", "per-solve"]
+    assert len(rows) == 2, r.stdout
+    for row in rows:
+        words = row.split()
+        assert len(words) == 11 and words[-1].endswith("x") and words[-2].endswith("x"), row
+        rounds_a, solves_a, rounds_t, solves_t = int(words[3]), int(words[4]), int(words[6]), int(words[7])
+        assert 1 <= rounds_a <= solves_a and 1 <= rounds_t <= solves_t, row
 
 
 # Blocks of 3^3 cubes of each cut, B on A's top a third of a cell deep and moved across as a user
