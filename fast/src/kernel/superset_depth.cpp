@@ -15,6 +15,7 @@
 #include "exact/exact_heights.h"
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
+#include "exact/integer_depth.h"
 #include "exact/integer_heights.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/near_parallel_bound.h"
@@ -530,32 +531,35 @@ const Unresolved& facets_rechecked(const SupersetLanes& K, const Unresolved& un,
 }
 
 
-// ---- `unique` through depths in double words. An entry a rounding away from the pick (a grid
-// against its copy shifted by a non-dyadic offset: faces and edges parallel up to the rounding
-// of the coordinates, delta² ~1e-16 apart relative) is neither certainly above it in the rounded
-// values nor along it exactly; its exact delta² is ordered against the pick's by their depth
-// parts in double words (compensated_depth, compare_delta2_compensated:
-// compensated_heights.h), on the kernel's pair (the rescaled pair: that header's range).
-// An entry (lane, ±) is the direction ±(eB × eA), labelled Plus or Minus so that its depth is
-// that orientation's whatever the orientation rule says: every entry of S is bounded, a real
-// candidate or not (an entry certainly above the pick is no candidate that could precede it).
-// Where the comparison is not decided (an exact tie among its bounds) and the entry comes after
-// the pick in canonical order, the entry may still tie exactly: it does when it points exactly
-// the pick's way (same_as_labelled, exact_predicates.h: equal directions, equal delta — D is
-// the support function of M along the direction, whatever the label). Then it is either a real
-// candidate tied after the pick, or no candidate (the orientation its lane's rule discards:
-// aligned pairs have those along the pick, where A's edge of the lane is parallel to the
-// pick's but off A's support). Anything else declines (false).
+// ---- `unique` through exact orders. An entry a rounding away from the pick (a grid against
+// its copy shifted by a non-dyadic offset: faces and edges parallel up to the rounding of the
+// coordinates, delta² ~1e-16 apart relative), or tied with it exactly (a grid against its copy
+// shifted by a dyadic offset: faces and edge pairs of a symmetric group, one delta² along
+// different directions), is neither certainly above it in the rounded values nor along it in
+// every case; `unique` needs only that no candidate precedes the pick in the stable order of
+// the list: every entry before the pick in canonical order strictly above it, every entry
+// after it at or above it. An entry (lane, ±) is the direction ±(eB × eA), labelled Plus or
+// Minus so that its depth is that orientation's whatever the orientation rule says: every entry
+// of S is bounded, a real candidate or not (an orientation the rule discards is no candidate
+// and precedes nothing). On the kernel's pair (the rescaled pair):
+// - over the pair's integer frame where it has one (integer_depth.h: exact depths and n.n in
+//   machine integers, the rule's exact classification): the order itself, ties included;
+// - else by the depth parts in double words (compensated_depth, compare_delta2_compensated:
+//   compensated_heights.h), which decide all but ties among their bounds; such an entry after
+//   the pick ties exactly when it points exactly the pick's way (same_as_labelled,
+//   exact_predicates.h: equal directions, equal delta — D is the support function of M along
+//   the direction, whatever the label), a real candidate tied after the pick or no candidate
+//   (aligned pairs have those along the pick, where A's edge of the lane is parallel to the
+//   pick's but off A's support).
+// Anything else declines (false).
 class PickDepthOrder {
  public:
   PickDepthOrder(const SupersetLanes& K, LabelCode pick) : K_(K), pick_(unpack_label(pick)) {}
-  // Entry l's exact delta² is certainly above the pick's, or (after: l comes after the pick in
-  // canonical order) exactly equal along the pick's direction.
+  // No candidate l precedes the pick: l's exact delta² is above the pick's, or equal to it and
+  // l after the pick in canonical order (after), or l is no candidate.
   bool after_pick(const DirectionLabel& l, bool after) {
-    if (state_ == State::Unset) {
-      kernel_pair(K_, A_, B_);
-      state_ = compensated_depth(A_, B_, pick_, pick_depth_) ? State::Ready : State::Declined;
-    }
+    if (frame_usable()) return framed_order(l, after);
+    if (state_ == State::Unset) state_ = compensated_depth(A_, B_, pick_, pick_depth_) ? State::Ready : State::Declined;
     CompensatedDepth d;
     if (state_ != State::Ready || !compensated_depth(A_, B_, l, d)) return false;
     const std::optional<int> s = compare_delta2_compensated(d, pick_depth_);
@@ -574,6 +578,31 @@ class PickDepthOrder {
   }
 
  private:
+  bool frame_usable() {
+    if (!frame_) {
+      kernel_pair(K_, A_, B_);
+      frame_.emplace(A_, B_);
+    }
+    return frame_->usable();
+  }
+  // after_pick over the frame. Where the exact rule keeps the other orientation of an entry
+  // (lane, ±), the entry is no candidate; otherwise framed_depth's label (oriented by the rule,
+  // ± only where the rule keeps both) is the entry itself.
+  bool framed_order(const DirectionLabel& l, bool after) {
+    if (l.kind == ContactKind::EE) {
+      const EdgePairClass k = classify_edge_pair_framed(*frame_, l.a, l.b);
+      if (k.kind != EdgePairKind::Generic) return false;  // (no direction ±(eB × eA))
+      if (k.side == EdgePairSide::Keep && l.orientation == EdgeOrientation::Minus) return true;
+      if (k.side == EdgePairSide::Flip && l.orientation == EdgeOrientation::Plus) return true;
+    }
+    if (framed_pick_ == State::Unset)
+      framed_pick_ = framed_depth(*frame_, pick_, pick_framed_) ? State::Ready : State::Declined;
+    FramedDepth q;
+    if (framed_pick_ != State::Ready || !framed_depth(*frame_, l, q)) return false;
+    const int c = compare_framed_delta2(q, pick_framed_);
+    return after ? c >= 0 : c > 0;
+  }
+
   enum class State { Unset, Ready, Declined };
   const SupersetLanes& K_;
   DirectionLabel pick_;
@@ -581,6 +610,9 @@ class PickDepthOrder {
   TetVertices A_, B_;
   CompensatedDepth pick_depth_;
   std::optional<ExactDirection> direction_;
+  std::optional<IntegerFrame> frame_;
+  State framed_pick_ = State::Unset;
+  FramedDepth pick_framed_;
 };
 
 // Orientation s of edge pair `lane` is the one the orientation rule discards (definitions §3),
