@@ -367,7 +367,7 @@ BOOST_AUTO_TEST_CASE(the_superset_names_the_exact_first_candidate) {
 // tenth unique one (settling on the band entry whose value is farthest from the pick's instead
 // failed 80 of them when the ties went to the band). Measured: 1,004 certified choices of 1,828
 // intersecting pairs (the rest contacts made by rounding, whose depths the kernel cannot
-// resolve), 996 unique, 8 not; 107 judged (without the exact order of ties over the frame 900
+// resolve), 996 unique, 8 not; 108 judged (without the exact order of ties over the frame 900
 // unique; without the exact facet test 746 and 642).
 BOOST_AUTO_TEST_CASE(nearly_colinear_edges_keep_the_superset_choice) {
   std::vector<Case> cases;

@@ -347,8 +347,9 @@ bool lane_along_face(const SupersetLanes& K, const FilterBounds& fb, int p, int 
 //  - n = 0: no facet normal of M (two parallel edges sum to a segment), so its candidate in the
 //    list ties with PD only along a direction attaining PD; those are facet normals (the nearest
 //    point of ∂M to the origin lies inside a facet: a ball inside M touching ∂M at an edge or a
-//    vertex of M would touch two facets' planes at one point), all along n_p when every other
-//    entry not certainly above is (the caller's test): a tie along n_p, after the face.
+//    vertex of M would touch two facets' planes at one point): an edge pair's candidate, after
+//    the face whatever its direction (a face tying along another direction before the pick is
+//    the caller's test: it refuses it).
 //  - n along +n_p: the same direction, the same delta, an edge pair after the face.
 //  - n along −n_p: delta(n_p) + delta(−n_p) is M's width along n_p, at least the height of the
 //    pick's tetrahedron T over face p, |det T| / |n_p|; with delta(n_p) <= sqrt(hi_pick) (the
@@ -600,8 +601,38 @@ class PickDepthOrder {
     FramedDepth q;
     if (framed_pick_ != State::Ready || !framed_depth(*frame_, l, q)) return false;
     const int c = compare_framed_delta2(q, pick_framed_);
+    tied_after_ |= after && c == 0;
     return after ? c >= 0 : c > 0;
   }
+
+ public:
+  // A candidate after the pick tied with it exactly over the frame (possibly along another
+  // direction): PD is then attained along another direction too.
+  bool tied_after() const { return tied_after_; }
+  // The exactly parallel pairs among the edge pairs `lanes` (all before an edge-pair pick)
+  // strictly above the pick, exactly; after tied_after() only (the frame and the pick's depth
+  // are there). Such a pair is no entry of S (no facet: lo2 = +inf); its candidate, the common
+  // perpendicular, ties the pick only along a direction attaining PD, which may be a tied
+  // entry's other direction: a candidate there, before the pick, would be first. Each
+  // orientation the exact rule keeps (both where it keeps both) must lie strictly above.
+  bool parallel_pairs_above(std::uint64_t lanes) {
+    for (; lanes; lanes &= lanes - 1) {
+      const int lane = __builtin_ctzll(lanes), a = lane / kLaneStride, b = lane % kLaneStride;
+      const EdgePairClass k = classify_edge_pair_framed(*frame_, a, b);
+      if (k.kind != EdgePairKind::Parallel) continue;  // colinear: no candidate; generic: an entry of S
+      for (const EdgeOrientation o : {EdgeOrientation::Plus, EdgeOrientation::Minus}) {
+        if ((k.side == EdgePairSide::Keep && o == EdgeOrientation::Minus) ||
+            (k.side == EdgePairSide::Flip && o == EdgeOrientation::Plus))
+          continue;  // (the orientation the rule discards)
+        FramedDepth q;
+        if (!framed_depth(*frame_, DirectionLabel::ee(a, b, o), q) || compare_framed_delta2(q, pick_framed_) <= 0)
+          return false;
+      }
+    }
+    return true;
+  }
+
+ private:
 
   enum class State { Unset, Ready, Declined };
   const SupersetLanes& K_;
@@ -613,6 +644,7 @@ class PickDepthOrder {
   std::optional<IntegerFrame> frame_;
   State framed_pick_ = State::Unset;
   FramedDepth pick_framed_;
+  bool tied_after_ = false;
 };
 
 // Orientation s of edge pair `lane` is the one the orientation rule discards (definitions §3),
@@ -640,8 +672,8 @@ bool unresolved_above_pick(const Near& c, double hi_pick, const Unresolved& un, 
 }
 
 // `unique` for a pick c whose certificate found entries not certainly above it: true when each
-// of them, for a face pick, points exactly the pick's way and comes after it (above), or has
-// an exact delta² certainly above the pick's (PickDepthOrder). un: the entries left out of K's
+// of them, for a face pick, points exactly the pick's way and comes after it (above), or is no
+// candidate, or has an exact delta² above the pick's, or equal and after it (PickDepthOrder). un: the entries left out of K's
 // bound bits (unresolved edge pairs), certainly above or along the pick
 // (unresolved_along_pick, unresolved_above_pick). Lower bounds as certify's exact pass computes
 // them; an orientation the rule certainly discards is no candidate and needs no bound. An
@@ -689,6 +721,8 @@ __attribute__((noinline)) Shared ties_share_direction(const SupersetLanes& K, co
       if (t != Shared::Yes) return t;
     }
   }
+  if (!face_pick && order.tied_after() && !order.parallel_pairs_above(un.bits & ((std::uint64_t{1} << c.lane) - 1)))
+    return Shared::No;
   return Shared::Yes;
 }
 
@@ -793,6 +827,7 @@ bool unresolved_off_pick(const SupersetLanes& K, const FilterBounds& fb, std::ui
   }
   return true;
 }
+
 
 // ---- The tie band (superset_depth.h's TieBand) of a certified pick c that is not `unique`, and
 // why it holds the exact first x* of the list (the first in canonical order among the
@@ -902,12 +937,15 @@ __attribute__((noinline)) bool band_accepted(const SupersetLanes& K, const Filte
 // candidate, that of an exactly parallel pair (its normal ⊥ both edges, definitions §3), which S
 // leaves out (lo2 = +inf: no facet). Its exact delta is >= PD², and equal only along a direction
 // attaining PD: a facet normal of M (the nearest point of ∂M to the origin lies inside a facet,
-// where the supporting plane is tangent to the ball B(0, PD)); with the pick unique that is the
-// pick's own direction, so the two tie exactly and the list orders them canonically. (An
-// orientation skipped as discarded by the rule hides no such direction: an outward facet normal
-// has A's off-edge heights <= 0 along itself, so the rule never discards it.) A face pick
-// (FV, VF) comes before every edge pair; an edge-pair pick is still first unless an unresolved
-// pair that precedes its lane may point its way (unresolved_off_pick): then `unique` is false.
+// where the supporting plane is tangent to the ball B(0, PD)). (An orientation skipped as
+// discarded by the rule hides no such direction: an outward facet normal has A's off-edge
+// heights <= 0 along itself, so the rule never discards it.) A face pick (FV, VF) comes before
+// every edge pair. An edge-pair pick is still first unless such a candidate precedes its lane
+// and ties with it: where `unique` accepts ties only along the pick's own direction (no integer
+// frame), PD is attained along that direction alone, and an unresolved pair before the lane
+// that may point the pick's way refuses it (unresolved_off_pick); over the frame, ties after
+// the pick along other directions are accepted too, and then the exactly parallel pairs before
+// the lane are ordered against the pick exactly (PickDepthOrder::parallel_pairs_above).
 // un: the bounds of the lanes in un.bits (near_parallel_bound), kept for a second call with
 // more lanes; `unresolved` a superset of un.bits.
 bool choice_without_unresolved(SupersetLanes& K, const FilterBounds& fb, std::uint64_t unresolved, Unresolved& un,

@@ -63,8 +63,10 @@ namespace pdd::fast {
 // ch.certified: the definitions §8 verdict (value_bounds.h). `unique` (optional): certified, and
 // the chosen candidate is the first of the candidate list in exact delta order (stable in
 // canonical order: what pdd2_accel1 takes): every other entry of S is certainly above it (in
-// the rounded values, or in depth parts in double words where it is a rounding away), or, for a
-// face on an aligned pair, exactly in its direction and after it (superset_depth.cpp).
+// the rounded values, or in exact orders: over the pair's integer frame, or in depth parts in
+// double words where it is a rounding away), or tied with it exactly and after it in canonical
+// order (over the frame; without one, exactly in its direction), or no candidate
+// (superset_depth.cpp).
 // Precondition for ch.certified and `unique` (not for the value and label): A and B rescaled by
 // power_scale.h (largest |coordinate| in [1, 2)), as hot_path.h does; the error bounds assume
 // that range (value_bounds.h), and so does the kernel's choice of entries to bound
