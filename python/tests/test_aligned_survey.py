@@ -109,30 +109,33 @@ def test_survey_passes_its_variants_to_the_call(survey, monkeypatch):
     assert seen == [{"threads": 1, "variants": "global"}, {"threads": 1}]
 
 
+def run_survey(*arguments):
+    """The survey's header line and rows, its exit status 0."""
+    r = subprocess.run([sys.executable, str(SCRIPT), *arguments], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    header, *rows = r.stdout.strip().splitlines()
+    return header, rows
+
+
 def test_survey_times_the_energy():
     # --energy: pdd.contact_energy in place of pdd.mesh_contacts, a column of the pairs taken at
     # a bound; the Kuhn grid of cell 0.1 a quarter cell along (1, 1, 1) has contacts made by
     # rounding (faces x = y meeting by rounding), the same on the dyadic cell 1/8 none
-    r = subprocess.run([sys.executable, str(SCRIPT), "--energy", "--kinds", "kuhn", "--cells", "0.1,0.125",
-                        "--shifts", "q111", "--n", "2", "--repeats", "1"],
-                       capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0, r.stderr
-    header, *rows = r.stdout.strip().splitlines()
+    header, rows = run_survey("--energy", "--kinds", "kuhn", "--cells", "0.1,0.125", "--shifts", "q111", "--n", "2",
+                              "--repeats", "1")
     assert header.split()[-1] == "bounded" and len(rows) == 2
     bounded = {row.split()[1]: int(row.split()[-1]) for row in rows}
-    assert bounded["0.1"] > 0 and bounded["0.125"] == 0, r.stdout
+    assert bounded["0.1"] > 0 and bounded["0.125"] == 0, rows
 
 
 def test_survey_times_resolve():
     # --resolve: pdd.resolve on both sides; a row per case with the rounds, the pair solves (at
-    # least the first round's intersecting pairs) and two ratios, nothing left unresolved
-    r = subprocess.run([sys.executable, str(SCRIPT), "--resolve", "--kinds", "kuhn,five", "--cells", "0.125",
-                        "--shifts", "diag", "--n", "2", "--repeats", "1"],
-                       capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0, r.stderr
-    header, *rows = r.stdout.strip().splitlines()
+    # least the first round's intersecting pairs) and two ratios, nothing left unresolved (a row
+    # that is not resolved carries more words)
+    header, rows = run_survey("--resolve", "--kinds", "kuhn,five", "--cells", "0.125", "--shifts", "diag", "--n", "2",
+                              "--repeats", "1")
     assert header.split()[3:] == ["rounds", "solves", "seconds", "rounds", "solves", "turned", "ratio", "per-solve"]
-    assert len(rows) == 2, r.stdout
+    assert len(rows) == 2, rows
     for row in rows:
         words = row.split()
         assert len(words) == 11 and words[-1].endswith("x") and words[-2].endswith("x"), row
