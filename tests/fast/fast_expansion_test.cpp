@@ -448,6 +448,61 @@ BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
   BOOST_TEST(values > 30000);
 }
 
+// Parallel edge pairs at the frame's bounds (integer_heights.h: coordinates up to 2^60 − 2^7 of
+// its unit, differences near 2^61): their common perpendicular's heights reach 2^249 and n.n
+// 2^372 (integer_depth.h), the widest integers framed_depth computes. B's edges 0–1 and 2–3 are
+// A's edge 0–1 and 0–2 moved (exactly: multiples of 2^7 below 2^59), beside random vertices of
+// both signs and a coordinate of 1 (the frame's unit); a third of the pairs on small integers,
+// a third Kuhn cells stacked by rounding (heights that differ in their lowest words only); every label's framed D, its sign and n.n
+// equal the rationals', parallel labels of both orientations included.
+BOOST_AUTO_TEST_CASE(parallel_edge_pairs_at_the_frames_bounds) {
+  compare::ReproducibleRng r(20261205);
+  long checked = 0, parallel = 0, negative = 0;
+  auto big = [&r] { return std::ldexp(double(r.integer(-(1 << 30), 1 << 30)) * double(1 << 20), 7); };
+  auto small = [&r] { return double(r.integer(-8, 8)); };  // (heights whose high words agree)
+  for (int it = 0; it < 900; ++it) {
+    TetVertices A, B;
+    if (it % 3 == 2) {
+      // Kuhn cells of 0.1 stacked by rounding (A's top 0.2 + 0.1 = 0.30000000000000004, B's
+      // bottom 0.3): edges of B over A's, heights of both ends ~1e-17 apart (their high words
+      // agree, the low ones decide)
+      const double h = 0.1;
+      const Vec3d oa = {r.integer(-4, 4) * h, r.integer(-4, 4) * h, 0.2}, ob = {oa[0], oa[1], 0.3};
+      A = pdd::test::kuhn_cell_tet(oa, h, r.integer(0, 5));
+      B = pdd::test::kuhn_cell_tet(ob, h, r.integer(0, 5));
+    } else {
+      for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) A[i][k] = it % 3 ? big() : small(), B[i][k] = it % 3 ? big() : small();
+    }
+    for (int k = 0; k < 3 && it % 3 != 2; ++k) {
+      B[1][k] = B[0][k] + (A[1][k] - A[0][k]);
+      B[3][k] = B[2][k] + (it % 2 ? A[2][k] - A[0][k] : A[0][k] - A[2][k]);
+    }
+    if (it % 3 != 2) A[3][2] = 1.0;
+    detail::IntegerFrame frame(A, B);
+    if (orientation_sign_exact(A) == Sign::Zero || orientation_sign_exact(B) == Sign::Zero) continue;
+    BOOST_REQUIRE(frame.usable());
+    const int e = frame.unit_exponent();
+    const detail::QTet qa = detail::exact_tet(A), qb = detail::exact_tet(B);
+    for (const DirectionLabel& l : candidate_labels(A, B)) {
+      const detail::QV n = oriented_normal_q(qa, qb, l);
+      const Q D = depth_q(qa, qb, n), nn = dot(n, n);
+      detail::FramedDepth fd;
+      BOOST_REQUIRE(detail::framed_depth(frame, l, fd));
+      const int degree = fd.parallel ? 1 : 0;
+      BOOST_TEST((limbs_value(fd.D, 4, (3 + degree) * e) == abs(D)), l.str());
+      BOOST_TEST((fd.D_sign == sgn(D)), l.str());
+      BOOST_TEST((limbs_value(fd.nn, 6, (4 + 2 * degree) * e) == nn), l.str());
+      ++checked;
+      parallel += fd.parallel;
+      negative += fd.parallel && sgn(D) < 0;
+    }
+  }
+  BOOST_TEST_MESSAGE(checked << " labels, " << parallel << " parallel edge pairs (" << negative << " with D < 0)");
+  BOOST_TEST(parallel > 600);  // two parallel edge pairs a pair at least, both orientations
+  BOOST_TEST(negative > 50);   // separating parallel directions: D's sign exercised
+}
+
 BOOST_AUTO_TEST_CASE(height_signs_match_rationals) {
   compare::ReproducibleRng r(5);
   int zeros = 0, nonzero = 0, short_dots = 0, tested = 0, planes[2] = {0, 0};

@@ -2,8 +2,6 @@
 // integer_depth.h.
 #include "exact/integer_depth.h"
 
-#include <boost/multiprecision/cpp_int.hpp>
-
 #include <cmath>
 #include <cstring>
 
@@ -17,9 +15,6 @@ static_assert(GMP_NUMB_BITS == 64 && sizeof(mp_limb_t) == 8, "64-bit limbs witho
 
 namespace {
 
-namespace bmp = boost::multiprecision;
-using Int256 = bmp::int256_t;  // parallel edge pairs: |n_k| < 2^186, heights < 2^249
-using Int512 = bmp::int512_t;  // their n.n < 2^374
 using Wide = IntegerFrame::Wide;
 
 bool less(const Wide& a, const Wide& b) { return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo); }
@@ -38,15 +33,72 @@ void magnitude(const Wide& x, mp_limb_t* out) {
   out[2] = mp_limb_t(std::uint64_t(m.hi >> 64));
 }
 
-template <class Int>
-void magnitude(const Int& x, mp_limb_t* out, int limbs) {
-  std::memset(out, 0, sizeof(mp_limb_t) * limbs);
-  bmp::export_bits(Int(abs(x)), out, 64, false);  // (at most `limbs` chunks: the callers' bounds)
+// Signed 256-bit integers, two's complement in four 64-bit words (least significant first): a
+// parallel edge pair's heights (ee (w.q) − we (e.q), below 2^249 in magnitude) and their
+// differences (below 2^250). Written by hand: each height is two 128 x 128-bit products and a
+// subtraction, a few dozen instructions, where a general fixed-width integer type
+// (boost::multiprecision's int256_t) took ~2,000 instructions a parallel edge pair's depth.
+using U128 = unsigned __int128;
+struct I256 {
+  std::uint64_t w[4] = {0, 0, 0, 0};
+};
+
+// |a| |b| as 256 bits (hi 2^128 + lo), for |a|, |b| < 2^127.
+void product(U128 a, U128 b, U128& hi, U128& lo) {
+  const std::uint64_t a0 = std::uint64_t(a), a1 = std::uint64_t(a >> 64), b0 = std::uint64_t(b),
+                      b1 = std::uint64_t(b >> 64);
+  const U128 p00 = U128(a0) * b0, p01 = U128(a0) * b1, p10 = U128(a1) * b0, p11 = U128(a1) * b1;
+  const U128 mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);  // < 3 2^64: no carry out
+  lo = (mid << 64) | std::uint64_t(p00);
+  hi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
 }
 
-template <class Int>
-int sign_of_int(const Int& x) {
-  return x > 0 ? 1 : x < 0 ? -1 : 0;
+U128 magnitude_of(__int128 a) { return a < 0 ? U128(0) - U128(a) : U128(a); }
+
+[[gnu::always_inline]] inline I256 negated(const I256& x) {
+  I256 r;
+  unsigned carry = 1;
+  for (int i = 0; i < 4; ++i) {
+    const std::uint64_t v = ~x.w[i];
+    r.w[i] = v + carry;
+    carry = carry && r.w[i] == 0;
+  }
+  return r;
+}
+
+// a b exactly, for |a|, |b| < 2^127.
+[[gnu::always_inline]] inline I256 times(__int128 a, __int128 b) {
+  U128 hi, lo;
+  product(magnitude_of(a), magnitude_of(b), hi, lo);
+  I256 r;
+  r.w[0] = std::uint64_t(lo), r.w[1] = std::uint64_t(lo >> 64), r.w[2] = std::uint64_t(hi), r.w[3] = std::uint64_t(hi >> 64);
+  return (a < 0) != (b < 0) ? negated(r) : r;
+}
+
+// x − y (the callers' values keep it below 2^255 in magnitude): word by word with the borrow,
+// each difference in (−2^65, 2^64) wrapping modulo 2^128, so its high word is 0 or all ones.
+I256 minus(const I256& x, const I256& y) {
+  I256 r;
+  U128 borrow = 0;
+  for (int i = 0; i < 4; ++i) {
+    const U128 t = U128(x.w[i]) - y.w[i] - borrow;
+    r.w[i] = std::uint64_t(t);
+    borrow = (t >> 64) != 0;
+  }
+  return r;
+}
+
+int sign_of(const I256& x) {
+  if (std::int64_t(x.w[3]) < 0) return -1;
+  return (x.w[0] | x.w[1] | x.w[2] | x.w[3]) != 0 ? 1 : 0;
+}
+
+bool less(const I256& x, const I256& y) { return sign_of(minus(x, y)) < 0; }  // (|x|, |y| < 2^254)
+
+// |x| as four limbs.
+void magnitude(const I256& x, mp_limb_t* out) {
+  const I256 m = sign_of(x) < 0 ? negated(x) : x;
+  for (int i = 0; i < 4; ++i) out[i] = mp_limb_t(m.w[i]);
 }
 
 // The orientation rule on the two signs g_k of the normal at edge a's off-edge vertices.
@@ -61,35 +113,43 @@ bool flipped(EdgePairSide side, EdgeOrientation o) {
 }
 
 // The common perpendicular of parallel edges a of A and b of B (exact_predicates.cpp's
-// edge_pair_normal_exp): n = (e.e) w − (w.e) e, e = s_v − s_u, w = r_x − s_u.
+// edge_pair_normal_exp): n = (e.e) w − (w.e) e, e = s_v − s_u, w = r_x − s_u, kept as e, w and
+// the two dot products (its components, of degree 3, need 187 bits): n.q = (e.e)(w.q) −
+// (w.e)(e.q), each factor below 2^124 (differences below 2^61), each product below 2^248; and
+// n.n = (e.e)^2 (w.w) − 2 (e.e)(w.e)^2 + (w.e)^2 (e.e) = (e.e) |e × w|^2 (Lagrange's identity),
+// zero exactly when w is parallel to e (colinear edges).
 struct ParallelNormal {
-  Int256 n[3];
-  bool zero() const { return n[0] == 0 && n[1] == 0 && n[2] == 0; }
+  std::int64_t e[3], w[3];
+  __int128 ee = 0, we = 0;
+  bool flip = false;  // the normal is −n
+  __int128 ew[3];     // e × w (each component below 2^123)
+  bool zero() const { return ew[0] == 0 && ew[1] == 0 && ew[2] == 0; }
   // n.(p − q), vertices by frame index
-  Int256 dot(const IntegerFrame& f, int p, int q) const {
+  I256 dot(const IntegerFrame& f, int p, int q) const {
     const auto &P = f.vertex(p), &Q = f.vertex(q);
-    Int256 s = 0;
-    for (int k = 0; k < 3; ++k) s += n[k] * (P[k] - Q[k]);
-    return s;
+    __int128 wq = 0, eq = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t d = P[k] - Q[k];
+      wq += __int128(w[k]) * d, eq += __int128(e[k]) * d;
+    }
+    return flip ? minus(times(we, eq), times(ee, wq)) : minus(times(ee, wq), times(we, eq));
   }
 };
 ParallelNormal parallel_normal(const IntegerFrame& f, int a, int b) {
   const int u = kEdges[a][0], v = kEdges[a][1], x = kEdges[b][0];
   const auto &U = f.vertex(u), &V = f.vertex(v), &X = f.vertex(4 + x);
-  __int128 ee = 0, we = 0;
-  std::int64_t e[3], w[3];
-  for (int k = 0; k < 3; ++k) {
-    e[k] = V[k] - U[k], w[k] = X[k] - U[k];
-    ee += __int128(e[k]) * e[k], we += __int128(w[k]) * e[k];
-  }
   ParallelNormal p;
-  for (int k = 0; k < 3; ++k) p.n[k] = Int256(ee) * w[k] - Int256(we) * e[k];
+  for (int k = 0; k < 3; ++k) {
+    p.e[k] = V[k] - U[k], p.w[k] = X[k] - U[k];
+    p.ee += __int128(p.e[k]) * p.e[k], p.we += __int128(p.w[k]) * p.e[k];
+  }
+  f.normal(v, u, 4 + x, u, p.ew);
   return p;
 }
 
 EdgePairSide parallel_side(const IntegerFrame& f, const ParallelNormal& p, int a) {
   const int u = kEdges[a][0];
-  return side_rule(sign_of_int(p.dot(f, kOffEdge[a][0], u)), sign_of_int(p.dot(f, kOffEdge[a][1], u)));
+  return side_rule(sign_of(p.dot(f, kOffEdge[a][0], u)), sign_of(p.dot(f, kOffEdge[a][1], u)));
 }
 
 // The outward normal of face i of the tetrahedron whose vertices are frame indices o..o+3
@@ -155,20 +215,24 @@ void depth_of(const IntegerFrame& f, const __int128 (&n)[3], const Extremes& x, 
   std::memcpy(out.n, n, sizeof n);
 }
 
-// The same along a parallel edge pair's oriented normal.
+// The same along a parallel edge pair's oriented normal: n.n = (e.e) |e × w|^2 (ParallelNormal),
+// |e × w|^2 < 2^248 in four limbs (norm2) times e.e < 2^124 in two: below 2^372, six limbs.
 void depth_of(const IntegerFrame& f, const ParallelNormal& p, FramedDepth& out) {
-  Int256 hi = 0, lo = p.dot(f, 4, 0);
+  I256 hi, lo = p.dot(f, 4, 0);
   for (int i = 1; i < 4; ++i) {
-    const Int256 a = p.dot(f, i, 0), b = p.dot(f, 4 + i, 0);
-    if (a > hi) hi = a;
-    if (b < lo) lo = b;
+    const I256 a = p.dot(f, i, 0), b = p.dot(f, 4 + i, 0);
+    if (less(hi, a)) hi = a;
+    if (less(b, lo)) lo = b;
   }
-  const Int256 D = hi - lo;
-  out.D_sign = sign_of_int(D);
-  magnitude(D, out.D, 4);
-  Int512 nn = 0;
-  for (const Int256& x : p.n) nn += Int512(x) * Int512(x);
-  magnitude(nn, out.nn, 6);
+  const I256 D = minus(hi, lo);
+  out.D_sign = sign_of(D);
+  magnitude(D, out.D);
+  mp_limb_t cross2[4], ee[2];
+  norm2(p.ew, cross2);
+  const U128 m = U128(p.ee);
+  ee[0] = mp_limb_t(std::uint64_t(m)), ee[1] = mp_limb_t(std::uint64_t(m >> 64));
+  std::memset(out.nn, 0, sizeof out.nn);
+  mpn_mul(out.nn, cross2, 4, ee, 2);
   out.parallel = true;
   out.has_normal = false;
 }
@@ -247,8 +311,7 @@ bool oriented_normal(const IntegerFrame& f, const DirectionLabel& label, __int12
 bool oriented_parallel_normal(const IntegerFrame& f, const DirectionLabel& label, ParallelNormal& p) {
   p = parallel_normal(f, label.a, label.b);
   if (p.zero()) return false;
-  if (flipped(parallel_side(f, p, label.a), label.orientation))
-    for (Int256& c : p.n) c = -c;
+  if (flipped(parallel_side(f, p, label.a), label.orientation)) p.flip = true;
   return true;
 }
 
@@ -306,19 +369,9 @@ bool products_equal(__int128 x, __int128 y, __int128 z, __int128 t) {
   const int sxy = (x > 0) - (x < 0), syy = (y > 0) - (y < 0), szt = (z > 0) - (z < 0), stt = (t > 0) - (t < 0);
   if (sxy * syy != szt * stt) return false;
   if (sxy * syy == 0) return true;
-  using U = unsigned __int128;
-  auto mag = [](__int128 a) { return a < 0 ? U(0) - U(a) : U(a); };
-  auto product = [](U a, U b, U& hi, U& lo) {
-    const std::uint64_t a0 = std::uint64_t(a), a1 = std::uint64_t(a >> 64), b0 = std::uint64_t(b),
-                        b1 = std::uint64_t(b >> 64);
-    const U p00 = U(a0) * b0, p01 = U(a0) * b1, p10 = U(a1) * b0, p11 = U(a1) * b1;
-    const U mid = (p00 >> 64) + std::uint64_t(p01) + std::uint64_t(p10);  // < 3 2^64: no carry out
-    lo = (mid << 64) | std::uint64_t(p00);
-    hi = p11 + (p01 >> 64) + (p10 >> 64) + (mid >> 64);
-  };
-  U h1, l1, h2, l2;
-  product(mag(x), mag(y), h1, l1);
-  product(mag(z), mag(t), h2, l2);
+  U128 h1, l1, h2, l2;
+  product(magnitude_of(x), magnitude_of(y), h1, l1);
+  product(magnitude_of(z), magnitude_of(t), h2, l2);
   return h1 == h2 && l1 == l2;
 }
 

@@ -21,8 +21,9 @@
 //     heights < 2^249, |D| < 2^250 (2^(4e)), n.n < 2^374 (2^(6e));
 // delta² = D²/(n.n) is in units 2^(2e) either way, so any two candidates compare as integers:
 // D² n.n < 2^(500 + 374), fourteen 64-bit limbs. The products are GMP's mpn functions on limbs
-// on the stack (mpz allocates); the degree-3 normal and its heights are boost::multiprecision's
-// fixed 256- and 512-bit integers (rare: only parallel edge pairs). Written here rather than on
+// on the stack (mpz allocates); a parallel pair's heights are signed 256-bit integers of four
+// words (integer_depth.cpp's I256: two 128 x 128-bit products a height), its n.n the product
+// (e.e) |e × w|^2 of its edge e and offset w (Lagrange's identity). Written here rather than on
 // expansions (expansion.h) because a comparison is then ~100 limb products instead of thousands
 // of two_products; the callers keep the expansions where the pair has no frame.
 #pragma once
