@@ -37,6 +37,7 @@
 #include "certification/certify.h"
 #include "certification/compensated_heights.h"
 #include "exact/exact_candidate.h"
+#include "exact/integer_heights.h"
 #include "kernel/candidate_directions.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/pair_memo.h"
@@ -480,9 +481,11 @@ Exact exact_edge_pair_of(const TetVertices& A, const TetVertices& B, const Direc
 // cell along (1, 1, 1): diagonal edges parallel up to that rounding, depths ~1e-17 of the
 // cell) and of random pairs on a dyadic grid with a copied edge direction (exactly parallel
 // edges, and nearly parallel ones one ulp off) gets its heights and normal, each within its
-// certified bound of the definition's rationals; and the bounds are not vacuous. Measured: 8,341
-// parallel and 3,168 nearly parallel edge pairs, the worst error 0.15 of its bound (a compressed
-// height of one or two components: bound 4u or 6u of it, the rounding up to u).
+// certified bound of the definition's rationals; and the bounds are not vacuous. Both routes:
+// over the pair's integer frame (most of these pairs: each value correctly rounded, bound u of
+// it, so the worst error comes near its bound) and by expansions (the random pairs again with a
+// coordinate of 2^-75: 75 bits, beyond the frame's 60). Measured: 8,495 parallel and 3,319
+// nearly parallel edge pairs (305 of them by expansions), the worst error 0.97 of its bound.
 BOOST_AUTO_TEST_CASE(expansion_heights_within_their_bounds) {
   std::vector<std::pair<TetVertices, TetVertices>> pairs = shifted_kuhn_pairs();
   for (const TetPair& p : pdd::test::rounding_contact_pairs(3, 400)) pairs.emplace_back(p.A, p.B);
@@ -495,19 +498,23 @@ BOOST_AUTO_TEST_CASE(expansion_heights_within_their_bounds) {
     for (int k = 0; k < 3; ++k) B[1][k] = B[0][k] + (A[1][k] - A[0][k]);  // exact: eB = eA
     if (trial % 2) B[1][2] = std::nextafter(B[1][2], 2.0);                 // one ulp off
     pairs.emplace_back(A, B);
+    B[3][1] = 0x1p-75;  // (coordinates over 75 bits: no integer frame, expansions)
+    pairs.emplace_back(A, B);
   }
-  int parallel = 0, nearly = 0, wrong = 0;
+  int parallel = 0, nearly = 0, wrong = 0, by_expansions = 0;
   double worst = 0;
   for (const auto& [A0, B0] : pairs) {
     const detail::ScaledPair sp = detail::power_scaled(A0, B0);
     CandidateSet set;
     if (!sp.exact || build_candidates(sp.A, sp.B, set) != BuildStatus::Ok) continue;
+    const bool framed = detail::IntegerFrame(sp.A, sp.B).usable();
     for (int k = 0; k < set.count; ++k) {
       const Candidate c = candidate(set, k);
       if (c.label.kind != ContactKind::EE || !(c.parallel || c.own_bounds)) continue;
       detail::CompensatedHeights h;
       BOOST_TEST_REQUIRE(detail::expansion_heights(sp.A, sp.B, c, h));
       (c.parallel ? parallel : nearly)++;
+      by_expansions += !framed;
       const Exact x = exact_edge_pair_of(sp.A, sp.B, c.label);
       auto check = [&](double computed, double bound, const Q& exact) {
         const Q err = abs(Q(computed) - exact);
@@ -519,8 +526,11 @@ BOOST_AUTO_TEST_CASE(expansion_heights_within_their_bounds) {
     }
   }
   BOOST_TEST_MESSAGE("expansion heights: " << parallel << " parallel and " << nearly
-                                           << " nearly parallel edge pairs, worst error / bound " << worst);
+                                           << " nearly parallel edge pairs (" << by_expansions
+                                           << " by expansions), worst error / bound " << worst);
   BOOST_TEST(wrong == 0);
+  BOOST_TEST(by_expansions > 250);  // both routes
+  BOOST_TEST(parallel + nearly - by_expansions > 5000);
   BOOST_TEST(parallel > 4000);
   BOOST_TEST(nearly > 1500);
   // not vacuous: a bound a quarter as wide would fail

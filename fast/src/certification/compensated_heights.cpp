@@ -6,6 +6,7 @@
 #include "certification/double_word.h"
 #include "exact/exact_predicates.h"
 #include "exact/expansion.h"
+#include "exact/integer_depth.h"
 #include "kernel/direction_geometry.h"
 #include "kernel/pair_memo.h"
 
@@ -318,9 +319,26 @@ bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, cons
   ExpVec n;
   if (l.kind != ContactKind::EE) return false;
   const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
-  if (c.conA != ((1u << u) | (1u << v)) || c.conB != ((1u << x) | (1u << y)) ||
-      !oriented_normal_expansion(A, B, l, n))
-    return false;
+  if (c.conA != ((1u << u) | (1u << v)) || c.conB != ((1u << x) | (1u << y))) return false;
+  if (IntegerFrame frame(A, B); frame.usable()) {
+    // over the pair's integer frame (integer_depth.h): the same exact normal and heights, each
+    // rounded once (~4,000 instructions a candidate where the expansions take ~12,000); where a
+    // value leaves the double range there, by expansions below
+    FramedEdgeHeights fh;
+    if (framed_edge_heights(frame, l, fh)) {
+      for (int k = 0; k < 3; ++k) out.n[k] = fh.n[k];
+      out.e_n = fh.e_n;
+      out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
+      if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
+      for (int i = 0; i < 4; ++i) {
+        const bool on_edge = c.conA >> i & 1u;  // (its exact height is 0: n is normal to A's edge)
+        out.hA[i] = on_edge ? 0.0 : fh.h[i], out.eA[i] = on_edge ? 0.0 : fh.e[i];
+        out.hB[i] = fh.h[4 + (i == y ? x : i)], out.eB[i] = fh.e[4 + (i == y ? x : i)];
+      }
+      return finite_heights(out);
+    }
+  }
+  if (!oriented_normal_expansion(A, B, l, n)) return false;
   out.e_n = 0;
   for (int k = 0; k < 3; ++k) {
     const Approx a = approx_of(compressed(n.x[k]));

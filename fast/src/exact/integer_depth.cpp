@@ -2,6 +2,7 @@
 // integer_depth.h.
 #include "exact/integer_depth.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -43,7 +44,7 @@ struct I256 {
   std::uint64_t w[4] = {0, 0, 0, 0};
 };
 
-// |a| |b| as 256 bits (hi 2^128 + lo), for |a|, |b| < 2^127.
+// a b as 256 bits (hi 2^128 + lo), for any unsigned 128-bit a, b.
 void product(U128 a, U128 b, U128& hi, U128& lo) {
   const std::uint64_t a0 = std::uint64_t(a), a1 = std::uint64_t(a >> 64), b0 = std::uint64_t(b),
                       b1 = std::uint64_t(b >> 64);
@@ -66,13 +67,17 @@ U128 magnitude_of(__int128 a) { return a < 0 ? U128(0) - U128(a) : U128(a); }
   return r;
 }
 
-// a b exactly, for |a|, |b| < 2^127.
+// a b exactly, for |a|, |b| < 2^127: the unsigned product of their two's-complement words less
+// b~ 2^128 where a < 0 and a~ 2^128 where b < 0 (a = a~ − 2^128 there), modulo 2^256, which
+// holds the product (below 2^254 in magnitude) exactly.
 [[gnu::always_inline]] inline I256 times(__int128 a, __int128 b) {
+  const U128 ua = U128(a), ub = U128(b);
   U128 hi, lo;
-  product(magnitude_of(a), magnitude_of(b), hi, lo);
+  product(ua, ub, hi, lo);
+  hi -= (a < 0 ? ub : 0) + (b < 0 ? ua : 0);
   I256 r;
   r.w[0] = std::uint64_t(lo), r.w[1] = std::uint64_t(lo >> 64), r.w[2] = std::uint64_t(hi), r.w[3] = std::uint64_t(hi >> 64);
-  return (a < 0) != (b < 0) ? negated(r) : r;
+  return r;
 }
 
 // x − y (the callers' values keep it below 2^255 in magnitude): word by word with the borrow,
@@ -348,6 +353,77 @@ bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDept
 int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label) {
   FramedDepth d;
   return framed_depth(f, label, d) ? d.D_sign : 2;
+}
+
+namespace {
+
+// A signed integer given by its magnitude's limbs, times 2^k, rounded to the nearest double
+// once: the 64 bits from the highest set bit down, the bits below folded into the lowest as a
+// sticky bit (which keeps round-to-nearest-even at bit 11 exact), converted, then scaled by a
+// power of two (exact where the result is a normal double; else false; 0 is exact). Its error
+// |v − V| <= u |V| <= u |v| (1 + 2^-40) is returned in e.
+bool rounded_scaled(const mp_limb_t (&mag)[4], int sign, int k, double& v, double& e) {
+  constexpr double u = 0x1p-53;
+  int top = 3;
+  while (top > 0 && mag[top] == 0) --top;
+  if (sign == 0 || mag[top] == 0) return v = 0, e = 0, true;
+  const int lz = __builtin_clzll(mag[top]);
+  std::uint64_t bits = mag[top] << lz, sticky = 0;
+  if (top > 0) {
+    if (lz > 0) bits |= mag[top - 1] >> (64 - lz), sticky = mag[top - 1] << lz;
+    else sticky = mag[top - 1];
+    for (int i = 0; i < top - 1; ++i) sticky |= mag[i];
+  }
+  v = times_pow2(double(bits | (sticky != 0 ? 1u : 0u)), 64 * top - lz + k);
+  if (!(std::fabs(v) >= DBL_MIN && std::fabs(v) <= DBL_MAX)) return false;
+  e = u * std::fabs(v) * (1 + 0x1p-40);
+  if (sign < 0) v = -v;
+  return true;
+}
+
+bool rounded_scaled(const Wide& x, int k, double& v, double& e) {
+  mp_limb_t m[4] = {0, 0, 0, 0};
+  magnitude(x, m);
+  return rounded_scaled(m, sign_of_wide(x), k, v, e);
+}
+
+bool rounded_scaled(const I256& x, int k, double& v, double& e) {
+  mp_limb_t m[4];
+  magnitude(x, m);
+  return rounded_scaled(m, sign_of(x), k, v, e);
+}
+
+}  // namespace
+
+bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, FramedEdgeHeights& out) {
+  if (label.kind != ContactKind::EE) return false;
+  const int e = f.unit_exponent(), u = kEdges[label.a][0];
+  __int128 n[3];
+  Extremes x;
+  bool ok = true;
+  if (oriented_normal(f, label, n, x)) {
+    out.e_n = 0;
+    for (int k = 0; k < 3; ++k) {
+      Wide w{n[k] >> 64, std::uint64_t(n[k])};  // (n_k as hi 2^64 + lo)
+      double err = 0;
+      ok = ok && rounded_scaled(w, 2 * e, out.n[k], err);
+      out.e_n = std::fmax(out.e_n, err);
+    }
+    for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(f.dot(n, i, u), 3 * e, out.h[i], out.e[i]);
+    return ok;
+  }
+  ParallelNormal p;
+  if (!oriented_parallel_normal(f, label, p)) return false;
+  out.e_n = 0;
+  for (int k = 0; k < 3; ++k) {
+    I256 c = minus(times(p.ee, p.w[k]), times(p.we, p.e[k]));
+    if (p.flip) c = negated(c);
+    double err = 0;
+    ok = ok && rounded_scaled(c, 3 * e, out.n[k], err);
+    out.e_n = std::fmax(out.e_n, err);
+  }
+  for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(p.dot(f, i, u), 4 * e, out.h[i], out.e[i]);
+  return ok;
 }
 
 int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q) {

@@ -57,6 +57,20 @@ bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDept
 // 2 for a colinear edge pair. Precondition: f.usable().
 int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label);
 
+// An edge-pair label's exact oriented normal n (framed_depth's: eB × eA, or the common
+// perpendicular of parallel edges, oriented as the label says) and the heights n.(x_i − s_u) of
+// the eight vertices (0..3 A's, 4..7 B's; s_u the first vertex of A's edge), each rounded once
+// to a double in the pair's units (n in 2^(2e), heights in 2^(3e); parallel: 2^(3e) and 2^(4e)),
+// with |n~_k − n_k| <= e_n and |h~_i − h_i| <= e[i] (each a few u of its own value, 0 where the
+// value is 0). For compensated_heights.h's expansion_heights, which takes the same quantities
+// by expansions where the pair has no frame. False for a face label, a colinear edge pair, or a
+// value that is not 0 and does not round to a normal double. Precondition: f.usable().
+struct FramedEdgeHeights {
+  double n[3] = {0, 0, 0}, e_n = 0;
+  double h[8] = {}, e[8] = {};
+};
+bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, FramedEdgeHeights& out);
+
 // sign(delta²_p − delta²_q), exactly (both from one frame).
 int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q);
 
