@@ -52,9 +52,9 @@ struct FramedDepth {
 // f.usable().
 bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDepth& out);
 
-// The sign of the label's D, exactly (−1, 0, +1; framed_depth's D_sign, from the extreme
-// heights' differences alone: at most 16 signs, one to four where the label fixes an extreme);
-// 2 for a colinear edge pair. Precondition: f.usable().
+// The sign of the label's D, exactly (−1, 0, +1): framed_depth's D_sign, the whole depth kept in
+// its per-pair memo (a depth sign the candidate set cannot decide in doubles is a contender's,
+// whose depth the refinement asks next); 2 for a colinear edge pair. Precondition: f.usable().
 int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label);
 
 // An edge-pair label's exact oriented normal n (framed_depth's: eB × eA, or the common
