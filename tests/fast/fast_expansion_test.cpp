@@ -453,8 +453,9 @@ BOOST_AUTO_TEST_CASE(framed_delta2_matches_rationals) {
 // 2^372 (integer_depth.h), the widest integers framed_depth computes. B's edges 0–1 and 2–3 are
 // A's edge 0–1 and 0–2 moved (exactly: multiples of 2^7 below 2^59), beside random vertices of
 // both signs and a coordinate of 1 (the frame's unit); a third of the pairs on small integers,
-// a third Kuhn cells stacked by rounding (heights that differ in their lowest words only); every label's framed D, its sign and n.n
-// equal the rationals', parallel labels of both orientations included.
+// a third Kuhn cells stacked by rounding (heights that differ in their lowest words only).
+// Every label's framed D, its sign and n.n equal the rationals', parallel labels of both
+// orientations included. Measured: 3,341 parallel edge pairs, 302 of them with D < 0.
 BOOST_AUTO_TEST_CASE(parallel_edge_pairs_at_the_frames_bounds) {
   compare::ReproducibleRng r(20261205);
   long checked = 0, parallel = 0, negative = 0;
@@ -499,8 +500,8 @@ BOOST_AUTO_TEST_CASE(parallel_edge_pairs_at_the_frames_bounds) {
     }
   }
   BOOST_TEST_MESSAGE(checked << " labels, " << parallel << " parallel edge pairs (" << negative << " with D < 0)");
-  BOOST_TEST(parallel > 600);  // two parallel edge pairs a pair at least, both orientations
-  BOOST_TEST(negative > 50);   // separating parallel directions: D's sign exercised
+  BOOST_TEST(parallel > 2500);  // the parallel edge pairs are exercised
+  BOOST_TEST(negative > 200);   // separating parallel directions: D's sign exercised
 }
 
 BOOST_AUTO_TEST_CASE(height_signs_match_rationals) {
