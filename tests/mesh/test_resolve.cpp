@@ -318,6 +318,24 @@ BOOST_AUTO_TEST_CASE(blocks_stacked_a_third_deep_move_one_way) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(nearly_coincident_blocks_resolved_by_the_rounds) {
+  // Two blocks of n^3 Kuhn cubes of cell 0.1, B the copy of A moved half a cell in x and y: one
+  // contact patch through both blocks, whose pairs' planes point every way, and several
+  // directions (+-x, +-y, the diagonals) that separate it at about the same cost. Choosing the
+  // patch's direction afresh every round turned it by up to 180 degrees a round: the rounds
+  // pushed one way and back and ended in the translation fallback after 192 rounds (measured).
+  // Never turned back (patch_direction.h), the rounds resolve it (23 rounds).
+  const double h = 0.1;
+  const int n = 6;
+  const Mesh A = kuhn_grid(n, h, {0, 0, 0}), B = kuhn_grid(n, h, {0.5 * h, 0.5 * h, 0});
+  const Resolution r = resolve(A, B, ResolveOptions{});
+  log_report("Kuhn blocks half a cell apart in x and y", r);
+  judge(A, &B, r, {}, {});
+  BOOST_TEST(r.report.resolved);
+  BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "rounds");
+  BOOST_TEST(r.report.rounds.size() <= 40u);
+}
+
 BOOST_AUTO_TEST_CASE(fixed_mesh_and_fixed_vertices) {
   const Mesh A = load("touching-a.msh"), B = translated(load("touching-b.msh"), {-kDelta, 0, 0});
   {

@@ -100,20 +100,56 @@ double squared_clearances(const Run& run, const std::vector<std::array<std::size
   return total;
 }
 
+// The direction most of the patch's vertices were pushed along last round (an index into
+// memory.along), or -1.
+int last_direction(const Run& run, const Run::PatchMemory& memory, const std::vector<std::array<std::size_t, 2>>& pairs,
+                   const std::vector<std::size_t>& patch) {
+  if (memory.along.empty()) return -1;
+  std::vector<std::size_t> votes(memory.along.size(), 0);
+  for (std::size_t k : patch)
+    for (int i = 0; i < 4; ++i) {
+      if (const int d = memory.of_a[run.sa.rest->tets[pairs[k][0]][i]]; d >= 0) ++votes[std::size_t(d)];
+      if (const int d = memory.of_b[run.sb.rest->tets[pairs[k][1]][i]]; d >= 0) ++votes[std::size_t(d)];
+    }
+  const auto most = std::max_element(votes.begin(), votes.end());
+  return *most > 0 ? int(most - votes.begin()) : -1;
+}
+
+// The patch's direction: the candidate of least squared clearances; where the patch was pushed
+// along `last` in the previous round, of the candidates within 90 degrees of it.
+std::optional<Vec3d> direction(const Run& run, const std::vector<std::array<std::size_t, 2>>& pairs,
+                               const std::vector<std::size_t>& patch, const std::vector<PairMove>& moves,
+                               const Vec3d* last) {
+  std::optional<Vec3d> best;
+  double least = HUGE_VAL;
+  for (const Vec3d& u : candidates(run, pairs, patch, moves))
+    if (!last || dot(u, *last) >= 0)
+      if (const double s = squared_clearances(run, pairs, patch, u); s < least) least = s, best = u;
+  return best;
+}
+
 }  // namespace
 
-std::vector<std::optional<Vec3d>> patch_directions(const Run& run,
-                                                   const std::vector<std::array<std::size_t, 2>>& pairs,
+std::vector<std::optional<Vec3d>> patch_directions(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs,
                                                    const std::vector<PairMove>& moves) {
   std::vector<std::optional<Vec3d>> along(pairs.size());
   if (!run.B) return along;
+  const Run::PatchMemory last = std::move(run.patch_memory);
+  Run::PatchMemory& now = run.patch_memory;
+  now.clear();
+  now.of_a.assign(run.sa.cur.vertices.size(), -1), now.of_b.assign(run.sb.cur.vertices.size(), -1);
   for (const std::vector<std::size_t>& patch : patches(run, pairs)) {
     if (patch.empty() || agrees(patch, moves)) continue;
-    std::optional<Vec3d> best;
-    double least = HUGE_VAL;
-    for (const Vec3d& u : candidates(run, pairs, patch, moves))
-      if (const double s = squared_clearances(run, pairs, patch, u); s < least) least = s, best = u;
-    for (std::size_t k : patch) along[k] = best;
+    const int d = last_direction(run, last, pairs, patch);
+    const std::optional<Vec3d> u = direction(run, pairs, patch, moves, d >= 0 ? &last.along[std::size_t(d)] : nullptr);
+    if (!u) continue;
+    const int index = int(now.along.size());
+    now.along.push_back(*u);
+    for (std::size_t k : patch) {
+      along[k] = u;
+      for (int i = 0; i < 4; ++i)
+        now.of_a[run.sa.rest->tets[pairs[k][0]][i]] = now.of_b[run.sb.rest->tets[pairs[k][1]][i]] = index;
+    }
   }
   return along;
 }

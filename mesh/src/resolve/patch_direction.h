@@ -12,6 +12,13 @@
 //   vertex where it is) is pushed along one direction: among the normals of its kCandidates
 //   deepest pairs and both signs of the principal axes of its vertices, the u that minimises
 //   sum_k c_k(u)^2, c_k(u) = max(0, max u.s - min u.r) the rigid clearance of pair k along u.
+// Never turned back. Where a deep overlap is one patch whose pairs' planes point every way (two
+//   blocks nearly coincident), several candidates separate it at about the same cost, and the
+//   least one changes with every round's move; chosen afresh, it turned by up to 180 degrees
+//   from one round to the next, undoing the last push, and the rounds never separated (Kuhn
+//   blocks of 6^3 cubes half a cell apart in x and y: the translation fallback after ~190
+//   rounds). So a patch whose vertices were pushed along u last round (the direction most of
+//   them had) takes the least of the candidates within 90 degrees of u.
 // Self-contact keeps every pair's own plane: a pair names its elements in index order, so its
 //   normal's sign says nothing about the patch's sides.
 #pragma once
@@ -26,8 +33,7 @@
 
 namespace pdd::mesh::detail {
 
-std::vector<std::optional<Vec3d>> patch_directions(const Run& run,
-                                                   const std::vector<std::array<std::size_t, 2>>& pairs,
+std::vector<std::optional<Vec3d>> patch_directions(Run& run, const std::vector<std::array<std::size_t, 2>>& pairs,
                                                    const std::vector<PairMove>& moves);
 
 }  // namespace pdd::mesh::detail

@@ -246,6 +246,7 @@ bool run_pd_rounds(Run& run, std::size_t budget) {
   if (run.B && !run.elastic_b) run.elastic_b.emplace(*run.B, run.sb.elems, run.sb.fixed);
   run.rep.seconds_solve += since(t);
   Held held_a(run.A.vertices.size()), held_b(run.B ? run.B->vertices.size() : 0);
+  run.patch_memory.clear();
   std::size_t first = 0, best = 0, best_round = 0;
   for (std::size_t r = 0; r < budget; ++r) {
     run.stop_if_cancelled();

@@ -63,6 +63,14 @@ struct Run {
   ResolveVariant pd_variant = o.variant;  // the per-pair solution of the projective-dynamics rounds
   std::optional<ElasticStep> elastic_a, elastic_b;  // the global step, assembled on first use
   ContactList contact_list;                         // the contact stage's candidates (rounds.h)
+  // The directions of last round's replaced patches (patch_direction.h) and, per vertex of A
+  // and of B, the one it was pushed along (an index into them; -1: none). Cleared where the
+  // rounds start again.
+  struct PatchMemory {
+    std::vector<Vec3d> along;
+    std::vector<int> of_a, of_b;
+    void clear() { along.clear(), of_a.clear(), of_b.clear(); }
+  } patch_memory;
 
   Side& second() { return B ? sb : sa; }  // the side of a pair's second element
   double cost() const { return side_cost(sa) + (B ? side_cost(sb) : 0); }
@@ -72,6 +80,7 @@ struct Run {
   }
   // Both sides back to given positions (b ignored for self-contact).
   void place(const std::vector<Vec3d>& a, const std::vector<Vec3d>& b) {
+    patch_memory.clear();
     sa.cur.vertices = a;
     if (B) sb.cur.vertices = b;
   }
