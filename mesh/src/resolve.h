@@ -35,6 +35,10 @@
 //
 // Fallbacks, in order, when the rounds stall (report.method says which produced the result;
 // fallbacks.h):
+//   - two meshes whose rounds stalled on kFewPairs pairs or fewer (rounds.h; also after
+//     kFewPairsRounds rounds without fewer there): up to kFinishRounds per-pair rounds (below)
+//     from where the rounds stopped, whose moves take a pair's vertices the whole way where the
+//     elastic step moves a vertex pulled alone a tenth of its pull (method "rounds");
 //   - self-contact of several bodies, when every intersecting pair at rest joins two bodies:
 //     when the contacting bodies come in pairs, each pair resolved as two meshes, all of the
 //     below included (method "bodies"); else (a chain, a square or a triangle of bodies, or the

@@ -38,6 +38,9 @@ constexpr double kMinProgress = 0.01;
 // pairs fall one at a time with plateaus between (the tiny fixture meshes: 1 pair for 9 rounds
 // before resolving), which the plateau rule above judges.
 constexpr std::size_t kProbeRounds = 10, kProbeMinPairs = 100;
+// Rounds without fewer pairs, at kFewPairs pairs or fewer, before the rounds give way to the
+// per-pair rounds (OnFewPairs::Exit; plateaus of up to 6 rounds on the Gmsh balls end resolved).
+constexpr std::size_t kFewPairsRounds = 8;
 // A vertex is pulled kOvershoot times the way to its half-spaces: the elastic step moves a
 // contact vertex only part of its pull (elastic_step.h), and the overshoot makes up for it
 // (the step limit cuts where it would break R2 or R4). Measured on the one-layer Gmsh balls
@@ -240,7 +243,7 @@ std::vector<std::array<std::size_t, 2>> contacts(Run& run) {
   return pairs;
 }
 
-bool run_pd_rounds(Run& run, std::size_t budget) {
+bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few) {
   const auto t = Clock::now();
   if (!run.elastic_a) run.elastic_a.emplace(run.A, run.sa.elems, run.sa.fixed);
   if (run.B && !run.elastic_b) run.elastic_b.emplace(*run.B, run.sb.elems, run.sb.fixed);
@@ -256,6 +259,7 @@ bool run_pd_rounds(Run& run, std::size_t budget) {
     if (r == 0) first = pairs.size();
     if (r == 0 || double(pairs.size()) < double(best) * (1 - kMinProgress)) best = pairs.size(), best_round = r;
     if (r >= best_round + kStallRounds || (r >= kProbeRounds && first >= kProbeMinPairs && 2 * pairs.size() > first)) return false;
+    if (on_few == OnFewPairs::Exit && pairs.size() <= kFewPairs && r >= best_round + kFewPairsRounds) return false;
     run.stop_if_cancelled();
     ResolveRound rr;
     if (!pd_round(run, pairs, held_a, held_b, rr)) return false;

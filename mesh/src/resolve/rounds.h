@@ -25,8 +25,11 @@ std::vector<std::array<std::size_t, 2>> contacts(Run& run);
 // The projective-dynamics rounds: half-space targets (plane_targets; along one direction per
 // disagreeing contact patch, patch_direction.h), the elastic global step (elastic_step.h) and
 // the step limit. They stall after kStallRounds rounds without fewer pairs
-// than the best round.
-bool run_pd_rounds(Run& run, std::size_t budget);
+// than the best round; with OnFewPairs::Exit also after kFewPairsRounds rounds without fewer
+// pairs when kFewPairs or fewer are left (the per-pair rounds finish those: resolve.cpp).
+enum class OnFewPairs { Exit, Continue };
+constexpr std::size_t kFewPairs = 16;
+bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few = OnFewPairs::Continue);
 
 // Whether the per-pair rounds end when they stall (the first try after the projective-dynamics
 // rounds) or use the whole budget (the rounds of the fallbacks).
