@@ -115,15 +115,22 @@ int last_direction(const Run& run, const Run::PatchMemory& memory, const std::ve
   return *most > 0 ? int(most - votes.begin()) : -1;
 }
 
+// A patch's direction turns by at most 45 degrees from one round to the next (the cosine):
+// within 90 degrees, blocks of 10^3 Kuhn cubes half a cell apart in x and y still turned their
+// push around in two rounds, (-0.71, 0.71, 0) -> (-0.78, 0.14, 0.62) -> (0.20, -0.80, 0.57),
+// and ended in the translation; within 60 degrees that case too; within 45 degrees they resolve
+// by the rounds (34 rounds), and every `pdd bench resolve` case keeps its rounds and cost.
+constexpr double kTurn = 0.70710678118654752;
+
 // The patch's direction: the candidate of least squared clearances; where the patch was pushed
-// along `last` in the previous round, of the candidates within 90 degrees of it.
+// along `last` in the previous round, of the candidates within 45 degrees of it (kTurn).
 std::optional<Vec3d> direction(const Run& run, const std::vector<std::array<std::size_t, 2>>& pairs,
                                const std::vector<std::size_t>& patch, const std::vector<PairMove>& moves,
                                const Vec3d* last) {
   std::optional<Vec3d> best;
   double least = HUGE_VAL;
   for (const Vec3d& u : candidates(run, pairs, patch, moves))
-    if (!last || dot(u, *last) >= 0)
+    if (!last || dot(u, *last) >= kTurn)
       if (const double s = squared_clearances(run, pairs, patch, u); s < least) least = s, best = u;
   return best;
 }

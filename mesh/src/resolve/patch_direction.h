@@ -18,7 +18,8 @@
 //   from one round to the next, undoing the last push, and the rounds never separated (Kuhn
 //   blocks of 6^3 cubes half a cell apart in x and y: the translation fallback after ~190
 //   rounds). So a patch whose vertices were pushed along u last round (the direction most of
-//   them had) takes the least of the candidates within 90 degrees of u.
+//   them had) takes the least of the candidates within 45 degrees of u (kTurn: within 90, the
+//   same blocks of 10^3 cubes still turned around in two rounds).
 // Self-contact keeps every pair's own plane: a pair names its elements in index order, so its
 //   normal's sign says nothing about the patch's sides.
 #pragma once
