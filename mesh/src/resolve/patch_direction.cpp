@@ -123,7 +123,8 @@ int last_direction(const Run& run, const Run::PatchMemory& memory, const std::ve
 constexpr double kTurn = 0.70710678118654752;
 
 // The patch's direction: the candidate of least squared clearances; where the patch was pushed
-// along `last` in the previous round, of the candidates within 45 degrees of it (kTurn).
+// along `last` in the previous round, of the candidates within 45 degrees of it (kTurn), or
+// `last` itself where none is.
 std::optional<Vec3d> direction(const Run& run, const std::vector<std::array<std::size_t, 2>>& pairs,
                                const std::vector<std::size_t>& patch, const std::vector<PairMove>& moves,
                                const Vec3d* last) {
@@ -132,6 +133,7 @@ std::optional<Vec3d> direction(const Run& run, const std::vector<std::array<std:
   for (const Vec3d& u : candidates(run, pairs, patch, moves))
     if (!last || dot(u, *last) >= kTurn)
       if (const double s = squared_clearances(run, pairs, patch, u); s < least) least = s, best = u;
+  if (!best && last) best = *last;  // (no candidate within the cone: the way it went)
   return best;
 }
 
