@@ -251,24 +251,39 @@ struct Builder {
     return s == 0;
   }
 
-  // Lane i = (a, b) unclear only through g's within their bound that are exactly 0 by structural
-  // zeros (a face of A whose plane holds eB's direction: aligned pairs, about half their unclear
-  // lanes): n clear of the nearly parallel test, every other g beyond its bound, and the depths
-  // the orientation uses beyond theirs. classify() would give the side these signs give (a 0
-  // counts on neither side: Keep when no g > 0, Flip when no g < 0, else both orientations),
-  // and the lane's values carry the bounds edge_pair_general gives a generic pair (fb.deg3), so
-  // the lane is written as a clear one. (EdgeLanes' verdict stays unclear: the quick lists,
-  // which read g's signs without zeros, still decline the pair.)
-  bool clear_but_zero_g(int a, int b, int i) {
+  // Lane i = (a, b) unclear only through the signs of its g's (a face of A whose plane holds
+  // eB's direction, or nearly: aligned pairs, and meshes whose grid a generator placed up to a
+  // rounding, most of their unclear lanes): n clear of the nearly parallel test and the depths
+  // the orientation uses beyond their bounds, each g within its bound decided exactly
+  // (g_sign_exact, as classify() decides it: structural zeros, the integer frame, double words,
+  // expansions; cached per edge of B and face of A). classify() would give the side these
+  // signs give (a 0 counts on neither side: Keep when no g > 0, Flip when no g < 0, else both
+  // orientations) and edge_pair_general would store the lane's own heights and n, with the
+  // bounds it gives a generic pair (fb.deg3): so the lane is written as a clear one, its
+  // orientation `flip` and `undecidable` set here. False where a sign is beyond the
+  // expansions' reach or the lane is unclear otherwise (edge_pair_general decides it). (EdgeLanes'
+  // verdict stays unclear: the quick lists, which read g's computed signs, still decline the pair.)
+  bool clear_but_g(int a, int b, int i, bool& flip, bool& undecidable) {
     const EdgeLanes& L = out.edges;
     const double e3 = fb.deg3;
     const double n[3] = {L.n0[i], L.n1[i], L.n2[i]};
     if (!(max_abs3(n) > kExactNormalBelow * fb.deg2)) return false;
     const double g[2] = {L.g1[i], L.g2[i]};
-    for (int m = 0; m < 2; ++m)
-      if (!(std::fabs(g[m]) > e3) && !(g[m] == 0.0 && g_zero(b, kOffFaces.face[a][m]))) return false;
-    const bool pos = (g[0] > 0.0) | (g[1] > 0.0), neg = (g[0] < 0.0) | (g[1] < 0.0);
-    const bool flip = pos & !neg, undecidable = pos & neg;
+    int sign[2];
+    for (int m = 0; m < 2; ++m) {
+      if (std::fabs(g[m]) > e3) {
+        sign[m] = g[m] > 0.0 ? 1 : -1;
+      } else if (g[m] == 0.0 && g_zero(b, kOffFaces.face[a][m])) {
+        sign[m] = 0;
+      } else {
+        if (!in_range) return false;
+        sign[m] = g_sign_exact(a, b, kOffEdge[a][m]);
+        if (sign[m] == 3) return false;
+      }
+    }
+    const bool pos = (sign[0] > 0) | (sign[1] > 0), neg = (sign[0] < 0) | (sign[1] < 0);
+    flip = pos & !neg;
+    undecidable = pos & neg;
     return (L.dplus[i] > e3 || flip) && (L.dminus[i] > e3 || !(flip || undecidable));
   }
 
@@ -404,9 +419,9 @@ struct Builder {
 
   // All edge pairs in canonical order. A lane with clear filter verdicts (edge_lanes) is written
   // from its lane (its g's are not 0: flip when both are > 0, undecidable when their signs
-  // differ, its verdict's `first`); so is a lane unclear only through g's exactly 0
-  // (clear_but_zero_g), by the rule with a 0 on neither side; any other unclear lane goes to
-  // edge_pair_general.
+  // differ, its verdict's `first`); so is a lane unclear only through its g's signs
+  // (clear_but_g), by the rule on their exact signs, a 0 on neither side; any other unclear lane
+  // goes to edge_pair_general.
   bool edge_pairs() {
     const EdgeLanes& L = out.edges;
     int k = out.count;
@@ -417,10 +432,8 @@ struct Builder {
         if (L.unclear[i] == 0.0) {
           const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
           k = write_lane(k, a, b, i, pos1 & pos2, pos1 ^ pos2, L.first[i]);
-        } else if (clear_but_zero_g(a, b, i)) {
-          const bool pos = (g1 > 0.0) | (g2 > 0.0), neg = (g1 < 0.0) | (g2 < 0.0);
-          const bool flip = pos & !neg;
-          k = write_lane(k, a, b, i, flip, pos & neg, flip ? L.d2minus[i] : L.d2plus[i]);
+        } else if (bool flip, undecidable; clear_but_g(a, b, i, flip, undecidable)) {
+          k = write_lane(k, a, b, i, flip, undecidable, flip ? L.d2minus[i] : L.d2plus[i]);
         } else {
           out.count = k;
           if (!edge_pair_general(a, b)) return false;
