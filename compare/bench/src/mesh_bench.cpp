@@ -286,6 +286,20 @@ namespace {
 
 // m translated by t, then rotated by `angle` about `axis` through its centre (angle 0: only
 // translated, each coordinate rounded once).
+// m with every coordinate moved by a few ulps, as a mesh generator places a grid (Gmsh's
+// transfinite boxes give 0.1 as 0.09999999999999992 ... 0.1000000000000001, each node its own):
+// −2 to +2 ulps by a fixed pattern of the vertex and the axis (zeros stay zero).
+mesh::Mesh placed_up_to_rounding(mesh::Mesh m) {
+  for (std::size_t v = 0; v < m.vertices.size(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      double& x = m.vertices[v][k];
+      if (x == 0) continue;
+      for (int u = int((v * 7 + std::size_t(k) * 3) % 5) - 2; u != 0; u += u > 0 ? -1 : 1)
+        x = std::nextafter(x, u > 0 ? HUGE_VAL : -HUGE_VAL);
+    }
+  return m;
+}
+
 mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double angle,
                  const std::array<double, 3>& axis = {1, 2, 3}) {
   mesh::Mesh out = m;
@@ -407,6 +421,17 @@ std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
     const mesh::Mesh A = make_structured_block({n, n, nz}, h, {0, 0, 0}, CubeSplit::Five);
     const mesh::Mesh B = make_structured_block({n, n, nz}, h, {shift[0], shift[1], nz * h - h / 3}, CubeSplit::Five);
     run("5-tetrahedra blocks stacked a third of a cell deep", A, B, moved(B, {0, 0, 0}, 0.3));
+  }
+  {  // a grid as a mesh generator places it: every coordinate a few ulps off the grid's
+     // (placed_up_to_rounding), so faces that coincide in exact arithmetic overlap or part by a
+     // rounding; against its copy shifted off the grid, and stacked on its copy's columns a third
+     // of a cell deep (their side faces: contacts made by rounding, most of the pairs)
+    const mesh::Mesh A = placed_up_to_rounding(make_structured_block({n, n, n}, h, {0, 0, 0}, CubeSplit::Kuhn6));
+    run("Kuhn grids placed up to a rounding, one shifted off the grid", A, moved(A, shift, 0), moved(A, shift, 0.3));
+    const int nz = std::max(1, n / 2);
+    const mesh::Mesh S = placed_up_to_rounding(make_structured_block({n, n, nz}, h, {0, 0, 0}, CubeSplit::Kuhn6));
+    const std::array<double, 3> up = {0, 0, nz * h - h / 3};
+    run("Kuhn blocks placed up to a rounding, stacked a third of a cell deep", S, moved(S, up, 0), moved(S, up, 0.3));
   }
   return out;
 }
