@@ -227,6 +227,20 @@ BOOST_AUTO_TEST_CASE(body_centred_contacts_made_by_rounding_stay_off_the_exact_p
       compare::make_structured_block({2, 2, 2}, 0.1, {0.025, 0.025, 0.025}, compare::CubeSplit::BodyCentred24));
 }
 
+// A grid as a mesh generator places it (compare::placed_up_to_rounding: every coordinate a few
+// ulps off the grid's, Gmsh's transfinite boxes) stacked on its copy a third of a cell deep: the
+// side faces of neighbouring columns coincide in exact arithmetic and overlap or part by a
+// rounding, so most pairs are contacts made by rounding, with edges parallel only up to a
+// rounding. Measured: 339 pairs, 231 of them ~1e-34 deep, 1 on the slow path (the exact path),
+// 230 refined; the contacts made by rounding judged against the exact engine.
+BOOST_AUTO_TEST_CASE(grid_placed_up_to_a_rounding_stacked_stays_off_the_exact_path) {
+  const mesh::Mesh a =
+      compare::placed_up_to_rounding(compare::make_structured_block({3, 3, 2}, 0.1, {0, 0, 0}, compare::CubeSplit::Kuhn6));
+  mesh::Mesh b = a;
+  for (Vec3d& x : b.vertices) x[2] += 0.2 - 0.1 / 3;
+  contacts_by_rounding_off_the_exact_path(a, b);
+}
+
 // pdd2_global (definitions §9) on those body-centred contacts made by rounding: the first 40
 // (rigid PD² below 1e-30, ~1e-34 deep: no double value has a correct digit), each within
 // definitions §8 of the exact engine (global_minimiser: a double normal's value, or the witness

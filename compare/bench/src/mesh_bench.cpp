@@ -286,20 +286,6 @@ namespace {
 
 // m translated by t, then rotated by `angle` about `axis` through its centre (angle 0: only
 // translated, each coordinate rounded once).
-// m with every coordinate moved by a few ulps, as a mesh generator places a grid (Gmsh's
-// transfinite boxes give 0.1 as 0.09999999999999992 ... 0.1000000000000001, each node its own):
-// −2 to +2 ulps by a fixed pattern of the vertex and the axis (zeros stay zero).
-mesh::Mesh placed_up_to_rounding(mesh::Mesh m) {
-  for (std::size_t v = 0; v < m.vertices.size(); ++v)
-    for (int k = 0; k < 3; ++k) {
-      double& x = m.vertices[v][k];
-      if (x == 0) continue;
-      for (int u = int((v * 7 + std::size_t(k) * 3) % 5) - 2; u != 0; u += u > 0 ? -1 : 1)
-        x = std::nextafter(x, u > 0 ? HUGE_VAL : -HUGE_VAL);
-    }
-  return m;
-}
-
 mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double angle,
                  const std::array<double, 3>& axis = {1, 2, 3}) {
   mesh::Mesh out = m;
@@ -469,6 +455,17 @@ void body_centred_cube(mesh::Mesh& out, const std::array<int, 3>& n, double h, c
     }
 }
 }  // namespace
+
+mesh::Mesh placed_up_to_rounding(mesh::Mesh m) {
+  for (std::size_t v = 0; v < m.vertices.size(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      double& x = m.vertices[v][k];
+      if (x == 0) continue;
+      for (int u = int((v * 7 + std::size_t(k) * 3) % 5) - 2; u != 0; u += u > 0 ? -1 : 1)
+        x = std::nextafter(x, u > 0 ? HUGE_VAL : -HUGE_VAL);
+    }
+  return m;
+}
 
 mesh::Mesh make_structured_block(const std::array<int, 3>& n, double h, const std::array<double, 3>& origin,
                                  CubeSplit split, double angle, const std::array<double, 3>& axis) {

@@ -106,6 +106,12 @@ struct AlignedCase {
   AlignedRun aligned, rotated;
 };
 
+// m with every coordinate moved by a few ulps, as a mesh generator places a grid (Gmsh's
+// transfinite boxes give 0.1 as 0.09999999999999992 ... 0.1000000000000001, each node its own):
+// −2 to +2 ulps by a fixed pattern of the vertex index and the axis (zeros stay zero). Faces and
+// edges that coincide or are parallel in exact arithmetic are then so only up to a rounding.
+mesh::Mesh placed_up_to_rounding(mesh::Mesh m);
+
 // Structured blocks: n[0] x n[1] x n[2] cubes of side h from `origin`, each cut into six Kuhn
 // tetrahedra, five (alternating by cell parity) or 24 around its centre (body-centred: each
 // face cut into four triangles around its centre, each triangle joined to the cube's centre;
