@@ -130,7 +130,7 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
   const std::array<double, 3> shifts[] = {
       {0, 0, 0}, {h / 2, 0, 0}, {0, 0, h / 4}, {0.37 * h, 0.21 * h, 0.13 * h}, {0.37 * h, 0, 0}};
   // Lanes whose verdict is unclear only through a g exactly 0 (a face of A whose plane holds
-  // eB's direction) are written from their lanes (build_candidates' clear_but_zero_g): counted,
+  // eB's direction) are written from their lanes (build_candidates' clear_but_g): counted,
   // those flipped with a g = 0 apart (the rule a clear lane's g's never meet: 0 on neither side).
   int zero_g = 0, zero_g_flipped = 0;
   for (const auto& t : shifts) {
