@@ -45,6 +45,24 @@ void check_against_exact(const TetPair& p, const CandidateSet& set, bool check_d
     BOOST_TEST((depth_sign_exact(p.A, p.B, label(set, k)) == (set.depth[k] > 0 ? Sign::Positive : Sign::Negative)));
 }
 
+// Kuhn tetrahedron m of the cube of side h at o (the path 0 -> e_p0 -> e_p0 + e_p1 -> (1, 1, 1)
+// for the m-th permutation p of the axes), vertex v's coordinate k then moved by ulps(v, k) ulps.
+template <class Ulps>
+TetVertices kuhn_tet(int m, const std::array<double, 3>& o, double h, Ulps ulps) {
+  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  TetVertices T;
+  double d[3] = {0, 0, 0};
+  for (int v = 0; v < 4; ++v) {
+    if (v > 0) d[kPerm[m][v - 1]] = h;
+    for (int k = 0; k < 3; ++k) {
+      double x = o[k] + d[k];
+      for (int u = ulps(v, k); u != 0; u += u > 0 ? -1 : 1) x = std::nextafter(x, u > 0 ? HUGE_VAL : -HUGE_VAL);
+      T[v][k] = x;
+    }
+  }
+  return T;
+}
+
 }  // namespace
 
 // Random intersecting pairs: labels, order, count = 44 + undecidable − colinear, and the sign
@@ -116,17 +134,8 @@ BOOST_AUTO_TEST_CASE(exact_zero_decisions) {
 // along one axis put edges on common lines (colinear). Every label and depth sign must equal
 // the exact classification.
 BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
-  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const double h = 0.25;
-  auto kuhn = [&](int m, const std::array<double, 3>& o) {
-    TetVertices T;
-    double d[3] = {0, 0, 0};
-    for (int v = 0; v < 4; ++v) {
-      if (v > 0) d[kPerm[m][v - 1]] = h;
-      for (int k = 0; k < 3; ++k) T[v][k] = o[k] + d[k];
-    }
-    return T;
-  };
+  auto kuhn = [&](int m, const std::array<double, 3>& o) { return kuhn_tet(m, o, h, [](int, int) { return 0; }); };
   const std::array<double, 3> shifts[] = {
       {0, 0, 0}, {h / 2, 0, 0}, {0, 0, h / 4}, {0.37 * h, 0.21 * h, 0.13 * h}, {0.37 * h, 0, 0}};
   // Lanes whose verdict is unclear only through a g exactly 0 (a face of A whose plane holds
@@ -174,21 +183,9 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
 // from its lane by that sign (build_candidates' clear_but_g). Every label and depth sign must
 // equal the exact classification; the lanes so written are counted.
 BOOST_AUTO_TEST_CASE(grid_placed_up_to_a_rounding_matches_exact_decisions) {
-  static const int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const double h = 0.1;
-  auto nudged = [](double x, int ulps) {
-    for (; ulps > 0; --ulps) x = std::nextafter(x, 2.0);
-    for (; ulps < 0; ++ulps) x = std::nextafter(x, -2.0);
-    return x;
-  };
   auto kuhn = [&](int m, const std::array<double, 3>& o, int seed) {
-    TetVertices T;
-    double d[3] = {0, 0, 0};
-    for (int v = 0; v < 4; ++v) {
-      if (v > 0) d[kPerm[m][v - 1]] = h;
-      for (int k = 0; k < 3; ++k) T[v][k] = nudged(o[k] + d[k], (seed + 7 * v + 3 * k) % 5 - 2);
-    }
-    return T;
+    return kuhn_tet(m, o, h, [seed](int v, int k) { return (seed + 7 * v + 3 * k) % 5 - 2; });
   };
   const std::array<double, 3> shifts[] = {{0.37 * h, 0.21 * h, 0.13 * h}, {h / 2, h / 2, 0}, {0, 0, h / 3}};
   int decided_g = 0, checked = 0;
