@@ -63,6 +63,22 @@ TetVertices kuhn_tet(int m, const std::array<double, 3>& o, double h, Ulps ulps)
   return T;
 }
 
+// The pair's candidate set against the exact classification (check_against_exact); then
+// lane(set, k, l) for each edge candidate k written from a lane l whose filter verdict was
+// unclear. Returns 1 when the pair intersects (checked), else 0.
+template <class Lane>
+int checked_unclear_lanes(const TetPair& p, Lane lane) {
+  CandidateSet set;
+  BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
+  if (!set.intersecting) return 0;
+  check_against_exact(p, set, true);
+  for (int k = 8; k < set.count; ++k) {
+    const int l = set.lane[k];
+    if (l >= 0 && set.edges.unclear[l] != 0.0) lane(set, k, l);
+  }
+  return 1;
+}
+
 }  // namespace
 
 // Random intersecting pairs: labels, order, count = 44 + undecidable − colinear, and the sign
@@ -146,19 +162,11 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
     int checked = 0;
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j) {
-        const TetPair p = tet_pair(kuhn(i, {0, 0, 0}), kuhn(j, t));
-        CandidateSet set;
-        BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
-        if (!set.intersecting) continue;
-        check_against_exact(p, set, true);
-        ++checked;
-        for (int k = 8; k < set.count; ++k) {
-          const int l = set.lane[k];
-          if (l < 0 || set.edges.unclear[l] == 0.0) continue;
+        checked += checked_unclear_lanes(tet_pair(kuhn(i, {0, 0, 0}), kuhn(j, t)), [&](const CandidateSet& set, int k, int l) {
           ++zero_g;
           zero_g_flipped += set.sign[k] < 0 && label(set, k).orientation == EdgeOrientation::Decided &&
                             (set.edges.g1[l] == 0.0 || set.edges.g2[l] == 0.0);
-        }
+        });
       }
     BOOST_TEST(checked > 0);  // every shift has intersecting pairs (A and B share a corner region)
   }
@@ -193,17 +201,10 @@ BOOST_AUTO_TEST_CASE(grid_placed_up_to_a_rounding_matches_exact_decisions) {
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j) {
         const TetPair p = tet_pair(kuhn(i, {0.3, 0.3, 0.3}, i), kuhn(j, {0.3 + t[0], 0.3 + t[1], 0.3 + t[2]}, j + 1));
-        CandidateSet set;
-        BOOST_TEST((build_candidates(p.A, p.B, set) == BuildStatus::Ok));
-        if (!set.intersecting) continue;
-        check_against_exact(p, set, true);
-        ++checked;
-        for (int k = 8; k < set.count; ++k) {
-          const int l = set.lane[k];
-          if (l < 0 || set.edges.unclear[l] == 0.0) continue;
+        checked += checked_unclear_lanes(p, [&](const CandidateSet& set, int, int l) {
           const double g1 = set.edges.g1[l], g2 = set.edges.g2[l], e3 = set.fb.deg3;
           decided_g += (g1 != 0.0 && std::fabs(g1) <= e3) || (g2 != 0.0 && std::fabs(g2) <= e3);
-        }
+        });
       }
   BOOST_TEST_MESSAGE("pairs checked: " << checked << "; lanes written by g signs decided exactly: " << decided_g);
   // (measured: 56 intersecting pairs, 1,491 such lanes; a lane is written so only where every g
