@@ -154,9 +154,10 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
   auto kuhn = [&](int m, const std::array<double, 3>& o) { return kuhn_tet(m, o, h, [](int, int) { return 0; }); };
   const std::array<double, 3> shifts[] = {
       {0, 0, 0}, {h / 2, 0, 0}, {0, 0, h / 4}, {0.37 * h, 0.21 * h, 0.13 * h}, {0.37 * h, 0, 0}};
-  // Lanes whose verdict is unclear only through a g exactly 0 (a face of A whose plane holds
-  // eB's direction) are written from their lanes (build_candidates' clear_but_g): counted,
-  // those flipped with a g = 0 apart (the rule a clear lane's g's never meet: 0 on neither side).
+  // Lanes whose verdict is unclear only through their g's (within their bound: exactly 0 where a
+  // face of A holds eB's direction, else a rounding off it) are written from their lanes
+  // (build_candidates' clear_but_g): counted, those flipped with a g = 0 apart (the rule a clear
+  // lane's g's never meet: 0 on neither side).
   int zero_g = 0, zero_g_flipped = 0;
   for (const auto& t : shifts) {
     int checked = 0;
@@ -170,7 +171,7 @@ BOOST_AUTO_TEST_CASE(aligned_kuhn_pairs_match_exact_decisions) {
       }
     BOOST_TEST(checked > 0);  // every shift has intersecting pairs (A and B share a corner region)
   }
-  BOOST_TEST_MESSAGE("zero-g lanes written from their lanes: " << zero_g << ", flipped " << zero_g_flipped);
+  BOOST_TEST_MESSAGE("lanes unclear through their g's written from their lanes: " << zero_g << ", flipped " << zero_g_flipped);
   BOOST_TEST(zero_g > 100);
   BOOST_TEST(zero_g_flipped > 10);
   // Colinear along a body diagonal: r0 r1 lies on the line of s0 s1 = (1,1,1) (no zero
