@@ -1,0 +1,67 @@
+"""scripts/mesher-survey.py: the premise it measures (Gmsh's transfinite box places its nodes a
+few ulps off the grid), its own prism grid tiles the box, and it prints a row per case."""
+import importlib.util
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from conftest import SOURCE_DIR
+
+SCRIPT = SOURCE_DIR / "scripts" / "mesher-survey.py"
+needs_meshers = pytest.mark.skipif(not (shutil.which("gmsh") and shutil.which("tetgen")),
+                                   reason="gmsh and tetgen (Debian packages) are not on PATH")
+
+
+@pytest.fixture(scope="module")
+def survey():
+    spec = importlib.util.spec_from_file_location("mesher_survey", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@needs_meshers
+def test_transfinite_box_nodes_lie_a_few_ulps_off_the_grid(survey, tmp_path):
+    V, T = survey.gmsh_box(tmp_path, 10, True)
+    assert len(T) == 6000  # 10^3 hexahedra, six tetrahedra each
+    grid = np.round(V * 10) / 10  # the nearest grid line, i/10 rounded once
+    ulps = np.abs(V - grid) / np.spacing(np.maximum(np.abs(grid), 0.1))
+    assert np.count_nonzero(V != grid) > 100  # off the grid: the survey's premise
+    assert ulps.max() <= 16  # but only by a rounding (docs/performance.md: within a few ulps)
+
+
+def test_prism_grid_tiles_the_box(survey):
+    V, T = survey.prism_grid(3)
+    P = V[T]
+    six = np.einsum("ij,ij->i", np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), P[:, 3] - P[:, 0])
+    assert len(T) == 6 * 27 and six.min() > 0  # positively oriented, none flat
+    assert abs(six.sum() / 6 - 1) < 1e-12  # volumes sum to the unit box's
+
+
+@needs_meshers
+def test_survey_prints_a_row_per_case():
+    r = subprocess.run([sys.executable, str(SCRIPT), "--cells", "3", "--repeats", "1"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.strip().splitlines()
+    rows = [line for line in lines[1:] if not line.startswith(("#", "(", " "))]
+    assert len(rows) == 4 * 3, r.stdout  # four meshers, three moves each
+    for row in rows:
+        words = row.split()
+        assert words[-1].endswith("x"), row
+    assert any(line.startswith("# Gmsh transfinite box") for line in lines), r.stdout
+
+
+@pytest.mark.parametrize("argument, message", [
+    (["--kinds", "gmsh,hex"], "unknown kind 'hex'"),
+    (["--cells", "1"], "--cells must be at least 2"),
+])
+def test_survey_refuses_bad_arguments(argument, message):
+    r = subprocess.run([sys.executable, str(SCRIPT), *argument], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert message in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert r.stdout == ""
