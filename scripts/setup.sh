@@ -22,8 +22,8 @@ PACKAGES=(
   python3-tqdm                            # its progress bars (progress=True)
   python3-scipy                           # pdd.contact_energy's Hessian (scipy.sparse), examples/soft_body.py
   python3-matplotlib                      # scripts/render-resolve.py (pictures of pdd resolve)
-  gmsh                                    # scripts/make-meshes.sh only (test meshes; GPL, never linked)
-  tetgen                                  # scripts/make-resolve-cases.sh only (thin plates; never linked)
+  gmsh                                    # scripts/make-meshes.sh, mesher-survey.py (meshes; GPL, never linked)
+  tetgen                                  # scripts/make-resolve-cases.sh, mesher-survey.py (never linked)
 )
 
 missing=()
