@@ -22,6 +22,7 @@ Needs the Debian packages gmsh and tetgen on PATH, and meshio (python3-meshio).
 """
 import argparse
 import contextlib
+import importlib.util
 import io
 import pathlib
 import subprocess
@@ -38,12 +39,15 @@ SOURCE_DIR = pathlib.Path(__file__).resolve().parent.parent
 KINDS = ("gmsh-transfinite", "gmsh", "tetgen", "prism")
 
 
-def turned(V, angle=0.3, axis=(1, 2, 3)):
-    a = np.array(axis, float) / np.linalg.norm(axis)
-    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    R = np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
-    c = V.mean(0)
-    return (V - c) @ R.T + c
+def aligned_survey():
+    """scripts/aligned-survey.py as a module (its turned copies: the same twin in both surveys)."""
+    spec = importlib.util.spec_from_file_location("aligned_survey", pathlib.Path(__file__).with_name("aligned-survey.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+turned = aligned_survey().turned
 
 
 def gmsh_box(work, cells, transfinite):
@@ -151,7 +155,7 @@ def main():
                 moved_off, first = off_grid(V, a.cells)
                 print(f"# Gmsh transfinite box: {len(T)} tetrahedra; {moved_off} of {V.size} coordinates off the "
                       f"grid; the line x = {h:g} as {', '.join(repr(float(x)) for x in first[:8])}"
-                      f"{' ...' if len(first) > 8 else ''}")
+                      f"{' ...' if len(first) > 8 else ''}", flush=True)
             elif kind == "gmsh":
                 V, T = gmsh_box(work, a.cells, False)
             elif kind == "tetgen":
@@ -170,4 +174,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        main()
+    except KeyboardInterrupt:  # (the rows printed so far stand: each is flushed whole)
+        sys.stderr.write("mesher-survey.py: interrupted\n")
+        raise SystemExit(130)

@@ -27,6 +27,17 @@ GLOBAL_VALUE_KEYS = ("pdd2_global", "pdd2_global_lower")  # definitions §9 (low
 CONTRACT = Fraction(1, 10**9)  # definitions §8: 1e-9 relative
 
 
+def load_script(name):
+    """scripts/<name> (a file name with hyphens: no import statement reaches it) as a module; its
+    main() is not run."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(name.replace("-", "_").removesuffix(".py"),
+                                                  SOURCE_DIR / "scripts" / name)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def golden_fixture_files():
     """Every shipped fixture with a golden file: all fixtures/**/*.json but bad/ and golden/
     (the set `pdd golden` checks), as paths relative to fixtures/."""

@@ -5,7 +5,6 @@ The survey's numbers (docs/performance.md, "Where structured grids stand") are o
 its meshes are: each decomposition must fill the block exactly with positively oriented
 tetrahedra that meet face to face, as a mesh generator's would. Checked here exactly, in the
 grid's integer half-cell units (every vertex is h/2 times an integer vector)."""
-import importlib.util
 import os
 import subprocess
 import sys
@@ -15,17 +14,14 @@ import numpy as np
 import pytest
 
 import pdd
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, load_script
 
 SCRIPT = SOURCE_DIR / "scripts" / "aligned-survey.py"
 
 
 @pytest.fixture(scope="module")
 def survey():
-    spec = importlib.util.spec_from_file_location("aligned_survey", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("aligned-survey.py")
 
 
 # Triangles on the block's boundary: each boundary square of a cube is cut into 2 triangles by

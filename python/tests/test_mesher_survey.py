@@ -1,7 +1,5 @@
 """scripts/mesher-survey.py: the premise it measures (Gmsh's transfinite box places its nodes a
 few ulps off the grid), its own prism grid tiles the box, and it prints a row per case."""
-import importlib.util
-import pathlib
 import shutil
 import subprocess
 import sys
@@ -9,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, load_script
 
 SCRIPT = SOURCE_DIR / "scripts" / "mesher-survey.py"
 needs_meshers = pytest.mark.skipif(not (shutil.which("gmsh") and shutil.which("tetgen")),
@@ -18,10 +16,7 @@ needs_meshers = pytest.mark.skipif(not (shutil.which("gmsh") and shutil.which("t
 
 @pytest.fixture(scope="module")
 def survey():
-    spec = importlib.util.spec_from_file_location("mesher_survey", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("mesher-survey.py")
 
 
 @needs_meshers
