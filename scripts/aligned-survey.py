@@ -27,6 +27,7 @@ the coordinates as a user would type them, 0.1 * i rounded once, then + s rounde
         [--variants global | --energy | --resolve]
 """
 import argparse
+import os
 import sys
 import time
 from fractions import Fraction
@@ -204,3 +205,6 @@ if __name__ == "__main__":
     except KeyboardInterrupt:  # (the rows printed so far stand: each is flushed whole)
         sys.stderr.write("aligned-survey.py: interrupted\n")
         raise SystemExit(130)
+    except BrokenPipeError:  # (a reader that stopped early, `| head`: the rows it took stand)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        raise SystemExit(1)

@@ -24,6 +24,7 @@ import argparse
 import contextlib
 import importlib.util
 import io
+import os
 import pathlib
 import subprocess
 import sys
@@ -179,3 +180,6 @@ if __name__ == "__main__":
     except KeyboardInterrupt:  # (the rows printed so far stand: each is flushed whole)
         sys.stderr.write("mesher-survey.py: interrupted\n")
         raise SystemExit(130)
+    except BrokenPipeError:  # (a reader that stopped early, `| head`: the rows it took stand)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        raise SystemExit(1)
