@@ -26,6 +26,7 @@ import importlib.util
 import io
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -144,6 +145,9 @@ def main():
             p.error(f"unknown kind {k!r} (one of {', '.join(KINDS)})")
     if a.cells < 2 or a.repeats < 1:
         p.error("--cells must be at least 2 and --repeats at least 1")
+    for tool, needed in (("gmsh", {"gmsh-transfinite", "gmsh"}), ("tetgen", {"tetgen"})):
+        if needed & set(kinds) and not shutil.which(tool):
+            p.error(f"{tool} is not on PATH (Debian package {tool}); leave out --kinds {','.join(sorted(needed & set(kinds)))}")
     h = 1.0 / a.cells
     moves = [("off the grid", (0.37 * h, 0.21 * h, 0.13 * h)), ("stacked a third of a cell deep", (0, 0, 1 - h / 3)),
              ("half a cell along (1, 1, 1)", (h / 2, h / 2, h / 2))]
