@@ -14,11 +14,16 @@ pdd.mesh_contacts, default variants, one thread) of both, their ratio, and the r
 calls. First, how far the transfinite box's nodes lie from the grid (Gmsh places each node a few
 ulps off it, each its own: faces that coincide in exact arithmetic then coincide only up to a
 rounding; docs/performance.md, "Grids placed up to a rounding").
+With --resolve, pdd.resolve on one thread instead (its default variant, global), as
+scripts/aligned-survey.py --resolve times it: per case the rounds, the pair solves (the
+intersecting pairs summed over the rounds), the time and what produced the result (the rounds,
+or a fallback: docs/definitions.md), beside the turned copy's, the ratio of the times and of the
+time per pair solve.
 
 Needs the Debian packages gmsh and tetgen on PATH, and meshio (python3-meshio).
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/mesher-survey.py [--cells 10] [--repeats 3]
-        [--kinds gmsh-transfinite,gmsh,tetgen,prism] [--ball]
+        [--kinds gmsh-transfinite,gmsh,tetgen,prism] [--ball] [--resolve]
 """
 import argparse
 import contextlib
@@ -132,12 +137,34 @@ def row(name, repeats, V, T, VB):
     return f"{name:44s} {na:7d} {pa:8.2f} {nb:7d} {pb:8.2f} {pa / pb:5.2f}x {ta / tb:5.2f}x"
 
 
+def resolve_call(repeats, *args):
+    """pdd.resolve: the best time of `repeats` calls, its rounds, pair solves, verdict and method."""
+    best = float("inf")
+    for _ in range(repeats):
+        t = time.perf_counter()
+        *_, report = pdd.resolve(*args, threads=1)
+        best = min(best, time.perf_counter() - t)
+    rounds = report["rounds"]
+    return best, len(rounds), sum(r["pairs"] for r in rounds), report["resolved"], report["method"]
+
+
+def resolve_row(name, repeats, V, T, VB):
+    ta, ra, sa, oka, ma = resolve_call(repeats, V, T, VB, T)
+    tb, rb, sb, okb, mb = resolve_call(repeats, V, T, turned(VB), T)
+    verdict = "" if oka and okb else f" not resolved:{' aligned' if not oka else ''}{' turned' if not okb else ''}"
+    if sa == 0 or sb == 0:
+        return f"{name:44s} no intersecting pairs"
+    return (f"{name:44s} {ra:6d} {sa:7d} {ta:8.3f} {ma:11s} {rb:6d} {sb:7d} {tb:8.3f} {mb:11s} {ta / tb:5.2f}x "
+            f"{ta / sa / (tb / sb):8.2f}x" + verdict)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--cells", type=int, default=10, help="cells a side (mesh size 1/cells)")
     p.add_argument("--repeats", type=int, default=3, help="calls per case (the best is kept)")
     p.add_argument("--kinds", default=",".join(KINDS), help="comma-separated: " + ", ".join(KINDS))
     p.add_argument("--ball", action="store_true", help="also the shipped sphere-a.msh against a moved copy")
+    p.add_argument("--resolve", action="store_true", help="time pdd.resolve (rounds, pair solves, method)")
     a = p.parse_args()
     kinds = a.kinds.split(",")
     for k in kinds:
@@ -151,7 +178,12 @@ def main():
     h = 1.0 / a.cells
     moves = [("off the grid", (0.37 * h, 0.21 * h, 0.13 * h)), ("stacked a third of a cell deep", (0, 0, 1 - h / 3)),
              ("half a cell along (1, 1, 1)", (h / 2, h / 2, h / 2))]
-    print(f"{'mesh, B = A moved':44s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} {'us/pair':>8s} {'ratio':>6s} whole")
+    if a.resolve:
+        print(f"{'mesh, B = A moved':44s} {'rounds':>6s} {'solves':>7s} {'seconds':>8s} {'method':11s} {'rounds':>6s} "
+              f"{'solves':>7s} {'turned':>8s} {'method':11s} {'ratio':>6s} {'per-solve':>9s}")
+    else:
+        print(f"{'mesh, B = A moved':44s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} {'us/pair':>8s} {'ratio':>6s} whole")
+    survey_row = (lambda *x: resolve_row(*x)) if a.resolve else (lambda *x: row(*x))
     with tempfile.TemporaryDirectory() as tmp:
         work = pathlib.Path(tmp)
         for kind in kinds:
@@ -168,14 +200,19 @@ def main():
             else:
                 V, T = prism_grid(a.cells)
             for what, t in moves:
-                print(row(f"{kind} ({len(T)}), {what}", a.repeats, V, T, V + t), flush=True)
+                print(survey_row(f"{kind} ({len(T)}), {what}", a.repeats, V, T, V + t), flush=True)
     if a.ball:
         with contextlib.redirect_stdout(io.StringIO()):
             m = meshio.read(SOURCE_DIR / "fixtures" / "meshes" / "sphere-a.msh")
         V, T = m.points.astype(float), m.cells_dict["tetra"].astype(np.int64)
-        print(row(f"sphere-a.msh ({len(T)}), moved by 0.01 in x", a.repeats, V, T, V + (0.01, 0, 0)))
-    print("(pairs: intersecting element pairs; us/pair: the best call's time per intersecting pair; ratio: of\n"
-          " the times per pair, aligned / turned; whole: of the calls' times)")
+        print(survey_row(f"sphere-a.msh ({len(T)}), moved by 0.01 in x", a.repeats, V, T, V + (0.01, 0, 0)))
+    if a.resolve:
+        print("(rounds: rows of the report's rounds table; solves: intersecting pairs summed over the rounds;\n"
+              " seconds: the best call's; method: what produced the result; ratio: of the times, aligned /\n"
+              " turned; per-solve: of the times per pair solve)")
+    else:
+        print("(pairs: intersecting element pairs; us/pair: the best call's time per intersecting pair; ratio: of\n"
+              " the times per pair, aligned / turned; whole: of the calls' times)")
 
 
 if __name__ == "__main__":

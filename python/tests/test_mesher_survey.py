@@ -51,6 +51,25 @@ def test_survey_prints_a_row_per_case():
     assert any(line.startswith("# Gmsh transfinite box") for line in lines), r.stdout
 
 
+def test_survey_times_resolve():
+    # --resolve: pdd.resolve beside the turned copy, a row per move with the rounds, the pair solves
+    # (at least one round's intersecting pairs), what produced the result and two ratios; every
+    # case resolved (a row that is not carries "not resolved")
+    r = subprocess.run([sys.executable, str(SCRIPT), "--resolve", "--kinds", "prism", "--cells", "3", "--repeats", "1"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.strip().splitlines()
+    assert lines[0].split()[-2:] == ["ratio", "per-solve"], lines[0]
+    rows = [line for line in lines[1:] if line.startswith("prism (162)")]
+    assert len(rows) == 3, r.stdout  # three moves
+    for row in rows:
+        words = row.split()
+        assert "not resolved" not in row and words[-1].endswith("x") and words[-2].endswith("x"), row
+        rounds, solves = int(words[-10]), int(words[-9])
+        assert 1 <= rounds <= solves, row
+        assert words[-7] in ("rounds", "translation"), row
+
+
 @pytest.mark.parametrize("argument, message", [
     (["--kinds", "gmsh,hex"], "unknown kind 'hex'"),
     (["--cells", "1"], "--cells must be at least 2"),
