@@ -36,9 +36,6 @@ struct BestEnd {
   }
 };
 
-// The per-pair rounds that finish rounds stalled on a few pairs (run_phases).
-constexpr std::size_t kFinishRounds = 10;
-
 // The rounds and the fallbacks (resolve.h) from the rest pose; sets rep.method when one of them
 // cleared the contacts (the verdict judges the result either way).
 void run_phases(Run& run) {

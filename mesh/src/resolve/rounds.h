@@ -29,6 +29,9 @@ std::vector<std::array<std::size_t, 2>> contacts(Run& run);
 // pairs when kFewPairs or fewer are left (the per-pair rounds finish those: resolve.cpp).
 enum class OnFewPairs { Exit, Continue };
 constexpr std::size_t kFewPairs = 16;
+// The per-pair rounds that finish projective-dynamics rounds stalled on kFewPairs pairs or
+// fewer (resolve.cpp's first fallback, and each step of the walk back towards rest: fallbacks.h).
+constexpr std::size_t kFinishRounds = 10;
 bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few = OnFewPairs::Continue);
 
 // Whether the per-pair rounds end when they stall (the first try after the projective-dynamics
