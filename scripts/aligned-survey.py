@@ -111,24 +111,34 @@ def best_call(repeats, variants, energy, *args):
 
 
 def resolve_call(repeats, *args):
-    """pdd.resolve: the best time of `repeats` calls, its rounds, pair solves and verdict."""
+    """pdd.resolve: the best time of `repeats` calls, its rounds, pair solves, verdict and method."""
     best = float("inf")
     for _ in range(repeats):
         t = time.perf_counter()
         *_, report = pdd.resolve(*args, threads=1)
         best = min(best, time.perf_counter() - t)
     rounds = report["rounds"]
-    return best, len(rounds), sum(r["pairs"] for r in rounds), report["resolved"]
+    return best, len(rounds), sum(r["pairs"] for r in rounds), report["resolved"], report["method"]
+
+
+def resolve_columns(repeats, VA, T, VB, methods=False):
+    """pdd.resolve of VA against VB and against VB turned: each one's rounds, pair solves, time
+    (and, with `methods`, what produced the result), the ratio of the times and of the times per
+    pair solve, and which did not end resolved; None when either has no intersecting pair."""
+    ta, ra, sa, oka, ma = resolve_call(repeats, VA, T, VB, T)
+    tb, rb, sb, okb, mb = resolve_call(repeats, VA, T, turned(VB), T)
+    if sa == 0 or sb == 0:
+        return None
+    verdict = "" if oka and okb else f" not resolved:{' aligned' if not oka else ''}{' turned' if not okb else ''}"
+    a, b = f"{ra:6d} {sa:7d} {ta:8.3f}", f"{rb:6d} {sb:7d} {tb:8.3f}"
+    if methods:
+        a, b = f"{a} {ma:11s}", f"{b} {mb:11s}"
+    return f"{a} {b} {ta / tb:5.2f}x {ta / sa / (tb / sb):8.2f}x" + verdict
 
 
 def resolve_row(kind, cell, name, repeats, VA, T, VB):
-    ta, ra, sa, oka = resolve_call(repeats, VA, T, VB, T)
-    tb, rb, sb, okb = resolve_call(repeats, VA, T, turned(VB), T)
-    verdict = "" if oka and okb else f" not resolved: {'aligned' if not oka else ''} {'turned' if not okb else ''}"
-    if sa == 0 or sb == 0:
-        return f"{kind:8s} {cell:>6s} {name:8s} no intersecting pairs"
-    return (f"{kind:8s} {cell:>6s} {name:8s} {ra:6d} {sa:7d} {ta:8.3f} {rb:6d} {sb:7d} {tb:8.3f} "
-            f"{ta / tb:5.2f}x {ta / sa / (tb / sb):8.2f}x" + verdict)
+    columns = resolve_columns(repeats, VA, T, VB)
+    return f"{kind:8s} {cell:>6s} {name:8s} " + (columns or "no intersecting pairs")
 
 
 def check_arguments(p, a):

@@ -54,7 +54,8 @@ def aligned_survey():
     return module
 
 
-turned = aligned_survey().turned
+_aligned = aligned_survey()
+turned = _aligned.turned  # (the same twin, and resolve_columns below, in both surveys)
 
 
 def gmsh_box(work, cells, transfinite):
@@ -137,25 +138,8 @@ def row(name, repeats, V, T, VB):
     return f"{name:44s} {na:7d} {pa:8.2f} {nb:7d} {pb:8.2f} {pa / pb:5.2f}x {ta / tb:5.2f}x"
 
 
-def resolve_call(repeats, *args):
-    """pdd.resolve: the best time of `repeats` calls, its rounds, pair solves, verdict and method."""
-    best = float("inf")
-    for _ in range(repeats):
-        t = time.perf_counter()
-        *_, report = pdd.resolve(*args, threads=1)
-        best = min(best, time.perf_counter() - t)
-    rounds = report["rounds"]
-    return best, len(rounds), sum(r["pairs"] for r in rounds), report["resolved"], report["method"]
-
-
 def resolve_row(name, repeats, V, T, VB):
-    ta, ra, sa, oka, ma = resolve_call(repeats, V, T, VB, T)
-    tb, rb, sb, okb, mb = resolve_call(repeats, V, T, turned(VB), T)
-    verdict = "" if oka and okb else f" not resolved:{' aligned' if not oka else ''}{' turned' if not okb else ''}"
-    if sa == 0 or sb == 0:
-        return f"{name:44s} no intersecting pairs"
-    return (f"{name:44s} {ra:6d} {sa:7d} {ta:8.3f} {ma:11s} {rb:6d} {sb:7d} {tb:8.3f} {mb:11s} {ta / tb:5.2f}x "
-            f"{ta / sa / (tb / sb):8.2f}x" + verdict)
+    return f"{name:44s} " + (_aligned.resolve_columns(repeats, V, T, VB, methods=True) or "no intersecting pairs")
 
 
 def main():
