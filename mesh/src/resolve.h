@@ -57,7 +57,8 @@
 //     two consecutive rounds), step limit as above;
 //   - two meshes (deep overlaps): the cheapest separating rigid translation over a few
 //     directions, then walked back towards the rest pose with projective-dynamics rounds in
-//     between (method "translation");
+//     between, each step's rounds finished per pair as the first fallback finishes them where
+//     they stop on a few pairs (method "translation");
 //   - two meshes that the translation cannot move (both with fixed vertices): per-pair rounds on
 //     to max_rounds;
 //   - self-contact: the rigid variant's per-pair rounds from the rest pose (method "rigid rounds").

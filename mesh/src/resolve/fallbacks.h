@@ -6,10 +6,11 @@
 //   shortest kept; a rigid translation keeps R2 and R4 up to rounding, which is checked), then
 //   walked back towards the rest pose by steps of gamma (kFirstGamma down to kLastGamma) of
 //   every free vertex's way back, each followed by a few projective-dynamics rounds (which keep
-//   R2 and R4); a step that does not end resolved and cheaper is undone. True when it ends
-//   resolved (R1 by the contact stage); false, positions unchanged, when it does not apply
-//   (both meshes have fixed vertices, no separating translation found, or the translated rest
-//   pose flips an element by rounding).
+//   R2 and R4; two meshes' rounds that stop on kFewPairs pairs or fewer finished by up to
+//   kFinishRounds per-pair rounds, rounds.h); a step that does not end resolved and cheaper is
+//   undone. True when it ends resolved (R1 by the contact stage); false, positions unchanged,
+//   when it does not apply (both meshes have fixed vertices, no separating translation found,
+//   or the translated rest pose flips an element by rounding).
 // resolve_bodies (self-contact of several bodies, the connected components by shared vertices):
 //   when every intersecting pair at rest joins two different bodies and every connected group
 //   of contacting bodies is a pair, each pair is cut out as two meshes and resolved from rest
