@@ -34,6 +34,7 @@
 #include "pdd/mesh.h"
 #include "resolve.h"
 #include "resolve/contact_list.h"
+#include "resolve/rounds.h"
 
 using namespace pdd;
 using namespace pdd::mesh;
@@ -338,6 +339,46 @@ BOOST_AUTO_TEST_CASE(prism_blocks_stacked_a_third_deep_resolved_by_the_rounds) {
   BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "rounds");
   BOOST_TEST(r.report.rounds.size() <= 30u);
   BOOST_TEST(r.report.rounds[0].pairs == 432u);
+}
+
+// The first round r at which detail::decays_too_slowly ends the two meshes' rounds on this
+// sequence of pair counts (counts[r] found at the start of round r), or -1: it never does.
+int first_slow_round(const std::vector<std::size_t>& counts, std::size_t budget) {
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    const std::vector<std::size_t> seen(counts.begin(), counts.begin() + std::ptrdiff_t(r + 1));
+    if (detail::decays_too_slowly(seen, budget)) return int(r);
+  }
+  return -1;
+}
+
+BOOST_AUTO_TEST_CASE(rounds_that_decay_too_slowly_give_way) {
+  // Pair counts of the first stage's projective-dynamics rounds (budget 100), measured with
+  // `pdd resolve` before the rule ended them. A Gmsh transfinite box of 9^3 cubes against its
+  // copy moved (0.37, 0.21, 0.13) of a cell and turned 0.3 rad about (1, 2, 3): the count falls
+  // ~0.6% a round from round 18, held 2,689 pairs from round 44 and gave way to the fallbacks at
+  // round 63 (1% progress every 20 rounds); at its rate it would need ~900 rounds.
+  const std::vector<std::size_t> blocks = {
+      57364, 47197, 33945, 23410, 15827, 11150, 7514, 6552, 5663, 4923, 4393, 3759, 3659, 3439, 3364, 3258,
+      3233,  3237,  3171,  2912,  2912,  2788,  2763, 2773, 2777, 2776, 2762, 2762, 2762, 2747, 2747, 2747,
+      2747,  2747,  2747,  2747,  2747,  2747,  2747, 2747, 2739, 2707, 2691, 2679, 2689, 2689, 2689};
+  const int r = first_slow_round(blocks, 100);
+  BOOST_TEST(r >= 10);  // (not before the probe round: the first rounds fall fast)
+  BOOST_TEST(r <= 20);
+  // Prism blocks of 8^3 cubes resting a third of a cell deep (mesher-survey.py's prism tiling):
+  // the count grows before it falls, then falls faster, resolved in 20 rounds; measured from the
+  // first count (768) the rate at round 10 said ~366 rounds, from the peak (1,919) ~37.
+  const std::vector<std::size_t> prisms = {768, 1919, 1733, 1662, 1400, 1193, 1086, 967, 861, 797,
+                                           693, 608,  499,  386,  269,  209,  149,  72,  26,  5};
+  BOOST_TEST(first_slow_round(prisms, 100) == -1);
+  // A flat plateau is the plateau rule's (20 rounds), and kFewPairs or fewer the per-pair
+  // rounds': neither ends here.
+  BOOST_TEST(first_slow_round(std::vector<std::size_t>(40, 500), 100) == -1);
+  BOOST_TEST(first_slow_round(std::vector<std::size_t>(40, detail::kFewPairs), 100) == -1);
+  // A walk step's 20 rounds (fallbacks.h): a count that would need more ends them.
+  std::vector<std::size_t> slow;
+  for (std::size_t k = 0; k < 20; ++k) slow.push_back(std::size_t(1000 * std::pow(0.97, double(k))));
+  BOOST_TEST(first_slow_round(slow, 20) == 10);   // 3% a round: ~136 rounds in all to reach 16
+  BOOST_TEST(first_slow_round(slow, 200) == -1);  // within a budget of 200
 }
 
 BOOST_AUTO_TEST_CASE(nearly_coincident_blocks_resolved_by_the_rounds) {
