@@ -855,6 +855,10 @@ BOOST_AUTO_TEST_CASE(deep_through_a_plate) {
   BOOST_TEST(r.report.cost_a == 0.0);
   BOOST_TEST(j.cost <= 0.36 * 0.36);
   BOOST_TEST(r.report.rounds.back().cost == r.report.cost);  // the table ends with the state written
+  // The rounds give way early (rounds.h: a decay too slow to finish; resolve.cpp: two meshes go
+  // from the stalled rounds to the translation): 144 rounds, measured; 191 with the plateau rule
+  // alone and the per-pair rounds from rest before the translation, the same cost (0.0600091).
+  BOOST_TEST(r.report.rounds.size() <= 160u);
 }
 
 // Deterministic moves of the vertices for contact_list_is_the_fresh_contact_stage: every
