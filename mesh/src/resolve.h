@@ -26,7 +26,8 @@
 //     4. step limit (step_limit.h): P_{k+1,v} = P_{k,v} + t_v Delta_v, t_v halved on the
 //        vertices of every element that would invert, flatten or fail R4 with a margin.
 //   The rounds stop at the first whose contact stage finds no pair, or when they stall (then
-//   the fallbacks), or at max_rounds.
+//   the fallbacks; two meshes' rounds also when their pair count falls too slowly to finish
+//   within the budget, rounds.h), or at max_rounds.
 //
 // Why R2 and R4 hold along the way: P_0 satisfies both (V1 = V0, eta1 = eta0); the step limit
 // keeps every element passing (step_limit.h); its margin test in doubles is stricter than R4
@@ -52,9 +53,10 @@
 //   - self-contact under the global variant: the projective-dynamics rounds again from the rest
 //     pose with pdd2's per-pair planes, whose candidate directions neighbouring pairs share,
 //     with the default anchors, then from the rest pose with the weak ones (method "pdd2 rounds");
-//   - the per-pair rounds from the rest pose (rounds.h): each free vertex moves by a share of
-//     its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in more than
-//     two consecutive rounds), step limit as above;
+//   - self-contact: the per-pair rounds from the rest pose (rounds.h): each free vertex moves by
+//     a share of its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in
+//     more than two consecutive rounds), step limit as above (two meshes go on to the
+//     translation: from rest these rounds resolved none of their measured cases, resolve.cpp);
 //   - two meshes (deep overlaps): the cheapest separating rigid translation over a few
 //     directions, then walked back towards the rest pose with projective-dynamics rounds in
 //     between, each step's rounds finished per pair as the first fallback finishes them where
