@@ -47,7 +47,8 @@ void run_phases(Run& run) {
     rep.stopped_because = "every vertex is fixed: nothing can move";
     return;
   }
-  if (run_pd_rounds(run, first_budget, run.B ? OnFewPairs::Exit : OnFewPairs::Continue)) {
+  if (run_pd_rounds(run, first_budget, run.B ? OnFewPairs::Exit : OnFewPairs::Continue,
+                    run.B ? OnSlowDecay::Exit : OnSlowDecay::Continue)) {
     rep.method = ResolveMethod::Rounds;
     return;
   }

@@ -26,8 +26,8 @@
 //     4. step limit (step_limit.h): P_{k+1,v} = P_{k,v} + t_v Delta_v, t_v halved on the
 //        vertices of every element that would invert, flatten or fail R4 with a margin.
 //   The rounds stop at the first whose contact stage finds no pair, or when they stall (then
-//   the fallbacks; two meshes' rounds also when their pair count falls too slowly to finish
-//   within the budget, rounds.h), or at max_rounds.
+//   the fallbacks; two meshes' first rounds also when their pair count falls too slowly to
+//   finish within the budget, rounds.h), or at max_rounds.
 //
 // Why R2 and R4 hold along the way: P_0 satisfies both (V1 = V0, eta1 = eta0); the step limit
 // keeps every element passing (step_limit.h); its margin test in doubles is stricter than R4

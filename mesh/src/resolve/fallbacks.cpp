@@ -29,13 +29,10 @@ namespace {
 // saves at most 1/32 of the translation's cost (cost ~ distance^2), not worth its rounds.
 // Where the rounds go: the translation (or spread) is bisected to touching, so every step back
 // re-creates contact over the whole interface, and a step is kept only when the rounds clear it
-// again. On the deep cases most steps are rejected (ball through the plate: 1 of 7 kept; three
-// balls pushed deep: 6 of 10, the walk ending at the round limit); past the first two (halving
-// from 1/2) a rejected step ends on a plateau of 12 to 982 pairs that the rounds no longer
-// reduce. Two meshes' steps end before their kRelaxRounds where the count falls too slowly to
-// clear them within it (rounds.h), which leaves rounds for more steps; a step cut that would
-// have cleared at its last round changes the walk (docs/performance.md, "Deep overlaps of two
-// meshes").
+// again. On the deep cases most steps are rejected after their full kRelaxRounds (ball through
+// the plate: 1 of 7 kept; three balls pushed deep: 6 of 10, the walk ending at the round
+// limit), so these cases use most of max_rounds here; past the first two (halving from 1/2) a
+// rejected step ends on a plateau of 12 to 982 pairs that the rounds no longer reduce.
 constexpr double kFirstGamma = 0.5, kLastGamma = 1.0 / 64;
 constexpr std::size_t kRelaxRounds = 20;
 // The separating distance is bisected until its bracket is below kBisection of the upper end:

@@ -46,22 +46,23 @@ constexpr double kMinProgress = 0.01;
 // pairs fall one at a time with plateaus between (the tiny fixture meshes: 1 pair for 9 rounds
 // before resolving), which the plateau rule above judges.
 constexpr std::size_t kProbeRounds = 10, kProbeMinPairs = 100;
-// Two meshes (OnFewPairs::Exit): a slow decay is a stall too (decays_too_slowly, rounds.h).
-// Past kProbeRounds, at the rate the count fell over the last kRateWindow rounds (geometric, as
-// a plateau's counts fall, from the window's largest count: a count that grows before it falls
-// is measured from its peak), the rounds left in the budget would not bring it down to
-// kFewPairs, where the per-pair rounds finish. Prism blocks of 8^3 cubes resting a third of a
-// cell deep go 768, 1,919 in the second round, 693 in the eleventh, 5 in the twentieth: from
-// the peak the rate says 37 more rounds (from the first count it said 366). Two blocks nearly
-// one in the other (a Gmsh transfinite box of 9^3 cubes against its copy moved (0.37, 0.21,
-// 0.13) of a cell, turned 0.3 rad) fall from 57,364 pairs to ~3,200 by round 18 and then ~0.6%
-// a round: 1% progress every 20 rounds kept them going to round 63 (2,689 pairs, 0.065 s a
-// round) before the fallbacks, whose result the rounds never reach; the rate ends them at round
-// 18 (12.9 -> 9.6 s, the same result). Each step of the walk back towards rest (20 rounds,
-// fallbacks.h) ends as early where its rounds could not clear it (scripts/make-resolve-cases.sh's
-// `deep`: 192 -> 141 rounds, the same cost). Not for self-contact: there the rate misjudges
-// (three deep balls in one mesh, rigid variant, fall slowly and then faster, resolved in 193
-// rounds at cost 0.0062; stopped at round 10 the bodies' fallback resolves them at 0.22).
+// Two meshes' first rounds (OnSlowDecay::Exit): a slow decay is a stall too (decays_too_slowly,
+// rounds.h). Past kProbeRounds, at the rate the count fell over the last kRateWindow rounds
+// (geometric, as a plateau's counts fall, from the window's largest count: a count that grows
+// before it falls is measured from its peak), the rounds left in the budget would not bring it
+// down to kFewPairs, where the per-pair rounds finish. Prism blocks of 8^3 cubes resting a third
+// of a cell deep go 768, 1,919 in the second round, 693 in the eleventh, 5 in the twentieth:
+// from the peak the rate says 37 more rounds (from the first count it said 366). Two blocks
+// nearly one in the other (a Gmsh transfinite box of 9^3 cubes against its copy moved (0.37,
+// 0.21, 0.13) of a cell, turned 0.3 rad) fall from 57,364 pairs to ~3,200 by round 18 and then
+// ~0.6% a round: 1% progress every 20 rounds kept them going to round 63 (2,689 pairs, 0.065 s
+// a round) before the fallbacks, whose result the rounds never reach; the rate ends them at
+// round 18. Not in the walk back towards rest (fallbacks.h), whose steps of 20 rounds it would
+// judge on a few rounds: a step cut one round short of clearing changes the walk (five a cube,
+// 10^3 cells of 0.1, against its copy moved a quarter cell along (1, 1, 1): cost 0.480 -> 0.544),
+// and the walk takes the rounds the first ones leave. Not for self-contact either: there the rate
+// misjudges (three deep balls in one mesh, rigid variant, fall slowly and then faster, resolved
+// in 193 rounds at cost 0.0062; stopped at round 10 the bodies' fallback resolves them at 0.22).
 constexpr std::size_t kRateWindow = 10;
 // Rounds without fewer pairs, at kFewPairs pairs or fewer, before the rounds give way to the
 // per-pair rounds (OnFewPairs::Exit; plateaus of up to 6 rounds on the Gmsh balls end resolved).
@@ -286,7 +287,7 @@ bool decays_too_slowly(const std::vector<std::size_t>& counts, std::size_t budge
   return double(r) + std::log(double(now) / double(kFewPairs)) / rate > double(budget);
 }
 
-bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few) {
+bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few, OnSlowDecay on_slow) {
   const auto t = Clock::now();
   if (!run.elastic_a) run.elastic_a.emplace(run.A, run.sa.elems, run.sa.fixed);
   if (run.B && !run.elastic_b) run.elastic_b.emplace(*run.B, run.sb.elems, run.sb.fixed);
@@ -301,7 +302,7 @@ bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few) {
     const std::vector<std::array<std::size_t, 2>> pairs = contacts(run);
     if (pairs.empty()) return true;
     counts.push_back(pairs.size());
-    if (on_few == OnFewPairs::Exit && decays_too_slowly(counts, budget)) return false;
+    if (on_slow == OnSlowDecay::Exit && decays_too_slowly(counts, budget)) return false;
     if (r == 0) first = pairs.size();
     peak = std::max(peak, pairs.size());
     if (r == 0 || double(pairs.size()) < double(best) * (1 - kMinProgress)) best = pairs.size(), best_round = r;

@@ -27,13 +27,16 @@ std::vector<std::array<std::size_t, 2>> contacts(Run& run);
 // the step limit. They stall after kStallRounds rounds without fewer pairs
 // than the best round; with OnFewPairs::Exit (two meshes) also after kFewPairsRounds rounds
 // without fewer pairs when kFewPairs or fewer are left (the per-pair rounds finish those:
-// resolve.cpp), and when the count falls too slowly to get there within the budget.
+// resolve.cpp); with OnSlowDecay::Exit (two meshes' first rounds) also when the count falls too
+// slowly to get there within the budget (decays_too_slowly).
 enum class OnFewPairs { Exit, Continue };
+enum class OnSlowDecay { Exit, Continue };
 constexpr std::size_t kFewPairs = 16;
 // The per-pair rounds that finish projective-dynamics rounds stalled on kFewPairs pairs or
 // fewer (resolve.cpp's first fallback, and each step of the walk back towards rest: fallbacks.h).
 constexpr std::size_t kFinishRounds = 10;
-bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few = OnFewPairs::Continue);
+bool run_pd_rounds(Run& run, std::size_t budget, OnFewPairs on_few = OnFewPairs::Continue,
+                   OnSlowDecay on_slow = OnSlowDecay::Continue);
 // The slow decay of two meshes' rounds: counts[r] the pairs found at the start of round r (the
 // last one about to be run); true when, past the first rounds, the count falls so slowly that at
 // its rate over the last rounds it would not reach kFewPairs within `budget` rounds
