@@ -116,7 +116,7 @@ void run_phases(Run& run) {
   // and turned: each stalled after 5 to 10 rounds, 0.5 to 1.3 s a round on the boxes), and the
   // rounds they took were the translation's walk back towards rest.
   if (go_on() && !run.B && first_budget > rep.rounds.size()) {
-    run.place(run.A.vertices, run.B ? run.B->vertices : std::vector<Vec3d>{});
+    run.place(run.A.vertices, {});
     if (run_pair_rounds(run, first_budget - rep.rounds.size(), o.variant, OnStall::Exit))
       return void(rep.method = ResolveMethod::Rounds);
     best_end.consider(run);
