@@ -1,7 +1,8 @@
 """examples/soft_body.py on a tiny mesh: a few implicit Euler steps with pdd's contact energy.
 Every step converges (the residual force below 1e-5 of the weight), each iterate lowers the
 incremental potential Phi (Armijo line search on Phi along L-BFGS directions started from the
-positive definite matrix M/dt^2 + K + k H_E, H_E positive semi-definite), and the
+positive definite matrix M/dt^2 + K + k H_E, H_E positive semi-definite; below Phi's rounding,
+Armijo's condition on the slope, Phi within that rounding), and the
 penetration stays small: the largest pdd2_global (a squared depth) below 1e-6, a depth of 1e-3
 = 0.25% of the ball's radius, the tolerance the example's stiffness k = 1e7 is chosen for."""
 import os
@@ -21,9 +22,20 @@ def test_soft_body_steps():
         phis, e, converged = s.step()
         assert converged  # the residual force below 1e-5 of the weight (Scene.step)
         assert len(phis) >= 2
-        for before, after in zip(phis, phis[1:]):
-            assert after <= before + 1e-12 * abs(before)
+        for before, after, allowance in zip(phis, phis[1:], s.allowances):
+            assert after <= before + allowance  # Armijo, or within Phi's rounding (Scene.step)
         assert e["max_pdd2_global"] <= 1e-6
     # the floor stayed put
     floor = s.rest[s.nA:, 2] == 0
     assert np.array_equal(s.x[s.nA:][floor], s.rest[s.nA:][floor])
+
+
+def test_readme_scene_converges_through_resting_contact():
+    """The README's scene (default Scene) up to step 35, where the ball rests on the block:
+    the residual force reaches 1e-5 of the weight only after Phi's own decrease has fallen
+    below its rounding (~1e-15 of Phi), where the line search takes Armijo's condition on the
+    slope; on Phi's values alone that step stalls at 1.08e-5 of the weight."""
+    s = soft_body.Scene()
+    for n in range(36):
+        phis, e, converged = s.step()
+        assert converged, f"step {n}: {len(phis) - 1} iterations"
