@@ -5,6 +5,7 @@
 // along the axes are exactly parallel, the others parallel up to that rounding.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -179,6 +180,38 @@ inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pa
         A.push_back(a), B.push_back(b);
       }
   return intersecting_pairs(A, B, "on columns", max_pairs, [](double) { return true; });
+}
+
+// The same blocks turned together by 0.3 rad about (1, 2, 3) through (n h / 2, n h / 2, h)
+// (each coordinate rounded once): the same resting contact with no face along a coordinate
+// plane, B's bottom edges now translates of A's top edges only up to a rounding. The pairs
+// whose PD^2 lies above 1e-30 (the resting contacts, ~1e-19; the turn's rounding also makes
+// contacts between neighbouring columns, ~1e-33), up to `max_pairs`.
+inline std::vector<TetPair> turned_column_resting_pairs(int n, double depth, int max_pairs) {
+  const double h = 0.1, c = std::cos(0.3), s = std::sin(0.3), w = 1 / std::sqrt(14.0);
+  const double k[3] = {w, 2 * w, 3 * w}, o[3] = {n * h / 2, n * h / 2, h};
+  double R[3][3];  // Rodrigues' rotation
+  for (int r = 0; r < 3; ++r)
+    for (int q = 0; q < 3; ++q) R[r][q] = (r == q ? c : 0) + (1 - c) * k[r] * k[q];
+  R[0][1] -= s * k[2], R[0][2] += s * k[1], R[1][0] += s * k[2];
+  R[1][2] -= s * k[0], R[2][0] -= s * k[1], R[2][1] += s * k[0];
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int perm = 0; perm < 6; ++perm) {
+        TetVertices a = kuhn_cell_tet({0, 0, 0}, 1.0, perm), b = a;
+        for (int v = 0; v < 4; ++v) {
+          a[v] = {(i + a[v][0]) * h, (j + a[v][1]) * h, a[v][2] * h};
+          b[v] = {(i + b[v][0]) * h, (j + b[v][1]) * h, h - depth + b[v][2] * h};
+        }
+        for (TetVertices* t : {&a, &b})
+          for (Vec3d& x : *t) {
+            const double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+            for (int r = 0; r < 3; ++r) x[r] = o[r] + R[r][0] * d[0] + R[r][1] * d[1] + R[r][2] * d[2];
+          }
+        A.push_back(a), B.push_back(b);
+      }
+  return intersecting_pairs(A, B, "turned on columns", max_pairs, [](double pd2) { return pd2 > 1e-30; });
 }
 
 // The same with cubes cut into five, the cuts alternating across the contact (A's cube (i, j)

@@ -678,21 +678,26 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     // edge): the walk's multipliers move from these where the ray's nudge leaves them none
     // (a start's witness kept where none was found before it: the first one is reported where
     // no start certifies a double normal)
+    // Edges that are translates only up to a rounding (a turned scene's resting edges) give
+    // their starts for a certified normal only: a witness from them is not kept, so that such a
+    // pair goes on to the exact pieces, which may find a double normal attaining its value.
     const V3* edge_d = nonzero(declined.edge_d) ? &declined.edge_d : nullptr;
     bool witness = shallow;
-    auto certified_from = [&](const V3& start) {
+    auto certified_from = [&](const V3& start, bool keep_witness) {
       if (!nonzero(start) || !report_shallow(g, start, bounds, lone, edge_d)) return false;
       if (lone.certified) return true;
-      if (!witness) g.shallow = lone, witness = true;
+      if (!witness && keep_witness) g.shallow = lone, witness = true;
       return false;
     };
     const V3 none{0, 0, 0};
-    for (const V3& start : {edge_d ? g.best.n : none, declined.near_minimiser, declined.edge_v})
-      if (certified_from(start)) return lone;
+    const bool edge_witness = declined.edge_translate;
+    if (certified_from(edge_d ? g.best.n : none, edge_witness) || certified_from(declined.near_minimiser, true) ||
+        certified_from(declined.edge_v, edge_witness))
+      return lone;
     V3 tied[4];
     const int k = least_overlap_starts(bounds, tied, kTinyOverlap * g.P.scale);
     for (int i = 0; i < k && k > 1; ++i)
-      if (certified_from(tied[i])) return lone;
+      if (certified_from(tied[i], true)) return lone;
     if (witness) return g.shallow;
     enumerate_exact(g, exact_start);
   } else {

@@ -27,8 +27,10 @@ constexpr double kNudge = 0x1p-40;
 struct Candidate {
   V3 v;
   double key;
-  V3 d;      // the offset a - b of the pair it was built for
+  V3 d;      // the offset a - b of the pair it was built for (an edge pair's mean offset, rounded)
   V3 nudge;  // v = the extreme ray + nudge (into the lone pair's cone)
+  double d_error = 0;  // |d - the exact offset| <= d_error (an edge pair's mean rounded)
+  bool translate = true;  // a vertex pair, or an edge pair of translates (d exact)
 };
 
 // best[0 .. kept) sorted by key, the kEvaluated least kept.
@@ -125,17 +127,32 @@ bool lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
 }
 
 
-// A's vertices i -> i2 and B's j -> j2 with A[i2] - A[i] = B[j2] - B[j] exactly (translates:
-// the same edge vector l, exact in doubles) and A[i] - B[j] exact in doubles (d).
-bool translate_pair(const TetVertices& A, const TetVertices& B, int i, int i2, int j, int j2, V3& l, V3& d) {
+// A's vertices i -> i2 and B's j -> j2 whose offsets d1 = A[i] - B[j] and d2 = A[i2] - B[j2]
+// are exact in doubles: d the mean offset (d1 + d2) / 2 rounded, within d_error of it (each
+// component's sum rounded once, its error from two_sum, halved exactly but for a subnormal sum;
+// the 1-norm of the errors bounds their 2-norm), and l = A[i2] - A[i]
+// (rounded: a guess for the rays). translate: A[i2] - A[i] = B[j2] - B[j] exactly (the same
+// edge vector, l exact), so that d1 = d2 = d exactly.
+struct EdgeOffsets {
+  V3 l{}, d{};
+  double d_error = 0;
+  bool translate = true;
+};
+bool edge_offsets(const TetVertices& A, const TetVertices& B, int i, int i2, int j, int j2, EdgeOffsets& o) {
+  double err = 0;
   for (int k = 0; k < 3; ++k) {
+    if (detail::difference(A[i][k], B[j][k]).n > 1 || detail::difference(A[i2][k], B[j2][k]).n > 1)
+      return false;  // (an offset is not a double)
     const Expansion ea = detail::difference(A[i2][k], A[i][k]), eb = detail::difference(B[j2][k], B[j][k]);
-    if (ea.n > 1 || detail::difference(ea, eb).sign() != 0) return false;
-    if (detail::difference(A[i][k], B[j][k]).n > 1) return false;  // (the difference is not a double)
-    l[k] = A[i2][k] - A[i][k];
-    d[k] = A[i][k] - B[j][k];
+    o.translate = o.translate && ea.n <= 1 && detail::difference(ea, eb).sign() == 0;
+    o.l[k] = A[i2][k] - A[i][k];
+    double x, y;
+    detail::two_sum(A[i][k] - B[j][k], A[i2][k] - B[j2][k], x, y);
+    o.d[k] = 0.5 * x;
+    err += 0.5 * std::fabs(y) + (x != 0 && std::fabs(x) < 0x1p-1020 ? 0x1p-1074 : 0.0);  // (halving a subnormal)
   }
-  return true;
+  o.d_error = err * (1 + 4 * kU);
+  return std::isfinite(o.d_error);
 }
 
 // Where l has no zero component: v's components i and j (k the largest of l's) on the grid of
@@ -198,8 +215,9 @@ bool exactly_across(const V3& l, V3& v) {
 // midpoint m of a and b, less d/3 for A's, plus d/3 for B's: the two free vertices of a
 // tetrahedron whose other two move by t follow by -2t/3), nudged into the regime in the plane
 // perpendicular to l (a tilt along l splits the edges' heights), oriented along d.
-void edge_pair_rays(const Problem& P, int i, int i2, int j, int j2, const V3& l, const V3& d,
+void edge_pair_rays(const Problem& P, int i, int i2, int j, int j2, const EdgeOffsets& o,
                     Candidate (&best)[kEvaluated], int& kept) {
+  const V3 &l = o.l, &d = o.d;
   const double ll = dot(l, l);
   if (!(ll > 0)) return;
   const V3 mid = mul(add(P.relA[i], P.relB[j]), 0.5);
@@ -220,13 +238,16 @@ void edge_pair_rays(const Problem& P, int i, int i2, int j, int j2, const V3& l,
     const double nw = norm(w);
     if (!(nw > 0)) continue;
     v = add(mul(v, 1 / nv), mul(w, (onA[s] ? -kNudge : kNudge) / nw));
-    if (!exactly_across(l, v)) continue;
+    // (edges that are translates only up to a rounding have no common perpendicular: the
+    // double normal is taken as it is, its tilt along them ~u of the edge's length, far below
+    // a depth the certificate reaches, ~1e-9 of the size, where the value moves by its square)
+    if (o.translate && !exactly_across(l, v)) continue;
     const double vv = dot(v, v), tol = 1e-9 * std::sqrt(vv) * P.scale;
     bool ok = dot(v, d) > 0;
     for (int q = 0; q < m && ok; ++q) ok = (onA[q] ? -dot(v, u[q]) : dot(v, u[q])) >= -tol;
     if (!ok) continue;
     const double vd = dot(v, d);
-    keep_shallowest(best, kept, {v, vd * vd / vv, d, V3{0, 0, 0}});
+    keep_shallowest(best, kept, {v, vd * vd / vv, d, V3{0, 0, 0}, o.d_error, o.translate});
   }
 }
 
@@ -239,10 +260,13 @@ bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
     for (const auto& eb : kEdge)
       for (int flip = 0; flip < 2; ++flip) {
         const int i = ea[0], i2 = ea[1], j = flip ? eb[1] : eb[0], j2 = flip ? eb[0] : eb[1];
-        V3 l, d;
-        if (!translate_pair(A, B, i, i2, j, j2, l, d)) continue;
-        if (std::fabs(d[0]) <= near && std::fabs(d[1]) <= near && std::fabs(d[2]) <= near)
-          edge_pair_rays(P, i, i2, j, j2, l, d, best, kept);
+        auto close = [&](int a, int b) {
+          return std::fabs(A[a][0] - B[b][0]) <= near && std::fabs(A[a][1] - B[b][1]) <= near &&
+                 std::fabs(A[a][2] - B[b][2]) <= near;
+        };
+        if (!close(i, j) || !close(i2, j2)) continue;
+        EdgeOffsets o;
+        if (edge_offsets(A, B, i, i2, j, j2, o)) edge_pair_rays(P, i, i2, j, j2, o, best, kept);
       }
   if (kept == 0) return false;
   Candidate chosen{};
@@ -252,9 +276,15 @@ bool edge_pair(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
   // L = V (1 - 9e-10): the reported V then lies within 9e-10 / (1 - 9e-10) < 1e-9 above every
   // lower bound, and below the minimum by at most its own kGlobalRel.
   const double lower = ev.value * (1 - 9e-10) * (1 - 2 * kU);
-  const double c0 = std::sqrt(12 * lower) * (1 + 4 * kU), d0 = std::sqrt(32 * lower) * (1 + 4 * kU);
+  // (u.d >= u.d~ - |d~ - d| for unit u: the slab widened by d_error)
+  const double c0 = (std::sqrt(12 * lower) * (1 + 4 * kU) + chosen.d_error) * (1 + 2 * kU);
+  const double d0 = std::sqrt(32 * lower) * (1 + 4 * kU);
   if (!(lower > 0) || !polytope_inside_ball(bounds, chosen.d, c0, d0)) {
-    out.edge_d = chosen.d, out.edge_v = chosen.v;
+    // For the shallow certificate's next starts: the candidate normal, and d where it is exact
+    // (the shallow certificate takes its plane as given).
+    if (chosen.d_error == 0) out.edge_d = chosen.d;
+    out.edge_v = chosen.v;
+    out.edge_translate = chosen.translate;
     return false;
   }
   out.normal = chosen.v;

@@ -57,28 +57,38 @@ struct LonePairResult {
   // regime (an edge on a collinear edge whose tetrahedron's face through it reaches the plane).
   V3 edge_d{};
   V3 edge_v{};  // that edge pair's candidate normal (a start for the shallow certificate), else 0
+  // That edge pair's edges are translates (a2 - a = b2 - b exactly); false: translates only up
+  // to a rounding (edges resting on nearly collinear ones: a turned scene's).
+  bool edge_translate = true;
 };
 
 bool certify_lone_pair(const TetVertices& A, const TetVertices& B, const Problem& P, LonePairResult& out);
 
 // Edge pairs: an edge of A on the collinear edge of B, as two decimal blocks set on each other's
-// columns put them (A's top edge 5.6e-17 above B's bottom edge). Where two vertices a, a2 of A
-// and b, b2 of B are translates (a2 - a = b2 - b exactly) with d = a - b, the relaxed QP kept to
-// their four constraints moves a and a2 down, b and b2 up; along a unit u its heights are h,
-// h + w for A and h - p, h + w - p for B (p = u.d, w = u.(a2 - a)), its value V(p, w) is convex
-// in (p, w) (a convex QP whose right-hand side is linear in them) and even in w (the two ends
-// exchanged and shifted by w: the same problem), so V(p, w) >= V(p, 0) = p^2 / 12 (two vertices
-// of a tetrahedron moved by t, its two free ones following by -2t/3, cost t^2 / 6 a side, the
-// depth p split evenly). Dropping constraints lowers the minimum: relaxed(u) >= (u.d)^2 / 12
-// where u.d >= 0, beside relaxed(u) >= D(u)^2 / 32 everywhere. With L = V (1 - 9e-10), V the
+// columns put them (A's top edge 5.6e-17 above B's bottom edge), or an edge resting on a nearly
+// collinear one (two blocks resting on each other 1e-9 deep, both turned: their edges are
+// translates only up to a rounding). For any two vertices a, a2 of A and b, b2 of B, the
+// relaxed QP kept to their four constraints (dropping constraints lowers the minimum) moves a
+// and a2 down, b and b2 up; its value V(h) is a convex function of their heights h = (u.a,
+// u.a2, u.b, u.b2) along the unit u (a convex QP whose right-hand side is linear in them),
+// unchanged by a common shift, and symmetric: exchanging the two ends of both sides, sh =
+// (u.a2, u.a, u.b2, u.b), gives the same problem (the object norm treats a tetrahedron's
+// vertices alike). So V(h) = (V(h) + V(sh)) / 2 >= V((h + sh) / 2), where A's two heights are
+// equal and so are B's, p = u.d apart, d = (a + a2 - b - b2) / 2 the mean offset: there V =
+// p^2 / 12 (two vertices of a tetrahedron moved by t, its two free ones following by -2t/3,
+// cost t^2 / 6 a side, the depth p split evenly). Hence relaxed(u) >= (u.d)^2 / 12 where u.d >=
+// 0, beside relaxed(u) >= D(u)^2 / 32 everywhere; for translates (a2 - a = b2 - b) d = a - b.
+// d is rounded (d~, within d_error: the slab below is widened by it). With L = V (1 - 9e-10), V the
 // candidate's certified value, every unit u then has relaxed(u) >= L when u.d >= c0 = sqrt(12 L)
 // or D(u) >= d0 = sqrt(32 L): checked by the polytope {u : D(u) <= d0, u.d <= c0} lying inside
 // the unit ball (its vertices, from the facet normals of M bounded exactly as above). The
 // candidate normals: perpendicular to the edge and to a third vertex's offset from its bound
 // (the midpoint of a and b, -d/3 for A's, +d/3 for B's: a tetrahedron's free vertices follow by
-// -2t/3), nudged into the regime across the edge, and exactly across it: a double normal tilted
-// along the edge by its rounding splits the two ends' heights by a fraction of the depth (the
-// value ~1e-3 off), so the edge needs a double triple exactly across it: where it has a zero
+// -2t/3), nudged into the regime across the edge, and, for translates, exactly across it: at a
+// depth ~1e-17 of the size a double normal tilted along the edge by its rounding splits the two
+// ends' heights by a fraction of the depth (the value ~1e-3 off; at a depth of 1e-9 of the size
+// by 1e-8 of it, which moves the value by its square), so the edge needs a double triple
+// exactly across it: where it has a zero
 // component (an edge in a coordinate plane, as every edge of a grid's faces) one lies across it
 // by construction, else one is solved for and kept where its dot product with the edge is
 // exactly 0 (a cube's diagonal, (h, h, h)). Measured on the
