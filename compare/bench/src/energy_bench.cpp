@@ -22,6 +22,22 @@ using Clock = std::chrono::steady_clock;
 
 double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
+// A and B turned together by `angle` about (1, 2, 3) through the centroid of their vertices:
+// the same contact, its faces along no coordinate plane (each coordinate rounded once).
+void turn_together(mesh::Mesh& A, mesh::Mesh& B, double angle) {
+  Vec3d c{0, 0, 0};
+  const double n = double(A.vertices.size() + B.vertices.size());
+  for (const mesh::Mesh* m : {&A, &B})
+    for (const Vec3d& v : m->vertices)
+      for (int k = 0; k < 3; ++k) c[k] += v[k] / n;
+  const auto R = rotation_matrix({1, 2, 3}, angle);
+  for (mesh::Mesh* m : {&A, &B})
+    for (Vec3d& v : m->vertices) {
+      const double p[3] = {v[0] - c[0], v[1] - c[1], v[2] - c[2]};
+      for (int r = 0; r < 3; ++r) v[r] = c[r] + R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+    }
+}
+
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream in(s);
@@ -95,8 +111,9 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
     if (name == "stacked")
       names.insert(names.end(),
                    {"stacked", "stacked-tilted", "stacked-nearly", "stacked-rounding", "stacked-rounding-turned",
-                    "stacked-resting", "stacked-resting-turned", "stacked-columns", "stacked-columns-turned",
-                    "stacked-five-resting", "stacked-five-resting-turned", "stacked-diagonal",
+                    "stacked-resting", "stacked-resting-turned", "stacked-resting-scene-turned",
+                    "stacked-columns", "stacked-columns-turned", "stacked-five-resting",
+                    "stacked-five-resting-turned", "stacked-five-resting-scene-turned", "stacked-diagonal",
                     "stacked-diagonal-turned"});
     else names.push_back(name);
   for (const std::string& name : names) {
@@ -140,38 +157,49 @@ EnergyBenchReport run_energy_bench(const EnergyBenchOptions& options) {
       c.description = d.str();
       if (!turned) c.rotated_twin = "stacked-rounding-turned";
     } else if (name == "stacked-resting" || name == "stacked-resting-turned" || name == "stacked-columns" ||
-               name == "stacked-columns-turned") {
+               name == "stacked-columns-turned" || name == "stacked-resting-scene-turned") {
       // B on A's columns (the same x and y), its bottom 1e-9 below A's top (resting: a contact as
       // a simulator leaves it) or at 0.3 (columns: touching by rounding, as two copies of one
       // mesh set on each other), every contact of a face, an edge or a vertex of B's bottom on
       // the same element of A's top; the twin B turned 0.3 rad
       const int n = options.stacked_cells;
-      const bool turned = name.size() > 7 && name.compare(name.size() - 7, 7, "-turned") == 0;
+      const bool scene = name == "stacked-resting-scene-turned";
+      const bool turned = !scene && name.size() > 7 && name.compare(name.size() - 7, 7, "-turned") == 0;
       const bool resting = name.rfind("stacked-resting", 0) == 0;
       A = make_structured_block({n, n, 3}, 0.1, {0, 0, 0}, CubeSplit::Kuhn6);
       B = make_structured_block({n, n, 3}, 0.1, {0, 0, resting ? 0.3 - 1e-9 : 0.3}, CubeSplit::Kuhn6,
                                 turned ? 0.3 : 0.0);
+      if (scene) turn_together(A, B, 0.3);
       std::ostringstream d;
       d << "Kuhn blocks of " << n << "x" << n << "x3 cubes of 0.1, B on A's columns "
         << (resting ? "1e-9 deep" : "at 0.3 (A's top 3 x 0.1: touching by rounding)")
-        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
+        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "")
+        << (scene ? ", both turned 0.3 rad about (1, 2, 3) through their centroid" : "");
       c.description = d.str();
-      if (!turned) c.rotated_twin = name + "-turned";
-    } else if (name == "stacked-five-resting" || name == "stacked-five-resting-turned") {
+      if (!turned && !scene) c.rotated_twin = name + "-turned";
+      if (name == "stacked-resting") c.scene_twin = "stacked-resting-scene-turned";
+    } else if (name == "stacked-five-resting" || name == "stacked-five-resting-turned" ||
+               name == "stacked-five-resting-scene-turned") {
       // cubes cut into five, alternating with i + j + k: A two layers high (its top layer odd
       // where B's bottom one is even), B on A's columns 1e-9 deep, so the cuts alternate across
       // the contact (a vertex on a vertex, the overlap least along several facet normals at
       // once); the twin B turned 0.3 rad
       const int n = options.stacked_cells;
       const bool turned = name == "stacked-five-resting-turned";
+      const bool scene = name == "stacked-five-resting-scene-turned";
       A = make_structured_block({n, n, 2}, 0.1, {0, 0, 0}, CubeSplit::Five);
       B = make_structured_block({n, n, 3}, 0.1, {0, 0, 0.2 - 1e-9}, CubeSplit::Five, turned ? 0.3 : 0.0);
+      if (scene) turn_together(A, B, 0.3);
       std::ostringstream d;
       d << "blocks of " << n << "x" << n << " cubes of 0.1 cut into five (A 2 layers, B 3), B on A's columns 1e-9 "
         << "deep, the cuts alternating across the contact"
-        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "");
+        << (turned ? ", B turned 0.3 rad about (1, 2, 3) through its centre" : "")
+        << (scene ? ", both turned 0.3 rad about (1, 2, 3) through their centroid" : "");
       c.description = d.str();
-      if (!turned) c.rotated_twin = "stacked-five-resting-turned";
+      if (!turned && !scene) {
+        c.rotated_twin = "stacked-five-resting-turned";
+        c.scene_twin = "stacked-five-resting-scene-turned";
+      }
     } else if (name == "stacked-diagonal" || name == "stacked-diagonal-turned") {
       // B a third of a cell deep, moved across by a tenth of a cell along x and y alike: the
       // cells' diagonal faces x - y = c of the two blocks together up to rounding (contacts made

@@ -804,6 +804,12 @@ std::array<double, 3> energy_ratios(const EnergyCase& a, const EnergyCase& b) {
   return {ratio(a.one_core.found, b.one_core.found), ratio(a.one_core.energy, b.one_core.energy),
           ratio(a.one_core.hessian, b.one_core.hessian)};
 }
+// Per call (scene twins: the same contact, pair counts that differ by contacts made by rounding).
+std::array<double, 3> energy_call_ratios(const EnergyCase& a, const EnergyCase& b) {
+  auto ratio = [](double x, double y) { return y > 0 ? x / y : NAN; };
+  return {ratio(a.one_core.found, b.one_core.found), ratio(a.one_core.energy, b.one_core.energy),
+          ratio(a.one_core.hessian, b.one_core.hessian)};
+}
 const EnergyCase* find_case(const EnergyBenchReport& r, const std::string& name) {
   for (const auto& c : r.cases)
     if (c.name == name) return &c;
@@ -851,6 +857,13 @@ Json energy_report_json(const EnergyBenchReport& r) {
       q["per_pair_ratio_to_rotated"] = {{"found", number(x[0])}, {"energy_gradient", number(x[1])},
                                         {"energy_gradient_hessian", number(x[2])}};
     }
+    const EnergyCase* scene = c.scene_twin.empty() ? nullptr : find_case(r, c.scene_twin);
+    q["scene_twin"] = scene ? Json(scene->name) : Json(nullptr);
+    if (scene) {
+      const auto x = energy_call_ratios(c, *scene);
+      q["call_ratio_to_scene"] = {{"found", number(x[0])}, {"energy_gradient", number(x[1])},
+                                  {"energy_gradient_hessian", number(x[2])}};
+    }
     j["cases"].push_back(q);
   }
   j["targets"] = Json::array();
@@ -883,6 +896,13 @@ void print_energy_table(const EnergyBenchReport& r, std::ostream& s) {
       if (a.rotated_twin != c.name) continue;
       const auto x = energy_ratios(a, c);
       s << "  " << a.name << " / " << c.name << " per intersecting pair, one core: find " << fmt("%.2fx", x[0])
+        << ", E+grad " << fmt("%.2fx", x[1]) << ", E+grad+H " << fmt("%.2fx", x[2])
+        << (x[1] <= 2 && x[2] <= 2 ? "" : "  (over 2x)") << "\n";
+    }
+    for (const auto& a : r.cases) {  // after the scene twin of a resting case: per call
+      if (a.scene_twin != c.name) continue;
+      const auto x = energy_call_ratios(a, c);
+      s << "  " << a.name << " / " << c.name << " per call (the same contact), one core: find " << fmt("%.2fx", x[0])
         << ", E+grad " << fmt("%.2fx", x[1]) << ", E+grad+H " << fmt("%.2fx", x[2])
         << (x[1] <= 2 && x[2] <= 2 ? "" : "  (over 2x)") << "\n";
     }

@@ -30,7 +30,11 @@
 //        Kuhn blocks of decimal cells, B a third of a cell deep and moved by (0.01, 0.01)
 //        ("stacked-diagonal": the cells' diagonal faces x - y = c of both together by rounding)
 //        beside B turned 0.3 rad;
-//        each aligned case names its twin (rotated_twin), and the ratios of the times per pair.
+//        each aligned case names its twin (rotated_twin), and the ratios of the times per pair;
+//        the resting cases also their scene twins ("stacked-resting-scene-turned",
+//        "stacked-five-resting-scene-turned": both blocks turned 0.3 rad about (1, 2, 3) through
+//        their common centroid, the same resting contact 1e-9 deep, no face along an axis), and
+//        the ratios of the times per call.
 #pragma once
 
 #include <cstddef>
@@ -66,6 +70,10 @@ struct EnergyCase {
   EnergyTimes one_core, all_cores;
   int threads = 0;  // all cores
   std::string rotated_twin;  // the same case with B tilted (aligned cases); empty: none
+  // The same two meshes turned together (the resting cases): the same contact in general
+  // position; empty: none. Its pair count differs by the contacts the turn's rounding makes
+  // (bounded, ~2 us each), so the two are compared per call.
+  std::string scene_twin;
 };
 
 struct EnergyBenchReport {
