@@ -85,7 +85,13 @@ PairMove from_positions(const Positions<double>& qa, const Positions<double>& qb
 
 // The gap between the two sides of a pair's plane, relative to the pair's longest edge: far above
 // the rounding of the moved coordinates, small against the element (its cost per pair is at most
-// (1e-3 h)^2, a millionth of an element layer's).
+// (1e-3 h)^2, a millionth of an element layer's). It lets the rounds finish: the elastic step
+// moves a contact vertex short of its target and a pair separated to the plane alone would meet
+// again (a gap proportional to each pair's own overlap: boxes 0.1 deep 15 -> 29 rounds, a ball
+// among slivers 14 -> 194). Capped by the run's depth scale (the largest overlap met): a contact
+// far shallower than the elements (plates pressed 1e-5 into each other, cells of 0.1) is then
+// moved by about its depth, not by 1e-3 h (measured 43x the depth, its cost 1,700x the rigid
+// push's).
 constexpr double kPlaneGap = 1e-3;
 
 // The per-pair rounds' gap mu between a pair's two sides: kMargin of its longest edge plus
@@ -155,18 +161,27 @@ PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant v
   return rigid_move(A, B);
 }
 
+double overlap_along(const TetVertices& A, const TetVertices& B, const Vec3d& u) {
+  double a_hi = -HUGE_VAL, b_lo = HUGE_VAL;
+  for (int i = 0; i < 4; ++i) a_hi = std::max(a_hi, dot(u, A[i])), b_lo = std::min(b_lo, dot(u, B[i]));
+  return a_hi - b_lo;
+}
+
 double plane_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, const PairMove& m,
-                     const Vec3d* along, std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b) {
+                     const Vec3d* along, double depth_scale, std::vector<VertexTarget>& out_a,
+                     std::vector<VertexTarget>& out_b) {
   const TetVertices A = element(sa.cur, ea), B = element(sb.cur, eb);
   const Vec3d u = along ? *along : m.u;
-  double a_hi = -HUGE_VAL, b_lo = HUGE_VAL, fixed_a = -HUGE_VAL, fixed_b = HUGE_VAL;
+  double a_hi = -HUGE_VAL, b_lo = HUGE_VAL, fixed_a = -HUGE_VAL, fixed_b = HUGE_VAL, coord = 0;
   for (int i = 0; i < 4; ++i) {
     a_hi = std::max(a_hi, dot(u, A[i]) + (along ? 0.0 : dot(u, m.da[i])));
     b_lo = std::min(b_lo, dot(u, B[i]) + (along ? 0.0 : dot(u, m.db[i])));
     if (sa.is_fixed(sa.rest->tets[ea][i])) fixed_a = std::max(fixed_a, dot(u, A[i]));
     if (sb.is_fixed(sb.rest->tets[eb][i])) fixed_b = std::min(fixed_b, dot(u, B[i]));
+    for (int k = 0; k < 3; ++k) coord = std::max({coord, std::abs(A[i][k]), std::abs(B[i][k])});
   }
-  const double gap = kPlaneGap * std::sqrt(longest_edge2(A, B));
+  const double edge = std::sqrt(longest_edge2(A, B));
+  const double gap = std::max(std::min(kPlaneGap * edge, depth_scale), kMargin * edge + kMarginUlp * coord);
   double lo = (a_hi + b_lo) / 2 - gap / 2, hi = lo + gap;
   if (fixed_a > lo) hi += fixed_a - lo, lo = fixed_a;  // A's fixed vertices stay: B takes it all
   if (fixed_b < hi) lo -= hi - fixed_b, hi = fixed_b;

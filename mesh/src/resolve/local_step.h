@@ -7,8 +7,9 @@
 //            all along the solution's unit normal u (A -> B), and its squared depth;
 //          plane_targets (the projective-dynamics rounds): the plane u.x = c midway between q1_A
 //            and q1_B (or along a patch's direction, patch_direction.h), opened by the gap
-//            g = kPlaneGap (longest edge of the pair) and shifted past the fixed vertices of
-//            either side, as a half-space for every free vertex on the
+//            g = min(kPlaneGap (longest edge of the pair), the run's depth scale) (not below
+//            finish_move's margin) and shifted past the fixed vertices of either side, as a
+//            half-space for every free vertex on the
 //            wrong side:  u.x <= c - g/2 (A's),  u.x >= c + g/2 (B's);
 //          finish_move (the per-pair rounds): the fixed vertices' share of a move handed to the
 //            other side and the two sides pushed mu = kMargin edge + kMarginUlp |x| apart.
@@ -52,8 +53,13 @@ struct VertexTarget {
 // the half-spaces of its free vertices to out_a / out_b; returns m.value (0: no finite plane).
 // along: null, the plane of m (its normal, midway between q1_A and q1_B); else the unit *along
 // (patch_direction.h), the plane then midway between the two tetrahedra's extents along it.
+// depth_scale: the largest overlap the run's rounds have met (Run::depth_scale, overlap_along).
 double plane_targets(const Side& sa, std::size_t ea, const Side& sb, std::size_t eb, const PairMove& m,
-                     const Vec3d* along, std::vector<VertexTarget>& out_a, std::vector<VertexTarget>& out_b);
+                     const Vec3d* along, double depth_scale, std::vector<VertexTarget>& out_a,
+                     std::vector<VertexTarget>& out_b);
+
+// The overlap of A and B along unit u: max_A u.a - min_B u.b.
+double overlap_along(const TetVertices& A, const TetVertices& B, const Vec3d& u);
 
 // The per-pair rounds' local step of pair (ea of sa, eb of sb): the variant's move with the fixed
 // vertices' share moved to the other side and the margin mu added (m.ok must hold).

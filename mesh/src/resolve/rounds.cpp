@@ -141,10 +141,16 @@ std::vector<double> local_step(Run& run, const std::vector<std::array<std::size_
   });
   run.stop_if_cancelled();
   const std::vector<std::optional<Vec3d>> along = patch_directions(run, pairs, moves);
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    if (moves[k].ok)
+      run.depth_scale = std::max(run.depth_scale, overlap_along(element(run.sa.cur, pairs[k][0]),
+                                                                element(run.second().cur, pairs[k][1]),
+                                                                along[k] ? *along[k] : moves[k].u));
   tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
     if (!moves[k].ok) return;
     const Vec3d* u = along[k] ? &*along[k] : nullptr;
-    value[k] = plane_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], moves[k], u, ta[k], tb[k]);
+    value[k] = plane_targets(run.sa, pairs[k][0], run.second(), pairs[k][1], moves[k], u, run.depth_scale, ta[k],
+                             tb[k]);
   });
   auto& into_b = run.B ? targets_b : targets_a;
   for (std::size_t k = 0; k < pairs.size(); ++k) {

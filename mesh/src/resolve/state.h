@@ -71,6 +71,10 @@ struct Run {
     std::vector<int> of_a, of_b;
     void clear() { along.clear(), of_a.clear(), of_b.clear(); }
   } patch_memory;
+  // The largest overlap of a pair along its plane's normal that the rounds have met (never
+  // lowered): the plane gap's cap (local_step.h), so that a contact far shallower than the
+  // elements is not pushed apart by more than its own depth.
+  double depth_scale = 0;
 
   Side& second() { return B ? sb : sa; }  // the side of a pair's second element
   double cost() const { return side_cost(sa) + (B ? side_cost(sb) : 0); }
