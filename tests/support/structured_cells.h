@@ -166,9 +166,8 @@ inline std::vector<TetPair> resting_contact_pairs(int n, double depth, int max_p
 // vertex of one on the line of a vertical edge of the other makes three active vertices nearly
 // (or exactly) collinear: pieces with a second eigenvalue ~depth^2 beside a structural 0. The
 // element pairs whose interiors meet, up to `max_pairs`.
-inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pairs) {
+inline void column_resting_blocks(int n, double depth, std::vector<TetVertices>& A, std::vector<TetVertices>& B) {
   const double h = 0.1;
-  std::vector<TetVertices> A, B;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int perm = 0; perm < 6; ++perm) {
@@ -179,6 +178,10 @@ inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pa
         }
         A.push_back(a), B.push_back(b);
       }
+}
+inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pairs) {
+  std::vector<TetVertices> A, B;
+  column_resting_blocks(n, depth, A, B);
   return intersecting_pairs(A, B, "on columns", max_pairs, [](double) { return true; });
 }
 
@@ -196,20 +199,12 @@ inline std::vector<TetPair> turned_column_resting_pairs(int n, double depth, int
   R[0][1] -= s * k[2], R[0][2] += s * k[1], R[1][0] += s * k[2];
   R[1][2] -= s * k[0], R[2][0] -= s * k[1], R[2][1] += s * k[0];
   std::vector<TetVertices> A, B;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int perm = 0; perm < 6; ++perm) {
-        TetVertices a = kuhn_cell_tet({0, 0, 0}, 1.0, perm), b = a;
-        for (int v = 0; v < 4; ++v) {
-          a[v] = {(i + a[v][0]) * h, (j + a[v][1]) * h, a[v][2] * h};
-          b[v] = {(i + b[v][0]) * h, (j + b[v][1]) * h, h - depth + b[v][2] * h};
-        }
-        for (TetVertices* t : {&a, &b})
-          for (Vec3d& x : *t) {
-            const double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
-            for (int r = 0; r < 3; ++r) x[r] = o[r] + R[r][0] * d[0] + R[r][1] * d[1] + R[r][2] * d[2];
-          }
-        A.push_back(a), B.push_back(b);
+  column_resting_blocks(n, depth, A, B);
+  for (std::vector<TetVertices>* side : {&A, &B})
+    for (TetVertices& t : *side)
+      for (Vec3d& x : t) {
+        const double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+        for (int r = 0; r < 3; ++r) x[r] = o[r] + R[r][0] * d[0] + R[r][1] * d[1] + R[r][2] * d[2];
       }
   return intersecting_pairs(A, B, "turned on columns", max_pairs, [](double pd2) { return pd2 > 1e-30; });
 }

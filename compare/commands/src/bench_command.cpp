@@ -852,18 +852,13 @@ Json energy_report_json(const EnergyBenchReport& r) {
     q["all_cores"] = energy_times_json(c.all_cores);
     const EnergyCase* twin = c.rotated_twin.empty() ? nullptr : find_case(r, c.rotated_twin);
     q["rotated_twin"] = twin ? Json(twin->name) : Json(nullptr);
-    if (twin) {
-      const auto x = energy_ratios(c, *twin);
-      q["per_pair_ratio_to_rotated"] = {{"found", number(x[0])}, {"energy_gradient", number(x[1])},
-                                        {"energy_gradient_hessian", number(x[2])}};
-    }
+    auto ratios = [](const std::array<double, 3>& x) {
+      return Json{{"found", number(x[0])}, {"energy_gradient", number(x[1])}, {"energy_gradient_hessian", number(x[2])}};
+    };
+    if (twin) q["per_pair_ratio_to_rotated"] = ratios(energy_ratios(c, *twin));
     const EnergyCase* scene = c.scene_twin.empty() ? nullptr : find_case(r, c.scene_twin);
     q["scene_twin"] = scene ? Json(scene->name) : Json(nullptr);
-    if (scene) {
-      const auto x = energy_call_ratios(c, *scene);
-      q["call_ratio_to_scene"] = {{"found", number(x[0])}, {"energy_gradient", number(x[1])},
-                                  {"energy_gradient_hessian", number(x[2])}};
-    }
+    if (scene) q["call_ratio_to_scene"] = ratios(energy_call_ratios(c, *scene));
     j["cases"].push_back(q);
   }
   j["targets"] = Json::array();
@@ -892,19 +887,14 @@ void print_energy_table(const EnergyBenchReport& r, std::ostream& s) {
     };
     row(1, c.one_core);
     row(c.threads, c.all_cores);
-    for (const auto& a : r.cases) {  // after the rotated twin of an aligned case: their ratios
-      if (a.rotated_twin != c.name) continue;
-      const auto x = energy_ratios(a, c);
-      s << "  " << a.name << " / " << c.name << " per intersecting pair, one core: find " << fmt("%.2fx", x[0])
+    auto ratio_line = [&](const EnergyCase& a, const std::array<double, 3>& x, const char* per) {
+      s << "  " << a.name << " / " << c.name << " " << per << ", one core: find " << fmt("%.2fx", x[0])
         << ", E+grad " << fmt("%.2fx", x[1]) << ", E+grad+H " << fmt("%.2fx", x[2])
         << (x[1] <= 2 && x[2] <= 2 ? "" : "  (over 2x)") << "\n";
-    }
-    for (const auto& a : r.cases) {  // after the scene twin of a resting case: per call
-      if (a.scene_twin != c.name) continue;
-      const auto x = energy_call_ratios(a, c);
-      s << "  " << a.name << " / " << c.name << " per call (the same contact), one core: find " << fmt("%.2fx", x[0])
-        << ", E+grad " << fmt("%.2fx", x[1]) << ", E+grad+H " << fmt("%.2fx", x[2])
-        << (x[1] <= 2 && x[2] <= 2 ? "" : "  (over 2x)") << "\n";
+    };
+    for (const auto& a : r.cases) {  // after the twins of an aligned case: their ratios
+      if (a.rotated_twin == c.name) ratio_line(a, energy_ratios(a, c), "per intersecting pair");
+      if (a.scene_twin == c.name) ratio_line(a, energy_call_ratios(a, c), "per call (the same contact)");
     }
   }
   const std::vector<BenchTarget> targets = energy_targets(r);
