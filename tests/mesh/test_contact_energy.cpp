@@ -18,6 +18,7 @@
 #include "pdd/mesh.h"
 #include "pdd/reference/relaxed_pieces.h"
 #include "kuhn_grid_mesh.h"
+#include "structured_cells.h"
 
 using namespace pdd;
 using namespace pdd::mesh;
@@ -782,6 +783,39 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding_are_bounded_within_the_share) {
   BOOST_TEST(checked >= 8);
   BOOST_TEST(positive * 2 >= checked);  // (most: a face normal across the crossing faces)
   BOOST_TEST(same >= 8);
+}
+
+// A resting contact of a turned scene: Kuhn blocks of 3^3 cells of 0.1, B's bottom 1e-9 below
+// A's top, both turned by 0.3 rad about (1, 2, 3) through the contact's middle (each coordinate
+// rounded once). Beside the resting pairs (pdd2_global ~1e-20) the turn's rounding makes
+// contacts between neighbouring columns (~1e-34). Their face normals' bound (the overlap's
+// rounding, ~(10 u size)^2 ~ 1e-31 each) summed over them exceeds 1e-12 of E (~1e-20 a resting
+// pair): computed in full, they took most of the call. The same normals' relaxed values on
+// compensated heights bound them about their values (~1e-34): every such pair is bounded, E
+// within the share of the per_pair call's, and each bound at or above the exact relaxed value
+// along its normal (sampled).
+BOOST_AUTO_TEST_CASE(rounding_contacts_of_a_turned_resting_scene_stay_bounded) {
+  Mesh A = test::kuhn_grid(3, 0.1, {0, 0, 0}), B = test::kuhn_grid(3, 0.1, {0, 0, 0.3 - 1e-9});
+  for (Mesh* m : {&A, &B})
+    for (Vec3d& x : m->vertices) x = test::turned_about_123(x, {0.15, 0.15, 0.3});
+  ContactEnergyOptions o;
+  const ContactEnergy bounded = contact_energy(A, B, A.vertices, B.vertices, o);
+  o.per_pair = true;
+  const ContactEnergy full = contact_energy(A, B, A.vertices, B.vertices, o);
+  std::size_t rounding = 0;
+  for (const EnergyPair& p : full.pairs) rounding += p.pdd2_global < 1e-30;
+  BOOST_REQUIRE_GT(rounding, 50u);
+  BOOST_REQUIRE_GT(full.pair_count - rounding, 50u);  // the resting pairs, certified
+  BOOST_TEST(bounded.bounded_pairs == rounding);
+  BOOST_TEST(std::abs(bounded.energy - full.energy) <= 1e-12 * full.energy + 2e-16 * full.pair_count * full.energy);
+  BOOST_TEST(bounded.max_pdd2_global == full.max_pdd2_global);
+  int checked = 0;
+  for (std::size_t j = 0; j < full.pairs.size(); j += 7)
+    if (full.pairs[j].pdd2_global < 1e-30) {
+      check_bound(element(A, full.pairs[j].a), element(B, full.pairs[j].b));
+      ++checked;
+    }
+  BOOST_TEST(checked >= 8);
 }
 
 // The other route to a bound: pairs whose quick lanes hold, so that the search starts and finds

@@ -190,22 +190,27 @@ inline std::vector<TetPair> column_resting_pairs(int n, double depth, int max_pa
 // plane, B's bottom edges now translates of A's top edges only up to a rounding. The pairs
 // whose PD^2 lies above 1e-30 (the resting contacts, ~1e-19; the turn's rounding also makes
 // contacts between neighbouring columns, ~1e-33), up to `max_pairs`.
-inline std::vector<TetPair> turned_column_resting_pairs(int n, double depth, int max_pairs) {
-  const double h = 0.1, c = std::cos(0.3), s = std::sin(0.3), w = 1 / std::sqrt(14.0);
-  const double k[3] = {w, 2 * w, 3 * w}, o[3] = {n * h / 2, n * h / 2, h};
-  double R[3][3];  // Rodrigues' rotation
+// x turned by 0.3 rad about the axis (1, 2, 3) through o (Rodrigues' rotation, in doubles).
+inline Vec3d turned_about_123(const Vec3d& x, const Vec3d& o) {
+  const double c = std::cos(0.3), s = std::sin(0.3), w = 1 / std::sqrt(14.0);
+  const double k[3] = {w, 2 * w, 3 * w};
+  double R[3][3];
   for (int r = 0; r < 3; ++r)
     for (int q = 0; q < 3; ++q) R[r][q] = (r == q ? c : 0) + (1 - c) * k[r] * k[q];
   R[0][1] -= s * k[2], R[0][2] += s * k[1], R[1][0] += s * k[2];
   R[1][2] -= s * k[0], R[2][0] -= s * k[1], R[2][1] += s * k[0];
+  const double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
+  Vec3d y;
+  for (int r = 0; r < 3; ++r) y[r] = o[r] + R[r][0] * d[0] + R[r][1] * d[1] + R[r][2] * d[2];
+  return y;
+}
+inline std::vector<TetPair> turned_column_resting_pairs(int n, double depth, int max_pairs) {
+  const double h = 0.1;
   std::vector<TetVertices> A, B;
   column_resting_blocks(n, depth, A, B);
   for (std::vector<TetVertices>* side : {&A, &B})
     for (TetVertices& t : *side)
-      for (Vec3d& x : t) {
-        const double d[3] = {x[0] - o[0], x[1] - o[1], x[2] - o[2]};
-        for (int r = 0; r < 3; ++r) x[r] = o[r] + R[r][0] * d[0] + R[r][1] * d[1] + R[r][2] * d[2];
-      }
+      for (Vec3d& x : t) x = turned_about_123(x, {n * h / 2, n * h / 2, h});
   return intersecting_pairs(A, B, "turned on columns", max_pairs, [](double pd2) { return pd2 > 1e-30; });
 }
 

@@ -563,13 +563,25 @@ int least_overlap_starts(FacetBounds& bounds, V3 (&out)[4], double tiny) {
   return k;
 }
 
-// The double offers' best, bounded (global_depth.h's bound_shallow): its certified upper bound,
-// its estimate and the positions along its normal. False where the bound is not finite.
+// A certified upper bound on the exact relaxed value along v from compensated heights
+// (relaxed_upper_compensated, deformable_depth.h), +inf where they do not apply (a pair outside
+// the double pieces' scale range [2^-100, 2^100], as Best::certainly_above). On a contact made
+// by rounding the heights at the plane are exact to the vertices' own u, so this bound is about
+// the value itself, where value_upper's (~(2^12 u size)^2) is a depth bound.
+double compensated_upper(const Problem& P, const TetVertices& A, const TetVertices& B, const V3& v) {
+  double upper = INFINITY;
+  if (!(P.scale >= 0x1p-100 && P.scale <= 0x1p100) || !relaxed_upper_compensated(A, B, v, upper)) return INFINITY;
+  return upper;
+}
+
+// The double offers' best, bounded (global_depth.h's bound_shallow): its certified upper bound
+// (the smaller of value_upper's and compensated_upper's), its estimate and the positions along
+// its normal. False where the bound is not finite.
 bool report_bound(const GlobalRun& g, GlobalOptimum& out) {
   const Best& best = g.best;
   const V3& v = best.n;
   if (!nonzero(v) || !(best.win.n == v)) return false;
-  out.upper = value_upper(g.P, v);
+  out.upper = std::min(value_upper(g.P, v), compensated_upper(g.P, g.A, g.B, v));
   if (!(out.upper < kBoundedDepth * g.P.scale * g.P.scale)) return false;  // (NaN, +inf: false)
   out.value = best.value > 0 && best.value <= out.upper ? best.value : out.upper;
   out.normal = v;
@@ -634,6 +646,10 @@ GlobalOptimum face_bound(const TetVertices& A, const TetVertices& B) {
       if (upper < least) least = upper, n = d;
     }
   if (!(least < kBoundedDepth * P.scale * P.scale) || !(least >= DBL_MIN)) return out;
+  // D_up's 2 e_h (~10 u |d| scale) dominates it on a contact made by rounding, whose overlap is
+  // ~u of the size: the relaxed value along the same d (>= pdd2_global, global_depth.h) on
+  // compensated heights bounds it about its value instead
+  least = std::min(least, compensated_upper(P, A, B, n));
   DirectionSolution sol;
   double hA[4], hB[4];
   const double x = global::relaxed_at(P, n, &sol, nullptr, hA, hB);

@@ -443,6 +443,18 @@ bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::
   return true;
 }
 
+bool relaxed_upper_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
+                               double& upper) {
+  detail::CompensatedHeights h;
+  Valued x;
+  DirectionSolution s;
+  if (!detail::compensated_heights_along(A, B, v, h) ||
+      !valued_on_heights(h, 0u, 0u, QpKind::Relaxed, x, s, nullptr, true) || !(x.r < 1) || !(x.v >= 0))
+    return false;
+  upper = upper_of(x.v, x.r) * (1 + 8 * kUnitRoundoff);
+  return upper >= DBL_MIN;
+}
+
 bool compensated_value(const TetVertices& A, const TetVertices& B, const Candidate& c, QpKind kind, double& value,
                        double& r, bool* bracketed) {
   Valued x;

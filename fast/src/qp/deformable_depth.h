@@ -105,6 +105,14 @@ bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::
                          double& value, double& r, DirectionSolution& s, double hA[4], double hB[4],
                          const std::array<double, 3>& lo = {0, 0, 0});
 
+// A certified upper bound on the exact relaxed value along the double normal v on the heights
+// of relaxed_compensated, unsure margins bracketed (valued_on_heights' bracket) whether or not
+// v is a double word: the exact value lies within upper_of(value, r), and the factor 1 + 8u
+// covers upper_of's three roundings. False when not applicable (or the bound is below the
+// normal range). Precondition: a pair rescaled by power_scale.h.
+bool relaxed_upper_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
+                               double& upper);
+
 // Which per-direction QP (direction_qp.h) a compensated evaluation solves.
 enum class QpKind { Static, Deformable, Relaxed };
 
