@@ -29,6 +29,7 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -441,7 +442,7 @@ namespace {
 // An edge pair's exact normal and heights by the definition (definitions §3): n = eB x eA, or
 // for parallel edges their common perpendicular (e.e) w - (w.e) e (e = eA, w = r_x - s_u);
 // oriented by the rule (A's off-edge vertices below: kept; above: flipped; on both sides: ':+'
-// kept, ':-' flipped); heights about s_u.
+// kept, ':-' flipped); heights about A's vertex highest along n (compensated_heights.h).
 Exact exact_edge_pair_of(const TetVertices& A, const TetVertices& B, const DirectionLabel& l) {
   const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
   auto d = [](const Vec3d& p, const Vec3d& q) {
@@ -470,6 +471,8 @@ Exact exact_edge_pair_of(const TetVertices& A, const TetVertices& B, const Direc
     for (Q& c : out.n) c = -c;
   const std::array<Q, 3> m{out.n[0], out.n[1], out.n[2]};
   for (int i = 0; i < 4; ++i) out.hA[i] = dot(m, d(A[i], A[u])), out.hB[i] = dot(m, d(B[i], A[u]));
+  const Q top = std::max({out.hA[0], out.hA[1], out.hA[2], out.hA[3]});
+  for (int i = 0; i < 4; ++i) out.hA[i] -= top, out.hB[i] -= top;
   return out;
 }
 
@@ -612,6 +615,36 @@ BOOST_AUTO_TEST_CASE(rounding_contact_edge_pairs_certify_on_exact_heights) {
   BOOST_TEST(outside == 0);
   BOOST_TEST(tiny > 500);
   BOOST_TEST(certified == tiny);
+}
+
+// compensated_value's nearly parallel edge pairs on a resting contact: Kuhn blocks resting on
+// each other's columns 1e-9 deep, the whole scene turned 0.3 rad about (1, 2, 3), so that B's
+// bottom edges are translates of A's top edges only up to a rounding (their exact normal is
+// taken by expansion_heights). Relative to A's edge (a cell away from the contact along a
+// vertical edge) the heights at the plane would carry u of the cell, ~1e-7 of the depth, and no
+// such interval certified on its own; relative to A's vertex highest along the normal they carry
+// u of the depth. Every relaxed value of these edge pairs ~1e-20 (the resting contact's, not
+// a contact made by rounding's) is certified on its own and holds the exact value.
+BOOST_AUTO_TEST_CASE(resting_edge_pairs_certify_near_their_plane) {
+  std::vector<std::pair<TetVertices, TetVertices>> pairs;
+  for (const TetPair& p : pdd::test::turned_column_resting_pairs(4, 1e-9, 300)) pairs.emplace_back(p.A, p.B);
+  int resting = 0, certified = 0, outside = 0;
+  for_each_candidate(pairs, [&](const detail::ScaledPair& sp, const detail::ExactFrame& f, const Candidate& c) {
+    if (c.label.kind != ContactKind::EE || !(c.parallel || c.own_bounds)) return;
+    const Q exact = detail::unscaled(f, detail::exact_relaxed_value(detail::exact_candidate(f, c.label)), 2);
+    if (!(exact > Q(1e-25) && exact < Q(1e-15))) return;  // the resting contact's
+    ++resting;
+    double v = 0, r = 0;
+    if (!compensated_value(sp.A, sp.B, c, QpKind::Relaxed, v, r, nullptr)) return;
+    const double lo = lower_of(v, r), hi = upper_of(v, r);
+    if (exact < Q(lo) || exact > Q(hi)) ++outside;
+    certified += certified_choice(hi, lo);
+  });
+  BOOST_TEST_MESSAGE("resting contact: " << resting << " nearly parallel edge-pair relaxed values, " << certified
+                                         << " certified on their own");
+  BOOST_TEST(outside == 0);
+  BOOST_TEST(resting > 100);
+  BOOST_TEST(certified == resting);
 }
 
 // value_on_heights' bracket (deformable_depth.cpp) near degeneracy, where the two patterns it

@@ -330,11 +330,7 @@ bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, cons
       out.e_n = fh.e_n;
       out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
       if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
-      for (int i = 0; i < 4; ++i) {
-        const bool on_edge = c.conA >> i & 1u;  // (its exact height is 0: n is normal to A's edge)
-        out.hA[i] = on_edge ? 0.0 : fh.h[i], out.eA[i] = on_edge ? 0.0 : fh.e[i];
-        out.hB[i] = fh.h[4 + (i == y ? x : i)], out.eB[i] = fh.e[4 + (i == y ? x : i)];
-      }
+      for (int i = 0; i < 4; ++i) out.hA[i] = fh.h[i], out.eA[i] = fh.e[i], out.hB[i] = fh.h[4 + i], out.eB[i] = fh.e[4 + i];
       return finite_heights(out);
     }
   }
@@ -346,25 +342,25 @@ bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, cons
   }
   out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
-  // origin s_u, as compensated_heights': A's edge exactly at 0, B's edge at one common height
-  // (n*.eB = 0 exactly, so the exact heights of its vertices are equal)
-  const Vec3d& o = A[u];
-  auto height = [&](const Vec3d& x, double& h, double& e) {
-    const Expansion H = compressed(dot(n, difference(x, o)));
-    const Approx a = approx_of(H);
-    h = a.v, e = a.err;
-    return H.ok;
-  };
+  // The heights relative to s_u exactly (A's edge at 0, B's edge at one common height: n*.eB = 0
+  // exactly, so the exact heights of its vertices are equal), then relative to A's vertex
+  // highest along n* (framed_edge_heights' origin), each rounded once: u of its own value.
+  Expansion H[8];  // (default: 0)
   for (int i = 0; i < 4; ++i) {
-    if (c.conA >> i & 1u) {
-      out.hA[i] = 0, out.eA[i] = 0;
-    } else if (!height(A[i], out.hA[i], out.eA[i])) {
-      return false;
-    }
+    if (!(c.conA >> i & 1u)) H[i] = compressed(dot(n, difference(A[i], A[u])));
+    if (i != y) H[4 + i] = compressed(dot(n, difference(B[i], A[u])));
   }
-  for (int i = 0; i < 4; ++i)
-    if (i != y && !height(B[i], out.hB[i], out.eB[i])) return false;
-  out.hB[y] = out.hB[x], out.eB[y] = out.eB[x];
+  H[4 + y] = H[4 + x];
+  int t = 0;
+  for (int i = 1; i < 4; ++i) t = approx_of(H[i]).v > approx_of(H[t]).v ? i : t;
+  double h[8], e[8];
+  for (int i = 0; i < 8; ++i) {
+    const Expansion D = compressed(difference(H[i], H[t]));
+    if (!D.ok) return false;
+    const Approx a = approx_of(D);
+    h[i] = a.v, e[i] = a.err;
+  }
+  for (int i = 0; i < 4; ++i) out.hA[i] = h[i], out.eA[i] = e[i], out.hB[i] = h[4 + i], out.eB[i] = e[4 + i];
   return finite_heights(out);
 }
 

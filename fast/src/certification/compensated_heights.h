@@ -61,7 +61,9 @@ bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candi
 // The same for an edge pair whose double words cannot give it: parallel edges (their normal,
 // (e.e) w − (w.e) e, has degree 3) and nearly parallel ones (eB × eA cancels to ~u |e|², so
 // its double word is off by ~10 u of itself, and so is every height along it). The exact
-// normal n* and heights n*.(x − s_u): over the pair's integer frame where it has one
+// normal n* and heights n*.(x − s_t), s_t A's vertex highest along n* (at a shallow contact's
+// plane the heights, and so their errors, are then ~|n*| depth, not |n*| size: the intervals of
+// a resting contact 1e-9 deep ~1e-13 wide instead of ~1e-7): over the pair's integer frame where it has one
 // (integer_depth.h's framed_edge_heights: machine integers, each value rounded to nearest once,
 // bound u of it), else by expansions (exact_predicates.h's oriented_normal_expansion: the
 // label's orientation; expansion.h), each compressed and rounded once with approx_of's bound:

@@ -396,6 +396,19 @@ bool rounded_scaled(const I256& x, int k, double& v, double& e) {
 
 }  // namespace
 
+namespace {
+// The vertex of A (0..3) of greatest exact height among its four heights relative to one of
+// them (the first such in ties).
+template <class H>
+int highest_of_a(const H& h0, const H& h1, const H& h2, const H& h3) {
+  const H* h[4] = {&h0, &h1, &h2, &h3};
+  int t = 0;
+  for (int i = 1; i < 4; ++i)
+    if (less(*h[t], *h[i])) t = i;
+  return t;
+}
+}  // namespace
+
 bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, FramedEdgeHeights& out) {
   if (label.kind != ContactKind::EE) return false;
   const int e = f.unit_exponent(), u = kEdges[label.a][0];
@@ -410,7 +423,8 @@ bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, Fra
       ok = ok && rounded_scaled(w, 2 * e, out.n[k], err);
       out.e_n = std::fmax(out.e_n, err);
     }
-    for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(f.dot(n, i, u), 3 * e, out.h[i], out.e[i]);
+    const int t = highest_of_a(f.dot(n, 0, u), f.dot(n, 1, u), f.dot(n, 2, u), f.dot(n, 3, u));
+    for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(f.dot(n, i, t), 3 * e, out.h[i], out.e[i]);
     return ok;
   }
   ParallelNormal p;
@@ -423,7 +437,8 @@ bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, Fra
     ok = ok && rounded_scaled(c, 3 * e, out.n[k], err);
     out.e_n = std::fmax(out.e_n, err);
   }
-  for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(p.dot(f, i, u), 4 * e, out.h[i], out.e[i]);
+  const int t = highest_of_a(p.dot(f, 0, u), p.dot(f, 1, u), p.dot(f, 2, u), p.dot(f, 3, u));
+  for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(p.dot(f, i, t), 4 * e, out.h[i], out.e[i]);
   return ok;
 }
 

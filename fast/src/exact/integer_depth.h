@@ -58,11 +58,14 @@ bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDept
 int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label);
 
 // An edge-pair label's exact oriented normal n (framed_depth's: eB × eA, or the common
-// perpendicular of parallel edges, oriented as the label says) and the heights n.(x_i − s_u) of
-// the eight vertices (0..3 A's, 4..7 B's; s_u the first vertex of A's edge), each rounded once
-// to a double in the pair's units (n in 2^(2e), heights in 2^(3e); parallel: 2^(3e) and 2^(4e)),
-// with |n~_k − n_k| <= e_n and |h~_i − h_i| <= e[i] (each a few u of its own value, 0 where the
-// value is 0). For compensated_heights.h's expansion_heights, which takes the same quantities
+// perpendicular of parallel edges, oriented as the label says) and the heights n.(x_i − s_t) of
+// the eight vertices (0..3 A's, 4..7 B's; s_t A's vertex highest along n, the first in ties),
+// each rounded once to a double in the pair's units (n in 2^(2e), heights in 2^(3e); parallel:
+// 2^(3e) and 2^(4e)), with |n~_k − n_k| <= e_n and |h~_i − h_i| <= e[i] (each a few u of its own
+// value, 0 where the value is 0). Relative to A's highest vertex, the vertices at a shallow
+// contact's plane have heights ~|n| depth, so their errors are ~u of that rather than of the
+// pair's size (a resting contact 1e-9 deep: intervals ~1e-7 wide relative to s_u, ~1e-13 here).
+// A's edge's two heights are equal exactly (n is normal to it), and so are B's. For compensated_heights.h's expansion_heights, which takes the same quantities
 // by expansions where the pair has no frame. False for a face label, a colinear edge pair, or a
 // value that is not 0 and does not round to a normal double. Precondition: f.usable().
 struct FramedEdgeHeights {
