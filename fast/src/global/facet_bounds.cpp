@@ -352,15 +352,32 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
     add_point(mul(x.n, -(d0 / x.minus_low)));
   }
   // The points within 2^-20 of 0 (with their bounds: the directions far deeper than d0, most
-  // of them on a shallow contact) lie in the cube [-2^-20, 2^-20]^3: its eight corners (exact)
-  // stand for them, a larger hull with fewer points, each crossing from one within ~2^-20 of
-  // the one it replaces.
+  // of them on a shallow contact, ~1e-8 from 0 on one 1e-9 deep) lie in the box [lo, lo + w]^3
+  // (lo_k the least p_k - r over them, w the widest extent, each rounded outward), and so in
+  // the simplex lo, lo + 3w e_k (k = 1..3; a point x of the box has sum (x_k - lo_k) <= 3w):
+  // its four corners stand for them (each computed within 8u (|lo| + 3w) of its exact place,
+  // its bound), a larger hull with fewer points: each plane's crossings from them number four
+  // per point beyond it.
   constexpr double kNear = 0x1p-20;
   auto near = [&](const Loose& x) { return x.len + x.r <= kNear; };
-  if (std::count_if(s.begin(), s.end(), near) > 8) {
+  if (std::count_if(s.begin(), s.end(), near) > 4) {
+    V3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (const Loose& x : s)
+      if (near(x))
+        for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], x.p[c] - x.r), hi[c] = std::max(hi[c], x.p[c] + x.r);
+    double w = 0;
+    for (int c = 0; c < 3; ++c) {
+      lo[c] -= 4 * kU * std::fabs(lo[c]), hi[c] += 4 * kU * std::fabs(hi[c]);
+      w = std::max(w, (hi[c] - lo[c]) * (1 + 4 * kU));
+    }
+    const double r = 8 * kU * (norm(lo) + 3 * w);
     s.erase(std::remove_if(s.begin(), s.end(), near), s.end());
-    for (int c = 0; c < 8; ++c)
-      s.push_back({{c & 1 ? kNear : -kNear, c & 2 ? kNear : -kNear, c & 4 ? kNear : -kNear}, 0, 2 * kNear});
+    s.push_back(loose(lo, r));
+    for (int c = 0; c < 3; ++c) {
+      V3 v = lo;
+      v[c] += 3 * w;
+      s.push_back(loose(v, r));
+    }
   }
   for (int t = 0; t + 1 < k; ++t) {  // S_(t+1) from S_t
     const V3& d = planes[t].d;
