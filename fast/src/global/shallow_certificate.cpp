@@ -737,6 +737,29 @@ bool covered_with_incidences(const TetVertices& A, const TetVertices& B, const P
   return m > 1 && polytope_inside_ball(bounds, planes, k + m, d0);
 }
 
+// The mean offset d = (a + a2 - b - b2) / 2 of A's two vertices highest and B's two lowest along
+// an evaluation's normal (the contact's vertices at its plane), for which relaxed(u) >=
+// (u.d)^2 / 12 wherever u.d >= 0 (lone_pair_certificate.h, "Edge pairs": any two vertices a
+// side, the relaxed QP kept to their four constraints). Rounded: d~ = ((a - b) + (a2 - b2)) / 2
+// per component, within u (|a_k - b_k| + |a2_k - b2_k|) of d_k (two differences and a sum, each
+// rounded once; the halving exact), so |u.(d~ - d)| <= err = the sum of those over k (unit u),
+// taken with room (3u). False where an evaluation's heights are not finite.
+bool active_offset(const TetVertices& A, const TetVertices& B, const Evaluation& ev, V3& d, double& err) {
+  int a[4] = {0, 1, 2, 3}, b[4] = {0, 1, 2, 3};
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(ev.hA[i]) || !std::isfinite(ev.hB[i])) return false;
+  std::sort(a, a + 4, [&](int x, int y) { return ev.hA[x] > ev.hA[y] || (ev.hA[x] == ev.hA[y] && x < y); });
+  std::sort(b, b + 4, [&](int x, int y) { return ev.hB[x] < ev.hB[y] || (ev.hB[x] == ev.hB[y] && x < y); });
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double x = A[a[0]][k] - B[b[0]][k], y = A[a[1]][k] - B[b[1]][k];
+    d[k] = (x + y) * 0.5;
+    sum += std::fabs(x) + std::fabs(y);
+  }
+  err = 3 * kU * sum;
+  return nonzero(d) && std::isfinite(err);
+}
+
 // Minimisers tied at a vertex of M (several facets through it at the same distance from 0:
 // blocks cut into five tetrahedra a cube whose cuts alternate across the contact, resting on
 // each other's columns, where a vertex rests on a vertex and the overlap is least along two to
@@ -782,19 +805,36 @@ bool tied_caps(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
   }
   if (k == 1) return false;
   const ShallowResult& r = caps[least].result;
-  if (!polytope_inside_ball(bounds, planes, k, caps[least].d0) &&
-      !covered_with_incidences(A, B, P, bounds, planes, k, r.lower, caps[least].d0)) {
-    // (with the edge pair's plane as attempt's: two caps on either side of an edge resting on a
-    // collinear edge, the overlap between them as small as the depth; that plane first: beyond
-    // it lie many of the points, and the last plane's crossings number the points kept times
-    // those beyond it, few beyond a cap)
-    if (!edge_d) return false;
-    std::rotate(planes, planes + k, planes + k + 1);
-    planes[0] = {*edge_d, std::sqrt(12 * r.lower) * (1 + 4 * kU)};
-    if (!polytope_inside_ball(bounds, planes, k + 1, caps[least].d0)) return false;
+  if (polytope_inside_ball(bounds, planes, k, caps[least].d0) ||
+      covered_with_incidences(A, B, P, bounds, planes, k, r.lower, caps[least].d0)) {
+    out = r;
+    return true;
   }
-  out = r;
-  return true;
+  // With a mean offset's plane (relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L)): the
+  // edge pair's, as attempt's (two caps on either side of an edge resting on a collinear edge,
+  // the overlap between them as small as the depth), else each cap's contact vertices'
+  // (active_offset: a face or an edge resting on a face, the overlap between the caps below
+  // sqrt(32 L)). That plane first: beyond it lie many of the points, and the last plane's
+  // crossings number the points kept times those beyond it, few beyond a cap.
+  std::rotate(planes, planes + k, planes + k + 1);
+  const double c = std::sqrt(12 * r.lower) * (1 + 4 * kU);
+  if (edge_d) {
+    planes[0] = {*edge_d, c};
+    if (!polytope_inside_ball(bounds, planes, k + 1, caps[least].d0)) return false;
+    out = r;
+    return true;
+  }
+  for (int i = 0; i < k; ++i) {
+    V3 d;
+    double err = 0;
+    if (!active_offset(A, B, caps[(least + i) % k].result.eval, d, err)) continue;
+    planes[0] = {d, (c + err) * (1 + 2 * kU)};
+    if (polytope_inside_ball(bounds, planes, k + 1, caps[least].d0)) {
+      out = r;
+      return true;
+    }
+  }
+  return false;
 }
 
 // How an attempt ended: certified; no cap (the walk or its multipliers failed: B0 below L, no

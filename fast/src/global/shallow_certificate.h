@@ -72,7 +72,13 @@
 // others, where D is the depth itself. A cap about each (a walk from each facet direction whose
 // point lies outside the ball off the caps so far), L_i on cap i, and with L = min L_i and
 // d0 = sqrt(32 L) the polytope {u : D(u) <= d0, u off every cap} inside the unit ball (a plane
-// a cap): relaxed >= L everywhere, the least cap's value reported.
+// a cap): relaxed >= L everywhere, the least cap's value reported. Where a face or an edge
+// rests on a face (a turned scene's resting blocks: a diagonal face's minimiser 45 degrees from
+// the contact's, D(u) below d0 all the way between them), with a mean offset's plane beside the
+// caps: for any two vertices a side, relaxed(u) >= (u.d)^2 / 12 with d = (a + a2 - b - b2) / 2
+// wherever u.d >= 0 (lone_pair_certificate.h), so beyond u.d = sqrt(12 L) relaxed >= L; d from
+// the edge pair of the lone pairs' where one was found, else from each cap's contact vertices
+// (A's two highest and B's two lowest along its normal), rounded, its error added to the offset.
 // Finding v (heuristic, checked by the certificate): the minimiser tilts from the contact's
 // face normal by ~depth / size, below a double normal's rounding unless solved for: on the
 // active set S of v, F(v + E y) = sum_S (eta_i + y.xi_i)^2 + k (tau + y.xi_T)^2 (the piece's
