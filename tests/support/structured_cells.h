@@ -219,9 +219,8 @@ inline std::vector<TetPair> turned_column_resting_pairs(int n, double depth, int
 // top, or an edge on the collinear edge, and the overlap is least along two to four facet
 // normals of A - B through that vertex at once (the minimisers of definitions §9 tied or ~1e-8
 // apart, on either side of the vertical).
-inline std::vector<TetPair> five_column_resting_pairs(int n, double depth, int max_pairs) {
+inline void five_column_resting_blocks(int n, double depth, std::vector<TetVertices>& A, std::vector<TetVertices>& B) {
   const double h = 0.1;
-  std::vector<TetVertices> A, B;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int c = 0; c < 5; ++c) {
@@ -233,7 +232,21 @@ inline std::vector<TetPair> five_column_resting_pairs(int n, double depth, int m
         }
         A.push_back(a), B.push_back(b);
       }
+}
+inline std::vector<TetPair> five_column_resting_pairs(int n, double depth, int max_pairs) {
+  std::vector<TetVertices> A, B;
+  five_column_resting_blocks(n, depth, A, B);
   return intersecting_pairs(A, B, "five alternating on columns", max_pairs, [](double) { return true; });
+}
+// The same turned together as turned_column_resting_pairs turns the Kuhn blocks (the pairs
+// whose PD^2 lies above 1e-30: the resting contacts).
+inline std::vector<TetPair> turned_five_column_resting_pairs(int n, double depth, int max_pairs) {
+  std::vector<TetVertices> A, B;
+  five_column_resting_blocks(n, depth, A, B);
+  for (std::vector<TetVertices>* side : {&A, &B})
+    for (TetVertices& t : *side)
+      for (Vec3d& x : t) x = turned_about_123(x, {n * 0.1 / 2, n * 0.1 / 2, 0.1});
+  return intersecting_pairs(A, B, "five turned on columns", max_pairs, [](double pd2) { return pd2 > 1e-30; });
 }
 
 // Cells that coincide up to rounding: the Kuhn tetrahedra of an n x n x 1 layer of cubes of

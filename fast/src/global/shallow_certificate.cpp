@@ -850,9 +850,15 @@ Attempt attempt(const TetVertices& A, const TetVertices& B, const Problem& P, co
   if (!overlap_off_cap(A, B, r.normal, r.low, cap.c0, cap.d0)) {
     if (!bounds) return Attempt::NotCovered;
     const Halfspace h = off_cap(cap);
-    // (the edge pair's plane: relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L), rounded up)
+    // (a mean offset's plane: relaxed(u) >= (u.d)^2 / 12 >= L where u.d >= sqrt(12 L), rounded
+    // up; the edge pair's, else the cap's contact vertices', its rounding added: tied_caps)
+    const double c = std::sqrt(12 * r.lower) * (1 + 4 * kU);
+    V3 d;
+    double err = 0;
     if (polytope_inside_ball(*bounds, h.d, h.c, cap.d0) ||
-        (edge_d && polytope_inside_ball(*bounds, h.d, h.c, *edge_d, std::sqrt(12 * r.lower) * (1 + 4 * kU), cap.d0))) {
+        (edge_d && polytope_inside_ball(*bounds, h.d, h.c, *edge_d, c, cap.d0)) ||
+        (!edge_d && active_offset(A, B, r.eval, d, err) &&
+         polytope_inside_ball(*bounds, h.d, h.c, d, (c + err) * (1 + 2 * kU), cap.d0))) {
       out = r;
       return Attempt::Certified;
     }

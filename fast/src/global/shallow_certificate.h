@@ -78,7 +78,8 @@
 // caps: for any two vertices a side, relaxed(u) >= (u.d)^2 / 12 with d = (a + a2 - b - b2) / 2
 // wherever u.d >= 0 (lone_pair_certificate.h), so beyond u.d = sqrt(12 L) relaxed >= L; d from
 // the edge pair of the lone pairs' where one was found, else from each cap's contact vertices
-// (A's two highest and B's two lowest along its normal), rounded, its error added to the offset.
+// (A's two highest and B's two lowest along its normal), rounded, its error added to the offset;
+// such a plane is tried beside a single cap first (often it covers the other minimiser too).
 // Finding v (heuristic, checked by the certificate): the minimiser tilts from the contact's
 // face normal by ~depth / size, below a double normal's rounding unless solved for: on the
 // active set S of v, F(v + E y) = sum_S (eta_i + y.xi_i)^2 + k (tau + y.xi_T)^2 (the piece's
