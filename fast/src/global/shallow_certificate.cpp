@@ -778,6 +778,7 @@ bool tied_caps(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
   Halfspace planes[kMaxCaps + 1];
   caps[0] = first, planes[0] = off_cap(first);
   int k = 1, least = 0;
+  bool every = true;  // every direction outside the ball off the caps has a cap of its own
   auto off_caps = [&](const V3& p) {
     const double np = norm(p);
     for (int i = 0; i < k; ++i)
@@ -797,16 +798,24 @@ bool tied_caps(const TetVertices& A, const TetVertices& B, const Problem& P, Fac
       }
     }
     if (!nonzero(start)) break;
-    if (k == kMaxCaps || !cap_of(A, B, P, start, caps[k])) return false;
+    // (a walk that finds no cap, or leaves its start's direction: that direction is left to the
+    // mean offset's plane below)
+    if (k == kMaxCaps || !cap_of(A, B, P, start, caps[k])) {
+      every = false;
+      break;
+    }
     planes[k] = off_cap(caps[k]);
     ++k;
-    if (off_caps(start)) return false;  // (the walk left its start's direction: no progress)
     if (caps[k - 1].result.lower < caps[least].result.lower) least = k - 1;
+    if (off_caps(start)) {
+      every = false;
+      break;
+    }
   }
-  if (k == 1) return false;
+  if (k == 1) return false;  // (one cap, beside each plane: attempt's tests)
   const ShallowResult& r = caps[least].result;
-  if (polytope_inside_ball(bounds, planes, k, caps[least].d0) ||
-      covered_with_incidences(A, B, P, bounds, planes, k, r.lower, caps[least].d0)) {
+  if (every && (polytope_inside_ball(bounds, planes, k, caps[least].d0) ||
+                covered_with_incidences(A, B, P, bounds, planes, k, r.lower, caps[least].d0))) {
     out = r;
     return true;
   }
