@@ -30,4 +30,5 @@ closed-form 1 6
 near-coplanar 1 8
 adversarial 1 30
 aligned 1 24
+rounding-contacts 1 12
 LIST

@@ -2,6 +2,7 @@
 // every family has the property it is named after, checked exactly.
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -95,6 +96,21 @@ BOOST_AUTO_TEST_CASE(families_have_their_property) {
     BOOST_TEST(r.intersecting, p.name);
     BOOST_TEST(r.rigid_pd2 < Rational(1, 1000000000) * Rational(1, 1000000000) * 1000, p.name);
   }
+  // contacts made by rounding (PD² < 2^-80 L², L the largest |coordinate|: ~1e-17 of the size)
+  // and cells of a copy turned 2^-30 rad (PD² < 2^-40 L²), every kind present
+  std::map<std::string, int> rounding_kinds;
+  for (const auto& p : test::load_pairs("families/rounding-contacts.json")) {
+    const auto r = solve_exact(p, {QpFormulation::Reduced});
+    double L = 0;
+    for (const auto* t : {&p.A, &p.B})
+      for (const auto& v : *t)
+        for (double x : v) L = std::max(L, std::abs(x));
+    const std::string kind = p.tags.at(1);
+    ++rounding_kinds[kind];
+    BOOST_TEST(r.intersecting, p.name);
+    BOOST_TEST(r.rigid_pd2 < Rational(std::ldexp(L * L, kind == "turned-2^-30" ? -40 : -80)), p.name);
+  }
+  BOOST_TEST(rounding_kinds.size() == 3u);
 }
 
 // The adversarial family and the hand-made fixtures/adversarial.json: every pair valid, the

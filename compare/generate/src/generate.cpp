@@ -553,6 +553,86 @@ Attempt aligned_pair(Rng& r, std::size_t k) {
   return p;
 }
 
+// ---- rounding-contacts: cells of structured meshes whose faces coincide in exact arithmetic
+// and meet only through the rounding of their coordinates (contacts made by rounding: PD ~1e-17
+// of the size), and cells of a copy turned by 2^-30 rad (nearly aligned, a hair deep). Kind k % 3:
+//   0  Kuhn cells of a grid of cell 1/8 (every coordinate exact) and of its copy shifted a tenth
+//      of a cell along (1, 1, 1): the diagonal planes x − y = c of both coincide exactly, but
+//      x + s and y + s round apart, so cells facing across such a plane overlap by a rounding;
+//   1  Kuhn cells of a decimal grid placed up to a rounding (every coordinate moved by −2..+2
+//      ulps, as a mesh generator places a transfinite grid) and of the same grid so placed
+//      independently and raised by two thirds of a cell (a block stacked a third of a cell
+//      deep): the faces of facing cells coincide up to the placements;
+//   2  a Kuhn cell of a decimal grid and one of the same grid turned by ±2^-30 rad about a random
+//      axis through the grid's origin: faces and edges parallel to the other's up to ~1e-9.
+// Kept when the pair intersects with PD² below 2^-80 L² (kinds 0, 1: made by rounding) or 2^-40
+// L² (kind 2), L the largest |coordinate|, exactly, and every squared output is 0 or normal.
+TetVertices placed_up_to_rounding(Rng& r, TetVertices t) {
+  for (auto& v : t)
+    for (double& x : v)
+      for (int u = r.integer(-2, 2); u != 0; u += u > 0 ? -1 : 1)
+        x = std::nextafter(x, u > 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity());
+  return t;
+}
+TetVertices turned_about(const TetVertices& t, const Vec3d& o, const Vec3d& axis, double s) {
+  // I + s K + (s²/2) K² (K the axis' cross-product matrix): a rotation by s to second order,
+  // in doubles alone (no libm)
+  const Vec3d& u = axis;
+  const double K[3][3] = {{0, -u[2], u[1]}, {u[2], 0, -u[0]}, {-u[1], u[0], 0}};
+  double R[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double k2 = 0;
+      for (int m = 0; m < 3; ++m) k2 += K[i][m] * K[m][j];
+      R[i][j] = (i == j ? 1.0 : 0.0) + s * K[i][j] + 0.5 * s * s * k2;
+    }
+  TetVertices out;
+  for (int v = 0; v < 4; ++v) {
+    const Vec3d d = sub(t[v], o);
+    for (int i = 0; i < 3; ++i) out[v][i] = o[i] + (R[i][0] * d[0] + R[i][1] * d[1] + R[i][2] * d[2]);
+  }
+  return out;
+}
+Attempt rounding_contact_pair(Rng& r, std::size_t k) {
+  const int kind = int(k % 3);
+  const double h = kind == 0 ? 0.125 : r.uniform(0.5, 2.0);
+  const Vec3d origin = kind == 0 ? Vec3d{r.integer(-16, 16) * h, r.integer(-16, 16) * h, r.integer(-16, 16) * h}
+                                 : Vec3d{r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5)};
+  auto cell = [&](int i, int j, int l) -> Vec3d { return {origin[0] + i * h, origin[1] + j * h, origin[2] + l * h}; };
+  TetVertices a = kuhn_cell_tet(cell(0, 0, 0), h, r.integer(0, 5));
+  TetVertices b = kuhn_cell_tet(cell(r.integer(-1, 1), r.integer(-1, 1), r.integer(-1, 1)), h, r.integer(0, 5));
+  const char* tag = "";
+  if (kind == 0) {
+    const double s = h / 10;  // (rounded: no short binary form)
+    for (auto& v : b) v = {v[0] + s, v[1] + s, v[2] + s};
+    tag = "diagonal-rounding";
+  } else if (kind == 1) {
+    for (auto& v : b) v[2] += 2 * h / 3;
+    a = placed_up_to_rounding(r, a);
+    b = placed_up_to_rounding(r, b);
+    tag = "placed-stacked";
+  } else {
+    Vec3d u = {r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    const double n = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (n < 0.1) return std::nullopt;
+    for (double& c : u) c /= n;
+    b = turned_about(b, origin, u, (r.integer(0, 1) ? 1 : -1) * std::ldexp(1.0, -30));
+    tag = "turned-2^-30";
+  }
+  if (!valid(a) || !valid(b)) return std::nullopt;
+  TetPair p = pair_of(a, b);
+  if (!intersecting(p)) return std::nullopt;
+  double L = 0;
+  for (const auto* t : {&a, &b})
+    for (const auto& v : *t)
+      for (double x : v) L = std::max(L, std::abs(x));
+  const Rational pd2 = reference::minkowski_pd(reference::to_exact(p)).pd2;
+  if (!(pd2 < Rational(std::ldexp(L * L, kind == 2 ? -40 : -80)))) return std::nullopt;
+  if (!squared_outputs_normal(p)) return std::nullopt;
+  p.tags.push_back(tag);
+  return p;
+}
+
 // One attempt at a pair of a family; nullopt when the draw does not have the property.
 using Maker = std::function<std::optional<TetPair>(Rng&, std::size_t)>;
 
@@ -602,6 +682,12 @@ std::vector<Family> family_table(const PaperProtocol& pp) {
         "and 5-tetrahedra cells shifted by a non-grid offset, blocks stacked a third of a cell "
         "deep; parallel faces and edges, exactly or up to rounding"},
        [](Rng& r, std::size_t k) { return aligned_pair(r, k); }},
+      {{"rounding-contacts",
+        "cells of structured meshes meeting through the rounding of their coordinates, kind k % 3: "
+        "Kuhn cells of a grid of cell 1/8 and of its copy a tenth of a cell along (1, 1, 1), of a "
+        "decimal grid placed up to a rounding and its copy stacked a third of a cell deep (PD^2 "
+        "below 2^-80 L^2), and of a grid and its copy turned 2^-30 rad (PD^2 below 2^-40 L^2)"},
+       [](Rng& r, std::size_t k) { return rounding_contact_pair(r, k); }},
       {{"adversarial",
         "valid pairs that break naive doubles, kind k % 10: 1-ulp sliver, 1-ulp needle, nearly flat "
         "(2^-40), vertex 2^-60 inside / outside a face, nearly parallel edges, nearly coplanar faces "
