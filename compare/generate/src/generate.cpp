@@ -599,8 +599,11 @@ Attempt rounding_contact_pair(Rng& r, std::size_t k) {
   const Vec3d origin = kind == 0 ? Vec3d{r.integer(-16, 16) * h, r.integer(-16, 16) * h, r.integer(-16, 16) * h}
                                  : Vec3d{r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5)};
   auto cell = [&](int i, int j, int l) -> Vec3d { return {origin[0] + i * h, origin[1] + j * h, origin[2] + l * h}; };
-  TetVertices a = kuhn_cell_tet(cell(0, 0, 0), h, r.integer(0, 5));
-  TetVertices b = kuhn_cell_tet(cell(r.integer(-1, 1), r.integer(-1, 1), r.integer(-1, 1)), h, r.integer(0, 5));
+  // (one draw a declaration: function arguments are evaluated in no fixed order)
+  const int perm_a = r.integer(0, 5), bi = r.integer(-1, 1), bj = r.integer(-1, 1), bl = r.integer(-1, 1);
+  const int perm_b = r.integer(0, 5);
+  TetVertices a = kuhn_cell_tet(cell(0, 0, 0), h, perm_a);
+  TetVertices b = kuhn_cell_tet(cell(bi, bj, bl), h, perm_b);
   const char* tag = "";
   if (kind == 0) {
     const double s = h / 10;  // (rounded: no short binary form)
