@@ -121,6 +121,13 @@ void run_phases(Run& run) {
       return void(rep.method = ResolveMethod::Rounds);
     best_end.consider(run);
   }
+  // Two meshes whose rounds stalled: the rounds again from the rest pose with the rigid
+  // variant's planes (fallbacks.h), before the translation.
+  if (go_on() && run.B && o.variant != ResolveVariant::Rigid && rounds_left()) {
+    if (rigid_rounds_from_rest(run, std::min(first_budget, o.max_rounds - rep.rounds.size())))
+      return void(rep.method = ResolveMethod::RigidRounds);
+    best_end.consider(run);
+  }
   if (go_on() && run.B && rounds_left()) {
     if (translate_and_relax(run, o.max_rounds - rep.rounds.size())) return void(rep.method = ResolveMethod::Translation);
     // declined (positions as they were): the rounds go on from there up to max_rounds.

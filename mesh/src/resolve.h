@@ -57,6 +57,11 @@
 //     a share of its pairs' per-pair PD_d moves (or of the rigid translation for a pair found in
 //     more than two consecutive rounds), step limit as above (two meshes go on to the
 //     translation: from rest these rounds resolved none of their measured cases, resolve.cpp);
+//   - two meshes under the global or pdd2 variant that the above did not resolve: the
+//     projective-dynamics rounds again from the rest pose with the rigid variant's per-pair
+//     planes, finished per pair as above where they stop on a few pairs (method "rigid rounds";
+//     where two meshes nearly coincide the deformable planes can point every way and hold a few
+//     hundred pairs, fallbacks.h);
 //   - two meshes (deep overlaps): the cheapest separating rigid translation over a few
 //     directions, then walked back towards the rest pose with projective-dynamics rounds in
 //     between, each step's rounds finished per pair as the first fallback finishes them where

@@ -77,7 +77,8 @@ enum class ResolveMethod {
                 // then walked back towards the rest pose
   Pdd2Rounds,   // self-contact fallback: the rounds again from the rest pose with pdd2's
                 // per-pair planes (under the global variant)
-  RigidRounds,  // self-contact fallback: rounds of the rigid variant from the rest pose
+  RigidRounds,  // rounds of the rigid variant from the rest pose: self-contact's last fallback,
+                // and two meshes' (global or pdd2 variant) before the translation
   None,         // nothing cleared the contacts (the report says what remains)
 };
 // "rounds" | "translation" | "bodies" | "pdd2 rounds" | "rigid rounds" | "none"

@@ -490,6 +490,20 @@ bool spread_bodies(Run& run, const std::vector<std::ptrdiff_t>& body, std::size_
 
 }  // namespace
 
+bool rigid_rounds_from_rest(Run& run, std::size_t budget) {
+  const double depth_scale = run.depth_scale;
+  run.place(run.A.vertices, run.B->vertices);
+  run.pd_variant = ResolveVariant::Rigid;
+  const std::size_t before = run.rep.rounds.size();
+  bool ok = run_pd_rounds(run, budget, OnFewPairs::Exit, OnSlowDecay::Exit);
+  const std::size_t used = run.rep.rounds.size() - before;
+  if (!ok && run.rep.stopped_because.empty() && used < budget && contacts(run).size() <= kFewPairs)
+    ok = run_pair_rounds(run, std::min(kFinishRounds, budget - used), ResolveVariant::Rigid, OnStall::Exit);
+  run.pd_variant = run.o.variant;
+  if (!ok) run.depth_scale = depth_scale;
+  return ok;
+}
+
 bool translate_and_relax(Run& run, std::size_t budget) {
   Side &sa = run.sa, &sb = run.sb;
   const bool fixed_a = sa.any_fixed(), fixed_b = sb.any_fixed();
