@@ -11,20 +11,21 @@
 //   undone. True when it ends resolved (R1 by the contact stage); false, positions unchanged,
 //   when it does not apply (both meshes have fixed vertices, no separating translation found,
 //   or the translated rest pose flips an element by rounding).
-// rigid_rounds_from_rest (two meshes under the global or pdd2 variant whose first rounds,
-//   finished per pair where they stopped on a few pairs, did not resolve them): the projective-dynamics rounds again from the rest
-//   pose with the rigid variant's per-pair planes, within `budget` rounds, finished per pair
-//   (the rigid variant's per-pair rounds) where they stop on kFewPairs pairs or fewer (rounds.h),
-//   as the first rounds are. Where two meshes nearly coincide, each pair's cheapest deformable
-//   plane can point any way, and rounds that push a few hundred pairs back and forth do not
-//   recover (the Gmsh transfinite box of 8^3 cubes against its copy moved (0.37, 0.21, 0.13) of
-//   a cell: 37,679 pairs at rest, ~440 from round 16 on; continued from there with the rigid
-//   planes they stall too). From rest the rigid variant's planes, which neighbouring pairs share
-//   (candidate directions: face normals and edge crossings), resolve it, cheaper than the
-//   translation's walk: 44 rounds in all, cost 0.235, against 172 rounds and 0.329. True when
-//   resolved; false otherwise, the positions wherever the rounds stopped and run.depth_scale as
-//   before (the translation starts from rest, its gaps as without this attempt). Its rounds
-//   count against max_rounds.
+// rigid_rounds_from_rest (two meshes under the global or pdd2 variant whose first rounds, finished
+//   per pair where they stopped on a few pairs, did not resolve them): the projective-dynamics
+//   rounds again from the rest pose with the rigid variant's per-pair planes, within `budget`
+//   rounds, finished per pair (the rigid variant's per-pair rounds) where they stop on kFewPairs
+//   pairs or fewer (rounds.h), as the first rounds are. Where two meshes nearly coincide, each
+//   pair's cheapest deformable plane can point any way, and rounds that push a few hundred pairs
+//   back and forth do not recover (the Gmsh transfinite box of 8^3 cubes against its copy moved
+//   (0.37, 0.21, 0.13) of a cell: 37,679 pairs at rest, ~440 from round 16 on; continued from there
+//   with the rigid planes they stall too). From rest the rigid variant's planes, which neighbouring
+//   pairs share (candidate directions: face normals and edge crossings), resolve it, cheaper than
+//   the translation's walk (that box as tests/support/transfinite_grid_mesh.h rebuilds it: 44
+//   rounds in all, cost 0.235, against the translation's 172 rounds and 0.329). True when resolved;
+//   false otherwise, the positions wherever the rounds stopped and run.depth_scale as before (the
+//   translation starts from rest, its gaps as without this attempt). Its rounds count against
+//   max_rounds.
 // resolve_bodies (self-contact of several bodies, the connected components by shared vertices):
 //   when every intersecting pair at rest joins two different bodies and every connected group
 //   of contacting bodies is a pair, each pair is cut out as two meshes and resolved from rest
