@@ -2,6 +2,7 @@
 // path: any input, exact fallbacks). See the header; shared arithmetic in direction_geometry.h.
 #include "kernel/candidate_directions.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -70,6 +71,21 @@ bool cross_nonzero_filtered(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, c
   return false;
 }
 
+// For each face f of A, an edge a on it and the slot m of the lanes (g1 or g2) that holds
+// eps G = eB.N_f on edge a's lanes (kOffFaces.face[a][m] == f).
+struct FaceSlot {
+  int a, m;
+};
+constexpr std::array<FaceSlot, 4> make_face_slots() {
+  std::array<FaceSlot, 4> t{};
+  for (int f = 0; f < 4; ++f)
+    for (int a = 5; a >= 0; --a)
+      for (int m = 1; m >= 0; --m)
+        if (kOffFaces.face[a][m] == f) t[f] = FaceSlot{a, m};
+  return t;
+}
+inline constexpr std::array<FaceSlot, 4> kFaceSlot = make_face_slots();
+
 struct Builder {
   // A constructor, not an aggregate: face_normal stays uninitialised (filled where first
   // needed, face_normal_known says which) instead of zeroing four expansions per build.
@@ -86,6 +102,8 @@ struct Builder {
   bool in_range = in_exact_range(A, B);  // expansion.h's exact range
   int face_edge_sign[6][4] = {{2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2},
                               {2, 2, 2, 2}, {2, 2, 2, 2}, {2, 2, 2, 2}};  // g_sign_exact; 2: not yet, 3: too long
+  double face_sign[6][4];          // fill_face_signs: the exact sign of eB_b.N_f, as a double
+  unsigned face_sign_unknown = 0;  // bit 4b + f: that sign beyond the expansions' reach
   ExpVec face_normal[4];  // A's raw face normals, exactly, as g_sign_exact needs them
   bool face_normal_known[4] = {false, false, false, false};
   std::optional<CompensatedNormal> face_normal_dw[4];  // the same in double words
@@ -191,6 +209,15 @@ struct Builder {
   int g_sign_exact(int a, int b, int i) {
     const int u = kEdges[a][0], v = kEdges[a][1];
     const int f = kOffEdge[a][0] == i ? kOffEdge[a][1] : kOffEdge[a][0];  // {u, v, i} = face f
+    const int s = face_edge_sign_exact(b, f);
+    if (s == 3) return 3;
+    // parity of (u, v, i) against the increasing order (u < v always): inversions of i
+    const int inversions = (i < u) + (i < v);
+    return inversions == 1 ? -s : s;
+  }
+
+  // The exact sign of eB.N_f (g_sign_exact's s, cached), 3 beyond the expansions' capacity.
+  int face_edge_sign_exact(int b, int f) {
     int& s = face_edge_sign[b][f];
     if (s == 2 && (triple_zero(b, f) || edge_copy_in_face(b, f))) s = 0;
     if (s == 2 && frame.usable()) {
@@ -213,10 +240,7 @@ struct Builder {
       const Expansion g = dot(difference(B[kEdges[b][1]], B[kEdges[b][0]]), N);
       s = g.ok ? g.sign() : 3;  // 3: beyond the expansions' capacity
     }
-    if (s == 3) return 3;
-    // parity of (u, v, i) against the increasing order (u < v always): inversions of i
-    const int inversions = (i < u) + (i < v);
-    return inversions == 1 ? -s : s;
+    return s;
   }
 
   // eB = ± an edge of A's face f, both differences exact in doubles (two_sum's error 0) and
@@ -254,37 +278,61 @@ struct Builder {
   // Lane i = (a, b) unclear only through the signs of its g's (a face of A whose plane holds
   // eB's direction, or nearly: aligned pairs, and meshes whose grid a generator placed up to a
   // rounding, most of their unclear lanes): n clear of the nearly parallel test and the depths
-  // the orientation uses beyond their bounds, each g within its bound decided exactly
-  // (g_sign_exact, as classify() decides it: structural zeros, the integer frame, double words,
-  // expansions; cached per edge of B and face of A). classify() would give the side these
+  // the orientation uses beyond their bounds, each g's exact sign known (fill_face_signs, as
+  // classify() decides it through g_sign_exact: structural zeros, the integer frame, double
+  // words, expansions; g_m = eps_m eB.N_f). classify() would give the side these
   // signs give (a 0 counts on neither side: Keep when no g > 0, Flip when no g < 0, else both
   // orientations) and edge_pair_general would store the lane's own heights and n, with the
   // bounds it gives a generic pair (fb.deg3): so the lane is written as a clear one, its
   // orientation `flip` and `undecidable` set here. False where a sign is beyond the
   // expansions' reach or the lane is unclear otherwise (edge_pair_general decides it). (EdgeLanes'
   // verdict stays unclear: the quick lists, which read g's computed signs, still decline the pair.)
-  bool clear_but_g(int a, int b, int i, bool& flip, bool& undecidable) {
+  // Precondition: fill_face_signs has run on these lanes. Branch-free (edge_pairs).
+  bool clear_but_g(int a, int b, int i, bool& flip, bool& undecidable) const {
     const EdgeLanes& L = out.edges;
     const double e3 = fb.deg3;
     const double n[3] = {L.n0[i], L.n1[i], L.n2[i]};
-    if (!(max_abs3(n) > kExactNormalBelow * fb.deg2)) return false;
-    const double g[2] = {L.g1[i], L.g2[i]};
-    int sign[2];
-    for (int m = 0; m < 2; ++m) {
-      if (std::fabs(g[m]) > e3) {
-        sign[m] = g[m] > 0.0 ? 1 : -1;
-      } else if (g[m] == 0.0 && g_zero(b, kOffFaces.face[a][m])) {
-        sign[m] = 0;
-      } else {
-        if (!in_range) return false;
-        sign[m] = g_sign_exact(a, b, kOffEdge[a][m]);
-        if (sign[m] == 3) return false;
-      }
-    }
-    const bool pos = (sign[0] > 0) | (sign[1] > 0), neg = (sign[0] < 0) | (sign[1] < 0);
+    const int f0 = kOffFaces.face[a][0], f1 = kOffFaces.face[a][1];
+    const double s0 = kOffFaces.eps[a][0] * face_sign[b][f0], s1 = kOffFaces.eps[a][1] * face_sign[b][f1];
+    const bool known = (((face_sign_unknown >> (4 * b + f0)) | (face_sign_unknown >> (4 * b + f1))) & 1u) == 0;
+    const bool pos = (s0 > 0.0) | (s1 > 0.0), neg = (s0 < 0.0) | (s1 < 0.0);
     flip = pos & !neg;
     undecidable = pos & neg;
-    return (L.dplus[i] > e3 || flip) && (L.dminus[i] > e3 || !(flip || undecidable));
+    return (max_abs3(n) > kExactNormalBelow * fb.deg2) & known & ((L.dplus[i] > e3) | flip) &
+           ((L.dminus[i] > e3) | !(flip | undecidable));
+  }
+
+  // The signs clear_but_g reads: face_sign[b][f], the exact sign of G = eB_b.N_f (A's raw face
+  // normal f, kFace order) as a double, −1, 0 or 1, for all 24 (b, f) at once. The lanes hold
+  // G bit for bit (g_m = eps_m G, edge_pair_formula.h's kOffFaces: a product by ±1, exact), so
+  // |G| beyond the degree-3 bound gives the computed sign; within it the sign is decided as
+  // g_sign_exact decides it (a computed 0 shown exact by structural zeros, else, in the
+  // expansions' range, face_edge_sign_exact), and face_sign_unknown gets bit 4b + f where that
+  // is beyond reach. Filled before the lanes are written, so that each unclear lane's verdict is
+  // a few loads and no branch on its own data (the lanes of an aligned pair are unclear in
+  // no pattern a branch predictor follows).
+  void fill_face_signs() {
+    const EdgeLanes& L = out.edges;
+    const double e3 = fb.deg3;
+    unsigned open = 0;
+    double G[6][4];
+    for (int b = 0; b < 6; ++b)
+      for (int f = 0; f < 4; ++f) {
+        const FaceSlot& t = kFaceSlot[f];
+        const double* g = t.m == 0 ? L.g1 : L.g2;
+        G[b][f] = kOffFaces.eps[t.a][t.m] * g[kLaneStride * t.a + b];
+        face_sign[b][f] = double((G[b][f] > 0.0) - (G[b][f] < 0.0));
+        open |= unsigned(!(std::fabs(G[b][f]) > e3)) << (4 * b + f);
+      }
+    face_sign_unknown = 0;
+    for (unsigned bits = open; bits; bits &= bits - 1) {
+      const int j = __builtin_ctz(bits), b = j / 4, f = j % 4;
+      int s = 3;
+      if (G[b][f] == 0.0 && g_zero(b, f)) s = 0;
+      else if (in_range) s = face_edge_sign_exact(b, f);
+      if (s == 3) face_sign_unknown |= 1u << j;
+      else face_sign[b][f] = double(s);
+    }
   }
 
   // eB.N exactly 0 (structural zeros, see cross_zero), N = (s_F1 − s_F0) × (s_F2 − s_F0) the raw
@@ -293,9 +341,9 @@ struct Builder {
   bool triple_zero(int b, int f) const {
     const auto& F = kFace[f];
     const Vec3d &x = B[kEdges[b][0]], &y = B[kEdges[b][1]];
-    for (int k = 0; k < 3; ++k)
-      if (y[k] != x[k] && !cross_component_zero(A[F[0]], A[F[1]], A[F[0]], A[F[2]], k)) return false;
-    return true;
+    bool zero = true;  // (& over the three terms, not a branch each: see cross_zero)
+    for (int k = 0; k < 3; ++k) zero &= (y[k] == x[k]) | cross_component_zero(A[F[0]], A[F[1]], A[F[0]], A[F[2]], k);
+    return zero;
   }
 
   // own.e_h > 0: the draft was redone by near_parallel_normal and its heights have error
@@ -400,15 +448,17 @@ struct Builder {
   // Lane i = (a, b) written as candidate k and, branch-free, the ':-' one after it; returns the
   // count after it (k + 2 only for an undecidable pair). first: delta² of the orientation kept.
   int write_lane(int k, int a, int b, int i, bool flip, bool undecidable, double first) {
+    static_assert(int(EdgeOrientation::Decided) == 0 && int(EdgeOrientation::Plus) == 1);
     const EdgeLanes& L = out.edges;
-    out.code[k] = pack_label(ContactKind::EE, a, b, undecidable ? EdgeOrientation::Plus : EdgeOrientation::Decided);
+    const double* const depth_of[2] = {L.dplus, L.dminus};  // (indexed, not a branch: see edge_pairs)
+    out.code[k] = pack_label(ContactKind::EE, a, b, EdgeOrientation(int(undecidable)));
     out.code[k + 1] = pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus);
-    out.depth[k] = flip ? L.dminus[i] : L.dplus[i];
+    out.depth[k] = depth_of[flip][i];
     out.depth[k + 1] = L.dminus[i];
     out.delta_sq[k] = first;
     out.delta_sq[k + 1] = L.d2minus[i];
     out.nn[k] = out.nn[k + 1] = L.nn[i];
-    out.sign[k] = flip ? -1 : 1;
+    out.sign[k] = std::int16_t(1 - 2 * int(flip));
     out.sign[k + 1] = -1;
     out.lane[k] = out.lane[k + 1] = std::int16_t(i);
     out.parallel[k] = out.parallel[k + 1] = 0;
@@ -421,24 +471,51 @@ struct Builder {
   // from its lane (its g's are not 0: flip when both are > 0, undecidable when their signs
   // differ, its verdict's `first`); so is a lane unclear only through its g's signs
   // (clear_but_g), by the rule on their exact signs, a 0 on neither side; any other unclear lane
-  // goes to edge_pair_general.
+  // goes to edge_pair_general. In three passes: every lane's orientation from its computed g's,
+  // the unclear lanes' from their exact signs (or marked for edge_pair_general), then the lanes
+  // written in canonical order. The verdicts are data no branch predictor follows on an aligned
+  // pair (~26 of the 36 lanes unclear, in no pattern), so they are not branched on per lane:
+  // the clear ones are not visited in the second pass, and the third branches only on the lanes
+  // edge_pair_general takes.
   bool edge_pairs() {
     const EdgeLanes& L = out.edges;
+    bool flip[kLanes], undecidable[kLanes];
+    double first[kLanes];
+    std::uint64_t unclear = 0;  // bit i: lane i unclear
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        const int i = kLaneStride * a + b;
+        const bool pos1 = L.g1[i] > 0.0, pos2 = L.g2[i] > 0.0;
+        flip[i] = pos1 & pos2;
+        undecidable[i] = pos1 ^ pos2;
+        first[i] = L.first[i];
+        unclear |= std::uint64_t(L.unclear[i] != 0.0) << i;
+      }
+    std::uint64_t general = 0;  // bit i: lane i goes to edge_pair_general
+    if (unclear != 0) {
+      const double* const d2_of[2] = {L.d2plus, L.d2minus};
+      fill_face_signs();
+      for (std::uint64_t bits = unclear; bits; bits &= bits - 1) {
+        const int i = __builtin_ctzll(bits);
+        bool f = false, u = false;
+        const bool clear = clear_but_g(i / kLaneStride, i % kLaneStride, i, f, u);
+        flip[i] = f;
+        undecidable[i] = u;
+        first[i] = d2_of[f][i];
+        general |= std::uint64_t(!clear) << i;
+      }
+    }
     int k = out.count;
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) {
         const int i = kLaneStride * a + b;
-        const double g1 = L.g1[i], g2 = L.g2[i];
-        if (L.unclear[i] == 0.0) {
-          const bool pos1 = g1 > 0.0, pos2 = g2 > 0.0;
-          k = write_lane(k, a, b, i, pos1 & pos2, pos1 ^ pos2, L.first[i]);
-        } else if (bool flip, undecidable; clear_but_g(a, b, i, flip, undecidable)) {
-          k = write_lane(k, a, b, i, flip, undecidable, flip ? L.d2minus[i] : L.d2plus[i]);
-        } else {
-          out.count = k;
-          if (!edge_pair_general(a, b)) return false;
-          k = out.count;
+        if ((general >> i & 1u) == 0) {
+          k = write_lane(k, a, b, i, flip[i], undecidable[i], first[i]);
+          continue;
         }
+        out.count = k;
+        if (!edge_pair_general(a, b)) return false;
+        k = out.count;
       }
     out.count = k;
     return true;

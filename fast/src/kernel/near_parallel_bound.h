@@ -78,12 +78,14 @@ bool exactly_parallel(const SupersetLanes& K, int a, int b);
 // Component k of e × f, e = p1 − p0 and f = q1 − q0 (coordinate differences), is
 // e_i f_j − e_j f_i with (i, j) = (k + 1, k + 2) mod 3: exactly 0 when both products have an
 // exactly zero factor.
+// (Bitwise & and |, not && and ||: every comparison is cheap, and on aligned pairs their
+// outcomes follow no pattern a branch predictor learns.)
 inline bool cross_component_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1, int k) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
-  return (p1[i] == p0[i] || q1[j] == q0[j]) && (p1[j] == p0[j] || q1[i] == q0[i]);
+  return ((p1[i] == p0[i]) | (q1[j] == q0[j])) & ((p1[j] == p0[j]) | (q1[i] == q0[i]));
 }
 inline bool cross_zero(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1) {
-  return cross_component_zero(p0, p1, q0, q1, 0) && cross_component_zero(p0, p1, q0, q1, 1) &&
+  return cross_component_zero(p0, p1, q0, q1, 0) & cross_component_zero(p0, p1, q0, q1, 1) &
          cross_component_zero(p0, p1, q0, q1, 2);
 }
 
