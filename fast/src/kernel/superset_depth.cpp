@@ -232,8 +232,8 @@ void certify(const SupersetLanes& K, const FilterBounds& fb, const Near& c, Choi
 bool normal_component_zero(const SupersetLanes& K, int t, int f, int k) {
   const int i = (k + 1) % 3, j = (k + 2) % 3, o = 4 * t;
   const int p0 = o + kFace[f][0], p1 = o + kFace[f][1], p2 = o + kFace[f][2];
-  return (K.X[i][p1] == K.X[i][p0] || K.X[j][p2] == K.X[j][p0]) &&
-         (K.X[j][p1] == K.X[j][p0] || K.X[i][p2] == K.X[i][p0]);
+  return ((K.X[i][p1] == K.X[i][p0]) | (K.X[j][p2] == K.X[j][p0])) &
+         ((K.X[j][p1] == K.X[j][p0]) | (K.X[i][p2] == K.X[i][p0]));  // (& |: near_parallel_bound.h's cross_zero)
 }
 
 // The picked face's plane: exact heights along its normal N = (p1 − p0) × (p2 − p0) (kFace,
@@ -293,9 +293,8 @@ class PickPlane {
 // two within E3 of the exact one, above); else exactly.
 bool edge_in_face_plane(const SupersetLanes& K, const FilterBounds& fb, int te, int e, int f, PickPlane& plane) {
   const int x = 4 * te + kEdges[e][0], y = 4 * te + kEdges[e][1];
-  bool structural = true;
-  for (int k = 0; k < 3 && structural; ++k)
-    structural = K.X[k][y] == K.X[k][x] || normal_component_zero(K, 1 - te, f, k);
+  bool structural = true;  // (& |, not a branch a term: near_parallel_bound.h's cross_zero)
+  for (int k = 0; k < 3; ++k) structural &= (K.X[k][y] == K.X[k][x]) | normal_component_zero(K, 1 - te, f, k);
   if (structural) return true;
   const int p = 4 * (1 - te) + f;
   if (!(std::fabs(K.H[kEdges[e][1]][p] - K.H[kEdges[e][0]][p]) <= fb.deg3)) return false;  // (NaN: false)
