@@ -131,8 +131,8 @@ def resolve_columns(repeats, VA, T, VB, methods=False):
         return None
     verdict = "" if oka and okb else f" not resolved:{' aligned' if not oka else ''}{' turned' if not okb else ''}"
     a, b = f"{ra:6d} {sa:7d} {ta:8.3f}", f"{rb:6d} {sb:7d} {tb:8.3f}"
-    if methods:
-        a, b = f"{a} {ma:11s}", f"{b} {mb:11s}"
+    if methods:  # (one column: "rigid rounds" as rigid-rounds)
+        a, b = f"{a} {ma.replace(' ', '-'):12s}", f"{b} {mb.replace(' ', '-'):12s}"
     return f"{a} {b} {ta / tb:5.2f}x {ta / sa / (tb / sb):8.2f}x" + verdict
 
 

@@ -163,8 +163,8 @@ def main():
     moves = [("off the grid", (0.37 * h, 0.21 * h, 0.13 * h)), ("stacked a third of a cell deep", (0, 0, 1 - h / 3)),
              ("half a cell along (1, 1, 1)", (h / 2, h / 2, h / 2))]
     if a.resolve:
-        print(f"{'mesh, B = A moved':44s} {'rounds':>6s} {'solves':>7s} {'seconds':>8s} {'method':11s} {'rounds':>6s} "
-              f"{'solves':>7s} {'turned':>8s} {'method':11s} {'ratio':>6s} {'per-solve':>9s}")
+        print(f"{'mesh, B = A moved':44s} {'rounds':>6s} {'solves':>7s} {'seconds':>8s} {'method':12s} {'rounds':>6s} "
+              f"{'solves':>7s} {'turned':>8s} {'method':12s} {'ratio':>6s} {'per-solve':>9s}")
     else:
         print(f"{'mesh, B = A moved':44s} {'pairs':>7s} {'us/pair':>8s} {'turned':>7s} {'us/pair':>8s} {'ratio':>6s} whole")
     survey_row = (lambda *x: resolve_row(*x)) if a.resolve else (lambda *x: row(*x))
@@ -192,8 +192,8 @@ def main():
         print(survey_row(f"sphere-a.msh ({len(T)}), moved by 0.01 in x", a.repeats, V, T, V + (0.01, 0, 0)))
     if a.resolve:
         print("(rounds: rows of the report's rounds table; solves: intersecting pairs summed over the rounds;\n"
-              " seconds: the best call's; method: what produced the result; ratio: of the times, aligned /\n"
-              " turned; per-solve: of the times per pair solve)")
+              " seconds: the best call's; method: what produced the result, the report's method with its words\n"
+              " joined by '-'; ratio: of the times, aligned / turned; per-solve: of the times per pair solve)")
     else:
         print("(pairs: intersecting element pairs; us/pair: the best call's time per intersecting pair; ratio: of\n"
               " the times per pair, aligned / turned; whole: of the calls' times)")
