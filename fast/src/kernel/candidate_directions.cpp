@@ -132,9 +132,12 @@ struct Builder {
 
   // Stores draft oriented by s (= ±1) in full as the next candidate; false if separating.
   // cls: 0 generic, 1 parallel, 2 nearly parallel with its own bounds `own` (CandidateSet).
-  bool emit(const Draft& d, double s, LabelCode code, double bound, int cls, const DegreeBounds& own) {
+  // along: CandidateSet::along_face (a decided edge pair's), else −1.
+  bool emit(const Draft& d, double s, LabelCode code, double bound, int cls, const DegreeBounds& own,
+            std::int16_t along = -1) {
     const int k = out.count++;
     out.parallel[k] = std::int16_t(cls);
+    out.along_face[k] = along;
     const DegreeBounds e = cls == 2 ? own : degree_bounds(fb, cls == 1);
     out.e_h[k] = e.e_h;
     out.e_n[k] = e.e_n;
@@ -288,7 +291,18 @@ struct Builder {
   // expansions' reach or the lane is unclear otherwise (edge_pair_general decides it). (EdgeLanes'
   // verdict stays unclear: the quick lists, which read g's computed signs, still decline the pair.)
   // Precondition: fill_face_signs has run on these lanes. Branch-free (edge_pairs).
-  bool clear_but_g(int a, int b, int i, bool& flip, bool& undecidable) const {
+  // The face f of A on edge a whose plane holds edge b's direction, eB.N_f = 0 exactly (the g of
+  // f's third vertex), else −1: CandidateSet::along_face of edge pair (a, b) where its n is not
+  // 0 (not both: A is valid). Precondition: fill_face_signs has run.
+  std::int16_t along_face_of(int a, int b) const {
+    const int f0 = kOffFaces.face[a][0], f1 = kOffFaces.face[a][1];
+    const bool zero0 = ((face_sign_unknown >> (4 * b + f0)) & 1u) == 0 && face_sign[b][f0] == 0.0;
+    const bool zero1 = ((face_sign_unknown >> (4 * b + f1)) & 1u) == 0 && face_sign[b][f1] == 0.0;
+    return std::int16_t(zero0 ? f0 : zero1 ? f1 : -1);
+  }
+
+  // `along`: along_face_of(a, b), meaningful where the lane is clear (n != 0).
+  bool clear_but_g(int a, int b, int i, bool& flip, bool& undecidable, std::int16_t& along) const {
     const EdgeLanes& L = out.edges;
     const double e3 = fb.deg3;
     const double n[3] = {L.n0[i], L.n1[i], L.n2[i]};
@@ -298,6 +312,7 @@ struct Builder {
     const bool pos = (s0 > 0.0) | (s1 > 0.0), neg = (s0 < 0.0) | (s1 < 0.0);
     flip = pos & !neg;
     undecidable = pos & neg;
+    along = along_face_of(a, b);
     return (max_abs3(n) > kExactNormalBelow * fb.deg2) & known & ((L.dplus[i] > e3) | flip) &
            ((L.dminus[i] > e3) | !(flip | undecidable));
   }
@@ -439,15 +454,17 @@ struct Builder {
       cls = 2;
     }
     const LabelCode decided = pack_label(ContactKind::EE, a, b, EdgeOrientation::Decided);
-    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, cls, own);
-    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, cls, own);
+    // (n exactly not 0 unless parallel; the face signs are filled: this lane was unclear)
+    const std::int16_t along = cls == 1 ? std::int16_t(-1) : along_face_of(a, b);
+    if (k.side == EdgePairSide::Keep) return emit(c, 1.0, decided, bound, cls, own, along);
+    if (k.side == EdgePairSide::Flip) return emit(c, -1.0, decided, bound, cls, own, along);
     return emit(c, 1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Plus), bound, cls, own) &&
            emit(c, -1.0, pack_label(ContactKind::EE, a, b, EdgeOrientation::Minus), bound, cls, own);
   }
 
   // Lane i = (a, b) written as candidate k and, branch-free, the ':-' one after it; returns the
   // count after it (k + 2 only for an undecidable pair). first: delta² of the orientation kept.
-  int write_lane(int k, int a, int b, int i, bool flip, bool undecidable, double first) {
+  int write_lane(int k, int a, int b, int i, bool flip, bool undecidable, double first, std::int16_t along) {
     static_assert(int(EdgeOrientation::Decided) == 0 && int(EdgeOrientation::Plus) == 1);
     const EdgeLanes& L = out.edges;
     const double* const depth_of[2] = {L.dplus, L.dminus};  // (indexed, not a branch: see edge_pairs)
@@ -464,6 +481,8 @@ struct Builder {
     out.parallel[k] = out.parallel[k + 1] = 0;
     out.e_h[k] = out.e_h[k + 1] = generic.e_h;
     out.e_n[k] = out.e_n[k + 1] = generic.e_n;
+    out.along_face[k] = along;
+    out.along_face[k + 1] = -1;
     return k + 1 + undecidable;
   }
 
@@ -481,6 +500,7 @@ struct Builder {
     const EdgeLanes& L = out.edges;
     bool flip[kLanes], undecidable[kLanes];
     double first[kLanes];
+    std::int16_t along[kLanes];
     std::uint64_t unclear = 0;  // bit i: lane i unclear
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b) {
@@ -489,6 +509,7 @@ struct Builder {
         flip[i] = pos1 & pos2;
         undecidable[i] = pos1 ^ pos2;
         first[i] = L.first[i];
+        along[i] = -1;  // (a clear lane's g's are certainly not 0)
         unclear |= std::uint64_t(L.unclear[i] != 0.0) << i;
       }
     std::uint64_t general = 0;  // bit i: lane i goes to edge_pair_general
@@ -498,7 +519,7 @@ struct Builder {
       for (std::uint64_t bits = unclear; bits; bits &= bits - 1) {
         const int i = __builtin_ctzll(bits);
         bool f = false, u = false;
-        const bool clear = clear_but_g(i / kLaneStride, i % kLaneStride, i, f, u);
+        const bool clear = clear_but_g(i / kLaneStride, i % kLaneStride, i, f, u, along[i]);
         flip[i] = f;
         undecidable[i] = u;
         first[i] = d2_of[f][i];
@@ -510,7 +531,7 @@ struct Builder {
       for (int b = 0; b < 6; ++b) {
         const int i = kLaneStride * a + b;
         if ((general >> i & 1u) == 0) {
-          k = write_lane(k, a, b, i, flip[i], undecidable[i], first[i]);
+          k = write_lane(k, a, b, i, flip[i], undecidable[i], first[i], along[i]);
           continue;
         }
         out.count = k;
@@ -537,6 +558,7 @@ struct Builder {
       out.sign[k] = 1;
       out.parallel[k] = 0;
       out.e_h[k] = generic.e_h, out.e_n[k] = generic.e_n;
+      out.along_face[k] = -1;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     out.edges = q.edges;
@@ -557,6 +579,7 @@ struct Builder {
       out.sign[k] = 1;
       out.parallel[k] = 0;
       out.e_h[k] = generic.e_h, out.e_n[k] = generic.e_n;
+      out.along_face[k] = -1;
       if (!depth_positive(k, fb.deg3)) return false;
     }
     // (a lane whose n~ is small is unclear: edge_pair_general takes its n exactly)

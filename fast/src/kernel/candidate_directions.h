@@ -104,6 +104,13 @@ struct CandidateSet {
   // choice by tests at every read mispredicted (~150 a pair on a Kuhn grid shifted a quarter cell
   // along (1, 1, 1), cachegrind's model).
   double e_h[kMaxCandidates], e_n[kMaxCandidates];
+  // along_face[k] = f (0..3) where candidate k is an edge pair whose oriented direction is
+  // exactly a positive multiple of FV:f's: edge a lies on A's face f and eB.N_f = 0 exactly (the
+  // g of the face's third vertex is 0; the other g < 0 decides the orientation, out of face f).
+  // Every variant's QP along it is >= FV:f's (deformable_depth.h, "Edge pairs along a face of
+  // A"), and FV:f precedes it in canonical order: the sweeps leave it out. −1 otherwise, and on
+  // the edge pairs edge_pair_general decides (no claim: such a pair is evaluated as any other).
+  std::int16_t along_face[kMaxCandidates];
   EdgeLanes edges;
   DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
 };

@@ -621,6 +621,13 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
   return true;
 }
 
+// An edge pair along a face of A (CandidateSet::along_face): its exact value is >= that of the
+// face's FV candidate, which precedes it in canonical order (deformable_depth.h), so it is
+// neither the minimum's first candidate nor below the minimum: the sweeps leave it out. The
+// quick lists hold no such pair (its g of 0 is within its filter bound: they decline).
+inline bool along_face_of_A(const CandidateSet& set, int i) { return set.along_face[i] >= 0; }
+inline bool along_face_of_A(const QuickCandidates&, int) { return false; }
+
 // sweep's choice where the double pass cannot certify one (sweep, "Below the doubles'
 // resolution"): the hint (value v, root bound r) the only candidate evaluated, every other one
 // bounded by coeff·delta² as sweep bounds a skipped one, the minimum refined (refine.h).
@@ -632,7 +639,8 @@ Choice refined_below_doubles(const List& set, double coeff, int hint, double v, 
   ch.value = v;
   ch.code = label_code(set, hint);
   auto lower = [&](int i) {
-    return i == hint ? safe_lower(v, r) : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    if (i == hint) return safe_lower(v, r);
+    return along_face_of_A(set, i) ? kInf : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   auto interval = [&](int i, double& x, double& e) { return tight_interval(set, i, variant, x, e); };
   auto no_tie_order = [](const int*, int) { return -1; };
@@ -643,11 +651,13 @@ Choice refined_below_doubles(const List& set, double coeff, int hint, double v, 
 }
 
 // Sweep in canonical order, skipping candidates whose lower bound coeff·delta² cannot reach
-// the best value so far (header), then pick the first tied minimum. List: CandidateSet or
-// QuickCandidates (same candidates, same order, same values).
+// the best value so far (header) and the edge pairs along a face of A (header: each is at or
+// above its face's FV candidate, which precedes it), then pick the first tied minimum. List:
+// CandidateSet or QuickCandidates (same candidates, same order, same values).
 // definitions §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
 // bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
-// proven in the header, applied to the exact delta).
+// proven in the header, applied to the exact delta); one along a face of A is >= its face's,
+// which is bounded among the others, so it adds nothing to the minimum of the lower bounds.
 template <class List, class Variant, class ExactValue>
 Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValue exact_value) {
   if (!usable(set)) return {};
@@ -687,7 +697,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   for (int i = 0; i < set.count; ++i) {
     if (i == hint) continue;
     const double bound = coeff * delta2(set, i);
-    if (!(bound <= threshold)) {
+    if (!(bound <= threshold) | along_face_of_A(set, i)) {
       v[i] = kInf;
       done[i] = false;
       continue;
@@ -704,8 +714,8 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   ch.value = v[ch.index];
   ch.code = label_code(set, ch.index);
   auto lower = [&](int i) {
-    return done[i] ? (v[i] < kInf ? safe_lower(v[i], r[i]) : infeasible_or_unknown(p[i]))
-                   : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    if (done[i]) return v[i] < kInf ? safe_lower(v[i], r[i]) : infeasible_or_unknown(p[i]);
+    return along_face_of_A(set, i) ? kInf : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
   // An evaluated candidate is left out, its bound not computed, when deferred_small shows
@@ -735,8 +745,9 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
     lo_min = lo < lo_min ? lo : lo_min;
   }
   for (int i = 0; i < set.count; ++i) {
-    if (done[i] | (int(detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
-                   int(detail::rigid_rel_small(set, i))))  // (both evaluated: no branch)
+    if (done[i] | along_face_of_A(set, i) |
+        (int(detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
+         int(detail::rigid_rel_small(set, i))))  // (all evaluated: no branch)
       continue;
     const double lo = lower(i);
     lo_min = lo < lo_min ? lo : lo_min;

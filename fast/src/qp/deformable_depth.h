@@ -25,6 +25,29 @@
 // bound above), computed for all candidates at once on the quick list's lanes, so that ~1.7
 // candidates per sweep are solved instead of ~8; the list and the sweeps below are their
 // fallback when that sweep cannot certify its choice.
+// Edge pairs along a face of A (proof). Let EE:a:b have edge a on A's face f and eB.N_f = 0
+// exactly (candidate_directions.h's along_face): its oriented n is a positive multiple of FV:f's
+// outward normal (the face's third vertex w has g = 0, the opposite vertex i has g < 0), so both
+// QPs see the same heights, A's face u, v, w at H and i below. EE:a:b constrains u, v (not w)
+// and B's edge x, y to the plane; FV:f constrains u, v, w and frees all of B. Claim: in every
+// variant value(EE:a:b) >= value(FV:f), and FV:f precedes it in canonical order, so it is never
+// the first tied minimum and the minimum is the same without it.
+//   relaxed: every constraint an inequality, so the QP depends on the oriented n alone: equal.
+//   case 1:  A is static and C_A is not empty in either, so the plane is A's face plane, H, in
+//            both; EE:a:b's feasible set is FV:f's with x, y moreover at the plane: >=.
+//   case 2:  let (T, C) be EE:a:b's optimum, tau = C − H. For fixed C the tetrahedra's costs
+//            separate; A's part minimises |T|² + (sum T)² with T_u = T_v = tau, T_w <= tau,
+//            T_i <= tau_i = C − H_i > tau (stationarity: a free vertex off the plane has
+//            T = −S, S = sum T). If w is off the plane, T_w = −S < tau: with i off the plane
+//            too, S = 2 tau − 2S, S = 2 tau/3 and −2 tau/3 < tau needs tau > 0; with i at its
+//            bound, S = (2 tau + tau_i)/2 and its multiplier needs tau_i + S <= 0, i.e.
+//            3 tau_i <= −2 tau, while −S < tau needs tau_i > −4 tau: with tau_i > tau, no tau
+//            satisfies both.
+//            So tau <= 0 puts w at the plane: EE:a:b's optimum is feasible for FV:f, >=.
+//            If tau > 0: FV:f with its plane at H and A at rest (feasible: A's face at H, i
+//            below) costs B's least cost over B above H, g(H); g is nondecreasing in the plane
+//            (a higher plane only shrinks B's feasible set), so g(H) <= g(C) <= B's part of
+//            EE:a:b's optimum (its B is above C, x and y at it) <= EE:a:b's value.
 // A candidate is skipped when its bound exceeds tie_threshold(best value so far) (tie_tolerance.h),
 // so it can neither be the minimum nor tie with it (the threshold of the final minimum is lower). Starting from a good direction
 // (the rigid one, `hint`) makes most bounds bite.
