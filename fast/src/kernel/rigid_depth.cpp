@@ -53,7 +53,7 @@ bool one_direction_choice(const List& s, Lower lower, double hi, Interval interv
     ++m;
   }
   double v = 0, r = 1;
-  if (m < 2 || !interval(idx[0], v, r) || !(r < 1) || !certified_choice(upper_of(v, r), lower_of(v, r))) return false;
+  if (m < 1 || !interval(idx[0], v, r) || !(r < 1) || !certified_choice(upper_of(v, r), lower_of(v, r))) return false;
   ch.value = v;
   ch.index = idx[0];
   ch.code = label_code(s, idx[0]);
@@ -62,7 +62,9 @@ bool one_direction_choice(const List& s, Lower lower, double hi, Interval interv
 }
 
 // First tied minimum of delta², certified (value_bounds.h: every candidate's exact delta² is
-// >= lower_of(delta~², its bound)).
+// >= lower_of(delta~², its bound)). An edge pair along a face of A other than the choice is left
+// out (along_face_of_A: its exact delta² is its face's, whose bound is counted, and it follows
+// the face in canonical order).
 template <class List>
 Choice rigid_of(const List& s) {
   Choice ch;
@@ -73,7 +75,7 @@ Choice rigid_of(const List& s) {
   double lo_min = std::numeric_limits<double>::infinity(), lo_others = lo_min;
   const double far = 2 * ch.value;  // certify.h: candidates above it with a small bound skipped
   for (int i = 0; i < s.count; ++i) {
-    if (s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) continue;
+    if ((s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) || (along_face_of_A(s, i) && i != ch.index)) continue;
     double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
     if (!(lo >= 0.0)) lo = 0.0;
     lo_min = lo < lo_min ? lo : lo_min;
@@ -85,7 +87,11 @@ Choice rigid_of(const List& s) {
   // 1e-9 of the value, below their 1.96 v): the choice is the exact minimum, alone
   ch.exact_first = ch.certified && lo_others > hi;
   if (ch.certified) return ch;
-  auto lower = [&s](int i) { return lower_of(s.delta_sq[i], detail::rigid_rel(s, i)); };
+  const int chosen = ch.index;
+  auto lower = [&s, chosen](int i) {
+    if (along_face_of_A(s, i) && i != chosen) return std::numeric_limits<double>::infinity();
+    return lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
+  };
   auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {
     v = detail::exact_delta2(c);
     return true;

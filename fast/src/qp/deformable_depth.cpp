@@ -621,13 +621,6 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
   return true;
 }
 
-// An edge pair along a face of A (CandidateSet::along_face): its exact value is >= that of the
-// face's FV candidate, which precedes it in canonical order (deformable_depth.h), so it is
-// neither the minimum's first candidate nor below the minimum: the sweeps leave it out. The
-// quick lists hold no such pair (its g of 0 is within its filter bound: they decline).
-inline bool along_face_of_A(const CandidateSet& set, int i) { return set.along_face[i] >= 0; }
-inline bool along_face_of_A(const QuickCandidates&, int) { return false; }
-
 // sweep's choice where the double pass cannot certify one (sweep, "Below the doubles'
 // resolution"): the hint (value v, root bound r) the only candidate evaluated, every other one
 // bounded by coeff·delta² as sweep bounds a skipped one, the minimum refined (refine.h).
