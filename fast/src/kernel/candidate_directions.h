@@ -155,11 +155,12 @@ Candidate candidate(const CandidateSet& set, int k);
 // definitions §3 label of candidate k.
 inline DirectionLabel label(const CandidateSet& set, int k) { return unpack_label(set.code[k]); }
 
-// Candidate k an edge pair along a face of A (along_face): never the first of its exact ties
-// in delta² nor in any variant's QP value, FV:f coming first with the same delta² and a value
-// at or below (deformable_depth.h); where the choice is not k itself, left out of the minimum
-// of lower bounds and of the contenders.
-inline bool along_face_of_A(const CandidateSet& set, int k) { return set.along_face[k] >= 0; }
+// The face f (FV:f, candidate f) when candidate k is an edge pair along it (along_face), else
+// −1. Such a pair is never the first of its exact ties in delta² nor in any variant's QP
+// value, FV:f coming first with the same delta² and a value at or below (deformable_depth.h):
+// where the choice is not k itself, it is left out of the minimum of lower bounds and of the
+// contenders.
+inline int along_face_of_A(const CandidateSet& set, int k) { return set.along_face[k]; }
 
 // delta(n)² of candidate k: D²/(n.n).
 inline double delta2(const CandidateSet& set, int k) { return set.delta_sq[k]; }

@@ -61,7 +61,7 @@ LabelCode entry_label_code(const QuickCandidates& q, int src);
 inline Candidate candidate(const QuickCandidates& q, int k) { return entry_candidate(q, q.src[k]); }
 inline double delta2(const QuickCandidates& q, int k) { return q.delta_sq[k]; }
 // No quick list holds an edge pair along a face of A (its g of 0 is within its filter bound).
-inline bool along_face_of_A(const QuickCandidates&, int) { return false; }
+inline int along_face_of_A(const QuickCandidates&, int) { return -1; }
 inline LabelCode label_code(const QuickCandidates& q, int k) { return entry_label_code(q, q.src[k]); }
 
 }  // namespace pdd::fast

@@ -75,7 +75,7 @@ Choice rigid_of(const List& s) {
   double lo_min = std::numeric_limits<double>::infinity(), lo_others = lo_min;
   const double far = 2 * ch.value;  // certify.h: candidates above it with a small bound skipped
   for (int i = 0; i < s.count; ++i) {
-    if ((s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) || (along_face_of_A(s, i) && i != ch.index)) continue;
+    if ((s.delta_sq[i] > far && detail::rigid_rel_small(s, i)) || (along_face_of_A(s, i) >= 0 && i != ch.index)) continue;
     double lo = lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
     if (!(lo >= 0.0)) lo = 0.0;
     lo_min = lo < lo_min ? lo : lo_min;
@@ -89,7 +89,7 @@ Choice rigid_of(const List& s) {
   if (ch.certified) return ch;
   const int chosen = ch.index;
   auto lower = [&s, chosen](int i) {
-    if (along_face_of_A(s, i) && i != chosen) return std::numeric_limits<double>::infinity();
+    if (along_face_of_A(s, i) >= 0 && i != chosen) return std::numeric_limits<double>::infinity();
     return lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
   };
   auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {

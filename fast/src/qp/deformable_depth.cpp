@@ -633,7 +633,7 @@ Choice refined_below_doubles(const List& set, double coeff, int hint, double v, 
   ch.code = label_code(set, hint);
   auto lower = [&](int i) {
     if (i == hint) return safe_lower(v, r);
-    return along_face_of_A(set, i) ? kInf : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    return along_face_of_A(set, i) >= 0 ? kInf : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   auto interval = [&](int i, double& x, double& e) { return tight_interval(set, i, variant, x, e); };
   auto no_tie_order = [](const int*, int) { return -1; };
@@ -690,7 +690,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   for (int i = 0; i < set.count; ++i) {
     if (i == hint) continue;
     const double bound = coeff * delta2(set, i);
-    if (!(bound <= threshold) | along_face_of_A(set, i)) {
+    if (!(bound <= threshold) | (along_face_of_A(set, i) >= 0)) {
       v[i] = kInf;
       done[i] = false;
       continue;
@@ -708,7 +708,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   ch.code = label_code(set, ch.index);
   auto lower = [&](int i) {
     if (done[i]) return v[i] < kInf ? safe_lower(v[i], r[i]) : infeasible_or_unknown(p[i]);
-    return along_face_of_A(set, i) ? kInf : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
+    return along_face_of_A(set, i) >= 0 ? kInf : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
   };
   // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
   // An evaluated candidate is left out, its bound not computed, when deferred_small shows
@@ -738,7 +738,7 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
     lo_min = lo < lo_min ? lo : lo_min;
   }
   for (int i = 0; i < set.count; ++i) {
-    if (done[i] | along_face_of_A(set, i) |
+    if (done[i] | (along_face_of_A(set, i) >= 0) |
         (int(detail::kSmallRigidLower * (coeff * delta2(set, i)) > lo_min) &
          int(detail::rigid_rel_small(set, i))))  // (all evaluated: no branch)
       continue;
@@ -1280,7 +1280,19 @@ Choice accel_of(const List& set, int k, const Choice* rigid = nullptr) {
   const DeformableVariant variant;
   double v[kMaxCandidates];  // (k is any count on the lists' interface)
   Pending p[kMaxCandidates];
-  for (int r = 0; r < m; ++r) v[r] = evaluate(set, order[r], variant, p[r]);
+  // An edge pair along a face of A whose face is among the k: at or above the face in value and
+  // after it in canonical order (along_face_of_A), so neither the minimum nor its first: left
+  // out (as not in the family: +inf, no lower bound).
+  for (int r = 0; r < m; ++r) {
+    const int i = order[r];
+    const int f = along_face_of_A(set, i);
+    if (f >= 0 && chosen[f]) {
+      v[r] = kInf;
+      p[r].feasible = false;
+      continue;
+    }
+    v[r] = evaluate(set, i, variant, p[r]);
+  }
   const double vmin = minimum(v, m);
   int best = -1;  // among ties, the first in canonical order
   for (int r = 0; r < m; ++r)
