@@ -2,7 +2,8 @@
 // first triple returned has the least distance of c alpha to the integers (both components), up
 // to the search's fixed-point error, along generic directions (the loop over every try) and along
 // directions a rounding away from a coordinate plane or a diagonal (its slow-drift path, which
-// considers a few tries only), those with a fractional part near a half included; every triple
+// considers a few tries only), those with a fractional part near a half included, and from a
+// cube's diagonal planes (the slow drift every second, third or fourth try); every triple
 // returned is c's integer normal.
 #define BOOST_TEST_MODULE fast_integer_normals
 #include <boost/test/unit_test.hpp>
@@ -118,6 +119,31 @@ BOOST_AUTO_TEST_CASE(parts_starting_near_a_half) {
   for (const auto& y : cases) {
     std::ostringstream what;
     what << "near a half, case " << i++;
+    check_window_best(y, tries, what.str().c_str());
+  }
+}
+
+// Along a direction a rounding off a cube's diagonal planes (alpha ~ 1/2, 1/3, 1/4 up to a tiny
+// tilt, or exactly: the parts alternate between near an integer and near a multiple of 1/q, so
+// neither drifts slowly try by try, only every q-th try: the interleaved classes of
+// integer_normals.cpp, each a slow drift), beside a part near an integer or another multiple of
+// 1/q, and a generic part (no class drifts slowly: the loop).
+BOOST_AUTO_TEST_CASE(parts_near_a_multiple_of_a_third_or_a_half) {
+  const int tries = 1 << 12;
+  struct Case {
+    Q a0, a1;
+  };
+  const Q tiny1 = Q(3, 7) * Q(1) / Q(mpz_class(1) << 56), tiny2 = Q(5, 11) * Q(1) / Q(mpz_class(1) << 66);
+  const Case cases[] = {
+      {Q(1, 2) + tiny1, Q(1, 2) - tiny2}, {Q(1, 2), Q(-1, 2)},          {Q(1, 2) - tiny2, Q(0) + tiny1},
+      {Q(1, 3) + tiny1, Q(2, 3) + tiny2}, {Q(1, 4) - tiny1, Q(1, 2) + tiny2}, {Q(-3, 4) + tiny2, Q(1, 4)},
+      {Q(1, 2) + tiny1, Q(2341, 7534)},
+  };
+  int i = 0;
+  for (const Case& c : cases) {
+    const Q y[3] = {c.a0, c.a1, Q(1)};
+    std::ostringstream what;
+    what << "a multiple of 1/q, case " << i++;
     check_window_best(y, tries, what.str().c_str());
   }
 }

@@ -79,6 +79,41 @@ bool slow_drift(const std::uint64_t (&F)[2], const std::uint64_t (&A)[2], int tr
   return true;
 }
 
+// The tries in q interleaved classes j = q i + r (q = 2, 3, 4), where the step A_t is within a
+// few roundings a multiple of 2^64 / q for both parts (alpha_t a rounding away from a multiple
+// of 1/q: a direction across a cube's diagonal planes, alpha_t ~ 1/2, where the parts alternate
+// between near an integer and near a half and slow_drift's single drift does not apply): class r
+// starts at F - r A and steps by q A, slowly, so slow_drift finds its candidates (the least
+// values of its metric, per segment); the union of the classes' candidates holds the least
+// values over all the tries, and they are considered in increasing j with the loop's own
+// metric (the part F - j A, exactly as the loop's wrapping steps give it). The same outputs as
+// the loop where slow_drift's are, per class. False where no q applies (the caller's loop).
+template <class Consider>
+bool interleaved_drift(const std::uint64_t (&F)[2], const std::uint64_t (&A)[2], int tries, int keep,
+                       Consider&& consider) {
+  constexpr int kMaxPerClass = 3 * (4 * 8 + 2);  // slow_drift's bound (keep <= 8)
+  for (std::uint64_t q = 2; q <= 4; ++q) {
+    const std::uint64_t Aq[2] = {q * A[0], q * A[1]};  // (mod 2^64: the step of a class)
+    int js[4 * kMaxPerClass], n = 0;
+    bool all = true;
+    for (std::uint64_t r = 0; r < q && all; ++r) {
+      const int tries_r = int((std::uint64_t(tries) + q - 1 - r) / q);
+      if (tries_r <= 0) continue;
+      const std::uint64_t Fr[2] = {F[0] - r * A[0], F[1] - r * A[1]};
+      all = slow_drift(Fr, Aq, tries_r, keep, [&](int i, double, double) { js[n++] = int(q) * i + int(r); });
+    }
+    if (!all) continue;
+    std::sort(js, js + n);
+    for (int i = 0; i < n; ++i) {
+      const std::uint64_t j = std::uint64_t(js[i]);
+      const std::uint64_t f0 = F[0] - j * A[0], f1 = F[1] - j * A[1];
+      consider(js[i], std::fabs(double(std::int64_t(f0))), std::fabs(double(std::int64_t(f1))));
+    }
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 // A double triple rounded from a unit vector misses y's direction by ~u, and along a generic
@@ -137,7 +172,7 @@ void integer_normals(const detail::Q (&y)[3], int tries, int keep, std::vector<V
       if (kept == keep) worst = top[keep - 1].first;
     }
   };
-  if (!slow_drift(F, A, tries, keep, consider)) {
+  if (!slow_drift(F, A, tries, keep, consider) && !interleaved_drift(F, A, tries, keep, consider)) {
     for (int j = 0; j < tries; ++j) {
       consider(j, dist(F[0]), dist(F[1]));
       F[0] -= A[0], F[1] -= A[1];  // c -> c - 1 (mod 2^64: mod 1)
