@@ -1272,8 +1272,11 @@ Choice accel_of(const List& set, int k, const Choice* rigid = nullptr) {
   DeltaBounds<List> db(set);
   // (certify.h: kSmallRigidLower delta² > hi_chosen with a small bound has lower bound
   // > hi_chosen, so the exact test below would pass: it is skipped)
+  // k = 1: an edge pair along a face f of A is never the exact first: FV:f has its exact delta
+  // and precedes it, and FV:f (index f < 8, tested first) is the choice, or certainly after it
+  // (then so is the pair), or has ended the loop.
   for (int i = 0; i < set.count && separated; ++i)
-    if (!chosen[i] &&
+    if (!chosen[i] && !(k == 1 && along_face_of_A(set, i) >= 0) &&
         !(detail::kSmallRigidLower * delta2(set, i) > hi_chosen && detail::rigid_rel_small(set, i)) &&
         !(db.lower(i) > hi_chosen))
       separated = false;
