@@ -278,6 +278,16 @@ struct Builder {
     return s == 0;
   }
 
+  // The face f of A on edge a whose plane holds edge b's direction, eB.N_f = 0 exactly (the g of
+  // f's third vertex), else −1: CandidateSet::along_face of edge pair (a, b) where its n is not
+  // 0 (not both: A is valid). Precondition: fill_face_signs has run.
+  std::int16_t along_face_of(int a, int b) const {
+    const int f0 = kOffFaces.face[a][0], f1 = kOffFaces.face[a][1];
+    const bool zero0 = ((face_sign_unknown >> (4 * b + f0)) & 1u) == 0 && face_sign[b][f0] == 0.0;
+    const bool zero1 = ((face_sign_unknown >> (4 * b + f1)) & 1u) == 0 && face_sign[b][f1] == 0.0;
+    return std::int16_t(zero0 ? f0 : zero1 ? f1 : -1);
+  }
+
   // Lane i = (a, b) unclear only through the signs of its g's (a face of A whose plane holds
   // eB's direction, or nearly: aligned pairs, and meshes whose grid a generator placed up to a
   // rounding, most of their unclear lanes): n clear of the nearly parallel test and the depths
@@ -291,16 +301,6 @@ struct Builder {
   // expansions' reach or the lane is unclear otherwise (edge_pair_general decides it). (EdgeLanes'
   // verdict stays unclear: the quick lists, which read g's computed signs, still decline the pair.)
   // Precondition: fill_face_signs has run on these lanes. Branch-free (edge_pairs).
-  // The face f of A on edge a whose plane holds edge b's direction, eB.N_f = 0 exactly (the g of
-  // f's third vertex), else −1: CandidateSet::along_face of edge pair (a, b) where its n is not
-  // 0 (not both: A is valid). Precondition: fill_face_signs has run.
-  std::int16_t along_face_of(int a, int b) const {
-    const int f0 = kOffFaces.face[a][0], f1 = kOffFaces.face[a][1];
-    const bool zero0 = ((face_sign_unknown >> (4 * b + f0)) & 1u) == 0 && face_sign[b][f0] == 0.0;
-    const bool zero1 = ((face_sign_unknown >> (4 * b + f1)) & 1u) == 0 && face_sign[b][f1] == 0.0;
-    return std::int16_t(zero0 ? f0 : zero1 ? f1 : -1);
-  }
-
   // `along`: along_face_of(a, b), meaningful where the lane is clear (n != 0).
   bool clear_but_g(int a, int b, int i, bool& flip, bool& undecidable, std::int16_t& along) const {
     const EdgeLanes& L = out.edges;
