@@ -71,8 +71,8 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
                         bool per_pair, py::handle engine_in, py::handle weight_in,
                         py::handle threads_in, py::handle rest_A, py::handle rest_B) {
   const std::string engine = text_arg(engine_in, "engine");
-  if (engine != "fast" && engine != "exact" && engine != "reference")  // as mesh_contacts' 'reference'
-    value_error("engine must be 'fast' or 'exact' ('reference'); got '" + engine + "'");
+  if (engine != "fast" && engine != "reference")  // (the names of mesh_contacts, solve and pdd mesh --engine)
+    value_error("engine must be 'fast' or 'reference'; got '" + engine + "'");
   const std::string weight = text_arg(weight_in, "weight");
   if (weight != "area" && weight != "unit")
     value_error("weight must be 'area' or 'unit'; got '" + weight + "'");
@@ -155,7 +155,7 @@ py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle 
 }
 
 // Python's names of the library's enums (the keyword values below).
-const char* engine_name(pdd::mesh::EnergyEngine e) { return e == pdd::mesh::EnergyEngine::Fast ? "fast" : "exact"; }
+const char* engine_name(pdd::mesh::EnergyEngine e) { return e == pdd::mesh::EnergyEngine::Fast ? "fast" : "reference"; }
 const char* weight_name(pdd::mesh::EnergyWeight w) { return w == pdd::mesh::EnergyWeight::Area ? "area" : "unit"; }
 
 // {hessian}, {per_pair}, {engine}, {weight}: ContactEnergyOptions' defaults, filled in by bind_energy.
@@ -174,8 +174,8 @@ rest_A/B   (n, 3) rest positions, for the weights w_ab = (V_a V_b)^(1/3) (rest v
 hessian    also the Gauss-Newton Hessian (positive semi-definite, symmetric).
 per_pair   also each pair's a, b, weight, pdd2_global and pair_energy (each certified: no pair
            is then taken at a bound).
-engine     'fast' (certified doubles) or 'exact' (= 'reference', the exact engine; slow:
-           small meshes).
+engine     'fast' (certified doubles) or 'reference' (the exact engine, as for mesh_contacts
+           and solve; slow: small meshes).
 weight     'area' ((V_a V_b)^(1/3), resolution-independent) or 'unit' (w = 1).
 threads    None or 0: all cores; k from 1 to 4096: at most k threads.
 

@@ -114,7 +114,7 @@ def test_hessian_symmetric_psd():
 def test_exact_engine_agrees():
     VA, TA, VB, TB = scene()
     f = pdd.contact_energy(VA, TA, VB, TB)
-    x = pdd.contact_energy(VA, TA, VB, TB, engine="exact")
+    x = pdd.contact_energy(VA, TA, VB, TB, engine="reference")
     assert f["pairs"] == x["pairs"]
     assert f["energy"] == pytest.approx(x["energy"], rel=1e-8)
     assert np.abs(f["gradient"] - x["gradient"]).max() <= 1e-4 * np.abs(x["gradient"]).max()
@@ -145,8 +145,12 @@ def test_self_contact_and_errors():
     assert e["gradient"].shape == (len(V), 3)
     assert e["pairs"] == len(pdd.mesh_contacts(V, T, variants="global")["a"])
     VA, TA, VB, TB = scene()
-    with pytest.raises(ValueError, match="engine"):
-        pdd.contact_energy(VA, TA, VB, TB, engine="slow")
+    # one name per engine across the module and the CLI (mesh_contacts, solve, pdd mesh --engine)
+    for name in ("slow", "exact"):
+        with pytest.raises(ValueError, match=f"^engine must be 'fast' or 'reference'; got '{name}'$"):
+            pdd.contact_energy(VA, TA, VB, TB, engine=name)
+        with pytest.raises(ValueError, match=f"^engine must be 'fast' or 'reference'; got '{name}'$"):
+            pdd.mesh_contacts(VA, TA, VB, TB, engine=name)
     with pytest.raises(ValueError, match="rest_A"):
         pdd.contact_energy(VA, TA, VB, TB, rest_A=VA[:-1])
     with pytest.raises(ValueError, match="both VB and TB"):
