@@ -1,6 +1,6 @@
 // `pdd mesh --a A.msh [--b B.msh | --self] [--variants LIST] [--engine fast|reference]
 //           [--output pairs.jsonl] [--vtk out.vtk] [--summary] [--threads N] [--quiet]`
-//          or `pdd mesh --a A [--b B | --self] --energy [--engine E] [--output energy.json]`
+//          or `pdd mesh --a A [--b B | --self] --energy [--rest-a RA] [--rest-b RB] [--engine E] [--output energy.json]`
 // Every intersecting element pair of two tetrahedral meshes (or of one mesh with itself) and
 // its penetration depths (definitions §10; library: include/pdd/mesh.h). One JSON Lines record per
 // pair, sorted by (a, b): {"a": i, "b": j, "intersecting", the requested values and their
@@ -50,7 +50,7 @@ using io::kSummaryLabel;
 namespace {
 
 struct MeshArgs {
-  std::string a, b, engine = "fast", output, vtk;
+  std::string a, b, engine = "fast", output, vtk, rest_a, rest_b;
   std::string variants = mesh::variant_names(mesh::ContactOptions{}.variants);  // the library's default
   bool self = false, summary = false, quiet = false, energy = false;
   int threads = 0;
@@ -162,13 +162,37 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
 // (its index, A's vertices first), skipped (the elements left out, as pdd.contact_energy's),
 // seconds (docs/definitions.md "Contact energy"). Exit status as without --energy: 1 when an
 // element was skipped.
+// The weights: a side's rest shape where given (--rest-a, --rest-b: the same tetrahedra, its
+// vertices the rest positions; held constant, as a simulator's), else the file's own positions,
+// following them (as Python's rest_A=None: the gradient then includes the weights' derivative,
+// which grows like V^(-2/3) on a nearly flat element).
 int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
   mesh::ContactEnergyOptions o;
   o.engine = args.engine == "fast" ? mesh::EnergyEngine::Fast : mesh::EnergyEngine::Exact;
-  o.weights_follow_a = o.weights_follow_b = true;  // the files' positions are the rest, as Python's default
+  mesh::Mesh rest_a = A, rest_b = B ? *B : mesh::Mesh{};
+  auto rest_of = [](const std::string& path, const mesh::Mesh& current, const char* flag, mesh::Mesh& rest) {
+    if (path.empty()) return true;
+    try {
+      rest = mesh::read_mesh(path);
+    } catch (const mesh::ReadError& e) {
+      std::cerr << "pdd mesh: " << flag << ": " << e.what() << '\n';
+      return false;
+    }
+    if (rest.vertices.size() != current.vertices.size() || rest.tets != current.tets) {
+      std::cerr << "pdd mesh: " << flag << " '" << path << "' is not the same mesh (" << rest.vertices.size()
+                << " vertices, " << rest.tets.size() << " tetrahedra against " << current.vertices.size() << " and "
+                << current.tets.size() << ", or other tetrahedra): a rest shape has the mesh's vertices and tetrahedra\n";
+      return false;
+    }
+    return true;
+  };
+  if (!rest_of(args.rest_a, A, "--rest-a", rest_a) || (B && !rest_of(args.rest_b, *B, "--rest-b", rest_b)))
+    return kExitFileError;
+  o.weights_follow_a = args.rest_a.empty();
+  o.weights_follow_b = args.rest_b.empty();
   const auto t0 = Clock::now();
-  const mesh::ContactEnergy e = B ? mesh::contact_energy(A, *B, A.vertices, B->vertices, o)
-                                  : mesh::contact_energy_self(A, A.vertices, o);
+  const mesh::ContactEnergy e = B ? mesh::contact_energy(rest_a, rest_b, A.vertices, B->vertices, o)
+                                  : mesh::contact_energy_self(rest_a, A.vertices, o);
   double max_force = 0;
   std::size_t at = 0;
   for (std::size_t v = 0; v < e.gradient.size(); ++v) {
@@ -201,6 +225,10 @@ int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
 int run_mesh(const MeshArgs& args) {
   if (args.self == !args.b.empty()) {
     std::cerr << "pdd mesh: give either --b B or --self\n";
+    return kExitUsage;
+  }
+  if (!args.energy && (!args.rest_a.empty() || !args.rest_b.empty())) {  // (CLI11's needs() cannot say why)
+    std::cerr << "pdd mesh: --rest-a and --rest-b are the contact energy's weights: give them with --energy\n";
     return kExitUsage;
   }
   for (const auto& [flag, path] : {std::pair{"--a", args.a}, std::pair{"--b", args.b}, std::pair{"--output", args.output}})
@@ -342,6 +370,12 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       ->excludes(vtk)
       ->excludes(summary)
       ->excludes(variants);
+  cmd->add_option("--rest-a", args->rest_a,
+                  "With --energy: A's rest shape (the same mesh at rest, .msh or .vtk) for the weights "
+                  "(V_a V_b)^(1/3), held constant as in a simulator; without it A's positions, the "
+                  "weights following them (their derivative in max_force)");
+  CLI::Option* rest_b = cmd->add_option("--rest-b", args->rest_b, "With --energy: B's rest shape, as --rest-a");
+  rest_b->excludes(cmd->get_option("--self"));
   cmd->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }
 

@@ -275,6 +275,35 @@ def test_cli_energy_two_meshes(tmp_path):
         check_cli_energy(f.read(), e)
 
 
+def test_cli_energy_rest_shapes(tmp_path):
+    """--rest-a / --rest-b: the weights from the rest shapes, held constant, as the module's
+    rest_A / rest_B (the same library call on the same doubles: equal); a rest file that is not
+    the same mesh (vertex count, tetrahedra) is refused, exit 2, and so is a rest shape without
+    --energy or --rest-b with --self."""
+    VA, TA, VB, TB = scene()
+    RA, RB = VA * 1.01, VB + np.array([0.0, 0.0, 0.02])  # rest shapes other than the positions
+    a, b, ra, rb = (str(tmp_path / f"{n}.vtk") for n in ("a", "b", "ra", "rb"))
+    for path, V, T in ((a, VA, TA), (b, VB, TB), (ra, RA, TA), (rb, RB, TB)):
+        write_vtk(path, V, T)
+    e = pdd.contact_energy(VA, TA, VB, TB, rest_A=RA, rest_B=RB)
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet", "--rest-a", ra, "--rest-b", rb)
+    assert r.returncode == 0, r.stderr
+    check_cli_energy(r.stdout, e)
+    # one side's rest shape: the other's weights follow its positions, as rest_B=None
+    e = pdd.contact_energy(VA, TA, VB, TB, rest_A=RA)
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet", "--rest-a", ra)
+    assert r.returncode == 0, r.stderr
+    check_cli_energy(r.stdout, e)
+    assert e["energy"] != pdd.contact_energy(VA, TA, VB, TB)["energy"]  # the rest shape mattered
+    for args, why in (((("--rest-a", rb)), "not the same mesh"), ((("--rest-b", ra)), "not the same mesh")):
+        r = run_cli("--a", a, "--b", b, "--energy", "--quiet", *args)
+        assert r.returncode == 2 and r.stdout == "" and why in r.stderr
+    r = run_cli("--a", a, "--b", b, "--rest-a", ra)
+    assert r.returncode == 2 and "give them with --energy" in r.stderr
+    r = run_cli("--a", a, "--self", "--energy", "--rest-b", rb)
+    assert r.returncode != 0 and r.stdout == ""
+
+
 def test_cli_energy_self_contact(tmp_path):
     VA, TA, VB, TB = scene()
     V = np.vstack([VA, VB])

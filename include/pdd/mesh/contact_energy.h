@@ -153,11 +153,12 @@ struct ContactEnergyOptions {
   bool hessian = false;   // fill ContactEnergy::hessian
   bool per_pair = false;  // fill ContactEnergy::pairs (every pair certified: none bounded, "Engine")
   // A's (B's) weights from its current volumes instead of its rest vertices (Python's default,
-  // rest_A=None; pdd mesh --energy): E(P) = sum w_ab(P) pdd2_global(P), and the gradient is that
-  // function's, each weight's derivative included (w_ab = (V_a V_b)^(1/3): dw/dx = w / 3
-  // (dV_a/dx / V_a + dV_b/dx / V_b), over the side that follows), so that finite differences of
-  // E agree with it. The Hessian stays the Gauss–Newton one at fixed weights (positive
-  // semi-definite). Self-contact: follow_a alone.
+  // rest_A=None; pdd mesh --energy without --rest-a): E(P) = sum w_ab(P) pdd2_global(P), and the
+  // gradient is that function's, each weight's derivative included (w_ab = (V_a V_b)^(1/3):
+  // dw/dx = w / 3 (dV_a/dx / V_a + dV_b/dx / V_b), over the side that follows), so that finite
+  // differences of E agree with it; that term grows like V^(-2/3) as an element flattens (a
+  // simulator holds rest weights). The Hessian stays the Gauss–Newton one at fixed weights
+  // (positive semi-definite). Self-contact: follow_a alone.
   bool weights_follow_a = false, weights_follow_b = false;
   // As ContactOptions::cancel (checked between stages and per pair); throws Cancelled.
   const std::atomic<bool>* cancel = nullptr;
