@@ -31,7 +31,8 @@ def test_soft_body_steps():
 
 
 def test_readme_scene_converges_through_resting_contact():
-    """The README's scene (default Scene) up to step 35, where the ball rests on the block:
+    """The README's scene (default Scene) up to step 35, where the ball, fallen back onto the
+    block at step 31, presses on it:
     the residual force reaches 1e-5 of the weight only after Phi's own decrease has fallen
     below its rounding (~1e-15 of Phi), where the line search takes Armijo's condition on the
     slope; on Phi's values alone that step stalls at 1.08e-5 of the weight."""
@@ -39,3 +40,17 @@ def test_readme_scene_converges_through_resting_contact():
     for n in range(36):
         phis, e, converged = s.step()
         assert converged, f"step {n}: {len(phis) - 1} iterations"
+
+
+def test_resolved_rest_shape_starts_without_strain():
+    """Scene(rest="resolved"): the resolved start is the rest shape, so the first step starts
+    from zero elastic energy (x = rest exactly) and still converges, the penetration as small;
+    Scene(rest="original") stores the resolve's deformation (x != rest on the moved vertices)."""
+    s = soft_body.Scene(n_ball=2, n_block=(3, 3, 2), rest="resolved")
+    assert np.array_equal(s.x, s.rest)
+    phis, e, converged = s.step()
+    assert converged and e["max_pdd2_global"] <= 1e-6
+    o = soft_body.Scene(n_ball=2, n_block=(3, 3, 2))
+    assert not np.array_equal(o.x, o.rest)
+    with pytest.raises(ValueError, match="rest must be"):
+        soft_body.Scene(n_ball=2, n_block=(3, 3, 2), rest="deformed")
