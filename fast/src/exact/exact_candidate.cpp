@@ -26,23 +26,23 @@ ExactFrame exact_frame(const TetVertices& A, const TetVertices& B) {
   f.shift = nonzero ? -long(lowest) : 0;
   // x·2^shift as an integer: x = m·2^e, m·2^53 an integer below 2^53 (subnormals included:
   // frexp normalises m), and e − 53 >= lowest = −shift, so the power is >= 0. Integers (mpz)
-  // throughout, each difference an integer rational with denominator 1: the same values as
-  // Q(x)·2^shift, without the rationals' canonicalising gcds (most of this function's time).
-  auto integer = [&](double x) {
-    mpz_class z;
-    if (x == 0.0) return z;
+  // throughout, each difference written into its rational's numerator over the denominator 1
+  // it starts with: the same values as Q(x)·2^shift, without the rationals' canonicalising gcds.
+  auto integer = [&](double x, mpz_t z) {
+    if (x == 0.0) return mpz_set_ui(z, 0);
     int e;
     const double m = std::frexp(x, &e);
-    mpz_set_si(z.get_mpz_t(), static_cast<long>(std::ldexp(m, 53)));
-    mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(e - 53 + f.shift));
-    return z;
+    mpz_set_si(z, static_cast<long>(std::ldexp(m, 53)));
+    mpz_mul_2exp(z, z, static_cast<mp_bitcnt_t>(e - 53 + f.shift));
   };
-  mpz_class s0[3];
-  for (int k = 0; k < 3; ++k) s0[k] = integer(A[0][k]);
+  mpz_class s0[3], x;
+  for (int k = 0; k < 3; ++k) integer(A[0][k], s0[k].get_mpz_t());
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) {
-      f.s[i].x[k] = Q(mpz_class(integer(A[i][k]) - s0[k]));
-      f.r[i].x[k] = Q(mpz_class(integer(B[i][k]) - s0[k]));
+      integer(A[i][k], x.get_mpz_t());
+      mpz_sub(mpq_numref(f.s[i].x[k].get_mpq_t()), x.get_mpz_t(), s0[k].get_mpz_t());
+      integer(B[i][k], x.get_mpz_t());
+      mpz_sub(mpq_numref(f.r[i].x[k].get_mpq_t()), x.get_mpz_t(), s0[k].get_mpz_t());
     }
   return f;
 }
@@ -75,22 +75,144 @@ ExactCandidate exact_candidate(const ExactFrame& f, const DirectionLabel& l, con
   return c;
 }
 
-ExactCandidate exact_candidate(const ExactFrame& f, const DirectionLabel& l) {
-  switch (l.kind) {
-    case ContactKind::FV:
-      return exact_candidate(f, l, face_normal_out_of(f.s, l.a), mask_without(l.a), 0);
-    case ContactKind::VF:
-      return exact_candidate(f, l, face_normal_into(f.r, l.a), 0, mask_without(l.a));
-    default: {
-      EdgePairKind kind;
-      QV n = edge_pair_normal(f.s, f.r, l.a, l.b, &kind);
-      const bool minus = l.orientation == EdgeOrientation::Minus ||
-                         (l.orientation == EdgeOrientation::Decided &&
-                          side_rule(f.s, n, l.a) == EdgePairSide::Flip);
-      if (minus) n = negated(n);
-      return exact_candidate(f, l, n, edge_mask(l.a), edge_mask(l.b));
+namespace {
+
+// The candidate of a label on the frame's integers (every coordinate of an ExactFrame has
+// denominator 1: exact_frame): exact_geometry.h's normals, orientation rule and heights, the
+// same integers, taken on the numerators with mpz (each rational operation would canonicalise:
+// a gcd per operation, ~5x the instructions on a contact made by rounding's candidates).
+struct ZV {
+  mpz_class x[3];
+};
+const mpz_class& num(const Q& q) { return q.get_num(); }
+ZV difference(const QV& a, const QV& b) {
+  ZV d;
+  for (int k = 0; k < 3; ++k) mpz_sub(d.x[k].get_mpz_t(), num(a.x[k]).get_mpz_t(), num(b.x[k]).get_mpz_t());
+  return d;
+}
+ZV cross(const ZV& a, const ZV& b) {
+  ZV c;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    mpz_mul(c.x[k].get_mpz_t(), a.x[i].get_mpz_t(), b.x[j].get_mpz_t());
+    mpz_submul(c.x[k].get_mpz_t(), a.x[j].get_mpz_t(), b.x[i].get_mpz_t());
+  }
+  return c;
+}
+void dot(mpz_class& out, const ZV& a, const ZV& b) {
+  mpz_mul(out.get_mpz_t(), a.x[0].get_mpz_t(), b.x[0].get_mpz_t());
+  mpz_addmul(out.get_mpz_t(), a.x[1].get_mpz_t(), b.x[1].get_mpz_t());
+  mpz_addmul(out.get_mpz_t(), a.x[2].get_mpz_t(), b.x[2].get_mpz_t());
+}
+void dot(mpz_class& out, const ZV& a, const QV& b) {
+  mpz_mul(out.get_mpz_t(), a.x[0].get_mpz_t(), num(b.x[0]).get_mpz_t());
+  mpz_addmul(out.get_mpz_t(), a.x[1].get_mpz_t(), num(b.x[1]).get_mpz_t());
+  mpz_addmul(out.get_mpz_t(), a.x[2].get_mpz_t(), num(b.x[2]).get_mpz_t());
+}
+int dot_sign(const ZV& a, const ZV& b) {
+  mpz_class d;
+  dot(d, a, b);
+  return sgn(d);
+}
+void negate(ZV& a) {
+  for (mpz_class& c : a.x) mpz_neg(c.get_mpz_t(), c.get_mpz_t());
+}
+bool is_zero(const ZV& a) { return sgn(a.x[0]) == 0 && sgn(a.x[1]) == 0 && sgn(a.x[2]) == 0; }
+
+// face_normal_out_of (exact_geometry.h) on integers.
+ZV face_normal_out_of_z(const QTet& T, int i) {
+  const auto& f = kFace[i];
+  ZV n = cross(difference(T[f[1]], T[f[0]]), difference(T[f[2]], T[f[0]]));
+  if (dot_sign(n, difference(T[i], T[f[0]])) > 0) negate(n);
+  return n;
+}
+
+// edge_pair_normal and side_rule (exact_geometry.h) on integers; the normal oriented as the
+// label says (Minus, or Decided where the rule flips).
+ZV edge_pair_normal_z(const ExactFrame& f, const DirectionLabel& l) {
+  const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
+  const ZV e = difference(f.s[v], f.s[u]);
+  ZV n = cross(difference(f.r[y], f.r[x]), e);
+  if (is_zero(n)) {  // parallel edges: (e.e) w − (w.e) e, w = r_x − s_u
+    const ZV w = difference(f.r[x], f.s[u]);
+    mpz_class ee, we;
+    dot(ee, e, e);
+    dot(we, w, e);
+    for (int k = 0; k < 3; ++k) {
+      mpz_mul(n.x[k].get_mpz_t(), w.x[k].get_mpz_t(), ee.get_mpz_t());
+      mpz_submul(n.x[k].get_mpz_t(), e.x[k].get_mpz_t(), we.get_mpz_t());
     }
   }
+  bool minus = l.orientation == EdgeOrientation::Minus;
+  if (l.orientation == EdgeOrientation::Decided) {
+    const int g1 = dot_sign(n, difference(f.s[kOffEdge[l.a][0]], f.s[u]));
+    const int g2 = dot_sign(n, difference(f.s[kOffEdge[l.a][1]], f.s[u]));
+    minus = !(g1 <= 0 && g2 <= 0) && g1 >= 0 && g2 >= 0;  // (side_rule's Flip)
+  }
+  if (minus) negate(n);
+  return n;
+}
+
+bool integer_frame(const ExactFrame& f) {
+  for (const QTet* T : {&f.s, &f.r})
+    for (const QV& p : *T)
+      for (const Q& c : p.x)
+        if (mpz_cmp_ui(c.get_den_mpz_t(), 1) != 0) return false;
+  return true;
+}
+
+}  // namespace
+
+ExactCandidate exact_candidate(const ExactFrame& f, const DirectionLabel& l) {
+  unsigned conA = 0, conB = 0;
+  if (!integer_frame(f)) {  // (not exact_frame's: the rationals' own functions)
+    switch (l.kind) {
+      case ContactKind::FV:
+        return exact_candidate(f, l, face_normal_out_of(f.s, l.a), mask_without(l.a), 0);
+      case ContactKind::VF:
+        return exact_candidate(f, l, face_normal_into(f.r, l.a), 0, mask_without(l.a));
+      default: {
+        EdgePairKind kind;
+        QV n = edge_pair_normal(f.s, f.r, l.a, l.b, &kind);
+        const bool minus = l.orientation == EdgeOrientation::Minus ||
+                           (l.orientation == EdgeOrientation::Decided &&
+                            side_rule(f.s, n, l.a) == EdgePairSide::Flip);
+        if (minus) n = negated(n);
+        return exact_candidate(f, l, n, edge_mask(l.a), edge_mask(l.b));
+      }
+    }
+  }
+  ZV n;
+  switch (l.kind) {
+    case ContactKind::FV:
+      n = face_normal_out_of_z(f.s, l.a), conA = mask_without(l.a);
+      break;
+    case ContactKind::VF:
+      n = face_normal_out_of_z(f.r, l.a), conB = mask_without(l.a);
+      negate(n);  // (into B)
+      break;
+    default:
+      n = edge_pair_normal_z(f, l), conA = edge_mask(l.a), conB = edge_mask(l.b);
+  }
+  ExactCandidate c;
+  c.label = l;
+  c.conA = conA, c.conB = conB;
+  mpz_class h;
+  for (int k = 0; k < 3; ++k) mpq_set_z(c.n.x[k].get_mpq_t(), n.x[k].get_mpz_t());
+  dot(h, n, n);
+  mpq_set_z(c.nn.get_mpq_t(), h.get_mpz_t());
+  mpz_class hi, lo;
+  for (int i = 0; i < 4; ++i) {
+    dot(h, n, f.s[i]);
+    mpq_set_z(c.hA[i].get_mpq_t(), h.get_mpz_t());
+    if (i == 0 || hi < h) hi = h;
+    dot(h, n, f.r[i]);
+    mpq_set_z(c.hB[i].get_mpq_t(), h.get_mpz_t());
+    if (i == 0 || h < lo) lo = h;
+  }
+  mpz_sub(h.get_mpz_t(), hi.get_mpz_t(), lo.get_mpz_t());
+  mpq_set_z(c.D.get_mpq_t(), h.get_mpz_t());
+  return c;
 }
 
 Q exact_delta2(const ExactCandidate& c) { return c.D * c.D / c.nn; }
