@@ -119,6 +119,57 @@ BOOST_AUTO_TEST_CASE(random_pairs_match_exact_decisions) {
   BOOST_TEST(undecidable > 0);  // the random set exercises the ':+'/':-' branch
 }
 
+// exact_candidate(frame, label) builds a label's normal, n.n, heights and D on the frame's
+// integers (mpz); the same candidate from exact_geometry.h's rational formulas (face normals,
+// edge-pair normal with its parallel case, the orientation rule) through the rational
+// overload must be equal, component for component: random pairs, Kuhn cells with parallel and
+// colinear edges, and pairs scaled by 2^300 and 2^-300 (the frame's shift negative and large).
+BOOST_AUTO_TEST_CASE(exact_candidates_on_integers_equal_the_rationals) {
+  std::vector<TetPair> pairs = random_pairs(20, 7, false);
+  const double h = 0.25;
+  auto kuhn = [&](int m, const std::array<double, 3>& o) { return kuhn_tet(m, o, h, [](int, int) { return 0; }); };
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; j += 5) pairs.push_back(tet_pair(kuhn(i, {0, 0, 0}), kuhn(j, {h / 2, 0, h / 4})));
+  for (const double scale : {0x1p300, 0x1p-300})
+    for (int k = 0; k < 6; ++k) {
+      TetPair q = pairs[std::size_t(k)];
+      for (auto* T : {&q.A, &q.B})
+        for (auto& v : *T)
+          for (double& x : v) x *= scale;
+      pairs.push_back(q);
+    }
+  int compared = 0, parallel = 0;
+  for (const TetPair& p : pairs) {
+    const detail::ExactFrame f = detail::exact_frame(p.A, p.B);
+    auto check = [&](const DirectionLabel& l, const detail::QV& n, unsigned conA, unsigned conB) {
+      const detail::ExactCandidate z = detail::exact_candidate(f, l), q = detail::exact_candidate(f, l, n, conA, conB);
+      bool same = z.nn == q.nn && z.D == q.D && z.conA == q.conA && z.conB == q.conB;
+      for (int k = 0; k < 3; ++k) same = same && z.n.x[k] == q.n.x[k];
+      for (int i = 0; i < 4; ++i) same = same && z.hA[i] == q.hA[i] && z.hB[i] == q.hB[i];
+      BOOST_TEST(same, p.name << " " << l.str());
+      ++compared;
+    };
+    for (int a = 0; a < 4; ++a) {
+      check(DirectionLabel::fv(a), detail::face_normal_out_of(f.s, a), detail::mask_without(a), 0);
+      check(DirectionLabel::vf(a), detail::face_normal_into(f.r, a), 0, detail::mask_without(a));
+    }
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        EdgePairKind kind;
+        const detail::QV n = detail::edge_pair_normal(f.s, f.r, a, b, &kind);
+        if (kind == EdgePairKind::Colinear) continue;  // (no direction: no label)
+        parallel += kind == EdgePairKind::Parallel;
+        const bool flip = detail::side_rule(f.s, n, a) == EdgePairSide::Flip;
+        const unsigned conA = detail::edge_mask(a), conB = detail::edge_mask(b);
+        check(DirectionLabel::ee(a, b, EdgeOrientation::Decided), flip ? detail::negated(n) : n, conA, conB);
+        check(DirectionLabel::ee(a, b, EdgeOrientation::Plus), n, conA, conB);
+        check(DirectionLabel::ee(a, b, EdgeOrientation::Minus), detail::negated(n), conA, conB);
+      }
+  }
+  BOOST_TEST(parallel > 0);  // the Kuhn cells' parallel edges took the common perpendicular
+  BOOST_TEST_MESSAGE("exact candidates compared: " << compared << ", parallel edge pairs " << parallel);
+}
+
 // Crafted: A = unit corner tet; B has edge r0r1 on A's edge line s0s1 (the x axis: colinear,
 // EE:0:0 has no direction) and edge r2r3 parallel to A's edge s2s3 (direction (0,−1,1)).
 // Parallel normal (definitions §3): e = s3 − s2 = (0,−1,1), w = r2 − s2 = (1/4,−3/4,1/4),
