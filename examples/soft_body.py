@@ -150,7 +150,7 @@ class Scene:
         g = self.M * d / self.dt**2 + self.K @ u - self.f.ravel() + self.k * e["gradient"].ravel()
         return g[self.free]
 
-    def step(self, max_iterations=200, tol=1e-5, memory=8):
+    def step(self, max_iterations=400, tol=1e-5, memory=8):
         """One implicit Euler step: minimises Phi, returns (the Phi values of the iterates,
         each below the one before or within phi_rounding of it, kept in self.allowances; the
         contact energy's dict at the result; whether it converged).
