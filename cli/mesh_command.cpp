@@ -231,7 +231,8 @@ int run_mesh(const MeshArgs& args) {
     std::cerr << "pdd mesh: --rest-a and --rest-b are the contact energy's weights: give them with --energy\n";
     return kExitUsage;
   }
-  for (const auto& [flag, path] : {std::pair{"--a", args.a}, std::pair{"--b", args.b}, std::pair{"--output", args.output}})
+  for (const auto& [flag, path] : {std::pair{"--a", args.a}, std::pair{"--b", args.b}, std::pair{"--rest-a", args.rest_a},
+                                   std::pair{"--rest-b", args.rest_b}, std::pair{"--output", args.output}})
     for (const auto& [oflag, opath] : {std::pair{"--output", args.output}, std::pair{"--vtk", args.vtk}})
       if (std::string(flag) != oflag && same_file(path, opath)) {
         std::cerr << "pdd mesh: " << oflag << " '" << opath << "' is the same file as " << flag

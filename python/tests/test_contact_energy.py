@@ -278,8 +278,8 @@ def test_cli_energy_two_meshes(tmp_path):
 def test_cli_energy_rest_shapes(tmp_path):
     """--rest-a / --rest-b: the weights from the rest shapes, held constant, as the module's
     rest_A / rest_B (the same library call on the same doubles: equal); a rest file that is not
-    the same mesh (vertex count, tetrahedra) is refused, exit 2, and so is a rest shape without
-    --energy or --rest-b with --self."""
+    the same mesh (vertex count, tetrahedra) is refused, exit 2, and so are a rest shape without
+    --energy, --rest-b with --self and an output over a rest file."""
     VA, TA, VB, TB = scene()
     RA, RB = VA * 1.01, VB + np.array([0.0, 0.0, 0.02])  # rest shapes other than the positions
     a, b, ra, rb = (str(tmp_path / f"{n}.vtk") for n in ("a", "b", "ra", "rb"))
@@ -300,6 +300,13 @@ def test_cli_energy_rest_shapes(tmp_path):
         assert r.returncode == 2 and r.stdout == "" and why in r.stderr
     r = run_cli("--a", a, "--b", b, "--rest-a", ra)
     assert r.returncode == 2 and "give them with --energy" in r.stderr
+    # an output over a rest file is refused before anything is written (the rest file kept)
+    with open(rb) as f:
+        kept = f.read()
+    r = run_cli("--a", a, "--b", b, "--energy", "--rest-b", rb, "--output", rb)
+    assert r.returncode == 2 and "--rest-b" in r.stderr and "same file" in r.stderr
+    with open(rb) as f:
+        assert f.read() == kept
     r = run_cli("--a", a, "--self", "--energy", "--rest-b", rb)
     assert r.returncode != 0 and r.stdout == ""
 
