@@ -169,11 +169,15 @@ int report(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B,
 int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
   mesh::ContactEnergyOptions o;
   o.engine = args.engine == "fast" ? mesh::EnergyEngine::Fast : mesh::EnergyEngine::Exact;
-  mesh::Mesh rest_a = A, rest_b = B ? *B : mesh::Mesh{};
-  auto rest_of = [](const std::string& path, const mesh::Mesh& current, const char* flag, mesh::Mesh& rest) {
+  mesh::Mesh read_a, read_b;  // the rest files' meshes, where given
+  const mesh::Mesh* rest_a = &A;
+  const mesh::Mesh* rest_b = B;
+  auto rest_of = [](const std::string& path, const mesh::Mesh& current, const char* flag, mesh::Mesh& rest,
+                    const mesh::Mesh*& use) {
     if (path.empty()) return true;
     try {
       rest = mesh::read_mesh(path);
+      use = &rest;
     } catch (const mesh::ReadError& e) {
       std::cerr << "pdd mesh: " << flag << ": " << e.what() << '\n';
       return false;
@@ -186,13 +190,13 @@ int run_energy(const MeshArgs& args, const mesh::Mesh& A, const mesh::Mesh* B) {
     }
     return true;
   };
-  if (!rest_of(args.rest_a, A, "--rest-a", rest_a) || (B && !rest_of(args.rest_b, *B, "--rest-b", rest_b)))
+  if (!rest_of(args.rest_a, A, "--rest-a", read_a, rest_a) || (B && !rest_of(args.rest_b, *B, "--rest-b", read_b, rest_b)))
     return kExitFileError;
   o.weights_follow_a = args.rest_a.empty();
   o.weights_follow_b = args.rest_b.empty();
   const auto t0 = Clock::now();
-  const mesh::ContactEnergy e = B ? mesh::contact_energy(rest_a, rest_b, A.vertices, B->vertices, o)
-                                  : mesh::contact_energy_self(rest_a, A.vertices, o);
+  const mesh::ContactEnergy e = B ? mesh::contact_energy(*rest_a, *rest_b, A.vertices, B->vertices, o)
+                                  : mesh::contact_energy_self(*rest_a, A.vertices, o);
   double max_force = 0;
   std::size_t at = 0;
   for (std::size_t v = 0; v < e.gradient.size(); ++v) {
