@@ -27,7 +27,7 @@ int expected_ee_count(const EdgePairClass& c) {
 int along_face_checked = 0;
 
 // Candidate k marked along face f of A: a decided edge pair whose edge a lies on face f, its
-// exact direction FV:f's (same_direction_exact), and each variant's exact value at or above
+// exact direction FV:f's (same_direction_exact) and so its depth's sign, and each variant's exact value at or above
 // FV:f's (deformable_depth.h's proof, on the rationals of exact_candidate.h).
 void check_along_face(const TetPair& p, const CandidateSet& set, int k) {
   const int f = set.along_face[k];
@@ -36,6 +36,8 @@ void check_along_face(const TetPair& p, const CandidateSet& set, int k) {
   BOOST_TEST((kEdges[l.a][0] != f && kEdges[l.a][1] != f));  // edge a on the face opposite s_f
   const std::optional<bool> same = same_direction_exact(p.A, p.B, l, face);
   BOOST_TEST((same.has_value() && *same), l.str() << " along " << face.str());
+  // build_candidates takes its depth's sign from FV:f's instead of deciding it (depth_positive)
+  BOOST_TEST((depth_sign_exact(p.A, p.B, l) == depth_sign_exact(p.A, p.B, face)), l.str());
   const detail::ExactFrame frame = detail::exact_frame(p.A, p.B);
   const detail::ExactCandidate e = detail::exact_candidate(frame, l), c = detail::exact_candidate(frame, face);
   BOOST_TEST(detail::exact_static_value(e) >= detail::exact_static_value(c));
