@@ -127,6 +127,10 @@ run(2 "--repeats: 0 is out of range" bench --repeats 0)
 run(2 "--seed: '-1' is not a seed" bench --seed -1)
 run(2 "--repeats: 0 is out of range" bench mesh --repeats 0)
 run(2 "--size: 0 is out of range" bench mesh --size 0)
+# the smallest size accepted still generates balls (48 tetrahedra: the grid step is capped at
+# the radius), and each bench that generates them runs on them
+run(0 "48 x 48 tetrahedra" bench mesh --size 6 --aligned-cells 0 --repeats 1)
+run(0 "" bench resolve --size 6 --cases shallow --repeats 1)
 run(2 "give both --a and --b" bench mesh --a ${FIXTURES}/meshes/tiny-a.msh)
 run(2 "truncated.msh:.*truncated" bench mesh --a ${FIXTURES}/meshes/bad/truncated.msh --b ${FIXTURES}/meshes/tiny-b.msh)
 # ... and end to end on small meshes (no timing asserted): files given, and generated balls.

@@ -529,8 +529,10 @@ BlockPair stacked_blocks(int n, int layers, double depth, double tilt) {
 
 mesh::Mesh make_bench_ball(std::size_t target, const std::array<double, 3>& centre, double radius,
                            const std::array<double, 3>& axis, double angle, std::uint64_t seed) {
-  // 6 (4π/3) (R/h)³ tetrahedra: h = R (8π / target)^(1/3).
-  const double h = radius * std::cbrt(8 * M_PI / double(std::max<std::size_t>(target, 1)));
+  // 6 (4π/3) (R/h)³ tetrahedra: h = R (8π / target)^(1/3), at most R: the eight cubes about
+  // the centre have their centres at (√3/2) h <= 0.87 R, inside, so even the smallest target
+  // gives a mesh (48 tetrahedra; uncapped, a target below 17 makes h > 2R/√3: no cube inside).
+  const double h = radius * std::min(1.0, std::cbrt(8 * M_PI / double(std::max<std::size_t>(target, 1))));
   const int m = int(std::ceil(radius / h)) + 1;  // grid points −m..m per axis
   const int side = 2 * m + 1;
   auto gid = [&](int i, int j, int k) { return (std::size_t(i + m) * side + std::size_t(j + m)) * side + std::size_t(k + m); };

@@ -31,7 +31,8 @@ namespace pdd::compare {
 // lies inside the ball, every grid vertex moved by a deterministic jitter of up to 0.1 h per
 // coordinate (h the grid step; the smallest height of a Kuhn tetrahedron is h/√2, so no
 // element flips), then rotated by `angle` radians about `axis` (about the centre). Grid step
-// chosen so that the ball has about `target` tetrahedra. The same arguments give the same mesh.
+// chosen so that the ball has about `target` tetrahedra, at most the radius (48 tetrahedra at
+// least, for any target). The same arguments give the same mesh.
 mesh::Mesh make_bench_ball(std::size_t target, const std::array<double, 3>& centre,
                            double radius, const std::array<double, 3>& axis, double angle,
                            std::uint64_t seed);
