@@ -108,8 +108,10 @@ struct CandidateSet {
   // exactly a positive multiple of FV:f's: edge a lies on A's face f and eB.N_f = 0 exactly (the
   // g of the face's third vertex is 0; the other g < 0 decides the orientation, out of face f).
   // Every variant's QP along it is >= FV:f's (deformable_depth.h, "Edge pairs along a face of
-  // A"), and FV:f precedes it in canonical order: the sweeps leave it out. −1 otherwise, and on
-  // the edge pairs edge_pair_general decides (no claim: such a pair is evaluated as any other).
+  // A"), and FV:f precedes it in canonical order: the sweeps leave it out; its depth has FV:f's
+  // sign (build_candidates does not decide it again). Set on written lanes and on the decided
+  // edge pairs edge_pair_general takes with a non-zero n (exactly parallel pairs: −1); −1
+  // otherwise (no claim: such a pair is evaluated as any other).
   std::int16_t along_face[kMaxCandidates];
   EdgeLanes edges;
   DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
