@@ -4,13 +4,16 @@
 // directions a rounding away from a coordinate plane or a diagonal (its slow-drift path, which
 // considers a few tries only), those with a fractional part near a half included, and from a
 // cube's diagonal planes (the slow drift every second, third or fourth try); every triple
-// returned is c's integer normal.
+// returned is c's integer normal; and, along generic directions, the very triples of the plain
+// loop over every try (the search screens the tries).
 #define BOOST_TEST_MODULE fast_integer_normals
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "global/integer_normals.h"
@@ -146,4 +149,75 @@ BOOST_AUTO_TEST_CASE(parts_near_a_multiple_of_a_third_or_a_half) {
     what << "a multiple of 1/q, case " << i++;
     check_window_best(y, tries, what.str().c_str());
   }
+}
+
+// The loop over every try, as integer_normals.cpp describes it (the parts F - j A in 64-bit
+// fixed point, the metric d0² + d1² of their distances to the integers in doubles, the `keep`
+// least kept, a new one before equal ones), written plainly: along generic directions (no
+// drift applies) the search screens the tries four at a time and must return these triples,
+// bit for bit (its screen skips only tries whose metric cannot beat the kept ones).
+namespace {
+std::vector<global::V3> plain_loop(const Q (&y)[3], int tries, int keep) {
+  const int m = 2, idx[2] = {0, 1};
+  const std::uint64_t c0 = (std::uint64_t(1) << 53) - 1;
+  Q alpha[2];
+  std::uint64_t A[2], F[2];
+  for (int t = 0; t < 2; ++t) {
+    alpha[t] = y[idx[t]] / y[m];
+    auto frac64 = [&](unsigned long c) {  // floor(c alpha 2^64) mod 2^64
+      mpz_class num = alpha[t].get_num() * c, q, r;
+      mpz_mul_2exp(num.get_mpz_t(), num.get_mpz_t(), 64);
+      mpz_fdiv_q(q.get_mpz_t(), num.get_mpz_t(), alpha[t].get_den_mpz_t());
+      mpz_fdiv_r_2exp(r.get_mpz_t(), q.get_mpz_t(), 64);
+      return std::uint64_t(mpz_get_ui(r.get_mpz_t()));
+    };
+    A[t] = frac64(1), F[t] = frac64(static_cast<unsigned long>(c0));
+  }
+  std::vector<std::pair<double, std::uint64_t>> top;  // (metric, c), least first
+  for (int j = 0; j < tries; ++j) {
+    const double d0 = std::fabs(double(std::int64_t(F[0]))), d1 = std::fabs(double(std::int64_t(F[1])));
+    const double metric = d0 * d0 + d1 * d1;
+    if (int(top.size()) < keep || metric < top.back().first) {
+      if (int(top.size()) == keep) top.pop_back();
+      auto at = std::lower_bound(top.begin(), top.end(), metric,
+                                 [](const std::pair<double, std::uint64_t>& e, double v) { return e.first < v; });
+      top.insert(at, {metric, c0 - std::uint64_t(j)});
+    }
+    F[0] -= A[0], F[1] -= A[1];
+  }
+  std::vector<global::V3> out;
+  for (const auto& e : top) {
+    global::V3 v;
+    v[m] = sgn(y[m]) > 0 ? double(e.second) : -double(e.second);
+    for (int t = 0; t < 2; ++t) {
+      mpz_class num = alpha[t].get_num() * static_cast<unsigned long>(e.second), den = alpha[t].get_den(), q;
+      num = 2 * num + den;
+      den *= 2;
+      mpz_fdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+      v[idx[t]] = (sgn(y[m]) > 0 ? 1.0 : -1.0) * q.get_d();
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(screened_tries_return_the_loops_triples) {
+  std::uint64_t state = 12345;
+  auto next = [&state]() {  // (a fixed linear congruential sequence: the same directions every run)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) * 0x1p-53;
+  };
+  const int windows[] = {1, 3, 15, 16, 17, 33, 1000, 1024, 1041, 4099, 1 << 15};
+  int n = 0;
+  for (int w : windows)
+    for (int i = 0; i < 12; ++i) {
+      const Q y[3] = {Q(2 * next() - 1), Q(2 * next() - 1), Q(1 + next())};  // |y_0|, |y_1| < y_2
+      const int keep = 1 + (i % 8);
+      std::vector<global::V3> got;
+      global::integer_normals(y, w, keep, got);
+      BOOST_TEST((got == plain_loop(y, w, keep)), "window " << w << ", direction " << i);
+      ++n;
+    }
+  BOOST_TEST(n == 132);
 }

@@ -4,10 +4,65 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 namespace pdd::fast::global {
 namespace {
+
+// Run-time dispatch on x86-64 with GCC, as superset_kernel.cpp (integer operations only: every
+// clone returns the same tries).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PDD_TRIES_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define PDD_TRIES_CLONES
+#endif
+
+// The loop's screen: of the n tries j0 .. j0 + n − 1 (n a multiple of 16), those whose metric
+// may be below the loop's current worst, in increasing j, into out (returns how many). F0, F1:
+// the fractional parts at try j0 (64-bit fixed point); each step subtracts A0, A1 (mod 2^64),
+// as the loop does. The test is on integers, four tries a vector: with s_t the part read as a
+// signed 64-bit integer and h_t = |s_t| >> 32 (at most 2^31), the loop's d_t = |double(s_t)| >=
+// h_t 2^32 (h_t 2^32 <= |s_t| is a double and rounding is monotone), so its metric
+// fl(fl(d0 d0) + fl(d1 d1)) >= (h0² + h1²) 2^64 (1 − u)² >= (h0 + h1)² 2^63 (1 − u)². The caller's
+// S (screen_bound) has (S + 1)² 2^63 (1 − u)² > worst, so a try with h0 + h1 > S has metric >
+// worst: the loop's consider keeps nothing of it (it keeps metric < worst), and skipping it
+// changes no output. A sum and a compare a try instead of a square: passes are rare once
+// `keep` tries are kept, and each one passed is decided by consider.
+PDD_TRIES_CLONES int may_improve(std::uint64_t F0, std::uint64_t F1, std::uint64_t A0, std::uint64_t A1, int j0,
+                                 int n, std::int64_t S, int* out) {
+  typedef std::uint64_t u4 __attribute__((vector_size(32)));
+  typedef std::int64_t i4 __attribute__((vector_size(32)));
+  u4 f0 = {F0, F0 - A0, F0 - 2 * A0, F0 - 3 * A0}, f1 = {F1, F1 - A1, F1 - 2 * A1, F1 - 3 * A1};
+  const u4 step0 = u4{} + 4 * A0, step1 = u4{} + 4 * A1;
+  const i4 bound = i4{} + S;
+  auto pass = [&]() {  // the four tries at f0, f1; then a step
+    const i4 s0 = i4(f0), s1 = i4(f1);
+    const i4 n0 = s0 < 0, n1 = s1 < 0;  // all ones where negative
+    const i4 h = i4((u4((s0 ^ n0) - n0) >> 32) + (u4((s1 ^ n1) - n1) >> 32));
+    f0 -= step0, f1 -= step1;
+    return i4(h <= bound);
+  };
+  int m = 0;
+  for (int i = 0; i < n; i += 16) {
+    const i4 p[4] = {pass(), pass(), pass(), pass()};
+    const i4 any = p[0] | p[1] | p[2] | p[3];
+    if ((any[0] | any[1] | any[2] | any[3]) == 0) continue;
+    for (int g = 0; g < 4; ++g)
+      for (int k = 0; k < 4; ++k)
+        if (p[g][k]) out[m++] = j0 + i + 4 * g + k;
+  }
+  return m;
+}
+
+// may_improve's S for the loop's current worst: x = sqrt(t2) (1 + 2^-40) rounded, t2 =
+// fl(2^-63 worst (1 + 2^-48)), and S = floor(x), so that S + 1 > x >= sqrt(2^-63 worst) (1 + 2^-49)
+// (each rounding within u): (S + 1)² 2^63 (1 − u)² > worst. No bound (every try passes) where x
+// is not below 2^62 (h0 + h1 is at most 2^32).
+std::int64_t screen_bound(double worst) {
+  const double x = std::sqrt(worst * 0x1p-63 * (1 + 0x1p-48)) * (1 + 0x1p-40);
+  return !(x < 0x1p62) ? std::numeric_limits<std::int64_t>::max() : std::int64_t(x);
+}
 
 // The window's tries where both fractional parts drift by little (a direction a rounding away
 // from a coordinate plane or a diagonal: alpha_t within ~2^-19 of an integer, 2^18 tries),
@@ -173,10 +228,26 @@ void integer_normals(const detail::Q (&y)[3], int tries, int keep, std::vector<V
     }
   };
   if (!slow_drift(F, A, tries, keep, consider) && !interleaved_drift(F, A, tries, keep, consider)) {
-    for (int j = 0; j < tries; ++j) {
-      consider(j, dist(F[0]), dist(F[1]));
-      F[0] -= A[0], F[1] -= A[1];  // c -> c - 1 (mod 2^64: mod 1)
+    // Every try in increasing j, its parts F - j A (mod 2^64: c -> c - 1 is mod 1), screened
+    // in chunks by may_improve against the worst kept at the chunk's start (worst only falls,
+    // and consider tests each passed try against the current one): the loop's outputs.
+    constexpr int kChunk = 1024;
+    int passed[kChunk];
+    int j = 0;
+    for (; j + 16 <= tries; j += kChunk) {
+      const int n = std::min(kChunk, (tries - j) / 16 * 16);
+      const std::uint64_t F0 = F[0] - std::uint64_t(j) * A[0], F1 = F[1] - std::uint64_t(j) * A[1];
+      const int m = may_improve(F0, F1, A[0], A[1], j, n, screen_bound(worst), passed);
+      for (int i = 0; i < m; ++i) {
+        const std::uint64_t k = std::uint64_t(passed[i]);
+        consider(passed[i], dist(F[0] - k * A[0]), dist(F[1] - k * A[1]));
+      }
+      if (n < kChunk) {
+        j += n;
+        break;
+      }
     }
+    for (; j < tries; ++j) consider(j, dist(F[0] - std::uint64_t(j) * A[0]), dist(F[1] - std::uint64_t(j) * A[1]));
   }
   const double s = sgn(y[m]) > 0 ? 1.0 : -1.0;
   for (int r = 0; r < kept; ++r) {
