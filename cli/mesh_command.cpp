@@ -347,7 +347,8 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   CLI::Option* variants = cmd->add_option("--variants", args->variants,
                   "Comma-separated: rigid, eq11, static, pdd2, relaxed, accel1, accel6, global "
                   "(pdd2_global, PD_d² over every separating plane; tens of microseconds a pair "
-                  "with the fast engine), or all")
+                  "with the fast engine, up to milliseconds on contacts made by rounding, README "
+                  "\"Limits\"), or all")
       ->capture_default_str();
   cmd->add_option("--engine", args->engine,
                   "'fast' (doubles within the accuracy contract of docs/definitions.md §8; the "

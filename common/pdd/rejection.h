@@ -50,11 +50,13 @@ inline constexpr const char* kNotRepresentable =
     "not representable: a result is outside the normal double range (the fast engine's "
     "accuracy contract, docs/definitions.md §8)";
 // The fast engine's pdd2_global_error (the record's other values stay): no normal in doubles
-// was certified to attain pdd2_global, or pdd2_global or its positions are outside the normal
-// double range.
+// was certified to attain pdd2_global (its value may well be an ordinary double: what doubles
+// cannot resolve is the direction of its minimiser), or pdd2_global or its positions are
+// outside the normal double range.
 inline constexpr const char* kGlobalNotRepresentable =
-    "pdd2_global not representable: no normal in doubles was certified to attain it within the "
-    "fast engine's accuracy contract (the depth is below the resolution of the pair's extent)";
+    "pdd2_global declined: no normal in doubles was certified to attain it within the fast "
+    "engine's accuracy contract (the depth is below the resolution of the pair's extent: its "
+    "minimiser's direction is finer than doubles resolve; the exact engine gives it)";
 inline constexpr const char* kGlobalOutOfRange =
     "pdd2_global not representable: its value or deformed positions are outside the normal "
     "double range";

@@ -190,9 +190,9 @@ if(NOT out MATCHES "\"pdd2_global\":[0-9][^,]*,\"pdd2_global_normal\":\\[" OR NO
   message(FATAL_ERROR "solve (fast), near-touching: pdd2_global not computed\n${out}")
 endif()
 file(WRITE ${WORK}/declined.json "{\"pairs\":[{\"name\":\"near\",\"A\":[[1.484375,0.0390625,-2.0625],[-2.390625,-0.8359375,1.3125],[-2.640625,1.4765625,7.6875],[-4.765625,1.7890625,7.125]],\"B\":[[3.125,-0.875,-4.59375],[1.1875,-1.3125,-2.90625],[1.0625,-0.15625,0.28125],[-4.133520782600986e-18,1.5517643593698782e-18,6.179952383167375e-18]]}]}")
-run(1 "pair 'near': pdd2_global not representable: no normal in doubles" solve --engine fast --quiet --input ${WORK}/declined.json)
+run(1 "pair 'near': pdd2_global declined: no normal in doubles" solve --engine fast --quiet --input ${WORK}/declined.json)
 if(NOT out MATCHES "\"intersecting\":true,\"rigid_pd2\":1\\.52315146158976[0-9]*e-36" OR
-   NOT out MATCHES "\"error\":null,\"pdd2_global\":null,\"pdd2_global_normal\":null,\"q1_A_global\":null,\"q1_B_global\":null,\"pdd2_global_error\":\"pdd2_global not representable")
+   NOT out MATCHES "\"error\":null,\"pdd2_global\":null,\"pdd2_global_normal\":null,\"q1_A_global\":null,\"q1_B_global\":null,\"pdd2_global_error\":\"pdd2_global declined")
   message(FATAL_ERROR "solve (fast) with pdd2_global declined: wrong record\n${out}")
 endif()
 run(0 "took the exact path" solve --engine fast --no-global --input ${WORK}/declined.json)
