@@ -164,14 +164,16 @@ std::vector<global::V3> plain_loop(const Q (&y)[3], int tries, int keep) {
   std::uint64_t A[2], F[2];
   for (int t = 0; t < 2; ++t) {
     alpha[t] = y[idx[t]] / y[m];
-    auto frac64 = [&](unsigned long c) {  // floor(c alpha 2^64) mod 2^64
-      mpz_class num = alpha[t].get_num() * c, q, r;
-      mpz_mul_2exp(num.get_mpz_t(), num.get_mpz_t(), 64);
-      mpz_fdiv_q(q.get_mpz_t(), num.get_mpz_t(), alpha[t].get_den_mpz_t());
-      mpz_fdiv_r_2exp(r.get_mpz_t(), q.get_mpz_t(), 64);
-      return std::uint64_t(mpz_get_ui(r.get_mpz_t()));
+    const mpz_class two64 = mpz_class(1) << 64;
+    auto frac64 = [&](std::uint64_t c) {  // floor(c alpha 2^64) mod 2^64, from its rational value
+      const Q x = alpha[t] * Q(mpz_class(static_cast<unsigned long>(c))) * Q(two64);
+      mpz_class f;
+      mpz_fdiv_q(f.get_mpz_t(), x.get_num_mpz_t(), x.get_den_mpz_t());
+      f -= two64 * mpz_class(f / two64);  // (truncated quotient: f mod 2^64 up to one 2^64)
+      if (f < 0) f += two64;
+      return std::uint64_t(mpz_get_ui(f.get_mpz_t()));
     };
-    A[t] = frac64(1), F[t] = frac64(static_cast<unsigned long>(c0));
+    A[t] = frac64(1), F[t] = frac64(c0);
   }
   std::vector<std::pair<double, std::uint64_t>> top;  // (metric, c), least first
   for (int j = 0; j < tries; ++j) {
