@@ -36,16 +36,18 @@ PDD_TRIES_CLONES int may_improve(std::uint64_t F0, std::uint64_t F1, std::uint64
   u4 f0 = {F0, F0 - A0, F0 - 2 * A0, F0 - 3 * A0}, f1 = {F1, F1 - A1, F1 - 2 * A1, F1 - 3 * A1};
   const u4 step0 = u4{} + 4 * A0, step1 = u4{} + 4 * A1;
   const i4 bound = i4{} + S;
-  auto pass = [&]() {  // the four tries at f0, f1; then a step
+  auto pass = [&](i4& passed) {  // the four tries at f0, f1; then a step (an out-parameter: a
+                                 // vector returned by value would change the default clone's ABI)
     const i4 s0 = i4(f0), s1 = i4(f1);
     const i4 n0 = s0 < 0, n1 = s1 < 0;  // all ones where negative
     const i4 h = i4((u4((s0 ^ n0) - n0) >> 32) + (u4((s1 ^ n1) - n1) >> 32));
     f0 -= step0, f1 -= step1;
-    return i4(h <= bound);
+    passed = h <= bound;
   };
   int m = 0;
   for (int i = 0; i < n; i += 16) {
-    const i4 p[4] = {pass(), pass(), pass(), pass()};
+    i4 p[4];
+    for (i4& q : p) pass(q);
     const i4 any = p[0] | p[1] | p[2] | p[3];
     if ((any[0] | any[1] | any[2] | any[3]) == 0) continue;
     for (int g = 0; g < 4; ++g)
