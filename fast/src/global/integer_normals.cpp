@@ -22,8 +22,9 @@ namespace {
 // may be below the loop's current worst, in increasing j, into out (returns how many). F0, F1:
 // the fractional parts at try j0 (64-bit fixed point); each step subtracts A0, A1 (mod 2^64),
 // as the loop does. The test is on integers, four tries a vector: with s_t the part read as a
-// signed 64-bit integer and h_t = |s_t| >> 32 (at most 2^31), the loop's d_t = |double(s_t)| >=
-// h_t 2^32 (h_t 2^32 <= |s_t| is a double and rounding is monotone), so its metric
+// signed 64-bit integer and h_t = s_t >> 32 where s_t >= 0, (−s_t − 1) >> 32 (its bits
+// complemented) where s_t < 0, so that h_t 2^32 <= |s_t| (below 2^31 either way), the loop's
+// d_t = |double(s_t)| >= h_t 2^32 (a double, and rounding is monotone), so its metric
 // fl(fl(d0 d0) + fl(d1 d1)) >= (h0² + h1²) 2^64 (1 − u)² >= (h0 + h1)² 2^63 (1 − u)². The caller's
 // S (screen_bound) has (S + 1)² 2^63 (1 − u)² > worst, so a try with h0 + h1 > S has metric >
 // worst: the loop's consider keeps nothing of it (it keeps metric < worst), and skipping it
@@ -36,23 +37,22 @@ PDD_TRIES_CLONES int may_improve(std::uint64_t F0, std::uint64_t F1, std::uint64
   u4 f0 = {F0, F0 - A0, F0 - 2 * A0, F0 - 3 * A0}, f1 = {F1, F1 - A1, F1 - 2 * A1, F1 - 3 * A1};
   const u4 step0 = u4{} + 4 * A0, step1 = u4{} + 4 * A1;
   const i4 bound = i4{} + S;
-  auto pass = [&](i4& passed) {  // the four tries at f0, f1; then a step (an out-parameter: a
-                                 // vector returned by value would change the default clone's ABI)
+  auto skip = [&](i4& skipped) {  // the four tries at f0, f1; then a step (an out-parameter: a
+                                  // vector returned by value would change the default clone's ABI)
     const i4 s0 = i4(f0), s1 = i4(f1);
-    const i4 n0 = s0 < 0, n1 = s1 < 0;  // all ones where negative
-    const i4 h = i4((u4((s0 ^ n0) - n0) >> 32) + (u4((s1 ^ n1) - n1) >> 32));
+    const i4 h = i4((u4(s0 ^ (s0 < 0)) >> 32) + (u4(s1 ^ (s1 < 0)) >> 32));  // (s < 0: all ones)
     f0 -= step0, f1 -= step1;
-    passed = h <= bound;
+    skipped = h > bound;
   };
   int m = 0;
   for (int i = 0; i < n; i += 16) {
     i4 p[4];
-    for (i4& q : p) pass(q);
-    const i4 any = p[0] | p[1] | p[2] | p[3];
-    if ((any[0] | any[1] | any[2] | any[3]) == 0) continue;
+    for (i4& q : p) skip(q);
+    const i4 all = p[0] & p[1] & p[2] & p[3];
+    if ((all[0] & all[1] & all[2] & all[3]) == -1) continue;
     for (int g = 0; g < 4; ++g)
       for (int k = 0; k < 4; ++k)
-        if (p[g][k]) out[m++] = j0 + i + 4 * g + k;
+        if (!p[g][k]) out[m++] = j0 + i + 4 * g + k;
   }
   return m;
 }
