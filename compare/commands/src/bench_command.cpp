@@ -12,6 +12,7 @@
 //                  [--stacked-cells N] [--repeats R] [--json [FILE]]  (energy_bench.h)
 // Table on standard output. --json FILE also writes the same numbers as one JSON object to
 // FILE; --json alone writes the JSON to standard output and the table to standard error.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -519,20 +520,22 @@ Json mesh_report_json(const MeshBenchReport& r) {
 // The aligned cases: per case, the aligned meshes and the rotated ones, ratio aligned / rotated.
 void print_aligned_table(const MeshBenchReport& r, std::ostream& s) {
   if (r.aligned.empty()) return;
+  std::size_t w = 6;  // the case column: the longest name and two spaces
+  for (const auto& c : r.aligned) w = std::max(w, c.name.size() + 2);
   s << "\nAligned and structured meshes (" << r.options.aligned_cells
     << " cells per axis), one core, medians; beside each, B rotated by 0.3 rad (same run)\n  "
-    << pad("case", 54) << pad("", 9) << rpad("box pairs", 10) << rpad("pairs", 8)
+    << pad("case", w) << pad("", 9) << rpad("box pairs", 10) << rpad("pairs", 8)
     << rpad("ns/box pair", 13) << rpad("ns/pair", 11) << rpad("slow path", 11) << rpad("refined", 9) << "\n";
   for (const auto& c : r.aligned) {
     for (int k = 0; k < 2; ++k) {
       const AlignedRun& a = k ? c.rotated : c.aligned;
       auto pct = [&](std::size_t x) { return a.sampled ? fmt("%.1f%%", 100.0 * double(x) / double(a.sampled)) : std::string("-"); };
-      s << "  " << pad(k ? "" : c.name, 54) << pad(k ? "rotated" : "aligned", 9)
+      s << "  " << pad(k ? "" : c.name, w) << pad(k ? "rotated" : "aligned", 9)
         << rpad(std::to_string(a.box_pairs), 10) << rpad(std::to_string(a.intersecting), 8)
         << rpad(fmt("%.0f", a.decision_ns), 13) << rpad(fmt("%.0f", a.depth_ns), 11)
         << rpad(pct(a.slow_path), 11) << rpad(pct(a.refined), 9) << "\n";
     }
-    s << "  " << pad("", 54) << pad("ratio", 9) << rpad("", 18)
+    s << "  " << pad("", w) << pad("ratio", 9) << rpad("", 18)
       << rpad(fmt("%.2fx", c.aligned.decision_ns / c.rotated.decision_ns), 13)
       << rpad(fmt("%.2fx", c.aligned.depth_ns / c.rotated.depth_ns), 11) << "\n";
   }
