@@ -130,6 +130,7 @@ int run_compare(const CompareArgs& a) {
 
   std::array<std::vector<double>, kValueCount> errs;
   std::vector<double> pos, global, global_normal;
+  double pos_share = 0;  // the largest position error as a share of its pair's allowance
   std::array<std::array<int, 5>, kLabelCount> verdicts{};  // per label, per LabelVerdict (5)
   int over = 0, intersect_agree = 0, compared = 0, rejected = 0;
   for (const auto& c : cs) {
@@ -142,18 +143,20 @@ int run_compare(const CompareArgs& a) {
       if (c.rejections_agree)
         std::cerr << "pdd compare: pair '" << printable(c.name) << "' rejected: "
                   << (c.fast_error ? *c.fast_error : *c.exact_error)
-                  << (c.allowed_because.empty() ? "" : " (" + c.allowed_because + ")") << "\n";
+                  << (c.allowed_because.empty() ? "" : "; allowed: " + c.allowed_because) << "\n";
       continue;
     }
     ++compared;
     intersect_agree += c.intersect_agree;
     if (c.global_declined)
-      std::cerr << "pdd compare: pair '" << printable(c.name) << "': the fast engine declined pdd2_global"
-                << (c.allowed_because.empty() ? " where the contract requires it" : " (" + c.allowed_because + ")")
-                << "\n";
+      // (the engine's own message names pdd2_global: "pdd2_global declined: ...")
+      std::cerr << "pdd compare: pair '" << printable(c.name) << "': "
+                << (c.allowed_because.empty() ? "the fast engine declined pdd2_global where the contract requires it: " : "")
+                << c.global_decline << (c.allowed_because.empty() ? "" : "; allowed: " + c.allowed_because) << "\n";
     if (!c.intersecting) continue;
     for (std::size_t k = 0; k < kValueCount; ++k) errs[k].push_back(c.rel_error[k]);
     pos.push_back(c.position_error);
+    pos_share = std::max(pos_share, c.position_error / c.position_tolerance);
     if (!c.global_declined || c.allowed_because.empty()) {
       global.push_back(c.global_error);
       global_normal.push_back(c.global_normal_error);
@@ -177,7 +180,9 @@ int run_compare(const CompareArgs& a) {
   row("pdd2_global", global, "(outside the exact [pdd2_global_lower, pdd2_global])");
   row("global normal", global_normal, "(|exact relaxed along the fast normal - fast| / that)");
   s << std::setw(18) << "q1 positions" << std::setw(14) << (pos.empty() ? 0 : *std::max_element(pos.begin(), pos.end()))
-    << std::setw(14) << median_or_zero(pos) << "(|sigma(q1) - pdd2| / pdd2, exact)\n\n"
+    << std::setw(14) << median_or_zero(pos) << "(|sigma(q1) - pdd2| / pdd2, exact; each pair's allowance is 1e-9\n"
+    << std::setw(46) << "" << "plus the rounding of positions to doubles, relative to pdd2:\n"
+    << std::setw(46) << "" << "the largest error here is " << std::setprecision(3) << pos_share << " of its allowance)\n\n"
     << std::setw(18) << "label" << "same / tie / near-tie / differ\n";
   for (std::size_t k = 0; k < kLabelCount; ++k)
     s << std::setw(18) << kLabelKeys[k] << verdicts[k][0] << " / " << verdicts[k][1] << " / " << verdicts[k][2] << " / " << verdicts[k][3] << "\n";

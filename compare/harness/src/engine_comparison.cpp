@@ -248,9 +248,9 @@ PairComparison compare_pair(const TetPair& pair, const reference::ExactResult& e
     if ((c.global_decline == kGlobalNotRepresentable && global_normal_unresolvable(pair, exact)) ||
         (c.global_decline == kGlobalOutOfRange && !representable_global(exact)))
       c.allowed_because = c.global_decline == kGlobalOutOfRange
-                              ? "pdd2_global declined: the exact engine confirms it is outside the double range"
-                              : "pdd2_global declined: the exact pdd2_relaxed is below 1e-14 of the pair's "
-                                "extent squared, where no double normal need attain it";
+                              ? "the exact engine confirms it is outside the double range"
+                              : "the exact pdd2_relaxed is below 1e-14 of the pair's extent squared, where "
+                                "no double normal need attain it";
     else  // declined where the contract requires a value
       c.global_error = c.global_normal_error = std::numeric_limits<double>::infinity();
   }
