@@ -531,10 +531,4 @@ bool framed_delta2(const IntegerFrame& f, const FramedDepth& p, double& v, doubl
   return std::isnormal(v);
 }
 
-bool kept_framed_delta2(const IntegerFrame& f, const DirectionLabel& label, double& v, double& r) {
-  FramedDepth d;
-  bool ok = false;
-  return framed_memo.find(f.a(), f.b(), label_key(label), d, ok) && ok && framed_delta2(f, d, v, r);
-}
-
 }  // namespace pdd::fast::detail

@@ -89,9 +89,4 @@ int first_least_delta2_framed(const IntegerFrame& f, const DirectionLabel* l, in
 // r = 1.02 (rho_D + rho_n + 4u).
 bool framed_delta2(const IntegerFrame& f, const FramedDepth& p, double& v, double& r);
 
-// framed_delta2 of the label's depth where an earlier framed_depth on this pair (this thread)
-// has kept it, nothing computed: false where none has or framed_delta2 is false. For lower
-// bounds that are worth a memo's lookup but not a depth. Precondition: f.usable().
-bool kept_framed_delta2(const IntegerFrame& f, const DirectionLabel& label, double& v, double& r);
-
 }  // namespace pdd::fast::detail

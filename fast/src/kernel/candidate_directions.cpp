@@ -2,6 +2,7 @@
 // path: any input, exact fallbacks). See the header; shared arithmetic in direction_geometry.h.
 #include "kernel/candidate_directions.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -91,7 +92,9 @@ struct Builder {
   // needed, face_normal_known says which) instead of zeroing four expansions per build.
   Builder(const TetVertices& a, const TetVertices& b, const FilterBounds& bounds, const Precomputed& pre,
           CandidateSet& set, double L)
-      : A(a), B(b), fb(bounds), p(pre), out(set), extent(L) {}
+      : A(a), B(b), fb(bounds), p(pre), out(set), extent(L) {
+    out.delta_lower_known = false;
+  }
   const TetVertices& A;
   const TetVertices& B;
   const FilterBounds& fb;
@@ -130,7 +133,17 @@ struct Builder {
     // depth <= 0 ends the scan). A mesh against a copy of itself moved by a rounding has most of
     // its touching edge pairs so (each ~1,400 instructions over the frame's integers).
     if (out.along_face[k] >= 0) return true;
-    if (frame.usable()) return detail::framed_depth_sign(frame, label(out, k)) == 1;
+    if (frame.usable()) {
+      detail::FramedDepth d;
+      if (!detail::framed_depth(frame, label(out, k), d) || d.D_sign != 1) return false;
+      double v = 0, r = 0;
+      if (detail::framed_delta2(frame, d, v, r)) {
+        if (!out.delta_lower_known) std::fill(std::begin(out.delta_lower), std::end(out.delta_lower), 0.0);
+        out.delta_lower_known = true;
+        out.delta_lower[k] = lower_of(v, r);
+      }
+      return true;
+    }
     detail::CompensatedDepth d;
     if (out.parallel[k] != 1 && detail::compensated_depth(A, B, label(out, k), d)) return true;
     return depth_sign_exact(A, B, label(out, k)) == Sign::Positive;

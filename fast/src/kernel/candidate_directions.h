@@ -113,6 +113,13 @@ struct CandidateSet {
   // edge pairs edge_pair_general takes with a non-zero n (exactly parallel pairs: −1); −1
   // otherwise (no claim: such a pair is evaluated as any other).
   std::int16_t along_face[kMaxCandidates];
+  // A certified lower bound of candidate k's exact delta², from its exact depth where the build
+  // took it to decide the depth's sign (integer_depth.h's framed_delta2: a contact made by
+  // rounding, whose near-normal candidates have delta² ~1e-34 of L², below the doubles' error,
+  // so that their double bounds read 0); 0 elsewhere. The values' sweeps and rigid_pd2's
+  // refinement prune with it. Written (all of it) only where some is known: delta_lower_known.
+  bool delta_lower_known = false;
+  double delta_lower[kMaxCandidates];
   EdgeLanes edges;
   DirectionGeometry explicit_[kMaxCandidates];  // faces, and exactly decided edge pairs
 };
@@ -166,6 +173,11 @@ inline int along_face_of_A(const CandidateSet& set, int k) { return set.along_fa
 
 // delta(n)² of candidate k: D²/(n.n).
 inline double delta2(const CandidateSet& set, int k) { return set.delta_sq[k]; }
+// A certified lower bound of candidate k's exact delta² known without arithmetic
+// (CandidateSet::delta_lower), or 0.
+inline double delta2_known_lower(const CandidateSet& set, int k) {
+  return set.delta_lower_known ? set.delta_lower[k] : 0.0;
+}
 inline LabelCode label_code(const CandidateSet& set, int k) { return set.code[k]; }
 
 }  // namespace pdd::fast

@@ -60,6 +60,8 @@ LabelCode entry_label_code(const QuickCandidates& q, int src);
 // Candidate k of a quick list (label included).
 inline Candidate candidate(const QuickCandidates& q, int k) { return entry_candidate(q, q.src[k]); }
 inline double delta2(const QuickCandidates& q, int k) { return q.delta_sq[k]; }
+// (A quick list takes no exact depth: nothing known beyond its double bounds.)
+inline double delta2_known_lower(const QuickCandidates&, int) { return 0.0; }
 // No quick list holds an edge pair along a face of A (its g of 0 is within its filter bound).
 inline int along_face_of_A(const QuickCandidates&, int) { return -1; }
 inline LabelCode label_code(const QuickCandidates& q, int k) { return entry_label_code(q, q.src[k]); }

@@ -90,7 +90,7 @@ Choice rigid_of(const List& s) {
   const int chosen = ch.index;
   auto lower = [&s, chosen](int i) {
     if (along_face_of_A(s, i) >= 0 && i != chosen) return std::numeric_limits<double>::infinity();
-    return lower_of(s.delta_sq[i], detail::rigid_rel(s, i));
+    return std::max(lower_of(s.delta_sq[i], detail::rigid_rel(s, i)), delta2_known_lower(s, i));
   };
   auto exact = [](const detail::ExactCandidate& c, detail::Q& v) {
     v = detail::exact_delta2(c);

@@ -603,31 +603,6 @@ inline bool deferred_small(const Pending& e, const FilterBounds& fb) {
 // may be the minimum.
 inline double infeasible_or_unknown(const Pending& e) { return e.feasible ? 0.0 : kInf; }
 
-// A lower bound coeff · delta² of a candidate's exact value (the pruning bound, header) from its
-// exact delta², where the pair's framed depths hold it (integer_depth.h's kept_framed_delta2:
-// none is computed here); 0 where they do not. For the candidates whose double bounds give 0: on
-// a contact made by rounding every contender's delta² (~1e-34 of L²) lies below the doubles'
-// error, the refinement would take the compensated interval of each (~10 a pair on a grid
-// against its copy moved by a cell), and the candidate set's depth signs and rigid_pd2's
-// refinement have already taken these very depths (coeff a power of two: the product exact).
-template <class List>
-class KeptDelta2 {
- public:
-  KeptDelta2(const List& set, double coeff) : set_(set), coeff_(coeff) {}
-  double lower(int i) {
-    if (!set_.A) return 0.0;
-    if (!frame_) frame_.emplace(*set_.A, *set_.B);
-    double v = 0, r = kInf;
-    if (!frame_->usable() || !detail::kept_framed_delta2(*frame_, unpack_label(label_code(set_, i)), v, r)) return 0.0;
-    return coeff_ * safe_lower(v, r);
-  }
-
- private:
-  const List& set_;
-  const double coeff_;
-  std::optional<detail::IntegerFrame> frame_;
-};
-
 // A contender's interval for refine_tight (refine.h): compensated_valued's where it applies,
 // else the double one (none, r = inf, where the doubles give no finite value: a face normal
 // that underflows beside a far vertex); false when the candidate is not in the family.
@@ -648,7 +623,11 @@ bool tight_interval(const List& set, int i, const Variant& variant, double& v, d
 
 // sweep's choice where the double pass cannot certify one (sweep, "Below the doubles'
 // resolution"): the hint (value v, root bound r) the only candidate evaluated, every other one
-// bounded by coeff·delta² as sweep bounds a skipped one, the minimum refined (refine.h).
+// bounded by coeff·delta² as sweep bounds a skipped one, the minimum refined (refine.h). Every
+// contender's delta² lies below the doubles' error here, so its bound is the exact one the
+// candidate set knows (delta2_known_lower: the contacts made by rounding's near-normal
+// candidates, ~11 a pair, of which ~4.7 stay contenders on a grid against its copy moved by a
+// cell) where it knows one.
 template <class List, class Variant, class ExactValue>
 Choice refined_below_doubles(const List& set, double coeff, int hint, double v, double r, Variant variant,
                              ExactValue exact_value) {
@@ -656,11 +635,10 @@ Choice refined_below_doubles(const List& set, double coeff, int hint, double v, 
   ch.index = hint;
   ch.value = v;
   ch.code = label_code(set, hint);
-  KeptDelta2<List> kept(set, coeff);
   auto lower = [&](int i) {
     if (i != hint && along_face_of_A(set, i) >= 0) return kInf;
     const double lo = i == hint ? safe_lower(v, r) : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
-    return lo > 0.0 ? lo : kept.lower(i);
+    return std::max(lo, coeff * delta2_known_lower(set, i));
   };
   auto interval = [&](int i, double& x, double& e) { return tight_interval(set, i, variant, x, e); };
   auto no_tie_order = [](const int*, int) { return -1; };
@@ -676,7 +654,8 @@ Choice refined_below_doubles(const List& set, double coeff, int hint, double v, 
 // CandidateSet or QuickCandidates (same candidates, same order, same values).
 // definitions §8 (value_bounds.h): an evaluated candidate's exact value is >= lower_of(v, its QP
 // bound); a skipped one's is >= coeff · lower_of(delta², its rigid bound) (the pruning bound,
-// proven in the header, applied to the exact delta); one along a face of A is >= its face's,
+// proven in the header, applied to the exact delta, or to the candidate set's known lower bound of
+// it: delta2_known_lower); one along a face of A is >= its face's,
 // which is bounded among the others, so it adds nothing to the minimum of the lower bounds.
 template <class List, class Variant, class ExactValue>
 Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValue exact_value) {
@@ -733,12 +712,11 @@ Choice sweep(const List& set, double coeff, int hint, Variant variant, ExactValu
   if (ch.index < 0) return {};  // no finite value (NaN): not certified
   ch.value = v[ch.index];
   ch.code = label_code(set, ch.index);
-  KeptDelta2<List> kept(set, coeff);
   auto lower = [&](int i) {
     if (done[i] && !(v[i] < kInf)) return infeasible_or_unknown(p[i]);
     if (!done[i] && along_face_of_A(set, i) >= 0) return kInf;
     const double lo = done[i] ? safe_lower(v[i], r[i]) : coeff * safe_lower(delta2(set, i), detail::rigid_rel(set, i));
-    return lo > 0.0 ? lo : kept.lower(i);
+    return std::max(lo, coeff * delta2_known_lower(set, i));
   };
   // lo_min = the minimum of lower(i) over every candidate, starting from the choice's own.
   // An evaluated candidate is left out, its bound not computed, when deferred_small shows
