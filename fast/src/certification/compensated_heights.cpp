@@ -317,15 +317,19 @@ PDD_FMA_CLONES bool compensated_heights_along(const TetVertices& A, const TetVer
 bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out) {
   const DirectionLabel& l = c.label;
   ExpVec n;
-  if (l.kind != ContactKind::EE) return false;
-  const int u = kEdges[l.a][0], v = kEdges[l.a][1], x = kEdges[l.b][0], y = kEdges[l.b][1];
-  if (c.conA != ((1u << u) | (1u << v)) || c.conB != ((1u << x) | (1u << y))) return false;
+  const bool edges = l.kind == ContactKind::EE;
+  const int u = edges ? kEdges[l.a][0] : 0, v = edges ? kEdges[l.a][1] : 0, x = edges ? kEdges[l.b][0] : 0,
+            y = edges ? kEdges[l.b][1] : 0;
+  const unsigned face = 0xFu & ~(1u << l.a);  // a face label's constrained vertices
+  if (edges ? c.conA != ((1u << u) | (1u << v)) || c.conB != ((1u << x) | (1u << y))
+            : l.kind == ContactKind::FV ? c.conA != face || c.conB != 0 : c.conA != 0 || c.conB != face)
+    return false;
   if (IntegerFrame frame(A, B); frame.usable()) {
     // over the pair's integer frame (integer_depth.h): the same exact normal and heights, each
     // rounded once (~4,000 instructions a candidate where the expansions take ~12,000); where a
-    // value leaves the double range there, by expansions below
-    FramedEdgeHeights fh;
-    if (framed_edge_heights(frame, l, fh)) {
+    // value leaves the double range there, by expansions below (edge pairs only)
+    FramedHeights fh;
+    if (framed_heights(frame, l, fh)) {
       for (int k = 0; k < 3; ++k) out.n[k] = fh.n[k];
       out.e_n = fh.e_n;
       out.nn = out.n[0] * out.n[0] + out.n[1] * out.n[1] + out.n[2] * out.n[2];
@@ -334,7 +338,7 @@ bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, cons
       return finite_heights(out);
     }
   }
-  if (!oriented_normal_expansion(A, B, l, n)) return false;
+  if (!edges || !oriented_normal_expansion(A, B, l, n)) return false;
   out.e_n = 0;
   for (int k = 0; k < 3; ++k) {
     const Approx a = approx_of(compressed(n.x[k]));
@@ -344,7 +348,7 @@ bool expansion_heights_computed(const TetVertices& A, const TetVertices& B, cons
   if (!(out.nn > 0) || !std::isfinite(out.nn)) return false;
   // The heights relative to s_u exactly (A's edge at 0, B's edge at one common height: n*.eB = 0
   // exactly, so the exact heights of its vertices are equal), then relative to A's vertex
-  // highest along n* (framed_edge_heights' origin), each rounded once: u of its own value.
+  // highest along n* (framed_heights' origin), each rounded once: u of its own value.
   Expansion H[8];  // (default: 0)
   for (int i = 0; i < 4; ++i) {
     if (!(c.conA >> i & 1u)) H[i] = compressed(dot(n, difference(A[i], A[u])));

@@ -58,21 +58,24 @@ struct CompensatedHeights {
 bool compensated_heights(const TetVertices& A, const TetVertices& B, const Candidate& c,
                          CompensatedHeights& out);
 
-// The same for an edge pair whose double words cannot give it: parallel edges (their normal,
+// The same where double words cannot give it: an edge pair's parallel edges (their normal,
 // (e.e) w − (w.e) e, has degree 3) and nearly parallel ones (eB × eA cancels to ~u |e|², so
-// its double word is off by ~10 u of itself, and so is every height along it). The exact
-// normal n* and heights n*.(x − s_t), s_t A's vertex highest along n* (at a shallow contact's
-// plane the heights, and so their errors, are then ~|n*| depth, not |n*| size: the intervals of
-// a resting contact 1e-9 deep ~1e-13 wide instead of ~1e-7): over the pair's integer frame where it has one
-// (integer_depth.h's framed_edge_heights: machine integers, each value rounded to nearest once,
-// bound u of it), else by expansions (exact_predicates.h's oriented_normal_expansion: the
-// label's orientation; expansion.h), each compressed and rounded once with approx_of's bound:
-// every field within a few u of its own exact value, as above but without the u² term. For the
-// contenders of a contact made by rounding (a grid against its copy shifted along a diagonal:
-// edges parallel up to the rounding of the shift, depths ~1e-17 of the size), ~10 us a
-// candidate less than the rationals; the frame's route ~4,000 instructions a candidate where the
-// expansions take ~12,000. False for another label, outside the expansions' range or capacity,
-// and on a non-finite or vanishing value.
+// its double word is off by ~10 u of itself, and so is every height along it), and any label
+// whose depth lies below the double words' 25 u² M (a contact made by two roundings: depths
+// ~1e-31 of the size, pdd2 ~1e-62). The exact normal n* and heights n*.(x − o), o a face
+// label's first vertex (its face at 0, as above) or s_t, A's vertex highest along n* (at a
+// shallow contact's plane the heights, and so their errors, are then ~|n*| depth, not |n*|
+// size: the intervals of a resting contact 1e-9 deep ~1e-13 wide instead of ~1e-7): over the
+// pair's integer frame where it has one (integer_depth.h's framed_heights: machine integers,
+// each value rounded to nearest once, bound u of it), else, for an edge pair, by expansions
+// (exact_predicates.h's oriented_normal_expansion: the label's orientation; expansion.h), each
+// compressed and rounded once with approx_of's bound: every field within a few u of its own
+// exact value, as above but without the u² term. For the contenders of a contact made by
+// rounding (a grid against its copy shifted along a diagonal: edges parallel up to the rounding
+// of the shift, depths ~1e-17 of the size), ~10 us a candidate less than the rationals; the
+// frame's route ~4,000 instructions a candidate where the expansions take ~12,000. False for
+// constrained sets other than the label's, a face label without a frame, outside the
+// expansions' range or capacity, and on a non-finite or vanishing value.
 bool expansion_heights(const TetVertices& A, const TetVertices& B, const Candidate& c, CompensatedHeights& out);
 
 // The heights along a given double normal v instead of a candidate's (pdd2_global's normals,

@@ -409,9 +409,8 @@ int highest_of_a(const H& h0, const H& h1, const H& h2, const H& h3) {
 }
 }  // namespace
 
-bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, FramedEdgeHeights& out) {
-  if (label.kind != ContactKind::EE) return false;
-  const int e = f.unit_exponent(), u = kEdges[label.a][0];
+bool framed_heights(const IntegerFrame& f, const DirectionLabel& label, FramedHeights& out) {
+  const int e = f.unit_exponent(), u = label.kind == ContactKind::EE ? kEdges[label.a][0] : 0;
   __int128 n[3];
   Extremes x;
   bool ok = true;
@@ -423,7 +422,9 @@ bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, Fra
       ok = ok && rounded_scaled(w, 2 * e, out.n[k], err);
       out.e_n = std::fmax(out.e_n, err);
     }
-    const int t = highest_of_a(f.dot(n, 0, u), f.dot(n, 1, u), f.dot(n, 2, u), f.dot(n, 3, u));
+    const int t = label.kind == ContactKind::FV   ? kFace[label.a][0]
+                  : label.kind == ContactKind::VF ? 4 + kFace[label.a][0]
+                                                  : highest_of_a(f.dot(n, 0, u), f.dot(n, 1, u), f.dot(n, 2, u), f.dot(n, 3, u));
     for (int i = 0; i < 8 && ok; ++i) ok = rounded_scaled(f.dot(n, i, t), 3 * e, out.h[i], out.e[i]);
     return ok;
   }

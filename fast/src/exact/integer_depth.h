@@ -57,22 +57,25 @@ bool framed_depth(const IntegerFrame& f, const DirectionLabel& label, FramedDept
 // whose depth the refinement asks next); 2 for a colinear edge pair. Precondition: f.usable().
 int framed_depth_sign(const IntegerFrame& f, const DirectionLabel& label);
 
-// An edge-pair label's exact oriented normal n (framed_depth's: eB × eA, or the common
-// perpendicular of parallel edges, oriented as the label says) and the heights n.(x_i − s_t) of
-// the eight vertices (0..3 A's, 4..7 B's; s_t A's vertex highest along n, the first in ties),
-// each rounded once to a double in the pair's units (n in 2^(2e), heights in 2^(3e); parallel:
-// 2^(3e) and 2^(4e)), with |n~_k − n_k| <= e_n and |h~_i − h_i| <= e[i] (each a few u of its own
-// value, 0 where the value is 0). Relative to A's highest vertex, the vertices at a shallow
-// contact's plane have heights ~|n| depth, so their errors are ~u of that rather than of the
-// pair's size (a resting contact 1e-9 deep: intervals ~1e-7 wide relative to s_u, ~1e-13 here).
-// A's edge's two heights are equal exactly (n is normal to it), and so are B's. For compensated_heights.h's expansion_heights, which takes the same quantities
-// by expansions where the pair has no frame. False for a face label, a colinear edge pair, or a
-// value that is not 0 and does not round to a normal double. Precondition: f.usable().
-struct FramedEdgeHeights {
+// A label's exact oriented normal n (framed_depth's: a face's outward normal, −outward for VF,
+// eB × eA for an edge pair, or the common perpendicular of parallel edges, oriented as the label
+// says) and the heights n.(x_i − o) of the eight vertices (0..3 A's, 4..7 B's), each rounded
+// once to a double in the pair's units (n in 2^(2e), heights in 2^(3e); parallel: 2^(3e) and
+// 2^(4e)), with |n~_k − n_k| <= e_n and |h~_i − h_i| <= e[i] (each a few u of its own value, 0
+// where the value is 0). The origin o: the face's first vertex for FV and VF (the face's three
+// heights exactly 0, as compensated_heights.h has them), else s_t, A's vertex highest along n
+// (the first in ties). Relative to it the vertices at a shallow contact's plane have heights
+// ~|n| depth, so their errors are ~u of that rather than of the pair's size (a resting contact
+// 1e-9 deep: intervals ~1e-7 wide relative to s_u, ~1e-13 here). An edge pair's A edge's two
+// heights are equal exactly (n is normal to it), and so are B's. For compensated_heights.h's
+// expansion_heights, which takes the same quantities by expansions where the pair has no frame
+// (edge pairs only). False for a colinear edge pair, or a value that is not 0 and does not round
+// to a normal double. Precondition: f.usable().
+struct FramedHeights {
   double n[3] = {0, 0, 0}, e_n = 0;
   double h[8] = {}, e[8] = {};
 };
-bool framed_edge_heights(const IntegerFrame& f, const DirectionLabel& label, FramedEdgeHeights& out);
+bool framed_heights(const IntegerFrame& f, const DirectionLabel& label, FramedHeights& out);
 
 // sign(delta²_p − delta²_q), exactly (both from one frame).
 int compare_framed_delta2(const FramedDepth& p, const FramedDepth& q);

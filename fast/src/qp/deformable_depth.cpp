@@ -204,14 +204,13 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   const VerifiedPattern given = pattern ? *pattern : VerifiedPattern{};  // (bracketed: left as given)
   const bool words = detail::compensated_heights(A, B, c, h) &&
                      valued_on_heights(pattern ? h : shifted_heights(h), conA, conB, kind, out, s, pattern, true);
-  if (words && (c.label.kind != ContactKind::EE || certified_choice(upper_of(out.v, out.r), lower_of(out.v, out.r))))
-    return true;
-  // An edge pair's heights by expansions (compensated_heights.h's expansion_heights: each
-  // within a few u of its own exact value): parallel and nearly parallel edges, which have no
-  // double words, and a contact made by rounding whose double words' u² M term exceeds the
-  // heights at the plane (depths ~1e-17 of the size on a grid against its copy shifted by a
-  // quarter cell along the diagonal): their value's interval, too wide for definitions §8, is
-  // replaced by the exact heights' where those give one.
+  if (words && certified_choice(upper_of(out.v, out.r), lower_of(out.v, out.r))) return true;
+  // The heights by expansions (compensated_heights.h's expansion_heights: each within a few u
+  // of its own exact value): parallel and nearly parallel edges, which have no double words,
+  // and a contact made by rounding whose double words' u² M term exceeds the heights at the
+  // plane (depths ~1e-17 of the size on a grid against its copy shifted by a quarter cell along
+  // the diagonal, on any label ~1e-31 where two roundings made it): their value's interval, too
+  // wide for definitions §8, is replaced by the exact heights' where those give one.
   if (!(c.parallel || c.own_bounds || words)) return false;
   detail::CompensatedHeights x;
   Valued v;
@@ -1447,10 +1446,9 @@ bool compensated_positions(const TetVertices& A, const TetVertices& B, const Can
                            Positions<double>& qA, Positions<double>& qB) {
   detail::CompensatedHeights h;
   if (detail::compensated_heights(A, B, c, h) && positions_on(A, B, c, h, true, qA, qB)) return true;
-  // parallel and nearly parallel edge pairs: heights by expansions (no double words, or double
-  // words ~10 u off of themselves)
-  return c.label.kind == ContactKind::EE && (c.parallel || c.own_bounds) && detail::expansion_heights(A, B, c, h) &&
-         positions_on(A, B, c, h, false, qA, qB);
+  // heights by expansions: parallel and nearly parallel edge pairs (no double words, or double
+  // words ~10 u off of themselves), and depths below the double words' u² term (compensated_valued)
+  return detail::expansion_heights(A, B, c, h) && positions_on(A, B, c, h, false, qA, qB);
 }
 
 namespace {
