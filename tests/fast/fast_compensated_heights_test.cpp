@@ -541,6 +541,104 @@ BOOST_AUTO_TEST_CASE(expansion_heights_within_their_bounds) {
   BOOST_TEST(worst <= 1.0);
 }
 
+// Twelve intersecting pairs of a Gmsh transfinite box (cell 1/3, Gmsh's node placement: each
+// coordinate a few ulps off the grid) against its copy moved by one cell in x, each a contact
+// made by two roundings: pdd2 below 1e-50 (84 of 500 such pairs sampled were).
+const std::pair<TetVertices, TetVertices> kTwoRoundingContacts[] = {
+    {TetVertices{{{0x1.0000000000000p+1, 0x1.aaaaaaaaaaaacp+0, 0x1.5555555555555p-1}, {0x1.aaaaaaaaaaaacp+0, 0x1.aaaaaaaaaaaa8p+0, 0x1.5555555555557p-1}, {0x1.0000000000000p+1, 0x1.5555555555554p+0, 0x1.0000000000000p+0}, {0x1.aaaaaaaaaaaacp+0, 0x1.aaaaaaaaaaaacp+0, 0x1.0000000000000p+0}}},
+     TetVertices{{{0x1.5555555555555p+0, 0x1.aaaaaaaaaaaacp+0, 0x1.0000000000000p+0}, {0x1.5555555555555p+0, 0x1.aaaaaaaaaaaa8p+0, 0x1.5555555555553p-1}, {0x1.5555555555555p+0, 0x1.0000000000000p+1, 0x1.5555555555555p-1}, {0x1.aaaaaaaaaaaadp+0, 0x1.aaaaaaaaaaaa8p+0, 0x1.5555555555557p-1}}}},
+    {TetVertices{{{0x1.5555555555556p-1, 0x1.5555555555556p-1, 0x0.0p+0}, {0x1.5555555555553p-1, 0x1.5555555555558p-2, 0x1.5555555555558p-2}, {0x1.5555555555556p-1, 0x1.5555555555559p-1, 0x1.5555555555558p-2}, {0x1.5555555555557p-2, 0x1.5555555555557p-1, 0x1.5555555555558p-2}}},
+     TetVertices{{{0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x0.0p+0}, {0x1.5555555555556p-1, 0x1.5555555555557p-1, 0x1.5555555555558p-2}, {0x1.0000000000000p+0, 0x1.5555555555556p-1, 0x0.0p+0}, {0x1.0000000000000p+0, 0x1.5555555555559p-1, 0x1.5555555555558p-2}}}},
+    {TetVertices{{{0x1.aaaaaaaaaaaacp+0, 0x0.0p+0, 0x1.5555555555555p-1}, {0x1.aaaaaaaaaaaacp+0, 0x0.0p+0, 0x1.5555555555555p-2}, {0x1.5555555555554p+0, 0x1.555555555555ap-2, 0x1.5555555555558p-2}, {0x1.aaaaaaaaaaaacp+0, 0x1.5555555555555p-2, 0x1.5555555555557p-2}}},
+     TetVertices{{{0x1.5555555555555p+0, 0x1.5555555555555p-2, 0x0.0p+0}, {0x1.5555555555555p+0, 0x0.0p+0, 0x1.5555555555555p-2}, {0x1.aaaaaaaaaaaa9p+0, 0x0.0p+0, 0x1.5555555555555p-2}, {0x1.5555555555555p+0, 0x1.5555555555558p-2, 0x1.5555555555558p-2}}}},
+    {TetVertices{{{0x1.5555555555556p-1, 0x1.5555555555559p-1, 0x1.5555555555558p-2}, {0x1.5555555555556p-1, 0x1.5555555555556p-1, 0x0.0p+0}, {0x1.5555555555555p-2, 0x1.0000000000000p+0, 0x0.0p+0}, {0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x0.0p+0}}},
+     TetVertices{{{0x1.5555555555556p-1, 0x1.5555555555556p-1, 0x1.5555555555558p-1}, {0x1.5555555555556p-1, 0x1.5555555555557p-1, 0x1.5555555555558p-2}, {0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x1.5555555555557p-2}, {0x1.0000000000000p+0, 0x1.5555555555559p-1, 0x1.5555555555558p-2}}}},
+    {TetVertices{{{0x0.0p+0, 0x1.5555555555557p-2, 0x1.5555555555557p-2}, {0x0.0p+0, 0x0.0p+0, 0x1.5555555555555p-1}, {0x1.5555555555557p-2, 0x0.0p+0, 0x1.5555555555557p-2}, {0x1.5555555555555p-2, 0x0.0p+0, 0x1.5555555555556p-1}}},
+     TetVertices{{{0x1.5555555555555p-2, 0x1.5555555555557p-2, 0x1.5555555555557p-2}, {0x1.5555555555555p-2, 0x0.0p+0, 0x1.5555555555555p-1}, {0x1.5555555555555p-1, 0x0.0p+0, 0x1.5555555555556p-1}, {0x1.5555555555555p-2, 0x1.5555555555555p-2, 0x1.5555555555556p-1}}}},
+    {TetVertices{{{0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x0.0p+0}, {0x1.5555555555556p-1, 0x1.5555555555559p-1, 0x1.5555555555558p-2}, {0x1.5555555555555p-1, 0x1.0000000000005p+0, 0x1.5555555555557p-2}, {0x1.5555555555555p-2, 0x1.0000000000000p+0, 0x1.5555555555557p-2}}},
+     TetVertices{{{0x1.5555555555555p-2, 0x1.5555555555554p+0, 0x1.5555555555555p-2}, {0x1.5555555555555p-2, 0x1.0000000000000p+0, 0x1.5555555555555p-1}, {0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x1.5555555555557p-2}, {0x1.5555555555556p-1, 0x1.0000000000000p+0, 0x1.5555555555556p-1}}}},
+    {TetVertices{{{0x1.aaaaaaaaaaaacp+0, 0x1.0000000000000p+0, 0x1.5555555555557p-2}, {0x1.aaaaaaaaaaaacp+0, 0x1.0000000000000p+0, 0x0.0p+0}, {0x1.5555555555554p+0, 0x1.5555555555554p+0, 0x0.0p+0}, {0x1.aaaaaaaaaaaacp+0, 0x1.5555555555554p+0, 0x0.0p+0}}},
+     TetVertices{{{0x1.5555555555555p+0, 0x1.5555555555554p+0, 0x0.0p+0}, {0x1.0000000000000p+0, 0x1.5555555555554p+0, 0x0.0p+0}, {0x1.5555555555555p+0, 0x1.0000000000000p+0, 0x1.5555555555553p-2}, {0x1.0000000000000p+0, 0x1.5555555555558p+0, 0x1.5555555555557p-2}}}},
+    {TetVertices{{{0x1.5555555555558p+0, 0x1.0000000000000p+0, 0x1.5555555555557p-1}, {0x1.5555555555554p+0, 0x1.5555555555555p-1, 0x1.0000000000000p+0}, {0x1.aaaaaaaaaaaacp+0, 0x1.5555555555557p-1, 0x1.5555555555555p-1}, {0x1.aaaaaaaaaaaacp+0, 0x1.5555555555555p-1, 0x1.0000000000000p+0}}},
+     TetVertices{{{0x1.aaaaaaaaaaaa9p+0, 0x1.5555555555558p-1, 0x1.555555555555ap-1}, {0x1.aaaaaaaaaaaa9p+0, 0x1.555555555555ap-1, 0x1.555555555555ap-2}, {0x1.5555555555555p+0, 0x1.0000000000000p+0, 0x1.5555555555553p-2}, {0x1.aaaaaaaaaaaa9p+0, 0x1.0000000000000p+0, 0x1.5555555555557p-2}}}},
+    {TetVertices{{{0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x0.0p+0}, {0x1.5555555555556p-1, 0x1.5555555555559p-1, 0x1.5555555555558p-2}, {0x1.5555555555555p-1, 0x1.0000000000005p+0, 0x1.5555555555557p-2}, {0x1.5555555555555p-2, 0x1.0000000000000p+0, 0x1.5555555555557p-2}}},
+     TetVertices{{{0x1.5555555555555p-1, 0x1.5555555555554p+0, 0x0.0p+0}, {0x1.5555555555555p-1, 0x1.0000000000000p+0, 0x1.5555555555557p-2}, {0x1.0000000000000p+0, 0x1.0000000000000p+0, 0x0.0p+0}, {0x1.0000000000000p+0, 0x1.0000000000005p+0, 0x1.5555555555557p-2}}}},
+    {TetVertices{{{0x1.0000000000000p+0, 0x1.5555555555554p+0, 0x1.5555555555553p-1}, {0x1.0000000000000p+0, 0x1.5555555555558p+0, 0x1.5555555555553p-2}, {0x1.0000000000000p+0, 0x1.aaaaaaaaaaaa8p+0, 0x1.5555555555553p-2}, {0x1.5555555555554p+0, 0x1.5555555555558p+0, 0x1.5555555555558p-2}}},
+     TetVertices{{{0x1.0000000000000p+0, 0x1.5555555555558p+0, 0x1.5555555555557p-2}, {0x1.0000000000001p+0, 0x1.0000000000000p+0, 0x1.5555555555556p-1}, {0x1.5555555555555p+0, 0x1.0000000000000p+0, 0x1.5555555555553p-2}, {0x1.5555555555555p+0, 0x1.0000000000000p+0, 0x1.5555555555553p-1}}}},
+    {TetVertices{{{0x1.5555555555554p+0, 0x1.5555555555558p-1, 0x1.555555555555ap-1}, {0x1.5555555555554p+0, 0x1.5555555555555p-2, 0x1.0000000000000p+0}, {0x1.aaaaaaaaaaaacp+0, 0x1.5555555555557p-2, 0x1.5555555555556p-1}, {0x1.aaaaaaaaaaaacp+0, 0x1.5555555555555p-2, 0x1.0000000000000p+0}}},
+     TetVertices{{{0x1.0000000000000p+0, 0x1.5555555555557p-1, 0x1.5555555555559p-1}, {0x1.0000000000000p+0, 0x1.5555555555557p-2, 0x1.0000000000000p+0}, {0x1.5555555555555p+0, 0x1.5555555555555p-2, 0x1.0000000000000p+0}, {0x1.0000000000000p+0, 0x1.5555555555556p-1, 0x1.0000000000000p+0}}}},
+    {TetVertices{{{0x1.0000000000000p+0, 0x1.5555555555554p+0, 0x1.5555555555553p-1}, {0x1.0000000000000p+0, 0x1.5555555555558p+0, 0x1.5555555555553p-2}, {0x1.0000000000000p+0, 0x1.aaaaaaaaaaaa8p+0, 0x1.5555555555553p-2}, {0x1.5555555555554p+0, 0x1.5555555555558p+0, 0x1.5555555555558p-2}}},
+     TetVertices{{{0x1.5555555555555p+0, 0x1.5555555555554p+0, 0x0.0p+0}, {0x1.5555555555555p+0, 0x1.0000000000000p+0, 0x1.5555555555553p-2}, {0x1.5555555555555p+0, 0x1.5555555555558p+0, 0x1.5555555555553p-2}, {0x1.0000000000000p+0, 0x1.5555555555558p+0, 0x1.5555555555557p-2}}}},
+};
+
+// expansion_heights on face labels (compensated_heights.h: over the pair's integer frame): a
+// Kuhn grid of cell 1/3 against its copy moved by one cell in x (each coordinate i/3 + 1/3
+// rounded once) and the contacts made by two roundings above. Every face candidate's heights and
+// normal lie within their certified bounds of the definition's rationals (n = (t1 − t0) × (t2 −
+// t0) outward for FV, into B for VF; heights about the face's first vertex, the face's own three
+// exactly 0), the bounds not vacuous; and every case-2 value of those candidates below 1e-40 of
+// the squared extent (where the double words' 25 u² M term exceeds the heights at the plane) is
+// certified on its own (definitions §8) and holds the exact value. Measured: 960 face
+// candidates, worst error 0.81 of its bound; 10 case-2 values below 1e-40, every one certified
+// (two of them where the double words give no value at all).
+BOOST_AUTO_TEST_CASE(face_heights_exact_over_the_frame) {
+  const double h = 1.0 / 3;
+  int faces = 0, wrong = 0, not_zero = 0, tiny = 0, tiny_certified = 0, outside = 0;
+  double worst = 0;
+  std::vector<std::pair<TetVertices, TetVertices>> pairs = shifted_kuhn_pairs(h, {h, 0, 0});
+  for (const auto& p : kTwoRoundingContacts) pairs.push_back(p);
+  for_each_candidate(pairs, [&](const detail::ScaledPair& sp, const detail::ExactFrame& f, const Candidate& c) {
+    if (c.label.kind == ContactKind::EE) return;
+    const bool fv = c.label.kind == ContactKind::FV;
+    const TetVertices& T = fv ? sp.A : sp.B;
+    const auto& F = kFace[c.label.a];
+    auto d = [](const Vec3d& p, const Vec3d& q) {
+      return std::array<Q, 3>{Q(p[0]) - Q(q[0]), Q(p[1]) - Q(q[1]), Q(p[2]) - Q(q[2])};
+    };
+    auto dot = [](const std::array<Q, 3>& a, const std::array<Q, 3>& b) -> Q {
+      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    };
+    const std::array<Q, 3> e1 = d(T[F[1]], T[F[0]]), e2 = d(T[F[2]], T[F[0]]);
+    std::array<Q, 3> n;
+    for (int k = 0; k < 3; ++k) n[k] = e1[(k + 1) % 3] * e2[(k + 2) % 3] - e1[(k + 2) % 3] * e2[(k + 1) % 3];
+    const bool outward = sgn(dot(n, d(T[c.label.a], T[F[0]]))) < 0;
+    if (outward != fv)  // FV: outward of A; VF: into B
+      for (Q& x : n) x = -x;
+    detail::CompensatedHeights hh;
+    BOOST_TEST_REQUIRE(detail::expansion_heights(sp.A, sp.B, c, hh), c.label.str());
+    ++faces;
+    auto check = [&](double computed, double bound, const Q& exact) {
+      const Q err = abs(Q(computed) - exact);
+      if (err > Q(bound)) ++wrong;
+      if (bound > 0) worst = std::max(worst, Q(err / Q(bound)).get_d());
+    };
+    for (int i = 0; i < 4; ++i) {
+      check(hh.hA[i], hh.eA[i], dot(n, d(sp.A[i], T[F[0]])));
+      check(hh.hB[i], hh.eB[i], dot(n, d(sp.B[i], T[F[0]])));
+    }
+    for (int k = 0; k < 3; ++k) check(hh.n[k], hh.e_n, n[k]);
+    for (int j = 0; j < 3; ++j) not_zero += (fv ? hh.hA[F[j]] : hh.hB[F[j]]) != 0.0;
+    const Q exact = detail::unscaled(f, detail::exact_deformable_value(detail::exact_candidate(f, c.label)), 2);
+    if (!(exact < Q(1e-40))) return;
+    ++tiny;
+    double v = 0, r = 0;
+    if (!compensated_value(sp.A, sp.B, c, QpKind::Deformable, v, r, nullptr)) return;
+    tiny_certified += certified_choice(upper_of(v, r), lower_of(v, r));
+    if (exact < Q(lower_of(v, r)) || exact > Q(upper_of(v, r))) ++outside;
+  });
+  BOOST_TEST_MESSAGE("face heights over the frame: " << faces << " face candidates, worst error / bound " << worst
+                                                     << "; " << tiny << " case-2 values below 1e-40, " << tiny_certified
+                                                     << " certified");
+  BOOST_TEST(wrong == 0);
+  BOOST_TEST(not_zero == 0);
+  BOOST_TEST(faces > 900);
+  BOOST_TEST(worst > 0.1);  // not vacuous: a bound a tenth as wide would fail
+  BOOST_TEST(worst <= 1.0);
+  BOOST_TEST(tiny >= 10);
+  BOOST_TEST(tiny_certified == tiny);
+  BOOST_TEST(outside == 0);
+}
+
 // compensated_value (deformable_depth.h), the intervals refine.h's contenders certify on: for
 // every candidate and each of the three QPs (case 1 where the candidate is in its family, case
 // 2, relaxed) on degenerate contacts (a Kuhn grid against its copy shifted half a cell along

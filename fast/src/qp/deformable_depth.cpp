@@ -211,7 +211,7 @@ bool compensated_valued(const TetVertices& A, const TetVertices& B, const Candid
   // plane (depths ~1e-17 of the size on a grid against its copy shifted by a quarter cell along
   // the diagonal, on any label ~1e-31 where two roundings made it): their value's interval, too
   // wide for definitions §8, is replaced by the exact heights' where those give one.
-  if (!(c.parallel || c.own_bounds || words)) return false;
+  if (!(c.parallel || c.own_bounds || words || c.label.kind != ContactKind::EE)) return false;
   detail::CompensatedHeights x;
   Valued v;
   DirectionSolution t;
