@@ -430,12 +430,12 @@ bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::
                          const std::array<double, 3>& lo) {
   detail::CompensatedHeights h;
   Valued x;
-  // Along a double-word normal (the shallow certificate's tilt to a minimiser, where a vertex
-  // meets the plane and its margin is ~0), a pattern whose margins are unsure is bracketed
+  // At a minimiser where another vertex meets the plane (the shallow certificate's tilt, or the
+  // exact minimiser's normal rounded: a contact made by rounding, its minimiser where pieces
+  // meet) that vertex's margin is ~0: a pattern whose margins are unsure is bracketed
   // (valued_on_heights' bracket: its value's interval covers the vertex on either side).
-  const bool bracket = lo[0] != 0 || lo[1] != 0 || lo[2] != 0;
   if (!detail::compensated_heights_along(A, B, v, h, lo) ||
-      !valued_on_heights(h, 0u, 0u, QpKind::Relaxed, x, s, nullptr, bracket))
+      !valued_on_heights(h, 0u, 0u, QpKind::Relaxed, x, s, nullptr, true))
     return false;
   value = x.v, r = x.r;
   for (int i = 0; i < 4; ++i) hA[i] = h.hA[i], hB[i] = h.hB[i];

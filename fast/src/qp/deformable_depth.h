@@ -119,11 +119,11 @@ double case2_upper(const TetVertices& As, const TetVertices& Bs, const Candidate
 // argument, deformable_depth.cpp). value, r (value_bounds.h: the exact value lies in
 // [lower_of(value, r), upper_of(value, r)]), the solution s of that pattern and the heights
 // (relative to A's vertex highest along v) it was computed on. False when not applicable or
-// a margin is too small. Precondition: a pair rescaled by power_scale.h.
-// With `lo`: along the double-word normal v + lo (compensated_heights_along's), a pattern with
-// unsure margins bracketed (valued_on_heights' bracket: r covers the vertex on either side,
-// s the pattern with it at the plane), as where a walk's tilt ends on a minimiser at which
-// another vertex reaches the plane.
+// the pattern is neither verified nor bracketed. Precondition: a pair rescaled by power_scale.h.
+// With `lo`: along the double-word normal v + lo (compensated_heights_along's). A pattern with
+// unsure margins is bracketed (valued_on_heights' bracket: r covers the vertex on either side,
+// s the pattern with it at the plane), as where v lies at a minimiser at which another vertex
+// reaches the plane.
 bool relaxed_compensated(const TetVertices& A, const TetVertices& B, const std::array<double, 3>& v,
                          double& value, double& r, DirectionSolution& s, double hA[4], double hB[4],
                          const std::array<double, 3>& lo = {0, 0, 0});
