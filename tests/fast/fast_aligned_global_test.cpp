@@ -21,11 +21,14 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "global/facet_bounds.h"
 #include "global/global_depth.h"
+#include "global/relaxed_value.h"
 #include "pdd/global_minimiser.h"
 #include "pdd/io/fixture_io.h"
 #include "pdd/pdd.h"
@@ -396,12 +399,12 @@ BOOST_AUTO_TEST_CASE(contacts_made_by_rounding) {
 // relaxed_compensated): the shallow certificate's cap then holds and solve_pair reports the
 // value along a double normal. Each exact value is `pdd solve --engine reference --variants
 // global`'s pdd2_global rounded to 18 digits (its proved lower bound within 6e-15 of it).
-BOOST_AUTO_TEST_CASE(minimisers_where_pieces_meet_by_rounding) {
-  struct Case {
-    TetVertices A, B;
-    double exact;
-  };
-  const Case cases[] = {
+struct RoundingCase {
+  TetVertices A, B;
+  double exact;
+};
+const std::vector<RoundingCase>& pieces_meet_cases() {
+  static const std::vector<RoundingCase> cases = {
       {{{{0.3333333333333334, 2.0, 0.3333333333333334}, {0.3333333333333334, 1.666666666666666, 0.6666666666666667},
          {0.6666666666666669, 1.666666666666667, 0.6666666666666667}, {0.3333333333333333, 2.0, 0.6666666666666667}}},
        {{{0.3333333333333333, 2.0, 0.3333333333333333}, {0.3333333333333333, 1.666666666666667, 0.6666666666666666},
@@ -438,7 +441,11 @@ BOOST_AUTO_TEST_CASE(minimisers_where_pieces_meet_by_rounding) {
          {0.42857142857142844, 0.1428571428571428, 0.5714285714285714}, {0.28571428571428564, 0.2857142857142856, 0.5714285714285714}}},
        4.33334237487130889e-34},
   };
-  for (const Case& c : cases) {
+  return cases;
+}
+
+BOOST_AUTO_TEST_CASE(minimisers_where_pieces_meet_by_rounding) {
+  for (const RoundingCase& c : pieces_meet_cases()) {
     fast::SolveOptions o;
     o.with_global = true;
     const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
@@ -447,4 +454,95 @@ BOOST_AUTO_TEST_CASE(minimisers_where_pieces_meet_by_rounding) {
     BOOST_TEST(r.pdd2_global_normal.has_value());
     BOOST_TEST(std::fabs(r.pdd2_global - c.exact) <= 1e-9 * c.exact, r.pdd2_global << " vs exact " << c.exact);
   }
+}
+
+// The exact pieces skip the pieces with a vertex away from the contact (global_depth.cpp's
+// enumerate_exact): along any unit u of relaxed value mu, a vertex at the plane lies within
+// sqrt(40 mu) of its tetrahedron's extreme height, and D(u) <= sqrt(32 mu). Checked on the
+// recorded contacts made by rounding above, along each one's reported normal v (relaxed value
+// mu, exact): with b = mu (1 + 2^-20), every vertex at the plane along v (the exact closed form's
+// pattern) is kept by vertices_off_the_contact, which drops some vertex on every pair (the
+// test is not empty: the vertices away from the shared face or edge).
+BOOST_AUTO_TEST_CASE(vertices_off_the_contact_keep_those_at_the_plane) {
+  using fast::detail::Q;
+  for (const RoundingCase& c : pieces_meet_cases()) {
+    fast::SolveOptions o;
+    o.with_global = true;
+    const PairResult<double> r = fast::solve_pair(TetPair{"", {}, c.A, c.B}, o);
+    BOOST_REQUIRE(r.pdd2_global_normal.has_value());
+    const fast::global::V3 v = *r.pdd2_global_normal;
+    Q hA[4], hB[4];
+    fast::Solution<Q> s;
+    const Q mu = fast::global::relaxed_exact(c.A, c.B, v, hA, hB, s);
+    const double b = std::nextafter(mu.get_d(), INFINITY) * (1 + 0x1p-20);
+    fast::global::FacetBounds bounds(c.A, c.B);
+    const unsigned off = fast::global::vertices_off_the_contact(bounds, c.A, c.B, std::sqrt(32 * b) * (1 + 0x1p-50),
+                                                                std::sqrt(40 * b) * (1 + 0x1p-50));
+    BOOST_TEST(off != 0u);
+    for (int i = 0; i < 4; ++i) {
+      const bool atA = s.c - hA[i] < -s.sumA, atB = s.c - hB[i] > -s.sumB;  // (direction_qp.h)
+      if (atA) BOOST_TEST(!(off >> i & 1u), "A's vertex " << i << " at the plane, shown off the contact");
+      if (atB) BOOST_TEST(!(off >> (4 + i) & 1u), "B's vertex " << i << " at the plane, shown off the contact");
+    }
+  }
+}
+
+// vertices_off_the_contact against sampled normals: on random pairs, d0 chosen so that the region
+// D(u) <= d0 is a cap about a direction u0 of least overlap among samples (d0 = 1.1 D(u0)).
+// For each vertex x, the least gap g_x from its tetrahedron's extreme height over the sampled
+// unit u in that region (by a margin: doubles, 1e-9 of the pair's size): with gamma just above
+// g_x (1.01 g_x + the margin) some such u has a gap below gamma, so x must be kept; with gamma a
+// tenth of the pair's size, some vertex is dropped on some pairs (the test is not empty).
+BOOST_AUTO_TEST_CASE(vertices_off_the_contact_against_sampled_normals) {
+  namespace g = fast::global;
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> U(-1, 1);
+  auto unit = [&] {
+    for (;;) {
+      const g::V3 u{U(rng), U(rng), U(rng)};
+      const double n = g::norm(u);
+      if (n > 0.1 && n < 1) return g::mul(u, 1 / n);
+    }
+  };
+  int dropped = 0, kept = 0;
+  for (int pair = 0; pair < 200; ++pair) {
+    TetVertices A, B;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) A[i][k] = U(rng), B[i][k] = U(rng) * 0.8 + 0.3;
+    // gap[c]: vertex c's height below A's top (c < 4) or above B's bottom (c >= 4) along u
+    auto along = [&](const g::V3& u, double (&gap)[8]) {
+      double topA = -INFINITY, botB = INFINITY;
+      for (int i = 0; i < 4; ++i) topA = std::max(topA, g::dot(u, A[i])), botB = std::min(botB, g::dot(u, B[i]));
+      for (int i = 0; i < 4; ++i) gap[i] = topA - g::dot(u, A[i]), gap[4 + i] = g::dot(u, B[i]) - botB;
+      return topA - botB;  // D(u)
+    };
+    double gap[8];
+    g::V3 u0 = unit();
+    for (int s = 0; s < 2000; ++s) {  // (about the least overlap: a cap, not the whole sphere)
+      const g::V3 u = unit();
+      if (along(u, gap) < along(u0, gap)) u0 = u;
+    }
+    const double D0 = along(u0, gap);
+    if (!(D0 > 0.01)) continue;
+    const double d0 = 1.1 * D0, margin = 4e-9;
+    g::FacetBounds bounds(A, B);
+    if (!bounds.get()) continue;  // (not intersecting)
+    double least[8];
+    std::fill(std::begin(least), std::end(least), INFINITY);
+    for (int s = 0; s < 4000; ++s) {
+      g::V3 u = g::add(u0, g::mul(unit(), std::ldexp(1.0, -(s % 8))));
+      u = g::mul(u, 1 / g::norm(u));
+      if (!(along(u, gap) <= d0 - margin)) continue;
+      for (int c = 0; c < 8; ++c) least[c] = std::min(least[c], gap[c]);
+    }
+    for (int c = 0; c < 8; ++c) {
+      if (!std::isfinite(least[c]) || !(least[c] > 0)) continue;
+      const unsigned off = g::vertices_off_the_contact(bounds, A, B, d0, 1.01 * least[c] + margin);
+      BOOST_TEST(!(off >> c & 1u), "pair " << pair << ": vertex " << c << " dropped at a sampled gap " << least[c]);
+      ++kept;
+    }
+    dropped += g::vertices_off_the_contact(bounds, A, B, d0, 0.1) != 0;
+  }
+  BOOST_TEST(dropped > 0);
+  BOOST_TEST(kept > 100);
 }

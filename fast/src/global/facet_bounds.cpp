@@ -436,6 +436,29 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
   return true;
 }
 
+unsigned vertices_off_the_contact(FacetBounds& bounds, const TetVertices& A, const TetVertices& B, double d0,
+                                  double gamma) {
+  if (!bounds.get() || !(gamma > 0) || !std::isfinite(gamma)) return 0;
+  unsigned off = 0;
+  for (int side = 0; side < 2; ++side) {
+    const TetVertices& T = side == 0 ? A : B;
+    for (int x = 0; x < 4; ++x) {
+      Halfspace planes[3];
+      int k = 0;
+      for (int a = 0; a < 4; ++a) {
+        if (a == x) continue;
+        // d = a - x (A) or x - b (B), each component rounded once: |d~ - d| <= u |d~| (1 + u),
+        // so u.d <= gamma implies u.d~ <= gamma + 2u |d~| for unit u
+        V3 d;
+        for (int c = 0; c < 3; ++c) d[c] = side == 0 ? T[a][c] - T[x][c] : T[x][c] - T[a][c];
+        planes[k++] = {d, (gamma + 2 * kU * norm(d)) * (1 + 4 * kU)};
+      }
+      if (polytope_inside_ball(bounds, planes, 3, d0)) off |= 1u << (4 * side + x);
+    }
+  }
+  return off;
+}
+
 bool polytope_inside_ball(FacetBounds& bounds, const V3& d1, double c1, const V3& d2, double c2, double d0) {
   const Halfspace planes[2] = {{d1, c1}, {d2, c2}};
   return polytope_inside_ball(bounds, planes, 2, d0);

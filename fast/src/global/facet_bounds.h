@@ -87,4 +87,13 @@ struct Halfspace {
 };
 bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, double d0);
 
+// The vertices shown to lie more than gamma from the plane of contact along every unit u with
+// D(u) <= d0: A's vertex x more than gamma below A's highest (max_a u.(a - x) > gamma), B's y
+// more than gamma above B's lowest (max_b u.(y - b) > gamma). For each, the polytope {u :
+// D(u) <= d0, u.(a - x) <= gamma for every other vertex a} inside the unit ball (its three planes'
+// directions rounded, each plane widened by its rounding). Bit i for A's vertex i, bit 4 + j for
+// B's vertex j; 0 where the bounds are not available. The pair is (A, B) of `bounds`.
+unsigned vertices_off_the_contact(FacetBounds& bounds, const TetVertices& A, const TetVertices& B, double d0,
+                                  double gamma);
+
 }  // namespace pdd::fast::global

@@ -231,7 +231,18 @@ bool needs_exact_pieces(GlobalRun& g, double start_value) {
 // the normals unchanged and multiplies every value by 2^-2unit (Best::unit). The near
 // vertices' pieces beside a far vertex are still ~(size / R)^2: each piece's H and each
 // condition is scaled again by its own power of two before rounding (enumerate_pieces).
-void enumerate_exact(GlobalRun& g, const ExactStart& exact_start) {
+// Only the pieces whose vertices at the plane may be there at a stationary value below the best
+// are visited. At a stationary point along the unit u, of value mu, in a piece that holds A's
+// vertex x at the plane, x and A's highest vertex are both at the plane (T = C - H: direction_qp.h),
+// so their heights differ by |T_x - T_top| <= sqrt(2 (T_x^2 + T_top^2)) <= sqrt(2 F) =
+// sqrt(40 mu) (F = 20 mu the unit normal's cost), and D(u)^2 <= 32 mu (deformable_depth.h's
+// bound). So with b at least the best value, a vertex more than sqrt(40 b) below A's highest
+// along every unit u with D(u) <= sqrt(32 b) is at the plane in no piece that holds a stationary
+// value below the best (facet_bounds.h's vertices_off_the_contact shows it), and likewise B's;
+// the minimiser's own piece is visited, and an offer is a value along a normal, never below the
+// minimum. On a contact made by rounding the vertices away from the contact (~the size from it,
+// against sqrt(40 b) ~ the depth) drop most of the 225 pieces.
+void enumerate_exact(GlobalRun& g, const ExactStart& exact_start, FacetBounds* bounds) {
   using detail::Q;
   const TetVertices &A = g.A, &B = g.B;
   Best& best = g.best;
@@ -256,7 +267,14 @@ void enumerate_exact(GlobalRun& g, const ExactStart& exact_start) {
   // Wall offers for a pair with a vertex far from the others only (compact: needs_exact_pieces'
   // class, every piece's |H| <= 48 scale^2, no steep piece; Search::walls).
   const bool compact = near_extent_sq(A, B) >= g.P.scale * g.P.scale / 256;
-  enumerate_pieces(qA, qB, Search{Ps, best, g.lower_scaled, !compact});
+  Search search{Ps, best, g.lower_scaled, !compact};
+  if (bounds && best.have_q) {
+    // b: the best's exact value rounded up (get_d truncates), with room
+    const double b = std::nextafter(best.qvalue.get_d(), INFINITY) * (1 + 0x1p-20);
+    const double d0 = std::sqrt(32 * b) * (1 + 4 * kU), gamma = std::sqrt(40 * b) * (1 + 4 * kU);
+    if (b > 0 && std::isfinite(b)) search.contact &= ~vertices_off_the_contact(*bounds, A, B, d0, gamma);
+  }
+  enumerate_pieces(qA, qB, search);
   // (lower is in the pair's units; each piece takes it, and the best value, in its own)
 }
 
@@ -715,7 +733,7 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     for (int i = 0; i < k && k > 1; ++i)
       if (certified_from(tied[i], true)) return lone;
     if (witness) return g.shallow;
-    enumerate_exact(g, exact_start);
+    enumerate_exact(g, exact_start, &bounds);
   } else {
     choose_offer(g);
   }

@@ -195,8 +195,14 @@ class PieceEnumeration {
     sums();
     if constexpr (kExact) survivors_exact();
     else survivors_double();
-    for (unsigned ma = 1; ma < 16; ++ma)
-      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) visit(ma, unsigned(__builtin_ctz(bits)));
+    const unsigned offA = ~search.contact & 0xFu, offB = ~search.contact >> 4 & 0xFu;
+    for (unsigned ma = 1; ma < 16; ++ma) {
+      if (ma & offA) continue;
+      for (unsigned bits = survivors[ma]; bits; bits &= bits - 1) {
+        const unsigned mb = unsigned(__builtin_ctz(bits));
+        if (!(mb & offB)) visit(ma, mb);
+      }
+    }
   }
 
  private:

@@ -99,6 +99,10 @@ struct Search {
   Best& best;
   double lower;
   bool walls = true;
+  // The vertices that may be at the plane at a stationary value below the best (bit i: A's
+  // vertex i, bit 4 + j: B's vertex j): a piece with another one at the plane is not visited
+  // (global_depth.cpp's enumerate_exact says why).
+  unsigned contact = 0xFFu;
 };
 
 // With `zeros` of H's exact eigenvalues exactly 0 (PieceMatrix), whether the others certainly
