@@ -34,7 +34,9 @@
 #include "exact_overlap.h"
 #include "pdd/mesh.h"
 #include "resolve.h"
+#include "pdd/global_minimiser.h"
 #include "resolve/contact_list.h"
+#include "resolve/local_step.h"
 #include "resolve/rounds.h"
 
 using namespace pdd;
@@ -341,6 +343,49 @@ BOOST_AUTO_TEST_CASE(blocks_stacked_a_third_deep_move_one_way) {
     BOOST_TEST(std::string(resolve_method_name(r.report.method)) == "rounds");
     BOOST_TEST(r.report.rounds.size() <= 4u);
   }
+}
+
+// The global variant's local step takes fast::global_minimiser alone where that applies
+// (local_step.cpp's global_move: no rigid_pd2 for the shallow test, no other value of the
+// record) and solve_pair's record elsewhere; both must give the same move, bit for bit, on
+// every intersecting pair: Kuhn blocks stacked a third deep (aligned: the minimiser's pairs),
+// a Kuhn grid against its copy moved 0.1 along (1, 1, 1) and a transfinite grid against its
+// copy moved one cell of 0.1 (contacts made by rounding: bounded by the minimiser, then the
+// record's), and the boxes overlapping by 0.1 (generic).
+BOOST_AUTO_TEST_CASE(global_moves_equal_the_records) {
+  using test::transfinite_grid;
+  struct Case {
+    const char* name;
+    Mesh a, b;
+  };
+  const Case cases[] = {
+      {"Kuhn blocks a third deep", kuhn_grid(3, 1.0, {0, 0, 0}), kuhn_grid(3, 1.0, {0.25, 0.25, 3 - 1.0 / 3})},
+      {"Kuhn grids 0.1 along (1, 1, 1)", kuhn_grid(3, 0.25, {0, 0, 0}), kuhn_grid(3, 0.25, {0.1, 0.1, 0.1})},
+      {"transfinite grids a cell apart", transfinite_grid(3, 0.1, {0, 0, 0}), transfinite_grid(3, 0.1, {0.1, 0, 0})},
+      {"boxes 0.1 deep", load("touching-a.msh"), translated(load("touching-b.msh"), {-kDelta, 0, 0})}};
+  std::size_t alone = 0, by_record = 0;
+  for (const Case& c : cases) {
+    const auto ea = detail::valid_elements(c.a, 'A', nullptr), eb = detail::valid_elements(c.b, 'B', nullptr);
+    const auto pairs = detail::intersecting_pairs(c.a, ea, &c.b, eb);
+    BOOST_TEST_MESSAGE(c.name << ": " << pairs.size() << " intersecting pairs");
+    BOOST_TEST(!pairs.empty());
+    for (const auto& [i, j] : pairs) {
+      const TetVertices A = at(c.a, c.a.vertices, i), B = at(c.b, c.b.vertices, j);
+      const detail::PairMove m = detail::solve_move(A, B, ResolveVariant::Global);
+      const detail::PairMove r = detail::solve_move_by_record(A, B, ResolveVariant::Global);
+      const bool same = m.ok == r.ok && m.da == r.da && m.db == r.db && m.u == r.u &&
+                        std::memcmp(&m.value, &r.value, sizeof m.value) == 0;
+      BOOST_TEST(same, c.name << ": pair (" << i << ", " << j << ")");
+      fast::MinimiserOptions o;
+      o.bound_shallow = true;
+      const auto g = fast::global_minimiser(A, B, o);
+      ++(g && !g->bounded && !g->witness ? alone : by_record);
+    }
+  }
+  // both branches of solve_move taken
+  BOOST_TEST_MESSAGE(alone << " pairs with a certified minimiser, " << by_record << " others");
+  BOOST_TEST(alone > 0u);
+  BOOST_TEST(by_record > 0u);
 }
 
 BOOST_AUTO_TEST_CASE(prism_blocks_stacked_a_third_deep_resolved_by_the_rounds) {

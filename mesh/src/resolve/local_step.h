@@ -38,6 +38,10 @@ struct PairMove {
 };
 
 PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant);
+// The same move from solve_pair's record (with rigid_pd2 first, for the shallow test): the
+// global variant's minimiser alone (fast::global_minimiser, local_step.cpp) gives the same bits
+// where it applies, and this wherever it does not.
+PairMove solve_move_by_record(const TetVertices& A, const TetVertices& B, ResolveVariant variant);
 
 // A half-space n.x >= b that a vertex must reach (n of unit length), and the vertex it binds.
 struct HalfSpace {
