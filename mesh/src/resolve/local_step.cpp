@@ -122,22 +122,25 @@ bool shallower_than_doubles(const TetVertices& A, const TetVertices& B) {
 // The global variant's move where it needs no more than pdd2_global: fast::global_minimiser, the
 // same bits as solve_pair's pdd2_global fields (global_minimiser.h), without solve_pair's other
 // values (rigid_pd2, pdd2_static, pdd2, pdd2_accel1, computed there to keep the record's
-// relations) or shallower_than_doubles' rigid_pd2. Taken only where solve_move below would take
-// those same fields: a certified value (not bounded, not a witness) whose positions make a move,
-// on a pair not shallower than doubles. The last needs no rigid_pd2: with g the reported value
-// and G, PD^2 the exact ones, g <= (1 + 1e-9) G, G <= PD^2 / 2 (the comment above) and the
-// reported rigid r >= (1 - 1e-9) PD^2, so r >= 2 (1 - 1e-9) / (1 + 1e-9) g > g (1 - 4e-9)
-// (computed: one more rounding, far inside); g (1 - 4e-9) >= 1e-24 E^2 gives r >= 1e-24 E^2.
-// (The record's other values lie between pdd2_global and rigid_pd2, in range with them: it has
-// no error there. global_moves_equal_the_records, test_resolve.cpp, compares both ways pair by
-// pair.) Anything else (a shallow pair, returned bounded in microseconds; a witness; a
-// decline): the record's way. About a third fewer instructions a pair solve than the record's
-// way on stacked blocks, aligned (whose rigid_pd2 takes the candidate set's exact path) or not.
-std::optional<PairMove> global_move(const TetVertices& A, const TetVertices& B) {
+// relations) or shallower_than_doubles' rigid_pd2. Taken only where the record's way
+// (solve_move_by_record) would take those same fields: a certified value (not bounded, not a
+// witness) whose positions make a move, on a pair not shallower than doubles. The last needs
+// no rigid_pd2: with g the reported value and G, PD^2 the exact ones, g <= (1 + 1e-9) G,
+// G <= PD^2 / 2 (the comment above) and the reported rigid r >= (1 - 1e-9) PD^2, so
+// r >= 2 (1 - 1e-9) / (1 + 1e-9) g > g (1 - 4e-9) (computed: one more rounding, far inside);
+// g (1 - 4e-9) >= 1e-24 E^2 gives r >= 1e-24 E^2. (The record's other values lie between
+// pdd2_global and rigid_pd2, in range with them: it has no error there.
+// global_moves_equal_the_records, test_resolve.cpp, compares both ways pair by pair.) About a
+// third fewer instructions a pair solve than the record's way on stacked blocks, aligned (whose
+// rigid_pd2 takes the candidate set's exact path) or not.
+// `shallow`: set where the minimiser found the pair bounded or a witness: a depth ~1e-10 of the
+// pair's size or less, nearly always shallower than doubles (record_move).
+std::optional<PairMove> global_move(const TetVertices& A, const TetVertices& B, bool& shallow) {
   fast::MinimiserOptions options;
   options.bound_shallow = true;
   const std::optional<fast::GlobalMinimiser> g = fast::global_minimiser(A, B, options);
-  if (!g || g->bounded || g->witness || !(g->pd2 * (1 - 4e-9) >= 1e-24 * extent2(A, B))) return std::nullopt;
+  shallow = g && (g->bounded || g->witness);
+  if (!g || shallow || !(g->pd2 * (1 - 4e-9) >= 1e-24 * extent2(A, B))) return std::nullopt;
   PairMove m = from_positions(g->q1_A, g->q1_B, A, B, g->pd2, g->normal);
   if (!m.ok) return std::nullopt;
   return m;
@@ -169,21 +172,25 @@ std::optional<std::array<double, 3>> pdd2_normal(const PairResult<double>& r, co
   return std::array<double, 3>{n[0], n[1], n[2]};
 }
 
-}  // namespace
-
-PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
-  if (variant == ResolveVariant::Global)
-    if (std::optional<PairMove> m = global_move(A, B)) return *m;
-  return solve_move_by_record(A, B, variant);
-}
-
-PairMove solve_move_by_record(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
+// The record's way (solve_move_by_record). `shallow_first`: a pair likely shallower than
+// doubles takes the record without pdd2_global first and its rigid_pd2 for the shallow test
+// (pdd.h: rigid_pd2(A, B)'s value bit for bit; a record without error has it certified, as
+// DepthStatus::Ok), pdd2_global only where it is not shallow, in a second record with the same
+// values; else rigid_pd2(A, B) first. The same move either way: on a contact made by rounding
+// (the transfinite box against its copy moved one cell: 452 of 500 pairs) the separate
+// rigid_pd2 costs 6 us of the record's 17.
+PairMove record_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant, bool shallow_first) {
   if (variant == ResolveVariant::Rigid) return rigid_move(A, B);
-  const bool global = variant == ResolveVariant::Global && !shallower_than_doubles(A, B);
+  const bool wanted = variant == ResolveVariant::Global;
   fast::SolveOptions options;
-  options.with_global = global;
   options.values = kPdd2;  // its positions (and definitions §9's with `global`): no other value
-  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
+  options.with_global = wanted && !shallow_first && !shallower_than_doubles(A, B);
+  PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
+  if (wanted && shallow_first && !r.error && !(r.rigid_pd2 < 1e-24 * extent2(A, B))) {
+    options.with_global = true;
+    r = fast::solve_pair(TetPair{"", {}, A, B}, options);
+  }
+  const bool global = options.with_global;
   if (!r.error) {
     if (global && !r.pdd2_global_error && r.pdd2_global_normal) {
       PairMove m = from_positions(r.q1_A_global, r.q1_B_global, A, B, r.pdd2_global, r.pdd2_global_normal);
@@ -193,6 +200,19 @@ PairMove solve_move_by_record(const TetVertices& A, const TetVertices& B, Resolv
     if (m.ok) return m;
   }
   return rigid_move(A, B);
+}
+
+}  // namespace
+
+PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
+  bool shallow = false;
+  if (variant == ResolveVariant::Global)
+    if (std::optional<PairMove> m = global_move(A, B, shallow)) return *m;
+  return record_move(A, B, variant, shallow);
+}
+
+PairMove solve_move_by_record(const TetVertices& A, const TetVertices& B, ResolveVariant variant) {
+  return record_move(A, B, variant, false);
 }
 
 double overlap_along(const TetVertices& A, const TetVertices& B, const Vec3d& u) {
