@@ -345,13 +345,17 @@ BOOST_AUTO_TEST_CASE(blocks_stacked_a_third_deep_move_one_way) {
   }
 }
 
-// The global variant's local step takes fast::global_minimiser alone where that applies
-// (local_step.cpp's global_move: no rigid_pd2 for the shallow test, no other value of the
-// record) and solve_pair's record elsewhere; both must give the same move, bit for bit, on
-// every intersecting pair: Kuhn blocks stacked a third deep (aligned: the minimiser's pairs),
-// a Kuhn grid against its copy moved 0.1 along (1, 1, 1) and a transfinite grid against its
-// copy moved one cell of 0.1 (contacts made by rounding: bounded by the minimiser, then the
-// record's), and the boxes overlapping by 0.1 (generic).
+// The global variant's local step takes fast::global_minimiser alone where that certifies the
+// pair (local_step.cpp's global_move: no rigid_pd2 for the shallow test, no other value of the
+// record) and solve_pair's record where it declines; both must give the move of the record's
+// way (solve_move_by_record), bit for bit. Where the minimiser bounds the pair (a depth below
+// about 1e-10 of its size) or finds only a witness, the move is pdd2's plane: the pdd2
+// variant's move, bit for bit. On every intersecting pair of Kuhn blocks stacked a third deep
+// (aligned), a Kuhn grid against its copy moved 0.1 along (1, 1, 1) and a transfinite grid
+// against its copy moved one cell of 0.1 (contacts made by rounding), and the boxes overlapping
+// by 0.1 (generic); and Kuhn blocks resting 1e-12 deep on each other (cell 1/8: a depth of
+// 1e-11 of the cell, bounded by the minimiser though rigid_pd2 is above 1e-24 of the extent
+// squared: pairs whose move the bound changes from pdd2_global's plane to pdd2's).
 BOOST_AUTO_TEST_CASE(global_moves_equal_the_records) {
   using test::transfinite_grid;
   struct Case {
@@ -362,8 +366,9 @@ BOOST_AUTO_TEST_CASE(global_moves_equal_the_records) {
       {"Kuhn blocks a third deep", kuhn_grid(3, 1.0, {0, 0, 0}), kuhn_grid(3, 1.0, {0.25, 0.25, 3 - 1.0 / 3})},
       {"Kuhn grids 0.1 along (1, 1, 1)", kuhn_grid(3, 0.25, {0, 0, 0}), kuhn_grid(3, 0.25, {0.1, 0.1, 0.1})},
       {"transfinite grids a cell apart", transfinite_grid(3, 0.1, {0, 0, 0}), transfinite_grid(3, 0.1, {0.1, 0, 0})},
-      {"boxes 0.1 deep", load("touching-a.msh"), translated(load("touching-b.msh"), {-kDelta, 0, 0})}};
-  std::size_t alone = 0, by_record = 0;
+      {"boxes 0.1 deep", load("touching-a.msh"), translated(load("touching-b.msh"), {-kDelta, 0, 0})},
+      {"Kuhn blocks 1e-12 deep", kuhn_grid(3, 0.125, {0, 0, 0}), kuhn_grid(3, 0.125, {0, 0, 0.375 - 1e-12})}};
+  std::size_t alone = 0, by_plane = 0, by_record = 0, between = 0;
   for (const Case& c : cases) {
     const auto ea = detail::valid_elements(c.a, 'A', nullptr), eb = detail::valid_elements(c.b, 'B', nullptr);
     const auto pairs = detail::intersecting_pairs(c.a, ea, &c.b, eb);
@@ -371,21 +376,35 @@ BOOST_AUTO_TEST_CASE(global_moves_equal_the_records) {
     BOOST_TEST(!pairs.empty());
     for (const auto& [i, j] : pairs) {
       const TetVertices A = at(c.a, c.a.vertices, i), B = at(c.b, c.b.vertices, j);
-      const detail::PairMove m = detail::solve_move(A, B, ResolveVariant::Global);
-      const detail::PairMove r = detail::solve_move_by_record(A, B, ResolveVariant::Global);
-      const bool same = m.ok == r.ok && m.da == r.da && m.db == r.db && m.u == r.u &&
-                        std::memcmp(&m.value, &r.value, sizeof m.value) == 0;
-      BOOST_TEST(same, c.name << ": pair (" << i << ", " << j << ")");
       fast::MinimiserOptions o;
       o.bound_shallow = true;
       const auto g = fast::global_minimiser(A, B, o);
-      ++(g && !g->bounded && !g->witness ? alone : by_record);
+      const bool shallow = g && (g->bounded || g->witness);
+      const detail::PairMove m = detail::solve_move(A, B, ResolveVariant::Global);
+      const detail::PairMove r =
+          detail::solve_move_by_record(A, B, shallow ? ResolveVariant::Pdd2 : ResolveVariant::Global);
+      const bool same = m.ok == r.ok && m.da == r.da && m.db == r.db && m.u == r.u &&
+                        std::memcmp(&m.value, &r.value, sizeof m.value) == 0;
+      BOOST_TEST(same, c.name << ": pair (" << i << ", " << j << ")");
+      ++(shallow ? by_plane : g ? alone : by_record);
+      if (shallow) {  // bounded, yet not shallower than doubles by rigid_pd2 (local_step.cpp)
+        double E2 = 0;
+        for (const TetVertices* T : {&A, &B})
+          for (const Vec3d& x : *T) {
+            double d = 0;
+            for (int k = 0; k < 3; ++k) d += (x[k] - A[0][k]) * (x[k] - A[0][k]);
+            E2 = std::max(E2, d);
+          }
+        between += fast::rigid_pd2(A, B).pd2 >= 1e-24 * E2;
+      }
     }
   }
-  // both branches of solve_move taken
-  BOOST_TEST_MESSAGE(alone << " pairs with a certified minimiser, " << by_record << " others");
+  // solve_move's branches taken (the minimiser declines none of these pairs)
+  BOOST_TEST_MESSAGE(alone << " pairs with a certified minimiser, " << by_plane << " bounded, " << by_record
+                           << " declined");
   BOOST_TEST(alone > 0u);
-  BOOST_TEST(by_record > 0u);
+  BOOST_TEST(by_plane > 0u);
+  BOOST_TEST(between > 0u);
 }
 
 BOOST_AUTO_TEST_CASE(prism_blocks_stacked_a_third_deep_resolved_by_the_rounds) {

@@ -129,12 +129,16 @@ bool shallower_than_doubles(const TetVertices& A, const TetVertices& B) {
 // G <= PD^2 / 2 (the comment above) and the reported rigid r >= (1 - 1e-9) PD^2, so
 // r >= 2 (1 - 1e-9) / (1 + 1e-9) g > g (1 - 4e-9) (computed: one more rounding, far inside);
 // g (1 - 4e-9) >= 1e-24 E^2 gives r >= 1e-24 E^2. (The record's other values lie between
-// pdd2_global and rigid_pd2, in range with them: it has no error there.
-// global_moves_equal_the_records, test_resolve.cpp, compares both ways pair by pair.) About a
-// third fewer instructions a pair solve than the record's way on stacked blocks, aligned (whose
-// rigid_pd2 takes the candidate set's exact path) or not.
-// `shallow`: set where the minimiser found the pair bounded or a witness: a depth ~1e-10 of the
-// pair's size or less, nearly always shallower than doubles (record_move).
+// pdd2_global and rigid_pd2, in range with them: it has no error there.) About a third fewer
+// instructions a pair solve than the record's way on stacked blocks, aligned (whose rigid_pd2
+// takes the candidate set's exact path) or not.
+// `shallow`: the minimiser bounded the pair (a depth below about 1e-10 of its size,
+// global_minimiser.h) or found only a witness. Such a pair moves along pdd2's plane, as one
+// shallower than doubles does (solve_move): certifying its pdd2_global takes the shallow
+// certificate, the lone pairs' or the exact pieces (measured: 242 us a pair on the 2,278 such
+// pairs of a round of 14,641, a grid of 24 tetrahedra a cube against its copy moved half a
+// cell in x and y, 80% of the run), and its move is the plane gap, far above its depth, either
+// way.
 std::optional<PairMove> global_move(const TetVertices& A, const TetVertices& B, bool& shallow) {
   fast::MinimiserOptions options;
   options.bound_shallow = true;
@@ -172,24 +176,14 @@ std::optional<std::array<double, 3>> pdd2_normal(const PairResult<double>& r, co
   return std::array<double, 3>{n[0], n[1], n[2]};
 }
 
-// The record's way (solve_move_by_record). `shallow_first`: a pair likely shallower than
-// doubles takes the record without pdd2_global first and its rigid_pd2 for the shallow test
-// (pdd.h: rigid_pd2(A, B)'s value bit for bit; a record without error has it certified, as
-// DepthStatus::Ok), pdd2_global only where it is not shallow, in a second record with the same
-// values; else rigid_pd2(A, B) first. The same move either way: on a contact made by rounding
-// (the transfinite box against its copy moved one cell: 452 of 500 pairs) the separate
-// rigid_pd2 costs 6 us of the record's 17.
-PairMove record_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant, bool shallow_first) {
+// The record's way (solve_move_by_record); `without_global`: pdd2's plane whatever the variant
+// (solve_move's shallow pairs).
+PairMove record_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant, bool without_global) {
   if (variant == ResolveVariant::Rigid) return rigid_move(A, B);
-  const bool wanted = variant == ResolveVariant::Global;
   fast::SolveOptions options;
   options.values = kPdd2;  // its positions (and definitions §9's with `global`): no other value
-  options.with_global = wanted && !shallow_first && !shallower_than_doubles(A, B);
-  PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
-  if (wanted && shallow_first && !r.error && !(r.rigid_pd2 < 1e-24 * extent2(A, B))) {
-    options.with_global = true;
-    r = fast::solve_pair(TetPair{"", {}, A, B}, options);
-  }
+  options.with_global = variant == ResolveVariant::Global && !without_global && !shallower_than_doubles(A, B);
+  const PairResult<double> r = fast::solve_pair(TetPair{"", {}, A, B}, options);
   const bool global = options.with_global;
   if (!r.error) {
     if (global && !r.pdd2_global_error && r.pdd2_global_normal) {

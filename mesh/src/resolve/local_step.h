@@ -15,9 +15,12 @@
 //            other side and the two sides pushed mu = kMargin edge + kMarginUlp |x| apart.
 // A pair whose per-pair solve fails (pdd2_global_error, a record error, no direction) falls back
 // to pdd2's positions, then to the rigid translation along the rigid direction (or the centroid
-// line when the rigid depth is not certified). Under the global variant, a contact shallower
-// than 1e-12 of the pair's extent (contacts made by rounding) takes pdd2's positions at once:
-// its pdd2_global is nearly always declined, after an exact search (local_step.cpp).
+// line when the rigid depth is not certified). Under the global variant, a contact far
+// shallower than the pair's size (below about 1e-10 of it, where the fast engine's minimiser
+// bounds pdd2_global instead of certifying it, or below 1e-12 of the extent by rigid_pd2:
+// contacts made by rounding, nearly touching pairs) takes pdd2's positions at once: its
+// pdd2_global would take the shallow certificate or an exact search, and its move is the plane
+// gap either way (local_step.cpp).
 #pragma once
 
 #include <array>
@@ -38,9 +41,9 @@ struct PairMove {
 };
 
 PairMove solve_move(const TetVertices& A, const TetVertices& B, ResolveVariant variant);
-// The same move from solve_pair's record (with rigid_pd2 first, for the shallow test): the
-// global variant's minimiser alone (fast::global_minimiser, local_step.cpp) gives the same bits
-// where it applies, and this wherever it does not.
+// The move from solve_pair's record (with rigid_pd2 first, for the shallow test): solve_move's
+// where the minimiser (fast::global_minimiser, local_step.cpp) certifies the pair or declines it;
+// where it bounds the pair, solve_move takes solve_move_by_record(A, B, ResolveVariant::Pdd2).
 PairMove solve_move_by_record(const TetVertices& A, const TetVertices& B, ResolveVariant variant);
 
 // A half-space n.x >= b that a vertex must reach (n of unit length), and the vertex it binds.
