@@ -22,6 +22,8 @@
 #include "kernel/direction_geometry.h"
 #include "kernel/power_scale.h"
 #include "kernel/rigid_depth.h"
+#include "kernel/superset_depth.h"
+#include "kernel/superset_kernel.h"
 #include "pdd/rejection.h"
 #include "qp/deformable_depth.h"
 
@@ -128,6 +130,20 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
   return g.certified;
 }
 
+// The rigid value and label that rigid_pd2(A, B) reports on this pair (rigid_depth.h), so that a
+// record names the same side of a near tie as the hot path, whatever values are asked: true with
+// the superset's certified choice in `hot` (superset_depth.h), which the hot path takes before the
+// set's. The two agree on a pick the superset certifies with every edge pair in its lanes; where
+// it certifies one only after leaving out the edge pairs the doubles cannot resolve (nearly or
+// exactly parallel edges, edge pairs with loose bounds), the set still holds those along their
+// own normals and at a near tie (either side of which definitions §8 allows) may name one of them
+// where the superset names another candidate, a few ulps apart. `kernel`: the superset kernel's
+// lanes of this pair, from quick_lanes (the choice without running the kernel again: ~0.9k
+// instructions a pair on rotated grids, where the superset's first pick certifies).
+bool superset_rigid(detail::SupersetLanes& kernel, Choice& hot) {
+  return rigid_superset_of_kernel(kernel, hot) && hot.certified;
+}
+
 // The double path on a rescaled pair; returns the quantities that are not certified.
 // `refined`: some quantity was certified by refine.h (a few candidates evaluated exactly);
 // `exact_q1`: q1 must be the exact solution's (solve_pair): neither the double positions nor
@@ -138,10 +154,13 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
 // (deformable_depth.h), which see the same rescaled pair, so that both report the same values
 // and labels; the set's sweeps where those cannot decide (their results do not depend on the
 // hint, so the choice is the hot functions' fallback's too).
+// `kernel`: the superset kernel's lanes of the pair (quick_lanes ran it); rigid_pd2 and its label
+// are its certified choice where it has one (superset_rigid), the set's choice (`rigid` below:
+// the sweeps' hint, pdd2_accel1's start and pdd2_global's lower bound) otherwise.
 // `computed` (computed_values): the values to compute; the others stay 0 and uncounted.
 unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const QuickCandidates* lanes,
-                           PairResult<double>& r, bool& refined, bool& exact_q1, bool& global_slow,
-                           bool global, unsigned computed) {
+                           detail::SupersetLanes& kernel, PairResult<double>& r, bool& refined, bool& exact_q1,
+                           bool& global_slow, bool global, unsigned computed) {
   auto asked = [computed](ValueIndex k) { return (computed & bit(k)) != 0; };
   // a lane choice as a choice of the set (its index: the same label; same candidates, same order)
   auto from_lanes = [&](bool (*sweep)(const QuickCandidates&, Choice&), Choice& ch) {
@@ -155,9 +174,15 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   };
   unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
-  r.rigid_pd2 = rigid.value;
-  r.rigid_dir = label_of(set, rigid);
-  missing |= rigid.certified ? 0 : kRigid;
+  Choice hot;
+  if (superset_rigid(kernel, hot)) {
+    r.rigid_pd2 = hot.value;
+    r.rigid_dir = hot.label();
+  } else {
+    r.rigid_pd2 = rigid.value;
+    r.rigid_dir = label_of(set, rigid);
+    missing |= rigid.certified ? 0 : kRigid;
+  }
   bool e11_ok = false, e11_refined = false;
   if (asked(kIdxEq11)) {
     r.eq11_pd2 = eq11_pd2(set, &e11_ok, &e11_refined);
@@ -340,13 +365,14 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   // nothing below calls solve_pair or waits on other tasks)
   static thread_local CandidateSet set_storage;
   static thread_local QuickCandidates lanes_storage;
+  static thread_local detail::SupersetLanes kernel_storage;
   CandidateSet* const set = &set_storage;
   // The quick lanes first: where they hold the pair's faces (the orientations certain) the set
   // is built from them (candidate_directions.h: the same set, the kernel not run twice);
   // `have_lanes` where every face depth and lane is clear too (an edge lane through the exact
   // path makes quick_lanes decline).
   QuickCandidates* const lanes = &lanes_storage;
-  const bool have_lanes = quick_lanes(sp.A, sp.B, *lanes, true);
+  const bool have_lanes = quick_lanes(sp.A, sp.B, *lanes, true, &kernel_storage);
   const BuildStatus built =
       lanes->faces_filled ? build_candidates(*lanes, *set) : build_candidates(sp.A, sp.B, *set);
   if (built != BuildStatus::Ok) {
@@ -362,7 +388,7 @@ PairResult<double> solve_record(const TetPair& pair, bool* slow_path, bool* refi
   scaled.A = sp.A;
   scaled.B = sp.B;
   bool refined = false, exact_q1 = false, global_slow = false;
-  unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes : nullptr, r, refined,
+  unsigned missing = fill_intersecting(scaled, *set, have_lanes ? lanes : nullptr, kernel_storage, r, refined,
                                        exact_q1, global_slow, global, computed);
   PairResult<double> bad;
   bad.name = pair.name;

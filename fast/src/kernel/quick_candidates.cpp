@@ -45,12 +45,14 @@ void quick_edge_list(QuickCandidates& q) {
 }
 
 // The arithmetic is the superset kernel's (superset_kernel.h), which also writes the lanes.
-bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q, bool all_faces) {
+bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q, bool all_faces,
+                 SupersetLanes* kernel) {
   q.count = 0;
   q.faces_filled = false;
   q.A = &A;
   q.B = &B;
-  SupersetLanes K;
+  SupersetLanes own;
+  SupersetLanes& K = kernel ? *kernel : own;
   superset_kernel(A, B, K, &q.edges);
   if (!(K.finite == 0.0)) return false;
   const FilterBounds fb = filter_bounds_of_extent(K.extent);

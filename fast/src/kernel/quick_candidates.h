@@ -15,6 +15,9 @@
 #include "kernel/candidate_directions.h"
 
 namespace pdd::fast {
+namespace detail {
+struct SupersetLanes;  // superset_kernel.h
+}
 
 // The candidate list of the hot path, when every filter verdict is clear (no exact fallback, no
 // label array): the same candidates, in the same canonical order, with bit-identical delta²,
@@ -48,7 +51,10 @@ bool quick_candidates(const TetVertices& A, const TetVertices& B, QuickCandidate
 // directly by entry (below), as deformable_depth.cpp's lane sweeps do.
 // `all_faces`: where a face's depth is within its filter bound, the other faces are still
 // finished (faces_filled) for build_candidates(q), which decides that depth exactly.
-bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q, bool all_faces = false);
+// `kernel` (optional): where the superset kernel's lanes are kept (always filled, whatever is
+// returned: superset_kernel(A, B, *kernel, ...)), for rigid_superset_of_kernel (superset_depth.h).
+bool quick_lanes(const TetVertices& A, const TetVertices& B, QuickCandidates& q, bool all_faces = false,
+                 detail::SupersetLanes* kernel = nullptr);
 void quick_edge_list(QuickCandidates& q);
 
 // An entry is a candidate's `src` (a face f < 8, or 8 + 2·lane + [oriented by −n]), usable

@@ -46,7 +46,9 @@ double eq11_pd2(const CandidateSet& set, bool* certified = nullptr, bool* refine
 
 // Convenience over raw tetrahedra (the hot path): rigid_superset (superset_depth.h) when it
 // decides (index −1: no list is built), else the candidate set (index then refers to it);
-// value 0 when the pair does not intersect or is invalid. Same value and label either way.
+// value 0 when the pair does not intersect or is invalid. Same value and label either way,
+// except at the near ties of superset_depth.h's choice without unresolved edge pairs, where
+// solve_pair reports the superset's choice as this function does.
 Choice rigid_pd2_choice(const TetVertices& A, const TetVertices& B);
 
 // What rigid_pd2_choice's first try (rigid_superset_scaled on the raw pair, superset_depth.h)

@@ -8,7 +8,11 @@
 //         optionally the chosen candidate's geometry (for the case-2 QP of pdd2_accel1); or
 //         false ("declined": the pair is invalid, not clearly intersecting, or a decision near
 //         the minimum needs the exact fallback) — the caller then uses the candidate list.
-//         Value, label and geometry are bit-identical to rigid_pd2(build_candidates(A, B)).
+//         Value, label and geometry are bit-identical to rigid_pd2(build_candidates(A, B)),
+//         except where the choice is certified only with the edge pairs the doubles cannot
+//         resolve left out (choice_without_unresolved): at a near tie the list may then name
+//         one of those pairs along its own normal, a few ulps from this choice, both within
+//         definitions §8 (solve_pair reports this choice there: rigid_superset_of_kernel).
 //
 // ---- Why a superset suffices for the VALUE (proof).
 // Let M = A ⊕ (−B) = conv{s_i − r_j} and h(u) = max_{x in M} u.x = max_i u.s_i − min_j u.r_j =:
@@ -74,6 +78,9 @@ namespace pdd::fast {
 // `band` (optional, with `unique`): asked where the choice is certified and not certainly
 // `unique` (TieBandTest below).
 class TieBandTest;
+namespace detail {
+struct SupersetLanes;  // superset_kernel.h
+}
 bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch,
                     Candidate* geometry = nullptr, bool* unique = nullptr, TieBandTest* band = nullptr);
 
@@ -94,6 +101,11 @@ bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& c
                            Candidate* geometry = nullptr, bool* unique = nullptr,
                            double* extent = nullptr, bool* kernel_ran = nullptr,
                            bool* unresolved = nullptr, TieBandTest* band = nullptr);
+
+// rigid_superset(A, B, ch) on the kernel's lanes of that pair already computed
+// (superset_kernel(A, B, K, full) with any `full`: the same lanes bit for bit), for a caller that
+// ran the kernel for quick_lanes (solve_pair). The same choice; K is changed.
+bool rigid_superset_of_kernel(detail::SupersetLanes& K, Choice& ch);
 
 // The candidates of the list that may be its exact first (stable delta order, what
 // pdd2_accel(A, B, 1) takes) when the choice is certified but not `unique`: entry[0] the choice,

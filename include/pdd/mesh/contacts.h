@@ -38,10 +38,10 @@
 // computed, the others are 0 with no label; q1_A / q1_B (the deformed positions attaining pdd2)
 // are set when kPdd2 is requested and are the rest pose otherwise. With the fast engine each
 // value equals the field of the same name of pdd::fast::solve_pair on the pair
-// (A = element a, B = element b), except at the near ties of pdd.h's known gap where rigid_pd2
-// and pdd2_accel1 come from its hot functions (variants without pdd2, eq11, global, relaxed,
-// accel6 and with at most one of static and accel1 beside rigid: the same pair may then name
-// the other side of that tie than under other variants, both within definitions §8);
+// (A = element a, B = element b), except pdd2_accel1 on the aligned pairs of pdd.h's known gap
+// where it comes from its hot function (variants without pdd2, eq11, global, relaxed and
+// accel6: the same pair's pdd2_accel1 may then differ from its value under other variants by a
+// few units in the last place, both within definitions §8);
 // contacts_exact gives pdd::reference::solve_pair's exact record
 // (every value; definitions §9's search only with kGlobal).
 //
