@@ -130,20 +130,6 @@ bool fill_global(const TetPair& pair, const Choice& rel, const CandidateSet& set
   return g.certified;
 }
 
-// The rigid value and label that rigid_pd2(A, B) reports on this pair (rigid_depth.h), so that a
-// record names the same side of a near tie as the hot path, whatever values are asked: true with
-// the superset's certified choice in `hot` (superset_depth.h), which the hot path takes before the
-// set's. The two agree on a pick the superset certifies with every edge pair in its lanes; where
-// it certifies one only after leaving out the edge pairs the doubles cannot resolve (nearly or
-// exactly parallel edges, edge pairs with loose bounds), the set still holds those along their
-// own normals and at a near tie (either side of which definitions §8 allows) may name one of them
-// where the superset names another candidate, a few ulps apart. `kernel`: the superset kernel's
-// lanes of this pair, from quick_lanes (the choice without running the kernel again: ~0.9k
-// instructions a pair on rotated grids, where the superset's first pick certifies).
-bool superset_rigid(detail::SupersetLanes& kernel, Choice& hot) {
-  return rigid_superset_of_kernel(kernel, hot) && hot.certified;
-}
-
 // The double path on a rescaled pair; returns the quantities that are not certified.
 // `refined`: some quantity was certified by refine.h (a few candidates evaluated exactly);
 // `exact_q1`: q1 must be the exact solution's (solve_pair): neither the double positions nor
@@ -154,9 +140,17 @@ bool superset_rigid(detail::SupersetLanes& kernel, Choice& hot) {
 // (deformable_depth.h), which see the same rescaled pair, so that both report the same values
 // and labels; the set's sweeps where those cannot decide (their results do not depend on the
 // hint, so the choice is the hot functions' fallback's too).
-// `kernel`: the superset kernel's lanes of the pair (quick_lanes ran it); rigid_pd2 and its label
-// are its certified choice where it has one (superset_rigid), the set's choice (`rigid` below:
-// the sweeps' hint, pdd2_accel1's start and pdd2_global's lower bound) otherwise.
+// `kernel`: the superset kernel's lanes of the pair (quick_lanes ran it). rigid_pd2, its label and
+// pdd2_accel1 are the hot functions' (rigid_and_accel1_of_rescaled: their routes on the same
+// rescaled pair), so that a record and rigid_pd2(A, B), pdd2_accel(A, B, 1) agree bit for bit
+// whatever else is asked. The set's choice and the superset's agree on a pick the superset
+// certifies with every edge pair in its lanes; where it certifies one only after leaving out
+// the edge pairs the doubles cannot resolve (nearly or exactly parallel edges, edge pairs with
+// loose bounds), the set still holds those along their own normals and at a near tie (either
+// side of which definitions §8 allows) may name one of them, a few ulps away; and pdd2_accel1's
+// routes (the superset's tie band, its compensated value, the quick list) certify its value
+// along other roundings than the set's. The set's own rigid choice (`rigid` below) stays the
+// sweeps' hint and pdd2_global's lower bound.
 // `computed` (computed_values): the values to compute; the others stay 0 and uncounted.
 unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const QuickCandidates* lanes,
                            detail::SupersetLanes& kernel, PairResult<double>& r, bool& refined, bool& exact_q1,
@@ -174,8 +168,9 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
   };
   unsigned missing = 0;
   const Choice rigid = rigid_pd2(set);
-  Choice hot;
-  if (superset_rigid(kernel, hot)) {
+  Choice hot, hot_accel1;
+  rigid_and_accel1_of_rescaled(pair.A, pair.B, kernel, set, rigid, asked(kIdxAccel1), hot, hot_accel1);
+  if (hot.certified) {
     r.rigid_pd2 = hot.value;
     r.rigid_dir = hot.label();
   } else {
@@ -212,7 +207,7 @@ unsigned fill_intersecting(const TetPair& pair, const CandidateSet& set, const Q
     missing |= accel6.certified ? 0 : kAccel6;
   }
   if (asked(kIdxAccel1)) {
-    accel1 = pdd2_accel(set, 1, &rigid);
+    accel1 = hot_accel1;
     r.pdd2_accel1 = accel1.value;
     missing |= accel1.certified ? 0 : kAccel1;
   }

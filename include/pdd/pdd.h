@@ -113,13 +113,10 @@ struct Depth {
 // definitions §8; and solve_pair lowers a value that rounded above a value it is exactly at
 // most (definitions §5: pdd2 <= pdd2_static <= rigid_pd2, pdd2 <= rigid_pd2 / 2,
 // pdd2_global <= pdd2_relaxed <= pdd2 <= pdd2_accel6 <= pdd2_accel1) to that bound, which
-// keeps definitions §8; rigid_pd2 and pdd2_accel(k = 1) are never lowered). A known gap, not
-// yet closed: on aligned pairs (edges parallel up to a rounding, ties between candidates)
-// pdd2_accel(k = 1) may take another certified route than the record and differ from its
-// pdd2_accel1 by a few units in the last place, both within definitions §8 (a Gmsh
-// transfinite box of 7^3 cells against its copy moved one cell: 177 of 23,792 intersecting
-// pairs, at most 2.2e-14 relative; paper-protocol pairs: none). rigid_pd2 and its label are
-// the record's bit for bit: the record takes the same certified choice at near ties.
+// keeps definitions §8; rigid_pd2 and pdd2_accel(k = 1) are never lowered). At a near tie
+// (candidates' values within definitions §8's bound) either side may be named, and the record
+// names the side these functions name: rigid_pd2 and pdd2_accel(k = 1) take the same certified
+// routes in solve_pair (aligned meshes, edges parallel up to a rounding, are full of such ties).
 Depth rigid_pd2(const TetVertices& A, const TetVertices& B);     // PD², definitions §4
 Depth pdd2_static(const TetVertices& A, const TetVertices& B);   // PD_d², case 1, definitions §5
 Depth pdd2(const TetVertices& A, const TetVertices& B);          // PD_d², case 2 (eq. 3, 10)

@@ -1057,8 +1057,10 @@ bool rigid_superset(const TetVertices& A, const TetVertices& B, Choice& ch, Cand
   return superset_choice(A, B, ch, geometry, unique, true, band);
 }
 
-bool rigid_superset_of_kernel(SupersetLanes& K, Choice& ch) {
-  return choice_of_lanes(K, ch, nullptr, nullptr, true);
+bool rigid_superset_of_kernel(SupersetLanes& K, Choice& ch, Candidate* geometry, bool* unique, bool* unresolved,
+                              TieBandTest* band) {
+  if (unresolved) *unresolved = false;
+  return choice_of_lanes(K, ch, geometry, unique, true, unresolved, band);
 }
 
 bool rigid_superset_uncertified(const TetVertices& A, const TetVertices& B, Choice& ch) {

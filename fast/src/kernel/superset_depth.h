@@ -102,10 +102,12 @@ bool rigid_superset_scaled(const TetVertices& A, const TetVertices& B, Choice& c
                            double* extent = nullptr, bool* kernel_ran = nullptr,
                            bool* unresolved = nullptr, TieBandTest* band = nullptr);
 
-// rigid_superset(A, B, ch) on the kernel's lanes of that pair already computed
-// (superset_kernel(A, B, K, full) with any `full`: the same lanes bit for bit), for a caller that
-// ran the kernel for quick_lanes (solve_pair). The same choice; K is changed.
-bool rigid_superset_of_kernel(detail::SupersetLanes& K, Choice& ch);
+// rigid_superset_scaled(A, B, ...) on a pair already rescaled (power_scaled: e = 0, the kernel ran),
+// from the kernel's lanes of that pair (superset_kernel(A, B, K, full) with any `full`: the same
+// lanes bit for bit), for a caller that ran the kernel for quick_lanes (solve_pair). The same
+// choice, geometry, `unique`, `unresolved` and band verdict; K is changed.
+bool rigid_superset_of_kernel(detail::SupersetLanes& K, Choice& ch, Candidate* geometry = nullptr,
+                              bool* unique = nullptr, bool* unresolved = nullptr, TieBandTest* band = nullptr);
 
 // The candidates of the list that may be its exact first (stable delta order, what
 // pdd2_accel(A, B, 1) takes) when the choice is certified but not `unique`: entry[0] the choice,

@@ -20,6 +20,7 @@
 #include "certification/value_bounds.h"
 #include "hot_path.h"
 #include "kernel/superset_depth.h"
+#include "kernel/superset_kernel.h"
 #include "qp/direction_qp_impl.h"
 
 namespace pdd::fast {
@@ -1542,76 +1543,91 @@ struct SharedSuperset {
   Accel1OverBand band;
 };
 
-// pdd2_accel_choice(A, B, 1); `shared` (optional): the first try's kernel and choice already run
-// on this pair (rigid_and_accel1_choices), taken instead of running them again.
+// What accel1_choice's first branch learns, for the run's routes on the same rescaled pair:
+// where the kernel ran and `unique` failed, rigid_and_accel1 there computes the same choice and
+// fails too (it needs `unique`), as it does where the first branch's compensated value failed
+// on that pair (compensated_tried); with unresolved edge pairs the quick list declines.
+// (Either route skipped is only time saved: the next one computes the same value.)
+struct Accel1Routes {
+  bool ran = false, unique = false, unresolved = false, compensated_tried = false;
+};
+
+// The first branch of pdd2_accel(A, B, 1) on the raw pair (superset_depth.h: the same lanes,
+// geometry and `unique` as on the rescaled pair; filter_bounds of the rescaled pair is
+// filter_bounds_of_extent of the kernel's extent: the same maxima, minima and differences) and,
+// where the double heights cannot certify the value along the unique pick, rigid_and_accel1's
+// compensated value on the same rescaled pair (power_scaled's, 2^e). `shared` (optional): the
+// first try's kernel and choice already run on this pair, taken instead of running them again.
+bool accel1_first_branch(const TetVertices& A, const TetVertices& B, const SharedSuperset* shared, Accel1Routes& st,
+                         Choice& ch, int& e) {
+  Choice rigid;
+  Candidate c;
+  double extent = 0;
+  Accel1OverBand own;
+  const Accel1OverBand* band = &own;
+  if (shared) {
+    const SupersetFirstTry& f = shared->first;
+    // no certified choice: what the recall below gives after rigid_pd2_choice(A, B, &f)
+    if (f.ran && !(f.done && f.ch.certified)) return st.unresolved = f.unresolved, st.ran = true, false;
+    st.ran = f.ran, st.unresolved = f.unresolved, e = f.e;
+    if (!f.done) return false;
+    rigid = f.ch, c = shared->c, st.unique = shared->unique, extent = shared->extent, band = &shared->band;
+  } else {
+    // rigid_pd2 just found no certified choice on this pair: the same run would not either
+    if (recall_uncertified_superset(A, B, st.unresolved)) return st.ran = true, false;
+    if (!rigid_superset_scaled(A, B, rigid, e, &c, &st.unique, &extent, &st.ran, &st.unresolved, &own)) return false;
+  }
+  if (band->accepted) {
+    ch = {band->value, -1, rigid.code};
+    ch.certified = true;
+    return true;
+  }
+  if (accel1_of_rigid(rigid, c, st.unique, filter_bounds_of_extent(extent), ch)) return true;
+  if (!st.unique) return false;
+  const detail::ScaledPair sp = detail::power_scaled(A, B);
+  if (!sp.finite || !sp.exact || sp.e != e) return false;
+  st.compensated_tried = true;
+  double v = 0;
+  if (!accel1_compensated(sp.A, sp.B, c, v)) return false;
+  ch = {v, -1, rigid.code};
+  ch.certified = true;
+  return true;
+}
+
+// The run of pdd2_accel(A, B, 1) on the rescaled pair after its first branch: rigid_and_accel1,
+// the quick list, the candidate set (`given`: build_candidates(As, Bs) where the caller has it,
+// else built here; `given_rigid`: rigid_pd2(*given), or null).
+bool accel1_run(const TetVertices& As, const TetVertices& Bs, const Accel1Routes& st, const CandidateSet* given,
+                const Choice* given_rigid, Choice& ch) {
+  Choice rigid;
+  Candidate c;
+  if (!(st.ran && !st.unique) && !st.compensated_tried && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
+  QuickCandidates q;
+  if (!(st.ran && st.unresolved) && quick_candidates(As, Bs, q)) {
+    ch = pdd2_accel(q, 1);
+    return true;
+  }
+  if (given) {
+    ch = pdd2_accel(*given, 1, given_rigid);
+    return true;
+  }
+  BuildStatus status;
+  const CandidateSet& set = build_candidates_reusing(As, Bs, status, q.count == 8 ? &q : nullptr);
+  if (status != BuildStatus::Ok || !set.intersecting) return false;
+  ch = pdd2_accel(set, 1);
+  return true;
+}
+
+// pdd2_accel_choice(A, B, 1); `shared` as for accel1_first_branch.
 Choice accel1_choice(const TetVertices& A, const TetVertices& B, const SharedSuperset* shared) {
   auto pick = [](const PairResult<double>& r, std::optional<DirectionLabel>& l) {
     l = std::nullopt;
     return r.pdd2_accel1;
   };
-  // What the first branch learns, for the run's routes on the same rescaled pair: where the
-  // kernel ran and `unique` failed, rigid_and_accel1 there computes the same choice and
-  // fails too (it needs `unique`), as it does where the first branch's compensated value
-  // failed on that pair (compensated_tried); with unresolved edge pairs the quick list
-  // declines.
-  // (Either route skipped is only time saved: the next one computes the same value.)
-  bool ran = false, unique = false, unresolved = false, compensated_tried = false;
+  Accel1Routes st;
   return detail::fused_hot_path(
-      A, B,
-      // the run's first branch on the rescaled pair (superset_depth.h: the same lanes,
-      // geometry and `unique`; filter_bounds of the rescaled pair is filter_bounds_of_extent
-      // of the kernel's extent: the same maxima, minima and differences)
-      // and, where the double heights cannot certify the value along the unique pick,
-      // rigid_and_accel1's compensated value on the same rescaled pair (power_scaled's, 2^e)
-      [&](Choice& ch, int& e) {
-        Choice rigid;
-        Candidate c;
-        double extent = 0;
-        Accel1OverBand own;
-        const Accel1OverBand* band = &own;
-        if (shared) {
-          const SupersetFirstTry& f = shared->first;
-          // no certified choice: what the recall below gives after rigid_pd2_choice(A, B, &f)
-          if (f.ran && !(f.done && f.ch.certified)) return unresolved = f.unresolved, ran = true, false;
-          ran = f.ran, unresolved = f.unresolved, e = f.e;
-          if (!f.done) return false;
-          rigid = f.ch, c = shared->c, unique = shared->unique, extent = shared->extent, band = &shared->band;
-        } else {
-          // rigid_pd2 just found no certified choice on this pair: the same run would not either
-          if (recall_uncertified_superset(A, B, unresolved)) return ran = true, false;
-          if (!rigid_superset_scaled(A, B, rigid, e, &c, &unique, &extent, &ran, &unresolved, &own)) return false;
-        }
-        if (band->accepted) {
-          ch = {band->value, -1, rigid.code};
-          ch.certified = true;
-          return true;
-        }
-        if (accel1_of_rigid(rigid, c, unique, filter_bounds_of_extent(extent), ch)) return true;
-        if (!unique) return false;
-        const detail::ScaledPair sp = detail::power_scaled(A, B);
-        if (!sp.finite || !sp.exact || sp.e != e) return false;
-        compensated_tried = true;
-        double v = 0;
-        if (!accel1_compensated(sp.A, sp.B, c, v)) return false;
-        ch = {v, -1, rigid.code};
-        ch.certified = true;
-        return true;
-      },
-      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) {
-        Choice rigid;
-        Candidate c;
-        if (!(ran && !unique) && !compensated_tried && rigid_and_accel1(As, Bs, rigid, c, ch)) return true;
-        QuickCandidates q;
-        if (!(ran && unresolved) && quick_candidates(As, Bs, q)) {
-          ch = pdd2_accel(q, 1);
-          return true;
-        }
-        BuildStatus status;
-        const CandidateSet& set = build_candidates_reusing(As, Bs, status, q.count == 8 ? &q : nullptr);
-        if (status != BuildStatus::Ok || !set.intersecting) return false;
-        ch = pdd2_accel(set, 1);
-        return true;
-      },
+      A, B, [&](Choice& ch, int& e) { return accel1_first_branch(A, B, shared, st, ch, e); },
+      [&](const TetVertices& As, const TetVertices& Bs, Choice& ch) { return accel1_run(As, Bs, st, nullptr, nullptr, ch); },
       pick);
 }
 
@@ -1623,6 +1639,28 @@ void rigid_and_accel1_choices(const TetVertices& A, const TetVertices& B, Choice
   f.done = rigid_superset_scaled(A, B, f.ch, f.e, &s.c, &s.unique, &s.extent, &f.ran, &f.unresolved, &s.band);
   rigid = rigid_pd2_choice(A, B, &f);
   accel1 = accel1_choice(A, B, &s);
+}
+
+void rigid_and_accel1_of_rescaled(const TetVertices& As, const TetVertices& Bs, detail::SupersetLanes& K,
+                                  const CandidateSet& set, const Choice& set_rigid, bool with_accel1, Choice& rigid,
+                                  Choice& accel1) {
+  rigid = accel1 = Choice{};
+  if (!with_accel1) {
+    Choice ch;
+    if (rigid_superset_of_kernel(K, ch) && ch.certified) rigid = ch;
+    return;
+  }
+  SharedSuperset s;
+  SupersetFirstTry& f = s.first;
+  f.ran = true;
+  f.done = rigid_superset_of_kernel(K, f.ch, &s.c, &s.unique, &f.unresolved, &s.band);
+  s.extent = K.extent;
+  if (f.done && f.ch.certified) rigid = f.ch;
+  Accel1Routes st;
+  int e = 0;
+  if (accel1_first_branch(As, Bs, &s, st, accel1, e) && accel1.certified) return;
+  accel1 = Choice{};
+  accel1_run(As, Bs, st, &set, &set_rigid, accel1);
 }
 
 Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k) {

@@ -202,5 +202,16 @@ Choice pdd2_accel_choice(const TetVertices& A, const TetVertices& B, int k);
 // first try (rigid_superset_scaled on the raw pair: kernel, choice, certificate) run once: where
 // it certifies, rigid_pd2's half of the two calls' work.
 void rigid_and_accel1_choices(const TetVertices& A, const TetVertices& B, Choice& rigid, Choice& accel1);
+// The same two choices where the caller (solve_pair) holds the pair rescaled, As, Bs =
+// power_scaled(A, B) (exact), the superset kernel's lanes K of (As, Bs) (quick_lanes ran it; K is
+// changed here), its candidate set build_candidates(As, Bs) and that set's rigid_pd2(set): the
+// hot path's routes, without running the kernel, building the set or choosing over it again,
+// values on the rescaled pair. `rigid`: the
+// superset's certified choice, or uncertified with index -1 where it has none (the hot path then
+// takes the set's: rigid_pd2(set)); `accel1` (with_accel1 only): pdd2_accel1's choice,
+// uncertified where the hot path takes the exact path.
+void rigid_and_accel1_of_rescaled(const TetVertices& As, const TetVertices& Bs, detail::SupersetLanes& K,
+                                  const CandidateSet& set, const Choice& set_rigid, bool with_accel1, Choice& rigid,
+                                  Choice& accel1);
 
 }  // namespace pdd::fast

@@ -38,10 +38,9 @@
 // computed, the others are 0 with no label; q1_A / q1_B (the deformed positions attaining pdd2)
 // are set when kPdd2 is requested and are the rest pose otherwise. With the fast engine each
 // value equals the field of the same name of pdd::fast::solve_pair on the pair
-// (A = element a, B = element b), except pdd2_accel1 on the aligned pairs of pdd.h's known gap
-// where it comes from its hot function (variants without pdd2, eq11, global, relaxed and
-// accel6: the same pair's pdd2_accel1 may then differ from its value under other variants by a
-// few units in the last place, both within definitions §8);
+// (A = element a, B = element b), bit for bit, whichever variants are asked (those without
+// pdd2, eq11, global, relaxed and accel6 come from pdd.h's hot functions, which name the
+// record's side of every near tie);
 // contacts_exact gives pdd::reference::solve_pair's exact record
 // (every value; definitions §9's search only with kGlobal).
 //
