@@ -232,6 +232,18 @@ void check_hot(const TetPair& p, const pdd::PairResult<double>& r) {
          << int(hot[i].status) << "), solve_pair " << ref[i];
       fail(p, os.str());
     }
+  // rigid_pd2 with its label and pdd2_accel(A, B, 1) are the record's bit for bit (pdd.h: the
+  // record takes the same certified routes; neither is ever lowered by its relations).
+  const pdd::fast::Depth accel1 = pdd::fast::pdd2_accel(p.A, p.B, 1);
+  if (std::memcmp(&hot[0].pd2, &r.rigid_pd2, sizeof(double)) != 0 || hot[0].dir != r.rigid_dir ||
+      accel1.status != pdd::fast::DepthStatus::Ok || std::memcmp(&accel1.pd2, &r.pdd2_accel1, sizeof(double)) != 0) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "the hot rigid_pd2 " << hot[0].pd2 << " " << (hot[0].dir ? hot[0].dir->str() : "-") << " and pdd2_accel1 "
+       << accel1.pd2 << " are not the record's " << r.rigid_pd2 << " " << (r.rigid_dir ? r.rigid_dir->str() : "-")
+       << " and " << r.pdd2_accel1;
+    fail(p, os.str());
+  }
 }
 
 pdd::reference::ExactResult exact_answer(const TetPair& p) {
