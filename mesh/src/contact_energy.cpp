@@ -680,6 +680,27 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   // or an edge vector that overflows).
   const auto unweighted = [](double w) { return w == 0 || !std::isfinite(w); };
   std::unordered_set<std::size_t> listed[2];  // the elements listed, per side (rare)
+  // A rest shape given with a non-finite coordinate is bad input wherever it lies: every element
+  // using such a vertex is listed first, in element order, whether or not it is in a pair now (its
+  // pairs, later, have no weight). (A side whose weights follow its positions has no rest shape
+  // of its own: contacts() lists the positions' non-finite coordinates.)
+  auto list_non_finite_rest = [&](const Mesh& rest, int side, char which) {
+    std::vector<char> bad(rest.vertices.size(), 0);
+    bool any = false;
+    for (std::size_t v = 0; v < rest.vertices.size(); ++v)
+      for (double c : rest.vertices[v])
+        if (!std::isfinite(c)) bad[v] = 1, any = true;
+    if (!any) return;
+    for (std::size_t i = 0; i < rest.tets.size(); ++i) {
+      const auto& t = rest.tets[i];
+      if (!(bad[t[0]] || bad[t[1]] || bad[t[2]] || bad[t[3]])) continue;
+      listed[side].insert(i);
+      e.skipped.push_back({which, i, *element_problem(rest, i, which) + " at rest: it has no contact weight"});
+    }
+  };
+  const int side_b = B ? 1 : 0;  // (self-contact: one mesh, one list)
+  if (!follow_a) list_non_finite_rest(weighted_a, 0, 'A');
+  if (B && !follow_b) list_non_finite_rest(weighted_b, 1, 'B');
   auto list_unweighted = [&](double w, int side, const Mesh& rest, std::size_t i, char which) {
     if (!unweighted(w) || !listed[side].insert(i).second) return;
     const std::string element_i = "element " + std::to_string(i) + " of mesh " + which;
@@ -694,7 +715,7 @@ ContactEnergy run(const Mesh& A, const Mesh* B, const std::vector<Vec3d>& pa,
   std::size_t kept = 0;  // the weighted pairs, moved to the front in pair order
   for (std::size_t j = 0; j < sol.size(); ++j) {
     list_unweighted(volume[j][0], 0, weighted_a, sol[j].a, 'A');
-    list_unweighted(volume[j][1], 1, weighted_b, sol[j].b, B ? 'B' : 'A');
+    list_unweighted(volume[j][1], side_b, weighted_b, sol[j].b, B ? 'B' : 'A');
     if (unweighted(volume[j][0]) || unweighted(volume[j][1])) continue;
     if (kept != j) sol[kept] = sol[j], volume[kept] = volume[j];
     ++kept;

@@ -171,8 +171,11 @@ std::string text_arg(py::handle o, const char* what) {
 }
 
 bool bool_arg(py::handle o, const char* what) {
-  if (!PyBool_Check(o.ptr())) value_error(std::string(what) + " must be True or False; got " + short_repr(o));
-  return o.ptr() == Py_True;
+  if (PyBool_Check(o.ptr())) return o.ptr() == Py_True;
+  // numpy's scalar bool (its type is named numpy.bool_, or numpy.bool from numpy 2): exactly two values
+  const std::string type = Py_TYPE(o.ptr())->tp_name;
+  if (type == "numpy.bool_" || type == "numpy.bool") return PyObject_IsTrue(o.ptr()) == 1;
+  value_error(std::string(what) + " must be True or False; got " + short_repr(o));
 }
 
 void check_gradient_needs_global(bool global, bool gradient) {

@@ -172,7 +172,7 @@ py::dict record(const pdd::PairResult<R>& r, unsigned variants) {
 // A str argument; ValueError naming it otherwise.
 std::string text_arg(py::handle o, const char* what);
 
-// A bool argument (True or False only); ValueError naming it otherwise.
+// A bool argument (True or False, or a numpy.bool_ as an array gives one); ValueError naming it otherwise.
 bool bool_arg(py::handle o, const char* what);
 
 // with_global=False with gradient=True: the gradient is that of pdd2_global, which is not computed.

@@ -67,9 +67,10 @@ py::object hessian_csr(const Eigen::SparseMatrix<double>& H) {
                                    py::arg("shape") = py::make_tuple(H.rows(), H.cols()));
 }
 
-py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle TB, bool hessian,
-                        bool per_pair, py::handle engine_in, py::handle weight_in,
+py::dict contact_energy(py::handle VA, py::handle TA, py::handle VB, py::handle TB, py::handle hessian_in,
+                        py::handle per_pair_in, py::handle engine_in, py::handle weight_in,
                         py::handle threads_in, py::handle rest_A, py::handle rest_B) {
+  const bool hessian = bool_arg(hessian_in, "hessian"), per_pair = bool_arg(per_pair_in, "per_pair");
   const std::string engine = text_arg(engine_in, "engine");
   if (engine != "fast" && engine != "reference")  // (the names of mesh_contacts, solve and pdd mesh --engine)
     value_error("engine must be 'fast' or 'reference'; got '" + engine + "'");
@@ -173,7 +174,8 @@ rest_A/B   (n, 3) rest positions, for the weights w_ab = (V_a V_b)^(1/3) (rest v
            rest_A/B agree with it), the hessian still the Gauss-Newton one at fixed weights.
 hessian    also the Gauss-Newton Hessian (positive semi-definite, symmetric).
 per_pair   also each pair's a, b, weight, pdd2_global and pair_energy (each certified: no pair
-           is then taken at a bound).
+           is then taken at a bound, so where contacts made by rounding were, the gradient and
+           hessian are those of their certified planes, a little different).
 engine     'fast' (certified doubles) or 'reference' (the exact engine, as for mesh_contacts
            and solve; slow: small meshes).
 weight     'area' ((V_a V_b)^(1/3), resolution-independent) or 'unit' (w = 1).
@@ -183,7 +185,8 @@ Returns a dict: energy (float), gradient ((nA + nB, 3), A's vertices first), hes
 (scipy.sparse.csr_matrix of size 3(nA + nB), row 3v + k for coordinate k of vertex v; None
 unless asked), pairs (int), max_pdd2_global (float), bounded_pairs (int: of the pairs, contacts
 made by rounding taken at a certified upper bound; 0 with per_pair), skipped (list of (mesh,
-index, reason)), seconds_contacts, seconds_assembly, and with per_pair: a, b, weight,
+index, reason): elements with a non-finite coordinate, at the positions or anywhere in a rest
+shape given, or flat), seconds_contacts, seconds_assembly, and with per_pair: a, b, weight,
 pdd2_global, pair_energy.
 The GIL is released; Ctrl-C stops the call (KeyboardInterrupt). Raises ValueError on bad input
 (shapes, indices, options) and where a pair's term w_ab * pdd2_global falls below the double

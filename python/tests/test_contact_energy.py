@@ -155,6 +155,13 @@ def test_self_contact_and_errors():
         pdd.contact_energy(VA, TA, VB, TB, rest_A=VA[:-1])
     with pytest.raises(ValueError, match="both VB and TB"):
         pdd.contact_energy(VA, TA, VB)
+    # flags as solve's: True or False (a numpy bool too), a clear ValueError otherwise
+    for name in ("hessian", "per_pair"):
+        for bad in ("yes", 1, None):
+            with pytest.raises(ValueError, match=f"^{name} must be True or False; got {bad!r}$"):
+                pdd.contact_energy(VA, TA, VB, TB, **{name: bad})
+    e = pdd.contact_energy(VA, TA, VB, TB, hessian=np.bool_(True), per_pair=np.array([False])[0])
+    assert e["hessian"] is not None and "a" not in e
 
 
 def test_elements_without_a_rest_weight_are_skipped_and_named():
@@ -193,6 +200,20 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     assert [(m, i) for m, i, _ in e0["skipped"]] == [("B", 0), ("B", 1)]
     assert all("rest_B[0]) coordinate x is not finite (nan) at rest" in why for _, _, why in e0["skipped"])
     assert e0["pairs"] == 0 and e0["energy"] == 0
+    # a non-finite rest coordinate is bad input wherever it lies: listed though its element (B's
+    # element 2, far from A) is in no pair, first, and the energy that of the rest
+    V2 = np.vstack([V, [[10, 10, 10], [11, 10, 10], [10, 11, 10], [10, 10, 11]]])
+    T2 = np.vstack([T, [[5, 6, 7, 8]]])
+    P2 = V2 + 0.5
+    rest2 = P2.copy()
+    rest2[6] = [0, np.inf, 0]
+    e2 = pdd.contact_energy(V, T, P2, T2, rest_B=rest2, per_pair=True)
+    assert e2["skipped"] == [("B", 2, "element 2 of mesh B: vertex 1 (mesh vertex 6: rest_B[6]) coordinate y "
+                                      "is not finite (inf) at rest: it has no contact weight")]
+    assert list(e2["pair_energy"]) == list(whole["pair_energy"])
+    # self-contact: one list for the mesh, each element once
+    es = pdd.contact_energy(V2, T2, rest_A=rest2)
+    assert [(m, i) for m, i, _ in es["skipped"]] == [("A", 2)]
 
 
 def test_energy_outside_the_double_range_raises():

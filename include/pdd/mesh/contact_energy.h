@@ -24,7 +24,9 @@
 // decision), or for self-contact every a < b sharing no vertex index (so two bodies of one file,
 // and a body folded onto itself, both count, as definitions §11 asks). A flat element (zero
 // volume at P, or at rest for the weight) or one with a non-finite coordinate is skipped and
-// listed in `skipped`, as contacts() does.
+// listed in `skipped`, as contacts() does; an element whose REST vertex (the mesh's `vertices`,
+// where they give the weights) has a non-finite coordinate is listed whether or not it is in a
+// pair (bad input wherever it lies).
 //
 // Weights. w_ab = (V_a V_b)^(1/3), V the REST volumes (|det| / 6 of A's / B's `vertices`; with
 // options.weights_follow_a / _b that side's current volumes, and the gradient then includes the
