@@ -316,6 +316,22 @@ def test_cli_energy_rest_shapes(tmp_path):
     assert r.returncode == 0, r.stderr
     check_cli_energy(r.stdout, e)
     assert e["energy"] != pdd.contact_energy(VA, TA, VB, TB)["energy"]  # the rest shape mattered
+    # a rest vertex that is not finite, used only by elements in no pair: named and exit 1, as
+    # the module lists it, the energy that of the other elements
+    in_pairs = set(pdd.contact_energy(VA, TA, VB, TB, rest_B=RB, per_pair=True)["b"])
+    v = next(v for v in range(len(VB)) if not any(v in TB[i] for i in in_pairs))
+    RBn = RB.copy()
+    RBn[v] = [np.nan, 0.0, 0.0]
+    rbn = str(tmp_path / "rbn.vtk")
+    write_vtk(rbn, RBn, TB)
+    e = pdd.contact_energy(VA, TA, VB, TB, rest_B=RBn)
+    named = sorted(i for i in range(len(TB)) if v in TB[i])
+    assert [(m, i) for m, i, _ in e["skipped"]] == [("B", i) for i in named]
+    assert e["energy"] == pdd.contact_energy(VA, TA, VB, TB, rest_B=RB)["energy"]
+    r = run_cli("--a", a, "--b", b, "--energy", "--quiet", "--rest-b", rbn)
+    assert r.returncode == 1, r.stderr
+    check_cli_energy(r.stdout, e)
+    assert all(f"pdd mesh: skipped element {i} of mesh B" in r.stderr for i in named)
     for args, why in (((("--rest-a", rb)), "not the same mesh"), ((("--rest-b", ra)), "not the same mesh")):
         r = run_cli("--a", a, "--b", b, "--energy", "--quiet", *args)
         assert r.returncode == 2 and r.stdout == "" and why in r.stderr
