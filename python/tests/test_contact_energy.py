@@ -211,9 +211,16 @@ def test_elements_without_a_rest_weight_are_skipped_and_named():
     assert e2["skipped"] == [("B", 2, "element 2 of mesh B: vertex 1 (mesh vertex 6: rest_B[6]) coordinate y "
                                       "is not finite (inf) at rest: it has no contact weight")]
     assert list(e2["pair_energy"]) == list(whole["pair_energy"])
-    # self-contact: one list for the mesh, each element once
+    # self-contact: one list for the mesh, each element once (element 1 of the chain below,
+    # flat at rest, is b of the pair (0, 1) and a of the pair (1, 2))
     es = pdd.contact_energy(V2, T2, rest_A=rest2)
     assert [(m, i) for m, i, _ in es["skipped"]] == [("A", 2)]
+    tet = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    chain = np.vstack([tet, tet + [0.3, 0.1, 0.1], tet + [0.6, 0.2, 0.2]])
+    flat = chain.copy()
+    flat[7] = flat[4]
+    ec = pdd.contact_energy(chain, np.arange(12).reshape(3, 4), rest_A=flat)
+    assert ec["skipped"] == [("A", 1, "element 1 of mesh A is flat at rest (volume 0): it has no contact weight")]
 
 
 def test_energy_outside_the_double_range_raises():
