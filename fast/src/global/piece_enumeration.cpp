@@ -61,6 +61,10 @@ struct ByRank {
 };
 inline constexpr ByRank kByRank;
 
+// kInverse[k] = 1 / k (k = 1..5), each correctly rounded as the division at run time: a lane's
+// w = 1 / (5 - |mb|) without a division per column.
+inline constexpr double kInverse[6] = {0, 1.0 / 1, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5};
+
 // A coordinate as a double: itself, or a rational rounded once.
 struct AsDouble {
   double operator()(double x) const { return x; }
@@ -287,7 +291,7 @@ class PieceEnumeration {
     for (int q = 0; q < 6; ++q) cols.Q[q][l] = sb.q[q][mb];
     cols.q[l] = sb.qmax[mb];
     cols.m[l] = kPopcount[mb];
-    cols.w[l] = 1.0 / (5 - kPopcount[mb]);
+    cols.w[l] = kInverse[5 - kPopcount[mb]];
     for (int mA = 1; mA <= 4; ++mA) cols.r[mA][l] = detail::kLaneR.r[mA][mb];
     cols.mb[l] = static_cast<unsigned char>(mb);
     lane_set[l] = int(1u << mb & 0xFFFEu);
@@ -359,11 +363,13 @@ class PieceEnumeration {
     // loops over a mask's set bits end at a data-dependent count, mispredicted about once a
     // loop, ~6 loops a row.)
     for (unsigned ma = 1; ma < 16; ++ma) {
+      unsigned r = 0;  // (in a register: reach[ma] and reach[sub] may alias, which kept it in memory)
       for (unsigned i = 0; i < 4; ++i) {  // (the rows ma less one vertex; ma itself adds 0 here)
         const unsigned sub = ma & ~(1u << i);
-        reach[ma] |= reach[sub] | above[sub];
+        r |= reach[sub] | above[sub];
       }
-      const unsigned need = region[ma] & ~up_closure(reach[ma]) & 0xFFFEu;
+      reach[ma] = r;
+      const unsigned need = region[ma] & ~up_closure(r) & 0xFFFEu;
       survivors[ma] = 0;
       if (!need) continue;
       // up to the last lane needed, in 4s: the lane of need's set of highest rank (the lanes go
