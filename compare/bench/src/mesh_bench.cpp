@@ -304,6 +304,25 @@ mesh::Mesh moved(const mesh::Mesh& m, const std::array<double, 3>& t, double ang
   return out;
 }
 
+// A and B turned together by `angle` about `axis` through the centre of all their vertices:
+// the scene as it is, in another frame.
+std::pair<mesh::Mesh, mesh::Mesh> turned_together(const mesh::Mesh& A, const mesh::Mesh& B, double angle,
+                                                  const std::array<double, 3>& axis = {1, 2, 3}) {
+  double c[3] = {0, 0, 0};
+  const double n = double(A.vertices.size() + B.vertices.size());
+  for (const mesh::Mesh* m : {&A, &B})
+    for (const Vec3d& v : m->vertices)
+      for (int k = 0; k < 3; ++k) c[k] += v[k] / n;
+  const auto R = rotation_matrix(axis, angle);
+  std::pair<mesh::Mesh, mesh::Mesh> out{A, B};
+  for (mesh::Mesh* m : {&out.first, &out.second})
+    for (Vec3d& v : m->vertices) {
+      const double p[3] = {v[0] - c[0], v[1] - c[1], v[2] - c[2]};
+      for (int r = 0; r < 3; ++r) v[r] = c[r] + R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+    }
+  return out;
+}
+
 // One aligned case's meshes (A, B) on one core: contacts() `repeats` times after a warm-up call
 // (medians per stage), then solve_pair's record statistics (the values of `variants`) on up to
 // 2000 intersecting pairs.
@@ -367,6 +386,8 @@ std::vector<AlignedCase> aligned_cases(const MeshBenchOptions& o) {
     c.name = name;
     c.aligned = aligned_run(A, B, o.variants, o.repeats);
     c.rotated = aligned_run(A, Brot, o.variants, o.repeats);
+    const auto [As, Bs] = turned_together(A, B, 0.3);
+    c.scene = aligned_run(As, Bs, o.variants, o.repeats);
     out.push_back(c);
   };
   for (CubeSplit split : {CubeSplit::Kuhn6, CubeSplit::Five}) {

@@ -94,7 +94,9 @@ struct DepthCost {
 
 // The aligned and structured cases (run_mesh_bench, --aligned-cells): meshes whose faces and
 // edges are parallel to the other's, each beside the same meshes with B rotated by a generic
-// angle (0.3 rad about (1, 2, 3) through B's centre), one core, in the same run.
+// angle (0.3 rad about (1, 2, 3) through B's centre), and beside the whole scene turned by that
+// angle about the centre of both (the same contacts, their faces and edges still parallel to
+// each other up to rounding, in no axis-aligned frame), one core, in the same run.
 struct AlignedRun {
   std::size_t elements_a = 0, elements_b = 0, box_pairs = 0, intersecting = 0;
   double decision_ns = 0;  // contacts()' decision stage / box pairs (median over repeats)
@@ -104,7 +106,7 @@ struct AlignedRun {
 };
 struct AlignedCase {
   std::string name;
-  AlignedRun aligned, rotated;
+  AlignedRun aligned, rotated, scene;  // scene: A and B turned together
 };
 
 // m with every coordinate moved by a few ulps, as a mesh generator places a grid (Gmsh's
