@@ -994,7 +994,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                        "(1, 1, 1), body-centred grids of cell 0.1 (24 tetrahedra a cube, half as many cubes a "
                        "side) shifted a quarter cell along (1, 1, 1), a mesh against its shifted copy, stacked "
                        "blocks, a Kuhn grid placed a few ulps off the grid as mesh generators place it against "
-                       "its shifted copy and stacked on it; each beside B rotated); 0: none")
+                       "its shifted copy and stacked on it; each beside B rotated and beside the scene "
+                       "turned); 0: none")
       ->capture_default_str()
       ->check(CLI::Range(0, 60));
   add_shared_options(mesh_cmd, ma->options.repeats, "Timed runs (median reported)", ma->json);
