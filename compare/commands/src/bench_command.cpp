@@ -527,7 +527,7 @@ void print_aligned_table(const MeshBenchReport& r, std::ostream& s) {
   for (const auto& c : r.aligned) w = std::max(w, c.name.size() + 2);
   s << "\nAligned and structured meshes (" << r.options.aligned_cells
     << " cells per axis), one core, medians; beside each, B rotated by 0.3 rad, and the scene\n"
-    << "(A and B) turned by 0.3 rad together: the same contacts in another frame (same run)\n  "
+    << "(A and B) turned by 0.3 rad together: the same scene in another frame (same run)\n  "
     << pad("case", w) << pad("", 9) << rpad("box pairs", 10) << rpad("pairs", 8)
     << rpad("ns/box pair", 13) << rpad("ns/pair", 11) << rpad("slow path", 11) << rpad("refined", 9) << "\n";
   for (const auto& c : r.aligned) {

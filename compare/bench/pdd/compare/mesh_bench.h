@@ -95,8 +95,9 @@ struct DepthCost {
 // The aligned and structured cases (run_mesh_bench, --aligned-cells): meshes whose faces and
 // edges are parallel to the other's, each beside the same meshes with B rotated by a generic
 // angle (0.3 rad about (1, 2, 3) through B's centre), and beside the whole scene turned by that
-// angle about the centre of both (the same contacts, their faces and edges still parallel to
-// each other up to rounding, in no axis-aligned frame), one core, in the same run.
+// angle about the centre of both (the same scene in no axis-aligned frame, its faces and edges
+// parallel to each other up to rounding; faces that touch exactly in the aligned scene may
+// intersect by rounding there, more pairs), one core, in the same run.
 struct AlignedRun {
   std::size_t elements_a = 0, elements_b = 0, box_pairs = 0, intersecting = 0;
   double decision_ns = 0;  // contacts()' decision stage / box pairs (median over repeats)
