@@ -138,6 +138,12 @@ run(0 "" bench mesh --a ${FIXTURES}/meshes/tiny-a.msh --b ${FIXTURES}/meshes/tin
 if(NOT out MATCHES "Stages of pdd::mesh::contacts" OR NOT out MATCHES "FCL DynamicAABBTreeCollisionManager")
   message(FATAL_ERROR "pdd bench mesh: table incomplete\n${out}")
 endif()
+# each aligned case beside B rotated and beside the whole scene turned (the same scene in
+# another frame: it has intersecting pairs wherever the aligned one has)
+if(NOT out MATCHES "\n +rotated +[0-9]+ +[1-9][0-9]* " OR NOT out MATCHES "\n +scene +[0-9]+ +[1-9][0-9]* "
+   OR NOT out MATCHES "/ scene +[0-9.]+x +[0-9.]+x")
+  message(FATAL_ERROR "pdd bench mesh: an aligned case without its rotated or turned scene's rows\n${out}")
+endif()
 # pdd bench end to end on a few pairs (no timing asserted): the slow-path rate and the cost of
 # certification are in the report and in the JSON.
 run(0 "" bench --count 20 --repeats 1 --exact-sample 2 --json ${WORK}/bench.json)
@@ -149,6 +155,10 @@ run(0 "" bench mesh --size 600 --repeats 1 --json ${WORK}/bench-mesh.json)
 file(READ ${WORK}/bench-mesh.json bench_mesh_json)
 if(NOT bench_mesh_json MATCHES "\"intersecting_pairs\": [1-9]")
   message(FATAL_ERROR "pdd bench mesh --size 600: no intersecting pairs in the JSON\n${bench_mesh_json}")
+endif()
+if(NOT bench_mesh_json MATCHES "\"scene\": {[^}]*\"intersecting\": [1-9]" OR
+   NOT bench_mesh_json MATCHES "\"depth_ratio_scene\": [0-9]")
+  message(FATAL_ERROR "pdd bench mesh --json: an aligned case without its turned scene\n${bench_mesh_json}")
 endif()
 
 # ---- 4. pdd paper's arguments --------------------------------------------------------------
