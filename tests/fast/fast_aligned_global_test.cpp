@@ -20,6 +20,7 @@
 #define BOOST_TEST_MODULE fast_aligned_global
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -545,4 +546,80 @@ BOOST_AUTO_TEST_CASE(vertices_off_the_contact_against_sampled_normals) {
   }
   BOOST_TEST(dropped > 0);
   BOOST_TEST(kept > 100);
+}
+
+// polytope_inside_ball with several planes against sampled normals: on random pairs, the
+// region D(u) <= d0 about a direction u0 of least overlap among samples (d0 = 1.3 D(u0)) cut by
+// two to four planes u.w <= c, each w a unit vector near u0 and c = cos of an angle (a cap about
+// w removed). Where some sampled unit u satisfies every plane and has D(u) <= d0 by a margin
+// (doubles: 1e-9 of the pair's size), the polytope is not inside the ball and the test must say
+// false; it says true on some cases (caps wide enough to hold the whole region), so the check is
+// not empty. The clips here keep tens to hundreds of crossings, which the thinning
+// (drop_inner_cuts, facet_bounds.cpp) reduces: a wrong widening shows as a true where a sampled
+// normal lies in the polytope.
+BOOST_AUTO_TEST_CASE(polytope_inside_ball_against_sampled_normals) {
+  namespace g = fast::global;
+  std::mt19937_64 rng(20261208);
+  std::uniform_real_distribution<double> U(-1, 1);
+  auto unit = [&] {
+    for (;;) {
+      const g::V3 u{U(rng), U(rng), U(rng)};
+      const double n = g::norm(u);
+      if (n > 0.1 && n < 1) return g::mul(u, 1 / n);
+    }
+  };
+  int shown = 0, refused = 0;
+  for (int pair = 0; pair < 300; ++pair) {
+    TetVertices A, B;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) A[i][k] = U(rng), B[i][k] = U(rng) * 0.8 + 0.3;
+    auto overlap = [&](const g::V3& u) {
+      double topA = -INFINITY, botB = INFINITY;
+      for (int i = 0; i < 4; ++i) topA = std::max(topA, g::dot(u, A[i])), botB = std::min(botB, g::dot(u, B[i]));
+      return topA - botB;
+    };
+    g::V3 u0 = unit();
+    for (int s = 0; s < 2000; ++s) {
+      const g::V3 u = unit();
+      if (overlap(u) < overlap(u0)) u0 = u;
+    }
+    const double D0 = overlap(u0);
+    if (!(D0 > 0.01)) continue;
+    const double d0 = 1.3 * D0, margin = 4e-9;
+    g::FacetBounds bounds(A, B);
+    if (!bounds.get()) continue;  // (not intersecting)
+    // the sampled region, and its widest angle from u0
+    std::vector<g::V3> region;
+    double widest = 0;
+    for (int s = 0; s < 20000; ++s) {
+      g::V3 u = g::add(u0, g::mul(unit(), std::ldexp(1.0, -(s % 6))));
+      u = g::mul(u, 1 / g::norm(u));
+      if (overlap(u) <= d0 - margin) region.push_back(u), widest = std::max(widest, std::acos(std::min(1.0, g::dot(u, u0))));
+    }
+    for (int trial = 0; trial < 4; ++trial) {
+      const int k = 2 + trial % 3;
+      g::Halfspace planes[4];
+      for (int i = 0; i < k; ++i) {
+        g::V3 w = g::add(u0, g::mul(unit(), 0.3 * widest));
+        w = g::mul(w, 1 / g::norm(w));
+        // about half the cases wide enough to hold the sampled region, the others cutting it
+        const double angle = widest * (trial < 2 ? 2.0 : 0.4 + 0.5 * i);
+        planes[i] = {w, std::cos(angle)};
+      }
+      const bool inside = g::polytope_inside_ball(bounds, planes, k, d0);
+      bool outside_sample = false;
+      for (const g::V3& u : region) {
+        bool in = true;
+        for (int i = 0; i < k; ++i) in = in && g::dot(u, planes[i].d) <= planes[i].c - margin;
+        if (in) {
+          outside_sample = true;
+          break;
+        }
+      }
+      if (outside_sample) BOOST_TEST(!inside, "pair " << pair << ", " << k << " planes: a sampled normal in the polytope");
+      shown += inside, refused += outside_sample;
+    }
+  }
+  BOOST_TEST(shown > 20);
+  BOOST_TEST(refused > 20);
 }

@@ -283,6 +283,10 @@ Loose loose(const V3& p, double r) { return {p, r, norm(p) * (1 + 4 * kU)}; }
 const double kSqrtInside = std::sqrt(kInside) * (1 - 6 * kU);
 constexpr double kMaxCrossings = 1 << 20;  // (polytope_inside_ball's last plane's crossings)
 constexpr double kMaxPoints = 1 << 16;     // (the points a clip keeps: a few thousand where it answers)
+// The widening all clips together may leave (drop_inner_cuts): half the margin kInside leaves
+// |p| (2^-37), ~30 times the cuts' own bounds on a unit polytope after two clips; shared
+// equally among the clips still to come.
+constexpr double kSlack = 0x1p-38;
 bool inside_at(double xx, double r) {
   const double room = kSqrtInside - r;
   return room > 0 && xx * (1 + 4 * kU) <= room * room * (1 - 4 * kU);
@@ -305,6 +309,108 @@ Crossing crossing(const Loose& a, double va, double ea, const Loose& b, double v
 }
 V3 at(const Loose& a, const Loose& b, double t) { return add(a.p, mul(sub(b.p, a.p), t)); }
 
+// The crossings `cuts` of one clip, less those that lie within `budget` of the hull of the
+// others; returns a bound on the largest distance dropped (0: none). Each cut stands for a point
+// within its bound r (polytope_inside_ball below). A cut q is dropped when a combination y =
+// sum w_i k_i of one to three kept cuts, w_i >= 0 as computed, lies near it: q's point lies
+// within r_q + max r_i + |y - q| + 3u sum w_i |k_i| of the combination of the kept cuts' points
+// with weights w_i / sum w_i (a convex one: the computed weights sum to 1 within 3u), so the
+// hull of the kept points, widened by that, holds it (the caller carries the widening). y - q
+// and its length are computed within 5u (|q| + sum w_i |k_i|) (three products and sums, a
+// difference), the square root's and the bound's own roundings within the last 8u: with the 3u
+// above, 15u (|q| + sum w_i |k_i|) taken (|x| <= len, x's bound on its length). How the weights are found needs no bound (any weights in the
+// simplex give a valid one): from the images L(x) = (x.e1, x.e2) in a basis of the plane, along
+// the two cuts at the ends of the first coordinate (a thin section: nearly a segment), else in
+// a triangle of the fan over the images' convex hull (Andrew's monotone chain), clamped to the
+// simplex. (A clip keeps every segment's crossing, n_in x n_beyond, most of them inside the
+// hull: on contacts made by rounding ~300 points after a second plane and ~8000 after a third,
+// nearly all on a segment ~1e-16 thick.) Written by hand: the points carry their own bounds,
+// which no hull library takes.
+double drop_inner_cuts(std::vector<Loose>& cuts, const V3& d, double budget) {
+  if (cuts.size() < 8 || !(budget > 0)) return 0;
+  const int a = std::fabs(d[0]) <= std::fabs(d[1]) && std::fabs(d[0]) <= std::fabs(d[2]) ? 0
+                : std::fabs(d[1]) <= std::fabs(d[2])                                     ? 1
+                                                                                         : 2;
+  V3 axis{0, 0, 0};
+  axis[a] = 1;
+  const V3 c1 = cross(d, axis);
+  const V3 e1 = mul(c1, 1 / norm(c1)), e2 = cross(mul(d, 1 / norm(d)), e1);
+  const std::size_t n = cuts.size();
+  struct Image {
+    double x, y;
+    std::size_t i;
+  };
+  static thread_local std::vector<Image> img;
+  static thread_local std::vector<std::size_t> hull;
+  static thread_local std::vector<char> keep;
+  img.resize(n);
+  for (std::size_t i = 0; i < n; ++i) img[i] = {dot(cuts[i].p, e1), dot(cuts[i].p, e2), i};
+  if (!std::all_of(img.begin(), img.end(), [](const Image& p) { return std::isfinite(p.x) && std::isfinite(p.y); }))
+    return 0;
+  auto orient = [](const Image& p, const Image& q, const Image& s) {
+    return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
+  };
+  std::sort(img.begin(), img.end(), [](const Image& p, const Image& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
+  hull.clear();
+  for (int pass = 0; pass < 2; ++pass) {  // lower chain left to right, then upper right to left
+    const std::size_t base = hull.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = pass == 0 ? k : n - 1 - k;
+      while (hull.size() >= base + 2 && !(orient(img[hull[hull.size() - 2]], img[hull.back()], img[i]) > 0))
+        hull.pop_back();
+      hull.push_back(i);
+    }
+    hull.pop_back();  // (each chain's last point starts the other)
+  }
+  keep.assign(n, 0);
+  for (const std::size_t h : hull) keep[img[h].i] = 1;
+  keep[img[0].i] = keep[img[n - 1].i] = 1;
+  // the distance bound of q from the combination of kept cuts k[0..m) with weights l (clamped)
+  auto distance = [&](const Loose& q, const std::size_t* k, double* l, int m) {
+    double sum = 0;
+    for (int j = 0; j < m; ++j) sum += (l[j] = std::clamp(l[j], 0.0, 1.0));
+    if (!(sum > 0)) return double(INFINITY);
+    V3 y{0, 0, 0};
+    double mag = q.len, r = 0;
+    for (int j = 0; j < m; ++j) {
+      const Loose& x = cuts[k[j]];
+      y = add(y, mul(x.p, l[j] / sum));
+      mag += x.len * (l[j] / sum) * (1 + 4 * kU), r = std::max(r, x.r);
+    }
+    return (q.r + r + norm(sub(q.p, y)) + 15 * kU * mag) * (1 + 8 * kU);
+  };
+  const Image &far0 = img[0], &far1 = img[n - 1];  // (the ends of the first coordinate)
+  const double fx = far1.x - far0.x, fy = far1.y - far0.y, ff = fx * fx + fy * fy;
+  double dropped = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    const Image& q = img[s];
+    if (keep[q.i]) continue;
+    double best = INFINITY;
+    if (ff > 0) {  // along the two ends
+      const std::size_t k[2] = {far0.i, far1.i};
+      const double t = ((q.x - far0.x) * fx + (q.y - far0.y) * fy) / ff;
+      double l[2] = {1 - t, t};
+      best = distance(cuts[q.i], k, l, 2);
+    }
+    for (std::size_t h = 1; h + 1 < hull.size() && !(best <= budget); ++h) {  // in a triangle of the fan
+      const Image &p0 = img[hull[0]], &p1 = img[hull[h]], &p2 = img[hull[h + 1]];
+      const double area = orient(p0, p1, p2);
+      if (!(area > 0)) continue;
+      double l[3] = {orient(q, p1, p2) / area, orient(p0, q, p2) / area, orient(p0, p1, q) / area};
+      if (!(l[0] >= -1e-9 && l[1] >= -1e-9 && l[2] >= -1e-9)) continue;
+      const std::size_t k[3] = {p0.i, p1.i, p2.i};
+      best = std::min(best, distance(cuts[q.i], k, l, 3));
+    }
+    if (best <= budget) dropped = std::max(dropped, best);
+    else keep[q.i] = 1;
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) cuts[kept++] = cuts[i];
+  cuts.resize(kept);
+  return dropped;
+}
+
 }  // namespace
 
 // polytope_inside_ball with k planes: W_k = W ∩ {u.d_1 <= c_1} ∩ .. ∩ {u.d_k <= c_k} inside the
@@ -324,10 +430,14 @@ V3 at(const Loose& a, const Loose& b, double t) { return add(a.p, mul(sub(b.p, a
 // crossing: its ends' bounds and its own roundings), which widens every side test by r |d| and
 // every ball test to |p| + r. P's points within 2^-20 of 0 (directions far deeper than d0: most
 // of them on a shallow contact) are replaced by the corners of the cube [-2^-20, 2^-20]^3, which
-// holds them. (An edge resting on a collinear edge, two planes: ~450 points in S_1, ~30 of them
-// outside the ball and beyond the second plane. Caps about tied minimisers: a cap is ~1e-5 rad
-// wide and few points lie beyond it: ~20 points, ~80 after an edge pair's plane, ~1500 after a
-// cap more, ~20 of them beyond the last cap.)
+// holds them. Each clip's crossings are thinned (drop_inner_cuts): those within a small distance
+// of the hull of the others are dropped, and W_t then lies within rho (their distances summed
+// over the clips, at most kSlack) of the hull of S_t's points; each later plane is moved out by
+// rho |d| and each ball test takes |p| + r + rho (polytope_inside_ball's own comments say why).
+// (An edge resting on a collinear edge, two planes: ~450 points in S_1, ~30 of them outside the
+// ball and beyond the second plane. Caps about tied minimisers: a cap is ~1e-5 rad wide and few
+// points lie beyond it: ~20 points, ~80 after an edge pair's plane, ~1500 after a cap more
+// without the thinning, ~15 with it.)
 bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, double d0) {
   if (!bounds.get() || k < 1) return false;
   // p.d against c: the value and its error (the direction's rounding and the dot's, 16u, as
@@ -337,7 +447,7 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
           x.r * nd;
     return dot(x.p, d);
   };
-  static thread_local std::vector<Loose> s, next;
+  static thread_local std::vector<Loose> s, next, cuts;
   static thread_local std::vector<double> v, e;
   static thread_local std::vector<std::size_t> outer, beyond;
   s.clear();
@@ -379,16 +489,25 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
       s.push_back(loose(v, r));
     }
   }
+  // rho: the widening the dropped cuts leave (drop_inner_cuts): W_t lies within rho of the hull
+  // of S_t's points, so W_t's part in {u.d <= c} lies within rho of that hull's part in
+  // {u.d <= c + rho |d|} (a point x = y + z, |z| <= rho, x.d <= c has y.d <= c + rho |d|): each
+  // later plane is taken that much further out, and every ball test that much stricter.
+  double rho = 0;
+  auto widened = [&rho](double c, double nd) {  // >= c + rho nd, each rounding covered
+    const double w = rho * nd * (1 + 4 * kU);
+    return (c + w) + 4 * kU * (std::fabs(c) + w);
+  };
   for (int t = 0; t + 1 < k; ++t) {  // S_(t+1) from S_t
     const V3& d = planes[t].d;
-    const double c = planes[t].c, nd = norm(d) * (1 + 4 * kU);
+    const double nd = norm(d) * (1 + 4 * kU), c = rho > 0 ? widened(planes[t].c, nd) : planes[t].c;
     const std::size_t n = s.size();
     v.resize(n), e.resize(n), beyond.clear();
     for (std::size_t j = 0; j < n; ++j) {
       v[j] = side(s[j], d, nd, c, e[j]);
       if (!(v[j] <= c + e[j])) beyond.push_back(j);  // (beyond the plane for certain)
     }
-    next.clear();
+    next.clear(), cuts.clear();
     for (std::size_t i = 0; i < n; ++i) {
       if (!(v[i] <= c + e[i])) continue;
       next.push_back(s[i]);  // (in the half-space, or near its plane: kept either way)
@@ -396,28 +515,31 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
       // spans its segments' crossings with the others kept): where the parameter's interval is
       // narrow, one point, its middle, whose distance from the crossing |w| ((hi - lo) / 2 +
       // 2u) is added to the bound (|w| <= |a| + |b|); else its two ends, between which the
-      // crossing lies (a segment nearly along the plane: two points near a cap's rim).
-      if (double(next.size()) + 2 * double(beyond.size()) > kMaxPoints) return false;
+      // crossing lies (a segment nearly along the plane: two points near a cap's rim). The
+      // crossings are then thinned (drop_inner_cuts).
+      if (double(next.size() + cuts.size()) + 2 * double(beyond.size()) > kMaxPoints) return false;
       for (const std::size_t j : beyond) {
         const Crossing x = crossing(s[i], v[i], e[i], s[j], v[j], e[j], c);
         if (x.hi - x.lo <= 0x1p-40) {
           const double half = (s[i].len + s[j].len) * ((x.hi - x.lo) * 0.5 + 2 * kU) * (1 + 4 * kU);
-          next.push_back(loose(at(s[i], s[j], 0.5 * (x.lo + x.hi)), (x.r + half) * (1 + 2 * kU)));
+          cuts.push_back(loose(at(s[i], s[j], 0.5 * (x.lo + x.hi)), (x.r + half) * (1 + 2 * kU)));
         } else {
-          next.push_back(loose(at(s[i], s[j], x.lo), x.r));
-          next.push_back(loose(at(s[i], s[j], x.hi), x.r));
+          cuts.push_back(loose(at(s[i], s[j], x.lo), x.r));
+          cuts.push_back(loose(at(s[i], s[j], x.hi), x.r));
         }
       }
     }
+    rho = (rho + drop_inner_cuts(cuts, d, (kSlack - rho) / (k - 1 - t))) * (1 + 2 * kU);
+    next.insert(next.end(), cuts.begin(), cuts.end());
     s.swap(next);
   }
   const V3& d = planes[k - 1].d;
-  const double c = planes[k - 1].c, nd = norm(d) * (1 + 4 * kU);
+  const double nd = norm(d) * (1 + 4 * kU), c = rho > 0 ? widened(planes[k - 1].c, nd) : planes[k - 1].c;
   const std::size_t m = s.size();
   v.resize(m), e.resize(m), outer.clear();
   for (std::size_t j = 0; j < m; ++j) {
     v[j] = side(s[j], d, nd, c, e[j]);
-    if (v[j] > c - e[j] && !inside_at(dot(s[j].p, s[j].p), s[j].r)) outer.push_back(j);
+    if (v[j] > c - e[j] && !inside_at(dot(s[j].p, s[j].p), s[j].r + rho)) outer.push_back(j);
   }
   // (where the crossings would number more than kMaxCrossings, not shown, rather than seconds
   // on one pair; the contacts it is for have ~10^4)
@@ -425,12 +547,12 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
   for (std::size_t i = 0; i < m; ++i) {
     if (!(v[i] <= c + e[i])) continue;
     const Loose& a = s[i];
-    if (!inside_at(dot(a.p, a.p), a.r)) return false;
+    if (!inside_at(dot(a.p, a.p), a.r + rho)) return false;
     for (const std::size_t j : outer) {
       const Loose& b = s[j];
       const Crossing x = crossing(a, v[i], e[i], b, v[j], e[j], c);
       const V3 lo = at(a, b, x.lo), hi = at(a, b, x.hi);
-      if (!inside_at(dot(lo, lo), x.r) || !inside_at(dot(hi, hi), x.r)) return false;
+      if (!inside_at(dot(lo, lo), x.r + rho) || !inside_at(dot(hi, hi), x.r + rho)) return false;
     }
   }
   return true;
