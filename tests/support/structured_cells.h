@@ -349,4 +349,47 @@ inline std::vector<TetPair> kuhn_column_rounding_stack_pairs(int n, int max_pair
   return column_rounding_blocks(n, 6, cell, "Kuhn on columns by rounding", max_pairs);
 }
 
+// Kuhn blocks placed up to a rounding and stacked a third of a cell deep, as a mesh generator
+// leaves a grid (`pdd bench mesh`'s placed case): an n x n x n/2 block of cubes of side h = 1/8
+// whose grid points' coordinates are moved by -2..2 ulps (the amount from the point's index and
+// the axis), and the same block moved up by (n/2) h - h/3 (each coordinate rounded once). Faces
+// and edges that meet across the two blocks' side walls are parallel and collinear up to those
+// ulps: an edge resting on a collinear edge, a vertex of each on the other's edge. The element
+// pairs whose interiors meet only through that rounding (rigid PD² below 1e-25), up to
+// `max_pairs`.
+inline std::vector<TetPair> placed_kuhn_stack_rounding_pairs(int n, int max_pairs) {
+  const double h = 0.125;
+  const int nz = n / 2;
+  auto index = [&](int i, int j, int k) { return (i * (n + 1) + j) * (nz + 1) + k; };
+  std::vector<Vec3d> V((n + 1) * (n + 1) * (nz + 1));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      for (int k = 0; k <= nz; ++k) {
+        const int v = index(i, j, k);
+        const double x[3] = {i * h, j * h, k * h};
+        for (int c = 0; c < 3; ++c) {
+          double y = x[c];
+          for (int u = (v * 7 + c * 3) % 5 - 2; y != 0 && u != 0; u += u > 0 ? -1 : 1)
+            y = std::nextafter(y, u > 0 ? INFINITY : -INFINITY);
+          V[v][c] = y;
+        }
+      }
+  static const int kKuhn[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+  const double up = nz * h - h / 3;
+  std::vector<TetVertices> A, B;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < nz; ++k)
+        for (const auto& t : kKuhn) {
+          TetVertices a, b;
+          for (int q = 0; q < 4; ++q) {
+            const int c = t[q];
+            a[q] = V[index(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1))];
+            b[q] = {a[q][0], a[q][1], a[q][2] + up};
+          }
+          A.push_back(a), B.push_back(b);
+        }
+  return intersecting_pairs(A, B, "placed Kuhn stacked by rounding", max_pairs, [](double pd2) { return pd2 < 1e-25; });
+}
+
 }  // namespace pdd::test

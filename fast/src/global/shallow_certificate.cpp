@@ -642,6 +642,8 @@ struct Incidence {
   V3 g{};           // g = sum l_i a_i - sum m_j b_j, rounded componentwise
   double err = 0;   // >= |g - g~| (the exact g, from expansions)
   double k80 = 0;   // >= 80 kappa
+  double w[8] = {0, 0, 0, 0, 0, 0, 0, 0};  // the multipliers (A's l, then B's m), rounded
+  double werr = 0;                         // >= |w - w~| (2-norm)
 };
 
 // g rounded componentwise, with a bound on |g - g~|.
@@ -662,8 +664,10 @@ bool rounded_incidence(const detail::ExpVec& g, Incidence& out) {
 // multipliers e.e - w.e and w.e on the edge's ends, e.e on the vertex (w.e / e.e its exact
 // fraction along the edge, in (0, 1)), so that g = +-((w.e) e - (e.e) w) = -+(e.e) w_perp: the
 // vertex's offset across the edge, exactly (the sign: A's minus B's). 80 kappa =
-// 20 ((e.e - w.e)^2 + (w.e)^2 + 3/5 (e.e)^2), rounded up from the three values' bounds.
-bool vertex_on_edge(const Vec3d& E0, const Vec3d& E1, const Vec3d& W, bool edge_on_A, Incidence& out) {
+// 20 ((e.e - w.e)^2 + (w.e)^2 + 3/5 (e.e)^2), rounded up from the three values' bounds. The
+// multipliers rounded, at the ends' and the vertex's slots (0..3: A's, 4..7: B's).
+bool vertex_on_edge(const Vec3d& E0, const Vec3d& E1, const Vec3d& W, bool edge_on_A, const int (&slot)[3],
+                    Incidence& out) {
   using namespace detail;
   const ExpVec e = difference(E1, E0), w = difference(W, E0);
   const Expansion ee = compressed(dot(e, e)), we = compressed(dot(w, e));
@@ -676,7 +680,10 @@ bool vertex_on_edge(const Vec3d& E0, const Vec3d& E1, const Vec3d& W, bool edge_
   auto up = [](const Expansion& x) { const Approx a = approx_of(x); return std::fabs(a.v) + a.err; };
   const double l1 = up(rest), l2 = up(we), m = up(ee);
   out.k80 = 20 * (l1 * l1 + l2 * l2 + 0.6 * m * m) * (1 + 16 * kU);
-  return std::isfinite(out.k80) && out.k80 > 0;
+  const Approx w0 = approx_of(rest), w1 = approx_of(we), w2 = approx_of(ee);
+  out.w[slot[0]] = w0.v, out.w[slot[1]] = w1.v, out.w[slot[2]] = w2.v;
+  out.werr = (w0.err + w1.err + w2.err) * (1 + 4 * kU);
+  return std::isfinite(out.k80) && out.k80 > 0 && std::isfinite(out.werr);
 }
 
 // The vertices of one side within 2^-24 of the pair's scale of an edge of the other and farther
@@ -705,7 +712,9 @@ int incidences(const TetVertices& A, const TetVertices& B, const Problem& P, Inc
         if (!(t > end && t < 1 - end)) continue;
         const V3 off = sub(w, mul(d, t));
         if (!(std::fabs(off[0]) <= near && std::fabs(off[1]) <= near && std::fabs(off[2]) <= near)) continue;
-        if (vertex_on_edge(TE[e[0]], TE[e[1]], TW[j], side == 0, out[k])) ++k;
+        const int edge = side == 0 ? 0 : 4, vertex = side == 0 ? 4 : 0;
+        const int slot[3] = {edge + e[0], edge + e[1], vertex + j};
+        if (vertex_on_edge(TE[e[0]], TE[e[1]], TW[j], side == 0, slot, out[k])) ++k;
       }
     }
   }
@@ -718,9 +727,57 @@ Halfspace incidence_plane(const Incidence& x, double L) {
   return {x.g, (std::sqrt(x.k80 * L) * (1 + 4 * kU) + x.err) * (1 + 4 * kU)};
 }
 
+// Two incidences' multipliers together, w_i + r w_j (r > 0): again multipliers >= 0 with sum l =
+// sum m, so their bound holds too (shallow_certificate.h, (1)), and it is sharper than either
+// alone where the minimiser's own multipliers mix them: an edge resting on a collinear edge (a
+// grid placed up to a rounding against its copy moved along an axis) has a vertex of each on
+// the other's edge, and the multipliers that balance the four vertices' moments along the line
+// (g across it) are these two incidences' combinations; across the whole arc of directions
+// about the line where the overlap is as small as the depth, the one best at the cap's normal
+// bounds relaxed above L (on a Kuhn pair: 1.000024 L at the cap's rim, 1.48 L a quarter of
+// the arc away). r, the best for the direction d: (d.g)^2 / kappa, with g = g_i + r g_j and
+// kappa = c0 + 2 r c1 + r^2 c2 (the multipliers' form, below), is largest at
+// r = (a c1 - b c0) / (b c1 - a c2), a = d.g_i, b = d.g_j (computed: any r > 0 gives a valid
+// bound). g~ = g~_i + r g~_j within err_i + r err_j + 2u sum_k (|g~_i,k| + r |g~_j,k|). The
+// multipliers w~ = w~_i + r w~_j within werr = werr_i + r werr_j + 4u |w~| (each sum's
+// rounding, 2u (|w~_i| + r |w~_j|) <= 4u |w~|, all terms >= 0); 80 kappa = 20 Q(w) with Q(x) =
+// x^T M x, M = I - J/5 on each side (0 <= M <= I): Q(w) <= Q(w~) + 2 |w~| werr + werr^2, and the
+// computed Q(w~) (sums of squares and of the multipliers, each within a few u of ql + qm,
+// which |w~|^2 is) within 32u |w~|^2.
+bool combined_incidence(const Incidence& xi, const Incidence& xj, double r, Incidence& out) {
+  if (!(r > 0) || !std::isfinite(r)) return false;
+  double gm = 0;
+  for (int k = 0; k < 3; ++k) out.g[k] = xi.g[k] + r * xj.g[k], gm += std::fabs(xi.g[k]) + r * std::fabs(xj.g[k]);
+  out.err = (xi.err + r * xj.err + 2 * kU * gm) * (1 + 4 * kU);
+  double ww = 0, q = 0;
+  for (int s = 0; s < 8; s += 4) {
+    double sum = 0;
+    for (int p = s; p < s + 4; ++p) {
+      out.w[p] = xi.w[p] + r * xj.w[p];
+      ww += out.w[p] * out.w[p], q += out.w[p] * out.w[p], sum += out.w[p];
+    }
+    q -= sum * sum / 5;
+  }
+  const double n = std::sqrt(ww) * (1 + 4 * kU);
+  out.werr = (xi.werr + r * xj.werr + 4 * kU * n) * (1 + 4 * kU);
+  out.k80 = 20 * (q + 2 * n * out.werr + out.werr * out.werr + 32 * kU * ww) * (1 + 8 * kU);
+  return nonzero(out.g) && std::isfinite(out.err) && std::isfinite(out.k80) && out.k80 > 0;
+}
+// x^T M y, M = I - J/5 on each side (combined_incidence's form)
+double multiplier_form(const double (&x)[8], const double (&y)[8]) {
+  double q = 0;
+  for (int s = 0; s < 8; s += 4) {
+    double sx = 0, sy = 0;
+    for (int p = s; p < s + 4; ++p) q += x[p] * y[p], sx += x[p], sy += y[p];
+    q -= sx * sy / 5;
+  }
+  return q;
+}
+
 // The region off the given planes (a cap's, or several caps') covered with the incidences'
 // planes beside them: one incidence at a time, then all of them (fewer planes keep the clip's
-// points few).
+// points few), then each two of them combined (combined_incidence), best at each given plane's
+// direction (a cap's normal).
 bool covered_with_incidences(const TetVertices& A, const TetVertices& B, const Problem& P, FacetBounds& bounds,
                              const Halfspace* given, int k, double L, double d0) {
   Incidence x[kMaxIncidences];
@@ -734,7 +791,20 @@ bool covered_with_incidences(const TetVertices& A, const TetVertices& B, const P
     if (polytope_inside_ball(bounds, planes, k + 1, d0)) return true;
   }
   for (int i = 0; i < m; ++i) planes[k + i] = incidence_plane(x[i], L);
-  return m > 1 && polytope_inside_ball(bounds, planes, k + m, d0);
+  if (m > 1 && polytope_inside_ball(bounds, planes, k + m, d0)) return true;
+  for (int i = 0; i < m; ++i)
+    for (int j = i + 1; j < m; ++j) {
+      const double c0 = multiplier_form(x[i].w, x[i].w), c1 = multiplier_form(x[i].w, x[j].w),
+                   c2 = multiplier_form(x[j].w, x[j].w);
+      int n = k;
+      for (int t = 0; t < k && n < kRoom; ++t) {
+        const double a = dot(given[t].d, x[i].g), b = dot(given[t].d, x[j].g);
+        Incidence c;
+        if (combined_incidence(x[i], x[j], (a * c1 - b * c0) / (b * c1 - a * c2), c)) planes[n++] = incidence_plane(c, L);
+      }
+      if (n > k && polytope_inside_ball(bounds, planes, n, d0)) return true;
+    }
+  return false;
 }
 
 // The mean offset d = (a + a2 - b - b2) / 2 of A's two vertices highest and B's two lowest along

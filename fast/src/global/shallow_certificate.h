@@ -66,6 +66,17 @@
 // Measured on a Kuhn grid of cell 0.1 against its copy moved a quarter cell along (1, 1, 1),
 // the first 3,000 element pairs: 926 took the exact pieces, 307 with these planes (259 with
 // the arcs' ends as starts as well, global_depth.cpp's least_overlap_starts).
+// An edge on a collinear edge (a grid placed up to a rounding against its copy moved along an
+// axis: A's edge E0 E1 and B's F0 F1 on one line, F0 inside A's edge and E1 inside B's): both
+// incidences hold, and the arc of normals about the line where the overlap is as small as the
+// depth runs between two caps. Any nonnegative sum of valid multipliers is valid, and the
+// multipliers that balance the four vertices' moments along the line (so that g lies across
+// it, and a tilt of u towards the line, up to the depth over the edge's length, leaves u.g) are
+// exactly the combinations l1 + r l2 of the two incidences'; the least relaxed value over such
+// tilts is their best bound. So each two incidences are also tried together, r chosen best at a
+// cap's normal (shallow_certificate.cpp's combined_incidence): on the blocks' side walls one
+// such plane covers the whole arc (1.000024 L at the cap's rim, 1.48 L a quarter of the arc
+// away, on a Kuhn pair).
 // Minimisers tied at a vertex of M (blocks cut into five tetrahedra a cube whose cuts alternate
 // across the contact: a vertex resting on a vertex, the overlap least along two to four facet
 // normals through it, the relaxed values there equal or ~1e-8 apart): off one cap lie the
