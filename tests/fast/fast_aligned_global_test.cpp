@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -91,6 +92,25 @@ void check_in_doubles(const ExactCase& c) {
   BOOST_TEST(g.certified);
   BOOST_TEST(!g.exact_value);
 }
+
+// Random pairs for the sampled-normal tests: a unit vector (uniform on the sphere, by rejection
+// from the cube), and a pair of tetrahedra, A's coordinates in [-1, 1], B's in [-0.5, 1.1].
+struct RandomPairs {
+  std::mt19937_64 rng;
+  std::uniform_real_distribution<double> U{-1, 1};
+  explicit RandomPairs(std::uint64_t seed) : rng(seed) {}
+  fast::global::V3 unit() {
+    for (;;) {
+      const fast::global::V3 u{U(rng), U(rng), U(rng)};
+      const double n = fast::global::norm(u);
+      if (n > 0.1 && n < 1) return fast::global::mul(u, 1 / n);
+    }
+  }
+  void pair(TetVertices& A, TetVertices& B) {
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) A[i][k] = U(rng), B[i][k] = U(rng) * 0.8 + 0.3;
+  }
+};
 
 }  // namespace
 
@@ -496,20 +516,12 @@ BOOST_AUTO_TEST_CASE(vertices_off_the_contact_keep_those_at_the_plane) {
 // tenth of the pair's size, some vertex is dropped on some pairs (the test is not empty).
 BOOST_AUTO_TEST_CASE(vertices_off_the_contact_against_sampled_normals) {
   namespace g = fast::global;
-  std::mt19937_64 rng(20261207);
-  std::uniform_real_distribution<double> U(-1, 1);
-  auto unit = [&] {
-    for (;;) {
-      const g::V3 u{U(rng), U(rng), U(rng)};
-      const double n = g::norm(u);
-      if (n > 0.1 && n < 1) return g::mul(u, 1 / n);
-    }
-  };
+  RandomPairs random(20261207);
+  auto unit = [&] { return random.unit(); };
   int dropped = 0, kept = 0;
   for (int pair = 0; pair < 200; ++pair) {
     TetVertices A, B;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) A[i][k] = U(rng), B[i][k] = U(rng) * 0.8 + 0.3;
+    random.pair(A, B);
     // gap[c]: vertex c's height below A's top (c < 4) or above B's bottom (c >= 4) along u
     auto along = [&](const g::V3& u, double (&gap)[8]) {
       double topA = -INFINITY, botB = INFINITY;
@@ -559,20 +571,12 @@ BOOST_AUTO_TEST_CASE(vertices_off_the_contact_against_sampled_normals) {
 // normal lies in the polytope.
 BOOST_AUTO_TEST_CASE(polytope_inside_ball_against_sampled_normals) {
   namespace g = fast::global;
-  std::mt19937_64 rng(20261208);
-  std::uniform_real_distribution<double> U(-1, 1);
-  auto unit = [&] {
-    for (;;) {
-      const g::V3 u{U(rng), U(rng), U(rng)};
-      const double n = g::norm(u);
-      if (n > 0.1 && n < 1) return g::mul(u, 1 / n);
-    }
-  };
+  RandomPairs random(20261208);
+  auto unit = [&] { return random.unit(); };
   int shown = 0, refused = 0;
   for (int pair = 0; pair < 300; ++pair) {
     TetVertices A, B;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) A[i][k] = U(rng), B[i][k] = U(rng) * 0.8 + 0.3;
+    random.pair(A, B);
     auto overlap = [&](const g::V3& u) {
       double topA = -INFINITY, botB = INFINITY;
       for (int i = 0; i < 4; ++i) topA = std::max(topA, g::dot(u, A[i])), botB = std::min(botB, g::dot(u, B[i]));
