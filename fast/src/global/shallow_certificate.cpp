@@ -744,26 +744,7 @@ Halfspace incidence_plane(const Incidence& x, double L) {
 // x^T M x, M = I - J/5 on each side (0 <= M <= I): Q(w) <= Q(w~) + 2 |w~| werr + werr^2, and the
 // computed Q(w~) (sums of squares and of the multipliers, each within a few u of ql + qm,
 // which |w~|^2 is) within 32u |w~|^2.
-bool combined_incidence(const Incidence& xi, const Incidence& xj, double r, Incidence& out) {
-  if (!(r > 0) || !std::isfinite(r)) return false;
-  double gm = 0;
-  for (int k = 0; k < 3; ++k) out.g[k] = xi.g[k] + r * xj.g[k], gm += std::fabs(xi.g[k]) + r * std::fabs(xj.g[k]);
-  out.err = (xi.err + r * xj.err + 2 * kU * gm) * (1 + 4 * kU);
-  double ww = 0, q = 0;
-  for (int s = 0; s < 8; s += 4) {
-    double sum = 0;
-    for (int p = s; p < s + 4; ++p) {
-      out.w[p] = xi.w[p] + r * xj.w[p];
-      ww += out.w[p] * out.w[p], q += out.w[p] * out.w[p], sum += out.w[p];
-    }
-    q -= sum * sum / 5;
-  }
-  const double n = std::sqrt(ww) * (1 + 4 * kU);
-  out.werr = (xi.werr + r * xj.werr + 4 * kU * n) * (1 + 4 * kU);
-  out.k80 = 20 * (q + 2 * n * out.werr + out.werr * out.werr + 32 * kU * ww) * (1 + 8 * kU);
-  return nonzero(out.g) && std::isfinite(out.err) && std::isfinite(out.k80) && out.k80 > 0;
-}
-// x^T M y, M = I - J/5 on each side (combined_incidence's form)
+// x^T M y, M = I - J/5 on each side (the multipliers' form: kappa = Q(w) / 4, Q(w) = w^T M w)
 double multiplier_form(const double (&x)[8], const double (&y)[8]) {
   double q = 0;
   for (int s = 0; s < 8; s += 4) {
@@ -772,6 +753,18 @@ double multiplier_form(const double (&x)[8], const double (&y)[8]) {
     q -= sx * sy / 5;
   }
   return q;
+}
+bool combined_incidence(const Incidence& xi, const Incidence& xj, double r, Incidence& out) {
+  if (!(r > 0) || !std::isfinite(r)) return false;
+  double gm = 0;
+  for (int k = 0; k < 3; ++k) out.g[k] = xi.g[k] + r * xj.g[k], gm += std::fabs(xi.g[k]) + r * std::fabs(xj.g[k]);
+  out.err = (xi.err + r * xj.err + 2 * kU * gm) * (1 + 4 * kU);
+  double ww = 0;
+  for (int p = 0; p < 8; ++p) out.w[p] = xi.w[p] + r * xj.w[p], ww += out.w[p] * out.w[p];
+  const double n = std::sqrt(ww) * (1 + 4 * kU);
+  out.werr = (xi.werr + r * xj.werr + 4 * kU * n) * (1 + 4 * kU);
+  out.k80 = 20 * (multiplier_form(out.w, out.w) + 2 * n * out.werr + out.werr * out.werr + 32 * kU * ww) * (1 + 8 * kU);
+  return nonzero(out.g) && std::isfinite(out.err) && std::isfinite(out.k80) && out.k80 > 0;
 }
 
 // The region off the given planes (a cap's, or several caps') covered with the incidences'
