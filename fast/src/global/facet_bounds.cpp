@@ -44,13 +44,73 @@ const Expansion& extreme(const Expansion (&h)[4], bool largest) {
   return h[at];
 }
 
+// The vertices relative to A[0] in doubles, w_i = x_i - a_0 rounded (A's 0..3, B's 4..7): each
+// component within u of its exact value (round to nearest; a subnormal difference is exact).
+struct Offsets {
+  double w[8][3];
+  Offsets(const TetVertices& A, const TetVertices& B) {
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) w[i][k] = A[i][k] - A[0][k], w[4 + i][k] = B[i][k] - A[0][k];
+  }
+};
+
+// D(n) and D(-n) bounded below in doubles, for a direction whose exact n is known within err[k]
+// of n~ componentwise; false (out's overlaps untouched) where the bound's slack t exceeds 2^-42
+// of the computed overlap, which the exact heights then decide (a contact's own normal: an
+// overlap far below |n| |w|). Taken, each bound lies within 2^-41 of the exact overlap (the
+// exact arithmetic's are within a few u: facet_bounds.h's "within 1e-12" holds for both).
+// Error. h_i = n.w_i exactly, h~_i the computed n~.w~_i. |n~.w~ - n.w| <= sum_k (err_k + |n~_k|
+// u (1 + ...)) |w~_k| (n's error, then w's rounding); the dot's own roundings add gamma_3
+// sum |n~_k w~_k| (gamma_3 <= 3u (1 + 3u)) and, where a product underflows, 2^-1075 each. So
+// |h~_i - h_i| <= sum_k (err_k + 4u |n~_k|) |w~_k| (1 + 3u) + 2^-1072; its computed sum of
+// positive terms is within 7u below the exact one, and E_i = s~ (1 + 2^-40) + 2^-1060 covers
+// both. With E the largest E_i: D(n) = max_A h - min_B h >= (max_A h~ - min_B h~) - 2E, the
+// maximum's and minimum's errors bounded by E whichever vertex attains them; the computed
+// difference d~ is within u |d~| of it (1.0001u: covered below). t = (2E + 2u |d~|) (1 + 2^-40)
+// then gives D(n) >= d~ - t, and fl(fl(d~ - t) (1 - 4u)) lies below d~ - t whenever d~ - t > 0
+// (two roundings of at most u each). Overflow or NaN fails the comparisons: false.
+// Why: the exact heights cost ~1.1k instructions a direction over an integer frame and ~10k by
+// expansions; the 8 double heights ~60. Only the few directions near the contact's own normal
+// need the exact ones.
+bool overlaps_in_doubles(const V3& n, const double (&err)[3], const Offsets& o, DirectionBounds& out) {
+  double h[8], E = 0;
+  for (int i = 0; i < 8; ++i) {
+    const double(&w)[3] = o.w[i];
+    h[i] = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
+    double s = 0;
+    for (int k = 0; k < 3; ++k) s += (err[k] + 4 * kU * std::fabs(n[k])) * std::fabs(w[k]);
+    E = std::max(E, s * (1 + 0x1p-40) + 0x1p-1060);
+  }
+  const double amax = std::max({h[0], h[1], h[2], h[3]}), amin = std::min({h[0], h[1], h[2], h[3]});
+  const double bmax = std::max({h[4], h[5], h[6], h[7]}), bmin = std::min({h[4], h[5], h[6], h[7]});
+  const double plus = amax - bmin, minus = bmax - amin;
+  const double tp = (2 * E + 2 * kU * std::fabs(plus)) * (1 + 0x1p-40);
+  const double tm = (2 * E + 2 * kU * std::fabs(minus)) * (1 + 0x1p-40);
+  if (!(tp <= 0x1p-42 * plus) || !(tm <= 0x1p-42 * minus) || !(plus < INFINITY) || !(minus < INFINITY))
+    return false;
+  out.plus_low = (plus - tp) * (1 - 4 * kU);
+  out.minus_low = (minus - tm) * (1 - 4 * kU);
+  return true;
+}
+
 // false when an expansion overflowed its capacity or an overlap is not certainly positive.
-bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[4], DirectionBounds& out) {
+bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)[4], const Offsets& w,
+                      DirectionBounds& out) {
   if (!n.ok()) return false;
   out.zero = n.is_zero();
   if (out.zero) return true;
   ExpVec c;  // n with each component compressed: shorter products below
   for (int k = 0; k < 3; ++k) c.x[k] = detail::compressed(n.x[k]);
+  double nn = 0, err[3];
+  for (int k = 0; k < 3; ++k) {
+    const detail::Approx a = approx_of(c.x[k]);
+    out.n[k] = a.v;
+    err[k] = a.err;
+    const double m = (std::fabs(a.v) + a.err) * (1 + 4 * kU);
+    nn += m * m;
+  }
+  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
+  if (overlaps_in_doubles(out.n, err, w, out)) return true;
   Expansion ha[4], hb[4];
   for (int i = 0; i < 4; ++i) {
     ha[i] = detail::compressed(detail::dot(c, xa[i]));
@@ -62,16 +122,7 @@ bool direction_bounds(const ExpVec& n, const ExpVec (&xa)[4], const ExpVec (&xb)
   if (!plus.ok || !minus.ok) return false;
   out.plus_low = lower_of(detail::compressed(plus));
   out.minus_low = lower_of(detail::compressed(minus));
-  if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
-  double nn = 0;
-  for (int k = 0; k < 3; ++k) {
-    const detail::Approx a = approx_of(c.x[k]);
-    out.n[k] = a.v;
-    const double m = (std::fabs(a.v) + a.err) * (1 + 4 * kU);
-    nn += m * m;
-  }
-  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
-  return true;
+  return out.plus_low > 0 && out.minus_low > 0;
 }
 
 // The 44 candidate facet normals of M (SPEC §3's directions): A's and B's face normals (the
@@ -104,9 +155,22 @@ bool less(const Wide& a, const Wide& b) { return a.hi < b.hi || (a.hi == b.hi &&
 // a - b exactly (|a|, |b| < 2^186: the difference's high part below 2^123)
 Wide minus(const Wide& a, const Wide& b) { return Wide{a.hi - b.hi - (a.lo < b.lo ? 1 : 0), a.lo - b.lo}; }
 
-bool direction_bounds_framed(const detail::IntegerFrame& f, const __int128 (&m)[3], DirectionBounds& out) {
+bool direction_bounds_framed(const detail::IntegerFrame& f, const __int128 (&m)[3], const Offsets& w,
+                             DirectionBounds& out) {
   out.zero = m[0] == 0 && m[1] == 0 && m[2] == 0;
   if (out.zero) return true;
+  const int e = f.unit_exponent();
+  double nn = 0, err[3];
+  for (int k = 0; k < 3; ++k) {
+    out.n[k] = detail::times_pow2(double(m[k]), 2 * e);
+    if (out.n[k] != 0 && !(std::fabs(out.n[k]) >= kFramedFloor)) return false;
+    err[k] = 2 * kU * std::fabs(out.n[k]);  // (rounded to nearest, then scaled exactly: <= u |n~|)
+    const double a = std::fabs(out.n[k]) * (1 + 2 * kU);
+    nn += a * a;
+  }
+  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
+  if (overlaps_in_doubles(out.n, err, w, out) && out.plus_low >= kFramedFloor && out.minus_low >= kFramedFloor)
+    return true;
   Wide h[8];  // n.(x_i - x_0), exactly (A's vertices 0..3, B's 4..7)
   for (int i = 0; i < 8; ++i) h[i] = f.dot(m, i, 0);
   int amax = 0, amin = 0, bmax = 4, bmin = 4;
@@ -116,23 +180,14 @@ bool direction_bounds_framed(const detail::IntegerFrame& f, const __int128 (&m)[
     if (less(h[bmax], h[4 + i])) bmax = 4 + i;
     if (less(h[4 + i], h[bmin])) bmin = 4 + i;
   }
-  const int e = f.unit_exponent();
   out.plus_low = wide_lower(minus(h[amax], h[bmin]), 3 * e);
   out.minus_low = wide_lower(minus(h[bmax], h[amin]), 3 * e);
-  if (!(out.plus_low > 0) || !(out.minus_low > 0)) return false;
-  double nn = 0;
-  for (int k = 0; k < 3; ++k) {
-    out.n[k] = detail::times_pow2(double(m[k]), 2 * e);
-    if (out.n[k] != 0 && !(std::fabs(out.n[k]) >= kFramedFloor)) return false;
-    const double a = std::fabs(out.n[k]) * (1 + 2 * kU);
-    nn += a * a;
-  }
-  out.nn_up = nn * (1 + 8 * kU);  // the squares' and sums' roundings, upward
-  return true;
+  return out.plus_low > 0 && out.minus_low > 0;
 }
 
 // candidate_bounds over the frame (the same 44 directions in the same order).
 bool candidate_bounds_framed(const detail::IntegerFrame& f, DirectionBounds (&out)[kDirections]) {
+  const Offsets w(f.a(), f.b());
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};  // faces 012, 013, 023, 123
   __int128 m[3];
@@ -141,18 +196,19 @@ bool candidate_bounds_framed(const detail::IntegerFrame& f, DirectionBounds (&ou
     for (const int t : {0, 4}) {  // A's face, then B's
       const auto &e0 = kEdge[fe[0]], &e1 = kEdge[fe[1]];
       f.normal(t + e0[1], t + e0[0], t + e1[1], t + e1[0], m);
-      if (!direction_bounds_framed(f, m, out[k++])) return false;
+      if (!direction_bounds_framed(f, m, w, out[k++])) return false;
     }
   for (const auto& a : kEdge)
     for (const auto& b : kEdge) {
       f.normal(a[1], a[0], 4 + b[1], 4 + b[0], m);
-      if (!direction_bounds_framed(f, m, out[k++])) return false;
+      if (!direction_bounds_framed(f, m, w, out[k++])) return false;
     }
   return true;
 }
 
 bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBounds (&out)[kDirections]) {
   if (!detail::in_exact_range(A, B)) return false;
+  const Offsets w(A, B);
   ExpVec xa[4], xb[4];  // the vertices relative to A[0], exactly
   for (int i = 0; i < 4; ++i) xa[i] = detail::difference(A[i], A[0]), xb[i] = detail::difference(B[i], A[0]);
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
@@ -164,12 +220,12 @@ bool candidate_bounds(const TetVertices& A, const TetVertices& B, DirectionBound
   static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};  // faces 012, 013, 023, 123
   int k = 0;
   for (const auto& f : kFaceEdges) {
-    if (!direction_bounds(detail::cross(ea[f[0]], ea[f[1]]), xa, xb, out[k++])) return false;
-    if (!direction_bounds(detail::cross(eb[f[0]], eb[f[1]]), xa, xb, out[k++])) return false;
+    if (!direction_bounds(detail::cross(ea[f[0]], ea[f[1]]), xa, xb, w, out[k++])) return false;
+    if (!direction_bounds(detail::cross(eb[f[0]], eb[f[1]]), xa, xb, w, out[k++])) return false;
   }
   for (const ExpVec& a : ea)
     for (const ExpVec& b : eb)
-      if (!direction_bounds(detail::cross(a, b), xa, xb, out[k++])) return false;
+      if (!direction_bounds(detail::cross(a, b), xa, xb, w, out[k++])) return false;
   return true;
 }
 

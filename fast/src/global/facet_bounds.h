@@ -1,23 +1,26 @@
 // facet_bounds.h — internal to fast/src/global: the candidate facet normals of M = A - B
-// bounded exactly, and the two things the certificates prove with them: a lower bound on the
+// bounded, and the two things the certificates prove with them: a lower bound on the
 // rigid depth's square, and that the overlap is at least d0 along every unit normal off a cap.
 //
 // Input : the pair (engine units, global_depth.h).
 // Output: FacetBounds::get(): the 44 candidate directions (SPEC §3's: A's and B's face normals,
 //         the cross products of an edge of A and an edge of B), each n rounded componentwise, its
-//         overlaps D(n), D(-n) bounded below and n.n above; computed exactly on first use (~2 us
-//         over an integer frame, ~20 us by expansions), false where the pair is outside the
-//         expansions' range or does not intersect. pd2_lower: PD^2 rounded down. polytope_inside_ball: every unit u with
+//         overlaps D(n), D(-n) bounded below and n.n above; computed on first use, n exactly
+//         (~2 us over an integer frame, ~20 us by expansions), false where the pair is outside
+//         the expansions' range or does not intersect. pd2_lower: PD^2 rounded down. polytope_inside_ball: every unit u with
 //         u.d <= c0 has D(u) >= d0.
 //
 // Math. D(u) = max_i u.a_i - min_j u.b_j, the overlap along u, is the support function of M;
 // the rigid depth PD is its least value over unit u, attained at a facet normal of M, and every
 // facet normal is a candidate (up to orientation: both are bounded). Each candidate n is formed
-// exactly, its heights exactly, the extreme ones compared exactly, and each overlap rounded down
-// from its exact value; n.n rounded up. So PD^2 >= min D(n)^2 / n.n, rounded down. Exactly: over
-// the pair's integer frame where it has one (integer_heights.h: n in __int128, each height a wide
-// integer), else by expansions (expansion.h). The polytope test is argued at
-// polytope_inside_ball (facet_bounds.cpp).
+// exactly and rounded; its overlaps are bounded from the heights in doubles with an error bound
+// where that bound lies within 2^-42 of the overlap (most directions: an overlap of the pair's
+// size), else from its heights taken exactly, the extreme ones compared exactly and each overlap
+// rounded down from its exact value (the directions along a contact, whose overlap is far below
+// |n| times the size); n.n rounded up. So PD^2 >= min D(n)^2 / n.n, rounded down, within a few
+// 2^-42 of it. Exactly: over the pair's integer frame where it has one (integer_heights.h: n in
+// __int128, each height a wide integer), else by expansions (expansion.h). The polytope test is
+// argued at polytope_inside_ball (facet_bounds.cpp).
 #pragma once
 
 #include "global/vec3.h"
