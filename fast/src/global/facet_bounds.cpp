@@ -46,11 +46,14 @@ const Expansion& extreme(const Expansion (&h)[4], bool largest) {
 
 // The vertices relative to A[0] in doubles, w_i = x_i - a_0 rounded (A's 0..3, B's 4..7): each
 // component within u of its exact value (round to nearest; a subnormal difference is exact).
+// big[k]: the largest |w_ik| over the eight vertices.
 struct Offsets {
-  double w[8][3];
+  double w[8][3], big[3] = {0, 0, 0};
   Offsets(const TetVertices& A, const TetVertices& B) {
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) w[i][k] = A[i][k] - A[0][k], w[4 + i][k] = B[i][k] - A[0][k];
+    for (const auto& x : w)
+      for (int k = 0; k < 3; ++k) big[k] = std::max(big[k], std::fabs(x[k]));
   }
 };
 
@@ -62,25 +65,22 @@ struct Offsets {
 // Error. h_i = n.w_i exactly, h~_i the computed n~.w~_i. |n~.w~ - n.w| <= sum_k (err_k + |n~_k|
 // u (1 + ...)) |w~_k| (n's error, then w's rounding); the dot's own roundings add gamma_3
 // sum |n~_k w~_k| (gamma_3 <= 3u (1 + 3u)) and, where a product underflows, 2^-1075 each. So
-// |h~_i - h_i| <= sum_k (err_k + 4u |n~_k|) |w~_k| (1 + 3u) + 2^-1072; its computed sum of
-// positive terms is within 7u below the exact one, and E_i = s~ (1 + 2^-40) + 2^-1060 covers
-// both. With E the largest E_i: D(n) = max_A h - min_B h >= (max_A h~ - min_B h~) - 2E, the
-// maximum's and minimum's errors bounded by E whichever vertex attains them; the computed
-// difference d~ is within u |d~| of it (1.0001u: covered below). t = (2E + 2u |d~|) (1 + 2^-40)
+// |h~_i - h_i| <= sum_k (err_k + 4u |n~_k|) |w~_k| (1 + 3u) + 2^-1072 <= the same sum over
+// big_k = max_i |w~_ik| (one bound E for all eight heights); its computed sum of positive terms
+// is within 7u below the exact one, and E = s~ (1 + 2^-40) + 2^-1060 covers both. Then D(n) =
+// max_A h - min_B h >= (max_A h~ - min_B h~) - 2E, the maximum's and minimum's errors bounded by
+// E whichever vertex attains them; the computed difference d~ is within u |d~| of it (1.0001u:
+// covered below). t = (2E + 2u |d~|) (1 + 2^-40)
 // then gives D(n) >= d~ - t, and fl(fl(d~ - t) (1 - 4u)) lies below d~ - t whenever d~ - t > 0
 // (two roundings of at most u each). Overflow or NaN fails the comparisons: false.
 // Why: the exact heights cost ~1.1k instructions a direction over an integer frame and ~10k by
 // expansions; the 8 double heights ~60. Only the few directions near the contact's own normal
 // need the exact ones.
 bool overlaps_in_doubles(const V3& n, const double (&err)[3], const Offsets& o, DirectionBounds& out) {
-  double h[8], E = 0;
-  for (int i = 0; i < 8; ++i) {
-    const double(&w)[3] = o.w[i];
-    h[i] = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
-    double s = 0;
-    for (int k = 0; k < 3; ++k) s += (err[k] + 4 * kU * std::fabs(n[k])) * std::fabs(w[k]);
-    E = std::max(E, s * (1 + 0x1p-40) + 0x1p-1060);
-  }
+  double h[8], s = 0;
+  for (int i = 0; i < 8; ++i) h[i] = n[0] * o.w[i][0] + n[1] * o.w[i][1] + n[2] * o.w[i][2];
+  for (int k = 0; k < 3; ++k) s += (err[k] + 4 * kU * std::fabs(n[k])) * o.big[k];
+  const double E = s * (1 + 0x1p-40) + 0x1p-1060;
   const double amax = std::max({h[0], h[1], h[2], h[3]}), amin = std::min({h[0], h[1], h[2], h[3]});
   const double bmax = std::max({h[4], h[5], h[6], h[7]}), bmin = std::min({h[4], h[5], h[6], h[7]});
   const double plus = amax - bmin, minus = bmax - amin;
