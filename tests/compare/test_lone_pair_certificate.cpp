@@ -109,45 +109,41 @@ BOOST_AUTO_TEST_CASE(rigid_depth_lower_bound_below_the_exact_depth) {
   BOOST_TEST(answered == intersecting);  // (coordinates within expansion.h's range: every one)
 }
 
-// facet_bounds.h, over the pair's integer frame and by expansions alone, direction by direction
-// against the overlaps in rationals (the same 44 exact normals, each D(n) = max n.a - min n.b):
-// every bound at or below the exact overlap and within 1e-12 of it, n within 4u, n.n bounded
-// above, the zero directions exactly; on the blocks (decimal grids) and the shipped families
-// (whose coordinates lie on grids of 60 bits too: every pair has a frame).
-BOOST_AUTO_TEST_CASE(facet_bounds_below_the_exact_overlaps) {
+namespace {
+
+// facet_bounds.h's bounds of one pair, over its integer frame (where it has one) and by
+// expansions alone, direction by direction against the overlaps in rationals (the same 44 exact
+// normals, each D(n) = max n.a - min n.b): every bound at or below the exact overlap and within
+// 1e-12 of it, n within 4u, n.n bounded above, the zero directions exactly. Returns the
+// directions checked (0 where the bounds are not available: a pair outside the expansions'
+// range); `framed` counts the pairs over the integer frame.
+int check_facet_bounds(const TetPair& p, int& framed) {
   using reference::Rational;
-  std::vector<TetPair> pairs = column_pairs();
-  for (const auto& p : pdd::test::column_resting_pairs(2, 1e-9, 24)) pairs.push_back(p);
-  for (const char* family : {"paper", "parallel-edges", "aligned", "sliver"}) {
-    const auto f = compare::generate_family(family, 11, 10);
-    pairs.insert(pairs.end(), f.begin(), f.end());
-  }
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   static constexpr int kFaceEdges[4][2] = {{0, 1}, {0, 2}, {1, 2}, {3, 4}};
-  int framed = 0, checked = 0;
-  for (const TetPair& p : pairs) {
-    fast::global::FacetBounds fb(p.A, p.B), eb(p.A, p.B, fast::global::FacetArithmetic::Expansions);
-    if (!fb.get()) continue;
-    BOOST_REQUIRE(eb.get());
-    framed += fb.by_integers();
-    using RV = std::array<Rational, 3>;
-    auto diff = [](const Vec3d& x, const Vec3d& y) {
-      return RV{Rational(x[0]) - Rational(y[0]), Rational(x[1]) - Rational(y[1]), Rational(x[2]) - Rational(y[2])};
-    };
-    auto cross = [](const RV& a, const RV& b) {
-      return RV{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    };
-    std::vector<RV> normals;  // facet_bounds.cpp's order: faces (A's, B's) then edge pairs
-    for (const auto& f : kFaceEdges)
-      for (const TetVertices* T : {&p.A, &p.B}) {
-        const TetVertices& t = *T;
-        normals.push_back(cross(diff(t[kEdge[f[0]][1]], t[kEdge[f[0]][0]]), diff(t[kEdge[f[1]][1]], t[kEdge[f[1]][0]])));
-      }
-    for (const auto& a : kEdge)
-      for (const auto& b : kEdge) normals.push_back(cross(diff(p.A[a[1]], p.A[a[0]]), diff(p.B[b[1]], p.B[b[0]])));
-    BOOST_REQUIRE(normals.size() == std::size_t(fast::global::kDirections));
-    for (int k = 0; k < fast::global::kDirections; ++k)
-      for (const fast::global::FacetBounds* bounds : {&fb, &eb}) {
+  fast::global::FacetBounds fb(p.A, p.B), eb(p.A, p.B, fast::global::FacetArithmetic::Expansions);
+  if (!fb.get()) return 0;
+  BOOST_REQUIRE(eb.get());
+  framed += fb.by_integers();
+  using RV = std::array<Rational, 3>;
+  auto diff = [](const Vec3d& x, const Vec3d& y) {
+    return RV{Rational(x[0]) - Rational(y[0]), Rational(x[1]) - Rational(y[1]), Rational(x[2]) - Rational(y[2])};
+  };
+  auto cross = [](const RV& a, const RV& b) {
+    return RV{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  std::vector<RV> normals;  // facet_bounds.cpp's order: faces (A's, B's) then edge pairs
+  for (const auto& f : kFaceEdges)
+    for (const TetVertices* T : {&p.A, &p.B}) {
+      const TetVertices& t = *T;
+      normals.push_back(cross(diff(t[kEdge[f[0]][1]], t[kEdge[f[0]][0]]), diff(t[kEdge[f[1]][1]], t[kEdge[f[1]][0]])));
+    }
+  for (const auto& a : kEdge)
+    for (const auto& b : kEdge) normals.push_back(cross(diff(p.A[a[1]], p.A[a[0]]), diff(p.B[b[1]], p.B[b[0]])));
+  BOOST_REQUIRE(normals.size() == std::size_t(fast::global::kDirections));
+  int checked = 0;
+  for (int k = 0; k < fast::global::kDirections; ++k)
+    for (const fast::global::FacetBounds* bounds : {&fb, &eb}) {
       const auto& d = bounds->dirs()[k];
       const RV& n = normals[k];
       const bool zero = n[0] == 0 && n[1] == 0 && n[2] == 0;
@@ -175,12 +171,52 @@ BOOST_AUTO_TEST_CASE(facet_bounds_below_the_exact_overlaps) {
       }
       BOOST_TEST(Rational(d.nn_up) >= nn, p.name << " direction " << k);
       ++checked;
-      }
+    }
+  return checked;
+}
+
+}  // namespace
+
+// The facet bounds (check_facet_bounds) on the blocks (decimal grids) and the shipped families
+// (whose coordinates lie on grids of 60 bits too: every pair has a frame).
+BOOST_AUTO_TEST_CASE(facet_bounds_below_the_exact_overlaps) {
+  std::vector<TetPair> pairs = column_pairs();
+  for (const auto& p : pdd::test::column_resting_pairs(2, 1e-9, 24)) pairs.push_back(p);
+  for (const char* family : {"paper", "parallel-edges", "aligned", "sliver"}) {
+    const auto f = compare::generate_family(family, 11, 10);
+    pairs.insert(pairs.end(), f.begin(), f.end());
   }
+  int framed = 0, checked = 0;
+  for (const TetPair& p : pairs) checked += check_facet_bounds(p, framed);
   BOOST_TEST_MESSAGE("facet bounds: " << checked << " directions checked, " << framed << " of " << pairs.size()
                                       << " pairs over the integer frame");
   BOOST_TEST(framed == int(pairs.size()));
   BOOST_TEST(checked > 10000);
+}
+
+// The same at the scales and offsets that break naive doubles (`pdd generate`'s adversarial
+// family: 1-ulp slivers and needles, nearly flat, a vertex 2^-60 inside a face, scaled by
+// 2^-450..2^450, translated by 1e6 and 1e12, a vertex 1e15 or 1e18 away; the paper's pairs
+// scaled by up to 2^60 and down to 2^-60; faces 2^-50..2^-37 inside one another): the double
+// heights' error bound (overlaps_in_doubles) holds there too, and the pairs without a frame take
+// the expansions.
+BOOST_AUTO_TEST_CASE(facet_bounds_below_the_exact_overlaps_at_extreme_scales) {
+  std::vector<TetPair> pairs;
+  for (const char* family : {"adversarial", "scaled-large", "scaled-small", "near-coplanar", "near-touching"}) {
+    const auto f = compare::generate_family(family, 13, 30);
+    pairs.insert(pairs.end(), f.begin(), f.end());
+  }
+  int framed = 0, checked = 0, answered = 0;
+  for (const TetPair& p : pairs) {
+    const int c = check_facet_bounds(p, framed);
+    checked += c;
+    answered += c > 0;
+  }
+  BOOST_TEST_MESSAGE("facet bounds at extreme scales: " << checked << " directions checked on " << answered
+                                                        << " of " << pairs.size() << " pairs, " << framed
+                                                        << " over the integer frame");
+  BOOST_TEST(answered >= 100);
+  BOOST_TEST(framed < answered);  // (some pairs take the expansions)
 }
 
 BOOST_AUTO_TEST_CASE(lone_pair_certificates_never_above_the_exact_minimum) {
