@@ -116,6 +116,8 @@ struct GlobalRun {
   double lower_scaled = 0;   // the exact path's floor in its units
   bool exact_pieces = false;  // the pieces were built exactly
   bool tiny_start = false;    // ... because the start's value is below their depth
+  bool shallow_first = false;  // ... or to try the shallow certificate first (shallow_first())
+  double tiny_rel = 0;         // the double pieces' floor, relative to scale^2 (needs_exact_pieces)
   GlobalOptimum shallow;      // report_shallow's result
 };
 
@@ -180,6 +182,53 @@ void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
   else offer_geometric_starts(g);
 }
 
+// The double pieces (the enumeration in doubles); true where they cannot certify the result and
+// the pieces must be built exactly (then the double offers are dropped): a depth below
+// tiny_rel scale^2 found, or a result above the start's certified value (the doubles could not
+// evaluate even the start's normal: its components not accurate enough beside a far vertex), or
+// an eigenpair the doubles could not resolve.
+bool double_pieces_fail(GlobalRun& g, double start_value, double tiny_rel) {
+  const Problem& P = g.P;
+  Best& best = g.best;
+  std::array<std::array<double, 3>, 4> dA, dB;
+  for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
+  enumerate_pieces(dA, dB, Search{P, best, g.lower});
+  if (!(best.value >= tiny_rel * P.scale * P.scale) || best.value > start_value * (1 + 1e-9) || best.needs_exact) {
+    best.offers.clear();
+    return true;
+  }
+  return false;
+}
+
+// Which route certifies a shallow pair sooner (measured: docs/performance.md, "Resting contacts:
+// the route by their depth and their faces"). Below kShallowFirst scale^2 (a depth ~1e-8 of the
+// size or less) with a face of A parallel to a face of B within kParallelFaces (sin^2 of their
+// angle: blocks resting on each other, as structured meshes stack), the double pieces go to the
+// double-word matrices for ~15 pieces whose eigenvalues lie within their error of zero
+// (coplanar active vertices), ~25 us; the shallow certificate takes ~18 us. Without parallel
+// faces the double pieces are the cheaper route (~8 us against ~12 us), so they stay first.
+// Only the order of two certified routes depends on it: global_depth() runs the double pieces
+// where the shallow certificate declines.
+constexpr double kShallowFirst = 1e-16;
+constexpr double kParallelFaces = 1e-16;
+bool shallow_first(const GlobalRun& g) {
+  const Problem& P = g.P;
+  if (!(g.best.value < kShallowFirst * P.scale * P.scale)) return false;
+  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  V3 na[4], nb[4];
+  for (int f = 0; f < 4; ++f) {
+    const auto& t = kFace[f];
+    na[f] = cross(sub(P.relA[t[1]], P.relA[t[0]]), sub(P.relA[t[2]], P.relA[t[0]]));
+    nb[f] = cross(sub(P.relB[t[1]], P.relB[t[0]]), sub(P.relB[t[2]], P.relB[t[0]]));
+  }
+  for (const V3& a : na)
+    for (const V3& b : nb) {
+      const V3 c = cross(a, b);
+      if (dot(c, c) <= kParallelFaces * dot(a, a) * dot(b, b)) return true;
+    }
+  return false;
+}
+
 // Doubles or rationals for the pieces (the enumeration is the same). The value along a
 // computed eigenvector exceeds its stationary value by about E^2 / gap (E the error of H and of
 // the solver): consider_piece's estimate 2 E^2 / gap <= 1e-11 mu is checked for every in-window
@@ -208,7 +257,7 @@ void set_up(GlobalRun& g, const double start_normal[3], double rigid_pd2) {
 bool needs_exact_pieces(GlobalRun& g, double start_value) {
   const Problem& P = g.P;
   Best& best = g.best;
-  const double tiny_rel = near_extent_sq(g.A, g.B) >= P.scale * P.scale / 256 ? kCompactTiny : 1e-10;
+  const double tiny_rel = g.tiny_rel = near_extent_sq(g.A, g.B) >= P.scale * P.scale / 256 ? kCompactTiny : 1e-10;
   auto tiny = [&](double value) { return !(value >= tiny_rel * P.scale * P.scale); };
   if (!(P.scale >= 0x1p-100 && P.scale <= 0x1p100)) return true;
   if (tiny(best.value)) return g.tiny_start = true;
@@ -220,16 +269,8 @@ bool needs_exact_pieces(GlobalRun& g, double start_value) {
     best.offers.clear();
     return true;
   }
-  std::array<std::array<double, 3>, 4> dA, dB;
-  for (int i = 0; i < 4; ++i) dA[i] = P.pA[i], dB[i] = P.pB[i];
-  enumerate_pieces(dA, dB, Search{P, best, g.lower});
-  // A result above the start's certified value means the doubles could not evaluate even the
-  // start's normal (its components are not accurate enough beside a far vertex): exactly.
-  if (tiny(best.value) || best.value > start_value * (1 + 1e-9) || best.needs_exact) {
-    best.offers.clear();
-    return true;
-  }
-  return false;
+  if (shallow_first(g)) return g.shallow_first = true;
+  return double_pieces_fail(g, start_value, tiny_rel);
 }
 
 // The exact pieces are built on the coordinates relative to A[0] times 2^-unit (exact), with
@@ -706,8 +747,23 @@ GlobalOptimum global_depth(const TetVertices& A, const TetVertices& B, const dou
     // collinear edge); a witness of the shallow one (certified along a normal in double words
     // only) after those fail.
     FacetBounds bounds(g.A, g.B);  // (M's facet bounds: computed once, where first needed)
-    const bool shallow = report_shallow(g, g.best.n, bounds, g.shallow);
+    bool shallow = report_shallow(g, g.best.n, bounds, g.shallow);
     if (shallow && g.shallow.certified) return g.shallow;
+    // (the shallow certificate tried first by shallow_first(): where it declines, the double
+    // pieces, and the rest of this branch only where they cannot certify, from their best normal)
+    if (g.shallow_first) {
+      const V3 tried = g.best.n;
+      if (!double_pieces_fail(g, start_value, g.tiny_rel)) {
+        g.exact_pieces = false;
+        choose_offer(g);
+        return report(g, start_value);
+      }
+      GlobalOptimum again;
+      if (g.best.n != tried && report_shallow(g, g.best.n, bounds, again)) {
+        if (again.certified) return again;
+        if (!shallow) g.shallow = again, shallow = true;  // (a witness kept, as below)
+      }
+    }
     GlobalOptimum lone;
     LonePairResult declined;
     if (report_lone_pair(g, bounds, lone, declined)) return lone;
