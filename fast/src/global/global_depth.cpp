@@ -253,7 +253,9 @@ bool shallow_first(const GlobalRun& g) {
 // than any rescaling can bring into it, arrives through the exact path): H ~ scale^2 and its
 // determinant ~ scale^6 then neither overflow nor underflow. When the double enumeration
 // finds a depth below that (1e-10 or, compact, 1e-18 scale^2), it is done again exactly.
-// Returns whether the pieces must be built exactly (then the double offers are dropped).
+// Returns whether global_depth() takes the branch of the exact pieces: the pieces must be built
+// exactly (then the double offers are dropped), or shallow_first() prefers the shallow
+// certificate (g.shallow_first: the double pieces follow there where it declines).
 bool needs_exact_pieces(GlobalRun& g, double start_value) {
   const Problem& P = g.P;
   Best& best = g.best;
