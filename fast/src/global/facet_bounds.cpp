@@ -45,8 +45,8 @@ const Expansion& extreme(const Expansion (&h)[4], bool largest) {
 }
 
 // The vertices relative to A[0] in doubles, w_i = x_i - a_0 rounded (A's 0..3, B's 4..7): each
-// component within u of its exact value (round to nearest; a subnormal difference is exact).
-// big[k]: the largest |w_ik| over the eight vertices.
+// component within u |w~_ik| of its exact value (round to nearest; a subnormal difference is
+// exact). big[k]: the largest |w_ik| over the eight vertices.
 struct Offsets {
   double w[8][3], big[3] = {0, 0, 0};
   Offsets(const TetVertices& A, const TetVertices& B) {
@@ -70,9 +70,9 @@ struct Offsets {
 // is within 7u below the exact one, and E = s~ (1 + 2^-40) + 2^-1060 covers both. Then D(n) =
 // max_A h - min_B h >= (max_A h~ - min_B h~) - 2E, the maximum's and minimum's errors bounded by
 // E whichever vertex attains them; the computed difference d~ is within u |d~| of it (1.0001u:
-// covered below). t = (2E + 2u |d~|) (1 + 2^-40)
-// then gives D(n) >= d~ - t, and fl(fl(d~ - t) (1 - 4u)) lies below d~ - t whenever d~ - t > 0
-// (two roundings of at most u each). Overflow or NaN fails the comparisons: false.
+// covered below). t = (2E + 2u |d~|) (1 + 2^-40) then gives D(n) >= d~ - t, and
+// fl(fl(d~ - t) (1 - 4u)) lies below d~ - t whenever d~ - t > 0 (two roundings of at most u
+// each). Overflow or NaN fails the comparisons: false.
 // Why: the exact heights cost ~1.1k instructions a direction over an integer frame and ~10k by
 // expansions; the 8 double heights ~60. Only the few directions near the contact's own normal
 // need the exact ones.
@@ -374,14 +374,15 @@ V3 at(const Loose& a, const Loose& b, double t) { return add(a.p, mul(sub(b.p, a
 // hull of the kept points, widened by that, holds it (the caller carries the widening). y - q
 // and its length are computed within 5u (|q| + sum w_i |k_i|) (three products and sums, a
 // difference), the square root's and the bound's own roundings within the last 8u: with the 3u
-// above, 15u (|q| + sum w_i |k_i|) taken (|x| <= len, x's bound on its length). How the weights are found needs no bound (any weights in the
-// simplex give a valid one): from the images L(x) = (x.e1, x.e2) in a basis of the plane, along
-// the two cuts at the ends of the first coordinate (a thin section: nearly a segment), else in
-// a triangle of the fan over the images' convex hull (Andrew's monotone chain), clamped to the
-// simplex. (A clip keeps every segment's crossing, n_in x n_beyond, most of them inside the
-// hull: on contacts made by rounding ~300 points after a second plane and ~8000 after a third,
-// nearly all on a segment ~1e-16 thick.) Written by hand: the points carry their own bounds,
-// which no hull library takes.
+// above, 15u (|q| + sum w_i |k_i|) taken (|x| <= len, x's bound on its length). How the
+// weights are found needs no bound (any weights in the simplex give a valid one): from the
+// images L(x) = (x.e1, x.e2) in a basis of the plane, along the two cuts at the ends of the
+// first coordinate (a thin section: nearly a segment), else in a triangle of the fan over the
+// images' convex hull (Andrew's monotone chain), clamped to the simplex. (A clip keeps every
+// segment's crossing, n_in x n_beyond, most of them inside the hull: on contacts made by
+// rounding ~300 points after a second plane and ~8000 after a third, nearly all on a segment
+// ~1e-16 thick.) Written by hand: the points carry their own bounds, which no hull library
+// takes.
 double drop_inner_cuts(std::vector<Loose>& cuts, const V3& d, double budget) {
   if (cuts.size() < 8 || !(budget > 0)) return 0;
   const int a = std::fabs(d[0]) <= std::fabs(d[1]) && std::fabs(d[0]) <= std::fabs(d[2]) ? 0
@@ -406,7 +407,8 @@ double drop_inner_cuts(std::vector<Loose>& cuts, const V3& d, double budget) {
   auto orient = [](const Image& p, const Image& q, const Image& s) {
     return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x);
   };
-  std::sort(img.begin(), img.end(), [](const Image& p, const Image& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
+  std::sort(img.begin(), img.end(),
+            [](const Image& p, const Image& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
   hull.clear();
   for (int pass = 0; pass < 2; ++pass) {  // lower chain left to right, then upper right to left
     const std::size_t base = hull.size();
