@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "exact/expansion.h"
@@ -282,15 +284,49 @@ constexpr double kInside = 1 - 0x1p-36;  // |p|^2 <= this (margin ~1.5e-11 >> th
 
 }  // namespace
 
+namespace {
+
+// The points d0 n / D(n) of M's candidate directions, each orientation, each point once (in the
+// order of the directions, first occurrences kept): directions along one line give one point
+// (D is M's support function, so d0 n / D(n) does not depend on n's length), and on meshes
+// whose faces are parallel (blocks resting on blocks) they repeat: 25 distinct of 81 on the
+// resting five-tetrahedra blocks, none repeated on a generic pair. Equal as doubles (+0 and -0
+// alike), found through a table of 256 slots on their bits. Returns the count.
+int facet_points(const FacetBounds& bounds, double d0, V3 (&pts)[2 * kDirections]) {
+  constexpr unsigned kSlots = 256;  // (> 2 * 88: a slot is free within a few probes)
+  int slot[kSlots];
+  std::fill(slot, slot + kSlots, -1);
+  int n = 0;
+  auto add = [&](const V3& p) {
+    std::uint64_t h = 0;
+    for (const double c : p) {
+      const double z = c + 0.0;  // (-0 as +0: they compare equal)
+      std::uint64_t b;
+      std::memcpy(&b, &z, sizeof b);
+      h = (h ^ b) * 0x9E3779B97F4A7C15ull;
+    }
+    for (unsigned k = unsigned(h >> 56);; k = (k + 1) % kSlots) {
+      if (slot[k] < 0) {
+        slot[k] = n, pts[n++] = p;
+        return;
+      }
+      if (pts[slot[k]] == p) return;
+    }
+  };
+  for (const DirectionBounds& x : bounds.dirs()) {
+    if (x.zero) continue;
+    add(mul(x.n, d0 / x.plus_low));
+    add(mul(x.n, -(d0 / x.minus_low)));
+  }
+  return n;
+}
+
+}  // namespace
+
 bool polytope_inside_ball(FacetBounds& bounds, const V3& d, double c0, double d0) {
   if (!bounds.get()) return false;
   V3 pts[2 * kDirections];
-  int n = 0;
-  for (const DirectionBounds& x : bounds.dirs()) {
-    if (x.zero) continue;
-    pts[n++] = mul(x.n, d0 / x.plus_low);
-    pts[n++] = mul(x.n, -(d0 / x.minus_low));
-  }
+  const int n = facet_points(bounds, d0, pts);
   auto side_error = [&](const V3& p) {  // |fl(p.d) - p_exact.d| bound, and c0's own rounding
     return 16 * kU * (std::fabs(p[0] * d[0]) + std::fabs(p[1] * d[1]) + std::fabs(p[2] * d[2]) + c0);
   };
@@ -509,16 +545,9 @@ bool polytope_inside_ball(FacetBounds& bounds, const Halfspace* planes, int k, d
   static thread_local std::vector<double> v, e;
   static thread_local std::vector<std::size_t> outer, beyond;
   s.clear();
-  auto add_point = [&](const V3& p) {  // (candidates of one direction give one point: kept once)
-    for (const Loose& x : s)
-      if (x.p == p) return;
-    s.push_back(loose(p, 8 * kU * norm(p)));
-  };
-  for (const DirectionBounds& x : bounds.dirs()) {
-    if (x.zero) continue;
-    add_point(mul(x.n, d0 / x.plus_low));
-    add_point(mul(x.n, -(d0 / x.minus_low)));
-  }
+  V3 pts[2 * kDirections];
+  const int n = facet_points(bounds, d0, pts);
+  for (int i = 0; i < n; ++i) s.push_back(loose(pts[i], 8 * kU * norm(pts[i])));
   // The points within 2^-20 of 0 (with their bounds: the directions far deeper than d0, most
   // of them on a shallow contact, ~1e-8 from 0 on one 1e-9 deep) lie in the box [lo, lo + w]^3
   // (lo_k the least p_k - r over them, w the widest extent, each rounded outward), and so in
