@@ -244,22 +244,24 @@ void zcross(ZV& r, const ZV& a, const ZV& b) {  // (r not a or b)
     mpz_submul(z(r[k]), z(a[j]), z(b[i]));
   }
 }
-void det3(mpz_class& r, const mpz_class (&m)[3][3], mpz_class& t) {
-  mpz_mul(z(t), z(m[1][1]), z(m[2][2]));
-  mpz_submul(z(t), z(m[1][2]), z(m[2][1]));
-  mpz_mul(z(r), z(m[0][0]), z(t));
-  mpz_mul(z(t), z(m[1][0]), z(m[2][2]));
-  mpz_submul(z(t), z(m[1][2]), z(m[2][0]));
-  mpz_submul(z(r), z(m[0][1]), z(t));
-  mpz_mul(z(t), z(m[1][0]), z(m[2][1]));
-  mpz_submul(z(t), z(m[1][1]), z(m[2][0]));
-  mpz_addmul(z(r), z(m[0][2]), z(t));
+// The cofactors of a 3x3 matrix, cof[r][c] = (-1)^(r+c) times the minor of entry (r, c): then
+// det m = sum_r m[r][0] cof[r][0], and the determinant of m with column c replaced by b is
+// sum_r b[r] cof[r][c] (Laplace along that column), so Cramer's rule needs these nine products
+// of two entries once instead of a determinant per column.
+void cofactors(mpz_class (&cof)[3][3], const mpz_class (&m)[3][3]) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      // (cyclic order: the sign (-1)^(r+c) comes with the rows and columns taken cyclically)
+      mpz_mul(z(cof[r][c]), z(m[r1][c1]), z(m[r2][c2]));
+      mpz_submul(z(cof[r][c]), z(m[r1][c2]), z(m[r2][c1]));
+    }
 }
 
 // The exact part's integers, kept per thread (their limbs reused from pair to pair).
 struct Workspace {
   ZV x[8], V, e1, e2, g;
-  mpz_class o[3], y, col[8][3], res[3], M[8], M0[8], m[3][3], mc[3][3], d, change[3], t;
+  mpz_class o[3], y, col[8][3], res[3], M[8], M0[8], m[3][3], cof[3][3], d, change[3];
   mpz_class sl, sm, ql, qm, K, gv, vv, num, den;
 };
 
@@ -372,18 +374,19 @@ bool parallel_multipliers(const double (&l)[8], Workspace& w) {
 bool move_three(const int (&best)[3], Workspace& w) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) w.m[r][c] = w.col[best[c]][r];
-  det3(w.d, w.m, w.t);
+  cofactors(w.cof, w.m);
+  mpz_mul(z(w.d), z(w.m[0][0]), z(w.cof[0][0]));
+  mpz_addmul(z(w.d), z(w.m[1][0]), z(w.cof[1][0]));
+  mpz_addmul(z(w.d), z(w.m[2][0]), z(w.cof[2][0]));
   const int sd = sgn(w.d);
   if (sd == 0) return false;
-  // Cramer: change_c = det(m with column c replaced by -res) / d; M scaled by |d|
+  // Cramer: change_c = det(m with column c replaced by -res) / d = -sum_r res_r cof[r][c] / d;
+  // M scaled by |d|
   for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r)
-      for (int j = 0; j < 3; ++j) {
-        if (j == c) mpz_neg(z(w.mc[r][j]), z(w.res[r]));
-        else w.mc[r][j] = w.m[r][j];
-      }
-    det3(w.change[c], w.mc, w.t);
-    if (sd < 0) mpz_neg(z(w.change[c]), z(w.change[c]));
+    mpz_mul(z(w.change[c]), z(w.res[0]), z(w.cof[0][c]));
+    mpz_addmul(z(w.change[c]), z(w.res[1]), z(w.cof[1][c]));
+    mpz_addmul(z(w.change[c]), z(w.res[2]), z(w.cof[2][c]));
+    if (sd > 0) mpz_neg(z(w.change[c]), z(w.change[c]));
   }
   mpz_abs(z(w.d), z(w.d));
   for (int p = 0; p < 8; ++p) mpz_mul(z(w.M[p]), z(w.M0[p]), z(w.d));
