@@ -334,15 +334,17 @@ bool parallel_multipliers(const double (&l)[8], Workspace& w) {
   };
   Triple order[56];
   int count = 0;
+  double norm[8];  // each column's length
+  for (int p = 0; p < 8; ++p) norm[p] = std::sqrt(cd[p][0] * cd[p][0] + cd[p][1] * cd[p][1] + cd[p][2] * cd[p][2]);
   for (int p = 0; p < 8; ++p)
     for (int q = p + 1; q < 8; ++q)
       for (int r = q + 1; r < 8; ++r) {
-        double d = 0, n = 1;
+        double d = 0;
         for (int row = 0; row < 3; ++row) {
           const int r1 = (row + 1) % 3, r2 = (row + 2) % 3;
           d += cd[p][row] * (cd[q][r1] * cd[r][r2] - cd[q][r2] * cd[r][r1]);
         }
-        for (int t : {p, q, r}) n *= std::sqrt(cd[t][0] * cd[t][0] + cd[t][1] * cd[t][1] + cd[t][2] * cd[t][2]);
+        const double n = norm[p] * norm[q] * norm[r];
         const double cond = std::fabs(d) / n;
         if (l[p] > 0 && l[q] > 0 && l[r] > 0) {  // positive scores: the moved multipliers all > 0
           const double score = cond * std::min({l[p], l[q], l[r]});
